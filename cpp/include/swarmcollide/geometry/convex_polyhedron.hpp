@@ -1,0 +1,48 @@
+#pragma once
+
+#include <memory>
+
+#include "swarmcollide/geometry/aabb.hpp"
+#include "swarmcollide/geometry/hull.hpp"
+#include "swarmcollide/types.hpp"
+
+namespace swarmcollide {
+
+namespace detail {
+struct HullCache;
+}
+
+/// A convex polyhedron: the convex hull of a finite point set (the paper's Definition 3).
+///
+/// The points are kept as given; they are the `x_i` of model (2), so a point inside the hull is a
+/// legitimate (if redundant) vertex of the model. Flat, collinear and single-point sets are valid
+/// bodies. Copies share the lazily computed hull; the class is safe to read from many threads.
+class ConvexPolyhedron {
+ public:
+  /// Throws std::invalid_argument if `points` is empty or has a NaN or infinite coordinate.
+  explicit ConvexPolyhedron(VertexMatrix points);
+
+  /// The points the body was built from, one per row.
+  const VertexMatrix& vertices() const { return vertices_; }
+  /// Number of points (the `k` of model (2)).
+  int size() const { return static_cast<int>(vertices_.rows()); }
+
+  /// Index of a point that maximises `direction . x` (the first one on ties).
+  int support_index(const Vector3& direction) const;
+  /// A point of the body farthest along `direction`.
+  Vector3 support(const Vector3& direction) const { return vertices_.row(support_index(direction)); }
+
+  /// Smallest axis-aligned box containing the body.
+  Aabb aabb() const;
+  /// Centre of mass of the solid; for flat, collinear and single-point bodies, of the polygon,
+  /// segment or point they are.
+  Vector3 centroid() const;
+  /// Convex hull, computed on first use.
+  const Hull& hull() const;
+
+ private:
+  VertexMatrix vertices_;
+  std::shared_ptr<detail::HullCache> hull_cache_;
+};
+
+}  // namespace swarmcollide

@@ -1,0 +1,28 @@
+#pragma once
+
+#include <vector>
+
+#include "swarmcollide/types.hpp"
+
+namespace swarmcollide {
+
+/// The convex hull of a point set, as indices into that set.
+struct Hull {
+  /// Affine dimension of the points: 0 (one point), 1 (segment), 2 (flat polygon) or 3 (solid).
+  int dimension = 0;
+  /// Indices of the points that are vertices of the hull, ascending.
+  std::vector<int> vertex_indices;
+  /// Triangles with outward normals by the right-hand rule. A flat polygon is listed twice, once
+  /// facing each side, so the mesh stays closed; segments and single points have no faces.
+  FaceMatrix faces;
+};
+
+/// Relative size below which a singular value of the centred points counts as zero when
+/// deciding the hull's dimension.
+inline constexpr Scalar kFlatnessTolerance = 1e-10;
+
+/// Convex hull of `points` (Qhull for solids, an exact 2-D hull for flat input).
+/// Throws std::invalid_argument for an empty or non-finite point set.
+Hull compute_hull(const VertexMatrix& points);
+
+}  // namespace swarmcollide

@@ -1,0 +1,28 @@
+#pragma once
+
+#include "swarmcollide/geometry/convex_polyhedron.hpp"
+#include "swarmcollide/solvers/distance_result.hpp"
+#include "swarmcollide/solvers/swarm_options.hpp"
+
+namespace swarmcollide {
+
+/// Inertia weight and acceleration coefficients of one particle.
+struct ParticleCoefficients {
+  Scalar w;
+  Scalar c1;
+  Scalar c2;
+};
+
+/// (8)-(9): coefficients of the particle ranked `rank` (1 = best personal best) in a swarm of
+/// `swarm_size`. Throws std::invalid_argument for a rank outside [1, swarm_size].
+ParticleCoefficients rank_adaptive_coefficients(int rank, int swarm_size, Scalar w_min,
+                                                Scalar w_max);
+
+/// (7): the inertia weight after `iteration` of `max_iterations` iterations.
+Scalar linear_decreasing_inertia(int iteration, int max_iterations, Scalar w_start, Scalar w_end);
+
+/// Solves model (2) with a particle swarm (Steps 1-3). Deterministic for a given seed and build.
+DistanceResult solve_swarm(const ConvexPolyhedron& a, const ConvexPolyhedron& b,
+                           const SwarmOptions& options);
+
+}  // namespace swarmcollide

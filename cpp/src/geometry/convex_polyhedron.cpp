@@ -1,0 +1,97 @@
+#include "swarmcollide/geometry/convex_polyhedron.hpp"
+
+#include <mutex>
+#include <stdexcept>
+#include <string>
+
+namespace swarmcollide {
+
+namespace detail {
+struct HullCache {
+  std::once_flag once;
+  Hull hull;
+};
+}  // namespace detail
+
+namespace {
+
+void check_points(const VertexMatrix& points) {
+  if (points.rows() == 0) {
+    throw std::invalid_argument("points is empty: a polyhedron needs at least one point");
+  }
+  for (Eigen::Index i = 0; i < points.rows(); ++i) {
+    if (!points.row(i).allFinite()) {
+      throw std::invalid_argument("points has a NaN or infinite coordinate in row " +
+                                  std::to_string(i));
+    }
+  }
+}
+
+// Centre of mass of a closed, outward-oriented triangle mesh, from the signed tetrahedra it forms
+// with a reference point inside the hull.
+Vector3 solid_centroid(const VertexMatrix& points, const FaceMatrix& faces, const Vector3& origin) {
+  Scalar volume = 0;
+  Vector3 moment = Vector3::Zero();
+  for (Eigen::Index f = 0; f < faces.rows(); ++f) {
+    const Vector3 p = points.row(faces(f, 0)).transpose() - origin;
+    const Vector3 q = points.row(faces(f, 1)).transpose() - origin;
+    const Vector3 r = points.row(faces(f, 2)).transpose() - origin;
+    const Scalar v = p.dot(q.cross(r));
+    volume += v;
+    moment += v * (p + q + r) / 4;
+  }
+  return origin + moment / volume;
+}
+
+// Area centroid of a flat polygon given as a doubled fan of triangles (each listed twice).
+Vector3 flat_centroid(const VertexMatrix& points, const FaceMatrix& faces) {
+  Scalar area = 0;
+  Vector3 moment = Vector3::Zero();
+  for (Eigen::Index f = 0; f < faces.rows(); ++f) {
+    const Vector3 p = points.row(faces(f, 0));
+    const Vector3 q = points.row(faces(f, 1));
+    const Vector3 r = points.row(faces(f, 2));
+    const Scalar a = (q - p).cross(r - p).norm();
+    area += a;
+    moment += a * (p + q + r) / 3;
+  }
+  return moment / area;
+}
+
+}  // namespace
+
+ConvexPolyhedron::ConvexPolyhedron(VertexMatrix points)
+    : vertices_(std::move(points)), hull_cache_(std::make_shared<detail::HullCache>()) {
+  check_points(vertices_);
+}
+
+int ConvexPolyhedron::support_index(const Vector3& direction) const {
+  Eigen::Index best = 0;
+  (vertices_ * direction).maxCoeff(&best);
+  return static_cast<int>(best);
+}
+
+Aabb ConvexPolyhedron::aabb() const {
+  return {vertices_.colwise().minCoeff().transpose(), vertices_.colwise().maxCoeff().transpose()};
+}
+
+Vector3 ConvexPolyhedron::centroid() const {
+  const Hull& h = hull();
+  if (h.dimension == 3) {
+    Vector3 inside = Vector3::Zero();
+    for (int i : h.vertex_indices) inside += vertices_.row(i).transpose();
+    inside /= static_cast<Scalar>(h.vertex_indices.size());
+    return solid_centroid(vertices_, h.faces, inside);
+  }
+  if (h.dimension == 2) return flat_centroid(vertices_, h.faces);
+  Vector3 sum = Vector3::Zero();
+  for (int i : h.vertex_indices) sum += vertices_.row(i).transpose();
+  return sum / static_cast<Scalar>(h.vertex_indices.size());
+}
+
+const Hull& ConvexPolyhedron::hull() const {
+  std::call_once(hull_cache_->once, [this] { hull_cache_->hull = compute_hull(vertices_); });
+  return hull_cache_->hull;
+}
+
+}  // namespace swarmcollide
