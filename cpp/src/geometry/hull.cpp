@@ -1,13 +1,12 @@
 #include "swarmcollide/geometry/hull.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <numeric>
 #include <stdexcept>
 #include <string>
-
-#include <Eigen/Eigenvalues>
 
 extern "C" {
 #include <libqhull_r/qhull_ra.h>
@@ -125,8 +124,9 @@ bool qhull_solid(const VertexMatrix& points, Hull& hull) {
       FOREACHvertex_(facet->vertices) { ids(k++) = qh_pointid(qh, vertex->point); }
       const Vector3 p = points.row(ids(0));
       const Vector3 normal(facet->normal[0], facet->normal[1], facet->normal[2]);
-      if ((points.row(ids(1)).transpose() - p).cross(points.row(ids(2)).transpose() - p).dot(
-              normal) < 0) {
+      if ((points.row(ids(1)).transpose() - p)
+              .cross(points.row(ids(2)).transpose() - p)
+              .dot(normal) < 0) {
         std::swap(ids(1), ids(2));
       }
       faces.push_back(ids);

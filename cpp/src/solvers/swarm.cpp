@@ -83,8 +83,7 @@ class SwarmSolver {
     result_.evaluations = static_cast<long>(options_.swarm_size) * (iteration + 1);
     result_.colliding = result_.distance <= options_.tolerance;
     result_.certified = result_.colliding || result_.lower_bound > options_.tolerance;
-    result_.status =
-        precision_reached() ? SolverStatus::converged : SolverStatus::max_iterations;
+    result_.status = precision_reached() ? SolverStatus::converged : SolverStatus::max_iterations;
     return std::move(result_);
   }
 
@@ -117,8 +116,8 @@ class SwarmSolver {
       const Scalar eb = position_.col(j).tail(kb_).sum() - 1;
       const Scalar violation = ea * ea + eb * eb;
       const auto column = position_.col(j).array();
-      fitness_[j].feasible = violation <= options_.feasibility_tolerance &&
-                             (column >= 0).all() && (column <= 1).all();
+      fitness_[j].feasible =
+          violation <= options_.feasibility_tolerance && (column >= 0).all() && (column <= 1).all();
       fitness_[j].value = fitness_[j].feasible ? gap.col(j).norm() : violation;
     }
   }
@@ -126,16 +125,17 @@ class SwarmSolver {
   void assign_coefficients(int iteration) {
     const int n = options_.swarm_size;
     if (options_.inertia == InertiaStrategy::linear_decreasing) {
-      const Scalar w =
-          linear_decreasing_inertia(iteration, options_.max_iterations, options_.w_max, options_.w_min);
+      const Scalar w = linear_decreasing_inertia(iteration, options_.max_iterations, options_.w_max,
+                                                 options_.w_min);
       std::fill(coefficients_.begin(), coefficients_.end(),
                 ParticleCoefficients{w, options_.c1, options_.c2});
       return;
     }
     std::vector<int> order(n);
     std::iota(order.begin(), order.end(), 0);
-    std::stable_sort(order.begin(), order.end(),
-                     [&](int i, int j) { return better(personal_fitness_[i], personal_fitness_[j]); });
+    std::stable_sort(order.begin(), order.end(), [&](int i, int j) {
+      return better(personal_fitness_[i], personal_fitness_[j]);
+    });
     for (int rank = 1; rank <= n; ++rank) {
       coefficients_[order[rank - 1]] =
           rank_adaptive_coefficients(rank, n, options_.w_min, options_.w_max);
@@ -238,8 +238,7 @@ DistanceResult solve_swarm(const ConvexPolyhedron& a, const ConvexPolyhedron& b,
                            const SwarmOptions& options) {
   options.validate();
   DistanceResult result = SwarmSolver(a, b, options).run();
-  result.method =
-      options.inertia == InertiaStrategy::rank_adaptive ? "ipso" : "pso";
+  result.method = options.inertia == InertiaStrategy::rank_adaptive ? "ipso" : "pso";
   return result;
 }
 

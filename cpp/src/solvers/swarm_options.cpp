@@ -17,8 +17,9 @@ bool finite_nonnegative(Scalar x) { return std::isfinite(x) && x >= 0; }
 }  // namespace
 
 void SwarmOptions::validate() const {
-  require(swarm_size >= 2, "swarm_size must be at least 2 (the ranking (8) divides by N_p - 1), got " +
-                               std::to_string(swarm_size));
+  require(swarm_size >= 2,
+          "swarm_size must be at least 2 (the ranking (8) divides by N_p - 1), got " +
+              std::to_string(swarm_size));
   require(max_iterations >= 0,
           "max_iterations must be nonnegative, got " + std::to_string(max_iterations));
   require(finite_nonnegative(w_min), "w_min must be a finite number >= 0");

@@ -30,7 +30,9 @@ class ConvexPolyhedron {
   /// Index of a point that maximises `direction . x` (the first one on ties).
   int support_index(const Vector3& direction) const;
   /// A point of the body farthest along `direction`.
-  Vector3 support(const Vector3& direction) const { return vertices_.row(support_index(direction)); }
+  Vector3 support(const Vector3& direction) const {
+    return vertices_.row(support_index(direction));
+  }
 
   /// Smallest axis-aligned box containing the body.
   Aabb aabb() const;

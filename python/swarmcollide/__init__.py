@@ -1,0 +1,53 @@
+"""Distance and collision between convex polyhedra.
+
+The method is the improved particle swarm optimizer of the paper "Research on Convex Polyhedron
+Collision Detection Algorithm Based on Improved Particle Swarm Optimization": the distance between
+two convex polyhedra is the non-linear program (2) over convex-combination weights, solved by a
+swarm whose particles get rank-based inertia (8)-(9). Every answer carries bounds that state how
+far from exact it can be.
+
+Examples
+--------
+>>> import swarmcollide as sc
+>>> a = sc.ConvexPolyhedron([[0, 1, 0], [1, 0, 0], [0, 0, 1], [0, 0, 0]])
+>>> b = [[1, -1, 0], [2, -2, 0], [0, -2, 2], [0, -2, 0]]
+>>> r = sc.distance(a, b, seed=0)
+>>> round(r.distance, 6), r.colliding, r.certified
+(1.0, False, True)
+"""
+
+from ._core import (
+    Aabb,
+    ConvexPolyhedron,
+    DistanceResult,
+    Hull,
+    ParticleCoefficients,
+    constraint_violation,
+    is_feasible,
+    linear_decreasing_inertia,
+    objective,
+    project_onto_simplex,
+    rank_adaptive_coefficients,
+    separation,
+)
+from .queries import METHODS, PolyhedronLike, as_polyhedron, collide, distance
+
+__all__ = [
+    "METHODS",
+    "Aabb",
+    "ConvexPolyhedron",
+    "DistanceResult",
+    "Hull",
+    "ParticleCoefficients",
+    "PolyhedronLike",
+    "as_polyhedron",
+    "collide",
+    "constraint_violation",
+    "distance",
+    "is_feasible",
+    "linear_decreasing_inertia",
+    "objective",
+    "project_onto_simplex",
+    "rank_adaptive_coefficients",
+    "separation",
+]
