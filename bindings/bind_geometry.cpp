@@ -104,6 +104,13 @@ Examples
       .def("hull", &ConvexPolyhedron::hull, py::return_value_policy::copy,
            "Convex hull through Qhull (an exact planar hull for flat bodies).")
       .def("__repr__", &repr);
+
+  m.def("as_polyhedron", &to_polyhedron, py::arg("body"), py::arg("name") = "body",
+        R"doc(
+Return ``body`` as a ConvexPolyhedron, building one from ``(n, 3)`` points if needed.
+
+Errors name the argument as ``name``.
+)doc");
 }
 
 }  // namespace swarmcollide::bindings

@@ -10,10 +10,9 @@ namespace swarmcollide::bindings {
 void bind_problem(py::module_& m) {
   m.def(
       "objective",
-      [](const ConvexPolyhedron& a, const ConvexPolyhedron& b, const VectorX& lambda,
-         const VectorX& delta) {
-        return objective(a, b, finite_weights(lambda, "weights_a"),
-                         finite_weights(delta, "weights_b"));
+      [](const py::object& a, const py::object& b, const VectorX& lambda, const VectorX& delta) {
+        return objective(to_polyhedron(a, "a"), to_polyhedron(b, "b"),
+                         finite_weights(lambda, "weights_a"), finite_weights(delta, "weights_b"));
       },
       py::arg("a"), py::arg("b"), py::arg("weights_a"), py::arg("weights_b"), R"doc(
 Objective (5): ``|| sum_j weights_b[j] y_j - sum_i weights_a[i] x_i ||``.
@@ -38,8 +37,8 @@ The weights need not be feasible; see ``constraint_violation`` and ``is_feasible
       "True when all weights lie in [0, 1] and the violation (6) is at most ``tolerance``.");
   m.def(
       "separation",
-      [](const ConvexPolyhedron& a, const ConvexPolyhedron& b, const Vector3& direction) {
-        return separation(a, b, direction);
+      [](const py::object& a, const py::object& b, const Vector3& direction) {
+        return separation(to_polyhedron(a, "a"), to_polyhedron(b, "b"), direction);
       },
       py::arg("a"), py::arg("b"), py::arg("direction"), R"doc(
 Separation of A and B along ``direction``: ``min_j n.y_j - max_i n.x_i`` for the unit ``n``.

@@ -11,10 +11,15 @@ void bind_queries(py::module_& m) {
           [](DistanceOptions& o, const std::string& name) { o.method = method_from_name(name); })
       .def_readwrite("swarm", &DistanceOptions::swarm);
 
-  m.def("distance", &distance, py::arg("a"), py::arg("b"), py::arg("options"),
-        py::call_guard<py::gil_scoped_release>());
-  m.def("collide", &collide, py::arg("a"), py::arg("b"), py::arg("options"),
-        py::call_guard<py::gil_scoped_release>());
+  m.def(
+      "distance",
+      [](const py::object& a, const py::object& b, const DistanceOptions& options) {
+        const ConvexPolyhedron body_a = to_polyhedron(a, "a");
+        const ConvexPolyhedron body_b = to_polyhedron(b, "b");
+        py::gil_scoped_release release;
+        return distance(body_a, body_b, options);
+      },
+      py::arg("a"), py::arg("b"), py::arg("options"));
 }
 
 }  // namespace swarmcollide::bindings

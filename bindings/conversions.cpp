@@ -1,5 +1,6 @@
 #include "conversions.hpp"
 
+#include <stdexcept>
 #include <string>
 
 namespace swarmcollide::bindings {
@@ -43,6 +44,15 @@ VertexMatrix to_vertex_matrix(const py::handle& points, const char* name) {
   const auto doubles =
       py::array_t<Scalar, py::array::c_style | py::array::forcecast>::ensure(array);
   return Eigen::Map<const VertexMatrix>(doubles.data(), doubles.shape(0), 3);
+}
+
+ConvexPolyhedron to_polyhedron(const py::handle& body, const char* name) {
+  if (py::isinstance<ConvexPolyhedron>(body)) return body.cast<ConvexPolyhedron>();
+  try {
+    return ConvexPolyhedron(to_vertex_matrix(body, name));
+  } catch (const std::invalid_argument& error) {
+    throw py::value_error(std::string(name) + ": " + error.what());
+  }
 }
 
 Vector3 finite_vector3(const Vector3& vector, const char* name) {

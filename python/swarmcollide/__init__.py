@@ -21,6 +21,7 @@ from ._core import (
     ConvexPolyhedron,
     DistanceResult,
     Hull,
+    as_polyhedron,
     ParticleCoefficients,
     constraint_violation,
     is_feasible,
@@ -30,7 +31,7 @@ from ._core import (
     rank_adaptive_coefficients,
     separation,
 )
-from .queries import METHODS, PolyhedronLike, as_polyhedron, collide, distance
+from .queries import METHODS, PolyhedronLike, collide, distance
 
 __all__ = [
     "METHODS",

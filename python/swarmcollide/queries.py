@@ -40,19 +40,6 @@ _CONSTRAINT_HANDLING = {
 }
 
 
-def as_polyhedron(body: PolyhedronLike, name: str = "body") -> _core.ConvexPolyhedron:
-    """Return ``body`` as a ``ConvexPolyhedron``, building one from ``(n, 3)`` points if needed.
-
-    Errors name the argument: ``name`` is how the caller calls it.
-    """
-    if isinstance(body, _core.ConvexPolyhedron):
-        return body
-    try:
-        return _core.ConvexPolyhedron(body)
-    except (TypeError, ValueError) as error:
-        raise type(error)(f"{name}: {error}") from None
-
-
 def _check_number(name: str, value: object, integer: bool) -> None:
     kind = numbers.Integral if integer else numbers.Real
     if isinstance(value, bool) or not isinstance(value, kind):
@@ -178,7 +165,7 @@ def distance(
             "constraint_handling": constraint_handling,
         },
     )
-    return _core.distance(as_polyhedron(a, "a"), as_polyhedron(b, "b"), options)
+    return _core.distance(a, b, options)
 
 
 def collide(a: PolyhedronLike, b: PolyhedronLike, **parameters: object) -> bool:

@@ -1,0 +1,22 @@
+"""The examples in the docstrings run and give what they show."""
+
+import doctest
+
+import pytest
+
+import swarmcollide
+import swarmcollide._core
+import swarmcollide.queries
+
+MODULES = [swarmcollide, swarmcollide.queries, swarmcollide._core]
+
+
+@pytest.mark.parametrize("module", MODULES, ids=lambda m: m.__name__)
+def test_docstring_examples(module):
+    finder = doctest.DocTestFinder(exclude_empty=True)
+    runner = doctest.DocTestRunner(optionflags=doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE)
+    tests = [t for t in finder.find(module, module.__name__) if t.examples]
+    for test in tests:
+        runner.run(test)
+    assert runner.failures == 0
+    assert tests, f"{module.__name__} has no examples"

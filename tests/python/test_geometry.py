@@ -1,0 +1,96 @@
+"""ConvexPolyhedron: construction from (n, 3) points, queries, hulls and bad input."""
+
+import numpy as np
+import pytest
+
+import swarmcollide as sc
+
+CUBE = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)], dtype=float)
+
+
+def test_keeps_the_points_as_given_and_read_only():
+    body = sc.ConvexPolyhedron(CUBE)
+    np.testing.assert_array_equal(body.vertices, CUBE)
+    assert len(body) == 8
+    with pytest.raises(ValueError):
+        body.vertices[0, 0] = 5.0
+
+
+@pytest.mark.parametrize("points", [CUBE.tolist(), CUBE.astype(np.float32), CUBE.astype(int)])
+def test_accepts_array_likes_of_any_real_dtype(points):
+    np.testing.assert_array_equal(sc.ConvexPolyhedron(points).vertices, CUBE)
+
+
+def test_accepts_non_contiguous_arrays():
+    wide = np.zeros((8, 6))
+    wide[:, ::2] = CUBE
+    np.testing.assert_array_equal(sc.ConvexPolyhedron(wide[:, ::2]).vertices, CUBE)
+
+
+@pytest.mark.parametrize(
+    ("points", "error", "message"),
+    [
+        ([], ValueError, "shape"),
+        (np.zeros((0, 3)), ValueError, "empty"),
+        ([[1, 2]], ValueError, r"shape \(n, 3\), got shape \(1, 2\)"),
+        ([1, 2, 3], ValueError, "shape"),
+        (np.zeros((2, 3, 1)), ValueError, "shape"),
+        ([[1, 2, 3], [4, 5]], ValueError, "array of numbers"),
+        ([[np.nan, 0, 0]], ValueError, "NaN or infinite"),
+        ([[0, 0, 0], [0, np.inf, 0]], ValueError, "row 1"),
+        ("cube", TypeError, "got str"),
+        ([[None, 0, 0]], TypeError, "real numbers"),
+        ([[1j, 0, 0]], TypeError, "real numbers"),
+        (np.ones((2, 3), dtype=bool), TypeError, "real numbers"),
+    ],
+)
+def test_bad_points_raise_a_clear_error(points, error, message):
+    with pytest.raises(error, match=message):
+        sc.ConvexPolyhedron(points)
+
+
+def test_support_aabb_centroid():
+    body = sc.ConvexPolyhedron(np.vstack([CUBE, [[0.2, 0.2, 0.2]]]))
+    np.testing.assert_array_equal(body.support([1, -1, 1]), [1, 0, 1])
+    assert body.support_index([-1, -1, -1]) == 0
+    box = body.aabb()
+    np.testing.assert_array_equal(box.min, [0, 0, 0])
+    np.testing.assert_array_equal(box.max, [1, 1, 1])
+    np.testing.assert_allclose(body.centroid(), [0.5, 0.5, 0.5], atol=1e-14)
+    with pytest.raises(ValueError, match="direction"):
+        body.support([np.nan, 0, 0])
+
+
+def test_hull_of_a_cube_with_an_inner_point():
+    body = sc.ConvexPolyhedron(np.vstack([CUBE, [[0.5, 0.5, 0.5]]]))
+    hull = body.hull()
+    assert hull.dimension == 3
+    np.testing.assert_array_equal(hull.vertex_indices, np.arange(8))
+    assert hull.faces.shape == (12, 3)
+    # Outward: every hull vertex lies behind every face.
+    v = body.vertices
+    for face in hull.faces:
+        normal = np.cross(v[face[1]] - v[face[0]], v[face[2]] - v[face[0]])
+        assert np.all((v[:8] - v[face[0]]) @ normal <= 1e-12)
+    assert "dimension=3" in repr(hull) and "12 faces" in repr(hull)
+
+
+@pytest.mark.parametrize(
+    ("points", "dimension", "vertices", "faces"),
+    [
+        ([[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0], [0.5, 0.5, 0]], 2, 4, 4),
+        ([[0, 0, 0], [1, 1, 1], [0.5, 0.5, 0.5]], 1, 2, 0),
+        ([[2, 2, 2], [2, 2, 2]], 0, 1, 0),
+    ],
+)
+def test_degenerate_bodies_have_exact_lower_dimensional_hulls(points, dimension, vertices, faces):
+    hull = sc.ConvexPolyhedron(points).hull()
+    assert hull.dimension == dimension
+    assert len(hull.vertex_indices) == vertices
+    assert hull.faces.shape == (faces, 3)
+
+
+def test_repr_tells_what_it_holds():
+    text = repr(sc.ConvexPolyhedron(CUBE))
+    assert text.startswith("ConvexPolyhedron(8 points")
+    assert "[0, 0, 0] to [1, 1, 1]" in text
