@@ -7,9 +7,10 @@ CPP_BUILD := build/cpp
 JOBS ?= 2
 
 PACKAGE_SOURCES := CMakeLists.txt pyproject.toml $(shell find cpp bindings python -type f -not -name '*.pyc' 2>/dev/null)
-BUILD_REQUIREMENTS := scikit-build-core pybind11
+# pybind11 is pinned because the checked-in stubs (python/swarmcollide/_core.pyi) follow its output.
+BUILD_REQUIREMENTS := scikit-build-core>=0.10 pybind11==3.1.0
 
-.PHONY: demo test test-cpp test-python system-packages install bench clean
+.PHONY: demo test test-cpp test-python system-packages install stubs bench clean
 
 demo: install
 	$(PY) -m swarmcollide paper
@@ -35,6 +36,9 @@ test-cpp: system-packages
 	  -DSWARMCOLLIDE_BUILD_TESTS=ON -DSWARMCOLLIDE_BUILD_PYTHON=OFF
 	cmake --build $(CPP_BUILD) -j $(JOBS)
 	ctest --test-dir $(CPP_BUILD) --output-on-failure -j $(JOBS)
+
+stubs: install
+	$(PY) -m pybind11_stubgen swarmcollide._core -o python --numpy-array-use-type-var
 
 test-python: install
 	$(PY) -m pytest
