@@ -2,6 +2,9 @@
 
 #include <stdexcept>
 
+#include "swarmcollide/solvers/fcl_distance.hpp"
+#include "swarmcollide/solvers/libccd_penetration.hpp"
+#include "swarmcollide/solvers/penalty.hpp"
 #include "swarmcollide/solvers/swarm.hpp"
 
 namespace swarmcollide {
@@ -12,27 +15,54 @@ std::string method_name(Method method) {
       return "ipso";
     case Method::pso:
       return "pso";
+    case Method::penalty:
+      return "penalty";
+    case Method::fcl:
+      return "fcl";
+    case Method::fcl_indep:
+      return "fcl-indep";
+    case Method::libccd:
+      return "libccd";
   }
   throw std::invalid_argument("unknown method");
 }
 
 Method method_from_name(const std::string& name) {
-  for (Method m : {Method::ipso, Method::pso}) {
+  for (Method m : {Method::ipso, Method::pso, Method::penalty, Method::fcl, Method::fcl_indep,
+                   Method::libccd}) {
     if (method_name(m) == name) return m;
   }
-  throw std::invalid_argument("unknown method '" + name + "'; choose one of: 'ipso', 'pso'");
+  throw std::invalid_argument("unknown method '" + name +
+                              "'; choose one of: 'ipso', 'pso', 'penalty', 'fcl', 'fcl-indep', "
+                              "'libccd'");
 }
 
 DistanceResult distance(const ConvexPolyhedron& a, const ConvexPolyhedron& b,
                         const DistanceOptions& options) {
+  switch (options.method) {
+    case Method::penalty:
+      return solve_penalty(a, b, options.penalty);
+    case Method::fcl:
+      return fcl_distance(a, b, FclGjk::libccd, options.exact);
+    case Method::fcl_indep:
+      return fcl_distance(a, b, FclGjk::indep, options.exact);
+    case Method::libccd:
+      throw std::invalid_argument(
+          "method 'libccd' has no distance function (libccd only tests intersection and "
+          "measures penetration); use method 'fcl' for an exact distance, or 'ipso'/'pso', or "
+          "collide()/signed_distance() with 'libccd'");
+    case Method::ipso:
+    case Method::pso:
+      break;
+  }
   SwarmOptions swarm = options.swarm;
   swarm.inertia = options.method == Method::ipso ? InertiaStrategy::rank_adaptive
                                                  : InertiaStrategy::linear_decreasing;
   return solve_swarm(a, b, swarm);
 }
 
-bool collide(const ConvexPolyhedron& a, const ConvexPolyhedron& b,
-             const DistanceOptions& options) {
+bool collide(const ConvexPolyhedron& a, const ConvexPolyhedron& b, const DistanceOptions& options) {
+  if (options.method == Method::libccd) return libccd_intersect(a, b, options.exact);
   return distance(a, b, options).colliding;
 }
 

@@ -1,0 +1,93 @@
+#include "swarmcollide/solvers/fcl_distance.hpp"
+
+#include <fcl/narrowphase/distance.h>
+
+#include <cmath>
+#include <memory>
+#include <vector>
+
+#include "exact_internal.hpp"
+
+namespace swarmcollide {
+
+namespace {
+
+std::string name_of(FclGjk gjk) { return gjk == FclGjk::libccd ? "fcl" : "fcl-indep"; }
+
+// The hull as an fcl::Convexd, translated by -origin. Segments and single points have no faces;
+// FCL then finds support points by scanning the vertices, which is all GJK needs.
+std::shared_ptr<fcl::Convexd> to_fcl(const ConvexPolyhedron& body, const Vector3& origin) {
+  const Hull& hull = body.hull();
+  std::vector<int> local(body.size(), -1);
+  auto vertices = std::make_shared<std::vector<fcl::Vector3d>>();
+  for (int i : hull.vertex_indices) {
+    local[i] = static_cast<int>(vertices->size());
+    vertices->push_back(body.vertices().row(i).transpose() - origin);
+  }
+  auto faces = std::make_shared<std::vector<int>>();
+  for (Eigen::Index f = 0; f < hull.faces.rows(); ++f) {
+    faces->insert(faces->end(),
+                  {3, local[hull.faces(f, 0)], local[hull.faces(f, 1)], local[hull.faces(f, 2)]});
+  }
+  return std::make_shared<fcl::Convexd>(vertices, static_cast<int>(hull.faces.rows()), faces);
+}
+
+struct FclPair {
+  Vector3 origin;
+  std::shared_ptr<fcl::Convexd> a;
+  std::shared_ptr<fcl::Convexd> b;
+};
+
+FclPair make_pair(const ConvexPolyhedron& a, const ConvexPolyhedron& b) {
+  const Aabb box = a.aabb();
+  const Vector3 origin = (box.min + box.max) / 2;
+  return {origin, to_fcl(a, origin), to_fcl(b, origin)};
+}
+
+// One FCL distance query; a fresh fcl::DistanceResult each time, since it keeps the smallest
+// distance it has seen.
+fcl::DistanceResultd query(const FclPair& pair, bool signed_distance, fcl::GJKSolverType solver,
+                           Scalar tolerance) {
+  const fcl::DistanceRequestd request(true, signed_distance, 0, 0, tolerance, solver);
+  fcl::DistanceResultd result;
+  fcl::distance(pair.a.get(), fcl::Transform3d::Identity(), pair.b.get(),
+                fcl::Transform3d::Identity(), request, result);
+  return result;
+}
+
+}  // namespace
+
+DistanceResult fcl_distance(const ConvexPolyhedron& a, const ConvexPolyhedron& b, FclGjk gjk,
+                            const ExactOptions& options) {
+  options.validate();
+  const std::string method = name_of(gjk);
+  const FclPair pair = make_pair(a, b);
+  const fcl::DistanceResultd raw =
+      query(pair, false, gjk == FclGjk::libccd ? fcl::GST_LIBCCD : fcl::GST_INDEP,
+            options.distance_tolerance);
+  if (std::isfinite(raw.min_distance) && raw.min_distance > 0) {
+    DistanceResult r = exact_internal::result_from_witnesses(
+        a, b, raw.nearest_points[0] + pair.origin, raw.nearest_points[1] + pair.origin, method,
+        options.tolerance);
+    if (exact_internal::is_certified_optimal(a, b, r)) return r;
+  }
+  return exact_internal::nearest_points(a, b, options, method);
+}
+
+DistanceResult fcl_signed_distance(const ConvexPolyhedron& a, const ConvexPolyhedron& b, FclGjk gjk,
+                                   const ExactOptions& options) {
+  DistanceResult apart = fcl_distance(a, b, gjk, options);
+  if (!apart.colliding) return apart;
+  const FclPair pair = make_pair(a, b);
+  const fcl::DistanceResultd raw = query(pair, true, fcl::GST_LIBCCD, options.distance_tolerance);
+  // FCL's witnesses: point_a deepest in B, point_b deepest in A; point_a - point_b is the
+  // translation of B that separates the bodies (the contact normal, from A to B).
+  const Vector3 point_a = raw.nearest_points[0] + pair.origin;
+  const Vector3 point_b = raw.nearest_points[1] + pair.origin;
+  const Vector3 normal = point_a - point_b;
+  if (!(raw.min_distance < 0) || !(normal.norm() > 0) || !normal.allFinite()) return apart;
+  return exact_internal::penetration_result(a, b, normal, -raw.min_distance, apart.method,
+                                            options.tolerance);
+}
+
+}  // namespace swarmcollide
