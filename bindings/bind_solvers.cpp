@@ -5,6 +5,8 @@
 
 #include "conversions.hpp"
 #include "swarmcollide/solvers/distance_result.hpp"
+#include "swarmcollide/solvers/exact_options.hpp"
+#include "swarmcollide/solvers/penalty_options.hpp"
 #include "swarmcollide/solvers/swarm.hpp"
 
 namespace swarmcollide::bindings {
@@ -26,8 +28,10 @@ std::string status_name(SolverStatus status) {
 std::string repr(const DistanceResult& r) {
   std::ostringstream out;
   out.precision(6);
-  out << "DistanceResult(method='" << r.method << "', distance=" << r.distance
-      << ", lower_bound=" << r.lower_bound << ", colliding=" << (r.colliding ? "True" : "False")
+  out << "DistanceResult(method='" << r.method << "'";
+  if (!r.escalated_from.empty()) out << ", escalated_from='" << r.escalated_from << "'";
+  out << ", distance=" << r.distance << ", lower_bound=" << r.lower_bound
+      << ", colliding=" << (r.colliding ? "True" : "False")
       << ", certified=" << (r.certified ? "True" : "False") << ", iterations=" << r.iterations
       << ", status='" << status_name(r.status) << "')";
   return out.str();
@@ -68,6 +72,32 @@ void bind_solvers(py::module_& m) {
       .def("validate", &SwarmOptions::validate,
            "Raise ValueError naming the first invalid parameter.");
 
+  py::class_<PenaltyOptions>(m, "PenaltyOptions",
+                             "Parameters of the exterior quadratic penalty baseline.")
+      .def(py::init<>())
+      .def_readwrite("initial_weight", &PenaltyOptions::initial_weight)
+      .def_readwrite("growth_factor", &PenaltyOptions::growth_factor)
+      .def_readwrite("outer_iterations", &PenaltyOptions::outer_iterations)
+      .def_readwrite("inner_iterations", &PenaltyOptions::inner_iterations)
+      .def_readwrite("tolerance", &PenaltyOptions::tolerance)
+      .def("validate", &PenaltyOptions::validate,
+           "Raise ValueError naming the first invalid parameter.");
+
+  py::enum_<PenetrationAlgorithm>(m, "PenetrationAlgorithm",
+                                  "libccd's penetration routine: EPA or MPR.")
+      .value("epa", PenetrationAlgorithm::epa)
+      .value("mpr", PenetrationAlgorithm::mpr);
+
+  py::class_<ExactOptions>(m, "ExactOptions", "Parameters of the exact reference methods.")
+      .def(py::init<>())
+      .def_readwrite("distance_tolerance", &ExactOptions::distance_tolerance)
+      .def_readwrite("penetration_tolerance", &ExactOptions::penetration_tolerance)
+      .def_readwrite("max_iterations", &ExactOptions::max_iterations)
+      .def_readwrite("tolerance", &ExactOptions::tolerance)
+      .def_readwrite("penetration", &ExactOptions::penetration)
+      .def("validate", &ExactOptions::validate,
+           "Raise ValueError naming the first invalid parameter.");
+
   py::class_<DistanceResult>(m, "DistanceResult", R"doc(
 The answer of every distance query, whatever the method.
 
@@ -95,7 +125,10 @@ and ``weights_b``), and ``lower_bound`` is the separation along ``direction``.
       .def_readonly("colliding", &DistanceResult::colliding)
       .def_readonly("certified", &DistanceResult::certified,
                     "True when the bounds prove the verdict.")
-      .def_readonly("method", &DistanceResult::method)
+      .def_readonly("method", &DistanceResult::method, "The method that produced the answer.")
+      .def_readonly("escalated_from", &DistanceResult::escalated_from,
+                    "The method whose unproven collision verdict was handed to ``method`` "
+                    "(empty if none).")
       .def_property_readonly(
           "status", [](const DistanceResult& r) { return status_name(r.status); },
           "'converged', 'max_iterations' or 'exact'.")

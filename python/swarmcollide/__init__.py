@@ -31,10 +31,19 @@ from ._core import (
     rank_adaptive_coefficients,
     separation,
 )
-from .queries import METHODS, PolyhedronLike, collide, distance
+from .queries import (
+    METHODS,
+    SIGNED_METHODS,
+    PolyhedronLike,
+    collide,
+    collision,
+    distance,
+    signed_distance,
+)
 
 __all__ = [
     "METHODS",
+    "SIGNED_METHODS",
     "Aabb",
     "ConvexPolyhedron",
     "DistanceResult",
@@ -43,6 +52,7 @@ __all__ = [
     "PolyhedronLike",
     "as_polyhedron",
     "collide",
+    "collision",
     "constraint_violation",
     "distance",
     "is_feasible",
@@ -51,4 +61,5 @@ __all__ = [
     "project_onto_simplex",
     "rank_adaptive_coefficients",
     "separation",
+    "signed_distance",
 ]

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['Aabb', 'ConstraintHandling', 'ConvexPolyhedron', 'DistanceOptions', 'DistanceResult', 'Hull', 'InertiaStrategy', 'ParticleCoefficients', 'SwarmOptions', 'as_polyhedron', 'constraint_violation', 'distance', 'is_feasible', 'linear_decreasing_inertia', 'objective', 'project_onto_simplex', 'rank_adaptive_coefficients', 'separation']
+__all__: list[str] = ['Aabb', 'ConstraintHandling', 'ConvexPolyhedron', 'DistanceOptions', 'DistanceResult', 'ExactOptions', 'Hull', 'InertiaStrategy', 'ParticleCoefficients', 'PenaltyOptions', 'PenetrationAlgorithm', 'SwarmOptions', 'as_polyhedron', 'collide', 'collision', 'constraint_violation', 'distance', 'is_feasible', 'linear_decreasing_inertia', 'objective', 'project_onto_simplex', 'rank_adaptive_coefficients', 'separation', 'signed_distance']
 class Aabb:
     """
     An axis-aligned bounding box with corners ``min`` and ``max``.
@@ -120,7 +120,9 @@ class DistanceOptions:
     """
     A method and the parameters of its solver.
     """
+    exact: ExactOptions
     method: str
+    penalty: PenaltyOptions
     swarm: SwarmOptions
     def __init__(self) -> None:
         ...
@@ -154,6 +156,11 @@ class DistanceResult:
         Upper bound on the distance, achieved by the witness points.
         """
     @property
+    def escalated_from(self) -> str:
+        """
+        The method whose unproven collision verdict was handed to ``method`` (empty if none).
+        """
+    @property
     def evaluations(self) -> int:
         ...
     @property
@@ -176,7 +183,9 @@ class DistanceResult:
         """
     @property
     def method(self) -> str:
-        ...
+        """
+        The method that produced the answer.
+        """
     @property
     def point_a(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
         """
@@ -202,6 +211,41 @@ class DistanceResult:
         """
         delta of model (2): nonnegative, summing to one.
         """
+class ExactOptions:
+    """
+    Parameters of the exact reference methods.
+    """
+    penetration: PenetrationAlgorithm
+    def __init__(self) -> None:
+        ...
+    def validate(self) -> None:
+        """
+        Raise ValueError naming the first invalid parameter.
+        """
+    @property
+    def distance_tolerance(self) -> float:
+        ...
+    @distance_tolerance.setter
+    def distance_tolerance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def max_iterations(self) -> int:
+        ...
+    @max_iterations.setter
+    def max_iterations(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def penetration_tolerance(self) -> float:
+        ...
+    @penetration_tolerance.setter
+    def penetration_tolerance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def tolerance(self) -> float:
+        ...
+    @tolerance.setter
+    def tolerance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
 class Hull:
     """
     
@@ -287,6 +331,93 @@ class ParticleCoefficients:
     @property
     def w(self) -> float:
         ...
+class PenaltyOptions:
+    """
+    Parameters of the exterior quadratic penalty baseline.
+    """
+    def __init__(self) -> None:
+        ...
+    def validate(self) -> None:
+        """
+        Raise ValueError naming the first invalid parameter.
+        """
+    @property
+    def growth_factor(self) -> float:
+        ...
+    @growth_factor.setter
+    def growth_factor(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def initial_weight(self) -> float:
+        ...
+    @initial_weight.setter
+    def initial_weight(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def inner_iterations(self) -> int:
+        ...
+    @inner_iterations.setter
+    def inner_iterations(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def outer_iterations(self) -> int:
+        ...
+    @outer_iterations.setter
+    def outer_iterations(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def tolerance(self) -> float:
+        ...
+    @tolerance.setter
+    def tolerance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+class PenetrationAlgorithm:
+    """
+    libccd's penetration routine: EPA or MPR.
+    
+    Members:
+    
+      epa
+    
+      mpr
+    """
+    __members__: typing.ClassVar[dict[str, PenetrationAlgorithm]]  # value = {'epa': <PenetrationAlgorithm.epa: 0>, 'mpr': <PenetrationAlgorithm.mpr: 1>}
+    epa: typing.ClassVar[PenetrationAlgorithm]  # value = <PenetrationAlgorithm.epa: 0>
+    mpr: typing.ClassVar[PenetrationAlgorithm]  # value = <PenetrationAlgorithm.mpr: 1>
+    @typing.overload
+    def __eq__(self, other: PenetrationAlgorithm) -> bool:
+        ...
+    @typing.overload
+    def __eq__(self, other: typing.Any) -> bool:
+        ...
+    def __getstate__(self) -> int:
+        ...
+    def __hash__(self) -> int:
+        ...
+    def __index__(self) -> int:
+        ...
+    def __init__(self, value: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __int__(self) -> int:
+        ...
+    @typing.overload
+    def __ne__(self, other: PenetrationAlgorithm) -> bool:
+        ...
+    @typing.overload
+    def __ne__(self, other: typing.Any) -> bool:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, state: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __str__(self) -> str:
+        ...
+    @property
+    def name(self) -> str:
+        ...
+    @property
+    def value(self) -> int:
+        ...
 class SwarmOptions:
     """
     Parameters of the swarm solvers; defaults are the paper's.
@@ -365,6 +496,10 @@ def as_polyhedron(body: typing.Any, name: str = 'body') -> ConvexPolyhedron:
     
     Errors name the argument as ``name``.
     """
+def collide(a: typing.Any, b: typing.Any, options: DistanceOptions, escalate: bool) -> bool:
+    ...
+def collision(a: typing.Any, b: typing.Any, options: DistanceOptions, escalate: bool) -> DistanceResult:
+    ...
 def constraint_violation(weights_a: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"], weights_b: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"]) -> float:
     """
     Constraint violation (6): ``(sum(weights_a) - 1)**2 + (sum(weights_b) - 1)**2``.
@@ -408,3 +543,5 @@ def separation(a: typing.Any, b: typing.Any, direction: typing.Annotated[numpy.t
     >>> sc.separation(a, b, [1, 0, 0])
     2.0
     """
+def signed_distance(a: typing.Any, b: typing.Any, options: DistanceOptions) -> DistanceResult:
+    ...

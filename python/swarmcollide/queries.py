@@ -1,9 +1,9 @@
-"""Distance and collision queries between convex polyhedra."""
+"""Distance, signed distance and collision queries between convex polyhedra."""
 
 from __future__ import annotations
 
 import numbers
-from typing import Dict, FrozenSet, Optional, Union
+from typing import Any, Dict, Mapping, Optional, Tuple, Union
 
 import numpy.typing as npt
 
@@ -12,71 +12,96 @@ from . import _core
 PolyhedronLike = Union[_core.ConvexPolyhedron, npt.ArrayLike]
 """A ``ConvexPolyhedron`` or anything ``ConvexPolyhedron(points)`` accepts: ``(n, 3)`` points."""
 
-METHODS = ("ipso", "pso")
+METHODS = ("ipso", "pso", "penalty", "fcl", "fcl-indep", "libccd")
 """The names ``method`` accepts."""
 
-_SWARM_PARAMETERS = frozenset(
-    {
-        "swarm_size",
-        "max_iterations",
-        "w_min",
-        "w_max",
-        "c1",
-        "c2",
-        "velocity_limit",
-        "tolerance",
-        "feasibility_tolerance",
-        "constraint_handling",
-    }
-)
-_PARAMETERS_OF: Dict[str, FrozenSet[str]] = {
-    "ipso": _SWARM_PARAMETERS - {"c1", "c2"},
-    "pso": _SWARM_PARAMETERS,
+SIGNED_METHODS = ("fcl", "fcl-indep", "libccd")
+"""The methods that measure penetration depth, for ``signed_distance``."""
+
+_CHOICES: Dict[str, Mapping[str, object]] = {
+    "constraint_handling": {
+        "feasibility": _core.ConstraintHandling.feasibility,
+        "projection": _core.ConstraintHandling.projection,
+    },
+    "penetration": {"epa": _core.PenetrationAlgorithm.epa, "mpr": _core.PenetrationAlgorithm.mpr},
 }
-_INTEGER_PARAMETERS = frozenset({"swarm_size", "max_iterations"})
-_CONSTRAINT_HANDLING = {
-    "feasibility": _core.ConstraintHandling.feasibility,
-    "projection": _core.ConstraintHandling.projection,
+
+# Each method's keyword arguments: the options group they set and whether they are integers
+# (True), real numbers (False) or one of _CHOICES (None).
+_Parameters = Dict[str, Tuple[str, Optional[bool]]]
+_SWARM: _Parameters = {
+    "swarm_size": ("swarm", True),
+    "max_iterations": ("swarm", True),
+    "w_min": ("swarm", False),
+    "w_max": ("swarm", False),
+    "velocity_limit": ("swarm", False),
+    "tolerance": ("swarm", False),
+    "feasibility_tolerance": ("swarm", False),
+    "constraint_handling": ("swarm", None),
+}
+_EXACT: _Parameters = {
+    "distance_tolerance": ("exact", False),
+    "penetration_tolerance": ("exact", False),
+    "max_iterations": ("exact", True),
+    "tolerance": ("exact", False),
+}
+_PARAMETERS_OF: Dict[str, _Parameters] = {
+    "ipso": _SWARM,
+    "pso": {**_SWARM, "c1": ("swarm", False), "c2": ("swarm", False)},
+    "penalty": {
+        "initial_weight": ("penalty", False),
+        "growth_factor": ("penalty", False),
+        "outer_iterations": ("penalty", True),
+        "inner_iterations": ("penalty", True),
+        "tolerance": ("penalty", False),
+    },
+    "fcl": _EXACT,
+    "fcl-indep": _EXACT,
+    "libccd": {**_EXACT, "penetration": ("exact", None)},
 }
 
 
-def _check_number(name: str, value: object, integer: bool) -> None:
+def _check_type(name: str, value: object, integer: bool) -> None:
     kind = numbers.Integral if integer else numbers.Real
     if isinstance(value, bool) or not isinstance(value, kind):
         expected = "an integer" if integer else "a real number"
         raise TypeError(f"{name} must be {expected}, got {type(value).__name__}")
 
 
-def _options(method: str, seed: int, parameters: Dict[str, object]) -> _core.DistanceOptions:
+def _options(method: str, seed: int, parameters: Mapping[str, object]) -> _core.DistanceOptions:
+    """Options for ``method`` from keyword arguments; ``None`` leaves the method's default."""
     if not isinstance(method, str):
         raise TypeError(f"method must be a string, got {type(method).__name__}")
     if method not in _PARAMETERS_OF:
         raise ValueError(f"unknown method {method!r}; choose one of {', '.join(METHODS)}")
-    _check_number("seed", seed, integer=True)
+    _check_type("seed", seed, integer=True)
     if not 0 <= seed < 2**64:
         raise ValueError(f"seed must lie in [0, 2**64), got {seed}")
     options = _core.DistanceOptions()
     options.method = method
-    swarm = options.swarm
-    swarm.seed = int(seed)
+    options.swarm.seed = int(seed)
+    accepted = _PARAMETERS_OF[method]
     for name, value in parameters.items():
         if value is None:
             continue
-        if name not in _PARAMETERS_OF[method]:
-            accepted = ", ".join(sorted(_PARAMETERS_OF[method])) or "none"
+        if name not in accepted:
             raise ValueError(
-                f"{name} does not apply to method={method!r} (its parameters: {accepted})"
+                f"{name} does not apply to method={method!r} "
+                f"(its parameters: {', '.join(sorted(accepted))})"
             )
-        if name == "constraint_handling":
-            if value not in _CONSTRAINT_HANDLING:
+        group, integer = accepted[name]
+        if integer is None:
+            if value not in _CHOICES[name]:
                 raise ValueError(
-                    f"constraint_handling must be 'feasibility' or 'projection', got {value!r}"
+                    f"{name} must be one of {', '.join(map(repr, _CHOICES[name]))}, got {value!r}"
                 )
-            swarm.constraint_handling = _CONSTRAINT_HANDLING[value]
+            value = _CHOICES[name][value]  # type: ignore[index]
         else:
-            _check_number(name, value, integer=name in _INTEGER_PARAMETERS)
-            setattr(swarm, name, int(value) if name in _INTEGER_PARAMETERS else float(value))
-    swarm.validate()
+            _check_type(name, value, integer)
+            value = int(value) if integer else float(value)  # type: ignore[call-overload]
+        setattr(getattr(options, group), name, value)
+    for group in {group for group, _ in accepted.values()}:
+        getattr(options, group).validate()
     return options
 
 
@@ -96,37 +121,65 @@ def distance(
     tolerance: Optional[float] = None,
     feasibility_tolerance: Optional[float] = None,
     constraint_handling: Optional[str] = None,
+    initial_weight: Optional[float] = None,
+    growth_factor: Optional[float] = None,
+    outer_iterations: Optional[int] = None,
+    inner_iterations: Optional[int] = None,
+    distance_tolerance: Optional[float] = None,
+    penetration_tolerance: Optional[float] = None,
+    penetration: Optional[str] = None,
 ) -> _core.DistanceResult:
     """Distance between two convex polyhedra: model (2) of the paper.
+
+    Every parameter left at ``None`` takes the method's default, shown below; a parameter that
+    does not apply to the chosen method is a ValueError.
 
     Parameters
     ----------
     a, b : ConvexPolyhedron or array_like, shape (n, 3)
         The bodies, or the points whose convex hulls they are.
-    method : {"ipso", "pso"}
+    method : {"ipso", "pso", "penalty", "fcl", "fcl-indep"}
         ``"ipso"``: the paper's improved PSO, with rank-adaptive inertia and acceleration (8)-(9).
         ``"pso"``: the standard PSO with linearly decreasing inertia (7).
+        ``"penalty"``: the paper's baseline, an exterior quadratic penalty minimised by L-BFGS.
+        ``"fcl"``, ``"fcl-indep"``: exact GJK through FCL (libccd's or FCL's own), checked by
+        the certificate and completed by an exact solver where FCL gives no answer.
+        (``"libccd"`` has no distance; use it with ``collide`` or ``signed_distance``.)
     seed : int
         Seed of the solver's random generator; the same seed gives the same result.
+
+    Other Parameters
+    ----------------
     swarm_size : int, default 40
-        N_p, the number of particles.
-    max_iterations : int, default 200
-        G_m, the iteration budget.
+        ipso, pso: N_p, the number of particles.
+    max_iterations : int, default 200 (swarms), 1000 (exact)
+        ipso, pso: G_m, the iteration budget. Exact methods: their iteration cap.
     w_min, w_max : float, default 0.4 and 0.9
-        Smallest and largest inertia weight.
+        ipso, pso: smallest and largest inertia weight.
     c1, c2 : float, default 2.0
-        Acceleration coefficients, ``"pso"`` only: ``"ipso"`` derives them from (9).
+        pso only: acceleration coefficients (``"ipso"`` derives them from (9)).
     velocity_limit : float, default 1.0
-        Largest velocity component (the weights live in [0, 1]).
-    tolerance : float, default 1e-6
-        Precision of the paper's Step 3, an absolute distance: the solver stops once
-        ``distance - lower_bound <= tolerance`` or ``distance <= tolerance``, and the bodies count
-        as colliding when ``distance <= tolerance``. 0 runs all ``max_iterations``.
+        ipso, pso: largest velocity component (the weights live in [0, 1]).
+    tolerance : float, default 1e-6 (swarms, penalty), 1e-9 (exact)
+        Absolute distance at or below which the bodies count as colliding. For the swarms it is
+        also the precision of the paper's Step 3: they stop once ``distance - lower_bound`` or
+        ``distance`` is at most ``tolerance``; 0 runs all ``max_iterations``.
     feasibility_tolerance : float, default 1e-10
-        Largest constraint violation (6) that counts as feasible.
+        ipso, pso: largest constraint violation (6) that counts as feasible.
     constraint_handling : {"projection", "feasibility"}, default "projection"
-        ``"feasibility"``: the paper's rules (Conditions 1-3). ``"projection"``: every particle's
-        weights are projected onto the simplexes after each move.
+        ipso, pso: ``"feasibility"`` is the paper's rules (Conditions 1-3); ``"projection"``
+        projects every particle's weights onto the simplexes after each move.
+    initial_weight, growth_factor : float, default 1 and 10
+        penalty: the first penalty weight and its growth between subproblems.
+    outer_iterations, inner_iterations : int, default 8 and 200
+        penalty: the number of subproblems and the L-BFGS iterations of each.
+    distance_tolerance : float, default 1e-10
+        fcl, fcl-indep: FCL's GJK stopping threshold (FCL's own default, 1e-6, gives errors up to
+        1e-5 on about 1 pair in 500).
+    penetration_tolerance : float, default 1e-12
+        Exact methods: libccd's EPA/MPR tolerance, for ``signed_distance``.
+    penetration : {"epa", "mpr"}, default "epa"
+        libccd only: its penetration routine.
 
     Returns
     -------
@@ -138,7 +191,8 @@ def distance(
     TypeError
         For an argument of the wrong type.
     ValueError
-        For bad points (NaN, infinite, empty, wrong shape) or an invalid parameter.
+        For bad points (NaN, infinite, empty, wrong shape), an invalid or inapplicable parameter,
+        or ``method="libccd"``.
 
     Examples
     --------
@@ -148,30 +202,77 @@ def distance(
     >>> r = sc.distance(a, b, method="ipso", seed=0)
     >>> r.colliding, r.certified, r.weights_a.round(6).tolist()
     (True, True, [0.0, 1.0, 0.0, 0.0])
+    >>> sc.distance(a, [[3, 0, 0]], method="fcl").distance
+    2.0
     """
-    options = _options(
-        method,
-        seed,
-        {
-            "swarm_size": swarm_size,
-            "max_iterations": max_iterations,
-            "w_min": w_min,
-            "w_max": w_max,
-            "c1": c1,
-            "c2": c2,
-            "velocity_limit": velocity_limit,
-            "tolerance": tolerance,
-            "feasibility_tolerance": feasibility_tolerance,
-            "constraint_handling": constraint_handling,
-        },
-    )
-    return _core.distance(a, b, options)
+    parameters = dict(locals())
+    for name in ("a", "b", "method", "seed"):
+        del parameters[name]
+    return _core.distance(a, b, _options(method, seed, parameters))
 
 
-def collide(a: PolyhedronLike, b: PolyhedronLike, **parameters: object) -> bool:
-    """True when the bodies intersect: ``distance(a, b, **parameters).colliding``.
+def signed_distance(
+    a: PolyhedronLike, b: PolyhedronLike, *, method: str = "fcl", seed: int = 0, **parameters: Any
+) -> _core.DistanceResult:
+    """Distance when apart, minus the penetration depth when overlapping.
 
-    Takes the same keyword arguments as ``distance``.
+    ``direction`` is the unit contact normal from A to B and
+    ``point_b - point_a = distance * direction`` for either sign. ``lower_bound`` (the separation
+    along the normal) is not clamped at zero here.
+
+    Parameters
+    ----------
+    a, b : ConvexPolyhedron or array_like, shape (n, 3)
+        The bodies.
+    method : {"fcl", "fcl-indep", "libccd"}
+        Exact methods only: the swarms and the penalty method measure no penetration.
+    **parameters
+        The keyword arguments of ``distance`` that apply to ``method``.
+
+    Examples
+    --------
+    >>> import swarmcollide as sc
+    >>> cube = [[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)]
+    >>> moved = [[x + 0.75, y, z] for x, y, z in cube]
+    >>> r = sc.signed_distance(cube, moved)
+    >>> round(r.distance, 9), r.direction.round(9).tolist()
+    (-0.25, [1.0, 0.0, 0.0])
+    """
+    if method not in SIGNED_METHODS and method in METHODS:
+        raise ValueError(
+            f"signed_distance needs one of {', '.join(SIGNED_METHODS)}: "
+            f"method {method!r} does not measure penetration depth"
+        )
+    return _core.signed_distance(a, b, _options(method, seed, parameters))
+
+
+def collide(
+    a: PolyhedronLike,
+    b: PolyhedronLike,
+    *,
+    method: str = "ipso",
+    seed: int = 0,
+    escalate: bool = True,
+    **parameters: Any,
+) -> bool:
+    """True when the bodies intersect.
+
+    The verdict never contradicts its own bounds: when ``method``'s answer does not prove it
+    (``certified`` is false), the exact ``"fcl"`` method decides at the same tolerance, unless
+    ``escalate=False``. ``collision`` tells which method decided.
+
+    Parameters
+    ----------
+    a, b : ConvexPolyhedron or array_like, shape (n, 3)
+        The bodies.
+    method : {"ipso", "pso", "penalty", "fcl", "fcl-indep", "libccd"}
+        ``"libccd"`` answers with libccd's GJK intersection test.
+    seed : int
+        Seed of the solver's random generator.
+    escalate : bool
+        Hand unproven verdicts to an exact method.
+    **parameters
+        The keyword arguments of ``distance`` that apply to ``method``.
 
     Examples
     --------
@@ -181,4 +282,31 @@ def collide(a: PolyhedronLike, b: PolyhedronLike, **parameters: object) -> bool:
     >>> sc.collide(cube, shifted)
     True
     """
-    return distance(a, b, **parameters).colliding  # type: ignore[arg-type]
+    return _core.collide(a, b, _options(method, seed, parameters), bool(escalate))
+
+
+def collision(
+    a: PolyhedronLike,
+    b: PolyhedronLike,
+    *,
+    method: str = "ipso",
+    seed: int = 0,
+    escalate: bool = True,
+    **parameters: Any,
+) -> _core.DistanceResult:
+    """The result that decides ``collide``: ``method``'s own if certified, else an exact one.
+
+    ``result.method`` names the method that decided and ``result.escalated_from`` the one whose
+    unproven verdict it replaced (empty if none). For ``"libccd"``, which has no distance, the
+    result is its signed distance. Takes the arguments of ``collide``.
+
+    Examples
+    --------
+    >>> import swarmcollide as sc
+    >>> a = [[0, 1, 0], [1, 0, 0], [0, 0, 1], [0, 0, 0]]
+    >>> b = [[1, -1e-7, 0], [2, -2, 0], [0, -2, 2], [0, -2, 0]]
+    >>> r = sc.collision(a, b, max_iterations=0)
+    >>> r.method, r.escalated_from, r.colliding, round(r.distance, 12)
+    ('fcl', 'ipso', True, 1e-07)
+    """
+    return _core.collision(a, b, _options(method, seed, parameters), bool(escalate))

@@ -10,7 +10,7 @@
 
 #include "paper_cases.hpp"
 #include "swarmcollide/problem/certificate.hpp"
-#include "swarmcollide/queries/distance.hpp"
+#include "swarmcollide/queries/collide.hpp"
 #include "swarmcollide/queries/signed_distance.hpp"
 #include "swarmcollide/solvers/exact_nearest_points.hpp"
 #include "swarmcollide/solvers/fcl_distance.hpp"

@@ -5,7 +5,7 @@
 
 #include "paper_cases.hpp"
 #include "swarmcollide/problem/certificate.hpp"
-#include "swarmcollide/queries/distance.hpp"
+#include "swarmcollide/queries/collide.hpp"
 #include "swarmcollide/solvers/swarm.hpp"
 
 namespace swarmcollide {
@@ -143,6 +143,36 @@ TEST(SwarmOptions, InvalidValuesAreNamed) {
   options = {};
   options.max_iterations = -1;
   EXPECT_NE(message_of(options).find("max_iterations"), std::string::npos);
+}
+
+TEST(Collision, AnUnprovenSwarmVerdictIsEscalatedToAnExactMethod) {
+  // Apart by less than the tolerance: a swarm with no iterations can neither prove a separation
+  // nor find the contact.
+  VertexMatrix near(4, 3);
+  near << 1, -1e-7, 0, 2, -2, 0, 0, -2, 2, 0, -2, 0;
+  const ConvexPolyhedron b(near);
+  DistanceOptions options = with(Method::ipso, ConstraintHandling::feasibility);
+  options.swarm.max_iterations = 0;
+  const DistanceResult raw = collision(paper_a(), b, options, /*escalate=*/false);
+  ASSERT_FALSE(raw.certified);
+  EXPECT_EQ(raw.method, "ipso");
+  EXPECT_TRUE(raw.escalated_from.empty());
+
+  const DistanceResult decided = collision(paper_a(), b, options);
+  EXPECT_EQ(decided.method, "fcl");
+  EXPECT_EQ(decided.escalated_from, "ipso");
+  EXPECT_TRUE(decided.certified);
+  EXPECT_TRUE(decided.colliding);
+  EXPECT_NEAR(decided.distance, 1e-7, 1e-15);
+  EXPECT_TRUE(collide(paper_a(), b, options));
+  EXPECT_FALSE(collide(paper_a(), b, options, /*escalate=*/false));
+}
+
+TEST(Collision, ACertifiedSwarmVerdictStands) {
+  const DistanceResult r = collision(paper_a(), paper_b_colliding(), with(Method::pso));
+  EXPECT_EQ(r.method, "pso");
+  EXPECT_TRUE(r.escalated_from.empty());
+  EXPECT_TRUE(r.colliding);
 }
 
 TEST(Swarm, DegenerateBodiesAreSolved) {

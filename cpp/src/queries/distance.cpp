@@ -3,7 +3,6 @@
 #include <stdexcept>
 
 #include "swarmcollide/solvers/fcl_distance.hpp"
-#include "swarmcollide/solvers/libccd_penetration.hpp"
 #include "swarmcollide/solvers/penalty.hpp"
 #include "swarmcollide/solvers/swarm.hpp"
 
@@ -59,11 +58,6 @@ DistanceResult distance(const ConvexPolyhedron& a, const ConvexPolyhedron& b,
   swarm.inertia = options.method == Method::ipso ? InertiaStrategy::rank_adaptive
                                                  : InertiaStrategy::linear_decreasing;
   return solve_swarm(a, b, swarm);
-}
-
-bool collide(const ConvexPolyhedron& a, const ConvexPolyhedron& b, const DistanceOptions& options) {
-  if (options.method == Method::libccd) return libccd_intersect(a, b, options.exact);
-  return distance(a, b, options).colliding;
 }
 
 }  // namespace swarmcollide

@@ -48,9 +48,4 @@ struct DistanceOptions {
 DistanceResult distance(const ConvexPolyhedron& a, const ConvexPolyhedron& b,
                         const DistanceOptions& options = {});
 
-/// True when the bodies are found to intersect (`distance(a, b).colliding`; for libccd,
-/// `libccd_intersect`, whose "no" is certified by an exact distance).
-bool collide(const ConvexPolyhedron& a, const ConvexPolyhedron& b,
-             const DistanceOptions& options = {});
-
 }  // namespace swarmcollide

@@ -50,6 +50,8 @@ struct DistanceResult {
   bool certified = false;
   /// The method that produced the answer.
   std::string method;
+  /// The method whose uncertified answer was handed to `method` by `collision()`; empty otherwise.
+  std::string escalated_from;
   SolverStatus status = SolverStatus::max_iterations;
 };
 
