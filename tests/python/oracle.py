@@ -1,9 +1,9 @@
 """An exact distance between convex hulls, independent of swarmcollide, for the tests.
 
-The bodies overlap exactly when the linear program "X^T lambda = Y^T delta on the two simplexes" is
-feasible. Otherwise the distance is that of the origin to the Minkowski difference
-conv{y_j - x_i}, whose closest point lies on a triangle, an edge or a vertex of it: a brute force
-over all of them is exact for the small bodies the tests use.
+The distance is that of the origin to the Minkowski difference D = conv{y_j - x_i}: zero when the
+origin lies in D (behind every facet plane of D, or, for a flat D, when the linear program
+"X^T lambda = Y^T delta on the two simplexes" is feasible), otherwise attained on a triangle, an
+edge or a vertex of D, over all of which a brute force is exact for the small bodies the tests use.
 """
 
 from __future__ import annotations
@@ -12,6 +12,7 @@ import itertools
 
 import numpy as np
 from scipy.optimize import linprog
+from scipy.spatial import ConvexHull, QhullError
 
 
 def overlap(x: np.ndarray, y: np.ndarray) -> bool:
@@ -51,11 +52,17 @@ def _triangle_interior_distances(p: np.ndarray, q: np.ndarray, r: np.ndarray) ->
 
 def exact_distance(x: np.ndarray, y: np.ndarray) -> float:
     """The distance between conv(x) and conv(y)."""
-    x = np.asarray(x, dtype=float)
-    y = np.asarray(y, dtype=float)
-    if overlap(x, y):
-        return 0.0
+    # Distances do not change under translation; centring keeps the linear program well scaled.
+    origin = np.asarray(x, dtype=float)[0]
+    x = np.asarray(x, dtype=float) - origin
+    y = np.asarray(y, dtype=float) - origin
     points = (y[None, :, :] - x[:, None, :]).reshape(-1, 3)
+    try:
+        origin_inside = bool(np.all(ConvexHull(points).equations[:, 3] <= 0))
+    except QhullError:
+        origin_inside = overlap(x, y)
+    if origin_inside:
+        return 0.0
     best = float(np.min(np.linalg.norm(points, axis=1)))
     pairs = np.array(list(itertools.combinations(range(len(points)), 2)))
     if len(pairs):
