@@ -8,7 +8,7 @@ JOBS ?= 2
 
 PACKAGE_SOURCES := CMakeLists.txt pyproject.toml $(shell find cpp bindings python -type f -not -name '*.pyc' 2>/dev/null)
 # pybind11 is pinned because the checked-in stubs (python/swarmcollide/_core.pyi) follow its output.
-BUILD_REQUIREMENTS := scikit-build-core>=0.10 pybind11==3.1.0
+BUILD_REQUIREMENTS := "scikit-build-core>=0.10" "pybind11==3.1.0"
 
 .PHONY: demo test test-cpp test-python system-packages install stubs bench clean
 
