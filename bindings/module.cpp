@@ -7,6 +7,7 @@ void bind_geometry(py::module_& m);
 void bind_problem(py::module_& m);
 void bind_solvers(py::module_& m);
 void bind_queries(py::module_& m);
+void bind_batch(py::module_& m);
 }  // namespace swarmcollide::bindings
 
 PYBIND11_MODULE(_core, m) {
@@ -16,4 +17,5 @@ PYBIND11_MODULE(_core, m) {
   bind_problem(m);
   bind_solvers(m);
   bind_queries(m);
+  bind_batch(m);
 }

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['Aabb', 'ConstraintHandling', 'ConvexPolyhedron', 'DistanceOptions', 'DistanceResult', 'ExactOptions', 'Hull', 'InertiaStrategy', 'ParticleCoefficients', 'PenaltyOptions', 'PenetrationAlgorithm', 'SwarmOptions', 'as_polyhedron', 'collide', 'collision', 'constraint_violation', 'distance', 'is_feasible', 'linear_decreasing_inertia', 'objective', 'project_onto_simplex', 'rank_adaptive_coefficients', 'separation', 'signed_distance']
+__all__: list[str] = ['Aabb', 'BatchResult', 'ConstraintHandling', 'ConvexPolyhedron', 'DistanceOptions', 'DistanceResult', 'ExactOptions', 'Hull', 'InertiaStrategy', 'ParticleCoefficients', 'PenaltyOptions', 'PenetrationAlgorithm', 'SwarmOptions', 'as_polyhedron', 'collide', 'collide_many', 'collision', 'constraint_violation', 'distance', 'distance_many', 'is_feasible', 'linear_decreasing_inertia', 'objective', 'pair_seed', 'project_onto_simplex', 'rank_adaptive_coefficients', 'separation', 'signed_distance']
 class Aabb:
     """
     An axis-aligned bounding box with corners ``min`` and ``max``.
@@ -17,6 +17,46 @@ class Aabb:
         ...
     @property
     def min(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+        ...
+class BatchResult:
+    """
+    
+    Answers to many queries, one entry (or row) per pair, as NumPy arrays.
+    
+    Attributes
+    ----------
+    distance, lower_bound : numpy.ndarray, shape (m,)
+    point_a, point_b : numpy.ndarray, shape (m, 3)
+    colliding, certified, escalated : numpy.ndarray of bool, shape (m,)
+    iterations : numpy.ndarray of int, shape (m,)
+    """
+    def __len__(self) -> int:
+        ...
+    def __repr__(self) -> str:
+        ...
+    @property
+    def certified(self) -> typing.Annotated[numpy.typing.NDArray[numpy.bool], "[m, 1]"]:
+        ...
+    @property
+    def colliding(self) -> typing.Annotated[numpy.typing.NDArray[numpy.bool], "[m, 1]"]:
+        ...
+    @property
+    def distance(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        ...
+    @property
+    def escalated(self) -> typing.Annotated[numpy.typing.NDArray[numpy.bool], "[m, 1]"]:
+        ...
+    @property
+    def iterations(self) -> typing.Annotated[numpy.typing.NDArray[numpy.int32], "[m, 1]"]:
+        ...
+    @property
+    def lower_bound(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        ...
+    @property
+    def point_a(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
+        ...
+    @property
+    def point_b(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
         ...
 class ConstraintHandling:
     """
@@ -498,6 +538,8 @@ def as_polyhedron(body: typing.Any, name: str = 'body') -> ConvexPolyhedron:
     """
 def collide(a: typing.Any, b: typing.Any, options: DistanceOptions, escalate: bool) -> bool:
     ...
+def collide_many(As: typing.Any, Bs: typing.Any, options: DistanceOptions, escalate: bool, threads: typing.Any) -> BatchResult:
+    ...
 def collision(a: typing.Any, b: typing.Any, options: DistanceOptions, escalate: bool) -> DistanceResult:
     ...
 def constraint_violation(weights_a: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"], weights_b: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"]) -> float:
@@ -505,6 +547,8 @@ def constraint_violation(weights_a: typing.Annotated[numpy.typing.ArrayLike, num
     Constraint violation (6): ``(sum(weights_a) - 1)**2 + (sum(weights_b) - 1)**2``.
     """
 def distance(a: typing.Any, b: typing.Any, options: DistanceOptions) -> DistanceResult:
+    ...
+def distance_many(As: typing.Any, Bs: typing.Any, options: DistanceOptions, threads: typing.Any) -> BatchResult:
     ...
 def is_feasible(weights_a: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"], weights_b: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"], tolerance: typing.SupportsFloat | typing.SupportsIndex = 1e-10) -> bool:
     """
@@ -519,6 +563,10 @@ def objective(a: typing.Any, b: typing.Any, weights_a: typing.Annotated[numpy.ty
     Objective (5): ``|| sum_j weights_b[j] y_j - sum_i weights_a[i] x_i ||``.
     
     The weights need not be feasible; see ``constraint_violation`` and ``is_feasible``.
+    """
+def pair_seed(seed: typing.SupportsInt | typing.SupportsIndex, index: typing.SupportsInt | typing.SupportsIndex) -> int:
+    """
+    The seed of pair ``index`` in a batch seeded with ``seed``.
     """
 def project_onto_simplex(weights: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"]) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
     """

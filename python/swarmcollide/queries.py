@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import numbers
-from typing import Any, Dict, Mapping, Optional, Tuple, Union
+from typing import Any, Dict, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy.typing as npt
 
@@ -310,3 +310,88 @@ def collision(
     ('fcl', 'ipso', True, 1e-07)
     """
     return _core.collision(a, b, _options(method, seed, parameters), bool(escalate))
+
+
+BodiesLike = Union[Sequence[PolyhedronLike], npt.ArrayLike]
+"""A sequence of polyhedra (or of ``(n, 3)`` point arrays), or an ``(m, n, 3)`` array."""
+
+
+def _check_threads(threads: Optional[int]) -> Optional[int]:
+    if threads is None:
+        return None
+    _check_type("threads", threads, integer=True)
+    if threads < 1:
+        raise ValueError(f"threads must be at least 1 (None: all hardware threads), got {threads}")
+    return int(threads)
+
+
+def distance_many(
+    As: BodiesLike,
+    Bs: BodiesLike,
+    *,
+    method: str = "ipso",
+    seed: int = 0,
+    threads: Optional[int] = None,
+    **parameters: Any,
+) -> _core.BatchResult:
+    """``distance(As[i], Bs[i])`` for every i, in C++ threads without the GIL.
+
+    Pair i is solved with the seed ``pair_seed(seed, i)``, so the results do not depend on the
+    number of threads.
+
+    Parameters
+    ----------
+    As, Bs : sequence of ConvexPolyhedron or array_like, or array_like of shape (m, n, 3)
+        The bodies, pairwise.
+    method, seed
+        As for ``distance``.
+    threads : int, optional
+        Worker threads; None uses one per hardware thread.
+    **parameters
+        The keyword arguments of ``distance`` that apply to ``method``.
+
+    Returns
+    -------
+    BatchResult
+        NumPy arrays: ``distance``, ``lower_bound`` (m,), ``point_a``, ``point_b`` (m, 3),
+        ``colliding``, ``certified`` (m,).
+
+    Examples
+    --------
+    >>> import numpy as np, swarmcollide as sc
+    >>> tetra = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], dtype=float)
+    >>> As = np.stack([tetra] * 3)
+    >>> Bs = np.stack([tetra + [k + 1.5, 0, 0] for k in range(3)])
+    >>> r = sc.distance_many(As, Bs, method="fcl")
+    >>> r.distance.round(9).tolist(), r.colliding.tolist()
+    ([0.5, 1.5, 2.5], [False, False, False])
+    """
+    options = _options(method, seed, parameters)
+    return _core.distance_many(As, Bs, options, _check_threads(threads))
+
+
+def collide_many(
+    As: BodiesLike,
+    Bs: BodiesLike,
+    *,
+    method: str = "ipso",
+    seed: int = 0,
+    escalate: bool = True,
+    threads: Optional[int] = None,
+    **parameters: Any,
+) -> _core.BatchResult:
+    """``collision(As[i], Bs[i])`` for every i: the batch form of ``collide``.
+
+    ``result.colliding`` holds the verdicts and ``result.escalated`` marks the pairs that an exact
+    method decided. Takes the arguments of ``distance_many`` and ``escalate``.
+
+    Examples
+    --------
+    >>> import numpy as np, swarmcollide as sc
+    >>> cube = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)], dtype=float)
+    >>> r = sc.collide_many([cube, cube], [cube + 0.5, cube + 2])
+    >>> r.colliding.tolist()
+    [True, False]
+    """
+    options = _options(method, seed, parameters)
+    return _core.collide_many(As, Bs, options, bool(escalate), _check_threads(threads))

@@ -4,6 +4,13 @@
 
 namespace swarmcollide::detail {
 
+/// splitmix64's output function: a bijection that spreads nearby inputs over the whole range.
+inline std::uint64_t mix64(std::uint64_t z) {
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  return z ^ (z >> 31);
+}
+
 /// xoshiro256++ (Blackman and Vigna): fast, and its output depends only on the seed, unlike the
 /// standard library's distributions, whose results differ between implementations.
 class Xoshiro256 {
@@ -12,10 +19,7 @@ class Xoshiro256 {
     // splitmix64 spreads any seed, including 0, over the whole state.
     for (auto& word : state_) {
       seed += 0x9e3779b97f4a7c15ULL;
-      std::uint64_t z = seed;
-      z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-      z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-      word = z ^ (z >> 31);
+      word = mix64(seed);
     }
   }
 

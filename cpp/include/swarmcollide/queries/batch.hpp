@@ -1,0 +1,41 @@
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "swarmcollide/geometry/convex_polyhedron.hpp"
+#include "swarmcollide/queries/distance.hpp"
+#include "swarmcollide/types.hpp"
+
+namespace swarmcollide {
+
+/// The answers to many queries, one entry (or row) per pair.
+struct BatchResult {
+  VectorX distance;
+  VectorX lower_bound;
+  VertexMatrix point_a;
+  VertexMatrix point_b;
+  Eigen::Array<bool, Eigen::Dynamic, 1> colliding;
+  Eigen::Array<bool, Eigen::Dynamic, 1> certified;
+  Eigen::Array<int, Eigen::Dynamic, 1> iterations;
+  /// True where `collide_many` handed an unproven verdict to the exact method.
+  Eigen::Array<bool, Eigen::Dynamic, 1> escalated;
+};
+
+/// The seed of pair `index` in a batch seeded with `seed`: independent of the thread count.
+std::uint64_t pair_seed(std::uint64_t seed, std::size_t index);
+
+/// `distance(as[i], bs[i], options)` for every i, spread over `threads` threads (0: one per
+/// hardware thread), with pair i seeded by `pair_seed(options.swarm.seed, i)`. Throws
+/// std::invalid_argument if the sequences differ in length; the first error of any pair is
+/// rethrown after all threads stop.
+BatchResult distance_many(const std::vector<ConvexPolyhedron>& as,
+                          const std::vector<ConvexPolyhedron>& bs, const DistanceOptions& options,
+                          int threads = 0);
+
+/// `collision(as[i], bs[i], options, escalate)` for every i, like `distance_many`.
+BatchResult collide_many(const std::vector<ConvexPolyhedron>& as,
+                         const std::vector<ConvexPolyhedron>& bs, const DistanceOptions& options,
+                         bool escalate = true, int threads = 0);
+
+}  // namespace swarmcollide
