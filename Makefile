@@ -37,6 +37,26 @@ test-cpp: system-packages
 	cmake --build $(CPP_BUILD) -j $(JOBS)
 	ctest --test-dir $(CPP_BUILD) --output-on-failure -j $(JOBS)
 
+# make bench: the benchmark binary, the Python comparisons, bench/RESULTS.md and its plots.
+# BENCH_ARGS=--quick runs a reduced set (both the binary and the Python scripts take it).
+BENCH_BUILD := build/bench
+BENCH_ARGS ?=
+
+$(VENV)/.bench-installed: $(VENV)/.installed
+	$(PY) -m pip install --quiet --no-build-isolation ".[test,bench]"
+	touch $@
+
+bench: install $(VENV)/.bench-installed
+	cmake -S . -B $(BENCH_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release \
+	  -DSWARMCOLLIDE_BUILD_BENCH=ON -DSWARMCOLLIDE_BUILD_PYTHON=OFF
+	cmake --build $(BENCH_BUILD) -j $(JOBS) --target swarmcollide-bench
+	mkdir -p bench/results bench/plots
+	$(BENCH_BUILD)/bench/swarmcollide-bench $(BENCH_ARGS) --json bench/results/cpp.json \
+	  > $(BENCH_BUILD)/console.txt
+	$(PY) bench/compare_python.py $(BENCH_ARGS) --json bench/results/python_comparison.json
+	$(PY) bench/convergence.py $(BENCH_ARGS) --json bench/results/convergence.json --plots bench/plots
+	$(PY) bench/report.py --results bench/results --plots bench/plots --out bench/RESULTS.md
+
 stubs: install
 	$(PY) -m pybind11_stubgen swarmcollide._core -o python --numpy-array-use-type-var
 

@@ -1,0 +1,536 @@
+// swarmcollide-bench: every method side by side with FCL and libccd, on the paper's tetrahedra
+// and on random convex polytopes at several proximities. Results: bench/RESULTS.md.
+#include <benchmark/benchmark.h>
+#include <ccd/ccd.h>
+#include <fcl/narrowphase/collision.h>
+#include <fcl/narrowphase/distance.h>
+#include <fcntl.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <random>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "swarmcollide/queries/distance.hpp"
+// `collide` moved from distance.hpp to its own header; build against either layout.
+#if __has_include("swarmcollide/queries/collide.hpp")
+#include "swarmcollide/queries/collide.hpp"
+#endif
+
+namespace sc = swarmcollide;
+
+namespace {
+
+// A separated pair counts as solved when the reported distance is within this of the reference.
+constexpr double kAccuracy = 1e-6;
+
+// Standard normals by Box-Muller on mt19937_64, whose output the C++ standard fixes; the
+// standard's normal_distribution is not portable across library implementations.
+class Normals {
+ public:
+  explicit Normals(std::uint64_t seed) : engine_(seed) {}
+  double next() {
+    const double u1 = static_cast<double>(engine_() >> 11) * 0x1.0p-53;
+    const double u2 = static_cast<double>(engine_() >> 11) * 0x1.0p-53;
+    return std::sqrt(-2 * std::log1p(-u1)) * std::cos(2 * M_PI * u2);
+  }
+  sc::Vector3 unit() {
+    const sc::Vector3 v(next(), next(), next());
+    return v / v.norm();
+  }
+
+ private:
+  std::mt19937_64 engine_;
+};
+
+// The hull vertices of `n` random points on the unit sphere.
+sc::VertexMatrix sphere_polytope(int n, Normals& normals) {
+  sc::VertexMatrix points(n, 3);
+  for (int i = 0; i < n; ++i) points.row(i) = normals.unit().transpose();
+  const sc::ConvexPolyhedron body(points);
+  const std::vector<int>& indices = body.hull().vertex_indices;
+  sc::VertexMatrix vertices(static_cast<Eigen::Index>(indices.size()), 3);
+  for (std::size_t k = 0; k < indices.size(); ++k) vertices.row(k) = points.row(indices[k]);
+  return vertices;
+}
+
+// The body's hull as an fcl::Convexd translated by -origin, as an FCL user would build it.
+std::shared_ptr<fcl::Convexd> to_fcl(const sc::ConvexPolyhedron& body, const sc::Vector3& origin) {
+  const sc::Hull& hull = body.hull();
+  std::vector<int> local(body.size(), -1);
+  auto vertices = std::make_shared<std::vector<fcl::Vector3d>>();
+  for (int i : hull.vertex_indices) {
+    local[i] = static_cast<int>(vertices->size());
+    vertices->push_back(body.vertices().row(i).transpose() - origin);
+  }
+  auto faces = std::make_shared<std::vector<int>>();
+  for (Eigen::Index f = 0; f < hull.faces.rows(); ++f) {
+    faces->insert(faces->end(),
+                  {3, local[hull.faces(f, 0)], local[hull.faces(f, 1)], local[hull.faces(f, 2)]});
+  }
+  return std::make_shared<fcl::Convexd>(vertices, static_cast<int>(hull.faces.rows()), faces);
+}
+
+fcl::DistanceResultd fcl_distance_raw(const fcl::Convexd& a, const fcl::Convexd& b,
+                                      const sc::Vector3& shift_b, bool signed_distance,
+                                      fcl::GJKSolverType solver) {
+  const fcl::DistanceRequestd request(true, signed_distance, 0, 0, 1e-10, solver);
+  fcl::DistanceResultd result;
+  fcl::Transform3d pose_b = fcl::Transform3d::Identity();
+  pose_b.translation() = shift_b;
+  fcl::distance(&a, fcl::Transform3d::Identity(), &b, pose_b, request, result);
+  return result;
+}
+
+// What libccd's callbacks see: a body, shifted like the FCL shapes.
+struct CcdShape {
+  const sc::ConvexPolyhedron* body;
+  sc::Vector3 origin;
+  sc::Vector3 centre;
+};
+
+void ccd_support(const void* object, const ccd_vec3_t* direction, ccd_vec3_t* out) {
+  const auto* shape = static_cast<const CcdShape*>(object);
+  const sc::Vector3 d(direction->v[0], direction->v[1], direction->v[2]);
+  const sc::Vector3 p = shape->body->support(d) - shape->origin;
+  for (int k = 0; k < 3; ++k) out->v[k] = p(k);
+}
+
+void ccd_centre(const void* object, ccd_vec3_t* out) {
+  const auto* shape = static_cast<const CcdShape*>(object);
+  for (int k = 0; k < 3; ++k) out->v[k] = shape->centre(k);
+}
+
+struct Pair {
+  sc::ConvexPolyhedron a;
+  sc::ConvexPolyhedron b;
+  sc::DistanceResult reference;
+  sc::Vector3 origin;
+  std::shared_ptr<fcl::Convexd> fcl_a;
+  std::shared_ptr<fcl::Convexd> fcl_b;
+  CcdShape ccd_a;
+  CcdShape ccd_b;
+};
+
+std::unique_ptr<Pair> build_pair(sc::VertexMatrix a_points, sc::VertexMatrix b_points) {
+  sc::ConvexPolyhedron a(std::move(a_points));
+  sc::ConvexPolyhedron b(std::move(b_points));
+  const sc::Aabb box = a.aabb();
+  const sc::Vector3 origin = (box.min + box.max) / 2;
+  sc::DistanceOptions exact;
+  exact.method = sc::Method::fcl;
+  sc::DistanceResult reference = sc::distance(a, b, exact);
+  auto pair = std::unique_ptr<Pair>(
+      new Pair{a, b, reference, origin, to_fcl(a, origin), to_fcl(b, origin), {}, {}});
+  pair->ccd_a = {&pair->a, origin, pair->a.vertices().colwise().mean().transpose() - origin};
+  pair->ccd_b = {&pair->b, origin, pair->b.vertices().colwise().mean().transpose() - origin};
+  return pair;
+}
+
+// Two random n-vertex polytopes, B moved along a random ray from A's centroid until FCL's
+// distance (GST_LIBCCD; for overlaps its signed distance, EPA) is `target`, by bisection on the
+// translation. Thin bodies cannot overlap by some targets: such draws are replaced by the next.
+std::unique_ptr<Pair> random_pair(int n, double target, std::uint64_t seed) {
+  Normals normals(seed);
+  for (;;) {
+    const sc::VertexMatrix a_points = sphere_polytope(n, normals);
+    sc::VertexMatrix b0_points = sphere_polytope(n, normals);
+    const sc::Vector3 u = normals.unit();
+    b0_points.rowwise() += (a_points.colwise().mean() - b0_points.colwise().mean()).eval();
+    const sc::ConvexPolyhedron a(a_points), b0(b0_points);
+    const sc::Vector3 origin = a.aabb().min / 2 + a.aabb().max / 2;
+    const auto fa = to_fcl(a, origin), fb = to_fcl(b0, origin);
+    auto signed_distance = [&](double t) {
+      return fcl_distance_raw(*fa, *fb, t * u, target < 0, fcl::GST_LIBCCD).min_distance;
+    };
+    // At t = 0 the centroids coincide; at t0 the separation along u is `target`, a lower bound
+    // on the signed distance.
+    double lo = 0;
+    if (!(signed_distance(lo) < target)) continue;
+    double hi = std::max(0.0, target + (a_points * u).maxCoeff() - (b0_points * u).minCoeff());
+    for (int k = 0; signed_distance(hi) < target; ++k) {
+      if (k == 100) throw std::runtime_error("random_pair: no upper bracket");
+      hi += 0.5;
+    }
+    for (int step = 0; step < 64 && hi - lo > 1e-15; ++step) {
+      const double mid = (lo + hi) / 2;
+      (signed_distance(mid) < target ? lo : hi) = mid;
+    }
+    sc::VertexMatrix b_points = b0_points.rowwise() + hi * u.transpose();
+    return build_pair(a_points, std::move(b_points));
+  }
+}
+
+struct Workload {
+  std::string name;
+  int n = 0;              // vertices per body (0: the paper's pairs)
+  std::string proximity;  // "apart", "gap 1e-2", "overlap 1e-3", or the paper pair's name
+  double target = 0;      // intended signed distance
+  std::vector<std::unique_ptr<Pair>> pairs;
+};
+
+enum class Kind { distance, fcl_distance, sc_collide, fcl_collide, ccd_gjk, ccd_mpr };
+
+struct Row {
+  std::string name;
+  Kind kind;
+  sc::DistanceOptions options;
+  bool iterative;       // swarm and penalty: limited pairs at the largest size
+  const char* library;  // whose code answers
+};
+
+std::vector<Row> make_rows() {
+  std::vector<Row> rows;
+  for (auto method : {sc::Method::ipso, sc::Method::pso}) {
+    for (auto handling :
+         {sc::ConstraintHandling::projection, sc::ConstraintHandling::feasibility}) {
+      sc::DistanceOptions o;
+      o.method = method;
+      o.swarm.constraint_handling = handling;
+      const std::string suffix =
+          handling == sc::ConstraintHandling::projection ? "projection" : "feasibility";
+      rows.push_back(
+          {sc::method_name(method) + " " + suffix, Kind::distance, o, true, "swarmcollide"});
+    }
+  }
+  sc::DistanceOptions penalty;
+  penalty.method = sc::Method::penalty;
+  rows.push_back({"penalty", Kind::distance, penalty, true, "swarmcollide"});
+  sc::DistanceOptions fcl_libccd;
+  fcl_libccd.method = sc::Method::fcl;
+  rows.push_back({"fcl (GST_LIBCCD)", Kind::distance, fcl_libccd, false, "swarmcollide"});
+  sc::DistanceOptions fcl_indep;
+  fcl_indep.method = sc::Method::fcl_indep;
+  rows.push_back({"fcl-indep (GST_INDEP)", Kind::distance, fcl_indep, false, "swarmcollide"});
+  // FCL's own distance on prebuilt shapes, as an FCL user calls it: the cost of the query alone.
+  rows.push_back({"FCL distance direct", Kind::fcl_distance, {}, false, "FCL"});
+  sc::DistanceOptions libccd;
+  libccd.method = sc::Method::libccd;
+  rows.push_back({"collide libccd", Kind::sc_collide, libccd, false, "swarmcollide"});
+  rows.push_back({"FCL collide", Kind::fcl_collide, {}, false, "FCL"});
+  rows.push_back({"libccd GJK intersect", Kind::ccd_gjk, {}, false, "libccd"});
+  rows.push_back({"libccd MPR intersect", Kind::ccd_mpr, {}, false, "libccd"});
+  return rows;
+}
+
+ccd_t ccd_settings() {
+  ccd_t ccd;
+  CCD_INIT(&ccd);
+  ccd.support1 = ccd_support;
+  ccd.support2 = ccd_support;
+  ccd.center1 = ccd_centre;
+  ccd.center2 = ccd_centre;
+  ccd.max_iterations = 1000;
+  return ccd;
+}
+
+// One query of a row on a pair; returns the verdict and, for distance rows, the result.
+bool answer(const Row& row, const Pair& p, std::uint64_t seed, sc::DistanceResult* result) {
+  switch (row.kind) {
+    case Kind::distance: {
+      sc::DistanceOptions o = row.options;
+      o.swarm.seed = seed;
+      *result = sc::distance(p.a, p.b, o);
+      return result->colliding;
+    }
+    case Kind::fcl_distance: {
+      // FCL answers -1 for touching and overlapping pairs.
+      const double d =
+          fcl_distance_raw(*p.fcl_a, *p.fcl_b, sc::Vector3::Zero(), false, fcl::GST_LIBCCD)
+              .min_distance;
+      result->distance = std::max(d, 0.0);
+      result->colliding = d <= sc::ExactOptions{}.tolerance;
+      return result->colliding;
+    }
+    case Kind::sc_collide:
+      return sc::collide(p.a, p.b, row.options);
+    case Kind::fcl_collide: {
+      const fcl::CollisionRequestd request;  // GST_LIBCCD, one contact
+      fcl::CollisionResultd out;
+      fcl::collide(p.fcl_a.get(), fcl::Transform3d::Identity(), p.fcl_b.get(),
+                   fcl::Transform3d::Identity(), request, out);
+      return out.isCollision();
+    }
+    case Kind::ccd_gjk: {
+      static const ccd_t ccd = ccd_settings();
+      return ccdGJKIntersect(&p.ccd_a, &p.ccd_b, &ccd) != 0;
+    }
+    case Kind::ccd_mpr: {
+      static const ccd_t ccd = ccd_settings();
+      return ccdMPRIntersect(&p.ccd_a, &p.ccd_b, &ccd) != 0;
+    }
+  }
+  return false;
+}
+
+// What a direct FCL user gets for this pair, probed in a child process because some of FCL's
+// paths abort: 0 fine, 1 a wrong answer, -1 the query aborted (killed by a signal).
+int probe_raw_fcl(const Pair& p, fcl::GJKSolverType solver) {
+  std::fflush(nullptr);
+  const pid_t pid = fork();
+  if (pid == 0) {
+    const int null = open("/dev/null", O_WRONLY);
+    dup2(null, STDOUT_FILENO);
+    dup2(null, STDERR_FILENO);
+    const sc::Vector3 zero = sc::Vector3::Zero();
+    const bool colliding = p.reference.colliding;
+    // Unsigned distance: FCL documents -1 for overlapping pairs, so only separated ones count.
+    const double d = fcl_distance_raw(*p.fcl_a, *p.fcl_b, zero, false, solver).min_distance;
+    int code = 0;
+    if (!colliding && !(std::abs(d - p.reference.distance) <= kAccuracy)) code = 1;
+    // Signed distance: for overlapping pairs it must not be positive.
+    const double s = fcl_distance_raw(*p.fcl_a, *p.fcl_b, zero, true, solver).min_distance;
+    if (colliding && !(s <= kAccuracy)) code = 1;
+    if (!colliding && !(std::abs(s - p.reference.distance) <= kAccuracy)) code = 1;
+    _exit(code);
+  }
+  int status = 0;
+  waitpid(pid, &status, 0);
+  if (WIFSIGNALED(status)) return -1;
+  return WEXITSTATUS(status);
+}
+
+// Accuracy of a row on a workload, from one untimed pass (the timed passes repeat the same
+// seeded queries).
+struct Accuracy {
+  int pairs = 0;
+  int of_pairs = 0;
+  bool has_distance = false;
+  double iterations = 0, evaluations = 0;  // means
+  double error_max = 0, error_median = 0;  // |distance - reference|
+  int separated = 0, within = 0;           // separated pairs, and those within kAccuracy
+  int wrong_verdicts = 0, certified = 0;
+  int raw_wrong = -1, raw_aborts = -1;  // direct FCL calls (fcl rows only)
+  double seconds = 0;                   // wall time of the untimed pass, for the schedule
+};
+
+int pairs_for(const Row& row, const Workload& w, bool quick) {
+  const int all = static_cast<int>(w.pairs.size());
+  if (row.iterative && w.n >= 4096) return std::min(all, quick ? 1 : 3);
+  return all;
+}
+
+Accuracy measure(const Row& row, const Workload& w, bool quick) {
+  const auto start = std::chrono::steady_clock::now();
+  Accuracy acc;
+  acc.of_pairs = static_cast<int>(w.pairs.size());
+  acc.pairs = pairs_for(row, w, quick);
+  acc.has_distance = row.kind == Kind::distance || row.kind == Kind::fcl_distance;
+  std::vector<double> errors;
+  for (int i = 0; i < acc.pairs; ++i) {
+    const Pair& p = *w.pairs[i];
+    sc::DistanceResult r;
+    const bool verdict = answer(row, p, static_cast<std::uint64_t>(i), &r);
+    if (verdict != p.reference.colliding) ++acc.wrong_verdicts;
+    if (!acc.has_distance) continue;
+    acc.iterations += r.iterations;
+    acc.evaluations += static_cast<double>(r.evaluations);
+    if (r.certified) ++acc.certified;
+    const double error = std::abs(r.distance - p.reference.distance);
+    errors.push_back(error);
+    if (!p.reference.colliding) {
+      ++acc.separated;
+      if (error <= kAccuracy) ++acc.within;
+    }
+  }
+  if (acc.has_distance && acc.pairs > 0) {
+    acc.iterations /= acc.pairs;
+    acc.evaluations /= acc.pairs;
+    std::sort(errors.begin(), errors.end());
+    acc.error_max = errors.back();
+    acc.error_median = errors[errors.size() / 2];
+  }
+  if (row.kind == Kind::distance &&
+      (row.options.method == sc::Method::fcl || row.options.method == sc::Method::fcl_indep)) {
+    const auto solver = row.options.method == sc::Method::fcl ? fcl::GST_LIBCCD : fcl::GST_INDEP;
+    acc.raw_wrong = acc.raw_aborts = 0;
+    for (int i = 0; i < acc.pairs; ++i) {
+      const int probe = probe_raw_fcl(*w.pairs[i], solver);
+      if (probe == -1) ++acc.raw_aborts;
+      if (probe == 1) ++acc.raw_wrong;
+    }
+  }
+  acc.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return acc;
+}
+
+void run(benchmark::State& state, const Row* row, const Workload* w, Accuracy acc) {
+  const int pairs = acc.pairs;
+  sc::DistanceResult r;
+  for (auto _ : state) {
+    for (int i = 0; i < pairs; ++i) {
+      const bool verdict = answer(*row, *w->pairs[i], static_cast<std::uint64_t>(i), &r);
+      benchmark::DoNotOptimize(verdict);
+      benchmark::DoNotOptimize(r.distance);
+    }
+  }
+  // One benchmark iteration answers every pair once: real_time / pairs is the time per query.
+  state.counters["pairs"] = pairs;
+  state.counters["of_pairs"] = acc.of_pairs;
+  state.counters["has_distance"] = acc.has_distance;
+  state.counters["iterations_mean"] = acc.iterations;
+  state.counters["evaluations_mean"] = acc.evaluations;
+  state.counters["error_max"] = acc.error_max;
+  state.counters["error_median"] = acc.error_median;
+  state.counters["separated"] = acc.separated;
+  state.counters["within_1e-6"] = acc.within;
+  state.counters["wrong_verdicts"] = acc.wrong_verdicts;
+  state.counters["certified"] = acc.certified;
+  state.counters["raw_fcl_wrong"] = acc.raw_wrong;
+  state.counters["raw_fcl_aborts"] = acc.raw_aborts;
+  if (pairs < acc.of_pairs) {
+    state.SetLabel("only " + std::to_string(pairs) + " of " + std::to_string(acc.of_pairs) +
+                   " pairs: too slow for the full set");
+  }
+}
+
+sc::VertexMatrix tetrahedron(std::initializer_list<double> xyz) {
+  sc::VertexMatrix v(4, 3);
+  std::copy(xyz.begin(), xyz.end(), v.data());
+  return v;
+}
+
+std::vector<Workload> make_workloads(bool quick, const std::vector<int>& only_sizes) {
+  std::vector<Workload> workloads;
+  const sc::VertexMatrix a = tetrahedron({0, 1, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0});
+  Workload touching{"paper touching", 0, "touching", 0, {}};
+  touching.pairs.push_back(build_pair(a, tetrahedron({1, 0, 0, 2, -2, 0, 0, -2, 2, 0, -2, 0})));
+  Workload separate{"paper separate", 0, "separate", 1, {}};
+  separate.pairs.push_back(build_pair(a, tetrahedron({1, -1, 0, 2, -2, 0, 0, -2, 2, 0, -2, 0})));
+  workloads.push_back(std::move(touching));
+  workloads.push_back(std::move(separate));
+
+  struct Proximity {
+    const char* name;
+    double target;
+  };
+  const std::vector<Proximity> all_proximities = {
+      {"apart", 1.0},          {"gap 1e-1", 1e-1},      {"gap 1e-2", 1e-2},
+      {"gap 1e-3", 1e-3},      {"gap 1e-4", 1e-4},      {"overlap 1e-4", -1e-4},
+      {"overlap 1e-3", -1e-3}, {"overlap 1e-2", -1e-2}, {"overlap 1e-1", -1e-1}};
+  const std::vector<Proximity> quick_proximities = {
+      {"apart", 1.0}, {"gap 1e-3", 1e-3}, {"overlap 1e-2", -1e-2}};
+  std::vector<int> sizes =
+      quick ? std::vector<int>{8, 64} : std::vector<int>{4, 8, 16, 64, 512, 4096};
+  if (!only_sizes.empty()) sizes = only_sizes;
+  const auto& proximities = quick ? quick_proximities : all_proximities;
+  const int pairs = quick ? 5 : 20;
+  for (int n : sizes) {
+    for (std::size_t k = 0; k < proximities.size(); ++k) {
+      std::fprintf(stderr, "\rgenerating n=%d %-14s", n, proximities[k].name);
+      Workload w{"n=" + std::to_string(n) + " " + proximities[k].name,
+                 n,
+                 proximities[k].name,
+                 proximities[k].target,
+                 {}};
+      for (int i = 0; i < pairs; ++i) {
+        // The seed depends on the size, proximity and index, not on --quick.
+        const std::uint64_t seed = 1000003ULL * static_cast<std::uint64_t>(n) + 1009ULL * k + i;
+        w.pairs.push_back(random_pair(n, proximities[k].target, seed));
+      }
+      workloads.push_back(std::move(w));
+    }
+  }
+  std::fprintf(stderr, "\n");
+  return workloads;
+}
+
+std::string cpu_model() {
+  std::ifstream cpuinfo("/proc/cpuinfo");
+  std::string line;
+  while (std::getline(cpuinfo, line)) {
+    if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
+  }
+  return "unknown";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  bool quick = false;
+  std::string json;
+  std::vector<int> sizes;
+  std::vector<char*> args = {argv[0]};
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--quick") {
+      quick = true;
+    } else if (arg == "--json" && i + 1 < argc) {
+      json = argv[++i];
+    } else if (arg == "--sizes" && i + 1 < argc) {
+      std::string list = argv[++i];
+      for (std::size_t pos = 0; pos < list.size();) {
+        const std::size_t comma = std::min(list.find(',', pos), list.size());
+        sizes.push_back(std::stoi(list.substr(pos, comma - pos)));
+        pos = comma + 1;
+      }
+    } else if (arg == "--help" || arg == "-h") {
+      std::cout << "usage: swarmcollide-bench [--quick] [--json FILE] [--benchmark_* flags]\n"
+                   "  --quick      a reduced set (paper pairs, n = 8, 64, three proximities)\n"
+                   "  --json FILE  Google Benchmark JSON with the accuracy counters\n"
+                   "  --sizes LIST only these vertex counts, e.g. 8,64 (the paper pairs always)\n";
+      return 0;
+    } else {
+      args.push_back(argv[i]);
+    }
+  }
+  std::string out_flag = "--benchmark_out=" + json;
+  std::string format_flag = "--benchmark_out_format=json";
+  if (!json.empty()) {
+    args.push_back(out_flag.data());
+    args.push_back(format_flag.data());
+  }
+  int bench_argc = static_cast<int>(args.size());
+  benchmark::Initialize(&bench_argc, args.data());
+  if (benchmark::ReportUnrecognizedArguments(bench_argc, args.data())) return 1;
+
+  benchmark::AddCustomContext("cpu_model", cpu_model());
+  benchmark::AddCustomContext("compiler", SWARMCOLLIDE_BENCH_COMPILER);
+  benchmark::AddCustomContext("mode", quick ? "quick" : "full");
+  benchmark::AddCustomContext("accuracy_threshold", "1e-6");
+  benchmark::AddCustomContext("reference", "swarmcollide::distance, method fcl (certified)");
+
+  static const std::vector<Row> rows = make_rows();
+  static const std::vector<Workload> workloads = make_workloads(quick, sizes);
+  const int repetitions = quick ? 3 : 5;
+  const double min_time = quick ? 0.01 : 0.05;
+  std::size_t done = 0;
+  for (const Workload& w : workloads) {
+    ++done;
+    for (const Row& row : rows) {
+      const Accuracy acc = measure(row, w, quick);
+      std::fprintf(stderr, "\raccuracy pass %zu/%zu %-24s %-22s %8.3f s", done, workloads.size(),
+                   w.name.c_str(), row.name.c_str(), acc.seconds);
+      // A row whose single pass over the pairs takes over a second gets 3 repetitions of one
+      // pass each: every repetition still times the whole pair set.
+      const bool slow = acc.seconds > 1.0;
+      benchmark::RegisterBenchmark((row.name + "|" + w.name).c_str(), run, &row, &w, acc)
+          ->Repetitions(slow ? 3 : repetitions)
+          ->ReportAggregatesOnly(true)
+          ->MinTime(min_time)
+          ->MinWarmUpTime(min_time / 2)
+          ->UseRealTime()
+          ->Unit(benchmark::kMicrosecond)
+          ->ComputeStatistics(
+              "min",
+              [](const std::vector<double>& v) { return *std::min_element(v.begin(), v.end()); })
+          ->ComputeStatistics("max", [](const std::vector<double>& v) {
+            return *std::max_element(v.begin(), v.end());
+          });
+    }
+  }
+  std::fprintf(stderr, "\n");
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}
