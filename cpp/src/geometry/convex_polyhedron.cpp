@@ -71,6 +71,32 @@ int ConvexPolyhedron::support_index(const Vector3& direction) const {
   return static_cast<int>(best);
 }
 
+int ConvexPolyhedron::support_index(const Vector3& direction, int start) const {
+  if (size() <= kHillClimbingThreshold) return support_index(direction);
+  const Hull& h = hull();
+  int current =
+      start >= 0 && start < size() && h.neighbour_offsets[start + 1] > h.neighbour_offsets[start]
+          ? start
+          : h.vertex_indices.front();
+  if (h.neighbours.empty()) return current;
+  // On a convex polytope a vertex with no better neighbour is a global maximiser of a linear
+  // function; steepest ascent keeps the number of steps small.
+  Scalar height = vertices_.row(current).dot(direction);
+  for (;;) {
+    int next = current;
+    for (int k = h.neighbour_offsets[current]; k < h.neighbour_offsets[current + 1]; ++k) {
+      const int candidate = h.neighbours[k];
+      const Scalar value = vertices_.row(candidate).dot(direction);
+      if (value > height) {
+        height = value;
+        next = candidate;
+      }
+    }
+    if (next == current) return current;
+    current = next;
+  }
+}
+
 Aabb ConvexPolyhedron::aabb() const {
   return {vertices_.colwise().minCoeff().transpose(), vertices_.colwise().maxCoeff().transpose()};
 }

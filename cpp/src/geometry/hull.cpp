@@ -7,6 +7,7 @@
 #include <numeric>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 extern "C" {
 #include <libqhull_r/qhull_ra.h>
@@ -146,13 +147,32 @@ bool qhull_solid(const VertexMatrix& points, Hull& hull) {
   return ok;
 }
 
-}  // namespace
-
-Hull compute_hull(const VertexMatrix& points) {
-  if (points.rows() == 0) throw std::invalid_argument("points is empty: the hull needs a point");
-  if (!points.allFinite()) {
-    throw std::invalid_argument("points has a NaN or infinite coordinate");
+// The edge graph from the triangles (or the segment), deduplicated, in compressed rows.
+void fill_adjacency(Hull& hull, Eigen::Index points) {
+  std::vector<std::pair<int, int>> edges;
+  if (hull.dimension == 1) {
+    edges = {{hull.vertex_indices[0], hull.vertex_indices[1]},
+             {hull.vertex_indices[1], hull.vertex_indices[0]}};
   }
+  for (Eigen::Index f = 0; f < hull.faces.rows(); ++f) {
+    for (int k = 0; k < 3; ++k) {
+      const int p = hull.faces(f, k);
+      const int q = hull.faces(f, (k + 1) % 3);
+      edges.emplace_back(p, q);
+      edges.emplace_back(q, p);
+    }
+  }
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  hull.neighbour_offsets.assign(static_cast<std::size_t>(points) + 1, 0);
+  for (const auto& e : edges) ++hull.neighbour_offsets[e.first + 1];
+  std::partial_sum(hull.neighbour_offsets.begin(), hull.neighbour_offsets.end(),
+                   hull.neighbour_offsets.begin());
+  hull.neighbours.resize(edges.size());
+  for (std::size_t k = 0; k < edges.size(); ++k) hull.neighbours[k] = edges[k].second;
+}
+
+Hull hull_without_adjacency(const VertexMatrix& points) {
   const PrincipalAxes frame = principal_axes(points);
   if (frame.dimension == 0) {
     Hull hull;
@@ -166,6 +186,18 @@ Hull compute_hull(const VertexMatrix& points) {
     if (qhull_solid(points, hull)) return hull;
   }
   return flat_hull(points, frame);
+}
+
+}  // namespace
+
+Hull compute_hull(const VertexMatrix& points) {
+  if (points.rows() == 0) throw std::invalid_argument("points is empty: the hull needs a point");
+  if (!points.allFinite()) {
+    throw std::invalid_argument("points has a NaN or infinite coordinate");
+  }
+  Hull hull = hull_without_adjacency(points);
+  fill_adjacency(hull, points.rows());
+  return hull;
 }
 
 }  // namespace swarmcollide

@@ -13,6 +13,10 @@ Scalar collision_tolerance(const DistanceOptions& options) {
       return options.swarm.tolerance;
     case Method::penalty:
       return options.penalty.tolerance;
+    case Method::dual:
+      // Zero means relative to the bodies' size, which this function does not see.
+      if (options.dual.tolerance > 0) return options.dual.tolerance;
+      break;
     case Method::fcl:
     case Method::fcl_indep:
     case Method::libccd:

@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "swarmcollide/solvers/dual.hpp"
 #include "swarmcollide/solvers/fcl_distance.hpp"
 #include "swarmcollide/solvers/penalty.hpp"
 #include "swarmcollide/solvers/swarm.hpp"
@@ -22,18 +23,20 @@ std::string method_name(Method method) {
       return "fcl-indep";
     case Method::libccd:
       return "libccd";
+    case Method::dual:
+      return "dual";
   }
   throw std::invalid_argument("unknown method");
 }
 
 Method method_from_name(const std::string& name) {
   for (Method m : {Method::ipso, Method::pso, Method::penalty, Method::fcl, Method::fcl_indep,
-                   Method::libccd}) {
+                   Method::libccd, Method::dual}) {
     if (method_name(m) == name) return m;
   }
   throw std::invalid_argument("unknown method '" + name +
                               "'; choose one of: 'ipso', 'pso', 'penalty', 'fcl', 'fcl-indep', "
-                              "'libccd'");
+                              "'libccd', 'dual'");
 }
 
 DistanceResult distance(const ConvexPolyhedron& a, const ConvexPolyhedron& b,
@@ -45,6 +48,8 @@ DistanceResult distance(const ConvexPolyhedron& a, const ConvexPolyhedron& b,
       return fcl_distance(a, b, FclGjk::libccd, options.exact);
     case Method::fcl_indep:
       return fcl_distance(a, b, FclGjk::indep, options.exact);
+    case Method::dual:
+      return solve_dual(a, b, options.dual);
     case Method::libccd:
       throw std::invalid_argument(
           "method 'libccd' has no distance function (libccd only tests intersection and "

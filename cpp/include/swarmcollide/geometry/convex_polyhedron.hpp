@@ -12,6 +12,10 @@ namespace detail {
 struct HullCache;
 }
 
+/// Number of points above which `support_index(direction, start)` climbs the hull instead of
+/// scanning the points.
+inline constexpr int kHillClimbingThreshold = 32;
+
 /// A convex polyhedron: the convex hull of a finite point set (the paper's Definition 3).
 ///
 /// The points are kept as given; they are the `x_i` of model (2), so a point inside the hull is a
@@ -29,6 +33,12 @@ class ConvexPolyhedron {
 
   /// Index of a point that maximises `direction . x` (the first one on ties).
   int support_index(const Vector3& direction) const;
+  /// Index of a point that maximises `direction . x`, found by hill climbing over the hull's
+  /// vertex adjacency from the point `start` (any index; a point that is not a hull vertex starts
+  /// from the first one) when the body has more than `kHillClimbingThreshold` points, as FCL and
+  /// coal do, and by scanning the points otherwise. Passing the previous answer as `start` for a
+  /// nearby direction makes a query cost a few neighbour checks. On ties any maximiser is returned.
+  int support_index(const Vector3& direction, int start) const;
   /// A point of the body farthest along `direction`.
   Vector3 support(const Vector3& direction) const {
     return vertices_.row(support_index(direction));

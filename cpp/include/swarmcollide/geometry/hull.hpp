@@ -15,6 +15,12 @@ struct Hull {
   /// Triangles with outward normals by the right-hand rule. A flat polygon is listed twice, once
   /// facing each side, so the mesh stays closed; segments and single points have no faces.
   FaceMatrix faces;
+  /// The hull's edge graph (edges of the triangles, of the polygon or of the segment) in
+  /// compressed rows: the neighbours of point `i` are `neighbours[neighbour_offsets[i]]` up to
+  /// `neighbours[neighbour_offsets[i + 1]]` (excluded). Points that are not hull vertices have
+  /// none. `neighbour_offsets` has one entry per point plus one.
+  std::vector<int> neighbour_offsets;
+  std::vector<int> neighbours;
 };
 
 /// Relative size below which a singular value of the centred points counts as zero when

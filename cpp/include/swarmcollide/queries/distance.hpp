@@ -4,6 +4,7 @@
 
 #include "swarmcollide/geometry/convex_polyhedron.hpp"
 #include "swarmcollide/solvers/distance_result.hpp"
+#include "swarmcollide/solvers/dual_options.hpp"
 #include "swarmcollide/solvers/exact_options.hpp"
 #include "swarmcollide/solvers/penalty_options.hpp"
 #include "swarmcollide/solvers/swarm_options.hpp"
@@ -24,10 +25,13 @@ enum class Method {
   fcl_indep,
   /// Exact reference for `collide` and `signed_distance` only: libccd has no distance function.
   libccd,
+  /// The paper's improved PSO over separating directions (the dual of (2)) with an exact finish
+  /// on the supporting features; certified to `DualOptions::tolerance`.
+  dual,
 };
 
 /// The name of a method as the Python API spells it ("ipso", "pso", "penalty", "fcl",
-/// "fcl-indep", "libccd").
+/// "fcl-indep", "libccd", "dual").
 std::string method_name(Method method);
 /// The method of a given name; throws std::invalid_argument listing the valid names.
 Method method_from_name(const std::string& name);
@@ -41,6 +45,8 @@ struct DistanceOptions {
   PenaltyOptions penalty;
   /// Used by the exact methods ("fcl", "fcl-indep", "libccd").
   ExactOptions exact;
+  /// Used by the dual method.
+  DualOptions dual;
 };
 
 /// Distance between two convex polyhedra, model (2). Throws std::invalid_argument for

@@ -17,7 +17,8 @@ namespace swarmcollide {
 /// `colliding` is `distance <= tolerance`.
 ///
 /// Methods "fcl" and "fcl-indep" use FCL (EPA through GST_LIBCCD for overlapping pairs, in both),
-/// "libccd" uses libccd's penetration depth. Throws std::invalid_argument for the swarm and
+/// "libccd" uses libccd's penetration depth, "dual" the maximum separation over directions (see
+/// `dual_signed_distance`). Throws std::invalid_argument for the swarm and
 /// penalty methods, which do not measure penetration.
 DistanceResult signed_distance(const ConvexPolyhedron& a, const ConvexPolyhedron& b,
                                const DistanceOptions& options = {});
