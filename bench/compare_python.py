@@ -183,6 +183,7 @@ METHODS: Dict[str, Callable[[Pair], Query]] = {
     "swarmcollide ipso feasibility": swarmcollide_method("ipso", constraint_handling="feasibility"),
     "swarmcollide pso": swarmcollide_method("pso"),
     "swarmcollide penalty": swarmcollide_method("penalty"),
+    "swarmcollide dual": swarmcollide_method("dual"),
     "swarmcollide fcl": swarmcollide_method("fcl"),
     "swarmcollide fcl-indep": swarmcollide_method("fcl-indep"),
     "pyswarms GlobalBestPSO": pyswarms_gbest,

@@ -22,7 +22,7 @@ import numpy as np  # noqa: E402
 PAPER_SECONDS = {"paper touching": {"penalty": 5.532, "ipso": 0.256},
                  "paper separate": {"penalty": 4.832, "ipso": 0.356}}
 DISTANCE_ROWS = ["ipso projection", "ipso feasibility", "pso projection", "pso feasibility",
-                 "penalty", "fcl (GST_LIBCCD)", "fcl-indep (GST_INDEP)", "FCL distance direct"]
+                 "penalty", "dual", "fcl (GST_LIBCCD)", "fcl-indep (GST_INDEP)", "FCL distance direct"]
 VERDICT_ROWS = ["collide libccd", "FCL collide", "libccd GJK intersect", "libccd MPR intersect"]
 PROXIMITIES = ["apart", "gap 1e-1", "gap 1e-2", "gap 1e-3", "gap 1e-4", "overlap 1e-4",
                "overlap 1e-3", "overlap 1e-2", "overlap 1e-1"]

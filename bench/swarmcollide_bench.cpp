@@ -21,11 +21,8 @@
 #include <string>
 #include <vector>
 
-#include "swarmcollide/queries/distance.hpp"
-// `collide` moved from distance.hpp to its own header; build against either layout.
-#if __has_include("swarmcollide/queries/collide.hpp")
 #include "swarmcollide/queries/collide.hpp"
-#endif
+#include "swarmcollide/queries/distance.hpp"
 
 namespace sc = swarmcollide;
 
@@ -206,6 +203,9 @@ std::vector<Row> make_rows() {
   sc::DistanceOptions penalty;
   penalty.method = sc::Method::penalty;
   rows.push_back({"penalty", Kind::distance, penalty, true, "swarmcollide"});
+  sc::DistanceOptions dual;
+  dual.method = sc::Method::dual;
+  rows.push_back({"dual", Kind::distance, dual, true, "swarmcollide"});
   sc::DistanceOptions fcl_libccd;
   fcl_libccd.method = sc::Method::fcl;
   rows.push_back({"fcl (GST_LIBCCD)", Kind::distance, fcl_libccd, false, "swarmcollide"});
@@ -240,6 +240,7 @@ bool answer(const Row& row, const Pair& p, std::uint64_t seed, sc::DistanceResul
     case Kind::distance: {
       sc::DistanceOptions o = row.options;
       o.swarm.seed = seed;
+      o.dual.seed = seed;
       *result = sc::distance(p.a, p.b, o);
       return result->colliding;
     }
