@@ -30,7 +30,8 @@ void bind_queries(py::module_& m) {
           [](DistanceOptions& o, const std::string& name) { o.method = method_from_name(name); })
       .def_readwrite("swarm", &DistanceOptions::swarm)
       .def_readwrite("penalty", &DistanceOptions::penalty)
-      .def_readwrite("exact", &DistanceOptions::exact);
+      .def_readwrite("exact", &DistanceOptions::exact)
+      .def_readwrite("dual", &DistanceOptions::dual);
 
   m.def("distance", on_bodies(&distance), py::arg("a"), py::arg("b"), py::arg("options"));
   m.def("signed_distance", on_bodies(&signed_distance), py::arg("a"), py::arg("b"),

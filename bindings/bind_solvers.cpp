@@ -5,6 +5,7 @@
 
 #include "conversions.hpp"
 #include "swarmcollide/solvers/distance_result.hpp"
+#include "swarmcollide/solvers/dual_options.hpp"
 #include "swarmcollide/solvers/exact_options.hpp"
 #include "swarmcollide/solvers/penalty_options.hpp"
 #include "swarmcollide/solvers/swarm.hpp"
@@ -81,6 +82,26 @@ void bind_solvers(py::module_& m) {
       .def_readwrite("inner_iterations", &PenaltyOptions::inner_iterations)
       .def_readwrite("tolerance", &PenaltyOptions::tolerance)
       .def("validate", &PenaltyOptions::validate,
+           "Raise ValueError naming the first invalid parameter.");
+
+  py::class_<DualOptions>(m, "DualOptions", R"doc(
+Parameters of the dual swarm (method ``"dual"``): the paper's rank-adaptive swarm over unit
+directions, with an exact finish on the supporting features.
+
+``tolerance`` is absolute; 0 (the default) means ``relative_tolerance`` times the bodies' size.
+``feature_tolerance`` is relative to the bodies' size.
+)doc")
+      .def(py::init<>())
+      .def_readwrite("swarm_size", &DualOptions::swarm_size)
+      .def_readwrite("max_iterations", &DualOptions::max_iterations)
+      .def_readwrite("w_min", &DualOptions::w_min)
+      .def_readwrite("w_max", &DualOptions::w_max)
+      .def_readwrite("tolerance", &DualOptions::tolerance)
+      .def_readwrite("relative_tolerance", &DualOptions::relative_tolerance)
+      .def_readwrite("feature_tolerance", &DualOptions::feature_tolerance)
+      .def_readwrite("max_rounds", &DualOptions::max_rounds)
+      .def_readwrite("seed", &DualOptions::seed)
+      .def("validate", &DualOptions::validate,
            "Raise ValueError naming the first invalid parameter.");
 
   py::enum_<PenetrationAlgorithm>(m, "PenetrationAlgorithm",

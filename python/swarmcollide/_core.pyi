@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['Aabb', 'BatchResult', 'ConstraintHandling', 'ConvexPolyhedron', 'DistanceOptions', 'DistanceResult', 'ExactOptions', 'Hull', 'InertiaStrategy', 'ParticleCoefficients', 'PenaltyOptions', 'PenetrationAlgorithm', 'SwarmOptions', 'as_polyhedron', 'collide', 'collide_many', 'collision', 'constraint_violation', 'distance', 'distance_many', 'is_feasible', 'linear_decreasing_inertia', 'objective', 'pair_seed', 'project_onto_simplex', 'rank_adaptive_coefficients', 'separation', 'signed_distance']
+__all__: list[str] = ['Aabb', 'BatchResult', 'ConstraintHandling', 'ConvexPolyhedron', 'DistanceOptions', 'DistanceResult', 'DualOptions', 'ExactOptions', 'Hull', 'InertiaStrategy', 'ParticleCoefficients', 'PenaltyOptions', 'PenetrationAlgorithm', 'SwarmOptions', 'as_polyhedron', 'collide', 'collide_many', 'collision', 'constraint_violation', 'distance', 'distance_many', 'is_feasible', 'linear_decreasing_inertia', 'objective', 'pair_seed', 'project_onto_simplex', 'rank_adaptive_coefficients', 'separation', 'signed_distance']
 class Aabb:
     """
     An axis-aligned bounding box with corners ``min`` and ``max``.
@@ -160,6 +160,7 @@ class DistanceOptions:
     """
     A method and the parameters of its solver.
     """
+    dual: DualOptions
     exact: ExactOptions
     method: str
     penalty: PenaltyOptions
@@ -251,6 +252,75 @@ class DistanceResult:
         """
         delta of model (2): nonnegative, summing to one.
         """
+class DualOptions:
+    """
+    
+    Parameters of the dual swarm (method ``"dual"``): the paper's rank-adaptive swarm over unit
+    directions, with an exact finish on the supporting features.
+    
+    ``tolerance`` is absolute; 0 (the default) means ``relative_tolerance`` times the bodies' size.
+    ``feature_tolerance`` is relative to the bodies' size.
+    """
+    def __init__(self) -> None:
+        ...
+    def validate(self) -> None:
+        """
+        Raise ValueError naming the first invalid parameter.
+        """
+    @property
+    def feature_tolerance(self) -> float:
+        ...
+    @feature_tolerance.setter
+    def feature_tolerance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def max_iterations(self) -> int:
+        ...
+    @max_iterations.setter
+    def max_iterations(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def max_rounds(self) -> int:
+        ...
+    @max_rounds.setter
+    def max_rounds(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def relative_tolerance(self) -> float:
+        ...
+    @relative_tolerance.setter
+    def relative_tolerance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def seed(self) -> int:
+        ...
+    @seed.setter
+    def seed(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def swarm_size(self) -> int:
+        ...
+    @swarm_size.setter
+    def swarm_size(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def tolerance(self) -> float:
+        ...
+    @tolerance.setter
+    def tolerance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def w_max(self) -> float:
+        ...
+    @w_max.setter
+    def w_max(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def w_min(self) -> float:
+        ...
+    @w_min.setter
+    def w_min(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
 class ExactOptions:
     """
     Parameters of the exact reference methods.

@@ -12,10 +12,10 @@ from . import _core
 PolyhedronLike = Union[_core.ConvexPolyhedron, npt.ArrayLike]
 """A ``ConvexPolyhedron`` or anything ``ConvexPolyhedron(points)`` accepts: ``(n, 3)`` points."""
 
-METHODS = ("ipso", "pso", "penalty", "fcl", "fcl-indep", "libccd")
+METHODS = ("ipso", "pso", "penalty", "fcl", "fcl-indep", "libccd", "dual")
 """The names ``method`` accepts."""
 
-SIGNED_METHODS = ("fcl", "fcl-indep", "libccd")
+SIGNED_METHODS = ("fcl", "fcl-indep", "libccd", "dual")
 """The methods that measure penetration depth, for ``signed_distance``."""
 
 _CHOICES: Dict[str, Mapping[str, object]] = {
@@ -58,6 +58,16 @@ _PARAMETERS_OF: Dict[str, _Parameters] = {
     "fcl": _EXACT,
     "fcl-indep": _EXACT,
     "libccd": {**_EXACT, "penetration": ("exact", None)},
+    "dual": {
+        "swarm_size": ("dual", True),
+        "max_iterations": ("dual", True),
+        "w_min": ("dual", False),
+        "w_max": ("dual", False),
+        "tolerance": ("dual", False),
+        "relative_tolerance": ("dual", False),
+        "feature_tolerance": ("dual", False),
+        "max_rounds": ("dual", True),
+    },
 }
 
 
@@ -80,6 +90,7 @@ def _options(method: str, seed: int, parameters: Mapping[str, object]) -> _core.
     options = _core.DistanceOptions()
     options.method = method
     options.swarm.seed = int(seed)
+    options.dual.seed = int(seed)
     accepted = _PARAMETERS_OF[method]
     for name, value in parameters.items():
         if value is None:
@@ -128,6 +139,9 @@ def distance(
     distance_tolerance: Optional[float] = None,
     penetration_tolerance: Optional[float] = None,
     penetration: Optional[str] = None,
+    relative_tolerance: Optional[float] = None,
+    feature_tolerance: Optional[float] = None,
+    max_rounds: Optional[int] = None,
 ) -> _core.DistanceResult:
     """Distance between two convex polyhedra: model (2) of the paper.
 
@@ -138,32 +152,37 @@ def distance(
     ----------
     a, b : ConvexPolyhedron or array_like, shape (n, 3)
         The bodies, or the points whose convex hulls they are.
-    method : {"ipso", "pso", "penalty", "fcl", "fcl-indep"}
+    method : {"ipso", "pso", "penalty", "fcl", "fcl-indep", "dual"}
         ``"ipso"``: the paper's improved PSO, with rank-adaptive inertia and acceleration (8)-(9).
         ``"pso"``: the standard PSO with linearly decreasing inertia (7).
         ``"penalty"``: the paper's baseline, an exterior quadratic penalty minimised by L-BFGS.
         ``"fcl"``, ``"fcl-indep"``: exact GJK through FCL (libccd's or FCL's own), checked by
         the certificate and completed by an exact solver where FCL gives no answer.
+        ``"dual"``: the paper's rank-adaptive swarm over separating directions (two parameters
+        whatever the vertex count) with an exact finish on the supporting features; certified
+        to ``tolerance`` (see docs/dual.md).
         (``"libccd"`` has no distance; use it with ``collide`` or ``signed_distance``.)
     seed : int
         Seed of the solver's random generator; the same seed gives the same result.
 
     Other Parameters
     ----------------
-    swarm_size : int, default 40
-        ipso, pso: N_p, the number of particles.
-    max_iterations : int, default 200 (swarms), 1000 (exact)
-        ipso, pso: G_m, the iteration budget. Exact methods: their iteration cap.
+    swarm_size : int, default 40 (ipso, pso), 12 (dual)
+        ipso, pso, dual: N_p, the number of particles.
+    max_iterations : int, default 200 (swarms), 30 (dual, per round), 1000 (exact)
+        ipso, pso: G_m, the iteration budget. dual: the budget of one round. Exact methods: their
+        iteration cap.
     w_min, w_max : float, default 0.4 and 0.9
-        ipso, pso: smallest and largest inertia weight.
+        ipso, pso, dual: smallest and largest inertia weight.
     c1, c2 : float, default 2.0
         pso only: acceleration coefficients (``"ipso"`` derives them from (9)).
     velocity_limit : float, default 1.0
         ipso, pso: largest velocity component (the weights live in [0, 1]).
-    tolerance : float, default 1e-6 (swarms, penalty), 1e-9 (exact)
+    tolerance : float, default 1e-6 (swarms, penalty), 1e-9 (exact), 0 (dual)
         Absolute distance at or below which the bodies count as colliding. For the swarms it is
         also the precision of the paper's Step 3: they stop once ``distance - lower_bound`` or
-        ``distance`` is at most ``tolerance``; 0 runs all ``max_iterations``.
+        ``distance`` is at most ``tolerance``; 0 runs all ``max_iterations``. dual: the same
+        precision test, and 0 means ``relative_tolerance`` times the bodies' size.
     feasibility_tolerance : float, default 1e-10
         ipso, pso: largest constraint violation (6) that counts as feasible.
     constraint_handling : {"projection", "feasibility"}, default "projection"
@@ -180,6 +199,13 @@ def distance(
         Exact methods: libccd's EPA/MPR tolerance, for ``signed_distance``.
     penetration : {"epa", "mpr"}, default "epa"
         libccd only: its penetration routine.
+    relative_tolerance : float, default 1e-9
+        dual: the precision relative to the bodies' size (the larger bounding-box diagonal),
+        used when ``tolerance`` is 0.
+    feature_tolerance : float, default 1e-3
+        dual: slack, relative to the bodies' size, of the supporting features of the finish.
+    max_rounds : int, default 20
+        dual: the largest number of swarm rounds (re-seeded around the best direction).
 
     Returns
     -------
@@ -224,8 +250,9 @@ def signed_distance(
     ----------
     a, b : ConvexPolyhedron or array_like, shape (n, 3)
         The bodies.
-    method : {"fcl", "fcl-indep", "libccd"}
-        Exact methods only: the swarms and the penalty method measure no penetration.
+    method : {"fcl", "fcl-indep", "libccd", "dual"}
+        The exact methods and the dual swarm: ``"ipso"``, ``"pso"`` and the penalty method
+        measure no penetration.
     **parameters
         The keyword arguments of ``distance`` that apply to ``method``.
 
@@ -265,7 +292,7 @@ def collide(
     ----------
     a, b : ConvexPolyhedron or array_like, shape (n, 3)
         The bodies.
-    method : {"ipso", "pso", "penalty", "fcl", "fcl-indep", "libccd"}
+    method : {"ipso", "pso", "penalty", "fcl", "fcl-indep", "libccd", "dual"}
         ``"libccd"`` answers with libccd's GJK intersection test.
     seed : int
         Seed of the solver's random generator.
