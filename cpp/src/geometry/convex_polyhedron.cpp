@@ -66,9 +66,16 @@ ConvexPolyhedron::ConvexPolyhedron(VertexMatrix points)
 }
 
 int ConvexPolyhedron::support_index(const Vector3& direction) const {
-  Eigen::Index best = 0;
-  (vertices_ * direction).maxCoeff(&best);
-  return static_cast<int>(best);
+  int best = 0;
+  Scalar highest = vertices_.row(0).dot(direction);
+  for (int i = 1; i < size(); ++i) {
+    const Scalar value = vertices_.row(i).dot(direction);
+    if (value > highest) {
+      highest = value;
+      best = i;
+    }
+  }
+  return best;
 }
 
 int ConvexPolyhedron::support_index(const Vector3& direction, int start) const {
