@@ -16,7 +16,7 @@ def pairs():
     return As, Bs
 
 
-@pytest.mark.parametrize("method", ["ipso", "fcl"])
+@pytest.mark.parametrize("method", ["ipso", "dual", "fcl"])
 def test_each_pair_is_the_single_query_with_its_derived_seed(method, pairs):
     As, Bs = pairs
     batch = sc.distance_many(As, Bs, method=method, seed=5, threads=2)

@@ -70,6 +70,7 @@ BatchResult run_batch(std::size_t count, std::size_t other_count, const Distance
       for (std::size_t i = start; i < end; ++i) {
         try {
           pair_options.swarm.seed = pair_seed(options.swarm.seed, i);
+          pair_options.dual.seed = pair_seed(options.dual.seed, i);
           store(batch, i, query(i, pair_options));
         } catch (...) {
           const std::lock_guard<std::mutex> lock(failure_mutex);

@@ -26,7 +26,7 @@ struct BatchResult {
 std::uint64_t pair_seed(std::uint64_t seed, std::size_t index);
 
 /// `distance(as[i], bs[i], options)` for every i, spread over `threads` threads (0: one per
-/// hardware thread), with pair i seeded by `pair_seed(options.swarm.seed, i)`. Throws
+/// hardware thread), with pair i seeded by `pair_seed(seed, i)` for each solver's seed. Throws
 /// std::invalid_argument if the sequences differ in length; the first error of any pair is
 /// rethrown after all threads stop.
 BatchResult distance_many(const std::vector<ConvexPolyhedron>& as,
