@@ -93,6 +93,7 @@ SOLVERS: Dict[str, Dict[str, object]] = {
     "swarmcollide: ipso, paper's rules": {"method": "ipso", "constraint_handling": "feasibility"},
     "swarmcollide: pso (7)": {"method": "pso"},
     "swarmcollide: penalty": {"method": "penalty"},
+    "swarmcollide: dual (certified)": {"method": "dual"},
     "swarmcollide: fcl (exact GJK)": {"method": "fcl"},
 }
 """Our rows: a label and the keyword arguments of ``distance``."""
