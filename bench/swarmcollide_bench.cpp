@@ -205,7 +205,7 @@ std::vector<Row> make_rows() {
   rows.push_back({"penalty", Kind::distance, penalty, true, "swarmcollide"});
   sc::DistanceOptions dual;
   dual.method = sc::Method::dual;
-  rows.push_back({"dual", Kind::distance, dual, true, "swarmcollide"});
+  rows.push_back({"dual", Kind::distance, dual, false, "swarmcollide"});
   sc::DistanceOptions fcl_libccd;
   fcl_libccd.method = sc::Method::fcl;
   rows.push_back({"fcl (GST_LIBCCD)", Kind::distance, fcl_libccd, false, "swarmcollide"});
@@ -503,8 +503,9 @@ int main(int argc, char** argv) {
 
   static const std::vector<Row> rows = make_rows();
   static const std::vector<Workload> workloads = make_workloads(quick, sizes);
-  const int repetitions = quick ? 3 : 5;
-  const double min_time = quick ? 0.01 : 0.05;
+  // Many short repetitions: their median resists the odd descheduled one on a shared machine.
+  const int repetitions = quick ? 3 : 9;
+  const double min_time = quick ? 0.01 : 0.03;
   std::size_t done = 0;
   for (const Workload& w : workloads) {
     ++done;
