@@ -94,3 +94,26 @@ def test_repr_tells_what_it_holds():
     text = repr(sc.ConvexPolyhedron(CUBE))
     assert text.startswith("ConvexPolyhedron(8 points")
     assert "[0, 0, 0] to [1, 1, 1]" in text
+
+
+@pytest.mark.parametrize("count", [4, 5, 8, 12, 16, 17, 40])
+def test_hulls_match_an_independent_qhull(count):
+    from scipy.spatial import ConvexHull
+
+    rng = np.random.default_rng(count)
+    for trial in range(10):
+        points = rng.normal(size=(count, 3))
+        if trial % 2:  # points on a grid: coplanar faces, collinear edges, repeated points
+            points = np.round(points)
+        try:
+            reference = ConvexHull(points)
+        except Exception:
+            continue  # flat grids: covered by the degenerate tests
+        hull = sc.ConvexPolyhedron(points).hull()
+        assert hull.dimension == 3
+        assert {tuple(p) for p in points[hull.vertex_indices]} == {
+            tuple(p) for p in points[reference.vertices]
+        }
+        corners = points[hull.faces]
+        volume = np.einsum("ij,ij->i", corners[:, 0], np.cross(corners[:, 1], corners[:, 2])).sum() / 6
+        assert volume == pytest.approx(reference.volume, rel=1e-12)

@@ -2,6 +2,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <numeric>
@@ -97,6 +98,92 @@ Hull segment_hull(const VertexMatrix& points, const PrincipalAxes& frame) {
   return hull;
 }
 
+// Up to this many points, trying every plane through three of them beats Qhull's set-up cost.
+constexpr Eigen::Index kSmallHullLimit = 16;
+
+// True when the triangles form a closed, consistently oriented surface: every directed edge is
+// used once and its reverse once.
+bool closed_surface(const std::vector<Eigen::RowVector3i>& triangles) {
+  std::vector<std::pair<int, int>> edges;
+  for (const auto& t : triangles) {
+    for (int k = 0; k < 3; ++k) edges.emplace_back(t(k), t((k + 1) % 3));
+  }
+  std::sort(edges.begin(), edges.end());
+  if (std::adjacent_find(edges.begin(), edges.end()) != edges.end()) return false;
+  return std::all_of(edges.begin(), edges.end(), [&](const std::pair<int, int>& e) {
+    return std::binary_search(edges.begin(), edges.end(), std::make_pair(e.second, e.first));
+  });
+}
+
+// Exact hull of a small solid point set: every plane through three points with all points on one
+// side is a face; the points on it form a convex polygon, triangulated as a fan. Returns false
+// (and the caller asks Qhull) if rounding leaves the faces inconsistent.
+bool small_solid_hull(const VertexMatrix& points, Hull& hull) {
+  const Eigen::Index n = points.rows();
+  const Vector3 centre = points.colwise().mean().transpose();
+  const Scalar scale = (points.rowwise() - centre.transpose()).rowwise().norm().maxCoeff();
+  const Scalar tolerance = 1e-12 * scale;
+  std::vector<std::uint64_t> seen;
+  std::vector<Eigen::RowVector3i> triangles;
+  std::vector<int> members;
+  std::vector<Eigen::Vector2d> projected;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    for (Eigen::Index j = i + 1; j < n; ++j) {
+      for (Eigen::Index k = j + 1; k < n; ++k) {
+        const Vector3 p = points.row(i);
+        Vector3 normal = (points.row(j).transpose() - p).cross(points.row(k).transpose() - p);
+        const Scalar length = normal.norm();
+        if (length <= tolerance * scale) continue;
+        normal /= length;
+        Scalar highest = -1;
+        Scalar lowest = 1;
+        for (Eigen::Index m = 0; m < n; ++m) {
+          const Scalar offset = normal.dot(points.row(m).transpose() - p);
+          highest = std::max(highest, offset);
+          lowest = std::min(lowest, offset);
+        }
+        if (highest > tolerance && lowest < -tolerance) continue;
+        if (highest > tolerance) normal = -normal;
+        std::uint64_t on_face = 0;
+        for (Eigen::Index m = 0; m < n; ++m) {
+          if (std::abs(normal.dot(points.row(m).transpose() - p)) <= tolerance) {
+            on_face |= std::uint64_t{1} << m;
+          }
+        }
+        if (std::find(seen.begin(), seen.end(), on_face) != seen.end()) continue;
+        seen.push_back(on_face);
+        // (u, v, normal) is right-handed, so counter-clockwise in (u, v) faces outward.
+        const Vector3 u = normal.unitOrthogonal();
+        const Vector3 v = normal.cross(u);
+        members.clear();
+        projected.clear();
+        for (Eigen::Index m = 0; m < n; ++m) {
+          if (on_face >> m & 1) {
+            members.push_back(static_cast<int>(m));
+            const Vector3 d = points.row(m).transpose() - p;
+            projected.emplace_back(d.dot(u), d.dot(v));
+          }
+        }
+        const std::vector<int> ring = polygon_hull(projected);
+        for (std::size_t t = 1; t + 1 < ring.size(); ++t) {
+          triangles.emplace_back(members[ring[0]], members[ring[t]], members[ring[t + 1]]);
+        }
+      }
+    }
+  }
+  if (triangles.size() < 4 || !closed_surface(triangles)) return false;
+  hull.dimension = 3;
+  hull.faces.resize(static_cast<Eigen::Index>(triangles.size()), 3);
+  for (std::size_t t = 0; t < triangles.size(); ++t) {
+    hull.faces.row(static_cast<Eigen::Index>(t)) = triangles[t];
+  }
+  hull.vertex_indices.assign(hull.faces.data(), hull.faces.data() + hull.faces.size());
+  std::sort(hull.vertex_indices.begin(), hull.vertex_indices.end());
+  hull.vertex_indices.erase(std::unique(hull.vertex_indices.begin(), hull.vertex_indices.end()),
+                            hull.vertex_indices.end());
+  return true;
+}
+
 // Qhull's reentrant C API, with its messages captured rather than printed.
 bool qhull_solid(const VertexMatrix& points, Hull& hull) {
   std::vector<coordT> coords(points.data(), points.data() + points.size());
@@ -182,6 +269,8 @@ Hull hull_without_adjacency(const VertexMatrix& points) {
   if (frame.dimension == 1) return segment_hull(points, frame);
   if (frame.dimension == 3) {
     Hull hull;
+    if (points.rows() <= kSmallHullLimit && small_solid_hull(points, hull)) return hull;
+    hull = Hull();
     // Qhull refuses sets too thin for its own precision test; they are flat to within rounding.
     if (qhull_solid(points, hull)) return hull;
   }
