@@ -61,6 +61,20 @@ TEST(ConvexPolyhedron, BoxAndCentroid) {
   EXPECT_TRUE(testing::paper_a().centroid().isApprox(Vector3(0.25, 0.25, 0.25), 1e-14));
 }
 
+TEST(ConvexPolyhedron, DerivedDataIsMadeOncePerBodyAndSharedByCopies) {
+  const ConvexPolyhedron cube(unit_cube());
+  const ConvexPolyhedron copy = cube;
+  int made = 0;
+  const auto make = [&made] { return ++made; };
+  const std::shared_ptr<const int> first = cube.derived<int>(make);
+  EXPECT_EQ(*copy.derived<int>(make), 1);
+  EXPECT_EQ(copy.derived<int>(make), first);
+  EXPECT_EQ(made, 1);
+  // Another type is another slot; another body has its own.
+  EXPECT_EQ(*cube.derived<double>([] { return 2.5; }), 2.5);
+  EXPECT_EQ(*ConvexPolyhedron(unit_cube()).derived<int>(make), 2);
+}
+
 TEST(Hull, CubeHasEightVerticesAndTwelveOutwardTriangles) {
   VertexMatrix points(9, 3);
   points << unit_cube(), 0.5, 0.5, 0.5;

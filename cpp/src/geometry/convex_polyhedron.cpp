@@ -3,6 +3,8 @@
 #include <mutex>
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace swarmcollide {
 
@@ -10,6 +12,8 @@ namespace detail {
 struct HullCache {
   std::once_flag once;
   Hull hull;
+  std::mutex derived_mutex;
+  std::vector<std::pair<std::type_index, std::shared_ptr<const void>>> derived;
 };
 }  // namespace detail
 
@@ -120,6 +124,16 @@ Vector3 ConvexPolyhedron::centroid() const {
   Vector3 sum = Vector3::Zero();
   for (int i : h.vertex_indices) sum += vertices_.row(i).transpose();
   return sum / static_cast<Scalar>(h.vertex_indices.size());
+}
+
+std::shared_ptr<const void> ConvexPolyhedron::derived_slot(
+    std::type_index type, const std::function<std::shared_ptr<const void>()>& make) const {
+  const std::lock_guard<std::mutex> lock(hull_cache_->derived_mutex);
+  for (const auto& [stored_type, data] : hull_cache_->derived) {
+    if (stored_type == type) return data;
+  }
+  hull_cache_->derived.emplace_back(type, make());
+  return hull_cache_->derived.back().second;
 }
 
 const Hull& ConvexPolyhedron::hull() const {

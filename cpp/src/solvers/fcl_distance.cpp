@@ -32,26 +32,46 @@ std::shared_ptr<fcl::Convexd> to_fcl(const ConvexPolyhedron& body, const Vector3
   return std::make_shared<fcl::Convexd>(vertices, static_cast<int>(hull.faces.rows()), faces);
 }
 
+// A body's FCL shape in a frame centred on its bounding box, built once per body: coordinates near
+// zero keep their precision whatever the bodies' offset.
+struct FclShape {
+  Vector3 origin;
+  std::shared_ptr<fcl::Convexd> shape;
+};
+
+const FclShape& shape_of(const ConvexPolyhedron& body, std::shared_ptr<const FclShape>& keep) {
+  keep = body.derived<FclShape>([&body] {
+    const Aabb box = body.aabb();
+    const Vector3 origin = (box.min + box.max) / 2;
+    return FclShape{origin, to_fcl(body, origin)};
+  });
+  return *keep;
+}
+
+// The pair in A's frame: B is placed by the difference of the two origins.
 struct FclPair {
   Vector3 origin;
-  std::shared_ptr<fcl::Convexd> a;
-  std::shared_ptr<fcl::Convexd> b;
+  std::shared_ptr<const FclShape> a;
+  std::shared_ptr<const FclShape> b;
 };
 
 FclPair make_pair(const ConvexPolyhedron& a, const ConvexPolyhedron& b) {
-  const Aabb box = a.aabb();
-  const Vector3 origin = (box.min + box.max) / 2;
-  return {origin, to_fcl(a, origin), to_fcl(b, origin)};
+  FclPair pair;
+  pair.origin = shape_of(a, pair.a).origin;
+  shape_of(b, pair.b);
+  return pair;
 }
 
 // One FCL distance query; a fresh fcl::DistanceResult each time, since it keeps the smallest
-// distance it has seen.
+// distance it has seen. Its witnesses are in A's frame.
 fcl::DistanceResultd query(const FclPair& pair, bool signed_distance, fcl::GJKSolverType solver,
                            Scalar tolerance) {
   const fcl::DistanceRequestd request(true, signed_distance, 0, 0, tolerance, solver);
   fcl::DistanceResultd result;
-  fcl::distance(pair.a.get(), fcl::Transform3d::Identity(), pair.b.get(),
-                fcl::Transform3d::Identity(), request, result);
+  fcl::Transform3d place_b = fcl::Transform3d::Identity();
+  place_b.translation() = pair.b->origin - pair.a->origin;
+  fcl::distance(pair.a->shape.get(), fcl::Transform3d::Identity(), pair.b->shape.get(), place_b,
+                request, result);
   return result;
 }
 

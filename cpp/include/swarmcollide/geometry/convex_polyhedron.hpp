@@ -1,6 +1,8 @@
 #pragma once
 
+#include <functional>
 #include <memory>
+#include <typeindex>
 
 #include "swarmcollide/geometry/aabb.hpp"
 #include "swarmcollide/geometry/hull.hpp"
@@ -52,7 +54,19 @@ class ConvexPolyhedron {
   /// Convex hull, computed on first use.
   const Hull& hull() const;
 
+  /// Data a solver derives from the body (an FCL shape, say): made by `make()` on the first call
+  /// for type `T`, then shared by every copy of the body. Safe to call from many threads.
+  template <typename T, typename Make>
+  std::shared_ptr<const T> derived(const Make& make) const {
+    return std::static_pointer_cast<const T>(derived_slot(typeid(T), [&make] {
+      return std::shared_ptr<const void>(std::make_shared<const T>(make()));
+    }));
+  }
+
  private:
+  std::shared_ptr<const void> derived_slot(
+      std::type_index type, const std::function<std::shared_ptr<const void>()>& make) const;
+
   VertexMatrix vertices_;
   std::shared_ptr<detail::HullCache> hull_cache_;
 };
