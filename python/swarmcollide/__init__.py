@@ -16,6 +16,8 @@ Examples
 (1.0, False, True)
 """
 
+from importlib.metadata import version as _version
+
 from ._core import (
     Aabb,
     BatchResult,
@@ -45,6 +47,8 @@ from .queries import (
     distance_many,
     signed_distance,
 )
+
+__version__ = _version("swarmcollide")
 
 __all__ = [
     "METHODS",

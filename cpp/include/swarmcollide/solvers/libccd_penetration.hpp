@@ -7,9 +7,9 @@
 namespace swarmcollide {
 
 /// Intersection test by libccd's GJK (ccdGJKIntersect) on the bodies' support functions. libccd
-/// cannot prove a "no" (it has no distance and both its GJK and MPR miss touching pairs such as
-/// the paper's), so a "no" is checked by `exact_nearest_points` and the verdict is that of its
-/// certified distance: true exactly when the distance is at most `options.tolerance`.
+/// cannot prove a "no" (it has no distance, and its MPR misses touching pairs such as the paper's),
+/// so a "no" is checked by `exact_nearest_points` and the verdict is that of its certified
+/// distance: true exactly when the distance is at most `options.tolerance`.
 bool libccd_intersect(const ConvexPolyhedron& a, const ConvexPolyhedron& b,
                       const ExactOptions& options = {});
 
