@@ -49,12 +49,16 @@ $(VENV)/.bench-installed: $(VENV)/.installed
 bench: install $(VENV)/.bench-installed
 	cmake -S . -B $(BENCH_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release \
 	  -DSWARMCOLLIDE_BUILD_BENCH=ON -DSWARMCOLLIDE_BUILD_PYTHON=OFF
-	cmake --build $(BENCH_BUILD) -j $(JOBS) --target swarmcollide-bench
+	cmake --build $(BENCH_BUILD) -j $(JOBS) --target swarmcollide-bench swarmcollide-batch-loop \
+	  swarmcollide-swarm-speed
 	mkdir -p bench/results bench/plots
 	$(BENCH_BUILD)/bench/swarmcollide-bench $(BENCH_ARGS) --json bench/results/cpp.json \
 	  > $(BENCH_BUILD)/console.txt
 	$(PY) bench/compare_python.py $(BENCH_ARGS) --json bench/results/python_comparison.json
 	$(PY) bench/convergence.py $(BENCH_ARGS) --json bench/results/convergence.json --plots bench/plots
+	$(PY) bench/batch.py $(BENCH_ARGS) --json bench/results/batch.json \
+	  --loop-binary $(BENCH_BUILD)/bench/swarmcollide-batch-loop
+	$(BENCH_BUILD)/bench/swarmcollide-swarm-speed > bench/results/swarm_speed.txt
 	$(PY) bench/report.py --results bench/results --plots bench/plots --out bench/RESULTS.md
 
 stubs: install

@@ -1,0 +1,179 @@
+"""Batch queries: sc.distance_many against the plain C++ loop over the same calls, against a Python
+loop over python-fcl and coal, on one thread and two, and its peak memory for a million pairs.
+
+Writes a JSON file that bench/report.py turns into a section of bench/RESULTS.md.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+from typing import Callable, Dict, List
+
+import numpy as np
+from tqdm import tqdm
+
+import swarmcollide as sc
+
+VERTICES = 8
+# Pairs per method for the thread-scaling runs: about a second of work each on one thread.
+SCALING_PAIRS = {"ipso": 4000, "pso": 4000, "penalty": 1000, "dual": 40000, "fcl": 20000,
+                 "fcl-indep": 20000}
+
+
+def make_pairs(count: int, seed: int = 0):
+    """``count`` pairs of 8-point clouds of unit size, centres up to 3 apart: apart and overlapping."""
+    rng = np.random.default_rng(seed)
+    As = rng.normal(size=(count, VERTICES, 3))
+    Bs = rng.normal(size=(count, VERTICES, 3)) + rng.uniform(-3, 3, size=(count, 1, 3))
+    return As, Bs
+
+
+def median_seconds(run: Callable[[], object], repeats: int) -> float:
+    times = []
+    for _ in range(repeats):
+        start = time.perf_counter()
+        run()
+        times.append(time.perf_counter() - start)
+    return statistics.median(times)
+
+
+def cpp_loop_seconds(binary: Path, As: np.ndarray, Bs: np.ndarray, method: str, repeats: int):
+    with tempfile.TemporaryDirectory() as folder:
+        a_file, b_file = Path(folder) / "a.bin", Path(folder) / "b.bin"
+        np.ascontiguousarray(As, dtype=np.float64).tofile(a_file)
+        np.ascontiguousarray(Bs, dtype=np.float64).tofile(b_file)
+        done = subprocess.run(
+            [str(binary), str(a_file), str(b_file), str(len(As)), str(VERTICES), method,
+             str(repeats)],
+            check=True, capture_output=True, text=True,
+        )
+    return json.loads(done.stdout)
+
+
+def python_fcl_loop(As: np.ndarray, Bs: np.ndarray) -> List[float]:
+    """What a Python user of python-fcl writes: a hull per body, then one query per pair."""
+    import fcl
+    from scipy.spatial import ConvexHull
+
+    def shape(points):
+        hull = ConvexHull(points)
+        faces = np.hstack([np.full((len(hull.simplices), 1), 3), hull.simplices]).ravel()
+        return fcl.CollisionObject(fcl.Convex(points, len(hull.simplices), faces))
+
+    out = []
+    for a, b in zip(tqdm(As, desc="python-fcl loop", leave=False), Bs):
+        request, result = fcl.DistanceRequest(), fcl.DistanceResult()
+        out.append(fcl.distance(shape(a), shape(b), request, result))
+    return out
+
+
+def coal_loop(As: np.ndarray, Bs: np.ndarray) -> List[float]:
+    """The same with coal, FCL's successor."""
+    import coal
+
+    identity = coal.Transform3s()
+
+    def shape(points):
+        vertices = coal.StdVec_Vec3s()
+        for p in points:
+            vertices.append(p)
+        return coal.Convex.convexHull(vertices, False, None)
+
+    out = []
+    for a, b in zip(tqdm(As, desc="coal loop", leave=False), Bs):
+        request, result = coal.DistanceRequest(), coal.DistanceResult()
+        out.append(coal.distance(shape(a), identity, shape(b), identity, request, result))
+    return out
+
+
+def peak_memory(pairs: int, method: str) -> Dict[str, float]:
+    """Peak resident memory of a fresh process that solves ``pairs`` pairs, and of one that only
+    builds the input arrays, in MiB."""
+    script = f"""
+import resource, sys
+sys.path.insert(0, {str(Path(__file__).parent)!r})
+from batch import make_pairs
+As, Bs = make_pairs({pairs})
+if sys.argv[1] == "solve":
+    import swarmcollide as sc
+    r = sc.distance_many(As, Bs, method={method!r}, threads=2)
+    assert len(r) == {pairs}
+print(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024)
+"""
+    mib = {}
+    for stage in ("inputs", "solve"):
+        done = subprocess.run([sys.executable, "-c", script, stage], check=True,
+                              capture_output=True, text=True)
+        mib[stage] = float(done.stdout.strip())
+    return {"pairs": pairs, "method": method, "inputs_mib": mib["inputs"],
+            "peak_mib": mib["solve"], "solve_mib": mib["solve"] - mib["inputs"]}
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__)
+    parser.add_argument("--quick", action="store_true", help="a reduced run, under a minute")
+    parser.add_argument("--json", type=Path, required=True, help="where to write the results")
+    parser.add_argument("--loop-binary", type=Path, required=True,
+                        help="the swarmcollide-batch-loop binary (the plain C++ loop)")
+    arguments = parser.parse_args()
+    quick = arguments.quick
+    pairs = 10_000 if quick else 100_000
+    loop_pairs = 1_000 if quick else 10_000
+    memory_pairs = 100_000 if quick else 1_000_000
+    repeats = 1 if quick else 3
+    scale = 0.1 if quick else 1.0
+
+    As, Bs = make_pairs(pairs)
+    results: Dict[str, object] = {"vertices": VERTICES, "pairs": pairs, "quick": quick}
+
+    cpp = cpp_loop_seconds(arguments.loop_binary, As, Bs, "fcl", repeats)
+    batch = median_seconds(lambda: sc.distance_many(As, Bs, method="fcl", threads=1), repeats)
+    check = sc.distance_many(As, Bs, method="fcl", threads=1).distance.sum()
+    results["fcl_overhead"] = {
+        "cpp_loop_seconds": cpp["seconds"],
+        "distance_many_seconds": batch,
+        "ratio": batch / cpp["seconds"],
+        "same_answers": bool(abs(check - cpp["checksum"]) <= 1e-9 * abs(check)),
+    }
+
+    exact = sc.distance_many(As[:loop_pairs], Bs[:loop_pairs], method="fcl").distance
+    python_loops = {}
+    for name, loop in (("python-fcl", python_fcl_loop), ("coal", coal_loop)):
+        start = time.perf_counter()
+        answers = np.array(loop(As[:loop_pairs], Bs[:loop_pairs]))
+        per_pair = (time.perf_counter() - start) / loop_pairs
+        separated = exact > 1e-9
+        python_loops[name] = {
+            "seconds_per_pair": per_pair,
+            "seconds_for_all_pairs": per_pair * pairs,
+            "distance_many_speedup": per_pair * pairs / batch,
+            "max_error_on_separated": float(np.max(np.abs(answers[separated] - exact[separated]))),
+        }
+    results["python_loops"] = python_loops
+
+    scaling = {}
+    for method, count in tqdm(list(SCALING_PAIRS.items()), desc="thread scaling", leave=False):
+        count = max(100, int(count * scale))
+        one = median_seconds(
+            lambda: sc.distance_many(As[:count], Bs[:count], method=method, threads=1), repeats)
+        two = median_seconds(
+            lambda: sc.distance_many(As[:count], Bs[:count], method=method, threads=2), repeats)
+        scaling[method] = {"pairs": count, "one_thread_seconds": one, "two_threads_seconds": two,
+                           "speedup": one / two}
+    results["thread_scaling"] = scaling
+    results["memory"] = peak_memory(memory_pairs, "dual")
+
+    arguments.json.write_text(json.dumps(results, indent=2) + "\n")
+    print(json.dumps(results, indent=2))
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
