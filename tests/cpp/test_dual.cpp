@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "contract.hpp"
 #include "paper_cases.hpp"
 #include "swarmcollide/problem/certificate.hpp"
 #include "swarmcollide/queries/collide.hpp"
@@ -22,35 +23,18 @@ using testing::paper_a;
 using testing::paper_b_colliding;
 using testing::paper_b_separate;
 
-Scalar body_size(const ConvexPolyhedron& a, const ConvexPolyhedron& b) {
-  const auto diagonal = [](const ConvexPolyhedron& body) {
-    const Aabb box = body.aabb();
-    return (box.max - box.min).norm();
-  };
-  return std::max(diagonal(a), diagonal(b));
-}
+using testing::size_of;
 
 void expect_contract(const ConvexPolyhedron& a, const ConvexPolyhedron& b,
                      const DistanceResult& r) {
-  ASSERT_EQ(r.weights_a.size(), a.size());
-  ASSERT_EQ(r.weights_b.size(), b.size());
-  EXPECT_GE(r.weights_a.minCoeff(), 0);
-  EXPECT_GE(r.weights_b.minCoeff(), 0);
-  EXPECT_NEAR(r.weights_a.sum(), 1, 1e-12);
-  EXPECT_NEAR(r.weights_b.sum(), 1, 1e-12);
-  EXPECT_LE((a.vertices().transpose() * r.weights_a - r.point_a).norm(), 1e-12);
-  EXPECT_LE((b.vertices().transpose() * r.weights_b - r.point_b).norm(), 1e-12);
-  EXPECT_NEAR(r.distance, (r.point_b - r.point_a).norm(), 1e-12);
-  EXPECT_GE(r.lower_bound, 0);
-  EXPECT_LE(r.lower_bound, r.distance + 1e-12);
-  if (r.lower_bound > 0) EXPECT_NEAR(separation(a, b, r.direction), r.lower_bound, 1e-12);
+  testing::expect_contract(a, b, r);
   EXPECT_EQ(r.method, "dual");
   EXPECT_GT(r.evaluations, 0);
   EXPECT_FALSE(r.history.empty());
   // Certified to 1e-9 of the bodies' size (the default tolerance).
   EXPECT_TRUE(r.certified);
   EXPECT_EQ(r.status, SolverStatus::converged);
-  if (!r.colliding) EXPECT_LE(r.distance - r.lower_bound, 1e-9 * body_size(a, b));
+  if (!r.colliding) EXPECT_LE(r.distance - r.lower_bound, 1e-9 * size_of(a, b));
 }
 
 // The hull vertices of `n` random points on the unit sphere, as a body.
@@ -150,7 +134,7 @@ TEST(Dual, RandomPairsAreCertifiedAndAgreeWithTheExactReferences) {
       const DistanceResult fcl = fcl_distance(a, b, FclGjk::libccd);
       EXPECT_EQ(r.colliding, gap < 0);
       EXPECT_EQ(r.colliding, fcl.colliding);
-      const Scalar size = body_size(a, b);
+      const Scalar size = size_of(a, b);
       EXPECT_NEAR(r.distance, wolfe.distance, 1e-9 * size);
       EXPECT_NEAR(r.distance, fcl.distance, 1e-9 * size);
     }

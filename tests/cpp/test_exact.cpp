@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "contract.hpp"
 #include "paper_cases.hpp"
 #include "swarmcollide/problem/certificate.hpp"
 #include "swarmcollide/queries/collide.hpp"
@@ -159,10 +160,7 @@ ConvexPolyhedron points(std::initializer_list<Vector3> list) {
   return ConvexPolyhedron(v);
 }
 
-Scalar size_of(const ConvexPolyhedron& a, const ConvexPolyhedron& b) {
-  const auto diag = [](const ConvexPolyhedron& x) { return (x.aabb().max - x.aabb().min).norm(); };
-  return std::max({diag(a), diag(b), 1e-300});
-}
+using testing::size_of;
 
 DistanceOptions with(Method m) {
   DistanceOptions o;
@@ -173,20 +171,8 @@ DistanceOptions with(Method m) {
 // The contract every distance result meets.
 void expect_contract(const ConvexPolyhedron& a, const ConvexPolyhedron& b, const DistanceResult& r,
                      Scalar tolerance = 1e-9) {
-  const Scalar eps = 1e-12 * (size_of(a, b) + r.point_a.norm());
-  ASSERT_EQ(r.weights_a.size(), a.size());
-  ASSERT_EQ(r.weights_b.size(), b.size());
-  EXPECT_GE(r.weights_a.minCoeff(), 0);
-  EXPECT_GE(r.weights_b.minCoeff(), 0);
-  EXPECT_NEAR(r.weights_a.sum(), 1, 1e-12);
-  EXPECT_NEAR(r.weights_b.sum(), 1, 1e-12);
-  EXPECT_LE((a.vertices().transpose() * r.weights_a - r.point_a).norm(), eps);
-  EXPECT_LE((b.vertices().transpose() * r.weights_b - r.point_b).norm(), eps);
-  EXPECT_NEAR(r.distance, (r.point_b - r.point_a).norm(), eps);
-  EXPECT_GE(r.lower_bound, 0);
-  EXPECT_LE(r.lower_bound, r.distance + eps);
-  EXPECT_EQ(r.colliding, r.distance <= tolerance);
-  EXPECT_EQ(r.certified, r.colliding || r.lower_bound > tolerance);
+  testing::expect_contract(a, b, r, 1e-12 * (size_of(a, b) + r.point_a.norm()));
+  testing::expect_verdicts_from_bounds(r, tolerance);
   EXPECT_EQ(r.status, SolverStatus::exact);
 }
 

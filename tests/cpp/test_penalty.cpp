@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "contract.hpp"
 #include "paper_cases.hpp"
 #include "swarmcollide/queries/distance.hpp"
 #include "swarmcollide/solvers/exact_nearest_points.hpp"
@@ -18,19 +19,8 @@ using testing::paper_b_separate;
 
 void expect_contract(const ConvexPolyhedron& a, const ConvexPolyhedron& b, const DistanceResult& r,
                      Scalar tolerance) {
-  ASSERT_EQ(r.weights_a.size(), a.size());
-  ASSERT_EQ(r.weights_b.size(), b.size());
-  EXPECT_GE(r.weights_a.minCoeff(), 0);
-  EXPECT_GE(r.weights_b.minCoeff(), 0);
-  EXPECT_NEAR(r.weights_a.sum(), 1, 1e-12);
-  EXPECT_NEAR(r.weights_b.sum(), 1, 1e-12);
-  EXPECT_LE((a.vertices().transpose() * r.weights_a - r.point_a).norm(), 1e-12);
-  EXPECT_LE((b.vertices().transpose() * r.weights_b - r.point_b).norm(), 1e-12);
-  EXPECT_NEAR(r.distance, (r.point_b - r.point_a).norm(), 1e-12);
-  EXPECT_GE(r.lower_bound, 0);
-  EXPECT_LE(r.lower_bound, r.distance + 1e-12);
-  EXPECT_EQ(r.colliding, r.distance <= tolerance);
-  EXPECT_EQ(r.certified, r.colliding || r.lower_bound > tolerance);
+  testing::expect_contract(a, b, r);
+  testing::expect_verdicts_from_bounds(r, tolerance);
   EXPECT_EQ(r.method, "penalty");
   EXPECT_GT(r.iterations, 0);
   EXPECT_GT(r.evaluations, 0);
