@@ -507,7 +507,8 @@ def main(argv: Optional[List[str]] = None) -> int:
         md += ["## The swarm's hot loop, before and after", "",
                "The rewrite: particles stored as structure of arrays (a row per weight, a column "
                "per particle), fused loops the compiler vectorises, (8)-(9) computed once per "
-               "rank, no allocation inside a solve, projection only for particles a move took "
+               "rank, no allocation inside the iterations (the workspace is allocated once per "
+               "solve), projection only for particles a move took "
                "off the simplexes, uniform initial points from sorted uniforms instead of "
                "logarithms.", "", swarm_speed_section(before, after), ""]
     md += ["## Every workload", "", "Each cell: time per query, then accuracy as above.", "",
