@@ -13,8 +13,7 @@ namespace {
 // Bodies from a sequence of polyhedra or (n, 3) array-likes, or from an (m, n, 3) array.
 std::vector<ConvexPolyhedron> to_polyhedra(const py::handle& bodies, const char* name) {
   std::vector<ConvexPolyhedron> result;
-  if (py::isinstance<py::array>(bodies) &&
-      py::array(py::reinterpret_borrow<py::array>(bodies)).ndim() == 3) {
+  if (py::isinstance<py::array>(bodies) && bodies.cast<py::array>().ndim() == 3) {
     const auto stack =
         py::array_t<Scalar, py::array::c_style | py::array::forcecast>::ensure(bodies);
     if (!stack || stack.shape(2) != 3 || stack.shape(1) == 0) {

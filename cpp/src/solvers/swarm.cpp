@@ -189,6 +189,7 @@ class SwarmSolver {
     Scalar* lowest = per_particle_.row(5).data();
     Scalar* highest = per_particle_.row(6).data();
     per_particle_.topRows(5).setZero();
+    // Starting at 0 and 1, these stay there exactly when every weight lies in [0, 1].
     per_particle_.row(5).setConstant(0);
     per_particle_.row(6).setConstant(1);
     const bool check_bounds = options_.constraint_handling == ConstraintHandling::feasibility;
