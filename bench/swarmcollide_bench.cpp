@@ -186,13 +186,18 @@ struct Row {
   const char* library;  // whose code answers
 };
 
+sc::DistanceOptions using_method(sc::Method method) {
+  sc::DistanceOptions options;
+  options.method = method;
+  return options;
+}
+
 std::vector<Row> make_rows() {
   std::vector<Row> rows;
   for (auto method : {sc::Method::ipso, sc::Method::pso}) {
     for (auto handling :
          {sc::ConstraintHandling::projection, sc::ConstraintHandling::feasibility}) {
-      sc::DistanceOptions o;
-      o.method = method;
+      sc::DistanceOptions o = using_method(method);
       o.swarm.constraint_handling = handling;
       const std::string suffix =
           handling == sc::ConstraintHandling::projection ? "projection" : "feasibility";
@@ -200,23 +205,17 @@ std::vector<Row> make_rows() {
           {sc::method_name(method) + " " + suffix, Kind::distance, o, true, "swarmcollide"});
     }
   }
-  sc::DistanceOptions penalty;
-  penalty.method = sc::Method::penalty;
-  rows.push_back({"penalty", Kind::distance, penalty, true, "swarmcollide"});
-  sc::DistanceOptions dual;
-  dual.method = sc::Method::dual;
-  rows.push_back({"dual", Kind::distance, dual, false, "swarmcollide"});
-  sc::DistanceOptions fcl_libccd;
-  fcl_libccd.method = sc::Method::fcl;
-  rows.push_back({"fcl (GST_LIBCCD)", Kind::distance, fcl_libccd, false, "swarmcollide"});
-  sc::DistanceOptions fcl_indep;
-  fcl_indep.method = sc::Method::fcl_indep;
-  rows.push_back({"fcl-indep (GST_INDEP)", Kind::distance, fcl_indep, false, "swarmcollide"});
+  rows.push_back(
+      {"penalty", Kind::distance, using_method(sc::Method::penalty), true, "swarmcollide"});
+  rows.push_back({"dual", Kind::distance, using_method(sc::Method::dual), false, "swarmcollide"});
+  rows.push_back(
+      {"fcl (GST_LIBCCD)", Kind::distance, using_method(sc::Method::fcl), false, "swarmcollide"});
+  rows.push_back({"fcl-indep (GST_INDEP)", Kind::distance, using_method(sc::Method::fcl_indep),
+                  false, "swarmcollide"});
   // FCL's own distance on prebuilt shapes, as an FCL user calls it: the cost of the query alone.
   rows.push_back({"FCL distance direct", Kind::fcl_distance, {}, false, "FCL"});
-  sc::DistanceOptions libccd;
-  libccd.method = sc::Method::libccd;
-  rows.push_back({"collide libccd", Kind::sc_collide, libccd, false, "swarmcollide"});
+  rows.push_back({"collide libccd", Kind::sc_collide, using_method(sc::Method::libccd), false,
+                  "swarmcollide"});
   rows.push_back({"FCL collide", Kind::fcl_collide, {}, false, "FCL"});
   rows.push_back({"libccd GJK intersect", Kind::ccd_gjk, {}, false, "libccd"});
   rows.push_back({"libccd MPR intersect", Kind::ccd_mpr, {}, false, "libccd"});
