@@ -2,13 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
 #include <stdexcept>
 #include <vector>
 
 #include "swarmcollide/detail/random.hpp"
 #include "swarmcollide/problem/certificate.hpp"
 #include "swarmcollide/problem/simplex.hpp"
+#include "swarm_kernels.hpp"
 
 namespace swarmcollide {
 
@@ -32,94 +32,118 @@ Scalar linear_decreasing_inertia(int iteration, int max_iterations, Scalar w_sta
 
 namespace {
 
-// Structure of arrays: one row per weight, one column per particle, each row contiguous, so every
-// step of the update is an element-wise loop over the particles that the compiler vectorises.
-using SwarmMatrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
-using Matrix3X = Eigen::Matrix<Scalar, 3, Eigen::Dynamic>;
-
-// One row of (10) over the whole swarm, tracking each particle's largest velocity component. The
-// pointers never alias; saying so lets the compiler vectorise.
-void update_velocity_row(int count, const Scalar* __restrict w, const Scalar* __restrict c1r1,
-                         const Scalar* __restrict c2r2, const Scalar* __restrict own, Scalar global,
-                         const Scalar* __restrict x, Scalar* __restrict v,
-                         Scalar* __restrict largest) {
-  for (int j = 0; j < count; ++j) {
-    const Scalar velocity = w[j] * v[j] + c1r1[j] * (own[j] - x[j]) + c2r2[j] * (global - x[j]);
-    const Scalar magnitude = velocity < 0 ? -velocity : velocity;
-    v[j] = velocity;
-    largest[j] = magnitude > largest[j] ? magnitude : largest[j];
-  }
-}
-
-// One row of (11) with each particle's velocity scale, tracking its smallest weight.
-void move_row(int count, const Scalar* __restrict scale, Scalar* __restrict v, Scalar* __restrict x,
-              Scalar* __restrict lowest) {
-  for (int j = 0; j < count; ++j) {
-    v[j] *= scale[j];
-    x[j] += v[j];
-    lowest[j] = x[j] < lowest[j] ? x[j] : lowest[j];
-  }
-}
-
-// One weight's contribution to every particle's gap (5) and weight sum (6).
-void accumulate_row(int count, const Scalar* __restrict w, Scalar vx, Scalar vy, Scalar vz,
-                    Scalar* __restrict gx, Scalar* __restrict gy, Scalar* __restrict gz,
-                    Scalar* __restrict sum) {
-  for (int j = 0; j < count; ++j) {
-    gx[j] += vx * w[j];
-    gy[j] += vy * w[j];
-    gz[j] += vz * w[j];
-    sum[j] += w[j];
-  }
-}
+using detail::SwarmView;
 
 // Fitness under the feasibility ordering of Conditions 1-3: feasible particles compare by the
 // objective (5), infeasible ones by the violation (6), and any feasible one beats any infeasible.
-struct Fitness {
-  bool feasible = false;
-  Scalar value = 0;
+bool better(double feasible_a, double value_a, double feasible_b, double value_b) {
+  if (feasible_a != feasible_b) return feasible_a > feasible_b;
+  return value_a < value_b;
+}
+
+// The per-particle arrays of a solve, one row each of the workspace's `per_particle` block.
+enum PerParticle {
+  kInertia,
+  kPullOwn,
+  kPullGlobal,
+  kLargest,
+  kLowestA,
+  kLowestB,
+  kTheta,
+  kSum,
+  kCount,
+  kValue,
+  kFeasible,
+  kBestValue,
+  kBestFeasible,
+  kImproved,
+  kOffsetX,
+  kOffsetY,
+  kOffsetZ,
+  kSumA,
+  kSumB,
+  kLowest,
+  kHighest,
+  kPerParticleArrays
 };
 
-bool better(const Fitness& a, const Fitness& b) {
-  if (a.feasible != b.feasible) return a.feasible;
-  return a.value < b.value;
+// Everything a solve writes besides its result. One per thread, kept between solves, so that a
+// solve of the same size as the previous one allocates nothing but its result's arrays.
+struct SwarmWorkspace {
+  std::vector<double> swarm;
+  std::vector<double> per_particle;
+  std::vector<double> uniforms;
+  std::vector<double> signed_vertices;
+  std::vector<double> global_best;
+  std::vector<std::int64_t> rank_keys;
+  std::vector<std::int64_t> rank;
+  std::vector<ParticleCoefficients> by_rank;
+  VectorX lambda;
+  VectorX delta;
+  VectorX target;
+  VectorX column;
+  VectorX scratch;
+};
+
+// Rows are padded to whole groups of the generator's lanes, which also keeps them aligned.
+int padded(int particles) {
+  constexpr int lanes = detail::UniformLanes::kLanes;
+  return (particles + lanes - 1) / lanes * lanes;
 }
 
 class SwarmSolver {
  public:
-  SwarmSolver(const ConvexPolyhedron& a, const ConvexPolyhedron& b, const SwarmOptions& options)
+  SwarmSolver(const ConvexPolyhedron& a, const ConvexPolyhedron& b, const SwarmOptions& options,
+              SwarmWorkspace& workspace)
       : a_(a),
         b_(b),
         options_(options),
-        ka_(a.size()),
-        kb_(b.size()),
+        ka_(static_cast<int>(a.size())),
+        kb_(static_cast<int>(b.size())),
         size_(options.swarm_size),
-        xa_(a.vertices().transpose()),
-        yb_(b.vertices().transpose()),
+        stride_(padded(options.swarm_size)),
+        work_(workspace),
         rng_(options.seed),
-        position_(ka_ + kb_, size_),
-        velocity_(ka_ + kb_, size_),
-        fitness_(size_),
-        inertia_(size_),
-        pull_own_(size_),
-        pull_global_(size_),
-        per_particle_(7, size_),
-        column_(ka_ + kb_),
-        lambda_(ka_),
-        delta_(kb_),
-        order_(size_) {
-    std::iota(order_.begin(), order_.end(), 0);
+        lanes_(detail::mix64(options.seed ^ 0x6a09e667f3bcc908ULL)) {
+    const int rows = ka_ + kb_;
+    const std::size_t block = static_cast<std::size_t>(rows) * stride_;
+    work_.swarm.assign(4 * block, 0.0);
+    swarm_ = {rows, size_, stride_, work_.swarm.data(), work_.swarm.data() + block,
+              work_.swarm.data() + 2 * block};
+    next_position_ = work_.swarm.data() + 3 * block;
+    work_.per_particle.assign(static_cast<std::size_t>(kPerParticleArrays) * stride_, 0.0);
+    work_.uniforms.resize(2 * static_cast<std::size_t>(stride_));
+    work_.global_best.resize(rows);
+    work_.signed_vertices.resize(3 * static_cast<std::size_t>(rows));
+    for (int r = 0; r < rows; ++r) {
+      const bool on_a = r < ka_;
+      const Vector3 vertex = on_a ? Vector3(-a.vertices().row(r).transpose())
+                                  : Vector3(b.vertices().row(r - ka_).transpose());
+      for (int c = 0; c < 3; ++c) work_.signed_vertices[3 * r + c] = vertex(c);
+    }
+    work_.rank_keys.resize(size_);
+    work_.rank.resize(size_);
+    work_.by_rank.clear();
     if (options.inertia == InertiaStrategy::rank_adaptive) {
       for (int rank = 1; rank <= size_; ++rank) {
-        by_rank_.push_back(rank_adaptive_coefficients(rank, size_, options.w_min, options.w_max));
+        work_.by_rank.push_back(
+            rank_adaptive_coefficients(rank, size_, options.w_min, options.w_max));
       }
     }
+    work_.lambda.resize(ka_);
+    work_.delta.resize(kb_);
+    work_.column.resize(rows);
+    work_.target.resize(rows);
   }
 
   DistanceResult run() {
+    result_.history.reserve(static_cast<std::size_t>(options_.max_iterations) + 1);
     initialise();
-    personal_best_ = position_;
-    personal_fitness_ = fitness_;
+    evaluate();
+    std::copy_n(row(kValue), size_, row(kBestValue));
+    std::copy_n(row(kFeasible), size_, row(kBestFeasible));
+    std::copy_n(swarm_.position, static_cast<std::size_t>(swarm_.rows) * stride_,
+                swarm_.personal_best);
     update_global_best();
     record_best();
     int iteration = 0;
@@ -127,7 +151,9 @@ class SwarmSolver {
       assign_coefficients(iteration);
       move_particles();
       evaluate();
-      const bool improved = update_personal_bests();
+      const bool improved = detail::keep_personal_bests(swarm_, row(kValue), row(kFeasible),
+                                                        row(kBestValue), row(kBestFeasible),
+                                                        row(kImproved));
       if (improved) update_global_best();
       ++iteration;
       if (improved) record_best();
@@ -142,7 +168,8 @@ class SwarmSolver {
   }
 
  private:
-  int dimension() const { return ka_ + kb_; }
+  double* row(PerParticle array) { return work_.per_particle.data() + array * stride_; }
+  double& weight(double* matrix, int r, int particle) { return matrix[r * stride_ + particle]; }
 
   // A uniform point of the simplex: the gaps between k - 1 sorted uniform numbers in [0, 1].
   void fill_simplex(Eigen::Ref<VectorX> weights) {
@@ -165,139 +192,101 @@ class SwarmSolver {
   // Step 1. Positions are uniform on the two simplexes, so every particle starts feasible;
   // velocities point to a second uniform point, so the first move stays on the constraint planes.
   void initialise() {
-    VectorX target(dimension());
+    VectorX& position = work_.column;
+    VectorX& target = work_.target;
     for (int j = 0; j < size_; ++j) {
-      fill_simplex(column_.head(ka_));
-      fill_simplex(column_.tail(kb_));
+      fill_simplex(position.head(ka_));
+      fill_simplex(position.tail(kb_));
       fill_simplex(target.head(ka_));
       fill_simplex(target.tail(kb_));
-      position_.col(j) = column_;
-      velocity_.col(j) = target - column_;
-    }
-    result_.history.reserve(static_cast<std::size_t>(options_.max_iterations) + 1);
-    evaluate();
-  }
-
-  // The fitness (5)/(6) of every particle, accumulated weight by weight over the whole swarm in
-  // one fused loop per weight.
-  void evaluate() {
-    Scalar* gx = per_particle_.row(0).data();
-    Scalar* gy = per_particle_.row(1).data();
-    Scalar* gz = per_particle_.row(2).data();
-    Scalar* sum_a = per_particle_.row(3).data();
-    Scalar* sum_b = per_particle_.row(4).data();
-    Scalar* lowest = per_particle_.row(5).data();
-    Scalar* highest = per_particle_.row(6).data();
-    per_particle_.topRows(5).setZero();
-    // Starting at 0 and 1, these stay there exactly when every weight lies in [0, 1].
-    per_particle_.row(5).setConstant(0);
-    per_particle_.row(6).setConstant(1);
-    const bool check_bounds = options_.constraint_handling == ConstraintHandling::feasibility;
-    for (int i = 0; i < dimension(); ++i) {
-      const Scalar* w = position_.row(i).data();
-      const bool on_a = i < ka_;
-      const Scalar sign = on_a ? -1 : 1;
-      const Scalar* vertex = on_a ? xa_.col(i).data() : yb_.col(i - ka_).data();
-      const Scalar vx = sign * vertex[0];
-      const Scalar vy = sign * vertex[1];
-      const Scalar vz = sign * vertex[2];
-      accumulate_row(size_, w, vx, vy, vz, gx, gy, gz, on_a ? sum_a : sum_b);
-      if (check_bounds) {
-        for (int j = 0; j < size_; ++j) {
-          lowest[j] = w[j] < lowest[j] ? w[j] : lowest[j];
-          highest[j] = w[j] > highest[j] ? w[j] : highest[j];
-        }
+      for (int r = 0; r < swarm_.rows; ++r) {
+        weight(swarm_.position, r, j) = position(r);
+        weight(swarm_.velocity, r, j) = target(r) - position(r);
       }
     }
-    for (int j = 0; j < size_; ++j) {
-      const Scalar violation = (sum_a[j] - 1) * (sum_a[j] - 1) + (sum_b[j] - 1) * (sum_b[j] - 1);
-      const bool feasible =
-          lowest[j] >= 0 && highest[j] <= 1 && violation <= options_.feasibility_tolerance;
-      fitness_[j] = {feasible, feasible ? std::sqrt(gx[j] * gx[j] + gy[j] * gy[j] + gz[j] * gz[j])
-                                        : violation};
-    }
+  }
+
+  void evaluate() {
+    const detail::FitnessScratch scratch{row(kOffsetX), row(kOffsetY), row(kOffsetZ), row(kSumA),
+                                         row(kSumB),    row(kLowest),  row(kHighest)};
+    detail::evaluate_fitness(swarm_, ka_, work_.signed_vertices.data(),
+                             options_.constraint_handling == ConstraintHandling::feasibility,
+                             options_.feasibility_tolerance, scratch, row(kValue),
+                             row(kFeasible));
   }
 
   void assign_coefficients(int iteration) {
+    double* inertia = row(kInertia);
+    double* pull_own = row(kPullOwn);
+    double* pull_global = row(kPullGlobal);
     if (options_.inertia == InertiaStrategy::linear_decreasing) {
-      inertia_.setConstant(linear_decreasing_inertia(iteration, options_.max_iterations,
-                                                     options_.w_max, options_.w_min));
-      pull_own_.setConstant(options_.c1);
-      pull_global_.setConstant(options_.c2);
+      const Scalar w = linear_decreasing_inertia(iteration, options_.max_iterations,
+                                                 options_.w_max, options_.w_min);
+      std::fill_n(inertia, size_, w);
+      std::fill_n(pull_own, size_, options_.c1);
+      std::fill_n(pull_global, size_, options_.c2);
     } else {
-      // The order changes little between iterations, so insertion sort keeps it in about N steps.
-      for (int i = 1; i < size_; ++i) {
-        const int particle = order_[i];
-        int k = i;
-        for (; k > 0 && better(personal_fitness_[particle], personal_fitness_[order_[k - 1]]);
-             --k) {
-          order_[k] = order_[k - 1];
-        }
-        order_[k] = particle;
-      }
-      for (int rank = 1; rank <= size_; ++rank) {
-        const ParticleCoefficients& c = by_rank_[rank - 1];
-        const int particle = order_[rank - 1];
-        inertia_(particle) = c.w;
-        pull_own_(particle) = c.c1;
-        pull_global_(particle) = c.c2;
+      std::int64_t* rank = work_.rank.data();
+      detail::rank_personal_bests(size_, row(kBestFeasible), row(kBestValue),
+                                  work_.rank_keys.data(), rank);
+      for (int j = 0; j < size_; ++j) {
+        const ParticleCoefficients& c = work_.by_rank[rank[j]];
+        inertia[j] = c.w;
+        pull_own[j] = c.c1;
+        pull_global[j] = c.c2;
       }
     }
+    double* uniforms = work_.uniforms.data();
+    detail::draw_uniforms(lanes_, uniforms, 2 * stride_);
     for (int j = 0; j < size_; ++j) {
-      pull_own_(j) *= rng_.uniform();
-      pull_global_(j) *= rng_.uniform();
+      pull_own[j] *= uniforms[j];
+      pull_global[j] *= uniforms[stride_ + j];
     }
   }
 
   // Step 2: updates (10)-(11). r1 and r2 are one draw per particle, as (10) is written, so a
-  // move is a combination of differences of feasible points and keeps the sums of (2) at one. The
-  // velocity limit scales the whole vector for the same reason.
+  // move is a combination of differences of feasible points and keeps the sums of (2) at one.
   void move_particles() {
-    const Scalar* w = inertia_.data();
-    const Scalar* c1r1 = pull_own_.data();
-    const Scalar* c2r2 = pull_global_.data();
-    Scalar* largest = per_particle_.row(0).data();
-    Scalar* lowest = per_particle_.row(1).data();
-    per_particle_.topRows(2).setZero();
-    for (int d = 0; d < dimension(); ++d) {
-      const Scalar* x = position_.row(d).data();
-      const Scalar* own = personal_best_.row(d).data();
-      const Scalar global = personal_best_(d, global_best_);
-      update_velocity_row(size_, w, c1r1, c2r2, own, global, x, velocity_.row(d).data(), largest);
+    for (int r = 0; r < swarm_.rows; ++r) {
+      work_.global_best[r] = weight(swarm_.personal_best, r, global_best_);
     }
-    const Scalar limit = options_.velocity_limit;
-    for (int j = 0; j < size_; ++j) largest[j] = largest[j] > limit ? limit / largest[j] : 1;
-    for (int d = 0; d < dimension(); ++d) {
-      move_row(size_, largest, velocity_.row(d).data(), position_.row(d).data(), lowest);
-    }
+    detail::move_particles(swarm_, ka_, row(kInertia), row(kPullOwn), row(kPullGlobal),
+                           work_.global_best.data(), options_.velocity_limit, next_position_,
+                           row(kLargest), row(kLowestA), row(kLowestB));
+    std::swap(swarm_.position, next_position_);
     if (options_.constraint_handling != ConstraintHandling::projection) return;
-    // The move kept the sums, so only a negative weight takes a particle off the simplexes.
-    for (int j = 0; j < size_; ++j) {
-      if (lowest[j] >= 0) continue;
-      column_ = position_.col(j);
-      project_onto_simplex_in_place(column_.head(ka_), scratch_);
-      project_onto_simplex_in_place(column_.tail(kb_), scratch_);
-      velocity_.col(j) += column_ - position_.col(j);
-      position_.col(j) = column_;
-    }
+    // The move kept the sums, so only a negative weight takes a particle off its simplex.
+    project(0, ka_, row(kLowestA));
+    project(ka_, kb_, row(kLowestB));
   }
 
-  // Conditions 1-3 decide whether the new position replaces the particle's best.
-  bool update_personal_bests() {
-    bool improved = false;
+  void project(int first_row, int count, const double* lowest) {
+    if (std::none_of(lowest, lowest + size_, [](double w) { return w < 0; })) return;
+    if (count <= detail::kMaxRowsProjectedTogether) {
+      detail::project_rows_onto_simplex(swarm_, first_row, count, lowest, row(kTheta), row(kSum),
+                                        row(kCount));
+      return;
+    }
+    VectorX& weights = work_.column;
     for (int j = 0; j < size_; ++j) {
-      if (better(fitness_[j], personal_fitness_[j])) {
-        personal_fitness_[j] = fitness_[j];
-        personal_best_.col(j) = position_.col(j);
-        improved = true;
+      if (lowest[j] >= 0) continue;
+      for (int i = 0; i < count; ++i) weights(i) = weight(swarm_.position, first_row + i, j);
+      project_onto_simplex_in_place(weights.head(count), work_.scratch);
+      for (int i = 0; i < count; ++i) {
+        double& x = weight(swarm_.position, first_row + i, j);
+        weight(swarm_.velocity, first_row + i, j) += weights(i) - x;
+        x = weights(i);
       }
     }
-    return improved;
   }
 
   void update_global_best() {
+    const double* feasible = row(kBestFeasible);
+    const double* value = row(kBestValue);
     for (int j = 0; j < size_; ++j) {
-      if (better(personal_fitness_[j], personal_fitness_[global_best_])) global_best_ = j;
+      if (better(feasible[j], value[j], feasible[global_best_], value[global_best_])) {
+        global_best_ = j;
+      }
     }
   }
 
@@ -305,19 +294,21 @@ class SwarmSolver {
   // give an upper bound achieved by real points, and the direction between those points a lower
   // bound. The best of each is kept.
   void record_best() {
-    lambda_ = personal_best_.col(global_best_).head(ka_);
-    delta_ = personal_best_.col(global_best_).tail(kb_);
-    to_simplex_in_place(lambda_, scratch_);
-    to_simplex_in_place(delta_, scratch_);
-    const Vector3 pa = xa_ * lambda_;
-    const Vector3 pb = yb_ * delta_;
+    VectorX& lambda = work_.lambda;
+    VectorX& delta = work_.delta;
+    for (int i = 0; i < ka_; ++i) lambda(i) = weight(swarm_.personal_best, i, global_best_);
+    for (int i = 0; i < kb_; ++i) delta(i) = weight(swarm_.personal_best, ka_ + i, global_best_);
+    to_simplex_in_place(lambda, work_.scratch);
+    to_simplex_in_place(delta, work_.scratch);
+    const Vector3 pa = a_.vertices().transpose() * lambda;
+    const Vector3 pb = b_.vertices().transpose() * delta;
     const Scalar d = (pb - pa).norm();
     if (result_.history.empty() || d < result_.distance) {
       result_.distance = d;
       result_.point_a = pa;
       result_.point_b = pb;
-      result_.weights_a = lambda_;
-      result_.weights_b = delta_;
+      result_.weights_a = lambda;
+      result_.weights_b = delta;
     }
     if (result_.history.empty()) result_.history.push_back(result_.distance);
     if (d > 0) {
@@ -341,28 +332,15 @@ class SwarmSolver {
   const int ka_;
   const int kb_;
   const int size_;
-  const Matrix3X xa_;
-  const Matrix3X yb_;
+  const int stride_;
+  SwarmWorkspace& work_;
+  // The initialisation draws from a scalar generator, the iterations from eight lanes at once.
   detail::Xoshiro256 rng_;
-  SwarmMatrix position_;
-  SwarmMatrix velocity_;
-  SwarmMatrix personal_best_;
-  std::vector<Fitness> fitness_;
-  std::vector<Fitness> personal_fitness_;
-  // Per-particle inertia and the acceleration terms c1 r1 and c2 r2 of (10).
-  VectorX inertia_;
-  VectorX pull_own_;
-  VectorX pull_global_;
-  // Per-particle accumulators of `evaluate` and `move_particles`.
-  SwarmMatrix per_particle_;
-  // One particle's weights, and buffers for moving weights onto the simplexes.
-  VectorX column_;
-  VectorX scratch_;
-  VectorX lambda_;
-  VectorX delta_;
-  std::vector<int> order_;
-  // (8)-(9) depend only on the rank, so they are computed once.
-  std::vector<ParticleCoefficients> by_rank_;
+  detail::UniformLanes lanes_;
+  SwarmView swarm_;
+  // Moves are written here and then swapped in, so a move that breaks the velocity limit can be
+  // redone from the old positions.
+  double* next_position_;
   int global_best_ = 0;
   DistanceResult result_;
 };
@@ -372,7 +350,8 @@ class SwarmSolver {
 DistanceResult solve_swarm(const ConvexPolyhedron& a, const ConvexPolyhedron& b,
                            const SwarmOptions& options) {
   options.validate();
-  DistanceResult result = SwarmSolver(a, b, options).run();
+  thread_local SwarmWorkspace workspace;
+  DistanceResult result = SwarmSolver(a, b, options, workspace).run();
   result.method = options.inertia == InertiaStrategy::rank_adaptive ? "ipso" : "pso";
   return result;
 }

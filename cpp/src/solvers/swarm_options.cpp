@@ -8,7 +8,8 @@ namespace swarmcollide {
 
 namespace {
 
-void require(bool condition, const std::string& message) {
+// Messages are only built on failure, so that validating allocates nothing.
+void require(bool condition, const char* message) {
   if (!condition) throw std::invalid_argument(message);
 }
 
@@ -17,11 +18,15 @@ bool finite_nonnegative(Scalar x) { return std::isfinite(x) && x >= 0; }
 }  // namespace
 
 void SwarmOptions::validate() const {
-  require(swarm_size >= 2,
-          "swarm_size must be at least 2 (the ranking (8) divides by N_p - 1), got " +
-              std::to_string(swarm_size));
-  require(max_iterations >= 0,
-          "max_iterations must be nonnegative, got " + std::to_string(max_iterations));
+  if (swarm_size < 2) {
+    throw std::invalid_argument(
+        "swarm_size must be at least 2 (the ranking (8) divides by N_p - 1), got " +
+        std::to_string(swarm_size));
+  }
+  if (max_iterations < 0) {
+    throw std::invalid_argument("max_iterations must be nonnegative, got " +
+                                std::to_string(max_iterations));
+  }
   require(finite_nonnegative(w_min), "w_min must be a finite number >= 0");
   require(finite_nonnegative(w_max), "w_max must be a finite number >= 0");
   require(w_min <= w_max, "w_min must not exceed w_max");

@@ -1,0 +1,74 @@
+// Steady-state solves allocate nothing but their result's arrays. This binary replaces malloc
+// (glibc lets an executable interpose it) to count every heap allocation, Eigen's included.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cstddef>
+
+#include "swarmcollide/queries/distance.hpp"
+
+extern "C" void* __libc_malloc(std::size_t size);
+extern "C" void* __libc_calloc(std::size_t count, std::size_t size);
+extern "C" void* __libc_realloc(void* pointer, std::size_t size);
+
+namespace {
+std::atomic<long> allocations{0};
+}
+
+extern "C" void* malloc(std::size_t size) {
+  allocations.fetch_add(1, std::memory_order_relaxed);
+  return __libc_malloc(size);
+}
+extern "C" void* calloc(std::size_t count, std::size_t size) {
+  allocations.fetch_add(1, std::memory_order_relaxed);
+  return __libc_calloc(count, size);
+}
+extern "C" void* realloc(void* pointer, std::size_t size) {
+  allocations.fetch_add(1, std::memory_order_relaxed);
+  return __libc_realloc(pointer, size);
+}
+
+namespace swarmcollide {
+namespace {
+
+template <typename Work>
+long allocations_during(Work&& work) {
+  const long before = allocations.load();
+  work();
+  return allocations.load() - before;
+}
+
+struct AllocationCase {
+  Method method;
+  const char* name;
+};
+
+class SteadyState : public ::testing::TestWithParam<AllocationCase> {};
+
+TEST_P(SteadyState, ASolveAllocatesNoMoreThanCopyingItsResult) {
+  VertexMatrix A(4, 3);
+  A << 0, 1, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0;
+  VertexMatrix B(4, 3);
+  B << 1, -1, 0, 2, -2, 0, 0, -2, 2, 0, -2, 0;
+  const ConvexPolyhedron a(A), b(B);
+  DistanceOptions options;
+  options.method = GetParam().method;
+  options.swarm.tolerance = 0;  // the whole budget: every iteration runs
+  DistanceResult warm_up = distance(a, b, options);
+  options.swarm.seed = options.dual.seed = 1;
+
+  DistanceResult result;
+  const long solve = allocations_during([&] { result = distance(a, b, options); });
+  DistanceResult copy;
+  const long result_arrays = allocations_during([&] { copy = result; });
+  EXPECT_GT(result_arrays, 0);
+  EXPECT_LE(solve, result_arrays) << GetParam().name;
+}
+
+INSTANTIATE_TEST_SUITE_P(Methods, SteadyState,
+                         ::testing::Values(AllocationCase{Method::ipso, "ipso"},
+                                           AllocationCase{Method::pso, "pso"}),
+                         [](const auto& info) { return std::string(info.param.name); });
+
+}  // namespace
+}  // namespace swarmcollide
