@@ -80,6 +80,34 @@ TEST(SwarmKernels, RanksFollowConditions1To3WithTiesToTheLowerIndex) {
   }
 }
 
+TEST(SwarmKernels, SimplexPointsAreTheGapsBetweenSortedUniforms) {
+  std::mt19937_64 rng(9);
+  std::uniform_real_distribution<double> U(0, 1);
+  // 1 weight (no cuts), a sorting network, and more cuts than the network takes.
+  for (int count : {1, 4, 17, 40}) {
+    const int particles = 13, stride = 16, cuts = count - 1;
+    std::vector<double> uniforms(std::max(cuts, 1) * stride), out(count * stride), column(count);
+    for (double& u : uniforms) u = U(rng);
+    const std::vector<double> drawn = uniforms;
+    detail::uniform_simplex_points(count, particles, stride, uniforms.data(), out.data(),
+                                   column.data());
+    for (int j = 0; j < particles; ++j) {
+      std::vector<double> sorted(cuts);
+      for (int i = 0; i < cuts; ++i) sorted[i] = drawn[i * stride + j];
+      std::sort(sorted.begin(), sorted.end());
+      sorted.push_back(1.0);
+      double previous = 0, total = 0;
+      for (int i = 0; i < count; ++i) {
+        EXPECT_DOUBLE_EQ(out[i * stride + j], sorted[i] - previous) << "count " << count;
+        EXPECT_GE(out[i * stride + j], 0.0);
+        total += out[i * stride + j];
+        previous = sorted[i];
+      }
+      EXPECT_NEAR(total, 1.0, 1e-14);
+    }
+  }
+}
+
 TEST(SwarmKernels, UniformsLieInTheUnitIntervalAndDependOnlyOnTheSeed) {
   detail::UniformLanes lanes(11), same(11), other(12);
   std::vector<double> u(8000), v(8000), w(8000);

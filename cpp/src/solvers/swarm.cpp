@@ -1,11 +1,12 @@
 #include "swarmcollide/solvers/swarm.hpp"
 
 #include <algorithm>
+#include <initializer_list>
 #include <cmath>
 #include <stdexcept>
+#include <utility>
 #include <vector>
 
-#include "swarmcollide/detail/random.hpp"
 #include "swarmcollide/problem/certificate.hpp"
 #include "swarmcollide/problem/simplex.hpp"
 #include "swarm_kernels.hpp"
@@ -77,10 +78,13 @@ struct SwarmWorkspace {
   std::vector<double> global_best;
   std::vector<std::int64_t> rank_keys;
   std::vector<std::int64_t> rank;
+  // (8)-(9) depend only on the rank, so they are tabulated, and kept while the swarm size and
+  // inertia bounds stay the same.
   std::vector<ParticleCoefficients> by_rank;
+  Scalar by_rank_w_min = 0;
+  Scalar by_rank_w_max = 0;
   VectorX lambda;
   VectorX delta;
-  VectorX target;
   VectorX column;
   VectorX scratch;
 };
@@ -103,16 +107,15 @@ class SwarmSolver {
         size_(options.swarm_size),
         stride_(padded(options.swarm_size)),
         work_(workspace),
-        rng_(options.seed),
-        lanes_(detail::mix64(options.seed ^ 0x6a09e667f3bcc908ULL)) {
+        lanes_(options.seed) {
     const int rows = ka_ + kb_;
     const std::size_t block = static_cast<std::size_t>(rows) * stride_;
-    work_.swarm.assign(4 * block, 0.0);
+    // Every entry a solve reads is written first, so the buffers are only resized.
+    work_.swarm.resize(4 * block);
     swarm_ = {rows, size_, stride_, work_.swarm.data(), work_.swarm.data() + block,
               work_.swarm.data() + 2 * block};
     next_position_ = work_.swarm.data() + 3 * block;
-    work_.per_particle.assign(static_cast<std::size_t>(kPerParticleArrays) * stride_, 0.0);
-    work_.uniforms.resize(2 * static_cast<std::size_t>(stride_));
+    work_.per_particle.resize(static_cast<std::size_t>(kPerParticleArrays) * stride_);
     work_.global_best.resize(rows);
     work_.signed_vertices.resize(3 * static_cast<std::size_t>(rows));
     for (int r = 0; r < rows; ++r) {
@@ -123,17 +126,10 @@ class SwarmSolver {
     }
     work_.rank_keys.resize(size_);
     work_.rank.resize(size_);
-    work_.by_rank.clear();
-    if (options.inertia == InertiaStrategy::rank_adaptive) {
-      for (int rank = 1; rank <= size_; ++rank) {
-        work_.by_rank.push_back(
-            rank_adaptive_coefficients(rank, size_, options.w_min, options.w_max));
-      }
-    }
+    if (options.inertia == InertiaStrategy::rank_adaptive) tabulate_coefficients();
     work_.lambda.resize(ka_);
     work_.delta.resize(kb_);
     work_.column.resize(rows);
-    work_.target.resize(rows);
   }
 
   DistanceResult run() {
@@ -168,40 +164,42 @@ class SwarmSolver {
   }
 
  private:
+  void tabulate_coefficients() {
+    if (static_cast<int>(work_.by_rank.size()) == size_ && work_.by_rank_w_min == options_.w_min &&
+        work_.by_rank_w_max == options_.w_max) {
+      return;
+    }
+    work_.by_rank.clear();
+    for (int rank = 1; rank <= size_; ++rank) {
+      work_.by_rank.push_back(
+          rank_adaptive_coefficients(rank, size_, options_.w_min, options_.w_max));
+    }
+    work_.by_rank_w_min = options_.w_min;
+    work_.by_rank_w_max = options_.w_max;
+  }
+
   double* row(PerParticle array) { return work_.per_particle.data() + array * stride_; }
   double& weight(double* matrix, int r, int particle) { return matrix[r * stride_ + particle]; }
-
-  // A uniform point of the simplex: the gaps between k - 1 sorted uniform numbers in [0, 1].
-  void fill_simplex(Eigen::Ref<VectorX> weights) {
-    const Eigen::Index k = weights.size();
-    for (Eigen::Index i = 0; i + 1 < k; ++i) {
-      const Scalar value = rng_.uniform();
-      Eigen::Index j = i;
-      for (; j > 0 && weights(j - 1) > value; --j) weights(j) = weights(j - 1);
-      weights(j) = value;
-    }
-    Scalar previous = 0;
-    for (Eigen::Index i = 0; i + 1 < k; ++i) {
-      const Scalar cut = weights(i);
-      weights(i) = cut - previous;
-      previous = cut;
-    }
-    weights(k - 1) = 1 - previous;
-  }
 
   // Step 1. Positions are uniform on the two simplexes, so every particle starts feasible;
   // velocities point to a second uniform point, so the first move stays on the constraint planes.
   void initialise() {
-    VectorX& position = work_.column;
-    VectorX& target = work_.target;
-    for (int j = 0; j < size_; ++j) {
-      fill_simplex(position.head(ka_));
-      fill_simplex(position.tail(kb_));
-      fill_simplex(target.head(ka_));
-      fill_simplex(target.tail(kb_));
-      for (int r = 0; r < swarm_.rows; ++r) {
-        weight(swarm_.position, r, j) = position(r);
-        weight(swarm_.velocity, r, j) = target(r) - position(r);
+    const int cut_rows = 2 * (ka_ - 1 + kb_ - 1);
+    work_.uniforms.resize(static_cast<std::size_t>(std::max(cut_rows, 2)) * stride_);
+    work_.scratch.resize(std::max(ka_, kb_));
+    detail::draw_uniforms(lanes_, work_.uniforms.data(), cut_rows * stride_);
+    double* cuts = work_.uniforms.data();
+    double* target = next_position_;
+    for (double* points : {swarm_.position, target}) {
+      for (const auto& [first_row, count] : {std::pair{0, ka_}, std::pair{ka_, kb_}}) {
+        detail::uniform_simplex_points(count, size_, stride_, cuts, points + first_row * stride_,
+                                       work_.scratch.data());
+        cuts += (count - 1) * stride_;
+      }
+    }
+    for (int r = 0; r < swarm_.rows; ++r) {
+      for (int j = 0; j < size_; ++j) {
+        weight(swarm_.velocity, r, j) = weight(target, r, j) - weight(swarm_.position, r, j);
       }
     }
   }
@@ -334,8 +332,6 @@ class SwarmSolver {
   const int size_;
   const int stride_;
   SwarmWorkspace& work_;
-  // The initialisation draws from a scalar generator, the iterations from eight lanes at once.
-  detail::Xoshiro256 rng_;
   detail::UniformLanes lanes_;
   SwarmView swarm_;
   // Moves are written here and then swapped in, so a move that breaks the velocity limit can be

@@ -1,5 +1,6 @@
 #include "swarm_kernels.hpp"
 
+#include <algorithm>
 #include <limits>
 
 #include "swarmcollide/detail/random.hpp"
@@ -56,6 +57,47 @@ void draw_uniforms(UniformLanes& lanes, double* __restrict out, int count) {
       // integer-to-double conversion that older vector units lack.
       draws[l] = __builtin_bit_cast(double, (result >> 12) | 0x3ff0000000000000ULL) - 1.0;
     }
+  }
+}
+
+SWARMCOLLIDE_CLONES
+void uniform_simplex_points(int count, int particles, int stride, double* __restrict uniforms,
+                            double* __restrict out, double* __restrict column) {
+  const int cuts = count - 1;
+  // Odd-even transposition sorts every particle's column at once with branch-free min/max over
+  // rows; its cuts^2 / 2 exchanges are cheaper than sorting column by column for few cuts.
+  constexpr int kMaxCutsForNetwork = 16;
+  if (cuts <= kMaxCutsForNetwork) {
+    for (int pass = 0; pass < cuts; ++pass) {
+      for (int i = pass % 2; i + 1 < cuts; i += 2) {
+        double* __restrict low = uniforms + i * stride;
+        double* __restrict high = uniforms + (i + 1) * stride;
+        for (int j = 0; j < particles; ++j) {
+          const double a = low[j];
+          const double b = high[j];
+          low[j] = smaller(a, b);
+          high[j] = larger(a, b);
+        }
+      }
+    }
+  } else {
+    for (int j = 0; j < particles; ++j) {
+      for (int i = 0; i < cuts; ++i) column[i] = uniforms[i * stride + j];
+      std::sort(column, column + cuts);
+      for (int i = 0; i < cuts; ++i) uniforms[i * stride + j] = column[i];
+    }
+  }
+  for (int j = 0; j < particles; ++j) out[j] = cuts > 0 ? uniforms[j] : 1.0;
+  for (int i = 1; i < cuts; ++i) {
+    const double* __restrict cut = uniforms + i * stride;
+    const double* __restrict previous = uniforms + (i - 1) * stride;
+    double* __restrict gap = out + i * stride;
+    for (int j = 0; j < particles; ++j) gap[j] = cut[j] - previous[j];
+  }
+  if (cuts > 0) {
+    const double* __restrict last = uniforms + (cuts - 1) * stride;
+    double* __restrict gap = out + cuts * stride;
+    for (int j = 0; j < particles; ++j) gap[j] = 1.0 - last[j];
   }
 }
 
@@ -189,8 +231,9 @@ void evaluate_fitness(const SwarmView& swarm, int rows_a, const double* __restri
     const double off_b = sum_b[j] - 1;
     const double violation = off_a * off_a + off_b * off_b;
     const bool ok = lowest[j] >= 0 && highest[j] <= 1 && violation <= feasibility_tolerance;
-    const double objective = __builtin_sqrt(gx[j] * gx[j] + gy[j] * gy[j] + gz[j] * gz[j]);
-    value[j] = ok ? objective : violation;
+    // The square of (5) orders particles as (5) does, without a square root.
+    const double squared_objective = gx[j] * gx[j] + gy[j] * gy[j] + gz[j] * gz[j];
+    value[j] = ok ? squared_objective : violation;
     feasible[j] = ok ? 1.0 : 0.0;
   }
 }

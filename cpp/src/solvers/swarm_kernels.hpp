@@ -25,6 +25,13 @@ struct UniformLanes {
 /// Fills `out[0, count)` with uniform numbers in [0, 1); `count` is a multiple of kLanes.
 void draw_uniforms(UniformLanes& lanes, double* out, int count);
 
+/// One uniform point of the probability simplex with `count` weights per particle, written to the
+/// `count` rows of `out`: the gaps between count - 1 sorted uniform numbers, taken from the
+/// count - 1 rows of `uniforms` (which are sorted in place). `column` is scratch for count - 1
+/// values, used when the rows are too many for a sorting network.
+void uniform_simplex_points(int count, int particles, int stride, double* uniforms, double* out,
+                            double* column);
+
 struct SwarmView {
   int rows;
   int particles;
@@ -60,8 +67,8 @@ void project_rows_onto_simplex(const SwarmView& swarm, int first_row, int count,
 /// Each particle's objective (5) and violation (6): `offset` gets sum_j delta_j y_j - sum_i
 /// lambda_i x_i component by component; `signed_vertices` holds, per row, -x_i for A's rows and
 /// y_j for B's, three values each. With `check_bounds`, a weight outside [0, 1] also makes the
-/// particle infeasible. `value` is (5) for feasible particles and (6) otherwise; `feasible` is 1
-/// or 0.
+/// particle infeasible. `value` is the square of (5) for feasible particles and (6) otherwise;
+/// `feasible` is 1 or 0.
 struct FitnessScratch {
   double* offset_x;
   double* offset_y;
