@@ -1,16 +1,19 @@
 #include "swarmcollide/solvers/dual.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <numeric>
 #include <utility>
 #include <vector>
 
 #include "exact_internal.hpp"
 #include "swarmcollide/detail/random.hpp"
-#include "swarmcollide/solvers/exact_nearest_points.hpp"
+#include "swarmcollide/solvers/exact_options.hpp"
 #include "swarmcollide/solvers/swarm.hpp"
+#include "wolfe_min_norm.hpp"
 
 namespace swarmcollide {
 
@@ -30,9 +33,61 @@ constexpr int kFinishSteps = 6;
 
 using Point2 = Eigen::Matrix<Scalar, 2, 1>;
 
-Scalar diagonal(const ConvexPolyhedron& body) {
-  const Aabb box = body.aabb();
-  return (box.max - box.min).norm();
+// What every query needs of a body and would otherwise cost a pass over its points: made once per
+// body and shared by its copies.
+struct BodySummary {
+  Scalar diagonal = 0;
+  Vector3 box_centre = Vector3::Zero();
+  Vector3 mean = Vector3::Zero();
+};
+
+std::shared_ptr<const BodySummary> summary_of(const ConvexPolyhedron& body) {
+  return body.derived<BodySummary>([&body] {
+    const Aabb box = body.aabb();
+    return BodySummary{(box.max - box.min).norm(), (box.max + box.min) / 2,
+                       body.vertices().colwise().mean().transpose()};
+  });
+}
+
+// The weights of an upper bound: a convex combination of at most four pairs (x_ia, y_ib), as
+// Wolfe's corral gives them, kept sparse so that recording a better bound costs nothing in the
+// bodies' sizes; the dense weights are built once, for the result.
+struct Witness {
+  std::array<int, exact_internal::MinNormPoint::kCapacity> ia{};
+  std::array<int, exact_internal::MinNormPoint::kCapacity> ib{};
+  std::array<Scalar, exact_internal::MinNormPoint::kCapacity> weights{};
+  int size = 0;
+  Vector3 point_a = Vector3::Zero();
+  Vector3 point_b = Vector3::Zero();
+  Scalar distance = std::numeric_limits<Scalar>::infinity();
+};
+
+// Buffers that a solve reuses from the previous one on the same thread, so that a warmed-up solve
+// allocates nothing but its result.
+struct Workspace {
+  // All zero between uses.
+  std::vector<char> visited_a;
+  std::vector<char> visited_b;
+  std::vector<int> feature_a;
+  std::vector<int> feature_b;
+  std::vector<int> grown;
+  std::vector<Point2> x;
+  std::vector<Point2> v;
+  std::vector<Point2> p;
+  std::vector<Scalar> fx;
+  std::vector<Scalar> fp;
+  std::vector<int> ha;
+  std::vector<int> hb;
+  std::vector<int> order;
+  std::vector<ParticleCoefficients> coefficients;
+  std::vector<std::pair<int, int>> starts;
+  std::vector<Vector3> candidates;
+  std::vector<Scalar> history;
+};
+
+Workspace& thread_workspace() {
+  thread_local Workspace workspace;
+  return workspace;
 }
 
 // The exponential map of the unit sphere at `centre`: a tangent vector w goes to the point at
@@ -66,19 +121,26 @@ enum class Goal {
 class DualSolver {
  public:
   DualSolver(const ConvexPolyhedron& a, const ConvexPolyhedron& b, const DualOptions& options)
-      : a_(a), b_(b), options_(options), rng_(options.seed) {
-    const Scalar size = std::max(diagonal(a), diagonal(b));
-    scale_ = exact_internal::pair_scale(a, b);
+      : a_(a),
+        b_(b),
+        summary_a_(summary_of(a)),
+        summary_b_(summary_of(b)),
+        options_(options),
+        rng_(options.seed),
+        ws_(thread_workspace()) {
+    const Scalar size = std::max(summary_a_->diagonal, summary_b_->diagonal);
+    scale_ = summary_a_->diagonal + summary_b_->diagonal +
+             (summary_b_->box_centre - summary_a_->box_centre).norm();
     tolerance_ = options.tolerance > 0 ? options.tolerance
                                        : options.relative_tolerance * (size > 0 ? size : scale_);
     slack_ = options.feature_tolerance * size;
-    visited_a_.assign(a.size(), 0);
-    visited_b_.assign(b.size(), 0);
+    if (ws_.visited_a.size() < static_cast<std::size_t>(a.size())) ws_.visited_a.resize(a.size());
+    if (ws_.visited_b.size() < static_cast<std::size_t>(b.size())) ws_.visited_b.resize(b.size());
+    ws_.history.clear();
   }
 
   DistanceResult distance() {
-    const Vector3 between =
-        (b_.vertices().colwise().mean() - a_.vertices().colwise().mean()).transpose();
+    const Vector3 between = summary_b_->mean - summary_a_->mean;
     const Vector3 centre = between.norm() > 0 ? Vector3(between.normalized()) : Vector3::UnitX();
     int ia = -1;
     int ib = -1;
@@ -86,7 +148,7 @@ class DualSolver {
     offer_vertex_pair(ia, ib);
     hint_a_ = ia;
     hint_b_ = ib;
-    history_.push_back(best_upper_);
+    ws_.history.push_back(best_.distance);
     search(Goal::distance, centre, kPi / 2);
     return result();
   }
@@ -99,7 +161,7 @@ class DualSolver {
         exact_internal::penetration_result(a_, b_, best_n_, -best_s_, "dual", tolerance_);
     r.iterations = iterations_;
     r.evaluations = evaluations_;
-    r.history = history_;
+    r.history = ws_.history;
     r.certified = apart.certified;
     r.status = apart.status;
     return r;
@@ -122,32 +184,58 @@ class DualSolver {
   }
 
   void offer_vertex_pair(int ia, int ib) {
-    const Scalar d = (b_.vertices().row(ib) - a_.vertices().row(ia)).norm();
-    if (d < best_upper_) {
-      best_upper_ = d;
-      weights_a_ = VectorX::Zero(a_.size());
-      weights_b_ = VectorX::Zero(b_.size());
-      weights_a_(ia) = 1;
-      weights_b_(ib) = 1;
-      point_a_ = a_.vertices().row(ia).transpose();
-      point_b_ = b_.vertices().row(ib).transpose();
+    Witness w;
+    w.ia[0] = ia;
+    w.ib[0] = ib;
+    w.weights[0] = 1;
+    w.size = 1;
+    w.point_a = a_.vertices().row(ia).transpose();
+    w.point_b = b_.vertices().row(ib).transpose();
+    w.distance = (w.point_b - w.point_a).norm();
+    offer_upper(w);
+  }
+
+  void offer_upper(const Witness& w) {
+    if (w.distance < best_.distance) best_ = w;
+  }
+
+  // The witness of Wolfe's corral, whose indices are the bodies' own. The points are summed
+  // relative to a point of A, so that bodies far from the origin cost no precision.
+  Witness witness_of(const exact_internal::MinNormPoint& m) const {
+    Witness w;
+    w.size = m.size;
+    Scalar total = 0;
+    for (int k = 0; k < m.size; ++k) total += m.weights[k];
+    const Vector3 origin = a_.vertices().row(m.corral[0].ia).transpose();
+    Vector3 local_a = Vector3::Zero();
+    Vector3 local_b = Vector3::Zero();
+    for (int k = 0; k < m.size; ++k) {
+      w.ia[k] = m.corral[k].ia;
+      w.ib[k] = m.corral[k].ib;
+      w.weights[k] = m.weights[k] / total;
+      local_a += w.weights[k] * (a_.vertices().row(w.ia[k]).transpose() - origin);
+      local_b += w.weights[k] * (b_.vertices().row(w.ib[k]).transpose() - origin);
     }
+    w.point_a = origin + local_a;
+    w.point_b = origin + local_b;
+    w.distance = (local_b - local_a).norm();
+    return w;
   }
 
-  bool colliding() const { return best_upper_ <= tolerance_; }
+  bool colliding() const { return best_.distance <= tolerance_; }
   bool converged() const {
-    return colliding() || (best_s_ > tolerance_ && best_upper_ - best_s_ <= tolerance_);
+    return colliding() || (best_s_ > tolerance_ && best_.distance - best_s_ <= tolerance_);
   }
 
-  // Points of `body` within the slack of its supporting plane along `n`, highest first: a scan
-  // for small bodies, a flood over the hull's edge graph from the support point for large ones
-  // (the vertices above a plane span a connected subgraph of a polytope's graph).
-  std::vector<int> feature(const ConvexPolyhedron& body, const Vector3& n, int& hint,
-                           std::vector<char>& visited, Scalar slack) {
+  // Points of `body` within the slack of its supporting plane along `n`, highest first, into
+  // `found`: a scan for small bodies, a flood over the hull's edge graph from the support point
+  // for large ones (the vertices above a plane span a connected subgraph of a polytope's graph).
+  static void feature(const ConvexPolyhedron& body, const Vector3& n, int& hint,
+                      std::vector<char>& visited, Scalar slack, std::vector<int>& found) {
     hint = body.support_index(n, hint);
     const VertexMatrix& v = body.vertices();
     const Scalar floor = v.row(hint).dot(n) - slack;
-    std::vector<int> found;
+    found.clear();
     if (body.size() <= kHillClimbingThreshold) {
       for (int i = 0; i < body.size(); ++i) {
         if (v.row(i).dot(n) >= floor) found.push_back(i);
@@ -170,13 +258,55 @@ class DualSolver {
     }
     std::sort(found.begin(), found.end(),
               [&](int i, int j) { return v.row(i).dot(n) > v.row(j).dot(n); });
-    return found;
   }
 
-  static VertexMatrix rows_of(const ConvexPolyhedron& body, const std::vector<int>& rows) {
-    VertexMatrix m(static_cast<Eigen::Index>(rows.size()), 3);
-    for (std::size_t k = 0; k < rows.size(); ++k) m.row(k) = body.vertices().row(rows[k]);
-    return m;
+  // The exact nearest points of the hulls of two features: Wolfe's algorithm on their Minkowski
+  // difference, with support points by scanning the features and the start and stopping scale of
+  // `exact_nearest_points` on the same points.
+  Witness nearest_between(const std::vector<int>& fa, const std::vector<int>& fb) const {
+    const VertexMatrix& x = a_.vertices();
+    const VertexMatrix& y = b_.vertices();
+    const auto oracle = [&](const Vector3& d) {
+      int i = fa[0];
+      Scalar highest = x.row(i).dot(d);
+      for (std::size_t k = 1; k < fa.size(); ++k) {
+        const Scalar h = x.row(fa[k]).dot(d);
+        if (h > highest) {
+          highest = h;
+          i = fa[k];
+        }
+      }
+      int j = fb[0];
+      Scalar lowest = y.row(j).dot(d);
+      for (std::size_t k = 1; k < fb.size(); ++k) {
+        const Scalar h = y.row(fb[k]).dot(d);
+        if (h < lowest) {
+          lowest = h;
+          j = fb[k];
+        }
+      }
+      return exact_internal::OraclePoint{(y.row(j) - x.row(i)).transpose(), i, j};
+    };
+    const auto spread = [](const VertexMatrix& points, const std::vector<int>& rows, Vector3& mean,
+                           Vector3& box_centre) {
+      Vector3 low = points.row(rows[0]).transpose();
+      Vector3 high = low;
+      mean.setZero();
+      for (int i : rows) {
+        const Vector3 q = points.row(i).transpose();
+        low = low.cwiseMin(q);
+        high = high.cwiseMax(q);
+        mean += q;
+      }
+      mean /= static_cast<Scalar>(rows.size());
+      box_centre = (low + high) / 2;
+      return (high - low).norm();
+    };
+    Vector3 mean_a, mean_b, centre_a, centre_b;
+    const Scalar scale = spread(x, fa, mean_a, centre_a) + spread(y, fb, mean_b, centre_b) +
+                         (centre_b - centre_a).norm();
+    return witness_of(exact_internal::wolfe_min_norm(oracle, mean_b - mean_a, scale,
+                                                     ExactOptions{}.max_iterations));
   }
 
   // Adds the points of `more` missing from `into`; returns whether any was.
@@ -197,30 +327,23 @@ class DualSolver {
   // optimum would be separated by it), so the features grow by the supporting features there and
   // the subproblem is solved again, a few times at most before the swarm takes over again.
   void finish_distance(const Vector3& n) {
-    std::vector<int> fa = feature(a_, n, hint_a_, visited_a_, slack_);
-    std::vector<int> fb = feature(b_, -n, hint_b_, visited_b_, slack_);
-    ExactOptions exact;
-    exact.tolerance = tolerance_;
+    std::vector<int>& fa = ws_.feature_a;
+    std::vector<int>& fb = ws_.feature_b;
+    feature(a_, n, hint_a_, ws_.visited_a, slack_, fa);
+    feature(b_, -n, hint_b_, ws_.visited_b, slack_, fb);
     for (int step = 0; step < kFinishSteps; ++step) {
-      const DistanceResult sub = exact_nearest_points(ConvexPolyhedron(rows_of(a_, fa)),
-                                                      ConvexPolyhedron(rows_of(b_, fb)), exact);
-      if (sub.distance < best_upper_) {
-        best_upper_ = sub.distance;
-        weights_a_ = VectorX::Zero(a_.size());
-        weights_b_ = VectorX::Zero(b_.size());
-        for (std::size_t k = 0; k < fa.size(); ++k) weights_a_(fa[k]) = sub.weights_a(k);
-        for (std::size_t k = 0; k < fb.size(); ++k) weights_b_(fb[k]) = sub.weights_b(k);
-        point_a_ = sub.point_a;
-        point_b_ = sub.point_b;
-      }
+      const Witness sub = nearest_between(fa, fb);
+      offer_upper(sub);
       if (converged() || !(sub.distance > 0)) return;
       const Vector3 next = (sub.point_b - sub.point_a).normalized();
       int ia = hint_a_;
       int ib = hint_b_;
       offer_lower(next, separation(next, ia, ib));
       if (converged()) return;
-      const bool grew_a = merge(fa, feature(a_, next, ia, visited_a_, slack_));
-      const bool grew_b = merge(fb, feature(b_, -next, ib, visited_b_, slack_));
+      feature(a_, next, ia, ws_.visited_a, slack_, ws_.grown);
+      const bool grew_a = merge(fa, ws_.grown);
+      feature(b_, -next, ib, ws_.visited_b, slack_, ws_.grown);
+      const bool grew_b = merge(fb, ws_.grown);
       if (!grew_a && !grew_b) return;  // rounding: nothing left to add
     }
   }
@@ -234,11 +357,14 @@ class DualSolver {
   void finish_penetration(Vector3 n) {
     Scalar widen = 1;
     for (int step = 0; step < 2 * kFinishSteps && widen <= kPenetrationWidening; ++step) {
-      std::vector<int> fa = feature(a_, n, hint_a_, visited_a_, widen * slack_);
-      std::vector<int> fb = feature(b_, -n, hint_b_, visited_b_, widen * slack_);
+      std::vector<int>& fa = ws_.feature_a;
+      std::vector<int>& fb = ws_.feature_b;
+      feature(a_, n, hint_a_, ws_.visited_a, widen * slack_, fa);
+      feature(b_, -n, hint_b_, ws_.visited_b, widen * slack_, fb);
       fa.resize(std::min(fa.size(), kPenetrationFeatureCap));
       fb.resize(std::min(fb.size(), kPenetrationFeatureCap));
-      std::vector<Vector3> candidates;
+      std::vector<Vector3>& candidates = ws_.candidates;
+      candidates.clear();
       for (const auto& [body, f] : {std::pair{&a_, &fa}, std::pair{&b_, &fb}}) {
         const auto row = [&](int i) -> Vector3 { return body->vertices().row(i).transpose(); };
         for (std::size_t i = 0; i < f->size(); ++i) {
@@ -300,27 +426,11 @@ class DualSolver {
       return exact_internal::OraclePoint{
           (b_.vertices().row(ib) - a_.vertices().row(ia)).transpose(), ia, ib};
     };
-    const exact_internal::MinNormPoint m =
-        exact_internal::wolfe_min_norm(oracle, best_n_, scale_, 1000);
-    VectorX wa = VectorX::Zero(a_.size());
-    VectorX wb = VectorX::Zero(b_.size());
-    for (std::size_t k = 0; k < m.corral.size(); ++k) {
-      wa(m.corral[k].ia) += m.weights[k];
-      wb(m.corral[k].ib) += m.weights[k];
-    }
-    wa /= wa.sum();
-    wb /= wb.sum();
-    DistanceResult r =
-        exact_internal::result_from_weights(a_, b_, std::move(wa), std::move(wb), "dual", 0);
-    if (r.distance < best_upper_) {
-      best_upper_ = r.distance;
-      weights_a_ = std::move(r.weights_a);
-      weights_b_ = std::move(r.weights_b);
-      point_a_ = r.point_a;
-      point_b_ = r.point_b;
-    }
-    if (r.distance > 0) {
-      const Vector3 n = (r.point_b - r.point_a).normalized();
+    const Witness w = witness_of(
+        exact_internal::wolfe_min_norm(oracle, best_n_, scale_, ExactOptions{}.max_iterations));
+    offer_upper(w);
+    if (w.distance > 0) {
+      const Vector3 n = (w.point_b - w.point_a).normalized();
       int ja = ia;
       int jb = ib;
       offer_lower(n, separation(n, ja, jb));
@@ -333,15 +443,33 @@ class DualSolver {
     return {r * std::cos(t), r * std::sin(t)};
   }
 
+  // Particles by decreasing personal best, ties by index (a stable sort's order, without the
+  // buffer std::stable_sort allocates).
+  void rank_by_personal_best(std::vector<int>& order) const {
+    const std::vector<Scalar>& fp = ws_.fp;
+    std::iota(order.begin(), order.end(), 0);
+    std::sort(order.begin(), order.end(),
+              [&](int i, int j) { return fp[i] > fp[j] || (fp[i] == fp[j] && i < j); });
+  }
+
   // One round of the paper's swarm, (8)-(11) with rank-based inertia, maximising s over the
   // chart at `centre`; particle 0 starts at the centre. Returns when converged (distance goal)
   // or after max_iterations.
   void round(Goal goal, const Vector3& centre, Scalar radius) {
     const Chart chart(centre);
     const int np = options_.swarm_size;
-    std::vector<Point2> x(np), v(np), p(np);
-    std::vector<Scalar> fx(np), fp(np);
-    std::vector<int> ha(np, hint_a_), hb(np, hint_b_);
+    std::vector<Point2>& x = ws_.x;
+    std::vector<Point2>& v = ws_.v;
+    std::vector<Point2>& p = ws_.p;
+    std::vector<Scalar>& fx = ws_.fx;
+    std::vector<Scalar>& fp = ws_.fp;
+    std::vector<int>& ha = ws_.ha;
+    std::vector<int>& hb = ws_.hb;
+    x.resize(np);
+    v.resize(np);
+    fx.resize(np);
+    ha.assign(np, hint_a_);
+    hb.assign(np, hint_b_);
     for (int j = 0; j < np; ++j) {
       x[j] = j == 0 ? Point2::Zero() : uniform_in_disc(radius);
       v[j] = uniform_in_disc(radius) - x[j];
@@ -361,12 +489,13 @@ class DualSolver {
       finish(goal, n);
     };
     improve(g);
-    std::vector<int> order(np);
-    std::vector<ParticleCoefficients> coefficients(np);
+    std::vector<int>& order = ws_.order;
+    std::vector<ParticleCoefficients>& coefficients = ws_.coefficients;
+    order.resize(np);
+    coefficients.resize(np);
     for (int iteration = 0; iteration < options_.max_iterations; ++iteration) {
       if (goal == Goal::distance && converged()) break;
-      std::iota(order.begin(), order.end(), 0);
-      std::stable_sort(order.begin(), order.end(), [&](int i, int j) { return fp[i] > fp[j]; });
+      rank_by_personal_best(order);
       for (int rank = 1; rank <= np; ++rank) {
         coefficients[order[rank - 1]] =
             rank_adaptive_coefficients(rank, np, options_.w_min, options_.w_max);
@@ -390,7 +519,7 @@ class DualSolver {
       g = best;
       if (improved) improve(g);
       ++iterations_;
-      history_.push_back(best_upper_);
+      ws_.history.push_back(best_.distance);
     }
     if (goal == Goal::distance) {
       if (!converged()) {
@@ -401,9 +530,9 @@ class DualSolver {
     }
     // Overlapping bodies: s has a local maximum at many facets of the Minkowski difference, so
     // the finish climbs from the best few distinct personal bests, not only the swarm's best.
-    std::iota(order.begin(), order.end(), 0);
-    std::stable_sort(order.begin(), order.end(), [&](int i, int j) { return fp[i] > fp[j]; });
-    std::vector<std::pair<int, int>> done;
+    rank_by_personal_best(order);
+    std::vector<std::pair<int, int>>& done = ws_.starts;
+    done.clear();
     for (int j : order) {
       if (static_cast<int>(done.size()) >= kPenetrationStarts) break;
       if (std::find(done.begin(), done.end(), std::pair{ha[j], hb[j]}) != done.end()) continue;
@@ -445,18 +574,22 @@ class DualSolver {
 
   DistanceResult result() {
     DistanceResult r;
-    r.distance = best_upper_;
-    r.point_a = point_a_;
-    r.point_b = point_b_;
-    r.weights_a = weights_a_;
-    r.weights_b = weights_b_;
+    r.distance = best_.distance;
+    r.point_a = best_.point_a;
+    r.point_b = best_.point_b;
+    r.weights_a = VectorX::Zero(a_.size());
+    r.weights_b = VectorX::Zero(b_.size());
+    for (int k = 0; k < best_.size; ++k) {
+      r.weights_a(best_.ia[k]) += best_.weights[k];
+      r.weights_b(best_.ib[k]) += best_.weights[k];
+    }
     if (best_s_ > 0) {
       r.lower_bound = best_s_;
       r.direction = best_n_;
     }
     r.iterations = iterations_;
     r.evaluations = evaluations_;
-    r.history = history_;
+    r.history = ws_.history;
     r.colliding = colliding();
     r.certified = r.colliding || r.lower_bound > tolerance_;
     r.method = "dual";
@@ -466,25 +599,21 @@ class DualSolver {
 
   const ConvexPolyhedron& a_;
   const ConvexPolyhedron& b_;
+  const std::shared_ptr<const BodySummary> summary_a_;
+  const std::shared_ptr<const BodySummary> summary_b_;
   const DualOptions& options_;
   detail::Xoshiro256 rng_;
+  Workspace& ws_;
   Scalar scale_ = 0;
   Scalar tolerance_ = 0;
   Scalar slack_ = 0;
-  std::vector<char> visited_a_;
-  std::vector<char> visited_b_;
   int hint_a_ = -1;
   int hint_b_ = -1;
   Scalar best_s_ = -std::numeric_limits<Scalar>::infinity();
   Vector3 best_n_ = Vector3::UnitX();
-  Scalar best_upper_ = std::numeric_limits<Scalar>::infinity();
-  VectorX weights_a_;
-  VectorX weights_b_;
-  Vector3 point_a_ = Vector3::Zero();
-  Vector3 point_b_ = Vector3::Zero();
+  Witness best_;
   int iterations_ = 0;
   long evaluations_ = 0;
-  std::vector<Scalar> history_;
 };
 
 }  // namespace

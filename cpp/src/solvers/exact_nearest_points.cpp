@@ -7,6 +7,7 @@
 
 #include "exact_internal.hpp"
 #include "swarmcollide/problem/certificate.hpp"
+#include "wolfe_min_norm.hpp"
 
 namespace swarmcollide {
 
@@ -97,9 +98,7 @@ VectorX weights_of_nearest(const ConvexPolyhedron& body, const std::vector<int>&
   const Scalar scale = diagonal(body) + (mean - target).norm();
   const MinNormPoint nearest = wolfe_min_norm(oracle, mean - target, scale, 100);
   VectorX weights = VectorX::Zero(body.size());
-  for (std::size_t k = 0; k < nearest.corral.size(); ++k) {
-    weights(nearest.corral[k].ia) += nearest.weights[k];
-  }
+  for (int k = 0; k < nearest.size; ++k) weights(nearest.corral[k].ia) += nearest.weights[k];
   return weights / weights.sum();
 }
 
@@ -163,7 +162,7 @@ DistanceResult nearest_points(const ConvexPolyhedron& a, const ConvexPolyhedron&
       wolfe_min_norm(oracle, start, pair_scale(a, b), options.max_iterations);
   VectorX weights_a = VectorX::Zero(a.size());
   VectorX weights_b = VectorX::Zero(b.size());
-  for (std::size_t k = 0; k < nearest.corral.size(); ++k) {
+  for (int k = 0; k < nearest.size; ++k) {
     weights_a(nearest.corral[k].ia) += nearest.weights[k];
     weights_b(nearest.corral[k].ib) += nearest.weights[k];
   }
