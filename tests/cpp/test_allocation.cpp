@@ -67,7 +67,8 @@ TEST_P(SteadyState, ASolveAllocatesNoMoreThanCopyingItsResult) {
 
 INSTANTIATE_TEST_SUITE_P(Methods, SteadyState,
                          ::testing::Values(AllocationCase{Method::ipso, "ipso"},
-                                           AllocationCase{Method::pso, "pso"}),
+                                           AllocationCase{Method::pso, "pso"},
+                                           AllocationCase{Method::dual, "dual"}),
                          [](const auto& info) { return std::string(info.param.name); });
 
 }  // namespace
