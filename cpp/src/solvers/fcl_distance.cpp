@@ -14,22 +14,34 @@ namespace {
 
 std::string name_of(FclGjk gjk) { return gjk == FclGjk::libccd ? "fcl" : "fcl-indep"; }
 
-// The hull as an fcl::Convexd, translated by -origin. Segments and single points have no faces;
-// FCL then finds support points by scanning the vertices, which is all GJK needs.
+// FCL's Convex finds support points by scanning the vertices up to this count and by walking
+// the edges above it (fcl::Convex::kMinVertCountForEdgeWalking, private in FCL 0.7).
+constexpr std::size_t kFclEdgeWalkingAbove = 32;
+
+// The hull as an fcl::Convexd, translated by -origin. Faces are given only when FCL walks them:
+// below that size GJK and EPA use nothing but the vertices, and the faces would only cost FCL's
+// constructor its adjacency build and topology check (std::set and std::map per body).
 std::shared_ptr<fcl::Convexd> to_fcl(const ConvexPolyhedron& body, const Vector3& origin) {
   const Hull& hull = body.hull();
-  std::vector<int> local(body.size(), -1);
   auto vertices = std::make_shared<std::vector<fcl::Vector3d>>();
-  for (int i : hull.vertex_indices) {
-    local[i] = static_cast<int>(vertices->size());
+  vertices->reserve(hull.vertex_indices.size());
+  for (int i : hull.vertex_indices)
     vertices->push_back(body.vertices().row(i).transpose() - origin);
-  }
   auto faces = std::make_shared<std::vector<int>>();
-  for (Eigen::Index f = 0; f < hull.faces.rows(); ++f) {
-    faces->insert(faces->end(),
-                  {3, local[hull.faces(f, 0)], local[hull.faces(f, 1)], local[hull.faces(f, 2)]});
+  int face_count = 0;
+  if (vertices->size() > kFclEdgeWalkingAbove) {
+    std::vector<int> local(body.size(), -1);
+    for (std::size_t k = 0; k < hull.vertex_indices.size(); ++k) {
+      local[hull.vertex_indices[k]] = static_cast<int>(k);
+    }
+    face_count = static_cast<int>(hull.faces.rows());
+    faces->reserve(4 * static_cast<std::size_t>(face_count));
+    for (Eigen::Index f = 0; f < hull.faces.rows(); ++f) {
+      faces->insert(faces->end(),
+                    {3, local[hull.faces(f, 0)], local[hull.faces(f, 1)], local[hull.faces(f, 2)]});
+    }
   }
-  return std::make_shared<fcl::Convexd>(vertices, static_cast<int>(hull.faces.rows()), faces);
+  return std::make_shared<fcl::Convexd>(vertices, face_count, faces);
 }
 
 // A body's FCL shape in a frame centred on its bounding box, built once per body: coordinates near
