@@ -1,7 +1,11 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
+#include <random>
 #include <set>
 #include <stdexcept>
+#include <utility>
 
 #include "paper_cases.hpp"
 #include "swarmcollide/geometry/convex_polyhedron.hpp"
@@ -16,6 +20,49 @@ VertexMatrix unit_cube() {
     for (int y = 0; y < 2; ++y)
       for (int z = 0; z < 2; ++z) v.row(row++) << x, y, z;
   return v;
+}
+
+using OrientedTriangle = std::array<int, 3>;
+
+// The triangle with its smallest index first, the orientation kept.
+OrientedTriangle rotated_to_smallest(int p, int q, int r) {
+  if (q < p && q < r) return {q, r, p};
+  if (r < p && r < q) return {r, p, q};
+  return {p, q, r};
+}
+
+// Brute-force oracle for points in general position: the faces are the triangles whose plane has
+// every other point strictly on one side, oriented so that side is behind them.
+std::set<OrientedTriangle> hull_triangles_by_brute_force(const VertexMatrix& points) {
+  std::set<OrientedTriangle> faces;
+  const int n = static_cast<int>(points.rows());
+  for (int i = 0; i < n; ++i) {
+    for (int j = i + 1; j < n; ++j) {
+      for (int k = j + 1; k < n; ++k) {
+        const Vector3 p = points.row(i);
+        const Vector3 normal = (points.row(j).transpose() - p).cross(points.row(k).transpose() - p);
+        int above = 0;
+        int below = 0;
+        for (int m = 0; m < n; ++m) {
+          if (m == i || m == j || m == k) continue;
+          const Scalar height = normal.dot(points.row(m).transpose() - p);
+          above += height > 0;
+          below += height < 0;
+        }
+        if (above == 0) faces.insert(rotated_to_smallest(i, j, k));
+        if (below == 0) faces.insert(rotated_to_smallest(i, k, j));
+      }
+    }
+  }
+  return faces;
+}
+
+std::set<OrientedTriangle> triangles_of(const Hull& hull) {
+  std::set<OrientedTriangle> faces;
+  for (Eigen::Index f = 0; f < hull.faces.rows(); ++f) {
+    faces.insert(rotated_to_smallest(hull.faces(f, 0), hull.faces(f, 1), hull.faces(f, 2)));
+  }
+  return faces;
 }
 
 // Every face normal points away from every hull vertex not on the face.
@@ -129,6 +176,86 @@ TEST(Hull, FarFromTheOriginStillExact) {
   EXPECT_EQ(cube.hull().dimension, 3);
   EXPECT_EQ(cube.hull().faces.rows(), 12);
   expect_outward(cube);
+}
+
+TEST(Hull, RandomSmallSolidsMatchTheBruteForceOracle) {
+  std::mt19937_64 rng(11);
+  std::normal_distribution<Scalar> normal;
+  for (int n : {4, 5, 6, 8, 12, 16, 17, 24}) {
+    for (int trial = 0; trial < 50; ++trial) {
+      SCOPED_TRACE(std::to_string(n) + " points, trial " + std::to_string(trial));
+      VertexMatrix points(n, 3);
+      for (Eigen::Index k = 0; k < points.size(); ++k) points.data()[k] = normal(rng);
+      points.col(2) *= trial % 2 ? 1.0 : 1e-3;  // some thin bodies too
+      const ConvexPolyhedron body(points);
+      const Hull& hull = body.hull();
+      const std::set<OrientedTriangle> expected = hull_triangles_by_brute_force(points);
+      EXPECT_EQ(hull.dimension, 3);
+      EXPECT_EQ(triangles_of(hull), expected);
+      EXPECT_EQ(hull.faces.rows(), static_cast<Eigen::Index>(expected.size()));
+      std::set<int> corners;
+      for (const auto& t : expected) corners.insert(t.begin(), t.end());
+      EXPECT_EQ(hull.vertex_indices, std::vector<int>(corners.begin(), corners.end()));
+      // The neighbours of a point are the other corners of its triangles' edges, ascending.
+      std::vector<std::set<int>> adjacent(n);
+      for (const auto& t : expected) {
+        for (int k = 0; k < 3; ++k) {
+          adjacent[t[k]].insert(t[(k + 1) % 3]);
+          adjacent[t[(k + 1) % 3]].insert(t[k]);
+        }
+      }
+      ASSERT_EQ(hull.neighbour_offsets.size(), static_cast<std::size_t>(n) + 1);
+      for (int i = 0; i < n; ++i) {
+        EXPECT_EQ(std::vector<int>(hull.neighbours.begin() + hull.neighbour_offsets[i],
+                                   hull.neighbours.begin() + hull.neighbour_offsets[i + 1]),
+                  std::vector<int>(adjacent[i].begin(), adjacent[i].end()))
+            << "point " << i;
+      }
+    }
+  }
+}
+
+TEST(Hull, PointsWithinRoundingOfAFaceAreNotVertices) {
+  // A tetrahedron with a fifth point over the centre of its slanted face: far enough out it is a
+  // vertex; within the hull's tolerance (1e-12 of the size) of the face it is on the face.
+  VertexMatrix points(5, 3);
+  points << 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0;
+  const Vector3 centre(1.0 / 3, 1.0 / 3, 1.0 / 3);
+  const Vector3 out = Vector3::Ones().normalized();
+  for (const auto& [height, vertex] : {std::pair{1e-6, true}, std::pair{1e-14, false},
+                                       std::pair{-1e-14, false}, std::pair{-1e-6, false}}) {
+    SCOPED_TRACE(height);
+    points.row(4) = (centre + height * out).transpose();
+    const ConvexPolyhedron body(points);
+    const Hull& hull = body.hull();
+    EXPECT_EQ(hull.dimension, 3);
+    const std::vector<int> expected =
+        vertex ? std::vector<int>{0, 1, 2, 3, 4} : std::vector<int>{0, 1, 2, 3};
+    EXPECT_EQ(hull.vertex_indices, expected);
+    EXPECT_EQ(hull.faces.rows(), vertex ? 6 : 4);
+  }
+}
+
+TEST(Hull, RepeatedPointsAppearOnce) {
+  VertexMatrix points(6, 3);
+  points << 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 1, 0, 0, 0.1, 0.1, 0.1;
+  const ConvexPolyhedron body(points);
+  const Hull& hull = body.hull();
+  EXPECT_EQ(hull.dimension, 3);
+  EXPECT_EQ(hull.faces.rows(), 4);
+  ASSERT_EQ(hull.vertex_indices.size(), 4u);
+  EXPECT_EQ(hull.vertex_indices[0], 0);
+  EXPECT_TRUE(hull.vertex_indices[1] == 1 || hull.vertex_indices[1] == 4);
+}
+
+TEST(Hull, TwoPointsFarFromTheOriginAreASegment) {
+  // The rounded mean of these two points leaves a sliver of a second singular value.
+  VertexMatrix points(2, 3);
+  points << 1000000.12573022, 999999.86789514, 1e6, 1000000.10490012, 999999.46433063, 1e6;
+  const ConvexPolyhedron segment(points);
+  EXPECT_EQ(segment.hull().dimension, 1);
+  EXPECT_EQ(segment.hull().vertex_indices, (std::vector<int>{0, 1}));
+  EXPECT_TRUE(segment.centroid().isApprox(points.colwise().mean().transpose(), 1e-15));
 }
 
 }  // namespace

@@ -2,6 +2,8 @@
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -29,7 +31,9 @@ PrincipalAxes principal_axes(const VertexMatrix& points) {
   result.mean = points.colwise().mean().transpose();
   const VertexMatrix centred = points.rowwise() - result.mean.transpose();
   Eigen::JacobiSVD<Eigen::Matrix<Scalar, Eigen::Dynamic, 3>> svd(centred, Eigen::ComputeFullV);
-  const Vector3 sigma = svd.singularValues();
+  // Fewer than three points have fewer singular values; the missing ones are zero.
+  Vector3 sigma = Vector3::Zero();
+  sigma.head(svd.singularValues().size()) = svd.singularValues();
   result.axes = svd.matrixV();
   result.dimension = 0;
   if (sigma(0) > 0) {
@@ -64,6 +68,18 @@ std::vector<int> polygon_hull(const std::vector<Eigen::Vector2d>& p) {
   return hull;
 }
 
+Hull segment_hull(const VertexMatrix& points, const PrincipalAxes& frame) {
+  Eigen::Index lo = 0;
+  Eigen::Index hi = 0;
+  const VectorX t = (points.rowwise() - frame.mean.transpose()) * frame.axes.col(0);
+  t.minCoeff(&lo);
+  t.maxCoeff(&hi);
+  Hull hull;
+  hull.dimension = 1;
+  hull.vertex_indices = {static_cast<int>(std::min(lo, hi)), static_cast<int>(std::max(lo, hi))};
+  return hull;
+}
+
 Hull flat_hull(const VertexMatrix& points, const PrincipalAxes& frame) {
   std::vector<Eigen::Vector2d> projected(points.rows());
   for (Eigen::Index i = 0; i < points.rows(); ++i) {
@@ -71,6 +87,9 @@ Hull flat_hull(const VertexMatrix& points, const PrincipalAxes& frame) {
     projected[i] = {d.dot(frame.axes.col(0)), d.dot(frame.axes.col(1))};
   }
   const std::vector<int> ring = polygon_hull(projected);
+  // Far from the origin the rounded mean can give collinear points (even two) a sliver of a
+  // second singular value; in the plane they are still a segment.
+  if (ring.size() < 3) return segment_hull(points, frame);
   Hull hull;
   hull.dimension = 2;
   hull.vertex_indices = ring;
@@ -86,20 +105,193 @@ Hull flat_hull(const VertexMatrix& points, const PrincipalAxes& frame) {
   return hull;
 }
 
-Hull segment_hull(const VertexMatrix& points, const PrincipalAxes& frame) {
-  Eigen::Index lo = 0;
-  Eigen::Index hi = 0;
-  const VectorX t = (points.rowwise() - frame.mean.transpose()) * frame.axes.col(0);
-  t.minCoeff(&lo);
-  t.maxCoeff(&hi);
-  Hull hull;
-  hull.dimension = 1;
-  hull.vertex_indices = {static_cast<int>(std::min(lo, hi)), static_cast<int>(std::max(lo, hi))};
-  return hull;
-}
-
 // Up to this many points, trying every plane through three of them beats Qhull's set-up cost.
 constexpr Eigen::Index kSmallHullLimit = 16;
+
+// The fast path for small solids takes only points in clear general position: a first
+// tetrahedron with heights of at least kFatTetrahedron times its longest edge L (so the smallest
+// singular value of the centred points is orders of magnitude above kFlatnessTolerance times the
+// largest, and principal_axes would call the set solid), faces of area at least
+// kGeneralPositionMargin L^2 / 2, and every point at least kGeneralPositionMargin L away from the
+// plane of every face it is not a corner of. Both are hundreds of times small_solid_hull's
+// tolerances, so that path would find the same triangles, and no orientation test is decided by
+// rounding.
+constexpr Scalar kFatTetrahedron = 1e-2;
+constexpr Scalar kGeneralPositionMargin = 1e-9;
+constexpr int kMaxSmallHullFaces = 2 * kSmallHullLimit - 4;
+
+struct Triangle {
+  std::array<int, 3> corners;  // counter-clockwise seen from outside
+  Vector3 normal;              // unit, outward
+};
+
+// The row small_solid_hull writes for the triangle `face`, whose corners ascending are `sorted`:
+// it meets the face at that triple, takes the triple's unit normal, and starts the triangle at the
+// corner that comes first in (u, v) order, u = normal.unitOrthogonal(), v = normal x u (where
+// Andrew's monotone chain starts). Computed the same way, so both paths give identical hulls.
+Eigen::RowVector3i small_solid_hull_row(const VertexMatrix& points, const Triangle& face,
+                                        const std::array<int, 3>& sorted) {
+  const Vector3 p = points.row(sorted[0]);
+  Vector3 normal =
+      (points.row(sorted[1]).transpose() - p).cross(points.row(sorted[2]).transpose() - p);
+  normal /= normal.norm();
+  if (normal.dot(face.normal) < 0) normal = -normal;
+  const Vector3 u = normal.unitOrthogonal();
+  const Vector3 v = normal.cross(u);
+  int first = 0;  // the corner sorted[0], which projects to (0, 0)
+  Eigen::Vector2d lowest(0, 0);
+  for (int k = 1; k < 3; ++k) {
+    const Vector3 d = points.row(sorted[k]).transpose() - p;
+    const Eigen::Vector2d q(d.dot(u), d.dot(v));
+    if (q.x() < lowest.x() || (q.x() == lowest.x() && q.y() < lowest.y())) {
+      lowest = q;
+      first = k;
+    }
+  }
+  const int start = static_cast<int>(
+      std::find(face.corners.begin(), face.corners.end(), sorted[first]) - face.corners.begin());
+  return {face.corners[start], face.corners[(start + 1) % 3], face.corners[(start + 2) % 3]};
+}
+
+// Incremental (beneath-beyond) hull of a small solid point set in general position, without heap
+// allocation: a fat first tetrahedron, then each point replaces the faces it sees by a cone to
+// their horizon. Returns false (and small_solid_hull decides) unless the points are in the clear
+// general position described above; what it returns then is small_solid_hull's hull, row for row.
+bool general_position_hull(const VertexMatrix& points, Hull& hull) {
+  const int n = static_cast<int>(points.rows());
+  if (n < 4 || n > kSmallHullLimit) return false;
+  const auto point = [&points](int i) -> Vector3 { return points.row(i).transpose(); };
+
+  // The first tetrahedron: the leftmost point, the point farthest from it, the point farthest
+  // from their line, the point farthest from their plane.
+  Eigen::Index leftmost = 0;
+  points.col(0).minCoeff(&leftmost);
+  const int a = static_cast<int>(leftmost);
+  Eigen::Index farthest = 0;
+  const Scalar longest =
+      std::sqrt((points.rowwise() - points.row(a)).rowwise().squaredNorm().maxCoeff(&farthest));
+  int b = static_cast<int>(farthest);
+  if (!(longest > 0)) return false;
+  const Vector3 axis = (point(b) - point(a)) / longest;
+  int c = a;
+  Scalar widest = 0;
+  for (int i = 0; i < n; ++i) {
+    const Scalar w = (point(i) - point(a)).cross(axis).squaredNorm();
+    if (w > widest) {
+      widest = w;
+      c = i;
+    }
+  }
+  if (std::sqrt(widest) < kFatTetrahedron * longest) return false;
+  const Vector3 base = (point(b) - point(a)).cross(point(c) - point(a)).normalized();
+  int d = a;
+  Scalar tallest = 0;
+  for (int i = 0; i < n; ++i) {
+    const Scalar h = std::abs(base.dot(point(i) - point(a)));
+    if (h > tallest) {
+      tallest = h;
+      d = i;
+    }
+  }
+  if (tallest < kFatTetrahedron * longest) return false;
+  const Scalar margin = kGeneralPositionMargin * longest;
+
+  std::array<Triangle, kMaxSmallHullFaces> faces;
+  int face_count = 0;
+  // edge_face[p][q]: the face with the directed edge p -> q. Every edge of the current surface
+  // has its reverse in the neighbouring face, so a visible face's neighbours are two lookups away.
+  std::array<std::array<std::uint8_t, kSmallHullLimit>, kSmallHullLimit> edge_face;
+  const auto add_face = [&](int p, int q, int r) {
+    Vector3 normal = (point(q) - point(p)).cross(point(r) - point(p));
+    const Scalar length = normal.norm();
+    if (!(length > margin * longest) || face_count == kMaxSmallHullFaces) return false;
+    faces[face_count] = {{p, q, r}, normal / length};
+    edge_face[p][q] = edge_face[q][r] = edge_face[r][p] = static_cast<std::uint8_t>(face_count);
+    ++face_count;
+    return true;
+  };
+  // With d behind the triangle (a, b, c), these four face away from the opposite corner.
+  if (base.dot(point(d) - point(a)) > 0) std::swap(b, c);
+  if (!add_face(a, b, c) || !add_face(a, d, b) || !add_face(b, d, c) || !add_face(c, d, a)) {
+    return false;
+  }
+
+  std::array<bool, kMaxSmallHullFaces> visible{};
+  std::array<std::pair<int, int>, 3 * kMaxSmallHullFaces> horizon;
+  for (int q = 0; q < n; ++q) {
+    if (q == a || q == b || q == c || q == d) continue;
+    bool outside = false;
+    for (int f = 0; f < face_count; ++f) {
+      const Scalar height = faces[f].normal.dot(point(q) - point(faces[f].corners[0]));
+      if (std::abs(height) <= margin) return false;
+      visible[f] = height > 0;
+      outside = outside || visible[f];
+    }
+    if (!outside) continue;
+    int horizon_size = 0;
+    for (int f = 0; f < face_count; ++f) {
+      if (!visible[f]) continue;
+      for (int k = 0; k < 3; ++k) {
+        const int p = faces[f].corners[k];
+        const int r = faces[f].corners[(k + 1) % 3];
+        if (!visible[edge_face[r][p]]) horizon[horizon_size++] = {p, r};
+      }
+    }
+    int kept = 0;
+    for (int f = 0; f < face_count; ++f) {
+      if (visible[f]) continue;
+      if (kept != f) {
+        faces[kept] = faces[f];
+        const auto& k = faces[kept].corners;
+        edge_face[k[0]][k[1]] = edge_face[k[1]][k[2]] = edge_face[k[2]][k[0]] =
+            static_cast<std::uint8_t>(kept);
+      }
+      ++kept;
+    }
+    face_count = kept;
+    for (int e = 0; e < horizon_size; ++e) {
+      if (!add_face(horizon[e].first, horizon[e].second, q)) return false;
+    }
+  }
+
+  // Every face must have every other point clearly behind it (which also proves the surface
+  // convex and outward), and a closed triangulated sphere has 2V - 4 faces.
+  std::uint32_t corners = 0;
+  for (int f = 0; f < face_count; ++f) {
+    const Triangle& face = faces[f];
+    for (int i = 0; i < n; ++i) {
+      if (i == face.corners[0] || i == face.corners[1] || i == face.corners[2]) continue;
+      if (face.normal.dot(point(i) - point(face.corners[0])) > -margin) return false;
+    }
+    for (int corner : face.corners) corners |= std::uint32_t{1} << corner;
+  }
+  std::vector<int> vertex_indices;
+  for (int i = 0; i < n; ++i) {
+    if (corners >> i & 1) vertex_indices.push_back(i);
+  }
+  if (face_count != 2 * static_cast<int>(vertex_indices.size()) - 4) return false;
+
+  // small_solid_hull lists the faces in the order of their sorted corner triples; with at most
+  // 16 points a triple packs into one sortable int, 4 bits a corner, the face's slot below.
+  static_assert(kSmallHullLimit <= 16 && kMaxSmallHullFaces <= 32);
+  std::array<int, kMaxSmallHullFaces> keys;
+  for (int f = 0; f < face_count; ++f) {
+    const auto [low, high] =
+        std::minmax({faces[f].corners[0], faces[f].corners[1], faces[f].corners[2]});
+    const int middle = faces[f].corners[0] + faces[f].corners[1] + faces[f].corners[2] - low - high;
+    keys[f] = low << 13 | middle << 9 | high << 5 | f;
+  }
+  std::sort(keys.begin(), keys.begin() + face_count);
+  hull.dimension = 3;
+  hull.vertex_indices = std::move(vertex_indices);
+  hull.faces.resize(face_count, 3);
+  for (int f = 0; f < face_count; ++f) {
+    const int key = keys[f];
+    hull.faces.row(f) =
+        small_solid_hull_row(points, faces[key & 31], {key >> 13, key >> 9 & 15, key >> 5 & 15});
+  }
+  return true;
+}
 
 // True when the triangles form a closed, consistently oriented surface: every directed edge is
 // used once and its reverse once.
@@ -234,32 +426,46 @@ bool qhull_solid(const VertexMatrix& points, Hull& hull) {
   return ok;
 }
 
-// The edge graph from the triangles (or the segment), deduplicated, in compressed rows.
+// The edge graph from the triangles (or the segment) in compressed rows, each point's neighbours
+// ascending. Every edge of a closed surface (a doubled polygon too) is listed in both directions,
+// so bucketing the directed edges by their first point finds all neighbours; a point's bucket
+// repeats a neighbour only on a doubled polygon.
 void fill_adjacency(Hull& hull, Eigen::Index points) {
-  std::vector<std::pair<int, int>> edges;
-  if (hull.dimension == 1) {
-    edges = {{hull.vertex_indices[0], hull.vertex_indices[1]},
-             {hull.vertex_indices[1], hull.vertex_indices[0]}};
-  }
-  for (Eigen::Index f = 0; f < hull.faces.rows(); ++f) {
-    for (int k = 0; k < 3; ++k) {
-      const int p = hull.faces(f, k);
-      const int q = hull.faces(f, (k + 1) % 3);
-      edges.emplace_back(p, q);
-      edges.emplace_back(q, p);
+  const auto for_each_edge = [&hull](const auto& visit) {
+    if (hull.dimension == 1) {
+      visit(hull.vertex_indices[0], hull.vertex_indices[1]);
+      visit(hull.vertex_indices[1], hull.vertex_indices[0]);
     }
+    for (Eigen::Index f = 0; f < hull.faces.rows(); ++f) {
+      for (int k = 0; k < 3; ++k) visit(hull.faces(f, k), hull.faces(f, (k + 1) % 3));
+    }
+  };
+  std::vector<int>& offsets = hull.neighbour_offsets;
+  std::vector<int>& neighbours = hull.neighbours;
+  offsets.assign(static_cast<std::size_t>(points) + 1, 0);
+  for_each_edge([&offsets](int p, int) { ++offsets[p + 1]; });
+  std::partial_sum(offsets.begin(), offsets.end(), offsets.begin());
+  neighbours.resize(static_cast<std::size_t>(offsets.back()));
+  std::vector<int> next(offsets.begin(), offsets.end() - 1);
+  for_each_edge([&](int p, int q) { neighbours[next[p]++] = q; });
+  int written = 0;
+  for (Eigen::Index i = 0; i < points; ++i) {
+    const auto begin = neighbours.begin() + offsets[i];
+    const auto end = neighbours.begin() + offsets[i + 1];
+    std::sort(begin, end);
+    const auto last = std::unique(begin, end);
+    offsets[i] = written;
+    for (auto it = begin; it != last; ++it) neighbours[written++] = *it;
   }
-  std::sort(edges.begin(), edges.end());
-  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
-  hull.neighbour_offsets.assign(static_cast<std::size_t>(points) + 1, 0);
-  for (const auto& e : edges) ++hull.neighbour_offsets[e.first + 1];
-  std::partial_sum(hull.neighbour_offsets.begin(), hull.neighbour_offsets.end(),
-                   hull.neighbour_offsets.begin());
-  hull.neighbours.resize(edges.size());
-  for (std::size_t k = 0; k < edges.size(); ++k) hull.neighbours[k] = edges[k].second;
+  offsets[points] = written;
+  neighbours.resize(static_cast<std::size_t>(written));
 }
 
 Hull hull_without_adjacency(const VertexMatrix& points) {
+  {
+    Hull hull;
+    if (general_position_hull(points, hull)) return hull;
+  }
   const PrincipalAxes frame = principal_axes(points);
   if (frame.dimension == 0) {
     Hull hull;
