@@ -1,5 +1,6 @@
 #include "swarmcollide/geometry/convex_polyhedron.hpp"
 
+#include <atomic>
 #include <mutex>
 #include <stdexcept>
 #include <string>
@@ -9,8 +10,12 @@
 namespace swarmcollide {
 
 namespace detail {
+// The hull is guarded by double-checked locking rather than std::call_once: glibc's
+// pthread_once wakes waiters with a futex system call every time it runs, a measurable cost for
+// bodies that are built, queried once and dropped by the hundred thousand.
 struct HullCache {
-  std::once_flag once;
+  std::atomic<bool> hull_ready{false};
+  std::mutex hull_mutex;
   Hull hull;
   std::mutex derived_mutex;
   std::vector<std::pair<std::type_index, std::shared_ptr<const void>>> derived;
@@ -137,7 +142,13 @@ std::shared_ptr<const void> ConvexPolyhedron::derived_slot(
 }
 
 const Hull& ConvexPolyhedron::hull() const {
-  std::call_once(hull_cache_->once, [this] { hull_cache_->hull = compute_hull(vertices_); });
+  if (!hull_cache_->hull_ready.load(std::memory_order_acquire)) {
+    const std::lock_guard<std::mutex> lock(hull_cache_->hull_mutex);
+    if (!hull_cache_->hull_ready.load(std::memory_order_relaxed)) {
+      hull_cache_->hull = compute_hull(vertices_);
+      hull_cache_->hull_ready.store(true, std::memory_order_release);
+    }
+  }
   return hull_cache_->hull;
 }
 
