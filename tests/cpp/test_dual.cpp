@@ -7,6 +7,7 @@
 #include <string>
 
 #include "contract.hpp"
+#include "hard_cases.hpp"
 #include "paper_cases.hpp"
 #include "swarmcollide/problem/certificate.hpp"
 #include "swarmcollide/queries/collide.hpp"
@@ -25,9 +26,9 @@ using testing::paper_b_separate;
 
 using testing::size_of;
 
-void expect_contract(const ConvexPolyhedron& a, const ConvexPolyhedron& b,
-                     const DistanceResult& r) {
-  testing::expect_contract(a, b, r);
+void expect_contract(const ConvexPolyhedron& a, const ConvexPolyhedron& b, const DistanceResult& r,
+                     Scalar eps = 1e-12) {
+  testing::expect_contract(a, b, r, eps);
   EXPECT_EQ(r.method, "dual");
   EXPECT_GT(r.evaluations, 0);
   EXPECT_FALSE(r.history.empty());
@@ -198,6 +199,21 @@ TEST(Dual, DegenerateBodies) {
     const DistanceResult r = solve_dual(*a, *b);
     expect_contract(*a, *b, r);
     EXPECT_NEAR(r.distance, d, 1e-12);
+  }
+}
+
+TEST(Dual, HardCasesAreCertified) {
+  for (const testing::HardCase& c : testing::hard_cases()) {
+    SCOPED_TRACE(c.name);
+    for (const bool swapped : {false, true}) {
+      const ConvexPolyhedron& a = swapped ? c.b : c.a;
+      const ConvexPolyhedron& b = swapped ? c.a : c.b;
+      const DistanceResult r = solve_dual(a, b);
+      // Rounding in the witness points grows with their coordinates.
+      expect_contract(a, b, r, 1e-12 * (size_of(a, b) + r.point_a.norm()));
+      EXPECT_NEAR(r.distance, c.distance, std::max(c.accuracy, 1e-9 * size_of(a, b)));
+      EXPECT_EQ(r.colliding, c.distance <= 1e-9 * size_of(a, b));
+    }
   }
 }
 

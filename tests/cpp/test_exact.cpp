@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "contract.hpp"
+#include "hard_cases.hpp"
 #include "paper_cases.hpp"
 #include "swarmcollide/problem/certificate.hpp"
 #include "swarmcollide/queries/collide.hpp"
@@ -444,6 +445,21 @@ TEST(ExactMethods, DuplicateVertices) {
     const DistanceResult r = run(m, paper_a(), b);
     expect_contract(paper_a(), b, r);
     EXPECT_NEAR(r.distance, 1, 1e-12);
+  }
+}
+
+// The library's own solver solves its corral's affine subproblems in closed form, so the cases
+// where they degenerate (flat nearest features, repeated points, far offsets) are checked too.
+TEST(Wolfe, HardCases) {
+  for (const testing::HardCase& c : testing::hard_cases()) {
+    SCOPED_TRACE(c.name);
+    for (const bool swapped : {false, true}) {
+      const ConvexPolyhedron& a = swapped ? c.b : c.a;
+      const ConvexPolyhedron& b = swapped ? c.a : c.b;
+      const DistanceResult r = exact_nearest_points(a, b);
+      expect_contract(a, b, r);
+      EXPECT_NEAR(r.distance, c.distance, c.accuracy);
+    }
   }
 }
 
