@@ -5,6 +5,7 @@
 #include <random>
 #include <set>
 #include <stdexcept>
+#include <thread>
 #include <utility>
 
 #include "paper_cases.hpp"
@@ -120,6 +121,22 @@ TEST(ConvexPolyhedron, DerivedDataIsMadeOncePerBodyAndSharedByCopies) {
   // Another type is another slot; another body has its own.
   EXPECT_EQ(*cube.derived<double>([] { return 2.5; }), 2.5);
   EXPECT_EQ(*ConvexPolyhedron(unit_cube()).derived<int>(make), 2);
+}
+
+TEST(ConvexPolyhedron, ThreadsAskingForTheHullAtOnceShareOne) {
+  for (int trial = 0; trial < 20; ++trial) {
+    const ConvexPolyhedron cube(unit_cube());
+    std::vector<const Hull*> seen(4, nullptr);
+    std::vector<std::thread> threads;
+    for (std::size_t t = 0; t < seen.size(); ++t) {
+      threads.emplace_back([&cube, &seen, t] { seen[t] = &cube.hull(); });
+    }
+    for (auto& thread : threads) thread.join();
+    for (const Hull* hull : seen) {
+      EXPECT_EQ(hull, &cube.hull());
+      EXPECT_EQ(hull->faces.rows(), 12);
+    }
+  }
 }
 
 TEST(Hull, CubeHasEightVerticesAndTwelveOutwardTriangles) {
