@@ -42,8 +42,7 @@ inline bool affine_minimizer(const std::array<OraclePoint, 4>& s, int m,
   const Vector3& p0 = s[0].p;
   const Vector3 e1 = s[1].p - p0;
   if (m == 2) {
-    const Scalar ee = e1.squaredNorm();
-    alpha[1] = -p0.dot(e1) / ee;
+    alpha[1] = -p0.dot(e1) / e1.squaredNorm();
   } else if (m == 3) {
     // The normal equations' determinant and Cramer numerators by Lagrange's identity.
     const Vector3 e2 = s[2].p - p0;
@@ -52,13 +51,21 @@ inline bool affine_minimizer(const std::array<OraclePoint, 4>& s, int m,
     alpha[1] = -n.dot(p0.cross(e2)) / nn;
     alpha[2] = -n.dot(e1.cross(p0)) / nn;
   } else {
+    // Cramer's rule; its residual (the common point's distance from the origin) can be far above
+    // rounding for a flat tetrahedron, so the solve is repeated once for the residual (iterative
+    // refinement), which brings it to a pivoted QR's.
     const Vector3 e2 = s[2].p - p0;
     const Vector3 e3 = s[3].p - p0;
     const Vector3 e23 = e2.cross(e3);
     const Scalar volume = e1.dot(e23);
-    alpha[1] = -p0.dot(e23) / volume;
-    alpha[2] = -e1.dot(p0.cross(e3)) / volume;
-    alpha[3] = -e1.dot(e2.cross(p0)) / volume;
+    Vector3 r = p0;
+    alpha[1] = alpha[2] = alpha[3] = 0;
+    for (int pass = 0; pass < 2; ++pass) {
+      alpha[1] -= r.dot(e23) / volume;
+      alpha[2] -= e1.dot(r.cross(e3)) / volume;
+      alpha[3] -= e1.dot(e2.cross(r)) / volume;
+      r = p0 + alpha[1] * e1 + alpha[2] * e2 + alpha[3] * e3;
+    }
   }
   for (int k = 1; k < m; ++k) {
     if (!std::isfinite(alpha[k])) return false;
