@@ -12,13 +12,14 @@ namespace swarmcollide {
 /// chart of the sphere. Support points come from `ConvexPolyhedron::support_index(d, start)`,
 /// warm-started per particle.
 ///
-/// Exact finish: the supporting features along the best direction (points within the feature
-/// slack of each supporting plane) are handed to `exact_nearest_points`; its weights give an
-/// upper bound and its direction a new lower bound. When no separating direction is found, a
-/// common point is sought by Wolfe's algorithm on the Minkowski difference, started from the
-/// swarm's direction. Verdicts are certified: separate by a direction with `s(n) > tolerance`,
-/// colliding by witness points within `tolerance` of each other. `method` is "dual";
-/// deterministic for a given seed. Throws std::invalid_argument for invalid options.
+/// Exact finish: the nearest points of the supporting features along the best direction (points
+/// within the feature slack of each supporting plane), by Wolfe's algorithm as in
+/// `exact_nearest_points`, give weights (an upper bound) and a direction (a new lower bound).
+/// When no separating direction is found, a common point is sought by Wolfe's algorithm on the
+/// Minkowski difference, started from the swarm's direction. A warmed-up solve allocates only the
+/// result's arrays (its buffers are thread-local). Verdicts are certified: separate by a direction
+/// with `s(n) > tolerance`, colliding by witness points within `tolerance` of each other. `method`
+/// is "dual"; deterministic for a given seed. Throws std::invalid_argument for invalid options.
 DistanceResult solve_dual(const ConvexPolyhedron& a, const ConvexPolyhedron& b,
                           const DualOptions& options = {});
 
