@@ -1,15 +1,15 @@
 #include "swarmcollide/solvers/swarm.hpp"
 
 #include <algorithm>
-#include <initializer_list>
 #include <cmath>
+#include <initializer_list>
 #include <stdexcept>
 #include <utility>
 #include <vector>
 
+#include "swarm_kernels.hpp"
 #include "swarmcollide/problem/certificate.hpp"
 #include "swarmcollide/problem/simplex.hpp"
-#include "swarm_kernels.hpp"
 
 namespace swarmcollide {
 
@@ -112,7 +112,11 @@ class SwarmSolver {
     const std::size_t block = static_cast<std::size_t>(rows) * stride_;
     // Every entry a solve reads is written first, so the buffers are only resized.
     work_.swarm.resize(4 * block);
-    swarm_ = {rows, size_, stride_, work_.swarm.data(), work_.swarm.data() + block,
+    swarm_ = {rows,
+              size_,
+              stride_,
+              work_.swarm.data(),
+              work_.swarm.data() + block,
               work_.swarm.data() + 2 * block};
     next_position_ = work_.swarm.data() + 3 * block;
     work_.per_particle.resize(static_cast<std::size_t>(kPerParticleArrays) * stride_);
@@ -147,9 +151,8 @@ class SwarmSolver {
       assign_coefficients(iteration);
       move_particles();
       evaluate();
-      const bool improved = detail::keep_personal_bests(swarm_, row(kValue), row(kFeasible),
-                                                        row(kBestValue), row(kBestFeasible),
-                                                        row(kImproved));
+      const bool improved = detail::keep_personal_bests(
+          swarm_, row(kValue), row(kFeasible), row(kBestValue), row(kBestFeasible), row(kImproved));
       if (improved) update_global_best();
       ++iteration;
       if (improved) record_best();
@@ -209,8 +212,7 @@ class SwarmSolver {
                                          row(kSumB),    row(kLowest),  row(kHighest)};
     detail::evaluate_fitness(swarm_, ka_, work_.signed_vertices.data(),
                              options_.constraint_handling == ConstraintHandling::feasibility,
-                             options_.feasibility_tolerance, scratch, row(kValue),
-                             row(kFeasible));
+                             options_.feasibility_tolerance, scratch, row(kValue), row(kFeasible));
   }
 
   void assign_coefficients(int iteration) {
@@ -218,8 +220,8 @@ class SwarmSolver {
     double* pull_own = row(kPullOwn);
     double* pull_global = row(kPullGlobal);
     if (options_.inertia == InertiaStrategy::linear_decreasing) {
-      const Scalar w = linear_decreasing_inertia(iteration, options_.max_iterations,
-                                                 options_.w_max, options_.w_min);
+      const Scalar w = linear_decreasing_inertia(iteration, options_.max_iterations, options_.w_max,
+                                                 options_.w_min);
       std::fill_n(inertia, size_, w);
       std::fill_n(pull_own, size_, options_.c1);
       std::fill_n(pull_global, size_, options_.c2);
