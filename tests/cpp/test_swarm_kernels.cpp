@@ -2,7 +2,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
+#include <limits>
 #include <numeric>
 #include <random>
 #include <vector>
@@ -15,43 +17,80 @@ namespace {
 
 using detail::SwarmView;
 
-// A swarm of `particles` columns over `rows` weights, with a padded stride as the solver uses.
+constexpr int kLanes = detail::UniformLanes::kLanes;
+
+// A swarm of `particles` columns over `rows` weights, padded to whole blocks as the solver does,
+// with everything one generation of `advance_particles` reads and writes.
 struct TestSwarm {
   TestSwarm(int rows, int particles)
-      : stride(particles + 3),
+      : rows(rows),
+        stride((particles + kLanes - 1) / kLanes * kLanes),
         position(rows * stride),
         velocity(rows * stride),
         personal_best(rows * stride),
+        next(rows * stride),
+        column(rows),
+        inertia(stride),
+        pull_own(stride),
+        pull_global(stride),
+        global_best(rows),
+        key(stride, std::numeric_limits<std::int64_t>::max()),
+        improved(stride),
+        signed_vertices(3 * rows),
         view{rows, particles, stride, position.data(), velocity.data(), personal_best.data()} {}
   double& at(std::vector<double>& m, int r, int j) { return m[r * stride + j]; }
+
+  bool advance(int rows_a, double limit, bool project) {
+    const detail::Move move{inertia.data(),     pull_own.data(), pull_global.data(),
+                            global_best.data(), limit,           project};
+    const detail::Fitness fitness{signed_vertices.data(), !project, 1e-12};
+    return detail::advance_particles(view, rows_a, move, fitness, {key.data(), improved.data()},
+                                     next.data(), column.data());
+  }
+
+  int rows;
   int stride;
-  std::vector<double> position, velocity, personal_best;
+  std::vector<double> position, velocity, personal_best, next, column;
+  std::vector<double> inertia, pull_own, pull_global, global_best;
+  std::vector<std::int64_t> key, improved;
+  std::vector<double> signed_vertices;
   SwarmView view;
 };
+
+// The key of a feasible particle whose squared objective is `value`.
+std::int64_t feasible_key(double value) {
+  return __builtin_bit_cast(std::int64_t, value) - detail::kFeasibleKeyShift;
+}
 
 TEST(SwarmKernels, ProjectionMatchesTheSortBasedProjectionForNegativeParticlesOnly) {
   std::mt19937_64 rng(3);
   std::uniform_real_distribution<double> U(-1, 2);
-  for (int k = 1; k <= detail::kMaxRowsProjectedTogether; ++k) {
+  // Up to the sorting networks' limit, and beyond it where std::sort takes over.
+  for (int k = 1; k <= detail::kMaxRowsProjectedTogether + 4; ++k) {
     const int particles = 37;
-    TestSwarm s(k, particles);
-    std::vector<double> lowest(particles), theta(particles), sum(particles), count(particles);
+    // A's k rows, then B's single weight of 1, which never needs projecting.
+    TestSwarm s(k + 1, particles);
     for (int j = 0; j < particles; ++j) {
-      // Some particles carry ties, which the counting threshold must handle.
-      for (int r = 0; r < k; ++r) s.at(s.position, r, j) = j % 5 == 0 ? 0.75 : U(rng);
-      lowest[j] = j % 3 == 0 ? 0.0 : -1.0;
+      // Some particles carry ties, which the threshold must handle; every third one has no
+      // negative weight and is left alone.
+      for (int r = 0; r < k; ++r) {
+        const double w = j % 5 == 0 ? 0.75 : U(rng);
+        s.at(s.position, r, j) = j % 3 == 0 ? std::abs(w) : w;
+      }
+      s.at(s.position, k, j) = 1.0;
     }
+    // No inertia and no pulls: the move leaves every particle where it is.
     const std::vector<double> before = s.position;
-    detail::project_rows_onto_simplex(s.view, 0, k, lowest.data(), theta.data(), sum.data(),
-                                      count.data());
+    s.advance(k, 10.0, true);
     for (int j = 0; j < particles; ++j) {
       VectorX column(k);
       for (int r = 0; r < k; ++r) column(r) = before[r * s.stride + j];
-      const VectorX expected = lowest[j] < 0 ? project_onto_simplex(column) : column;
+      const VectorX expected = column.minCoeff() < 0 ? project_onto_simplex(column) : column;
       for (int r = 0; r < k; ++r) {
-        EXPECT_NEAR(s.at(s.position, r, j), expected(r), 1e-15) << "k " << k << " particle " << j;
+        EXPECT_NEAR(s.at(s.next, r, j), expected(r), 1e-15) << "k " << k << " particle " << j;
         EXPECT_NEAR(s.at(s.velocity, r, j), expected(r) - column(r), 1e-15);
       }
+      EXPECT_EQ(s.at(s.next, k, j), 1.0);
     }
   }
 }
@@ -66,8 +105,12 @@ TEST(SwarmKernels, RanksFollowConditions1To3WithTiesToTheLowerIndex) {
   }
   value[4] = 1e300;
   value[7] = 0.0;
-  std::vector<std::int64_t> key(particles), rank(particles);
-  detail::rank_personal_bests(particles, feasible.data(), value.data(), key.data(), rank.data());
+  std::vector<std::int64_t> key(32), rank(32);
+  for (int j = 0; j < particles; ++j) {
+    const std::int64_t bits = __builtin_bit_cast(std::int64_t, value[j]);
+    key[j] = feasible[j] != 0 ? feasible_key(value[j]) : bits;
+  }
+  detail::rank_personal_bests(particles, key.data(), rank.data());
 
   std::vector<int> order(particles);
   std::iota(order.begin(), order.end(), 0);
@@ -132,31 +175,53 @@ TEST(SwarmKernels, AMoveOverTheLimitScalesTheWholeVelocityAndKeepsTheSums) {
       s.at(s.personal_best, r, j) = own[r];
     }
   }
-  const std::vector<double> inertia(particles, 0.0), pull_global(particles, 0.0);
   // Pulls of 0.5 and 1 move within the limit; 4 and 8 exceed it and are scaled.
-  const std::vector<double> pull_own = {0.5, 1.0, 4.0, 8.0};
-  const std::vector<double> global(rows, 0.0);
-  std::vector<double> next(rows * s.stride), largest(particles), lowest_a(particles),
-      lowest_b(particles);
+  s.pull_own = {0.5, 1.0, 4.0, 8.0, 0, 0, 0, 0};
   const double limit = 1.0;
-  detail::move_particles(s.view, rows_a, inertia.data(), pull_own.data(), pull_global.data(),
-                         global.data(), limit, next.data(), largest.data(), lowest_a.data(),
-                         lowest_b.data());
+  s.advance(rows_a, limit, false);
   for (int j = 0; j < particles; ++j) {
-    double biggest = 0, sum_a = 0, sum_b = 0, smallest_a = 0;
+    double biggest = 0, sum_a = 0, sum_b = 0;
     for (int r = 0; r < rows; ++r) {
       const double v = s.at(s.velocity, r, j);
-      const double unlimited = pull_own[j] * (own[r] - weights[r]);
+      const double unlimited = s.pull_own[j] * (own[r] - weights[r]);
       biggest = std::max(biggest, std::abs(v));
-      EXPECT_NEAR(v, unlimited * std::min(1.0, limit / (pull_own[j] * 0.8)), 1e-15);
-      EXPECT_DOUBLE_EQ(next[r * s.stride + j], weights[r] + v);
-      (r < rows_a ? sum_a : sum_b) += next[r * s.stride + j];
-      if (r < rows_a) smallest_a = std::min(smallest_a, next[r * s.stride + j]);
+      EXPECT_NEAR(v, unlimited * std::min(1.0, limit / (s.pull_own[j] * 0.8)), 1e-15);
+      EXPECT_DOUBLE_EQ(s.at(s.next, r, j), weights[r] + v);
+      (r < rows_a ? sum_a : sum_b) += s.at(s.next, r, j);
     }
     EXPECT_LE(biggest, limit + 1e-15);
     EXPECT_NEAR(sum_a, 1.0, 1e-15);
     EXPECT_NEAR(sum_b, 1.0, 1e-15);
-    EXPECT_DOUBLE_EQ(lowest_a[j], smallest_a);
+  }
+}
+
+TEST(SwarmKernels, AParticleTakesItsNewPositionAsPersonalBestOnlyWhenItScoresBetter) {
+  // A is the point (1, 0, 0) or the origin, B the point (3, 0, 0): a particle's offset is
+  // 3 - lambda_0, its squared objective (3 - lambda_0)^2.
+  const int rows_a = 2, rows = 3, particles = 3;
+  TestSwarm s(rows, particles);
+  s.signed_vertices = {-1, 0, 0, 0, 0, 0, 3, 0, 0};
+  for (int j = 0; j < particles; ++j) {
+    s.at(s.position, 0, j) = 0.5;
+    s.at(s.position, 1, j) = 0.5;
+    s.at(s.position, 2, j) = 1.0;
+  }
+  // Particle 0 had a better best, particle 1 a worse one, particle 2 an infeasible one.
+  s.key = {feasible_key(2.0), feasible_key(9.0), __builtin_bit_cast(std::int64_t, 0.25)};
+  s.key.resize(s.stride, std::numeric_limits<std::int64_t>::max());
+  const std::vector<double> best_before = s.personal_best;
+  EXPECT_TRUE(s.advance(rows_a, 10.0, true));
+  const std::int64_t now = feasible_key(2.5 * 2.5);
+  EXPECT_EQ(s.key[0], feasible_key(2.0));
+  EXPECT_EQ(s.key[1], now);
+  EXPECT_EQ(s.key[2], now);
+  EXPECT_EQ(s.improved[0], 0);
+  EXPECT_NE(s.improved[1], 0);
+  EXPECT_NE(s.improved[2], 0);
+  for (int r = 0; r < rows; ++r) {
+    EXPECT_EQ(s.at(s.personal_best, r, 0), best_before[r * s.stride]);
+    EXPECT_EQ(s.at(s.personal_best, r, 1), s.at(s.next, r, 1));
+    EXPECT_EQ(s.at(s.personal_best, r, 2), s.at(s.next, r, 2));
   }
 }
 

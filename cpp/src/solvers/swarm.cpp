@@ -35,38 +35,8 @@ namespace {
 
 using detail::SwarmView;
 
-// Fitness under the feasibility ordering of Conditions 1-3: feasible particles compare by the
-// objective (5), infeasible ones by the violation (6), and any feasible one beats any infeasible.
-bool better(double feasible_a, double value_a, double feasible_b, double value_b) {
-  if (feasible_a != feasible_b) return feasible_a > feasible_b;
-  return value_a < value_b;
-}
-
 // The per-particle arrays of a solve, one row each of the workspace's `per_particle` block.
-enum PerParticle {
-  kInertia,
-  kPullOwn,
-  kPullGlobal,
-  kLargest,
-  kLowestA,
-  kLowestB,
-  kTheta,
-  kSum,
-  kCount,
-  kValue,
-  kFeasible,
-  kBestValue,
-  kBestFeasible,
-  kImproved,
-  kOffsetX,
-  kOffsetY,
-  kOffsetZ,
-  kSumA,
-  kSumB,
-  kLowest,
-  kHighest,
-  kPerParticleArrays
-};
+enum PerParticle { kInertia, kPullOwn, kPullGlobal, kPerParticleArrays };
 
 // Everything a solve writes besides its result. One per thread, kept between solves, so that a
 // solve of the same size as the previous one allocates nothing but its result's arrays.
@@ -74,9 +44,11 @@ struct SwarmWorkspace {
   std::vector<double> swarm;
   std::vector<double> per_particle;
   std::vector<double> uniforms;
+  std::vector<double> column;
   std::vector<double> signed_vertices;
   std::vector<double> global_best;
-  std::vector<std::int64_t> rank_keys;
+  std::vector<std::int64_t> best_key;
+  std::vector<std::int64_t> improved;
   std::vector<std::int64_t> rank;
   // (8)-(9) depend only on the rank, so they are tabulated, and kept while the swarm size and
   // inertia bounds stay the same.
@@ -85,7 +57,6 @@ struct SwarmWorkspace {
   Scalar by_rank_w_max = 0;
   VectorX lambda;
   VectorX delta;
-  VectorX column;
   VectorX scratch;
 };
 
@@ -119,7 +90,9 @@ class SwarmSolver {
               work_.swarm.data() + block,
               work_.swarm.data() + 2 * block};
     next_position_ = work_.swarm.data() + 3 * block;
-    work_.per_particle.resize(static_cast<std::size_t>(kPerParticleArrays) * stride_);
+    work_.column.resize(rows);
+    // Padding columns start as particles but keep zero coefficients, so they stay put.
+    work_.per_particle.assign(static_cast<std::size_t>(kPerParticleArrays) * stride_, 0.0);
     work_.global_best.resize(rows);
     work_.signed_vertices.resize(3 * static_cast<std::size_t>(rows));
     for (int r = 0; r < rows; ++r) {
@@ -128,34 +101,29 @@ class SwarmSolver {
                                   : Vector3(b.vertices().row(r - ka_).transpose());
       for (int c = 0; c < 3; ++c) work_.signed_vertices[3 * r + c] = vertex(c);
     }
-    work_.rank_keys.resize(size_);
-    work_.rank.resize(size_);
+    work_.best_key.resize(stride_);
+    work_.improved.resize(stride_);
+    work_.rank.resize(stride_);
     if (options.inertia == InertiaStrategy::rank_adaptive) tabulate_coefficients();
     work_.lambda.resize(ka_);
     work_.delta.resize(kb_);
-    work_.column.resize(rows);
+    fitness_ = {work_.signed_vertices.data(),
+                options.constraint_handling == ConstraintHandling::feasibility,
+                options.feasibility_tolerance};
   }
 
   DistanceResult run() {
     result_.history.reserve(static_cast<std::size_t>(options_.max_iterations) + 1);
     initialise();
-    evaluate();
-    std::copy_n(row(kValue), size_, row(kBestValue));
-    std::copy_n(row(kFeasible), size_, row(kBestFeasible));
-    std::copy_n(swarm_.position, static_cast<std::size_t>(swarm_.rows) * stride_,
-                swarm_.personal_best);
-    update_global_best();
+    detail::score_initial_positions(swarm_, ka_, fitness_, bests());
+    find_global_best();
     record_best();
     int iteration = 0;
     while (iteration < options_.max_iterations && !precision_reached()) {
       assign_coefficients(iteration);
-      move_particles();
-      evaluate();
-      const bool improved = detail::keep_personal_bests(
-          swarm_, row(kValue), row(kFeasible), row(kBestValue), row(kBestFeasible), row(kImproved));
-      if (improved) update_global_best();
+      const bool improved = advance();
       ++iteration;
-      if (improved) record_best();
+      if (improved && find_global_best()) record_best();
       result_.history.push_back(result_.distance);
     }
     result_.iterations = iteration;
@@ -195,25 +163,19 @@ class SwarmSolver {
     double* target = next_position_;
     for (double* points : {swarm_.position, target}) {
       for (const auto& [first_row, count] : {std::pair{0, ka_}, std::pair{ka_, kb_}}) {
-        detail::uniform_simplex_points(count, size_, stride_, cuts, points + first_row * stride_,
+        detail::uniform_simplex_points(count, stride_, stride_, cuts, points + first_row * stride_,
                                        work_.scratch.data());
         cuts += (count - 1) * stride_;
       }
     }
     for (int r = 0; r < swarm_.rows; ++r) {
-      for (int j = 0; j < size_; ++j) {
+      for (int j = 0; j < stride_; ++j) {
         weight(swarm_.velocity, r, j) = weight(target, r, j) - weight(swarm_.position, r, j);
       }
     }
   }
 
-  void evaluate() {
-    const detail::FitnessScratch scratch{row(kOffsetX), row(kOffsetY), row(kOffsetZ), row(kSumA),
-                                         row(kSumB),    row(kLowest),  row(kHighest)};
-    detail::evaluate_fitness(swarm_, ka_, work_.signed_vertices.data(),
-                             options_.constraint_handling == ConstraintHandling::feasibility,
-                             options_.feasibility_tolerance, scratch, row(kValue), row(kFeasible));
-  }
+  detail::Bests bests() { return {work_.best_key.data(), work_.improved.data()}; }
 
   void assign_coefficients(int iteration) {
     double* inertia = row(kInertia);
@@ -227,8 +189,7 @@ class SwarmSolver {
       std::fill_n(pull_global, size_, options_.c2);
     } else {
       std::int64_t* rank = work_.rank.data();
-      detail::rank_personal_bests(size_, row(kBestFeasible), row(kBestValue),
-                                  work_.rank_keys.data(), rank);
+      detail::rank_personal_bests(size_, work_.best_key.data(), rank);
       for (int j = 0; j < size_; ++j) {
         const ParticleCoefficients& c = work_.by_rank[rank[j]];
         inertia[j] = c.w;
@@ -246,48 +207,29 @@ class SwarmSolver {
 
   // Step 2: updates (10)-(11). r1 and r2 are one draw per particle, as (10) is written, so a
   // move is a combination of differences of feasible points and keeps the sums of (2) at one.
-  void move_particles() {
+  bool advance() {
     for (int r = 0; r < swarm_.rows; ++r) {
       work_.global_best[r] = weight(swarm_.personal_best, r, global_best_);
     }
-    detail::move_particles(swarm_, ka_, row(kInertia), row(kPullOwn), row(kPullGlobal),
-                           work_.global_best.data(), options_.velocity_limit, next_position_,
-                           row(kLargest), row(kLowestA), row(kLowestB));
+    const detail::Move move{
+        row(kInertia),           row(kPullOwn),
+        row(kPullGlobal),        work_.global_best.data(),
+        options_.velocity_limit, options_.constraint_handling == ConstraintHandling::projection};
+    const bool improved = detail::advance_particles(swarm_, ka_, move, fitness_, bests(),
+                                                    next_position_, work_.column.data());
     std::swap(swarm_.position, next_position_);
-    if (options_.constraint_handling != ConstraintHandling::projection) return;
-    // The move kept the sums, so only a negative weight takes a particle off its simplex.
-    project(0, ka_, row(kLowestA));
-    project(ka_, kb_, row(kLowestB));
+    return improved;
   }
 
-  void project(int first_row, int count, const double* lowest) {
-    if (std::none_of(lowest, lowest + size_, [](double w) { return w < 0; })) return;
-    if (count <= detail::kMaxRowsProjectedTogether) {
-      detail::project_rows_onto_simplex(swarm_, first_row, count, lowest, row(kTheta), row(kSum),
-                                        row(kCount));
-      return;
-    }
-    VectorX& weights = work_.column;
+  // Whether the global best moved: to another particle, or with its own personal best. Only
+  // then can the answer change.
+  bool find_global_best() {
+    const std::int64_t* key = work_.best_key.data();
+    const int before = global_best_;
     for (int j = 0; j < size_; ++j) {
-      if (lowest[j] >= 0) continue;
-      for (int i = 0; i < count; ++i) weights(i) = weight(swarm_.position, first_row + i, j);
-      project_onto_simplex_in_place(weights.head(count), work_.scratch);
-      for (int i = 0; i < count; ++i) {
-        double& x = weight(swarm_.position, first_row + i, j);
-        weight(swarm_.velocity, first_row + i, j) += weights(i) - x;
-        x = weights(i);
-      }
+      if (key[j] < key[global_best_]) global_best_ = j;
     }
-  }
-
-  void update_global_best() {
-    const double* feasible = row(kBestFeasible);
-    const double* value = row(kBestValue);
-    for (int j = 0; j < size_; ++j) {
-      if (better(feasible[j], value[j], feasible[global_best_], value[global_best_])) {
-        global_best_ = j;
-      }
-    }
+    return global_best_ != before || work_.improved[before] != 0;
   }
 
   // Turns the global best into an answer with exact guarantees: weights moved onto the simplexes
@@ -339,6 +281,7 @@ class SwarmSolver {
   // Moves are written here and then swapped in, so a move that breaks the velocity limit can be
   // redone from the old positions.
   double* next_position_;
+  detail::Fitness fitness_;
   int global_best_ = 0;
   DistanceResult result_;
 };

@@ -1,6 +1,7 @@
 #include "swarm_kernels.hpp"
 
 #include <algorithm>
+#include <cstring>
 #include <limits>
 
 #include "swarmcollide/detail/random.hpp"
@@ -19,8 +20,153 @@ namespace swarmcollide::detail {
 
 namespace {
 
+constexpr int kLanes = UniformLanes::kLanes;
+
+// GCC's vector extensions: one value per particle of a block, compiled to whatever width each
+// clone has, with every operation rounding as its scalar counterpart does.
+using Lanes = double __attribute__((vector_size(kLanes * sizeof(double))));
+using Mask = std::int64_t __attribute__((vector_size(kLanes * sizeof(double))));
+
+[[gnu::always_inline]] inline Lanes load(const double* p) {
+  Lanes v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+[[gnu::always_inline]] inline Mask load_keys(const std::int64_t* p) {
+  Mask v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+[[gnu::always_inline]] inline void store(double* p, Lanes v) { std::memcpy(p, &v, sizeof v); }
+[[gnu::always_inline]] inline void store(std::int64_t* p, Mask v) { std::memcpy(p, &v, sizeof v); }
+[[gnu::always_inline]] inline Lanes broadcast(double x) { return Lanes{} + x; }
 inline double smaller(double a, double b) { return a < b ? a : b; }
 inline double larger(double a, double b) { return a > b ? a : b; }
+[[gnu::always_inline]] inline Lanes smaller(Lanes a, Lanes b) { return a < b ? a : b; }
+[[gnu::always_inline]] inline Lanes larger(Lanes a, Lanes b) { return a > b ? a : b; }
+[[gnu::always_inline]] inline bool any(Mask m) {
+  std::int64_t set = 0;
+  for (int l = 0; l < kLanes; ++l) set |= m[l];
+  return set != 0;
+}
+static_assert(kLanes == 8, "lane_indices lists the lanes");
+[[gnu::always_inline]] inline Mask lane_indices(int first) {
+  return Mask{0, 1, 2, 3, 4, 5, 6, 7} + first;
+}
+
+// The score key of (5) or (6) for the block of particles starting at column j of `positions`.
+[[gnu::always_inline]] inline Mask score_block(const double* positions, int rows, int stride,
+                                               int rows_a, int j, const Fitness& fitness) {
+  const double* vertex = fitness.signed_vertices;
+  Lanes gx{}, gy{}, gz{}, sum_a{}, sum_b{};
+  // They stay at 0 and 1 exactly when every weight lies in [0, 1].
+  Lanes lowest{};
+  Lanes highest = broadcast(1.0);
+  for (int r = 0; r < rows; ++r) {
+    const Lanes w = load(positions + r * stride + j);
+    gx += vertex[3 * r] * w;
+    gy += vertex[3 * r + 1] * w;
+    gz += vertex[3 * r + 2] * w;
+    if (r < rows_a) {
+      sum_a += w;
+    } else {
+      sum_b += w;
+    }
+    if (fitness.check_bounds) {
+      lowest = smaller(lowest, w);
+      highest = larger(highest, w);
+    }
+  }
+  const Lanes off_a = sum_a - 1.0;
+  const Lanes off_b = sum_b - 1.0;
+  const Lanes violation = off_a * off_a + off_b * off_b;
+  const Mask ok = (lowest >= 0) & (highest <= 1) & (violation <= fitness.feasibility_tolerance);
+  // The square of (5) orders particles as (5) does, without a square root.
+  const Lanes squared_objective = gx * gx + gy * gy + gz * gz;
+  const Mask value = reinterpret_cast<Mask>(ok ? squared_objective : violation);
+  return ok ? value - kFeasibleKeyShift : value;
+}
+
+// The sort-based threshold: the largest (sum of the m biggest weights - 1) / m.
+double sorted_threshold(double* weights, int count) {
+  std::sort(weights, weights + count, [](double a, double b) { return a > b; });
+  double sum = 0;
+  double theta = -std::numeric_limits<double>::infinity();
+  for (int m = 1; m <= count; ++m) {
+    sum += weights[m - 1];
+    theta = std::max(theta, (sum - 1.0) / m);
+  }
+  return theta;
+}
+
+// The threshold of the projection onto the simplex for K weights per particle, as the sort-based
+// method has it: sorted by a network of compare-exchanges, all in registers.
+template <int K>
+[[gnu::always_inline]] inline Lanes network_threshold(const double* rows, int stride) {
+  Lanes sorted[K];
+  for (int i = 0; i < K; ++i) sorted[i] = load(rows + i * stride);
+  for (int pass = 0; pass < K; ++pass) {
+    for (int i = pass % 2; i + 1 < K; i += 2) {
+      const Lanes high = larger(sorted[i], sorted[i + 1]);
+      sorted[i + 1] = smaller(sorted[i], sorted[i + 1]);
+      sorted[i] = high;
+    }
+  }
+  Lanes sum{};
+  Lanes theta = broadcast(-std::numeric_limits<double>::infinity());
+  for (int m = 1; m <= K; ++m) {
+    sum += sorted[m - 1];
+    theta = larger(theta, (sum - 1.0) / static_cast<double>(m));
+  }
+  return theta;
+}
+
+// Projects the `count` rows of the block whose first weight is at `rows` onto the simplex, for
+// the particles marked `off`, and adds the displacement to `velocities`.
+[[gnu::always_inline]] inline void project_block(double* rows, double* velocities, int count,
+                                                 int stride, Mask off, double* column) {
+  if (!any(off)) return;
+  Lanes theta{};
+  switch (count) {
+    case 1:
+      theta = network_threshold<1>(rows, stride);
+      break;
+    case 2:
+      theta = network_threshold<2>(rows, stride);
+      break;
+    case 3:
+      theta = network_threshold<3>(rows, stride);
+      break;
+    case 4:
+      theta = network_threshold<4>(rows, stride);
+      break;
+    case 5:
+      theta = network_threshold<5>(rows, stride);
+      break;
+    case 6:
+      theta = network_threshold<6>(rows, stride);
+      break;
+    case 7:
+      theta = network_threshold<7>(rows, stride);
+      break;
+    case 8:
+      theta = network_threshold<8>(rows, stride);
+      break;
+    default:
+      for (int l = 0; l < kLanes; ++l) {
+        if (!off[l]) continue;
+        for (int i = 0; i < count; ++i) column[i] = rows[i * stride + l];
+        theta[l] = sorted_threshold(column, count);
+      }
+  }
+  for (int i = 0; i < count; ++i) {
+    const Lanes x = load(rows + i * stride);
+    const Lanes v = load(velocities + i * stride);
+    const Lanes moved = off ? larger(x - theta, Lanes{}) : x;
+    store(velocities + i * stride, v + (moved - x));
+    store(rows + i * stride, moved);
+  }
+}
 
 }  // namespace
 
@@ -102,189 +248,101 @@ void uniform_simplex_points(int count, int particles, int stride, double* __rest
 }
 
 SWARMCOLLIDE_CLONES
-void move_particles(const SwarmView& swarm, int rows_a, const double* __restrict inertia,
-                    const double* __restrict pull_own, const double* __restrict pull_global,
-                    const double* __restrict global_best, double limit, double* __restrict next,
-                    double* __restrict largest, double* __restrict lowest_a,
-                    double* __restrict lowest_b) {
-  const int n = swarm.particles;
-  for (int j = 0; j < n; ++j) largest[j] = 0;
-  for (int j = 0; j < n; ++j) lowest_a[j] = 0;
-  for (int j = 0; j < n; ++j) lowest_b[j] = 0;
-  for (int r = 0; r < swarm.rows; ++r) {
-    const double* __restrict x = swarm.position + r * swarm.stride;
-    const double* __restrict own = swarm.personal_best + r * swarm.stride;
-    double* __restrict v = swarm.velocity + r * swarm.stride;
-    double* __restrict moved = next + r * swarm.stride;
-    double* __restrict lowest = r < rows_a ? lowest_a : lowest_b;
-    const double global = global_best[r];
-    for (int j = 0; j < n; ++j) {
-      const double velocity =
-          inertia[j] * v[j] + pull_own[j] * (own[j] - x[j]) + pull_global[j] * (global - x[j]);
-      v[j] = velocity;
-      moved[j] = x[j] + velocity;
-      largest[j] = larger(largest[j], velocity < 0 ? -velocity : velocity);
-      lowest[j] = smaller(lowest[j], moved[j]);
-    }
+void score_initial_positions(const SwarmView& swarm, int rows_a, const Fitness& fitness,
+                             const Bests& bests) {
+  for (int j = 0; j < swarm.particles; j += kLanes) {
+    store(bests.key + j, score_block(swarm.position, swarm.rows, swarm.stride, rows_a, j, fitness));
+    store(bests.improved + j, ~Mask{});
   }
-  bool limited = false;
-  for (int j = 0; j < n; ++j) limited |= largest[j] > limit;
-  // The limit binds in about one iteration in a hundred, so the moves are redone only then.
-  if (!limited) return;
-  for (int j = 0; j < n; ++j) largest[j] = largest[j] > limit ? limit / largest[j] : 1.0;
-  for (int j = 0; j < n; ++j) lowest_a[j] = 0;
-  for (int j = 0; j < n; ++j) lowest_b[j] = 0;
-  for (int r = 0; r < swarm.rows; ++r) {
-    const double* __restrict x = swarm.position + r * swarm.stride;
-    double* __restrict v = swarm.velocity + r * swarm.stride;
-    double* __restrict moved = next + r * swarm.stride;
-    double* __restrict lowest = r < rows_a ? lowest_a : lowest_b;
-    for (int j = 0; j < n; ++j) {
-      v[j] *= largest[j];
-      moved[j] = x[j] + v[j];
-      lowest[j] = smaller(lowest[j], moved[j]);
-    }
-  }
+  std::copy_n(swarm.position, static_cast<std::size_t>(swarm.rows) * swarm.stride,
+              swarm.personal_best);
 }
 
 SWARMCOLLIDE_CLONES
-void project_rows_onto_simplex(const SwarmView& swarm, int first_row, int count,
-                               const double* __restrict lowest, double* __restrict theta,
-                               double* __restrict sum, double* __restrict count_at_least) {
-  const int n = swarm.particles;
-  double* const rows = swarm.position + first_row * swarm.stride;
-  for (int j = 0; j < n; ++j) theta[j] = -std::numeric_limits<double>::infinity();
-  for (int i = 0; i < count; ++i) {
-    const double* __restrict pivot = rows + i * swarm.stride;
-    for (int j = 0; j < n; ++j) sum[j] = 0;
-    for (int j = 0; j < n; ++j) count_at_least[j] = 0;
-    for (int l = 0; l < count; ++l) {
-      const double* __restrict other = rows + l * swarm.stride;
-      for (int j = 0; j < n; ++j) {
-        const bool at_least = other[j] >= pivot[j];
-        sum[j] += at_least ? other[j] : 0.0;
-        count_at_least[j] += at_least ? 1.0 : 0.0;
+bool advance_particles(const SwarmView& swarm, int rows_a, const Move& move, const Fitness& fitness,
+                       const Bests& bests, double* __restrict next, double* __restrict column) {
+  const int stride = swarm.stride;
+  const int rows = swarm.rows;
+  const double limit = move.velocity_limit;
+  Mask any_improved{};
+  for (int j = 0; j < swarm.particles; j += kLanes) {
+    const Lanes inertia = load(move.inertia + j);
+    const Lanes pull_own = load(move.pull_own + j);
+    const Lanes pull_global = load(move.pull_global + j);
+    Lanes largest{};
+    Lanes lowest_a{};
+    Lanes lowest_b{};
+    for (int r = 0; r < rows; ++r) {
+      const Lanes x = load(swarm.position + r * stride + j);
+      const Lanes v = load(swarm.velocity + r * stride + j);
+      const Lanes own = load(swarm.personal_best + r * stride + j);
+      const Lanes velocity =
+          inertia * v + pull_own * (own - x) + pull_global * (move.global_best[r] - x);
+      const Lanes moved = x + velocity;
+      store(swarm.velocity + r * stride + j, velocity);
+      store(next + r * stride + j, moved);
+      largest = larger(largest, velocity < 0 ? -velocity : velocity);
+      if (r < rows_a) {
+        lowest_a = smaller(lowest_a, moved);
+      } else {
+        lowest_b = smaller(lowest_b, moved);
       }
     }
-    for (int j = 0; j < n; ++j) theta[j] = larger(theta[j], (sum[j] - 1.0) / count_at_least[j]);
-  }
-  for (int i = 0; i < count; ++i) {
-    double* __restrict x = rows + i * swarm.stride;
-    double* __restrict v = swarm.velocity + (first_row + i) * swarm.stride;
-    for (int j = 0; j < n; ++j) {
-      const double projected = larger(x[j] - theta[j], 0.0);
-      const double moved = lowest[j] < 0 ? projected : x[j];
-      v[j] += moved - x[j];
-      x[j] = moved;
-    }
-  }
-}
-
-SWARMCOLLIDE_CLONES
-void evaluate_fitness(const SwarmView& swarm, int rows_a, const double* __restrict signed_vertices,
-                      bool check_bounds, double feasibility_tolerance,
-                      const FitnessScratch& scratch, double* __restrict value,
-                      double* __restrict feasible) {
-  const int n = swarm.particles;
-  double* __restrict gx = scratch.offset_x;
-  double* __restrict gy = scratch.offset_y;
-  double* __restrict gz = scratch.offset_z;
-  double* __restrict lowest = scratch.lowest;
-  double* __restrict highest = scratch.highest;
-  double* __restrict sum_a = scratch.sum_a;
-  double* __restrict sum_b = scratch.sum_b;
-  // The first weight of each body starts the sums, which spares zeroing them.
-  const double* __restrict first_a = swarm.position;
-  const double* __restrict first_b = swarm.position + rows_a * swarm.stride;
-  for (int j = 0; j < n; ++j) {
-    gx[j] = signed_vertices[0] * first_a[j] + signed_vertices[3 * rows_a] * first_b[j];
-    gy[j] = signed_vertices[1] * first_a[j] + signed_vertices[3 * rows_a + 1] * first_b[j];
-    gz[j] = signed_vertices[2] * first_a[j] + signed_vertices[3 * rows_a + 2] * first_b[j];
-    sum_a[j] = first_a[j];
-    sum_b[j] = first_b[j];
-    // They stay at 0 and 1 exactly when every weight lies in [0, 1].
-    lowest[j] = check_bounds ? smaller(smaller(first_a[j], first_b[j]), 0.0) : 0.0;
-    highest[j] = check_bounds ? larger(larger(first_a[j], first_b[j]), 1.0) : 1.0;
-  }
-  for (int r = 0; r < swarm.rows; ++r) {
-    if (r == 0 || r == rows_a) continue;
-    const double* __restrict w = swarm.position + r * swarm.stride;
-    const double vx = signed_vertices[3 * r];
-    const double vy = signed_vertices[3 * r + 1];
-    const double vz = signed_vertices[3 * r + 2];
-    double* __restrict total = r < rows_a ? sum_a : sum_b;
-    for (int j = 0; j < n; ++j) {
-      gx[j] += vx * w[j];
-      gy[j] += vy * w[j];
-      gz[j] += vz * w[j];
-      total[j] += w[j];
-    }
-    if (check_bounds) {
-      for (int j = 0; j < n; ++j) {
-        lowest[j] = smaller(lowest[j], w[j]);
-        highest[j] = larger(highest[j], w[j]);
+    // The limit binds in about one iteration in a hundred, so the block is redone only then.
+    const Mask limited = largest > limit;
+    if (any(limited)) {
+      const Lanes scale = limited ? limit / largest : broadcast(1.0);
+      lowest_a = Lanes{};
+      lowest_b = Lanes{};
+      for (int r = 0; r < rows; ++r) {
+        const Lanes velocity = load(swarm.velocity + r * stride + j) * scale;
+        const Lanes moved = load(swarm.position + r * stride + j) + velocity;
+        store(swarm.velocity + r * stride + j, velocity);
+        store(next + r * stride + j, moved);
+        if (r < rows_a) {
+          lowest_a = smaller(lowest_a, moved);
+        } else {
+          lowest_b = smaller(lowest_b, moved);
+        }
       }
     }
-  }
-  for (int j = 0; j < n; ++j) {
-    const double off_a = sum_a[j] - 1;
-    const double off_b = sum_b[j] - 1;
-    const double violation = off_a * off_a + off_b * off_b;
-    const bool ok = lowest[j] >= 0 && highest[j] <= 1 && violation <= feasibility_tolerance;
-    // The square of (5) orders particles as (5) does, without a square root.
-    const double squared_objective = gx[j] * gx[j] + gy[j] * gy[j] + gz[j] * gz[j];
-    value[j] = ok ? squared_objective : violation;
-    feasible[j] = ok ? 1.0 : 0.0;
-  }
-}
-
-SWARMCOLLIDE_CLONES
-bool keep_personal_bests(const SwarmView& swarm, const double* __restrict value,
-                         const double* __restrict feasible, double* __restrict best_value,
-                         double* __restrict best_feasible, double* __restrict improved) {
-  const int n = swarm.particles;
-  double any = 0;
-  for (int j = 0; j < n; ++j) {
-    const bool better = (feasible[j] > best_feasible[j]) |
-                        ((feasible[j] == best_feasible[j]) & (value[j] < best_value[j]));
-    improved[j] = better ? 1.0 : 0.0;
-    best_value[j] = better ? value[j] : best_value[j];
-    best_feasible[j] = better ? feasible[j] : best_feasible[j];
-    any = larger(any, improved[j]);
-  }
-  if (any == 0) return false;
-  for (int r = 0; r < swarm.rows; ++r) {
-    const double* __restrict x = swarm.position + r * swarm.stride;
-    double* __restrict own = swarm.personal_best + r * swarm.stride;
-    for (int j = 0; j < n; ++j) {
-      const double kept = own[j];
-      own[j] = improved[j] != 0 ? x[j] : kept;
+    if (move.project) {
+      // The move kept the sums, so only a negative weight takes a particle off its simplex.
+      project_block(next + j, swarm.velocity + j, rows_a, stride, lowest_a < 0, column);
+      project_block(next + rows_a * stride + j, swarm.velocity + rows_a * stride + j, rows - rows_a,
+                    stride, lowest_b < 0, column);
+    }
+    const Mask key = score_block(next, rows, stride, rows_a, j, fitness);
+    const Mask best_key = load_keys(bests.key + j);
+    const Mask better = key < best_key;
+    store(bests.key + j, better ? key : best_key);
+    store(bests.improved + j, better);
+    any_improved |= better;
+    if (!any(better)) continue;
+    for (int r = 0; r < rows; ++r) {
+      double* own = swarm.personal_best + r * stride + j;
+      store(own, better ? load(next + r * stride + j) : load(own));
     }
   }
-  return true;
+  return any(any_improved);
 }
 
 SWARMCOLLIDE_CLONES
-void rank_personal_bests(int particles, const double* __restrict best_feasible,
-                         const double* __restrict best_value, std::int64_t* __restrict key,
+void rank_personal_bests(int particles, const std::int64_t* __restrict key,
                          std::int64_t* __restrict rank) {
-  // Nonnegative doubles order like their bit patterns. Feasible values are shifted below every
-  // infeasible one, which is what Conditions 1-3 ask, and one integer comparison decides.
-  constexpr std::int64_t kBelowInfeasible = 0x7ff0000000000001LL;
-  for (int j = 0; j < particles; ++j) {
-    const std::int64_t bits = __builtin_bit_cast(std::int64_t, best_value[j]);
-    key[j] = best_feasible[j] != 0 ? bits - kBelowInfeasible : bits;
-  }
-  // A particle ranks behind every smaller key and behind equal keys of lower index; keys are
-  // integers below 2^63 - 2^52, so "equal and lower index" is "less than key + 1".
-  for (int j = 0; j < particles; ++j) {
-    const std::int64_t own = key[j];
-    std::int64_t ahead = 0;
+  const int blocks_end = (particles + kLanes - 1) / kLanes * kLanes;
+  // Particle j ranks behind every k with a smaller key and every k < j with an equal one. Keys
+  // are below 2^63 - 2^52, so that is key_k < key_j + [k < j].
+  for (int j = 0; j < blocks_end; j += kLanes) {
+    const Mask own = load_keys(key + j);
+    const Mask own_or_equal = own + 1;
+    const Mask lane = lane_indices(j);
+    Mask ahead{};
     for (int k = 0; k < particles; ++k) {
-      const std::int64_t threshold = k < j ? own + 1 : own;
-      ahead += key[k] < threshold ? 1 : 0;
+      const Mask threshold = k < j ? own_or_equal : (lane > k ? own_or_equal : own);
+      ahead -= key[k] < threshold;
     }
-    rank[j] = ahead;
+    store(rank + j, ahead);
   }
 }
 

@@ -32,6 +32,8 @@ void draw_uniforms(UniformLanes& lanes, double* out, int count);
 void uniform_simplex_points(int count, int particles, int stride, double* uniforms, double* out,
                             double* column);
 
+/// Particles are processed a block of kLanes at a time: `stride` is a multiple of kLanes and
+/// the columns between `particles` and `stride` are computed too but never reported.
 struct SwarmView {
   int rows;
   int particles;
@@ -41,57 +43,63 @@ struct SwarmView {
   double* personal_best;
 };
 
-/// (10) and (11) for every weight of every particle: v = w v + c1 r1 (p - x) + c2 r2 (g - x), with
-/// the per-particle w, c1 r1 and c2 r2 and the global best's weights g, then x + v written to
-/// `next`. A particle whose largest velocity component exceeds `limit` has its whole velocity
-/// scaled down, so that the move keeps the weights' sums. `largest` is scratch; `lowest_a` and
-/// `lowest_b` receive each particle's smallest new lambda and delta.
-void move_particles(const SwarmView& swarm, int rows_a, const double* inertia,
-                    const double* pull_own, const double* pull_global, const double* global_best,
-                    double limit, double* next, double* largest, double* lowest_a,
-                    double* lowest_b);
+/// How particles are scored. `signed_vertices` holds, per row, -x_i for A's rows and y_j for
+/// B's, three values each, so that sum_r w_r v_r is the offset of (5). With `check_bounds`, a
+/// weight outside [0, 1] also makes a particle infeasible.
+struct Fitness {
+  const double* signed_vertices;
+  bool check_bounds;
+  double feasibility_tolerance;
+};
 
-/// The most weights per body that `project_rows_onto_simplex` handles; it costs O(k^2) per
-/// particle, and longer vectors are projected one particle at a time by sorting.
+/// A score orders particles as Conditions 1-3 do, by one integer comparison, smaller being
+/// better: the bits of the square of (5) for a feasible particle, less kFeasibleKeyShift, and the
+/// bits of the violation (6) otherwise. Nonnegative doubles order like their bits, and the shift
+/// puts every feasible score below every infeasible one.
+constexpr std::int64_t kFeasibleKeyShift = 0x7ff0000000000001LL;
+
+/// Per particle, its personal best's score and whether the last generation improved it (nonzero).
+struct Bests {
+  std::int64_t* key;
+  std::int64_t* improved;
+};
+
+/// Scores every particle's position and takes it as its personal best (generation 0).
+void score_initial_positions(const SwarmView& swarm, int rows_a, const Fitness& fitness,
+                             const Bests& bests);
+
+/// One generation's move: per particle, the inertia w and the pulls c1 r1 and c2 r2 of (10); the
+/// global best's weights, one per row; the velocity limit; and whether a move that leaves a
+/// simplex is projected back onto it.
+struct Move {
+  const double* inertia;
+  const double* pull_own;
+  const double* pull_global;
+  const double* global_best;
+  double velocity_limit;
+  bool project;
+};
+
+/// The most weights per body projected for a block of particles at once, by a sorting network;
+/// longer vectors are projected one particle at a time by std::sort.
 constexpr int kMaxRowsProjectedTogether = 8;
 
-/// Projects the `count` rows starting at `first_row` onto the probability simplex for every
-/// particle whose `lowest` weight is negative, adding the displacement to its velocity. Uses
-/// theta = max over i of (sum of the weights >= w_i, minus 1) / (their number), which equals the
-/// sort-based threshold of the projection without sorting. `theta`, `sum` and `count_at_least`
-/// are scratch arrays of `particles` values.
-void project_rows_onto_simplex(const SwarmView& swarm, int first_row, int count,
-                               const double* lowest, double* theta, double* sum,
-                               double* count_at_least);
+/// One generation for every particle, block by block while its rows are in cache:
+/// - (10)-(11): v = w v + c1 r1 (p - x) + c2 r2 (g - x), and x + v written to `next`. A particle
+///   whose largest velocity component exceeds the limit has its whole velocity scaled down, so
+///   that the move keeps the weights' sums.
+/// - With `project`, a particle with a negative weight is projected onto the simplexes, by the
+///   sort-based threshold, and the displacement added to its velocity.
+/// - Conditions 1-3: a particle whose score beats its personal best's (feasible beats infeasible,
+///   then the smaller value wins) takes its new position as personal best; `improved` marks it.
+/// Padding columns take part like particles and may be marked improved. Returns whether any
+/// column improved. `column` is scratch for `rows` values.
+bool advance_particles(const SwarmView& swarm, int rows_a, const Move& move, const Fitness& fitness,
+                       const Bests& bests, double* next, double* column);
 
-/// Each particle's objective (5) and violation (6): `offset` gets sum_j delta_j y_j - sum_i
-/// lambda_i x_i component by component; `signed_vertices` holds, per row, -x_i for A's rows and
-/// y_j for B's, three values each. With `check_bounds`, a weight outside [0, 1] also makes the
-/// particle infeasible. `value` is the square of (5) for feasible particles and (6) otherwise;
-/// `feasible` is 1 or 0.
-struct FitnessScratch {
-  double* offset_x;
-  double* offset_y;
-  double* offset_z;
-  double* sum_a;
-  double* sum_b;
-  double* lowest;
-  double* highest;
-};
-void evaluate_fitness(const SwarmView& swarm, int rows_a, const double* signed_vertices,
-                      bool check_bounds, double feasibility_tolerance,
-                      const FitnessScratch& scratch, double* value, double* feasible);
-
-/// Conditions 1-3: a particle whose new fitness beats its personal best's (feasible beats
-/// infeasible, then the smaller value wins) takes its position as personal best. Returns whether
-/// any particle improved.
-bool keep_personal_bests(const SwarmView& swarm, const double* value, const double* feasible,
-                         double* best_value, double* best_feasible, double* improved);
-
-/// The rank (0 = best) of each particle's personal best under the ordering of Conditions 1-3,
-/// ties going to the lower index. Counting rather than sorting: no branch depends on the data.
-/// `key` is scratch for `particles` values.
-void rank_personal_bests(int particles, const double* best_feasible, const double* best_value,
-                         std::int64_t* key, std::int64_t* rank);
+/// The rank (0 = best) of each particle's personal best score, ties going to the lower index.
+/// Counting rather than sorting: no branch depends on the data. `key` and `rank` hold
+/// `particles` values rounded up to whole blocks of kLanes.
+void rank_personal_bests(int particles, const std::int64_t* key, std::int64_t* rank);
 
 }  // namespace swarmcollide::detail
