@@ -337,11 +337,11 @@ void rank_personal_bests(int particles, const std::int64_t* __restrict key,
     const Mask own = load_keys(key + j);
     const Mask own_or_equal = own + 1;
     const Mask lane = lane_indices(j);
+    const int block_end = j + kLanes < particles ? j + kLanes : particles;
     Mask ahead{};
-    for (int k = 0; k < particles; ++k) {
-      const Mask threshold = k < j ? own_or_equal : (lane > k ? own_or_equal : own);
-      ahead -= key[k] < threshold;
-    }
+    for (int k = 0; k < j; ++k) ahead -= key[k] < own_or_equal;
+    for (int k = j; k < block_end; ++k) ahead -= key[k] < (lane > k ? own_or_equal : own);
+    for (int k = block_end; k < particles; ++k) ahead -= key[k] < own;
     store(rank + j, ahead);
   }
 }
