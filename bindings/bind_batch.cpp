@@ -1,5 +1,6 @@
 #include <pybind11/eigen.h>
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -46,6 +47,40 @@ std::vector<ConvexPolyhedron> to_polyhedra(const py::handle& bodies, const char*
 
 int to_threads(const py::object& threads) { return threads.is_none() ? 0 : threads.cast<int>(); }
 
+using Stack = py::array_t<Scalar, py::array::c_style | py::array::forcecast>;
+
+// An (m, n, 3) array as a C-contiguous array of doubles; nothing for anything else.
+std::optional<Stack> as_stack(const py::handle& bodies, const char* name) {
+  if (!py::isinstance<py::array>(bodies) || bodies.cast<py::array>().ndim() != 3) {
+    return std::nullopt;
+  }
+  auto stack = Stack::ensure(bodies);
+  if (!stack || stack.shape(2) != 3 || stack.shape(1) == 0) {
+    throw py::value_error(std::string(name) + " must have shape (m, n, 3) with n >= 1");
+  }
+  return stack;
+}
+
+VertexStack view(const Stack& stack, const char* name) {
+  return {stack.data(), static_cast<std::size_t>(stack.shape(0)), stack.shape(1), name};
+}
+
+// `query(as, bs)` without the GIL. Two (m, n, 3) arrays are passed as vertex stacks, so that the
+// threads build and free the bodies; anything else is converted to bodies here first.
+template <typename Query>
+BatchResult run(const py::object& as, const py::object& bs, const Query& query) {
+  const std::optional<Stack> stack_a = as_stack(as, "As");
+  const std::optional<Stack> stack_b = as_stack(bs, "Bs");
+  if (stack_a && stack_b) {
+    py::gil_scoped_release release;
+    return query(view(*stack_a, "As"), view(*stack_b, "Bs"));
+  }
+  const auto bodies_a = to_polyhedra(as, "As");
+  const auto bodies_b = to_polyhedra(bs, "Bs");
+  py::gil_scoped_release release;
+  return query(bodies_a, bodies_b);
+}
+
 }  // namespace
 
 void bind_batch(py::module_& m) {
@@ -78,22 +113,20 @@ iterations : numpy.ndarray of int, shape (m,)
       "distance_many",
       [](const py::object& as, const py::object& bs, const DistanceOptions& options,
          const py::object& threads) {
-        const auto bodies_a = to_polyhedra(as, "As");
-        const auto bodies_b = to_polyhedra(bs, "Bs");
         const int count = to_threads(threads);
-        py::gil_scoped_release release;
-        return distance_many(bodies_a, bodies_b, options, count);
+        return run(as, bs, [&](const auto& a, const auto& b) {
+          return distance_many(a, b, options, count);
+        });
       },
       py::arg("As"), py::arg("Bs"), py::arg("options"), py::arg("threads"));
   m.def(
       "collide_many",
       [](const py::object& as, const py::object& bs, const DistanceOptions& options, bool escalate,
          const py::object& threads) {
-        const auto bodies_a = to_polyhedra(as, "As");
-        const auto bodies_b = to_polyhedra(bs, "Bs");
         const int count = to_threads(threads);
-        py::gil_scoped_release release;
-        return collide_many(bodies_a, bodies_b, options, escalate, count);
+        return run(as, bs, [&](const auto& a, const auto& b) {
+          return collide_many(a, b, options, escalate, count);
+        });
       },
       py::arg("As"), py::arg("Bs"), py::arg("options"), py::arg("escalate"), py::arg("threads"));
   m.def("pair_seed", &pair_seed, py::arg("seed"), py::arg("index"),

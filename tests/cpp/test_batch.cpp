@@ -1,7 +1,9 @@
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <random>
 #include <stdexcept>
+#include <string>
 
 #include "paper_cases.hpp"
 #include "swarmcollide/queries/batch.hpp"
@@ -66,6 +68,48 @@ TEST(Batch, ErrorsAreRethrown) {
   bad.swarm.swarm_size = 0;
   EXPECT_THROW(distance_many(two, two, bad, 2), std::invalid_argument);
   EXPECT_THROW(distance_many(two, two, {}, -1), std::invalid_argument);
+}
+
+TEST(Batch, VertexStacksGiveTheAnswersOfTheBodiesTheyHold) {
+  std::mt19937_64 rng(6);
+  std::normal_distribution<double> normal;
+  const int pairs = 40, vertices = 7;
+  std::vector<double> points_a(pairs * vertices * 3), points_b(points_a.size());
+  for (double& x : points_a) x = normal(rng);
+  for (double& x : points_b) x = normal(rng) + 1.5;
+  std::vector<ConvexPolyhedron> as, bs;
+  for (int i = 0; i < pairs; ++i) {
+    as.emplace_back(Eigen::Map<const VertexMatrix>(&points_a[i * vertices * 3], vertices, 3));
+    bs.emplace_back(Eigen::Map<const VertexMatrix>(&points_b[i * vertices * 3], vertices, 3));
+  }
+  const VertexStack stack_a{points_a.data(), pairs, vertices, "as"};
+  const VertexStack stack_b{points_b.data(), pairs, vertices, "bs"};
+  DistanceOptions options;
+  options.swarm.max_iterations = 20;
+  const BatchResult from_bodies = distance_many(as, bs, options, 1);
+  const BatchResult from_stacks = distance_many(stack_a, stack_b, options, 2);
+  EXPECT_EQ(from_stacks.distance, from_bodies.distance);
+  EXPECT_EQ(from_stacks.point_b, from_bodies.point_b);
+  const BatchResult verdicts = collide_many(stack_a, stack_b, options, true, 2);
+  EXPECT_TRUE((verdicts.colliding == collide_many(as, bs, options, true, 1).colliding).all());
+}
+
+TEST(Batch, AStackBodyThatCannotBeBuiltIsNamed) {
+  // Two tetrahedra; the second of `broken` has a NaN coordinate.
+  std::vector<double> points = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
+  points.insert(points.end(), points.begin(), points.end());
+  std::vector<double> broken = points;
+  broken[4 * 3 + 5] = std::numeric_limits<double>::quiet_NaN();
+  const VertexStack good{points.data(), 1, 4, "as"};
+  const VertexStack bad{broken.data(), 2, 4, "bs"};
+  const VertexStack two_good{points.data(), 2, 4, "as"};
+  EXPECT_THROW(distance_many(good, bad, {}), std::invalid_argument);
+  try {
+    distance_many(two_good, bad, {}, 2);
+    ADD_FAILURE() << "a NaN vertex was accepted";
+  } catch (const std::invalid_argument& error) {
+    EXPECT_NE(std::string(error.what()).find("bs[1]: "), std::string::npos) << error.what();
+  }
 }
 
 }  // namespace

@@ -89,6 +89,17 @@ BatchResult run_batch(std::size_t count, std::size_t other_count, const Distance
   return batch;
 }
 
+// Body i of a stack, built on the calling thread.
+ConvexPolyhedron body(const VertexStack& stack, std::size_t i) {
+  const Scalar* points = stack.points + i * static_cast<std::size_t>(stack.vertices) * 3;
+  try {
+    return ConvexPolyhedron(Eigen::Map<const VertexMatrix>(points, stack.vertices, 3));
+  } catch (const std::invalid_argument& error) {
+    throw std::invalid_argument(std::string(stack.name) + "[" + std::to_string(i) +
+                                "]: " + error.what());
+  }
+}
+
 }  // namespace
 
 BatchResult distance_many(const std::vector<ConvexPolyhedron>& as,
@@ -105,6 +116,26 @@ BatchResult collide_many(const std::vector<ConvexPolyhedron>& as,
   return run_batch(as.size(), bs.size(), options, threads,
                    [&](std::size_t i, const DistanceOptions& o) {
                      return collision(as[i], bs[i], o, escalate);
+                   });
+}
+
+BatchResult distance_many(const VertexStack& as, const VertexStack& bs,
+                          const DistanceOptions& options, int threads) {
+  return run_batch(as.count, bs.count, options, threads,
+                   [&](std::size_t i, const DistanceOptions& o) {
+                     const ConvexPolyhedron a = body(as, i);
+                     const ConvexPolyhedron b = body(bs, i);
+                     return distance(a, b, o);
+                   });
+}
+
+BatchResult collide_many(const VertexStack& as, const VertexStack& bs,
+                         const DistanceOptions& options, bool escalate, int threads) {
+  return run_batch(as.count, bs.count, options, threads,
+                   [&](std::size_t i, const DistanceOptions& o) {
+                     const ConvexPolyhedron a = body(as, i);
+                     const ConvexPolyhedron b = body(bs, i);
+                     return collision(a, b, o, escalate);
                    });
 }
 

@@ -38,4 +38,25 @@ BatchResult collide_many(const std::vector<ConvexPolyhedron>& as,
                          const std::vector<ConvexPolyhedron>& bs, const DistanceOptions& options,
                          bool escalate = true, int threads = 0);
 
+/// `count` bodies of `vertices` points each, stored one after another: body i's points are the
+/// rows i * vertices to (i + 1) * vertices - 1 of a row-major (count * vertices, 3) array. `name`
+/// is what errors call the sequence ("As[3]: ...").
+struct VertexStack {
+  const Scalar* points;
+  std::size_t count;
+  Eigen::Index vertices;
+  const char* name;
+};
+
+/// `distance_many` over bodies built from vertex stacks. Each pair's bodies are built, answered
+/// and freed on the thread that answers the pair, so building and freeing them is spread over
+/// the threads too and no thread frees memory that another allocated. A body that cannot be
+/// built throws std::invalid_argument naming it.
+BatchResult distance_many(const VertexStack& as, const VertexStack& bs,
+                          const DistanceOptions& options, int threads = 0);
+
+/// `collide_many` over bodies built from vertex stacks, like the `distance_many` above.
+BatchResult collide_many(const VertexStack& as, const VertexStack& bs,
+                         const DistanceOptions& options, bool escalate = true, int threads = 0);
+
 }  // namespace swarmcollide
