@@ -100,26 +100,33 @@ def coal_loop(As: np.ndarray, Bs: np.ndarray) -> List[float]:
 
 
 def peak_memory(pairs: int, method: str) -> Dict[str, float]:
-    """Peak resident memory of a fresh process that solves ``pairs`` pairs, and of one that only
-    builds the input arrays, in MiB."""
+    """Memory of a fresh process that solves ``pairs`` pairs, in MiB: the resident size with the
+    input arrays built, and the peak while solving. The kernel's peak counter is reset once the
+    inputs exist, so the temporaries of building them do not hide the solve's own peak."""
     script = f"""
-import resource, sys
+import sys
 sys.path.insert(0, {str(Path(__file__).parent)!r})
 from batch import make_pairs
+import swarmcollide as sc
+
+def status_mib(field):
+    with open("/proc/self/status") as f:
+        line = next(l for l in f if l.startswith(field + ":"))
+    return float(line.split()[1]) / 1024
+
 As, Bs = make_pairs({pairs})
-if sys.argv[1] == "solve":
-    import swarmcollide as sc
-    r = sc.distance_many(As, Bs, method={method!r}, threads=2)
-    assert len(r) == {pairs}
-print(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024)
+with open("/proc/self/clear_refs", "w") as f:
+    f.write("5")
+inputs = status_mib("VmRSS")
+r = sc.distance_many(As, Bs, method={method!r}, threads=2)
+assert len(r) == {pairs}
+print(inputs, status_mib("VmHWM"))
 """
-    mib = {}
-    for stage in ("inputs", "solve"):
-        done = subprocess.run([sys.executable, "-c", script, stage], check=True,
-                              capture_output=True, text=True)
-        mib[stage] = float(done.stdout.strip())
-    return {"pairs": pairs, "method": method, "inputs_mib": mib["inputs"],
-            "peak_mib": mib["solve"], "solve_mib": mib["solve"] - mib["inputs"]}
+    done = subprocess.run([sys.executable, "-c", script], check=True, capture_output=True,
+                          text=True)
+    inputs, peak = (float(x) for x in done.stdout.split())
+    return {"pairs": pairs, "method": method, "inputs_mib": inputs, "peak_mib": peak,
+            "solve_mib": peak - inputs}
 
 
 def main() -> int:

@@ -374,10 +374,11 @@ def batch_section(path: str) -> str:
               table(["method", "pairs", "1 thread", "2 threads", "throughput gain"], rows), ""]
     memory = data["memory"]
     lines += [f"Peak memory for {memory['pairs']:,} pairs (`method=\"{memory['method']}\"`, "
-              f"2 threads, fresh process): {memory['peak_mib']:.0f} MiB, of which "
-              f"{memory['inputs_mib']:.0f} MiB is the process with just the input arrays; the "
-              f"solve adds {memory['solve_mib']:.0f} MiB (the bodies built from the arrays and "
-              "the result columns)."]
+              f"2 threads, fresh process, (m, n, 3) arrays in): {memory['peak_mib']:.0f} MiB, "
+              f"of which {memory['inputs_mib']:.0f} MiB is the process holding the input arrays; "
+              f"the solve adds {memory['solve_mib']:.0f} MiB at its peak (the result columns, "
+              "and the bodies of the pairs being answered, which are built and freed pair by "
+              "pair)."]
     return "\n".join(lines)
 
 
