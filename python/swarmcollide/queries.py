@@ -369,7 +369,8 @@ def distance_many(
     Parameters
     ----------
     As, Bs : sequence of ConvexPolyhedron or array_like, or array_like of shape (m, n, 3)
-        The bodies, pairwise.
+        The bodies, pairwise. Two (m, n, 3) arrays are the fastest input: each pair's bodies
+        are then built and freed by the thread that answers it.
     method, seed
         As for ``distance``.
     threads : int, optional
