@@ -28,6 +28,23 @@ VertexMatrix polytope(int n, std::mt19937_64& rng, double shift) {
   return v;
 }
 
+// Times `distance(a, b, options)` over 3000 seeds and prints one line led by `label`.
+void time_queries(const char* label, const ConvexPolyhedron& a, const ConvexPolyhedron& b,
+                  DistanceOptions options) {
+  std::vector<double> t;
+  double sink = 0;
+  for (int r = 0; r < 3000; ++r) {
+    options.swarm.seed = r;
+    const auto t0 = std::chrono::steady_clock::now();
+    sink += distance(a, b, options).distance;
+    t.push_back(
+        std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count());
+  }
+  std::sort(t.begin(), t.end());
+  std::printf("%s, tolerance %g: median %.1f us, p90 %.1f us (mean distance %.6f)\n", label,
+              options.swarm.tolerance, t[t.size() / 2], t[t.size() * 9 / 10], sink / 3000);
+}
+
 int main() {
   VertexMatrix A(4, 3);
   A << 0, 1, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0;
@@ -40,41 +57,17 @@ int main() {
   for (double tol : {0.0, 1e-6}) {
     DistanceOptions o;
     o.swarm.tolerance = tol;
-    std::vector<double> t;
-    double sink = 0;
-    for (int r = 0; r < 3000; ++r) {
-      o.swarm.seed = r;
-      const auto t0 = std::chrono::steady_clock::now();
-      sink += distance(a, touching, o).distance;
-      t.push_back(
-          std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count());
-    }
-    std::sort(t.begin(), t.end());
-    std::printf(
-        "paper touching pair, ipso projection, tolerance %g: median %.1f us, p90 %.1f us (mean "
-        "distance %.6f)\n",
-        tol, t[t.size() / 2], t[t.size() * 9 / 10], sink / 3000);
+    time_queries("paper touching pair, ipso projection", a, touching, o);
   }
   for (auto mode : {ConstraintHandling::projection, ConstraintHandling::feasibility}) {
     for (double tol : {0.0, 1e-6}) {
       DistanceOptions o;
       o.swarm.tolerance = tol;
       o.swarm.constraint_handling = mode;
-      std::vector<double> t;
-      double sink = 0;
-      for (int r = 0; r < 3000; ++r) {
-        o.swarm.seed = r;
-        const auto t0 = std::chrono::steady_clock::now();
-        sink += distance(a, b, o).distance;
-        t.push_back(std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0)
-                        .count());
-      }
-      std::sort(t.begin(), t.end());
-      std::printf(
-          "paper separated pair, ipso %s, tolerance %g: median %.1f us, p90 %.1f us (mean distance "
-          "%.6f)\n",
-          mode == ConstraintHandling::projection ? "projection" : "feasibility", tol,
-          t[t.size() / 2], t[t.size() * 9 / 10], sink / 3000);
+      time_queries(mode == ConstraintHandling::projection
+                       ? "paper separated pair, ipso projection"
+                       : "paper separated pair, ipso feasibility",
+                   a, b, o);
     }
   }
   for (int n : {8, 16, 64}) {

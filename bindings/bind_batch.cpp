@@ -11,23 +11,31 @@ namespace swarmcollide::bindings {
 
 namespace {
 
+using Stack = py::array_t<Scalar, py::array::c_style | py::array::forcecast>;
+
+// An (m, n, 3) array as a C-contiguous array of doubles; nothing for anything else.
+std::optional<Stack> as_stack(const py::handle& bodies, const char* name) {
+  if (!py::isinstance<py::array>(bodies) || bodies.cast<py::array>().ndim() != 3) {
+    return std::nullopt;
+  }
+  auto stack = Stack::ensure(bodies);
+  if (!stack || stack.shape(2) != 3 || stack.shape(1) == 0) {
+    throw py::value_error(std::string(name) + " must have shape (m, n, 3) with n >= 1");
+  }
+  return stack;
+}
+
 // Bodies from a sequence of polyhedra or (n, 3) array-likes, or from an (m, n, 3) array.
 std::vector<ConvexPolyhedron> to_polyhedra(const py::handle& bodies, const char* name) {
   std::vector<ConvexPolyhedron> result;
-  if (py::isinstance<py::array>(bodies) && bodies.cast<py::array>().ndim() == 3) {
-    const auto stack =
-        py::array_t<Scalar, py::array::c_style | py::array::forcecast>::ensure(bodies);
-    if (!stack || stack.shape(2) != 3 || stack.shape(1) == 0) {
-      throw py::value_error(std::string(name) + " must have shape (m, n, 3) with n >= 1");
-    }
-    const auto n = stack.shape(1);
-    result.reserve(static_cast<std::size_t>(stack.shape(0)));
-    for (py::ssize_t i = 0; i < stack.shape(0); ++i) {
-      const std::string item = std::string(name) + "[" + std::to_string(i) + "]";
+  if (const std::optional<Stack> stack = as_stack(bodies, name)) {
+    const auto n = stack->shape(1);
+    result.reserve(static_cast<std::size_t>(stack->shape(0)));
+    for (py::ssize_t i = 0; i < stack->shape(0); ++i) {
       try {
-        result.emplace_back(Eigen::Map<const VertexMatrix>(stack.data(i, 0, 0), n, 3));
+        result.emplace_back(Eigen::Map<const VertexMatrix>(stack->data(i, 0, 0), n, 3));
       } catch (const std::invalid_argument& error) {
-        throw py::value_error(item + ": " + error.what());
+        throw py::value_error(std::string(name) + "[" + std::to_string(i) + "]: " + error.what());
       }
     }
     return result;
@@ -46,20 +54,6 @@ std::vector<ConvexPolyhedron> to_polyhedra(const py::handle& bodies, const char*
 }
 
 int to_threads(const py::object& threads) { return threads.is_none() ? 0 : threads.cast<int>(); }
-
-using Stack = py::array_t<Scalar, py::array::c_style | py::array::forcecast>;
-
-// An (m, n, 3) array as a C-contiguous array of doubles; nothing for anything else.
-std::optional<Stack> as_stack(const py::handle& bodies, const char* name) {
-  if (!py::isinstance<py::array>(bodies) || bodies.cast<py::array>().ndim() != 3) {
-    return std::nullopt;
-  }
-  auto stack = Stack::ensure(bodies);
-  if (!stack || stack.shape(2) != 3 || stack.shape(1) == 0) {
-    throw py::value_error(std::string(name) + " must have shape (m, n, 3) with n >= 1");
-  }
-  return stack;
-}
 
 VertexStack view(const Stack& stack, const char* name) {
   return {stack.data(), static_cast<std::size_t>(stack.shape(0)), stack.shape(1), name};
