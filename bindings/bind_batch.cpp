@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "conversions.hpp"
+#include "queries.hpp"
 #include "swarmcollide/queries/batch.hpp"
 
 namespace swarmcollide::bindings {
@@ -13,78 +14,105 @@ namespace {
 
 using Stack = py::array_t<Scalar, py::array::c_style | py::array::forcecast>;
 
-// An (m, n, 3) array as a C-contiguous array of doubles; nothing for anything else.
+// An (m, n, 3) array of real numbers as a C-contiguous array of doubles; nothing for anything
+// that is not a 3-D array.
 std::optional<Stack> as_stack(const py::handle& bodies, const char* name) {
   if (!py::isinstance<py::array>(bodies) || bodies.cast<py::array>().ndim() != 3) {
     return std::nullopt;
   }
-  auto stack = Stack::ensure(bodies);
+  const py::array array = bodies.cast<py::array>();
+  const char kind = array.dtype().kind();
+  if (kind != 'f' && kind != 'i' && kind != 'u') {
+    throw py::type_error(std::string(name) + " must hold real numbers, got an array of dtype " +
+                         std::string(py::str(array.dtype())));
+  }
+  auto stack = Stack::ensure(array);
   if (!stack || stack.shape(2) != 3 || stack.shape(1) == 0) {
     throw py::value_error(std::string(name) + " must have shape (m, n, 3) with n >= 1");
   }
   return stack;
 }
 
-// Bodies from a sequence of polyhedra or (n, 3) array-likes, or from an (m, n, 3) array.
-std::vector<ConvexPolyhedron> to_polyhedra(const py::handle& bodies, const char* name) {
-  std::vector<ConvexPolyhedron> result;
-  if (const std::optional<Stack> stack = as_stack(bodies, name)) {
-    const auto n = stack->shape(1);
-    result.reserve(static_cast<std::size_t>(stack->shape(0)));
-    for (py::ssize_t i = 0; i < stack->shape(0); ++i) {
-      try {
-        result.emplace_back(Eigen::Map<const VertexMatrix>(stack->data(i, 0, 0), n, 3));
-      } catch (const std::invalid_argument& error) {
-        throw py::value_error(std::string(name) + "[" + std::to_string(i) + "]: " + error.what());
-      }
-    }
-    return result;
-  }
+// Bodies from a sequence of polyhedra or (n, 3) array-likes.
+std::vector<ConvexPolyhedron> to_polyhedra(const py::handle& bodies, const char* name,
+                                           std::uint64_t first_index) {
   if (py::isinstance<py::str>(bodies) || !py::isinstance<py::iterable>(bodies)) {
     throw py::type_error(std::string(name) +
                          " must be a sequence of polyhedra or an (m, n, 3) array, got " +
-                         std::string(py::str(bodies.get_type().attr("__name__"))));
+                         type_name(bodies));
   }
-  std::size_t index = 0;
+  std::vector<ConvexPolyhedron> result;
+  std::uint64_t index = first_index;
   for (const py::handle body : bodies) {
     const std::string item = std::string(name) + "[" + std::to_string(index++) + "]";
-    result.push_back(to_polyhedron(body, item.c_str()));
+    result.push_back(BodyArgument(body, item.c_str()).get());
   }
   return result;
 }
-
-int to_threads(const py::object& threads) { return threads.is_none() ? 0 : threads.cast<int>(); }
 
 VertexStack view(const Stack& stack, const char* name) {
   return {stack.data(), static_cast<std::size_t>(stack.shape(0)), stack.shape(1), name};
 }
 
+BatchSettings settings_of(const py::object& threads, const py::object& first_index,
+                          bool escalate) {
+  BatchSettings settings;
+  settings.escalate = escalate;
+  if (!threads.is_none()) {
+    if (PyBool_Check(threads.ptr()) || !PyIndex_Check(threads.ptr())) {
+      throw py::type_error("threads must be an integer or None, got " + type_name(threads));
+    }
+    const long long count = py::int_(threads).cast<long long>();
+    if (count < 1 || count > kMaxThreads) {
+      throw py::value_error("threads must be in [1, " + std::to_string(kMaxThreads) +
+                            "] (None: one per hardware thread), got " + std::to_string(count));
+    }
+    settings.threads = static_cast<int>(count);
+  }
+  if (PyBool_Check(first_index.ptr()) || !PyIndex_Check(first_index.ptr()) ||
+      py::int_(first_index) < py::int_(0)) {
+    throw py::value_error("first_index must be a nonnegative integer");
+  }
+  settings.first_index = py::int_(first_index).cast<std::uint64_t>();
+  return settings;
+}
+
 // `query(as, bs)` without the GIL. Two (m, n, 3) arrays are passed as vertex stacks, so that the
 // threads build and free the bodies; anything else is converted to bodies here first.
-template <typename Query>
-BatchResult run(const py::object& as, const py::object& bs, const Query& query) {
+template <typename Ask>
+BatchResult run(const py::object& as, const py::object& bs, const BatchSettings& settings,
+                const Ask& ask) {
   const std::optional<Stack> stack_a = as_stack(as, "As");
   const std::optional<Stack> stack_b = as_stack(bs, "Bs");
   if (stack_a && stack_b) {
     py::gil_scoped_release release;
-    return query(view(*stack_a, "As"), view(*stack_b, "Bs"));
+    return ask(view(*stack_a, "As"), view(*stack_b, "Bs"));
   }
-  const auto bodies_a = to_polyhedra(as, "As");
-  const auto bodies_b = to_polyhedra(bs, "Bs");
+  const auto bodies_a = to_polyhedra(as, "As", settings.first_index);
+  const auto bodies_b = to_polyhedra(bs, "Bs", settings.first_index);
   py::gil_scoped_release release;
-  return query(bodies_a, bodies_b);
+  return ask(bodies_a, bodies_b);
 }
+
+constexpr const char* kBatchDoc = R"doc(
+The query for every pair ``(As[i], Bs[i])``, in C++ threads without the GIL.
+
+Pair i is seeded with ``pair_seed(seed, first_index + i)``, so answers do not depend on the
+number of threads or on how a batch is split. ``As`` and ``Bs`` are sequences of polyhedra or
+``(n, 3)`` arrays, or ``(m, n, 3)`` arrays (the fastest: each pair's bodies are then built and
+freed by the thread that answers it).
+)doc";
 
 }  // namespace
 
-void bind_batch(py::module_& m) {
+void bind_batch(py::module_& m, py::class_<Query>& query) {
   py::class_<BatchResult>(m, "BatchResult", R"doc(
 Answers to many queries, one entry (or row) per pair, as NumPy arrays.
 
 Attributes
 ----------
 distance, lower_bound : numpy.ndarray, shape (m,)
-point_a, point_b : numpy.ndarray, shape (m, 3)
+point_a, point_b, direction : numpy.ndarray, shape (m, 3)
 colliding, certified, escalated : numpy.ndarray of bool, shape (m,)
 iterations : numpy.ndarray of int, shape (m,)
 )doc")
@@ -92,6 +120,7 @@ iterations : numpy.ndarray of int, shape (m,)
       .def_readonly("lower_bound", &BatchResult::lower_bound)
       .def_readonly("point_a", &BatchResult::point_a)
       .def_readonly("point_b", &BatchResult::point_b)
+      .def_readonly("direction", &BatchResult::direction)
       .def_readonly("colliding", &BatchResult::colliding)
       .def_readonly("certified", &BatchResult::certified)
       .def_readonly("iterations", &BatchResult::iterations)
@@ -103,28 +132,42 @@ iterations : numpy.ndarray of int, shape (m,)
                std::to_string(r.certified.count()) + " certified)";
       });
 
-  m.def(
-      "distance_many",
-      [](const py::object& as, const py::object& bs, const DistanceOptions& options,
-         const py::object& threads) {
-        const int count = to_threads(threads);
-        return run(as, bs, [&](const auto& a, const auto& b) {
-          return distance_many(a, b, options, count);
-        });
-      },
-      py::arg("As"), py::arg("Bs"), py::arg("options"), py::arg("threads"));
-  m.def(
-      "collide_many",
-      [](const py::object& as, const py::object& bs, const DistanceOptions& options, bool escalate,
-         const py::object& threads) {
-        const int count = to_threads(threads);
-        return run(as, bs, [&](const auto& a, const auto& b) {
-          return collide_many(a, b, options, escalate, count);
-        });
-      },
-      py::arg("As"), py::arg("Bs"), py::arg("options"), py::arg("escalate"), py::arg("threads"));
+  query
+      .def(
+          "distance_many",
+          [](const Query& q, const py::object& as, const py::object& bs, const py::object& threads,
+             const py::object& first_index) {
+            const BatchSettings settings = settings_of(threads, first_index, true);
+            return run(as, bs, settings, [&](const auto& a, const auto& b) {
+              return distance_many(a, b, q.options(), settings);
+            });
+          },
+          py::arg("As"), py::arg("Bs"), py::arg("threads") = py::none(),
+          py::arg("first_index") = 0, kBatchDoc)
+      .def(
+          "collide_many",
+          [](const Query& q, const py::object& as, const py::object& bs, const py::object& threads,
+             const py::object& first_index, bool escalate) {
+            const BatchSettings settings = settings_of(threads, first_index, escalate);
+            return run(as, bs, settings, [&](const auto& a, const auto& b) {
+              return collide_many(a, b, q.options(), settings);
+            });
+          },
+          py::arg("As"), py::arg("Bs"), py::arg("threads") = py::none(),
+          py::arg("first_index") = 0, py::arg("escalate") = true, kBatchDoc)
+      .def(
+          "signed_distance_many",
+          [](const Query& q, const py::object& as, const py::object& bs, const py::object& threads,
+             const py::object& first_index) {
+            const BatchSettings settings = settings_of(threads, first_index, true);
+            return run(as, bs, settings, [&](const auto& a, const auto& b) {
+              return signed_distance_many(a, b, q.options(), settings);
+            });
+          },
+          py::arg("As"), py::arg("Bs"), py::arg("threads") = py::none(),
+          py::arg("first_index") = 0, kBatchDoc);
   m.def("pair_seed", &pair_seed, py::arg("seed"), py::arg("index"),
-        "The seed of pair ``index`` in a batch seeded with ``seed``.");
+        "The seed of the pair with global index ``index`` in a batch seeded with ``seed``.");
 }
 
 }  // namespace swarmcollide::bindings

@@ -78,6 +78,8 @@ Examples
 3
 )doc")
       .def(py::init([](const py::object& points) {
+             // A body given for its points is the same body: copies share the hull.
+             if (py::isinstance<ConvexPolyhedron>(points)) return points.cast<ConvexPolyhedron>();
              return ConvexPolyhedron(to_vertex_matrix(points, "points"));
            }),
            py::arg("points"))
@@ -98,6 +100,9 @@ Examples
           },
           py::arg("direction"), "Index of the point farthest along ``direction`` (first on ties).")
       .def("aabb", &ConvexPolyhedron::aabb, "Smallest axis-aligned box containing the body.")
+      .def_property_readonly(
+          "radius", [](const ConvexPolyhedron& body) { return body.bounds().radius; },
+          "Half the diagonal of the bounding box: every point lies within it of the box's centre.")
       .def("centroid", &ConvexPolyhedron::centroid,
            "Centre of mass of the solid (of the polygon, segment or point for lower-dimensional "
            "bodies).")
@@ -105,8 +110,13 @@ Examples
            "Convex hull through Qhull (an exact planar hull for flat bodies).")
       .def("__repr__", &repr);
 
-  m.def("as_polyhedron", &to_polyhedron, py::arg("body"), py::arg("name") = "body",
-        R"doc(
+  m.def(
+      "as_polyhedron",
+      [](const py::object& body, const std::string& name) {
+        return BodyArgument(body, name.c_str()).get();
+      },
+      py::arg("body"), py::arg("name") = "body",
+      R"doc(
 Return ``body`` as a ConvexPolyhedron, building one from ``(n, 3)`` points if needed.
 
 Errors name the argument as ``name``.

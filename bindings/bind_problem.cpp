@@ -11,7 +11,7 @@ void bind_problem(py::module_& m) {
   m.def(
       "objective",
       [](const py::object& a, const py::object& b, const VectorX& lambda, const VectorX& delta) {
-        return objective(to_polyhedron(a, "a"), to_polyhedron(b, "b"),
+        return objective(BodyArgument(a, "a").get(), BodyArgument(b, "b").get(),
                          finite_weights(lambda, "weights_a"), finite_weights(delta, "weights_b"));
       },
       py::arg("a"), py::arg("b"), py::arg("weights_a"), py::arg("weights_b"), R"doc(
@@ -38,7 +38,7 @@ The weights need not be feasible; see ``constraint_violation`` and ``is_feasible
   m.def(
       "separation",
       [](const py::object& a, const py::object& b, const Vector3& direction) {
-        return separation(to_polyhedron(a, "a"), to_polyhedron(b, "b"), direction);
+        return separation(BodyArgument(a, "a").get(), BodyArgument(b, "b").get(), direction);
       },
       py::arg("a"), py::arg("b"), py::arg("direction"), R"doc(
 Separation of A and B along ``direction``: ``min_j n.y_j - max_i n.x_i`` for the unit ``n``.

@@ -16,43 +16,96 @@ std::string shape_of(const py::array& array) {
   return text + ")";
 }
 
-}  // namespace
-
-VertexMatrix to_vertex_matrix(const py::handle& points, const char* name) {
-  const std::string arg(name);
-  if (py::isinstance<py::str>(points) || py::isinstance<py::bytes>(points)) {
-    throw py::type_error(arg + " must be an (n, 3) array of numbers, got " +
-                         std::string(py::str(points.get_type().attr("__name__"))));
+// A real array of exactly `shape` (a -1 entry matches any length), converted to doubles.
+py::array_t<Scalar, py::array::c_style | py::array::forcecast> real_array(
+    const py::handle& value, std::initializer_list<py::ssize_t> shape, const std::string& name,
+    const std::string& expected) {
+  if (py::isinstance<py::str>(value) || py::isinstance<py::bytes>(value)) {
+    throw py::type_error(name + " must be " + expected + ", got " + type_name(value));
   }
   py::array array;
   try {
-    array = py::module_::import("numpy").attr("asarray")(points);
+    array = py::module_::import("numpy").attr("asarray")(value);
   } catch (py::error_already_set& error) {
-    throw py::value_error(arg + " must be an (n, 3) array of numbers: " + error.what());
+    throw py::value_error(name + " must be " + expected + ": " + error.what());
   }
   const char kind = array.dtype().kind();
   if (kind != 'f' && kind != 'i' && kind != 'u') {
-    throw py::type_error(arg + " must hold real numbers, got an array of dtype " +
+    throw py::type_error(name + " must hold real numbers, got an array of dtype " +
                          std::string(py::str(array.dtype())));
   }
-  if (array.ndim() != 2 || array.shape(1) != 3) {
-    throw py::value_error(arg + " must have shape (n, 3), got shape " + shape_of(array));
+  bool matches = array.ndim() == static_cast<py::ssize_t>(shape.size());
+  py::ssize_t axis = 0;
+  for (py::ssize_t length : shape) {
+    if (matches && length >= 0 && array.shape(axis) != length) matches = false;
+    ++axis;
   }
-  if (array.shape(0) == 0) {
-    throw py::value_error(arg + " is empty: a polyhedron needs at least one point");
+  if (!matches) {
+    throw py::value_error(name + " must be " + expected + ", got shape " + shape_of(array));
   }
-  const auto doubles =
-      py::array_t<Scalar, py::array::c_style | py::array::forcecast>::ensure(array);
+  return py::array_t<Scalar, py::array::c_style | py::array::forcecast>::ensure(array);
+}
+
+}  // namespace
+
+std::string type_name(const py::handle& object) {
+  return std::string(py::str(object.get_type().attr("__name__")));
+}
+
+VertexMatrix to_vertex_matrix(const py::handle& points, const char* name) {
+  const auto doubles = real_array(points, {-1, 3}, name, "an (n, 3) array of numbers");
+  if (doubles.shape(0) == 0) {
+    throw py::value_error(std::string(name) + " is empty: a polyhedron needs at least one point");
+  }
   return Eigen::Map<const VertexMatrix>(doubles.data(), doubles.shape(0), 3);
 }
 
-ConvexPolyhedron to_polyhedron(const py::handle& body, const char* name) {
-  if (py::isinstance<ConvexPolyhedron>(body)) return body.cast<ConvexPolyhedron>();
+BodyArgument::BodyArgument(const py::handle& body, const char* name) {
+  if (py::isinstance<ConvexPolyhedron>(body)) {
+    body_ = &body.cast<const ConvexPolyhedron&>();
+    return;
+  }
   try {
-    return ConvexPolyhedron(to_vertex_matrix(body, name));
+    owned_.emplace(to_vertex_matrix(body, name));
   } catch (const std::invalid_argument& error) {
     throw py::value_error(std::string(name) + ": " + error.what());
   }
+  body_ = &*owned_;
+}
+
+Pose to_pose(const py::handle& pose, const char* name) {
+  Pose result;
+  if (pose.is_none()) return result;
+  const std::string arg(name);
+  if (py::isinstance<py::tuple>(pose) || py::isinstance<py::list>(pose)) {
+    const py::sequence parts = py::reinterpret_borrow<py::sequence>(pose);
+    if (parts.size() != 2) {
+      throw py::value_error(arg + " must be a (4, 4) matrix or a pair (rotation, translation), "
+                                  "got a sequence of " + std::to_string(parts.size()) + " items");
+    }
+    const auto rotation =
+        real_array(parts[0], {3, 3}, arg + "'s rotation", "a (3, 3) rotation matrix");
+    const auto translation =
+        real_array(parts[1], {3}, arg + "'s translation", "a (3,) translation");
+    result.rotation = Eigen::Map<const Eigen::Matrix<Scalar, 3, 3, Eigen::RowMajor>>(rotation.data());
+    result.translation = Eigen::Map<const Vector3>(translation.data());
+  } else {
+    const auto matrix = real_array(pose, {4, 4}, arg,
+                                   "a (4, 4) homogeneous transform or a pair (rotation, translation)");
+    const Eigen::Map<const Eigen::Matrix<Scalar, 4, 4, Eigen::RowMajor>> m(matrix.data());
+    if (!(m.row(3) == Eigen::RowVector4d(0, 0, 0, 1))) {
+      throw py::value_error(arg + " must be a homogeneous rigid transform: its last row must be "
+                                  "[0, 0, 0, 1]");
+    }
+    result.rotation = m.topLeftCorner<3, 3>();
+    result.translation = m.topRightCorner<3, 1>();
+  }
+  try {
+    validate_pose(result, name);
+  } catch (const std::invalid_argument& error) {
+    throw py::value_error(error.what());
+  }
+  return result;
 }
 
 Vector3 finite_vector3(const Vector3& vector, const char* name) {

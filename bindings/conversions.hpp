@@ -3,7 +3,10 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
+#include <optional>
+
 #include "swarmcollide/geometry/convex_polyhedron.hpp"
+#include "swarmcollide/geometry/pose.hpp"
 #include "swarmcollide/types.hpp"
 
 namespace swarmcollide::bindings {
@@ -14,13 +17,29 @@ namespace py = pybind11;
 /// wrong shape. `name` is the argument's name in the messages.
 VertexMatrix to_vertex_matrix(const py::handle& points, const char* name);
 
-/// A ConvexPolyhedron as is, or one built from `(n, 3)` points; errors name the argument `name`.
-ConvexPolyhedron to_polyhedron(const py::handle& body, const char* name);
+/// A body argument: a ConvexPolyhedron used in place (no copy), or one built from `(n, 3)`
+/// points; errors name the argument `name`.
+class BodyArgument {
+ public:
+  BodyArgument(const py::handle& body, const char* name);
+  const ConvexPolyhedron& get() const { return *body_; }
+
+ private:
+  std::optional<ConvexPolyhedron> owned_;
+  const ConvexPolyhedron* body_;
+};
+
+/// A pose argument: None (the identity), a `(4, 4)` homogeneous rigid transform, or a pair
+/// `(rotation (3, 3), translation (3,))`; TypeError or ValueError naming `name` otherwise.
+Pose to_pose(const py::handle& pose, const char* name);
 
 /// A 3-vector that must be finite; ValueError naming `name` otherwise.
 Vector3 finite_vector3(const Vector3& vector, const char* name);
 
 /// A 1-D array of finite weights; ValueError naming `name` otherwise.
 const VectorX& finite_weights(const VectorX& weights, const char* name);
+
+/// The name of the type of `object`, for messages.
+std::string type_name(const py::handle& object);
 
 }  // namespace swarmcollide::bindings

@@ -1,21 +1,22 @@
 #include <pybind11/pybind11.h>
 
+#include "queries.hpp"
+
 namespace py = pybind11;
 
 namespace swarmcollide::bindings {
 void bind_geometry(py::module_& m);
 void bind_problem(py::module_& m);
 void bind_solvers(py::module_& m);
-void bind_queries(py::module_& m);
-void bind_batch(py::module_& m);
+void bind_batch(py::module_& m, py::class_<Query>& query);
 }  // namespace swarmcollide::bindings
 
 PYBIND11_MODULE(_core, m) {
-  m.doc() = "swarmcollide's C++ core: convex polyhedra, model (2) and its solvers.";
+  m.doc() = "swarmcollide's C++ core: convex polyhedra, model (2), its solvers and queries.";
   using namespace swarmcollide::bindings;
   bind_geometry(m);
   bind_problem(m);
   bind_solvers(m);
-  bind_queries(m);
-  bind_batch(m);
+  py::class_<swarmcollide::Query> query = bind_queries(m);
+  bind_batch(m, query);
 }

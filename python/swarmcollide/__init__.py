@@ -1,18 +1,19 @@
-"""Distance and collision between convex polyhedra.
+"""Distance, collision and penetration between convex polyhedra.
 
 The method is the improved particle swarm optimizer of the paper "Research on Convex Polyhedron
 Collision Detection Algorithm Based on Improved Particle Swarm Optimization": the distance between
 two convex polyhedra is the non-linear program (2) over convex-combination weights, solved by a
-swarm whose particles get rank-based inertia (8)-(9). Every answer carries bounds that state how
-far from exact it can be.
+swarm whose particles get rank-based inertia (8)-(9). The default method runs that swarm over
+separating directions with an exact finish, so every verdict is proven; every answer carries
+bounds that state how far from exact it can be.
 
 Examples
 --------
 >>> import swarmcollide as sc
 >>> a = sc.ConvexPolyhedron([[0, 1, 0], [1, 0, 0], [0, 0, 1], [0, 0, 0]])
 >>> b = [[1, -1, 0], [2, -2, 0], [0, -2, 2], [0, -2, 0]]
->>> r = sc.distance(a, b, seed=0)
->>> round(r.distance, 6), r.colliding, r.certified
+>>> r = sc.distance(a, b)
+>>> r.distance, r.colliding, r.certified
 (1.0, False, True)
 """
 
@@ -25,6 +26,7 @@ from ._core import (
     DistanceResult,
     Hull,
     ParticleCoefficients,
+    Query,
     as_polyhedron,
     constraint_violation,
     is_feasible,
@@ -36,31 +38,42 @@ from ._core import (
     separation,
 )
 from .queries import (
+    DEFAULT_TOLERANCE,
     METHODS,
-    SIGNED_METHODS,
     BodiesLike,
+    MethodInfo,
+    Parameter,
+    Parameters,
     PolyhedronLike,
+    PoseLike,
     collide,
     collide_many,
     collision,
     distance,
     distance_many,
+    query,
     signed_distance,
+    signed_distance_many,
 )
 
 __version__ = _version("swarmcollide")
 
 __all__ = [
+    "DEFAULT_TOLERANCE",
     "METHODS",
-    "SIGNED_METHODS",
     "Aabb",
     "BatchResult",
     "BodiesLike",
     "ConvexPolyhedron",
     "DistanceResult",
     "Hull",
+    "MethodInfo",
+    "Parameter",
+    "Parameters",
     "ParticleCoefficients",
     "PolyhedronLike",
+    "PoseLike",
+    "Query",
     "as_polyhedron",
     "collide",
     "collide_many",
@@ -73,7 +86,9 @@ __all__ = [
     "objective",
     "pair_seed",
     "project_onto_simplex",
+    "query",
     "rank_adaptive_coefficients",
     "separation",
     "signed_distance",
+    "signed_distance_many",
 ]

@@ -94,6 +94,7 @@ SOLVERS: Dict[str, Dict[str, object]] = {
     "swarmcollide: pso (7)": {"method": "pso"},
     "swarmcollide: penalty": {"method": "penalty"},
     "swarmcollide: dual (certified)": {"method": "dual"},
+    "swarmcollide: exact (Wolfe)": {"method": "exact"},
     "swarmcollide: fcl (exact GJK)": {"method": "fcl"},
 }
 """Our rows: a label and the keyword arguments of ``distance``."""

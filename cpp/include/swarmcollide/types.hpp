@@ -9,6 +9,8 @@ namespace swarmcollide {
 using Scalar = double;
 /// A point or direction in 3-D space.
 using Vector3 = Eigen::Matrix<Scalar, 3, 1>;
+/// A 3 x 3 matrix (rotations).
+using Matrix3 = Eigen::Matrix<Scalar, 3, 3>;
 /// A dynamically sized vector, used for convex-combination weights.
 using VectorX = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
 /// Points stored one per row (row-major), so `(n, 3)` NumPy arrays map onto it without copies.

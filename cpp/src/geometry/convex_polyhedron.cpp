@@ -1,11 +1,14 @@
 #include "swarmcollide/geometry/convex_polyhedron.hpp"
 
 #include <atomic>
+#include <cmath>
 #include <mutex>
 #include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
+
+#include "normalise.hpp"
 
 namespace swarmcollide {
 
@@ -18,7 +21,12 @@ struct HullCache {
   std::mutex hull_mutex;
   Hull hull;
   std::mutex derived_mutex;
-  std::vector<std::pair<std::type_index, std::shared_ptr<const void>>> derived;
+  struct Derived {
+    std::type_index type;
+    int key;
+    std::shared_ptr<const void> data;
+  };
+  std::vector<Derived> derived;
 };
 }  // namespace detail
 
@@ -34,6 +42,23 @@ void check_points(const VertexMatrix& points) {
                                   std::to_string(i));
     }
   }
+}
+
+// Halves are taken before differences and sums, so coordinates up to the largest double give a
+// finite centre and half-extent.
+BodyBounds bounds_of(const VertexMatrix& points) {
+  BodyBounds bounds;
+  bounds.box = {points.colwise().minCoeff().transpose(), points.colwise().maxCoeff().transpose()};
+  bounds.centre = bounds.box.min / 2 + bounds.box.max / 2;
+  const Vector3 half_extent = bounds.box.max / 2 - bounds.box.min / 2;
+  const Scalar largest = half_extent.maxCoeff();
+  bounds.radius = largest > 0 ? largest * (half_extent / largest).norm() : 0;
+  if (!std::isfinite(bounds.radius)) {
+    throw std::invalid_argument(
+        "points span more than the largest double (1.8e308): the body's size is not "
+        "representable; use a unit of length in which the coordinates are smaller");
+  }
+  return bounds;
 }
 
 // Centre of mass of a closed, outward-oriented triangle mesh, from the signed tetrahedra it forms
@@ -72,6 +97,7 @@ Vector3 flat_centroid(const VertexMatrix& points, const FaceMatrix& faces) {
 ConvexPolyhedron::ConvexPolyhedron(VertexMatrix points)
     : vertices_(std::move(points)), hull_cache_(std::make_shared<detail::HullCache>()) {
   check_points(vertices_);
+  bounds_ = bounds_of(vertices_);
 }
 
 int ConvexPolyhedron::support_index(const Vector3& direction) const {
@@ -113,32 +139,35 @@ int ConvexPolyhedron::support_index(const Vector3& direction, int start) const {
   }
 }
 
-Aabb ConvexPolyhedron::aabb() const {
-  return {vertices_.colwise().minCoeff().transpose(), vertices_.colwise().maxCoeff().transpose()};
-}
-
 Vector3 ConvexPolyhedron::centroid() const {
   const Hull& h = hull();
+  // Volumes and areas are computed in the unit ball, where their cubes and squares of the
+  // coordinates can neither overflow nor underflow.
+  const detail::NormalisedPoints unit = detail::normalise(vertices_);
+  Vector3 centre = Vector3::Zero();
   if (h.dimension == 3) {
     Vector3 inside = Vector3::Zero();
-    for (int i : h.vertex_indices) inside += vertices_.row(i).transpose();
+    for (int i : h.vertex_indices) inside += unit.points.row(i).transpose();
     inside /= static_cast<Scalar>(h.vertex_indices.size());
-    return solid_centroid(vertices_, h.faces, inside);
+    centre = solid_centroid(unit.points, h.faces, inside);
+  } else if (h.dimension == 2) {
+    centre = flat_centroid(unit.points, h.faces);
+  } else {
+    for (int i : h.vertex_indices) centre += unit.points.row(i).transpose();
+    centre /= static_cast<Scalar>(h.vertex_indices.size());
   }
-  if (h.dimension == 2) return flat_centroid(vertices_, h.faces);
-  Vector3 sum = Vector3::Zero();
-  for (int i : h.vertex_indices) sum += vertices_.row(i).transpose();
-  return sum / static_cast<Scalar>(h.vertex_indices.size());
+  for (int k = 0; k < 3; ++k) centre(k) = detail::times_power_of_two(centre(k), unit.exponent);
+  return unit.centre + centre;
 }
 
 std::shared_ptr<const void> ConvexPolyhedron::derived_slot(
-    std::type_index type, const std::function<std::shared_ptr<const void>()>& make) const {
+    std::type_index type, int key, const std::function<std::shared_ptr<const void>()>& make) const {
   const std::lock_guard<std::mutex> lock(hull_cache_->derived_mutex);
-  for (const auto& [stored_type, data] : hull_cache_->derived) {
-    if (stored_type == type) return data;
+  for (const auto& stored : hull_cache_->derived) {
+    if (stored.type == type && stored.key == key) return stored.data;
   }
-  hull_cache_->derived.emplace_back(type, make());
-  return hull_cache_->derived.back().second;
+  hull_cache_->derived.push_back({type, key, make()});
+  return hull_cache_->derived.back().data;
 }
 
 const Hull& ConvexPolyhedron::hull() const {

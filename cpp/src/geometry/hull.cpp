@@ -16,6 +16,8 @@ extern "C" {
 #include <libqhull_r/qhull_ra.h>
 }
 
+#include "normalise.hpp"
+
 namespace swarmcollide {
 
 namespace {
@@ -48,6 +50,11 @@ Scalar cross2(const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::V
 
 // Andrew's monotone chain; returns the hull's indices counter-clockwise, without collinear points.
 std::vector<int> polygon_hull(const std::vector<Eigen::Vector2d>& p) {
+  if (p.size() < 3) {
+    std::vector<int> all(p.size());
+    std::iota(all.begin(), all.end(), 0);
+    return all;
+  }
   std::vector<int> order(p.size());
   std::iota(order.begin(), order.end(), 0);
   std::sort(order.begin(), order.end(), [&](int i, int j) {
@@ -490,7 +497,9 @@ Hull compute_hull(const VertexMatrix& points) {
   if (!points.allFinite()) {
     throw std::invalid_argument("points has a NaN or infinite coordinate");
   }
-  Hull hull = hull_without_adjacency(points);
+  // The hull's combinatorics do not change under translation and scaling; in the unit ball the
+  // cross products of coordinates near 1e300 (or 1e-300) neither overflow nor underflow.
+  Hull hull = hull_without_adjacency(detail::normalise(points).points);
   fill_adjacency(hull, points.rows());
   return hull;
 }

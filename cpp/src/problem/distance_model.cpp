@@ -17,11 +17,6 @@ void check_weights(const ConvexPolyhedron& body, const WeightsRef& weights, cons
 
 }  // namespace
 
-Vector3 combination(const ConvexPolyhedron& body, const WeightsRef& weights) {
-  check_weights(body, weights, "weights");
-  return body.vertices().transpose() * weights;
-}
-
 Scalar objective(const ConvexPolyhedron& a, const ConvexPolyhedron& b, const WeightsRef& lambda,
                  const WeightsRef& delta) {
   check_weights(a, lambda, "lambda");

@@ -3,21 +3,25 @@
 #include <algorithm>
 #include <atomic>
 #include <exception>
+#include <limits>
 #include <mutex>
 #include <stdexcept>
 #include <string>
+#include <system_error>
 #include <thread>
 
 #include "swarmcollide/detail/random.hpp"
-#include "swarmcollide/queries/collide.hpp"
+#include "swarmcollide/queries/query.hpp"
 
 namespace swarmcollide {
 
-std::uint64_t pair_seed(std::uint64_t seed, std::size_t index) {
-  return detail::mix64(seed ^ detail::mix64(static_cast<std::uint64_t>(index)));
+std::uint64_t pair_seed(std::uint64_t seed, std::uint64_t index) {
+  return detail::mix64(seed ^ detail::mix64(index));
 }
 
 namespace {
+
+enum class Kind { distance, collide, signed_distance };
 
 BatchResult sized(std::size_t count) {
   const auto n = static_cast<Eigen::Index>(count);
@@ -26,6 +30,7 @@ BatchResult sized(std::size_t count) {
   result.lower_bound.resize(n);
   result.point_a.resize(n, 3);
   result.point_b.resize(n, 3);
+  result.direction.resize(n, 3);
   result.colliding.resize(n);
   result.certified.resize(n);
   result.iterations.resize(n);
@@ -39,104 +44,174 @@ void store(BatchResult& batch, std::size_t index, const DistanceResult& r) {
   batch.lower_bound(i) = r.lower_bound;
   batch.point_a.row(i) = r.point_a.transpose();
   batch.point_b.row(i) = r.point_b.transpose();
+  batch.direction.row(i) = r.direction.transpose();
   batch.colliding(i) = r.colliding;
   batch.certified(i) = r.certified;
   batch.iterations(i) = r.iterations;
-  batch.escalated(i) = !r.escalated_from.empty();
+  batch.escalated(i) = r.escalated_from.has_value();
 }
 
-// Runs `query(i, options_i)` for every pair on a pool of threads that take pairs in chunks.
-template <typename Query>
-BatchResult run_batch(std::size_t count, std::size_t other_count, const DistanceOptions& options,
-                      int threads, const Query& query) {
+// The error of the pair with the lowest index, whatever thread met it.
+class FirstFailure {
+ public:
+  void offer(std::size_t index) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (index < index_) {
+      index_ = index;
+      error_ = std::current_exception();
+    }
+  }
+  bool any() const { return static_cast<bool>(error_); }
+  void rethrow(std::uint64_t first_index) const {
+    try {
+      std::rethrow_exception(error_);
+    } catch (const std::invalid_argument& e) {
+      const std::string message = e.what();
+      // Body errors already name their body ("As[3]: ...").
+      if (message.rfind("As[", 0) == 0 || message.rfind("Bs[", 0) == 0) throw;
+      throw std::invalid_argument("pair " + std::to_string(first_index + index_) + ": " + message);
+    }
+  }
+
+ private:
+  std::mutex mutex_;
+  std::size_t index_ = std::numeric_limits<std::size_t>::max();
+  std::exception_ptr error_;
+};
+
+std::size_t worker_count(int threads, std::size_t pairs) {
+  if (threads < 0 || threads > kMaxThreads) {
+    throw std::invalid_argument("threads must be in [0, " + std::to_string(kMaxThreads) +
+                                "] (0: one per hardware thread), got " + std::to_string(threads));
+  }
+  const std::size_t wanted =
+      threads > 0 ? static_cast<std::size_t>(threads) : std::max(1u, std::thread::hardware_concurrency());
+  return std::min(wanted, std::max<std::size_t>(pairs, 1));
+}
+
+// Runs `answer(i, query_i)` for every pair on a pool of threads that take pairs in chunks, in
+// increasing order: when a pair fails, every pair before it has been taken, so the error of the
+// lowest failing index is found whatever the threads.
+template <typename Answer>
+BatchResult run_batch(std::size_t count, std::size_t other_count, const QueryOptions& options,
+                      const BatchSettings& settings, const Answer& answer) {
   if (count != other_count) {
-    throw std::invalid_argument("as and bs must have the same length, got " +
+    throw std::invalid_argument("As and Bs must have the same length, got " +
                                 std::to_string(count) + " and " + std::to_string(other_count));
   }
-  if (threads < 0) throw std::invalid_argument("threads must be >= 0 (0: all hardware threads)");
+  const std::size_t workers = worker_count(settings.threads, count);
+  const Query validated(options);
   BatchResult batch = sized(count);
-  const std::size_t workers = std::min<std::size_t>(
-      threads > 0 ? threads : std::max(1u, std::thread::hardware_concurrency()),
-      std::max<std::size_t>(count, 1));
   constexpr std::size_t kChunk = 64;
   std::atomic<std::size_t> next{0};
-  std::exception_ptr failure;
-  std::mutex failure_mutex;
+  std::atomic<bool> stop{false};
+  FirstFailure failure;
   const auto work = [&] {
-    DistanceOptions pair_options = options;
-    for (std::size_t start = next.fetch_add(kChunk); start < count;
+    QueryOptions pair_options = validated.options();
+    for (std::size_t start = next.fetch_add(kChunk); start < count && !stop.load();
          start = next.fetch_add(kChunk)) {
       const std::size_t end = std::min(count, start + kChunk);
       for (std::size_t i = start; i < end; ++i) {
         try {
-          pair_options.swarm.seed = pair_seed(options.swarm.seed, i);
-          pair_options.dual.seed = pair_seed(options.dual.seed, i);
-          store(batch, i, query(i, pair_options));
+          pair_options.seed = pair_seed(options.seed, settings.first_index + i);
+          store(batch, i, answer(i, Query(pair_options)));
         } catch (...) {
-          const std::lock_guard<std::mutex> lock(failure_mutex);
-          if (!failure) failure = std::current_exception();
-          next.store(count);
-          return;
+          failure.offer(i);
+          stop.store(true);
+          break;
         }
       }
     }
   };
   std::vector<std::thread> pool;
-  for (std::size_t t = 1; t < workers; ++t) pool.emplace_back(work);
+  for (std::size_t t = 1; t < workers; ++t) {
+    try {
+      pool.emplace_back(work);
+    } catch (const std::system_error&) {
+      break;  // the process cannot start more threads; the ones running share the work
+    }
+  }
   work();
   for (auto& thread : pool) thread.join();
-  if (failure) std::rethrow_exception(failure);
+  if (failure.any()) failure.rethrow(settings.first_index);
   return batch;
 }
 
+DistanceResult ask(Kind kind, const Query& query, const ConvexPolyhedron& a,
+                   const ConvexPolyhedron& b, bool escalate) {
+  switch (kind) {
+    case Kind::distance:
+      return query.distance(a, b);
+    case Kind::collide:
+      return query.collision(a, b, escalate);
+    case Kind::signed_distance:
+      break;
+  }
+  return query.signed_distance(a, b);
+}
+
 // Body i of a stack, built on the calling thread.
-ConvexPolyhedron body(const VertexStack& stack, std::size_t i) {
+ConvexPolyhedron body(const VertexStack& stack, std::size_t i, std::uint64_t first_index) {
   const Scalar* points = stack.points + i * static_cast<std::size_t>(stack.vertices) * 3;
   try {
     return ConvexPolyhedron(Eigen::Map<const VertexMatrix>(points, stack.vertices, 3));
   } catch (const std::invalid_argument& error) {
-    throw std::invalid_argument(std::string(stack.name) + "[" + std::to_string(i) +
-                                "]: " + error.what());
+    throw std::invalid_argument(std::string(stack.name) + "[" +
+                                std::to_string(first_index + i) + "]: " + error.what());
   }
+}
+
+BatchResult bodies_batch(Kind kind, const std::vector<ConvexPolyhedron>& as,
+                         const std::vector<ConvexPolyhedron>& bs, const QueryOptions& options,
+                         const BatchSettings& settings) {
+  return run_batch(as.size(), bs.size(), options, settings,
+                   [&](std::size_t i, const Query& query) {
+                     return ask(kind, query, as[i], bs[i], settings.escalate);
+                   });
+}
+
+BatchResult stack_batch(Kind kind, const VertexStack& as, const VertexStack& bs,
+                        const QueryOptions& options, const BatchSettings& settings) {
+  return run_batch(as.count, bs.count, options, settings, [&](std::size_t i, const Query& query) {
+    const ConvexPolyhedron a = body(as, i, settings.first_index);
+    const ConvexPolyhedron b = body(bs, i, settings.first_index);
+    return ask(kind, query, a, b, settings.escalate);
+  });
 }
 
 }  // namespace
 
 BatchResult distance_many(const std::vector<ConvexPolyhedron>& as,
-                          const std::vector<ConvexPolyhedron>& bs, const DistanceOptions& options,
-                          int threads) {
-  return run_batch(
-      as.size(), bs.size(), options, threads,
-      [&](std::size_t i, const DistanceOptions& o) { return distance(as[i], bs[i], o); });
+                          const std::vector<ConvexPolyhedron>& bs, const QueryOptions& options,
+                          const BatchSettings& settings) {
+  return bodies_batch(Kind::distance, as, bs, options, settings);
 }
 
 BatchResult collide_many(const std::vector<ConvexPolyhedron>& as,
-                         const std::vector<ConvexPolyhedron>& bs, const DistanceOptions& options,
-                         bool escalate, int threads) {
-  return run_batch(as.size(), bs.size(), options, threads,
-                   [&](std::size_t i, const DistanceOptions& o) {
-                     return collision(as[i], bs[i], o, escalate);
-                   });
+                         const std::vector<ConvexPolyhedron>& bs, const QueryOptions& options,
+                         const BatchSettings& settings) {
+  return bodies_batch(Kind::collide, as, bs, options, settings);
+}
+
+BatchResult signed_distance_many(const std::vector<ConvexPolyhedron>& as,
+                                 const std::vector<ConvexPolyhedron>& bs,
+                                 const QueryOptions& options, const BatchSettings& settings) {
+  return bodies_batch(Kind::signed_distance, as, bs, options, settings);
 }
 
 BatchResult distance_many(const VertexStack& as, const VertexStack& bs,
-                          const DistanceOptions& options, int threads) {
-  return run_batch(as.count, bs.count, options, threads,
-                   [&](std::size_t i, const DistanceOptions& o) {
-                     const ConvexPolyhedron a = body(as, i);
-                     const ConvexPolyhedron b = body(bs, i);
-                     return distance(a, b, o);
-                   });
+                          const QueryOptions& options, const BatchSettings& settings) {
+  return stack_batch(Kind::distance, as, bs, options, settings);
 }
 
-BatchResult collide_many(const VertexStack& as, const VertexStack& bs,
-                         const DistanceOptions& options, bool escalate, int threads) {
-  return run_batch(as.count, bs.count, options, threads,
-                   [&](std::size_t i, const DistanceOptions& o) {
-                     const ConvexPolyhedron a = body(as, i);
-                     const ConvexPolyhedron b = body(bs, i);
-                     return collision(a, b, o, escalate);
-                   });
+BatchResult collide_many(const VertexStack& as, const VertexStack& bs, const QueryOptions& options,
+                         const BatchSettings& settings) {
+  return stack_batch(Kind::collide, as, bs, options, settings);
+}
+
+BatchResult signed_distance_many(const VertexStack& as, const VertexStack& bs,
+                                 const QueryOptions& options, const BatchSettings& settings) {
+  return stack_batch(Kind::signed_distance, as, bs, options, settings);
 }
 
 }  // namespace swarmcollide

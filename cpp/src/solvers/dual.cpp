@@ -1,5 +1,3 @@
-#include "swarmcollide/solvers/dual.hpp"
-
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -9,13 +7,15 @@
 #include <utility>
 #include <vector>
 
-#include "exact_internal.hpp"
+#include "dual_swarm.hpp"
+#include "exact_solver.hpp"
+#include "minkowski.hpp"
 #include "swarmcollide/detail/random.hpp"
-#include "swarmcollide/solvers/exact_options.hpp"
 #include "swarmcollide/solvers/swarm.hpp"
 #include "wolfe_min_norm.hpp"
+#include "witness.hpp"
 
-namespace swarmcollide {
+namespace swarmcollide::detail {
 
 namespace {
 
@@ -37,33 +37,19 @@ constexpr int kPenetrationSteps = 12;
 
 using Point2 = Eigen::Matrix<Scalar, 2, 1>;
 
-// What every query needs of a body and would otherwise cost a pass over its points: made once per
-// body and shared by its copies.
-struct BodySummary {
-  Scalar diagonal = 0;
-  Vector3 box_centre = Vector3::Zero();
-  Vector3 mean = Vector3::Zero();
-};
-
-std::shared_ptr<const BodySummary> summary_of(const ConvexPolyhedron& body) {
-  return body.derived<BodySummary>([&body] {
-    const Aabb box = body.aabb();
-    return BodySummary{(box.max - box.min).norm(), (box.max + box.min) / 2,
-                       body.vertices().colwise().mean().transpose()};
-  });
-}
-
 // The weights of an upper bound: a convex combination of at most four pairs (x_ia, y_ib), as
 // Wolfe's corral gives them, kept sparse so that recording a better bound costs nothing in the
 // bodies' sizes; the dense weights are built once, for the result.
 struct Witness {
-  std::array<int, exact_internal::MinNormPoint::kCapacity> ia{};
-  std::array<int, exact_internal::MinNormPoint::kCapacity> ib{};
-  std::array<Scalar, exact_internal::MinNormPoint::kCapacity> weights{};
+  std::array<int, MinNormPoint::kCapacity> ia{};
+  std::array<int, MinNormPoint::kCapacity> ib{};
+  std::array<Scalar, MinNormPoint::kCapacity> weights{};
   int size = 0;
   Vector3 point_a = Vector3::Zero();
   Vector3 point_b = Vector3::Zero();
   Scalar distance = std::numeric_limits<Scalar>::infinity();
+  // The corral it came from encloses the origin: a proof that the bodies share a point.
+  bool encloses_origin = false;
 };
 
 // Buffers that a solve reuses from the previous one on the same thread, so that a warmed-up solve
@@ -115,7 +101,8 @@ struct Chart {
   }
 };
 
-enum class Goal {
+// What a round of the swarm looks for.
+enum class Search {
   // Upper and lower bound within the tolerance, or a common point.
   distance,
   // The largest separation (minus the penetration depth) of overlapping bodies.
@@ -124,27 +111,25 @@ enum class Goal {
 
 class DualSolver {
  public:
-  DualSolver(const ConvexPolyhedron& a, const ConvexPolyhedron& b, const DualOptions& options)
-      : a_(a),
-        b_(b),
-        summary_a_(summary_of(a)),
-        summary_b_(summary_of(b)),
+  DualSolver(const FramedPair& pair, const DualOptions& options, std::uint64_t seed,
+             int exact_iterations, Goal goal)
+      : pair_(pair),
+        a_(pair.a),
+        b_(pair.b),
         options_(options),
-        rng_(options.seed),
+        exact_iterations_(exact_iterations),
+        goal_(goal),
+        rng_(seed),
         ws_(thread_workspace()) {
-    const Scalar size = std::max(summary_a_->diagonal, summary_b_->diagonal);
-    scale_ = summary_a_->diagonal + summary_b_->diagonal +
-             (summary_b_->box_centre - summary_a_->box_centre).norm();
-    tolerance_ = options.tolerance > 0 ? options.tolerance
-                                       : options.relative_tolerance * (size > 0 ? size : scale_);
-    slack_ = options.feature_tolerance * size;
-    if (ws_.visited_a.size() < static_cast<std::size_t>(a.size())) ws_.visited_a.resize(a.size());
-    if (ws_.visited_b.size() < static_cast<std::size_t>(b.size())) ws_.visited_b.resize(b.size());
+    tolerance_ = pair.tolerance;
+    slack_ = options.feature_tolerance * pair.frame.size;
+    if (ws_.visited_a.size() < static_cast<std::size_t>(a_.size())) ws_.visited_a.resize(a_.size());
+    if (ws_.visited_b.size() < static_cast<std::size_t>(b_.size())) ws_.visited_b.resize(b_.size());
     ws_.history.clear();
   }
 
-  DistanceResult distance() {
-    const Vector3 between = summary_b_->mean - summary_a_->mean;
+  Answer distance() {
+    const Vector3 between = b_.offset() - a_.offset();
     const Vector3 centre = between.norm() > 0 ? Vector3(between.normalized()) : Vector3::UnitX();
     int ia = -1;
     int ib = -1;
@@ -153,31 +138,29 @@ class DualSolver {
     hint_a_ = ia;
     hint_b_ = ib;
     ws_.history.push_back(best_.distance);
-    search(Goal::distance, centre, kPi / 2);
+    search(Search::distance, centre, kPi / 2);
     return result();
   }
 
-  DistanceResult signed_distance() {
-    DistanceResult apart = distance();
-    if (!apart.colliding) return apart;
-    search(Goal::penetration, best_n_, kPi);
-    DistanceResult r =
-        exact_internal::penetration_result(a_, b_, best_n_, -best_s_, "dual", tolerance_);
-    r.iterations = iterations_;
-    r.evaluations = evaluations_;
-    r.history = ws_.history;
-    r.certified = apart.certified;
-    r.status = apart.status;
-    return r;
+  // The dual's swarm finds the basin of the largest separation of overlapping bodies; the exact
+  // penetration solver, started from its direction, proves the depth.
+  Answer signed_distance() {
+    Answer apart = distance();
+    if (apart.lower > kFrameRounding) return apart;
+    search(Search::penetration, best_n_, kPi);
+    Answer overlap = exact_signed_distance(pair_, exact_iterations_, best_n_);
+    overlap.iterations += iterations_;
+    overlap.evaluations += evaluations_;
+    overlap.history = ws_.history;
+    overlap.intersection_proven = overlap.intersection_proven || apart.intersection_proven;
+    return overlap;
   }
 
  private:
   // s(n) with the support points warm-started from (and returned in) ia, ib.
   Scalar separation(const Vector3& n, int& ia, int& ib) {
-    ia = a_.support_index(n, ia);
-    ib = b_.support_index(-n, ib);
     ++evaluations_;
-    return (b_.vertices().row(ib) - a_.vertices().row(ia)).dot(n);
+    return detail::separation(a_, b_, n, ia, ib);
   }
 
   void offer_lower(const Vector3& n, Scalar s) {
@@ -193,8 +176,8 @@ class DualSolver {
     w.ib[0] = ib;
     w.weights[0] = 1;
     w.size = 1;
-    w.point_a = a_.vertices().row(ia).transpose();
-    w.point_b = b_.vertices().row(ib).transpose();
+    w.point_a = a_.vertex(ia);
+    w.point_b = b_.vertex(ib);
     w.distance = (w.point_b - w.point_a).norm();
     offer_upper(w);
   }
@@ -203,46 +186,50 @@ class DualSolver {
     if (w.distance < best_.distance) best_ = w;
   }
 
-  // The witness of Wolfe's corral, whose indices are the bodies' own. The points are summed
-  // relative to a point of A, so that bodies far from the origin cost no precision.
-  Witness witness_of(const exact_internal::MinNormPoint& m) const {
+  // The witness of Wolfe's corral, whose indices are the bodies' own.
+  Witness witness_of(const MinNormPoint& m) const {
     Witness w;
     w.size = m.size;
     Scalar total = 0;
     for (int k = 0; k < m.size; ++k) total += m.weights[k];
-    const Vector3 origin = a_.vertices().row(m.corral[0].ia).transpose();
-    Vector3 local_a = Vector3::Zero();
-    Vector3 local_b = Vector3::Zero();
     for (int k = 0; k < m.size; ++k) {
       w.ia[k] = m.corral[k].ia;
       w.ib[k] = m.corral[k].ib;
       w.weights[k] = m.weights[k] / total;
-      local_a += w.weights[k] * (a_.vertices().row(w.ia[k]).transpose() - origin);
-      local_b += w.weights[k] * (b_.vertices().row(w.ib[k]).transpose() - origin);
+      w.point_a += w.weights[k] * a_.vertex(w.ia[k]);
+      w.point_b += w.weights[k] * b_.vertex(w.ib[k]);
     }
-    w.point_a = origin + local_a;
-    w.point_b = origin + local_b;
-    w.distance = (local_b - local_a).norm();
+    w.distance = (w.point_b - w.point_a).norm();
+    if (m.size == 4) {
+      w.encloses_origin =
+          encloses_origin({m.corral[0].p, m.corral[1].p, m.corral[2].p, m.corral[3].p});
+    }
     return w;
   }
 
-  bool colliding() const { return best_.distance <= tolerance_; }
+  // Contact proven (by witnesses within the tolerance, beyond rounding, or a corral around the
+  // origin).
+  bool colliding() const {
+    return best_.encloses_origin || best_.distance + kFrameRounding <= tolerance_;
+  }
+  // A verdict needs only one bound to prove it; a distance needs them within the tolerance.
   bool converged() const {
-    return colliding() || (best_s_ > tolerance_ && best_.distance - best_s_ <= tolerance_);
+    if (colliding()) return true;
+    if (goal_ == Goal::verdict && best_s_ - kFrameRounding > tolerance_) return true;
+    return best_s_ > 0 && best_.distance - best_s_ <= tolerance_;
   }
 
   // Points of `body` within the slack of its supporting plane along `n`, highest first, into
   // `found`: a scan for small bodies, a flood over the hull's edge graph from the support point
   // for large ones (the vertices above a plane span a connected subgraph of a polytope's graph).
-  static void feature(const ConvexPolyhedron& body, const Vector3& n, int& hint,
+  static void feature(const FramedBody& body, const Vector3& n, int& hint,
                       std::vector<char>& visited, Scalar slack, std::vector<int>& found) {
     hint = body.support_index(n, hint);
-    const VertexMatrix& v = body.vertices();
-    const Scalar floor = v.row(hint).dot(n) - slack;
+    const Scalar floor = body.vertex(hint).dot(n) - slack;
     found.clear();
     if (body.size() <= kHillClimbingThreshold) {
       for (int i = 0; i < body.size(); ++i) {
-        if (v.row(i).dot(n) >= floor) found.push_back(i);
+        if (body.vertex(i).dot(n) >= floor) found.push_back(i);
       }
     } else {
       const Hull& h = body.hull();
@@ -252,7 +239,7 @@ class DualSolver {
         const int i = found[k];
         for (int e = h.neighbour_offsets[i]; e < h.neighbour_offsets[i + 1]; ++e) {
           const int j = h.neighbours[e];
-          if (!visited[j] && v.row(j).dot(n) >= floor) {
+          if (!visited[j] && body.vertex(j).dot(n) >= floor) {
             visited[j] = 1;
             found.push_back(j);
           }
@@ -261,7 +248,7 @@ class DualSolver {
       for (int i : found) visited[i] = 0;
     }
     std::sort(found.begin(), found.end(),
-              [&](int i, int j) { return v.row(i).dot(n) > v.row(j).dot(n); });
+              [&](int i, int j) { return body.vertex(i).dot(n) > body.vertex(j).dot(n); });
   }
 
   // The exact nearest points of the hulls of two features: Wolfe's algorithm on their Minkowski
@@ -269,45 +256,29 @@ class DualSolver {
   // features and the stopping scale of `exact_nearest_points` on the same points.
   Witness nearest_between(const std::vector<int>& fa, const std::vector<int>& fb,
                           const Vector3& start) const {
-    const VertexMatrix& x = a_.vertices();
-    const VertexMatrix& y = b_.vertices();
     const auto oracle = [&](const Vector3& d) {
       int i = fa[0];
-      Scalar highest = x.row(i).dot(d);
+      Scalar highest = a_.vertex(i).dot(d);
       for (std::size_t k = 1; k < fa.size(); ++k) {
-        const Scalar h = x.row(fa[k]).dot(d);
+        const Scalar h = a_.vertex(fa[k]).dot(d);
         if (h > highest) {
           highest = h;
           i = fa[k];
         }
       }
       int j = fb[0];
-      Scalar lowest = y.row(j).dot(d);
+      Scalar lowest = b_.vertex(j).dot(d);
       for (std::size_t k = 1; k < fb.size(); ++k) {
-        const Scalar h = y.row(fb[k]).dot(d);
+        const Scalar h = b_.vertex(fb[k]).dot(d);
         if (h < lowest) {
           lowest = h;
           j = fb[k];
         }
       }
-      return exact_internal::OraclePoint{(y.row(j) - x.row(i)).transpose(), i, j};
+      return OraclePoint{b_.vertex(j) - a_.vertex(i), i, j};
     };
-    const auto spread = [](const VertexMatrix& points, const std::vector<int>& rows,
-                           Vector3& box_centre) {
-      Vector3 low = points.row(rows[0]).transpose();
-      Vector3 high = low;
-      for (int i : rows) {
-        low = low.cwiseMin(points.row(i).transpose());
-        high = high.cwiseMax(points.row(i).transpose());
-      }
-      box_centre = (low + high) / 2;
-      return (high - low).norm();
-    };
-    Vector3 centre_a, centre_b;
-    const Scalar scale =
-        spread(x, fa, centre_a) + spread(y, fb, centre_b) + (centre_b - centre_a).norm();
-    return witness_of(
-        exact_internal::wolfe_min_norm(oracle, start, scale, ExactOptions{}.max_iterations));
+    // In the frame every point lies in the unit ball, so 2 bounds every difference.
+    return witness_of(wolfe_min_norm(oracle, start, 2, exact_iterations_));
   }
 
   // Adds the points of `more` missing from `into`; returns whether any was.
@@ -370,7 +341,7 @@ class DualSolver {
       std::vector<Vector3>& candidates = ws_.candidates;
       candidates.clear();
       for (const auto& [body, f] : {std::pair{&a_, &fa}, std::pair{&b_, &fb}}) {
-        const auto row = [&](int i) -> Vector3 { return body->vertices().row(i).transpose(); };
+        const auto row = [&](int i) -> Vector3 { return body->vertex(i); };
         for (std::size_t i = 0; i < f->size(); ++i) {
           for (std::size_t j = i + 1; j < f->size(); ++j) {
             for (std::size_t k = j + 1; k < f->size(); ++k) {
@@ -382,11 +353,10 @@ class DualSolver {
       }
       for (std::size_t i = 0; i < fa.size(); ++i) {
         for (std::size_t j = i + 1; j < fa.size(); ++j) {
-          const Vector3 ea = a_.vertices().row(fa[j]) - a_.vertices().row(fa[i]);
+          const Vector3 ea = a_.vertex(fa[j]) - a_.vertex(fa[i]);
           for (std::size_t k = 0; k < fb.size(); ++k) {
             for (std::size_t l = k + 1; l < fb.size(); ++l) {
-              candidates.push_back(
-                  ea.cross((b_.vertices().row(fb[l]) - b_.vertices().row(fb[k])).transpose()));
+              candidates.push_back(ea.cross(b_.vertex(fb[l]) - b_.vertex(fb[k])));
             }
           }
         }
@@ -394,7 +364,7 @@ class DualSolver {
       const Scalar previous = best_s_;
       for (Vector3 c : candidates) {
         const Scalar length = c.norm();
-        if (!(length > 1e-12 * scale_ * scale_)) continue;
+        if (!(length > 1e-12)) continue;
         c /= length;
         if (c.dot(n) < 0) c = -c;
         int ia = hint_a_;
@@ -410,8 +380,8 @@ class DualSolver {
     }
   }
 
-  void finish(Goal goal, const Vector3& n) {
-    if (goal == Goal::distance) {
+  void finish(Search goal, const Vector3& n) {
+    if (goal == Search::distance) {
       finish_distance(n);
     } else {
       finish_penetration(n);
@@ -424,14 +394,10 @@ class DualSolver {
     int ia = hint_a_;
     int ib = hint_b_;
     const auto oracle = [&](const Vector3& d) {
-      ia = a_.support_index(d, ia);
-      ib = b_.support_index(-d, ib);
       ++evaluations_;
-      return exact_internal::OraclePoint{
-          (b_.vertices().row(ib) - a_.vertices().row(ia)).transpose(), ia, ib};
+      return minkowski_support(a_, b_, d, ia, ib);
     };
-    const Witness w = witness_of(
-        exact_internal::wolfe_min_norm(oracle, best_n_, scale_, ExactOptions{}.max_iterations));
+    const Witness w = witness_of(wolfe_min_norm(oracle, best_n_, 2, exact_iterations_));
     offer_upper(w);
     if (w.distance > 0) {
       const Vector3 n = (w.point_b - w.point_a).normalized();
@@ -452,12 +418,12 @@ class DualSolver {
   // Where hill climbing along `n` should start: the highest along `n` of `start` and the support
   // points `found` of the particles seeded before. A new particle may point anywhere in the disc,
   // and the nearest earlier answer spares most of the climb from the centre's.
-  static int nearest_start(const ConvexPolyhedron& body, const Vector3& n,
+  static int nearest_start(const FramedBody& body, const Vector3& n,
                            const std::vector<int>& found, int count, int start) {
     if (body.size() <= kHillClimbingThreshold) return start;
-    Scalar highest = body.vertices().row(start).dot(n);
+    Scalar highest = body.vertex(start).dot(n);
     for (int k = 0; k < count; ++k) {
-      const Scalar h = body.vertices().row(found[k]).dot(n);
+      const Scalar h = body.vertex(found[k]).dot(n);
       if (h > highest) {
         highest = h;
         start = found[k];
@@ -478,7 +444,7 @@ class DualSolver {
   // One round of the paper's swarm, (8)-(11) with rank-based inertia, maximising s over the
   // chart at `centre`; particle 0 starts at the centre. Returns when converged (distance goal)
   // or after max_iterations.
-  void round(Goal goal, const Vector3& centre, Scalar radius) {
+  void round(Search goal, const Vector3& centre, Scalar radius) {
     const Chart chart(centre);
     const int np = options_.swarm_size;
     std::vector<Point2>& x = ws_.x;
@@ -520,7 +486,7 @@ class DualSolver {
     order.resize(np);
     coefficients.resize(np);
     for (int iteration = 0; iteration < options_.max_iterations; ++iteration) {
-      if (goal == Goal::distance && converged()) break;
+      if (goal == Search::distance && converged()) break;
       rank_by_personal_best(order);
       for (int rank = 1; rank <= np; ++rank) {
         coefficients[order[rank - 1]] =
@@ -547,7 +513,7 @@ class DualSolver {
       ++iterations_;
       ws_.history.push_back(best_.distance);
     }
-    if (goal == Goal::distance) {
+    if (goal == Search::distance) {
       if (!converged()) {
         finished = {-1, -1};
         improve(g);
@@ -571,12 +537,12 @@ class DualSolver {
     }
   }
 
-  void search(Goal goal, Vector3 centre, Scalar radius) {
+  void search(Search goal, Vector3 centre, Scalar radius) {
     bool tried_common_point = false;
     for (int r = 0; r < options_.max_rounds; ++r) {
       const Scalar before = best_s_;
       round(goal, centre, radius);
-      if (goal == Goal::distance) {
+      if (goal == Search::distance) {
         if (converged()) return;
         if (best_s_ <= tolerance_ && !tried_common_point) {
           tried_common_point = true;
@@ -587,7 +553,7 @@ class DualSolver {
         return;
       }
       // Overlapping bodies: the first rounds restart over the whole sphere to find the basin.
-      if (goal == Goal::penetration && r + 1 < kGlobalRounds) {
+      if (goal == Search::penetration && r + 1 < kGlobalRounds) {
         centre = best_n_;
         continue;
       }
@@ -598,39 +564,30 @@ class DualSolver {
     }
   }
 
-  DistanceResult result() {
-    DistanceResult r;
-    r.distance = best_.distance;
+  Answer result() {
+    Answer r;
+    r.upper = best_.distance;
     r.point_a = best_.point_a;
     r.point_b = best_.point_b;
-    r.weights_a = VectorX::Zero(a_.size());
-    r.weights_b = VectorX::Zero(b_.size());
-    for (int k = 0; k < best_.size; ++k) {
-      r.weights_a(best_.ia[k]) += best_.weights[k];
-      r.weights_b(best_.ib[k]) += best_.weights[k];
-    }
-    if (best_s_ > 0) {
-      r.lower_bound = best_s_;
-      r.direction = best_n_;
-    }
+    r.weights_a = ConvexWeights(a_.size(), best_.ia, best_.weights, best_.size);
+    r.weights_b = ConvexWeights(b_.size(), best_.ib, best_.weights, best_.size);
+    r.lower = best_s_;
+    r.direction = best_n_;
     r.iterations = iterations_;
     r.evaluations = evaluations_;
     r.history = ws_.history;
-    r.colliding = colliding();
-    r.certified = r.colliding || r.lower_bound > tolerance_;
-    r.method = "dual";
-    r.status = converged() ? SolverStatus::converged : SolverStatus::max_iterations;
+    r.intersection_proven = best_.encloses_origin;
     return r;
   }
 
-  const ConvexPolyhedron& a_;
-  const ConvexPolyhedron& b_;
-  const std::shared_ptr<const BodySummary> summary_a_;
-  const std::shared_ptr<const BodySummary> summary_b_;
+  const FramedPair& pair_;
+  const FramedBody& a_;
+  const FramedBody& b_;
   const DualOptions& options_;
-  detail::Xoshiro256 rng_;
+  const int exact_iterations_;
+  const Goal goal_;
+  Xoshiro256 rng_;
   Workspace& ws_;
-  Scalar scale_ = 0;
   Scalar tolerance_ = 0;
   Scalar slack_ = 0;
   int hint_a_ = -1;
@@ -644,16 +601,9 @@ class DualSolver {
 
 }  // namespace
 
-DistanceResult solve_dual(const ConvexPolyhedron& a, const ConvexPolyhedron& b,
-                          const DualOptions& options) {
-  options.validate();
-  return DualSolver(a, b, options).distance();
+Answer solve_dual(const FramedPair& pair, const QueryOptions& options, Goal goal) {
+  DualSolver solver(pair, options.dual, options.seed, options.exact.max_iterations, goal);
+  return goal == Goal::signed_distance ? solver.signed_distance() : solver.distance();
 }
 
-DistanceResult dual_signed_distance(const ConvexPolyhedron& a, const ConvexPolyhedron& b,
-                                    const DualOptions& options) {
-  options.validate();
-  return DualSolver(a, b, options).signed_distance();
-}
-
-}  // namespace swarmcollide
+}  // namespace swarmcollide::detail

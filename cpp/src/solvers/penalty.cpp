@@ -1,15 +1,17 @@
-#include "swarmcollide/solvers/penalty.hpp"
+#include "penalty_method.hpp"
 
 #include <LBFGS.h>
 #include <LBFGSpp/LineSearchNocedalWright.h>
 
 #include <limits>
 #include <stdexcept>
+#include <utility>
+#include <vector>
 
-#include "exact_internal.hpp"
 #include "swarmcollide/problem/simplex.hpp"
+#include "witness.hpp"
 
-namespace swarmcollide {
+namespace swarmcollide::detail {
 
 namespace {
 
@@ -65,17 +67,20 @@ class PenalisedObjective {
 
 }  // namespace
 
-DistanceResult solve_penalty(const ConvexPolyhedron& a, const ConvexPolyhedron& b,
-                             const PenaltyOptions& options) {
-  options.validate();
-  const int ka = a.size();
-  const int kb = b.size();
-  const Aabb box = a.aabb();
-  const Vector3 centre = (box.min + box.max) / 2;
-  Scalar scale = exact_internal::pair_scale(a, b);
-  if (!(scale > 0)) scale = 1;
-  PenalisedObjective objective((a.vertices().rowwise() - centre.transpose()).transpose() / scale,
-                               (b.vertices().rowwise() - centre.transpose()).transpose() / scale);
+Answer solve_penalty(const FramedPair& pair, const QueryOptions& query, Goal goal) {
+  if (goal == Goal::signed_distance) {
+    throw std::invalid_argument("the penalty method measures no penetration depth");
+  }
+  const PenaltyOptions& options = query.penalty;
+  const int ka = pair.a.size();
+  const int kb = pair.b.size();
+  VertexMatrix points_a;
+  VertexMatrix points_b;
+  pair.a.points(points_a);
+  pair.b.points(points_b);
+  // The frame's coordinates are of order one, so the weights mean the same for bodies of any
+  // size and position.
+  PenalisedObjective objective(points_a.transpose(), points_b.transpose());
 
   VectorX z(ka + kb);
   z.head(ka).setConstant(Scalar(1) / ka);
@@ -89,13 +94,15 @@ DistanceResult solve_penalty(const ConvexPolyhedron& a, const ConvexPolyhedron& 
   param.linesearch = LBFGSpp::LBFGS_LINESEARCH_BACKTRACKING_STRONG_WOLFE;
   LBFGSpp::LBFGSSolver<Scalar, LBFGSpp::LineSearchNocedalWright> solver(param);
 
-  DistanceResult best;
-  Scalar best_lower = 0;
+  Answer best;
+  std::vector<Scalar> history;
+  Scalar best_lower = -std::numeric_limits<Scalar>::infinity();
   Vector3 best_direction = Vector3::Zero();
   int iterations = 0;
   Scalar mu = options.initial_weight;
-  bool converged = false;
-  for (int k = 0; k < options.outer_iterations && !converged; ++k, mu *= options.growth_factor) {
+  const Scalar tol = pair.tolerance;
+  bool settled = false;
+  for (int k = 0; k < options.outer_iterations && !settled; ++k, mu *= options.growth_factor) {
     objective.set_weight(mu);
     Scalar value = 0;
     try {
@@ -106,29 +113,23 @@ DistanceResult solve_penalty(const ConvexPolyhedron& a, const ConvexPolyhedron& 
       // rounding); the best point evaluated stands, and its iterations go uncounted.
       z = objective.best();
     }
-    DistanceResult current = exact_internal::result_from_weights(
-        a, b, to_simplex(z.head(ka)), to_simplex(z.tail(kb)), "penalty", options.tolerance);
-    if (current.lower_bound > best_lower) {
-      best_lower = current.lower_bound;
+    Answer current =
+        answer_from_weights(pair, points_a, points_b, to_simplex(z.head(ka)), to_simplex(z.tail(kb)));
+    if (current.lower > best_lower) {
+      best_lower = current.lower;
       best_direction = current.direction;
     }
-    if (best.history.empty() || current.distance < best.distance) {
-      std::vector<Scalar> history = std::move(best.history);
-      best = std::move(current);
-      best.history = std::move(history);
-    }
-    best.history.push_back(best.distance);
-    const Scalar tol = options.tolerance;
-    converged = tol > 0 && (best.distance - best_lower <= tol || best.distance <= tol);
+    if (history.empty() || current.upper < best.upper) best = std::move(current);
+    history.push_back(best.upper);
+    settled = tol > 0 && (best.upper - best_lower <= tol || best.upper + kFrameRounding <= tol ||
+                          (goal == Goal::verdict && best_lower - kFrameRounding > tol));
   }
-  best.lower_bound = best_lower;
+  best.lower = best_lower;
   best.direction = best_direction;
-  best.colliding = best.distance <= options.tolerance;
-  best.certified = best.colliding || best.lower_bound > options.tolerance;
   best.iterations = iterations;
   best.evaluations = objective.evaluations();
-  best.status = converged ? SolverStatus::converged : SolverStatus::max_iterations;
+  best.history = std::move(history);
   return best;
 }
 
-}  // namespace swarmcollide
+}  // namespace swarmcollide::detail

@@ -4,11 +4,13 @@
 #include <cmath>
 #include <initializer_list>
 #include <stdexcept>
+#include <string>
 #include <utility>
 #include <vector>
 
+#include "minkowski.hpp"
+#include "primal_swarm.hpp"
 #include "swarm_kernels.hpp"
-#include "swarmcollide/problem/certificate.hpp"
 #include "swarmcollide/problem/simplex.hpp"
 
 namespace swarmcollide {
@@ -33,6 +35,11 @@ Scalar linear_decreasing_inertia(int iteration, int max_iterations, Scalar w_sta
 
 namespace {
 
+using detail::Answer;
+using detail::FramedPair;
+using detail::Goal;
+using detail::InertiaStrategy;
+using detail::kFrameRounding;
 using detail::SwarmView;
 
 // The per-particle arrays of a solve, one row each of the workspace's `per_particle` block.
@@ -58,6 +65,8 @@ struct SwarmWorkspace {
   VectorX lambda;
   VectorX delta;
   VectorX scratch;
+  VertexMatrix points_a;
+  VertexMatrix points_b;
 };
 
 // Rows are padded to whole groups of the generator's lanes, which also keeps them aligned.
@@ -68,17 +77,18 @@ int padded(int particles) {
 
 class SwarmSolver {
  public:
-  SwarmSolver(const ConvexPolyhedron& a, const ConvexPolyhedron& b, const SwarmOptions& options,
-              SwarmWorkspace& workspace)
-      : a_(a),
-        b_(b),
+  SwarmSolver(const FramedPair& pair, const SwarmOptions& options, InertiaStrategy inertia,
+              std::uint64_t seed, SwarmWorkspace& workspace)
+      : pair_(pair),
         options_(options),
-        ka_(static_cast<int>(a.size())),
-        kb_(static_cast<int>(b.size())),
+        inertia_(inertia),
+        tolerance_(pair.tolerance),
+        ka_(static_cast<int>(pair.a.size())),
+        kb_(static_cast<int>(pair.b.size())),
         size_(options.swarm_size),
         stride_(padded(options.swarm_size)),
         work_(workspace),
-        lanes_(options.seed) {
+        lanes_(seed) {
     const int rows = ka_ + kb_;
     const std::size_t block = static_cast<std::size_t>(rows) * stride_;
     // Every entry a solve reads is written first, so the buffers are only resized.
@@ -95,16 +105,18 @@ class SwarmSolver {
     work_.per_particle.assign(static_cast<std::size_t>(kPerParticleArrays) * stride_, 0.0);
     work_.global_best.resize(rows);
     work_.signed_vertices.resize(3 * static_cast<std::size_t>(rows));
+    pair.a.points(work_.points_a);
+    pair.b.points(work_.points_b);
     for (int r = 0; r < rows; ++r) {
       const bool on_a = r < ka_;
-      const Vector3 vertex = on_a ? Vector3(-a.vertices().row(r).transpose())
-                                  : Vector3(b.vertices().row(r - ka_).transpose());
+      const Vector3 vertex = on_a ? Vector3(-work_.points_a.row(r).transpose())
+                                  : Vector3(work_.points_b.row(r - ka_).transpose());
       for (int c = 0; c < 3; ++c) work_.signed_vertices[3 * r + c] = vertex(c);
     }
     work_.best_key.resize(stride_);
     work_.improved.resize(stride_);
     work_.rank.resize(stride_);
-    if (options.inertia == InertiaStrategy::rank_adaptive) tabulate_coefficients();
+    if (inertia == InertiaStrategy::rank_adaptive) tabulate_coefficients();
     work_.lambda.resize(ka_);
     work_.delta.resize(kb_);
     fitness_ = {work_.signed_vertices.data(),
@@ -112,7 +124,8 @@ class SwarmSolver {
                 options.feasibility_tolerance};
   }
 
-  DistanceResult run() {
+  Answer run(Goal goal) {
+    goal_ = goal;
     result_.history.reserve(static_cast<std::size_t>(options_.max_iterations) + 1);
     initialise();
     detail::score_initial_positions(swarm_, ka_, fitness_, bests());
@@ -124,13 +137,12 @@ class SwarmSolver {
       const bool improved = advance();
       ++iteration;
       if (improved && find_global_best()) record_best();
-      result_.history.push_back(result_.distance);
+      result_.history.push_back(result_.upper);
     }
     result_.iterations = iteration;
     result_.evaluations = static_cast<long>(size_) * (iteration + 1);
-    result_.colliding = result_.distance <= options_.tolerance;
-    result_.certified = result_.colliding || result_.lower_bound > options_.tolerance;
-    result_.status = precision_reached() ? SolverStatus::converged : SolverStatus::max_iterations;
+    result_.weights_a = ConvexWeights(std::move(best_lambda_));
+    result_.weights_b = ConvexWeights(std::move(best_delta_));
     return std::move(result_);
   }
 
@@ -181,7 +193,7 @@ class SwarmSolver {
     double* inertia = row(kInertia);
     double* pull_own = row(kPullOwn);
     double* pull_global = row(kPullGlobal);
-    if (options_.inertia == InertiaStrategy::linear_decreasing) {
+    if (inertia_ == InertiaStrategy::linear_decreasing) {
       const Scalar w = linear_decreasing_inertia(iteration, options_.max_iterations, options_.w_max,
                                                  options_.w_min);
       std::fill_n(inertia, size_, w);
@@ -242,35 +254,41 @@ class SwarmSolver {
     for (int i = 0; i < kb_; ++i) delta(i) = weight(swarm_.personal_best, ka_ + i, global_best_);
     to_simplex_in_place(lambda, work_.scratch);
     to_simplex_in_place(delta, work_.scratch);
-    const Vector3 pa = a_.vertices().transpose() * lambda;
-    const Vector3 pb = b_.vertices().transpose() * delta;
+    const Vector3 pa = work_.points_a.transpose() * lambda;
+    const Vector3 pb = work_.points_b.transpose() * delta;
     const Scalar d = (pb - pa).norm();
-    if (result_.history.empty() || d < result_.distance) {
-      result_.distance = d;
+    if (result_.history.empty() || d < result_.upper) {
+      result_.upper = d;
       result_.point_a = pa;
       result_.point_b = pb;
-      result_.weights_a = lambda;
-      result_.weights_b = delta;
+      best_lambda_ = lambda;
+      best_delta_ = delta;
     }
-    if (result_.history.empty()) result_.history.push_back(result_.distance);
+    if (result_.history.empty()) result_.history.push_back(result_.upper);
     if (d > 0) {
-      const Scalar s = separation(a_, b_, pb - pa);
-      if (s > result_.lower_bound) {
-        result_.lower_bound = s;
-        result_.direction = (pb - pa) / d;
+      const Vector3 n = (pb - pa) / d;
+      const Scalar s = separation(pair_.a, pair_.b, n);
+      if (s > result_.lower) {
+        result_.lower = s;
+        result_.direction = n;
       }
     }
   }
 
-  // Step 3's precision test, made rigorous by the certificate.
+  // Step 3's precision test, made rigorous by the certificate; a tolerance of zero runs the
+  // whole budget. A verdict is settled as soon as either bound proves it.
   bool precision_reached() const {
-    const Scalar tol = options_.tolerance;
-    return tol > 0 && (result_.distance - result_.lower_bound <= tol || result_.distance <= tol);
+    const Scalar tol = tolerance_;
+    if (!(tol > 0)) return false;
+    if (goal_ == Goal::verdict && result_.lower - kFrameRounding > tol) return true;
+    return result_.upper - result_.lower <= tol || result_.upper + kFrameRounding <= tol;
   }
 
-  const ConvexPolyhedron& a_;
-  const ConvexPolyhedron& b_;
+  const FramedPair& pair_;
   const SwarmOptions& options_;
+  const InertiaStrategy inertia_;
+  const Scalar tolerance_;
+  Goal goal_ = Goal::distance;
   const int ka_;
   const int kb_;
   const int size_;
@@ -283,18 +301,37 @@ class SwarmSolver {
   double* next_position_;
   detail::Fitness fitness_;
   int global_best_ = 0;
-  DistanceResult result_;
+  Answer result_;
+  VectorX best_lambda_;
+  VectorX best_delta_;
 };
 
 }  // namespace
 
-DistanceResult solve_swarm(const ConvexPolyhedron& a, const ConvexPolyhedron& b,
-                           const SwarmOptions& options) {
-  options.validate();
+namespace detail {
+
+// A swarm's arrays hold swarm_size x (vertices of both bodies) entries, four times over.
+constexpr double kMaxSwarmEntries = 1 << 26;
+
+Answer solve_primal_swarm(const FramedPair& pair, const QueryOptions& options, Goal goal) {
+  if (goal == Goal::signed_distance) {
+    throw std::invalid_argument("the primal swarms measure no penetration depth");
+  }
+  const double entries =
+      static_cast<double>(options.swarm.swarm_size) * (pair.a.size() + pair.b.size());
+  if (entries > kMaxSwarmEntries) {
+    throw std::invalid_argument(
+        "swarm_size x (points of both bodies) must be at most 2^26 = 67,108,864 (the swarm's "
+        "arrays would take over 2 GiB), got " +
+        std::to_string(static_cast<long long>(entries)) + "; use fewer particles");
+  }
   thread_local SwarmWorkspace workspace;
-  DistanceResult result = SwarmSolver(a, b, options, workspace).run();
-  result.method = options.inertia == InertiaStrategy::rank_adaptive ? "ipso" : "pso";
-  return result;
+  const InertiaStrategy inertia = options.method == Method::pso
+                                      ? InertiaStrategy::linear_decreasing
+                                      : InertiaStrategy::rank_adaptive;
+  return SwarmSolver(pair, options.swarm, inertia, options.seed, workspace).run(goal);
 }
+
+}  // namespace detail
 
 }  // namespace swarmcollide

@@ -6,7 +6,7 @@
 
 #include "swarmcollide/types.hpp"
 
-namespace swarmcollide::exact_internal {
+namespace swarmcollide::detail {
 
 /// A point of a polytope given by a support oracle, with the indices that produced it (the
 /// vertex of A and the vertex of B for a Minkowski-difference point, -1 when unused).
@@ -165,4 +165,4 @@ MinNormPoint wolfe_min_norm(const Oracle& oracle, const Vector3& start, Scalar s
   return best;
 }
 
-}  // namespace swarmcollide::exact_internal
+}  // namespace swarmcollide::detail

@@ -18,6 +18,16 @@ struct HullCache;
 /// scanning the points.
 inline constexpr int kHillClimbingThreshold = 32;
 
+/// A body's extent, computed once when it is built: every query needs it.
+struct BodyBounds {
+  /// Smallest axis-aligned box containing the points.
+  Aabb box;
+  /// The box's centre.
+  Vector3 centre = Vector3::Zero();
+  /// Half the box's diagonal: every point lies within `radius` of `centre`.
+  Scalar radius = 0;
+};
+
 /// A convex polyhedron: the convex hull of a finite point set (the paper's Definition 3).
 ///
 /// The points are kept as given; they are the `x_i` of model (2), so a point inside the hull is a
@@ -25,7 +35,8 @@ inline constexpr int kHillClimbingThreshold = 32;
 /// bodies. Copies share the lazily computed hull; the class is safe to read from many threads.
 class ConvexPolyhedron {
  public:
-  /// Throws std::invalid_argument if `points` is empty or has a NaN or infinite coordinate.
+  /// Throws std::invalid_argument if `points` is empty, has a NaN or infinite coordinate, or
+  /// spans so far that the body's size is not representable in double precision.
   explicit ConvexPolyhedron(VertexMatrix points);
 
   /// The points the body was built from, one per row.
@@ -47,27 +58,32 @@ class ConvexPolyhedron {
   }
 
   /// Smallest axis-aligned box containing the body.
-  Aabb aabb() const;
+  const Aabb& aabb() const { return bounds_.box; }
+  /// The box, its centre and the radius of the ball around that centre holding the body.
+  const BodyBounds& bounds() const { return bounds_; }
   /// Centre of mass of the solid; for flat, collinear and single-point bodies, of the polygon,
   /// segment or point they are.
   Vector3 centroid() const;
   /// Convex hull, computed on first use.
   const Hull& hull() const;
 
-  /// Data a solver derives from the body (an FCL shape, say): made by `make()` on the first call
-  /// for type `T`, then shared by every copy of the body. Safe to call from many threads.
+  /// Data a solver derives from the body (an FCL shape at some scale, say): made by `make()` on
+  /// the first call for type `T` and `key`, then shared by every copy of the body. Safe to call
+  /// from many threads.
   template <typename T, typename Make>
-  std::shared_ptr<const T> derived(const Make& make) const {
-    return std::static_pointer_cast<const T>(derived_slot(typeid(T), [&make] {
+  std::shared_ptr<const T> derived(const Make& make, int key = 0) const {
+    return std::static_pointer_cast<const T>(derived_slot(typeid(T), key, [&make] {
       return std::shared_ptr<const void>(std::make_shared<const T>(make()));
     }));
   }
 
  private:
   std::shared_ptr<const void> derived_slot(
-      std::type_index type, const std::function<std::shared_ptr<const void>()>& make) const;
+      std::type_index type, int key,
+      const std::function<std::shared_ptr<const void>()>& make) const;
 
   VertexMatrix vertices_;
+  BodyBounds bounds_;
   std::shared_ptr<detail::HullCache> hull_cache_;
 };
 

@@ -5,9 +5,6 @@
 
 namespace swarmcollide {
 
-/// The point `sum_i weights_i * vertices_i` of the body for convex-combination weights.
-Vector3 combination(const ConvexPolyhedron& body, const WeightsRef& weights);
-
 /// Objective (5): `|| sum_j delta_j y_j - sum_i lambda_i x_i ||`.
 Scalar objective(const ConvexPolyhedron& a, const ConvexPolyhedron& b, const WeightsRef& lambda,
                  const WeightsRef& delta);

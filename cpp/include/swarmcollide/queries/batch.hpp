@@ -4,39 +4,47 @@
 #include <vector>
 
 #include "swarmcollide/geometry/convex_polyhedron.hpp"
-#include "swarmcollide/queries/distance.hpp"
+#include "swarmcollide/queries/options.hpp"
 #include "swarmcollide/types.hpp"
 
 namespace swarmcollide {
 
-/// The answers to many queries, one entry (or row) per pair.
+/// The answers to many queries, one entry (or row) per pair, in the units of the input.
 struct BatchResult {
   VectorX distance;
   VectorX lower_bound;
   VertexMatrix point_a;
   VertexMatrix point_b;
+  /// Unit directions from A to B certifying the lower bounds (contact normals for signed
+  /// distances); zero rows where none was found.
+  VertexMatrix direction;
   Eigen::Array<bool, Eigen::Dynamic, 1> colliding;
   Eigen::Array<bool, Eigen::Dynamic, 1> certified;
   Eigen::Array<int, Eigen::Dynamic, 1> iterations;
-  /// True where `collide_many` handed an unproven verdict to the exact method.
+  /// True where another method than the one asked for answered (see
+  /// DistanceResult::escalated_from).
   Eigen::Array<bool, Eigen::Dynamic, 1> escalated;
 };
 
-/// The seed of pair `index` in a batch seeded with `seed`: independent of the thread count.
-std::uint64_t pair_seed(std::uint64_t seed, std::size_t index);
+/// Largest number of threads a batch may ask for.
+inline constexpr int kMaxThreads = 1024;
 
-/// `distance(as[i], bs[i], options)` for every i, spread over `threads` threads (0: one per
-/// hardware thread), with pair i seeded by `pair_seed(seed, i)` for each solver's seed. Throws
-/// std::invalid_argument if the sequences differ in length; the first error of any pair is
-/// rethrown after all threads stop.
-BatchResult distance_many(const std::vector<ConvexPolyhedron>& as,
-                          const std::vector<ConvexPolyhedron>& bs, const DistanceOptions& options,
-                          int threads = 0);
+/// How a batch runs.
+struct BatchSettings {
+  /// Worker threads, 0 for one per hardware thread, at most kMaxThreads. Threads that cannot be
+  /// started are done without: the answers do not depend on the number of threads.
+  int threads = 0;
+  /// The global index of the first pair: pair i is seeded with `pair_seed(seed, first_index +
+  /// i)` and named `first_index + i` in errors, so a batch split into parts gives the answers of
+  /// the whole.
+  std::uint64_t first_index = 0;
+  /// `collide_many` only: hand unproven verdicts to the exact method.
+  bool escalate = true;
+};
 
-/// `collision(as[i], bs[i], options, escalate)` for every i, like `distance_many`.
-BatchResult collide_many(const std::vector<ConvexPolyhedron>& as,
-                         const std::vector<ConvexPolyhedron>& bs, const DistanceOptions& options,
-                         bool escalate = true, int threads = 0);
+/// The seed of the pair with global index `index` in a batch seeded with `seed`: independent of
+/// the thread count and of how the batch is split.
+std::uint64_t pair_seed(std::uint64_t seed, std::uint64_t index);
 
 /// `count` bodies of `vertices` points each, stored one after another: body i's points are the
 /// rows i * vertices to (i + 1) * vertices - 1 of a row-major (count * vertices, 3) array. `name`
@@ -48,15 +56,31 @@ struct VertexStack {
   const char* name;
 };
 
-/// `distance_many` over bodies built from vertex stacks. Each pair's bodies are built, answered
-/// and freed on the thread that answers the pair, so building and freeing them is spread over
-/// the threads too and no thread frees memory that another allocated. A body that cannot be
-/// built throws std::invalid_argument naming it.
-BatchResult distance_many(const VertexStack& as, const VertexStack& bs,
-                          const DistanceOptions& options, int threads = 0);
+/// `Query(options).distance(as[i], bs[i])` for every i, spread over threads, with pair i seeded
+/// by `pair_seed(options.seed, first_index + i)`. Throws std::invalid_argument if the sequences
+/// differ in length or a setting is invalid, and rethrows the error of the pair with the lowest
+/// index that failed, prefixed with "pair N: ".
+BatchResult distance_many(const std::vector<ConvexPolyhedron>& as,
+                          const std::vector<ConvexPolyhedron>& bs, const QueryOptions& options,
+                          const BatchSettings& settings = {});
+/// `Query(options).collision(as[i], bs[i], settings.escalate)` for every i, like distance_many.
+BatchResult collide_many(const std::vector<ConvexPolyhedron>& as,
+                         const std::vector<ConvexPolyhedron>& bs, const QueryOptions& options,
+                         const BatchSettings& settings = {});
+/// `Query(options).signed_distance(as[i], bs[i])` for every i, like distance_many.
+BatchResult signed_distance_many(const std::vector<ConvexPolyhedron>& as,
+                                 const std::vector<ConvexPolyhedron>& bs,
+                                 const QueryOptions& options, const BatchSettings& settings = {});
 
-/// `collide_many` over bodies built from vertex stacks, like the `distance_many` above.
-BatchResult collide_many(const VertexStack& as, const VertexStack& bs,
-                         const DistanceOptions& options, bool escalate = true, int threads = 0);
+/// The same over bodies built from vertex stacks. Each pair's bodies are built, answered and
+/// freed on the thread that answers the pair, so building and freeing them is spread over the
+/// threads too and no thread frees memory that another allocated. A body that cannot be built
+/// throws std::invalid_argument naming it by its global index.
+BatchResult distance_many(const VertexStack& as, const VertexStack& bs,
+                          const QueryOptions& options, const BatchSettings& settings = {});
+BatchResult collide_many(const VertexStack& as, const VertexStack& bs, const QueryOptions& options,
+                         const BatchSettings& settings = {});
+BatchResult signed_distance_many(const VertexStack& as, const VertexStack& bs,
+                                 const QueryOptions& options, const BatchSettings& settings = {});
 
 }  // namespace swarmcollide

@@ -12,8 +12,7 @@ namespace swarmcollide {
 /// `mu_k = initial_weight * growth_factor^k`, where `P` is the violation (6) plus
 /// `sum min(w, 0)^2 + sum max(w - 1, 0)^2` over all weights (the bounds 0 <= w <= 1). Each
 /// subproblem is solved by L-BFGS for at most `inner_iterations` iterations, warm-started at the
-/// previous solution. The coordinates are centred and divided by the pair's size first, so the
-/// weights mean the same for bodies of any size and position.
+/// previous solution. The outer loop stops early once the answer is within the query's tolerance.
 struct PenaltyOptions {
   /// mu_0, the first penalty weight.
   Scalar initial_weight = 1;
@@ -23,12 +22,6 @@ struct PenaltyOptions {
   int outer_iterations = 8;
   /// L-BFGS iteration cap of each subproblem.
   int inner_iterations = 200;
-  /// Absolute distance tolerance: the outer loop stops once `distance - lower_bound <= tolerance`
-  /// or `distance <= tolerance`, and the bodies count as colliding at `distance <= tolerance`.
-  Scalar tolerance = 1e-6;
-
-  /// Throws std::invalid_argument naming the first invalid field.
-  void validate() const;
 };
 
 }  // namespace swarmcollide

@@ -1,8 +1,6 @@
 #pragma once
 
-#include "swarmcollide/geometry/convex_polyhedron.hpp"
-#include "swarmcollide/solvers/distance_result.hpp"
-#include "swarmcollide/solvers/swarm_options.hpp"
+#include "swarmcollide/types.hpp"
 
 namespace swarmcollide {
 
@@ -20,9 +18,5 @@ ParticleCoefficients rank_adaptive_coefficients(int rank, int swarm_size, Scalar
 
 /// (7): the inertia weight after `iteration` of `max_iterations` iterations.
 Scalar linear_decreasing_inertia(int iteration, int max_iterations, Scalar w_start, Scalar w_end);
-
-/// Solves model (2) with a particle swarm (Steps 1-3). Deterministic for a given seed and build.
-DistanceResult solve_swarm(const ConvexPolyhedron& a, const ConvexPolyhedron& b,
-                           const SwarmOptions& options);
 
 }  // namespace swarmcollide

@@ -1,18 +1,8 @@
 #pragma once
 
-#include <cstdint>
-
 #include "swarmcollide/types.hpp"
 
 namespace swarmcollide {
-
-/// How each particle's inertia weight and acceleration coefficients are chosen.
-enum class InertiaStrategy {
-  /// The paper's improved PSO: per-particle values from the rank of its personal best, (8)-(9).
-  rank_adaptive,
-  /// The standard PSO baseline: one inertia weight decreasing linearly over the iterations, (7).
-  linear_decreasing,
-};
 
 /// How particles are kept on (or steered to) the feasible set of model (2).
 enum class ConstraintHandling {
@@ -25,9 +15,9 @@ enum class ConstraintHandling {
   projection,
 };
 
-/// Parameters of the swarm solvers; the defaults are the paper's (Section IV).
+/// Parameters of the primal swarms ("ipso", "pso"); the defaults are the paper's (Section IV).
+/// The precision of Step 3 is the query's `tolerance` and the random stream its `seed`.
 struct SwarmOptions {
-  InertiaStrategy inertia = InertiaStrategy::rank_adaptive;
   ConstraintHandling constraint_handling = ConstraintHandling::projection;
   /// N_p, the number of particles.
   int swarm_size = 40;
@@ -36,21 +26,14 @@ struct SwarmOptions {
   /// Smallest and largest inertia weight: w_min, w_max of (8), w_end, w_start of (7).
   Scalar w_min = 0.4;
   Scalar w_max = 0.9;
-  /// Acceleration coefficients of the linear-decreasing PSO; the rank-adaptive PSO derives its
-  /// own from (9).
+  /// Acceleration coefficients of the linear-decreasing PSO ("pso"); "ipso" derives its own
+  /// from (9).
   Scalar c1 = 2.0;
   Scalar c2 = 2.0;
   /// Largest velocity component; the weights live in [0, 1], so 1 lets a particle cross the box.
   Scalar velocity_limit = 1.0;
-  /// Precision of Step 3, an absolute distance: stop once `distance - lower_bound <= tolerance`
-  /// or `distance <= tolerance`. Zero runs all `max_iterations`.
-  Scalar tolerance = 1e-6;
   /// Largest violation (6) that still counts as feasible.
   Scalar feasibility_tolerance = 1e-10;
-  std::uint64_t seed = 0;
-
-  /// Throws std::invalid_argument naming the first invalid field.
-  void validate() const;
 };
 
 }  // namespace swarmcollide

@@ -1,0 +1,77 @@
+#include "framed_body.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "normalise.hpp"
+
+namespace swarmcollide::detail {
+
+namespace {
+
+// Largest component first, so vectors with components near the largest double have a norm.
+Scalar robust_norm(const Vector3& v) {
+  const Scalar largest = v.cwiseAbs().maxCoeff();
+  return largest > 0 ? largest * (v / largest).norm() : 0;
+}
+
+Vector3 world_centre(const ConvexPolyhedron& body, const Pose& pose, const char* name) {
+  const Vector3 centre = pose.rotation * body.bounds().centre + pose.translation;
+  if (!centre.allFinite()) {
+    throw std::invalid_argument(std::string(name) +
+                                " is placed beyond the double range (1.8e308): its position is "
+                                "not representable");
+  }
+  return centre;
+}
+
+}  // namespace
+
+Scalar Frame::length_to_world(Scalar length) const { return times_power_of_two(length, exponent); }
+
+Vector3 Frame::point_to_world(const Vector3& p) const {
+  Vector3 world;
+  for (int k = 0; k < 3; ++k) world(k) = centre(k) + times_power_of_two(p(k), exponent);
+  return world;
+}
+
+FramedBody::FramedBody(const ConvexPolyhedron& body, const Pose& pose, const Frame& frame)
+    : body_(&body),
+      rotation_(pose.rotation),
+      rotated_(!pose.has_identity_rotation()),
+      body_centre_(body.bounds().centre),
+      exponent_(frame.exponent) {
+  const int half = -exponent_ / 2;
+  scale_high_ = std::ldexp(1.0, half);
+  scale_low_ = std::ldexp(1.0, -exponent_ - half);
+  const Vector3 from_centre = pose.rotation * body_centre_ + pose.translation - frame.centre;
+  for (int k = 0; k < 3; ++k) offset_(k) = times_power_of_two(from_centre(k), -exponent_);
+}
+
+void FramedBody::points(VertexMatrix& out) const {
+  out.resize(size(), 3);
+  for (int i = 0; i < size(); ++i) out.row(i) = vertex(i).transpose();
+}
+
+FramedPair frame_pair(const ConvexPolyhedron& a, const Pose& pose_a, const ConvexPolyhedron& b,
+                      const Pose& pose_b, Scalar relative_tolerance) {
+  const Vector3 centre_a = world_centre(a, pose_a, "a");
+  const Vector3 centre_b = world_centre(b, pose_b, "b");
+  Frame frame;
+  // Halves first: the sum and difference of two coordinates near the largest double overflow.
+  frame.centre = centre_a / 2 + centre_b / 2;
+  const Scalar extent =
+      robust_norm(centre_b / 2 - centre_a / 2) + std::max(a.bounds().radius, b.bounds().radius);
+  if (!std::isfinite(extent)) {
+    throw std::invalid_argument(
+        "the bodies are farther apart than the double range allows (their extent exceeds "
+        "1.8e308): distances between them are not representable; use a larger unit of length");
+  }
+  frame.exponent = exponent_above(extent);
+  frame.size = 2 * times_power_of_two(extent, -frame.exponent);
+  return {frame, FramedBody(a, pose_a, frame), FramedBody(b, pose_b, frame),
+          relative_tolerance * frame.size};
+}
+
+}  // namespace swarmcollide::detail

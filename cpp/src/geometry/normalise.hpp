@@ -1,0 +1,56 @@
+// Moving point sets into a unit-sized frame; private to the library's sources.
+#pragma once
+
+#include <cmath>
+
+#include "swarmcollide/types.hpp"
+
+namespace swarmcollide::detail {
+
+/// `x * 2^exponent`, exact whenever the result is a normal double: the factor is split in two
+/// when 2^exponent alone would overflow or underflow.
+inline Scalar times_power_of_two(Scalar x, int exponent) {
+  if (exponent > 1000 || exponent < -1000) {
+    const int half = exponent / 2;
+    return x * std::ldexp(1.0, half) * std::ldexp(1.0, exponent - half);
+  }
+  return x * std::ldexp(1.0, exponent);
+}
+
+/// The exponent e with 2^(e-1) <= length < 2^e (0 for a zero length): dividing by 2^e brings
+/// `length` into [0.5, 1).
+inline int exponent_above(Scalar length) {
+  if (!(length > 0)) return 0;
+  int exponent = 0;
+  std::frexp(length, &exponent);
+  return exponent;
+}
+
+/// Points translated by `centre` and divided by 2^exponent, which puts them in the unit ball.
+struct NormalisedPoints {
+  VertexMatrix points;
+  Vector3 centre;
+  int exponent;
+};
+
+/// `points` moved so the centre of their bounding box is the origin and scaled by a power of two
+/// (exactly) so they lie within the unit ball. Convex hulls and centroids are computed there, so
+/// that coordinates anywhere in the double range neither overflow nor underflow in the cross
+/// products; the only rounding is the translation's, relative to the points' own spread.
+inline NormalisedPoints normalise(const VertexMatrix& points) {
+  const Vector3 low = points.colwise().minCoeff().transpose();
+  const Vector3 high = points.colwise().maxCoeff().transpose();
+  const Vector3 centre = low / 2 + high / 2;
+  const Vector3 half_extent = high / 2 - low / 2;
+  const Scalar largest = half_extent.maxCoeff();
+  const Scalar radius = largest > 0 ? largest * (half_extent / largest).norm() : 0;
+  NormalisedPoints result{VertexMatrix(points.rows(), 3), centre, exponent_above(radius)};
+  for (Eigen::Index i = 0; i < points.rows(); ++i) {
+    for (int k = 0; k < 3; ++k) {
+      result.points(i, k) = times_power_of_two(points(i, k) - centre(k), -result.exponent);
+    }
+  }
+  return result;
+}
+
+}  // namespace swarmcollide::detail

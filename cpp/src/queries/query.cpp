@@ -1,0 +1,107 @@
+#include "swarmcollide/queries/query.hpp"
+
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+#include "../geometry/framed_body.hpp"
+#include "dispatch.hpp"
+#include "swarmcollide/queries/methods.hpp"
+#include "verdict.hpp"
+
+namespace swarmcollide {
+
+namespace {
+
+const Pose kIdentity{};
+
+void require(Method method, Capability capability, const char* query) {
+  if (method_info(method).capabilities & capability) return;
+  std::string able;
+  for (const MethodInfo& info : method_table()) {
+    if (info.capabilities & capability) able += std::string(able.empty() ? "'" : ", '") + info.name + "'";
+  }
+  throw std::invalid_argument(std::string(query) + " is not available with method '" +
+                              method_name(method) + "'; use one of " + able);
+}
+
+}  // namespace
+
+Query::Query(QueryOptions options) : options_(std::move(options)) { options_.validate(); }
+
+DistanceResult Query::distance(const ConvexPolyhedron& a, const ConvexPolyhedron& b) const {
+  return distance(a, kIdentity, b, kIdentity);
+}
+
+DistanceResult Query::distance(const ConvexPolyhedron& a, const Pose& pose_a,
+                               const ConvexPolyhedron& b, const Pose& pose_b) const {
+  require(options_.method, kDistance, "distance");
+  const detail::FramedPair pair = detail::frame_pair(a, pose_a, b, pose_b, options_.tolerance);
+  return detail::finish_result(
+      pair, detail::solver_for(options_.method)(pair, options_, detail::Goal::distance),
+      options_.method, detail::Goal::distance);
+}
+
+DistanceResult Query::collision(const ConvexPolyhedron& a, const ConvexPolyhedron& b,
+                                bool escalate) const {
+  return collision(a, kIdentity, b, kIdentity, escalate);
+}
+
+DistanceResult Query::collision(const ConvexPolyhedron& a, const Pose& pose_a,
+                                const ConvexPolyhedron& b, const Pose& pose_b,
+                                bool escalate) const {
+  require(options_.method, kCollide, "collide");
+  const detail::FramedPair pair = detail::frame_pair(a, pose_a, b, pose_b, options_.tolerance);
+  // A method without distances answers with its signed distance, which decides the same way.
+  const detail::Goal goal = method_info(options_.method).capabilities & kDistance
+                                ? detail::Goal::verdict
+                                : detail::Goal::signed_distance;
+  DistanceResult result = detail::finish_result(
+      pair, detail::solver_for(options_.method)(pair, options_, goal), options_.method, goal);
+  if (result.certified || !escalate || options_.method == Method::exact) return result;
+  QueryOptions exact = options_;
+  exact.method = Method::exact;
+  DistanceResult decided = detail::finish_result(
+      pair, detail::solver_for(Method::exact)(pair, exact, detail::Goal::verdict), Method::exact,
+      detail::Goal::verdict);
+  decided.escalated_from = options_.method;
+  return decided;
+}
+
+bool Query::collide(const ConvexPolyhedron& a, const ConvexPolyhedron& b, bool escalate) const {
+  return collision(a, b, escalate).colliding;
+}
+
+bool Query::collide(const ConvexPolyhedron& a, const Pose& pose_a, const ConvexPolyhedron& b,
+                    const Pose& pose_b, bool escalate) const {
+  return collision(a, pose_a, b, pose_b, escalate).colliding;
+}
+
+DistanceResult Query::signed_distance(const ConvexPolyhedron& a, const ConvexPolyhedron& b) const {
+  return signed_distance(a, kIdentity, b, kIdentity);
+}
+
+DistanceResult Query::signed_distance(const ConvexPolyhedron& a, const Pose& pose_a,
+                                      const ConvexPolyhedron& b, const Pose& pose_b) const {
+  require(options_.method, kSignedDistance, "signed_distance");
+  const detail::FramedPair pair = detail::frame_pair(a, pose_a, b, pose_b, options_.tolerance);
+  return detail::finish_result(
+      pair, detail::solver_for(options_.method)(pair, options_, detail::Goal::signed_distance),
+      options_.method, detail::Goal::signed_distance);
+}
+
+DistanceResult distance(const ConvexPolyhedron& a, const ConvexPolyhedron& b,
+                        const QueryOptions& options) {
+  return Query(options).distance(a, b);
+}
+
+bool collide(const ConvexPolyhedron& a, const ConvexPolyhedron& b, const QueryOptions& options) {
+  return Query(options).collide(a, b);
+}
+
+DistanceResult signed_distance(const ConvexPolyhedron& a, const ConvexPolyhedron& b,
+                               const QueryOptions& options) {
+  return Query(options).signed_distance(a, b);
+}
+
+}  // namespace swarmcollide

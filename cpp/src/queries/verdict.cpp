@@ -1,0 +1,66 @@
+#include "verdict.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <utility>
+
+namespace swarmcollide::detail {
+
+namespace {
+
+bool apart_proven(const FramedPair& pair, const Answer& answer) {
+  return answer.lower - kFrameRounding > pair.tolerance;
+}
+
+bool close_proven(const FramedPair& pair, const Answer& answer) {
+  return answer.intersection_proven || answer.upper + kFrameRounding <= pair.tolerance;
+}
+
+}  // namespace
+
+bool verdict_proven(const FramedPair& pair, const Answer& answer) {
+  return apart_proven(pair, answer) || close_proven(pair, answer);
+}
+
+bool value_proven(const FramedPair& pair, const Answer& answer) {
+  return answer.upper - answer.lower <= pair.tolerance + 2 * kFrameRounding;
+}
+
+DistanceResult finish_result(const FramedPair& pair, Answer&& answer, Method requested, Goal goal) {
+  // A distance is never negative, so zero bounds it below whatever the solver found; and in the
+  // frame both bodies lie in the unit ball, so a translation by 2 separates them.
+  answer.lower = std::max(answer.lower, goal == Goal::signed_distance ? -2.0 : 0.0);
+  const bool apart = apart_proven(pair, answer);
+  const bool close = close_proven(pair, answer);
+  const bool exact = value_proven(pair, answer);
+  DistanceResult r;
+  const Frame& frame = pair.frame;
+  r.distance = frame.length_to_world(answer.upper);
+  r.lower_bound = frame.length_to_world(answer.lower);
+  if (!std::isfinite(r.distance) || !std::isfinite(r.lower_bound)) {
+    throw std::invalid_argument(
+        "the distance between the bodies exceeds the largest double (1.8e308) and cannot be "
+        "represented; use a larger unit of length");
+  }
+  r.point_a = frame.point_to_world(answer.point_a);
+  r.point_b = frame.point_to_world(answer.point_b);
+  r.weights_a = std::move(answer.weights_a);
+  r.weights_b = std::move(answer.weights_b);
+  r.direction = answer.direction;
+  r.iterations = answer.iterations;
+  r.evaluations = answer.evaluations;
+  r.history = std::move(answer.history);
+  for (Scalar& h : r.history) h = frame.length_to_world(h);
+  // Unproven, the verdict is the best guess: within the tolerance up to rounding.
+  r.colliding = close || (!apart && answer.upper <= pair.tolerance + kFrameRounding);
+  r.certified = (apart || close) && (goal != Goal::signed_distance || exact);
+  // For a signed distance, contact alone does not settle the depth.
+  const bool settled = exact || (close && goal != Goal::signed_distance);
+  r.status = settled ? SolverStatus::converged : SolverStatus::max_iterations;
+  r.method = answer.answered_by.value_or(requested);
+  if (r.method != requested) r.escalated_from = requested;
+  return r;
+}
+
+}  // namespace swarmcollide::detail

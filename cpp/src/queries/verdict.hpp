@@ -1,0 +1,25 @@
+// The one place where bounds become verdicts; private to the library's sources.
+#pragma once
+
+#include "../geometry/framed_body.hpp"
+#include "../solvers/answer.hpp"
+#include "swarmcollide/queries/distance_result.hpp"
+
+namespace swarmcollide::detail {
+
+/// The result of `answer` to a query of `goal` asked of `requested`, in world units. Rounding
+/// is accounted for: a bound proves a verdict only when it does so by more than
+/// `kFrameRounding`. So `colliding` is proven by an intersection proof or by witnesses within
+/// the tolerance, never by comparing a rounded distance with zero; and apart by a separation
+/// above the tolerance. For signed distances, `certified` also requires both bounds proven and
+/// within the tolerance of each other.
+DistanceResult finish_result(const FramedPair& pair, Answer&& answer, Method requested, Goal goal);
+
+/// True when `answer` proves a verdict at the pair's tolerance (what `finish_result` would call
+/// certified for a verdict), so that a solver or the query layer can stop.
+bool verdict_proven(const FramedPair& pair, const Answer& answer);
+
+/// True when the answer's bounds enclose the value to within the pair's tolerance.
+bool value_proven(const FramedPair& pair, const Answer& answer);
+
+}  // namespace swarmcollide::detail

@@ -1,0 +1,54 @@
+// What a solver returns to the query layer; private to the library's sources.
+#pragma once
+
+#include <limits>
+#include <optional>
+#include <vector>
+
+#include "swarmcollide/problem/convex_weights.hpp"
+#include "swarmcollide/queries/options.hpp"
+#include "swarmcollide/types.hpp"
+
+namespace swarmcollide::detail {
+
+/// What a query asks of a solver.
+enum class Goal {
+  /// The distance, to within the tolerance.
+  distance,
+  /// Only whether the bodies are within the tolerance of each other: a solver may stop as soon
+  /// as its bounds prove either answer.
+  verdict,
+  /// The signed distance (minus the penetration depth for overlapping bodies), to within the
+  /// tolerance.
+  signed_distance,
+};
+
+/// A solver's findings, in frame units (see FramedPair). Both bounds are always valid (up to
+/// `kFrameRounding`): for a signed distance too, `upper` is proven (by a distance, or by an
+/// enumeration of the candidate directions), never merely the best separation found. The solver
+/// reports bounds and proofs only; `finish_result` (verdict.hpp) alone turns them into verdicts,
+/// certificates and a status.
+struct Answer {
+  /// The distance (signed distance) achieved by the witness points: an upper bound.
+  Scalar upper = std::numeric_limits<Scalar>::infinity();
+  /// A lower bound: the separation along `direction`.
+  Scalar lower = -std::numeric_limits<Scalar>::infinity();
+  /// Witness points in the frame; `weights_a` and `weights_b` reproduce them from the points.
+  Vector3 point_a = Vector3::Zero();
+  Vector3 point_b = Vector3::Zero();
+  ConvexWeights weights_a;
+  ConvexWeights weights_b;
+  /// Unit direction from A to B certifying `lower` (zero when none was found).
+  Vector3 direction = Vector3::Zero();
+  int iterations = 0;
+  long evaluations = 0;
+  /// Best upper bound after initialisation and after each iteration.
+  std::vector<Scalar> history;
+  /// A proof that the bodies share a point: a simplex of their difference that encloses the
+  /// origin by a margin above rounding, or exactly equal points.
+  bool intersection_proven = false;
+  /// Set when a method other than the requested one produced the answer.
+  std::optional<Method> answered_by;
+};
+
+}  // namespace swarmcollide::detail

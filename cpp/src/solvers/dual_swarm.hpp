@@ -1,0 +1,24 @@
+// The paper's swarm over separating directions (method "dual"); private to the library.
+#pragma once
+
+#include "../geometry/framed_body.hpp"
+#include "answer.hpp"
+#include "swarmcollide/queries/options.hpp"
+
+namespace swarmcollide::detail {
+
+/// Distance by the dual of model (2): the maximum over unit directions `n` of the separation
+/// `s(n) = min_j n.y_j - max_i n.x_i`, a function of two parameters whatever the vertex count,
+/// searched by the paper's rank-adaptive swarm (8)-(11) over an exponential chart of the sphere.
+///
+/// Exact finish: the nearest points of the supporting features along the best direction (points
+/// within the feature slack of each supporting plane), by Wolfe's algorithm, give weights (an
+/// upper bound) and a direction (a new lower bound). When no separating direction is found, a
+/// common point is sought by Wolfe's algorithm on the Minkowski difference, started from the
+/// swarm's direction. For signed distances of overlapping bodies the swarm searches the basin of
+/// the largest separation and the exact penetration solver proves the depth from its direction.
+/// A warmed-up distance solve allocates only its answer's arrays (its buffers are thread-local).
+/// Deterministic for a given seed.
+Answer solve_dual(const FramedPair& pair, const QueryOptions& options, Goal goal);
+
+}  // namespace swarmcollide::detail

@@ -1,0 +1,23 @@
+// The library's own exact solvers (method "exact"); private to the library's sources.
+#pragma once
+
+#include "../geometry/framed_body.hpp"
+#include "answer.hpp"
+#include "swarmcollide/queries/options.hpp"
+
+namespace swarmcollide::detail {
+
+/// The exact distance: Wolfe's nearest-point algorithm (1976) on B - A through the bodies'
+/// support functions, from `start` (zero: from the centres' difference). Finite and exact to
+/// rounding for every body, flat, collinear and single-point ones included; for overlapping
+/// bodies a common point, with an intersection proof when Wolfe's corral encloses the origin.
+Answer exact_distance(const FramedPair& pair, int max_iterations, const Vector3& start);
+
+/// The exact signed distance: `exact_distance` when a direction proves the bodies apart, the
+/// certified penetration depth otherwise (starting from the direction `hint`, which may be zero).
+Answer exact_signed_distance(const FramedPair& pair, int max_iterations, const Vector3& hint);
+
+/// Method "exact".
+Answer solve_exact(const FramedPair& pair, const QueryOptions& options, Goal goal);
+
+}  // namespace swarmcollide::detail

@@ -1,0 +1,129 @@
+#include "fcl_solver.hpp"
+
+#include <fcl/geometry/shape/convex.h>
+#include <fcl/narrowphase/detail/convexity_based_algorithm/gjk.h>
+
+#include <array>
+#include <memory>
+#include <vector>
+
+#include "../geometry/normalise.hpp"
+#include "../queries/verdict.hpp"
+#include "exact_solver.hpp"
+#include "minkowski.hpp"
+#include "witness.hpp"
+
+namespace swarmcollide::detail {
+
+namespace {
+
+// FCL's Convex finds support points by scanning the vertices up to this count and by walking
+// the edges above it (fcl::Convex::kMinVertCountForEdgeWalking, private in FCL 0.7).
+constexpr std::size_t kFclEdgeWalkingAbove = 32;
+// GJK's stopping threshold in frame units (the bodies lie in the unit ball): relative precision
+// near double's; whatever GJK leaves unproven goes to the exact solver.
+constexpr Scalar kGjkTolerance = 1e-14;
+
+// A body's hull as an fcl::Convexd: local points around the body's box centre, divided by
+// 2^exponent, as FramedBody places them before its rotation. Built once per body and exponent.
+struct FclConvex {
+  std::shared_ptr<fcl::Convexd> shape;
+};
+
+FclConvex make_convex(const FramedBody& framed) {
+  const ConvexPolyhedron& body = framed.body();
+  const Hull& hull = body.hull();
+  const Vector3 centre = body.bounds().centre;
+  auto vertices = std::make_shared<std::vector<fcl::Vector3d>>();
+  vertices->reserve(hull.vertex_indices.size());
+  for (int i : hull.vertex_indices) {
+    fcl::Vector3d p;
+    for (int k = 0; k < 3; ++k) {
+      p(k) = times_power_of_two(body.vertices()(i, k) - centre(k), -framed.exponent());
+    }
+    vertices->push_back(p);
+  }
+  // Faces are given only when FCL walks them: below that size GJK uses nothing but the
+  // vertices, and the faces would only cost FCL's constructor its adjacency build.
+  auto faces = std::make_shared<std::vector<int>>();
+  int face_count = 0;
+  if (vertices->size() > kFclEdgeWalkingAbove) {
+    std::vector<int> local(body.size(), -1);
+    for (std::size_t k = 0; k < hull.vertex_indices.size(); ++k) {
+      local[hull.vertex_indices[k]] = static_cast<int>(k);
+    }
+    face_count = static_cast<int>(hull.faces.rows());
+    faces->reserve(4 * static_cast<std::size_t>(face_count));
+    for (Eigen::Index f = 0; f < hull.faces.rows(); ++f) {
+      faces->insert(faces->end(),
+                    {3, local[hull.faces(f, 0)], local[hull.faces(f, 1)], local[hull.faces(f, 2)]});
+    }
+  }
+  return {std::make_shared<fcl::Convexd>(vertices, face_count, faces)};
+}
+
+std::shared_ptr<const FclConvex> convex_of(const FramedBody& body) {
+  return body.body().derived<FclConvex>([&body] { return make_convex(body); }, body.exponent());
+}
+
+fcl::Transform3d transform_of(const FramedBody& body) {
+  fcl::Transform3d transform = fcl::Transform3d::Identity();
+  transform.linear() = body.rotation();
+  transform.translation() = body.offset();
+  return transform;
+}
+
+// FCL's GJK on the pair; on return `gjk` holds its final simplex in A's shape frame.
+fcl::detail::GJK<Scalar>::Status run_gjk(const FramedPair& pair, fcl::detail::GJK<Scalar>& gjk,
+                                         fcl::detail::MinkowskiDiff<Scalar>& difference) {
+  const auto a = convex_of(pair.a);
+  const auto b = convex_of(pair.b);
+  const fcl::Transform3d place_a = transform_of(pair.a);
+  const fcl::Transform3d place_b = transform_of(pair.b);
+  difference.shapes[0] = a->shape.get();
+  difference.shapes[1] = b->shape.get();
+  difference.toshape1.noalias() = place_b.linear().transpose() * place_a.linear();
+  difference.toshape0 = place_a.inverse(Eigen::Isometry) * place_b;
+  // Start towards B, as seen from A.
+  Vector3 guess = place_a.linear().transpose() * (pair.a.offset() - pair.b.offset());
+  if (!(guess.norm() > 0)) guess = Vector3::UnitX();
+  return gjk.evaluate(difference, guess);
+}
+
+}  // namespace
+
+Answer solve_fcl(const FramedPair& pair, const QueryOptions& options, Goal goal) {
+  using Gjk = fcl::detail::GJK<Scalar>;
+  const int max_iterations = options.exact.max_iterations;
+  Gjk gjk(static_cast<unsigned int>(max_iterations), kGjkTolerance);
+  fcl::detail::MinkowskiDiff<Scalar> difference;
+  const Gjk::Status status = run_gjk(pair, gjk, difference);
+  // FCL's simplex as the bodies' own points: the support indices along each simplex vertex's
+  // direction, found by the library's support queries in the bodies' own frames.
+  const Gjk::Simplex& simplex = *gjk.getSimplex();
+  const Matrix3 to_b = difference.toshape1;
+  MinNormPoint corral;
+  corral.size = static_cast<int>(simplex.rank);
+  for (int k = 0; k < corral.size; ++k) {
+    const Vector3 d = simplex.c[k]->d;
+    const int ia = pair.a.body().support_index(d);
+    const int ib = pair.b.body().support_index(-(to_b * d));
+    corral.corral[k] = {pair.b.vertex(ib) - pair.a.vertex(ia), ia, ib};
+    corral.weights[k] = simplex.p[k];
+  }
+  if (status != Gjk::Failed && corral.size > 0) {
+    Answer answer = answer_from_corral(pair, corral);
+    const bool settled = goal == Goal::verdict ? verdict_proven(pair, answer)
+                                               : value_proven(pair, answer) &&
+                                                     (goal == Goal::distance ||
+                                                      answer.lower > kFrameRounding);
+    if (settled) return answer;
+  }
+  Answer exact = goal == Goal::signed_distance
+                     ? exact_signed_distance(pair, max_iterations, Vector3::Zero())
+                     : exact_distance(pair, max_iterations, Vector3::Zero());
+  exact.answered_by = Method::exact;
+  return exact;
+}
+
+}  // namespace swarmcollide::detail

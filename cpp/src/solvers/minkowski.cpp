@@ -1,0 +1,58 @@
+#include "minkowski.hpp"
+
+#include <cmath>
+#include <limits>
+
+namespace swarmcollide::detail {
+
+namespace {
+
+constexpr Scalar kEpsilon = std::numeric_limits<Scalar>::epsilon();
+
+// Signed distance of the origin from the plane of (p, q, r), positive on the side the
+// right-hand normal points to, and whether its sign is beyond doubt: the determinant's
+// rounding is bounded by a multiple of its permanent, and the points themselves carry
+// kFrameRounding.
+struct PlaneSide {
+  Scalar distance;
+  bool certain;
+};
+
+PlaneSide side_of_origin(const Vector3& p, const Vector3& q, const Vector3& r) {
+  const Vector3 u = q - p;
+  const Vector3 v = r - p;
+  const Vector3 normal = u.cross(v);
+  const Scalar length = normal.norm();
+  if (!(length > 0)) return {0, false};
+  const Scalar determinant = -p.dot(normal);
+  // The permanent of the determinant p . (u x v): the sum of its terms' magnitudes.
+  const Vector3 ap = p.cwiseAbs();
+  const Vector3 au = u.cwiseAbs();
+  const Vector3 av = v.cwiseAbs();
+  const Scalar permanent = ap.x() * (au.y() * av.z() + au.z() * av.y()) +
+                           ap.y() * (au.z() * av.x() + au.x() * av.z()) +
+                           ap.z() * (au.x() * av.y() + au.y() * av.x());
+  const Scalar rounding = 32 * kEpsilon * permanent;
+  const Scalar distance = determinant / length;
+  return {distance, std::abs(determinant) > rounding &&
+                        std::abs(distance) > 4 * kFrameRounding};
+}
+
+}  // namespace
+
+bool encloses_origin(const std::array<Vector3, 4>& points) {
+  // The origin is inside when it is on the inner side of each face, the side of the fourth point.
+  constexpr int kFaces[4][4] = {{1, 2, 3, 0}, {0, 3, 2, 1}, {0, 1, 3, 2}, {0, 2, 1, 3}};
+  for (const auto& face : kFaces) {
+    const PlaneSide origin = side_of_origin(points[face[0]], points[face[1]], points[face[2]]);
+    const Vector3 normal =
+        (points[face[1]] - points[face[0]]).cross(points[face[2]] - points[face[0]]);
+    const Scalar opposite = normal.dot(points[face[3]] - points[face[0]]);
+    if (!origin.certain || !(opposite != 0) || (origin.distance > 0) != (opposite > 0)) {
+      return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace swarmcollide::detail

@@ -1,0 +1,40 @@
+// Support queries on the Minkowski difference B - A of a framed pair; private to the library.
+#pragma once
+
+#include <array>
+
+#include "../geometry/framed_body.hpp"
+#include "wolfe_min_norm.hpp"
+
+namespace swarmcollide::detail {
+
+/// The support oracle of B - A: the point y_j - x_i that minimises `d . (y - x)`, with the
+/// indices i (of A) and j (of B) that give it. `hint_a`/`hint_b` start the hill climbing of large
+/// bodies and receive the answer, so nearby directions cost a few neighbour checks.
+inline OraclePoint minkowski_support(const FramedBody& a, const FramedBody& b, const Vector3& d,
+                                     int& hint_a, int& hint_b) {
+  hint_a = a.support_index(d, hint_a);
+  hint_b = b.support_index(-d, hint_b);
+  return {b.vertex(hint_b) - a.vertex(hint_a), hint_a, hint_b};
+}
+
+/// Separation along the unit direction `n`: `min_j n.y_j - max_i n.x_i`, a lower bound on the
+/// (signed) distance for every n. The support indices are started from, and returned in, the
+/// hints.
+inline Scalar separation(const FramedBody& a, const FramedBody& b, const Vector3& n, int& hint_a,
+                         int& hint_b) {
+  return n.dot(minkowski_support(a, b, n, hint_a, hint_b).p);
+}
+
+inline Scalar separation(const FramedBody& a, const FramedBody& b, const Vector3& n) {
+  int hint_a = -1;
+  int hint_b = -1;
+  return separation(a, b, n, hint_a, hint_b);
+}
+
+/// True when the origin lies inside the tetrahedron of `points` (each of norm at most ~2) by
+/// more than the rounding of the points and of the orientation tests: a proof that the bodies
+/// whose difference they are share a point.
+bool encloses_origin(const std::array<Vector3, 4>& points);
+
+}  // namespace swarmcollide::detail

@@ -1,0 +1,126 @@
+#include "witness.hpp"
+
+#include <algorithm>
+#include <array>
+#include <utility>
+
+#include "minkowski.hpp"
+
+namespace swarmcollide::detail {
+
+namespace {
+
+using Indices = std::array<int, ConvexWeights::kSparseCapacity>;
+using Weights = std::array<Scalar, ConvexWeights::kSparseCapacity>;
+
+}  // namespace
+
+Answer answer_from_corral(const FramedPair& pair, const MinNormPoint& corral) {
+  Answer answer;
+  Indices ia{};
+  Indices ib{};
+  Weights w{};
+  Scalar total = 0;
+  for (int k = 0; k < corral.size; ++k) total += corral.weights[k];
+  for (int k = 0; k < corral.size; ++k) {
+    ia[k] = corral.corral[k].ia;
+    ib[k] = corral.corral[k].ib;
+    w[k] = corral.weights[k] / total;
+    answer.point_a += w[k] * pair.a.vertex(ia[k]);
+    answer.point_b += w[k] * pair.b.vertex(ib[k]);
+  }
+  answer.weights_a = ConvexWeights(pair.a.size(), ia, w, corral.size);
+  answer.weights_b = ConvexWeights(pair.b.size(), ib, w, corral.size);
+  const Vector3 between = answer.point_b - answer.point_a;
+  answer.upper = between.norm();
+  if (answer.upper > 0) {
+    answer.direction = between / answer.upper;
+    answer.lower = separation(pair.a, pair.b, answer.direction);
+  }
+  if (corral.size == 4) {
+    answer.intersection_proven = encloses_origin(
+        {corral.corral[0].p, corral.corral[1].p, corral.corral[2].p, corral.corral[3].p});
+  }
+  return answer;
+}
+
+Answer answer_from_weights(const FramedPair& pair, const VertexMatrix& points_a,
+                           const VertexMatrix& points_b, VectorX lambda, VectorX delta) {
+  Answer answer;
+  answer.point_a = points_a.transpose() * lambda;
+  answer.point_b = points_b.transpose() * delta;
+  answer.weights_a = ConvexWeights(std::move(lambda));
+  answer.weights_b = ConvexWeights(std::move(delta));
+  const Vector3 between = answer.point_b - answer.point_a;
+  answer.upper = between.norm();
+  if (answer.upper > 0) {
+    answer.direction = between / answer.upper;
+    answer.lower = separation(pair.a, pair.b, answer.direction);
+  }
+  return answer;
+}
+
+void supporting_feature(const FramedBody& body, const Vector3& normal, Scalar slack,
+                        std::vector<int>& found) {
+  found.clear();
+  const Vector3 top = body.support(normal);
+  const Scalar floor = normal.dot(top) - slack;
+  for (int i = 0; i < body.size(); ++i) {
+    if (normal.dot(body.vertex(i)) >= floor) found.push_back(i);
+  }
+  std::sort(found.begin(), found.end(), [&](int i, int j) {
+    return normal.dot(body.vertex(i)) > normal.dot(body.vertex(j));
+  });
+}
+
+void signed_witnesses(const FramedPair& pair, const Vector3& n, Scalar s, Answer& answer) {
+  // Rounding puts points of the true feature up to kFrameRounding below the plane; a generous
+  // slack costs only a slightly larger subproblem, while a too small one could cut the feature.
+  constexpr Scalar kSlack = 1e3 * kFrameRounding;
+  thread_local std::vector<int> feature_a;
+  thread_local std::vector<int> feature_b;
+  supporting_feature(pair.a, n, kSlack, feature_a);
+  supporting_feature(pair.b, -n, kSlack, feature_b);
+  const Vector3 shift = -s * n;
+  const auto oracle = [&](const Vector3& d) {
+    int i = feature_a[0];
+    Scalar highest = d.dot(pair.a.vertex(i));
+    for (int k : feature_a) {
+      const Scalar h = d.dot(pair.a.vertex(k));
+      if (h > highest) {
+        highest = h;
+        i = k;
+      }
+    }
+    int j = feature_b[0];
+    Scalar lowest = d.dot(pair.b.vertex(j));
+    for (int k : feature_b) {
+      const Scalar h = d.dot(pair.b.vertex(k));
+      if (h < lowest) {
+        lowest = h;
+        j = k;
+      }
+    }
+    return OraclePoint{pair.b.vertex(j) + shift - pair.a.vertex(i), i, j};
+  };
+  const MinNormPoint nearest = wolfe_min_norm(oracle, n, 2, 100);
+  Indices ia{};
+  Indices ib{};
+  Weights w{};
+  Scalar total = 0;
+  for (int k = 0; k < nearest.size; ++k) total += nearest.weights[k];
+  answer.point_a.setZero();
+  answer.point_b.setZero();
+  for (int k = 0; k < nearest.size; ++k) {
+    ia[k] = nearest.corral[k].ia;
+    ib[k] = nearest.corral[k].ib;
+    w[k] = nearest.weights[k] / total;
+    answer.point_a += w[k] * pair.a.vertex(ia[k]);
+    answer.point_b += w[k] * pair.b.vertex(ib[k]);
+  }
+  answer.weights_a = ConvexWeights(pair.a.size(), ia, w, nearest.size);
+  answer.weights_b = ConvexWeights(pair.b.size(), ib, w, nearest.size);
+  answer.direction = n;
+}
+
+}  // namespace swarmcollide::detail
