@@ -14,7 +14,10 @@ bool apart_proven(const FramedPair& pair, const Answer& answer) {
 }
 
 bool close_proven(const FramedPair& pair, const Answer& answer) {
-  return answer.intersection_proven || answer.upper + kFrameRounding <= pair.tolerance;
+  // A pair of size zero is one point twice (every point of both bodies is the frame's centre,
+  // exactly): the bodies share it, though no tolerance (zero times the size) can say so.
+  return answer.intersection_proven || answer.upper + kFrameRounding <= pair.tolerance ||
+         pair.frame.size == 0;
 }
 
 }  // namespace
