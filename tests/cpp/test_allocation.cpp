@@ -5,7 +5,7 @@
 #include <atomic>
 #include <cstddef>
 
-#include "swarmcollide/queries/distance.hpp"
+#include "swarmcollide/queries/query.hpp"
 
 extern "C" void* __libc_malloc(std::size_t size);
 extern "C" void* __libc_calloc(std::size_t count, std::size_t size);
@@ -51,18 +51,22 @@ TEST_P(SteadyState, ASolveAllocatesNoMoreThanCopyingItsResult) {
   VertexMatrix B(4, 3);
   B << 1, -1, 0, 2, -2, 0, 0, -2, 2, 0, -2, 0;
   const ConvexPolyhedron a(A), b(B);
-  DistanceOptions options;
+  QueryOptions options;
   options.method = GetParam().method;
-  options.swarm.tolerance = 0;  // the whole budget: every iteration runs
-  DistanceResult warm_up = distance(a, b, options);
-  options.swarm.seed = options.dual.seed = 1;
+  options.tolerance = 0;  // the whole budget: every iteration runs
+  DistanceResult warm_up = Query(options).distance(a, b);
+  options.seed = 1;
+  const Query query(options);
 
   DistanceResult result;
-  const long solve = allocations_during([&] { result = distance(a, b, options); });
+  const long solve = allocations_during([&] { result = query.distance(a, b); });
   DistanceResult copy;
   const long result_arrays = allocations_during([&] { copy = result; });
   EXPECT_GT(result_arrays, 0);
   EXPECT_LE(solve, result_arrays) << GetParam().name;
+  // The free function builds (and validates) its query on the stack.
+  const long through_function = allocations_during([&] { result = distance(a, b, options); });
+  EXPECT_LE(through_function, result_arrays) << GetParam().name;
 }
 
 INSTANTIATE_TEST_SUITE_P(Methods, SteadyState,
