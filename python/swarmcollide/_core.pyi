@@ -1,11 +1,11 @@
 """
-swarmcollide's C++ core: convex polyhedra, model (2) and its solvers.
+swarmcollide's C++ core: convex polyhedra, model (2), its solvers and queries.
 """
 from __future__ import annotations
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['Aabb', 'BatchResult', 'ConstraintHandling', 'ConvexPolyhedron', 'DistanceOptions', 'DistanceResult', 'DualOptions', 'ExactOptions', 'Hull', 'InertiaStrategy', 'ParticleCoefficients', 'PenaltyOptions', 'PenetrationAlgorithm', 'SwarmOptions', 'as_polyhedron', 'collide', 'collide_many', 'collision', 'constraint_violation', 'distance', 'distance_many', 'is_feasible', 'linear_decreasing_inertia', 'objective', 'pair_seed', 'project_onto_simplex', 'rank_adaptive_coefficients', 'separation', 'signed_distance']
+__all__: list[str] = ['Aabb', 'BatchResult', 'ConvexPolyhedron', 'DistanceResult', 'Hull', 'ParticleCoefficients', 'Query', 'as_polyhedron', 'constraint_violation', 'is_feasible', 'linear_decreasing_inertia', 'method_table', 'objective', 'pair_seed', 'project_onto_simplex', 'rank_adaptive_coefficients', 'separation']
 class Aabb:
     """
     An axis-aligned bounding box with corners ``min`` and ``max``.
@@ -26,7 +26,7 @@ class BatchResult:
     Attributes
     ----------
     distance, lower_bound : numpy.ndarray, shape (m,)
-    point_a, point_b : numpy.ndarray, shape (m, 3)
+    point_a, point_b, direction : numpy.ndarray, shape (m, 3)
     colliding, certified, escalated : numpy.ndarray of bool, shape (m,)
     iterations : numpy.ndarray of int, shape (m,)
     """
@@ -39,6 +39,9 @@ class BatchResult:
         ...
     @property
     def colliding(self) -> typing.Annotated[numpy.typing.NDArray[numpy.bool], "[m, 1]"]:
+        ...
+    @property
+    def direction(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
         ...
     @property
     def distance(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
@@ -57,53 +60,6 @@ class BatchResult:
         ...
     @property
     def point_b(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
-        ...
-class ConstraintHandling:
-    """
-    How particles meet the constraints of model (2).
-    
-    Members:
-    
-      feasibility
-    
-      projection
-    """
-    __members__: typing.ClassVar[dict[str, ConstraintHandling]]  # value = {'feasibility': <ConstraintHandling.feasibility: 0>, 'projection': <ConstraintHandling.projection: 1>}
-    feasibility: typing.ClassVar[ConstraintHandling]  # value = <ConstraintHandling.feasibility: 0>
-    projection: typing.ClassVar[ConstraintHandling]  # value = <ConstraintHandling.projection: 1>
-    @typing.overload
-    def __eq__(self, other: ConstraintHandling) -> bool:
-        ...
-    @typing.overload
-    def __eq__(self, other: typing.Any) -> bool:
-        ...
-    def __getstate__(self) -> int:
-        ...
-    def __hash__(self) -> int:
-        ...
-    def __index__(self) -> int:
-        ...
-    def __init__(self, value: typing.SupportsInt | typing.SupportsIndex) -> None:
-        ...
-    def __int__(self) -> int:
-        ...
-    @typing.overload
-    def __ne__(self, other: ConstraintHandling) -> bool:
-        ...
-    @typing.overload
-    def __ne__(self, other: typing.Any) -> bool:
-        ...
-    def __repr__(self) -> str:
-        ...
-    def __setstate__(self, state: typing.SupportsInt | typing.SupportsIndex) -> None:
-        ...
-    def __str__(self) -> str:
-        ...
-    @property
-    def name(self) -> str:
-        ...
-    @property
-    def value(self) -> int:
         ...
 class ConvexPolyhedron:
     """
@@ -152,54 +108,52 @@ class ConvexPolyhedron:
         Index of the point farthest along ``direction`` (first on ties).
         """
     @property
+    def radius(self) -> float:
+        """
+        Half the diagonal of the bounding box: every point lies within it of the box's centre.
+        """
+    @property
     def vertices(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
         """
         The ``(n, 3)`` points the body was built from (read-only).
         """
-class DistanceOptions:
-    """
-    A method and the parameters of its solver.
-    """
-    dual: DualOptions
-    exact: ExactOptions
-    method: str
-    penalty: PenaltyOptions
-    swarm: SwarmOptions
-    def __init__(self) -> None:
-        ...
 class DistanceResult:
     """
     
-    The answer of every distance query, whatever the method.
+    The answer of every query, whatever the method, in the units of the input.
     
-    ``lower_bound <= true distance <= distance`` always holds: ``distance`` is achieved by the witness
-    points ``point_a`` and ``point_b`` (convex combinations of the bodies' points with ``weights_a``
-    and ``weights_b``), and ``lower_bound`` is the separation along ``direction``.
+    ``lower_bound <= true value <= distance`` always holds (up to rounding, about 1e-14 of the pair's
+    size): ``distance`` is achieved by the witness points ``point_a`` and ``point_b`` (convex
+    combinations of the bodies' points with ``weights_a`` and ``weights_b``), and ``lower_bound`` is
+    the separation along ``direction``. For signed distances the true value is minus the penetration
+    depth when the bodies overlap, and ``point_b - point_a = distance * direction``.
     """
     def __repr__(self) -> str:
         ...
     @property
     def certified(self) -> bool:
         """
-        True when the bounds prove the verdict.
+        True when the bounds prove the verdict (and, for signed distances, the value to within the tolerance).
         """
     @property
     def colliding(self) -> bool:
-        ...
+        """
+        True when the bodies are within the tolerance of each other.
+        """
     @property
     def direction(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
         """
-        Unit direction certifying ``lower_bound`` (zero if none separates).
+        Unit direction from A to B certifying ``lower_bound`` (zero if none).
         """
     @property
     def distance(self) -> float:
         """
-        Upper bound on the distance, achieved by the witness points.
+        Upper bound on the distance (signed distance), achieved by the witnesses.
         """
     @property
-    def escalated_from(self) -> str:
+    def escalated_from(self) -> typing.Any:
         """
-        The method whose unproven collision verdict was handed to ``method`` (empty if none).
+        The method asked for, when another one answered (None otherwise).
         """
     @property
     def evaluations(self) -> int:
@@ -212,7 +166,7 @@ class DistanceResult:
     @property
     def history(self) -> numpy.typing.NDArray[numpy.float64]:
         """
-        Best distance after initialisation and after each iteration.
+        Best upper bound after initialisation and after each iteration.
         """
     @property
     def iterations(self) -> int:
@@ -220,7 +174,7 @@ class DistanceResult:
     @property
     def lower_bound(self) -> float:
         """
-        Lower bound on the distance, certified by ``direction``.
+        Lower bound on the distance (signed distance), certified by ``direction``.
         """
     @property
     def method(self) -> str:
@@ -240,122 +194,18 @@ class DistanceResult:
     @property
     def status(self) -> str:
         """
-        'converged', 'max_iterations' or 'exact'.
+        'converged' (the bounds are within the tolerance, or contact is proven) or 'max_iterations'.
         """
     @property
     def weights_a(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
         """
-        lambda of model (2): nonnegative, summing to one.
+        lambda of model (2): nonnegative, summing to one (built when read).
         """
     @property
     def weights_b(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
         """
-        delta of model (2): nonnegative, summing to one.
+        delta of model (2): nonnegative, summing to one (built when read).
         """
-class DualOptions:
-    """
-    
-    Parameters of the dual swarm (method ``"dual"``): the paper's rank-adaptive swarm over unit
-    directions, with an exact finish on the supporting features.
-    
-    ``tolerance`` is absolute; 0 (the default) means ``relative_tolerance`` times the bodies' size.
-    ``feature_tolerance`` is relative to the bodies' size.
-    """
-    def __init__(self) -> None:
-        ...
-    def validate(self) -> None:
-        """
-        Raise ValueError naming the first invalid parameter.
-        """
-    @property
-    def feature_tolerance(self) -> float:
-        ...
-    @feature_tolerance.setter
-    def feature_tolerance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
-    @property
-    def max_iterations(self) -> int:
-        ...
-    @max_iterations.setter
-    def max_iterations(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
-        ...
-    @property
-    def max_rounds(self) -> int:
-        ...
-    @max_rounds.setter
-    def max_rounds(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
-        ...
-    @property
-    def relative_tolerance(self) -> float:
-        ...
-    @relative_tolerance.setter
-    def relative_tolerance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
-    @property
-    def seed(self) -> int:
-        ...
-    @seed.setter
-    def seed(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
-        ...
-    @property
-    def swarm_size(self) -> int:
-        ...
-    @swarm_size.setter
-    def swarm_size(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
-        ...
-    @property
-    def tolerance(self) -> float:
-        ...
-    @tolerance.setter
-    def tolerance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
-    @property
-    def w_max(self) -> float:
-        ...
-    @w_max.setter
-    def w_max(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
-    @property
-    def w_min(self) -> float:
-        ...
-    @w_min.setter
-    def w_min(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
-class ExactOptions:
-    """
-    Parameters of the exact reference methods.
-    """
-    penetration: PenetrationAlgorithm
-    def __init__(self) -> None:
-        ...
-    def validate(self) -> None:
-        """
-        Raise ValueError naming the first invalid parameter.
-        """
-    @property
-    def distance_tolerance(self) -> float:
-        ...
-    @distance_tolerance.setter
-    def distance_tolerance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
-    @property
-    def max_iterations(self) -> int:
-        ...
-    @max_iterations.setter
-    def max_iterations(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
-        ...
-    @property
-    def penetration_tolerance(self) -> float:
-        ...
-    @penetration_tolerance.setter
-    def penetration_tolerance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
-    @property
-    def tolerance(self) -> float:
-        ...
-    @tolerance.setter
-    def tolerance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
 class Hull:
     """
     
@@ -382,54 +232,10 @@ class Hull:
     @property
     def vertex_indices(self) -> numpy.typing.NDArray[numpy.int32]:
         ...
-class InertiaStrategy:
-    """
-    How inertia and acceleration are chosen: rank-adaptive (8)-(9) or linearly decreasing (7).
-    
-    Members:
-    
-      rank_adaptive
-    
-      linear_decreasing
-    """
-    __members__: typing.ClassVar[dict[str, InertiaStrategy]]  # value = {'rank_adaptive': <InertiaStrategy.rank_adaptive: 0>, 'linear_decreasing': <InertiaStrategy.linear_decreasing: 1>}
-    linear_decreasing: typing.ClassVar[InertiaStrategy]  # value = <InertiaStrategy.linear_decreasing: 1>
-    rank_adaptive: typing.ClassVar[InertiaStrategy]  # value = <InertiaStrategy.rank_adaptive: 0>
-    @typing.overload
-    def __eq__(self, other: InertiaStrategy) -> bool:
-        ...
-    @typing.overload
-    def __eq__(self, other: typing.Any) -> bool:
-        ...
-    def __getstate__(self) -> int:
-        ...
-    def __hash__(self) -> int:
-        ...
-    def __index__(self) -> int:
-        ...
-    def __init__(self, value: typing.SupportsInt | typing.SupportsIndex) -> None:
-        ...
-    def __int__(self) -> int:
-        ...
-    @typing.overload
-    def __ne__(self, other: InertiaStrategy) -> bool:
-        ...
-    @typing.overload
-    def __ne__(self, other: typing.Any) -> bool:
-        ...
-    def __repr__(self) -> str:
-        ...
-    def __setstate__(self, state: typing.SupportsInt | typing.SupportsIndex) -> None:
-        ...
-    def __str__(self) -> str:
-        ...
-    @property
-    def name(self) -> str:
-        ...
-    @property
-    def value(self) -> int:
-        ...
 class ParticleCoefficients:
+    """
+    Inertia weight ``w`` and accelerations ``c1``, ``c2`` of one particle.
+    """
     def __repr__(self) -> str:
         ...
     @property
@@ -441,164 +247,67 @@ class ParticleCoefficients:
     @property
     def w(self) -> float:
         ...
-class PenaltyOptions:
+class Query:
     """
-    Parameters of the exterior quadratic penalty baseline.
-    """
-    def __init__(self) -> None:
-        ...
-    def validate(self) -> None:
-        """
-        Raise ValueError naming the first invalid parameter.
-        """
-    @property
-    def growth_factor(self) -> float:
-        ...
-    @growth_factor.setter
-    def growth_factor(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
-    @property
-    def initial_weight(self) -> float:
-        ...
-    @initial_weight.setter
-    def initial_weight(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
-    @property
-    def inner_iterations(self) -> int:
-        ...
-    @inner_iterations.setter
-    def inner_iterations(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
-        ...
-    @property
-    def outer_iterations(self) -> int:
-        ...
-    @outer_iterations.setter
-    def outer_iterations(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
-        ...
-    @property
-    def tolerance(self) -> float:
-        ...
-    @tolerance.setter
-    def tolerance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
-class PenetrationAlgorithm:
-    """
-    libccd's penetration routine: EPA or MPR.
     
-    Members:
+    A method with its parameters, validated once, that answers queries between pairs of bodies.
     
-      epa
-    
-      mpr
+    Every query computes in a frame centred on the pair and scaled to its size, so answers scale with
+    the unit of length. ``tolerance`` is relative to the pair's size (the diameter of a ball around
+    both bodies): it is the precision of every answer and the distance below which bodies collide.
     """
-    __members__: typing.ClassVar[dict[str, PenetrationAlgorithm]]  # value = {'epa': <PenetrationAlgorithm.epa: 0>, 'mpr': <PenetrationAlgorithm.mpr: 1>}
-    epa: typing.ClassVar[PenetrationAlgorithm]  # value = <PenetrationAlgorithm.epa: 0>
-    mpr: typing.ClassVar[PenetrationAlgorithm]  # value = <PenetrationAlgorithm.mpr: 1>
-    @typing.overload
-    def __eq__(self, other: PenetrationAlgorithm) -> bool:
-        ...
-    @typing.overload
-    def __eq__(self, other: typing.Any) -> bool:
-        ...
-    def __getstate__(self) -> int:
-        ...
-    def __hash__(self) -> int:
-        ...
-    def __index__(self) -> int:
-        ...
-    def __init__(self, value: typing.SupportsInt | typing.SupportsIndex) -> None:
-        ...
-    def __int__(self) -> int:
-        ...
-    @typing.overload
-    def __ne__(self, other: PenetrationAlgorithm) -> bool:
-        ...
-    @typing.overload
-    def __ne__(self, other: typing.Any) -> bool:
+    def __init__(self, method: str = 'dual', tolerance: typing.Any = 1e-09, seed: typing.Any = 0, **kwargs) -> None:
         ...
     def __repr__(self) -> str:
         ...
-    def __setstate__(self, state: typing.SupportsInt | typing.SupportsIndex) -> None:
+    def collide(self, a: typing.Any, b: typing.Any, pose_a: typing.Any = None, pose_b: typing.Any = None, escalate: bool = True) -> bool:
         ...
-    def __str__(self) -> str:
-        ...
-    @property
-    def name(self) -> str:
-        ...
-    @property
-    def value(self) -> int:
-        ...
-class SwarmOptions:
-    """
-    Parameters of the swarm solvers; defaults are the paper's.
-    """
-    constraint_handling: ConstraintHandling
-    inertia: InertiaStrategy
-    def __init__(self) -> None:
-        ...
-    def validate(self) -> None:
+    def collide_many(self, As: typing.Any, Bs: typing.Any, threads: typing.Any = None, first_index: typing.Any = 0, escalate: bool = True) -> BatchResult:
         """
-        Raise ValueError naming the first invalid parameter.
+        The query for every pair ``(As[i], Bs[i])``, in C++ threads without the GIL.
+        
+        Pair i is seeded with ``pair_seed(seed, first_index + i)``, so answers do not depend on the
+        number of threads or on how a batch is split. ``As`` and ``Bs`` are sequences of polyhedra or
+        ``(n, 3)`` arrays, or ``(m, n, 3)`` arrays (the fastest: each pair's bodies are then built and
+        freed by the thread that answers it).
+        """
+    def collision(self, a: typing.Any, b: typing.Any, pose_a: typing.Any = None, pose_b: typing.Any = None, escalate: bool = True) -> DistanceResult:
+        ...
+    def distance(self, a: typing.Any, b: typing.Any, pose_a: typing.Any = None, pose_b: typing.Any = None) -> DistanceResult:
+        ...
+    def distance_many(self, As: typing.Any, Bs: typing.Any, threads: typing.Any = None, first_index: typing.Any = 0) -> BatchResult:
+        """
+        The query for every pair ``(As[i], Bs[i])``, in C++ threads without the GIL.
+        
+        Pair i is seeded with ``pair_seed(seed, first_index + i)``, so answers do not depend on the
+        number of threads or on how a batch is split. ``As`` and ``Bs`` are sequences of polyhedra or
+        ``(n, 3)`` arrays, or ``(m, n, 3)`` arrays (the fastest: each pair's bodies are then built and
+        freed by the thread that answers it).
+        """
+    def signed_distance(self, a: typing.Any, b: typing.Any, pose_a: typing.Any = None, pose_b: typing.Any = None) -> DistanceResult:
+        ...
+    def signed_distance_many(self, As: typing.Any, Bs: typing.Any, threads: typing.Any = None, first_index: typing.Any = 0) -> BatchResult:
+        """
+        The query for every pair ``(As[i], Bs[i])``, in C++ threads without the GIL.
+        
+        Pair i is seeded with ``pair_seed(seed, first_index + i)``, so answers do not depend on the
+        number of threads or on how a batch is split. ``As`` and ``Bs`` are sequences of polyhedra or
+        ``(n, 3)`` arrays, or ``(m, n, 3)`` arrays (the fastest: each pair's bodies are then built and
+        freed by the thread that answers it).
         """
     @property
-    def c1(self) -> float:
-        ...
-    @c1.setter
-    def c1(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def method(self) -> str:
         ...
     @property
-    def c2(self) -> float:
-        ...
-    @c2.setter
-    def c2(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
-    @property
-    def feasibility_tolerance(self) -> float:
-        ...
-    @feasibility_tolerance.setter
-    def feasibility_tolerance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
-    @property
-    def max_iterations(self) -> int:
-        ...
-    @max_iterations.setter
-    def max_iterations(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
-        ...
+    def parameters(self) -> dict:
+        """
+        The method's parameters and their values.
+        """
     @property
     def seed(self) -> int:
         ...
-    @seed.setter
-    def seed(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
-        ...
-    @property
-    def swarm_size(self) -> int:
-        ...
-    @swarm_size.setter
-    def swarm_size(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
-        ...
     @property
     def tolerance(self) -> float:
-        ...
-    @tolerance.setter
-    def tolerance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
-    @property
-    def velocity_limit(self) -> float:
-        ...
-    @velocity_limit.setter
-    def velocity_limit(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
-    @property
-    def w_max(self) -> float:
-        ...
-    @w_max.setter
-    def w_max(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
-    @property
-    def w_min(self) -> float:
-        ...
-    @w_min.setter
-    def w_min(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
 def as_polyhedron(body: typing.Any, name: str = 'body') -> ConvexPolyhedron:
     """
@@ -606,20 +315,10 @@ def as_polyhedron(body: typing.Any, name: str = 'body') -> ConvexPolyhedron:
     
     Errors name the argument as ``name``.
     """
-def collide(a: typing.Any, b: typing.Any, options: DistanceOptions, escalate: bool) -> bool:
-    ...
-def collide_many(As: typing.Any, Bs: typing.Any, options: DistanceOptions, escalate: bool, threads: typing.Any) -> BatchResult:
-    ...
-def collision(a: typing.Any, b: typing.Any, options: DistanceOptions, escalate: bool) -> DistanceResult:
-    ...
 def constraint_violation(weights_a: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"], weights_b: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"]) -> float:
     """
     Constraint violation (6): ``(sum(weights_a) - 1)**2 + (sum(weights_b) - 1)**2``.
     """
-def distance(a: typing.Any, b: typing.Any, options: DistanceOptions) -> DistanceResult:
-    ...
-def distance_many(As: typing.Any, Bs: typing.Any, options: DistanceOptions, threads: typing.Any) -> BatchResult:
-    ...
 def is_feasible(weights_a: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"], weights_b: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"], tolerance: typing.SupportsFloat | typing.SupportsIndex = 1e-10) -> bool:
     """
     True when all weights lie in [0, 1] and the violation (6) is at most ``tolerance``.
@@ -627,6 +326,10 @@ def is_feasible(weights_a: typing.Annotated[numpy.typing.ArrayLike, numpy.float6
 def linear_decreasing_inertia(iteration: typing.SupportsInt | typing.SupportsIndex, max_iterations: typing.SupportsInt | typing.SupportsIndex, w_start: typing.SupportsFloat | typing.SupportsIndex = 0.9, w_end: typing.SupportsFloat | typing.SupportsIndex = 0.4) -> float:
     """
     (7): the inertia weight after ``iteration`` of ``max_iterations``.
+    """
+def method_table() -> list:
+    """
+    Every method as a dictionary: name, summary, queries, always_certified, parameters.
     """
 def objective(a: typing.Any, b: typing.Any, weights_a: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"], weights_b: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"]) -> float:
     """
@@ -636,7 +339,7 @@ def objective(a: typing.Any, b: typing.Any, weights_a: typing.Annotated[numpy.ty
     """
 def pair_seed(seed: typing.SupportsInt | typing.SupportsIndex, index: typing.SupportsInt | typing.SupportsIndex) -> int:
     """
-    The seed of pair ``index`` in a batch seeded with ``seed``.
+    The seed of the pair with global index ``index`` in a batch seeded with ``seed``.
     """
 def project_onto_simplex(weights: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"]) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
     """
@@ -661,5 +364,3 @@ def separation(a: typing.Any, b: typing.Any, direction: typing.Annotated[numpy.t
     >>> sc.separation(a, b, [1, 0, 0])
     2.0
     """
-def signed_distance(a: typing.Any, b: typing.Any, options: DistanceOptions) -> DistanceResult:
-    ...
