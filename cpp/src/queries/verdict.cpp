@@ -9,33 +9,54 @@ namespace swarmcollide::detail {
 
 namespace {
 
-bool apart_proven(const FramedPair& pair, const Answer& answer) {
-  return answer.lower - kFrameRounding > pair.tolerance;
+bool apart_proven(const FramedPair& pair, Scalar lower) {
+  return lower - kFrameRounding > pair.tolerance;
 }
 
-bool close_proven(const FramedPair& pair, const Answer& answer) {
+bool close_proven(const FramedPair& pair, Scalar upper, bool intersection_proven) {
   // A pair of size zero is one point twice (every point of both bodies is the frame's centre,
   // exactly): the bodies share it, though no tolerance (zero times the size) can say so.
-  return answer.intersection_proven || answer.upper + kFrameRounding <= pair.tolerance ||
-         pair.frame.size == 0;
+  return intersection_proven || upper + kFrameRounding <= pair.tolerance || pair.frame.size == 0;
 }
 
 }  // namespace
 
+bool verdict_proven(const FramedPair& pair, Scalar lower, Scalar upper, bool intersection_proven) {
+  return apart_proven(pair, lower) || close_proven(pair, upper, intersection_proven);
+}
+
 bool verdict_proven(const FramedPair& pair, const Answer& answer) {
-  return apart_proven(pair, answer) || close_proven(pair, answer);
+  return verdict_proven(pair, answer.lower, answer.upper, answer.intersection_proven);
+}
+
+bool value_proven(const FramedPair& pair, Scalar lower, Scalar upper) {
+  return upper - lower <= pair.tolerance + 2 * kFrameRounding;
 }
 
 bool value_proven(const FramedPair& pair, const Answer& answer) {
-  return answer.upper - answer.lower <= pair.tolerance + 2 * kFrameRounding;
+  return value_proven(pair, answer.lower, answer.upper);
+}
+
+bool goal_reached(const FramedPair& pair, Goal goal, Scalar lower, Scalar upper,
+                  bool intersection_proven) {
+  switch (goal) {
+    case Goal::verdict:
+      return verdict_proven(pair, lower, upper, intersection_proven);
+    case Goal::distance:
+      return value_proven(pair, std::max(lower, 0.0), upper) ||
+             close_proven(pair, upper, intersection_proven);
+    case Goal::signed_distance:
+      break;
+  }
+  return value_proven(pair, lower, upper);
 }
 
 DistanceResult finish_result(const FramedPair& pair, Answer&& answer, Method requested, Goal goal) {
   // A distance is never negative, so zero bounds it below whatever the solver found; and in the
   // frame both bodies lie in the unit ball, so a translation by 2 separates them.
   answer.lower = std::max(answer.lower, goal == Goal::signed_distance ? -2.0 : 0.0);
-  const bool apart = apart_proven(pair, answer);
-  const bool close = close_proven(pair, answer);
+  const bool apart = apart_proven(pair, answer.lower);
+  const bool close = close_proven(pair, answer.upper, answer.intersection_proven);
   const bool exact = value_proven(pair, answer);
   DistanceResult r;
   const Frame& frame = pair.frame;

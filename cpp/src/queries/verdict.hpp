@@ -15,11 +15,20 @@ namespace swarmcollide::detail {
 /// within the tolerance of each other.
 DistanceResult finish_result(const FramedPair& pair, Answer&& answer, Method requested, Goal goal);
 
-/// True when `answer` proves a verdict at the pair's tolerance (what `finish_result` would call
-/// certified for a verdict), so that a solver or the query layer can stop.
+/// True when the bounds prove a verdict at the pair's tolerance (what `finish_result` calls
+/// certified for a verdict): a separation above it, witnesses within it, or an intersection
+/// proof, each beyond rounding.
+bool verdict_proven(const FramedPair& pair, Scalar lower, Scalar upper, bool intersection_proven);
 bool verdict_proven(const FramedPair& pair, const Answer& answer);
 
-/// True when the answer's bounds enclose the value to within the pair's tolerance.
+/// True when the bounds enclose the value to within the pair's tolerance.
+bool value_proven(const FramedPair& pair, Scalar lower, Scalar upper);
 bool value_proven(const FramedPair& pair, const Answer& answer);
+
+/// True when a solver working towards `goal` may stop: the verdict is proven (goal `verdict`), or
+/// the value is (distances also when contact is proven: the distance is then within the
+/// tolerance of zero).
+bool goal_reached(const FramedPair& pair, Goal goal, Scalar lower, Scalar upper,
+                  bool intersection_proven);
 
 }  // namespace swarmcollide::detail

@@ -30,12 +30,17 @@ Answer exact_distance(const FramedPair& pair, int max_iterations, const Vector3&
   return answer;
 }
 
+Answer exact_penetration(const FramedPair& pair, int, const Vector3& hint,
+                         Scalar distance_upper) {
+  return sat_penetration(pair, hint, distance_upper, kMaxEdgePairs);
+}
+
 Answer exact_signed_distance(const FramedPair& pair, int max_iterations, const Vector3& hint) {
   Answer apart = exact_distance(pair, max_iterations, hint);
   // A positive separation proves the bodies apart, and their distance is the signed distance.
   if (apart.lower > kFrameRounding) return apart;
   const Vector3 start = hint.norm() > 0 ? hint : apart.direction;
-  Answer overlap = sat_penetration(pair, start, apart.upper, kMaxEdgePairs);
+  Answer overlap = exact_penetration(pair, max_iterations, start, apart.upper);
   overlap.iterations = apart.iterations;
   overlap.evaluations += apart.evaluations;
   overlap.intersection_proven = apart.intersection_proven;

@@ -13,6 +13,12 @@ namespace swarmcollide::detail {
 /// bodies a common point, with an intersection proof when Wolfe's corral encloses the origin.
 Answer exact_distance(const FramedPair& pair, int max_iterations, const Vector3& start);
 
+/// The certified penetration depth of touching or overlapping bodies, from the direction `hint`
+/// (which may be zero); `distance_upper`, any upper bound on their distance, also bounds the
+/// signed distance.
+Answer exact_penetration(const FramedPair& pair, int max_iterations, const Vector3& hint,
+                         Scalar distance_upper);
+
 /// The exact signed distance: `exact_distance` when a direction proves the bodies apart, the
 /// certified penetration depth otherwise (starting from the direction `hint`, which may be zero).
 Answer exact_signed_distance(const FramedPair& pair, int max_iterations, const Vector3& hint);

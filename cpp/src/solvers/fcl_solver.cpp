@@ -111,6 +111,8 @@ Answer solve_fcl(const FramedPair& pair, const QueryOptions& options, Goal goal)
     corral.corral[k] = {pair.b.vertex(ib) - pair.a.vertex(ia), ia, ib};
     corral.weights[k] = simplex.p[k];
   }
+  // Where FCL's answer does not settle the goal, the exact solver starts from its direction.
+  Vector3 start = Vector3::Zero();
   if (status != Gjk::Failed && corral.size > 0) {
     Answer answer = answer_from_corral(pair, corral);
     const bool settled = goal == Goal::verdict ? verdict_proven(pair, answer)
@@ -118,10 +120,11 @@ Answer solve_fcl(const FramedPair& pair, const QueryOptions& options, Goal goal)
                                                      (goal == Goal::distance ||
                                                       answer.lower > kFrameRounding);
     if (settled) return answer;
+    start = answer.point_b - answer.point_a;
   }
   Answer exact = goal == Goal::signed_distance
-                     ? exact_signed_distance(pair, max_iterations, Vector3::Zero())
-                     : exact_distance(pair, max_iterations, Vector3::Zero());
+                     ? exact_signed_distance(pair, max_iterations, start)
+                     : exact_distance(pair, max_iterations, start);
   exact.answered_by = Method::exact;
   return exact;
 }

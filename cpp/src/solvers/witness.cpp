@@ -12,34 +12,61 @@ namespace {
 
 using Indices = std::array<int, ConvexWeights::kSparseCapacity>;
 using Weights = std::array<Scalar, ConvexWeights::kSparseCapacity>;
+static_assert(Witness::kCapacity == ConvexWeights::kSparseCapacity);
 
 }  // namespace
 
-Answer answer_from_corral(const FramedPair& pair, const MinNormPoint& corral) {
-  Answer answer;
-  Indices ia{};
-  Indices ib{};
-  Weights w{};
+Witness witness_of(const FramedPair& pair, const MinNormPoint& corral) {
+  Witness w;
+  w.size = corral.size;
   Scalar total = 0;
   for (int k = 0; k < corral.size; ++k) total += corral.weights[k];
   for (int k = 0; k < corral.size; ++k) {
-    ia[k] = corral.corral[k].ia;
-    ib[k] = corral.corral[k].ib;
-    w[k] = corral.weights[k] / total;
-    answer.point_a += w[k] * pair.a.vertex(ia[k]);
-    answer.point_b += w[k] * pair.b.vertex(ib[k]);
+    w.ia[k] = corral.corral[k].ia;
+    w.ib[k] = corral.corral[k].ib;
+    w.weights[k] = corral.weights[k] / total;
+    w.point_a += w.weights[k] * pair.a.vertex(w.ia[k]);
+    w.point_b += w.weights[k] * pair.b.vertex(w.ib[k]);
   }
-  answer.weights_a = ConvexWeights(pair.a.size(), ia, w, corral.size);
-  answer.weights_b = ConvexWeights(pair.b.size(), ib, w, corral.size);
-  const Vector3 between = answer.point_b - answer.point_a;
-  answer.upper = between.norm();
-  if (answer.upper > 0) {
-    answer.direction = between / answer.upper;
-    answer.lower = separation(pair.a, pair.b, answer.direction);
-  }
+  w.distance = (w.point_b - w.point_a).norm();
   if (corral.size == 4) {
-    answer.intersection_proven = encloses_origin(
+    w.encloses_origin = encloses_origin(
         {corral.corral[0].p, corral.corral[1].p, corral.corral[2].p, corral.corral[3].p});
+  }
+  return w;
+}
+
+Witness vertex_witness(const FramedPair& pair, int ia, int ib) {
+  Witness w;
+  w.ia[0] = ia;
+  w.ib[0] = ib;
+  w.weights[0] = 1;
+  w.size = 1;
+  w.point_a = pair.a.vertex(ia);
+  w.point_b = pair.b.vertex(ib);
+  w.distance = (w.point_b - w.point_a).norm();
+  return w;
+}
+
+Answer answer_from_witness(const FramedPair& pair, const Witness& witness) {
+  Answer answer;
+  answer.upper = witness.distance;
+  answer.point_a = witness.point_a;
+  answer.point_b = witness.point_b;
+  answer.weights_a = ConvexWeights(pair.a.size(), witness.ia, witness.weights, witness.size);
+  answer.weights_b = ConvexWeights(pair.b.size(), witness.ib, witness.weights, witness.size);
+  answer.intersection_proven = witness.encloses_origin;
+  return answer;
+}
+
+Answer answer_from_corral(const FramedPair& pair, const MinNormPoint& corral) {
+  Answer answer = answer_from_witness(pair, witness_of(pair, corral));
+  if (answer.upper > 0) {
+    answer.direction = (answer.point_b - answer.point_a) / answer.upper;
+    // Started from the corral's points, hill climbing on large bodies is a few steps.
+    int hint_a = corral.corral[0].ia;
+    int hint_b = corral.corral[0].ib;
+    answer.lower = separation(pair.a, pair.b, answer.direction, hint_a, hint_b);
   }
   return answer;
 }

@@ -1,6 +1,8 @@
 // Witness points and the answers built from them; private to the library's sources.
 #pragma once
 
+#include <array>
+#include <limits>
 #include <vector>
 
 #include "../geometry/framed_body.hpp"
@@ -8,6 +10,32 @@
 #include "wolfe_min_norm.hpp"
 
 namespace swarmcollide::detail {
+
+/// An upper bound as a convex combination of at most four point pairs (x_ia, y_ib), as Wolfe's
+/// corral gives it: sparse, so that recording a better bound costs nothing in the bodies' sizes.
+struct Witness {
+  static constexpr int kCapacity = MinNormPoint::kCapacity;
+  std::array<int, kCapacity> ia{};
+  std::array<int, kCapacity> ib{};
+  std::array<Scalar, kCapacity> weights{};
+  int size = 0;
+  Vector3 point_a = Vector3::Zero();
+  Vector3 point_b = Vector3::Zero();
+  /// |point_b - point_a|.
+  Scalar distance = std::numeric_limits<Scalar>::infinity();
+  /// The corral it came from encloses the origin by more than rounding: the bodies share a point.
+  bool encloses_origin = false;
+};
+
+/// The witness of Wolfe's corral of Minkowski points (whose indices are the bodies' own), with
+/// the enclosure test when the corral is a tetrahedron.
+Witness witness_of(const FramedPair& pair, const MinNormPoint& corral);
+
+/// The witness of the single pair of points (x_ia, y_ib).
+Witness vertex_witness(const FramedPair& pair, int ia, int ib);
+
+/// An answer holding `witness` as its upper bound, with its sparse weights.
+Answer answer_from_witness(const FramedPair& pair, const Witness& witness);
 
 /// The answer Wolfe's corral of Minkowski points gives: sparse weights over the corral's points,
 /// witness points, the distance between them (`upper`), the separation along them (`lower`,

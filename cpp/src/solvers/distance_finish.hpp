@@ -1,0 +1,44 @@
+// The dual's exact finish for distances; private to the library's sources.
+#pragma once
+
+#include "../geometry/framed_body.hpp"
+#include "best_bounds.hpp"
+
+namespace swarmcollide::detail {
+
+/// Exact subproblems on the supporting features, which turn a good direction into the exact
+/// distance: the nearest points of the features' hulls (Wolfe's algorithm) give an upper bound
+/// and a direction, whose separation gives a lower bound. Its buffers are thread-local.
+class DistanceFinish {
+ public:
+  /// `slack` (frame units): how far below a supporting plane a point still counts as on the
+  /// feature; `max_iterations`: the cap of each Wolfe solve.
+  DistanceFinish(const FramedPair& pair, Scalar slack, int max_iterations);
+
+  /// From direction `n` (support points climbing from, and returned in, the hints): solves the
+  /// subproblem of the two supporting features; while the bounds still differ, the supports
+  /// along the subproblem's direction lie outside the features (otherwise the subproblem's
+  /// optimum would be separated by it), so the features grow by them and the subproblem is
+  /// solved again, a few times before the caller's search takes over. Offers every bound found.
+  void from(const Vector3& n, int& hint_a, int& hint_b, BestBounds& bounds, Goal goal);
+
+  /// Wolfe's algorithm on the whole Minkowski difference B - A from `start`: a common point (with
+  /// an intersection proof when its corral encloses the origin) when the bodies overlap, which no
+  /// direction can show, else the exact nearest points.
+  void common_point(const Vector3& start, int hint_a, int hint_b, BestBounds& bounds);
+
+  long evaluations() const { return evaluations_; }
+
+ private:
+  void feature(const FramedBody& body, const Vector3& n, int& hint, Scalar slack,
+               std::vector<char>& visited, std::vector<int>& found);
+  Witness nearest_between(const std::vector<int>& fa, const std::vector<int>& fb,
+                          const Vector3& start);
+
+  const FramedPair& pair_;
+  const Scalar slack_;
+  const int max_iterations_;
+  long evaluations_ = 0;
+};
+
+}  // namespace swarmcollide::detail

@@ -1,0 +1,134 @@
+#include "dual_swarm.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+#include <vector>
+
+#include "best_bounds.hpp"
+#include "direction_swarm.hpp"
+#include "distance_finish.hpp"
+#include "exact_solver.hpp"
+#include "minkowski.hpp"
+
+namespace swarmcollide::detail {
+
+namespace {
+
+constexpr Scalar kPi = 3.14159265358979323846;
+
+// The search for the distance (or only a verdict): the exact finish from the direction between
+// the bodies' centres, a common point when no direction separates them, then rounds of the
+// direction swarm whose improvements the finish polishes, re-seeded around the best direction
+// in discs that shrink unless the best moved far.
+class DualSearch {
+ public:
+  DualSearch(const FramedPair& pair, const QueryOptions& options, Goal goal)
+      : pair_(pair),
+        options_(options.dual),
+        goal_(goal),
+        swarm_(pair, options.dual, options.seed),
+        finish_(pair, options.dual.feature_tolerance * pair.frame.size,
+                options.exact.max_iterations) {}
+
+  Answer run() {
+    const Vector3 between = pair_.b.offset() - pair_.a.offset();
+    const Vector3 centre = between.norm() > 0 ? Vector3(between.normalized()) : Vector3::UnitX();
+    int ia = -1;
+    int ib = -1;
+    ++evaluations_;
+    bounds_.offer_lower(centre, separation(pair_.a, pair_.b, centre, ia, ib));
+    bounds_.offer_upper(vertex_witness(pair_, ia, ib));
+    hint_a_ = ia;
+    hint_b_ = ib;
+    history_.push_back(bounds_.upper().distance);
+    // Between well-separated bodies the features along the centres' direction are often the
+    // optimal ones already, and the swarm has nothing left to do.
+    finish_.from(centre, hint_a_, hint_b_, bounds_, goal_);
+    if (!reached()) try_common_point();
+    Scalar radius = kPi / 2;
+    Vector3 round_centre = bounds_.normal();
+    for (int r = 0; r < options_.max_rounds && !reached(); ++r) {
+      round(round_centre, radius);
+      if (reached()) break;
+      try_common_point();
+      const Scalar moved =
+          std::acos(std::clamp(round_centre.dot(bounds_.normal()), Scalar(-1), Scalar(1)));
+      radius = std::min(radius, std::max(2 * moved, radius / 4));
+      round_centre = bounds_.normal();
+    }
+    Answer answer = bounds_.answer(pair_);
+    answer.iterations = iterations_;
+    answer.evaluations = evaluations_ + swarm_.evaluations() + finish_.evaluations();
+    answer.history = std::move(history_);
+    return answer;
+  }
+
+ private:
+  bool reached() const { return bounds_.reached(pair_, goal_); }
+
+  // Wolfe's algorithm on the whole difference, once, when no direction separates the bodies.
+  void try_common_point() {
+    if (tried_common_point_ || bounds_.lower() > pair_.tolerance) return;
+    tried_common_point_ = true;
+    finish_.common_point(bounds_.normal(), hint_a_, hint_b_, bounds_);
+  }
+
+  // The swarm's global best becomes a lower bound, and the finish runs from it whenever it
+  // reaches a new pair of support points (or always, with `force`).
+  void improve(bool force) {
+    const Vector3 n = swarm_.best_direction();
+    bounds_.offer_lower(n, swarm_.best_value());
+    const std::pair<int, int> supports{swarm_.best_support_a(), swarm_.best_support_b()};
+    if (!force && supports == finished_) return;
+    finished_ = supports;
+    hint_a_ = supports.first;
+    hint_b_ = supports.second;
+    finish_.from(n, hint_a_, hint_b_, bounds_, goal_);
+  }
+
+  void round(const Vector3& centre, Scalar radius) {
+    swarm_.seed(centre, radius, hint_a_, hint_b_);
+    finished_ = {-1, -1};
+    improve(false);
+    for (int iteration = 0; iteration < options_.max_iterations && !reached(); ++iteration) {
+      if (swarm_.step()) improve(false);
+      ++iterations_;
+      history_.push_back(bounds_.upper().distance);
+    }
+    if (!reached()) improve(true);
+  }
+
+  const FramedPair& pair_;
+  const DualOptions& options_;
+  const Goal goal_;
+  DirectionSwarm swarm_;
+  DistanceFinish finish_;
+  BestBounds bounds_;
+  std::pair<int, int> finished_{-1, -1};
+  int hint_a_ = -1;
+  int hint_b_ = -1;
+  bool tried_common_point_ = false;
+  int iterations_ = 0;
+  long evaluations_ = 0;
+  std::vector<Scalar> history_;
+};
+
+}  // namespace
+
+Answer solve_dual(const FramedPair& pair, const QueryOptions& options, Goal goal) {
+  const Goal search = goal == Goal::signed_distance ? Goal::distance : goal;
+  Answer answer = DualSearch(pair, options, search).run();
+  // A separating direction settles a signed distance as a distance; overlapping bodies get the
+  // certified penetration depth, started from the swarm's best direction.
+  if (goal != Goal::signed_distance || answer.lower > kFrameRounding) return answer;
+  Answer overlap =
+      exact_penetration(pair, options.exact.max_iterations, answer.direction, answer.upper);
+  overlap.iterations += answer.iterations;
+  overlap.evaluations += answer.evaluations;
+  overlap.history = std::move(answer.history);
+  overlap.intersection_proven = overlap.intersection_proven || answer.intersection_proven;
+  return overlap;
+}
+
+}  // namespace swarmcollide::detail
