@@ -126,6 +126,27 @@ TEST(Dual, AnyFeatureToleranceGivesACertifiedAnswer) {
   }
 }
 
+// A signed distance's witnesses lie along its normal, `point_b - point_a = distance * direction`,
+// at any tolerance: apart, the normal must then be the witnesses' direction, not merely a
+// direction whose separation is within the tolerance (a few degrees off at 1e-3).
+TEST(Dual, SignedWitnessesLieAlongTheNormalAtAnyTolerance) {
+  Random rng(10);
+  for (Scalar tolerance : {1e-3, 1e-6}) {
+    QueryOptions options = with(Method::dual);
+    options.tolerance = tolerance;
+    const Query query(options);
+    for (int trial = 0; trial < 30; ++trial) {
+      SCOPED_TRACE("tolerance " + std::to_string(tolerance) + ", trial " + std::to_string(trial));
+      const ConvexPolyhedron a = rng.body(1 + trial % 8);
+      const ConvexPolyhedron b = rng.body(1 + (trial * 3) % 8, {2.5, 0, 0});
+      const DistanceResult r = query.signed_distance(a, b);
+      const PairScale s = scale_of(a, b, tolerance);
+      EXPECT_LE((r.point_b - r.point_a - r.distance * r.direction).norm(),
+                r.distance - r.lower_bound + s.rounding + s.point_rounding);
+    }
+  }
+}
+
 TEST(Dual, TheSameSeedGivesTheSameAnswer) {
   Random rng(11);
   const auto [a, b] = placed_pair(64, -1e-3, rng);

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -59,6 +60,12 @@ Query query_of(Method method) {
   return Query(options);
 }
 
+std::string scientific(Scalar x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", x);
+  return text;
+}
+
 std::string label(const MethodQuery& m, const Pair& pair) {
   return std::string(method_name(m.method)) + " " + kind_name(m.kind) + ", " + pair.name;
 }
@@ -66,7 +73,7 @@ std::string label(const MethodQuery& m, const Pair& pair) {
 TEST(Frame, PutsBothBodiesInTheUnitBallAndKeepsTheToleranceRelative) {
   for (Scalar scale : {1e-300, 1e-5, 1.0, 3e7, 1e300}) {
     for (const Pair& p : dyadic_pairs()) {
-      SCOPED_TRACE(p.name + ", scale " + std::to_string(scale));
+      SCOPED_TRACE(p.name + ", scale " + scientific(scale));
       const ConvexPolyhedron a = transformed(p.a, scale, Vector3::Zero());
       const ConvexPolyhedron b = transformed(p.b, scale, Vector3::Zero());
       const detail::FramedPair pair = detail::frame_pair(a, Pose{}, b, Pose{}, 1e-9);
@@ -123,7 +130,7 @@ TEST(Frame, AnyScaleChangesNoVerdictAndScalesEveryAnswer) {
       const DistanceResult unit = ask(query, m.kind, p.a, p.b);
       const PairScale unit_scale = scale_of(p.a, p.b, kDefaultTolerance);
       for (Scalar s : {1e-100, 1e-30, 1e-3, 7.0, 1e30, 1e100}) {
-        SCOPED_TRACE("scale " + std::to_string(s));
+        SCOPED_TRACE("scale " + scientific(s));
         const ConvexPolyhedron a = transformed(p.a, s, Vector3::Zero());
         const ConvexPolyhedron b = transformed(p.b, s, Vector3::Zero());
         const DistanceResult r = ask(query, m.kind, a, b);

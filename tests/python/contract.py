@@ -25,10 +25,14 @@ CASE_SETS = ("paper", "hard", "random")
 CUBE = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)], dtype=float)
 TETRA = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], dtype=float)
 
+# The tolerances the contract runs at: the default, and one loose enough that the methods stop
+# early, far from their exact answers (one meaning of tolerance for every method and query).
+TOLERANCES = (sc.DEFAULT_TOLERANCE, 1e-3)
+
 # How close ``distance`` comes to the true value (the distance, or the signed distance), relative
-# to the pair's size, at the default options. The certified methods keep the tolerance; the
+# to the pair's size, at the default tolerance. The certified methods keep the tolerance; the
 # paper's swarms and its penalty baseline reach the paper's Tables 1-2 to about 1e-4 and promise
-# only their bounds elsewhere (None).
+# only their bounds elsewhere (None). At a looser tolerance no method need come closer than it.
 ACCURACY: Dict[str, Dict[str, Optional[float]]] = {
     "dual": {"paper": sc.DEFAULT_TOLERANCE, "hard": sc.DEFAULT_TOLERANCE, "random": sc.DEFAULT_TOLERANCE},
     "exact": {"paper": sc.DEFAULT_TOLERANCE, "hard": sc.DEFAULT_TOLERANCE, "random": sc.DEFAULT_TOLERANCE},
@@ -264,8 +268,8 @@ def assert_identical(first: sc.DistanceResult, second: sc.DistanceResult) -> Non
         np.testing.assert_array_equal(getattr(first, field), getattr(second, field), err_msg=field)
 
 
-def size_accuracy(method: str, case_set: str, scale: Scale) -> Optional[float]:
+def size_accuracy(method: str, case_set: str, scale: Scale, tolerance: float) -> Optional[float]:
     """How far ``distance`` may be from the true value for ``method`` on ``case_set``."""
     relative = ACCURACY[method][case_set]
-    return None if relative is None else relative * scale.size + scale.rounding
+    return None if relative is None else max(relative, tolerance) * scale.size + scale.rounding
 

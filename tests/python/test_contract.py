@@ -4,6 +4,7 @@ pairs, the hard cases and seeded random pairs, against the tests' own exact refe
 import pytest
 from contract import (
     CASE_SETS,
+    TOLERANCES,
     ask,
     assert_identical,
     cases,
@@ -15,18 +16,20 @@ from contract import (
 import swarmcollide as sc
 
 PARAMETERS = [
-    pytest.param(method, kind, case_set, case, id=f"{method}-{kind}-{case.name}")
+    pytest.param(method, kind, tolerance, case_set, case,
+                 id=f"{method}-{kind}-{tolerance:g}-{case.name}")
     for method, info in sc.METHODS.items()
     for kind in info.queries
+    for tolerance in TOLERANCES
     for case_set in CASE_SETS
     for case in cases(case_set)
 ]
 
 
-@pytest.mark.parametrize(("method", "kind", "case_set", "case"), PARAMETERS)
-def test_contract(method, kind, case_set, case):
-    query = sc.query(method)
-    scale = pair_scale(case.a, case.b)
+@pytest.mark.parametrize(("method", "kind", "tolerance", "case_set", "case"), PARAMETERS)
+def test_contract(method, kind, tolerance, case_set, case):
+    query = sc.query(method, tolerance=tolerance)
+    scale = pair_scale(case.a, case.b, tolerance)
     r = ask(query, kind, case.a, case.b)
     check_contract(kind, method, case.a, case.b, r, case.distance, case.signed_distance, scale)
     if kind == "collide":
@@ -40,7 +43,7 @@ def test_contract(method, kind, case_set, case):
         else:
             assert (r.method, r.escalated_from) == ("exact", method)
     else:
-        accuracy = size_accuracy(method, case_set, scale)
+        accuracy = size_accuracy(method, case_set, scale, tolerance)
         value = case.signed_distance if kind == "signed_distance" else case.distance
         if accuracy is not None:
             assert abs(r.distance - value) <= accuracy
