@@ -8,10 +8,11 @@
 #include <string>
 #include <vector>
 
-#include "contract.hpp"
 #include "paper_cases.hpp"
 #include "shapes.hpp"
 #include "swarmcollide/queries/batch.hpp"
+#include "swarmcollide/queries/methods.hpp"
+#include "swarmcollide/queries/query.hpp"
 
 namespace swarmcollide::testing {
 namespace {

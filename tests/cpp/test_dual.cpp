@@ -6,7 +6,6 @@
 #include <utility>
 
 #include "contract.hpp"
-#include "paper_cases.hpp"
 #include "shapes.hpp"
 
 namespace swarmcollide::testing {

@@ -11,7 +11,6 @@
 
 #include "contract.hpp"
 #include "geometry/framed_body.hpp"
-#include "hard_cases.hpp"
 #include "oracle.hpp"
 #include "paper_cases.hpp"
 #include "shapes.hpp"
