@@ -69,7 +69,9 @@ def test_the_seed_decides_the_result(method, handling, tetra_a):
 
 @pytest.mark.parametrize("method", SWARMS)
 def test_zero_tolerance_runs_the_whole_budget(method, tetra_a, separate_b):
-    r = sc.distance(tetra_a, separate_b, method=method, tolerance=0, max_iterations=30, swarm_size=10)
+    r = sc.distance(
+        tetra_a, separate_b, method=method, tolerance=0, max_iterations=30, swarm_size=10
+    )
     assert r.iterations == 30
     assert r.evaluations == 10 * 31
     assert len(r.history) == 31
@@ -78,7 +80,9 @@ def test_zero_tolerance_runs_the_whole_budget(method, tetra_a, separate_b):
 def test_parameters_reach_the_solver(tetra_a, separate_b):
     short = sc.distance(tetra_a, separate_b, method="ipso", max_iterations=0, seed=3)
     assert short.iterations == 0 and short.evaluations == 40
-    small = sc.distance(tetra_a, separate_b, method="ipso", swarm_size=5, max_iterations=2, tolerance=0)
+    small = sc.distance(
+        tetra_a, separate_b, method="ipso", swarm_size=5, max_iterations=2, tolerance=0
+    )
     assert small.evaluations == 5 * 3
     rng = np.random.default_rng(9)
     a, b = rng.normal(size=(7, 3)), rng.normal(size=(6, 3)) + [2, 0, 0]
