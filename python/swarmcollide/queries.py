@@ -68,6 +68,7 @@ class Parameter:
     description: str
     minimum: float
     maximum: float
+    minimum_excluded: bool
     choices: Tuple[str, ...]
     default: Any
 

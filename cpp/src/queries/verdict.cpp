@@ -76,8 +76,8 @@ DistanceResult finish_result(const FramedPair& pair, Answer&& answer, Method req
   r.evaluations = answer.evaluations;
   r.history = std::move(answer.history);
   for (Scalar& h : r.history) h = frame.length_to_world(h);
-  // Unproven, the verdict is the best guess: within the tolerance up to rounding.
-  r.colliding = close || (!apart && answer.upper <= pair.tolerance + kFrameRounding);
+  // Unproven, the verdict errs on the side of contact: bodies not shown apart may touch.
+  r.colliding = !apart;
   r.certified = (apart || close) && (goal != Goal::signed_distance || exact);
   // For a signed distance, contact alone does not settle the depth.
   const bool settled = exact || (close && goal != Goal::signed_distance);

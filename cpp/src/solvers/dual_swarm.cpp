@@ -5,6 +5,7 @@
 #include <utility>
 #include <vector>
 
+#include "../queries/verdict.hpp"
 #include "best_bounds.hpp"
 #include "direction_swarm.hpp"
 #include "distance_finish.hpp"
@@ -119,9 +120,26 @@ class DualSearch {
 Answer solve_dual(const FramedPair& pair, const QueryOptions& options, Goal goal) {
   const Goal search = goal == Goal::signed_distance ? Goal::distance : goal;
   Answer answer = DualSearch(pair, options, search).run();
-  // A separating direction settles a signed distance as a distance; overlapping bodies get the
-  // certified penetration depth, started from the swarm's best direction.
-  if (goal != Goal::signed_distance || answer.lower > kFrameRounding) return answer;
+  if (goal != Goal::signed_distance) return answer;
+  // A separating direction settles a signed distance as a distance, whose contact normal is the
+  // witnesses' direction (`point_b - point_a = distance * direction`): the swarm's best direction
+  // may be a tolerance's worth of angle away from it. When the separation along the witnesses
+  // leaves the bounds further apart than the tolerance, Wolfe's algorithm from them closes it.
+  if (answer.lower > kFrameRounding) {
+    const Vector3 between = answer.point_b - answer.point_a;
+    const Vector3 n = between / answer.upper;
+    const Scalar s = separation(pair.a, pair.b, n);
+    if (value_proven(pair, s, answer.upper)) {
+      answer.direction = n;
+      answer.lower = s;
+      return answer;
+    }
+    Answer exact = exact_distance(pair, options.exact.max_iterations, between);
+    exact.iterations += answer.iterations;
+    exact.evaluations += answer.evaluations;
+    exact.history = std::move(answer.history);
+    return exact;
+  }
   Answer overlap =
       exact_penetration(pair, options.exact.max_iterations, answer.direction, answer.upper);
   overlap.iterations += answer.iterations;
