@@ -192,8 +192,17 @@ ExpansionResult ExpandingPolytope::run(const BodyView& a, const BodyView& b,
     const int closest = heap_.front().second;
     const Face& face = faces_[closest];
     const Vector3 n = face.normal;
-    const int ia = a.climb_max(n, vertices_[face.v[0]].ia);
-    const int ib = b.climb_max(-n, vertices_[face.v[0]].ib);
+    // The climbs start from the face's corner highest along n (and lowest, for B): the support
+    // is usually a few steps from it.
+    int start_a = vertices_[face.v[0]].ia;
+    int start_b = vertices_[face.v[0]].ib;
+    for (int k = 1; k < 3; ++k) {
+      const DifferencePoint& corner = vertices_[face.v[k]];
+      if (a.point(corner.ia).dot(n) > a.point(start_a).dot(n)) start_a = corner.ia;
+      if (b.point(corner.ib).dot(n) < b.point(start_b).dot(n)) start_b = corner.ib;
+    }
+    const int ia = a.climb_max(n, start_a);
+    const int ib = b.climb_max(-n, start_b);
     const Vector3 w = a.point(ia) - b.point(ib);
     const Scalar h = n.dot(w);
     result.iterations = iteration + 1;

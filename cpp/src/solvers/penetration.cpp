@@ -16,14 +16,10 @@ namespace swarmcollide::detail {
 namespace {
 
 constexpr Scalar kInfinity = std::numeric_limits<Scalar>::infinity();
-// Edge pairs up to which the candidate axes are enumerated before anything else: below it the
-// enumeration costs about as much as Wolfe plus the expanding polytope, and proves every case.
-constexpr long long kAxesFirstPairs = 1024;
-// Edge pairs up to which the enumeration is the fallback when the polytope proves too little
-// (about 40 ms); larger pairs keep the polytope's bounds, unproven.
+// Edge pairs up to which the candidate axes are the fallback when the polytope proves too little
+// (tens of milliseconds); larger pairs keep the bounds they have, unproven.
 constexpr long long kAxesFallbackPairs = 1LL << 22;
-// Iterations of Wolfe's algorithm on the features (at most four points leave the corral per
-// iteration, and it stops at rounding long before).
+// Iterations of Wolfe's algorithm on the witnesses' features (it stops at rounding long before).
 constexpr int kWitnessIterations = 100;
 
 // Buffers a solve reuses from the previous one on the same thread.
@@ -32,6 +28,7 @@ struct Workspace {
   CandidateAxes axes;
   std::vector<int> feature_a;
   std::vector<int> feature_b;
+  std::vector<char> visited;  // all zero between uses
 };
 
 Workspace& thread_workspace() {
@@ -45,104 +42,185 @@ long long edge_count(const Hull& hull) {
   return static_cast<long long>(hull.neighbours.size()) / 2;
 }
 
+// One pass over a body along unit n: the largest height (exact to rounding, a scan) and the
+// largest absolute coordinate.
+struct Pass {
+  int top = 0;
+  Scalar height = -kInfinity;
+  Scalar coordinate = 0;
+};
+
+Pass scan(const BodyView& body, const Vector3& n) {
+  Pass pass;
+  const Scalar* p = body.points.data();
+  for (int i = 0; i < body.size(); ++i, p += 3) {
+    const Scalar h = p[0] * n.x() + p[1] * n.y() + p[2] * n.z();
+    if (h > pass.height) {
+      pass.height = h;
+      pass.top = i;
+    }
+  }
+  pass.coordinate = body.points.cwiseAbs().maxCoeff();
+  return pass;
+}
+
 class Solver {
  public:
   Solver(const VertexMatrix& a, const Hull& hull_a, const VertexMatrix& b, const Hull& hull_b,
          Scalar tolerance, int max_iterations)
       : a_{a, hull_a},
         b_{b, hull_b},
-        coordinate_(largest_coordinate(a, b)),
-        margin_(separation_margin(coordinate_)),
-        reach_(2 * std::sqrt(Scalar(3)) * coordinate_),
         tolerance_(tolerance),
-        max_iterations_(max_iterations),
-        ws_(thread_workspace()) {}
+        max_iterations_(std::max(1, max_iterations)),
+        ws_(thread_workspace()) {
+    // The largest coordinate, from the supports along the axes; the final pass measures it
+    // exactly before any margin is used in a result.
+    for (int k = 0; k < 3; ++k) {
+      for (const Scalar side : {1.0, -1.0}) {
+        const Vector3 e = side * Vector3::Unit(k);
+        coordinate_ = std::max({coordinate_, std::abs(a_.point(a_.climb_max(e, -1)).dot(e)),
+                                std::abs(b_.point(b_.climb_max(e, -1)).dot(e))});
+      }
+    }
+  }
 
   PenetrationBounds solve(const Vector3& hint) {
-    if (hint.allFinite() && hint.norm() > 0) offer_direction(hint.normalized());
-    const long long pairs = edge_count(a_.hull) * edge_count(b_.hull);
-    if (pairs <= kAxesFirstPairs) {
-      enumerate_axes();
-      if (!done()) expand();
-    } else {
-      expand();
-      if (!done() && pairs <= kAxesFallbackPairs) enumerate_axes();
+    if (hint.allFinite() && hint.norm() > 0) offer(hint.normalized());
+    expand();
+    if (!done()) {
+      finish();
+      if (!done() && !axes_tried_ &&
+          edge_count(a_.hull) * edge_count(b_.hull) <= kAxesFallbackPairs) {
+        enumerate_axes();
+      }
     }
+    finish();
     return result();
   }
 
  private:
-  // The separation along unit n by scanning both bodies: what a proven lower bound rests on.
-  Scalar exact_separation(const Vector3& n) const {
-    return b_.point(b_.scan_max(-n)).dot(n) - a_.point(a_.scan_max(n)).dot(n);
+  Scalar margin() const { return separation_margin(coordinate_); }
+  Scalar reach() const { return 2 * std::sqrt(Scalar(3)) * coordinate_; }
+  Scalar lower() const { return separation_ - margin(); }
+  // The gap below which the rounding margins leave nothing to gain.
+  Scalar floor() const { return 16 * margin(); }
+  bool done() const { return upper() - lower() <= std::max(tolerance_, floor()); }
+  Scalar upper() const {
+    return std::min(proven_upper_, nearest_length_ + 16 * kRoundoff * reach());
   }
 
-  // Every direction gives a lower bound; the best one is kept, with its separation computed
-  // exactly once, here.
-  void offer_direction(const Vector3& n) {
+  // A direction to try: its separation from climbed supports ranks it; the best one is measured
+  // exactly by `finish`.
+  void offer(const Vector3& n) {
     if (!n.allFinite()) return;
-    const Scalar s = exact_separation(n);
-    if (s > separation_) {
-      separation_ = s;
-      normal_ = n;
+    climb_a_ = a_.climb_max(n, climb_a_);
+    climb_b_ = b_.climb_max(-n, climb_b_);
+    offer(n, (b_.point(climb_b_) - a_.point(climb_a_)).dot(n));
+  }
+  void offer(const Vector3& n, Scalar estimate) {
+    if (estimate > estimate_) {
+      estimate_ = estimate;
+      candidate_ = n;
     }
   }
 
-  Scalar lower() const { return separation_ - margin_; }
-  bool done() const { return upper_ - lower() <= std::max(tolerance_, floor()); }
-  // The gap below which the rounding margins leave nothing to gain.
-  Scalar floor() const { return 16 * margin_; }
+  // The candidate's separation by scanning every point, which a proven lower bound needs (a climb
+  // can stop a rounding error short of the maximum), and the exact largest coordinate.
+  void finish() {
+    if (!(estimate_ > -kInfinity)) offer(Vector3::UnitX());
+    const Pass pa = scan(a_, candidate_);
+    const Pass pb = scan(b_, -candidate_);
+    coordinate_ = std::max(pa.coordinate, pb.coordinate);
+    top_a_ = pa.top;
+    top_b_ = pb.top;
+    normal_ = candidate_;
+    separation_ = -pb.height - pa.height;
+  }
+
+  void set_upper(Scalar value, PenetrationProof proof) {
+    if (value < proven_upper_) {
+      proven_upper_ = value;
+      proof_ = proof;
+    }
+  }
 
   // Wolfe's nearest point of A - B to the origin: an upper bound |p| (p is a point of A - B, so
   // s(n) <= -n.p <= |p| for every n) and, when the origin is inside, a tetrahedron around it.
-  const exact_internal::MinNormPoint& nearest() {
-    if (nearest_ready_) return nearest_;
-    nearest_ready_ = true;
-    int ia = -1;
-    int ib = -1;
+  void expand() {
+    int ia = climb_a_;
+    int ib = climb_b_;
     const auto oracle = [&](const Vector3& d) {
       ia = a_.climb_max(-d, ia);
       ib = b_.climb_max(d, ib);
       return exact_internal::OraclePoint{a_.point(ia) - b_.point(ib), ia, ib};
     };
-    Vector3 start = normal_;
-    if (!(separation_ > -kInfinity)) start = a_.point(0) - b_.point(0);
+    Vector3 start = estimate_ > -kInfinity ? candidate_ : Vector3(a_.point(0) - b_.point(0));
     if (!(start.norm() > 0)) start = Vector3::UnitX();
-    nearest_ = exact_internal::wolfe_min_norm(oracle, start, reach_, max_iterations_);
-    iterations_ += nearest_.iterations;
+    const exact_internal::MinNormPoint m =
+        exact_internal::wolfe_min_norm(oracle, start, reach(), max_iterations_);
+    iterations_ += m.iterations;
     // The exact convex combination of the corral (weights normalised) is a point of A - B; the
-    // computed one is within 16 roundoffs of reach_ of it.
+    // computed one is within 16 roundoffs of reach() of it (added in upper()).
     Scalar total = 0;
-    for (int k = 0; k < nearest_.size; ++k) total += nearest_.weights[k];
+    for (int k = 0; k < m.size; ++k) total += m.weights[k];
     Vector3 p = Vector3::Zero();
-    for (int k = 0; k < nearest_.size; ++k) p += nearest_.weights[k] / total * nearest_.corral[k].p;
-    nearest_norm_ = p.norm() + 16 * kRoundoff * reach_;
-    if (p.norm() > 0) offer_direction(-p.normalized());
-    return nearest_;
+    for (int k = 0; k < m.size; ++k) p += m.weights[k] / total * m.corral[k].p;
+    if (p.norm() < nearest_length_) nearest_length_ = p.norm();
+    if (p.norm() > 0) offer(-p.normalized());
+    if (m.size != exact_internal::MinNormPoint::kCapacity || done()) return;
+    std::array<DifferencePoint, 4> start_tetrahedron;
+    for (int k = 0; k < 4; ++k) {
+      start_tetrahedron[k] = {m.corral[k].p, m.corral[k].ia, m.corral[k].ib};
+    }
+    const Scalar stop_gap = std::max(tolerance_ / 2, floor() / 4);
+    const ExpansionResult e =
+        ws_.polytope.run(a_, b_, start_tetrahedron, stop_gap, max_iterations_);
+    iterations_ += e.iterations;
+    if (e.best_separation > -kInfinity) offer(e.best_normal, e.best_separation);
+    if (e.verified) set_upper(-e.depth_lower, PenetrationProof::polytope);
   }
 
   void enumerate_axes() {
+    axes_tried_ = true;
     const AxesBound bound = ws_.axes.run(a_, b_, coordinate_);
-    offer_direction(bound.best_normal);
-    if (bound.upper < -bound.flat_slack) {
-      upper_ = std::min(upper_, bound.upper);
-    } else {
-      nearest();
-      upper_ = std::min(upper_, std::max(bound.upper, nearest_norm_));
-    }
+    offer(bound.best_normal);
+    // Below -flat_slack the difference is full-dimensional with the origin inside. Otherwise the
+    // facets bound sd only if the origin is inside, |p| bounds it if not, and their maximum is
+    // no better than |p| alone, which upper() already has.
+    if (bound.upper < -bound.flat_slack) set_upper(bound.upper, PenetrationProof::candidate_axes);
   }
 
-  void expand() {
-    const exact_internal::MinNormPoint& m = nearest();
-    upper_ = std::min(upper_, nearest_norm_);
-    if (m.size != exact_internal::MinNormPoint::kCapacity || done()) return;
-    std::array<DifferencePoint, 4> start;
-    for (int k = 0; k < 4; ++k) start[k] = {m.corral[k].p, m.corral[k].ia, m.corral[k].ib};
-    const Scalar stop_gap = std::max(tolerance_ / 2, floor() / 4);
-    const ExpansionResult e = ws_.polytope.run(a_, b_, start, stop_gap, max_iterations_);
-    iterations_ += e.iterations;
-    if (e.best_separation > -kInfinity) offer_direction(e.best_normal);
-    if (e.verified) upper_ = std::min(upper_, -e.depth_lower);
+  // Points of `body` within `slack` of the top along n (whose top point is `top`): a scan for
+  // small bodies, a flood over the hull's edge graph for large ones (the points above a plane
+  // span a connected subgraph of a polytope's graph).
+  void feature(const BodyView& body, const Vector3& n, int top, Scalar slack,
+               std::vector<int>& found) {
+    const Scalar floor = body.points.row(top).dot(n) - slack;
+    found.clear();
+    const Hull& h = body.hull;
+    const bool on_graph = h.neighbour_offsets[top] < h.neighbour_offsets[top + 1];
+    if (body.size() <= kHillClimbingThreshold || !on_graph) {
+      for (int i = 0; i < body.size(); ++i) {
+        if (body.points.row(i).dot(n) >= floor) found.push_back(i);
+      }
+      return;
+    }
+    if (ws_.visited.size() < static_cast<std::size_t>(body.size())) {
+      ws_.visited.resize(body.size(), 0);
+    }
+    found.push_back(top);
+    ws_.visited[top] = 1;
+    for (std::size_t k = 0; k < found.size(); ++k) {
+      const int i = found[k];
+      for (int e = h.neighbour_offsets[i]; e < h.neighbour_offsets[i + 1]; ++e) {
+        const int j = h.neighbours[e];
+        if (!ws_.visited[j] && body.points.row(j).dot(n) >= floor) {
+          ws_.visited[j] = 1;
+          found.push_back(j);
+        }
+      }
+    }
+    for (int i : found) ws_.visited[i] = 0;
   }
 
   // Witnesses: on A's supporting feature along the normal and B's along its opposite, the pair
@@ -151,31 +229,24 @@ class Solver {
   // A - B lies in that difference, and the residual is rounding.
   void witnesses(PenetrationBounds& r) {
     const Vector3& n = normal_;
-    const Scalar gap = std::isfinite(upper_) ? std::max(Scalar(0), upper_ - lower()) : 0;
-    const Scalar slack = 1024 * margin_ + 2 * std::min(gap, Scalar(1e-9));
-    const auto collect = [&](const BodyView& body, const Vector3& d, std::vector<int>& feature) {
-      const Scalar top = body.point(body.scan_max(d)).dot(d);
-      feature.clear();
-      for (int i = 0; i < body.size(); ++i) {
-        if (body.point(i).dot(d) >= top - slack) feature.push_back(i);
-      }
-    };
-    collect(a_, n, ws_.feature_a);
-    collect(b_, -n, ws_.feature_b);
+    const Scalar gap = std::isfinite(upper()) ? std::max(Scalar(0), upper() - lower()) : 0;
+    const Scalar slack = 1024 * margin() + 2 * std::min(gap, Scalar(1e-9));
+    feature(a_, n, top_a_, slack, ws_.feature_a);
+    feature(b_, -n, top_b_, slack, ws_.feature_b);
     const Vector3 shift = separation_ * n;
     const auto oracle = [&](const Vector3& d) {
       int i = ws_.feature_a.front();
       for (int k : ws_.feature_a) {
-        if (a_.point(k).dot(d) > a_.point(i).dot(d)) i = k;
+        if (a_.points.row(k).dot(d) > a_.points.row(i).dot(d)) i = k;
       }
       int j = ws_.feature_b.front();
       for (int k : ws_.feature_b) {
-        if (b_.point(k).dot(d) < b_.point(j).dot(d)) j = k;
+        if (b_.points.row(k).dot(d) < b_.points.row(j).dot(d)) j = k;
       }
       return exact_internal::OraclePoint{b_.point(j) - a_.point(i) - shift, i, j};
     };
     const exact_internal::MinNormPoint m =
-        exact_internal::wolfe_min_norm(oracle, n, reach_, kWitnessIterations);
+        exact_internal::wolfe_min_norm(oracle, n, reach(), kWitnessIterations);
     Scalar total = 0;
     for (int k = 0; k < m.size; ++k) total += m.weights[k];
     r.weights_a = VectorX::Zero(a_.size());
@@ -194,32 +265,39 @@ class Solver {
   }
 
   PenetrationBounds result() {
-    if (!(separation_ > -kInfinity)) offer_direction(Vector3::UnitX());
     PenetrationBounds r;
     r.normal = normal_;
     r.separation = separation_;
+    r.margin = margin();
     r.lower = lower();
-    r.upper = upper_;
+    r.upper = upper();
+    r.proof = proven_upper_ <= r.upper ? proof_ : PenetrationProof::nearest_point;
+    if (!std::isfinite(r.upper)) r.proof = PenetrationProof::none;
     r.iterations = iterations_;
-    r.proven = upper_ - r.lower <= tolerance_;
+    r.proven = r.upper - r.lower <= tolerance_;
     witnesses(r);
     return r;
   }
 
   BodyView a_;
   BodyView b_;
-  Scalar coordinate_;
-  Scalar margin_;
-  Scalar reach_;
   Scalar tolerance_;
   int max_iterations_;
   Workspace& ws_;
+  Scalar coordinate_ = 0;
+  // Climb starts shared by the directions offered.
+  int climb_a_ = -1;
+  int climb_b_ = -1;
+  Vector3 candidate_ = Vector3::UnitX();
+  Scalar estimate_ = -kInfinity;
   Vector3 normal_ = Vector3::UnitX();
   Scalar separation_ = -kInfinity;
-  Scalar upper_ = kInfinity;
-  exact_internal::MinNormPoint nearest_;
-  Scalar nearest_norm_ = kInfinity;
-  bool nearest_ready_ = false;
+  int top_a_ = 0;
+  int top_b_ = 0;
+  Scalar proven_upper_ = kInfinity;
+  PenetrationProof proof_ = PenetrationProof::none;
+  Scalar nearest_length_ = kInfinity;
+  bool axes_tried_ = false;
   int iterations_ = 0;
 };
 
