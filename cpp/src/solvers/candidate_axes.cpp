@@ -162,7 +162,6 @@ void CandidateAxes::collect(const BodyView& body, bool negate, std::vector<Arc>&
 void CandidateAxes::offer(AxesBound& bound, const Vector3& n, Scalar value) const {
   if (value > bound.upper) {
     bound.upper = value;
-    bound.best_value = value;
     bound.best_normal = n;
   }
 }

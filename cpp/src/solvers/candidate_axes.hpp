@@ -17,7 +17,6 @@ struct AxesBound {
   Scalar flat_slack = 0;
   /// The candidate of largest bound: its separation is the best lower bound found.
   Vector3 best_normal = Vector3::UnitX();
-  Scalar best_value = -1e300;
   /// Edge pairs tested.
   long long pairs = 0;
 };

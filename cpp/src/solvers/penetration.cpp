@@ -86,6 +86,7 @@ class Solver {
 
   PenetrationBounds solve(const Vector3& hint) {
     if (hint.allFinite() && hint.norm() > 0) offer(hint.normalized());
+    offer_flat_normals();
     expand();
     if (!done()) {
       finish();
@@ -107,6 +108,28 @@ class Solver {
   bool done() const { return upper() - lower() <= std::max(tolerance_, floor()); }
   Scalar upper() const {
     return std::min(proven_upper_, nearest_length_ + 16 * kRoundoff * reach());
+  }
+
+  // Flat bodies touch along their plane and two segments along their common normal, which the
+  // polytope cannot find when A - B has no interior; trying these costs a few climbs.
+  void offer_flat_normals() {
+    Vector3 axis[2];
+    int segments = 0;
+    for (const BodyView* body : {&a_, &b_}) {
+      const Hull& h = body->hull;
+      if (h.dimension == 2) {
+        const Vector3 p = body->point(h.faces(0, 0));
+        const Vector3 n = (body->point(h.faces(0, 1)) - p).cross(body->point(h.faces(0, 2)) - p);
+        offer(n.normalized());
+        offer(-n.normalized());
+      } else if (h.dimension == 1) {
+        axis[segments++] = body->point(h.vertex_indices[1]) - body->point(h.vertex_indices[0]);
+      }
+    }
+    if (segments == 2 && axis[0].cross(axis[1]).norm() > 0) {
+      offer(axis[0].cross(axis[1]).normalized());
+      offer(-axis[0].cross(axis[1]).normalized());
+    }
   }
 
   // A direction to try: its separation from climbed supports ranks it; the best one is measured
@@ -167,6 +190,18 @@ class Solver {
     for (int k = 0; k < m.size; ++k) p += m.weights[k] / total * m.corral[k].p;
     if (p.norm() < nearest_length_) nearest_length_ = p.norm();
     if (p.norm() > 0) offer(-p.normalized());
+    // Touching bodies: the origin is on the boundary of A - B and on the corral's triangles, which
+    // then lie in the supporting plane there, so their normals are the contact normal.
+    for (int k = 0; m.size >= 3 && k < m.size; ++k) {
+      const Vector3& p0 = m.corral[k].p;
+      const Vector3 n =
+          (m.corral[(k + 1) % m.size].p - p0).cross(m.corral[(k + 2) % m.size].p - p0);
+      if (n.norm() > 0) {
+        offer(n.normalized());
+        offer(-n.normalized());
+      }
+      if (m.size == 3) break;
+    }
     if (m.size != exact_internal::MinNormPoint::kCapacity || done()) return;
     std::array<DifferencePoint, 4> start_tetrahedron;
     for (int k = 0; k < 4; ++k) {

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 
 #include "swarmcollide/geometry/convex_polyhedron.hpp"
 #include "swarmcollide/geometry/hull.hpp"
@@ -21,14 +22,19 @@ struct BodyView {
 
   Vector3 point(int i) const { return points.row(i).transpose(); }
   int size() const { return static_cast<int>(points.rows()); }
+  /// `d . x_i`, from the row-major storage (the support loops' inner product).
+  Scalar height(int i, const Vector3& d) const {
+    const Scalar* x = points.data() + 3 * static_cast<std::ptrdiff_t>(i);
+    return x[0] * d.x() + x[1] * d.y() + x[2] * d.z();
+  }
 
   /// Index of a point maximising `d . x` over all points (a scan; exact to rounding, so it is
   /// what a proven lower bound uses).
   int scan_max(const Vector3& d) const {
     int best = 0;
-    Scalar top = points.row(0).dot(d);
+    Scalar top = height(0, d);
     for (int i = 1; i < size(); ++i) {
-      const Scalar h = points.row(i).dot(d);
+      const Scalar h = height(i, d);
       if (h > top) {
         top = h;
         best = i;
@@ -44,17 +50,17 @@ struct BodyView {
   /// the height.
   int climb_max(const Vector3& d, int start) const {
     if (size() <= kHillClimbingThreshold) return scan_max(d);
-    const std::vector<int>& offsets = hull.neighbour_offsets;
+    const int* offsets = hull.neighbour_offsets.data();
+    const int* neighbours = hull.neighbours.data();
     if (start < 0 || offsets[start] == offsets[start + 1]) start = hull.vertex_indices[0];
-    Scalar top = points.row(start).dot(d);
+    Scalar top = height(start, d);
     for (int step = 0; step < size(); ++step) {
       int next = start;
       for (int e = offsets[start]; e < offsets[start + 1]; ++e) {
-        const int j = hull.neighbours[e];
-        const Scalar h = points.row(j).dot(d);
+        const Scalar h = height(neighbours[e], d);
         if (h > top) {
           top = h;
-          next = j;
+          next = neighbours[e];
         }
       }
       if (next == start) break;
