@@ -128,6 +128,32 @@ TEST(Penetration, IssueCubesOverlappingByHalf) {
   EXPECT_LE(exact.upper - exact.lower, 1e-13);
 }
 
+TEST(Penetration, MarginsFollowTheLargestCoordinate) {
+  // The issue's cubes at other scales and far from the origin: the margins are multiples of the
+  // largest coordinate, so the bounds stay proven at a tolerance scaled alike.
+  const VertexMatrix c = box({0, 0, 0}, {1, 1, 1});
+  const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
+  for (const Scalar scale : {1e-5, 1e-4, 1e4}) {
+    for (const Scalar offset : {0.0, 1e3}) {
+      const VertexMatrix a = transformed(c * scale, I, Vector3::Constant(offset * scale));
+      const VertexMatrix b = transformed(
+          c * scale, I, Vector3(0.5, 0.25, 0.1) * scale + Vector3::Constant(offset * scale));
+      const Hull ha = compute_hull(a);
+      const Hull hb = compute_hull(b);
+      const PenetrationBounds r =
+          penetration(a, ha, b, hb, Vector3::Zero(), 1e-9 * scale * (1 + offset), kIterations);
+      // The rounded coordinates move the depth off 0.5 scale; along x it is the difference of
+      // two nearby doubles, which is exact (Sterbenz).
+      const Scalar exact = b.col(0).minCoeff() - a.col(0).maxCoeff();
+      EXPECT_NEAR(exact, -0.5 * scale, 1e-12 * scale * (1 + offset));
+      EXPECT_TRUE(r.proven) << scale << " " << offset;
+      EXPECT_LE(r.lower, exact);
+      EXPECT_GE(r.upper, exact);
+      EXPECT_NEAR(std::abs(r.normal.x()), 1, 1e-12);
+    }
+  }
+}
+
 TEST(Penetration, RandomOverlapsAtVariousDepthsMatchTheOracle) {
   std::mt19937_64 rng(12);
   std::uniform_real_distribution<Scalar> unit(-1, 1);

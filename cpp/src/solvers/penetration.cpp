@@ -88,14 +88,11 @@ class Solver {
     if (hint.allFinite() && hint.norm() > 0) offer(hint.normalized());
     offer_flat_normals();
     expand();
-    if (!done()) {
-      finish();
-      if (!done() && !axes_tried_ &&
-          edge_count(a_.hull) * edge_count(b_.hull) <= kAxesFallbackPairs) {
-        enumerate_axes();
-      }
-    }
     finish();
+    if (!done() && edge_count(a_.hull) * edge_count(b_.hull) <= kAxesFallbackPairs) {
+      enumerate_axes();
+      finish();
+    }
     return result();
   }
 
@@ -202,7 +199,7 @@ class Solver {
       }
       if (m.size == 3) break;
     }
-    if (m.size != exact_internal::MinNormPoint::kCapacity || done()) return;
+    if (m.size != exact_internal::MinNormPoint::kCapacity) return;
     std::array<DifferencePoint, 4> start_tetrahedron;
     for (int k = 0; k < 4; ++k) {
       start_tetrahedron[k] = {m.corral[k].p, m.corral[k].ia, m.corral[k].ib};
@@ -216,7 +213,6 @@ class Solver {
   }
 
   void enumerate_axes() {
-    axes_tried_ = true;
     const AxesBound bound = ws_.axes.run(a_, b_, coordinate_);
     offer(bound.best_normal);
     // Below -flat_slack the difference is full-dimensional with the origin inside. Otherwise the
@@ -332,7 +328,6 @@ class Solver {
   Scalar proven_upper_ = kInfinity;
   PenetrationProof proof_ = PenetrationProof::none;
   Scalar nearest_length_ = kInfinity;
-  bool axes_tried_ = false;
   int iterations_ = 0;
 };
 
