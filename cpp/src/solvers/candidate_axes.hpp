@@ -26,10 +26,14 @@ struct AxesBound {
 /// separation over them is the signed distance. Crossing tests are inclusive (an extra axis never
 /// hurts a bound), each candidate's bound is `n'.(y - x)` for points x, y of the features that
 /// span it plus the rounding of `n'` times `|y - x|`, and nearly parallel edge pairs are bounded
-/// over the arc their facet normal can lie on. Costs O(faces * climb + edges_a * edges_b).
-/// `hull_error` is added for hulls whose points stray outside their faces by rounding.
+/// over the arc their facet normal can lie on. The bound holds for the polytopes the hulls
+/// describe; how far the points stray from them (Qhull's rounding, the flattening of nearly flat,
+/// collinear or coincident sets) is measured and added, since moving the bodies by a Hausdorff
+/// distance h moves every separation by at most h. Costs O(faces * (points + climb) +
+/// edges_a * edges_b).
 class CandidateAxes {
  public:
+  /// The bound for A and B, whose coordinates are at most `coordinate` in magnitude.
   AxesBound run(const BodyView& a, const BodyView& b, Scalar coordinate);
 
  private:

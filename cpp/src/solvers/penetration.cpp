@@ -42,28 +42,6 @@ long long edge_count(const Hull& hull) {
   return static_cast<long long>(hull.neighbours.size()) / 2;
 }
 
-// One pass over a body along unit n: the largest height (exact to rounding, a scan) and the
-// largest absolute coordinate.
-struct Pass {
-  int top = 0;
-  Scalar height = -kInfinity;
-  Scalar coordinate = 0;
-};
-
-Pass scan(const BodyView& body, const Vector3& n) {
-  Pass pass;
-  const Scalar* p = body.points.data();
-  for (int i = 0; i < body.size(); ++i, p += 3) {
-    const Scalar h = p[0] * n.x() + p[1] * n.y() + p[2] * n.z();
-    if (h > pass.height) {
-      pass.height = h;
-      pass.top = i;
-    }
-  }
-  pass.coordinate = body.points.cwiseAbs().maxCoeff();
-  return pass;
-}
-
 class Solver {
  public:
   Solver(const VertexMatrix& a, const Hull& hull_a, const VertexMatrix& b, const Hull& hull_b,
@@ -72,22 +50,13 @@ class Solver {
         b_{b, hull_b},
         tolerance_(tolerance),
         max_iterations_(std::max(1, max_iterations)),
-        ws_(thread_workspace()) {
-    // The largest coordinate, from the supports along the axes; the final pass measures it
-    // exactly before any margin is used in a result.
-    for (int k = 0; k < 3; ++k) {
-      for (const Scalar side : {1.0, -1.0}) {
-        const Vector3 e = side * Vector3::Unit(k);
-        coordinate_ = std::max({coordinate_, std::abs(a_.point(a_.climb_max(e, -1)).dot(e)),
-                                std::abs(b_.point(b_.climb_max(e, -1)).dot(e))});
-      }
-    }
-  }
+        ws_(thread_workspace()),
+        coordinate_(largest_coordinate(a, b)) {}
 
   PenetrationBounds solve(const Vector3& hint) {
     if (hint.allFinite() && hint.norm() > 0) offer(hint.normalized());
     offer_flat_normals();
-    expand();
+    nearest_then_polytope();
     finish();
     if (!done() && edge_count(a_.hull) * edge_count(b_.hull) <= kAxesFallbackPairs) {
       enumerate_axes();
@@ -145,16 +114,13 @@ class Solver {
   }
 
   // The candidate's separation by scanning every point, which a proven lower bound needs (a climb
-  // can stop a rounding error short of the maximum), and the exact largest coordinate.
+  // can stop a rounding error short of the maximum).
   void finish() {
     if (!(estimate_ > -kInfinity)) offer(Vector3::UnitX());
-    const Pass pa = scan(a_, candidate_);
-    const Pass pb = scan(b_, -candidate_);
-    coordinate_ = std::max(pa.coordinate, pb.coordinate);
-    top_a_ = pa.top;
-    top_b_ = pb.top;
+    top_a_ = a_.scan_max(candidate_);
+    top_b_ = b_.scan_max(-candidate_);
     normal_ = candidate_;
-    separation_ = -pb.height - pa.height;
+    separation_ = b_.height(top_b_, candidate_) - a_.height(top_a_, candidate_);
   }
 
   void set_upper(Scalar value, PenetrationProof proof) {
@@ -165,8 +131,9 @@ class Solver {
   }
 
   // Wolfe's nearest point of A - B to the origin: an upper bound |p| (p is a point of A - B, so
-  // s(n) <= -n.p <= |p| for every n) and, when the origin is inside, a tetrahedron around it.
-  void expand() {
+  // s(n) <= -n.p <= |p| for every n) and, when the origin is inside, a tetrahedron around it for
+  // the expanding polytope.
+  void nearest_then_polytope() {
     int ia = climb_a_;
     int ib = climb_b_;
     const auto oracle = [&](const Vector3& d) {
@@ -187,6 +154,7 @@ class Solver {
     for (int k = 0; k < m.size; ++k) p += m.weights[k] / total * m.corral[k].p;
     if (p.norm() < nearest_length_) nearest_length_ = p.norm();
     if (p.norm() > 0) offer(-p.normalized());
+    if (m.size == exact_internal::MinNormPoint::kCapacity && enclose(m)) return;
     // Touching bodies: the origin is on the boundary of A - B and on the corral's triangles, which
     // then lie in the supporting plane there, so their normals are the contact normal.
     for (int k = 0; m.size >= 3 && k < m.size; ++k) {
@@ -199,7 +167,11 @@ class Solver {
       }
       if (m.size == 3) break;
     }
-    if (m.size != exact_internal::MinNormPoint::kCapacity) return;
+  }
+
+  // The expanding polytope from Wolfe's tetrahedron around the origin; true when it proved an
+  // upper bound.
+  bool enclose(const exact_internal::MinNormPoint& m) {
     std::array<DifferencePoint, 4> start_tetrahedron;
     for (int k = 0; k < 4; ++k) {
       start_tetrahedron[k] = {m.corral[k].p, m.corral[k].ia, m.corral[k].ib};
@@ -210,6 +182,7 @@ class Solver {
     iterations_ += e.iterations;
     if (e.best_separation > -kInfinity) offer(e.best_normal, e.best_separation);
     if (e.verified) set_upper(-e.depth_lower, PenetrationProof::polytope);
+    return e.verified;
   }
 
   void enumerate_axes() {
@@ -315,7 +288,7 @@ class Solver {
   Scalar tolerance_;
   int max_iterations_;
   Workspace& ws_;
-  Scalar coordinate_ = 0;
+  Scalar coordinate_;
   // Climb starts shared by the directions offered.
   int climb_a_ = -1;
   int climb_b_ = -1;
