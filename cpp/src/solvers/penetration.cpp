@@ -16,9 +16,10 @@ namespace swarmcollide::detail {
 namespace {
 
 constexpr Scalar kInfinity = std::numeric_limits<Scalar>::infinity();
-// Edge pairs up to which the candidate axes are the fallback when the polytope proves too little
-// (tens of milliseconds); larger pairs keep the bounds they have, unproven.
-constexpr long long kAxesFallbackPairs = 1LL << 22;
+// Work (edge pairs plus faces times points) up to which the candidate axes are the fallback when
+// the polytope proves too little (tens of milliseconds); larger pairs keep the bounds they have,
+// unproven.
+constexpr long long kAxesFallbackWork = 1LL << 22;
 // Iterations of Wolfe's algorithm on the witnesses' features (it stops at rounding long before).
 constexpr int kWitnessIterations = 100;
 
@@ -42,6 +43,16 @@ long long edge_count(const Hull& hull) {
   return static_cast<long long>(hull.neighbours.size()) / 2;
 }
 
+// What the candidate axes cost: every edge pair, and every face against every point (the check
+// of how far the points stray from the hull's faces).
+long long axes_work(const BodyView& a, const BodyView& b) {
+  const auto faces_by_points = [](const BodyView& body) {
+    return body.hull.dimension == 3 ? static_cast<long long>(body.hull.faces.rows()) * body.size()
+                                    : 0;
+  };
+  return edge_count(a.hull) * edge_count(b.hull) + faces_by_points(a) + faces_by_points(b);
+}
+
 class Solver {
  public:
   Solver(const VertexMatrix& a, const Hull& hull_a, const VertexMatrix& b, const Hull& hull_b,
@@ -58,7 +69,7 @@ class Solver {
     offer_flat_normals();
     nearest_then_polytope();
     finish();
-    if (!done() && edge_count(a_.hull) * edge_count(b_.hull) <= kAxesFallbackPairs) {
+    if (!done() && axes_work(a_, b_) <= kAxesFallbackWork) {
       enumerate_axes();
       finish();
     }

@@ -65,9 +65,10 @@ struct PenetrationBounds {
 /// The solver works on the Minkowski difference `A - B`: Wolfe's nearest point to the origin,
 /// then an expanding polytope whose closed, origin-enclosing surface is verified before it proves
 /// `upper`, and when that leaves a gap (touching, flat or degenerate differences) the exhaustive
-/// candidate axes (face normals and crossing Gauss-map arcs), for pairs of up to 2^22 edge pairs.
-/// Every loop is bounded; nothing aborts. Separated bodies get valid bounds too (Wolfe's
-/// distance). Once a thread's buffers have grown, only the result's weights are allocated.
+/// candidate axes (face normals and crossing Gauss-map arcs), for pairs where they cost at most
+/// about 2^22 steps. Every loop is bounded; nothing aborts. Separated bodies get valid bounds too
+/// (Wolfe's distance). Once a thread's buffers have grown, only the result's weights are
+/// allocated. Preconditions: finite points, `hull_a` and `hull_b` from `compute_hull` of them.
 PenetrationBounds penetration(const VertexMatrix& a, const Hull& hull_a, const VertexMatrix& b,
                               const Hull& hull_b, const Vector3& hint, Scalar tolerance,
                               int max_iterations);
