@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <random>
 #include <string>
 #include <vector>
@@ -152,6 +153,31 @@ TEST(Penetration, MarginsFollowTheLargestCoordinate) {
       EXPECT_NEAR(std::abs(r.normal.x()), 1, 1e-12);
     }
   }
+}
+
+TEST(Penetration, UnnormalisedExtremesGetInfiniteBoundsNotWrongOnes) {
+  // Products of such coordinates overflow or underflow; the solver declines rather than guess.
+  // (The hull is the unit cube's: its indices do not depend on the scale.)
+  const VertexMatrix c = box({0, 0, 0}, {1, 1, 1});
+  const Hull hull = compute_hull(c);
+  const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
+  for (const Scalar scale : {1e-200, 1e200}) {
+    const VertexMatrix a = c * scale;
+    const VertexMatrix b = transformed(c * scale, I, Vector3(2, 0, 0) * scale);
+    const PenetrationBounds r =
+        penetration(a, hull, b, hull, Vector3::Zero(), kTolerance, kIterations);
+    EXPECT_FALSE(r.proven);
+    EXPECT_EQ(r.lower, -std::numeric_limits<Scalar>::infinity());
+    EXPECT_EQ(r.upper, std::numeric_limits<Scalar>::infinity());
+    EXPECT_TRUE(r.point_a.allFinite() && r.point_b.allFinite());
+  }
+  // All points at the origin: the frame is degenerate but exact, and sd = 0 is proven.
+  const VertexMatrix origin = VertexMatrix::Zero(3, 3);
+  const PenetrationBounds r = penetration(origin, compute_hull(origin), origin,
+                                          compute_hull(origin), Vector3::Zero(), 0, kIterations);
+  EXPECT_TRUE(r.proven);
+  EXPECT_EQ(r.lower, 0);
+  EXPECT_EQ(r.upper, 0);
 }
 
 TEST(Penetration, RandomOverlapsAtVariousDepthsMatchTheOracle) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <limits>
 
 namespace swarmcollide::detail {
 
@@ -16,6 +17,13 @@ Scalar determinant_bound(const Vector3& p, const Vector3& q, const Vector3& r) {
   return 32 * kRoundoff * p.norm() * q.norm() * r.norm();
 }
 
+// True when det(p, q, r) is provably positive. Where the bound underflows, so may the
+// determinant's terms, and no sign is trusted.
+bool positively_oriented(const Vector3& p, const Vector3& q, const Vector3& r) {
+  const Scalar bound = determinant_bound(p, q, r);
+  return bound >= std::numeric_limits<Scalar>::min() && p.dot(q.cross(r)) > bound;
+}
+
 using HeapEntry = std::pair<Scalar, int>;
 constexpr auto kNearestFirst = std::greater<HeapEntry>();
 
@@ -25,7 +33,7 @@ bool ExpandingPolytope::make_face(int v0, int v1, int v2, Face& face) const {
   const Vector3& p = vertices_[v0].w;
   const Vector3& q = vertices_[v1].w;
   const Vector3& r = vertices_[v2].w;
-  if (!(p.dot(q.cross(r)) > determinant_bound(p, q, r))) return false;
+  if (!positively_oriented(p, q, r)) return false;
   Vector3 n = (q - p).cross(r - p);
   const Scalar length = n.norm();
   if (!(length > 0)) return false;
@@ -131,7 +139,7 @@ bool ExpandingPolytope::verify(Scalar& depth_lower) const {
     const Vector3& p = vertices_[f.v[0]].w;
     const Vector3& q = vertices_[f.v[1]].w;
     const Vector3& r = vertices_[f.v[2]].w;
-    if (!(p.dot(q.cross(r)) > determinant_bound(p, q, r))) return false;
+    if (!positively_oriented(p, q, r)) return false;
     // Any unit vector n bounds the distance of every point of the triangle from below by
     // min_k n . v_k; 16 roundoffs of the largest |v_k| cover the dot products and the rounded
     // vertices (and 8 more on the result the rounding of |n|).

@@ -16,6 +16,9 @@ namespace swarmcollide::detail {
 namespace {
 
 constexpr Scalar kInfinity = std::numeric_limits<Scalar>::infinity();
+// The scales of coordinates the margins hold for (squares of coordinates far from both limits).
+constexpr Scalar kLargestCoordinate = 1e100;
+constexpr Scalar kSmallestCoordinate = 1e-100;
 // Work (edge pairs plus faces times points) up to which the candidate axes are the fallback when
 // the polytope proves too little (tens of milliseconds); larger pairs keep the bounds they have,
 // unproven.
@@ -56,13 +59,13 @@ long long axes_work(const BodyView& a, const BodyView& b) {
 class Solver {
  public:
   Solver(const VertexMatrix& a, const Hull& hull_a, const VertexMatrix& b, const Hull& hull_b,
-         Scalar tolerance, int max_iterations)
+         Scalar tolerance, int max_iterations, Scalar coordinate)
       : a_{a, hull_a},
         b_{b, hull_b},
         tolerance_(tolerance),
         max_iterations_(std::max(1, max_iterations)),
         ws_(thread_workspace()),
-        coordinate_(largest_coordinate(a, b)) {}
+        coordinate_(coordinate) {}
 
   PenetrationBounds solve(const Vector3& hint) {
     if (hint.allFinite() && hint.norm() > 0) offer(hint.normalized());
@@ -320,7 +323,20 @@ class Solver {
 PenetrationBounds penetration(const VertexMatrix& a, const Hull& hull_a, const VertexMatrix& b,
                               const Hull& hull_b, const Vector3& hint, Scalar tolerance,
                               int max_iterations) {
-  Solver solver(a, hull_a, b, hull_b, tolerance, max_iterations);
+  // Outside these scales products of coordinates overflow or underflow and the margins, which
+  // assume neither, prove nothing; the caller normalises the frame first.
+  const Scalar coordinate = largest_coordinate(a, b);
+  if (coordinate > kLargestCoordinate || (coordinate > 0 && coordinate < kSmallestCoordinate)) {
+    PenetrationBounds r;
+    r.lower = -kInfinity;
+    r.upper = kInfinity;
+    r.weights_a = VectorX::Constant(a.rows(), Scalar(1) / a.rows());
+    r.weights_b = VectorX::Constant(b.rows(), Scalar(1) / b.rows());
+    r.point_a = a.transpose() * r.weights_a;
+    r.point_b = b.transpose() * r.weights_b;
+    return r;
+  }
+  Solver solver(a, hull_a, b, hull_b, tolerance, max_iterations, coordinate);
   return solver.solve(hint);
 }
 

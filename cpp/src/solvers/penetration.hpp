@@ -59,7 +59,8 @@ struct PenetrationBounds {
 /// convex hulls of the rows of `a` and `b`, whose hulls are `hull_a` and `hull_b`.
 ///
 /// The pair should be in a normalised frame (coordinates of magnitude about 1 or less): the
-/// rounding margins are absolute multiples of the unit roundoff times the largest coordinate.
+/// rounding margins are absolute multiples of the unit roundoff times the largest coordinate. A
+/// largest coordinate outside [1e-100, 1e100] (other than 0) gets infinite bounds, unproven.
 /// `hint` is a good direction from A to B if one is known (zero otherwise); `tolerance` (absolute,
 /// >= 0) is the requested gap `upper - lower`; `max_iterations` (>= 1) caps each iterative stage.
 /// The solver works on the Minkowski difference `A - B`: Wolfe's nearest point to the origin,
