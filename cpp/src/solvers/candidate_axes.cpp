@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 
 namespace swarmcollide::detail {
 
@@ -42,7 +43,7 @@ void triangle_normal(const Vector3& p, const Vector3& q, const Vector3& r, Vecto
 
 void CandidateAxes::collect(const BodyView& body, bool negate, std::vector<Arc>& arcs,
                             std::vector<Facet>& facets, std::vector<int>& slot_face,
-                            Scalar& hull_error) {
+                            std::vector<int>& ring, Scalar& hull_error) {
   arcs.clear();
   facets.clear();
   hull_error = 0;
@@ -117,8 +118,7 @@ void CandidateAxes::collect(const BodyView& body, bool negate, std::vector<Arc>&
   } else if (hull.dimension == 2) {
     // The top half of the faces is a fan over the ring: (r0, r1, r2), (r0, r2, r3), ...
     const int fan = count / 2;
-    std::vector<int> ring;
-    ring.reserve(fan + 2);
+    ring.clear();
     ring.push_back(hull.faces(0, 0));
     ring.push_back(hull.faces(0, 1));
     for (int f = 0; f < fan; ++f) ring.push_back(hull.faces(f, 2));
@@ -159,19 +159,22 @@ void CandidateAxes::collect(const BodyView& body, bool negate, std::vector<Arc>&
   }
 }
 
-void CandidateAxes::offer(AxesBound& bound, const Vector3& n, Scalar value) const {
-  if (value > bound.upper) {
-    bound.upper = value;
+void CandidateAxes::offer(AxesBound& bound, const Vector3& n, Scalar estimate, Scalar error) {
+  bound.upper = std::max(bound.upper, estimate + error);
+  // The best direction by its estimate, not its bound: a sliver's loose error must not win.
+  if (estimate > best_estimate_) {
+    best_estimate_ = estimate;
     bound.best_normal = n;
   }
 }
 
 AxesBound CandidateAxes::run(const BodyView& a, const BodyView& b, Scalar coordinate) {
   AxesBound bound;
+  best_estimate_ = -std::numeric_limits<Scalar>::infinity();
   Scalar error_a = 0;
   Scalar error_b = 0;
-  collect(a, false, arcs_a_, facets_a_, slot_face_, error_a);
-  collect(b, true, arcs_b_, facets_b_, slot_face_, error_b);
+  collect(a, false, arcs_a_, facets_a_, slot_face_, ring_, error_a);
+  collect(b, true, arcs_b_, facets_b_, slot_face_, ring_, error_b);
   const Scalar hull_error = error_a + error_b;
   const Scalar reach = 2 * kSqrt3 * coordinate;  // bounds |y - x|
   const Scalar margin = separation_margin(coordinate);
@@ -190,12 +193,12 @@ AxesBound CandidateAxes::run(const BodyView& a, const BodyView& b, Scalar coordi
   for (const Facet& f : facets_a_) {
     climb_b = b.climb_max(-f.normal, climb_b);
     const Vector3 w = b.point(climb_b) - a.point(f.vertex);
-    offer(bound, f.normal, f.normal.dot(w) + (f.error + 8 * kRoundoff) * w.norm());
+    offer(bound, f.normal, f.normal.dot(w), (f.error + 8 * kRoundoff) * w.norm());
   }
   for (const Facet& f : facets_b_) {
     climb_a = a.climb_max(f.normal, climb_a);
     const Vector3 w = b.point(f.vertex) - a.point(climb_a);
-    offer(bound, f.normal, f.normal.dot(w) + (f.error + 8 * kRoundoff) * w.norm());
+    offer(bound, f.normal, f.normal.dot(w), (f.error + 8 * kRoundoff) * w.norm());
   }
 
   // Edge pairs whose arcs cross (inclusively): the facet normal is +-(t_a x t_b) and the edges
@@ -279,7 +282,7 @@ AxesBound CandidateAxes::run(const BodyView& a, const BodyView& b, Scalar coordi
               best_point = points[i];
             }
           }
-          if (best > -1e300) offer(bound, best_point, best + 16 * kRoundoff * w.norm());
+          if (best > -1e300) offer(bound, best_point, best, 16 * kRoundoff * w.norm());
           // Two nearly parallel segments span a parallelogram whose width across any direction
           // orthogonal to one of them is at most sine times its length.
           if (ea.full && eb.full)
@@ -293,7 +296,7 @@ AxesBound CandidateAxes::run(const BodyView& a, const BodyView& b, Scalar coordi
       for (const Scalar side : {1.0, -1.0}) {
         const Vector3 n = side * k;
         if (on_arc(ea, n, error) && on_arc(eb, n, error)) {
-          offer(bound, n, n.dot(w) + (error + 8 * kRoundoff) * w.norm());
+          offer(bound, n, n.dot(w), (error + 8 * kRoundoff) * w.norm());
         }
       }
     }
@@ -316,7 +319,7 @@ AxesBound CandidateAxes::run(const BodyView& a, const BodyView& b, Scalar coordi
     for (const Scalar side : {1.0, -1.0}) {
       const Vector3 n = side * extra[i];
       const Scalar s = b.point(b.scan_max(-n)).dot(n) - a.point(a.scan_max(n)).dot(n);
-      offer(bound, n, s + margin);
+      offer(bound, n, s, margin);
     }
   }
   bound.upper += hull_error;

@@ -59,14 +59,19 @@ class CandidateAxes {
   };
 
   static void collect(const BodyView& body, bool negate, std::vector<Arc>& arcs,
-                      std::vector<Facet>& facets, std::vector<int>& slot_face, Scalar& hull_error);
-  void offer(AxesBound& bound, const Vector3& n, Scalar value) const;
+                      std::vector<Facet>& facets, std::vector<int>& slot_face,
+                      std::vector<int>& ring, Scalar& hull_error);
+  /// Records a candidate: `estimate` is n.(y - x) for the features spanning it, `error` what
+  /// rounding (and the direction's uncertainty) may add to the true facet's separation.
+  void offer(AxesBound& bound, const Vector3& n, Scalar estimate, Scalar error);
 
   std::vector<Arc> arcs_a_;
   std::vector<Arc> arcs_b_;
   std::vector<Facet> facets_a_;
   std::vector<Facet> facets_b_;
   std::vector<int> slot_face_;
+  std::vector<int> ring_;
+  Scalar best_estimate_ = 0;
 };
 
 }  // namespace swarmcollide::detail
