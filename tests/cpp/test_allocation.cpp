@@ -4,8 +4,11 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <cmath>
 #include <cstddef>
 
+#include "solvers/penetration.hpp"
+#include "swarmcollide/geometry/hull.hpp"
 #include "swarmcollide/queries/query.hpp"
 
 extern "C" void* __libc_malloc(std::size_t size);
@@ -80,6 +83,34 @@ INSTANTIATE_TEST_SUITE_P(Methods, SteadyState,
                                            AllocationCase{Method::exact, "exact"},
                                            AllocationCase{Method::fcl, "fcl"}),
                          [](const auto& info) { return std::string(info.param.name); });
+
+TEST(PenetrationSteadyState, AllocatesOnlyTheWeights) {
+  // Points on two overlapping spheres (or a sphere and a disc): small (scanned) and large
+  // (climbed) bodies, through the polytope and, with one iteration, through the candidate axes.
+  for (const int n : {12, 200}) {
+    for (const bool flat : {false, true}) {
+      VertexMatrix a(n, 3);
+      VertexMatrix b(n, 3);
+      for (int i = 0; i < n; ++i) {
+        const double t = 2.399963 * i;
+        const double z = 1 - (2.0 * i + 1) / n;
+        const double r = std::sqrt(1 - z * z);
+        a.row(i) << r * std::cos(t), r * std::sin(t), flat ? 0 : z;
+        b.row(i) << r * std::cos(t + 1) + 0.7, r * std::sin(t + 1) + 0.2, -z;
+      }
+      const Hull ha = compute_hull(a);
+      const Hull hb = compute_hull(b);
+      for (const int iterations : {1000, 1}) {
+        detail::PenetrationBounds r =
+            detail::penetration(a, ha, b, hb, Vector3::Zero(), 1e-9, iterations);
+        ASSERT_TRUE(r.proven) << n << " " << iterations;
+        const long solve = allocations_during(
+            [&] { r = detail::penetration(a, ha, b, hb, Vector3::Zero(), 1e-9, iterations); });
+        EXPECT_LE(solve, 2) << n << " points, " << iterations << " iterations, flat " << flat;
+      }
+    }
+  }
+}
 
 }  // namespace
 }  // namespace swarmcollide
