@@ -217,9 +217,10 @@ int run_targets(bool quick, const char* json_path) {
 // The sweep behind the default velocity limit, on pairs drawn with other seeds than the targets'.
 int run_sweep(bool quick) {
   const std::vector<int> sizes = {4, 8, 16, 32, 64};
-  const std::vector<double> limits = {0.01, 0.02, 0.03, 0.05, 0.07, 0.1, 0.2, 0.5, 1.0};
+  const std::vector<double> limits = {0.01, 0.015, 0.02, 0.025, 0.03, 0.04,
+                                      0.05, 0.07,  0.1,  0.2,   0.5,  1.0};
   std::vector<std::vector<Pair>> pairs;
-  for (int n : sizes) pairs.push_back(workload(n, quick ? 40 : (n >= 32 ? 150 : 300), 77000 + n));
+  for (int n : sizes) pairs.push_back(workload(n, quick ? 40 : (n >= 32 ? 250 : 500), 77000 + n));
   std::printf("separated pairs within 1e-6 at the paper's budget (%% of");
   for (std::size_t i = 0; i < sizes.size(); ++i) {
     std::printf(" %zu", pairs[i].size());

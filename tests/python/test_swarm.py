@@ -1,6 +1,9 @@
 """The swarm solvers: the paper's improved PSO and its linear-inertia baseline."""
 
 import math
+import os
+import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -164,3 +167,33 @@ def test_result_repr_shows_the_answer(tetra_a, separate_b):
     text = repr(sc.distance(tetra_a, separate_b))
     assert text.startswith("DistanceResult(method='ipso', distance=1")
     assert "certified=True" in text and "status='converged'" in text
+
+
+_SOLVE = """
+import numpy as np
+import swarmcollide as sc
+rng = np.random.default_rng(5)
+a, b = rng.normal(size=(12, 3)), rng.normal(size=(17, 3)) + [3, 0, 0]
+r = sc.distance(a, b, seed=4, tolerance=0)
+print(r.distance.hex(), *(float(w).hex() for w in np.concatenate([r.weights_a, r.weights_b])))
+"""
+
+
+def _solve_with_kernels(isa):
+    """A seeded solve in a fresh interpreter whose SWARMCOLLIDE_ISA is `isa` (None: unset)."""
+    env = {k: v for k, v in os.environ.items() if k != "SWARMCOLLIDE_ISA"}
+    if isa is not None:
+        env["SWARMCOLLIDE_ISA"] = isa
+    return subprocess.run([sys.executable, "-c", _SOLVE], env=env, capture_output=True, text=True)
+
+
+def test_forcing_the_baseline_kernels_changes_no_bit():
+    widest, baseline = _solve_with_kernels(None), _solve_with_kernels("baseline")
+    assert widest.returncode == 0 and baseline.returncode == 0, widest.stderr + baseline.stderr
+    assert baseline.stdout == widest.stdout
+
+
+def test_an_unknown_instruction_set_is_refused():
+    run = _solve_with_kernels("sse9")
+    assert run.returncode != 0
+    assert "SWARMCOLLIDE_ISA=sse9" in run.stderr
