@@ -10,7 +10,7 @@ struct PlainPsoOptions {
   int max_iterations = 200;
   double w_min = 0.4;
   double w_max = 0.9;
-  double velocity_limit = 0.05;
+  double velocity_limit = 0.02;
 };
 
 /// The distance found between the hulls of `a` (`ka` points, x y z each) and `b` (`kb` points)

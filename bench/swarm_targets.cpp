@@ -230,7 +230,7 @@ int run_sweep(bool quick) {
   std::printf(" | mean\n");
   for (sc::Method method : {sc::Method::ipso, sc::Method::pso}) {
     for (double limit : limits) {
-      std::printf("%-22s %5.2f", sc::method_name(method).c_str(), limit);
+      std::printf("%-21s %6.3f", sc::method_name(method).c_str(), limit);
       double total = 0;
       for (std::size_t i = 0; i < sizes.size(); ++i) {
         const Accuracy a = accuracy(pairs[i], [&](const Pair& p, std::uint64_t seed) {

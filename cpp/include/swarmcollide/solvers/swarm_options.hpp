@@ -41,7 +41,7 @@ struct SwarmOptions {
   Scalar c1 = 2.0;
   Scalar c2 = 2.0;
   /// Largest velocity component; the weights live in [0, 1], so 1 lets a particle cross the box.
-  Scalar velocity_limit = 0.05;
+  Scalar velocity_limit = 0.02;
   /// Precision of Step 3, an absolute distance: stop once `distance - lower_bound <= tolerance`
   /// or `distance <= tolerance`. Zero runs all `max_iterations`.
   Scalar tolerance = 1e-6;
