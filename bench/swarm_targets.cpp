@@ -98,11 +98,12 @@ double median(std::vector<double> v) {
 struct Timing {
   double ipso_us;
   double plain_us;
-  double ratio;  // median over rounds of ipso / plain within the round
+  double ratio;  // median over rounds of (ipso's time / plain's time) within the round
 };
 
-// Full budget (tolerance 0) on the first few pairs with one seed per solve. Each round times a
-// batch of each contender, alternating which goes first.
+// Full budget (tolerance 0) on the first few pairs, one seed per solve. The contenders alternate
+// solve by solve (which goes first alternates too), so that both see the same load on a shared
+// machine; a round's ratio is the ratio of its sums, and the median round is reported.
 Timing time_full_budget(const std::vector<Pair>& pairs, int rounds) {
   sc::DistanceOptions options;
   options.swarm.tolerance = 0;
@@ -115,35 +116,34 @@ Timing time_full_budget(const std::vector<Pair>& pairs, int rounds) {
     bs.back().hull();
   }
   double sink = 0;
-  const auto batch = [&](bool library, int solves) {
-    const auto t0 = std::chrono::steady_clock::now();
-    for (int s = 0; s < solves; ++s) {
-      if (library) {
-        options.swarm.seed = s;
-        sink += sc::distance(as[s % used], bs[s % used], options).distance;
-      } else {
-        sink += plain(pairs[s % used], s);
-      }
+  using Clock = std::chrono::steady_clock;
+  const auto solve = [&](bool library, int s) {
+    const auto t0 = Clock::now();
+    if (library) {
+      options.swarm.seed = s;
+      sink += sc::distance(as[s % used], bs[s % used], options).distance;
+    } else {
+      sink += plain(pairs[s % used], s);
     }
-    return std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0)
-               .count() /
-           solves;
+    return std::chrono::duration<double, std::micro>(Clock::now() - t0).count();
   };
-  batch(true, used);  // warm-up: the library's workspace and the caches
-  const double one = batch(false, used);
-  const int solves = std::max(used, static_cast<int>(40000 / one));  // about 40 ms a batch
+  for (int s = 0; s < used; ++s) solve(true, s);  // warm-up: the library's workspace, the caches
+  const double one = solve(false, 0);
+  const int solves = std::max(2 * used, static_cast<int>(80000 / one));  // about 80 ms a round
   std::vector<double> ipso, plain_times, ratios;
   for (int round = 0; round < rounds; ++round) {
-    double t_ipso, t_plain;
-    if (round % 2) {
-      t_ipso = batch(true, solves);
-      t_plain = batch(false, solves);
-    } else {
-      t_plain = batch(false, solves);
-      t_ipso = batch(true, solves);
+    double t_ipso = 0, t_plain = 0;
+    for (int s = 0; s < solves; ++s) {
+      if (s % 2) {
+        t_ipso += solve(true, s);
+        t_plain += solve(false, s);
+      } else {
+        t_plain += solve(false, s);
+        t_ipso += solve(true, s);
+      }
     }
-    ipso.push_back(t_ipso);
-    plain_times.push_back(t_plain);
+    ipso.push_back(t_ipso / solves);
+    plain_times.push_back(t_plain / solves);
     ratios.push_back(t_ipso / t_plain);
   }
   if (sink == 42) std::puts("");

@@ -57,13 +57,23 @@ struct TestSwarm {
         inertia(stride),
         pull_own(stride),
         pull_global(stride),
-        global_best(rows),
+        global_best(detail::kSplat * rows),
         key(stride, std::numeric_limits<std::int64_t>::max()),
         improved(stride),
-        signed_vertices(3 * rows),
+        signed_vertices(3 * detail::kSplat * rows),
         lanes(7),
         view{rows, particles, stride, position.data(), velocity.data(), personal_best.data()} {}
   double& at(std::vector<double>& m, int r, int j) { return m[r * stride + j]; }
+  // The kernels read values shared by all particles as kSplat copies.
+  void set_global_best(int r, double w) {
+    for (int c = 0; c < detail::kSplat; ++c) global_best[detail::kSplat * r + c] = w;
+  }
+  void set_vertex(int r, double x, double y, double z) {
+    const double coordinates[3] = {x, y, z};
+    for (int c = 0; c < 3 * detail::kSplat; ++c) {
+      signed_vertices[3 * detail::kSplat * r + c] = coordinates[c / detail::kSplat];
+    }
+  }
 
   bool advance(int rows_a, double limit, bool project) {
     const detail::Move move{
@@ -193,7 +203,7 @@ TEST(SwarmKernels, ProjectedMoveDrawsBothRandomFactorsPerWeightAsEquation3Does) 
       }
       const VectorX g_a = uniform_simplex_point(rows_a, rng);
       const VectorX g_b = uniform_simplex_point(rows_b, rng);
-      for (int r = 0; r < rows; ++r) s.global_best[r] = r < rows_a ? g_a(r) : g_b(r - rows_a);
+      for (int r = 0; r < rows; ++r) s.set_global_best(r, r < rows_a ? g_a(r) : g_b(r - rows_a));
       const TestSwarm before = s;
       const double limit = 0.05;
       s.advance(rows_a, limit, true);
@@ -210,7 +220,7 @@ TEST(SwarmKernels, ProjectedMoveDrawsBothRandomFactorsPerWeightAsEquation3Does) 
           const double v = before.velocity[r * s.stride + j];
           const double p = before.personal_best[r * s.stride + j];
           const double velocity = s.inertia[j] * v + s.pull_own[j] * r1 * (p - x) +
-                                  s.pull_global[j] * r2 * (s.global_best[r] - x);
+                                  s.pull_global[j] * r2 * (s.global_best[detail::kSplat * r] - x);
           moved(r) = x + std::clamp(velocity, -limit, limit);
         }
         VectorX expected(rows);
@@ -370,7 +380,9 @@ TEST(SwarmKernels, AParticleTakesItsNewPositionAsPersonalBestOnlyWhenItScoresBet
   const int rows_a = 2, rows = 3, particles = 3;
   for (bool project : {true, false}) {
     TestSwarm s(rows, particles);
-    s.signed_vertices = {-1, 0, 0, 0, 0, 0, 3, 0, 0};
+    s.set_vertex(0, -1, 0, 0);
+    s.set_vertex(1, 0, 0, 0);
+    s.set_vertex(2, 3, 0, 0);
     for (int j = 0; j < particles; ++j) {
       s.at(s.position, 0, j) = 0.5;
       s.at(s.position, 1, j) = 0.5;

@@ -92,13 +92,15 @@ class SwarmSolver {
     next_position_ = work_.swarm.data() + 3 * block;
     // Padding columns start as particles but keep zero coefficients, so they stay put.
     work_.per_particle.assign(static_cast<std::size_t>(kPerParticleArrays) * stride_, 0.0);
-    work_.global_best.resize(rows);
-    work_.signed_vertices.resize(3 * static_cast<std::size_t>(rows));
+    work_.global_best.resize(detail::kSplat * static_cast<std::size_t>(rows));
+    work_.signed_vertices.resize(3 * detail::kSplat * static_cast<std::size_t>(rows));
     for (int r = 0; r < rows; ++r) {
       const bool on_a = r < ka_;
       const Vector3 vertex = on_a ? Vector3(-a.vertices().row(r).transpose())
                                   : Vector3(b.vertices().row(r - ka_).transpose());
-      for (int c = 0; c < 3; ++c) work_.signed_vertices[3 * r + c] = vertex(c);
+      for (int c = 0; c < 3 * detail::kSplat; ++c) {
+        work_.signed_vertices[3 * detail::kSplat * r + c] = vertex(c / detail::kSplat);
+      }
     }
     work_.best_key.resize(stride_);
     work_.improved.resize(stride_);
@@ -213,7 +215,9 @@ class SwarmSolver {
   // previous generation.
   bool advance() {
     for (int r = 0; r < swarm_.rows; ++r) {
-      work_.global_best[r] = weight(swarm_.personal_best, r, global_best_);
+      for (int c = 0; c < detail::kSplat; ++c) {
+        work_.global_best[detail::kSplat * r + c] = weight(swarm_.personal_best, r, global_best_);
+      }
     }
     const detail::Move move{row(kInertia),
                             row(kPullOwn),

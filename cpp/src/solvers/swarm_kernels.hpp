@@ -47,9 +47,13 @@ struct SwarmView {
   double* personal_best;
 };
 
+/// Values the kernels apply to every particle are stored kSplat times in a row, 16-byte aligned,
+/// so that the baseline (SSE2, which cannot broadcast from memory) loads one as a whole vector.
+constexpr int kSplat = 2;
+
 /// How particles are scored. `signed_vertices` holds, per row, -x_i for A's rows and y_j for
-/// B's, three values each, so that sum_r w_r v_r is the offset of (5). With `check_bounds`, a
-/// weight outside [0, 1] also makes a particle infeasible.
+/// B's, three coordinates each stored kSplat times (x x y y z z), so that sum_r w_r v_r is the
+/// offset of (5). With `check_bounds`, a weight outside [0, 1] also makes a particle infeasible.
 struct Fitness {
   const double* signed_vertices;
   bool check_bounds;
@@ -73,7 +77,8 @@ void score_initial_positions(const SwarmView& swarm, int rows_a, const Fitness& 
                              const Bests& bests);
 
 /// One generation's move: per particle, the inertia w and the acceleration coefficients of (10);
-/// the global best's weights, one per row; the velocity limit; and the constraint handling.
+/// the global best's weights, one per row stored kSplat times; the velocity limit; and the
+/// constraint handling.
 /// - With `project` (ConstraintHandling::projection), r1 and r2 are drawn per weight from `lanes`,
 ///   as (3) writes the update: `pull_own` and `pull_global` hold c1 and c2.
 /// - Without (the paper's feasibility rules), r1 and r2 are one pair per particle, already
