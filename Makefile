@@ -61,7 +61,7 @@ bench: install $(VENV)/.bench-installed
 	$(BENCH_BUILD)/bench/swarmcollide-swarm-speed > bench/results/swarm_speed.txt
 	$(PY) bench/swarm_targets.py $(BENCH_ARGS) --json bench/results/swarm_targets.json \
 	  --binary $(BENCH_BUILD)/bench/swarmcollide-swarm-targets \
-	  --sweep bench/results/velocity_sweep.txt
+	  --sweep bench/results/velocity_sweep.txt --choices bench/results/choices.txt
 	$(PY) bench/report.py --results bench/results --plots bench/plots --out bench/RESULTS.md
 
 stubs: install

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <stdexcept>
 #include <vector>
 
 namespace {
@@ -67,10 +68,10 @@ void uniform_point(double* w, int n, Xoshiro& rng, double* cuts) {
   w[n - 1] = 1 - previous;
 }
 
-}  // namespace
-
-double plain_pso(const double* a, int ka, const double* b, int kb, const PlainPsoOptions& options,
-                 std::uint64_t seed) {
+template <bool kFactorsPerWeight, bool kScaleWholeVelocity, VelocityAfterProjection kAfter,
+          bool kAsynchronous>
+double solve(const double* a, int ka, const double* b, int kb, const PlainPsoOptions& options,
+             std::uint64_t seed) {
   const int n = ka + kb;
   const int size = options.swarm_size;
   // Per weight, the vertex it weighs with its sign: -x_i for A, y_j for B.
@@ -119,28 +120,77 @@ double plain_pso(const double* a, int ka, const double* b, int kb, const PlainPs
       double* xj = &x[j * n];
       double* vj = &v[j * n];
       const double* pj = &p[j * n];
+      // One 64-bit draw gives r1 and r2, 32 bits each, as swarmcollide draws them.
+      std::uint64_t bits = 0;
+      if constexpr (!kFactorsPerWeight) bits = rng.next();
+      double largest = 0;
       for (int r = 0; r < n; ++r) {
-        // One 64-bit draw gives r1 and r2, 32 bits each, as swarmcollide draws them.
-        const std::uint64_t bits = rng.next();
+        if constexpr (kFactorsPerWeight) bits = rng.next();
         const double r1 = static_cast<double>(bits >> 32) * 0x1.0p-32;
         const double r2 = static_cast<double>(bits & 0xffffffffULL) * 0x1.0p-32;
         double velocity = w[j] * vj[r] + c[j] * r1 * (pj[r] - xj[r]) + c[j] * r2 * (g[r] - xj[r]);
-        velocity = std::clamp(velocity, -limit, limit);
+        if constexpr (kScaleWholeVelocity) {
+          largest = std::max(largest, std::abs(velocity));
+        } else {
+          velocity = std::clamp(velocity, -limit, limit);
+        }
+        if constexpr (kAfter != VelocityAfterProjection::move_made) vj[r] = velocity;
         moved[r] = xj[r] + velocity;
+      }
+      if (kScaleWholeVelocity && largest > limit) {
+        for (int r = 0; r < n; ++r) {
+          const double velocity = (moved[r] - xj[r]) * (limit / largest);
+          if constexpr (kAfter != VelocityAfterProjection::move_made) vj[r] = velocity;
+          moved[r] = xj[r] + velocity;
+        }
       }
       project(moved.data(), ka, scratch.data());
       project(moved.data() + ka, kb, scratch.data());
       for (int r = 0; r < n; ++r) {
-        vj[r] = moved[r] - xj[r];
+        if constexpr (kAfter == VelocityAfterProjection::move_made) vj[r] = moved[r] - xj[r];
+        if constexpr (kAfter == VelocityAfterProjection::clipped_zeroed) {
+          if (moved[r] == 0) vj[r] = 0;
+        }
         xj[r] = moved[r];
       }
       const double s = score(xj);
       if (s < best[j]) {
         best[j] = s;
         std::copy(xj, xj + n, &p[j * n]);
+        if (kAsynchronous && s < best[global]) {
+          global = j;
+          std::copy(xj, xj + n, g.begin());
+        }
       }
     }
     global = static_cast<int>(std::min_element(best.begin(), best.end()) - best.begin());
   }
   return std::sqrt(best[global]);
+}
+
+}  // namespace
+
+double plain_pso(const double* a, int ka, const double* b, int kb, const PlainPsoOptions& options,
+                 std::uint64_t seed) {
+  using After = VelocityAfterProjection;
+  // Each alternative is compiled on its own, so that the default pays nothing for the others.
+  const int changes = !options.factors_per_weight + options.scale_whole_velocity +
+                      (options.after_projection != After::move_made) + options.asynchronous;
+  if (changes > 1) throw std::invalid_argument("plain_pso: change one choice at a time");
+  if (!options.factors_per_weight) {
+    return solve<false, false, After::move_made, false>(a, ka, b, kb, options, seed);
+  }
+  if (options.scale_whole_velocity) {
+    return solve<true, true, After::move_made, false>(a, ka, b, kb, options, seed);
+  }
+  if (options.after_projection == After::unprojected) {
+    return solve<true, false, After::unprojected, false>(a, ka, b, kb, options, seed);
+  }
+  if (options.after_projection == After::clipped_zeroed) {
+    return solve<true, false, After::clipped_zeroed, false>(a, ka, b, kb, options, seed);
+  }
+  if (options.asynchronous) {
+    return solve<true, false, After::move_made, true>(a, ka, b, kb, options, seed);
+  }
+  return solve<true, false, After::move_made, false>(a, ka, b, kb, options, seed);
 }

@@ -432,7 +432,7 @@ TARGETS = {4: 95, 8: 85, 16: 50}  # issue 14: % of separated pairs within 1e-6 a
 TIME_TARGET = 0.5  # issue 14: full-budget time at most this times the plain PSO's
 
 
-def swarm_targets_section(path: str, sweep: Optional[str]) -> str:
+def swarm_targets_section(path: str, sweep: Optional[str], choices: Optional[str]) -> str:
     with open(path) as f:
         data = json.load(f)
     runs = [r for r in data["runs"] if "sizes" in r]
@@ -470,6 +470,11 @@ def swarm_targets_section(path: str, sweep: Optional[str]) -> str:
         with open(sweep) as f:
             lines += ["", "The velocity-limit sweep behind the default (`swarmcollide-swarm-targets "
                       "--sweep`, pairs drawn with other seeds):", "", "```", f.read().rstrip(), "```"]
+    if choices and os.path.exists(choices):
+        with open(choices) as f:
+            lines += ["", "The other choices the paper leaves open, one at a time on the plain PSO "
+                      "(`swarmcollide-swarm-targets --choices`, the sweep's pairs):", "", "```",
+                      f.read().rstrip(), "```"]
     return "\n".join(lines)
 
 
@@ -599,7 +604,8 @@ def main(argv: Optional[List[str]] = None) -> int:
                "are for the whole budget (tolerance 0) on the first 4 pairs of each size, the two "
                "contenders alternating solve by solve in one process; a ratio is the median over "
                "rounds of each round's ratio.", "",
-               swarm_targets_section(targets, os.path.join(args.results, "velocity_sweep.txt")),
+               swarm_targets_section(targets, os.path.join(args.results, "velocity_sweep.txt"),
+                                     os.path.join(args.results, "choices.txt")),
                ""]
     conv = os.path.join(args.results, "convergence.json")
     if os.path.exists(conv):

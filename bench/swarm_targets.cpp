@@ -3,6 +3,7 @@
 //
 //   swarmcollide-swarm-targets [--quick] [--json FILE]   accuracy and time, this process's kernels
 //   swarmcollide-swarm-targets --sweep [--quick]         the velocity-limit sweep of docs/method.md
+//   swarmcollide-swarm-targets --choices [--quick]       the other open choices, on the plain PSO
 //
 // The kernels are the widest the processor runs unless SWARMCOLLIDE_ISA=avx512|avx2|baseline
 // forces one; bench/swarm_targets.py runs this binary once per instruction set. Times are ratios
@@ -256,25 +257,76 @@ int run_sweep(bool quick) {
   return 0;
 }
 
+// The choices the paper leaves open, measured with the plain PSO: each row changes one choice from
+// swarmcollide's (r1, r2 per weight; components clamped; velocity = the move made; the global best
+// updated once per generation), on the sweep's pairs.
+int run_choices(bool quick) {
+  const std::vector<int> sizes = {4, 8, 16, 32, 64};
+  std::vector<std::vector<Pair>> pairs;
+  for (int n : sizes) pairs.push_back(workload(n, quick ? 40 : (n >= 32 ? 150 : 300), 77000 + n));
+  struct Choice {
+    const char* name;
+    PlainPsoOptions options;
+  };
+  std::vector<Choice> choices(6);
+  choices[0].name = "swarmcollide's choices";
+  choices[1].name = "r1, r2 once per particle";
+  choices[1].options.factors_per_weight = false;
+  choices[2].name = "whole velocity scaled";
+  choices[2].options.scale_whole_velocity = true;
+  choices[3].name = "velocity not projected";
+  choices[3].options.after_projection = VelocityAfterProjection::unprojected;
+  choices[4].name = "clipped components zeroed";
+  choices[4].options.after_projection = VelocityAfterProjection::clipped_zeroed;
+  choices[5].name = "asynchronous global best";
+  choices[5].options.asynchronous = true;
+  std::printf("plain PSO, velocity_limit %.3f: separated pairs within 1e-6 (of",
+              PlainPsoOptions{}.velocity_limit);
+  for (const auto& p : pairs) std::printf(" %zu", p.size());
+  std::printf(" pairs)\n%-28s", "choice");
+  for (int n : sizes) std::printf(" | n=%-5d", n);
+  std::printf(" | mean\n");
+  for (const Choice& choice : choices) {
+    std::printf("%-28s", choice.name);
+    double total = 0;
+    for (const auto& p : pairs) {
+      const Accuracy a = accuracy(p, [&](const Pair& pair, std::uint64_t seed) {
+        return plain_pso(pair.a.data(), static_cast<int>(pair.a.rows()), pair.b.data(),
+                         static_cast<int>(pair.b.rows()), choice.options, seed);
+      });
+      total += 100.0 * a.within / a.pairs;
+      std::printf(" | %6.1f%%", 100.0 * a.within / a.pairs);
+    }
+    std::printf(" | %5.1f%%\n", total / sizes.size());
+    std::fflush(stdout);
+  }
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  bool quick = false, sweep = false;
+  bool quick = false, sweep = false, choices = false;
   const char* json = nullptr;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--quick")) {
       quick = true;
     } else if (!std::strcmp(argv[i], "--sweep")) {
       sweep = true;
+    } else if (!std::strcmp(argv[i], "--choices")) {
+      choices = true;
     } else if (!std::strcmp(argv[i], "--json") && i + 1 < argc) {
       json = argv[++i];
     } else {
-      std::fprintf(stderr, "usage: swarmcollide-swarm-targets [--quick] [--sweep] [--json FILE]\n");
+      std::fprintf(
+          stderr,
+          "usage: swarmcollide-swarm-targets [--quick] [--sweep | --choices] [--json FILE]\n");
       return 2;
     }
   }
   try {
-    return sweep ? run_sweep(quick) : run_targets(quick, json);
+    if (sweep) return run_sweep(quick);
+    return choices ? run_choices(quick) : run_targets(quick, json);
   } catch (const std::exception& error) {
     std::fprintf(stderr, "%s\n", error.what());
     return 3;
