@@ -62,6 +62,8 @@ bench: install $(VENV)/.bench-installed
 	$(PY) bench/swarm_targets.py $(BENCH_ARGS) --json bench/results/swarm_targets.json \
 	  --binary $(BENCH_BUILD)/bench/swarmcollide-swarm-targets \
 	  --sweep bench/results/velocity_sweep.txt --choices bench/results/choices.txt
+	$(PY) bench/kernel_code.py > bench/results/kernel_code.txt \
+	  --object $(BENCH_BUILD)/cpp/CMakeFiles/swarmcollide.dir/src/solvers/swarm_kernels.cpp.o
 	$(PY) bench/report.py --results bench/results --plots bench/plots --out bench/RESULTS.md
 
 stubs: install

@@ -607,6 +607,19 @@ def main(argv: Optional[List[str]] = None) -> int:
                swarm_targets_section(targets, os.path.join(args.results, "velocity_sweep.txt"),
                                      os.path.join(args.results, "choices.txt")),
                ""]
+    code = os.path.join(args.results, "kernel_code.txt")
+    code_before = os.path.join(args.results, "kernel_code_before.txt")
+    if os.path.exists(code) and os.path.exists(code_before):
+        with open(code_before) as f:
+            header, _, before = f.read().strip().partition("\n")
+        with open(code) as f:
+            after = f.read().strip()
+        md += ["## The kernels' machine code per instruction set", "",
+               "`bench/kernel_code.py` reads `objdump -d` of the kernels' object: per kernel and "
+               "instruction set, its instructions, those on packed doubles and those computing on "
+               "one double (arithmetic, comparisons, minima, maxima).", "",
+               header.lstrip("# ") + ":", "", "```", before, "```", "",
+               "This build:", "", "```", after, "```", ""]
     conv = os.path.join(args.results, "convergence.json")
     if os.path.exists(conv):
         md += ["## Convergence (the paper's claim)", "",
