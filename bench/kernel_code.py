@@ -7,7 +7,8 @@ compiled to scalar code shows many more scalar than packed instructions. It read
 library's per-set namespaces and the ``target_clones`` suffixes of earlier versions. Run from the
 repository root after building:
 
-    python bench/kernel_code.py --object build/bench/cpp/CMakeFiles/swarmcollide.dir/src/solvers/swarm_kernels.cpp.o
+    python bench/kernel_code.py \
+        --object build/bench/cpp/CMakeFiles/swarmcollide.dir/src/solvers/swarm_kernels.cpp.o
 """
 
 from __future__ import annotations

@@ -353,8 +353,9 @@ def convergence_section(path: str) -> str:
         verdicts.append(verdict)
         reached = [next((str(i) for i, e in enumerate(v["median"]) if e <= 1e-6), "never")
                    for v in (a, b)]
-        rows.append([p["problem"], f"{a['within_1e6']}/{p['seeds']}", f"{b['within_1e6']}/{p['seeds']}",
-                     " / ".join(reached), fmt_err(a["median"][-1]), fmt_err(b["median"][-1]),
+        rows.append([p["problem"], f"{a['within_1e6']}/{p['seeds']}",
+                     f"{b['within_1e6']}/{p['seeds']}", " / ".join(reached),
+                     fmt_err(a["median"][-1]), fmt_err(b["median"][-1]),
                      f"{c['ipso_better']} / {c['ties']} / {c['ipso_worse']}",
                      "n/a" if c["wilcoxon_p"] is None else f"{c['wilcoxon_p']:.2g}", verdict])
     lines += [f"Paired by seed, `{ipso}` (8)-(9) against `{pso}` (7), both at their defaults:", "",
@@ -463,13 +464,15 @@ def swarm_targets_section(path: str, sweep: Optional[str], choices: Optional[str
         rows.append(row)
     lines += [table(header, rows), ""]
     same = len({r["fingerprint"] for r in runs}) == 1
-    lines.append(f"Every ipso answer above is bitwise the same under {', '.join(r['isa'] for r in runs)}"
-                 f": {'yes' if same else '**no**'} (fingerprint {first['fingerprint']})."
+    isas = ", ".join(r["isa"] for r in runs)
+    lines.append(f"Every ipso answer above is bitwise the same under {isas}: "
+                 f"{'yes' if same else '**no**'} (fingerprint {first['fingerprint']})."
                  + (f" Not run: {'; '.join(missing)}." if missing else ""))
     if sweep and os.path.exists(sweep):
         with open(sweep) as f:
-            lines += ["", "The velocity-limit sweep behind the default (`swarmcollide-swarm-targets "
-                      "--sweep`, pairs drawn with other seeds):", "", "```", f.read().rstrip(), "```"]
+            lines += ["", "The velocity-limit sweep behind the default "
+                      "(`swarmcollide-swarm-targets --sweep`, pairs drawn with other seeds):", "",
+                      "```", f.read().rstrip(), "```"]
     if choices and os.path.exists(choices):
         with open(choices) as f:
             lines += ["", "The other choices the paper leaves open, one at a time on the plain PSO "
@@ -595,8 +598,9 @@ def main(argv: Optional[List[str]] = None) -> int:
     targets = os.path.join(args.results, "swarm_targets.json")
     if os.path.exists(targets):
         md += ["## The paper's swarm at its budget against a plain scalar PSO", "",
-               "`bench/swarm_targets.py` runs `swarmcollide-swarm-targets` once per instruction set "
-               "(`SWARMCOLLIDE_ISA`); each run answers the same separated pairs of sphere polytopes "
+               "`bench/swarm_targets.py` runs `swarmcollide-swarm-targets` once per instruction "
+               "set (`SWARMCOLLIDE_ISA`); each run answers the same separated pairs of sphere "
+               "polytopes "
                "(n points on the unit sphere, their hull; B's centre 2.01 or 2.5 from A's) with "
                "`ipso` at its defaults (40 particles, 200 iterations, certified stop at 1e-6) and "
                "with `bench/plain_pso.cpp`, the same method written as a plain scalar loop and "
