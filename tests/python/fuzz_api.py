@@ -1,0 +1,82 @@
+"""How a fuzz case becomes a swarmcollide call: the one place to update when the API changes.
+
+The corpus (``fuzz_cases``) draws queries and methods from the tables here and never names an
+option that ``OPTIONS_OF`` does not list for a method, and the judge (``fuzz_judge``) reads
+results only through ``summary``.
+"""
+
+from __future__ import annotations
+
+from typing import Any, Dict, Mapping, Optional
+
+import numpy as np
+
+import swarmcollide as sc
+
+DEFAULT: Optional[str] = None
+"""The method of a call that passes no ``method`` keyword: the query's own default."""
+
+METHODS: Dict[str, tuple] = {
+    "distance": (DEFAULT, "ipso", "pso", "penalty", "fcl", "fcl-indep", "dual"),
+    "signed_distance": (DEFAULT, "fcl", "fcl-indep", "libccd", "dual"),
+    "collide": (DEFAULT, "ipso", "pso", "penalty", "fcl", "fcl-indep", "libccd", "dual"),
+    "distance_many": (DEFAULT, "ipso", "fcl", "dual"),
+    "collide_many": (DEFAULT, "ipso", "fcl", "libccd", "dual"),
+}
+"""The methods each query is fuzzed with."""
+
+BATCH_QUERIES = ("distance_many", "collide_many")
+"""The queries that take sequences of bodies and a ``threads`` keyword."""
+
+PRECISE_METHODS = frozenset({"fcl", "fcl-indep", "libccd", "dual"})
+"""Methods whose certified answers must also be accurate, not only bracketed (by result.method)."""
+
+_ALL = frozenset(m for methods in METHODS.values() for m in methods if m is not DEFAULT)
+OPTIONS_OF: Dict[str, frozenset] = {
+    "tolerance": _ALL,
+    "seed": _ALL | {DEFAULT},
+    "max_iterations": _ALL - {"penalty"},
+    "swarm_size": frozenset({"ipso", "pso", "dual"}),
+    "penetration": frozenset({"libccd"}),
+}
+"""The methods that take each option the corpus uses (the default method takes only ``seed``)."""
+
+API_MISMATCH = (
+    "unexpected keyword argument",
+    "unknown method",
+    "does not apply",
+    "penetration must be one of",
+)
+"""Fragments of the messages with which a changed API refuses a call the corpus thinks valid."""
+
+
+def call(query: str, method: Optional[str], a: Any, b: Any, options: Mapping[str, Any]) -> Any:
+    """``sc.<query>(a, b, method=method, **options)``, leaving out ``method`` when it is DEFAULT."""
+    keywords = dict(options)
+    if method is not DEFAULT:
+        keywords["method"] = method
+    return getattr(sc, query)(a, b, **keywords)
+
+
+def summary(result: Any) -> Any:
+    """A result as plain data (dicts of floats, bools, strings and arrays) that pickles anywhere.
+
+    ``collide`` gives a bool; the other queries give a dict with the fields the judge reads, each
+    ``None`` when the result has no such field.
+    """
+    if isinstance(result, (bool, np.bool_)):
+        return bool(result)
+    fields = (
+        "distance", "lower_bound", "point_a", "point_b", "direction", "colliding", "certified",
+        "status", "method", "escalated_from",
+    )  # fmt: skip
+    data = {}
+    for name in fields:
+        value = getattr(result, name, None)
+        data[name] = np.array(value) if isinstance(value, np.ndarray) else value
+    return data
+
+
+def invoke(query: str, args: tuple, keywords: Mapping[str, Any]) -> Any:
+    """``summary(sc.<query>(*args, **keywords))``: a call that a sandboxed child can run."""
+    return summary(getattr(sc, query)(*args, **keywords))
