@@ -22,21 +22,10 @@ from typing import Dict, Iterable, List, Tuple
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "python"))
 
 from fuzz_cases import make_case  # noqa: E402
-from fuzz_judge import CATEGORIES, FAILURES, run_case  # noqa: E402
-from sandbox import CRASHED, HUNG, RETURNED, Outcome, Sandbox  # noqa: E402
+from fuzz_judge import CATEGORIES, FAILURES, category_of, run_case  # noqa: E402
+from sandbox import Sandbox  # noqa: E402
 
 Row = Tuple[str, str]
-
-
-def category_of(outcome: Outcome) -> Tuple[str, str]:
-    """(category, reason) of a sandboxed ``run_case``."""
-    if outcome.kind == RETURNED:
-        return outcome.value["category"], outcome.value["reason"]
-    if outcome.kind == CRASHED:
-        return "crash", f"{outcome.error_type}: {outcome.message.strip()[-300:]}"
-    if outcome.kind == HUNG:
-        return "hang", f"no answer after {outcome.seconds:.0f} s"
-    return "suite-error", f"{outcome.error_type}: {outcome.message}"
 
 
 def census(

@@ -9,11 +9,11 @@ fix can be checked against case by case.
 Families (``FAMILIES``, with their shares of a corpus):
 
 geometry
-    Two bodies of unit size (random hulls of 1-64 points, boxes, tetrahedra, sampled spheres,
-    flat, collinear, single, repeated points, needles, slivers, the unit cube) placed deep in each
-    other, shallowly overlapping, touching, 1e-16 to 1e-12 apart or inside, apart or far apart,
-    then scaled by s (log-uniform in [1e-100, 1e100], or 1, or one of ``SPECIAL_SCALES``) and
-    translated by up to 1e6 x size.
+    Two bodies of unit size (random hulls of 1-64 points, boxes axis-aligned, rotated or nearly
+    aligned, tetrahedra, spheres sampled by 12-1024 points, flat, collinear, single and repeated
+    points, needles, slivers, the unit cube) placed deep in each other, shallowly overlapping,
+    touching, 1e-16 to 1e-12 apart or inside, apart or far apart, then scaled by s (log-uniform
+    in [1e-100, 1e100], or 1, or one of ``SPECIAL_SCALES``) and translated by up to 1e6 x size.
 invariance
     A geometry pair answered at unit scale and after scaling by s in [1e-100, 1e100] and
     translating by up to 1e6 x size: verdicts, certified flags and precise distances must agree.
@@ -94,9 +94,16 @@ def _hull(rng: np.random.Generator) -> Tuple[np.ndarray, str]:
 
 def _box(rng: np.random.Generator) -> Tuple[np.ndarray, str]:
     corners = (CUBE - 0.5) * rng.uniform(0.2, 1.0, size=3)
-    if rng.random() < 0.5:
-        return corners, "box"
-    return corners @ _rotation(rng).T, "rotated-box"
+    kind = rng.choice(["box", "rotated-box", "near-aligned-box"])
+    if kind == "box":
+        return corners, kind
+    if kind == "rotated-box":
+        return corners @ _rotation(rng).T, kind
+    # Turned by 1e-9 to 1e-3 radians (to first order), so its faces are nearly parallel to the axes.
+    axis = rng.normal(size=3)
+    axis *= 10 ** rng.uniform(-9, -3) / np.linalg.norm(axis)
+    cross = np.array([[0, -axis[2], axis[1]], [axis[2], 0, -axis[0]], [-axis[1], axis[0], 0]])
+    return corners @ (np.eye(3) + cross).T, kind
 
 
 def _tetrahedron(rng: np.random.Generator) -> Tuple[np.ndarray, str]:
@@ -104,7 +111,7 @@ def _tetrahedron(rng: np.random.Generator) -> Tuple[np.ndarray, str]:
 
 
 def _sphere(rng: np.random.Generator) -> Tuple[np.ndarray, str]:
-    n = int(rng.choice([12, 32, 64, 128, 256]))
+    n = int(rng.choice([12, 32, 64, 128, 256, 1024]))
     points = rng.normal(size=(n, 3))
     return 0.5 * points / np.linalg.norm(points, axis=1, keepdims=True), f"sphere{n}"
 

@@ -2,7 +2,8 @@
 
 ``run_case(seed, index)`` rebuilds the case, makes the call (``fuzz_api.call``) and judges it
 against ``minkowski_oracle``; it is what the census and the fuzz test run in sandboxed children.
-A crash or a hang is the sandbox's to report: the judge sees only answers and exceptions.
+A crash or a hang is the sandbox's to report (``category_of`` names it): the judge itself sees
+only answers and exceptions.
 
 Categories (``CATEGORIES``):
 
@@ -28,13 +29,14 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass
-from typing import Any, Dict, List
+from typing import Any, Dict, List, Tuple
 
 import numpy as np
 
 import minkowski_oracle as oracle
 from fuzz_api import API_MISMATCH, BATCH_QUERIES, PRECISE_METHODS, call, summary
 from fuzz_cases import ANSWER, ERROR, Case, make_case
+from sandbox import CRASHED, HUNG, RETURNED, Outcome
 
 CATEGORIES = (
     "ok", "uncertified", "crash", "hang", "error-type", "wrong", "slipped", "api", "suite-error",
@@ -64,18 +66,45 @@ def tolerance_of(a: np.ndarray, b: np.ndarray, truth: oracle.Answer) -> Toleranc
 
 def run_case(seed: int, index: int) -> Dict[str, Any]:
     """Make and judge case ``index`` of corpus ``seed``: ``{"category", "reason", "seconds"}``."""
-    case = make_case(seed, index)
+    return run(make_case(seed, index))
+
+
+def run(case: Case) -> Dict[str, Any]:
+    """Make and judge ``case``'s call(s): ``{"category", "reason", "seconds"}``."""
     start = time.monotonic()
     try:
-        answers = [summary(call(case.query, case.method, case.a, case.b, case.options))]
-        if case.family == "invariance":
-            a, b = (case.scale * np.asarray(x, dtype=np.float64) + case.shift for x in (case.a, case.b))
-            answers.append(summary(call(case.query, case.method, a, b, case.options)))
+        answers = answers_of(case)
     except Exception as error:  # noqa: BLE001 - every exception is judged
         category, reason = judge_error(case, error)
     else:
         category, reason = judge_answers(case, answers)
     return {"category": category, "reason": reason, "seconds": time.monotonic() - start}
+
+
+def answers_of(case: Case) -> List[Any]:
+    """The summaries of ``case``'s call, and for an invariance case of the scaled call too."""
+    answers = [summary(call(case.query, case.method, case.a, case.b, case.options))]
+    if case.family == "invariance":
+        a, b = (case.scale * np.asarray(x, dtype=np.float64) + case.shift for x in (case.a, case.b))
+        answers.append(summary(call(case.query, case.method, a, b, case.options)))
+    return answers
+
+
+def scale_problems(case: Case) -> List[str]:
+    """What changes between an invariance case's two answers (nothing, when the library is right)."""
+    a, b = np.asarray(case.a, dtype=np.float64), np.asarray(case.b, dtype=np.float64)
+    return compare_scales(case, a, b, answers_of(case))
+
+
+def category_of(outcome: Outcome) -> Tuple[str, str]:
+    """(category, reason) of a sandboxed ``run_case`` or ``run``."""
+    if outcome.kind == RETURNED:
+        return outcome.value["category"], outcome.value["reason"]
+    if outcome.kind == CRASHED:
+        return "crash", f"{outcome.error_type}: {outcome.message.strip()[-300:]}"
+    if outcome.kind == HUNG:
+        return "hang", f"no answer after {outcome.seconds:.0f} s"
+    return "suite-error", f"{outcome.error_type}: {outcome.message}"
 
 
 def judge_error(case: Case, error: Exception) -> tuple:
@@ -103,7 +132,7 @@ def judge_answers(case: Case, answers: List[Any]) -> tuple:
             a2, b2 = case.scale * a + case.shift, case.scale * b + case.shift
             scaled, scaled_certified = judge_single(case.query, a2, b2, answers[1])
             problems += [f"scaled: {p}" for p in scaled]
-            problems += _compare_scales(case, a, b, answers)
+            problems += compare_scales(case, a, b, answers)
             certified = certified and scaled_certified
     if problems:
         return "wrong", "; ".join(problems)
@@ -195,7 +224,7 @@ def _judge_batch(case: Case, answer: Dict[str, Any]) -> tuple:
     return problems, bool(np.all(answer["certified"]))
 
 
-def _compare_scales(case: Case, a: np.ndarray, b: np.ndarray, answers: List[Any]) -> List[str]:
+def compare_scales(case: Case, a: np.ndarray, b: np.ndarray, answers: List[Any]) -> List[str]:
     """What changed between the unit-scale answer and the scaled, translated one."""
     truth = oracle.signed_distance(a, b)
     if abs(truth.signed_distance) <= tolerance_of(a, b, truth).band:
