@@ -3,7 +3,7 @@
 Prints a Markdown table of counts per query and method and writes a JSON file with every case that
 is not "ok" (its id, category and reason), so that a fix can be checked case by case:
 
-    .venv/bin/python tests/fuzz/census.py --count 3000 --json build/fuzz/census.json
+    .venv/bin/python tests/fuzz/census.py --json build/fuzz/census.json   # 10000 cases
     .venv/bin/python tests/fuzz/census.py --rerun build/fuzz/census.json   # old -> new per case
 
 The categories are those of tests/python/fuzz_judge.py; the cases those of fuzz_cases.py.
@@ -73,7 +73,7 @@ def table(records: List[Dict[str, str]]) -> str:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--seed", type=int, default=0, help="the corpus (default 0)")
-    parser.add_argument("--count", type=int, default=3000, help="cases 0 .. count-1")
+    parser.add_argument("--count", type=int, default=10000, help="cases 0 .. count-1")
     parser.add_argument("--workers", type=int, default=2, help="children at once")
     parser.add_argument("--timeout", type=float, default=20.0, help="seconds before a hang")
     parser.add_argument("--json", type=Path, help="write the cases that are not ok here")

@@ -133,7 +133,8 @@ def _point(rng: np.random.Generator) -> Tuple[np.ndarray, str]:
 
 def _repeated(rng: np.random.Generator) -> Tuple[np.ndarray, str]:
     if rng.random() < 0.3:
-        return np.repeat(rng.normal(size=(1, 3)) * 0.1, int(rng.integers(2, 9)), axis=0), "same-point"
+        point = rng.normal(size=(1, 3)) * 0.1
+        return np.repeat(point, int(rng.integers(2, 9)), axis=0), "same-point"
     base, _ = _tetrahedron(rng) if rng.random() < 0.5 else _hull(rng)
     return np.repeat(base, int(rng.integers(2, 4)), axis=0), "repeated"
 
@@ -161,7 +162,6 @@ _SHAPES: List[Tuple[float, Callable[[np.random.Generator], Tuple[np.ndarray, str
     (0.05, _collinear), (0.05, _point), (0.05, _repeated), (0.05, _needle), (0.05, _sliver),
     (0.08, _cube),
 ]  # fmt: skip
-_SOLID_SHAPES = [(0.35, _hull), (0.25, _box), (0.15, _tetrahedron), (0.15, _sphere), (0.1, _cube)]
 
 
 def _pick(rng: np.random.Generator, weighted: List[Tuple[float, Any]]) -> Any:
@@ -169,9 +169,9 @@ def _pick(rng: np.random.Generator, weighted: List[Tuple[float, Any]]) -> Any:
     return weighted[int(rng.choice(len(weighted), p=weights / weights.sum()))][1]
 
 
-def body(rng: np.random.Generator, solid_only: bool = False) -> Tuple[np.ndarray, str]:
+def body(rng: np.random.Generator) -> Tuple[np.ndarray, str]:
     """A body of unit size near the origin and its kind."""
-    return _pick(rng, _SOLID_SHAPES if solid_only else _SHAPES)(rng)
+    return _pick(rng, _SHAPES)(rng)
 
 
 # ----- placements, scales, offsets -----------------------------------------------------------
@@ -232,10 +232,10 @@ def offset(rng: np.random.Generator, size: float) -> np.ndarray:
     return magnitude * u / np.linalg.norm(u)
 
 
-def pair(rng: np.random.Generator, solid_only: bool = False) -> Tuple[np.ndarray, np.ndarray, str]:
+def pair(rng: np.random.Generator) -> Tuple[np.ndarray, np.ndarray, str]:
     """Two unit-size bodies in a configuration, and a note naming them."""
-    a, kind_a = body(rng, solid_only)
-    b, kind_b = body(rng, solid_only)
+    a, kind_a = body(rng)
+    b, kind_b = body(rng)
     b, configuration = place(rng, a, b)
     return a, b, f"{kind_a} {kind_b} {configuration}"
 
@@ -272,7 +272,8 @@ def _invariance(rng: np.random.Generator, case_id: str) -> Case:
     size = s * float(np.ptp(np.vstack([a, b]), axis=0).max())
     shift = offset(rng, size)
     note += f" s={s:.3g} offset={np.abs(shift).max():.3g}"
-    return Case(case_id, "invariance", query, _method(rng, query), a, b, note=note, scale=s, shift=shift)
+    method = _method(rng, query)
+    return Case(case_id, "invariance", query, method, a, b, note=note, scale=s, shift=shift)
 
 
 # (option, value, what is due, the queries it applies to)
@@ -302,7 +303,8 @@ def _options(rng: np.random.Generator, case_id: str) -> Case:
     query = queries[int(rng.integers(len(queries)))]
     a, b, note = _scaled_pair(rng) if rng.random() < 0.5 else pair(rng)
     method = _method(rng, query, name)
-    return Case(case_id, "options", query, method, a, b, {name: value}, expect, f"{note} {name}={value}")
+    note += f" {name}={value}"
+    return Case(case_id, "options", query, method, a, b, {name: value}, expect, note)
 
 
 _THREADS: List[Tuple[Any, str]] = [
@@ -386,7 +388,8 @@ def _dtype(rng: np.random.Generator, case_id: str) -> Case:
             a, b = _bad_dtype(a, kind)[None], (a + 2.0)[None]
         else:
             a = _bad_dtype(a, kind)
-    return Case(case_id, "dtype", query, _method(rng, query), a, b, {}, expect, f"{note} dtype={kind}")
+    method = _method(rng, query)
+    return Case(case_id, "dtype", query, method, a, b, {}, expect, f"{note} dtype={kind}")
 
 
 def _shape(rng: np.random.Generator, case_id: str) -> Case:
@@ -407,7 +410,8 @@ def _shape(rng: np.random.Generator, case_id: str) -> Case:
     other = np.stack([b[:1].repeat(n, axis=0)] * 2)
     cases = [
         ("m mismatch", stack, other[:1], ERROR), ("(m,0,3)", stack[:, :0], other[:, :0], ERROR),
-        ("(m,n,2)", stack[:, :, :2], other[:, :, :2], ERROR), ("(0,n,3)", stack[:0], other[:0], EITHER),
+        ("(m,n,2)", stack[:, :, :2], other[:, :, :2], ERROR),
+        ("(0,n,3)", stack[:0], other[:0], EITHER),
         ("(n,3) as a batch", a, b, ERROR), ("mixed lists", [a, b], [b[:1], a], ANSWER),
         ("nested lists and tuples", [a.tolist()], (b,), ANSWER),
     ]  # fmt: skip

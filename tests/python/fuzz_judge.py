@@ -91,7 +91,7 @@ def answers_of(case: Case) -> List[Any]:
 
 
 def scale_problems(case: Case) -> List[str]:
-    """What changes between an invariance case's two answers (nothing, when the library is right)."""
+    """What changes between an invariance case's two answers (nothing, if the library is right)."""
     a, b = np.asarray(case.a, dtype=np.float64), np.asarray(case.b, dtype=np.float64)
     return compare_scales(case, a, b, answers_of(case))
 

@@ -12,6 +12,7 @@ from the helper, whose ``sys.path`` starts with this directory (``tests/python``
 
 from __future__ import annotations
 
+import itertools
 import os
 import pickle
 import resource
@@ -31,6 +32,8 @@ RETURNED, RAISED, CRASHED, HUNG = "returned", "raised", "crashed", "hung"
 
 _HEADER = struct.Struct("<Q")
 _STDERR_TAIL = 600  # characters of a crashed child's stderr kept for the report
+_REPORT_LENGTH = 4000  # characters of a sanitizer's report kept, from its first line
+_REPORT_MARKERS = ("ERROR: AddressSanitizer", "ERROR: LeakSanitizer", "runtime error:")
 
 
 @dataclass(frozen=True)
@@ -100,7 +103,7 @@ class Sandbox:
         timeout: float = 20.0,
         memory_limit: Optional[int] = None,
     ) -> Outcome:
-        """``function(*args)`` in a child; ``memory_limit`` (bytes) caps the child's new mappings."""
+        """``function(*args)`` in a child; ``memory_limit`` (bytes) caps its new mappings."""
         ((_, outcome),) = self.map([(None, function, args)], timeout, memory_limit)
         return outcome
 
@@ -110,26 +113,31 @@ class Sandbox:
         timeout: float = 20.0,
         memory_limit: Optional[int] = None,
     ) -> Iterator[Tuple[Any, Outcome]]:
-        """``(key, outcome)`` for every ``(key, function, args)`` task, in order of completion."""
+        """``(key, outcome)`` for every ``(key, function, args)`` task, in order of completion.
+
+        Consume it to the end: the replies still in flight would otherwise reach the next call.
+        """
         assert self._helper.stdin is not None and self._helper.stdout is not None
+        requests, replies = self._helper.stdin, self._helper.stdout
         pending = iter(tasks)
+        numbers = itertools.count()
         keys: Dict[int, Any] = {}
-        # Few requests in flight, so that neither side ever blocks writing to the other.
-        for number, (key, function, args) in enumerate(pending):
-            keys[number] = key
-            _send(self._helper.stdin, (number, timeout, memory_limit), pickle.dumps((function, args)))
-            if len(keys) >= 2 * self._parallel:
-                break
-        next_number = len(keys)
-        while keys:
-            number, outcome = _receive_outcome(self._helper.stdout)
-            yield keys.pop(number), outcome
+
+        def submit_next() -> bool:
             for key, function, args in pending:
-                keys[next_number] = key
-                _send(self._helper.stdin, (next_number, timeout, memory_limit),
-                      pickle.dumps((function, args)))  # fmt: skip
-                next_number += 1
-                break
+                number = next(numbers)
+                keys[number] = key
+                _send(requests, (number, timeout, memory_limit), pickle.dumps((function, args)))
+                return True
+            return False
+
+        # Few requests in flight, so that neither side ever blocks writing to the other.
+        while len(keys) < 2 * self._parallel and submit_next():
+            pass
+        while keys:
+            number, outcome = _receive_outcome(replies)
+            yield keys.pop(number), outcome
+            submit_next()
 
 
 def _send(stream: BinaryIO, header: Any, payload: bytes) -> None:
@@ -201,6 +209,16 @@ def _mapped_bytes() -> int:
     raise RuntimeError("no VmSize in /proc/self/status")
 
 
+def _report(stderr: str) -> str:
+    """What a failed child's stderr says: a sanitizer's report from its first line, else the end."""
+    for marker in _REPORT_MARKERS:
+        start = stderr.find(marker)
+        if start >= 0:
+            start = stderr.rfind("\n", 0, start) + 1
+            return stderr[start : start + _REPORT_LENGTH]
+    return stderr[-_STDERR_TAIL:]
+
+
 def _finish(child: _Child, kind: Optional[str] = None) -> tuple:
     """The reply for a child that closed its pipe (or, with ``kind=HUNG``, ran out of time)."""
     if kind == HUNG:
@@ -208,7 +226,7 @@ def _finish(child: _Child, kind: Optional[str] = None) -> tuple:
     _, status = os.waitpid(child.pid, 0)
     os.close(child.pipe)
     seconds = time.monotonic() - child.started
-    tail = child.stderr.read_text(errors="replace")[-_STDERR_TAIL:] if child.stderr.exists() else ""
+    tail = _report(child.stderr.read_text(errors="replace")) if child.stderr.exists() else ""
     child.stderr.unlink(missing_ok=True)
     if kind == HUNG:
         return (child.number, HUNG, b"", "", tail, seconds)
@@ -250,7 +268,8 @@ def _serve(parallel: int) -> None:
                 _child(payload, write_end, stderr, memory_limit)
             os.close(write_end)
             now = time.monotonic()
-            running[read_end] = _Child(number, pid, read_end, stderr, now, now + timeout, bytearray())
+            child = _Child(number, pid, read_end, stderr, now, now + timeout, bytearray())
+            running[read_end] = child
             selector.register(read_end, selectors.EVENT_READ)
         deadlines = [child.deadline for child in running.values()]
         wait = max(0.0, min(deadlines) - time.monotonic()) if deadlines else None

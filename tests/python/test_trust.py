@@ -36,7 +36,7 @@ def sandbox():
 
 
 def answer(sandbox: Sandbox, query: str, a: Any, b: Any, **keywords: Any) -> Any:
-    """``sc.<query>(a, b, **keywords)`` in a child, as plain data; fails on a crash, hang or error."""
+    """``sc.<query>(a, b, **keywords)`` in a child, as plain data; fails on a crash, hang, error."""
     return sandbox.run(invoke, query, (a, b), keywords, timeout=TIMEOUT).unwrap()
 
 
@@ -131,8 +131,8 @@ WRONG_DEPTH_PAIRS = [4, 13, 20, 26, 30, 50, 53]
 def test_dual_signed_distance_is_right_for_every_seed(sandbox, pair):
     a, b = random_overlaps(60)[pair]
     for seed in range(10):
-        assert_right("signed_distance", a, b, answer(sandbox, "signed_distance", a, b, method="dual",
-                                                     seed=seed))  # fmt: skip
+        r = answer(sandbox, "signed_distance", a, b, method="dual", seed=seed)
+        assert_right("signed_distance", a, b, r)
 
 
 @pytest.mark.parametrize("pair", WRONG_DEPTH_PAIRS)
