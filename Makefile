@@ -100,7 +100,7 @@ test-sanitize: install
 CENSUS_ARGS ?=
 
 census: install
-	$(PY) tests/fuzz/census.py --json build/fuzz/census.json $(CENSUS_ARGS)
+	$(PY) tests/fuzz/census.py --json build/fuzz/census.jsonl $(CENSUS_ARGS)
 
 stubs: install
 	$(PY) -m pybind11_stubgen swarmcollide._core -o python --numpy-array-use-type-var

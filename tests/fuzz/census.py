@@ -1,10 +1,10 @@
 """The fuzz census: every case of a corpus in a sandboxed child, counted by category.
 
-Prints a Markdown table of counts per query and method and writes a JSON file with every case that
-is not "ok" (its id, category and reason), so that a fix can be checked case by case:
+Prints a Markdown table of counts per query and method and writes a JSON Lines file with every
+case that is not "ok" (its id, category and reason), so that a fix can be checked case by case:
 
-    .venv/bin/python tests/fuzz/census.py --json build/fuzz/census.json   # 10000 cases
-    .venv/bin/python tests/fuzz/census.py --rerun build/fuzz/census.json   # old -> new per case
+    .venv/bin/python tests/fuzz/census.py --json build/fuzz/census.jsonl   # 10000 cases
+    .venv/bin/python tests/fuzz/census.py --rerun tests/fuzz/before.jsonl  # old -> new per case
 
 The categories are those of tests/python/fuzz_judge.py; the cases those of fuzz_cases.py.
 """
@@ -70,22 +70,44 @@ def table(records: List[Dict[str, str]]) -> str:
     return "\n".join(lines)
 
 
+def write_report(
+    path: Path, seed: int, timeout: float, seconds: float, records: List[Dict[str, str]]
+) -> None:
+    """JSON Lines: the run (seed, counts) first, then every case that is not ok, one a line."""
+    path.parent.mkdir(parents=True, exist_ok=True)
+    header = {
+        "seed": seed, "count": len(records), "timeout": timeout, "seconds": round(seconds),
+        "counts": dict(Counter(r["category"] for r in records)),
+    }  # fmt: skip
+    lines = [json.dumps(header)]
+    lines += [
+        json.dumps({**r, "reason": r["reason"][:200]}) for r in records if r["category"] != "ok"
+    ]
+    path.write_text("\n".join(lines) + "\n")
+
+
+def read_report(path: Path) -> Tuple[Dict, List[Dict]]:
+    """(the run, its cases that were not ok) from a ``write_report`` file."""
+    header, *cases = (json.loads(line) for line in path.read_text().splitlines())
+    return header, cases
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--seed", type=int, default=0, help="the corpus (default 0)")
     parser.add_argument("--count", type=int, default=10000, help="cases 0 .. count-1")
     parser.add_argument("--workers", type=int, default=2, help="children at once")
     parser.add_argument("--timeout", type=float, default=20.0, help="seconds before a hang")
-    parser.add_argument("--json", type=Path, help="write the cases that are not ok here")
+    parser.add_argument("--json", type=Path, help="write the cases not ok here (JSON Lines)")
     parser.add_argument("--rerun", type=Path, help="rerun the cases of an earlier --json file")
     parser.add_argument("--quiet", action="store_true", help="no progress on stderr")
     args = parser.parse_args()
 
     seed, indices, earlier = args.seed, range(args.count), {}
     if args.rerun:
-        previous = json.loads(args.rerun.read_text())
+        previous, cases = read_report(args.rerun)
         seed = previous["seed"]
-        earlier = {record["index"]: record["category"] for record in previous["cases"]}
+        earlier = {record["index"]: record["category"] for record in cases}
         indices = sorted(earlier)
     start = time.monotonic()
     records = census(seed, indices, args.workers, args.timeout, not args.quiet)
@@ -99,13 +121,8 @@ def main() -> None:
         for (old, new), count in sorted(moves.items()):
             print(f"| {old} | {new} | {count} |")
     if args.json:
-        args.json.parent.mkdir(parents=True, exist_ok=True)
-        report = {
-            "seed": seed, "count": len(records), "timeout": args.timeout, "seconds": round(seconds),
-            "counts": dict(Counter(r["category"] for r in records)),
-            "cases": [r for r in records if r["category"] != "ok"],
-        }  # fmt: skip
-        args.json.write_text(json.dumps(report, indent=1) + "\n")
+        write_report(args.json, seed, args.timeout, seconds, records)
+
 
 
 if __name__ == "__main__":

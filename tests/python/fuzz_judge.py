@@ -216,8 +216,12 @@ def _judge_batch(case: Case, answer: Dict[str, Any]) -> tuple:
         pair = {key: (None if value is None else value[i]) for key, value in answer.items()
                 if key in ("distance", "lower_bound", "point_a", "point_b")}  # fmt: skip
         pair["direction"] = None
-        found = _bound_problems(pair["distance"], pair["lower_bound"], truth.distance, tolerance)
-        found += _witness_problems(a, b, pair, False, tolerance)
+        # A negative distance claims a depth (collide_many answers libccd's pairs with their
+        # signed distance): it is judged as a signed distance.
+        signed = bool(pair["distance"] < 0)
+        true = truth.signed_distance if signed else truth.distance
+        found = _bound_problems(pair["distance"], pair["lower_bound"], true, tolerance)
+        found += _witness_problems(a, b, pair, signed, tolerance)
         if case.query == "collide_many" or answer["certified"][i]:
             found += _verdict_problems(answer["colliding"][i], truth.signed_distance, tolerance)
         problems += [f"pair {i}: {p}" for p in found]
