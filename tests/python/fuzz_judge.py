@@ -21,8 +21,8 @@ suite-error  the judge or the oracle raised: a bug in this suite
 Tolerances are relative to the pair's size (the largest extent of the two bodies together):
 bounds and witnesses must hold within ``SLACK`` x size, and verdicts and precise distances are
 judged only where the true signed distance is farther than ``BAND`` x size from 0, and then must be
-right within it. Both add the oracle's own error bound and ``ULP`` x the largest coordinate, the
-rounding that the input itself carries when a pair is translated far from the origin.
+right within it. Both add the oracle's own error bound and ``ROUNDING`` x the largest coordinate,
+for the rounding that arithmetic on coordinates far from the origin cannot avoid.
 """
 
 from __future__ import annotations
@@ -46,7 +46,7 @@ FAILURES = frozenset({"crash", "hang", "error-type", "wrong", "slipped"})
 
 SLACK = 1e-9
 BAND = 1e-6
-ULP = 1e-12
+ROUNDING = 1e-12  # about 4500 units in the last place of the largest coordinate
 
 
 @dataclass(frozen=True)
@@ -58,9 +58,10 @@ class Tolerance:
 
 
 def tolerance_of(a: np.ndarray, b: np.ndarray, truth: oracle.Answer) -> Tolerance:
+    """SLACK and BAND for the pair (a, b), whose true signed distance is ``truth``."""
     points = np.vstack([a, b])
     size = float(np.max(np.ptp(points, axis=0)))
-    rounding = ULP * float(np.max(np.abs(points))) + truth.error
+    rounding = ROUNDING * float(np.max(np.abs(points))) + truth.error
     return Tolerance(SLACK * size + rounding, BAND * size + rounding)
 
 

@@ -52,7 +52,7 @@ def assert_refused(outcome: Outcome, error_type: str, match: str = "") -> None:
 
 
 def random_overlaps(count: int) -> List[tuple]:
-    """Overlapping random 8-point hulls, as in the issue's counts."""
+    """Pairs of random 8-point hulls, as in the issue's counts: the first 24 overlap."""
     rng = np.random.default_rng(8)
     return [
         (rng.normal(size=(8, 3)), rng.normal(size=(8, 3)) * 0.8 + rng.normal(size=3) * 0.3)
@@ -264,10 +264,17 @@ def test_a_polyhedron_is_built_from_a_polyhedron(sandbox):
     np.testing.assert_array_equal(sandbox.run(copied_polyhedron, timeout=TIMEOUT).unwrap(), CUBE)
 
 
-# ----- cases the fuzz census found (tests/fuzz/BEFORE.md) --------------------------------------
+# ----- cases the fuzz census found (tests/fuzz/BEFORE.md, before.jsonl) -------------------------
 
 CENSUS_CASES = {
-    "0:267": "libccd signed distance spun for ever (tetra and hull, scale 1e-5)",
+    "0:267": "libccd's EPA spins: a tetrahedron in an 18-point hull at scale 1e-5",
+    "0:1564": "libccd's EPA spins: two rotated boxes at scale 1e-4",
+    "0:9811": "libccd's EPA spins: a nearly axis-aligned box on a box at unit scale",
+    "0:6437": "FCL's EPA aborts (ComputeVisiblePatch): a 64-point sphere in a cube at scale 1e-4",
+    "0:2608": "FCL's EPA aborts: a cube and a 5-point hull at scale 1e8, offset 1e12",
+    "0:2302": "dual's signed distance raises for two cubes far apart at scale 1e300",
+    "0:683": "fcl with max_iterations=1 calls a deep overlap apart",
+    "0:585": "fcl-indep certifies 0 for an overlap of subnormal bodies",
 }
 
 
