@@ -17,7 +17,7 @@ import sys
 import time
 from collections import Counter
 from pathlib import Path
-from typing import Dict, Iterable, List, Tuple
+from typing import Any, Dict, Iterable, List, Tuple
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "python"))
 
@@ -25,13 +25,13 @@ from fuzz_cases import make_case  # noqa: E402
 from fuzz_judge import CATEGORIES, FAILURES, category_of, run_case  # noqa: E402
 from sandbox import Sandbox  # noqa: E402
 
-Row = Tuple[str, str]
+Record = Dict[str, Any]
 
 
 def census(
     seed: int, indices: Iterable[int], workers: int, timeout: float, progress: bool
-) -> List[Dict[str, str]]:
-    """One record per case: id, family, query, method, note, category, reason."""
+) -> List[Record]:
+    """One record per case: id, index, family, query, method, note, category, reason."""
     records = []
     start = time.monotonic()
     tasks = ((index, run_case, (seed, index)) for index in indices)
@@ -50,9 +50,9 @@ def census(
     return sorted(records, key=lambda r: r["index"])
 
 
-def table(records: List[Dict[str, str]]) -> str:
+def table(records: List[Record]) -> str:
     """Counts per (query, method) and category, as Markdown."""
-    counts: Dict[Row, Counter] = {}
+    counts: Dict[Tuple[str, str], Counter] = {}
     for record in records:
         counts.setdefault((record["query"], record["method"]), Counter())[record["category"]] += 1
     total = Counter(record["category"] for record in records)
@@ -71,7 +71,7 @@ def table(records: List[Dict[str, str]]) -> str:
 
 
 def write_report(
-    path: Path, seed: int, timeout: float, seconds: float, records: List[Dict[str, str]]
+    path: Path, seed: int, timeout: float, seconds: float, records: List[Record]
 ) -> None:
     """JSON Lines: the run (seed, counts) first, then every case that is not ok, one a line."""
     path.parent.mkdir(parents=True, exist_ok=True)
@@ -86,7 +86,7 @@ def write_report(
     path.write_text("\n".join(lines) + "\n")
 
 
-def read_report(path: Path) -> Tuple[Dict, List[Dict]]:
+def read_report(path: Path) -> Tuple[Record, List[Record]]:
     """(the run, its cases that were not ok) from a ``write_report`` file."""
     header, *cases = (json.loads(line) for line in path.read_text().splitlines())
     return header, cases
