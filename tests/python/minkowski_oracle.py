@@ -13,9 +13,10 @@ Each difference is rounded once (relative error 2**-53 of itself). D is then div
 two so that its largest coordinate lies in [0.5, 1): an exact operation, so the answer scales
 exactly with the input from 1e-300 to 1e300 and is the same in every unit. In that frame Qhull
 (merged facets, about 1e-15) and the closest-point formulas are accurate to far below ``ROUNDING``
-= 1e-12. A D thinner than ``FLAT`` = 1e-10 of its extent along some direction is treated as flat
-(Qhull is ill-conditioned there) and the thickness dropped is added to ``error``. ``error`` bounds
-``|signed_distance - exact|`` for the float64 values of the inputs.
+= 1e-12, and so is the reduction of large bodies to their hull vertices that comes first. A D that lies within ``FLAT`` = 1e-10 (in that frame) of a plane, a line or a point is
+treated as that plane, line or point (Qhull is ill-conditioned there), and the distance dropped is
+added to ``error``. ``error`` bounds ``|signed_distance - exact|`` for the float64 values of the
+inputs.
 """
 
 from __future__ import annotations
@@ -31,7 +32,7 @@ ROUNDING = 1e-12
 """Error allowance of the hull and closest-point arithmetic, relative to D's largest coordinate."""
 
 FLAT = 1e-10
-"""Relative thickness below which D is treated as flat."""
+"""Thickness (relative to D's largest coordinate) below which D is treated as flat."""
 
 # Above this many differences the bodies are first reduced to their hull vertices.
 _REDUCE_ABOVE = 4096
