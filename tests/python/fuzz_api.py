@@ -49,7 +49,9 @@ API_MISMATCH = (
     "unexpected keyword argument",
     "unknown method",
     "does not apply",
+    "needs one of",
     "penetration must be one of",
+    "no query named",
 )
 """Fragments of the messages with which a changed API refuses a call the corpus thinks valid."""
 
@@ -59,6 +61,8 @@ def call(query: str, method: Optional[str], a: Any, b: Any, options: Mapping[str
     keywords = dict(options)
     if method is not DEFAULT:
         keywords["method"] = RENAMED.get(method, method)
+    if not hasattr(sc, query):
+        raise TypeError(f"swarmcollide has no query named {query!r}")
     return getattr(sc, query)(a, b, **keywords)
 
 
