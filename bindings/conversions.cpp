@@ -49,7 +49,7 @@ py::array_t<Scalar, py::array::c_style | py::array::forcecast> real_array(
 }  // namespace
 
 std::string type_name(const py::handle& object) {
-  return std::string(py::str(object.get_type().attr("__name__")));
+  return std::string(py::str(py::type::handle_of(object).attr("__name__")));
 }
 
 VertexMatrix to_vertex_matrix(const py::handle& points, const char* name) {
