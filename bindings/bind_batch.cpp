@@ -54,8 +54,7 @@ VertexStack view(const Stack& stack, const char* name) {
   return {stack.data(), static_cast<std::size_t>(stack.shape(0)), stack.shape(1), name};
 }
 
-BatchSettings settings_of(const py::object& threads, const py::object& first_index,
-                          bool escalate) {
+BatchSettings settings_of(const py::object& threads, const py::object& first_index, bool escalate) {
   BatchSettings settings;
   settings.escalate = escalate;
   if (!threads.is_none()) {
@@ -142,8 +141,8 @@ iterations : numpy.ndarray of int, shape (m,)
               return distance_many(a, b, q.options(), settings);
             });
           },
-          py::arg("As"), py::arg("Bs"), py::arg("threads") = py::none(),
-          py::arg("first_index") = 0, kBatchDoc)
+          py::arg("As"), py::arg("Bs"), py::arg("threads") = py::none(), py::arg("first_index") = 0,
+          kBatchDoc)
       .def(
           "collide_many",
           [](const Query& q, const py::object& as, const py::object& bs, const py::object& threads,
@@ -153,8 +152,8 @@ iterations : numpy.ndarray of int, shape (m,)
               return collide_many(a, b, q.options(), settings);
             });
           },
-          py::arg("As"), py::arg("Bs"), py::arg("threads") = py::none(),
-          py::arg("first_index") = 0, py::arg("escalate") = true, kBatchDoc)
+          py::arg("As"), py::arg("Bs"), py::arg("threads") = py::none(), py::arg("first_index") = 0,
+          py::arg("escalate") = true, kBatchDoc)
       .def(
           "signed_distance_many",
           [](const Query& q, const py::object& as, const py::object& bs, const py::object& threads,
@@ -164,8 +163,8 @@ iterations : numpy.ndarray of int, shape (m,)
               return signed_distance_many(a, b, q.options(), settings);
             });
           },
-          py::arg("As"), py::arg("Bs"), py::arg("threads") = py::none(),
-          py::arg("first_index") = 0, kBatchDoc);
+          py::arg("As"), py::arg("Bs"), py::arg("threads") = py::none(), py::arg("first_index") = 0,
+          kBatchDoc);
   m.def("pair_seed", &pair_seed, py::arg("seed"), py::arg("index"),
         "The seed of the pair with global index ``index`` in a batch seeded with ``seed``.");
 }

@@ -80,22 +80,26 @@ Pose to_pose(const py::handle& pose, const char* name) {
   if (py::isinstance<py::tuple>(pose) || py::isinstance<py::list>(pose)) {
     const py::sequence parts = py::reinterpret_borrow<py::sequence>(pose);
     if (parts.size() != 2) {
-      throw py::value_error(arg + " must be a (4, 4) matrix or a pair (rotation, translation), "
-                                  "got a sequence of " + std::to_string(parts.size()) + " items");
+      throw py::value_error(arg +
+                            " must be a (4, 4) matrix or a pair (rotation, translation), "
+                            "got a sequence of " +
+                            std::to_string(parts.size()) + " items");
     }
     const auto rotation =
         real_array(parts[0], {3, 3}, arg + "'s rotation", "a (3, 3) rotation matrix");
     const auto translation =
         real_array(parts[1], {3}, arg + "'s translation", "a (3,) translation");
-    result.rotation = Eigen::Map<const Eigen::Matrix<Scalar, 3, 3, Eigen::RowMajor>>(rotation.data());
+    result.rotation =
+        Eigen::Map<const Eigen::Matrix<Scalar, 3, 3, Eigen::RowMajor>>(rotation.data());
     result.translation = Eigen::Map<const Vector3>(translation.data());
   } else {
-    const auto matrix = real_array(pose, {4, 4}, arg,
-                                   "a (4, 4) homogeneous transform or a pair (rotation, translation)");
+    const auto matrix = real_array(
+        pose, {4, 4}, arg, "a (4, 4) homogeneous transform or a pair (rotation, translation)");
     const Eigen::Map<const Eigen::Matrix<Scalar, 4, 4, Eigen::RowMajor>> m(matrix.data());
     if (!(m.row(3) == Eigen::RowVector4d(0, 0, 0, 1))) {
-      throw py::value_error(arg + " must be a homogeneous rigid transform: its last row must be "
-                                  "[0, 0, 0, 1]");
+      throw py::value_error(arg +
+                            " must be a homogeneous rigid transform: its last row must be "
+                            "[0, 0, 0, 1]");
     }
     result.rotation = m.topLeftCorner<3, 3>();
     result.translation = m.topRightCorner<3, 1>();

@@ -84,8 +84,8 @@ std::size_t worker_count(int threads, std::size_t pairs) {
     throw std::invalid_argument("threads must be in [0, " + std::to_string(kMaxThreads) +
                                 "] (0: one per hardware thread), got " + std::to_string(threads));
   }
-  const std::size_t wanted =
-      threads > 0 ? static_cast<std::size_t>(threads) : std::max(1u, std::thread::hardware_concurrency());
+  const std::size_t wanted = threads > 0 ? static_cast<std::size_t>(threads)
+                                         : std::max(1u, std::thread::hardware_concurrency());
   return std::min(wanted, std::max<std::size_t>(pairs, 1));
 }
 
@@ -156,18 +156,17 @@ ConvexPolyhedron body(const VertexStack& stack, std::size_t i, std::uint64_t fir
   try {
     return ConvexPolyhedron(Eigen::Map<const VertexMatrix>(points, stack.vertices, 3));
   } catch (const std::invalid_argument& error) {
-    throw std::invalid_argument(std::string(stack.name) + "[" +
-                                std::to_string(first_index + i) + "]: " + error.what());
+    throw std::invalid_argument(std::string(stack.name) + "[" + std::to_string(first_index + i) +
+                                "]: " + error.what());
   }
 }
 
 BatchResult bodies_batch(Kind kind, const std::vector<ConvexPolyhedron>& as,
                          const std::vector<ConvexPolyhedron>& bs, const QueryOptions& options,
                          const BatchSettings& settings) {
-  return run_batch(as.size(), bs.size(), options, settings,
-                   [&](std::size_t i, const Query& query) {
-                     return ask(kind, query, as[i], bs[i], settings.escalate);
-                   });
+  return run_batch(as.size(), bs.size(), options, settings, [&](std::size_t i, const Query& query) {
+    return ask(kind, query, as[i], bs[i], settings.escalate);
+  });
 }
 
 BatchResult stack_batch(Kind kind, const VertexStack& as, const VertexStack& bs,
@@ -199,8 +198,8 @@ BatchResult signed_distance_many(const std::vector<ConvexPolyhedron>& as,
   return bodies_batch(Kind::signed_distance, as, bs, options, settings);
 }
 
-BatchResult distance_many(const VertexStack& as, const VertexStack& bs,
-                          const QueryOptions& options, const BatchSettings& settings) {
+BatchResult distance_many(const VertexStack& as, const VertexStack& bs, const QueryOptions& options,
+                          const BatchSettings& settings) {
   return stack_batch(Kind::distance, as, bs, options, settings);
 }
 

@@ -119,19 +119,12 @@ const std::vector<MethodEntry>& entries() {
              "max_rounds", Kind::integer, 1, 10000,
              "the largest number of swarm rounds (re-seeded around the best direction)")}},
        detail::solve_dual},
-      {{Method::ipso,
-        "ipso",
+      {{Method::ipso, "ipso",
         "the paper's improved PSO on model (2): rank-adaptive inertia and acceleration (8)-(9)",
-        kDistance | kCollide,
-        false,
-        primal_swarm_parameters(false)},
+        kDistance | kCollide, false, primal_swarm_parameters(false)},
        detail::solve_primal_swarm},
-      {{Method::pso,
-        "pso",
-        "the standard PSO on model (2) with linearly decreasing inertia (7)",
-        kDistance | kCollide,
-        false,
-        primal_swarm_parameters(true)},
+      {{Method::pso, "pso", "the standard PSO on model (2) with linearly decreasing inertia (7)",
+        kDistance | kCollide, false, primal_swarm_parameters(true)},
        detail::solve_primal_swarm},
       {{Method::penalty,
         "penalty",
@@ -185,7 +178,8 @@ const MethodEntry& entry(Method method) {
 
 std::string names() {
   std::string list;
-  for (const MethodEntry& e : entries()) list += std::string(list.empty() ? "'" : ", '") + e.info.name + "'";
+  for (const MethodEntry& e : entries())
+    list += std::string(list.empty() ? "'" : ", '") + e.info.name + "'";
   return list;
 }
 
@@ -194,7 +188,8 @@ const ParameterInfo& find_parameter(const MethodInfo& info, const std::string& n
     if (name == p.name) return p;
   }
   std::string list;
-  for (const ParameterInfo& p : info.parameters) list += std::string(list.empty() ? "" : ", ") + p.name;
+  for (const ParameterInfo& p : info.parameters)
+    list += std::string(list.empty() ? "" : ", ") + p.name;
   throw std::invalid_argument(name + " does not apply to method '" + info.name +
                               "' (its parameters: tolerance, seed" +
                               (list.empty() ? "" : ", " + list) + ")");

@@ -20,10 +20,18 @@ void require(Method method, Capability capability, const char* query) {
   if (method_info(method).capabilities & capability) return;
   std::string able;
   for (const MethodInfo& info : method_table()) {
-    if (info.capabilities & capability) able += std::string(able.empty() ? "'" : ", '") + info.name + "'";
+    if (info.capabilities & capability)
+      able += std::string(able.empty() ? "'" : ", '") + info.name + "'";
   }
   throw std::invalid_argument(std::string(query) + " is not available with method '" +
                               method_name(method) + "'; use one of " + able);
+}
+
+// The result of `options.method`'s solver working towards `goal` on `pair`.
+DistanceResult answer(const QueryOptions& options, detail::Goal goal,
+                      const detail::FramedPair& pair) {
+  return detail::finish_result(pair, detail::solver_for(options.method)(pair, options, goal),
+                               options.method, goal);
 }
 
 }  // namespace
@@ -37,10 +45,8 @@ DistanceResult Query::distance(const ConvexPolyhedron& a, const ConvexPolyhedron
 DistanceResult Query::distance(const ConvexPolyhedron& a, const Pose& pose_a,
                                const ConvexPolyhedron& b, const Pose& pose_b) const {
   require(options_.method, kDistance, "distance");
-  const detail::FramedPair pair = detail::frame_pair(a, pose_a, b, pose_b, options_.tolerance);
-  return detail::finish_result(
-      pair, detail::solver_for(options_.method)(pair, options_, detail::Goal::distance),
-      options_.method, detail::Goal::distance);
+  return answer(options_, detail::Goal::distance,
+                detail::frame_pair(a, pose_a, b, pose_b, options_.tolerance));
 }
 
 DistanceResult Query::collision(const ConvexPolyhedron& a, const ConvexPolyhedron& b,
@@ -54,8 +60,7 @@ DistanceResult Query::collision(const ConvexPolyhedron& a, const Pose& pose_a,
   require(options_.method, kCollide, "collide");
   const detail::FramedPair pair = detail::frame_pair(a, pose_a, b, pose_b, options_.tolerance);
   const detail::Goal goal = detail::Goal::verdict;
-  DistanceResult result = detail::finish_result(
-      pair, detail::solver_for(options_.method)(pair, options_, goal), options_.method, goal);
+  DistanceResult result = answer(options_, goal, pair);
   if (result.certified || !escalate) return result;
   // The exact method decides with its own iteration cap: a budget too small for the method
   // asked for (max_iterations of 1, say) must not leave the verdict unproven again.
@@ -63,8 +68,7 @@ DistanceResult Query::collision(const ConvexPolyhedron& a, const Pose& pose_a,
   exact.method = Method::exact;
   exact.tolerance = options_.tolerance;
   exact.exact.max_iterations = std::max(options_.exact.max_iterations, exact.exact.max_iterations);
-  DistanceResult decided = detail::finish_result(
-      pair, detail::solver_for(Method::exact)(pair, exact, goal), Method::exact, goal);
+  DistanceResult decided = answer(exact, goal, pair);
   if (options_.method != Method::exact) decided.escalated_from = options_.method;
   return decided;
 }
@@ -85,10 +89,8 @@ DistanceResult Query::signed_distance(const ConvexPolyhedron& a, const ConvexPol
 DistanceResult Query::signed_distance(const ConvexPolyhedron& a, const Pose& pose_a,
                                       const ConvexPolyhedron& b, const Pose& pose_b) const {
   require(options_.method, kSignedDistance, "signed_distance");
-  const detail::FramedPair pair = detail::frame_pair(a, pose_a, b, pose_b, options_.tolerance);
-  return detail::finish_result(
-      pair, detail::solver_for(options_.method)(pair, options_, detail::Goal::signed_distance),
-      options_.method, detail::Goal::signed_distance);
+  return answer(options_, detail::Goal::signed_distance,
+                detail::frame_pair(a, pose_a, b, pose_b, options_.tolerance));
 }
 
 DistanceResult distance(const ConvexPolyhedron& a, const ConvexPolyhedron& b,

@@ -112,9 +112,8 @@ bool DirectionSwarm::step() {
   s.order.resize(np);
   s.coefficients.resize(np);
   std::iota(s.order.begin(), s.order.end(), 0);
-  std::sort(s.order.begin(), s.order.end(), [&s](int i, int j) {
-    return s.fp[i] > s.fp[j] || (s.fp[i] == s.fp[j] && i < j);
-  });
+  std::sort(s.order.begin(), s.order.end(),
+            [&s](int i, int j) { return s.fp[i] > s.fp[j] || (s.fp[i] == s.fp[j] && i < j); });
   for (int rank = 1; rank <= np; ++rank) {
     s.coefficients[s.order[rank - 1]] =
         rank_adaptive_coefficients(rank, np, options_.w_min, options_.w_max);

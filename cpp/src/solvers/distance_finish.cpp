@@ -45,8 +45,10 @@ bool merge(std::vector<int>& into, const std::vector<int>& more) {
 DistanceFinish::DistanceFinish(const FramedPair& pair, Scalar slack, int max_iterations)
     : pair_(pair), slack_(slack), max_iterations_(max_iterations) {
   Buffers& b = buffers();
-  if (b.visited_a.size() < static_cast<std::size_t>(pair.a.size())) b.visited_a.resize(pair.a.size());
-  if (b.visited_b.size() < static_cast<std::size_t>(pair.b.size())) b.visited_b.resize(pair.b.size());
+  if (b.visited_a.size() < static_cast<std::size_t>(pair.a.size()))
+    b.visited_a.resize(pair.a.size());
+  if (b.visited_b.size() < static_cast<std::size_t>(pair.b.size()))
+    b.visited_b.resize(pair.b.size());
 }
 
 // Points of `body` within the slack of its supporting plane along `n`, highest first, into

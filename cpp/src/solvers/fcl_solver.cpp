@@ -115,16 +115,15 @@ Answer solve_fcl(const FramedPair& pair, const QueryOptions& options, Goal goal)
   Vector3 start = Vector3::Zero();
   if (status != Gjk::Failed && corral.size > 0) {
     Answer answer = answer_from_corral(pair, corral);
-    const bool settled = goal == Goal::verdict ? verdict_proven(pair, answer)
-                                               : value_proven(pair, answer) &&
-                                                     (goal == Goal::distance ||
-                                                      answer.lower > kFrameRounding);
+    const bool settled = goal == Goal::verdict
+                             ? verdict_proven(pair, answer)
+                             : value_proven(pair, answer) &&
+                                   (goal == Goal::distance || answer.lower > kFrameRounding);
     if (settled) return answer;
     start = answer.point_b - answer.point_a;
   }
-  Answer exact = goal == Goal::signed_distance
-                     ? exact_signed_distance(pair, max_iterations, start)
-                     : exact_distance(pair, max_iterations, start);
+  Answer exact = goal == Goal::signed_distance ? exact_signed_distance(pair, max_iterations, start)
+                                               : exact_distance(pair, max_iterations, start);
   exact.answered_by = Method::exact;
   return exact;
 }

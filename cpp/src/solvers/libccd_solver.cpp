@@ -65,16 +65,26 @@ void support(const void* object, const ccd_vec3_t* direction, ccd_vec3_t* out) {
   }
 }
 
-ccd_t configure(int max_iterations) {
+// One libccd call's state: the shapes its callbacks receive and its configuration, with the
+// support budget of 4 x max_iterations calls.
+struct CcdCall {
+  CcdQuery query;
+  CcdShape a{&query, true};
+  CcdShape b{&query, false};
   ccd_t ccd;
-  CCD_INIT(&ccd);
-  ccd.support1 = support;
-  ccd.support2 = support;
-  ccd.max_iterations = static_cast<unsigned long>(max_iterations);
-  // In the frame the bodies lie in the unit ball: a depth to near double precision.
-  ccd.epa_tolerance = 1e-14;
-  return ccd;
-}
+
+  CcdCall(const FramedPair& pair, int max_iterations)
+      : query{&pair.a, &pair.b, 4L * max_iterations} {
+    CCD_INIT(&ccd);
+    ccd.support1 = support;
+    ccd.support2 = support;
+    ccd.max_iterations = static_cast<unsigned long>(max_iterations);
+    // In the frame the bodies lie in the unit ball: a depth to near double precision.
+    ccd.epa_tolerance = 1e-14;
+  }
+  CcdCall(const CcdCall&) = delete;
+  CcdCall& operator=(const CcdCall&) = delete;
+};
 
 // A tetrahedron of recorded support points (with the newest) that encloses the origin, as the
 // answer it gives; false when none does beyond rounding.
@@ -85,8 +95,8 @@ bool enclosing_tetrahedron(const FramedPair& pair, const CcdQuery& q, Answer& an
     for (int j = i + 1; j < n; ++j) {
       for (int k = j + 1; k < n; ++k) {
         if (i == newest || j == newest || k == newest) continue;
-        const std::array<OraclePoint, 4> points = {q.recorded[newest], q.recorded[i],
-                                                   q.recorded[j], q.recorded[k]};
+        const std::array<OraclePoint, 4> points = {q.recorded[newest], q.recorded[i], q.recorded[j],
+                                                   q.recorded[k]};
         if (!encloses_origin({points[0].p, points[1].p, points[2].p, points[3].p})) continue;
         const auto oracle = [&points](const Vector3& d) {
           OraclePoint best = points[0];
@@ -105,12 +115,10 @@ bool enclosing_tetrahedron(const FramedPair& pair, const CcdQuery& q, Answer& an
 }
 
 Answer verdict(const FramedPair& pair, int max_iterations) {
-  CcdQuery q{&pair.a, &pair.b, 4L * max_iterations};
-  const CcdShape a{&q, true};
-  const CcdShape b{&q, false};
-  const ccd_t ccd = configure(max_iterations);
+  CcdCall call(pair, max_iterations);
+  const CcdQuery& q = call.query;
   Answer answer;
-  if (ccdGJKIntersect(&a, &b, &ccd)) {
+  if (ccdGJKIntersect(&call.a, &call.b, &call.ccd)) {
     if (!q.exhausted && enclosing_tetrahedron(pair, q, answer)) return answer;
   } else if (!q.exhausted && q.last_direction.norm() > 0) {
     // libccd's "no" comes from a direction along which the whole difference lies beyond the
@@ -140,14 +148,12 @@ Answer verdict(const FramedPair& pair, int max_iterations) {
 }
 
 Answer signed_distance(const FramedPair& pair, int max_iterations) {
-  CcdQuery q{&pair.a, &pair.b, 4L * max_iterations};
-  const CcdShape a{&q, true};
-  const CcdShape b{&q, false};
-  const ccd_t ccd = configure(max_iterations);
+  CcdCall call(pair, max_iterations);
+  const CcdQuery& q = call.query;
   ccd_real_t depth = 0;
   ccd_vec3_t direction;
   ccd_vec3_t position;
-  const int status = ccdGJKPenetration(&a, &b, &ccd, &depth, &direction, &position);
+  const int status = ccdGJKPenetration(&call.a, &call.b, &call.ccd, &depth, &direction, &position);
   // libccd: translating B by depth * direction brings the bodies into touching contact, so the
   // direction is the contact normal from A to B.
   const Vector3 n(direction.v[0], direction.v[1], direction.v[2]);

@@ -34,8 +34,7 @@ PlaneSide side_of_origin(const Vector3& p, const Vector3& q, const Vector3& r) {
                            ap.z() * (au.x() * av.y() + au.y() * av.x());
   const Scalar rounding = 32 * kEpsilon * permanent;
   const Scalar distance = determinant / length;
-  return {distance, std::abs(determinant) > rounding &&
-                        std::abs(distance) > 4 * kFrameRounding};
+  return {distance, std::abs(determinant) > rounding && std::abs(distance) > 4 * kFrameRounding};
 }
 
 }  // namespace

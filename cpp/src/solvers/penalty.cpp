@@ -1,5 +1,3 @@
-#include "penalty_method.hpp"
-
 #include <LBFGS.h>
 #include <LBFGSpp/LineSearchNocedalWright.h>
 
@@ -8,6 +6,7 @@
 #include <utility>
 #include <vector>
 
+#include "penalty_method.hpp"
 #include "swarmcollide/problem/simplex.hpp"
 #include "witness.hpp"
 
@@ -113,8 +112,8 @@ Answer solve_penalty(const FramedPair& pair, const QueryOptions& query, Goal goa
       // rounding); the best point evaluated stands, and its iterations go uncounted.
       z = objective.best();
     }
-    Answer current =
-        answer_from_weights(pair, points_a, points_b, to_simplex(z.head(ka)), to_simplex(z.tail(kb)));
+    Answer current = answer_from_weights(pair, points_a, points_b, to_simplex(z.head(ka)),
+                                         to_simplex(z.tail(kb)));
     if (current.lower > best_lower) {
       best_lower = current.lower;
       best_direction = current.direction;

@@ -159,8 +159,7 @@ class Solver {
     };
     Vector3 start = estimate_ > -kInfinity ? candidate_ : Vector3(a_.point(0) - b_.point(0));
     if (!(start.norm() > 0)) start = Vector3::UnitX();
-    const MinNormPoint m =
-        wolfe_min_norm(oracle, start, reach(), max_iterations_);
+    const MinNormPoint m = wolfe_min_norm(oracle, start, reach(), max_iterations_);
     iterations_ += m.iterations;
     // The exact convex combination of the corral (weights normalised) is a point of A - B; the
     // computed one is within 16 roundoffs of reach() of it (added in upper()).
@@ -276,8 +275,7 @@ class Solver {
       }
       return OraclePoint{b_.point(j) - a_.point(i) - shift, i, j};
     };
-    const MinNormPoint m =
-        wolfe_min_norm(oracle, n, reach(), kWitnessIterations);
+    const MinNormPoint m = wolfe_min_norm(oracle, n, reach(), kWitnessIterations);
     Scalar total = 0;
     for (int k = 0; k < m.size; ++k) total += m.weights[k];
     r.weights_a = VectorX::Zero(a_.size());

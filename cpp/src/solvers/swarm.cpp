@@ -339,9 +339,8 @@ Answer solve_primal_swarm(const FramedPair& pair, const QueryOptions& options, G
         std::to_string(static_cast<long long>(entries)) + "; use fewer particles");
   }
   thread_local SwarmWorkspace workspace;
-  const InertiaStrategy inertia = options.method == Method::pso
-                                      ? InertiaStrategy::linear_decreasing
-                                      : InertiaStrategy::rank_adaptive;
+  const InertiaStrategy inertia = options.method == Method::pso ? InertiaStrategy::linear_decreasing
+                                                                : InertiaStrategy::rank_adaptive;
   return SwarmSolver(pair, options.swarm, inertia, options.seed, workspace).run(goal);
 }
 

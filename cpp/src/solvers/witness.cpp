@@ -95,9 +95,8 @@ void supporting_feature(const FramedBody& body, const Vector3& normal, Scalar sl
   for (int i = 0; i < body.size(); ++i) {
     if (normal.dot(body.vertex(i)) >= floor) found.push_back(i);
   }
-  std::sort(found.begin(), found.end(), [&](int i, int j) {
-    return normal.dot(body.vertex(i)) > normal.dot(body.vertex(j));
-  });
+  std::sort(found.begin(), found.end(),
+            [&](int i, int j) { return normal.dot(body.vertex(i)) > normal.dot(body.vertex(j)); });
 }
 
 void signed_witnesses(const FramedPair& pair, const Vector3& n, Scalar s, Answer& answer) {

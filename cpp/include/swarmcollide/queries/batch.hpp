@@ -76,8 +76,8 @@ BatchResult signed_distance_many(const std::vector<ConvexPolyhedron>& as,
 /// freed on the thread that answers the pair, so building and freeing them is spread over the
 /// threads too and no thread frees memory that another allocated. A body that cannot be built
 /// throws std::invalid_argument naming it by its global index.
-BatchResult distance_many(const VertexStack& as, const VertexStack& bs,
-                          const QueryOptions& options, const BatchSettings& settings = {});
+BatchResult distance_many(const VertexStack& as, const VertexStack& bs, const QueryOptions& options,
+                          const BatchSettings& settings = {});
 BatchResult collide_many(const VertexStack& as, const VertexStack& bs, const QueryOptions& options,
                          const BatchSettings& settings = {});
 BatchResult signed_distance_many(const VertexStack& as, const VertexStack& bs,

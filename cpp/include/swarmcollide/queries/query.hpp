@@ -23,17 +23,16 @@ class Query {
   /// std::invalid_argument for a method without distances ("libccd") or for bodies too far apart
   /// for their distance to be representable.
   DistanceResult distance(const ConvexPolyhedron& a, const ConvexPolyhedron& b) const;
-  DistanceResult distance(const ConvexPolyhedron& a, const Pose& pose_a,
-                          const ConvexPolyhedron& b, const Pose& pose_b) const;
+  DistanceResult distance(const ConvexPolyhedron& a, const Pose& pose_a, const ConvexPolyhedron& b,
+                          const Pose& pose_b) const;
 
   /// The result that decides whether A and B collide: the method's own when it is certified;
   /// otherwise, with `escalate`, that of the exact method at the same tolerance (which names the
   /// method it was escalated from). Methods without distances answer with their signed distance.
   DistanceResult collision(const ConvexPolyhedron& a, const ConvexPolyhedron& b,
                            bool escalate = true) const;
-  DistanceResult collision(const ConvexPolyhedron& a, const Pose& pose_a,
-                           const ConvexPolyhedron& b, const Pose& pose_b,
-                           bool escalate = true) const;
+  DistanceResult collision(const ConvexPolyhedron& a, const Pose& pose_a, const ConvexPolyhedron& b,
+                           const Pose& pose_b, bool escalate = true) const;
 
   /// `collision(...).colliding`.
   bool collide(const ConvexPolyhedron& a, const ConvexPolyhedron& b, bool escalate = true) const;

@@ -25,5 +25,4 @@ Scalar linear_decreasing_inertia(int iteration, int max_iterations, Scalar w_sta
 /// answers. Throws std::runtime_error when SWARMCOLLIDE_ISA names a set that cannot run here.
 const char* swarm_instruction_set();
 
-
 }  // namespace swarmcollide
