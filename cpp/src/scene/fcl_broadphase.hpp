@@ -1,0 +1,62 @@
+// FCL's broadphase managers as collectors of candidate pairs; private to the library's sources.
+#pragma once
+
+#include <fcl/broadphase/broadphase_collision_manager.h>
+#include <fcl/narrowphase/collision_object.h>
+
+#include <memory>
+#include <utility>
+#include <vector>
+
+#include "swarmcollide/geometry/aabb.hpp"
+#include "swarmcollide/scene/broadphase.hpp"
+
+namespace swarmcollide::detail {
+
+/// An FCL collision object whose world box is set directly. FCL 0.7 boxes a rotated object by
+/// the box of its bounding sphere; the managers read only `getAABB()`, so writing the box FCL
+/// keeps (a protected member, there for derived objects) gives them our tight boxes at no cost:
+/// no geometry to resize, no transform to set.
+class BoxedObject : public fcl::CollisionObjectd {
+ public:
+  /// `owner` is what candidate pairs are reported as.
+  explicit BoxedObject(void* owner);
+  void set_box(const Aabb& box);
+  void* owner() const { return getUserData(); }
+};
+
+/// A pair of owners whose boxes overlap.
+using OwnerPair = std::pair<void*, void*>;
+
+/// One FCL manager, used only to collect the pairs of objects whose boxes overlap: no FCL
+/// narrowphase, no callback beyond appending the pair.
+class FclBroadphase {
+ public:
+  explicit FclBroadphase(Broadphase kind);
+  ~FclBroadphase();
+  FclBroadphase(const FclBroadphase&) = delete;
+  FclBroadphase& operator=(const FclBroadphase&) = delete;
+
+  void insert(const std::vector<BoxedObject*>& objects);
+  void erase(BoxedObject* object);
+  /// Tells the manager that the boxes of `moved` changed (of every object when `all`).
+  void refit(const std::vector<BoxedObject*>& moved, bool all);
+  /// Every pair of registered objects whose boxes overlap, appended to `out` (each once).
+  void overlapping_pairs(std::vector<OwnerPair>& out);
+  /// Every registered object whose box overlaps that of `query` (which need not be
+  /// registered), appended to `out` as (query's owner, object's owner).
+  void overlapping(BoxedObject* query, std::vector<OwnerPair>& out);
+
+ private:
+  // Whether the manager is rebuilt from `objects_` rather than told of changes (see refit).
+  bool rebuilds() const;
+  void rebuild();
+
+  Broadphase kind_;
+  std::unique_ptr<fcl::BroadPhaseCollisionManagerd> manager_;
+  // The registered objects, for managers that are rebuilt.
+  std::vector<BoxedObject*> objects_;
+  bool stale_ = false;
+};
+
+}  // namespace swarmcollide::detail

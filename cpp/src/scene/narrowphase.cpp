@@ -1,0 +1,200 @@
+#include "narrowphase.hpp"
+
+#include <limits>
+#include <optional>
+#include <utility>
+
+#include "../geometry/normalise.hpp"
+#include "../queries/dispatch.hpp"
+#include "../queries/verdict.hpp"
+#include "../solvers/dual_swarm.hpp"
+#include "../solvers/minkowski.hpp"
+#include "../solvers/witness.hpp"
+#include "contact_manifold.hpp"
+#include "swarmcollide/queries/methods.hpp"
+
+namespace swarmcollide::detail {
+
+namespace {
+
+constexpr Scalar kInfinity = std::numeric_limits<Scalar>::infinity();
+
+// The answer a cached tetrahedron of point pairs gives when, at the new poses, it still encloses
+// the origin: the origin's barycentric coordinates are the weights of a common point.
+std::optional<Answer> enclosed(const FramedPair& pair, const PairProof::Enclosing& proof) {
+  MinNormPoint corral;
+  for (int k = 0; k < 4; ++k) {
+    const int ia = proof.a[k];
+    const int ib = proof.b[k];
+    corral.corral[k] = {pair.b.vertex(ib) - pair.a.vertex(ia), ia, ib};
+  }
+  if (!wolfe_detail::affine_minimizer(corral.corral, 4, corral.weights)) return std::nullopt;
+  for (int k = 0; k < 4; ++k) {
+    if (!(corral.weights[k] > 0)) return std::nullopt;
+  }
+  corral.size = 4;
+  const Witness witness = witness_of(pair, corral);
+  if (!witness.encloses_origin) return std::nullopt;
+  return answer_from_witness(pair, witness);
+}
+
+// The index with the largest weight: a point of the supporting feature, where hill climbing
+// along a nearby direction should start.
+int heaviest(const ConvexWeights& weights) {
+  int index = -1;
+  Scalar largest = 0;
+  weights.for_each([&](int i, Scalar w) {
+    if (w > largest) {
+      largest = w;
+      index = i;
+    }
+  });
+  return index;
+}
+
+// What `answer` proves about the pair, kept in `proof`: the point pairs of an enclosing corral
+// (the k-th stored weights of A and of B come from its k-th point), else its direction.
+void remember(const FramedPair& pair, const Answer& answer, PairProof& proof) {
+  if (answer.intersection_proven) {
+    PairProof::Enclosing enclosing{};
+    int count_a = 0;
+    int count_b = 0;
+    answer.weights_a.for_each([&](int i, Scalar) {
+      if (count_a < 4) enclosing.a[count_a] = i;
+      ++count_a;
+    });
+    answer.weights_b.for_each([&](int i, Scalar) {
+      if (count_b < 4) enclosing.b[count_b] = i;
+      ++count_b;
+    });
+    if (count_a == 4 && count_b == 4) {
+      proof.kind = PairProof::Kind::enclosing;
+      proof.enclosing = enclosing;
+      return;
+    }
+  }
+  if (!(answer.direction.squaredNorm() > 0)) return;
+  const Vector3 local = pair.a.local_direction(answer.direction);
+  proof.kind = PairProof::Kind::separating;
+  proof.separating = {
+      {local.x(), local.y(), local.z()}, heaviest(answer.weights_a), heaviest(answer.weights_b)};
+}
+
+// The method's solver, started from `start` when it is the dual and one is given.
+Answer solve(const FramedPair& pair, const QueryOptions& options, Goal goal,
+             const std::optional<DualStart>& start) {
+  if (options.method == Method::dual && start) return solve_dual(pair, options, goal, *start);
+  return solver_for(options.method)(pair, options, goal);
+}
+
+std::optional<DualStart> start_from(const Answer& answer) {
+  if (!(answer.direction.squaredNorm() > 0)) return std::nullopt;
+  return DualStart{answer.direction, heaviest(answer.weights_a), heaviest(answer.weights_b)};
+}
+
+void take_values(const DistanceResult& r, PairAnswer& out) {
+  out.distance = r.distance;
+  out.lower_bound = r.lower_bound;
+  out.point_a = r.point_a;
+  out.point_b = r.point_b;
+  out.normal = r.direction;
+}
+
+}  // namespace
+
+PairAnswer answer_pair(const PlacedBody& a, const PlacedBody& b, PairProof& proof,
+                       const QueryOptions& options, const PairQuestion& question) {
+  const FramedPair pair = frame_pair(*a.body, *a.pose, *b.body, *b.pose, options.tolerance);
+  // The pair as the verdict sees it: in contact means within the threshold and the tolerance.
+  FramedPair gate = pair;
+  gate.tolerance += times_power_of_two(question.threshold, -pair.frame.exponent);
+  const Method method = options.method;
+  PairAnswer out;
+
+  std::optional<DualStart> start;
+  if (question.warm && proof.kind == PairProof::Kind::separating) {
+    const PairProof::Separating& cached = proof.separating;
+    const Vector3 local(cached.direction[0], cached.direction[1], cached.direction[2]);
+    const Vector3 n = (pair.a.rotated() ? Vector3(pair.a.rotation() * local) : local).normalized();
+    int ia = cached.support_a;
+    int ib = cached.support_b;
+    const Scalar s = separation(pair.a, pair.b, n, ia, ib);
+    proof.separating.support_a = ia;
+    proof.separating.support_b = ib;
+    if (verdict_proven(gate, s, kInfinity, false)) {
+      out.settled = Settled::warm_rejected;
+      out.certified = true;
+      out.lower_bound = pair.frame.length_to_world(s);
+      return out;
+    }
+    start = DualStart{n, ia, ib};
+  } else if (question.warm && proof.kind == PairProof::Kind::enclosing && !question.contacts) {
+    if (std::optional<Answer> common = enclosed(pair, proof.enclosing)) {
+      const DistanceResult r = finish_result(gate, std::move(*common), method,
+                                             question.distance ? Goal::distance : Goal::verdict);
+      out.settled = Settled::warm_proven;
+      out.belongs = r.colliding;
+      out.certified = r.certified;
+      take_values(r, out);
+      return out;
+    }
+  }
+
+  // The verdict, as Query::collision decides it (methods without distances decide by their
+  // signed distance), then escalated when unproven.
+  const Goal verdict =
+      method_info(method).capabilities & kDistance ? Goal::verdict : Goal::signed_distance;
+  Answer answer = solve(gate, options, verdict, start);
+  if (question.warm) remember(pair, answer, proof);
+  const bool value_settled =
+      goal_reached(pair, Goal::distance, answer.lower, answer.upper, answer.intersection_proven);
+  std::optional<DualStart> next = start_from(answer);
+  DistanceResult r = finish_result(gate, std::move(answer), method, verdict);
+  if (!r.certified && question.escalate && method != Method::exact) {
+    QueryOptions exact = options;
+    exact.method = Method::exact;
+    Answer decided = solver_for(Method::exact)(gate, exact, Goal::verdict);
+    if (question.warm) remember(pair, decided, proof);
+    next = start_from(decided);
+    r = finish_result(gate, std::move(decided), Method::exact, Goal::verdict);
+    out.settled = Settled::escalated;
+  }
+  out.certified = r.certified;
+  out.lower_bound = r.lower_bound;
+  if (!r.colliding) return out;
+  out.belongs = true;
+  take_values(r, out);
+
+  if (question.contacts) {
+    const auto signed_distance = [&](Method m) {
+      QueryOptions o = options;
+      o.method = m;
+      return finish_result(pair, solve(pair, o, Goal::signed_distance, next), m,
+                           Goal::signed_distance);
+    };
+    DistanceResult contact = signed_distance(method);
+    if (!contact.certified && question.escalate && method != Method::exact) {
+      contact = signed_distance(Method::exact);
+      out.settled = Settled::escalated;
+    }
+    out.certified = out.certified && contact.certified;
+    take_values(contact, out);
+    if (contact.direction.squaredNorm() > 0) {
+      std::vector<Vector3> points;
+      contact_points(pair, contact.direction, kContactFeatureTolerance * pair.frame.size,
+                     question.max_points, points);
+      for (const Vector3& p : points) out.points.push_back(pair.frame.point_to_world(p));
+    } else {
+      out.points.push_back(contact.point_a / 2 + contact.point_b / 2);
+    }
+  } else if (question.distance && !value_settled) {
+    Answer measured = solve(pair, options, Goal::distance, next);
+    if (question.warm) remember(pair, measured, proof);
+    const DistanceResult d = finish_result(pair, std::move(measured), method, Goal::distance);
+    out.certified = out.certified && d.certified;
+    take_values(d, out);
+  }
+  return out;
+}
+
+}  // namespace swarmcollide::detail
