@@ -111,24 +111,8 @@ PairAnswer answer_pair(const PlacedBody& a, const PlacedBody& b, PairProof& proo
   const Method method = options.method;
   PairAnswer out;
 
-  std::optional<DualStart> start;
-  if (question.warm && proof.kind == PairProof::Kind::separating) {
-    const PairProof::Separating& cached = proof.separating;
-    const Vector3 local(cached.direction[0], cached.direction[1], cached.direction[2]);
-    const Vector3 n = (pair.a.rotated() ? Vector3(pair.a.rotation() * local) : local).normalized();
-    int ia = cached.support_a;
-    int ib = cached.support_b;
-    const Scalar s = separation(pair.a, pair.b, n, ia, ib);
-    proof.separating.support_a = ia;
-    proof.separating.support_b = ib;
-    if (verdict_proven(gate, s, kInfinity, false)) {
-      out.settled = Settled::warm_rejected;
-      out.certified = true;
-      out.lower_bound = pair.frame.length_to_world(s);
-      return out;
-    }
-    start = DualStart{n, ia, ib};
-  } else if (question.warm && proof.kind == PairProof::Kind::enclosing && !question.contacts) {
+  // A cached simplex that still encloses the origin proves contact (contacts need the depth).
+  if (question.warm && proof.kind == PairProof::Kind::enclosing && !question.contacts) {
     if (std::optional<Answer> common = enclosed(pair, proof.enclosing)) {
       const DistanceResult r = finish_result(gate, std::move(*common), method,
                                              question.distance ? Goal::distance : Goal::verdict);
@@ -139,12 +123,44 @@ PairAnswer answer_pair(const PlacedBody& a, const PlacedBody& b, PairProof& proo
       return out;
     }
   }
+  // The direction to try next: the cached one, else the line between the centres. Either
+  // settles most pairs apart in two support evaluations; otherwise the solver starts from it.
+  const bool cached = question.warm && proof.kind == PairProof::Kind::separating;
+  Vector3 n;
+  int ia = -1;
+  int ib = -1;
+  if (cached) {
+    const PairProof::Separating& last = proof.separating;
+    const Vector3 local(last.direction[0], last.direction[1], last.direction[2]);
+    n = (pair.a.rotated() ? Vector3(pair.a.rotation() * local) : local).normalized();
+    ia = last.support_a;
+    ib = last.support_b;
+  } else {
+    const Vector3 between = pair.b.offset() - pair.a.offset();
+    n = between.norm() > 0 ? Vector3(between.normalized()) : Vector3::UnitX();
+  }
+  const Scalar s = separation(pair.a, pair.b, n, ia, ib);
+  if (cached) {
+    proof.separating.support_a = ia;
+    proof.separating.support_b = ib;
+  }
+  if (verdict_proven(gate, s, kInfinity, false)) {
+    out.settled = cached ? Settled::warm_rejected : Settled::screened;
+    out.certified = true;
+    out.lower_bound = pair.frame.length_to_world(s);
+    if (question.warm && !cached) {
+      const Vector3 local = pair.a.local_direction(n);
+      proof.kind = PairProof::Kind::separating;
+      proof.separating = {{local.x(), local.y(), local.z()}, ia, ib};
+    }
+    return out;
+  }
 
   // The verdict, as Query::collision decides it (methods without distances decide by their
   // signed distance), then escalated when unproven.
   const Goal verdict =
       method_info(method).capabilities & kDistance ? Goal::verdict : Goal::signed_distance;
-  Answer answer = solve(gate, options, verdict, start);
+  Answer answer = solve(gate, options, verdict, DualStart{n, ia, ib});
   if (question.warm) remember(pair, answer, proof);
   const bool value_settled =
       goal_reached(pair, Goal::distance, answer.lower, answer.upper, answer.intersection_proven);

@@ -28,6 +28,8 @@ struct PairQuestion {
 
 /// How a pair was settled.
 enum class Settled : unsigned char {
+  /// By the separation along the line between the bodies' centres (no proof was cached).
+  screened,
   /// By re-evaluating a cached separating direction.
   warm_rejected,
   /// By re-evaluating a cached enclosing simplex.

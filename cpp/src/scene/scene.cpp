@@ -170,7 +170,8 @@ struct Scene::Impl {
 
   bool pairable(const SceneBody& a, const SceneBody& b) const {
     return &a != &b && a.filter.pairs_with(b.filter) &&
-           excluded.count(detail::pair_key(std::min(a.id, b.id), std::max(a.id, b.id))) == 0;
+           (excluded.empty() ||
+            excluded.count(detail::pair_key(std::min(a.id, b.id), std::max(a.id, b.id))) == 0);
   }
 
   void add_candidate(const SceneBody* a, const SceneBody* b) {
@@ -249,6 +250,7 @@ struct Scene::Impl {
     stats.candidates = n;
     for (std::size_t i = 0; i < n; ++i) {
       const PairAnswer& a = answers[i];
+      stats.screened += a.settled == detail::Settled::screened;
       stats.warm_rejected += a.settled == detail::Settled::warm_rejected;
       stats.warm_proven += a.settled == detail::Settled::warm_proven;
       stats.solved +=

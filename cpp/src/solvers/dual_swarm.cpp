@@ -45,9 +45,12 @@ class DualSearch {
     hint_a_ = ia;
     hint_b_ = ib;
     history_.push_back(bounds_.upper().distance);
+    // A given start that no longer separates the bodies (a scene's pair that moved into
+    // contact) points at an overlap: a common point proves it without the finish.
+    if (start_ != nullptr) try_common_point();
     // Between well-separated bodies the features along the centres' direction are often the
     // optimal ones already, and the swarm has nothing left to do.
-    finish_.from(centre, hint_a_, hint_b_, bounds_, goal_);
+    if (!reached()) finish_.from(centre, hint_a_, hint_b_, bounds_, goal_);
     if (!reached()) try_common_point();
     Scalar radius = kPi / 2;
     Vector3 round_centre = bounds_.normal();

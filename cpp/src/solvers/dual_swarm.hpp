@@ -31,8 +31,11 @@ struct DualStart {
 
 /// `solve_dual` started from `start` instead of the direction between the bodies' centres. A
 /// scene passes the direction that separated (or nearly separated) the pair in the previous
-/// frame: after a small motion the finish from it usually settles the pair at once. Only the
-/// start differs; the search, its bounds and the verdicts made of them are `solve_dual`'s.
+/// frame, or the centres' direction that it found not to separate them: after a small motion the
+/// finish from it usually settles the pair at once. When `start` does not separate the bodies by
+/// more than the tolerance, the common point is sought first (the bodies have likely moved into
+/// contact, and it proves that without the finish). Otherwise the search, its bounds and the
+/// verdicts made of them are `solve_dual`'s.
 Answer solve_dual(const FramedPair& pair, const QueryOptions& options, Goal goal,
                   const DualStart& start);
 

@@ -57,11 +57,14 @@ struct ContactResult : SceneResult {
 struct SceneStats {
   /// Pairs the broadphase returned that passed the filters.
   std::size_t candidates = 0;
+  /// Candidates found apart by the separation along the line between their centres, before any
+  /// solver (those without a cached proof are tried so first).
+  std::size_t screened = 0;
   /// Candidates settled by re-evaluating what an earlier query proved: rejected by a cached
   /// separating direction, or proven in contact by a cached simplex.
   std::size_t warm_rejected = 0;
   std::size_t warm_proven = 0;
-  /// Candidates handed to the method's solver (the others were settled warm).
+  /// Candidates handed to the method's solver (the others were screened or settled warm).
   std::size_t solved = 0;
   /// Verdicts the method could not prove, handed to the exact method.
   std::size_t escalations = 0;
