@@ -80,22 +80,26 @@ Pose to_pose(const py::handle& pose, const char* name) {
   if (py::isinstance<py::tuple>(pose) || py::isinstance<py::list>(pose)) {
     const py::sequence parts = py::reinterpret_borrow<py::sequence>(pose);
     if (parts.size() != 2) {
-      throw py::value_error(arg + " must be a (4, 4) matrix or a pair (rotation, translation), "
-                                  "got a sequence of " + std::to_string(parts.size()) + " items");
+      throw py::value_error(arg +
+                            " must be a (4, 4) matrix or a pair (rotation, translation), "
+                            "got a sequence of " +
+                            std::to_string(parts.size()) + " items");
     }
     const auto rotation =
         real_array(parts[0], {3, 3}, arg + "'s rotation", "a (3, 3) rotation matrix");
     const auto translation =
         real_array(parts[1], {3}, arg + "'s translation", "a (3,) translation");
-    result.rotation = Eigen::Map<const Eigen::Matrix<Scalar, 3, 3, Eigen::RowMajor>>(rotation.data());
+    result.rotation =
+        Eigen::Map<const Eigen::Matrix<Scalar, 3, 3, Eigen::RowMajor>>(rotation.data());
     result.translation = Eigen::Map<const Vector3>(translation.data());
   } else {
-    const auto matrix = real_array(pose, {4, 4}, arg,
-                                   "a (4, 4) homogeneous transform or a pair (rotation, translation)");
+    const auto matrix = real_array(
+        pose, {4, 4}, arg, "a (4, 4) homogeneous transform or a pair (rotation, translation)");
     const Eigen::Map<const Eigen::Matrix<Scalar, 4, 4, Eigen::RowMajor>> m(matrix.data());
     if (!(m.row(3) == Eigen::RowVector4d(0, 0, 0, 1))) {
-      throw py::value_error(arg + " must be a homogeneous rigid transform: its last row must be "
-                                  "[0, 0, 0, 1]");
+      throw py::value_error(arg +
+                            " must be a homogeneous rigid transform: its last row must be "
+                            "[0, 0, 0, 1]");
     }
     result.rotation = m.topLeftCorner<3, 3>();
     result.translation = m.topRightCorner<3, 1>();
@@ -104,6 +108,79 @@ Pose to_pose(const py::handle& pose, const char* name) {
     validate_pose(result, name);
   } catch (const std::invalid_argument& error) {
     throw py::value_error(error.what());
+  }
+  return result;
+}
+
+namespace {
+
+using RowMatrix3 = Eigen::Matrix<Scalar, 3, 3, Eigen::RowMajor>;
+using RowMatrix4 = Eigen::Matrix<Scalar, 4, 4, Eigen::RowMajor>;
+
+// A pair (rotations, translations) rather than one array of transforms.
+bool is_pose_pair(const py::handle& poses) {
+  if (!py::isinstance<py::tuple>(poses) && !py::isinstance<py::list>(poses)) return false;
+  const py::sequence parts = py::reinterpret_borrow<py::sequence>(poses);
+  if (parts.size() != 2) return false;
+  const py::array first = py::module_::import("numpy").attr("asarray")(parts[0]);
+  return first.ndim() >= 2 && first.shape(first.ndim() - 1) == 3 &&
+         first.shape(first.ndim() - 2) == 3;
+}
+
+void check_pose(const Pose& pose, const std::string& name) {
+  try {
+    validate_pose(pose, name.c_str());
+  } catch (const std::invalid_argument& error) {
+    throw py::value_error(error.what());
+  }
+}
+
+}  // namespace
+
+std::vector<Pose> to_poses(const py::handle& poses, std::size_t count, const char* name) {
+  std::vector<Pose> result;
+  if (poses.is_none()) return result;
+  const std::string arg(name);
+  const auto n = static_cast<py::ssize_t>(count);
+  const std::string shapes =
+      count == 1
+          ? "a (4, 4) transform, a (1, 4, 4) array of them or a pair "
+            "(rotation, translation)"
+          : "a (" + std::to_string(count) + ", 4, 4) array of transforms or a pair (rotations (" +
+                std::to_string(count) + ", 3, 3), translations (" + std::to_string(count) + ", 3))";
+  result.resize(count);
+  if (is_pose_pair(poses)) {
+    const py::sequence parts = py::reinterpret_borrow<py::sequence>(poses);
+    const py::array first = py::module_::import("numpy").attr("asarray")(parts[0]);
+    const bool single = count == 1 && first.ndim() == 2;
+    const auto rotations =
+        single ? real_array(parts[0], {3, 3}, arg + "'s rotation", "a (3, 3) rotation")
+               : real_array(parts[0], {n, 3, 3}, arg + "'s rotations", shapes);
+    const auto translations =
+        single ? real_array(parts[1], {3}, arg + "'s translation", "a (3,) translation")
+               : real_array(parts[1], {n, 3}, arg + "'s translations", shapes);
+    for (std::size_t i = 0; i < count; ++i) {
+      result[i].rotation = Eigen::Map<const RowMatrix3>(rotations.data() + 9 * i);
+      result[i].translation = Eigen::Map<const Vector3>(translations.data() + 3 * i);
+    }
+  } else {
+    const py::array raw = py::module_::import("numpy").attr("asarray")(poses);
+    const bool single = count == 1 && raw.ndim() == 2;
+    const auto matrices =
+        single ? real_array(poses, {4, 4}, arg, shapes) : real_array(poses, {n, 4, 4}, arg, shapes);
+    for (std::size_t i = 0; i < count; ++i) {
+      const Eigen::Map<const RowMatrix4> m(matrices.data() + 16 * i);
+      if (!(m.row(3) == Eigen::RowVector4d(0, 0, 0, 1))) {
+        throw py::value_error(arg + "[" + std::to_string(i) +
+                              "] must be a homogeneous rigid transform: its last row must be "
+                              "[0, 0, 0, 1]");
+      }
+      result[i].rotation = m.topLeftCorner<3, 3>();
+      result[i].translation = m.topRightCorner<3, 1>();
+    }
+  }
+  for (std::size_t i = 0; i < count; ++i) {
+    check_pose(result[i], arg + "[" + std::to_string(i) + "]");
   }
   return result;
 }

@@ -1,11 +1,11 @@
 """
-swarmcollide's C++ core: convex polyhedra, model (2) and its solvers.
+swarmcollide's C++ core: convex polyhedra, model (2), its solvers, queries and scenes.
 """
 from __future__ import annotations
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['Aabb', 'BatchResult', 'ConstraintHandling', 'ConvexPolyhedron', 'DistanceOptions', 'DistanceResult', 'DualOptions', 'ExactOptions', 'Hull', 'InertiaStrategy', 'ParticleCoefficients', 'PenaltyOptions', 'PenetrationAlgorithm', 'SwarmOptions', 'as_polyhedron', 'collide', 'collide_many', 'collision', 'constraint_violation', 'distance', 'distance_many', 'is_feasible', 'linear_decreasing_inertia', 'objective', 'pair_seed', 'project_onto_simplex', 'rank_adaptive_coefficients', 'separation', 'signed_distance']
+__all__: list[str] = ['Aabb', 'BatchResult', 'ContactResult', 'ConvexPolyhedron', 'DistanceResult', 'Hull', 'ParticleCoefficients', 'Query', 'Scene', 'SceneResult', 'SceneStats', 'as_polyhedron', 'broadphases', 'constraint_violation', 'is_feasible', 'linear_decreasing_inertia', 'method_table', 'objective', 'pair_seed', 'project_onto_simplex', 'rank_adaptive_coefficients', 'separation']
 class Aabb:
     """
     An axis-aligned bounding box with corners ``min`` and ``max``.
@@ -26,7 +26,7 @@ class BatchResult:
     Attributes
     ----------
     distance, lower_bound : numpy.ndarray, shape (m,)
-    point_a, point_b : numpy.ndarray, shape (m, 3)
+    point_a, point_b, direction : numpy.ndarray, shape (m, 3)
     colliding, certified, escalated : numpy.ndarray of bool, shape (m,)
     iterations : numpy.ndarray of int, shape (m,)
     """
@@ -39,6 +39,9 @@ class BatchResult:
         ...
     @property
     def colliding(self) -> typing.Annotated[numpy.typing.NDArray[numpy.bool], "[m, 1]"]:
+        ...
+    @property
+    def direction(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
         ...
     @property
     def distance(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
@@ -58,52 +61,37 @@ class BatchResult:
     @property
     def point_b(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
         ...
-class ConstraintHandling:
+class ContactResult(SceneResult):
     """
-    How particles meet the constraints of model (2).
     
-    Members:
+    The contacts of every pair in contact: a SceneResult whose ``distance`` is the certified signed
+    distance (negative: the penetration depth) and ``normal`` the contact normal from A to B, with
+    each pair's contact points.
     
-      feasibility
-    
-      projection
+    Attributes
+    ----------
+    counts : numpy.ndarray of int, shape (m,)
+        Contact points of each pair (1 to ``max_points``).
+    points : numpy.ndarray, shape (p, 3)
+        All contact points, pair by pair, halfway between the two supporting planes.
+    point_pair : numpy.ndarray of int64, shape (p,)
+        Row in ``pairs`` of each contact point.
+    offsets : numpy.ndarray of int64, shape (m,)
+        Index in ``points`` of each pair's first contact point.
     """
-    __members__: typing.ClassVar[dict[str, ConstraintHandling]]  # value = {'feasibility': <ConstraintHandling.feasibility: 0>, 'projection': <ConstraintHandling.projection: 1>}
-    feasibility: typing.ClassVar[ConstraintHandling]  # value = <ConstraintHandling.feasibility: 0>
-    projection: typing.ClassVar[ConstraintHandling]  # value = <ConstraintHandling.projection: 1>
-    @typing.overload
-    def __eq__(self, other: ConstraintHandling) -> bool:
-        ...
-    @typing.overload
-    def __eq__(self, other: typing.Any) -> bool:
-        ...
-    def __getstate__(self) -> int:
-        ...
-    def __hash__(self) -> int:
-        ...
-    def __index__(self) -> int:
-        ...
-    def __init__(self, value: typing.SupportsInt | typing.SupportsIndex) -> None:
-        ...
-    def __int__(self) -> int:
-        ...
-    @typing.overload
-    def __ne__(self, other: ConstraintHandling) -> bool:
-        ...
-    @typing.overload
-    def __ne__(self, other: typing.Any) -> bool:
-        ...
     def __repr__(self) -> str:
         ...
-    def __setstate__(self, state: typing.SupportsInt | typing.SupportsIndex) -> None:
-        ...
-    def __str__(self) -> str:
+    @property
+    def counts(self) -> typing.Annotated[numpy.typing.NDArray[numpy.int32], "[m, 1]"]:
         ...
     @property
-    def name(self) -> str:
+    def offsets(self) -> typing.Annotated[numpy.typing.NDArray[numpy.int64], "[m, 1]"]:
         ...
     @property
-    def value(self) -> int:
+    def point_pair(self) -> typing.Annotated[numpy.typing.NDArray[numpy.int64], "[m, 1]"]:
+        ...
+    @property
+    def points(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
         ...
 class ConvexPolyhedron:
     """
@@ -152,54 +140,52 @@ class ConvexPolyhedron:
         Index of the point farthest along ``direction`` (first on ties).
         """
     @property
+    def radius(self) -> float:
+        """
+        Half the diagonal of the bounding box: every point lies within it of the box's centre.
+        """
+    @property
     def vertices(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
         """
         The ``(n, 3)`` points the body was built from (read-only).
         """
-class DistanceOptions:
-    """
-    A method and the parameters of its solver.
-    """
-    dual: DualOptions
-    exact: ExactOptions
-    method: str
-    penalty: PenaltyOptions
-    swarm: SwarmOptions
-    def __init__(self) -> None:
-        ...
 class DistanceResult:
     """
     
-    The answer of every distance query, whatever the method.
+    The answer of every query, whatever the method, in the units of the input.
     
-    ``lower_bound <= true distance <= distance`` always holds: ``distance`` is achieved by the witness
-    points ``point_a`` and ``point_b`` (convex combinations of the bodies' points with ``weights_a``
-    and ``weights_b``), and ``lower_bound`` is the separation along ``direction``.
+    ``lower_bound <= true value <= distance`` always holds (up to rounding, about 1e-14 of the pair's
+    size): ``distance`` is achieved by the witness points ``point_a`` and ``point_b`` (convex
+    combinations of the bodies' points with ``weights_a`` and ``weights_b``), and ``lower_bound`` is
+    the separation along ``direction``. For signed distances the true value is minus the penetration
+    depth when the bodies overlap, and ``point_b - point_a = distance * direction``.
     """
     def __repr__(self) -> str:
         ...
     @property
     def certified(self) -> bool:
         """
-        True when the bounds prove the verdict.
+        True when the bounds prove the verdict (and, for signed distances, the value to within the tolerance).
         """
     @property
     def colliding(self) -> bool:
-        ...
+        """
+        True when the bodies are within the tolerance of each other.
+        """
     @property
     def direction(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
         """
-        Unit direction certifying ``lower_bound`` (zero if none separates).
+        Unit direction from A to B certifying ``lower_bound`` (zero if none).
         """
     @property
     def distance(self) -> float:
         """
-        Upper bound on the distance, achieved by the witness points.
+        Upper bound on the distance (signed distance), achieved by the witnesses.
         """
     @property
-    def escalated_from(self) -> str:
+    def escalated_from(self) -> typing.Any:
         """
-        The method whose unproven collision verdict was handed to ``method`` (empty if none).
+        The method asked for, when another one answered (None otherwise).
         """
     @property
     def evaluations(self) -> int:
@@ -212,7 +198,7 @@ class DistanceResult:
     @property
     def history(self) -> numpy.typing.NDArray[numpy.float64]:
         """
-        Best distance after initialisation and after each iteration.
+        Best upper bound after initialisation and after each iteration.
         """
     @property
     def iterations(self) -> int:
@@ -220,7 +206,7 @@ class DistanceResult:
     @property
     def lower_bound(self) -> float:
         """
-        Lower bound on the distance, certified by ``direction``.
+        Lower bound on the distance (signed distance), certified by ``direction``.
         """
     @property
     def method(self) -> str:
@@ -240,122 +226,18 @@ class DistanceResult:
     @property
     def status(self) -> str:
         """
-        'converged', 'max_iterations' or 'exact'.
+        'converged' (the bounds are within the tolerance, or contact is proven) or 'max_iterations'.
         """
     @property
     def weights_a(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
         """
-        lambda of model (2): nonnegative, summing to one.
+        lambda of model (2): nonnegative, summing to one (built when read).
         """
     @property
     def weights_b(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
         """
-        delta of model (2): nonnegative, summing to one.
+        delta of model (2): nonnegative, summing to one (built when read).
         """
-class DualOptions:
-    """
-    
-    Parameters of the dual swarm (method ``"dual"``): the paper's rank-adaptive swarm over unit
-    directions, with an exact finish on the supporting features.
-    
-    ``tolerance`` is absolute; 0 (the default) means ``relative_tolerance`` times the bodies' size.
-    ``feature_tolerance`` is relative to the bodies' size.
-    """
-    def __init__(self) -> None:
-        ...
-    def validate(self) -> None:
-        """
-        Raise ValueError naming the first invalid parameter.
-        """
-    @property
-    def feature_tolerance(self) -> float:
-        ...
-    @feature_tolerance.setter
-    def feature_tolerance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
-    @property
-    def max_iterations(self) -> int:
-        ...
-    @max_iterations.setter
-    def max_iterations(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
-        ...
-    @property
-    def max_rounds(self) -> int:
-        ...
-    @max_rounds.setter
-    def max_rounds(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
-        ...
-    @property
-    def relative_tolerance(self) -> float:
-        ...
-    @relative_tolerance.setter
-    def relative_tolerance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
-    @property
-    def seed(self) -> int:
-        ...
-    @seed.setter
-    def seed(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
-        ...
-    @property
-    def swarm_size(self) -> int:
-        ...
-    @swarm_size.setter
-    def swarm_size(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
-        ...
-    @property
-    def tolerance(self) -> float:
-        ...
-    @tolerance.setter
-    def tolerance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
-    @property
-    def w_max(self) -> float:
-        ...
-    @w_max.setter
-    def w_max(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
-    @property
-    def w_min(self) -> float:
-        ...
-    @w_min.setter
-    def w_min(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
-class ExactOptions:
-    """
-    Parameters of the exact reference methods.
-    """
-    penetration: PenetrationAlgorithm
-    def __init__(self) -> None:
-        ...
-    def validate(self) -> None:
-        """
-        Raise ValueError naming the first invalid parameter.
-        """
-    @property
-    def distance_tolerance(self) -> float:
-        ...
-    @distance_tolerance.setter
-    def distance_tolerance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
-    @property
-    def max_iterations(self) -> int:
-        ...
-    @max_iterations.setter
-    def max_iterations(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
-        ...
-    @property
-    def penetration_tolerance(self) -> float:
-        ...
-    @penetration_tolerance.setter
-    def penetration_tolerance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
-    @property
-    def tolerance(self) -> float:
-        ...
-    @tolerance.setter
-    def tolerance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
 class Hull:
     """
     
@@ -382,54 +264,10 @@ class Hull:
     @property
     def vertex_indices(self) -> numpy.typing.NDArray[numpy.int32]:
         ...
-class InertiaStrategy:
-    """
-    How inertia and acceleration are chosen: rank-adaptive (8)-(9) or linearly decreasing (7).
-    
-    Members:
-    
-      rank_adaptive
-    
-      linear_decreasing
-    """
-    __members__: typing.ClassVar[dict[str, InertiaStrategy]]  # value = {'rank_adaptive': <InertiaStrategy.rank_adaptive: 0>, 'linear_decreasing': <InertiaStrategy.linear_decreasing: 1>}
-    linear_decreasing: typing.ClassVar[InertiaStrategy]  # value = <InertiaStrategy.linear_decreasing: 1>
-    rank_adaptive: typing.ClassVar[InertiaStrategy]  # value = <InertiaStrategy.rank_adaptive: 0>
-    @typing.overload
-    def __eq__(self, other: InertiaStrategy) -> bool:
-        ...
-    @typing.overload
-    def __eq__(self, other: typing.Any) -> bool:
-        ...
-    def __getstate__(self) -> int:
-        ...
-    def __hash__(self) -> int:
-        ...
-    def __index__(self) -> int:
-        ...
-    def __init__(self, value: typing.SupportsInt | typing.SupportsIndex) -> None:
-        ...
-    def __int__(self) -> int:
-        ...
-    @typing.overload
-    def __ne__(self, other: InertiaStrategy) -> bool:
-        ...
-    @typing.overload
-    def __ne__(self, other: typing.Any) -> bool:
-        ...
-    def __repr__(self) -> str:
-        ...
-    def __setstate__(self, state: typing.SupportsInt | typing.SupportsIndex) -> None:
-        ...
-    def __str__(self) -> str:
-        ...
-    @property
-    def name(self) -> str:
-        ...
-    @property
-    def value(self) -> int:
-        ...
 class ParticleCoefficients:
+    """
+    Inertia weight ``w`` and accelerations ``c1``, ``c2`` of one particle.
+    """
     def __repr__(self) -> str:
         ...
     @property
@@ -441,164 +279,316 @@ class ParticleCoefficients:
     @property
     def w(self) -> float:
         ...
-class PenaltyOptions:
+class Query:
     """
-    Parameters of the exterior quadratic penalty baseline.
+    
+    A method with its parameters, validated once, that answers queries between pairs of bodies.
+    
+    Every query computes in a frame centred on the pair and scaled to its size, so answers scale with
+    the unit of length. ``tolerance`` is relative to the pair's size (the diameter of a ball around
+    both bodies): it is the precision of every answer and the distance below which bodies collide.
     """
-    def __init__(self) -> None:
+    def __init__(self, method: str = 'dual', tolerance: typing.Any = 1e-09, seed: typing.Any = 0, **kwargs) -> None:
         ...
-    def validate(self) -> None:
+    def __repr__(self) -> str:
+        ...
+    def collide(self, a: typing.Any, b: typing.Any, pose_a: typing.Any = None, pose_b: typing.Any = None, escalate: bool = True) -> bool:
+        ...
+    def collide_many(self, As: typing.Any, Bs: typing.Any, threads: typing.Any = None, first_index: typing.Any = 0, escalate: bool = True, poses_a: typing.Any = None, poses_b: typing.Any = None) -> BatchResult:
         """
-        Raise ValueError naming the first invalid parameter.
+        The query for every pair ``(As[i], Bs[i])``, in C++ threads without the GIL.
+        
+        Pair i is seeded with ``pair_seed(seed, first_index + i)``, so answers do not depend on the
+        number of threads or on how a batch is split. ``As`` and ``Bs`` are sequences of polyhedra or
+        ``(n, 3)`` arrays, or ``(m, n, 3)`` arrays (the fastest: each pair's bodies are then built and
+        freed by the thread that answers it). ``poses_a`` and ``poses_b`` place them: None (the identity),
+        an ``(m, 4, 4)`` array of rigid transforms or a pair ``(rotations (m, 3, 3), translations (m, 3))``.
+        """
+    def collision(self, a: typing.Any, b: typing.Any, pose_a: typing.Any = None, pose_b: typing.Any = None, escalate: bool = True) -> DistanceResult:
+        ...
+    def distance(self, a: typing.Any, b: typing.Any, pose_a: typing.Any = None, pose_b: typing.Any = None) -> DistanceResult:
+        ...
+    def distance_many(self, As: typing.Any, Bs: typing.Any, threads: typing.Any = None, first_index: typing.Any = 0, poses_a: typing.Any = None, poses_b: typing.Any = None) -> BatchResult:
+        """
+        The query for every pair ``(As[i], Bs[i])``, in C++ threads without the GIL.
+        
+        Pair i is seeded with ``pair_seed(seed, first_index + i)``, so answers do not depend on the
+        number of threads or on how a batch is split. ``As`` and ``Bs`` are sequences of polyhedra or
+        ``(n, 3)`` arrays, or ``(m, n, 3)`` arrays (the fastest: each pair's bodies are then built and
+        freed by the thread that answers it). ``poses_a`` and ``poses_b`` place them: None (the identity),
+        an ``(m, 4, 4)`` array of rigid transforms or a pair ``(rotations (m, 3, 3), translations (m, 3))``.
+        """
+    def signed_distance(self, a: typing.Any, b: typing.Any, pose_a: typing.Any = None, pose_b: typing.Any = None) -> DistanceResult:
+        ...
+    def signed_distance_many(self, As: typing.Any, Bs: typing.Any, threads: typing.Any = None, first_index: typing.Any = 0, poses_a: typing.Any = None, poses_b: typing.Any = None) -> BatchResult:
+        """
+        The query for every pair ``(As[i], Bs[i])``, in C++ threads without the GIL.
+        
+        Pair i is seeded with ``pair_seed(seed, first_index + i)``, so answers do not depend on the
+        number of threads or on how a batch is split. ``As`` and ``Bs`` are sequences of polyhedra or
+        ``(n, 3)`` arrays, or ``(m, n, 3)`` arrays (the fastest: each pair's bodies are then built and
+        freed by the thread that answers it). ``poses_a`` and ``poses_b`` place them: None (the identity),
+        an ``(m, 4, 4)`` array of rigid transforms or a pair ``(rotations (m, 3, 3), translations (m, 3))``.
         """
     @property
-    def growth_factor(self) -> float:
-        ...
-    @growth_factor.setter
-    def growth_factor(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def method(self) -> str:
         ...
     @property
-    def initial_weight(self) -> float:
-        ...
-    @initial_weight.setter
-    def initial_weight(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
+    def parameters(self) -> dict:
+        """
+        The method's parameters and their values.
+        """
     @property
-    def inner_iterations(self) -> int:
-        ...
-    @inner_iterations.setter
-    def inner_iterations(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
-        ...
-    @property
-    def outer_iterations(self) -> int:
-        ...
-    @outer_iterations.setter
-    def outer_iterations(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+    def seed(self) -> int:
         ...
     @property
     def tolerance(self) -> float:
         ...
-    @tolerance.setter
-    def tolerance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
-class PenetrationAlgorithm:
+class Scene:
     """
-    libccd's penetration routine: EPA or MPR.
     
-    Members:
+    Many convex bodies, each defined once in its own frame and placed by a pose, and the queries
+    about all their pairs.
     
-      epa
+    FCL's broadphase manager, given tight boxes from the bodies' support functions, collects the
+    candidate pairs; the narrowphase (``method``, certified as ``Query.collision`` is) answers them
+    in C++ threads without the GIL. With ``warm_start``, each candidate pair keeps what the last
+    query proved (a separating direction and its support points in the bodies' own frames, or a
+    simplex enclosing the origin) and the next query tries it first; a pair's proof is dropped when
+    the broadphase stops returning it. Without, every answer is computed from scratch and depends only
+    on the bodies, their poses and ``seed``.
     
-      mpr
+    Parameters
+    ----------
+    method : str
+        The narrowphase's method (see ``METHODS``); ``"dual"`` by default.
+    broadphase : str
+        FCL's manager: ``"dynamic_aabb_tree"`` (default), ``"dynamic_aabb_tree_array"``, ``"sap"``,
+        ``"ssap"``, ``"interval_tree"``, ``"spatial_hashing"`` or ``"brute_force"``. Answers do not
+        depend on it.
+    threads : int, optional
+        Narrowphase threads, the caller's included; None uses one per hardware thread.
+    tolerance : float
+        Precision and contact threshold, relative to each pair's size (at most 0.1).
+    seed : int
+        Pair ``(i, j)`` is seeded with ``pair_seed(seed, (i << 32) | j)``.
+    warm_start : bool
+        Start each query from what the last one proved.
+    escalate : bool
+        Hand verdicts the method cannot prove to the exact method.
+    **parameters
+        Solver parameters of ``method``.
+    
+    Examples
+    --------
+    >>> import numpy as np, swarmcollide as sc
+    >>> cube = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)], dtype=float)
+    >>> scene = sc.Scene()
+    >>> scene.add(np.stack([cube, cube, cube]), poses=np.stack([np.eye(4)] * 3)).tolist()
+    [0, 1, 2]
+    >>> moved = np.eye(4)
+    >>> moved[:3, 3] = [0.5, 0, 0]
+    >>> scene.set_poses(1, moved)
+    >>> moved[:3, 3] = [3, 0, 0]
+    >>> scene.set_poses(2, moved)
+    >>> scene.colliding_pairs().pairs.tolist()
+    [[0, 1]]
+    >>> r = scene.pairs_within(1.6)
+    >>> r.pairs.tolist(), r.distance.round(9).tolist()
+    ([[0, 1], [1, 2]], [0.0, 1.5])
+    >>> c = scene.contacts()
+    >>> c.normal.round(9).tolist(), c.counts.tolist()
+    ([[1.0, 0.0, 0.0]], [4])
     """
-    __members__: typing.ClassVar[dict[str, PenetrationAlgorithm]]  # value = {'epa': <PenetrationAlgorithm.epa: 0>, 'mpr': <PenetrationAlgorithm.mpr: 1>}
-    epa: typing.ClassVar[PenetrationAlgorithm]  # value = <PenetrationAlgorithm.epa: 0>
-    mpr: typing.ClassVar[PenetrationAlgorithm]  # value = <PenetrationAlgorithm.mpr: 1>
-    @typing.overload
-    def __eq__(self, other: PenetrationAlgorithm) -> bool:
+    def __contains__(self, arg0: typing.Any) -> bool:
         ...
-    @typing.overload
-    def __eq__(self, other: typing.Any) -> bool:
+    def __init__(self, method: str = 'dual', broadphase: str = 'dynamic_aabb_tree', threads: typing.Any = None, tolerance: typing.Any = 1e-09, seed: typing.Any = 0, warm_start: bool = True, escalate: bool = True, **kwargs) -> None:
         ...
-    def __getstate__(self) -> int:
-        ...
-    def __hash__(self) -> int:
-        ...
-    def __index__(self) -> int:
-        ...
-    def __init__(self, value: typing.SupportsInt | typing.SupportsIndex) -> None:
-        ...
-    def __int__(self) -> int:
-        ...
-    @typing.overload
-    def __ne__(self, other: PenetrationAlgorithm) -> bool:
-        ...
-    @typing.overload
-    def __ne__(self, other: typing.Any) -> bool:
+    def __len__(self) -> int:
         ...
     def __repr__(self) -> str:
         ...
-    def __setstate__(self, state: typing.SupportsInt | typing.SupportsIndex) -> None:
-        ...
-    def __str__(self) -> str:
-        ...
-    @property
-    def name(self) -> str:
-        ...
-    @property
-    def value(self) -> int:
-        ...
-class SwarmOptions:
-    """
-    Parameters of the swarm solvers; defaults are the paper's.
-    """
-    constraint_handling: ConstraintHandling
-    inertia: InertiaStrategy
-    def __init__(self) -> None:
-        ...
-    def validate(self) -> None:
+    def add(self, bodies: typing.Any, poses: typing.Any = None, group: typing.Any = 1, mask: typing.Any = 4294967295) -> numpy.typing.NDArray[numpy.int64]:
         """
-        Raise ValueError naming the first invalid parameter.
+        Add one body (a ConvexPolyhedron or ``(n, 3)`` points) or many (a sequence of them or an
+        ``(m, n, 3)`` array) at ``poses``; return their ids (never reused).
+        
+        ``poses`` is None (the identity), an ``(m, 4, 4)`` array of rigid transforms or a pair
+        ``(rotations (m, 3, 3), translations (m, 3))``; one body also takes a single ``(4, 4)`` transform.
+        Bodies A and B are paired when ``A.group & B.mask`` and ``B.group & A.mask`` are both nonzero.
+        """
+    def body(self, id: typing.SupportsInt | typing.SupportsIndex) -> ConvexPolyhedron:
+        """
+        The body with this id, in its own frame.
+        """
+    def colliding_pairs(self) -> SceneResult:
+        """
+        Every pair in contact (within the tolerance of each other), certified.
+        """
+    def contacts(self, max_points: typing.SupportsInt | typing.SupportsIndex = 4) -> ContactResult:
+        """
+        Every pair in contact with its certified signed distance, contact normal (from A to B) and up to
+        ``max_points`` contact points, from clipping the two supporting features along the normal
+        against each other: a box resting on a face gives its four corners.
+        """
+    def exclude(self, pairs: typing.Any) -> None:
+        """
+        Never pair the bodies of each pair (one pair or an (m, 2) array).
+        """
+    def include(self, pairs: typing.Any) -> None:
+        """
+        Pair again the bodies of excluded pairs.
+        """
+    def min_distance(self) -> SceneResult:
+        """
+        The pair at the smallest distance (one row; none for fewer than two pairable bodies).
+        """
+    def nearest(self, ids: typing.Any, k: typing.SupportsInt | typing.SupportsIndex = 1) -> SceneResult:
+        """
+        For each of ``ids``, its ``k`` nearest bodies, nearest first: rows ``(id, other)``.
+        """
+    def pairs_within(self, distance: typing.SupportsFloat | typing.SupportsIndex) -> SceneResult:
+        """
+        Every pair whose distance is at most ``distance`` (up to the tolerance), with its distance to the tolerance.
+        """
+    def pose(self, id: typing.SupportsInt | typing.SupportsIndex) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        The body's pose as a (4, 4) homogeneous transform.
+        """
+    def remove(self, ids: typing.Any) -> None:
+        """
+        Remove bodies, with every cached proof and exclusion concerning them.
+        """
+    def set_filter(self, ids: typing.Any, group: typing.Any = 1, mask: typing.Any = 4294967295) -> None:
+        """
+        Set the group and mask of bodies (see ``add``).
+        """
+    def set_poses(self, ids: typing.Any, poses: typing.Any) -> None:
+        """
+        Move bodies (one id or an array of ids) to ``poses`` (as for ``add``); their hulls are never recomputed.
         """
     @property
-    def c1(self) -> float:
-        ...
-    @c1.setter
-    def c1(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def broadphase(self) -> str:
         ...
     @property
-    def c2(self) -> float:
-        ...
-    @c2.setter
-    def c2(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
+    def ids(self) -> numpy.typing.NDArray[numpy.int64]:
+        """
+        The bodies' ids, ascending.
+        """
     @property
-    def feasibility_tolerance(self) -> float:
-        ...
-    @feasibility_tolerance.setter
-    def feasibility_tolerance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
-    @property
-    def max_iterations(self) -> int:
-        ...
-    @max_iterations.setter
-    def max_iterations(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+    def method(self) -> str:
         ...
     @property
     def seed(self) -> int:
         ...
-    @seed.setter
-    def seed(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
-        ...
     @property
-    def swarm_size(self) -> int:
-        ...
-    @swarm_size.setter
-    def swarm_size(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
-        ...
+    def stats(self) -> SceneStats:
+        """
+        What the last query did (a SceneStats).
+        """
     @property
     def tolerance(self) -> float:
         ...
-    @tolerance.setter
-    def tolerance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    @property
+    def warm_start(self) -> bool:
+        ...
+class SceneResult:
+    """
+    
+    Pairs a Scene query found, one row per pair, as NumPy arrays.
+    
+    Row k is the pair ``(A, B) = pairs[k]``; vectors point from A to B, and
+    ``lower_bound[k] <= distance between A and B <= distance[k]``.
+    
+    Attributes
+    ----------
+    pairs : numpy.ndarray of int64, shape (m, 2)
+        Ids of A and B.
+    distance, lower_bound : numpy.ndarray, shape (m,)
+        Upper bound (achieved by the witnesses) and certified lower bound on the distance.
+    point_a, point_b : numpy.ndarray, shape (m, 3)
+        Witness points on A and B.
+    normal : numpy.ndarray, shape (m, 3)
+        Unit direction from A to B certifying ``lower_bound`` (zero where overlap was proven by a
+        common point; ``contacts`` gives those their contact normals).
+    certified : numpy.ndarray of bool, shape (m,)
+        The pair's membership (and value, for distances and contacts) is proven.
+    """
+    def __len__(self) -> int:
+        ...
+    def __repr__(self) -> str:
         ...
     @property
-    def velocity_limit(self) -> float:
-        ...
-    @velocity_limit.setter
-    def velocity_limit(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def certified(self) -> typing.Annotated[numpy.typing.NDArray[numpy.bool], "[m, 1]"]:
         ...
     @property
-    def w_max(self) -> float:
-        ...
-    @w_max.setter
-    def w_max(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def distance(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
         ...
     @property
-    def w_min(self) -> float:
+    def lower_bound(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
         ...
-    @w_min.setter
-    def w_min(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    @property
+    def normal(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
+        ...
+    @property
+    def pairs(self) -> typing.Annotated[numpy.typing.NDArray[numpy.int64], "[m, 2]"]:
+        ...
+    @property
+    def point_a(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
+        ...
+    @property
+    def point_b(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
+        ...
+class SceneStats:
+    """
+    
+    What the last Scene query did with its candidate pairs.
+    
+    Attributes
+    ----------
+    candidates : int
+        Pairs the broadphase returned that passed the filters.
+    screened : int
+        Found apart along the line between their centres, before any solver.
+    warm_rejected, warm_proven : int
+        Settled by re-evaluating a cached separating direction or enclosing simplex.
+    solved : int
+        Handed to the method's solver.
+    escalations : int
+        Verdicts the method could not prove, handed to the exact method.
+    certified : int
+        Candidates whose answer is proven.
+    cached_pairs, cache_bytes : int
+        Pairs with a cached proof after the query, and the bytes their storage takes.
+    """
+    def __repr__(self) -> str:
+        ...
+    @property
+    def cache_bytes(self) -> int:
+        ...
+    @property
+    def cached_pairs(self) -> int:
+        ...
+    @property
+    def candidates(self) -> int:
+        ...
+    @property
+    def certified(self) -> int:
+        ...
+    @property
+    def escalations(self) -> int:
+        ...
+    @property
+    def screened(self) -> int:
+        ...
+    @property
+    def solved(self) -> int:
+        ...
+    @property
+    def warm_proven(self) -> int:
+        ...
+    @property
+    def warm_rejected(self) -> int:
         ...
 def as_polyhedron(body: typing.Any, name: str = 'body') -> ConvexPolyhedron:
     """
@@ -606,20 +596,14 @@ def as_polyhedron(body: typing.Any, name: str = 'body') -> ConvexPolyhedron:
     
     Errors name the argument as ``name``.
     """
-def collide(a: typing.Any, b: typing.Any, options: DistanceOptions, escalate: bool) -> bool:
-    ...
-def collide_many(As: typing.Any, Bs: typing.Any, options: DistanceOptions, escalate: bool, threads: typing.Any) -> BatchResult:
-    ...
-def collision(a: typing.Any, b: typing.Any, options: DistanceOptions, escalate: bool) -> DistanceResult:
-    ...
+def broadphases() -> list[str]:
+    """
+    The names of the broadphase managers a Scene can use.
+    """
 def constraint_violation(weights_a: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"], weights_b: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"]) -> float:
     """
     Constraint violation (6): ``(sum(weights_a) - 1)**2 + (sum(weights_b) - 1)**2``.
     """
-def distance(a: typing.Any, b: typing.Any, options: DistanceOptions) -> DistanceResult:
-    ...
-def distance_many(As: typing.Any, Bs: typing.Any, options: DistanceOptions, threads: typing.Any) -> BatchResult:
-    ...
 def is_feasible(weights_a: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"], weights_b: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"], tolerance: typing.SupportsFloat | typing.SupportsIndex = 1e-10) -> bool:
     """
     True when all weights lie in [0, 1] and the violation (6) is at most ``tolerance``.
@@ -627,6 +611,10 @@ def is_feasible(weights_a: typing.Annotated[numpy.typing.ArrayLike, numpy.float6
 def linear_decreasing_inertia(iteration: typing.SupportsInt | typing.SupportsIndex, max_iterations: typing.SupportsInt | typing.SupportsIndex, w_start: typing.SupportsFloat | typing.SupportsIndex = 0.9, w_end: typing.SupportsFloat | typing.SupportsIndex = 0.4) -> float:
     """
     (7): the inertia weight after ``iteration`` of ``max_iterations``.
+    """
+def method_table() -> list:
+    """
+    Every method as a dictionary: name, summary, queries, always_certified, parameters.
     """
 def objective(a: typing.Any, b: typing.Any, weights_a: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"], weights_b: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"]) -> float:
     """
@@ -636,7 +624,7 @@ def objective(a: typing.Any, b: typing.Any, weights_a: typing.Annotated[numpy.ty
     """
 def pair_seed(seed: typing.SupportsInt | typing.SupportsIndex, index: typing.SupportsInt | typing.SupportsIndex) -> int:
     """
-    The seed of pair ``index`` in a batch seeded with ``seed``.
+    The seed of the pair with global index ``index`` in a batch seeded with ``seed``.
     """
 def project_onto_simplex(weights: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"]) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
     """
@@ -661,5 +649,3 @@ def separation(a: typing.Any, b: typing.Any, direction: typing.Annotated[numpy.t
     >>> sc.separation(a, b, [1, 0, 0])
     2.0
     """
-def signed_distance(a: typing.Any, b: typing.Any, options: DistanceOptions) -> DistanceResult:
-    ...

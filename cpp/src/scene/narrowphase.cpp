@@ -111,69 +111,74 @@ PairAnswer answer_pair(const PlacedBody& a, const PlacedBody& b, PairProof& proo
   const Method method = options.method;
   PairAnswer out;
 
-  // A cached simplex that still encloses the origin proves contact (contacts need the depth).
-  if (question.warm && proof.kind == PairProof::Kind::enclosing && !question.contacts) {
+  // A cached simplex that still encloses the origin proves contact, and a distance of zero.
+  std::optional<DistanceResult> proven;
+  if (question.warm && proof.kind == PairProof::Kind::enclosing) {
     if (std::optional<Answer> common = enclosed(pair, proof.enclosing)) {
-      const DistanceResult r = finish_result(gate, std::move(*common), method,
-                                             question.distance ? Goal::distance : Goal::verdict);
+      proven = finish_result(gate, std::move(*common), method, Goal::verdict);
       out.settled = Settled::warm_proven;
-      out.belongs = r.colliding;
-      out.certified = r.certified;
-      take_values(r, out);
+    }
+  }
+  DistanceResult r;
+  bool value_settled = true;
+  std::optional<DualStart> next;
+  if (proven) {
+    r = std::move(*proven);
+  } else {
+    // The direction to try next: the cached one, else the line between the centres. Either
+    // settles most pairs apart in two support evaluations; otherwise the solver starts from it.
+    const bool cached = question.warm && proof.kind == PairProof::Kind::separating;
+    Vector3 n;
+    int ia = -1;
+    int ib = -1;
+    if (cached) {
+      const PairProof::Separating& last = proof.separating;
+      const Vector3 local(last.direction[0], last.direction[1], last.direction[2]);
+      n = (pair.a.rotated() ? Vector3(pair.a.rotation() * local) : local).normalized();
+      ia = last.support_a;
+      ib = last.support_b;
+    } else {
+      const Vector3 between = pair.b.offset() - pair.a.offset();
+      n = between.norm() > 0 ? Vector3(between.normalized()) : Vector3::UnitX();
+    }
+    const Scalar s = separation(pair.a, pair.b, n, ia, ib);
+    if (cached) {
+      proof.separating.support_a = ia;
+      proof.separating.support_b = ib;
+    }
+    if (verdict_proven(gate, s, kInfinity, false)) {
+      out.settled = cached ? Settled::warm_rejected : Settled::screened;
+      out.certified = true;
+      out.lower_bound = pair.frame.length_to_world(s);
+      if (question.warm && !cached) {
+        const Vector3 local = pair.a.local_direction(n);
+        proof.kind = PairProof::Kind::separating;
+        proof.separating = {{local.x(), local.y(), local.z()}, ia, ib};
+      }
       return out;
     }
-  }
-  // The direction to try next: the cached one, else the line between the centres. Either
-  // settles most pairs apart in two support evaluations; otherwise the solver starts from it.
-  const bool cached = question.warm && proof.kind == PairProof::Kind::separating;
-  Vector3 n;
-  int ia = -1;
-  int ib = -1;
-  if (cached) {
-    const PairProof::Separating& last = proof.separating;
-    const Vector3 local(last.direction[0], last.direction[1], last.direction[2]);
-    n = (pair.a.rotated() ? Vector3(pair.a.rotation() * local) : local).normalized();
-    ia = last.support_a;
-    ib = last.support_b;
-  } else {
-    const Vector3 between = pair.b.offset() - pair.a.offset();
-    n = between.norm() > 0 ? Vector3(between.normalized()) : Vector3::UnitX();
-  }
-  const Scalar s = separation(pair.a, pair.b, n, ia, ib);
-  if (cached) {
-    proof.separating.support_a = ia;
-    proof.separating.support_b = ib;
-  }
-  if (verdict_proven(gate, s, kInfinity, false)) {
-    out.settled = cached ? Settled::warm_rejected : Settled::screened;
-    out.certified = true;
-    out.lower_bound = pair.frame.length_to_world(s);
-    if (question.warm && !cached) {
-      const Vector3 local = pair.a.local_direction(n);
-      proof.kind = PairProof::Kind::separating;
-      proof.separating = {{local.x(), local.y(), local.z()}, ia, ib};
-    }
-    return out;
-  }
 
-  // The verdict, as Query::collision decides it (methods without distances decide by their
-  // signed distance), then escalated when unproven.
-  const Goal verdict =
-      method_info(method).capabilities & kDistance ? Goal::verdict : Goal::signed_distance;
-  Answer answer = solve(gate, options, verdict, DualStart{n, ia, ib});
-  if (question.warm) remember(pair, answer, proof);
-  const bool value_settled =
-      goal_reached(pair, Goal::distance, answer.lower, answer.upper, answer.intersection_proven);
-  std::optional<DualStart> next = start_from(answer);
-  DistanceResult r = finish_result(gate, std::move(answer), method, verdict);
-  if (!r.certified && question.escalate && method != Method::exact) {
-    QueryOptions exact = options;
-    exact.method = Method::exact;
-    Answer decided = solver_for(Method::exact)(gate, exact, Goal::verdict);
-    if (question.warm) remember(pair, decided, proof);
-    next = start_from(decided);
-    r = finish_result(gate, std::move(decided), Method::exact, Goal::verdict);
-    out.settled = Settled::escalated;
+    // The verdict, as Query::collision decides it (methods without distances decide by their
+    // signed distance), then escalated when unproven.
+    const Goal verdict =
+        method_info(method).capabilities & kDistance ? Goal::verdict : Goal::signed_distance;
+    Answer answer = solve(gate, options, verdict, DualStart{n, ia, ib});
+    if (question.warm) remember(pair, answer, proof);
+    value_settled =
+        goal_reached(pair, Goal::distance, answer.lower, answer.upper, answer.intersection_proven);
+    next = start_from(answer);
+    r = finish_result(gate, std::move(answer), method, verdict);
+    if (!r.certified && question.escalate && method != Method::exact) {
+      QueryOptions exact = options;
+      exact.method = Method::exact;
+      Answer decided = solver_for(Method::exact)(gate, exact, Goal::verdict);
+      if (question.warm) remember(pair, decided, proof);
+      value_settled = goal_reached(pair, Goal::distance, decided.lower, decided.upper,
+                                   decided.intersection_proven);
+      next = start_from(decided);
+      r = finish_result(gate, std::move(decided), Method::exact, Goal::verdict);
+      out.settled = Settled::escalated;
+    }
   }
   out.certified = r.certified;
   out.lower_bound = r.lower_bound;
