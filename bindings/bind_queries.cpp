@@ -69,6 +69,7 @@ py::list method_table_for_python() {
       entry["description"] = p.description;
       entry["minimum"] = p.minimum;
       entry["maximum"] = p.maximum;
+      entry["minimum_excluded"] = p.minimum_excluded;
       py::list choices;
       for (const char* c : p.choices) choices.append(c);
       entry["choices"] = py::tuple(choices);

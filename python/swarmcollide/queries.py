@@ -72,6 +72,7 @@ class Parameter:
     description: str
     minimum: float
     maximum: float
+    minimum_excluded: bool
     choices: Tuple[str, ...]
     default: Any
 
@@ -285,10 +286,10 @@ def collision(
     --------
     >>> import swarmcollide as sc
     >>> a = [[0, 1, 0], [1, 0, 0], [0, 0, 1], [0, 0, 0]]
-    >>> b = [[1, -1e-7, 0], [2, -2, 0], [0, -2, 2], [0, -2, 0]]
+    >>> b = [[1, -1e-10, 0], [2, -2, 0], [0, -2, 2], [0, -2, 0]]  # within the tolerance of a
     >>> r = sc.collision(a, b, method="ipso", max_iterations=0)
     >>> r.method, r.escalated_from, r.colliding, r.certified
-    ('exact', 'ipso', False, True)
+    ('exact', 'ipso', True, True)
     """
     return query(method, tolerance=tolerance, seed=seed, **parameters).collision(
         a, b, pose_a, pose_b, escalate

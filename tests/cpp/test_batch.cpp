@@ -1,116 +1,236 @@
+// Batches: each pair is the single query with its own seed, whatever the threads and however the
+// batch is split; errors name the lowest failing pair.
 #include <gtest/gtest.h>
 
+#include <functional>
 #include <limits>
-#include <random>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "paper_cases.hpp"
+#include "shapes.hpp"
 #include "swarmcollide/queries/batch.hpp"
+#include "swarmcollide/queries/methods.hpp"
+#include "swarmcollide/queries/query.hpp"
 
-namespace swarmcollide {
+namespace swarmcollide::testing {
 namespace {
 
-std::vector<ConvexPolyhedron> random_bodies(std::mt19937_64& rng, int count, double offset) {
-  std::normal_distribution<double> normal;
-  std::vector<ConvexPolyhedron> bodies;
+// `count` pairs of random 6-point bodies, B's centres spread from overlapping to well apart.
+struct Pairs {
+  std::vector<ConvexPolyhedron> as;
+  std::vector<ConvexPolyhedron> bs;
+};
+
+Pairs random_pairs(int count, std::uint64_t seed) {
+  Random rng(seed);
+  Pairs pairs;
   for (int i = 0; i < count; ++i) {
-    VertexMatrix v(6, 3);
-    for (Eigen::Index k = 0; k < v.size(); ++k) v.data()[k] = normal(rng);
-    v.col(0).array() += offset;
-    bodies.emplace_back(v);
+    pairs.as.push_back(rng.body(6));
+    pairs.bs.push_back(rng.body(6, rng.vector(2.5)));
   }
-  return bodies;
+  return pairs;
 }
 
-TEST(Batch, ResultsDoNotDependOnTheThreadCount) {
-  std::mt19937_64 rng(3);
-  const auto as = random_bodies(rng, 50, 0);
-  const auto bs = random_bodies(rng, 50, 2);
-  DistanceOptions options;
+void expect_same(const BatchResult& x, const BatchResult& y) {
+  EXPECT_EQ(x.distance, y.distance);
+  EXPECT_EQ(x.lower_bound, y.lower_bound);
+  EXPECT_EQ(x.point_a, y.point_a);
+  EXPECT_EQ(x.point_b, y.point_b);
+  EXPECT_EQ(x.direction, y.direction);
+  EXPECT_TRUE((x.colliding == y.colliding).all());
+  EXPECT_TRUE((x.certified == y.certified).all());
+  EXPECT_TRUE((x.iterations == y.iterations).all());
+  EXPECT_TRUE((x.escalated == y.escalated).all());
+}
+
+// The rows of `whole` from `first` on.
+void expect_rows(const BatchResult& part, const BatchResult& whole, Eigen::Index first) {
+  const Eigen::Index n = part.distance.size();
+  EXPECT_EQ(part.distance, whole.distance.segment(first, n));
+  EXPECT_EQ(part.point_a, whole.point_a.middleRows(first, n));
+  EXPECT_TRUE((part.colliding == whole.colliding.segment(first, n)).all());
+  EXPECT_TRUE((part.iterations == whole.iterations.segment(first, n)).all());
+}
+
+QueryOptions seeded(Method method) {
+  QueryOptions options;
+  options.method = method;
+  options.seed = 5;
   options.swarm.max_iterations = 20;
-  const BatchResult one = distance_many(as, bs, options, 1);
-  const BatchResult three = distance_many(as, bs, options, 3);
-  EXPECT_EQ(one.distance, three.distance);
-  EXPECT_EQ(one.point_a, three.point_a);
-  for (std::size_t i : {0u, 17u, 49u}) {
-    DistanceOptions single = options;
-    single.swarm.seed = pair_seed(options.swarm.seed, i);
-    EXPECT_EQ(one.distance(static_cast<Eigen::Index>(i)), distance(as[i], bs[i], single).distance);
-  }
+  return options;
 }
 
-TEST(Batch, PairSeedsDiffer) {
-  EXPECT_NE(pair_seed(0, 0), pair_seed(0, 1));
-  EXPECT_NE(pair_seed(0, 1), pair_seed(1, 0));
-}
-
-TEST(Batch, CollideManyMatchesTheExactVerdicts) {
-  std::mt19937_64 rng(4);
-  const auto as = random_bodies(rng, 30, 0);
-  const auto bs = random_bodies(rng, 30, 1.5);
-  DistanceOptions exact;
-  exact.method = Method::fcl;
-  const BatchResult swarm = collide_many(as, bs, DistanceOptions{}, true, 2);
-  const BatchResult reference = distance_many(as, bs, exact, 2);
-  for (Eigen::Index i = 0; i < 30; ++i) {
-    if (std::abs(reference.distance(i) - 1e-6) > 1e-12) {
-      EXPECT_EQ(swarm.colliding(i), reference.distance(i) <= 1e-6) << "pair " << i;
+TEST(Batch, EachPairIsTheSingleQueryWithItsDerivedSeed) {
+  const Pairs p = random_pairs(70, 3);
+  for (Method m : {Method::ipso, Method::dual, Method::fcl}) {
+    SCOPED_TRACE(method_name(m));
+    const QueryOptions options = seeded(m);
+    const BatchResult batch = distance_many(p.as, p.bs, options, {2});
+    for (std::size_t i : {0u, 17u, 64u, 69u}) {
+      QueryOptions single = options;
+      single.seed = pair_seed(options.seed, i);
+      const DistanceResult r = Query(single).distance(p.as[i], p.bs[i]);
+      const auto row = static_cast<Eigen::Index>(i);
+      EXPECT_EQ(batch.distance(row), r.distance);
+      EXPECT_EQ(batch.lower_bound(row), r.lower_bound);
+      EXPECT_EQ(batch.point_b.row(row), r.point_b.transpose());
+      EXPECT_EQ(batch.direction.row(row), r.direction.transpose());
+      EXPECT_EQ(batch.certified(row), r.certified);
+      EXPECT_EQ(batch.iterations(row), r.iterations);
+    }
+    const BatchResult verdicts = collide_many(p.as, p.bs, options, {2});
+    const BatchResult depths = signed_distance_many(p.as, p.bs, seeded(Method::dual), {2});
+    for (std::size_t i : {5u, 66u}) {
+      QueryOptions single = options;
+      single.seed = pair_seed(options.seed, i);
+      const DistanceResult decided = Query(single).collision(p.as[i], p.bs[i]);
+      EXPECT_EQ(verdicts.colliding(i), decided.colliding);
+      EXPECT_EQ(verdicts.escalated(i), decided.escalated_from.has_value());
+      single.method = Method::dual;
+      EXPECT_EQ(depths.distance(i), Query(single).signed_distance(p.as[i], p.bs[i]).distance);
     }
   }
 }
 
-TEST(Batch, ErrorsAreRethrown) {
-  const std::vector<ConvexPolyhedron> one{testing::paper_a()};
-  const std::vector<ConvexPolyhedron> two{testing::paper_a(), testing::paper_a()};
-  EXPECT_THROW(distance_many(one, two, {}), std::invalid_argument);
-  DistanceOptions bad;
-  bad.swarm.swarm_size = 0;
-  EXPECT_THROW(distance_many(two, two, bad, 2), std::invalid_argument);
-  EXPECT_THROW(distance_many(two, two, {}, -1), std::invalid_argument);
+TEST(Batch, AnswersDoNotDependOnTheThreadCount) {
+  const Pairs p = random_pairs(150, 4);
+  for (Method m : {Method::ipso, Method::dual}) {
+    const BatchResult one = distance_many(p.as, p.bs, seeded(m), {1});
+    for (int threads : {2, 3, 0}) expect_same(one, distance_many(p.as, p.bs, seeded(m), {threads}));
+  }
+}
+
+// A batch split into parts, each told its first global index, answers as the whole.
+TEST(Batch, PartsWithTheirFirstIndexAnswerAsTheWhole) {
+  const Pairs p = random_pairs(100, 5);
+  const QueryOptions options = seeded(Method::ipso);
+  const BatchResult whole = distance_many(p.as, p.bs, options, {2});
+  for (std::size_t cut : {1u, 37u, 64u}) {
+    const std::vector<ConvexPolyhedron> head_a(p.as.begin(), p.as.begin() + cut);
+    const std::vector<ConvexPolyhedron> head_b(p.bs.begin(), p.bs.begin() + cut);
+    const std::vector<ConvexPolyhedron> tail_a(p.as.begin() + cut, p.as.end());
+    const std::vector<ConvexPolyhedron> tail_b(p.bs.begin() + cut, p.bs.end());
+    BatchSettings settings;
+    settings.threads = 2;
+    expect_rows(distance_many(head_a, head_b, options, settings), whole, 0);
+    settings.first_index = cut;
+    expect_rows(distance_many(tail_a, tail_b, options, settings), whole,
+                static_cast<Eigen::Index>(cut));
+  }
 }
 
 TEST(Batch, VertexStacksGiveTheAnswersOfTheBodiesTheyHold) {
-  std::mt19937_64 rng(6);
-  std::normal_distribution<double> normal;
-  const int pairs = 40, vertices = 7;
+  Random rng(6);
+  const int pairs = 80, vertices = 7;
   std::vector<double> points_a(pairs * vertices * 3), points_b(points_a.size());
-  for (double& x : points_a) x = normal(rng);
-  for (double& x : points_b) x = normal(rng) + 1.5;
+  for (double& x : points_a) x = rng.uniform();
+  for (double& x : points_b) x = rng.uniform() + 1.5;
   std::vector<ConvexPolyhedron> as, bs;
   for (int i = 0; i < pairs; ++i) {
     as.emplace_back(Eigen::Map<const VertexMatrix>(&points_a[i * vertices * 3], vertices, 3));
     bs.emplace_back(Eigen::Map<const VertexMatrix>(&points_b[i * vertices * 3], vertices, 3));
   }
-  const VertexStack stack_a{points_a.data(), pairs, vertices, "as"};
-  const VertexStack stack_b{points_b.data(), pairs, vertices, "bs"};
-  DistanceOptions options;
-  options.swarm.max_iterations = 20;
-  const BatchResult from_bodies = distance_many(as, bs, options, 1);
-  const BatchResult from_stacks = distance_many(stack_a, stack_b, options, 2);
-  EXPECT_EQ(from_stacks.distance, from_bodies.distance);
-  EXPECT_EQ(from_stacks.point_b, from_bodies.point_b);
-  const BatchResult verdicts = collide_many(stack_a, stack_b, options, true, 2);
-  EXPECT_TRUE((verdicts.colliding == collide_many(as, bs, options, true, 1).colliding).all());
+  const VertexStack stack_a{points_a.data(), pairs, vertices, "As"};
+  const VertexStack stack_b{points_b.data(), pairs, vertices, "Bs"};
+  const QueryOptions options = seeded(Method::ipso);
+  expect_same(distance_many(stack_a, stack_b, options, {2}), distance_many(as, bs, options, {1}));
+  expect_same(collide_many(stack_a, stack_b, options, {2}), collide_many(as, bs, options, {1}));
+  const QueryOptions dual = seeded(Method::dual);
+  expect_same(signed_distance_many(stack_a, stack_b, dual, {2}),
+              signed_distance_many(as, bs, dual, {1}));
 }
 
-TEST(Batch, AStackBodyThatCannotBeBuiltIsNamed) {
-  // Two tetrahedra; the second of `broken` has a NaN coordinate.
-  std::vector<double> points = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
-  points.insert(points.end(), points.begin(), points.end());
-  std::vector<double> broken = points;
-  broken[4 * 3 + 5] = std::numeric_limits<double>::quiet_NaN();
-  const VertexStack good{points.data(), 1, 4, "as"};
-  const VertexStack bad{broken.data(), 2, 4, "bs"};
-  const VertexStack two_good{points.data(), 2, 4, "as"};
-  EXPECT_THROW(distance_many(good, bad, {}), std::invalid_argument);
+TEST(Batch, CollideManyEscalatesOnlyWhenAsked) {
+  // 1e-10 apart (within the tolerance): a swarm without iterations cannot prove either verdict.
+  VertexMatrix near(4, 3);
+  near << 1, -1e-10, 0, 2, -2, 0, 0, -2, 2, 0, -2, 0;
+  const std::vector<ConvexPolyhedron> as{paper_a()};
+  const std::vector<ConvexPolyhedron> bs{ConvexPolyhedron(near)};
+  QueryOptions options = seeded(Method::ipso);
+  options.swarm.max_iterations = 0;
+  const BatchResult decided = collide_many(as, bs, options);
+  EXPECT_TRUE(decided.escalated(0));
+  EXPECT_TRUE(decided.certified(0));
+  EXPECT_TRUE(decided.colliding(0));
+  BatchSettings raw;
+  raw.escalate = false;
+  const BatchResult own = collide_many(as, bs, options, raw);
+  EXPECT_FALSE(own.escalated(0));
+  EXPECT_FALSE(own.certified(0));
+}
+
+std::string error_of(const std::function<void()>& f) {
   try {
-    distance_many(two_good, bad, {}, 2);
-    ADD_FAILURE() << "a NaN vertex was accepted";
-  } catch (const std::invalid_argument& error) {
-    EXPECT_NE(std::string(error.what()).find("bs[1]: "), std::string::npos) << error.what();
+    f();
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// Pairs 5 and 40 fail (bodies whose distance exceeds the double range); whatever thread meets
+// which first, the error is pair 5's, named by its global index.
+TEST(Batch, TheLowestFailingPairIsReported) {
+  Pairs p = random_pairs(120, 7);
+  for (std::size_t bad : {5u, 40u}) {
+    p.as[bad] = point_set({{1.5e308, 0, 0}});
+    p.bs[bad] = point_set({{-1.5e308, 0, 0}});
+  }
+  for (int threads : {1, 2, 4}) {
+    BatchSettings settings;
+    settings.threads = threads;
+    const std::string message =
+        error_of([&] { distance_many(p.as, p.bs, seeded(Method::dual), settings); });
+    EXPECT_EQ(message.rfind("pair 5: ", 0), 0u) << message;
+    settings.first_index = 1000;
+    const std::string offset =
+        error_of([&] { collide_many(p.as, p.bs, seeded(Method::dual), settings); });
+    EXPECT_EQ(offset.rfind("pair 1005: ", 0), 0u) << offset;
   }
 }
 
+TEST(Batch, AStackBodyThatCannotBeBuiltIsNamedByItsGlobalIndex) {
+  std::vector<double> points = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
+  points.insert(points.end(), points.begin(), points.end());
+  std::vector<double> broken = points;
+  broken[4 * 3 + 5] = std::numeric_limits<double>::quiet_NaN();  // body 1, point 1
+  const VertexStack good{points.data(), 2, 4, "As"};
+  const VertexStack bad{broken.data(), 2, 4, "Bs"};
+  BatchSettings settings;
+  settings.first_index = 10;
+  const std::string message = error_of([&] { distance_many(good, bad, {}, settings); });
+  EXPECT_EQ(message.rfind("Bs[11]: ", 0), 0u) << message;
+}
+
+TEST(Batch, SettingsAndLengthsAreChecked) {
+  const std::vector<ConvexPolyhedron> one{paper_a()};
+  const std::vector<ConvexPolyhedron> two{paper_a(), paper_b_separate()};
+  EXPECT_NE(error_of([&] { distance_many(one, two, {}); }).find("same length, got 1 and 2"),
+            std::string::npos);
+  for (int threads : {-1, kMaxThreads + 1}) {
+    BatchSettings settings;
+    settings.threads = threads;
+    EXPECT_NE(error_of([&] { distance_many(two, two, {}, settings); }).find("threads must be in"),
+              std::string::npos)
+        << threads;
+  }
+  BatchSettings most;
+  most.threads = kMaxThreads;  // no more threads than pairs are started
+  EXPECT_EQ(distance_many(two, two, {}, most).distance.size(), 2);
+  QueryOptions invalid;
+  invalid.dual.swarm_size = 1;
+  EXPECT_NE(error_of([&] { distance_many(two, two, invalid); }).find("swarm_size"),
+            std::string::npos);
+  EXPECT_EQ(distance_many(std::vector<ConvexPolyhedron>{}, {}, {}).distance.size(), 0);
+}
+
+TEST(Batch, PairSeedsDiffer) {
+  EXPECT_NE(pair_seed(0, 0), pair_seed(0, 1));
+  EXPECT_NE(pair_seed(0, 1), pair_seed(1, 0));
+  EXPECT_NE(pair_seed(7, 3), pair_seed(7, 4));
+}
+
 }  // namespace
-}  // namespace swarmcollide
+}  // namespace swarmcollide::testing

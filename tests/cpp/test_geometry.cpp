@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
+#include <limits>
 #include <random>
 #include <set>
 #include <stdexcept>
@@ -87,6 +89,32 @@ TEST(ConvexPolyhedron, RejectsEmptyAndNonFinitePoints) {
   EXPECT_THROW(ConvexPolyhedron{bad}, std::invalid_argument);
   bad(3, 1) = std::numeric_limits<Scalar>::infinity();
   EXPECT_THROW(ConvexPolyhedron{bad}, std::invalid_argument);
+}
+
+TEST(ConvexPolyhedron, RejectsPointsSpanningBeyondTheDoubleRange) {
+  // The radius (half the box's diagonal) is what every query scales by: 2.6e308 is too large.
+  VertexMatrix span(2, 3);
+  span << 1.5e308, 1.5e308, 1.5e308, -1.5e308, -1.5e308, -1.5e308;
+  EXPECT_THROW(ConvexPolyhedron{span}, std::invalid_argument);
+  span.col(1).setZero();
+  span.col(2).setZero();  // along one axis the radius is 1.5e308
+  EXPECT_NO_THROW(ConvexPolyhedron{span});
+}
+
+TEST(ConvexPolyhedron, BoundsAreTheBoxItsCentreAndHalfDiagonal) {
+  VertexMatrix points(3, 3);
+  points << 1, 2, 3, -1, 0, 5, 3, 2, 4;
+  const ConvexPolyhedron body(points);
+  const BodyBounds& bounds = body.bounds();
+  EXPECT_EQ(bounds.box.min, Vector3(-1, 0, 3));
+  EXPECT_EQ(bounds.box.max, Vector3(3, 2, 5));
+  EXPECT_EQ(bounds.centre, Vector3(1, 1, 4));
+  EXPECT_DOUBLE_EQ(bounds.radius, std::sqrt(4.0 + 1 + 1));
+  EXPECT_EQ(&body.aabb(), &bounds.box);
+  // Coordinates near the largest double still give a finite centre and radius.
+  const BodyBounds huge = ConvexPolyhedron(points * 3e307).bounds();
+  EXPECT_TRUE(huge.centre.isApprox(Vector3(3e307, 3e307, 1.2e308), 1e-15));
+  EXPECT_DOUBLE_EQ(huge.radius, 3e307 * std::sqrt(6.0));
 }
 
 TEST(ConvexPolyhedron, SupportIsTheFarthestPoint) {
@@ -195,6 +223,18 @@ TEST(Hull, FarFromTheOriginStillExact) {
   expect_outward(cube);
 }
 
+// Hulls are computed on points moved into the unit ball, so no coordinate in the double range
+// overflows or underflows their orientation tests.
+TEST(Hull, ExactAtAnyScale) {
+  for (Scalar scale : {1e-300, 1e-100, 1e77, 1e100, 1e300}) {
+    SCOPED_TRACE(scale);
+    const ConvexPolyhedron cube(unit_cube() * scale);
+    EXPECT_EQ(cube.hull().dimension, 3);
+    EXPECT_EQ(cube.hull().faces.rows(), 12);
+    EXPECT_TRUE(cube.centroid().isApprox(Vector3::Constant(0.5 * scale), 1e-14));
+  }
+}
+
 TEST(Hull, RandomSmallSolidsMatchTheBruteForceOracle) {
   std::mt19937_64 rng(11);
   std::normal_distribution<Scalar> normal;
@@ -273,6 +313,34 @@ TEST(Hull, TwoPointsFarFromTheOriginAreASegment) {
   EXPECT_EQ(segment.hull().dimension, 1);
   EXPECT_EQ(segment.hull().vertex_indices, (std::vector<int>{0, 1}));
   EXPECT_TRUE(segment.centroid().isApprox(points.colwise().mean().transpose(), 1e-15));
+}
+
+// Bodies of more than kHillClimbingThreshold points climb the hull's edge graph from a start
+// point; the answer is a farthest point, as a scan finds it, from any start.
+TEST(HillClimbing, SupportMatchesTheScan) {
+  std::mt19937_64 rng(5);
+  std::normal_distribution<Scalar> normal;
+  VertexMatrix points(500, 3);
+  for (int i = 0; i < points.rows(); ++i) {
+    points.row(i) << normal(rng), normal(rng), normal(rng);  // many interior points
+  }
+  const ConvexPolyhedron body(points);
+  int start = -1;
+  for (int k = 0; k < 200; ++k) {
+    const Vector3 d(normal(rng), normal(rng), normal(rng));
+    start = body.support_index(d, k % 3 == 0 ? -1 : start);
+    EXPECT_DOUBLE_EQ(points.row(start).dot(d), (points * d).maxCoeff());
+  }
+  const Hull& hull = body.hull();
+  ASSERT_EQ(hull.neighbour_offsets.size(), static_cast<std::size_t>(body.size()) + 1);
+  for (int i = 0; i < body.size(); ++i) {
+    for (int k = hull.neighbour_offsets[i]; k < hull.neighbour_offsets[i + 1]; ++k) {
+      const int j = hull.neighbours[k];
+      const auto begin = hull.neighbours.begin() + hull.neighbour_offsets[j];
+      const auto end = hull.neighbours.begin() + hull.neighbour_offsets[j + 1];
+      EXPECT_NE(std::find(begin, end, i), end);  // symmetric
+    }
+  }
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 
 #include "paper_cases.hpp"
 #include "swarmcollide/problem/certificate.hpp"
+#include "swarmcollide/problem/convex_weights.hpp"
 #include "swarmcollide/problem/distance_model.hpp"
 #include "swarmcollide/problem/simplex.hpp"
 
@@ -61,6 +62,24 @@ TEST(Certificate, SeparationIsTheGapBetweenSupportPlanes) {
   EXPECT_DOUBLE_EQ(separation(paper_a(), paper_b_separate(), Vector3(0, -7, 0)), 1.0);
   EXPECT_LT(separation(paper_a(), paper_b_separate(), Vector3(0, 1, 0)), 0.0);
   EXPECT_THROW(separation(paper_a(), paper_b_separate(), Vector3::Zero()), std::invalid_argument);
+}
+
+// Exact methods give at most four weights, kept sparse (an index may repeat); swarms give one
+// per point. Both read the same.
+TEST(ConvexWeights, SparseAndDenseReadAlike) {
+  const ConvexWeights sparse(5, {3, 1, 3, 0}, {0.25, 0.5, 0.25, 0}, 3);
+  EXPECT_EQ(sparse.count(), 5);
+  EXPECT_EQ(sparse.dense(), weights({0, 0.5, 0, 0.5, 0}));
+  VectorX visited = VectorX::Zero(5);
+  sparse.for_each([&](int i, Scalar w) { visited(i) += w; });
+  EXPECT_EQ(visited, sparse.dense());
+  const ConvexWeights dense(weights({0.2, 0.8}));
+  EXPECT_EQ(dense.count(), 2);
+  EXPECT_EQ(dense.dense(), weights({0.2, 0.8}));
+  int calls = 0;
+  dense.for_each([&](int, Scalar) { ++calls; });
+  EXPECT_EQ(calls, 2);
+  EXPECT_EQ(ConvexWeights().dense().size(), 0);
 }
 
 }  // namespace

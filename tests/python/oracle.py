@@ -1,22 +1,45 @@
-"""An exact distance between convex hulls, independent of swarmcollide, for the tests.
+"""Exact distances and signed distances between convex hulls, independent of swarmcollide.
 
-The distance is that of the origin to the Minkowski difference D = conv{y_j - x_i}: zero when the
-origin lies in D (behind every facet plane of D, or, for a flat D, when the linear program
-"X^T lambda = Y^T delta on the two simplexes" is feasible), otherwise attained on a triangle, an
-edge or a vertex of D, over all of which a brute force is exact for the small bodies the tests use.
+Both are read off the Minkowski difference D = conv{y_j - x_i}. The distance is that of the origin
+from D: zero when the origin lies in D (behind every facet plane of D, or, for a flat D, when the
+linear program "X^T lambda = Y^T delta on the two simplexes" is feasible), otherwise attained on
+a triangle, an edge or a vertex of D, over all of which a brute force is exact for the small
+bodies the tests use. When the origin lies in D, the penetration depth is the distance from the
+origin to the nearest facet plane of D: the smallest support value max(D @ n) over the facet
+normals n (a flat D has no interior, and no depth).
 """
 
 from __future__ import annotations
 
 import itertools
+import math
 
 import numpy as np
 from scipy.optimize import linprog
 from scipy.spatial import ConvexHull, QhullError
 
 
-def overlap(x: np.ndarray, y: np.ndarray) -> bool:
+def _as_points(x) -> np.ndarray:
+    return np.asarray(x, dtype=float).reshape(-1, 3)
+
+
+def _differences(x, y):
+    """The points of D, scaled by a power of two (exactly) into the unit ball, and the exponent.
+
+    Differences of nearby coordinates are exact, and the scaling keeps the squares and cross
+    products below from overflowing or underflowing for bodies of any size.
+    """
+    points = (_as_points(y)[None, :, :] - _as_points(x)[:, None, :]).reshape(-1, 3)
+    largest = float(np.abs(points).max())
+    exponent = math.frexp(largest)[1] if largest > 0 else 0
+    return np.ldexp(points, -exponent), exponent
+
+
+def overlap(x, y) -> bool:
     """True when conv(x) and conv(y) share a point."""
+    x, y = _as_points(x), _as_points(y)
+    origin = x[0]
+    x, y = x - origin, y - origin  # a well-scaled linear program
     n, m = len(x), len(y)
     equality = np.zeros((5, n + m))
     equality[:3, :n] = x.T
@@ -50,18 +73,20 @@ def _triangle_interior_distances(p: np.ndarray, q: np.ndarray, r: np.ndarray) ->
     return np.where(inside, plane, np.inf)
 
 
-def exact_distance(x: np.ndarray, y: np.ndarray) -> float:
-    """The distance between conv(x) and conv(y)."""
-    # Distances do not change under translation; centring keeps the linear program well scaled.
-    origin = np.asarray(x, dtype=float)[0]
-    x = np.asarray(x, dtype=float) - origin
-    y = np.asarray(y, dtype=float) - origin
-    points = (y[None, :, :] - x[:, None, :]).reshape(-1, 3)
+def _hull(points: np.ndarray):
+    """The hull of D, or None when D is flat (no interior)."""
     try:
-        origin_inside = bool(np.all(ConvexHull(points).equations[:, 3] <= 0))
+        return ConvexHull(points)
     except QhullError:
-        origin_inside = overlap(x, y)
-    if origin_inside:
+        return None
+
+
+def exact_distance(x, y) -> float:
+    """The distance between conv(x) and conv(y)."""
+    points, exponent = _differences(x, y)
+    hull = _hull(points)
+    inside = bool(np.all(hull.equations[:, 3] <= 0)) if hull is not None else overlap(x, y)
+    if inside:
         return 0.0
     best = float(np.min(np.linalg.norm(points, axis=1)))
     pairs = np.array(list(itertools.combinations(range(len(points)), 2)))
@@ -71,7 +96,21 @@ def exact_distance(x: np.ndarray, y: np.ndarray) -> float:
     if len(triples):
         interior = _triangle_interior_distances(*(points[triples[:, k]] for k in range(3)))
         best = min(best, float(np.min(interior)))
-    return best
+    return math.ldexp(best, exponent)
+
+
+def exact_signed_distance(x, y) -> float:
+    """The distance between conv(x) and conv(y) when apart, minus the penetration depth when
+    they overlap."""
+    distance = exact_distance(x, y)
+    points, exponent = _differences(x, y)
+    hull = _hull(points)
+    if distance > 0 or hull is None:
+        return distance
+    # Support values of all of D's points along each facet normal: a point Qhull merged into a
+    # facet cannot lower the depth.
+    depth = float(np.min(np.max(points @ hull.equations[:, :3].T, axis=0)))
+    return -math.ldexp(depth, exponent)
 
 
 def random_pair(rng: np.random.Generator, points: int = 5, spread: float = 3.0):

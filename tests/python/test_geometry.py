@@ -32,7 +32,7 @@ def test_accepts_non_contiguous_arrays():
     [
         ([], ValueError, "shape"),
         (np.zeros((0, 3)), ValueError, "empty"),
-        ([[1, 2]], ValueError, r"shape \(n, 3\), got shape \(1, 2\)"),
+        ([[1, 2]], ValueError, r"points must be an \(n, 3\) array of numbers, got shape \(1, 2\)"),
         ([1, 2, 3], ValueError, "shape"),
         (np.zeros((2, 3, 1)), ValueError, "shape"),
         ([[1, 2, 3], [4, 5]], ValueError, "array of numbers"),
@@ -88,6 +88,12 @@ def test_degenerate_bodies_have_exact_lower_dimensional_hulls(points, dimension,
     assert hull.dimension == dimension
     assert len(hull.vertex_indices) == vertices
     assert hull.faces.shape == (faces, 3)
+
+
+def test_a_polyhedron_is_accepted_where_points_are():
+    body = sc.ConvexPolyhedron(CUBE)
+    np.testing.assert_array_equal(sc.ConvexPolyhedron(body).vertices, CUBE)
+    assert body.radius == pytest.approx(np.sqrt(3) / 2)
 
 
 def test_repr_tells_what_it_holds():

@@ -1,10 +1,13 @@
-"""Properties over generated bodies (Hypothesis, bounded sizes, derandomised for CI)."""
+"""Properties over generated bodies (Hypothesis, bounded sizes, derandomised for CI): the contract
+for every method and query against the exact reference, and answers that do not depend on the
+unit of length or on the order of the bodies."""
 
 import numpy as np
+from contract import check_contract, pair_scale
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from hypothesis.extra.numpy import arrays
-from oracle import exact_distance
+from oracle import exact_distance, exact_signed_distance
 
 import swarmcollide as sc
 
@@ -12,25 +15,51 @@ coordinates = st.floats(min_value=-10, max_value=10, allow_nan=False, width=64)
 bodies = st.integers(min_value=1, max_value=6).flatmap(
     lambda n: arrays(np.float64, (n, 3), elements=coordinates)
 )
-property_settings = settings(max_examples=40, deadline=None, derandomize=True)
+method_queries = st.sampled_from(
+    [(method, kind) for method, info in sc.METHODS.items() for kind in info.queries]
+)
+property_settings = settings(max_examples=60, deadline=None, derandomize=True)
+
+
+def ask(method, kind, a, b, **keywords):
+    if kind == "collide":
+        return sc.collision(a, b, method=method, **keywords)
+    return getattr(sc, kind)(a, b, method=method, **keywords)
 
 
 @property_settings
-@given(a=bodies, b=bodies, method=st.sampled_from(["ipso", "pso", "penalty", "fcl", "fcl-indep"]))
-def test_every_answer_brackets_the_exact_distance(a, b, method):
-    exact = exact_distance(a, b)
-    r = sc.distance(a, b, method=method, seed=0)
-    slack = 1e-9 * max(1.0, np.abs(np.vstack([a, b])).max())
-    assert r.lower_bound <= exact + slack
-    assert exact <= r.distance + slack
-    np.testing.assert_allclose(r.point_b - r.point_a, b.T @ r.weights_b - a.T @ r.weights_a, atol=slack)
+@given(a=bodies, b=bodies, method_query=method_queries)
+def test_every_answer_keeps_the_contract(a, b, method_query):
+    method, kind = method_query
+    r = ask(method, kind, a, b)
+    check_contract(kind, method, a, b, r, exact_distance(a, b), exact_signed_distance(a, b),
+                   pair_scale(a, b))
 
 
 @property_settings
-@given(a=bodies, b=bodies)
-def test_exact_distance_is_symmetric_and_matches_the_reference(a, b):
-    forward = sc.distance(a, b, method="fcl")
-    backward = sc.distance(b, a, method="fcl")
-    size = max(1.0, float(np.ptp(np.vstack([a, b]), axis=0).max()))
-    assert abs(forward.distance - backward.distance) <= 1e-9 * size
-    assert abs(forward.distance - exact_distance(a, b)) <= 1e-9 * size
+@given(a=bodies, b=bodies, method=st.sampled_from(["dual", "exact", "fcl"]))
+def test_certified_distances_are_symmetric(a, b, method):
+    forward = sc.distance(a, b, method=method)
+    backward = sc.distance(b, a, method=method)
+    scale = pair_scale(a, b)
+    assert forward.colliding == backward.colliding
+    assert abs(forward.distance - backward.distance) <= scale.tolerance + scale.rounding
+
+
+@property_settings
+@given(
+    a=bodies,
+    b=bodies,
+    method_query=method_queries,
+    exponent=st.integers(min_value=-100, max_value=100),
+)
+def test_the_unit_of_length_changes_no_verdict(a, b, method_query, exponent):
+    method, kind = method_query
+    unit = ask(method, kind, a, b)
+    s = 10.0**exponent
+    scaled = ask(method, kind, a * s, b * s)
+    assert scaled.colliding == unit.colliding
+    assert scaled.certified == unit.certified
+    scale = pair_scale(a, b)
+    if sc.METHODS[method].always_certified:
+        assert abs(scaled.distance / s - unit.distance) <= scale.tolerance + scale.rounding

@@ -91,9 +91,9 @@ struct FramedPair {
   Scalar tolerance;
 };
 
-/// The frame of a pair and the bodies in it. Throws std::invalid_argument when a posed body's
-/// position, or the pair's extent, is beyond the double range (distances between such bodies
-/// are not representable).
+/// The frame of a pair and the bodies in it. Throws std::invalid_argument for an invalid pose
+/// (see validate_pose), or when a posed body's position, or the pair's extent, is beyond the
+/// double range (distances between such bodies are not representable).
 FramedPair frame_pair(const ConvexPolyhedron& a, const Pose& pose_a, const ConvexPolyhedron& b,
                       const Pose& pose_b, Scalar relative_tolerance);
 

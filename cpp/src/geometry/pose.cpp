@@ -10,6 +10,7 @@ void validate_pose(const Pose& pose, const char* name) {
   if (!pose.rotation.allFinite() || !pose.translation.allFinite()) {
     throw std::invalid_argument(std::string(name) + " has a NaN or infinite entry");
   }
+  if (pose.has_identity_rotation()) return;
   const Scalar orthogonality = (pose.rotation.transpose() * pose.rotation - Matrix3::Identity())
                                    .cwiseAbs()
                                    .maxCoeff();

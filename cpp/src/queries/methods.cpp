@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <limits>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -29,6 +30,7 @@ ParameterInfo parameter(const char* name, Kind kind, double minimum, double maxi
           description,
           minimum,
           maximum,
+          false,
           std::move(choices),
           [](const QueryOptions& o) { return static_cast<double>((o.*group).*field); },
           [](QueryOptions& o, double value) {
@@ -41,7 +43,11 @@ ParameterInfo parameter(const char* name, Kind kind, double minimum, double maxi
           }};
 }
 
-constexpr double kPositive = std::numeric_limits<double>::denorm_min();
+// A parameter that must be positive: its minimum 0 is excluded.
+ParameterInfo positive(ParameterInfo p) {
+  p.minimum_excluded = true;
+  return p;
+}
 // Caps on what a query can run: a swarm's arrays hold swarm_size x (vertices of both bodies)
 // entries (checked by the swarm), and its iterations take time in proportion.
 constexpr double kMaxIterations = 1e6;
@@ -57,9 +63,9 @@ std::vector<ParameterInfo> primal_swarm_parameters(bool with_accelerations) {
           "w_min", Kind::real, 0, 10, "smallest inertia weight (w_min of (8), w_end of (7))"),
       parameter<&QueryOptions::swarm, &SwarmOptions::w_max>(
           "w_max", Kind::real, 0, 10, "largest inertia weight (w_max of (8), w_start of (7))"),
-      parameter<&QueryOptions::swarm, &SwarmOptions::velocity_limit>(
-          "velocity_limit", Kind::real, kPositive, 1e6,
-          "largest velocity component (the weights live in [0, 1])"),
+      positive(parameter<&QueryOptions::swarm, &SwarmOptions::velocity_limit>(
+          "velocity_limit", Kind::real, 0, 1e6,
+          "largest velocity component (the weights live in [0, 1])")),
       parameter<&QueryOptions::swarm, &SwarmOptions::feasibility_tolerance>(
           "feasibility_tolerance", Kind::real, 0, 1,
           "largest constraint violation (6) that counts as feasible"),
@@ -132,11 +138,11 @@ const std::vector<MethodEntry>& entries() {
         "the paper's penalty-function baseline: exterior quadratic penalty minimised by L-BFGS",
         kDistance | kCollide,
         false,
-        {parameter<&QueryOptions::penalty, &PenaltyOptions::initial_weight>(
-             "initial_weight", Kind::real, kPositive, 1e12, "mu_0, the first penalty weight"),
-         parameter<&QueryOptions::penalty, &PenaltyOptions::growth_factor>(
-             "growth_factor", Kind::real, std::nextafter(1.0, 2.0), 1e6,
-             "growth of the penalty weight between subproblems"),
+        {positive(parameter<&QueryOptions::penalty, &PenaltyOptions::initial_weight>(
+             "initial_weight", Kind::real, 0, 1e12, "mu_0, the first penalty weight")),
+         positive(parameter<&QueryOptions::penalty, &PenaltyOptions::growth_factor>(
+             "growth_factor", Kind::real, 1, 1e6,
+             "growth of the penalty weight between subproblems")),
          parameter<&QueryOptions::penalty, &PenaltyOptions::outer_iterations>(
              "outer_iterations", Kind::integer, 1, 100, "the number of subproblems"),
          parameter<&QueryOptions::penalty, &PenaltyOptions::inner_iterations>(
@@ -195,21 +201,23 @@ const ParameterInfo& find_parameter(const MethodInfo& info, const std::string& n
 }
 
 std::string number(double value) {
-  std::string text = std::to_string(value);
   if (value == std::floor(value) && std::abs(value) < 1e15) {
-    text = std::to_string(static_cast<long long>(value));
+    return std::to_string(static_cast<long long>(value));
   }
-  return text;
+  std::ostringstream text;
+  text << value;
+  return text.str();
 }
 
 void check_value(const ParameterInfo& p, double value) {
   const bool integral = p.kind != Kind::real;
-  if (!std::isfinite(value) || (integral && value != std::floor(value)) || value < p.minimum ||
+  const bool above = p.minimum_excluded ? value > p.minimum : value >= p.minimum;
+  if (!std::isfinite(value) || (integral && value != std::floor(value)) || !above ||
       value > p.maximum) {
     const std::string kind = integral ? "an integer" : "a number";
-    throw std::invalid_argument(std::string(p.name) + " must be " + kind + " in [" +
-                                number(p.minimum) + ", " + number(p.maximum) + "], got " +
-                                number(value));
+    throw std::invalid_argument(std::string(p.name) + " must be " + kind + " in " +
+                                (p.minimum_excluded ? "(" : "[") + number(p.minimum) + ", " +
+                                number(p.maximum) + "], got " + number(value));
   }
 }
 

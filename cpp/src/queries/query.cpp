@@ -1,5 +1,6 @@
 #include "swarmcollide/queries/query.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -52,19 +53,19 @@ DistanceResult Query::collision(const ConvexPolyhedron& a, const Pose& pose_a,
                                 bool escalate) const {
   require(options_.method, kCollide, "collide");
   const detail::FramedPair pair = detail::frame_pair(a, pose_a, b, pose_b, options_.tolerance);
-  // A method without distances answers with its signed distance, which decides the same way.
-  const detail::Goal goal = method_info(options_.method).capabilities & kDistance
-                                ? detail::Goal::verdict
-                                : detail::Goal::signed_distance;
+  const detail::Goal goal = detail::Goal::verdict;
   DistanceResult result = detail::finish_result(
       pair, detail::solver_for(options_.method)(pair, options_, goal), options_.method, goal);
-  if (result.certified || !escalate || options_.method == Method::exact) return result;
-  QueryOptions exact = options_;
+  if (result.certified || !escalate) return result;
+  // The exact method decides with its own iteration cap: a budget too small for the method
+  // asked for (max_iterations of 1, say) must not leave the verdict unproven again.
+  QueryOptions exact;
   exact.method = Method::exact;
+  exact.tolerance = options_.tolerance;
+  exact.exact.max_iterations = std::max(options_.exact.max_iterations, exact.exact.max_iterations);
   DistanceResult decided = detail::finish_result(
-      pair, detail::solver_for(Method::exact)(pair, exact, detail::Goal::verdict), Method::exact,
-      detail::Goal::verdict);
-  decided.escalated_from = options_.method;
+      pair, detail::solver_for(Method::exact)(pair, exact, goal), Method::exact, goal);
+  if (options_.method != Method::exact) decided.escalated_from = options_.method;
   return decided;
 }
 

@@ -14,7 +14,9 @@ bool apart_proven(const FramedPair& pair, Scalar lower) {
 }
 
 bool close_proven(const FramedPair& pair, Scalar upper, bool intersection_proven) {
-  return intersection_proven || upper + kFrameRounding <= pair.tolerance;
+  // A pair of size zero is one point twice (every point of both bodies is the frame's centre,
+  // exactly): the bodies share it, though no tolerance (zero times the size) can say so.
+  return intersection_proven || upper + kFrameRounding <= pair.tolerance || pair.frame.size == 0;
 }
 
 }  // namespace
@@ -74,8 +76,8 @@ DistanceResult finish_result(const FramedPair& pair, Answer&& answer, Method req
   r.evaluations = answer.evaluations;
   r.history = std::move(answer.history);
   for (Scalar& h : r.history) h = frame.length_to_world(h);
-  // Unproven, the verdict is the best guess: within the tolerance up to rounding.
-  r.colliding = close || (!apart && answer.upper <= pair.tolerance + kFrameRounding);
+  // Unproven, the verdict errs on the side of contact: bodies not shown apart may touch.
+  r.colliding = !apart;
   r.certified = (apart || close) && (goal != Goal::signed_distance || exact);
   // For a signed distance, contact alone does not settle the depth.
   const bool settled = exact || (close && goal != Goal::signed_distance);

@@ -5,6 +5,7 @@
 #include <utility>
 #include <vector>
 
+#include "../queries/verdict.hpp"
 #include "best_bounds.hpp"
 #include "direction_swarm.hpp"
 #include "distance_finish.hpp"
@@ -50,7 +51,7 @@ class DualSearch {
     if (start_ != nullptr) try_common_point();
     // Between well-separated bodies the features along the centres' direction are often the
     // optimal ones already, and the swarm has nothing left to do.
-    if (!reached()) finish_.from(centre, hint_a_, hint_b_, bounds_, goal_);
+    if (start_ == nullptr || !reached()) finish_.from(centre, hint_a_, hint_b_, bounds_, goal_);
     if (!reached()) try_common_point();
     Scalar radius = kPi / 2;
     Vector3 round_centre = bounds_.normal();
@@ -125,9 +126,26 @@ Answer solve_dual_from(const FramedPair& pair, const QueryOptions& options, Goal
                        const DualStart* start) {
   const Goal search = goal == Goal::signed_distance ? Goal::distance : goal;
   Answer answer = DualSearch(pair, options, search, start).run();
-  // A separating direction settles a signed distance as a distance; overlapping bodies get the
-  // certified penetration depth, started from the swarm's best direction.
-  if (goal != Goal::signed_distance || answer.lower > kFrameRounding) return answer;
+  if (goal != Goal::signed_distance) return answer;
+  // A separating direction settles a signed distance as a distance, whose contact normal is the
+  // witnesses' direction (`point_b - point_a = distance * direction`): the swarm's best direction
+  // may be a tolerance's worth of angle away from it. When the separation along the witnesses
+  // leaves the bounds further apart than the tolerance, Wolfe's algorithm from them closes it.
+  if (answer.lower > kFrameRounding) {
+    const Vector3 between = answer.point_b - answer.point_a;
+    const Vector3 n = between / answer.upper;
+    const Scalar s = separation(pair.a, pair.b, n);
+    if (value_proven(pair, s, answer.upper)) {
+      answer.direction = n;
+      answer.lower = s;
+      return answer;
+    }
+    Answer exact = exact_distance(pair, options.exact.max_iterations, between);
+    exact.iterations += answer.iterations;
+    exact.evaluations += answer.evaluations;
+    exact.history = std::move(answer.history);
+    return exact;
+  }
   Answer overlap =
       exact_penetration(pair, options.exact.max_iterations, answer.direction, answer.upper);
   overlap.iterations += answer.iterations;

@@ -1,18 +1,12 @@
 #include "exact_solver.hpp"
 
+#include <algorithm>
+
 #include "minkowski.hpp"
-#include "sat_penetration.hpp"
+#include "penetration.hpp"
 #include "witness.hpp"
 
 namespace swarmcollide::detail {
-
-namespace {
-
-// The exhaustive separating-axis enumeration costs edges_a x edges_b separations; beyond this
-// many pairs (64-point bodies have about 35,000) it would take seconds.
-constexpr long kMaxEdgePairs = 250'000;
-
-}  // namespace
 
 Answer exact_distance(const FramedPair& pair, int max_iterations, const Vector3& start) {
   int hint_a = -1;
@@ -30,9 +24,27 @@ Answer exact_distance(const FramedPair& pair, int max_iterations, const Vector3&
   return answer;
 }
 
-Answer exact_penetration(const FramedPair& pair, int, const Vector3& hint,
+Answer exact_penetration(const FramedPair& pair, int max_iterations, const Vector3& hint,
                          Scalar distance_upper) {
-  return sat_penetration(pair, hint, distance_upper, kMaxEdgePairs);
+  // The penetration solver reads every point several times: the frame's points once, in place.
+  thread_local VertexMatrix points_a;
+  thread_local VertexMatrix points_b;
+  pair.a.points(points_a);
+  pair.b.points(points_b);
+  PenetrationBounds bounds = penetration(points_a, pair.a.hull(), points_b, pair.b.hull(), hint,
+                                         pair.tolerance, max_iterations);
+  Answer answer;
+  // The raw separation: the query layer's verdicts subtract kFrameRounding, which covers the
+  // solver's own margin (64 u times the largest coordinate, at most 1 in the frame).
+  answer.lower = bounds.separation;
+  answer.upper = std::min(bounds.upper, distance_upper);
+  answer.direction = bounds.normal;
+  answer.point_a = bounds.point_a;
+  answer.point_b = bounds.point_b;
+  answer.weights_a = ConvexWeights(std::move(bounds.weights_a));
+  answer.weights_b = ConvexWeights(std::move(bounds.weights_b));
+  answer.iterations = bounds.iterations;
+  return answer;
 }
 
 Answer exact_signed_distance(const FramedPair& pair, int max_iterations, const Vector3& hint) {

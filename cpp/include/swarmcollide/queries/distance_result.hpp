@@ -49,7 +49,8 @@ struct DistanceResult {
   /// Best upper bound after initialisation and after each iteration (iterative methods only).
   std::vector<Scalar> history;
   /// True when the bodies are within `tolerance` of each other (the query's tolerance times the
-  /// pair's size): proven when `certified`, the method's best guess otherwise.
+  /// pair's size): proven when `certified`; otherwise true unless a separation proves them apart
+  /// (an unproven verdict errs on the side of contact).
   bool colliding = false;
   /// True when the answer is proven: the bounds (with their rounding) prove the verdict, and for
   /// signed distances they also enclose the value to within the tolerance. A verdict is proven

@@ -22,9 +22,11 @@ struct ParameterInfo {
   Kind kind;
   /// One line for documentation.
   const char* description;
-  /// Inclusive valid range; for a choice, the index of the last choice is the maximum.
+  /// Valid range, inclusive except for the minimum where `minimum_excluded` (a value that must
+  /// be positive); for a choice, the index of the last choice is the maximum.
   double minimum;
   double maximum;
+  bool minimum_excluded;
   /// The names of a choice's values 0, 1, ...; empty otherwise.
   std::vector<const char*> choices;
   /// The value in `options` (a choice as its index).

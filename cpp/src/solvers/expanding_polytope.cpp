@@ -1,0 +1,241 @@
+#include "expanding_polytope.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+
+namespace swarmcollide::detail {
+
+namespace {
+
+// Bound on the error of det(p, q, r) computed as p . (q x r) from points each rounded by one
+// roundoff per coordinate (they are differences x_i - y_j): the cross product and the dot product
+// add at most 5 roundoffs on sqrt(2) |p| |q| |r| and the rounded inputs another 3 |p| |q| |r|
+// (to first order); 16 roundoffs cover both, doubled here.
+Scalar determinant_bound(const Vector3& p, const Vector3& q, const Vector3& r) {
+  return 32 * kRoundoff * p.norm() * q.norm() * r.norm();
+}
+
+// True when det(p, q, r) is provably positive. Where the bound underflows, so may the
+// determinant's terms, and no sign is trusted.
+bool positively_oriented(const Vector3& p, const Vector3& q, const Vector3& r) {
+  const Scalar bound = determinant_bound(p, q, r);
+  return bound >= std::numeric_limits<Scalar>::min() && p.dot(q.cross(r)) > bound;
+}
+
+using HeapEntry = std::pair<Scalar, int>;
+constexpr auto kNearestFirst = std::greater<HeapEntry>();
+
+}  // namespace
+
+bool ExpandingPolytope::make_face(int v0, int v1, int v2, Face& face) const {
+  const Vector3& p = vertices_[v0].w;
+  const Vector3& q = vertices_[v1].w;
+  const Vector3& r = vertices_[v2].w;
+  if (!positively_oriented(p, q, r)) return false;
+  Vector3 n = (q - p).cross(r - p);
+  const Scalar length = n.norm();
+  if (!(length > 0)) return false;
+  n /= length;
+  const Scalar hp = n.dot(p);
+  const Scalar hq = n.dot(q);
+  const Scalar hr = n.dot(r);
+  face.v = {v0, v1, v2};
+  face.normal = n;
+  face.distance = std::min({hp, hq, hr});
+  face.top = std::max({hp, hq, hr});
+  face.alive = true;
+  return true;
+}
+
+bool ExpandingPolytope::expand(int closest, int added) {
+  const Vector3& w = vertices_[added].w;
+  const auto sees = [&](int f) { return faces_[f].normal.dot(w) > faces_[f].top; };
+  if (!sees(closest)) return false;
+  ++stamp_;
+  if (seen_stamp_.size() < faces_.size()) seen_stamp_.resize(faces_.size(), 0);
+  if (start_stamp_.size() < vertices_.size()) {
+    start_stamp_.resize(vertices_.size(), 0);
+    start_face_.resize(vertices_.size(), 0);
+  }
+  visible_.clear();
+  horizon_.clear();
+  stack_.assign(1, closest);
+  seen_stamp_[closest] = stamp_;
+  // Every face enters the stack once, so the flood ends after at most faces_.size() pops.
+  while (!stack_.empty()) {
+    const int f = stack_.back();
+    stack_.pop_back();
+    visible_.push_back(f);
+    for (int k = 0; k < 3; ++k) {
+      const int g = faces_[f].adj[k];
+      if (seen_stamp_[g] == stamp_) continue;
+      if (sees(g)) {
+        seen_stamp_[g] = stamp_;
+        stack_.push_back(g);
+      } else {
+        horizon_.emplace_back(f, k);
+      }
+    }
+  }
+  if (horizon_.empty()) return false;
+  // The cone from the new point: one triangle per horizon edge, all provably oriented, and the
+  // horizon one loop through distinct vertices (else the surface would not stay a 2-manifold).
+  added_.resize(horizon_.size());
+  for (std::size_t e = 0; e < horizon_.size(); ++e) {
+    const Face& f = faces_[horizon_[e].first];
+    const int k = horizon_[e].second;
+    const int from = f.v[k];
+    const int to = f.v[(k + 1) % 3];
+    if (!make_face(from, to, added, added_[e])) return false;
+    if (start_stamp_[from] == stamp_) return false;
+    start_stamp_[from] = stamp_;
+    start_face_[from] = static_cast<int>(e);
+  }
+  for (const Face& face : added_) {
+    if (start_stamp_[face.v[1]] != stamp_) return false;
+  }
+  const int base = static_cast<int>(faces_.size());
+  for (std::size_t e = 0; e < added_.size(); ++e) {
+    const Face& f = faces_[horizon_[e].first];
+    const int k = horizon_[e].second;
+    Face& face = added_[e];
+    face.adj[0] = f.adj[k];
+    face.adj_edge[0] = f.adj_edge[k];
+    faces_[f.adj[k]].adj[f.adj_edge[k]] = base + static_cast<int>(e);
+    faces_[f.adj[k]].adj_edge[f.adj_edge[k]] = 0;
+    const int next = start_face_[face.v[1]];
+    face.adj[1] = base + next;
+    face.adj_edge[1] = 2;
+    added_[next].adj[2] = base + static_cast<int>(e);
+    added_[next].adj_edge[2] = 1;
+  }
+  for (int f : visible_) faces_[f].alive = false;
+  for (const Face& face : added_) {
+    heap_.emplace_back(face.distance, static_cast<int>(faces_.size()));
+    std::push_heap(heap_.begin(), heap_.end(), kNearestFirst);
+    faces_.push_back(face);
+  }
+  return true;
+}
+
+bool ExpandingPolytope::verify(Scalar& depth_lower) const {
+  Scalar nearest = 1e300;
+  bool any = false;
+  const int count = static_cast<int>(faces_.size());
+  for (int i = 0; i < count; ++i) {
+    const Face& f = faces_[i];
+    if (!f.alive) continue;
+    any = true;
+    for (int k = 0; k < 3; ++k) {
+      const int g = f.adj[k];
+      const int e = f.adj_edge[k];
+      if (g < 0 || g >= count || e < 0 || e > 2 || !faces_[g].alive) return false;
+      const Face& h = faces_[g];
+      if (h.adj[e] != i || h.adj_edge[e] != k) return false;
+      if (h.v[e] != f.v[(k + 1) % 3] || h.v[(e + 1) % 3] != f.v[k]) return false;
+    }
+    const Vector3& p = vertices_[f.v[0]].w;
+    const Vector3& q = vertices_[f.v[1]].w;
+    const Vector3& r = vertices_[f.v[2]].w;
+    if (!positively_oriented(p, q, r)) return false;
+    // Any unit vector n bounds the distance of every point of the triangle from below by
+    // min_k n . v_k; 16 roundoffs of the largest |v_k| cover the dot products and the rounded
+    // vertices (and 8 more on the result the rounding of |n|).
+    const Scalar reach = std::max({p.norm(), q.norm(), r.norm()});
+    const Scalar low =
+        std::min({f.normal.dot(p), f.normal.dot(q), f.normal.dot(r)}) - 16 * kRoundoff * reach;
+    nearest = std::min(nearest, low);
+  }
+  if (!any) return false;
+  depth_lower = std::max(Scalar(0), nearest) * (1 - 8 * kRoundoff);
+  return true;
+}
+
+ExpansionResult ExpandingPolytope::run(const BodyView& a, const BodyView& b,
+                                       const std::array<DifferencePoint, 4>& start, Scalar stop_gap,
+                                       int max_iterations) {
+  ExpansionResult result;
+  vertices_.assign(start.begin(), start.end());
+  faces_.clear();
+  heap_.clear();
+  {
+    const Vector3& p = vertices_[0].w;
+    if ((vertices_[1].w - p).cross(vertices_[2].w - p).dot(vertices_[3].w - p) > 0) {
+      std::swap(vertices_[1], vertices_[2]);
+    }
+  }
+  // With vertex 3 behind the triangle (0, 1, 2), these four face away from the opposite corner.
+  constexpr int kTetrahedron[4][3] = {{0, 1, 2}, {0, 3, 1}, {0, 2, 3}, {1, 3, 2}};
+  faces_.resize(4);
+  for (int f = 0; f < 4; ++f) {
+    if (!make_face(kTetrahedron[f][0], kTetrahedron[f][1], kTetrahedron[f][2], faces_[f])) {
+      return result;
+    }
+  }
+  for (int f = 0; f < 4; ++f) {
+    for (int k = 0; k < 3; ++k) {
+      const int from = faces_[f].v[k];
+      const int to = faces_[f].v[(k + 1) % 3];
+      for (int g = 0; g < 4; ++g) {
+        for (int e = 0; e < 3; ++e) {
+          if (faces_[g].v[e] == to && faces_[g].v[(e + 1) % 3] == from) {
+            faces_[f].adj[k] = g;
+            faces_[f].adj_edge[k] = e;
+          }
+        }
+      }
+    }
+    heap_.emplace_back(faces_[f].distance, f);
+  }
+  std::make_heap(heap_.begin(), heap_.end(), kNearestFirst);
+
+  for (int iteration = 0; iteration < max_iterations; ++iteration) {
+    // Stale entries (faces removed since) are dropped; every face enters the heap once.
+    while (!faces_[heap_.front().second].alive) {
+      std::pop_heap(heap_.begin(), heap_.end(), kNearestFirst);
+      heap_.pop_back();
+    }
+    const int closest = heap_.front().second;
+    const Face& face = faces_[closest];
+    const Vector3 n = face.normal;
+    // The climbs start from the face's corner highest along n (and lowest, for B): the support
+    // is usually a few steps from it.
+    int start_a = vertices_[face.v[0]].ia;
+    int start_b = vertices_[face.v[0]].ib;
+    for (int k = 1; k < 3; ++k) {
+      const DifferencePoint& corner = vertices_[face.v[k]];
+      if (a.point(corner.ia).dot(n) > a.point(start_a).dot(n)) start_a = corner.ia;
+      if (b.point(corner.ib).dot(n) < b.point(start_b).dot(n)) start_b = corner.ib;
+    }
+    const int ia = a.climb_max(n, start_a);
+    const int ib = b.climb_max(-n, start_b);
+    const Vector3 w = a.point(ia) - b.point(ib);
+    const Scalar h = n.dot(w);
+    result.iterations = iteration + 1;
+    if (-h > result.best_separation) {
+      result.best_separation = -h;
+      result.best_normal = n;
+      result.best_ia = ia;
+      result.best_ib = ib;
+    }
+    if (h - face.distance <= stop_gap) {
+      result.converged = true;
+      break;
+    }
+    // A support point already on the surface cannot move it (rounding has the last word).
+    const bool known = std::any_of(vertices_.begin(), vertices_.end(),
+                                   [&](const auto& v) { return v.ia == ia && v.ib == ib; });
+    if (known) break;
+    vertices_.push_back({w, ia, ib});
+    if (!expand(closest, static_cast<int>(vertices_.size()) - 1)) {
+      vertices_.pop_back();
+      break;
+    }
+  }
+  result.verified = verify(result.depth_lower);
+  return result;
+}
+
+}  // namespace swarmcollide::detail

@@ -1,0 +1,87 @@
+// An expanding polytope inside the Minkowski difference A - B that proves a depth; private.
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "penetration_support.hpp"
+#include "swarmcollide/types.hpp"
+
+namespace swarmcollide::detail {
+
+/// A point of the Minkowski difference `A - B`: `x_ia - y_ib`, as computed.
+struct DifferencePoint {
+  Vector3 w = Vector3::Zero();
+  int ia = -1;
+  int ib = -1;
+};
+
+/// What the expansion proved and found.
+struct ExpansionResult {
+  /// The final surface passed `verify`: `depth_lower` is proven (sd <= -depth_lower).
+  bool verified = false;
+  /// Proven `depth >= depth_lower >= 0` when `verified` (the origin is then in `A - B`).
+  Scalar depth_lower = 0;
+  /// The direction of least support `h(n) = max_i n.x_i - min_j n.y_j` met, i.e. of largest
+  /// separation `s(n) = -h(n)`, from hill-climbed supports (not proven).
+  Vector3 best_normal = Vector3::UnitX();
+  Scalar best_separation = -1e300;
+  /// Support indices at `best_normal`, to warm-start later climbs.
+  int best_ia = -1;
+  int best_ib = -1;
+  /// The gap `h - distance` at the face expanded last fell to the requested one.
+  bool converged = false;
+  int iterations = 0;
+};
+
+/// EPA (the expanding polytope algorithm) from a tetrahedron of points of `A - B` around the
+/// origin, made safe by a verifier rather than by trusting each step.
+///
+/// The surface is kept as oriented triangles with their neighbours; each step takes the triangle
+/// whose plane is nearest the origin, finds the support point of `A - B` along its normal, and
+/// replaces the triangles that point sees by a cone from it, but only if every new triangle is
+/// provably oriented with the origin inside (otherwise the expansion stops where it is). At the
+/// end `verify` checks the surface from scratch: every triangle's edges are matched by reversed
+/// edges of its neighbours (a closed 2-cycle) and every triangle has `det(v0, v1, v2)` above its
+/// rounding bound, so the radial projection from the origin covers the sphere with a positive
+/// degree, every ray from the origin meets a triangle, and the triangles' vertices being points
+/// of `A - B`, the ball of radius `min` (triangle plane distance) lies in `A - B`.
+class ExpandingPolytope {
+ public:
+  /// Expands from the tetrahedron `start` until the support along the nearest triangle's normal
+  /// is within `stop_gap` of its plane, the expansion cannot proceed safely, or after
+  /// `max_iterations` steps; then verifies. Returns verified = false when the tetrahedron does
+  /// not enclose the origin provably.
+  ExpansionResult run(const BodyView& a, const BodyView& b,
+                      const std::array<DifferencePoint, 4>& start, Scalar stop_gap,
+                      int max_iterations);
+
+ private:
+  struct Face {
+    std::array<int, 3> v;         // vertices, counter-clockwise seen from outside
+    std::array<int, 3> adj;       // the face across edge k (v[k] -> v[k + 1])
+    std::array<int, 3> adj_edge;  // which edge of that face it is
+    Vector3 normal;               // unit, outward
+    Scalar distance;              // min_k normal . v[k]: a lower bound of the plane's distance
+    Scalar top;                   // max_k normal . v[k]: a point beyond it sees the face
+    bool alive;
+  };
+
+  bool make_face(int v0, int v1, int v2, Face& face) const;
+  bool expand(int closest, int added);
+  bool verify(Scalar& depth_lower) const;
+
+  std::vector<DifferencePoint> vertices_;
+  std::vector<Face> faces_;
+  std::vector<std::pair<Scalar, int>> heap_;  // (distance, face), a min-heap with stale entries
+  std::vector<int> stack_;
+  std::vector<int> visible_;
+  std::vector<std::pair<int, int>> horizon_;  // (face, edge) of visible faces on the horizon
+  std::vector<int> seen_stamp_;
+  std::vector<int> start_stamp_;  // per vertex: stamp of the expansion whose horizon starts there
+  std::vector<int> start_face_;   // per vertex: the new face whose horizon edge starts there
+  std::vector<Face> added_;
+  int stamp_ = 0;
+};
+
+}  // namespace swarmcollide::detail

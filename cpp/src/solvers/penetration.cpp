@@ -1,0 +1,343 @@
+#include "penetration.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "candidate_axes.hpp"
+#include "expanding_polytope.hpp"
+#include "penetration_support.hpp"
+#include "wolfe_min_norm.hpp"
+
+namespace swarmcollide::detail {
+
+namespace {
+
+constexpr Scalar kInfinity = std::numeric_limits<Scalar>::infinity();
+// The scales of coordinates the margins hold for (squares of coordinates far from both limits).
+constexpr Scalar kLargestCoordinate = 1e100;
+constexpr Scalar kSmallestCoordinate = 1e-100;
+// Work (edge pairs plus faces times points) up to which the candidate axes are the fallback when
+// the polytope proves too little (tens of milliseconds); larger pairs keep the bounds they have,
+// unproven.
+constexpr long long kAxesFallbackWork = 1LL << 22;
+// Iterations of Wolfe's algorithm on the witnesses' features (it stops at rounding long before).
+constexpr int kWitnessIterations = 100;
+
+// Buffers a solve reuses from the previous one on the same thread.
+struct Workspace {
+  ExpandingPolytope polytope;
+  CandidateAxes axes;
+  std::vector<int> feature_a;
+  std::vector<int> feature_b;
+  std::vector<char> visited;  // all zero between uses
+};
+
+Workspace& thread_workspace() {
+  thread_local Workspace workspace;
+  return workspace;
+}
+
+long long edge_count(const Hull& hull) {
+  if (hull.dimension <= 0) return 0;
+  if (hull.dimension == 1) return 1;
+  return static_cast<long long>(hull.neighbours.size()) / 2;
+}
+
+// What the candidate axes cost: every edge pair, and every face against every point (the check
+// of how far the points stray from the hull's faces).
+long long axes_work(const BodyView& a, const BodyView& b) {
+  const auto faces_by_points = [](const BodyView& body) {
+    return body.hull.dimension == 3 ? static_cast<long long>(body.hull.faces.rows()) * body.size()
+                                    : 0;
+  };
+  return edge_count(a.hull) * edge_count(b.hull) + faces_by_points(a) + faces_by_points(b);
+}
+
+class Solver {
+ public:
+  Solver(const VertexMatrix& a, const Hull& hull_a, const VertexMatrix& b, const Hull& hull_b,
+         Scalar tolerance, int max_iterations, Scalar coordinate)
+      : a_{a, hull_a},
+        b_{b, hull_b},
+        tolerance_(tolerance),
+        max_iterations_(std::max(1, max_iterations)),
+        ws_(thread_workspace()),
+        coordinate_(coordinate) {}
+
+  PenetrationBounds solve(const Vector3& hint) {
+    if (hint.allFinite() && hint.norm() > 0) offer(hint.normalized());
+    offer_flat_normals();
+    nearest_then_polytope();
+    finish();
+    if (!done() && axes_work(a_, b_) <= kAxesFallbackWork) {
+      enumerate_axes();
+      finish();
+    }
+    return result();
+  }
+
+ private:
+  Scalar margin() const { return separation_margin(coordinate_); }
+  Scalar reach() const { return 2 * std::sqrt(Scalar(3)) * coordinate_; }
+  Scalar lower() const { return separation_ - margin(); }
+  // The gap below which the rounding margins leave nothing to gain.
+  Scalar floor() const { return 16 * margin(); }
+  bool done() const { return upper() - lower() <= std::max(tolerance_, floor()); }
+  Scalar upper() const {
+    return std::min(proven_upper_, nearest_length_ + 16 * kRoundoff * reach());
+  }
+
+  // Flat bodies touch along their plane and two segments along their common normal, which the
+  // polytope cannot find when A - B has no interior; trying these costs a few climbs.
+  void offer_flat_normals() {
+    Vector3 axis[2];
+    int segments = 0;
+    for (const BodyView* body : {&a_, &b_}) {
+      const Hull& h = body->hull;
+      if (h.dimension == 2) {
+        const Vector3 p = body->point(h.faces(0, 0));
+        const Vector3 n = (body->point(h.faces(0, 1)) - p).cross(body->point(h.faces(0, 2)) - p);
+        offer(n.normalized());
+        offer(-n.normalized());
+      } else if (h.dimension == 1) {
+        axis[segments++] = body->point(h.vertex_indices[1]) - body->point(h.vertex_indices[0]);
+      }
+    }
+    if (segments == 2 && axis[0].cross(axis[1]).norm() > 0) {
+      offer(axis[0].cross(axis[1]).normalized());
+      offer(-axis[0].cross(axis[1]).normalized());
+    }
+  }
+
+  // A direction to try: its separation from climbed supports ranks it; the best one is measured
+  // exactly by `finish`.
+  void offer(const Vector3& n) {
+    if (!n.allFinite()) return;
+    climb_a_ = a_.climb_max(n, climb_a_);
+    climb_b_ = b_.climb_max(-n, climb_b_);
+    offer(n, (b_.point(climb_b_) - a_.point(climb_a_)).dot(n));
+  }
+  void offer(const Vector3& n, Scalar estimate) {
+    if (estimate > estimate_) {
+      estimate_ = estimate;
+      candidate_ = n;
+    }
+  }
+
+  // The candidate's separation by scanning every point, which a proven lower bound needs (a climb
+  // can stop a rounding error short of the maximum).
+  void finish() {
+    if (!(estimate_ > -kInfinity)) offer(Vector3::UnitX());
+    top_a_ = a_.scan_max(candidate_);
+    top_b_ = b_.scan_max(-candidate_);
+    normal_ = candidate_;
+    separation_ = b_.height(top_b_, candidate_) - a_.height(top_a_, candidate_);
+  }
+
+  void set_upper(Scalar value, PenetrationProof proof) {
+    if (value < proven_upper_) {
+      proven_upper_ = value;
+      proof_ = proof;
+    }
+  }
+
+  // Wolfe's nearest point of A - B to the origin: an upper bound |p| (p is a point of A - B, so
+  // s(n) <= -n.p <= |p| for every n) and, when the origin is inside, a tetrahedron around it for
+  // the expanding polytope.
+  void nearest_then_polytope() {
+    int ia = climb_a_;
+    int ib = climb_b_;
+    const auto oracle = [&](const Vector3& d) {
+      ia = a_.climb_max(-d, ia);
+      ib = b_.climb_max(d, ib);
+      return OraclePoint{a_.point(ia) - b_.point(ib), ia, ib};
+    };
+    Vector3 start = estimate_ > -kInfinity ? candidate_ : Vector3(a_.point(0) - b_.point(0));
+    if (!(start.norm() > 0)) start = Vector3::UnitX();
+    const MinNormPoint m =
+        wolfe_min_norm(oracle, start, reach(), max_iterations_);
+    iterations_ += m.iterations;
+    // The exact convex combination of the corral (weights normalised) is a point of A - B; the
+    // computed one is within 16 roundoffs of reach() of it (added in upper()).
+    Scalar total = 0;
+    for (int k = 0; k < m.size; ++k) total += m.weights[k];
+    Vector3 p = Vector3::Zero();
+    for (int k = 0; k < m.size; ++k) p += m.weights[k] / total * m.corral[k].p;
+    if (p.norm() < nearest_length_) nearest_length_ = p.norm();
+    if (p.norm() > 0) offer(-p.normalized());
+    if (m.size == MinNormPoint::kCapacity && enclose(m)) return;
+    // Touching bodies: the origin is on the boundary of A - B and on the corral's triangles, which
+    // then lie in the supporting plane there, so their normals are the contact normal.
+    for (int k = 0; m.size >= 3 && k < m.size; ++k) {
+      const Vector3& p0 = m.corral[k].p;
+      const Vector3 n =
+          (m.corral[(k + 1) % m.size].p - p0).cross(m.corral[(k + 2) % m.size].p - p0);
+      if (n.norm() > 0) {
+        offer(n.normalized());
+        offer(-n.normalized());
+      }
+      if (m.size == 3) break;
+    }
+  }
+
+  // The expanding polytope from Wolfe's tetrahedron around the origin; true when it proved an
+  // upper bound.
+  bool enclose(const MinNormPoint& m) {
+    std::array<DifferencePoint, 4> start_tetrahedron;
+    for (int k = 0; k < 4; ++k) {
+      start_tetrahedron[k] = {m.corral[k].p, m.corral[k].ia, m.corral[k].ib};
+    }
+    const Scalar stop_gap = std::max(tolerance_ / 2, floor() / 4);
+    const ExpansionResult e =
+        ws_.polytope.run(a_, b_, start_tetrahedron, stop_gap, max_iterations_);
+    iterations_ += e.iterations;
+    if (e.best_separation > -kInfinity) offer(e.best_normal, e.best_separation);
+    if (e.verified) set_upper(-e.depth_lower, PenetrationProof::polytope);
+    return e.verified;
+  }
+
+  void enumerate_axes() {
+    const AxesBound bound = ws_.axes.run(a_, b_, coordinate_);
+    offer(bound.best_normal);
+    // Below -flat_slack the difference is full-dimensional with the origin inside. Otherwise the
+    // facets bound sd only if the origin is inside, |p| bounds it if not, and their maximum is
+    // no better than |p| alone, which upper() already has.
+    if (bound.upper < -bound.flat_slack) set_upper(bound.upper, PenetrationProof::candidate_axes);
+  }
+
+  // Points of `body` within `slack` of the top along n (whose top point is `top`): a scan for
+  // small bodies, a flood over the hull's edge graph for large ones (the points above a plane
+  // span a connected subgraph of a polytope's graph).
+  void feature(const BodyView& body, const Vector3& n, int top, Scalar slack,
+               std::vector<int>& found) {
+    const Scalar floor = body.points.row(top).dot(n) - slack;
+    found.clear();
+    const Hull& h = body.hull;
+    const bool on_graph = h.neighbour_offsets[top] < h.neighbour_offsets[top + 1];
+    if (body.size() <= kHillClimbingThreshold || !on_graph) {
+      for (int i = 0; i < body.size(); ++i) {
+        if (body.points.row(i).dot(n) >= floor) found.push_back(i);
+      }
+      return;
+    }
+    if (ws_.visited.size() < static_cast<std::size_t>(body.size())) {
+      ws_.visited.resize(body.size(), 0);
+    }
+    found.push_back(top);
+    ws_.visited[top] = 1;
+    for (std::size_t k = 0; k < found.size(); ++k) {
+      const int i = found[k];
+      for (int e = h.neighbour_offsets[i]; e < h.neighbour_offsets[i + 1]; ++e) {
+        const int j = h.neighbours[e];
+        if (!ws_.visited[j] && body.points.row(j).dot(n) >= floor) {
+          ws_.visited[j] = 1;
+          found.push_back(j);
+        }
+      }
+    }
+    for (int i : found) ws_.visited[i] = 0;
+  }
+
+  // Witnesses: on A's supporting feature along the normal and B's along its opposite, the pair
+  // whose difference is nearest to separation * normal (Wolfe's algorithm on the features'
+  // difference shifted by it). At an optimal normal the foot of the origin on the facet of
+  // A - B lies in that difference, and the residual is rounding.
+  void witnesses(PenetrationBounds& r) {
+    const Vector3& n = normal_;
+    const Scalar gap = std::isfinite(upper()) ? std::max(Scalar(0), upper() - lower()) : 0;
+    const Scalar slack = 1024 * margin() + 2 * std::min(gap, Scalar(1e-9));
+    feature(a_, n, top_a_, slack, ws_.feature_a);
+    feature(b_, -n, top_b_, slack, ws_.feature_b);
+    const Vector3 shift = separation_ * n;
+    const auto oracle = [&](const Vector3& d) {
+      int i = ws_.feature_a.front();
+      for (int k : ws_.feature_a) {
+        if (a_.points.row(k).dot(d) > a_.points.row(i).dot(d)) i = k;
+      }
+      int j = ws_.feature_b.front();
+      for (int k : ws_.feature_b) {
+        if (b_.points.row(k).dot(d) < b_.points.row(j).dot(d)) j = k;
+      }
+      return OraclePoint{b_.point(j) - a_.point(i) - shift, i, j};
+    };
+    const MinNormPoint m =
+        wolfe_min_norm(oracle, n, reach(), kWitnessIterations);
+    Scalar total = 0;
+    for (int k = 0; k < m.size; ++k) total += m.weights[k];
+    r.weights_a = VectorX::Zero(a_.size());
+    r.weights_b = VectorX::Zero(b_.size());
+    r.point_a.setZero();
+    r.point_b.setZero();
+    for (int k = 0; k < m.size; ++k) {
+      const Scalar w = m.weights[k] / total;
+      r.weights_a(m.corral[k].ia) += w;
+      r.weights_b(m.corral[k].ib) += w;
+      r.point_a += w * a_.point(m.corral[k].ia);
+      r.point_b += w * b_.point(m.corral[k].ib);
+    }
+    r.witness_residual = (r.point_b - r.point_a - shift).norm();
+    r.feature_slack = slack;
+  }
+
+  PenetrationBounds result() {
+    PenetrationBounds r;
+    r.normal = normal_;
+    r.separation = separation_;
+    r.margin = margin();
+    r.lower = lower();
+    r.upper = upper();
+    r.proof = proven_upper_ <= r.upper ? proof_ : PenetrationProof::nearest_point;
+    if (!std::isfinite(r.upper)) r.proof = PenetrationProof::none;
+    r.iterations = iterations_;
+    r.proven = r.upper - r.lower <= tolerance_;
+    witnesses(r);
+    return r;
+  }
+
+  BodyView a_;
+  BodyView b_;
+  Scalar tolerance_;
+  int max_iterations_;
+  Workspace& ws_;
+  Scalar coordinate_;
+  // Climb starts shared by the directions offered.
+  int climb_a_ = -1;
+  int climb_b_ = -1;
+  Vector3 candidate_ = Vector3::UnitX();
+  Scalar estimate_ = -kInfinity;
+  Vector3 normal_ = Vector3::UnitX();
+  Scalar separation_ = -kInfinity;
+  int top_a_ = 0;
+  int top_b_ = 0;
+  Scalar proven_upper_ = kInfinity;
+  PenetrationProof proof_ = PenetrationProof::none;
+  Scalar nearest_length_ = kInfinity;
+  int iterations_ = 0;
+};
+
+}  // namespace
+
+PenetrationBounds penetration(const VertexMatrix& a, const Hull& hull_a, const VertexMatrix& b,
+                              const Hull& hull_b, const Vector3& hint, Scalar tolerance,
+                              int max_iterations) {
+  // Outside these scales products of coordinates overflow or underflow and the margins, which
+  // assume neither, prove nothing; the caller normalises the frame first.
+  const Scalar coordinate = largest_coordinate(a, b);
+  if (coordinate > kLargestCoordinate || (coordinate > 0 && coordinate < kSmallestCoordinate)) {
+    PenetrationBounds r;
+    r.lower = -kInfinity;
+    r.upper = kInfinity;
+    r.weights_a = VectorX::Constant(a.rows(), Scalar(1) / a.rows());
+    r.weights_b = VectorX::Constant(b.rows(), Scalar(1) / b.rows());
+    r.point_a = a.transpose() * r.weights_a;
+    r.point_b = b.transpose() * r.weights_b;
+    return r;
+  }
+  Solver solver(a, hull_a, b, hull_b, tolerance, max_iterations, coordinate);
+  return solver.solve(hint);
+}
+
+}  // namespace swarmcollide::detail

@@ -1,0 +1,305 @@
+// The pair's frame and poses: answers do not depend on the unit of length or on where the pair
+// is, and a posed body is answered as its moved points would be.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "contract.hpp"
+#include "geometry/framed_body.hpp"
+#include "oracle.hpp"
+#include "paper_cases.hpp"
+#include "shapes.hpp"
+
+namespace swarmcollide::testing {
+namespace {
+
+struct Pair {
+  std::string name;
+  ConvexPolyhedron a;
+  ConvexPolyhedron b;
+};
+
+// Pairs apart, touching, within the tolerance and overlapping, with coordinates that are exact
+// binary fractions, so that scaling by a power of two and translating by a multiple of one
+// change no bit of their frame coordinates.
+std::vector<Pair> dyadic_pairs() {
+  return {
+      {"paper, touching", paper_a(), paper_b_colliding()},
+      {"paper, separate", paper_a(), paper_b_separate()},
+      {"cubes overlapping by half", unit_cube(), moved(unit_cube(), {0.5, 0.25, 0.125})},
+      {"cubes 2^-30 apart", unit_cube(), box({1 + 0x1p-30, 0.25, 0.5}, {2, 1.25, 1.5})},
+      {"cubes 2^-10 apart", unit_cube(), box({1 + 0x1p-10, 0.25, 0.5}, {2, 1.25, 1.5})},
+  };
+}
+
+// Every method with every query it answers.
+struct MethodQuery {
+  Method method;
+  QueryKind kind;
+};
+
+std::vector<MethodQuery> method_queries() {
+  std::vector<MethodQuery> all;
+  for (const MethodInfo& info : method_table()) {
+    for (QueryKind kind : {QueryKind::distance, QueryKind::collide, QueryKind::signed_distance}) {
+      if (info.capabilities & capability_of(kind)) all.push_back({info.method, kind});
+    }
+  }
+  return all;
+}
+
+Query query_of(Method method) {
+  QueryOptions options;
+  options.method = method;
+  return Query(options);
+}
+
+std::string scientific(Scalar x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", x);
+  return text;
+}
+
+std::string label(const MethodQuery& m, const Pair& pair) {
+  return std::string(method_name(m.method)) + " " + kind_name(m.kind) + ", " + pair.name;
+}
+
+TEST(Frame, PutsBothBodiesInTheUnitBallAndKeepsTheToleranceRelative) {
+  for (Scalar scale : {1e-300, 1e-5, 1.0, 3e7, 1e300}) {
+    for (const Pair& p : dyadic_pairs()) {
+      SCOPED_TRACE(p.name + ", scale " + scientific(scale));
+      const ConvexPolyhedron a = transformed(p.a, scale, Vector3::Zero());
+      const ConvexPolyhedron b = transformed(p.b, scale, Vector3::Zero());
+      const detail::FramedPair pair = detail::frame_pair(a, Pose{}, b, Pose{}, 1e-9);
+      EXPECT_GE(pair.frame.size, 1);
+      EXPECT_LT(pair.frame.size, 2);
+      EXPECT_EQ(pair.tolerance, 1e-9 * pair.frame.size);
+      for (const detail::FramedBody* body : {&pair.a, &pair.b}) {
+        for (int i = 0; i < body->size(); ++i) EXPECT_LE(body->vertex(i).norm(), 1);
+      }
+      // The world size is the distance across both bodies' boxes, give or take a factor 2.
+      const Scalar across = (a.bounds().centre / 2 - b.bounds().centre / 2).stableNorm() * 2;
+      const Scalar size = pair.frame.length_to_world(pair.frame.size);
+      EXPECT_GE(size, across);
+      EXPECT_LE(size, 2 * (across + a.bounds().radius + b.bounds().radius));
+    }
+  }
+}
+
+// A power-of-two scale moves every frame coordinate by nothing: the answers are the same bits,
+// scaled.
+TEST(Frame, PowerOfTwoScalesGiveTheSameAnswersScaled) {
+  for (const MethodQuery& m : method_queries()) {
+    const Query query = query_of(m.method);
+    for (const Pair& p : dyadic_pairs()) {
+      SCOPED_TRACE(label(m, p));
+      const DistanceResult unit = ask(query, m.kind, p.a, p.b);
+      for (int exponent : {-900, -330, 330, 900}) {
+        const Scalar s = std::ldexp(1.0, exponent);
+        const DistanceResult r = ask(query, m.kind, transformed(p.a, s, Vector3::Zero()),
+                                     transformed(p.b, s, Vector3::Zero()));
+        EXPECT_EQ(r.distance, std::ldexp(unit.distance, exponent));
+        EXPECT_EQ(r.lower_bound, std::ldexp(unit.lower_bound, exponent));
+        EXPECT_EQ(r.point_a, unit.point_a * s);
+        EXPECT_EQ(r.weights_a.dense(), unit.weights_a.dense());
+        EXPECT_EQ(r.direction, unit.direction);
+        EXPECT_EQ(r.colliding, unit.colliding);
+        EXPECT_EQ(r.certified, unit.certified);
+        EXPECT_EQ(r.method, unit.method);
+        EXPECT_EQ(r.status, unit.status);
+        EXPECT_EQ(r.iterations, unit.iterations);
+      }
+    }
+  }
+}
+
+// Any scale in [1e-100, 1e100] rounds the points differently, by an epsilon of their size: no
+// verdict or certificate changes, and every answer scales, to the tolerance (the certified
+// methods) or within its own bounds (the others).
+TEST(Frame, AnyScaleChangesNoVerdictAndScalesEveryAnswer) {
+  for (const MethodQuery& m : method_queries()) {
+    const Query query = query_of(m.method);
+    for (const Pair& p : dyadic_pairs()) {
+      SCOPED_TRACE(label(m, p));
+      const DistanceResult unit = ask(query, m.kind, p.a, p.b);
+      const PairScale unit_scale = scale_of(p.a, p.b, kDefaultTolerance);
+      for (Scalar s : {1e-100, 1e-30, 1e-3, 7.0, 1e30, 1e100}) {
+        SCOPED_TRACE("scale " + scientific(s));
+        const ConvexPolyhedron a = transformed(p.a, s, Vector3::Zero());
+        const ConvexPolyhedron b = transformed(p.b, s, Vector3::Zero());
+        const DistanceResult r = ask(query, m.kind, a, b);
+        // Which method answers may change ("fcl" settles or hands over to "exact" by rounding);
+        // the answer may not.
+        EXPECT_EQ(r.colliding, unit.colliding);
+        EXPECT_EQ(r.certified, unit.certified);
+        const PairScale scale = scale_of(a, b, kDefaultTolerance);
+        expect_contract(a, b, m.kind, m.method, r, reference(a, b), scale);
+        if (method_info(m.method).always_certified) {
+          EXPECT_NEAR(r.distance / s, unit.distance, unit_scale.tolerance + unit_scale.rounding);
+        } else {
+          EXPECT_LE(r.lower_bound / s, unit.distance + unit_scale.rounding);
+          EXPECT_LE(unit.lower_bound, r.distance / s + unit_scale.rounding);
+        }
+      }
+    }
+  }
+}
+
+// Translating a pair by up to a million times its size changes its points by an epsilon of
+// their magnitude, which the pairs here absorb: none is within 1e-9 of the tolerance.
+TEST(Frame, TranslationsFarFromTheOriginChangeNoVerdict) {
+  Random rng(8);
+  for (const MethodQuery& m : method_queries()) {
+    const Query query = query_of(m.method);
+    for (const Pair& p : dyadic_pairs()) {
+      SCOPED_TRACE(label(m, p));
+      const DistanceResult home = ask(query, m.kind, p.a, p.b);
+      const PairScale scale = scale_of(p.a, p.b, kDefaultTolerance);
+      for (Scalar times : {1e3, 1e6}) {
+        const Vector3 offset = times * scale.size * rng.unit();
+        const ConvexPolyhedron a = moved(p.a, offset);
+        const ConvexPolyhedron b = moved(p.b, offset);
+        const DistanceResult r = ask(query, m.kind, a, b);
+        EXPECT_EQ(r.colliding, home.colliding);
+        EXPECT_EQ(r.certified, home.certified);
+        expect_contract(a, b, m.kind, m.method, r, reference(a, b),
+                        scale_of(a, b, kDefaultTolerance));
+        if (method_info(m.method).always_certified) {
+          EXPECT_NEAR(r.distance, home.distance, scale.tolerance + 1e-9 * scale.size);
+        }
+      }
+    }
+  }
+}
+
+// Translating dyadic bodies by a multiple of a power of two keeps their frame coordinates:
+// distances are the same bits, and the witnesses move by the translation.
+TEST(Frame, ExactTranslationsGiveTheSameAnswersMoved) {
+  // About 3e5 times the pairs' size; the sums with the coordinates take at most 53 bits.
+  const Vector3 offset(0x1p20, -0x1p20, 0x1p19);
+  for (const MethodQuery& m : method_queries()) {
+    const Query query = query_of(m.method);
+    for (const Pair& p : dyadic_pairs()) {
+      SCOPED_TRACE(label(m, p));
+      const DistanceResult home = ask(query, m.kind, p.a, p.b);
+      const DistanceResult r = ask(query, m.kind, moved(p.a, offset), moved(p.b, offset));
+      EXPECT_EQ(r.distance, home.distance);
+      EXPECT_EQ(r.lower_bound, home.lower_bound);
+      EXPECT_EQ(r.weights_b.dense(), home.weights_b.dense());
+      EXPECT_LE((r.point_a - home.point_a - offset).norm(), 1e-9);
+      EXPECT_EQ(r.colliding, home.colliding);
+      EXPECT_EQ(r.certified, home.certified);
+    }
+  }
+}
+
+TEST(Frame, PairsBeyondTheDoubleRangeAreRefusedAndPairsWithinItAnswered) {
+  const ConvexPolyhedron far = point_set({{1e300, 1e300, 1e300}});
+  const ConvexPolyhedron origin = point_set({{0, 0, 0}});
+  for (const MethodQuery& m : method_queries()) {
+    SCOPED_TRACE(std::string(method_name(m.method)) + " " + kind_name(m.kind));
+    const DistanceResult r = ask(query_of(m.method), m.kind, far, origin);
+    EXPECT_NEAR(r.distance, std::sqrt(3.0) * 1e300, 1e286);
+    EXPECT_FALSE(r.colliding);
+    EXPECT_TRUE(r.certified);
+    const ConvexPolyhedron huge = point_set({{1.5e308, 0, 0}});
+    const ConvexPolyhedron opposite = point_set({{-1.5e308, 0, 0}});
+    EXPECT_THROW(ask(query_of(m.method), m.kind, huge, opposite), std::invalid_argument);
+  }
+}
+
+// Posed bodies are answered in world coordinates as their moved points would be: the contract
+// holds against the moved points, the certified methods give their distances, and identity
+// poses change nothing.
+TEST(Poses, AnswerAsTheTransformedPoints) {
+  Random rng(21);
+  const std::vector<Pair> pairs = {
+      {"paper, separate", paper_a(), paper_b_separate()},
+      {"cubes overlapping", unit_cube(), moved(unit_cube(), {0.5, 0.25, 0.1})},
+      {"random", rng.body(8), rng.body(7, {1.5, 0.5, 0})},
+  };
+  for (const MethodQuery& m : method_queries()) {
+    const Query query = query_of(m.method);
+    for (const Pair& p : pairs) {
+      SCOPED_TRACE(label(m, p));
+      const Pose pose_a{rng.rotation(), rng.vector(10)};
+      const Pose pose_b{rng.rotation(), pose_a.translation + rng.vector()};
+      const auto place = [](const ConvexPolyhedron& body, const Pose& pose) {
+        VertexMatrix v = body.vertices() * pose.rotation.transpose();
+        v.rowwise() += pose.translation.transpose();
+        return ConvexPolyhedron(v);
+      };
+      const ConvexPolyhedron a = place(p.a, pose_a);
+      const ConvexPolyhedron b = place(p.b, pose_b);
+      DistanceResult posed;
+      switch (m.kind) {
+        case QueryKind::distance:
+          posed = query.distance(p.a, pose_a, p.b, pose_b);
+          break;
+        case QueryKind::collide:
+          posed = query.collision(p.a, pose_a, p.b, pose_b);
+          EXPECT_EQ(query.collide(p.a, pose_a, p.b, pose_b), posed.colliding);
+          break;
+        case QueryKind::signed_distance:
+          posed = query.signed_distance(p.a, pose_a, p.b, pose_b);
+          break;
+      }
+      const Reference truth = reference(a, b);
+      const PairScale scale = scale_of(a, b, kDefaultTolerance);
+      expect_contract(a, b, m.kind, m.method, posed, truth, scale);
+      const DistanceResult moved_points = ask(query, m.kind, a, b);
+      EXPECT_EQ(posed.colliding, moved_points.colliding);
+      if (method_info(m.method).always_certified) {
+        EXPECT_NEAR(posed.distance, moved_points.distance, scale.tolerance + scale.rounding);
+      }
+      DistanceResult identity;
+      switch (m.kind) {
+        case QueryKind::distance:
+          identity = query.distance(p.a, Pose{}, p.b, Pose{});
+          break;
+        case QueryKind::collide:
+          identity = query.collision(p.a, Pose{}, p.b, Pose{});
+          break;
+        case QueryKind::signed_distance:
+          identity = query.signed_distance(p.a, Pose{}, p.b, Pose{});
+          break;
+      }
+      expect_identical(identity, ask(query, m.kind, p.a, p.b));
+    }
+  }
+}
+
+TEST(Poses, OnlyFiniteProperRotationsAreRigidMotions) {
+  Random rng(4);
+  Pose pose{rng.rotation(), rng.vector()};
+  EXPECT_NO_THROW(validate_pose(pose, "pose_a"));
+  // Rotations built from rounded trigonometry are an epsilon off; within 1e-9 is accepted.
+  pose.rotation(0, 0) += 1e-12;
+  EXPECT_NO_THROW(validate_pose(pose, "pose_a"));
+  const auto error = [](const Pose& p) {
+    try {
+      validate_pose(p, "pose_b");
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  Pose scaled{2 * Matrix3::Identity(), Vector3::Zero()};
+  EXPECT_NE(error(scaled).find("pose_b is not a rigid motion"), std::string::npos);
+  Pose reflection{Matrix3::Identity(), Vector3::Zero()};
+  reflection.rotation(2, 2) = -1;
+  EXPECT_NE(error(reflection).find("not a rigid motion"), std::string::npos);
+  Pose nan{Matrix3::Identity(), Vector3(0, std::nan(""), 0)};
+  EXPECT_NE(error(nan).find("pose_b has a NaN or infinite entry"), std::string::npos);
+  Pose infinite{Matrix3::Identity(), Vector3::Zero()};
+  infinite.rotation(1, 0) = std::numeric_limits<Scalar>::infinity();
+  EXPECT_NE(error(infinite).find("NaN or infinite"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace swarmcollide::testing
