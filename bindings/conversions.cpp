@@ -127,9 +127,9 @@ bool is_pose_pair(const py::handle& poses) {
          first.shape(first.ndim() - 2) == 3;
 }
 
-void check_pose(const Pose& pose, const std::string& name) {
+void check_pose(const Pose& pose, const char* name, std::size_t index) {
   try {
-    validate_pose(pose, name.c_str());
+    validate_pose(pose, name, index);
   } catch (const std::invalid_argument& error) {
     throw py::value_error(error.what());
   }
@@ -180,7 +180,7 @@ std::vector<Pose> to_poses(const py::handle& poses, std::size_t count, const cha
     }
   }
   for (std::size_t i = 0; i < count; ++i) {
-    check_pose(result[i], arg + "[" + std::to_string(i) + "]");
+    check_pose(result[i], name, i);
   }
   return result;
 }

@@ -101,8 +101,7 @@ void check_poses(const std::vector<Pose>& poses, std::size_t count, const char* 
                                 " pairs");
   }
   for (std::size_t i = 0; i < count; ++i) {
-    validate_pose(poses[i],
-                  (std::string(name) + "[" + std::to_string(first_index + i) + "]").c_str());
+    validate_pose(poses[i], name, first_index + i);
   }
 }
 

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <unordered_set>
 
 namespace swarmcollide::detail {
 
@@ -88,13 +89,16 @@ void FclBroadphase::insert(const std::vector<BoxedObject*>& objects) {
   manager_->setup();
 }
 
-void FclBroadphase::erase(BoxedObject* object) {
-  objects_.erase(std::find(objects_.begin(), objects_.end(), object));
+void FclBroadphase::erase(const std::vector<BoxedObject*>& objects) {
+  const std::unordered_set<BoxedObject*> gone(objects.begin(), objects.end());
+  objects_.erase(std::remove_if(objects_.begin(), objects_.end(),
+                                [&](BoxedObject* o) { return gone.count(o) > 0; }),
+                 objects_.end());
   if (rebuilds()) {
     stale_ = true;
     return;
   }
-  manager_->unregisterObject(object);
+  for (BoxedObject* object : objects) manager_->unregisterObject(object);
 }
 
 void FclBroadphase::refit(const std::vector<BoxedObject*>& moved, bool all) {

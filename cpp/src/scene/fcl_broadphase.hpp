@@ -38,7 +38,7 @@ class FclBroadphase {
   FclBroadphase& operator=(const FclBroadphase&) = delete;
 
   void insert(const std::vector<BoxedObject*>& objects);
-  void erase(BoxedObject* object);
+  void erase(const std::vector<BoxedObject*>& objects);
   /// Tells the manager that the boxes of `moved` changed (of every object when `all`).
   void refit(const std::vector<BoxedObject*>& moved, bool all);
   /// Every pair of registered objects whose boxes overlap, appended to `out` (each once).

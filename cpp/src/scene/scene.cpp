@@ -46,6 +46,8 @@ struct SceneBody {
   std::array<int, 6> box_supports{-1, -1, -1, -1, -1, -1};
   /// The box the broadphase holds: `box` padded for the threshold of the last query.
   detail::BoxedObject object;
+  /// Listed among the scene's moved bodies (its box is out of date).
+  bool moved = false;
 };
 
 // The world box of `b`: its points' extremes along the axes, found in the body's own frame
@@ -151,7 +153,10 @@ struct Scene::Impl {
 
   // Brings the broadphase's boxes up to date for queries at `threshold`.
   void prepare(Scalar threshold) {
-    for (SceneBody* b : moved) update_box(*b);
+    for (SceneBody* b : moved) {
+      update_box(*b);
+      b->moved = false;
+    }
     const bool repad = threshold != padded_for;
     if (repad) {
       for (auto& b : bodies) b->object.set_box(padded(b->box, pad_of(*b, threshold)));
@@ -366,7 +371,7 @@ std::vector<BodyId> Scene::add(std::vector<ConvexPolyhedron> bodies, const std::
                                 std::to_string(bodies.size()) + " bodies");
   }
   for (std::size_t i = 0; i < poses.size(); ++i) {
-    validate_pose(poses[i], ("poses[" + std::to_string(i) + "]").c_str());
+    validate_pose(poses[i], "poses", i);
   }
   if (bodies.size() > std::numeric_limits<BodyId>::max() - std::size_t{s.next_id}) {
     throw std::invalid_argument("the scene has given out every id (2**32); build a new scene");
@@ -407,15 +412,14 @@ void Scene::set_poses(const std::vector<BodyId>& ids, const std::vector<Pose>& p
   targets.reserve(ids.size());
   for (std::size_t i = 0; i < ids.size(); ++i) {
     targets.push_back(&s.find(ids[i]));
-    validate_pose(poses[i], ("poses[" + std::to_string(i) + "]").c_str());
+    validate_pose(poses[i], "poses", i);
   }
   for (std::size_t i = 0; i < ids.size(); ++i) {
     targets[i]->pose = poses[i];
-    s.moved.push_back(targets[i]);
+    // A body moved twice is boxed once.
+    if (!targets[i]->moved) s.moved.push_back(targets[i]);
+    targets[i]->moved = true;
   }
-  // A body moved twice is boxed once.
-  std::sort(s.moved.begin(), s.moved.end());
-  s.moved.erase(std::unique(s.moved.begin(), s.moved.end()), s.moved.end());
 }
 
 void Scene::remove(const std::vector<BodyId>& ids) {
@@ -428,11 +432,14 @@ void Scene::remove(const std::vector<BodyId>& ids) {
       throw std::invalid_argument("ids lists body " + std::to_string(id) + " twice");
     }
   }
+  std::vector<detail::BoxedObject*> objects;
+  for (BodyId id : ids) objects.push_back(&s.find(id).object);
+  s.broadphase.erase(objects);
+  s.moved.erase(std::remove_if(s.moved.begin(), s.moved.end(),
+                               [&](const SceneBody* b) { return gone.count(b->id) > 0; }),
+                s.moved.end());
   for (BodyId id : ids) {
     const std::size_t at = s.slot.at(id);
-    SceneBody* body = s.bodies[at].get();
-    s.broadphase.erase(&body->object);
-    s.moved.erase(std::remove(s.moved.begin(), s.moved.end(), body), s.moved.end());
     // The last body fills the slot.
     if (at + 1 != s.bodies.size()) {
       std::swap(s.bodies[at], s.bodies.back());
