@@ -291,9 +291,10 @@ std::string json_row(const Row& r) {
   if (r.ours) {
     const sc::SceneStats& s = r.stats;
     out << ", \"certified\": " << s.certified << ", \"screened\": " << s.screened
-        << ", \"warm_rejected\": " << s.warm_rejected << ", \"warm_proven\": " << s.warm_proven
-        << ", \"solved\": " << s.solved << ", \"escalations\": " << s.escalations
-        << ", \"cached_pairs\": " << s.cached_pairs << ", \"cache_bytes\": " << s.cache_bytes;
+        << ", \"warm_bounded\": " << s.warm_bounded << ", \"warm_rejected\": " << s.warm_rejected
+        << ", \"warm_proven\": " << s.warm_proven << ", \"solved\": " << s.solved
+        << ", \"escalations\": " << s.escalations << ", \"cached_pairs\": " << s.cached_pairs
+        << ", \"cache_bytes\": " << s.cache_bytes;
   }
   out << "}";
   return out.str();
@@ -307,9 +308,9 @@ void print(const Row& r) {
               r.pairs, r.candidates);
   if (r.ours) {
     const sc::SceneStats& s = r.stats;
-    std::printf("  cert %zu  screened %zu  warm %zu+%zu  solved %zu  esc %zu  cache %zu B/pair",
-                s.certified, s.screened, s.warm_rejected, s.warm_proven, s.solved, s.escalations,
-                s.cached_pairs ? s.cache_bytes / s.cached_pairs : 0);
+    std::printf("  cert %zu  screened %zu  warm %zu+%zu+%zu  solved %zu  esc %zu  cache %zu B/pair",
+                s.certified, s.screened, s.warm_bounded, s.warm_rejected, s.warm_proven, s.solved,
+                s.escalations, s.cached_pairs ? s.cache_bytes / s.cached_pairs : 0);
   }
   std::printf("\n");
   std::fflush(stdout);

@@ -150,10 +150,10 @@ std::string result_repr(const char* type, const SceneResult& r) {
 std::string stats_repr(const SceneStats& s) {
   std::ostringstream out;
   out << "SceneStats(candidates=" << s.candidates << ", screened=" << s.screened
-      << ", warm_rejected=" << s.warm_rejected << ", warm_proven=" << s.warm_proven
-      << ", solved=" << s.solved << ", escalations=" << s.escalations
-      << ", certified=" << s.certified << ", cached_pairs=" << s.cached_pairs
-      << ", cache_bytes=" << s.cache_bytes << ")";
+      << ", warm_bounded=" << s.warm_bounded << ", warm_rejected=" << s.warm_rejected
+      << ", warm_proven=" << s.warm_proven << ", solved=" << s.solved
+      << ", escalations=" << s.escalations << ", certified=" << s.certified
+      << ", cached_pairs=" << s.cached_pairs << ", cache_bytes=" << s.cache_bytes << ")";
   return out.str();
 }
 
@@ -279,6 +279,9 @@ candidates : int
     Pairs the broadphase returned that passed the filters.
 screened : int
     Found apart along the line between their centres, before any solver.
+warm_bounded : int
+    Found apart by a cached lower bound on their distance less how far the bodies have moved
+    since: no support evaluated.
 warm_rejected, warm_proven : int
     Settled by re-evaluating a cached separating direction or enclosing simplex.
 solved : int
@@ -292,6 +295,7 @@ cached_pairs, cache_bytes : int
 )doc")
       .def_readonly("candidates", &SceneStats::candidates)
       .def_readonly("screened", &SceneStats::screened)
+      .def_readonly("warm_bounded", &SceneStats::warm_bounded)
       .def_readonly("warm_rejected", &SceneStats::warm_rejected)
       .def_readonly("warm_proven", &SceneStats::warm_proven)
       .def_readonly("solved", &SceneStats::solved)

@@ -550,6 +550,9 @@ class SceneStats:
         Pairs the broadphase returned that passed the filters.
     screened : int
         Found apart along the line between their centres, before any solver.
+    warm_bounded : int
+        Found apart by a cached lower bound on their distance less how far the bodies have moved
+        since: no support evaluated.
     warm_rejected, warm_proven : int
         Settled by re-evaluating a cached separating direction or enclosing simplex.
     solved : int
@@ -583,6 +586,9 @@ class SceneStats:
         ...
     @property
     def solved(self) -> int:
+        ...
+    @property
+    def warm_bounded(self) -> int:
         ...
     @property
     def warm_proven(self) -> int:

@@ -123,7 +123,7 @@ def run(
             index=index,
             candidates=stats.candidates,
             colliding=len(colliding),
-            settled_warm=stats.warm_rejected + stats.warm_proven,
+            settled_warm=stats.warm_bounded + stats.warm_rejected + stats.warm_proven,
             contact_points=len(contacts.points),
             pairs_seconds=middle - start,
             contacts_seconds=end - middle,

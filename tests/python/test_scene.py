@@ -174,13 +174,14 @@ def test_warm_frames_settle_most_pairs_from_the_cache():
     ids = scene.add([random_body(rng) for _ in range(60)], poses)
     scene.colliding_pairs()
     cold = scene.stats
-    assert cold.warm_rejected + cold.warm_proven == 0 and cold.cached_pairs > 0
+    assert cold.warm_bounded + cold.warm_rejected + cold.warm_proven == 0 and cold.cached_pairs > 0
     poses[:, :3, 3] += [1e-3, -2e-3, 1e-3]
     scene.set_poses(ids, poses)
     scene.colliding_pairs()
     warm = scene.stats
     assert warm.candidates == cold.candidates
-    assert warm.warm_rejected + warm.warm_proven >= 0.8 * warm.candidates
+    assert warm.warm_bounded + warm.warm_rejected + warm.warm_proven >= 0.8 * warm.candidates
+    assert warm.warm_bounded > 0
     assert "warm_rejected=" in repr(warm)
 
 

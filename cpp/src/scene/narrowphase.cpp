@@ -1,5 +1,6 @@
 #include "narrowphase.hpp"
 
+#include <cmath>
 #include <limits>
 #include <optional>
 #include <utility>
@@ -18,6 +19,7 @@ namespace swarmcollide::detail {
 namespace {
 
 constexpr Scalar kInfinity = std::numeric_limits<Scalar>::infinity();
+constexpr Scalar kEpsilon = std::numeric_limits<Scalar>::epsilon();
 
 // The answer a cached tetrahedron of point pairs gives when, at the new poses, it still encloses
 // the origin: the origin's barycentric coordinates are the weights of a common point.
@@ -52,9 +54,37 @@ int heaviest(const ConvexWeights& weights) {
   return index;
 }
 
+// Rounded towards minus (plus) infinity: a float that still bounds `x` from below (above).
+float float_below(Scalar x) {
+  const float f = static_cast<float>(x);
+  return static_cast<Scalar>(f) <= x ? f
+                                     : std::nextafter(f, -std::numeric_limits<float>::infinity());
+}
+float float_above(Scalar x) {
+  const float f = static_cast<float>(x);
+  return static_cast<Scalar>(f) >= x ? f
+                                     : std::nextafter(f, std::numeric_limits<float>::infinity());
+}
+
+// A separating proof: unit direction `n` (frame) with separation `s` along it (frame units, so
+// that `s - kFrameRounding` is certified), support points `ia` and `ib`, made when the bodies'
+// odometers summed to `travelled`.
+void keep_separating(const FramedPair& pair, const Vector3& n, Scalar s, int ia, int ib,
+                     Scalar travelled, PairProof& proof) {
+  const Vector3 local = pair.a.local_direction(n);
+  proof.kind = PairProof::Kind::separating;
+  proof.separating = {
+      {static_cast<float>(local.x()), static_cast<float>(local.y()), static_cast<float>(local.z())},
+      ia,
+      ib};
+  proof.lower = float_below(pair.frame.length_to_world(s - kFrameRounding));
+  proof.size = float_above(pair.frame.length_to_world(pair.frame.size) * (1 + 1e-12));
+  proof.travelled = travelled;
+}
+
 // What `answer` proves about the pair, kept in `proof`: the point pairs of an enclosing corral
 // (the k-th stored weights of A and of B come from its k-th point), else its direction.
-void remember(const FramedPair& pair, const Answer& answer, PairProof& proof) {
+void remember(const FramedPair& pair, const Answer& answer, Scalar travelled, PairProof& proof) {
   if (answer.intersection_proven) {
     PairProof::Enclosing enclosing{};
     int count_a = 0;
@@ -70,6 +100,7 @@ void remember(const FramedPair& pair, const Answer& answer, PairProof& proof) {
     if (count_a == 4 && count_b == 4) {
       proof.kind = PairProof::Kind::enclosing;
       proof.enclosing = enclosing;
+      proof.lower = -std::numeric_limits<float>::infinity();
       return;
     }
   }
@@ -104,12 +135,23 @@ void take_values(const DistanceResult& r, PairAnswer& out) {
 
 PairAnswer answer_pair(const PlacedBody& a, const PlacedBody& b, PairProof& proof,
                        const QueryOptions& options, const PairQuestion& question) {
+  PairAnswer out;
+  // The bodies' travel since the proof, with the rounding of the odometers' difference.
+  const Scalar travelled = a.travelled + b.travelled;
+  if (question.warm && proof.kind == PairProof::Kind::separating) {
+    const Scalar moved = travelled - proof.travelled + 4 * kEpsilon * travelled;
+    if (apart_after_motion(proof.lower, proof.size, moved, question.threshold, options.tolerance)) {
+      out.settled = Settled::warm_bounded;
+      out.certified = true;
+      out.lower_bound = proof.lower - moved;
+      return out;
+    }
+  }
   const FramedPair pair = frame_pair(*a.body, *a.pose, *b.body, *b.pose, options.tolerance);
   // The pair as the verdict sees it: in contact means within the threshold and the tolerance.
   FramedPair gate = pair;
   gate.tolerance += times_power_of_two(question.threshold, -pair.frame.exponent);
   const Method method = options.method;
-  PairAnswer out;
 
   // A cached simplex that still encloses the origin proves contact, and a distance of zero.
   std::optional<DistanceResult> proven;
@@ -133,7 +175,9 @@ PairAnswer answer_pair(const PlacedBody& a, const PlacedBody& b, PairProof& proo
     int ib = -1;
     if (cached) {
       const PairProof::Separating& last = proof.separating;
-      const Vector3 local(last.direction[0], last.direction[1], last.direction[2]);
+      const Vector3 local(static_cast<Scalar>(last.direction[0]),
+                          static_cast<Scalar>(last.direction[1]),
+                          static_cast<Scalar>(last.direction[2]));
       n = (pair.a.rotated() ? Vector3(pair.a.rotation() * local) : local).normalized();
       ia = last.support_a;
       ib = last.support_b;
@@ -142,19 +186,11 @@ PairAnswer answer_pair(const PlacedBody& a, const PlacedBody& b, PairProof& proo
       n = between.norm() > 0 ? Vector3(between.normalized()) : Vector3::UnitX();
     }
     const Scalar s = separation(pair.a, pair.b, n, ia, ib);
-    if (cached) {
-      proof.separating.support_a = ia;
-      proof.separating.support_b = ib;
-    }
     if (verdict_proven(gate, s, kInfinity, false)) {
       out.settled = cached ? Settled::warm_rejected : Settled::screened;
       out.certified = true;
       out.lower_bound = pair.frame.length_to_world(s);
-      if (question.warm && !cached) {
-        const Vector3 local = pair.a.local_direction(n);
-        proof.kind = PairProof::Kind::separating;
-        proof.separating = {{local.x(), local.y(), local.z()}, ia, ib};
-      }
+      if (question.warm) keep_separating(pair, n, s, ia, ib, travelled, proof);
       return out;
     }
 
@@ -163,7 +199,7 @@ PairAnswer answer_pair(const PlacedBody& a, const PlacedBody& b, PairProof& proo
     const Goal verdict =
         method_info(method).capabilities & kDistance ? Goal::verdict : Goal::signed_distance;
     Answer answer = solve(gate, options, verdict, DualStart{n, ia, ib});
-    if (question.warm) remember(pair, answer, proof);
+    if (question.warm) remember(pair, answer, travelled, proof);
     value_settled =
         goal_reached(pair, Goal::distance, answer.lower, answer.upper, answer.intersection_proven);
     next = start_from(answer);
@@ -172,7 +208,7 @@ PairAnswer answer_pair(const PlacedBody& a, const PlacedBody& b, PairProof& proo
       QueryOptions exact = options;
       exact.method = Method::exact;
       Answer decided = solver_for(Method::exact)(gate, exact, Goal::verdict);
-      if (question.warm) remember(pair, decided, proof);
+      if (question.warm) remember(pair, decided, travelled, proof);
       value_settled = goal_reached(pair, Goal::distance, decided.lower, decided.upper,
                                    decided.intersection_proven);
       next = start_from(decided);
@@ -210,7 +246,7 @@ PairAnswer answer_pair(const PlacedBody& a, const PlacedBody& b, PairProof& proo
     }
   } else if (question.distance && !value_settled) {
     Answer measured = solve(pair, options, Goal::distance, next);
-    if (question.warm) remember(pair, measured, proof);
+    if (question.warm) remember(pair, measured, travelled, proof);
     const DistanceResult d = finish_result(pair, std::move(measured), method, Goal::distance);
     out.certified = out.certified && d.certified;
     take_values(d, out);

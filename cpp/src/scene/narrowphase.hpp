@@ -30,6 +30,9 @@ struct PairQuestion {
 enum class Settled : unsigned char {
   /// By the separation along the line between the bodies' centres (no proof was cached).
   screened,
+  /// By a cached lower bound on the distance less the bodies' motion since (no support
+  /// evaluated).
+  warm_bounded,
   /// By re-evaluating a cached separating direction.
   warm_rejected,
   /// By re-evaluating a cached enclosing simplex.
@@ -59,6 +62,8 @@ struct PairAnswer {
 struct PlacedBody {
   const ConvexPolyhedron* body;
   const Pose* pose;
+  /// Its odometer: a bound on how far any of its points has moved since it was added.
+  Scalar travelled = 0;
 };
 
 /// Answers `question` for bodies `a` and `b` (in that order: vectors point from a to b) with

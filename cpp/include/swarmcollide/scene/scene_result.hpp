@@ -60,6 +60,9 @@ struct SceneStats {
   /// Candidates found apart by the separation along the line between their centres, before any
   /// solver (those without a cached proof are tried so first).
   std::size_t screened = 0;
+  /// Candidates found apart by a cached lower bound on their distance less how far the two
+  /// bodies have moved since: no support evaluated.
+  std::size_t warm_bounded = 0;
   /// Candidates settled by re-evaluating what an earlier query proved: rejected by a cached
   /// separating direction, or proven in contact by a cached simplex.
   std::size_t warm_rejected = 0;
