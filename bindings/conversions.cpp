@@ -127,14 +127,6 @@ bool is_pose_pair(const py::handle& poses) {
          first.shape(first.ndim() - 2) == 3;
 }
 
-void check_pose(const Pose& pose, const char* name, std::size_t index) {
-  try {
-    validate_pose(pose, name, index);
-  } catch (const std::invalid_argument& error) {
-    throw py::value_error(error.what());
-  }
-}
-
 }  // namespace
 
 std::vector<Pose> to_poses(const py::handle& poses, std::size_t count, const char* name) {
@@ -178,9 +170,6 @@ std::vector<Pose> to_poses(const py::handle& poses, std::size_t count, const cha
       result[i].rotation = m.topLeftCorner<3, 3>();
       result[i].translation = m.topRightCorner<3, 1>();
     }
-  }
-  for (std::size_t i = 0; i < count; ++i) {
-    check_pose(result[i], name, i);
   }
   return result;
 }

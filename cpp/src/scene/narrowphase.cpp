@@ -1,5 +1,6 @@
 #include "narrowphase.hpp"
 
+#include <array>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -21,23 +22,38 @@ namespace {
 constexpr Scalar kInfinity = std::numeric_limits<Scalar>::infinity();
 constexpr Scalar kEpsilon = std::numeric_limits<Scalar>::epsilon();
 
-// The answer a cached tetrahedron of point pairs gives when, at the new poses, it still encloses
-// the origin: the origin's barycentric coordinates are the weights of a common point.
-std::optional<Answer> enclosed(const FramedPair& pair, const PairProof::Enclosing& proof) {
-  MinNormPoint corral;
+// A common point of the bodies, as the witnesses on each (frame coordinates).
+struct CommonPoint {
+  Vector3 point_a;
+  Vector3 point_b;
+};
+
+// The common point a cached tetrahedron of point pairs proves when, at the new poses, it still
+// encloses the origin (encloses_origin, beyond rounding): the origin's barycentric coordinates
+// weigh the pairs' points on each body.
+std::optional<CommonPoint> enclosed(const FramedPair& pair, const PairProof::Enclosing& proof) {
+  std::array<Vector3, 4> on_a;
+  std::array<Vector3, 4> on_b;
+  std::array<OraclePoint, 4> corral;
   for (int k = 0; k < 4; ++k) {
-    const int ia = proof.a[k];
-    const int ib = proof.b[k];
-    corral.corral[k] = {pair.b.vertex(ib) - pair.a.vertex(ia), ia, ib};
+    on_a[k] = pair.a.vertex(proof.a[k]);
+    on_b[k] = pair.b.vertex(proof.b[k]);
+    corral[k] = {on_b[k] - on_a[k], proof.a[k], proof.b[k]};
   }
-  if (!wolfe_detail::affine_minimizer(corral.corral, 4, corral.weights)) return std::nullopt;
+  std::array<Scalar, 4> weight;
+  if (!wolfe_detail::affine_minimizer(corral, 4, weight)) return std::nullopt;
+  Scalar total = 0;
   for (int k = 0; k < 4; ++k) {
-    if (!(corral.weights[k] > 0)) return std::nullopt;
+    if (!(weight[k] > 0)) return std::nullopt;
+    total += weight[k];
   }
-  corral.size = 4;
-  const Witness witness = witness_of(pair, corral);
-  if (!witness.encloses_origin) return std::nullopt;
-  return answer_from_witness(pair, witness);
+  if (!encloses_origin({corral[0].p, corral[1].p, corral[2].p, corral[3].p})) return std::nullopt;
+  CommonPoint common{Vector3::Zero(), Vector3::Zero()};
+  for (int k = 0; k < 4; ++k) {
+    common.point_a += (weight[k] / total) * on_a[k];
+    common.point_b += (weight[k] / total) * on_b[k];
+  }
+  return common;
 }
 
 // The index with the largest weight: a point of the supporting feature, where hill climbing
@@ -153,19 +169,21 @@ PairAnswer answer_pair(const PlacedBody& a, const PlacedBody& b, PairProof& proo
   gate.tolerance += times_power_of_two(question.threshold, -pair.frame.exponent);
   const Method method = options.method;
 
-  // A cached simplex that still encloses the origin proves contact, and a distance of zero.
-  std::optional<DistanceResult> proven;
+  // A cached simplex that still encloses the origin proves contact at any threshold, and a
+  // distance of zero (to rounding): its common point is the answer.
+  std::optional<CommonPoint> common;
   if (question.warm && proof.kind == PairProof::Kind::enclosing) {
-    if (std::optional<Answer> common = enclosed(pair, proof.enclosing)) {
-      proven = finish_result(gate, std::move(*common), method, Goal::verdict);
-      out.settled = Settled::warm_proven;
-    }
+    common = enclosed(pair, proof.enclosing);
   }
-  DistanceResult r;
   bool value_settled = true;
   std::optional<DualStart> next;
-  if (proven) {
-    r = std::move(*proven);
+  if (common) {
+    const Scalar gap = (common->point_b - common->point_a).norm();
+    out.settled = Settled::warm_proven;
+    out.belongs = out.certified = verdict_proven(gate, 0, gap, true);
+    out.distance = pair.frame.length_to_world(gap);
+    out.point_a = pair.frame.point_to_world(common->point_a);
+    out.point_b = pair.frame.point_to_world(common->point_b);
   } else {
     // The direction to try next: the cached one, else the line between the centres. Either
     // settles most pairs apart in two support evaluations; otherwise the solver starts from it.
@@ -203,7 +221,7 @@ PairAnswer answer_pair(const PlacedBody& a, const PlacedBody& b, PairProof& proo
     value_settled =
         goal_reached(pair, Goal::distance, answer.lower, answer.upper, answer.intersection_proven);
     next = start_from(answer);
-    r = finish_result(gate, std::move(answer), method, verdict);
+    DistanceResult r = finish_result(gate, std::move(answer), method, verdict);
     if (!r.certified && question.escalate && method != Method::exact) {
       QueryOptions exact = options;
       exact.method = Method::exact;
@@ -215,12 +233,12 @@ PairAnswer answer_pair(const PlacedBody& a, const PlacedBody& b, PairProof& proo
       r = finish_result(gate, std::move(decided), Method::exact, Goal::verdict);
       out.settled = Settled::escalated;
     }
+    out.certified = r.certified;
+    out.lower_bound = r.lower_bound;
+    if (!r.colliding) return out;
+    out.belongs = true;
+    take_values(r, out);
   }
-  out.certified = r.certified;
-  out.lower_bound = r.lower_bound;
-  if (!r.colliding) return out;
-  out.belongs = true;
-  take_values(r, out);
 
   if (question.contacts) {
     const auto signed_distance = [&](Method m) {
