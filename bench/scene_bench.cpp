@@ -286,8 +286,8 @@ std::string json_row(const Row& r) {
       << "\", \"median_s\": " << median(r.seconds)
       << ", \"min_s\": " << *std::min_element(r.seconds.begin(), r.seconds.end())
       << ", \"max_s\": " << *std::max_element(r.seconds.begin(), r.seconds.end())
-      << ", \"repeats\": " << r.seconds.size() << ", \"pairs\": " << r.pairs
-      << ", \"candidates\": " << r.candidates;
+      << ", \"median_cpu_s\": " << median(r.cpu_seconds) << ", \"repeats\": " << r.seconds.size()
+      << ", \"pairs\": " << r.pairs << ", \"candidates\": " << r.candidates;
   if (r.ours) {
     const sc::SceneStats& s = r.stats;
     out << ", \"certified\": " << s.certified << ", \"screened\": " << s.screened

@@ -149,9 +149,18 @@ void take_values(const DistanceResult& r, PairAnswer& out) {
 
 }  // namespace
 
-PairAnswer answer_pair(const PlacedBody& a, const PlacedBody& b, PairProof& proof,
-                       const QueryOptions& options, const PairQuestion& question) {
-  PairAnswer out;
+void answer_pair(const PlacedBody& a, const PlacedBody& b, PairProof& proof,
+                 const QueryOptions& options, const PairQuestion& question, PairAnswer& out) {
+  // Every field is set afresh: `out` is a buffer reused from query to query.
+  out.belongs = false;
+  out.certified = false;
+  out.settled = Settled::solved;
+  out.distance = 0;
+  out.lower_bound = 0;
+  out.point_a.setZero();
+  out.point_b.setZero();
+  out.normal.setZero();
+  out.points.clear();
   // The bodies' travel since the proof, with the rounding of the odometers' difference.
   const Scalar travelled = a.travelled + b.travelled;
   if (question.warm && proof.kind == PairProof::Kind::separating) {
@@ -160,7 +169,7 @@ PairAnswer answer_pair(const PlacedBody& a, const PlacedBody& b, PairProof& proo
       out.settled = Settled::warm_bounded;
       out.certified = true;
       out.lower_bound = proof.lower - moved;
-      return out;
+      return;
     }
   }
   const FramedPair pair = frame_pair(*a.body, *a.pose, *b.body, *b.pose, options.tolerance);
@@ -209,7 +218,7 @@ PairAnswer answer_pair(const PlacedBody& a, const PlacedBody& b, PairProof& proo
       out.certified = true;
       out.lower_bound = pair.frame.length_to_world(s);
       if (question.warm) keep_separating(pair, n, s, ia, ib, travelled, proof);
-      return out;
+      return;
     }
 
     // The verdict, as Query::collision decides it (methods without distances decide by their
@@ -235,7 +244,7 @@ PairAnswer answer_pair(const PlacedBody& a, const PlacedBody& b, PairProof& proo
     }
     out.certified = r.certified;
     out.lower_bound = r.lower_bound;
-    if (!r.colliding) return out;
+    if (!r.colliding) return;
     out.belongs = true;
     take_values(r, out);
   }
@@ -269,7 +278,6 @@ PairAnswer answer_pair(const PlacedBody& a, const PlacedBody& b, PairProof& proo
     out.certified = out.certified && d.certified;
     take_values(d, out);
   }
-  return out;
 }
 
 }  // namespace swarmcollide::detail

@@ -67,11 +67,11 @@ struct PlacedBody {
 };
 
 /// Answers `question` for bodies `a` and `b` (in that order: vectors point from a to b) with
-/// `options` (already seeded for the pair). `proof` (never null) holds what an earlier query
-/// proved about the pair, expressed for this order; with `question.warm` it is tried first and
-/// replaced by what this answer proves. Verdicts and certificates are made by verdict.hpp's
-/// `finish_result`, as for every query.
-PairAnswer answer_pair(const PlacedBody& a, const PlacedBody& b, PairProof& proof,
-                       const QueryOptions& options, const PairQuestion& question);
+/// `options` (already seeded for the pair), into `out` (every field set). `proof` (never null)
+/// holds what an earlier query proved about the pair, expressed for this order; with
+/// `question.warm` it is tried first and replaced by what this answer proves. Verdicts and
+/// certificates are made by verdict.hpp's `finish_result`, as for every query.
+void answer_pair(const PlacedBody& a, const PlacedBody& b, PairProof& proof,
+                 const QueryOptions& options, const PairQuestion& question, PairAnswer& out);
 
 }  // namespace swarmcollide::detail

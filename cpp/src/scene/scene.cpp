@@ -149,7 +149,11 @@ struct Scene::Impl {
   SceneOptions options;
   mutable std::mutex mutex;
   std::vector<std::unique_ptr<SceneBody>> bodies;
-  std::unordered_map<BodyId, std::size_t> slot;
+  // The slot in `bodies` of each id ever given, kNoSlot once removed: ids are handed out in
+  // order, so a vector is the map (four bytes per id ever given), and moving every body a frame
+  // costs no hashing.
+  static constexpr std::uint32_t kNoSlot = 0xFFFFFFFFu;
+  std::vector<std::uint32_t> slot;
   BodyId next_id = 0;
   detail::FclBroadphase broadphase;
   detail::ThreadPool pool;
@@ -169,9 +173,8 @@ struct Scene::Impl {
   std::vector<PairProof> proofs;
 
   SceneBody& find(BodyId id) {
-    const auto it = slot.find(id);
-    if (it == slot.end()) throw std::invalid_argument(unknown_id(id));
-    return *bodies[it->second];
+    if (id >= slot.size() || slot[id] == kNoSlot) throw std::invalid_argument(unknown_id(id));
+    return *bodies[slot[id]];
   }
   const SceneBody& find(BodyId id) const { return const_cast<Impl*>(this)->find(id); }
 
@@ -280,9 +283,9 @@ struct Scene::Impl {
         const Candidate& c = candidates[i];
         pair_options.seed = pair_seed(base.seed, c.key);
         try {
-          answers[i] = detail::answer_pair({&c.first->body, &c.first->pose, c.first->travelled},
-                                           {&c.second->body, &c.second->pose, c.second->travelled},
-                                           proofs[i], pair_options, question);
+          detail::answer_pair({&c.first->body, &c.first->pose, c.first->travelled},
+                              {&c.second->body, &c.second->pose, c.second->travelled}, proofs[i],
+                              pair_options, question, answers[i]);
         } catch (const std::invalid_argument& error) {
           throw std::invalid_argument("bodies " + std::to_string(c.first->id) + " and " +
                                       std::to_string(c.second->id) + ": " + error.what());
@@ -358,10 +361,9 @@ struct Scene::Impl {
   }
 
   // The answer for the pair in the other order: A and B swapped, vectors reversed.
-  static PairAnswer reversed(PairAnswer answer) {
+  static void turn_around(PairAnswer& answer) {
     std::swap(answer.point_a, answer.point_b);
     answer.normal = -answer.normal;
-    return answer;
   }
 
   void require(Capability capability, const char* query) const {
@@ -436,7 +438,7 @@ std::vector<BodyId> Scene::add(std::vector<ConvexPolyhedron> bodies, const std::
     update_box(*body);
     body->object.set_box(padded(body->box, s.pad_of(*body, s.padded_for)));
     objects.push_back(&body->object);
-    s.slot.emplace(id, s.bodies.size());
+    s.slot.push_back(static_cast<std::uint32_t>(s.bodies.size()));
     s.bodies.push_back(std::move(body));
     ids.push_back(id);
   }
@@ -490,14 +492,14 @@ void Scene::remove(const std::vector<BodyId>& ids) {
                                [&](const SceneBody* b) { return gone.count(b->id) > 0; }),
                 s.moved.end());
   for (BodyId id : ids) {
-    const std::size_t at = s.slot.at(id);
+    const std::size_t at = s.slot[id];
     // The last body fills the slot.
     if (at + 1 != s.bodies.size()) {
       std::swap(s.bodies[at], s.bodies.back());
-      s.slot[s.bodies[at]->id] = at;
+      s.slot[s.bodies[at]->id] = static_cast<std::uint32_t>(at);
     }
     s.bodies.pop_back();
-    s.slot.erase(id);
+    s.slot[id] = Impl::kNoSlot;
   }
   const auto involves = [&](std::uint64_t key) {
     return gone.count(detail::key_first(key)) > 0 || gone.count(detail::key_second(key)) > 0;
@@ -550,7 +552,7 @@ std::vector<BodyId> Scene::ids() const {
 
 bool Scene::contains(BodyId id) const {
   const std::lock_guard<std::mutex> lock(impl_->mutex);
-  return impl_->slot.count(id) > 0;
+  return id < impl_->slot.size() && impl_->slot[id] != Impl::kNoSlot;
 }
 
 const ConvexPolyhedron& Scene::body(BodyId id) const {
@@ -708,9 +710,9 @@ SceneResult Scene::Impl::nearest(const std::vector<BodyId>& ids, int k) {
         pair_options.seed = pair_seed(base.seed, detail::pair_key(lo->id, hi->id));
         q.threshold = thresholds[i];
         try {
-          PairAnswer a = detail::answer_pair({&lo->body, &lo->pose}, {&hi->body, &hi->pose},
-                                             scratch[i], pair_options, q);
-          answers[i] = flip ? reversed(std::move(a)) : std::move(a);
+          detail::answer_pair({&lo->body, &lo->pose}, {&hi->body, &hi->pose}, scratch[i],
+                              pair_options, q, answers[i]);
+          if (flip) turn_around(answers[i]);
         } catch (const std::invalid_argument& error) {
           throw std::invalid_argument("bodies " + std::to_string(lo->id) + " and " +
                                       std::to_string(hi->id) + ": " + error.what());
