@@ -351,6 +351,46 @@ TEST(Scene, WithoutWarmStartsAnswersDoNotDependOnHistoryOrThreads) {
   EXPECT_EQ(ca.points, cb.points);
 }
 
+// Bodies closing in on each other a little each frame, by turning and by translation, inside
+// each other's boxes (so the pairs are candidates while still apart): the cached bounds less the
+// motion since must never hide the frame where they meet.
+TEST(Scene, CachedBoundsNeverHideAPairMovingIntoContact) {
+  const ConvexPolyhedron rod = box(Vector3(-1, -0.05, -0.05), Vector3(1, 0.05, 0.05));
+  const ConvexPolyhedron cube = box(Vector3(-0.2, -0.2, -0.2), Vector3(0.2, 0.2, 0.2));
+  Scene scene;
+  // A diagonal rod turning towards a cube in a corner of its box; another cube sliding towards
+  // it from the opposite corner.
+  const auto rod_pose = [](int frame) {
+    return Pose{Eigen::AngleAxisd(M_PI / 4 - 0.004 * frame, Vector3::UnitZ()).toRotationMatrix(),
+                Vector3::Zero()};
+  };
+  const auto slide_pose = [](int frame) {
+    return Pose{Matrix3::Identity(), Vector3(-0.6 + 0.0015 * frame, 0.6 - 0.0015 * frame, 0)};
+  };
+  const Pose still{Matrix3::Identity(), Vector3(0.7, 0.05, 0)};
+  const BodyId turning = scene.add(rod, rod_pose(0));
+  const BodyId fixed = scene.add(cube, still);
+  const BodyId sliding = scene.add(cube, slide_pose(0));
+  const Query q;
+  bool met_turning = false;
+  bool met_sliding = false;
+  std::size_t bounded = 0;
+  for (int frame = 1; frame <= 250; ++frame) {
+    scene.set_poses({turning, sliding}, {rod_pose(frame), slide_pose(frame)});
+    const std::set<Pair> found = pairs_of(scene.colliding_pairs());
+    bounded += scene.stats().warm_bounded;
+    const bool touches_fixed = q.collide(rod, rod_pose(frame), cube, still);
+    const bool touches_sliding = q.collide(rod, rod_pose(frame), cube, slide_pose(frame));
+    EXPECT_EQ(found.count({turning, fixed}) == 1, touches_fixed) << "frame " << frame;
+    EXPECT_EQ(found.count({turning, sliding}) == 1, touches_sliding) << "frame " << frame;
+    met_turning = met_turning || touches_fixed;
+    met_sliding = met_sliding || touches_sliding;
+  }
+  EXPECT_TRUE(met_turning);
+  EXPECT_TRUE(met_sliding);
+  EXPECT_GT(bounded, 0u);  // the bounds did settle frames on the way
+}
+
 TEST(Scene, WarmFramesSettleMostPairsFromTheCache) {
   std::mt19937_64 rng(5);
   Scene scene;
