@@ -49,7 +49,7 @@ def answer_like(**fields):
     result = {
         "distance": 2.0, "lower_bound": 2.0, "point_a": np.array([1.0, 0.5, 0.5]),
         "point_b": np.array([3.0, 0.5, 0.5]), "direction": np.array([1.0, 0, 0]),
-        "colliding": False, "certified": True, "status": "exact", "method": "fcl",
+        "colliding": False, "certified": True, "status": "converged", "method": "fcl",
         "escalated_from": "",
     }  # fmt: skip
     result.update(fields)
@@ -65,7 +65,7 @@ def answer_like(**fields):
         ({"point_a": np.array([1.5, 0.5, 0.5]), "distance": 1.5, "lower_bound": 1.5},
          "off its body"),
         ({"colliding": True}, "verdict"),
-        ({"distance": 2.5, "point_b": np.array([3.5, 0.5, 0.5])}, "certified fcl distance"),
+        ({"distance": 2.5, "point_b": np.array([3.5, 0.5, 0.5])}, "converged fcl distance"),
     ],
 )
 def test_the_judge_finds_what_is_wrong(fields, problem):
