@@ -47,14 +47,17 @@ std::unique_ptr<fcl::BroadPhaseCollisionManagerd> make_manager(Broadphase kind) 
   return std::make_unique<fcl::NaiveCollisionManagerd>();
 }
 
+// Every object registered (and every query) is a BoxedObject.
 bool collect(fcl::CollisionObjectd* a, fcl::CollisionObjectd* b, void* data) {
-  static_cast<std::vector<OwnerPair>*>(data)->emplace_back(a->getUserData(), b->getUserData());
+  static_cast<std::vector<ObjectPair>*>(data)->emplace_back(static_cast<BoxedObject*>(a),
+                                                            static_cast<BoxedObject*>(b));
   return false;  // never stop: every pair is wanted
 }
 
 }  // namespace
 
-BoxedObject::BoxedObject(void* owner) : fcl::CollisionObjectd(placeholder_geometry()) {
+BoxedObject::BoxedObject(void* owner, BodyId owner_id, const BodyFilter& owner_filter)
+    : fcl::CollisionObjectd(placeholder_geometry()), id(owner_id), filter(owner_filter) {
   setUserData(owner);
 }
 
@@ -146,18 +149,18 @@ void FclBroadphase::rebuild() {
   manager_->setup();
 }
 
-void FclBroadphase::overlapping_pairs(std::vector<OwnerPair>& out) {
+void FclBroadphase::overlapping_pairs(std::vector<ObjectPair>& out) {
   if (stale_) rebuild();
   manager_->collide(&out, collect);
 }
 
-void FclBroadphase::overlapping(BoxedObject* query, std::vector<OwnerPair>& out) {
+void FclBroadphase::overlapping(BoxedObject* query, std::vector<ObjectPair>& out) {
   if (stale_) rebuild();
   const std::size_t before = out.size();
   manager_->collide(query, &out, collect);
   // FCL passes the query as either argument; put it first.
   for (std::size_t k = before; k < out.size(); ++k) {
-    if (out[k].second == query->owner()) std::swap(out[k].first, out[k].second);
+    if (out[k].second == query) std::swap(out[k].first, out[k].second);
   }
 }
 

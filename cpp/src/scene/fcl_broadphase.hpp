@@ -10,6 +10,8 @@
 
 #include "swarmcollide/geometry/aabb.hpp"
 #include "swarmcollide/scene/broadphase.hpp"
+#include "swarmcollide/scene/scene_options.hpp"
+#include "swarmcollide/scene/scene_result.hpp"
 
 namespace swarmcollide::detail {
 
@@ -19,14 +21,19 @@ namespace swarmcollide::detail {
 /// no geometry to resize, no transform to set.
 class BoxedObject : public fcl::CollisionObjectd {
  public:
-  /// `owner` is what candidate pairs are reported as.
-  explicit BoxedObject(void* owner);
+  /// `owner` is the body the object stands for.
+  BoxedObject(void* owner, BodyId owner_id, const BodyFilter& owner_filter);
   void set_box(const Aabb& box);
   void* owner() const { return getUserData(); }
+
+  /// Copies of the owner's id and filter, in the cache line the traversal has just read (the
+  /// box's), so that sorting out the candidates it returns touches no other memory.
+  BodyId id;
+  BodyFilter filter;
 };
 
-/// A pair of owners whose boxes overlap.
-using OwnerPair = std::pair<void*, void*>;
+/// Two objects whose boxes overlap.
+using ObjectPair = std::pair<BoxedObject*, BoxedObject*>;
 
 /// One FCL manager, used only to collect the pairs of objects whose boxes overlap: no FCL
 /// narrowphase, no callback beyond appending the pair.
@@ -42,10 +49,10 @@ class FclBroadphase {
   /// Tells the manager that the boxes of `moved` changed (of every object when `all`).
   void refit(const std::vector<BoxedObject*>& moved, bool all);
   /// Every pair of registered objects whose boxes overlap, appended to `out` (each once).
-  void overlapping_pairs(std::vector<OwnerPair>& out);
+  void overlapping_pairs(std::vector<ObjectPair>& out);
   /// Every registered object whose box overlaps that of `query` (which need not be
-  /// registered), appended to `out` as (query's owner, object's owner).
-  void overlapping(BoxedObject* query, std::vector<OwnerPair>& out);
+  /// registered), appended to `out` as (query, object).
+  void overlapping(BoxedObject* query, std::vector<ObjectPair>& out);
 
  private:
   // Whether the manager is rebuilt from `objects_` rather than told of changes (see refit).

@@ -35,7 +35,7 @@ constexpr std::size_t kChunk = 32;
 // candidate comes first, in the first four cache lines (see `prefetch`).
 struct SceneBody {
   SceneBody(BodyId id_, ConvexPolyhedron body_, const Pose& pose_, const BodyFilter& filter_)
-      : id(id_), filter(filter_), pose(pose_), body(std::move(body_)), object(this) {}
+      : id(id_), filter(filter_), pose(pose_), body(std::move(body_)), object(this, id_, filter_) {}
 
   BodyId id;
   BodyFilter filter;
@@ -166,7 +166,7 @@ struct Scene::Impl {
   std::vector<PairProof> cache;
   SceneStats stats;
   // Buffers reused from query to query.
-  std::vector<detail::OwnerPair> overlaps;
+  std::vector<detail::ObjectPair> overlaps;
   std::vector<Candidate> candidates;
   std::vector<Candidate> sorted;
   std::vector<PairAnswer> answers;
@@ -204,16 +204,19 @@ struct Scene::Impl {
     moved.clear();
   }
 
-  bool pairable(const SceneBody& a, const SceneBody& b) const {
-    return &a != &b && a.filter.pairs_with(b.filter) &&
+  // Read from the broadphase's objects, whose copies of the ids and filters lie beside the boxes
+  // the traversal has just read.
+  bool pairable(const detail::BoxedObject& a, const detail::BoxedObject& b) const {
+    return a.id != b.id && a.filter.pairs_with(b.filter) &&
            (excluded.empty() ||
             excluded.count(detail::pair_key(std::min(a.id, b.id), std::max(a.id, b.id))) == 0);
   }
 
-  void add_candidate(const SceneBody* a, const SceneBody* b) {
+  void add_candidate(const detail::BoxedObject* a, const detail::BoxedObject* b) {
     if (!pairable(*a, *b)) return;
     if (b->id < a->id) std::swap(a, b);
-    candidates.push_back({detail::pair_key(a->id, b->id), a, b});
+    candidates.push_back({detail::pair_key(a->id, b->id), static_cast<const SceneBody*>(a->owner()),
+                          static_cast<const SceneBody*>(b->owner())});
   }
 
   // By key, then without repeats. A least-significant-digit radix sort on the ids' significant
@@ -249,9 +252,7 @@ struct Scene::Impl {
     overlaps.clear();
     broadphase.overlapping_pairs(overlaps);
     candidates.clear();
-    for (const auto& [p, q] : overlaps) {
-      add_candidate(static_cast<const SceneBody*>(p), static_cast<const SceneBody*>(q));
-    }
+    for (const auto& [p, q] : overlaps) add_candidate(p, q);
     sort_candidates();
   }
 
@@ -516,7 +517,11 @@ void Scene::set_filter(const std::vector<BodyId>& ids, const BodyFilter& filter)
   Impl& s = *impl_;
   const std::lock_guard<std::mutex> lock(s.mutex);
   for (BodyId id : ids) s.find(id);
-  for (BodyId id : ids) s.find(id).filter = filter;
+  for (BodyId id : ids) {
+    SceneBody& b = s.find(id);
+    b.filter = filter;
+    b.object.filter = filter;
+  }
 }
 
 void Scene::exclude(const std::vector<std::pair<BodyId, BodyId>>& pairs) {
@@ -683,13 +688,13 @@ SceneResult Scene::Impl::nearest(const std::vector<BodyId>& ids, int k) {
       const Scalar tol = options.query.tolerance + 1e-12;
       const Scalar pad =
           (search.threshold + 4 * tol * (b.body.bounds().radius + largest_radius)) / (1 - tol);
-      detail::BoxedObject probe(search.body);
+      detail::BoxedObject probe(search.body, b.id, b.filter);
       probe.set_box(padded(b.box, pad));
       overlaps.clear();
       broadphase.overlapping(&probe, overlaps);
       for (const auto& [self, other] : overlaps) {
-        const auto* o = static_cast<const SceneBody*>(other);
-        if (!pairable(b, *o)) continue;
+        if (!pairable(probe, *other)) continue;
+        const auto* o = static_cast<const SceneBody*>(other->owner());
         candidates.push_back({detail::pair_key(b.id, o->id), &b, o});
         asker.push_back(s);
         thresholds.push_back(search.threshold);
