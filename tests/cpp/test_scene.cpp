@@ -575,6 +575,24 @@ TEST(SceneContacts, MaxPointsKeepsTheCornersSpanningTheMostArea) {
   EXPECT_THROW(scene.contacts(0), std::invalid_argument);
 }
 
+TEST(Scene, SearchesEndWhenNoPairCanBeFound) {
+  // Two copies of one point that may not pair, and a third body far away that pairs with none.
+  VertexMatrix point(1, 3);
+  point << 1, 2, 3;
+  Scene scene;
+  const BodyFilter loner{2, 0};
+  scene.add({ConvexPolyhedron(point), ConvexPolyhedron(point)}, {}, loner);
+  EXPECT_EQ(scene.min_distance().size(), 0);
+  EXPECT_EQ(scene.nearest({0, 1}, 3).size(), 0);
+  scene.add(box(Vector3::Constant(1e6), Vector3::Constant(1e6 + 1)), {}, loner);
+  EXPECT_EQ(scene.min_distance().size(), 0);
+  scene.set_filter({2}, {});
+  scene.set_filter({0}, {});
+  const SceneResult nearest = scene.nearest({0}, 2);
+  ASSERT_EQ(nearest.size(), 1);
+  EXPECT_EQ(nearest.pairs(0, 1), 2);
+}
+
 TEST(Scene, RejectsWhatItCannotAnswer) {
   Scene scene;
   const BodyId id = scene.add(box(Vector3::Zero(), Vector3::Ones()));

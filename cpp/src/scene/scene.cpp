@@ -169,6 +169,16 @@ struct Scene::Impl {
   std::vector<detail::ObjectPair> overlaps;
   std::vector<Candidate> candidates;
   std::vector<Candidate> sorted;
+  // What `answer` found, chunk by chunk (each chunk's pairs that belong, with their candidate
+  // index, and how every pair was settled), then all in candidate order. Only the pairs that
+  // belong are kept: at 10,000 bodies a frame has 50,000 candidates and a third of them belong.
+  struct ChunkOutput {
+    std::vector<std::pair<std::size_t, PairAnswer>> found;
+    SceneStats tally;
+  };
+  std::vector<ChunkOutput> chunk_outputs;
+  std::vector<std::pair<std::size_t, PairAnswer>> found;
+  // `nearest`'s answers, one per candidate.
   std::vector<PairAnswer> answers;
   std::vector<PairProof> proofs;
 
@@ -274,9 +284,15 @@ struct Scene::Impl {
         proofs.emplace_back(c.key);
       }
     }
-    answers.resize(n);
+    chunk_outputs.resize(n / kChunk + 1);
+    for (ChunkOutput& out : chunk_outputs) {
+      out.found.clear();
+      out.tally = SceneStats{};
+    }
     const QueryOptions& base = options.query;
     pool.for_each_chunk(n, kChunk, [&](std::size_t begin, std::size_t end) {
+      ChunkOutput& out = chunk_outputs[begin / kChunk];
+      thread_local PairAnswer answer;
       QueryOptions pair_options = base;
       for (std::size_t i = begin; i < end; ++i) {
         if (i + 8 < end) prefetch_head(candidates[i + 8].second);
@@ -286,13 +302,21 @@ struct Scene::Impl {
         try {
           detail::answer_pair({&c.first->body, &c.first->pose, c.first->travelled},
                               {&c.second->body, &c.second->pose, c.second->travelled}, proofs[i],
-                              pair_options, question, answers[i]);
+                              pair_options, question, answer);
         } catch (const std::invalid_argument& error) {
           throw std::invalid_argument("bodies " + std::to_string(c.first->id) + " and " +
                                       std::to_string(c.second->id) + ": " + error.what());
         }
+        tally(out.tally, answer);
+        if (answer.belongs) out.found.emplace_back(i, answer);
       }
     });
+    found.clear();
+    stats = SceneStats{};
+    for (ChunkOutput& out : chunk_outputs) {
+      for (auto& f : out.found) found.push_back(std::move(f));
+      add(stats, out.tally);
+    }
     if (question.warm) {
       proofs.erase(
           std::remove_if(proofs.begin(), proofs.end(),
@@ -300,37 +324,41 @@ struct Scene::Impl {
           proofs.end());
       cache.swap(proofs);
     }
-    record(n);
+    finish_stats(n);
   }
 
-  void record(std::size_t n) {
-    stats = SceneStats{};
-    stats.candidates = n;
-    for (std::size_t i = 0; i < n; ++i) {
-      const PairAnswer& a = answers[i];
-      stats.screened += a.settled == detail::Settled::screened;
-      stats.warm_bounded += a.settled == detail::Settled::warm_bounded;
-      stats.warm_rejected += a.settled == detail::Settled::warm_rejected;
-      stats.warm_proven += a.settled == detail::Settled::warm_proven;
-      stats.solved +=
-          a.settled == detail::Settled::solved || a.settled == detail::Settled::escalated;
-      stats.escalations += a.settled == detail::Settled::escalated;
-      stats.certified += a.certified;
-    }
+  static void tally(SceneStats& s, const PairAnswer& a) {
+    s.screened += a.settled == detail::Settled::screened;
+    s.warm_bounded += a.settled == detail::Settled::warm_bounded;
+    s.warm_rejected += a.settled == detail::Settled::warm_rejected;
+    s.warm_proven += a.settled == detail::Settled::warm_proven;
+    s.solved += a.settled == detail::Settled::solved || a.settled == detail::Settled::escalated;
+    s.escalations += a.settled == detail::Settled::escalated;
+    s.certified += a.certified;
+  }
+
+  static void add(SceneStats& s, const SceneStats& more) {
+    s.screened += more.screened;
+    s.warm_bounded += more.warm_bounded;
+    s.warm_rejected += more.warm_rejected;
+    s.warm_proven += more.warm_proven;
+    s.solved += more.solved;
+    s.escalations += more.escalations;
+    s.certified += more.certified;
+  }
+
+  void finish_stats(std::size_t candidates_answered) {
+    stats.candidates = candidates_answered;
     stats.cached_pairs = cache.size();
     stats.cache_bytes = cache.capacity() * sizeof(PairProof);
   }
 
   // The answers that belong, in candidate (key) order.
   SceneResult gather() const {
-    std::vector<std::size_t> rows;
-    for (std::size_t i = 0; i < answers.size() && i < candidates.size(); ++i) {
-      if (answers[i].belongs) rows.push_back(i);
-    }
-    SceneResult result = sized(rows.size());
-    for (std::size_t r = 0; r < rows.size(); ++r) {
-      const Candidate& c = candidates[rows[r]];
-      put(result, r, c.first->id, c.second->id, answers[rows[r]]);
+    SceneResult result = sized(found.size());
+    for (std::size_t r = 0; r < found.size(); ++r) {
+      const Candidate& c = candidates[found[r].first];
+      put(result, r, c.first->id, c.second->id, found[r].second);
     }
     return result;
   }
@@ -389,6 +417,15 @@ struct Scene::Impl {
       all.max = all.max.cwiseMax(b->box.max);
     }
     return (all.max - all.min).norm();
+  }
+
+  // The threshold after `threshold` for searches that found too little: twice as far, starting
+  // from the median body radius (from 1 when every body is one point: the scene's extent is then
+  // zero, and any positive threshold covers it).
+  Scalar next_threshold(Scalar threshold) const {
+    if (threshold > 0) return 2 * threshold;
+    const Scalar step = first_step();
+    return step > 0 ? step : 1;
   }
 
   // A first threshold for searches that found nothing in contact: the median body radius.
@@ -617,21 +654,19 @@ SceneResult Scene::Impl::min_distance() {
     collect(threshold);
     question.threshold = threshold;
     answer(question);
-    std::size_t best = answers.size();
-    for (std::size_t i = 0; i < answers.size(); ++i) {
-      if (answers[i].belongs &&
-          (best == answers.size() || answers[i].distance < answers[best].distance)) {
-        best = i;
-      }
+    const std::pair<std::size_t, PairAnswer>* best = nullptr;
+    for (const auto& f : found) {
+      if (best == nullptr || f.second.distance < best->second.distance) best = &f;
     }
-    if (best < answers.size()) {
+    if (best != nullptr) {
       SceneResult result = sized(1);
-      put(result, 0, candidates[best].first->id, candidates[best].second->id, answers[best]);
+      const Candidate& c = candidates[best->first];
+      put(result, 0, c.first->id, c.second->id, best->second);
       return result;
     }
     // No pairable pair at all once every box overlaps every other.
     if (threshold > far) return sized(0);
-    threshold = threshold == 0 ? first_step() : 2 * threshold;
+    threshold = next_threshold(threshold);
   }
 }
 
@@ -724,7 +759,9 @@ SceneResult Scene::Impl::nearest(const std::vector<BodyId>& ids, int k) {
         }
       }
     });
-    record(candidates.size());
+    stats = SceneStats{};
+    for (const PairAnswer& a : answers) tally(stats, a);
+    finish_stats(candidates.size());
     for (Search& search : searches) {
       if (!search.done) search.found.clear();
     }
@@ -753,7 +790,7 @@ SceneResult Scene::Impl::nearest(const std::vector<BodyId>& ids, int k) {
         }
         search.found = std::move(kept);
       } else {
-        search.threshold = search.threshold == 0 ? first_step() : 2 * search.threshold;
+        search.threshold = next_threshold(search.threshold);
         pending = true;
       }
     }
@@ -794,20 +831,18 @@ ContactResult Scene::contacts(int max_points) {
   result.offsets.resize(m);
   std::size_t total = 0;
   Eigen::Index row = 0;
-  for (std::size_t i = 0; i < s.answers.size(); ++i) {
-    if (!s.answers[i].belongs) continue;
+  for (const auto& [index, answer] : s.found) {
     result.offsets(row) = static_cast<std::int64_t>(total);
-    result.counts(row) = static_cast<int>(s.answers[i].points.size());
-    total += s.answers[i].points.size();
+    result.counts(row) = static_cast<int>(answer.points.size());
+    total += answer.points.size();
     ++row;
   }
   result.points.resize(static_cast<Eigen::Index>(total), 3);
   result.point_pair.resize(static_cast<Eigen::Index>(total));
   Eigen::Index p = 0;
   row = 0;
-  for (std::size_t i = 0; i < s.answers.size(); ++i) {
-    if (!s.answers[i].belongs) continue;
-    for (const Vector3& point : s.answers[i].points) {
+  for (const auto& [index, answer] : s.found) {
+    for (const Vector3& point : answer.points) {
       result.points.row(p) = point.transpose();
       result.point_pair(p) = row;
       ++p;
