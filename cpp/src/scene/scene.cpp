@@ -30,11 +30,22 @@ constexpr Scalar kEpsilon = std::numeric_limits<Scalar>::epsilon();
 // Pairs a thread takes at a time: enough to make taking them cheap, few enough to balance.
 constexpr std::size_t kChunk = 32;
 
+// The largest distance of the body's points from the centre of its box: what a turn about that
+// centre moves them by, per radian. Often well below the box's half-diagonal.
+Scalar reach_about_centre(const ConvexPolyhedron& body) {
+  return (body.vertices().rowwise() - body.bounds().centre.transpose()).rowwise().norm().maxCoeff();
+}
+
 // A body of the scene with what the broadphase keeps of it. What the narrowphase reads of every
 // candidate comes first, in the first four cache lines (see `prefetch`).
 struct SceneBody {
   SceneBody(BodyId id_, ConvexPolyhedron body_, const Pose& pose_, const BodyFilter& filter_)
-      : id(id_), filter(filter_), pose(pose_), body(std::move(body_)), object(this, id_, filter_) {}
+      : id(id_),
+        filter(filter_),
+        pose(pose_),
+        body(std::move(body_)),
+        reach(reach_about_centre(body)),
+        object(this, id_, filter_) {}
 
   BodyId id;
   BodyFilter filter;
@@ -42,6 +53,8 @@ struct SceneBody {
   Scalar travelled = 0;
   Pose pose;
   ConvexPolyhedron body;
+  /// The largest distance of its points from the centre of its box (see displacement).
+  Scalar reach;
   /// The smallest box holding the body at its pose, widened by the rounding of computing it.
   Aabb box;
   /// Support points of the box's six faces, from which hill climbing on large bodies starts.
@@ -61,19 +74,27 @@ void prefetch_head(const SceneBody* b) {
 }
 void prefetch_points(const SceneBody* b) { __builtin_prefetch(b->body.vertices().data()); }
 
-// A bound on how far any point of `body` moves from `from` to `to`: its box centre c moves by
-// |c' - c| and every other point turns about it by at most |R' - R| (Frobenius) times the radius.
-// Each term is computed with a few roundings of the magnitudes involved, which the relative and
-// absolute margins cover.
-Scalar displacement(const ConvexPolyhedron& body, const Pose& from, const Pose& to) {
+// The norm of R' - R, for rotations R and R' (to the 1e-9 that poses are validated to): from the
+// angle theta of R'^T R, |R' - R|_2 = 2 sin(theta / 2) = sqrt(3 - trace(R'^T R)), with a margin
+// for the rotations' own error; or the Frobenius norm, never smaller, when that is less (for a
+// rotation that did not change, exactly zero).
+Scalar turn(const Matrix3& from, const Matrix3& to) {
+  const Scalar frobenius = (to - from).norm();
+  const Scalar trace = (to.transpose() * from).trace();
+  return std::min(frobenius, std::sqrt(std::max(Scalar(0), 3 - trace) + 1e-8));
+}
+
+// A bound on how far any point of a body moves from `from` to `to`: its box centre c moves by
+// |c' - c|, and every point turns about it by at most |R' - R| times `reach`. Each term is
+// computed with a few roundings of the magnitudes involved, which the margins cover.
+Scalar displacement(const ConvexPolyhedron& body, Scalar reach, const Pose& from, const Pose& to) {
   const Vector3& c = body.bounds().centre;
   const Vector3 old_centre = from.rotation * c + from.translation;
   const Vector3 new_centre = to.rotation * c + to.translation;
-  const Scalar turn = (to.rotation - from.rotation).norm();
-  const Scalar moved = (new_centre - old_centre).norm() + turn * body.bounds().radius;
-  const Scalar reach = old_centre.cwiseAbs().maxCoeff() + new_centre.cwiseAbs().maxCoeff() +
-                       c.cwiseAbs().maxCoeff() + body.bounds().radius;
-  return moved * (1 + 1e-12) + 16 * kEpsilon * reach;
+  const Scalar moved = (new_centre - old_centre).norm() + turn(from.rotation, to.rotation) * reach;
+  const Scalar magnitude = old_centre.cwiseAbs().maxCoeff() + new_centre.cwiseAbs().maxCoeff() +
+                           c.cwiseAbs().maxCoeff() + reach;
+  return moved * (1 + 1e-12) + 16 * kEpsilon * magnitude;
 }
 
 // The world box of `b`: its points' extremes along the axes, found in the body's own frame
@@ -504,7 +525,8 @@ void Scene::set_poses(const std::vector<BodyId>& ids, const std::vector<Pose>& p
     validate_pose(poses[i], "poses", i);
   }
   for (std::size_t i = 0; i < ids.size(); ++i) {
-    targets[i]->travelled += displacement(targets[i]->body, targets[i]->pose, poses[i]);
+    targets[i]->travelled +=
+        displacement(targets[i]->body, targets[i]->reach, targets[i]->pose, poses[i]);
     targets[i]->pose = poses[i];
     // A body moved twice is boxed once.
     if (!targets[i]->moved) s.moved.push_back(targets[i]);
