@@ -14,6 +14,7 @@ from collections import defaultdict
 from typing import Dict, List, Optional
 
 import matplotlib
+from scene_report import scene_section
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
@@ -632,6 +633,9 @@ def main(argv: Optional[List[str]] = None) -> int:
     batch = os.path.join(args.results, "batch.json")
     if os.path.exists(batch):
         md += ["## Batch queries from Python", "", batch_section(batch), ""]
+    scenes = scene_section(args.results)
+    if scenes is not None:
+        md += [scenes]
     recorded = [os.path.join(args.results, name)
                 for name in ("swarm_speed_before.txt", "swarm_speed_df361b9.txt",
                              "swarm_speed_83fdd16.txt", "swarm_speed_133eeb1.txt")]

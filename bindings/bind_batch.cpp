@@ -76,21 +76,28 @@ BatchSettings settings_of(const py::object& threads, const py::object& first_ind
   return settings;
 }
 
-// `query(as, bs)` without the GIL. Two (m, n, 3) arrays are passed as vertex stacks, so that the
-// threads build and free the bodies; anything else is converted to bodies here first.
+BatchPoses poses_of(const py::object& poses_a, const py::object& poses_b, std::size_t count) {
+  return {to_poses(poses_a, count, "poses_a"), to_poses(poses_b, count, "poses_b")};
+}
+
+// `query(as, bs, poses)` without the GIL. Two (m, n, 3) arrays are passed as vertex stacks, so
+// that the threads build and free the bodies; anything else is converted to bodies here first.
 template <typename Ask>
-BatchResult run(const py::object& as, const py::object& bs, const BatchSettings& settings,
-                const Ask& ask) {
+BatchResult run(const py::object& as, const py::object& bs, const py::object& poses_a,
+                const py::object& poses_b, const BatchSettings& settings, const Ask& ask) {
   const std::optional<Stack> stack_a = as_stack(as, "As");
   const std::optional<Stack> stack_b = as_stack(bs, "Bs");
   if (stack_a && stack_b) {
+    const BatchPoses poses =
+        poses_of(poses_a, poses_b, static_cast<std::size_t>(stack_a->shape(0)));
     py::gil_scoped_release release;
-    return ask(view(*stack_a, "As"), view(*stack_b, "Bs"));
+    return ask(view(*stack_a, "As"), view(*stack_b, "Bs"), poses);
   }
   const auto bodies_a = to_polyhedra(as, "As", settings.first_index);
   const auto bodies_b = to_polyhedra(bs, "Bs", settings.first_index);
+  const BatchPoses poses = poses_of(poses_a, poses_b, bodies_a.size());
   py::gil_scoped_release release;
-  return ask(bodies_a, bodies_b);
+  return ask(bodies_a, bodies_b, poses);
 }
 
 constexpr const char* kBatchDoc = R"doc(
@@ -99,7 +106,8 @@ The query for every pair ``(As[i], Bs[i])``, in C++ threads without the GIL.
 Pair i is seeded with ``pair_seed(seed, first_index + i)``, so answers do not depend on the
 number of threads or on how a batch is split. ``As`` and ``Bs`` are sequences of polyhedra or
 ``(n, 3)`` arrays, or ``(m, n, 3)`` arrays (the fastest: each pair's bodies are then built and
-freed by the thread that answers it).
+freed by the thread that answers it). ``poses_a`` and ``poses_b`` place them: None (the identity),
+an ``(m, 4, 4)`` array of rigid transforms or a pair ``(rotations (m, 3, 3), translations (m, 3))``.
 )doc";
 
 }  // namespace
@@ -135,36 +143,41 @@ iterations : numpy.ndarray of int, shape (m,)
       .def(
           "distance_many",
           [](const Query& q, const py::object& as, const py::object& bs, const py::object& threads,
-             const py::object& first_index) {
+             const py::object& first_index, const py::object& poses_a, const py::object& poses_b) {
             const BatchSettings settings = settings_of(threads, first_index, true);
-            return run(as, bs, settings, [&](const auto& a, const auto& b) {
-              return distance_many(a, b, q.options(), settings);
-            });
+            return run(as, bs, poses_a, poses_b, settings,
+                       [&](const auto& a, const auto& b, const BatchPoses& poses) {
+                         return distance_many(a, b, q.options(), settings, poses);
+                       });
           },
           py::arg("As"), py::arg("Bs"), py::arg("threads") = py::none(), py::arg("first_index") = 0,
-          kBatchDoc)
+          py::arg("poses_a") = py::none(), py::arg("poses_b") = py::none(), kBatchDoc)
       .def(
           "collide_many",
           [](const Query& q, const py::object& as, const py::object& bs, const py::object& threads,
-             const py::object& first_index, bool escalate) {
+             const py::object& first_index, bool escalate, const py::object& poses_a,
+             const py::object& poses_b) {
             const BatchSettings settings = settings_of(threads, first_index, escalate);
-            return run(as, bs, settings, [&](const auto& a, const auto& b) {
-              return collide_many(a, b, q.options(), settings);
-            });
+            return run(as, bs, poses_a, poses_b, settings,
+                       [&](const auto& a, const auto& b, const BatchPoses& poses) {
+                         return collide_many(a, b, q.options(), settings, poses);
+                       });
           },
           py::arg("As"), py::arg("Bs"), py::arg("threads") = py::none(), py::arg("first_index") = 0,
-          py::arg("escalate") = true, kBatchDoc)
+          py::arg("escalate") = true, py::arg("poses_a") = py::none(),
+          py::arg("poses_b") = py::none(), kBatchDoc)
       .def(
           "signed_distance_many",
           [](const Query& q, const py::object& as, const py::object& bs, const py::object& threads,
-             const py::object& first_index) {
+             const py::object& first_index, const py::object& poses_a, const py::object& poses_b) {
             const BatchSettings settings = settings_of(threads, first_index, true);
-            return run(as, bs, settings, [&](const auto& a, const auto& b) {
-              return signed_distance_many(a, b, q.options(), settings);
-            });
+            return run(as, bs, poses_a, poses_b, settings,
+                       [&](const auto& a, const auto& b, const BatchPoses& poses) {
+                         return signed_distance_many(a, b, q.options(), settings, poses);
+                       });
           },
           py::arg("As"), py::arg("Bs"), py::arg("threads") = py::none(), py::arg("first_index") = 0,
-          kBatchDoc);
+          py::arg("poses_a") = py::none(), py::arg("poses_b") = py::none(), kBatchDoc);
   m.def("pair_seed", &pair_seed, py::arg("seed"), py::arg("index"),
         "The seed of the pair with global index ``index`` in a batch seeded with ``seed``.");
 }

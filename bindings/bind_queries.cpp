@@ -39,54 +39,6 @@ bool is_real(const py::handle& value) {
                              py::isinstance(value, py::module_::import("numpy").attr("floating")));
 }
 
-// Options from the keyword arguments of `Query(...)`: types are checked here, values by the
-// method table (which names the valid range).
-QueryOptions make_options(const std::string& method, const py::handle& tolerance,
-                          const py::handle& seed, const py::kwargs& parameters) {
-  QueryOptions options;
-  options.method = method_from_name(method);
-  if (!is_real(tolerance)) {
-    throw py::type_error("tolerance must be a real number, got " + type_name(tolerance));
-  }
-  options.tolerance = tolerance.cast<double>();
-  if (!is_integer(seed)) throw py::type_error("seed must be an integer, got " + type_name(seed));
-  const py::int_ seed_value = py::reinterpret_steal<py::int_>(PyNumber_Index(seed.ptr()));
-  if (seed_value < py::int_(0) ||
-      seed_value >= py::int_(py::module_::import("builtins").attr("pow")(2, 64))) {
-    throw py::value_error("seed must lie in [0, 2**64), got " + std::string(py::str(seed_value)));
-  }
-  options.seed = seed_value.cast<std::uint64_t>();
-  for (const auto& [key, value] : parameters) {
-    const std::string name = key.cast<std::string>();
-    if (value.is_none()) continue;
-    const MethodInfo& info = method_info(options.method);
-    const ParameterInfo* parameter = nullptr;
-    for (const ParameterInfo& p : info.parameters) {
-      if (name == p.name) parameter = &p;
-    }
-    if (parameter == nullptr) {
-      set_parameter(options, name, 0);  // throws, listing the method's parameters
-    } else if (parameter->kind == ParameterInfo::Kind::real) {
-      if (!is_real(value))
-        throw py::type_error(name + " must be a real number, got " + type_name(value));
-      set_parameter(options, name, value.cast<double>());
-    } else if (parameter->kind == ParameterInfo::Kind::integer) {
-      if (!is_integer(value))
-        throw py::type_error(name + " must be an integer, got " + type_name(value));
-      const py::int_ integer = py::reinterpret_steal<py::int_>(PyNumber_Index(value.ptr()));
-      // Beyond double's exact integers, the range check still rejects the value.
-      set_parameter(options, name, py::float_(integer).cast<double>());
-    } else {
-      if (!py::isinstance<py::str>(value)) {
-        throw py::type_error(name + " must be a string, got " + type_name(value));
-      }
-      set_parameter(options, name, choice_index(options, name, value.cast<std::string>()));
-    }
-  }
-  options.validate();
-  return options;
-}
-
 const char* kind_name(ParameterInfo::Kind kind) {
   switch (kind) {
     case ParameterInfo::Kind::integer:
@@ -171,6 +123,53 @@ auto on_pair(const py::handle& a, const py::handle& b, const py::handle& pose_a,
 }
 
 }  // namespace
+
+// Types are checked here, values by the method table (which names the valid range).
+QueryOptions make_options(const std::string& method, const py::handle& tolerance,
+                          const py::handle& seed, const py::kwargs& parameters) {
+  QueryOptions options;
+  options.method = method_from_name(method);
+  if (!is_real(tolerance)) {
+    throw py::type_error("tolerance must be a real number, got " + type_name(tolerance));
+  }
+  options.tolerance = tolerance.cast<double>();
+  if (!is_integer(seed)) throw py::type_error("seed must be an integer, got " + type_name(seed));
+  const py::int_ seed_value = py::reinterpret_steal<py::int_>(PyNumber_Index(seed.ptr()));
+  if (seed_value < py::int_(0) ||
+      seed_value >= py::int_(py::module_::import("builtins").attr("pow")(2, 64))) {
+    throw py::value_error("seed must lie in [0, 2**64), got " + std::string(py::str(seed_value)));
+  }
+  options.seed = seed_value.cast<std::uint64_t>();
+  for (const auto& [key, value] : parameters) {
+    const std::string name = key.cast<std::string>();
+    if (value.is_none()) continue;
+    const MethodInfo& info = method_info(options.method);
+    const ParameterInfo* parameter = nullptr;
+    for (const ParameterInfo& p : info.parameters) {
+      if (name == p.name) parameter = &p;
+    }
+    if (parameter == nullptr) {
+      set_parameter(options, name, 0);  // throws, listing the method's parameters
+    } else if (parameter->kind == ParameterInfo::Kind::real) {
+      if (!is_real(value))
+        throw py::type_error(name + " must be a real number, got " + type_name(value));
+      set_parameter(options, name, value.cast<double>());
+    } else if (parameter->kind == ParameterInfo::Kind::integer) {
+      if (!is_integer(value))
+        throw py::type_error(name + " must be an integer, got " + type_name(value));
+      const py::int_ integer = py::reinterpret_steal<py::int_>(PyNumber_Index(value.ptr()));
+      // Beyond double's exact integers, the range check still rejects the value.
+      set_parameter(options, name, py::float_(integer).cast<double>());
+    } else {
+      if (!py::isinstance<py::str>(value)) {
+        throw py::type_error(name + " must be a string, got " + type_name(value));
+      }
+      set_parameter(options, name, choice_index(options, name, value.cast<std::string>()));
+    }
+  }
+  options.validate();
+  return options;
+}
 
 py::class_<Query> bind_queries(py::module_& m) {
   py::class_<DistanceResult>(m, "DistanceResult", R"doc(

@@ -112,6 +112,68 @@ Pose to_pose(const py::handle& pose, const char* name) {
   return result;
 }
 
+namespace {
+
+using RowMatrix3 = Eigen::Matrix<Scalar, 3, 3, Eigen::RowMajor>;
+using RowMatrix4 = Eigen::Matrix<Scalar, 4, 4, Eigen::RowMajor>;
+
+// A pair (rotations, translations) rather than one array of transforms.
+bool is_pose_pair(const py::handle& poses) {
+  if (!py::isinstance<py::tuple>(poses) && !py::isinstance<py::list>(poses)) return false;
+  const py::sequence parts = py::reinterpret_borrow<py::sequence>(poses);
+  if (parts.size() != 2) return false;
+  const py::array first = py::module_::import("numpy").attr("asarray")(parts[0]);
+  return first.ndim() >= 2 && first.shape(first.ndim() - 1) == 3 &&
+         first.shape(first.ndim() - 2) == 3;
+}
+
+}  // namespace
+
+std::vector<Pose> to_poses(const py::handle& poses, std::size_t count, const char* name) {
+  std::vector<Pose> result;
+  if (poses.is_none()) return result;
+  const std::string arg(name);
+  const auto n = static_cast<py::ssize_t>(count);
+  const std::string shapes =
+      count == 1
+          ? "a (4, 4) transform, a (1, 4, 4) array of them or a pair "
+            "(rotation, translation)"
+          : "a (" + std::to_string(count) + ", 4, 4) array of transforms or a pair (rotations (" +
+                std::to_string(count) + ", 3, 3), translations (" + std::to_string(count) + ", 3))";
+  result.resize(count);
+  if (is_pose_pair(poses)) {
+    const py::sequence parts = py::reinterpret_borrow<py::sequence>(poses);
+    const py::array first = py::module_::import("numpy").attr("asarray")(parts[0]);
+    const bool single = count == 1 && first.ndim() == 2;
+    const auto rotations =
+        single ? real_array(parts[0], {3, 3}, arg + "'s rotation", "a (3, 3) rotation")
+               : real_array(parts[0], {n, 3, 3}, arg + "'s rotations", shapes);
+    const auto translations =
+        single ? real_array(parts[1], {3}, arg + "'s translation", "a (3,) translation")
+               : real_array(parts[1], {n, 3}, arg + "'s translations", shapes);
+    for (std::size_t i = 0; i < count; ++i) {
+      result[i].rotation = Eigen::Map<const RowMatrix3>(rotations.data() + 9 * i);
+      result[i].translation = Eigen::Map<const Vector3>(translations.data() + 3 * i);
+    }
+  } else {
+    const py::array raw = py::module_::import("numpy").attr("asarray")(poses);
+    const bool single = count == 1 && raw.ndim() == 2;
+    const auto matrices =
+        single ? real_array(poses, {4, 4}, arg, shapes) : real_array(poses, {n, 4, 4}, arg, shapes);
+    for (std::size_t i = 0; i < count; ++i) {
+      const Eigen::Map<const RowMatrix4> m(matrices.data() + 16 * i);
+      if (!(m.row(3) == Eigen::RowVector4d(0, 0, 0, 1))) {
+        throw py::value_error(arg + "[" + std::to_string(i) +
+                              "] must be a homogeneous rigid transform: its last row must be "
+                              "[0, 0, 0, 1]");
+      }
+      result[i].rotation = m.topLeftCorner<3, 3>();
+      result[i].translation = m.topRightCorner<3, 1>();
+    }
+  }
+  return result;
+}
+
 Vector3 finite_vector3(const Vector3& vector, const char* name) {
   if (!vector.allFinite()) throw py::value_error(std::string(name) + " must be finite");
   return vector;

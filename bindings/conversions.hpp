@@ -4,6 +4,7 @@
 #include <pybind11/pybind11.h>
 
 #include <optional>
+#include <vector>
 
 #include "swarmcollide/geometry/convex_polyhedron.hpp"
 #include "swarmcollide/geometry/pose.hpp"
@@ -32,6 +33,14 @@ class BodyArgument {
 /// A pose argument: None (the identity), a `(4, 4)` homogeneous rigid transform, or a pair
 /// `(rotation (3, 3), translation (3,))`; TypeError or ValueError naming `name` otherwise.
 Pose to_pose(const py::handle& pose, const char* name);
+
+/// Poses for `count` bodies: None (none: every body at the identity), a `(count, 4, 4)` array of
+/// homogeneous rigid transforms, or a pair `(rotations (count, 3, 3), translations (count, 3))`;
+/// for one body also a single `(4, 4)` transform or `((3, 3), (3,))` pair. TypeError or
+/// ValueError naming `name` (and the offending `name[i]`) for another shape or a last row other
+/// than [0, 0, 0, 1]. Whether each pose is a rigid motion is left to the core (Scene, the
+/// batches), which names it alike and checks it once.
+std::vector<Pose> to_poses(const py::handle& poses, std::size_t count, const char* name);
 
 /// A 3-vector that must be finite; ValueError naming `name` otherwise.
 Vector3 finite_vector3(const Vector3& vector, const char* name);

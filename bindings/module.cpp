@@ -9,14 +9,16 @@ void bind_geometry(py::module_& m);
 void bind_problem(py::module_& m);
 void bind_solvers(py::module_& m);
 void bind_batch(py::module_& m, py::class_<Query>& query);
+void bind_scene(py::module_& m);
 }  // namespace swarmcollide::bindings
 
 PYBIND11_MODULE(_core, m) {
-  m.doc() = "swarmcollide's C++ core: convex polyhedra, model (2), its solvers and queries.";
+  m.doc() = "swarmcollide's C++ core: convex polyhedra, model (2), its solvers, queries and scenes.";
   using namespace swarmcollide::bindings;
   bind_geometry(m);
   bind_problem(m);
   bind_solvers(m);
   py::class_<swarmcollide::Query> query = bind_queries(m);
   bind_batch(m, query);
+  bind_scene(m);
 }

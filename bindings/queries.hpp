@@ -2,11 +2,18 @@
 
 #include <pybind11/pybind11.h>
 
+#include <string>
+
 #include "swarmcollide/queries/query.hpp"
 
 namespace swarmcollide::bindings {
 
 namespace py = pybind11;
+
+/// Options from the keyword arguments of `Query(...)` (and `Scene(...)`): TypeError for a value
+/// of the wrong type, ValueError for an unknown method or parameter or a value out of range.
+QueryOptions make_options(const std::string& method, const py::handle& tolerance,
+                          const py::handle& seed, const py::kwargs& parameters);
 
 /// Binds DistanceResult, the method table and Query; returns Query's class so that other areas
 /// (batches) can add their methods to it.

@@ -19,14 +19,20 @@ Examples
 
 from importlib.metadata import version as _version
 
+from . import _core
+
 from ._core import (
     Aabb,
     BatchResult,
+    ContactResult,
     ConvexPolyhedron,
     DistanceResult,
     Hull,
     ParticleCoefficients,
     Query,
+    Scene,
+    SceneResult,
+    SceneStats,
     as_polyhedron,
     constraint_violation,
     is_feasible,
@@ -46,6 +52,7 @@ from .queries import (
     Parameters,
     PolyhedronLike,
     PoseLike,
+    PosesLike,
     collide,
     collide_many,
     collision,
@@ -58,12 +65,17 @@ from .queries import (
 
 __version__ = _version("swarmcollide")
 
+BROADPHASES = tuple(_core.broadphases())
+"""The broadphase managers a ``Scene`` can use, the default (``"dynamic_aabb_tree"``) first."""
+
 __all__ = [
+    "BROADPHASES",
     "DEFAULT_TOLERANCE",
     "METHODS",
     "Aabb",
     "BatchResult",
     "BodiesLike",
+    "ContactResult",
     "ConvexPolyhedron",
     "DistanceResult",
     "Hull",
@@ -73,7 +85,11 @@ __all__ = [
     "ParticleCoefficients",
     "PolyhedronLike",
     "PoseLike",
+    "PosesLike",
     "Query",
+    "Scene",
+    "SceneResult",
+    "SceneStats",
     "as_polyhedron",
     "collide",
     "collide_many",

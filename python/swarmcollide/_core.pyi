@@ -1,11 +1,11 @@
 """
-swarmcollide's C++ core: convex polyhedra, model (2), its solvers and queries.
+swarmcollide's C++ core: convex polyhedra, model (2), its solvers, queries and scenes.
 """
 from __future__ import annotations
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['Aabb', 'BatchResult', 'ConvexPolyhedron', 'DistanceResult', 'Hull', 'ParticleCoefficients', 'Query', 'as_polyhedron', 'constraint_violation', 'is_feasible', 'linear_decreasing_inertia', 'method_table', 'objective', 'pair_seed', 'project_onto_simplex', 'rank_adaptive_coefficients', 'separation']
+__all__: list[str] = ['Aabb', 'BatchResult', 'ContactResult', 'ConvexPolyhedron', 'DistanceResult', 'Hull', 'ParticleCoefficients', 'Query', 'Scene', 'SceneResult', 'SceneStats', 'as_polyhedron', 'broadphases', 'constraint_violation', 'is_feasible', 'linear_decreasing_inertia', 'method_table', 'objective', 'pair_seed', 'project_onto_simplex', 'rank_adaptive_coefficients', 'separation']
 class Aabb:
     """
     An axis-aligned bounding box with corners ``min`` and ``max``.
@@ -60,6 +60,38 @@ class BatchResult:
         ...
     @property
     def point_b(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
+        ...
+class ContactResult(SceneResult):
+    """
+    
+    The contacts of every pair in contact: a SceneResult whose ``distance`` is the certified signed
+    distance (negative: the penetration depth) and ``normal`` the contact normal from A to B, with
+    each pair's contact points.
+    
+    Attributes
+    ----------
+    counts : numpy.ndarray of int, shape (m,)
+        Contact points of each pair (1 to ``max_points``).
+    points : numpy.ndarray, shape (p, 3)
+        All contact points, pair by pair, halfway between the two supporting planes.
+    point_pair : numpy.ndarray of int64, shape (p,)
+        Row in ``pairs`` of each contact point.
+    offsets : numpy.ndarray of int64, shape (m,)
+        Index in ``points`` of each pair's first contact point.
+    """
+    def __repr__(self) -> str:
+        ...
+    @property
+    def counts(self) -> typing.Annotated[numpy.typing.NDArray[numpy.int32], "[m, 1]"]:
+        ...
+    @property
+    def offsets(self) -> typing.Annotated[numpy.typing.NDArray[numpy.int64], "[m, 1]"]:
+        ...
+    @property
+    def point_pair(self) -> typing.Annotated[numpy.typing.NDArray[numpy.int64], "[m, 1]"]:
+        ...
+    @property
+    def points(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
         ...
 class ConvexPolyhedron:
     """
@@ -262,38 +294,41 @@ class Query:
         ...
     def collide(self, a: typing.Any, b: typing.Any, pose_a: typing.Any = None, pose_b: typing.Any = None, escalate: bool = True) -> bool:
         ...
-    def collide_many(self, As: typing.Any, Bs: typing.Any, threads: typing.Any = None, first_index: typing.Any = 0, escalate: bool = True) -> BatchResult:
+    def collide_many(self, As: typing.Any, Bs: typing.Any, threads: typing.Any = None, first_index: typing.Any = 0, escalate: bool = True, poses_a: typing.Any = None, poses_b: typing.Any = None) -> BatchResult:
         """
         The query for every pair ``(As[i], Bs[i])``, in C++ threads without the GIL.
         
         Pair i is seeded with ``pair_seed(seed, first_index + i)``, so answers do not depend on the
         number of threads or on how a batch is split. ``As`` and ``Bs`` are sequences of polyhedra or
         ``(n, 3)`` arrays, or ``(m, n, 3)`` arrays (the fastest: each pair's bodies are then built and
-        freed by the thread that answers it).
+        freed by the thread that answers it). ``poses_a`` and ``poses_b`` place them: None (the identity),
+        an ``(m, 4, 4)`` array of rigid transforms or a pair ``(rotations (m, 3, 3), translations (m, 3))``.
         """
     def collision(self, a: typing.Any, b: typing.Any, pose_a: typing.Any = None, pose_b: typing.Any = None, escalate: bool = True) -> DistanceResult:
         ...
     def distance(self, a: typing.Any, b: typing.Any, pose_a: typing.Any = None, pose_b: typing.Any = None) -> DistanceResult:
         ...
-    def distance_many(self, As: typing.Any, Bs: typing.Any, threads: typing.Any = None, first_index: typing.Any = 0) -> BatchResult:
+    def distance_many(self, As: typing.Any, Bs: typing.Any, threads: typing.Any = None, first_index: typing.Any = 0, poses_a: typing.Any = None, poses_b: typing.Any = None) -> BatchResult:
         """
         The query for every pair ``(As[i], Bs[i])``, in C++ threads without the GIL.
         
         Pair i is seeded with ``pair_seed(seed, first_index + i)``, so answers do not depend on the
         number of threads or on how a batch is split. ``As`` and ``Bs`` are sequences of polyhedra or
         ``(n, 3)`` arrays, or ``(m, n, 3)`` arrays (the fastest: each pair's bodies are then built and
-        freed by the thread that answers it).
+        freed by the thread that answers it). ``poses_a`` and ``poses_b`` place them: None (the identity),
+        an ``(m, 4, 4)`` array of rigid transforms or a pair ``(rotations (m, 3, 3), translations (m, 3))``.
         """
     def signed_distance(self, a: typing.Any, b: typing.Any, pose_a: typing.Any = None, pose_b: typing.Any = None) -> DistanceResult:
         ...
-    def signed_distance_many(self, As: typing.Any, Bs: typing.Any, threads: typing.Any = None, first_index: typing.Any = 0) -> BatchResult:
+    def signed_distance_many(self, As: typing.Any, Bs: typing.Any, threads: typing.Any = None, first_index: typing.Any = 0, poses_a: typing.Any = None, poses_b: typing.Any = None) -> BatchResult:
         """
         The query for every pair ``(As[i], Bs[i])``, in C++ threads without the GIL.
         
         Pair i is seeded with ``pair_seed(seed, first_index + i)``, so answers do not depend on the
         number of threads or on how a batch is split. ``As`` and ``Bs`` are sequences of polyhedra or
         ``(n, 3)`` arrays, or ``(m, n, 3)`` arrays (the fastest: each pair's bodies are then built and
-        freed by the thread that answers it).
+        freed by the thread that answers it). ``poses_a`` and ``poses_b`` place them: None (the identity),
+        an ``(m, 4, 4)`` array of rigid transforms or a pair ``(rotations (m, 3, 3), translations (m, 3))``.
         """
     @property
     def method(self) -> str:
@@ -309,11 +344,267 @@ class Query:
     @property
     def tolerance(self) -> float:
         ...
+class Scene:
+    """
+    
+    Many convex bodies, each defined once in its own frame and placed by a pose, and the queries
+    about all their pairs.
+    
+    FCL's broadphase manager, given tight boxes from the bodies' support functions, collects the
+    candidate pairs; the narrowphase (``method``, certified as ``Query.collision`` is) answers them
+    in C++ threads without the GIL. With ``warm_start``, each candidate pair keeps what the last
+    query proved (a separating direction and its support points in the bodies' own frames, or a
+    simplex enclosing the origin) and the next query tries it first; a pair's proof is dropped when
+    the broadphase stops returning it. Without, every answer is computed from scratch and depends only
+    on the bodies, their poses and ``seed``.
+    
+    Parameters
+    ----------
+    method : str
+        The narrowphase's method (see ``METHODS``); ``"dual"`` by default.
+    broadphase : str
+        FCL's manager: ``"dynamic_aabb_tree"`` (default), ``"dynamic_aabb_tree_array"``, ``"sap"``,
+        ``"ssap"``, ``"interval_tree"``, ``"spatial_hashing"`` or ``"brute_force"``. Answers do not
+        depend on it.
+    threads : int, optional
+        Narrowphase threads, the caller's included; None uses one per hardware thread.
+    tolerance : float
+        Precision and contact threshold, relative to each pair's size (at most 0.1).
+    seed : int
+        Pair ``(i, j)`` is seeded with ``pair_seed(seed, (i << 32) | j)``.
+    warm_start : bool
+        Start each query from what the last one proved.
+    escalate : bool
+        Hand verdicts the method cannot prove to the exact method.
+    **parameters
+        Solver parameters of ``method``.
+    
+    Examples
+    --------
+    >>> import numpy as np, swarmcollide as sc
+    >>> cube = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)], dtype=float)
+    >>> scene = sc.Scene()
+    >>> scene.add(np.stack([cube, cube, cube]), poses=np.stack([np.eye(4)] * 3)).tolist()
+    [0, 1, 2]
+    >>> moved = np.eye(4)
+    >>> moved[:3, 3] = [0.5, 0, 0]
+    >>> scene.set_poses(1, moved)
+    >>> moved[:3, 3] = [3, 0, 0]
+    >>> scene.set_poses(2, moved)
+    >>> scene.colliding_pairs().pairs.tolist()
+    [[0, 1]]
+    >>> r = scene.pairs_within(1.6)
+    >>> r.pairs.tolist(), r.distance.round(9).tolist()
+    ([[0, 1], [1, 2]], [0.0, 1.5])
+    >>> c = scene.contacts()
+    >>> c.normal.round(9).tolist(), c.counts.tolist()
+    ([[1.0, 0.0, 0.0]], [4])
+    """
+    def __contains__(self, arg0: typing.Any) -> bool:
+        ...
+    def __init__(self, method: str = 'dual', broadphase: str = 'dynamic_aabb_tree', threads: typing.Any = None, tolerance: typing.Any = 1e-09, seed: typing.Any = 0, warm_start: bool = True, escalate: bool = True, **kwargs) -> None:
+        ...
+    def __len__(self) -> int:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def add(self, bodies: typing.Any, poses: typing.Any = None, group: typing.Any = 1, mask: typing.Any = 4294967295) -> numpy.typing.NDArray[numpy.int64]:
+        """
+        Add one body (a ConvexPolyhedron or ``(n, 3)`` points) or many (a sequence of them or an
+        ``(m, n, 3)`` array) at ``poses``; return their ids (never reused).
+        
+        ``poses`` is None (the identity), an ``(m, 4, 4)`` array of rigid transforms or a pair
+        ``(rotations (m, 3, 3), translations (m, 3))``; one body also takes a single ``(4, 4)`` transform.
+        Bodies A and B are paired when ``A.group & B.mask`` and ``B.group & A.mask`` are both nonzero.
+        """
+    def body(self, id: typing.SupportsInt | typing.SupportsIndex) -> ConvexPolyhedron:
+        """
+        The body with this id, in its own frame.
+        """
+    def colliding_pairs(self) -> SceneResult:
+        """
+        Every pair in contact (within the tolerance of each other), certified.
+        """
+    def contacts(self, max_points: typing.SupportsInt | typing.SupportsIndex = 4) -> ContactResult:
+        """
+        Every pair in contact with its certified signed distance, contact normal (from A to B) and up to
+        ``max_points`` contact points, from clipping the two supporting features along the normal
+        against each other: a box resting on a face gives its four corners.
+        """
+    def exclude(self, pairs: typing.Any) -> None:
+        """
+        Never pair the bodies of each pair (one pair or an (m, 2) array).
+        """
+    def include(self, pairs: typing.Any) -> None:
+        """
+        Pair again the bodies of excluded pairs.
+        """
+    def min_distance(self) -> SceneResult:
+        """
+        The pair at the smallest distance (one row; none for fewer than two pairable bodies).
+        """
+    def nearest(self, ids: typing.Any, k: typing.SupportsInt | typing.SupportsIndex = 1) -> SceneResult:
+        """
+        For each of ``ids``, its ``k`` nearest bodies, nearest first: rows ``(id, other)``.
+        """
+    def pairs_within(self, distance: typing.SupportsFloat | typing.SupportsIndex) -> SceneResult:
+        """
+        Every pair whose distance is at most ``distance`` (up to the tolerance), with its distance to the tolerance.
+        """
+    def pose(self, id: typing.SupportsInt | typing.SupportsIndex) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        The body's pose as a (4, 4) homogeneous transform.
+        """
+    def remove(self, ids: typing.Any) -> None:
+        """
+        Remove bodies, with every cached proof and exclusion concerning them.
+        """
+    def set_filter(self, ids: typing.Any, group: typing.Any = 1, mask: typing.Any = 4294967295) -> None:
+        """
+        Set the group and mask of bodies (see ``add``).
+        """
+    def set_poses(self, ids: typing.Any, poses: typing.Any) -> None:
+        """
+        Move bodies (one id or an array of ids) to ``poses`` (as for ``add``); their hulls are never recomputed.
+        """
+    @property
+    def broadphase(self) -> str:
+        ...
+    @property
+    def ids(self) -> numpy.typing.NDArray[numpy.int64]:
+        """
+        The bodies' ids, ascending.
+        """
+    @property
+    def method(self) -> str:
+        ...
+    @property
+    def seed(self) -> int:
+        ...
+    @property
+    def stats(self) -> SceneStats:
+        """
+        What the last query did (a SceneStats).
+        """
+    @property
+    def tolerance(self) -> float:
+        ...
+    @property
+    def warm_start(self) -> bool:
+        ...
+class SceneResult:
+    """
+    
+    Pairs a Scene query found, one row per pair, as NumPy arrays.
+    
+    Row k is the pair ``(A, B) = pairs[k]``; vectors point from A to B, and
+    ``lower_bound[k] <= distance between A and B <= distance[k]``.
+    
+    Attributes
+    ----------
+    pairs : numpy.ndarray of int64, shape (m, 2)
+        Ids of A and B.
+    distance, lower_bound : numpy.ndarray, shape (m,)
+        Upper bound (achieved by the witnesses) and certified lower bound on the distance.
+    point_a, point_b : numpy.ndarray, shape (m, 3)
+        Witness points on A and B.
+    normal : numpy.ndarray, shape (m, 3)
+        Unit direction from A to B certifying ``lower_bound`` (zero where overlap was proven by a
+        common point; ``contacts`` gives those their contact normals).
+    certified : numpy.ndarray of bool, shape (m,)
+        The pair's membership (and value, for distances and contacts) is proven.
+    """
+    def __len__(self) -> int:
+        ...
+    def __repr__(self) -> str:
+        ...
+    @property
+    def certified(self) -> typing.Annotated[numpy.typing.NDArray[numpy.bool], "[m, 1]"]:
+        ...
+    @property
+    def distance(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        ...
+    @property
+    def lower_bound(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        ...
+    @property
+    def normal(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
+        ...
+    @property
+    def pairs(self) -> typing.Annotated[numpy.typing.NDArray[numpy.int64], "[m, 2]"]:
+        ...
+    @property
+    def point_a(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
+        ...
+    @property
+    def point_b(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
+        ...
+class SceneStats:
+    """
+    
+    What the last Scene query did with its candidate pairs.
+    
+    Attributes
+    ----------
+    candidates : int
+        Pairs the broadphase returned that passed the filters.
+    screened : int
+        Found apart along the line between their centres, before any solver.
+    warm_bounded : int
+        Found apart by a cached lower bound on their distance less how far the bodies have moved
+        since: no support evaluated.
+    warm_rejected, warm_proven : int
+        Settled by re-evaluating a cached separating direction or enclosing simplex.
+    solved : int
+        Handed to the method's solver.
+    escalations : int
+        Verdicts the method could not prove, handed to the exact method.
+    certified : int
+        Candidates whose answer is proven.
+    cached_pairs, cache_bytes : int
+        Pairs with a cached proof after the query, and the bytes their storage takes.
+    """
+    def __repr__(self) -> str:
+        ...
+    @property
+    def cache_bytes(self) -> int:
+        ...
+    @property
+    def cached_pairs(self) -> int:
+        ...
+    @property
+    def candidates(self) -> int:
+        ...
+    @property
+    def certified(self) -> int:
+        ...
+    @property
+    def escalations(self) -> int:
+        ...
+    @property
+    def screened(self) -> int:
+        ...
+    @property
+    def solved(self) -> int:
+        ...
+    @property
+    def warm_bounded(self) -> int:
+        ...
+    @property
+    def warm_proven(self) -> int:
+        ...
+    @property
+    def warm_rejected(self) -> int:
+        ...
 def as_polyhedron(body: typing.Any, name: str = 'body') -> ConvexPolyhedron:
     """
     Return ``body`` as a ConvexPolyhedron, building one from ``(n, 3)`` points if needed.
     
     Errors name the argument as ``name``.
+    """
+def broadphases() -> list[str]:
+    """
+    The names of the broadphase managers a Scene can use.
     """
 def constraint_violation(weights_a: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"], weights_b: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"]) -> float:
     """

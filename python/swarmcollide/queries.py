@@ -32,6 +32,10 @@ PolyhedronLike = Union[_core.ConvexPolyhedron, npt.ArrayLike]
 PoseLike = Union[None, npt.ArrayLike, Tuple[npt.ArrayLike, npt.ArrayLike]]
 """None (the identity), a ``(4, 4)`` rigid transform, or a pair ``(rotation, translation)``."""
 
+PosesLike = Union[None, npt.ArrayLike, Tuple[npt.ArrayLike, npt.ArrayLike]]
+"""None (every body at the identity), an ``(m, 4, 4)`` array of rigid transforms, or a pair
+``(rotations (m, 3, 3), translations (m, 3))``."""
+
 BodiesLike = Union[Sequence[PolyhedronLike], npt.ArrayLike]
 """A sequence of polyhedra (or of ``(n, 3)`` point arrays), or an ``(m, n, 3)`` array."""
 
@@ -301,6 +305,8 @@ def distance_many(
     seed: int = 0,
     threads: Optional[int] = None,
     first_index: int = 0,
+    poses_a: PosesLike = None,
+    poses_b: PosesLike = None,
     **parameters: Unpack[Parameters],
 ) -> _core.BatchResult:
     """``distance(As[i], Bs[i])`` for every i, in C++ threads without the GIL.
@@ -317,6 +323,9 @@ def distance_many(
         Worker threads (at most 1024); None uses one per hardware thread.
     first_index : int
         The global index of the first pair, for seeds and error messages.
+    poses_a, poses_b : array_like, optional
+        Where the bodies are: an ``(m, 4, 4)`` array of rigid transforms or a pair
+        ``(rotations (m, 3, 3), translations (m, 3))``; results are in world coordinates.
     method, tolerance, seed, **parameters
         As for ``distance``.
 
@@ -336,7 +345,7 @@ def distance_many(
     ([0.5, 1.5, 2.5], [False, False, False], [True, True, True])
     """
     return query(method, tolerance=tolerance, seed=seed, **parameters).distance_many(
-        As, Bs, threads, first_index
+        As, Bs, threads, first_index, poses_a, poses_b
     )
 
 
@@ -350,6 +359,8 @@ def collide_many(
     threads: Optional[int] = None,
     first_index: int = 0,
     escalate: bool = True,
+    poses_a: PosesLike = None,
+    poses_b: PosesLike = None,
     **parameters: Unpack[Parameters],
 ) -> _core.BatchResult:
     """``collision(As[i], Bs[i])`` for every i: the batch form of ``collide``.
@@ -365,7 +376,7 @@ def collide_many(
     [True, False]
     """
     return query(method, tolerance=tolerance, seed=seed, **parameters).collide_many(
-        As, Bs, threads, first_index, escalate
+        As, Bs, threads, first_index, escalate, poses_a, poses_b
     )
 
 
@@ -378,6 +389,8 @@ def signed_distance_many(
     seed: int = 0,
     threads: Optional[int] = None,
     first_index: int = 0,
+    poses_a: PosesLike = None,
+    poses_b: PosesLike = None,
     **parameters: Unpack[Parameters],
 ) -> _core.BatchResult:
     """``signed_distance(As[i], Bs[i])`` for every i; takes the keywords of ``distance_many``.
@@ -390,5 +403,5 @@ def signed_distance_many(
     [-0.25]
     """
     return query(method, tolerance=tolerance, seed=seed, **parameters).signed_distance_many(
-        As, Bs, threads, first_index
+        As, Bs, threads, first_index, poses_a, poses_b
     )

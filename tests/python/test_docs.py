@@ -6,9 +6,17 @@ import pytest
 
 import swarmcollide
 import swarmcollide._core
+import swarmcollide.plot
 import swarmcollide.queries
+import swarmcollide.scene_demo
 
-MODULES = [swarmcollide, swarmcollide.queries, swarmcollide._core]
+MODULES = [
+    swarmcollide,
+    swarmcollide.queries,
+    swarmcollide._core,
+    swarmcollide.plot,
+    swarmcollide.scene_demo,
+]
 
 
 @pytest.mark.parametrize("module", MODULES, ids=lambda m: m.__name__)

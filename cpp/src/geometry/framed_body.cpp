@@ -43,8 +43,8 @@ FramedBody::FramedBody(const ConvexPolyhedron& body, const Pose& pose, const Fra
       body_centre_(body.bounds().centre),
       exponent_(frame.exponent) {
   const int half = -exponent_ / 2;
-  scale_high_ = std::ldexp(1.0, half);
-  scale_low_ = std::ldexp(1.0, -exponent_ - half);
+  scale_high_ = power_of_two(half);
+  scale_low_ = power_of_two(-exponent_ - half);
   const Vector3 from_centre = pose.rotation * body_centre_ + pose.translation - frame.centre;
   for (int k = 0; k < 3; ++k) offset_(k) = times_power_of_two(from_centre(k), -exponent_);
 }

@@ -2,19 +2,30 @@
 #pragma once
 
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 
 #include "swarmcollide/types.hpp"
 
 namespace swarmcollide::detail {
+
+/// 2^exponent for exponents of normal doubles, [-1022, 1023], built from its bits: std::ldexp
+/// is a library call, and every query frames its pair with several of these.
+inline Scalar power_of_two(int exponent) {
+  const std::uint64_t bits = static_cast<std::uint64_t>(exponent + 1023) << 52;
+  Scalar value;
+  std::memcpy(&value, &bits, sizeof value);
+  return value;
+}
 
 /// `x * 2^exponent`, exact whenever the result is a normal double: the factor is split in two
 /// when 2^exponent alone would overflow or underflow.
 inline Scalar times_power_of_two(Scalar x, int exponent) {
   if (exponent > 1000 || exponent < -1000) {
     const int half = exponent / 2;
-    return x * std::ldexp(1.0, half) * std::ldexp(1.0, exponent - half);
+    return x * power_of_two(half) * power_of_two(exponent - half);
   }
-  return x * std::ldexp(1.0, exponent);
+  return x * power_of_two(exponent);
 }
 
 /// The exponent e with 2^(e-1) <= length < 2^e (0 for a zero length): dividing by 2^e brings

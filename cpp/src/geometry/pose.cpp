@@ -6,21 +6,39 @@
 
 namespace swarmcollide {
 
-void validate_pose(const Pose& pose, const char* name) {
+namespace {
+
+// What is wrong with the pose, after its name; empty when nothing is. Messages are built only
+// for invalid poses: scenes validate thousands of poses a frame.
+std::string problem(const Pose& pose) {
   if (!pose.rotation.allFinite() || !pose.translation.allFinite()) {
-    throw std::invalid_argument(std::string(name) + " has a NaN or infinite entry");
+    return " has a NaN or infinite entry";
   }
-  if (pose.has_identity_rotation()) return;
+  if (pose.has_identity_rotation()) return {};
   const Scalar orthogonality =
       (pose.rotation.transpose() * pose.rotation - Matrix3::Identity()).cwiseAbs().maxCoeff();
   const Scalar determinant = pose.rotation.determinant();
   if (!(orthogonality <= kRotationTolerance) ||
       !(std::abs(determinant - 1) <= kRotationTolerance)) {
-    throw std::invalid_argument(
-        std::string(name) + " is not a rigid motion: its rotation must satisfy R^T R = I and " +
-        "det R = 1 to within 1e-9 (got |R^T R - I| = " + std::to_string(orthogonality) +
-        ", det R = " + std::to_string(determinant) +
-        "); scaling and reflection are not poses, scale the points instead");
+    return " is not a rigid motion: its rotation must satisfy R^T R = I and det R = 1 to within "
+           "1e-9 (got |R^T R - I| = " +
+           std::to_string(orthogonality) + ", det R = " + std::to_string(determinant) +
+           "); scaling and reflection are not poses, scale the points instead";
+  }
+  return {};
+}
+
+}  // namespace
+
+void validate_pose(const Pose& pose, const char* name) {
+  const std::string what = problem(pose);
+  if (!what.empty()) throw std::invalid_argument(std::string(name) + what);
+}
+
+void validate_pose(const Pose& pose, const char* name, std::size_t index) {
+  const std::string what = problem(pose);
+  if (!what.empty()) {
+    throw std::invalid_argument(std::string(name) + "[" + std::to_string(index) + "]" + what);
   }
 }
 

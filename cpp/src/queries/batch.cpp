@@ -89,16 +89,39 @@ std::size_t worker_count(int threads, std::size_t pairs) {
   return std::min(wanted, std::max<std::size_t>(pairs, 1));
 }
 
+const Pose kIdentity{};
+
+// Every pose valid, one per pair (or none).
+void check_poses(const std::vector<Pose>& poses, std::size_t count, const char* name,
+                 std::uint64_t first_index) {
+  if (poses.empty()) return;
+  if (poses.size() != count) {
+    throw std::invalid_argument(std::string(name) + " must have one pose per pair, got " +
+                                std::to_string(poses.size()) + " for " + std::to_string(count) +
+                                " pairs");
+  }
+  for (std::size_t i = 0; i < count; ++i) {
+    validate_pose(poses[i], name, first_index + i);
+  }
+}
+
+const Pose& pose_of(const std::vector<Pose>& poses, std::size_t i) {
+  return poses.empty() ? kIdentity : poses[i];
+}
+
 // Runs `answer(i, query_i)` for every pair on a pool of threads that take pairs in chunks, in
 // increasing order: when a pair fails, every pair before it has been taken, so the error of the
 // lowest failing index is found whatever the threads.
 template <typename Answer>
 BatchResult run_batch(std::size_t count, std::size_t other_count, const QueryOptions& options,
-                      const BatchSettings& settings, const Answer& answer) {
+                      const BatchSettings& settings, const BatchPoses& poses,
+                      const Answer& answer) {
   if (count != other_count) {
     throw std::invalid_argument("As and Bs must have the same length, got " +
                                 std::to_string(count) + " and " + std::to_string(other_count));
   }
+  check_poses(poses.a, count, "poses_a", settings.first_index);
+  check_poses(poses.b, count, "poses_b", settings.first_index);
   const std::size_t workers = worker_count(settings.threads, count);
   const Query validated(options);
   BatchResult batch = sized(count);
@@ -137,17 +160,17 @@ BatchResult run_batch(std::size_t count, std::size_t other_count, const QueryOpt
   return batch;
 }
 
-DistanceResult ask(Kind kind, const Query& query, const ConvexPolyhedron& a,
-                   const ConvexPolyhedron& b, bool escalate) {
+DistanceResult ask(Kind kind, const Query& query, const ConvexPolyhedron& a, const Pose& pose_a,
+                   const ConvexPolyhedron& b, const Pose& pose_b, bool escalate) {
   switch (kind) {
     case Kind::distance:
-      return query.distance(a, b);
+      return query.distance(a, pose_a, b, pose_b);
     case Kind::collide:
-      return query.collision(a, b, escalate);
+      return query.collision(a, pose_a, b, pose_b, escalate);
     case Kind::signed_distance:
       break;
   }
-  return query.signed_distance(a, b);
+  return query.signed_distance(a, pose_a, b, pose_b);
 }
 
 // Body i of a stack, built on the calling thread.
@@ -163,54 +186,60 @@ ConvexPolyhedron body(const VertexStack& stack, std::size_t i, std::uint64_t fir
 
 BatchResult bodies_batch(Kind kind, const std::vector<ConvexPolyhedron>& as,
                          const std::vector<ConvexPolyhedron>& bs, const QueryOptions& options,
-                         const BatchSettings& settings) {
-  return run_batch(as.size(), bs.size(), options, settings, [&](std::size_t i, const Query& query) {
-    return ask(kind, query, as[i], bs[i], settings.escalate);
-  });
+                         const BatchSettings& settings, const BatchPoses& poses) {
+  return run_batch(as.size(), bs.size(), options, settings, poses,
+                   [&](std::size_t i, const Query& query) {
+                     return ask(kind, query, as[i], pose_of(poses.a, i), bs[i], pose_of(poses.b, i),
+                                settings.escalate);
+                   });
 }
 
 BatchResult stack_batch(Kind kind, const VertexStack& as, const VertexStack& bs,
-                        const QueryOptions& options, const BatchSettings& settings) {
-  return run_batch(as.count, bs.count, options, settings, [&](std::size_t i, const Query& query) {
-    const ConvexPolyhedron a = body(as, i, settings.first_index);
-    const ConvexPolyhedron b = body(bs, i, settings.first_index);
-    return ask(kind, query, a, b, settings.escalate);
-  });
+                        const QueryOptions& options, const BatchSettings& settings,
+                        const BatchPoses& poses) {
+  return run_batch(
+      as.count, bs.count, options, settings, poses, [&](std::size_t i, const Query& query) {
+        const ConvexPolyhedron a = body(as, i, settings.first_index);
+        const ConvexPolyhedron b = body(bs, i, settings.first_index);
+        return ask(kind, query, a, pose_of(poses.a, i), b, pose_of(poses.b, i), settings.escalate);
+      });
 }
 
 }  // namespace
 
 BatchResult distance_many(const std::vector<ConvexPolyhedron>& as,
                           const std::vector<ConvexPolyhedron>& bs, const QueryOptions& options,
-                          const BatchSettings& settings) {
-  return bodies_batch(Kind::distance, as, bs, options, settings);
+                          const BatchSettings& settings, const BatchPoses& poses) {
+  return bodies_batch(Kind::distance, as, bs, options, settings, poses);
 }
 
 BatchResult collide_many(const std::vector<ConvexPolyhedron>& as,
                          const std::vector<ConvexPolyhedron>& bs, const QueryOptions& options,
-                         const BatchSettings& settings) {
-  return bodies_batch(Kind::collide, as, bs, options, settings);
+                         const BatchSettings& settings, const BatchPoses& poses) {
+  return bodies_batch(Kind::collide, as, bs, options, settings, poses);
 }
 
 BatchResult signed_distance_many(const std::vector<ConvexPolyhedron>& as,
                                  const std::vector<ConvexPolyhedron>& bs,
-                                 const QueryOptions& options, const BatchSettings& settings) {
-  return bodies_batch(Kind::signed_distance, as, bs, options, settings);
+                                 const QueryOptions& options, const BatchSettings& settings,
+                                 const BatchPoses& poses) {
+  return bodies_batch(Kind::signed_distance, as, bs, options, settings, poses);
 }
 
 BatchResult distance_many(const VertexStack& as, const VertexStack& bs, const QueryOptions& options,
-                          const BatchSettings& settings) {
-  return stack_batch(Kind::distance, as, bs, options, settings);
+                          const BatchSettings& settings, const BatchPoses& poses) {
+  return stack_batch(Kind::distance, as, bs, options, settings, poses);
 }
 
 BatchResult collide_many(const VertexStack& as, const VertexStack& bs, const QueryOptions& options,
-                         const BatchSettings& settings) {
-  return stack_batch(Kind::collide, as, bs, options, settings);
+                         const BatchSettings& settings, const BatchPoses& poses) {
+  return stack_batch(Kind::collide, as, bs, options, settings, poses);
 }
 
 BatchResult signed_distance_many(const VertexStack& as, const VertexStack& bs,
-                                 const QueryOptions& options, const BatchSettings& settings) {
-  return stack_batch(Kind::signed_distance, as, bs, options, settings);
+                                 const QueryOptions& options, const BatchSettings& settings,
+                                 const BatchPoses& poses) {
+  return stack_batch(Kind::signed_distance, as, bs, options, settings, poses);
 }
 
 }  // namespace swarmcollide

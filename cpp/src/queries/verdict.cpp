@@ -37,6 +37,15 @@ bool value_proven(const FramedPair& pair, const Answer& answer) {
   return value_proven(pair, answer.lower, answer.upper);
 }
 
+bool apart_after_motion(Scalar lower, Scalar size, Scalar moved, Scalar threshold,
+                        Scalar relative_tolerance) {
+  const Scalar distance = lower - moved;
+  const Scalar contact = threshold + relative_tolerance * (size + moved);
+  // The rounding of the sums above, and of the world-unit bounds they came from.
+  const Scalar margin = 1e-12 * (std::abs(lower) + moved + threshold + size);
+  return distance - margin > contact;
+}
+
 bool goal_reached(const FramedPair& pair, Goal goal, Scalar lower, Scalar upper,
                   bool intersection_proven) {
   switch (goal) {

@@ -25,6 +25,14 @@ bool verdict_proven(const FramedPair& pair, const Answer& answer);
 bool value_proven(const FramedPair& pair, Scalar lower, Scalar upper);
 bool value_proven(const FramedPair& pair, const Answer& answer);
 
+/// True when a pair proven at least `lower` apart (world units) while its size was `size`, whose
+/// points have since moved by at most `moved` in all (both bodies together), is still proven
+/// farther apart than `threshold` plus the tolerance: its distance is now at least
+/// `lower - moved`, and its size (which sets the tolerance) at most `size + moved`. A scene
+/// settles pairs that stay well apart so, from their cached bounds and the bodies' motion alone.
+bool apart_after_motion(Scalar lower, Scalar size, Scalar moved, Scalar threshold,
+                        Scalar relative_tolerance);
+
 /// True when a solver working towards `goal` may stop: the verdict is proven (goal `verdict`), or
 /// the value is (distances also when contact is proven: the distance is then within the
 /// tolerance of zero).

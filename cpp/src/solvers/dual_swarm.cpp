@@ -24,8 +24,9 @@ constexpr Scalar kPi = 3.14159265358979323846;
 // in discs that shrink unless the best moved far.
 class DualSearch {
  public:
-  DualSearch(const FramedPair& pair, const QueryOptions& options, Goal goal)
+  DualSearch(const FramedPair& pair, const QueryOptions& options, Goal goal, const DualStart* start)
       : pair_(pair),
+        start_(start),
         options_(options.dual),
         goal_(goal),
         swarm_(pair, options.dual, options.seed),
@@ -34,15 +35,20 @@ class DualSearch {
 
   Answer run() {
     const Vector3 between = pair_.b.offset() - pair_.a.offset();
-    const Vector3 centre = between.norm() > 0 ? Vector3(between.normalized()) : Vector3::UnitX();
-    int ia = -1;
-    int ib = -1;
+    const Vector3 centre = start_ != nullptr    ? start_->direction
+                           : between.norm() > 0 ? Vector3(between.normalized())
+                                                : Vector3::UnitX();
+    int ia = start_ != nullptr ? start_->support_a : -1;
+    int ib = start_ != nullptr ? start_->support_b : -1;
     ++evaluations_;
     bounds_.offer_lower(centre, separation(pair_.a, pair_.b, centre, ia, ib));
     bounds_.offer_upper(vertex_witness(pair_, ia, ib));
     hint_a_ = ia;
     hint_b_ = ib;
     record();
+    // A given start that no longer separates the bodies (a scene's pair that moved into
+    // contact) points at an overlap: a common point proves it without the finish.
+    if (start_ != nullptr) try_common_point();
     // Between well-separated bodies the features along the centres' direction are often the
     // optimal ones already, and the swarm has nothing left to do.
     if (!reached()) finish_.from(centre, hint_a_, hint_b_, bounds_, goal_);
@@ -106,6 +112,7 @@ class DualSearch {
   }
 
   const FramedPair& pair_;
+  const DualStart* start_;
   const DualOptions& options_;
   const Goal goal_;
   DirectionSwarm swarm_;
@@ -120,11 +127,10 @@ class DualSearch {
   std::vector<Scalar> history_;
 };
 
-}  // namespace
-
-Answer solve_dual(const FramedPair& pair, const QueryOptions& options, Goal goal) {
+Answer solve_dual_from(const FramedPair& pair, const QueryOptions& options, Goal goal,
+                       const DualStart* start) {
   const Goal search = goal == Goal::signed_distance ? Goal::distance : goal;
-  Answer answer = DualSearch(pair, options, search).run();
+  Answer answer = DualSearch(pair, options, search, start).run();
   if (goal != Goal::signed_distance) return answer;
   // A separating direction settles a signed distance as a distance, whose contact normal is the
   // witnesses' direction (`point_b - point_a = distance * direction`): the swarm's best direction
@@ -152,6 +158,17 @@ Answer solve_dual(const FramedPair& pair, const QueryOptions& options, Goal goal
   overlap.history = std::move(answer.history);
   overlap.intersection_proven = overlap.intersection_proven || answer.intersection_proven;
   return overlap;
+}
+
+}  // namespace
+
+Answer solve_dual(const FramedPair& pair, const QueryOptions& options, Goal goal) {
+  return solve_dual_from(pair, options, goal, nullptr);
+}
+
+Answer solve_dual(const FramedPair& pair, const QueryOptions& options, Goal goal,
+                  const DualStart& start) {
+  return solve_dual_from(pair, options, goal, &start);
 }
 
 }  // namespace swarmcollide::detail

@@ -21,4 +21,22 @@ namespace swarmcollide::detail {
 /// Deterministic for a given seed.
 Answer solve_dual(const FramedPair& pair, const QueryOptions& options, Goal goal);
 
+/// Where a dual search starts: a unit direction from A to B (frame coordinates) and the support
+/// points along it from which hill climbing starts (-1: none).
+struct DualStart {
+  Vector3 direction = Vector3::UnitX();
+  int support_a = -1;
+  int support_b = -1;
+};
+
+/// `solve_dual` started from `start` instead of the direction between the bodies' centres. A
+/// scene passes the direction that separated (or nearly separated) the pair in the previous
+/// frame, or the centres' direction that it found not to separate them: after a small motion the
+/// finish from it usually settles the pair at once. When `start` does not separate the bodies by
+/// more than the tolerance, the common point is sought first (the bodies have likely moved into
+/// contact, and it proves that without the finish). Otherwise the search, its bounds and the
+/// verdicts made of them are `solve_dual`'s.
+Answer solve_dual(const FramedPair& pair, const QueryOptions& options, Goal goal,
+                  const DualStart& start);
+
 }  // namespace swarmcollide::detail

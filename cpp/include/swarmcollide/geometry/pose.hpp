@@ -1,5 +1,7 @@
 #pragma once
 
+#include <cstddef>
+
 #include "swarmcollide/types.hpp"
 
 namespace swarmcollide {
@@ -21,5 +23,7 @@ inline constexpr Scalar kRotationTolerance = 1e-9;
 /// Throws std::invalid_argument, naming `name`, when the pose has a NaN or infinite entry or its
 /// rotation is not a proper rotation within `kRotationTolerance`.
 void validate_pose(const Pose& pose, const char* name);
+/// The same for the pose `name[index]` of a sequence.
+void validate_pose(const Pose& pose, const char* name, std::size_t index);
 
 }  // namespace swarmcollide

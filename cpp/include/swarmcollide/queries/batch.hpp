@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "swarmcollide/geometry/convex_polyhedron.hpp"
+#include "swarmcollide/geometry/pose.hpp"
 #include "swarmcollide/queries/options.hpp"
 #include "swarmcollide/types.hpp"
 
@@ -42,6 +43,13 @@ struct BatchSettings {
   bool escalate = true;
 };
 
+/// Where the bodies of a batch are: pair i's A at `a[i]` and B at `b[i]`; an empty list puts
+/// every body of its side at the identity.
+struct BatchPoses {
+  std::vector<Pose> a;
+  std::vector<Pose> b;
+};
+
 /// The seed of the pair with global index `index` in a batch seeded with `seed`: independent of
 /// the thread count and of how the batch is split.
 std::uint64_t pair_seed(std::uint64_t seed, std::uint64_t index);
@@ -56,31 +64,36 @@ struct VertexStack {
   const char* name;
 };
 
-/// `Query(options).distance(as[i], bs[i])` for every i, spread over threads, with pair i seeded
-/// by `pair_seed(options.seed, first_index + i)`. Throws std::invalid_argument if the sequences
-/// differ in length or a setting is invalid, and rethrows the error of the pair with the lowest
-/// index that failed, prefixed with "pair N: ".
+/// `Query(options).distance(as[i], poses.a[i], bs[i], poses.b[i])` for every i, spread over
+/// threads, with pair i seeded by `pair_seed(options.seed, first_index + i)`. Throws
+/// std::invalid_argument if the sequences (or non-empty pose lists) differ in length, a pose
+/// or a setting is invalid, and rethrows the error of the pair with the lowest index that
+/// failed, prefixed with "pair N: ".
 BatchResult distance_many(const std::vector<ConvexPolyhedron>& as,
                           const std::vector<ConvexPolyhedron>& bs, const QueryOptions& options,
-                          const BatchSettings& settings = {});
-/// `Query(options).collision(as[i], bs[i], settings.escalate)` for every i, like distance_many.
+                          const BatchSettings& settings = {}, const BatchPoses& poses = {});
+/// `Query(options).collision(as[i], poses.a[i], bs[i], poses.b[i], settings.escalate)` for
+/// every i, like distance_many.
 BatchResult collide_many(const std::vector<ConvexPolyhedron>& as,
                          const std::vector<ConvexPolyhedron>& bs, const QueryOptions& options,
-                         const BatchSettings& settings = {});
-/// `Query(options).signed_distance(as[i], bs[i])` for every i, like distance_many.
+                         const BatchSettings& settings = {}, const BatchPoses& poses = {});
+/// `Query(options).signed_distance(as[i], poses.a[i], bs[i], poses.b[i])` for every i, like
+/// distance_many.
 BatchResult signed_distance_many(const std::vector<ConvexPolyhedron>& as,
                                  const std::vector<ConvexPolyhedron>& bs,
-                                 const QueryOptions& options, const BatchSettings& settings = {});
+                                 const QueryOptions& options, const BatchSettings& settings = {},
+                                 const BatchPoses& poses = {});
 
 /// The same over bodies built from vertex stacks. Each pair's bodies are built, answered and
 /// freed on the thread that answers the pair, so building and freeing them is spread over the
 /// threads too and no thread frees memory that another allocated. A body that cannot be built
 /// throws std::invalid_argument naming it by its global index.
 BatchResult distance_many(const VertexStack& as, const VertexStack& bs, const QueryOptions& options,
-                          const BatchSettings& settings = {});
+                          const BatchSettings& settings = {}, const BatchPoses& poses = {});
 BatchResult collide_many(const VertexStack& as, const VertexStack& bs, const QueryOptions& options,
-                         const BatchSettings& settings = {});
+                         const BatchSettings& settings = {}, const BatchPoses& poses = {});
 BatchResult signed_distance_many(const VertexStack& as, const VertexStack& bs,
-                                 const QueryOptions& options, const BatchSettings& settings = {});
+                                 const QueryOptions& options, const BatchSettings& settings = {},
+                                 const BatchPoses& poses = {});
 
 }  // namespace swarmcollide

@@ -1,0 +1,448 @@
+#include <pybind11/eigen.h>
+#include <pybind11/stl.h>
+
+#include <limits>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "conversions.hpp"
+#include "queries.hpp"
+#include "swarmcollide/queries/batch.hpp"
+#include "swarmcollide/queries/methods.hpp"
+#include "swarmcollide/scene/scene.hpp"
+
+namespace swarmcollide::bindings {
+
+namespace {
+
+using IdArray = py::array_t<std::int64_t>;
+
+IdArray id_array(const std::vector<BodyId>& ids) {
+  IdArray out(static_cast<py::ssize_t>(ids.size()));
+  auto view = out.mutable_unchecked<1>();
+  for (std::size_t i = 0; i < ids.size(); ++i) view(static_cast<py::ssize_t>(i)) = ids[i];
+  return out;
+}
+
+// One id or a 1-D array-like of ids.
+std::vector<BodyId> to_ids(const py::handle& ids, const char* name) {
+  const py::array array = py::module_::import("numpy").attr("asarray")(ids);
+  const char kind = array.dtype().kind();
+  if ((kind != 'i' && kind != 'u') || array.ndim() > 1) {
+    throw py::type_error(std::string(name) + " must be an id or a 1-D array of integer ids, got " +
+                         type_name(ids));
+  }
+  const auto integers =
+      py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(array);
+  std::vector<BodyId> result(static_cast<std::size_t>(integers.size()));
+  for (py::ssize_t i = 0; i < integers.size(); ++i) {
+    const std::int64_t id = integers.data()[i];
+    if (id < 0 || id > std::numeric_limits<BodyId>::max()) {
+      throw py::value_error("no body with id " + std::to_string(id) + " in the scene");
+    }
+    result[static_cast<std::size_t>(i)] = static_cast<BodyId>(id);
+  }
+  return result;
+}
+
+// Pairs of ids: one pair (a, b) or an (m, 2) array-like.
+std::vector<std::pair<BodyId, BodyId>> to_id_pairs(const py::handle& pairs, const char* name) {
+  const py::array array = py::module_::import("numpy").attr("asarray")(pairs);
+  const bool one = array.ndim() == 1 && array.shape(0) == 2;
+  if (!one && !(array.ndim() == 2 && array.shape(1) == 2)) {
+    throw py::value_error(std::string(name) + " must be a pair of ids or an (m, 2) array of them");
+  }
+  const std::vector<BodyId> flat = to_ids(array.attr("reshape")(-1), name);
+  std::vector<std::pair<BodyId, BodyId>> result;
+  for (std::size_t k = 0; k + 1 < flat.size(); k += 2) result.emplace_back(flat[k], flat[k + 1]);
+  return result;
+}
+
+// One body (a polyhedron or (n, 3) points) or many (a sequence of them, or an (m, n, 3) array).
+std::vector<ConvexPolyhedron> to_bodies(const py::handle& bodies) {
+  std::vector<ConvexPolyhedron> result;
+  if (py::isinstance<ConvexPolyhedron>(bodies)) {
+    result.push_back(bodies.cast<ConvexPolyhedron>());
+    return result;
+  }
+  if (py::isinstance<py::str>(bodies) || !py::isinstance<py::iterable>(bodies)) {
+    throw py::type_error(
+        "bodies must be a polyhedron, (n, 3) points, a sequence of them or an "
+        "(m, n, 3) array, got " +
+        type_name(bodies));
+  }
+  py::object array;
+  try {
+    array = py::module_::import("numpy").attr("asarray")(bodies);
+  } catch (py::error_already_set&) {
+    array = py::none();  // ragged: a sequence of bodies
+  }
+  if (!array.is_none()) {
+    const py::array a = array.cast<py::array>();
+    const char kind = a.dtype().kind();
+    const bool real = kind == 'f' || kind == 'i' || kind == 'u';
+    if (real && a.ndim() == 2) {
+      result.push_back(BodyArgument(bodies, "bodies").get());
+      return result;
+    }
+    if (real && a.ndim() == 3) {
+      if (a.shape(2) != 3 || a.shape(1) == 0) {
+        throw py::value_error("bodies must have shape (m, n, 3) with n >= 1");
+      }
+      const auto stack = py::array_t<Scalar, py::array::c_style | py::array::forcecast>::ensure(a);
+      for (py::ssize_t i = 0; i < stack.shape(0); ++i) {
+        try {
+          result.emplace_back(Eigen::Map<const VertexMatrix>(stack.data() + i * stack.shape(1) * 3,
+                                                             stack.shape(1), 3));
+        } catch (const std::invalid_argument& error) {
+          throw py::value_error("bodies[" + std::to_string(i) + "]: " + error.what());
+        }
+      }
+      return result;
+    }
+  }
+  std::size_t index = 0;
+  for (const py::handle body : bodies) {
+    const std::string item = "bodies[" + std::to_string(index++) + "]";
+    result.push_back(BodyArgument(body, item.c_str()).get());
+  }
+  return result;
+}
+
+std::uint32_t to_bits(const py::handle& value, const char* name) {
+  if (PyBool_Check(value.ptr()) || !PyIndex_Check(value.ptr())) {
+    throw py::type_error(std::string(name) + " must be an integer bit mask, got " +
+                         type_name(value));
+  }
+  const py::int_ bits = py::reinterpret_steal<py::int_>(PyNumber_Index(value.ptr()));
+  if (bits < py::int_(0) || bits > py::int_(0xFFFFFFFFu)) {
+    throw py::value_error(std::string(name) + " must be a 32-bit mask in [0, 2**32), got " +
+                          std::string(py::str(bits)));
+  }
+  return bits.cast<std::uint32_t>();
+}
+
+py::array_t<Scalar> homogeneous(const Pose& pose) {
+  py::array_t<Scalar> out({4, 4});
+  auto m = out.mutable_unchecked<2>();
+  for (int r = 0; r < 4; ++r) {
+    for (int c = 0; c < 4; ++c) {
+      m(r, c) = r < 3 ? (c < 3 ? pose.rotation(r, c) : pose.translation(r)) : (c == 3 ? 1 : 0);
+    }
+  }
+  return out;
+}
+
+std::string result_repr(const char* type, const SceneResult& r) {
+  std::ostringstream out;
+  out.precision(6);
+  const Eigen::Index m = r.size();
+  out << type << "(" << m << (m == 1 ? " pair" : " pairs");
+  if (m > 0) {
+    out << ", " << r.certified.count() << " certified, distances " << r.distance.minCoeff()
+        << " to " << r.distance.maxCoeff();
+  }
+  return out.str();
+}
+
+std::string stats_repr(const SceneStats& s) {
+  std::ostringstream out;
+  out << "SceneStats(candidates=" << s.candidates << ", screened=" << s.screened
+      << ", warm_bounded=" << s.warm_bounded << ", warm_rejected=" << s.warm_rejected
+      << ", warm_proven=" << s.warm_proven << ", solved=" << s.solved
+      << ", escalations=" << s.escalations << ", certified=" << s.certified
+      << ", cached_pairs=" << s.cached_pairs << ", cache_bytes=" << s.cache_bytes << ")";
+  return out.str();
+}
+
+constexpr const char* kSceneDoc = R"doc(
+Many convex bodies, each defined once in its own frame and placed by a pose, and the queries
+about all their pairs.
+
+FCL's broadphase manager, given tight boxes from the bodies' support functions, collects the
+candidate pairs; the narrowphase (``method``, certified as ``Query.collision`` is) answers them
+in C++ threads without the GIL. With ``warm_start``, each candidate pair keeps what the last
+query proved (a separating direction and its support points in the bodies' own frames, or a
+simplex enclosing the origin) and the next query tries it first; a pair's proof is dropped when
+the broadphase stops returning it. Without, every answer is computed from scratch and depends only
+on the bodies, their poses and ``seed``.
+
+Parameters
+----------
+method : str
+    The narrowphase's method (see ``METHODS``); ``"dual"`` by default.
+broadphase : str
+    FCL's manager: ``"dynamic_aabb_tree"`` (default), ``"dynamic_aabb_tree_array"``, ``"sap"``,
+    ``"ssap"``, ``"interval_tree"``, ``"spatial_hashing"`` or ``"brute_force"``. Answers do not
+    depend on it.
+threads : int, optional
+    Narrowphase threads, the caller's included; None uses one per hardware thread.
+tolerance : float
+    Precision and contact threshold, relative to each pair's size (at most 0.1).
+seed : int
+    Pair ``(i, j)`` is seeded with ``pair_seed(seed, (i << 32) | j)``.
+warm_start : bool
+    Start each query from what the last one proved.
+escalate : bool
+    Hand verdicts the method cannot prove to the exact method.
+**parameters
+    Solver parameters of ``method``.
+
+Examples
+--------
+>>> import numpy as np, swarmcollide as sc
+>>> cube = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)], dtype=float)
+>>> scene = sc.Scene()
+>>> scene.add(np.stack([cube, cube, cube]), poses=np.stack([np.eye(4)] * 3)).tolist()
+[0, 1, 2]
+>>> moved = np.eye(4)
+>>> moved[:3, 3] = [0.5, 0, 0]
+>>> scene.set_poses(1, moved)
+>>> moved[:3, 3] = [3, 0, 0]
+>>> scene.set_poses(2, moved)
+>>> scene.colliding_pairs().pairs.tolist()
+[[0, 1]]
+>>> r = scene.pairs_within(1.6)
+>>> r.pairs.tolist(), r.distance.round(9).tolist()
+([[0, 1], [1, 2]], [0.0, 1.5])
+>>> c = scene.contacts()
+>>> c.normal.round(9).tolist(), c.counts.tolist()
+([[1.0, 0.0, 0.0]], [4])
+)doc";
+
+}  // namespace
+
+void bind_scene(py::module_& m) {
+  py::class_<SceneResult>(m, "SceneResult", R"doc(
+Pairs a Scene query found, one row per pair, as NumPy arrays.
+
+Row k is the pair ``(A, B) = pairs[k]``; vectors point from A to B, and
+``lower_bound[k] <= distance between A and B <= distance[k]``.
+
+Attributes
+----------
+pairs : numpy.ndarray of int64, shape (m, 2)
+    Ids of A and B.
+distance, lower_bound : numpy.ndarray, shape (m,)
+    Upper bound (achieved by the witnesses) and certified lower bound on the distance.
+point_a, point_b : numpy.ndarray, shape (m, 3)
+    Witness points on A and B.
+normal : numpy.ndarray, shape (m, 3)
+    Unit direction from A to B certifying ``lower_bound`` (zero where overlap was proven by a
+    common point; ``contacts`` gives those their contact normals).
+certified : numpy.ndarray of bool, shape (m,)
+    The pair's membership (and value, for distances and contacts) is proven.
+)doc")
+      .def_readonly("pairs", &SceneResult::pairs)
+      .def_readonly("distance", &SceneResult::distance)
+      .def_readonly("lower_bound", &SceneResult::lower_bound)
+      .def_readonly("point_a", &SceneResult::point_a)
+      .def_readonly("point_b", &SceneResult::point_b)
+      .def_readonly("normal", &SceneResult::normal)
+      .def_readonly("certified", &SceneResult::certified)
+      .def("__len__", &SceneResult::size)
+      .def("__repr__", [](const SceneResult& r) { return result_repr("SceneResult", r) + ")"; });
+
+  py::class_<ContactResult, SceneResult>(m, "ContactResult", R"doc(
+The contacts of every pair in contact: a SceneResult whose ``distance`` is the certified signed
+distance (negative: the penetration depth) and ``normal`` the contact normal from A to B, with
+each pair's contact points.
+
+Attributes
+----------
+counts : numpy.ndarray of int, shape (m,)
+    Contact points of each pair (1 to ``max_points``).
+points : numpy.ndarray, shape (p, 3)
+    All contact points, pair by pair, halfway between the two supporting planes.
+point_pair : numpy.ndarray of int64, shape (p,)
+    Row in ``pairs`` of each contact point.
+offsets : numpy.ndarray of int64, shape (m,)
+    Index in ``points`` of each pair's first contact point.
+)doc")
+      .def_readonly("counts", &ContactResult::counts)
+      .def_readonly("points", &ContactResult::points)
+      .def_readonly("point_pair", &ContactResult::point_pair)
+      .def_readonly("offsets", &ContactResult::offsets)
+      .def("__repr__", [](const ContactResult& r) {
+        return result_repr("ContactResult", r) + ", " + std::to_string(r.points.rows()) +
+               " contact points)";
+      });
+
+  py::class_<SceneStats>(m, "SceneStats", R"doc(
+What the last Scene query did with its candidate pairs.
+
+Attributes
+----------
+candidates : int
+    Pairs the broadphase returned that passed the filters.
+screened : int
+    Found apart along the line between their centres, before any solver.
+warm_bounded : int
+    Found apart by a cached lower bound on their distance less how far the bodies have moved
+    since: no support evaluated.
+warm_rejected, warm_proven : int
+    Settled by re-evaluating a cached separating direction or enclosing simplex.
+solved : int
+    Handed to the method's solver.
+escalations : int
+    Verdicts the method could not prove, handed to the exact method.
+certified : int
+    Candidates whose answer is proven.
+cached_pairs, cache_bytes : int
+    Pairs with a cached proof after the query, and the bytes their storage takes.
+)doc")
+      .def_readonly("candidates", &SceneStats::candidates)
+      .def_readonly("screened", &SceneStats::screened)
+      .def_readonly("warm_bounded", &SceneStats::warm_bounded)
+      .def_readonly("warm_rejected", &SceneStats::warm_rejected)
+      .def_readonly("warm_proven", &SceneStats::warm_proven)
+      .def_readonly("solved", &SceneStats::solved)
+      .def_readonly("escalations", &SceneStats::escalations)
+      .def_readonly("certified", &SceneStats::certified)
+      .def_readonly("cached_pairs", &SceneStats::cached_pairs)
+      .def_readonly("cache_bytes", &SceneStats::cache_bytes)
+      .def("__repr__", &stats_repr);
+
+  m.def("broadphases", &broadphase_names, "The names of the broadphase managers a Scene can use.");
+
+  py::class_<Scene>(m, "Scene", kSceneDoc)
+      .def(py::init([](const std::string& method, const std::string& broadphase,
+                       const py::object& threads, const py::object& tolerance,
+                       const py::object& seed, bool warm_start, bool escalate,
+                       const py::kwargs& parameters) {
+             SceneOptions options;
+             options.query = make_options(method, tolerance, seed, parameters);
+             options.broadphase = broadphase_from_name(broadphase);
+             if (!threads.is_none()) {
+               if (PyBool_Check(threads.ptr()) || !PyIndex_Check(threads.ptr())) {
+                 throw py::type_error("threads must be an integer or None, got " +
+                                      type_name(threads));
+               }
+               const long long count = py::int_(threads).cast<long long>();
+               if (count < 1 || count > kMaxThreads) {
+                 throw py::value_error("threads must be in [1, " + std::to_string(kMaxThreads) +
+                                       "] (None: one per hardware thread), got " +
+                                       std::to_string(count));
+               }
+               options.threads = static_cast<int>(count);
+             }
+             options.warm_start = warm_start;
+             options.escalate = escalate;
+             return Scene(options);
+           }),
+           py::arg("method") = "dual", py::arg("broadphase") = "dynamic_aabb_tree",
+           py::arg("threads") = py::none(), py::arg("tolerance") = kDefaultTolerance,
+           py::arg("seed") = 0, py::arg("warm_start") = true, py::arg("escalate") = true)
+      .def(
+          "add",
+          [](Scene& scene, const py::handle& bodies, const py::handle& poses,
+             const py::handle& group, const py::handle& mask) {
+            std::vector<ConvexPolyhedron> list = to_bodies(bodies);
+            const std::vector<Pose> placed = to_poses(poses, list.size(), "poses");
+            const BodyFilter filter{to_bits(group, "group"), to_bits(mask, "mask")};
+            std::vector<BodyId> ids;
+            {
+              py::gil_scoped_release release;
+              ids = scene.add(std::move(list), placed, filter);
+            }
+            return id_array(ids);
+          },
+          py::arg("bodies"), py::arg("poses") = py::none(), py::arg("group") = 1,
+          py::arg("mask") = 0xFFFFFFFFu, R"doc(
+Add one body (a ConvexPolyhedron or ``(n, 3)`` points) or many (a sequence of them or an
+``(m, n, 3)`` array) at ``poses``; return their ids (never reused).
+
+``poses`` is None (the identity), an ``(m, 4, 4)`` array of rigid transforms or a pair
+``(rotations (m, 3, 3), translations (m, 3))``; one body also takes a single ``(4, 4)`` transform.
+Bodies A and B are paired when ``A.group & B.mask`` and ``B.group & A.mask`` are both nonzero.
+)doc")
+      .def(
+          "set_poses",
+          [](Scene& scene, const py::handle& ids, const py::handle& poses) {
+            const std::vector<BodyId> which = to_ids(ids, "ids");
+            const std::vector<Pose> placed = to_poses(poses, which.size(), "poses");
+            if (placed.empty()) throw py::value_error("poses must not be None");
+            py::gil_scoped_release release;
+            scene.set_poses(which, placed);
+          },
+          py::arg("ids"), py::arg("poses"),
+          "Move bodies (one id or an array of ids) to ``poses`` (as for ``add``); their hulls are "
+          "never recomputed.")
+      .def(
+          "remove", [](Scene& scene, const py::handle& ids) { scene.remove(to_ids(ids, "ids")); },
+          py::arg("ids"), "Remove bodies, with every cached proof and exclusion concerning them.")
+      .def(
+          "set_filter",
+          [](Scene& scene, const py::handle& ids, const py::handle& group, const py::handle& mask) {
+            scene.set_filter(to_ids(ids, "ids"), {to_bits(group, "group"), to_bits(mask, "mask")});
+          },
+          py::arg("ids"), py::arg("group") = 1, py::arg("mask") = 0xFFFFFFFFu,
+          "Set the group and mask of bodies (see ``add``).")
+      .def(
+          "exclude",
+          [](Scene& scene, const py::handle& pairs) { scene.exclude(to_id_pairs(pairs, "pairs")); },
+          py::arg("pairs"), "Never pair the bodies of each pair (one pair or an (m, 2) array).")
+      .def(
+          "include",
+          [](Scene& scene, const py::handle& pairs) { scene.include(to_id_pairs(pairs, "pairs")); },
+          py::arg("pairs"), "Pair again the bodies of excluded pairs.")
+      .def("colliding_pairs", &Scene::colliding_pairs, py::call_guard<py::gil_scoped_release>(),
+           "Every pair in contact (within the tolerance of each other), certified.")
+      .def("pairs_within", &Scene::pairs_within, py::arg("distance"),
+           py::call_guard<py::gil_scoped_release>(),
+           "Every pair whose distance is at most ``distance`` (up to the tolerance), with its "
+           "distance to the tolerance.")
+      .def("min_distance", &Scene::min_distance, py::call_guard<py::gil_scoped_release>(),
+           "The pair at the smallest distance (one row; none for fewer than two pairable bodies).")
+      .def(
+          "nearest",
+          [](Scene& scene, const py::handle& ids, int k) {
+            const std::vector<BodyId> which = to_ids(ids, "ids");
+            py::gil_scoped_release release;
+            return scene.nearest(which, k);
+          },
+          py::arg("ids"), py::arg("k") = 1,
+          "For each of ``ids``, its ``k`` nearest bodies, nearest first: rows ``(id, other)``.")
+      .def("contacts", &Scene::contacts, py::arg("max_points") = 4,
+           py::call_guard<py::gil_scoped_release>(), R"doc(
+Every pair in contact with its certified signed distance, contact normal (from A to B) and up to
+``max_points`` contact points, from clipping the two supporting features along the normal
+against each other: a box resting on a face gives its four corners.
+)doc")
+      .def_property_readonly("stats", &Scene::stats, "What the last query did (a SceneStats).")
+      .def_property_readonly(
+          "ids", [](const Scene& s) { return id_array(s.ids()); }, "The bodies' ids, ascending.")
+      .def("__len__", &Scene::size)
+      .def("__contains__",
+           [](const Scene& s, const py::object& id) {
+             return PyIndex_Check(id.ptr()) && !PyBool_Check(id.ptr()) &&
+                    py::int_(id) >= py::int_(0) &&
+                    py::int_(id) <= py::int_(std::numeric_limits<BodyId>::max()) &&
+                    s.contains(py::int_(id).cast<BodyId>());
+           })
+      .def(
+          "body", [](const Scene& s, BodyId id) { return s.body(id); }, py::arg("id"),
+          "The body with this id, in its own frame.")
+      .def(
+          "pose", [](const Scene& s, BodyId id) { return homogeneous(s.pose(id)); }, py::arg("id"),
+          "The body's pose as a (4, 4) homogeneous transform.")
+      .def_property_readonly("method",
+                             [](const Scene& s) { return method_name(s.options().query.method); })
+      .def_property_readonly("broadphase",
+                             [](const Scene& s) { return broadphase_name(s.options().broadphase); })
+      .def_property_readonly("tolerance",
+                             [](const Scene& s) { return s.options().query.tolerance; })
+      .def_property_readonly("seed", [](const Scene& s) { return s.options().query.seed; })
+      .def_property_readonly("warm_start", [](const Scene& s) { return s.options().warm_start; })
+      .def("__repr__", [](const Scene& s) {
+        const std::size_t n = s.size();
+        return "Scene(" + std::to_string(n) + (n == 1 ? " body" : " bodies") + ", method='" +
+               method_name(s.options().query.method) + "', broadphase='" +
+               broadphase_name(s.options().broadphase) +
+               "', warm_start=" + (s.options().warm_start ? "True" : "False") + ")";
+      });
+}
+
+}  // namespace swarmcollide::bindings

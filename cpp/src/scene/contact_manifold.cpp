@@ -1,0 +1,263 @@
+#include "contact_manifold.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "../solvers/witness.hpp"
+
+namespace swarmcollide::detail {
+
+namespace {
+
+using Point2 = Eigen::Vector2d;
+using Polygon = std::vector<Point2>;
+
+Scalar cross(const Point2& a, const Point2& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+// Signed distance of `p` from the line through the edge (a, b), positive on its left.
+Scalar side(const Point2& a, const Point2& b, const Point2& p) {
+  const Point2 edge = b - a;
+  return cross(edge, p - a) / edge.norm();
+}
+
+// The convex hull of `points`, counter-clockwise, dropping points within `eps` of the hull's
+// edges: one point when all lie within `eps` of each other, the two ends when they lie within
+// `eps` of a line.
+Polygon convex_hull(Polygon points, Scalar eps) {
+  std::sort(points.begin(), points.end(), [](const Point2& a, const Point2& b) {
+    return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
+  });
+  std::size_t far = 0;
+  for (std::size_t k = 1; k < points.size(); ++k) {
+    if ((points[k] - points[0]).norm() > (points[far] - points[0]).norm()) far = k;
+  }
+  if ((points[far] - points[0]).norm() <= eps) return {points[0]};
+  const Point2 a = points[0];
+  const Point2 b = points[far];
+  Scalar off_line = 0;
+  for (const Point2& p : points) off_line = std::max(off_line, std::abs(side(a, b, p)));
+  if (off_line <= eps) {
+    // The ends along the line: the extremes of the projections.
+    const Point2 u = (b - a).normalized();
+    const auto by_projection = [&](const Point2& p, const Point2& q) {
+      return u.dot(p) < u.dot(q);
+    };
+    const auto ends = std::minmax_element(points.begin(), points.end(), by_projection);
+    return {*ends.first, *ends.second};
+  }
+  // Andrew's monotone chain; a turn within eps of straight does not make a vertex.
+  Polygon hull(2 * points.size());
+  std::size_t k = 0;
+  const auto turns_left = [&](const Point2& o, const Point2& p, const Point2& q) {
+    return (p - o).norm() > 0 && side(o, p, q) > eps;
+  };
+  for (const Point2& p : points) {
+    while (k >= 2 && !turns_left(hull[k - 2], hull[k - 1], p)) --k;
+    hull[k++] = p;
+  }
+  for (std::size_t i = points.size() - 1, lower = k + 1; i-- > 0;) {
+    while (k >= lower && !turns_left(hull[k - 2], hull[k - 1], points[i])) --k;
+    hull[k++] = points[i];
+  }
+  hull.resize(k - 1);
+  return hull;
+}
+
+// The part of convex polygon `subject` inside convex polygon `clip` (both counter-clockwise,
+// at least three vertices): Sutherland and Hodgman, one edge of `clip` at a time.
+Polygon clip_polygon(Polygon subject, const Polygon& clip, Scalar eps) {
+  Polygon next;
+  for (std::size_t e = 0; e < clip.size() && !subject.empty(); ++e) {
+    const Point2& a = clip[e];
+    const Point2& b = clip[(e + 1) % clip.size()];
+    next.clear();
+    for (std::size_t k = 0; k < subject.size(); ++k) {
+      const Point2& p = subject[k];
+      const Point2& q = subject[(k + 1) % subject.size()];
+      const Scalar sp = side(a, b, p);
+      const Scalar sq = side(a, b, q);
+      if (sp >= -eps) next.push_back(p);
+      if ((sp > eps && sq < -eps) || (sp < -eps && sq > eps)) {
+        next.push_back(p + (q - p) * (sp / (sp - sq)));
+      }
+    }
+    subject.swap(next);
+  }
+  return subject;
+}
+
+// The part of segment (s, t) inside convex polygon `clip` (counter-clockwise, at least three
+// vertices): its ends, one point when they coincide, none when it misses.
+Polygon clip_segment(const Point2& s, const Point2& t, const Polygon& clip, Scalar eps) {
+  Scalar low = 0;
+  Scalar high = 1;
+  for (std::size_t e = 0; e < clip.size(); ++e) {
+    const Point2& a = clip[e];
+    const Point2& b = clip[(e + 1) % clip.size()];
+    const Scalar fs = side(a, b, s) + eps;
+    const Scalar ft = side(a, b, t) + eps;
+    // Inside where fs + u (ft - fs) >= 0.
+    if (fs < 0 && ft < 0) return {};
+    if (fs < 0) low = std::max(low, fs / (fs - ft));
+    if (ft < 0) high = std::min(high, fs / (fs - ft));
+  }
+  if (low > high) return {};
+  const Point2 p = s + low * (t - s);
+  const Point2 q = s + high * (t - s);
+  if ((q - p).norm() <= eps) return {(p + q) / 2};
+  return {p, q};
+}
+
+// The nearest points of segments (p0, p1) and (q0, q1) (either may be a point), their midpoint.
+Point2 nearest_midpoint(const Point2& p0, const Point2& p1, const Point2& q0, const Point2& q1) {
+  const Point2 d1 = p1 - p0;
+  const Point2 d2 = q1 - q0;
+  const Point2 r = p0 - q0;
+  const Scalar a = d1.squaredNorm();
+  const Scalar e = d2.squaredNorm();
+  const Scalar f = d2.dot(r);
+  Scalar s = 0;
+  Scalar t = 0;
+  if (a == 0 && e == 0) {
+    // Two points.
+  } else if (a == 0) {
+    t = std::clamp(f / e, Scalar(0), Scalar(1));
+  } else {
+    const Scalar c = d1.dot(r);
+    if (e == 0) {
+      s = std::clamp(-c / a, Scalar(0), Scalar(1));
+    } else {
+      const Scalar b = d1.dot(d2);
+      const Scalar denominator = a * e - b * b;
+      s = denominator > 0 ? std::clamp((b * f - c * e) / denominator, Scalar(0), Scalar(1)) : 0;
+      t = (b * s + f) / e;
+      if (t < 0) {
+        t = 0;
+        s = std::clamp(-c / a, Scalar(0), Scalar(1));
+      } else if (t > 1) {
+        t = 1;
+        s = std::clamp((b - c) / a, Scalar(0), Scalar(1));
+      }
+    }
+  }
+  return (p0 + s * d1 + q0 + t * d2) / 2;
+}
+
+// Two segments: where they cross (one point), or the ends of their common part when they are
+// parallel and overlap (two points).
+Polygon meet_segments(const Point2& p0, const Point2& p1, const Point2& q0, const Point2& q1,
+                      Scalar eps) {
+  const Point2 d = p1 - p0;
+  const Scalar length = d.norm();
+  const Point2 u = d / length;
+  if (std::abs(side(p0, p1, q0)) <= eps && std::abs(side(p0, p1, q1)) <= eps) {
+    // Along one line: the common interval of the projections onto it.
+    const Scalar a = std::max(Scalar(0), std::min(u.dot(q0 - p0), u.dot(q1 - p0)));
+    const Scalar b = std::min(length, std::max(u.dot(q0 - p0), u.dot(q1 - p0)));
+    if (b - a > eps) return {p0 + a * u, p0 + b * u};
+  }
+  return {nearest_midpoint(p0, p1, q0, q1)};
+}
+
+// Where features `fa` and `fb` (each a point, a segment or a polygon) overlap.
+Polygon intersect(const Polygon& fa, const Polygon& fb, Scalar eps) {
+  const Polygon& small = fa.size() <= fb.size() ? fa : fb;
+  const Polygon& large = fa.size() <= fb.size() ? fb : fa;
+  if (small.size() == 1) {
+    if (large.size() <= 2) return {nearest_midpoint(small[0], small[0], large[0], large.back())};
+    return {small[0]};
+  }
+  if (small.size() == 2) {
+    if (large.size() == 2) return meet_segments(small[0], small[1], large[0], large[1], eps);
+    return clip_segment(small[0], small[1], large, eps);
+  }
+  return clip_polygon(large, small, eps);
+}
+
+// The `count` vertices of counter-clockwise polygon `polygon` spanning the largest area found
+// greedily: the two farthest apart, then each time the vertex adding the largest triangle.
+Polygon reduce(const Polygon& polygon, int count) {
+  const std::size_t n = polygon.size();
+  if (n <= static_cast<std::size_t>(count)) return polygon;
+  if (count == 1) {
+    Point2 mean = Point2::Zero();
+    for (const Point2& p : polygon) mean += p;
+    return {mean / static_cast<Scalar>(n)};
+  }
+  std::size_t first = 0;
+  std::size_t second = 1;
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t j = i + 1; j < n; ++j) {
+      if ((polygon[i] - polygon[j]).squaredNorm() >
+          (polygon[first] - polygon[second]).squaredNorm()) {
+        first = i;
+        second = j;
+      }
+    }
+  }
+  std::vector<std::size_t> chosen{first, second};
+  while (chosen.size() < static_cast<std::size_t>(count)) {
+    std::size_t best = n;
+    Scalar best_area = -1;
+    for (std::size_t m = 0; m < n; ++m) {
+      if (std::find(chosen.begin(), chosen.end(), m) != chosen.end()) continue;
+      // Its neighbours among the chosen, in the polygon's cyclic order.
+      std::size_t before = chosen.back();
+      std::size_t after = chosen.front();
+      for (std::size_t k = 0; k < chosen.size(); ++k) {
+        if (chosen[k] < m) before = chosen[k];
+        if (chosen[k] > m) {
+          after = chosen[k];
+          break;
+        }
+      }
+      const Scalar area =
+          std::abs(cross(polygon[after] - polygon[before], polygon[m] - polygon[before]));
+      if (area > best_area) {
+        best_area = area;
+        best = m;
+      }
+    }
+    chosen.insert(std::upper_bound(chosen.begin(), chosen.end(), best), best);
+  }
+  Polygon reduced;
+  for (std::size_t i : chosen) reduced.push_back(polygon[i]);
+  return reduced;
+}
+
+}  // namespace
+
+void contact_points(const FramedPair& pair, const Vector3& n, Scalar slack, int max_points,
+                    std::vector<Vector3>& out) {
+  thread_local std::vector<int> feature_a;
+  thread_local std::vector<int> feature_b;
+  supporting_feature(pair.a, n, slack, feature_a);
+  supporting_feature(pair.b, -n, slack, feature_b);
+  const Vector3 helper = std::abs(n.x()) < 0.6 ? Vector3::UnitX() : Vector3::UnitY();
+  const Vector3 u = n.cross(helper).normalized();
+  const Vector3 v = n.cross(u);
+  Polygon pa;
+  Polygon pb;
+  for (int i : feature_a) pa.emplace_back(u.dot(pair.a.vertex(i)), v.dot(pair.a.vertex(i)));
+  for (int j : feature_b) pb.emplace_back(u.dot(pair.b.vertex(j)), v.dot(pair.b.vertex(j)));
+  // The highest point of A and the lowest of B along n come first in their features.
+  const Scalar top_a = n.dot(pair.a.vertex(feature_a.front()));
+  const Scalar bottom_b = n.dot(pair.b.vertex(feature_b.front()));
+  const Scalar height = top_a / 2 + bottom_b / 2;
+  Polygon meet = intersect(convex_hull(pa, slack), convex_hull(pb, slack), slack);
+  if (meet.empty()) {
+    // Rounding, for features that barely touch at their borders: where they come nearest.
+    const Polygon ha = convex_hull(pa, slack);
+    const Polygon hb = convex_hull(pb, slack);
+    Point2 mean_a = Point2::Zero();
+    Point2 mean_b = Point2::Zero();
+    for (const Point2& p : ha) mean_a += p / static_cast<Scalar>(ha.size());
+    for (const Point2& p : hb) mean_b += p / static_cast<Scalar>(hb.size());
+    meet = {(mean_a + mean_b) / 2};
+  }
+  for (const Point2& p : reduce(meet, max_points)) {
+    out.push_back(p.x() * u + p.y() * v + height * n);
+  }
+}
+
+}  // namespace swarmcollide::detail

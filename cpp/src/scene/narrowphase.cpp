@@ -1,0 +1,283 @@
+#include "narrowphase.hpp"
+
+#include <array>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <utility>
+
+#include "../geometry/normalise.hpp"
+#include "../queries/dispatch.hpp"
+#include "../queries/verdict.hpp"
+#include "../solvers/dual_swarm.hpp"
+#include "../solvers/minkowski.hpp"
+#include "../solvers/witness.hpp"
+#include "contact_manifold.hpp"
+#include "swarmcollide/queries/methods.hpp"
+
+namespace swarmcollide::detail {
+
+namespace {
+
+constexpr Scalar kInfinity = std::numeric_limits<Scalar>::infinity();
+constexpr Scalar kEpsilon = std::numeric_limits<Scalar>::epsilon();
+
+// A common point of the bodies, as the witnesses on each (frame coordinates).
+struct CommonPoint {
+  Vector3 point_a;
+  Vector3 point_b;
+};
+
+// The common point a cached tetrahedron of point pairs proves when, at the new poses, it still
+// encloses the origin (encloses_origin, beyond rounding): the origin's barycentric coordinates
+// weigh the pairs' points on each body.
+std::optional<CommonPoint> enclosed(const FramedPair& pair, const PairProof::Enclosing& proof) {
+  std::array<Vector3, 4> on_a;
+  std::array<Vector3, 4> on_b;
+  std::array<OraclePoint, 4> corral;
+  for (int k = 0; k < 4; ++k) {
+    on_a[k] = pair.a.vertex(proof.a[k]);
+    on_b[k] = pair.b.vertex(proof.b[k]);
+    corral[k] = {on_b[k] - on_a[k], proof.a[k], proof.b[k]};
+  }
+  std::array<Scalar, 4> weight;
+  if (!wolfe_detail::affine_minimizer(corral, 4, weight)) return std::nullopt;
+  Scalar total = 0;
+  for (int k = 0; k < 4; ++k) {
+    if (!(weight[k] > 0)) return std::nullopt;
+    total += weight[k];
+  }
+  if (!encloses_origin({corral[0].p, corral[1].p, corral[2].p, corral[3].p})) return std::nullopt;
+  CommonPoint common{Vector3::Zero(), Vector3::Zero()};
+  for (int k = 0; k < 4; ++k) {
+    common.point_a += (weight[k] / total) * on_a[k];
+    common.point_b += (weight[k] / total) * on_b[k];
+  }
+  return common;
+}
+
+// The index with the largest weight: a point of the supporting feature, where hill climbing
+// along a nearby direction should start.
+int heaviest(const ConvexWeights& weights) {
+  int index = -1;
+  Scalar largest = 0;
+  weights.for_each([&](int i, Scalar w) {
+    if (w > largest) {
+      largest = w;
+      index = i;
+    }
+  });
+  return index;
+}
+
+// Rounded towards minus (plus) infinity: a float that still bounds `x` from below (above).
+float float_below(Scalar x) {
+  const float f = static_cast<float>(x);
+  return static_cast<Scalar>(f) <= x ? f
+                                     : std::nextafter(f, -std::numeric_limits<float>::infinity());
+}
+float float_above(Scalar x) {
+  const float f = static_cast<float>(x);
+  return static_cast<Scalar>(f) >= x ? f
+                                     : std::nextafter(f, std::numeric_limits<float>::infinity());
+}
+
+// A separating proof: unit direction `n` (frame) with separation `s` along it (frame units, so
+// that `s - kFrameRounding` is certified), support points `ia` and `ib`, made when the bodies'
+// odometers summed to `travelled`.
+void keep_separating(const FramedPair& pair, const Vector3& n, Scalar s, int ia, int ib,
+                     Scalar travelled, PairProof& proof) {
+  const Vector3 local = pair.a.local_direction(n);
+  proof.kind = PairProof::Kind::separating;
+  proof.separating = {
+      {static_cast<float>(local.x()), static_cast<float>(local.y()), static_cast<float>(local.z())},
+      ia,
+      ib};
+  proof.lower = float_below(pair.frame.length_to_world(s - kFrameRounding));
+  proof.size = float_above(pair.frame.length_to_world(pair.frame.size) * (1 + 1e-12));
+  proof.travelled = travelled;
+}
+
+// What `answer` proves about the pair, kept in `proof`: the point pairs of an enclosing corral
+// (the k-th stored weights of A and of B come from its k-th point), else its direction.
+void remember(const FramedPair& pair, const Answer& answer, Scalar travelled, PairProof& proof) {
+  if (answer.intersection_proven) {
+    PairProof::Enclosing enclosing{};
+    int count_a = 0;
+    int count_b = 0;
+    answer.weights_a.for_each([&](int i, Scalar) {
+      if (count_a < 4) enclosing.a[count_a] = i;
+      ++count_a;
+    });
+    answer.weights_b.for_each([&](int i, Scalar) {
+      if (count_b < 4) enclosing.b[count_b] = i;
+      ++count_b;
+    });
+    if (count_a == 4 && count_b == 4) {
+      proof.kind = PairProof::Kind::enclosing;
+      proof.enclosing = enclosing;
+      proof.lower = -std::numeric_limits<float>::infinity();
+      return;
+    }
+  }
+  if (!(answer.direction.squaredNorm() > 0)) return;
+  const Vector3 local = pair.a.local_direction(answer.direction);
+  proof.kind = PairProof::Kind::separating;
+  proof.separating = {
+      {local.x(), local.y(), local.z()}, heaviest(answer.weights_a), heaviest(answer.weights_b)};
+}
+
+// The method's solver, started from `start` when it is the dual and one is given.
+Answer solve(const FramedPair& pair, const QueryOptions& options, Goal goal,
+             const std::optional<DualStart>& start) {
+  if (options.method == Method::dual && start) return solve_dual(pair, options, goal, *start);
+  return solver_for(options.method)(pair, options, goal);
+}
+
+std::optional<DualStart> start_from(const Answer& answer) {
+  if (!(answer.direction.squaredNorm() > 0)) return std::nullopt;
+  return DualStart{answer.direction, heaviest(answer.weights_a), heaviest(answer.weights_b)};
+}
+
+void take_values(const DistanceResult& r, PairAnswer& out) {
+  out.distance = r.distance;
+  out.lower_bound = r.lower_bound;
+  out.point_a = r.point_a;
+  out.point_b = r.point_b;
+  out.normal = r.direction;
+}
+
+}  // namespace
+
+void answer_pair(const PlacedBody& a, const PlacedBody& b, PairProof& proof,
+                 const QueryOptions& options, const PairQuestion& question, PairAnswer& out) {
+  // Every field is set afresh: `out` is a buffer reused from query to query.
+  out.belongs = false;
+  out.certified = false;
+  out.settled = Settled::solved;
+  out.distance = 0;
+  out.lower_bound = 0;
+  out.point_a.setZero();
+  out.point_b.setZero();
+  out.normal.setZero();
+  out.points.clear();
+  // The bodies' travel since the proof, with the rounding of the odometers' difference.
+  const Scalar travelled = a.travelled + b.travelled;
+  if (question.warm && proof.kind == PairProof::Kind::separating) {
+    const Scalar moved = travelled - proof.travelled + 4 * kEpsilon * travelled;
+    if (apart_after_motion(proof.lower, proof.size, moved, question.threshold, options.tolerance)) {
+      out.settled = Settled::warm_bounded;
+      out.certified = true;
+      out.lower_bound = proof.lower - moved;
+      return;
+    }
+  }
+  const FramedPair pair = frame_pair(*a.body, *a.pose, *b.body, *b.pose, options.tolerance);
+  // The pair as the verdict sees it: in contact means within the threshold and the tolerance.
+  FramedPair gate = pair;
+  gate.tolerance += times_power_of_two(question.threshold, -pair.frame.exponent);
+  const Method method = options.method;
+
+  // A cached simplex that still encloses the origin proves contact at any threshold, and a
+  // distance of zero (to rounding): its common point is the answer.
+  std::optional<CommonPoint> common;
+  if (question.warm && proof.kind == PairProof::Kind::enclosing) {
+    common = enclosed(pair, proof.enclosing);
+  }
+  bool value_settled = true;
+  std::optional<DualStart> next;
+  if (common) {
+    const Scalar gap = (common->point_b - common->point_a).norm();
+    out.settled = Settled::warm_proven;
+    out.belongs = out.certified = verdict_proven(gate, 0, gap, true);
+    out.distance = pair.frame.length_to_world(gap);
+    out.point_a = pair.frame.point_to_world(common->point_a);
+    out.point_b = pair.frame.point_to_world(common->point_b);
+  } else {
+    // The direction to try next: the cached one, else the line between the centres. Either
+    // settles most pairs apart in two support evaluations; otherwise the solver starts from it.
+    const bool cached = question.warm && proof.kind == PairProof::Kind::separating;
+    Vector3 n;
+    int ia = -1;
+    int ib = -1;
+    if (cached) {
+      const PairProof::Separating& last = proof.separating;
+      const Vector3 local(static_cast<Scalar>(last.direction[0]),
+                          static_cast<Scalar>(last.direction[1]),
+                          static_cast<Scalar>(last.direction[2]));
+      n = (pair.a.rotated() ? Vector3(pair.a.rotation() * local) : local).normalized();
+      ia = last.support_a;
+      ib = last.support_b;
+    } else {
+      const Vector3 between = pair.b.offset() - pair.a.offset();
+      n = between.norm() > 0 ? Vector3(between.normalized()) : Vector3::UnitX();
+    }
+    const Scalar s = separation(pair.a, pair.b, n, ia, ib);
+    if (verdict_proven(gate, s, kInfinity, false)) {
+      out.settled = cached ? Settled::warm_rejected : Settled::screened;
+      out.certified = true;
+      out.lower_bound = pair.frame.length_to_world(s);
+      if (question.warm) keep_separating(pair, n, s, ia, ib, travelled, proof);
+      return;
+    }
+
+    // The verdict, as Query::collision decides it (methods without distances decide by their
+    // signed distance), then escalated when unproven.
+    const Goal verdict =
+        method_info(method).capabilities & kDistance ? Goal::verdict : Goal::signed_distance;
+    Answer answer = solve(gate, options, verdict, DualStart{n, ia, ib});
+    if (question.warm) remember(pair, answer, travelled, proof);
+    value_settled =
+        goal_reached(pair, Goal::distance, answer.lower, answer.upper, answer.intersection_proven);
+    next = start_from(answer);
+    DistanceResult r = finish_result(gate, std::move(answer), method, verdict);
+    if (!r.certified && question.escalate && method != Method::exact) {
+      QueryOptions exact = options;
+      exact.method = Method::exact;
+      Answer decided = solver_for(Method::exact)(gate, exact, Goal::verdict);
+      if (question.warm) remember(pair, decided, travelled, proof);
+      value_settled = goal_reached(pair, Goal::distance, decided.lower, decided.upper,
+                                   decided.intersection_proven);
+      next = start_from(decided);
+      r = finish_result(gate, std::move(decided), Method::exact, Goal::verdict);
+      out.settled = Settled::escalated;
+    }
+    out.certified = r.certified;
+    out.lower_bound = r.lower_bound;
+    if (!r.colliding) return;
+    out.belongs = true;
+    take_values(r, out);
+  }
+
+  if (question.contacts) {
+    const auto signed_distance = [&](Method m) {
+      QueryOptions o = options;
+      o.method = m;
+      return finish_result(pair, solve(pair, o, Goal::signed_distance, next), m,
+                           Goal::signed_distance);
+    };
+    DistanceResult contact = signed_distance(method);
+    if (!contact.certified && question.escalate && method != Method::exact) {
+      contact = signed_distance(Method::exact);
+      out.settled = Settled::escalated;
+    }
+    out.certified = out.certified && contact.certified;
+    take_values(contact, out);
+    if (contact.direction.squaredNorm() > 0) {
+      std::vector<Vector3> points;
+      contact_points(pair, contact.direction, kContactFeatureTolerance * pair.frame.size,
+                     question.max_points, points);
+      for (const Vector3& p : points) out.points.push_back(pair.frame.point_to_world(p));
+    } else {
+      out.points.push_back(contact.point_a / 2 + contact.point_b / 2);
+    }
+  } else if (question.distance && !value_settled) {
+    Answer measured = solve(pair, options, Goal::distance, next);
+    if (question.warm) remember(pair, measured, travelled, proof);
+    const DistanceResult d = finish_result(pair, std::move(measured), method, Goal::distance);
+    out.certified = out.certified && d.certified;
+    take_values(d, out);
+  }
+}
+
+}  // namespace swarmcollide::detail
