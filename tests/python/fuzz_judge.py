@@ -189,8 +189,9 @@ def _witness_problems(
         return [f"witness points {point_a}, {point_b}"]
     problems = []
     for name, point, body in (("point_a", point_a, a), ("point_b", point_b, b)):
-        off = oracle.point_distance(point, body).distance
-        if off > tolerance.slack:
+        where = oracle.point_distance(point, body)
+        off = where.distance
+        if off > tolerance.slack + where.error:
             problems.append(f"{name} {off:.3g} off its body")
     distance = answer["distance"]
     if signed and answer["direction"] is not None:

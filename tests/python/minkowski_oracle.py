@@ -15,8 +15,8 @@ exactly with the input from 1e-300 to 1e300 and is the same in every unit. In th
 (merged facets, about 1e-15) and the closest-point formulas are accurate to far below ``ROUNDING``
 = 1e-12, and so is the reduction of large bodies to their hull vertices that comes first. A D that lies within ``FLAT`` = 1e-10 (in that frame) of a plane, a line or a point is
 treated as that plane, line or point (Qhull is ill-conditioned there), and the distance dropped is
-added to ``error``. ``error`` bounds ``|signed_distance - exact|`` for the float64 values of the
-inputs.
+added to ``error``; a thin solid adds ``16 eps / thickness``, the conditioning of its facet normals.
+``error`` bounds ``|signed_distance - exact|`` for the float64 values of the inputs.
 """
 
 from __future__ import annotations
@@ -30,6 +30,8 @@ from scipy.spatial import ConvexHull, QhullError
 
 ROUNDING = 1e-12
 """Error allowance of the hull and closest-point arithmetic, relative to D's largest coordinate."""
+
+EPSILON = float(np.finfo(np.float64).eps)
 
 FLAT = 1e-10
 """Thickness (relative to D's largest coordinate) below which D is treated as flat."""
@@ -118,7 +120,10 @@ def _signed_distance_from_origin(points: np.ndarray) -> tuple[float, float, int]
             # Qhull finds the set too thin after all: one dimension down, the thickness as error.
             dimension -= 1
             continue
-        return value, thickness[dimension] + ROUNDING, dimension
+        # A thin solid's facet normals come from cross products of nearly parallel edges: their
+        # rounding, and Qhull's, grows as eps over the thickness (a 1e-9 thin sliver: 1e-7 rad).
+        conditioning = 16 * EPSILON / thickness[2] if dimension == 3 else 0.0
+        return value, thickness[dimension] + ROUNDING + conditioning, dimension
 
 
 def _in_dimension(
