@@ -16,6 +16,10 @@ namespace {
 
 const Pose kIdentity{};
 
+}  // namespace
+
+namespace detail {
+
 void require(Method method, Capability capability, const char* query) {
   if (method_info(method).capabilities & capability) return;
   std::string able;
@@ -26,7 +30,9 @@ void require(Method method, Capability capability, const char* query) {
                               method_name(method) + "'; use one of " + able);
 }
 
-}  // namespace
+}  // namespace detail
+
+using detail::require;
 
 Query::Query(QueryOptions options) : options_(std::move(options)) { options_.validate(); }
 
