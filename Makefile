@@ -29,7 +29,7 @@ $(PY): | system-packages
 
 $(VENV)/.installed: $(PACKAGE_SOURCES) | system-packages $(PY)
 	$(PY) -m pip install --quiet $(BUILD_REQUIREMENTS)
-	$(PY) -m pip install --quiet --no-build-isolation ".[test,plot]"
+	$(PY) -m pip install --quiet --no-build-isolation ".[test,plot,mesh]"
 	touch $@
 
 install: $(VENV)/.installed
@@ -46,7 +46,7 @@ BENCH_BUILD := build/bench
 BENCH_ARGS ?=
 
 $(VENV)/.bench-installed: $(VENV)/.installed
-	$(PY) -m pip install --quiet --no-build-isolation ".[test,plot,bench]"
+	$(PY) -m pip install --quiet --no-build-isolation ".[test,plot,mesh,bench]"
 	touch $@
 
 # make bench-scene: only the scene section (C++ against FCL's manager, Python against python-fcl

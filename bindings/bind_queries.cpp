@@ -110,16 +110,29 @@ py::dict parameters_of(const QueryOptions& options) {
   return values;
 }
 
-// `query(a, pose_a, b, pose_b)` without the GIL, the bodies converted while holding it.
+// `query(a, pose_a, b, pose_b)` without the GIL, the bodies converted while holding it: the
+// compound queries (a CompoundResult) when either body is a CompoundBody, else the convex ones.
 template <typename Call>
-auto on_pair(const py::handle& a, const py::handle& b, const py::handle& pose_a,
-             const py::handle& pose_b, const Call& call) {
-  const BodyArgument body_a(a, "a");
-  const BodyArgument body_b(b, "b");
+py::object on_pair(const py::handle& a, const py::handle& b, const py::handle& pose_a,
+                   const py::handle& pose_b, const Call& call) {
   const Pose place_a = to_pose(pose_a, "pose_a");
   const Pose place_b = to_pose(pose_b, "pose_b");
-  py::gil_scoped_release release;
-  return call(body_a.get(), place_a, body_b.get(), place_b);
+  if (is_compound(a) || is_compound(b)) {
+    const CompoundArgument body_a(a, "a");
+    const CompoundArgument body_b(b, "b");
+    auto result = [&] {
+      py::gil_scoped_release release;
+      return call(body_a.get(), place_a, body_b.get(), place_b);
+    }();
+    return py::cast(std::move(result));
+  }
+  const BodyArgument body_a(a, "a");
+  const BodyArgument body_b(b, "b");
+  auto result = [&] {
+    py::gil_scoped_release release;
+    return call(body_a.get(), place_a, body_b.get(), place_b);
+  }();
+  return py::cast(std::move(result));
 }
 
 }  // namespace

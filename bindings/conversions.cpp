@@ -73,6 +73,17 @@ BodyArgument::BodyArgument(const py::handle& body, const char* name) {
   body_ = &*owned_;
 }
 
+bool is_compound(const py::handle& body) { return py::isinstance<CompoundBody>(body); }
+
+CompoundArgument::CompoundArgument(const py::handle& body, const char* name) {
+  if (is_compound(body)) {
+    body_ = &body.cast<const CompoundBody&>();
+    return;
+  }
+  owned_.emplace(BodyArgument(body, name).get());
+  body_ = &*owned_;
+}
+
 Pose to_pose(const py::handle& pose, const char* name) {
   Pose result;
   if (pose.is_none()) return result;
