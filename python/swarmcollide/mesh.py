@@ -139,13 +139,17 @@ def load_mesh(source: MeshLike):
         if not path.is_file():
             raise ValueError(f"cannot read {name}: no such file")
         try:
-            loaded = trimesh.load_mesh(path)
+            # Unprocessed, so that NaN points reach the check instead of being dropped silently.
+            loaded = trimesh.load_mesh(path, process=False)
         except Exception as error:  # trimesh raises many types for bad files
             raise ValueError(
                 f"cannot read {name}: {error or type(error).__name__} (is it a mesh file? "
                 "OBJ, STL, PLY, GLB and OFF are read)"
             ) from error
-        return _checked(loaded, name)
+        checked = _checked(loaded, name)
+        # STL and others repeat each triangle's corners: merged, the mesh's edges are shared.
+        checked.merge_vertices()
+        return checked
     raise TypeError(
         "mesh must be a path to a mesh file (OBJ, STL, PLY, GLB, OFF) or a trimesh.Trimesh, "
         f"got {type(source).__name__}"
