@@ -551,6 +551,7 @@ def _with_progress(label: str, run: Callable[[], List[np.ndarray]],
 
             bar = tqdm(desc=f"{label} decomposing", bar_format="{desc}: {elapsed}",
                        leave=False, file=sys.stderr)
+            bar.start_t -= time.perf_counter() - start  # the time since the decomposer started
         if bar is not None:
             bar.refresh()
     if bar is not None:
