@@ -80,18 +80,6 @@ BatchPoses poses_of(const py::object& poses_a, const py::object& poses_b, std::s
   return {to_poses(poses_a, count, "poses_a"), to_poses(poses_b, count, "poses_b")};
 }
 
-// True when `bodies` is a sequence holding a CompoundBody.
-bool holds_compound(const py::handle& bodies) {
-  if (py::isinstance<py::array>(bodies) || py::isinstance<py::str>(bodies) ||
-      !py::isinstance<py::sequence>(bodies)) {
-    return false;
-  }
-  for (const py::handle body : bodies) {
-    if (is_compound(body)) return true;
-  }
-  return false;
-}
-
 // Compound bodies from a sequence of compound bodies, polyhedra or (n, 3) array-likes.
 std::vector<CompoundBody> to_compounds(const py::handle& bodies, const char* name,
                                        std::uint64_t first_index) {

@@ -148,7 +148,8 @@ QueryOptions make_options(const std::string& method, const py::handle& tolerance
   options.tolerance = tolerance.cast<double>();
   if (!is_integer(seed)) throw py::type_error("seed must be an integer, got " + type_name(seed));
   const py::int_ seed_value = py::reinterpret_steal<py::int_>(PyNumber_Index(seed.ptr()));
-  if (seed_value < py::int_(0) || seed_value >= py::int_(py::module_::import("builtins").attr("pow")(2, 64))) {
+  if (seed_value < py::int_(0) ||
+      seed_value >= py::int_(py::module_::import("builtins").attr("pow")(2, 64))) {
     throw py::value_error("seed must lie in [0, 2**64), got " + std::string(py::str(seed_value)));
   }
   options.seed = seed_value.cast<std::uint64_t>();
@@ -163,10 +164,12 @@ QueryOptions make_options(const std::string& method, const py::handle& tolerance
     if (parameter == nullptr) {
       set_parameter(options, name, 0);  // throws, listing the method's parameters
     } else if (parameter->kind == ParameterInfo::Kind::real) {
-      if (!is_real(value)) throw py::type_error(name + " must be a real number, got " + type_name(value));
+      if (!is_real(value))
+        throw py::type_error(name + " must be a real number, got " + type_name(value));
       set_parameter(options, name, value.cast<double>());
     } else if (parameter->kind == ParameterInfo::Kind::integer) {
-      if (!is_integer(value)) throw py::type_error(name + " must be an integer, got " + type_name(value));
+      if (!is_integer(value))
+        throw py::type_error(name + " must be an integer, got " + type_name(value));
       const py::int_ integer = py::reinterpret_steal<py::int_>(PyNumber_Index(value.ptr()));
       // Beyond double's exact integers, the range check still rejects the value.
       set_parameter(options, name, py::float_(integer).cast<double>());
@@ -262,7 +265,8 @@ both bodies): it is the precision of every answer and the distance below which b
           "distance",
           [](const Query& q, const py::handle& a, const py::handle& b, const py::handle& pose_a,
              const py::handle& pose_b) {
-            return on_pair(a, b, pose_a, pose_b, [&q](const auto&... args) { return q.distance(args...); });
+            return on_pair(a, b, pose_a, pose_b,
+                           [&q](const auto&... args) { return q.distance(args...); });
           },
           py::arg("a"), py::arg("b"), py::arg("pose_a") = py::none(),
           py::arg("pose_b") = py::none())

@@ -75,6 +75,18 @@ BodyArgument::BodyArgument(const py::handle& body, const char* name) {
 
 bool is_compound(const py::handle& body) { return py::isinstance<CompoundBody>(body); }
 
+// True when `bodies` is a sequence (not an array) holding a CompoundBody.
+bool holds_compound(const py::handle& bodies) {
+  if (py::isinstance<py::array>(bodies) || py::isinstance<py::str>(bodies) ||
+      !py::isinstance<py::sequence>(bodies)) {
+    return false;
+  }
+  for (const py::handle body : bodies) {
+    if (is_compound(body)) return true;
+  }
+  return false;
+}
+
 CompoundArgument::CompoundArgument(const py::handle& body, const char* name) {
   if (is_compound(body)) {
     body_ = &body.cast<const CompoundBody&>();

@@ -34,6 +34,9 @@ class BodyArgument {
 /// True when `body` is a CompoundBody (the argument then needs the compound queries).
 bool is_compound(const py::handle& body);
 
+/// True when `bodies` is a sequence (not an array) holding a CompoundBody.
+bool holds_compound(const py::handle& bodies);
+
 /// A body argument for the compound queries: a CompoundBody used in place, or a compound body of
 /// one part built from a ConvexPolyhedron (sharing its hull) or from `(n, 3)` points.
 class CompoundArgument {

@@ -71,15 +71,16 @@ def plot_scene(
     for body_id in scene.ids.tolist():
         body = scene.body(body_id)
         pose = scene.pose(body_id)
-        points = body.vertices @ pose[:3, :3].T + pose[:3, 3]
-        hull = body.hull()
-        if hull.dimension < 2:
-            continue
-        polygons.extend(points[hull.faces])
-        colours.extend([(1.0, 0.55, 0.1, 0.35) if body_id in touching else (0.5, 0.5, 0.5, 0.12)]
-                       * len(hull.faces))
         sizes.append(2 * body.radius)
-        corners.append(points)
+        for part in _parts_of(body):  # a compound body's parts, or the convex body itself
+            points = part.vertices @ pose[:3, :3].T + pose[:3, 3]
+            hull = part.hull()
+            if hull.dimension < 2:
+                continue
+            polygons.extend(points[hull.faces])
+            colours.extend([(1.0, 0.55, 0.1, 0.35) if body_id in touching
+                            else (0.5, 0.5, 0.5, 0.12)] * len(hull.faces))
+            corners.append(points)
     ax.add_collection3d(Poly3DCollection(polygons, facecolors=colours, edgecolors=(0, 0, 0, 0.15),
                                          linewidths=0.3))
     if corners:

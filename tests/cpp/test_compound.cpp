@@ -13,6 +13,7 @@
 #include "swarmcollide/queries/batch.hpp"
 #include "swarmcollide/queries/methods.hpp"
 #include "swarmcollide/queries/query.hpp"
+#include "swarmcollide/scene/scene.hpp"
 
 namespace swarmcollide {
 namespace {
@@ -229,6 +230,43 @@ TEST(CompoundQuery, MethodsWithoutTheQueryAreRefused) {
   options.method = Method::ipso;
   const CompoundBody u = u_shape();
   EXPECT_THROW(Query(options).signed_distance(u, u), std::invalid_argument);
+}
+
+TEST(CompoundScene, CompoundBodiesPairAsTheirQueriesSay) {
+  for (const bool warm : {true, false}) {
+    SceneOptions options;
+    options.threads = 1;
+    options.warm_start = warm;
+    Scene scene(options);
+    const BodyId u = scene.add(u_shape());
+    const BodyId peg = scene.add(box({1.2, 0.2, 0.8}, {1.8, 0.8, 3}));
+    const BodyId far = scene.add(u_shape(), Pose{Matrix3::Identity(), Vector3(10, 0, 0)});
+    ASSERT_NE(scene.compound(u), nullptr);
+    EXPECT_EQ(scene.compound(peg), nullptr);
+    // In the gap: the envelopes overlap, the parts do not.
+    for (int frame = 0; frame < 2; ++frame) {
+      EXPECT_EQ(scene.colliding_pairs().size(), 0) << warm;
+    }
+    const SceneResult near = scene.pairs_within(0.5);
+    ASSERT_EQ(near.size(), 1);
+    EXPECT_NEAR(near.distance(0), 0.2, 1e-9);
+    EXPECT_TRUE(near.certified(0));
+    // Lowered onto the base: in contact, with the base's face under the peg's four corners.
+    scene.set_poses({peg}, {Pose{Matrix3::Identity(), Vector3(0, 0, -0.3)}});
+    const SceneResult hits = scene.colliding_pairs();
+    ASSERT_EQ(hits.size(), 1);
+    EXPECT_EQ(hits.pairs(0, 0), u);
+    EXPECT_TRUE(hits.certified(0));
+    const ContactResult touching = scene.contacts();
+    ASSERT_EQ(touching.size(), 1);
+    EXPECT_NEAR(touching.distance(0), 0, 1e-9);
+    EXPECT_EQ(touching.counts(0), 4);
+    const SceneResult nearest = scene.nearest({far}, 1);
+    ASSERT_EQ(nearest.size(), 1);
+    // The other U's right post (x = 3) is 7 from this one's left post; the peg is 8.2 away.
+    EXPECT_EQ(nearest.pairs(0, 1), u);
+    EXPECT_NEAR(nearest.distance(0), 7, 1e-9);
+  }
 }
 
 }  // namespace

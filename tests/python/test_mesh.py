@@ -250,3 +250,29 @@ def test_most_part_pairs_are_pruned(decomposed):
         pruned += r.stats.pruned
     assert pruned > total / 2
     assert "part pairs" in repr(r) and "pruned" in repr(r.stats)
+
+
+def test_scenes_hold_compound_bodies(decomposed):
+    from swarmcollide.plot import plot_scene
+
+    _, mug = decomposed["cup"]
+    _, ring = decomposed["torus"]
+    peg = trimesh.creation.box((0.5, 0.5, 3.0)).vertices
+    scene = sc.Scene(threads=1)
+    ids = scene.add([mug, peg, ring], poses=np.stack([np.eye(4), np.eye(4),
+                                                      homogeneous(translation=(6, 0, 0))]))
+    assert ids.tolist() == [0, 1, 2]
+    assert len(scene.body(0)) == len(mug) and len(scene.body(1)) == 8
+    assert len(scene.colliding_pairs()) == 0  # the peg stands in the cup's hole
+    near = scene.pairs_within(0.5)
+    assert near.pairs.tolist() == [[0, 1]]
+    assert near.distance[0] == pytest.approx(sc.distance(mug, peg).distance, abs=1e-9)
+    scene.set_poses(1, homogeneous(translation=(0.6, 0, 0)))
+    hits = scene.colliding_pairs()
+    assert hits.pairs.tolist() == [[0, 1]] and hits.certified.all()
+    contacts = scene.contacts()
+    assert contacts.distance[0] == pytest.approx(
+        sc.signed_distance(mug, peg, pose_b=homogeneous(translation=(0.6, 0, 0))).distance,
+        abs=1e-8)
+    assert scene.min_distance().pairs.tolist() == [[0, 1]]
+    assert len(plot_scene(scene).axes[0].collections) == 3
