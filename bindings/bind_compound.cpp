@@ -100,8 +100,8 @@ part : int
   py::class_<CompoundBody>(m, "CompoundBody", R"doc(
 A body that is the union of convex parts, each a ConvexPolyhedron in the body's own frame.
 
-The body keeps a bounding-volume tree (boxes and balls) over its parts, the paper's "convex
-Bounding Volume Hierarchies": queries between compound bodies (``distance``, ``collide``,
+The body keeps a bounding-volume tree over its parts whose every node holds a box, a ball and the
+convex hull of the parts below it, the paper's "convex Bounding Volume Hierarchies": queries between compound bodies (``distance``, ``collide``,
 ``signed_distance``, the batches, scenes) open only the part pairs whose volumes' certified lower
 bounds cannot rule them out, and name the parts that realise the answer. Answers are certified
 for the union of the convex parts. ``CompoundBody.from_mesh`` builds one from a triangle mesh by
@@ -137,6 +137,8 @@ CompoundBody(3 parts, 24 points, bounds [0, 0, 0] to [2, 2, 1])
       .def_property_readonly(
           "envelope", &CompoundBody::envelope,
           "The convex hull of every part's points (a ConvexPolyhedron holding the body).")
+      .def_property_readonly("node_envelopes", &CompoundBody::node_envelopes,
+                             "The convex hull of the parts below each node of ``tree``.")
       .def_property_readonly("point_count", &CompoundBody::point_count,
                              "Total number of points of the parts.")
       .def(

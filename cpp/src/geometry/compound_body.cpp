@@ -16,15 +16,17 @@ std::vector<ConvexPolyhedron> nonempty(std::vector<ConvexPolyhedron> parts) {
   return parts;
 }
 
-// The convex hull of every part: the parts' points stacked (one part is its own envelope, and
-// shares its hull).
-ConvexPolyhedron envelope_of(const std::vector<ConvexPolyhedron>& parts) {
-  if (parts.size() == 1) return parts.front();
+// The convex hull of parts `order[begin, end)`: their points stacked (one part is its own
+// envelope, and shares its hull).
+ConvexPolyhedron envelope_of(const std::vector<ConvexPolyhedron>& parts,
+                             const std::vector<int>& order, int begin, int end) {
+  if (end - begin == 1) return parts[order[begin]];
   Eigen::Index rows = 0;
-  for (const ConvexPolyhedron& part : parts) rows += part.size();
+  for (int i = begin; i < end; ++i) rows += parts[order[i]].size();
   VertexMatrix points(rows, 3);
   Eigen::Index at = 0;
-  for (const ConvexPolyhedron& part : parts) {
+  for (int i = begin; i < end; ++i) {
+    const ConvexPolyhedron& part = parts[order[i]];
     points.middleRows(at, part.size()) = part.vertices();
     at += part.size();
   }
@@ -35,7 +37,8 @@ ConvexPolyhedron envelope_of(const std::vector<ConvexPolyhedron>& parts) {
 // median of the parts' centres along the axis where they spread most: balanced, so a query
 // descends log2(n) levels.
 void build(const std::vector<ConvexPolyhedron>& parts, std::vector<int>& order, int begin, int end,
-           std::vector<PartNode>& tree, int at) {
+           std::vector<PartNode>& tree, std::vector<ConvexPolyhedron>& envelopes, int at) {
+  envelopes[at] = envelope_of(parts, order, begin, end);
   PartNode& node = tree[at];
   node.box = parts[order[begin]].aabb();
   for (int i = begin + 1; i < end; ++i) {
@@ -74,18 +77,20 @@ void build(const std::vector<ConvexPolyhedron>& parts, std::vector<int>& order, 
   const int right = left + 2 * (middle - begin) - 1;
   tree[at].left = left;
   tree[at].right = right;
-  build(parts, order, begin, middle, tree, left);
-  build(parts, order, middle, end, tree, right);
+  build(parts, order, begin, middle, tree, envelopes, left);
+  build(parts, order, middle, end, tree, envelopes, right);
 }
 
 }  // namespace
 
 CompoundBody::CompoundBody(std::vector<ConvexPolyhedron> parts)
-    : parts_(nonempty(std::move(parts))), envelope_(envelope_of(parts_)) {
+    : parts_(nonempty(std::move(parts))) {
   std::vector<int> order(parts_.size());
   std::iota(order.begin(), order.end(), 0);
   tree_.resize(2 * parts_.size() - 1);
-  build(parts_, order, 0, size(), tree_, 0);
+  // Placeholders, each replaced by its node's envelope as the tree is built.
+  node_envelopes_.assign(tree_.size(), parts_.front());
+  build(parts_, order, 0, size(), tree_, node_envelopes_, 0);
 }
 
 CompoundBody::CompoundBody(ConvexPolyhedron part)

@@ -53,8 +53,11 @@ std::vector<PlacedVolume> place(const CompoundBody& body, const Pose& pose) {
         pose.rotation * ((node.box.min + node.box.max) / 2) + pose.translation;
     const Vector3 half = spread * ((node.box.max - node.box.min) / 2);
     const Vector3 centre = pose.rotation * node.centre + pose.translation;
-    const Scalar scale =
-        centre.cwiseAbs().maxCoeff() + box_centre.cwiseAbs().maxCoeff() + half.sum() + node.radius;
+    // Every coordinate computed from this node (its volumes, and its envelope's separations,
+    // which add the translation to points in the body's frame) is at most this large.
+    const Scalar scale = centre.cwiseAbs().maxCoeff() + box_centre.cwiseAbs().maxCoeff() +
+                         half.sum() + node.radius + node.centre.cwiseAbs().sum() +
+                         pose.translation.cwiseAbs().sum();
     placed.push_back({centre, node.radius, box_centre - half, box_centre + half, scale});
   }
   return placed;
@@ -107,6 +110,8 @@ class CompoundSearch {
     stats_.part_pairs = static_cast<long>(a.size()) * b.size();
     placed_a_ = place(a, pose_a);
     placed_b_ = place(b, pose_b);
+    hints_a_.assign(a.tree().size(), 0);
+    hints_b_.assign(b.tree().size(), 0);
     method_can_measure_ = method_info(options.method).capabilities & kDistance;
   }
 
@@ -150,8 +155,39 @@ class CompoundSearch {
  private:
   Scalar bound(int na, int nb) {
     ++stats_.volume_tests;
-    const Scalar lower = volume_bound(placed_a_[na], placed_b_[nb]);
-    return goal_ == Goal::signed_distance ? lower : std::max(lower, 0.0);
+    const PlacedVolume& va = placed_a_[na];
+    const PlacedVolume& vb = placed_b_[nb];
+    Scalar lower = volume_bound(va, vb);
+    if (goal_ != Goal::signed_distance) lower = std::max(lower, 0.0);
+    if (cut(lower)) return lower;
+    // The nodes' envelopes, separated along the line between their balls' centres and along
+    // the direction that separates the best pair found so far: the convex BVH's own bound,
+    // far tighter than the balls for the slabs a decomposition makes.
+    const Vector3 between = vb.centre - va.centre;
+    if (between.norm() > 0) lower = std::max(lower, separation(na, nb, between.normalized()));
+    if (best_ && best_->result.direction.squaredNorm() > 0 && !cut(lower)) {
+      lower = std::max(lower, separation(na, nb, best_->result.direction));
+    }
+    return lower;
+  }
+
+  // The separation of nodes `na` and `nb` along the world unit direction `n` (a lower bound on
+  // the signed distance of every part pair below them), less its rounding: each support point
+  // is found in its body's own frame, so no point is moved.
+  // Large envelopes are climbed (over their hulls, computed once per body) from the support
+  // point their node had last.
+  Scalar separation(int na, int nb, const Vector3& n) {
+    const ConvexPolyhedron& ea = a_.node_envelopes()[na];
+    const ConvexPolyhedron& eb = b_.node_envelopes()[nb];
+    const Vector3 da = pose_a_.rotation.transpose() * n;
+    const Vector3 db = pose_b_.rotation.transpose() * n;
+    int& ha = hints_a_[na];
+    int& hb = hints_b_[nb];
+    ha = ea.support_index(da, ha);
+    hb = eb.support_index(-db, hb);
+    const Scalar high_a = da.dot(ea.vertices().row(ha).transpose()) + n.dot(pose_a_.translation);
+    const Scalar low_b = db.dot(eb.vertices().row(hb).transpose()) + n.dot(pose_b_.translation);
+    return low_b - high_a - kWorldRounding * (placed_a_[na].scale + placed_b_[nb].scale);
   }
 
   // True when every part pair at least `lower` apart can be left out: it cannot come closer
@@ -162,6 +198,11 @@ class CompoundSearch {
   }
 
   Scalar upper() const { return best_ ? best_->result.distance : kInfinity; }
+
+  // A separation `s` of the pair's frame as a certified world-unit bound.
+  static Scalar world(const FramedPair& pair, Scalar s) {
+    return pair.frame.length_to_world(s - detail::kFrameRounding);
+  }
 
   // The pair of parts i (of A) and j (of B) in their own frame, its tolerance the whole pair's.
   FramedPair frame(int i, int j) const {
@@ -189,11 +230,25 @@ class CompoundSearch {
     FramedPair pair = frame(i, j);
     // The line between the parts' centres settles most pairs in two support evaluations.
     const Vector3 between = pair.b.offset() - pair.a.offset();
-    const Vector3 n = between.norm() > 0 ? Vector3(between.normalized()) : Vector3::UnitX();
+    Vector3 n = between.norm() > 0 ? Vector3(between.normalized()) : Vector3::UnitX();
     int ia = -1;
     int ib = -1;
-    const Scalar s = detail::separation(pair.a, pair.b, n, ia, ib);
-    const Scalar s_world = pair.frame.length_to_world(s - detail::kFrameRounding);
+    Scalar s = detail::separation(pair.a, pair.b, n, ia, ib);
+    // The direction that separates the best pair found so far often separates its neighbours
+    // by more than the centres' line does (parts of a decomposition are slabs, not balls).
+    if (best_ && best_->result.direction.squaredNorm() > 0 && !cut(world(pair, s))) {
+      const Vector3 m = best_->result.direction;
+      int ja = -1;
+      int jb = -1;
+      const Scalar t = detail::separation(pair.a, pair.b, m, ja, jb);
+      if (t > s) {
+        s = t;
+        n = m;
+        ia = ja;
+        ib = jb;
+      }
+    }
+    const Scalar s_world = world(pair, s);
     if (cut(s_world)) {
       ++stats_.screened;
       lower_ = std::min(lower_, s_world);
@@ -358,6 +413,9 @@ class CompoundSearch {
   bool method_can_measure_ = true;
   std::vector<PlacedVolume> placed_a_;
   std::vector<PlacedVolume> placed_b_;
+  // Support points of each node's envelope, where the next climb starts.
+  std::vector<int> hints_a_;
+  std::vector<int> hints_b_;
   CompoundStats stats_;
   // The smallest lower bound of every part pair met or left out so far.
   Scalar lower_ = kInfinity;

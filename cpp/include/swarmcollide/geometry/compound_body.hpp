@@ -27,9 +27,10 @@ struct PartNode {
 
 /// A body that is the union of convex parts (a non-convex object, say, decomposed into convex
 /// pieces), each part a ConvexPolyhedron in the body's own frame. The paper expresses objects by
-/// "convex Bounding Volume Hierarchies": the body keeps a binary tree of boxes and balls over its
-/// parts, built once, so that queries between compound bodies visit only the part pairs that the
-/// volumes' certified lower bounds cannot rule out.
+/// "convex Bounding Volume Hierarchies": the body keeps a binary tree over its parts, built once,
+/// whose every node holds a box, a ball and the convex hull of the parts below it, so that
+/// queries between compound bodies visit only the part pairs that the volumes' certified lower
+/// bounds cannot rule out.
 ///
 /// Copies share the parts (and their hulls); the class is safe to read from many threads.
 class CompoundBody {
@@ -48,16 +49,19 @@ class CompoundBody {
   const std::vector<PartNode>& tree() const { return tree_; }
   /// The convex hull of every part's points: a convex body holding the compound one, which
   /// scenes box and screen with (its distance to another body bounds the compound's from below).
-  const ConvexPolyhedron& envelope() const { return envelope_; }
+  const ConvexPolyhedron& envelope() const { return node_envelopes_.front(); }
+  /// The convex hull of the parts below each node of `tree()` (a leaf's is its part, the root's
+  /// the envelope): a separation between two nodes' envelopes bounds every part pair below them.
+  const std::vector<ConvexPolyhedron>& node_envelopes() const { return node_envelopes_; }
   /// The envelope's box, its centre and radius.
-  const BodyBounds& bounds() const { return envelope_.bounds(); }
+  const BodyBounds& bounds() const { return envelope().bounds(); }
   /// Total number of points of the parts.
   int point_count() const;
 
  private:
   std::vector<ConvexPolyhedron> parts_;
   std::vector<PartNode> tree_;
-  ConvexPolyhedron envelope_;
+  std::vector<ConvexPolyhedron> node_envelopes_;
 };
 
 }  // namespace swarmcollide
