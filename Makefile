@@ -13,7 +13,7 @@ PACKAGE_SOURCES := CMakeLists.txt pyproject.toml $(shell find cpp bindings pytho
 BUILD_REQUIREMENTS := "scikit-build-core>=0.10" "pybind11==3.1.0"
 
 .PHONY: demo test test-cpp test-python test-sanitize census system-packages install stubs bench \
-  bench-scene clean
+  bench-scene bench-compound clean
 
 demo: install
 	$(PY) -m swarmcollide paper
@@ -29,7 +29,7 @@ $(PY): | system-packages
 
 $(VENV)/.installed: $(PACKAGE_SOURCES) | system-packages $(PY)
 	$(PY) -m pip install --quiet $(BUILD_REQUIREMENTS)
-	$(PY) -m pip install --quiet --no-build-isolation ".[test,plot]"
+	$(PY) -m pip install --quiet --no-build-isolation ".[test,plot,mesh]"
 	touch $@
 
 install: $(VENV)/.installed
@@ -46,7 +46,7 @@ BENCH_BUILD := build/bench
 BENCH_ARGS ?=
 
 $(VENV)/.bench-installed: $(VENV)/.installed
-	$(PY) -m pip install --quiet --no-build-isolation ".[test,plot,bench]"
+	$(PY) -m pip install --quiet --no-build-isolation ".[test,plot,mesh,bench]"
 	touch $@
 
 # make bench-scene: only the scene section (C++ against FCL's manager, Python against python-fcl
@@ -60,7 +60,14 @@ bench-scene: install $(VENV)/.bench-installed
 	$(PY) bench/scene.py $(BENCH_ARGS) --json bench/results/scene_python.json
 	$(PY) bench/report.py --results bench/results --plots bench/plots --out bench/RESULTS.md
 
-bench: install $(VENV)/.bench-installed bench-scene
+# make bench-compound: only the compound section (two decomposed meshes against python-fcl's mesh
+# distance), then bench/RESULTS.md again from every recorded result.
+bench-compound: install $(VENV)/.bench-installed
+	mkdir -p bench/results
+	$(PY) bench/compound.py $(BENCH_ARGS) --json bench/results/compound.json
+	$(PY) bench/report.py --results bench/results --plots bench/plots --out bench/RESULTS.md
+
+bench: install $(VENV)/.bench-installed bench-scene bench-compound
 	cmake -S . -B $(BENCH_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release \
 	  -DSWARMCOLLIDE_BUILD_BENCH=ON -DSWARMCOLLIDE_BUILD_PYTHON=OFF
 	cmake --build $(BENCH_BUILD) -j $(JOBS) --target swarmcollide-bench swarmcollide-batch-loop \

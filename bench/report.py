@@ -14,6 +14,7 @@ from collections import defaultdict
 from typing import Dict, List, Optional
 
 import matplotlib
+from compound import compound_section
 from scene_report import scene_section
 
 matplotlib.use("Agg")
@@ -636,6 +637,9 @@ def main(argv: Optional[List[str]] = None) -> int:
     scenes = scene_section(args.results)
     if scenes is not None:
         md += [scenes]
+    compounds = compound_section(args.results)
+    if compounds is not None:
+        md += [compounds]
     recorded = [os.path.join(args.results, name)
                 for name in ("swarm_speed_before.txt", "swarm_speed_df361b9.txt",
                              "swarm_speed_83fdd16.txt", "swarm_speed_133eeb1.txt")]

@@ -80,11 +80,31 @@ BatchPoses poses_of(const py::object& poses_a, const py::object& poses_b, std::s
   return {to_poses(poses_a, count, "poses_a"), to_poses(poses_b, count, "poses_b")};
 }
 
-// `query(as, bs, poses)` without the GIL. Two (m, n, 3) arrays are passed as vertex stacks, so
-// that the threads build and free the bodies; anything else is converted to bodies here first.
+// Compound bodies from a sequence of compound bodies, polyhedra or (n, 3) array-likes.
+std::vector<CompoundBody> to_compounds(const py::handle& bodies, const char* name,
+                                       std::uint64_t first_index) {
+  std::vector<CompoundBody> result;
+  std::uint64_t index = first_index;
+  for (const py::handle body : bodies) {
+    const std::string item = std::string(name) + "[" + std::to_string(index++) + "]";
+    result.push_back(CompoundArgument(body, item.c_str()).get());
+  }
+  return result;
+}
+
+// `query(as, bs, poses)` without the GIL. Sequences holding a CompoundBody are answered by the
+// compound queries. Two (m, n, 3) arrays are passed as vertex stacks, so that the threads build
+// and free the bodies; anything else is converted to bodies here first.
 template <typename Ask>
 BatchResult run(const py::object& as, const py::object& bs, const py::object& poses_a,
                 const py::object& poses_b, const BatchSettings& settings, const Ask& ask) {
+  if (holds_compound(as) || holds_compound(bs)) {
+    const auto bodies_a = to_compounds(as, "As", settings.first_index);
+    const auto bodies_b = to_compounds(bs, "Bs", settings.first_index);
+    const BatchPoses poses = poses_of(poses_a, poses_b, bodies_a.size());
+    py::gil_scoped_release release;
+    return ask(bodies_a, bodies_b, poses);
+  }
   const std::optional<Stack> stack_a = as_stack(as, "As");
   const std::optional<Stack> stack_b = as_stack(bs, "Bs");
   if (stack_a && stack_b) {
@@ -105,7 +125,7 @@ The query for every pair ``(As[i], Bs[i])``, in C++ threads without the GIL.
 
 Pair i is seeded with ``pair_seed(seed, first_index + i)``, so answers do not depend on the
 number of threads or on how a batch is split. ``As`` and ``Bs`` are sequences of polyhedra or
-``(n, 3)`` arrays, or ``(m, n, 3)`` arrays (the fastest: each pair's bodies are then built and
+``(n, 3)`` arrays (or compound bodies), or ``(m, n, 3)`` arrays (the fastest: each pair's bodies are then built and
 freed by the thread that answers it). ``poses_a`` and ``poses_b`` place them: None (the identity),
 an ``(m, 4, 4)`` array of rigid transforms or a pair ``(rotations (m, 3, 3), translations (m, 3))``.
 )doc";
@@ -122,6 +142,8 @@ distance, lower_bound : numpy.ndarray, shape (m,)
 point_a, point_b, direction : numpy.ndarray, shape (m, 3)
 colliding, certified, escalated : numpy.ndarray of bool, shape (m,)
 iterations : numpy.ndarray of int, shape (m,)
+part_a, part_b : numpy.ndarray of int, shape (m,)
+    The parts of compound bodies that realise each answer (0 for convex bodies).
 )doc")
       .def_readonly("distance", &BatchResult::distance)
       .def_readonly("lower_bound", &BatchResult::lower_bound)
@@ -132,6 +154,8 @@ iterations : numpy.ndarray of int, shape (m,)
       .def_readonly("certified", &BatchResult::certified)
       .def_readonly("iterations", &BatchResult::iterations)
       .def_readonly("escalated", &BatchResult::escalated)
+      .def_readonly("part_a", &BatchResult::part_a)
+      .def_readonly("part_b", &BatchResult::part_b)
       .def("__len__", [](const BatchResult& r) { return r.distance.size(); })
       .def("__repr__", [](const BatchResult& r) {
         return "BatchResult(" + std::to_string(r.distance.size()) + " pairs, " +

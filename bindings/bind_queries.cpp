@@ -1,5 +1,6 @@
 #include <pybind11/eigen.h>
 #include <pybind11/stl.h>
+#include <pybind11/typing.h>
 
 #include <sstream>
 #include <string>
@@ -110,16 +111,32 @@ py::dict parameters_of(const QueryOptions& options) {
   return values;
 }
 
-// `query(a, pose_a, b, pose_b)` without the GIL, the bodies converted while holding it.
+// `query(a, pose_a, b, pose_b)` without the GIL, the bodies converted while holding it: the
+// compound queries (a CompoundResult) when either body is a CompoundBody, else the convex ones.
+// What the queries return: a CompoundResult (a DistanceResult naming parts) for compound bodies.
+using AnyResult = py::typing::Union<DistanceResult, CompoundResult>;
+
 template <typename Call>
-auto on_pair(const py::handle& a, const py::handle& b, const py::handle& pose_a,
-             const py::handle& pose_b, const Call& call) {
-  const BodyArgument body_a(a, "a");
-  const BodyArgument body_b(b, "b");
+py::object on_pair(const py::handle& a, const py::handle& b, const py::handle& pose_a,
+                   const py::handle& pose_b, const Call& call) {
   const Pose place_a = to_pose(pose_a, "pose_a");
   const Pose place_b = to_pose(pose_b, "pose_b");
-  py::gil_scoped_release release;
-  return call(body_a.get(), place_a, body_b.get(), place_b);
+  if (is_compound(a) || is_compound(b)) {
+    const CompoundArgument body_a(a, "a");
+    const CompoundArgument body_b(b, "b");
+    auto result = [&] {
+      py::gil_scoped_release release;
+      return call(body_a.get(), place_a, body_b.get(), place_b);
+    }();
+    return py::cast(std::move(result));
+  }
+  const BodyArgument body_a(a, "a");
+  const BodyArgument body_b(b, "b");
+  auto result = [&] {
+    py::gil_scoped_release release;
+    return call(body_a.get(), place_a, body_b.get(), place_b);
+  }();
+  return py::cast(std::move(result));
 }
 
 }  // namespace
@@ -252,8 +269,8 @@ both bodies): it is the precision of every answer and the distance below which b
           "distance",
           [](const Query& q, const py::handle& a, const py::handle& b, const py::handle& pose_a,
              const py::handle& pose_b) {
-            return on_pair(a, b, pose_a, pose_b,
-                           [&q](const auto&... args) { return q.distance(args...); });
+            return AnyResult(on_pair(a, b, pose_a, pose_b,
+                                     [&q](const auto&... args) { return q.distance(args...); }));
           },
           py::arg("a"), py::arg("b"), py::arg("pose_a") = py::none(),
           py::arg("pose_b") = py::none())
@@ -261,8 +278,9 @@ both bodies): it is the precision of every answer and the distance below which b
           "collision",
           [](const Query& q, const py::handle& a, const py::handle& b, const py::handle& pose_a,
              const py::handle& pose_b, bool escalate) {
-            return on_pair(a, b, pose_a, pose_b,
-                           [&](const auto&... args) { return q.collision(args..., escalate); });
+            return AnyResult(on_pair(a, b, pose_a, pose_b, [&](const auto&... args) {
+              return q.collision(args..., escalate);
+            }));
           },
           py::arg("a"), py::arg("b"), py::arg("pose_a") = py::none(),
           py::arg("pose_b") = py::none(), py::arg("escalate") = true)
@@ -271,7 +289,8 @@ both bodies): it is the precision of every answer and the distance below which b
           [](const Query& q, const py::handle& a, const py::handle& b, const py::handle& pose_a,
              const py::handle& pose_b, bool escalate) {
             return on_pair(a, b, pose_a, pose_b,
-                           [&](const auto&... args) { return q.collide(args..., escalate); });
+                           [&](const auto&... args) { return q.collide(args..., escalate); })
+                .cast<bool>();
           },
           py::arg("a"), py::arg("b"), py::arg("pose_a") = py::none(),
           py::arg("pose_b") = py::none(), py::arg("escalate") = true)
@@ -279,8 +298,9 @@ both bodies): it is the precision of every answer and the distance below which b
           "signed_distance",
           [](const Query& q, const py::handle& a, const py::handle& b, const py::handle& pose_a,
              const py::handle& pose_b) {
-            return on_pair(a, b, pose_a, pose_b,
-                           [&q](const auto&... args) { return q.signed_distance(args...); });
+            return AnyResult(on_pair(a, b, pose_a, pose_b, [&q](const auto&... args) {
+              return q.signed_distance(args...);
+            }));
           },
           py::arg("a"), py::arg("b"), py::arg("pose_a") = py::none(),
           py::arg("pose_b") = py::none())

@@ -339,9 +339,31 @@ cached_pairs, cache_bytes : int
           "add",
           [](Scene& scene, const py::handle& bodies, const py::handle& poses,
              const py::handle& group, const py::handle& mask) {
+            const BodyFilter filter{to_bits(group, "group"), to_bits(mask, "mask")};
+            if (is_compound(bodies) || holds_compound(bodies)) {
+              // Each in turn, convex or compound, so that ids follow the given order.
+              const py::sequence list = is_compound(bodies)
+                                            ? py::sequence(py::make_tuple(bodies))
+                                            : py::reinterpret_borrow<py::sequence>(bodies);
+              const std::vector<Pose> placed = to_poses(poses, list.size(), "poses");
+              std::vector<BodyId> ids;
+              for (std::size_t i = 0; i < list.size(); ++i) {
+                const Pose pose = placed.empty() ? Pose{} : placed[i];
+                if (is_compound(list[i])) {
+                  const CompoundBody body = list[i].cast<CompoundBody>();
+                  py::gil_scoped_release release;
+                  ids.push_back(scene.add(body, pose, filter));
+                } else {
+                  const std::string item = "bodies[" + std::to_string(i) + "]";
+                  const ConvexPolyhedron body = BodyArgument(list[i], item.c_str()).get();
+                  py::gil_scoped_release release;
+                  ids.push_back(scene.add(body, pose, filter));
+                }
+              }
+              return id_array(ids);
+            }
             std::vector<ConvexPolyhedron> list = to_bodies(bodies);
             const std::vector<Pose> placed = to_poses(poses, list.size(), "poses");
-            const BodyFilter filter{to_bits(group, "group"), to_bits(mask, "mask")};
             std::vector<BodyId> ids;
             {
               py::gil_scoped_release release;
@@ -351,8 +373,12 @@ cached_pairs, cache_bytes : int
           },
           py::arg("bodies"), py::arg("poses") = py::none(), py::arg("group") = 1,
           py::arg("mask") = 0xFFFFFFFFu, R"doc(
-Add one body (a ConvexPolyhedron or ``(n, 3)`` points) or many (a sequence of them or an
-``(m, n, 3)`` array) at ``poses``; return their ids (never reused).
+Add one body (a ConvexPolyhedron, ``(n, 3)`` points or a CompoundBody) or many (a sequence of
+them or an ``(m, n, 3)`` array) at ``poses``; return their ids (never reused).
+
+A compound body is boxed and first screened by its envelope (the hull of its parts); pairs the
+envelopes do not settle are answered by the compound queries (branch and bound over the parts,
+certified for them), and its contacts are found between the deepest pair of parts.
 
 ``poses`` is None (the identity), an ``(m, 4, 4)`` array of rigid transforms or a pair
 ``(rotations (m, 3, 3), translations (m, 3))``; one body also takes a single ``(4, 4)`` transform.
@@ -423,8 +449,14 @@ against each other: a box resting on a face gives its four corners.
                     s.contains(py::int_(id).cast<BodyId>());
            })
       .def(
-          "body", [](const Scene& s, BodyId id) { return s.body(id); }, py::arg("id"),
-          "The body with this id, in its own frame.")
+          "body",
+          [](const Scene& s, BodyId id) -> py::object {
+            if (const CompoundBody* compound = s.compound(id)) return py::cast(*compound);
+            return py::cast(s.body(id));
+          },
+          py::arg("id"),
+          "The body with this id, in its own frame: a ConvexPolyhedron or a CompoundBody (the "
+          "core's, without a decomposition record).")
       .def(
           "pose", [](const Scene& s, BodyId id) { return homogeneous(s.pose(id)); }, py::arg("id"),
           "The body's pose as a (4, 4) homogeneous transform.")

@@ -73,6 +73,29 @@ BodyArgument::BodyArgument(const py::handle& body, const char* name) {
   body_ = &*owned_;
 }
 
+bool is_compound(const py::handle& body) { return py::isinstance<CompoundBody>(body); }
+
+// True when `bodies` is a sequence (not an array) holding a CompoundBody.
+bool holds_compound(const py::handle& bodies) {
+  if (py::isinstance<py::array>(bodies) || py::isinstance<py::str>(bodies) ||
+      !py::isinstance<py::sequence>(bodies)) {
+    return false;
+  }
+  for (const py::handle body : bodies) {
+    if (is_compound(body)) return true;
+  }
+  return false;
+}
+
+CompoundArgument::CompoundArgument(const py::handle& body, const char* name) {
+  if (is_compound(body)) {
+    body_ = &body.cast<const CompoundBody&>();
+    return;
+  }
+  owned_.emplace(BodyArgument(body, name).get());
+  body_ = &*owned_;
+}
+
 Pose to_pose(const py::handle& pose, const char* name) {
   Pose result;
   if (pose.is_none()) return result;

@@ -6,6 +6,7 @@
 #include <optional>
 #include <vector>
 
+#include "swarmcollide/geometry/compound_body.hpp"
 #include "swarmcollide/geometry/convex_polyhedron.hpp"
 #include "swarmcollide/geometry/pose.hpp"
 #include "swarmcollide/types.hpp"
@@ -28,6 +29,24 @@ class BodyArgument {
  private:
   std::optional<ConvexPolyhedron> owned_;
   const ConvexPolyhedron* body_;
+};
+
+/// True when `body` is a CompoundBody (the argument then needs the compound queries).
+bool is_compound(const py::handle& body);
+
+/// True when `bodies` is a sequence (not an array) holding a CompoundBody.
+bool holds_compound(const py::handle& bodies);
+
+/// A body argument for the compound queries: a CompoundBody used in place, or a compound body of
+/// one part built from a ConvexPolyhedron (sharing its hull) or from `(n, 3)` points.
+class CompoundArgument {
+ public:
+  CompoundArgument(const py::handle& body, const char* name);
+  const CompoundBody& get() const { return *body_; }
+
+ private:
+  std::optional<CompoundBody> owned_;
+  const CompoundBody* body_;
 };
 
 /// A pose argument: None (the identity), a `(4, 4)` homogeneous rigid transform, or a pair

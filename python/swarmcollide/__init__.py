@@ -1,4 +1,5 @@
-"""Distance, collision and penetration between convex polyhedra.
+"""Distance, collision and penetration between convex polyhedra, and between compound bodies
+(unions of convex parts, from mesh files by convex decomposition).
 
 The method is the improved particle swarm optimizer of the paper "Research on Convex Polyhedron
 Collision Detection Algorithm Based on Improved Particle Swarm Optimization": the distance between
@@ -24,11 +25,14 @@ from . import _core
 from ._core import (
     Aabb,
     BatchResult,
+    CompoundResult,
+    CompoundStats,
     ContactResult,
     ConvexPolyhedron,
     DistanceResult,
     Hull,
     ParticleCoefficients,
+    PartNode,
     Query,
     Scene,
     SceneResult,
@@ -42,6 +46,15 @@ from ._core import (
     project_onto_simplex,
     rank_adaptive_coefficients,
     separation,
+)
+from .mesh import (
+    DECOMPOSERS,
+    CompoundBody,
+    Decomposition,
+    cache_directory,
+    load_mesh,
+    measure_deviation,
+    mesh_hash,
 )
 from .queries import (
     DEFAULT_TOLERANCE,
@@ -70,19 +83,25 @@ BROADPHASES = tuple(_core.broadphases())
 
 __all__ = [
     "BROADPHASES",
+    "DECOMPOSERS",
     "DEFAULT_TOLERANCE",
     "METHODS",
     "Aabb",
     "BatchResult",
     "BodiesLike",
+    "CompoundBody",
+    "CompoundResult",
+    "CompoundStats",
     "ContactResult",
     "ConvexPolyhedron",
+    "Decomposition",
     "DistanceResult",
     "Hull",
     "MethodInfo",
     "Parameter",
     "Parameters",
     "ParticleCoefficients",
+    "PartNode",
     "PolyhedronLike",
     "PoseLike",
     "PosesLike",
@@ -91,6 +110,7 @@ __all__ = [
     "SceneResult",
     "SceneStats",
     "as_polyhedron",
+    "cache_directory",
     "collide",
     "collide_many",
     "collision",
@@ -99,6 +119,9 @@ __all__ = [
     "distance_many",
     "is_feasible",
     "linear_decreasing_inertia",
+    "load_mesh",
+    "measure_deviation",
+    "mesh_hash",
     "objective",
     "pair_seed",
     "project_onto_simplex",

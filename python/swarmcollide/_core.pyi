@@ -1,11 +1,11 @@
 """
-swarmcollide's C++ core: convex polyhedra, model (2), its solvers, queries and scenes.
+swarmcollide's C++ core: convex polyhedra and compound bodies, model (2), its solvers, queries and scenes.
 """
 from __future__ import annotations
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['Aabb', 'BatchResult', 'ContactResult', 'ConvexPolyhedron', 'DistanceResult', 'Hull', 'ParticleCoefficients', 'Query', 'Scene', 'SceneResult', 'SceneStats', 'as_polyhedron', 'broadphases', 'constraint_violation', 'is_feasible', 'linear_decreasing_inertia', 'method_table', 'objective', 'pair_seed', 'project_onto_simplex', 'rank_adaptive_coefficients', 'separation']
+__all__: list[str] = ['Aabb', 'BatchResult', 'CompoundBody', 'CompoundResult', 'CompoundStats', 'ContactResult', 'ConvexPolyhedron', 'DistanceResult', 'Hull', 'PartNode', 'ParticleCoefficients', 'Query', 'Scene', 'SceneResult', 'SceneStats', 'as_polyhedron', 'broadphases', 'constraint_violation', 'is_feasible', 'linear_decreasing_inertia', 'method_table', 'objective', 'pair_seed', 'project_onto_simplex', 'rank_adaptive_coefficients', 'separation']
 class Aabb:
     """
     An axis-aligned bounding box with corners ``min`` and ``max``.
@@ -29,6 +29,8 @@ class BatchResult:
     point_a, point_b, direction : numpy.ndarray, shape (m, 3)
     colliding, certified, escalated : numpy.ndarray of bool, shape (m,)
     iterations : numpy.ndarray of int, shape (m,)
+    part_a, part_b : numpy.ndarray of int, shape (m,)
+        The parts of compound bodies that realise each answer (0 for convex bodies).
     """
     def __len__(self) -> int:
         ...
@@ -56,10 +58,149 @@ class BatchResult:
     def lower_bound(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
         ...
     @property
+    def part_a(self) -> typing.Annotated[numpy.typing.NDArray[numpy.int32], "[m, 1]"]:
+        ...
+    @property
+    def part_b(self) -> typing.Annotated[numpy.typing.NDArray[numpy.int32], "[m, 1]"]:
+        ...
+    @property
     def point_a(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
         ...
     @property
     def point_b(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
+        ...
+class CompoundBody:
+    """
+    
+    A body that is the union of convex parts, each a ConvexPolyhedron in the body's own frame.
+    
+    The body keeps a bounding-volume tree over its parts whose every node holds a box, a ball and the
+    convex hull of the parts below it, the paper's "convex Bounding Volume Hierarchies": queries between compound bodies (``distance``, ``collide``,
+    ``signed_distance``, the batches, scenes) open only the part pairs whose volumes' certified lower
+    bounds cannot rule them out, and name the parts that realise the answer. Answers are certified
+    for the union of the convex parts. ``CompoundBody.from_mesh`` builds one from a triangle mesh by
+    convex decomposition.
+    
+    Parameters
+    ----------
+    parts : sequence of ConvexPolyhedron or array_like of shape (n, 3)
+        At least one convex part (or the points whose hull it is).
+    
+    Examples
+    --------
+    >>> import swarmcollide as sc
+    >>> cube = [[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)]
+    >>> ell = sc.CompoundBody([cube, [[x + 1, y, z] for x, y, z in cube],
+    ...                        [[x, y + 1, z] for x, y, z in cube]])
+    >>> ell
+    CompoundBody(3 parts, 24 points, bounds [0, 0, 0] to [2, 2, 1])
+    >>> r = sc.distance(ell, [[x + 1.6, y + 1.5, z] for x, y, z in cube])
+    >>> round(r.distance, 9), r.part_a, r.certified  # the corner of the L is empty
+    (0.5, 1, True)
+    """
+    def __init__(self, parts: typing.Any) -> None:
+        ...
+    def __len__(self) -> int:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def aabb(self) -> Aabb:
+        """
+        Smallest axis-aligned box containing the body.
+        """
+    @property
+    def envelope(self) -> ConvexPolyhedron:
+        """
+        The convex hull of every part's points (a ConvexPolyhedron holding the body).
+        """
+    @property
+    def node_envelopes(self) -> list[ConvexPolyhedron]:
+        """
+        The convex hull of the parts below each node of ``tree``.
+        """
+    @property
+    def parts(self) -> list[ConvexPolyhedron]:
+        """
+        The convex parts (copies that share the parts' hulls).
+        """
+    @property
+    def point_count(self) -> int:
+        """
+        Total number of points of the parts.
+        """
+    @property
+    def radius(self) -> float:
+        """
+        Half the diagonal of the bounding box.
+        """
+    @property
+    def tree(self) -> list[PartNode]:
+        """
+        The bounding-volume tree: a list of PartNode, the root first.
+        """
+class CompoundResult(DistanceResult):
+    """
+    
+    The answer of a query between compound bodies: a DistanceResult for the union of the convex parts,
+    with the pair of parts that realises it.
+    
+    ``lower_bound <= true value <= distance`` holds for the union of the parts (certified for the
+    parts, not for the mesh they approximate). The witnesses lie on parts ``part_a`` and ``part_b``;
+    ``weights_a`` and ``weights_b`` are over those parts' points. For signed distances the value is
+    the smallest signed distance over part pairs: minus the deepest part-pair penetration, which is
+    not in general the penetration depth of the non-convex union.
+    """
+    def __repr__(self) -> str:
+        ...
+    @property
+    def part_a(self) -> int:
+        """
+        Index of A's part that realises the answer.
+        """
+    @property
+    def part_b(self) -> int:
+        """
+        Index of B's part that realises the answer.
+        """
+    @property
+    def stats(self) -> CompoundStats:
+        """
+        What the search did (a CompoundStats).
+        """
+class CompoundStats:
+    """
+    
+    What a query between compound bodies did with their part pairs.
+    
+    Attributes
+    ----------
+    part_pairs : int
+        Parts of A times parts of B.
+    volume_tests : int
+        Pairs of tree nodes whose bounding volumes were compared.
+    screened : int
+        Part pairs settled by the separation along their centres' line, with no solver.
+    solved : int
+        Part pairs handed to the method's solver.
+    pruned : int
+        Part pairs never looked at: ruled out by the tree's certified lower bounds.
+    """
+    def __repr__(self) -> str:
+        ...
+    @property
+    def part_pairs(self) -> int:
+        ...
+    @property
+    def pruned(self) -> int:
+        ...
+    @property
+    def screened(self) -> int:
+        ...
+    @property
+    def solved(self) -> int:
+        ...
+    @property
+    def volume_tests(self) -> int:
         ...
 class ContactResult(SceneResult):
     """
@@ -264,6 +405,45 @@ class Hull:
     @property
     def vertex_indices(self) -> numpy.typing.NDArray[numpy.int32]:
         ...
+class PartNode:
+    """
+    
+    A node of a compound body's bounding-volume tree, in the body's own frame.
+    
+    Attributes
+    ----------
+    box : Aabb
+        The smallest axis-aligned box holding the parts below the node.
+    centre, radius : numpy.ndarray, float
+        A ball holding the parts below the node.
+    left, right : int
+        Indices of the children in ``CompoundBody.tree``; -1 for a leaf.
+    part : int
+        The part a leaf holds; -1 for an inner node.
+    """
+    def __repr__(self) -> str:
+        ...
+    @property
+    def box(self) -> Aabb:
+        ...
+    @property
+    def centre(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+        ...
+    @property
+    def leaf(self) -> bool:
+        ...
+    @property
+    def left(self) -> int:
+        ...
+    @property
+    def part(self) -> int:
+        ...
+    @property
+    def radius(self) -> float:
+        ...
+    @property
+    def right(self) -> int:
+        ...
 class ParticleCoefficients:
     """
     Inertia weight ``w`` and accelerations ``c1``, ``c2`` of one particle.
@@ -292,7 +472,7 @@ class Query:
         ...
     def __repr__(self) -> str:
         ...
-    def collide(self, a: typing.Any, b: typing.Any, pose_a: typing.Any = None, pose_b: typing.Any = None, escalate: bool = True) -> bool:
+    def collide(self, a: typing.Any, b: typing.Any, pose_a: typing.Any = None, pose_b: typing.Any = None, escalate: bool = True) -> typing.Any:
         ...
     def collide_many(self, As: typing.Any, Bs: typing.Any, threads: typing.Any = None, first_index: typing.Any = 0, escalate: bool = True, poses_a: typing.Any = None, poses_b: typing.Any = None) -> BatchResult:
         """
@@ -300,13 +480,13 @@ class Query:
         
         Pair i is seeded with ``pair_seed(seed, first_index + i)``, so answers do not depend on the
         number of threads or on how a batch is split. ``As`` and ``Bs`` are sequences of polyhedra or
-        ``(n, 3)`` arrays, or ``(m, n, 3)`` arrays (the fastest: each pair's bodies are then built and
+        ``(n, 3)`` arrays (or compound bodies), or ``(m, n, 3)`` arrays (the fastest: each pair's bodies are then built and
         freed by the thread that answers it). ``poses_a`` and ``poses_b`` place them: None (the identity),
         an ``(m, 4, 4)`` array of rigid transforms or a pair ``(rotations (m, 3, 3), translations (m, 3))``.
         """
-    def collision(self, a: typing.Any, b: typing.Any, pose_a: typing.Any = None, pose_b: typing.Any = None, escalate: bool = True) -> DistanceResult:
+    def collision(self, a: typing.Any, b: typing.Any, pose_a: typing.Any = None, pose_b: typing.Any = None, escalate: bool = True) -> typing.Any:
         ...
-    def distance(self, a: typing.Any, b: typing.Any, pose_a: typing.Any = None, pose_b: typing.Any = None) -> DistanceResult:
+    def distance(self, a: typing.Any, b: typing.Any, pose_a: typing.Any = None, pose_b: typing.Any = None) -> typing.Any:
         ...
     def distance_many(self, As: typing.Any, Bs: typing.Any, threads: typing.Any = None, first_index: typing.Any = 0, poses_a: typing.Any = None, poses_b: typing.Any = None) -> BatchResult:
         """
@@ -314,11 +494,11 @@ class Query:
         
         Pair i is seeded with ``pair_seed(seed, first_index + i)``, so answers do not depend on the
         number of threads or on how a batch is split. ``As`` and ``Bs`` are sequences of polyhedra or
-        ``(n, 3)`` arrays, or ``(m, n, 3)`` arrays (the fastest: each pair's bodies are then built and
+        ``(n, 3)`` arrays (or compound bodies), or ``(m, n, 3)`` arrays (the fastest: each pair's bodies are then built and
         freed by the thread that answers it). ``poses_a`` and ``poses_b`` place them: None (the identity),
         an ``(m, 4, 4)`` array of rigid transforms or a pair ``(rotations (m, 3, 3), translations (m, 3))``.
         """
-    def signed_distance(self, a: typing.Any, b: typing.Any, pose_a: typing.Any = None, pose_b: typing.Any = None) -> DistanceResult:
+    def signed_distance(self, a: typing.Any, b: typing.Any, pose_a: typing.Any = None, pose_b: typing.Any = None) -> typing.Any:
         ...
     def signed_distance_many(self, As: typing.Any, Bs: typing.Any, threads: typing.Any = None, first_index: typing.Any = 0, poses_a: typing.Any = None, poses_b: typing.Any = None) -> BatchResult:
         """
@@ -326,7 +506,7 @@ class Query:
         
         Pair i is seeded with ``pair_seed(seed, first_index + i)``, so answers do not depend on the
         number of threads or on how a batch is split. ``As`` and ``Bs`` are sequences of polyhedra or
-        ``(n, 3)`` arrays, or ``(m, n, 3)`` arrays (the fastest: each pair's bodies are then built and
+        ``(n, 3)`` arrays (or compound bodies), or ``(m, n, 3)`` arrays (the fastest: each pair's bodies are then built and
         freed by the thread that answers it). ``poses_a`` and ``poses_b`` place them: None (the identity),
         an ``(m, 4, 4)`` array of rigid transforms or a pair ``(rotations (m, 3, 3), translations (m, 3))``.
         """
@@ -410,16 +590,20 @@ class Scene:
         ...
     def add(self, bodies: typing.Any, poses: typing.Any = None, group: typing.Any = 1, mask: typing.Any = 4294967295) -> numpy.typing.NDArray[numpy.int64]:
         """
-        Add one body (a ConvexPolyhedron or ``(n, 3)`` points) or many (a sequence of them or an
-        ``(m, n, 3)`` array) at ``poses``; return their ids (never reused).
+        Add one body (a ConvexPolyhedron, ``(n, 3)`` points or a CompoundBody) or many (a sequence of
+        them or an ``(m, n, 3)`` array) at ``poses``; return their ids (never reused).
+        
+        A compound body is boxed and first screened by its envelope (the hull of its parts); pairs the
+        envelopes do not settle are answered by the compound queries (branch and bound over the parts,
+        certified for them), and its contacts are found between the deepest pair of parts.
         
         ``poses`` is None (the identity), an ``(m, 4, 4)`` array of rigid transforms or a pair
         ``(rotations (m, 3, 3), translations (m, 3))``; one body also takes a single ``(4, 4)`` transform.
         Bodies A and B are paired when ``A.group & B.mask`` and ``B.group & A.mask`` are both nonzero.
         """
-    def body(self, id: typing.SupportsInt | typing.SupportsIndex) -> ConvexPolyhedron:
+    def body(self, id: typing.SupportsInt | typing.SupportsIndex) -> typing.Any:
         """
-        The body with this id, in its own frame.
+        The body with this id, in its own frame: a ConvexPolyhedron or a CompoundBody (the core's, without a decomposition record).
         """
     def colliding_pairs(self) -> SceneResult:
         """

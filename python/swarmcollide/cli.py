@@ -1,17 +1,222 @@
-"""Command line: ``python -m swarmcollide paper`` reproduces the paper's Section IV;
-``python -m swarmcollide scene`` runs a scene of moving bodies and prints each frame."""
+"""Command line: ``swarmcollide distance a.obj b.stl`` measures the distance between two mesh
+files (decomposed into convex parts); ``swarmcollide decompose mesh.obj -o parts.npz`` writes a
+mesh's convex parts; ``swarmcollide paper`` reproduces the paper's Section IV; ``swarmcollide
+scene`` runs a scene of moving bodies and prints each frame.
+
+Exit status: 0 on success, 1 when an input cannot be used (a missing or unreadable file, a mesh
+that is not a 3-D solid, a query the method cannot answer), 2 for wrong arguments."""
 
 from __future__ import annotations
 
 import argparse
+import json
+import sys
 from typing import Optional, Sequence
+
+import numpy as np
 
 from . import paper
 
+POSE_HELP = (
+    "where the body is: 3 numbers (a translation x,y,z), 6 (a translation and then rotations "
+    "about x, y and z in degrees, applied in that order) or 16 (a 4x4 transform, row by row), "
+    "separated by commas or spaces (write --pose-a=-1,0,0 when the first is negative); "
+    "default: the identity"
+)
 
-def main(argv: Optional[Sequence[str]] = None) -> int:
-    parser = argparse.ArgumentParser(prog="swarmcollide", description=__doc__)
+
+def _pose(text: str) -> np.ndarray:
+    """A pose from the command line (see POSE_HELP); argparse turns ValueError into a usage
+    error naming the option."""
+    try:
+        values = [float(v) for v in text.replace(",", " ").split()]
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a list of numbers") from None
+    matrix = np.eye(4)
+    if len(values) in (3, 6):
+        matrix[:3, 3] = values[:3]
+        if len(values) == 6:
+            rx, ry, rz = np.radians(values[3:])
+            c, s = np.cos([rx, ry, rz]), np.sin([rx, ry, rz])
+            x = np.array([[1, 0, 0], [0, c[0], -s[0]], [0, s[0], c[0]]])
+            y = np.array([[c[1], 0, s[1]], [0, 1, 0], [-s[1], 0, c[1]]])
+            z = np.array([[c[2], -s[2], 0], [s[2], c[2], 0], [0, 0, 1]])
+            matrix[:3, :3] = z @ y @ x
+    elif len(values) == 16:
+        matrix = np.array(values).reshape(4, 4)
+    else:
+        raise argparse.ArgumentTypeError(
+            f"a pose has 3, 6 or 16 numbers, got {len(values)} in {text!r}"
+        )
+    if not np.isfinite(matrix).all():
+        raise argparse.ArgumentTypeError(f"{text!r} has a NaN or infinite number")
+    return matrix
+
+
+def _add_decomposer_options(parser: argparse.ArgumentParser, default: str) -> None:
+    from .mesh import DEFAULT_CONCAVITY, DEFAULT_MAX_HULL_VERTICES
+
+    group = parser.add_argument_group("convex decomposition")
+    group.add_argument(
+        "--decompose", choices=["coacd", "vhacd", "hull", "none"], default=default,
+        help=f"how meshes become convex parts: CoACD (closest, seconds to minutes), V-HACD "
+        f"(faster, coarser), their convex hull, or 'none' for meshes whose connected components "
+        f"are convex already (default: {default})",
+    )
+    group.add_argument("--concavity", type=float, default=DEFAULT_CONCAVITY,
+                       help=f"CoACD's concavity threshold; V-HACD's volume error as a fraction "
+                       f"(default: {DEFAULT_CONCAVITY})")
+    group.add_argument("--max-hulls", type=int, default=None,
+                       help="at most this many parts (default: CoACD unlimited, V-HACD 32)")
+    group.add_argument("--max-hull-vertices", type=int, default=DEFAULT_MAX_HULL_VERTICES,
+                       help=f"at most this many vertices per part (default: "
+                       f"{DEFAULT_MAX_HULL_VERTICES})")
+    group.add_argument("--resolution", type=int, default=None,
+                       help="CoACD's sampling resolution or V-HACD's voxel count")
+    group.add_argument("--seed", type=int, default=0, help="decomposition seed (default 0)")
+    group.add_argument("--no-cache", action="store_true",
+                       help="decompose again instead of reading the on-disk cache "
+                       "($SWARMCOLLIDE_CACHE_DIR, else the user cache directory)")
+    group.add_argument("--quiet", action="store_true", help="no progress bar")
+
+
+def _body(path: str, arguments: argparse.Namespace):
+    """A compound body from a mesh file, or from a parts file (.npz) as decompose writes."""
+    from .mesh import CompoundBody
+
+    if path.endswith(".npz"):
+        return CompoundBody.load(path)
+    return CompoundBody.from_mesh(
+        path,
+        decompose=None if arguments.decompose == "none" else arguments.decompose,
+        concavity=arguments.concavity,
+        max_hulls=arguments.max_hulls,
+        max_hull_vertices=arguments.max_hull_vertices,
+        resolution=arguments.resolution,
+        seed=arguments.seed,
+        cache=not arguments.no_cache,
+        progress=not arguments.quiet,
+    )
+
+
+def _decomposition(body) -> Optional[dict]:
+    d = body.decomposition
+    if d is None:
+        return None
+    return {"method": d.method, "parts": d.parts, "seconds": d.seconds,
+            "parts_to_mesh": d.parts_to_mesh, "mesh_to_parts": d.mesh_to_parts,
+            "samples": d.samples, "spacing": d.spacing, "from_cache": d.from_cache,
+            "parameters": d.parameters}
+
+
+def _distance(arguments: argparse.Namespace) -> int:
+    from .mesh import load_mesh
+    from .queries import query
+
+    # Both files are checked before either is decomposed, which can take minutes.
+    for path in (arguments.a, arguments.b):
+        if not path.endswith(".npz"):
+            load_mesh(path)
+    a = _body(arguments.a, arguments)
+    b = _body(arguments.b, arguments)
+    q = query(arguments.method, tolerance=arguments.tolerance)
+    ask = {"distance": q.distance, "signed": q.signed_distance, "collide": q.collision}
+    r = ask[arguments.query](a, b, arguments.pose_a, arguments.pose_b)
+    if arguments.plot:
+        from .plot import plot_pair
+
+        plot_pair(a, b, r, pose_a=arguments.pose_a, pose_b=arguments.pose_b, path=arguments.plot)
+    answer = {
+        "query": arguments.query,
+        "method": r.method,
+        "distance": r.distance,
+        "lower_bound": r.lower_bound,
+        "colliding": bool(r.colliding),
+        "certified": bool(r.certified),
+        "part_a": r.part_a,
+        "part_b": r.part_b,
+        "point_a": r.point_a.tolist(),
+        "point_b": r.point_b.tolist(),
+        "direction": r.direction.tolist(),
+        "part_pairs": r.stats.part_pairs,
+        "solved": r.stats.solved,
+        "pruned": r.stats.pruned,
+        "a": {"file": arguments.a, "parts": len(a), "decomposition": _decomposition(a)},
+        "b": {"file": arguments.b, "parts": len(b), "decomposition": _decomposition(b)},
+    }
+    if arguments.json:
+        print(json.dumps(answer, indent=2))
+        return 0
+    value = "signed distance" if arguments.query == "signed" else "distance"
+    if arguments.query == "collide":
+        print(f"colliding: {'yes' if r.colliding else 'no'}"
+              f" ({'certified' if r.certified else 'not certified'} for the convex parts)")
+    else:
+        print(f"{value}: {r.distance:.9g} (lower bound {r.lower_bound:.9g}, "
+              f"{'certified' if r.certified else 'not certified'} for the convex parts)")
+    print(f"parts: {r.part_a} of {arguments.a} and {r.part_b} of {arguments.b}; "
+          f"{r.stats.solved} of {r.stats.part_pairs} part pairs solved, {r.stats.pruned} pruned")
+    print(f"witnesses: {np.round(r.point_a, 9).tolist()} and {np.round(r.point_b, 9).tolist()}")
+    for name, body in ((arguments.a, a), (arguments.b, b)):
+        d = body.decomposition
+        if d is not None:
+            print(f"{name}: {d.parts} {d.method} parts, {d.parts_to_mesh:.3g} beyond the mesh, "
+                  f"{d.mesh_to_parts:.3g} of the mesh missed ({d.samples} samples)")
+    return 0
+
+
+def _decompose(arguments: argparse.Namespace) -> int:
+    body = _body(arguments.mesh, arguments)
+    body.save(arguments.output)
+    d = body.decomposition
+    if arguments.json:
+        print(json.dumps({"mesh": arguments.mesh, "output": arguments.output,
+                          **_decomposition(body)}, indent=2))
+        return 0
+    print(f"{arguments.output}: {d.parts} convex parts ({d.method}"
+          f"{', from the cache' if d.from_cache else ''}, {d.seconds:.2f} s)")
+    print(f"parts stick out of the mesh by up to {d.parts_to_mesh:.4g} and miss it by up to "
+          f"{d.mesh_to_parts:.4g} (one-sided Hausdorff distances, {d.samples} samples on each "
+          f"surface, spacing {d.spacing:.3g})")
+    return 0
+
+
+def _parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(prog="swarmcollide", description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
     commands = parser.add_subparsers(dest="command", required=True)
+
+    measure = commands.add_parser(
+        "distance", help="distance (or signed distance, or collision) between two mesh files",
+        description="Distance between two bodies given as mesh files (OBJ, STL, PLY, GLB, OFF: "
+        "decomposed into convex parts) or parts files (.npz, from 'swarmcollide decompose'). "
+        "Answers are certified for the convex parts; each body's decomposition error says how "
+        "far the parts are from its mesh.")
+    measure.add_argument("a", help="the first body: a mesh file or a parts file (.npz)")
+    measure.add_argument("b", help="the second body")
+    measure.add_argument("--pose-a", type=_pose, default=None, metavar="POSE", help=POSE_HELP)
+    measure.add_argument("--pose-b", type=_pose, default=None, metavar="POSE", help=POSE_HELP)
+    measure.add_argument("--query", choices=["distance", "signed", "collide"], default="distance",
+                         help="what to compute (default: distance)")
+    measure.add_argument("--method", default="dual",
+                         help="the solver for each part pair: dual (default), exact, fcl, ...")
+    measure.add_argument("--tolerance", type=float, default=1e-9,
+                         help="relative to the pair's size (default 1e-9)")
+    measure.add_argument("--json", action="store_true", help="print the answer as JSON")
+    measure.add_argument("--plot", metavar="FILE",
+                         help="save a picture of the pair and the answer (needs matplotlib)")
+    _add_decomposer_options(measure, "coacd")
+
+    split = commands.add_parser(
+        "decompose", help="decompose a mesh file into convex parts (an .npz file)",
+        description="Decompose a mesh file into convex parts and write them to an .npz file "
+        "(points, offsets and the decomposition's record), which 'swarmcollide distance' and "
+        "CompoundBody.load read.")
+    split.add_argument("mesh", help="a mesh file (OBJ, STL, PLY, GLB, OFF)")
+    split.add_argument("-o", "--output", required=True, help="the parts file to write (.npz)")
+    split.add_argument("--json", action="store_true", help="print the record as JSON")
+    _add_decomposer_options(split, "coacd")
+
     reproduce = commands.add_parser(
         "paper", help="print the paper's Tables 1 and 2 beside ours and the exact answers"
     )
@@ -33,7 +238,23 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     scene.add_argument(
         "--plot", metavar="FILE", help="save a picture of the last frame there (needs matplotlib)"
     )
+    return parser
+
+
+def main(argv: Optional[Sequence[str]] = None) -> int:
+    parser = _parser()
     arguments = parser.parse_args(argv)
+    if arguments.command in ("distance", "decompose"):
+        if arguments.command == "decompose" and not arguments.output.endswith(".npz"):
+            parser.error("-o/--output must name an .npz file")
+        try:
+            return _distance(arguments) if arguments.command == "distance" else _decompose(
+                arguments)
+        except BrokenPipeError:  # the reader went away (`| head`): nothing more to say
+            return 0
+        except (ValueError, TypeError, OSError, ImportError) as error:
+            print(f"swarmcollide {arguments.command}: error: {error}", file=sys.stderr)
+            return 1
     if arguments.command == "paper":
         if arguments.repeats < 1:
             parser.error("--repeats must be at least 1")
@@ -52,3 +273,4 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
         plot=arguments.plot,
     )
     return 0
+

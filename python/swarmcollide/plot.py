@@ -1,4 +1,5 @@
-"""Pictures of scenes: bodies at their poses, contact points and contact normals (matplotlib).
+"""Pictures: a body (its parts coloured), a pair with a query's witness segment or contact, and
+scenes with their contact points and normals (matplotlib).
 
 Needs matplotlib (``pip install swarmcollide[plot]``). Figures are built without pyplot, so
 saving one needs no display.
@@ -70,15 +71,16 @@ def plot_scene(
     for body_id in scene.ids.tolist():
         body = scene.body(body_id)
         pose = scene.pose(body_id)
-        points = body.vertices @ pose[:3, :3].T + pose[:3, 3]
-        hull = body.hull()
-        if hull.dimension < 2:
-            continue
-        polygons.extend(points[hull.faces])
-        colours.extend([(1.0, 0.55, 0.1, 0.35) if body_id in touching else (0.5, 0.5, 0.5, 0.12)]
-                       * len(hull.faces))
         sizes.append(2 * body.radius)
-        corners.append(points)
+        for part in _parts_of(body):  # a compound body's parts, or the convex body itself
+            points = part.vertices @ pose[:3, :3].T + pose[:3, 3]
+            hull = part.hull()
+            if hull.dimension < 2:
+                continue
+            polygons.extend(points[hull.faces])
+            colours.extend([(1.0, 0.55, 0.1, 0.35) if body_id in touching
+                            else (0.5, 0.5, 0.5, 0.12)] * len(hull.faces))
+            corners.append(points)
     ax.add_collection3d(Poly3DCollection(polygons, facecolors=colours, edgecolors=(0, 0, 0, 0.15),
                                          linewidths=0.3))
     if corners:
@@ -107,3 +109,169 @@ def plot_scene(
     if path is not None:
         figure.savefig(path, dpi=120)
     return figure
+
+
+def _parts_of(body) -> list:
+    """The convex parts of a compound body, or the body itself as one part."""
+    if isinstance(body, _core.CompoundBody):
+        return list(body.parts)
+    return [body if isinstance(body, _core.ConvexPolyhedron) else _core.as_polyhedron(body)]
+
+
+def _pose_matrix(pose) -> np.ndarray:
+    if pose is None:
+        return np.eye(4)
+    if isinstance(pose, (tuple, list)) and len(pose) == 2:
+        matrix = np.eye(4)
+        matrix[:3, :3] = np.asarray(pose[0], dtype=float)
+        matrix[:3, 3] = np.asarray(pose[1], dtype=float)
+        return matrix
+    return np.asarray(pose, dtype=float)
+
+
+def _draw_parts(ax, body, pose, colours, start: int, alpha: float) -> list:
+    """Draw each part's hull at ``pose`` in its own colour; return the placed points."""
+    from mpl_toolkits.mplot3d.art3d import Poly3DCollection
+
+    placed = []
+    matrix = _pose_matrix(pose)
+    for k, part in enumerate(_parts_of(body)):
+        points = part.vertices @ matrix[:3, :3].T + matrix[:3, 3]
+        placed.append(points)
+        hull = part.hull()
+        colour = colours((start + k) % colours.N)
+        if hull.dimension < 2:
+            ax.scatter(points[:, 0], points[:, 1], points[:, 2], color=colour, s=8)
+            continue
+        ax.add_collection3d(Poly3DCollection(points[hull.faces], facecolors=[(*colour[:3], alpha)],
+                                             edgecolors=(0, 0, 0, 0.2), linewidths=0.3))
+    return placed
+
+
+def _frame_axes(ax, placed: list) -> None:
+    everything = np.concatenate(placed)
+    low, high = everything.min(axis=0), everything.max(axis=0)
+    centre, half = (low + high) / 2, max((high - low).max() / 2, 1e-12)
+    ax.set(xlim=(centre[0] - half, centre[0] + half), ylim=(centre[1] - half, centre[1] + half),
+           zlim=(centre[2] - half, centre[2] + half), xlabel="x", ylabel="y", zlabel="z")
+
+
+def _figure(ax, show: bool):
+    if ax is not None:
+        return ax.figure, ax
+    if show:
+        import matplotlib.pyplot as plt
+
+        figure = plt.figure(figsize=(8, 8))
+    else:
+        from matplotlib.figure import Figure
+
+        figure = Figure(figsize=(8, 8))
+    return figure, figure.add_subplot(projection="3d")
+
+
+def _finish(figure, path: Optional[str], show: bool):
+    if path is not None:
+        figure.savefig(path, dpi=120)
+    if show:
+        import matplotlib.pyplot as plt
+
+        plt.show()
+    return figure
+
+
+def plot_body(body, pose=None, *, ax=None, path: Optional[str] = None, show: bool = False,
+              title: Optional[str] = None):
+    """Draw a body (a ConvexPolyhedron, ``(n, 3)`` points or a CompoundBody, each part in its
+    own colour) at ``pose``, to a file (``path``) or a window (``show=True``).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    Examples
+    --------
+    >>> import swarmcollide as sc
+    >>> from swarmcollide.plot import plot_body
+    >>> cube = [[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)]
+    >>> ell = sc.CompoundBody([cube, [[x + 1, y, z] for x, y, z in cube]])
+    >>> len(plot_body(ell).axes[0].collections)  # one collection per part
+    2
+    """
+    from matplotlib import colormaps
+
+    figure, ax = _figure(ax, show)
+    placed = _draw_parts(ax, body, pose, colormaps["tab20"], 0, 0.45)
+    _frame_axes(ax, placed)
+    parts = len(placed)
+    ax.set_title(title if title is not None else f"{parts} part{'s' if parts != 1 else ''}")
+    return _finish(figure, path, show)
+
+
+def plot_pair(a, b, result=None, *, pose_a=None, pose_b=None, ax=None,
+              path: Optional[str] = None, show: bool = False, title: Optional[str] = None):
+    """Draw two bodies at their poses (parts coloured: A's in cool, B's in warm colours) and a
+    query's answer: the witness segment from ``point_a`` to ``point_b`` for bodies apart, the
+    contact point and normal for bodies in contact. The parts that realise a compound answer
+    are drawn opaque.
+
+    Parameters
+    ----------
+    a, b : ConvexPolyhedron, CompoundBody or array_like of shape (n, 3)
+    result : DistanceResult or CompoundResult, optional
+        The answer to draw; ``swarmcollide.distance(a, b, ...)`` when omitted.
+    pose_a, pose_b : array_like, optional
+        ``(4, 4)`` transforms or ``(rotation, translation)`` pairs.
+    ax, path, show, title
+        As for ``plot_body``.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    Examples
+    --------
+    >>> import swarmcollide as sc
+    >>> from swarmcollide.plot import plot_pair
+    >>> cube = [[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)]
+    >>> figure = plot_pair(cube, [[x + 2, y, z] for x, y, z in cube])
+    >>> figure.axes[0].get_title()
+    'distance 1 (certified), parts 0 and 0'
+    """
+    from matplotlib import colormaps
+
+    from .queries import distance
+
+    if result is None:
+        result = distance(a, b, pose_a=pose_a, pose_b=pose_b)
+    figure, ax = _figure(ax, show)
+    part_a = getattr(result, "part_a", 0)
+    part_b = getattr(result, "part_b", 0)
+    placed = _draw_parts(ax, a, pose_a, colormaps["winter"].resampled(8), 0, 0.3)
+    placed += _draw_parts(ax, b, pose_b, colormaps["autumn"].resampled(8), 0, 0.3)
+    for body, pose, part, cmap in ((a, pose_a, part_a, "winter"), (b, pose_b, part_b, "autumn")):
+        matrix = _pose_matrix(pose)
+        chosen = _parts_of(body)[part]
+        points = chosen.vertices @ matrix[:3, :3].T + matrix[:3, 3]
+        hull = chosen.hull()
+        if hull.dimension >= 2:
+            from mpl_toolkits.mplot3d.art3d import Poly3DCollection
+
+            ax.add_collection3d(Poly3DCollection(
+                points[hull.faces], facecolors=[(*colormaps[cmap](0.5)[:3], 0.8)],
+                edgecolors=(0, 0, 0, 0.5), linewidths=0.5))
+    p, q = np.asarray(result.point_a), np.asarray(result.point_b)
+    if result.colliding:
+        ax.scatter(*((p + q) / 2)[:, None], color="red", s=30, depthshade=False)
+        normal = np.asarray(result.direction)
+        if np.linalg.norm(normal) > 0:
+            size = np.ptp(np.concatenate(placed), axis=0).max() / 4
+            ax.quiver(*((p + q) / 2), *normal, length=size, color="darkred")
+    else:
+        ax.plot(*np.stack([p, q]).T, color="black", linewidth=2, marker="o", markersize=4)
+    _frame_axes(ax, placed)
+    verdict = "certified" if result.certified else "not certified"
+    label = "in contact" if result.colliding else f"distance {result.distance:.6g}"
+    ax.set_title(title if title is not None else
+                 f"{label} ({verdict}), parts {part_a} and {part_b}")
+    return _finish(figure, path, show)

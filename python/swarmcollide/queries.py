@@ -1,4 +1,4 @@
-"""Distance, signed distance and collision queries between convex polyhedra.
+"""Distance, signed distance and collision queries between convex polyhedra and compound bodies.
 
 Every query function takes the same keywords: ``method``, ``tolerance``, ``seed``, the bodies'
 poses, and the solver parameters of ``Parameters`` that apply to the method (``METHODS`` lists
@@ -26,8 +26,9 @@ Query = _core.Query
 DistanceResult = _core.DistanceResult
 BatchResult = _core.BatchResult
 
-PolyhedronLike = Union[_core.ConvexPolyhedron, npt.ArrayLike]
-"""A ``ConvexPolyhedron`` or anything ``ConvexPolyhedron(points)`` accepts: ``(n, 3)`` points."""
+PolyhedronLike = Union[_core.ConvexPolyhedron, _core.CompoundBody, npt.ArrayLike]
+"""A ``ConvexPolyhedron``, anything ``ConvexPolyhedron(points)`` accepts (``(n, 3)`` points), or a
+``CompoundBody``: a query with a compound body on either side returns a ``CompoundResult``."""
 
 PoseLike = Union[None, npt.ArrayLike, Tuple[npt.ArrayLike, npt.ArrayLike]]
 """None (the identity), a ``(4, 4)`` rigid transform, or a pair ``(rotation, translation)``."""
@@ -37,7 +38,8 @@ PosesLike = Union[None, npt.ArrayLike, Tuple[npt.ArrayLike, npt.ArrayLike]]
 ``(rotations (m, 3, 3), translations (m, 3))``."""
 
 BodiesLike = Union[Sequence[PolyhedronLike], npt.ArrayLike]
-"""A sequence of polyhedra (or of ``(n, 3)`` point arrays), or an ``(m, n, 3)`` array."""
+"""A sequence of polyhedra (or of ``(n, 3)`` point arrays, or of compound bodies), or an
+``(m, n, 3)`` array."""
 
 DEFAULT_TOLERANCE = 1e-9
 """The default ``tolerance``, relative to the pair's size."""
@@ -182,7 +184,10 @@ def distance(
     -------
     DistanceResult
         ``lower_bound <= true distance <= distance``; ``certified`` when the bounds prove the
-        verdict.
+        verdict. A ``CompoundResult`` (a DistanceResult naming ``part_a`` and ``part_b``) when
+        either body is a ``CompoundBody``: the distance between the unions of their convex
+        parts, found by branch and bound over their bounding-volume trees and certified for the
+        parts.
 
     Examples
     --------
@@ -220,6 +225,11 @@ def signed_distance(
     and the value are proven: the depth lies within ``tolerance`` of the answer. Methods
     ``"dual"``, ``"exact"``, ``"fcl"`` and ``"libccd"`` measure penetration; takes the keywords
     of ``distance``.
+
+    Between compound bodies it is the smallest signed distance over pairs of parts: minus the
+    deepest part-pair penetration when parts overlap. That is not, in general, the penetration
+    depth of the non-convex unions (the shortest translation that separates the unions can be
+    longer than any part pair's); ``part_a`` and ``part_b`` name the deepest pair.
 
     Examples
     --------

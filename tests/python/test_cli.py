@@ -54,3 +54,65 @@ def test_bad_arguments_exit_with_a_message(capsys):
     with pytest.raises(SystemExit):
         main(["paper", "--repeats", "0"])
     assert "--repeats must be at least 1" in capsys.readouterr().err
+
+
+# Mesh files: distance and decompose
+
+
+@pytest.fixture
+def mesh_files(tmp_path, monkeypatch):
+    import trimesh
+
+    from meshes import l_shape
+
+    monkeypatch.setenv("SWARMCOLLIDE_CACHE_DIR", str(tmp_path / "cache"))
+    trimesh.creation.box((1, 1, 1)).export(tmp_path / "box.stl")
+    l_shape().export(tmp_path / "l.obj")
+    return tmp_path
+
+
+def test_distance_between_mesh_files(mesh_files, capsys):
+    import json
+
+    box, ell = str(mesh_files / "box.stl"), str(mesh_files / "l.obj")
+    assert main(["distance", box, ell, "--decompose", "hull", "--pose-a=-2,0,0", "--json",
+                 "--quiet"]) == 0
+    answer = json.loads(capsys.readouterr().out)
+    # The box spans x in [-2.5, -1.5], the L starts at x = 0.
+    assert answer["distance"] == pytest.approx(1.5) and answer["certified"]
+    assert answer["a"]["decomposition"]["method"] == "hull"
+    assert main(["distance", box, ell, "--decompose", "none", "--pose-b", "0 0 5 90 0 0",
+                 "--query", "collide"]) == 1  # the L is not convex: decompose=None refuses it
+    assert "is not convex" in capsys.readouterr().err
+
+
+def test_decompose_writes_a_parts_file_that_distance_reads(mesh_files, capsys):
+    parts = str(mesh_files / "l.npz")
+    assert main(["decompose", str(mesh_files / "l.obj"), "-o", parts, "--max-hulls", "2",
+                 "--resolution", "500", "--quiet"]) == 0
+    assert "2 convex parts (coacd" in capsys.readouterr().out
+    assert main(["distance", parts, parts, "--pose-b", "0 0 2", "--plot",
+                 str(mesh_files / "pair.png")]) == 0
+    out = capsys.readouterr().out
+    assert out.startswith("distance: 1 (lower bound 1, certified for the convex parts)")
+    assert (mesh_files / "pair.png").stat().st_size > 0
+
+
+def test_mesh_commands_fail_as_a_shell_user_expects(mesh_files, capsys):
+    box = str(mesh_files / "box.stl")
+    assert main(["distance", box, str(mesh_files / "missing.obj")]) == 1
+    assert "cannot read mesh file" in capsys.readouterr().err
+    with pytest.raises(SystemExit) as usage:
+        main(["distance", box, box, "--pose-a", "1,2"])
+    assert usage.value.code == 2
+    assert "a pose has 3, 6 or 16 numbers" in capsys.readouterr().err
+    with pytest.raises(SystemExit) as usage:
+        main(["decompose", box, "-o", "parts.txt"])
+    assert usage.value.code == 2
+    with pytest.raises(SystemExit) as done:
+        main(["distance", "--help"])
+    assert done.value.code == 0
+    assert "parts files (.npz" in capsys.readouterr().out
+    assert main(["distance", box, box, "--decompose", "hull", "--method", "ipso", "--query",
+                 "signed"]) == 1
+    assert "signed_distance is not available with method 'ipso'" in capsys.readouterr().err

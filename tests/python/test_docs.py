@@ -6,6 +6,7 @@ import pytest
 
 import swarmcollide
 import swarmcollide._core
+import swarmcollide.mesh
 import swarmcollide.plot
 import swarmcollide.queries
 import swarmcollide.scene_demo
@@ -14,6 +15,7 @@ MODULES = [
     swarmcollide,
     swarmcollide.queries,
     swarmcollide._core,
+    swarmcollide.mesh,
     swarmcollide.plot,
     swarmcollide.scene_demo,
 ]

@@ -35,6 +35,8 @@ BatchResult sized(std::size_t count) {
   result.certified.resize(n);
   result.iterations.resize(n);
   result.escalated.resize(n);
+  result.part_a.setZero(n);
+  result.part_b.setZero(n);
   return result;
 }
 
@@ -49,6 +51,12 @@ void store(BatchResult& batch, std::size_t index, const DistanceResult& r) {
   batch.certified(i) = r.certified;
   batch.iterations(i) = r.iterations;
   batch.escalated(i) = r.escalated_from.has_value();
+}
+
+void store(BatchResult& batch, std::size_t index, const CompoundResult& r) {
+  store(batch, index, static_cast<const DistanceResult&>(r));
+  batch.part_a(static_cast<Eigen::Index>(index)) = r.part_a;
+  batch.part_b(static_cast<Eigen::Index>(index)) = r.part_b;
 }
 
 // The error of the pair with the lowest index, whatever thread met it.
@@ -160,8 +168,10 @@ BatchResult run_batch(std::size_t count, std::size_t other_count, const QueryOpt
   return batch;
 }
 
-DistanceResult ask(Kind kind, const Query& query, const ConvexPolyhedron& a, const Pose& pose_a,
-                   const ConvexPolyhedron& b, const Pose& pose_b, bool escalate) {
+// DistanceResult for convex bodies, CompoundResult for compound ones.
+template <typename Body>
+auto ask(Kind kind, const Query& query, const Body& a, const Pose& pose_a, const Body& b,
+         const Pose& pose_b, bool escalate) {
   switch (kind) {
     case Kind::distance:
       return query.distance(a, pose_a, b, pose_b);
@@ -184,8 +194,9 @@ ConvexPolyhedron body(const VertexStack& stack, std::size_t i, std::uint64_t fir
   }
 }
 
-BatchResult bodies_batch(Kind kind, const std::vector<ConvexPolyhedron>& as,
-                         const std::vector<ConvexPolyhedron>& bs, const QueryOptions& options,
+template <typename Body>
+BatchResult bodies_batch(Kind kind, const std::vector<Body>& as, const std::vector<Body>& bs,
+                         const QueryOptions& options,
                          const BatchSettings& settings, const BatchPoses& poses) {
   return run_batch(as.size(), bs.size(), options, settings, poses,
                    [&](std::size_t i, const Query& query) {
@@ -240,6 +251,24 @@ BatchResult signed_distance_many(const VertexStack& as, const VertexStack& bs,
                                  const QueryOptions& options, const BatchSettings& settings,
                                  const BatchPoses& poses) {
   return stack_batch(Kind::signed_distance, as, bs, options, settings, poses);
+}
+
+BatchResult distance_many(const std::vector<CompoundBody>& as, const std::vector<CompoundBody>& bs,
+                          const QueryOptions& options, const BatchSettings& settings,
+                          const BatchPoses& poses) {
+  return bodies_batch(Kind::distance, as, bs, options, settings, poses);
+}
+
+BatchResult collide_many(const std::vector<CompoundBody>& as, const std::vector<CompoundBody>& bs,
+                         const QueryOptions& options, const BatchSettings& settings,
+                         const BatchPoses& poses) {
+  return bodies_batch(Kind::collide, as, bs, options, settings, poses);
+}
+
+BatchResult signed_distance_many(const std::vector<CompoundBody>& as,
+                                 const std::vector<CompoundBody>& bs, const QueryOptions& options,
+                                 const BatchSettings& settings, const BatchPoses& poses) {
+  return bodies_batch(Kind::signed_distance, as, bs, options, settings, poses);
 }
 
 }  // namespace swarmcollide

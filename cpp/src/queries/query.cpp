@@ -16,6 +16,10 @@ namespace {
 
 const Pose kIdentity{};
 
+}  // namespace
+
+namespace detail {
+
 void require(Method method, Capability capability, const char* query) {
   if (method_info(method).capabilities & capability) return;
   std::string able;
@@ -26,6 +30,12 @@ void require(Method method, Capability capability, const char* query) {
   throw std::invalid_argument(std::string(query) + " is not available with method '" +
                               method_name(method) + "'; use one of " + able);
 }
+
+}  // namespace detail
+
+using detail::require;
+
+namespace {
 
 // The result of `options.method`'s solver working towards `goal` on `pair`.
 DistanceResult answer(const QueryOptions& options, detail::Goal goal,

@@ -14,6 +14,7 @@
 #include "../solvers/witness.hpp"
 #include "contact_manifold.hpp"
 #include "swarmcollide/queries/methods.hpp"
+#include "swarmcollide/queries/query.hpp"
 
 namespace swarmcollide::detail {
 
@@ -100,7 +101,9 @@ void keep_separating(const FramedPair& pair, const Vector3& n, Scalar s, int ia,
 
 // What `answer` proves about the pair, kept in `proof`: the point pairs of an enclosing corral
 // (the k-th stored weights of A and of B come from its k-th point), else its direction.
-void remember(const FramedPair& pair, const Answer& answer, Scalar travelled, PairProof& proof) {
+// Its bound stays the last one proven, with the odometers then: still sound, since `moved`
+// counts every motion since.
+void remember(const FramedPair& pair, const Answer& answer, PairProof& proof) {
   if (answer.intersection_proven) {
     PairProof::Enclosing enclosing{};
     int count_a = 0;
@@ -124,7 +127,9 @@ void remember(const FramedPair& pair, const Answer& answer, Scalar travelled, Pa
   const Vector3 local = pair.a.local_direction(answer.direction);
   proof.kind = PairProof::Kind::separating;
   proof.separating = {
-      {local.x(), local.y(), local.z()}, heaviest(answer.weights_a), heaviest(answer.weights_b)};
+      {static_cast<float>(local.x()), static_cast<float>(local.y()), static_cast<float>(local.z())},
+      heaviest(answer.weights_a),
+      heaviest(answer.weights_b)};
 }
 
 // The method's solver, started from `start` when it is the dual and one is given.
@@ -145,6 +150,60 @@ void take_values(const DistanceResult& r, PairAnswer& out) {
   out.point_a = r.point_a;
   out.point_b = r.point_b;
   out.normal = r.direction;
+}
+
+// A pair with a compound body, once the envelopes have not settled it: the compound queries,
+// whose answers name the parts, and contact points between the deepest pair of parts.
+void answer_compounds(const PlacedBody& a, const PlacedBody& b, const FramedPair& pair,
+                      const FramedPair& gate, PairProof& proof, const QueryOptions& options,
+                      const PairQuestion& question, Scalar travelled, PairAnswer& out) {
+  std::optional<CompoundBody> own_a;
+  std::optional<CompoundBody> own_b;
+  const CompoundBody& ca = a.compound ? *a.compound : own_a.emplace(*a.body);
+  const CompoundBody& cb = b.compound ? *b.compound : own_b.emplace(*b.body);
+  const Query query(options);
+  // The threshold plus the tolerance, in world units: within it a pair belongs.
+  const Scalar contact = pair.frame.length_to_world(gate.tolerance);
+  CompoundResult r = question.distance
+                         ? query.distance(ca, *a.pose, cb, *b.pose)
+                         : query.collision(ca, *a.pose, cb, *b.pose, question.escalate);
+  if (r.escalated_from) out.settled = Settled::escalated;
+  const bool apart = question.distance ? r.lower_bound > contact : !r.colliding;
+  out.lower_bound = r.lower_bound;
+  if (apart) {
+    out.certified = r.certified;
+    // The part pair's direction and the compound lower bound hold for the envelopes' next
+    // evaluation and for the bound-after-motion test alike.
+    if (question.warm && r.direction.squaredNorm() > 0 && r.lower_bound > 0) {
+      const Vector3 local = pair.a.local_direction(r.direction);
+      proof.kind = PairProof::Kind::separating;
+      proof.separating = {{static_cast<float>(local.x()), static_cast<float>(local.y()),
+                           static_cast<float>(local.z())},
+                          -1,
+                          -1};
+      proof.lower = float_below(r.lower_bound * (1 - 1e-12));
+      proof.size = float_above(pair.frame.length_to_world(pair.frame.size) * (1 + 1e-12));
+      proof.travelled = travelled;
+    }
+    return;
+  }
+  out.belongs = true;
+  out.certified = r.certified && (!question.distance || r.distance <= contact || r.colliding);
+  take_values(r, out);
+  if (!question.contacts) return;
+  const CompoundResult deepest = query.signed_distance(ca, *a.pose, cb, *b.pose);
+  out.certified = out.certified && deepest.certified;
+  take_values(deepest, out);
+  const FramedPair parts = frame_pair(ca.parts()[deepest.part_a], *a.pose,
+                                      cb.parts()[deepest.part_b], *b.pose, options.tolerance);
+  if (deepest.direction.squaredNorm() > 0) {
+    std::vector<Vector3> points;
+    contact_points(parts, deepest.direction, kContactFeatureTolerance * parts.frame.size,
+                   question.max_points, points);
+    for (const Vector3& p : points) out.points.push_back(parts.frame.point_to_world(p));
+  } else {
+    out.points.push_back(deepest.point_a / 2 + deepest.point_b / 2);
+  }
 }
 
 }  // namespace
@@ -180,8 +239,9 @@ void answer_pair(const PlacedBody& a, const PlacedBody& b, PairProof& proof,
 
   // A cached simplex that still encloses the origin proves contact at any threshold, and a
   // distance of zero (to rounding): its common point is the answer.
+  const bool compound = a.compound != nullptr || b.compound != nullptr;
   std::optional<CommonPoint> common;
-  if (question.warm && proof.kind == PairProof::Kind::enclosing) {
+  if (question.warm && proof.kind == PairProof::Kind::enclosing && !compound) {
     common = enclosed(pair, proof.enclosing);
   }
   bool value_settled = true;
@@ -220,13 +280,17 @@ void answer_pair(const PlacedBody& a, const PlacedBody& b, PairProof& proof,
       if (question.warm) keep_separating(pair, n, s, ia, ib, travelled, proof);
       return;
     }
+    if (compound) {
+      if (question.warm) proof.kind = PairProof::Kind::none;
+      return answer_compounds(a, b, pair, gate, proof, options, question, travelled, out);
+    }
 
     // The verdict, as Query::collision decides it (methods without distances decide by their
     // signed distance), then escalated when unproven.
     const Goal verdict =
         method_info(method).capabilities & kDistance ? Goal::verdict : Goal::signed_distance;
     Answer answer = solve(gate, options, verdict, DualStart{n, ia, ib});
-    if (question.warm) remember(pair, answer, travelled, proof);
+    if (question.warm) remember(pair, answer, proof);
     value_settled =
         goal_reached(pair, Goal::distance, answer.lower, answer.upper, answer.intersection_proven);
     next = start_from(answer);
@@ -235,7 +299,7 @@ void answer_pair(const PlacedBody& a, const PlacedBody& b, PairProof& proof,
       QueryOptions exact = options;
       exact.method = Method::exact;
       Answer decided = solver_for(Method::exact)(gate, exact, Goal::verdict);
-      if (question.warm) remember(pair, decided, travelled, proof);
+      if (question.warm) remember(pair, decided, proof);
       value_settled = goal_reached(pair, Goal::distance, decided.lower, decided.upper,
                                    decided.intersection_proven);
       next = start_from(decided);
@@ -273,7 +337,7 @@ void answer_pair(const PlacedBody& a, const PlacedBody& b, PairProof& proof,
     }
   } else if (question.distance && !value_settled) {
     Answer measured = solve(pair, options, Goal::distance, next);
-    if (question.warm) remember(pair, measured, travelled, proof);
+    if (question.warm) remember(pair, measured, proof);
     const DistanceResult d = finish_result(pair, std::move(measured), method, Goal::distance);
     out.certified = out.certified && d.certified;
     take_values(d, out);

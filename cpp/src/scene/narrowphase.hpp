@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "pair_cache.hpp"
+#include "swarmcollide/geometry/compound_body.hpp"
 #include "swarmcollide/geometry/convex_polyhedron.hpp"
 #include "swarmcollide/geometry/pose.hpp"
 #include "swarmcollide/queries/options.hpp"
@@ -60,17 +61,23 @@ struct PairAnswer {
 
 /// A body of the scene as the narrowphase sees it.
 struct PlacedBody {
+  /// The body, or a compound body's envelope.
   const ConvexPolyhedron* body;
   const Pose* pose;
   /// Its odometer: a bound on how far any of its points has moved since it was added.
   Scalar travelled = 0;
+  /// The compound body, null for a convex one.
+  const CompoundBody* compound = nullptr;
 };
 
 /// Answers `question` for bodies `a` and `b` (in that order: vectors point from a to b) with
 /// `options` (already seeded for the pair), into `out` (every field set). `proof` (never null)
 /// holds what an earlier query proved about the pair, expressed for this order; with
 /// `question.warm` it is tried first and replaced by what this answer proves. Verdicts and
-/// certificates are made by verdict.hpp's `finish_result`, as for every query.
+/// certificates are made by verdict.hpp's `finish_result`, as for every query. A pair with a
+/// compound body is screened by the envelopes (a cached bound or direction, or the centres'
+/// line) and otherwise answered by Query's compound queries; an enclosing simplex of envelopes
+/// proves nothing about their parts, so none is kept for it.
 void answer_pair(const PlacedBody& a, const PlacedBody& b, PairProof& proof,
                  const QueryOptions& options, const PairQuestion& question, PairAnswer& out);
 

@@ -39,12 +39,14 @@ Scalar reach_about_centre(const ConvexPolyhedron& body) {
 // A body of the scene with what the broadphase keeps of it. What the narrowphase reads of every
 // candidate comes first, in the first four cache lines (see `prefetch`).
 struct SceneBody {
-  SceneBody(BodyId id_, ConvexPolyhedron body_, const Pose& pose_, const BodyFilter& filter_)
+  SceneBody(BodyId id_, ConvexPolyhedron body_, std::shared_ptr<const CompoundBody> compound_,
+            const Pose& pose_, const BodyFilter& filter_)
       : id(id_),
         filter(filter_),
         pose(pose_),
         body(std::move(body_)),
         reach(reach_about_centre(body)),
+        compound(std::move(compound_)),
         object(this, id_, filter_) {}
 
   BodyId id;
@@ -52,9 +54,13 @@ struct SceneBody {
   /// An odometer: a bound on how far any point of the body has moved since it was added.
   Scalar travelled = 0;
   Pose pose;
+  /// The body, or a compound body's envelope (the hull of its parts), which the broadphase
+  /// boxes and the narrowphase screens with.
   ConvexPolyhedron body;
   /// The largest distance of its points from the centre of its box (see displacement).
   Scalar reach;
+  /// The compound body, null for a convex one.
+  std::shared_ptr<const CompoundBody> compound;
   /// The smallest box holding the body at its pose, widened by the rounding of computing it.
   Aabb box;
   /// Support points of the box's six faces, from which hill climbing on large bodies starts.
@@ -320,9 +326,10 @@ struct Scene::Impl {
         const Candidate& c = candidates[i];
         pair_options.seed = pair_seed(base.seed, c.key);
         try {
-          detail::answer_pair({&c.first->body, &c.first->pose, c.first->travelled},
-                              {&c.second->body, &c.second->pose, c.second->travelled}, proofs[i],
-                              pair_options, question, answer);
+          detail::answer_pair(
+              {&c.first->body, &c.first->pose, c.first->travelled, c.first->compound.get()},
+              {&c.second->body, &c.second->pose, c.second->travelled, c.second->compound.get()},
+              proofs[i], pair_options, question, answer);
         } catch (const std::invalid_argument& error) {
           throw std::invalid_argument("bodies " + std::to_string(c.first->id) + " and " +
                                       std::to_string(c.second->id) + ": " + error.what());
@@ -458,6 +465,10 @@ struct Scene::Impl {
 
   SceneResult min_distance();
   SceneResult nearest(const std::vector<BodyId>& ids, int k);
+  // Adds bodies (with their compound bodies, none for convex ones); the caller holds the lock.
+  std::vector<BodyId> add(std::vector<ConvexPolyhedron> bodies,
+                          std::vector<std::shared_ptr<const CompoundBody>> compounds,
+                          const std::vector<Pose>& poses, const BodyFilter& filter);
 };
 
 Scene::Scene(SceneOptions options) {
@@ -471,10 +482,10 @@ Scene& Scene::operator=(Scene&&) noexcept = default;
 
 const SceneOptions& Scene::options() const { return impl_->options; }
 
-std::vector<BodyId> Scene::add(std::vector<ConvexPolyhedron> bodies, const std::vector<Pose>& poses,
-                               const BodyFilter& filter) {
-  Impl& s = *impl_;
-  const std::lock_guard<std::mutex> lock(s.mutex);
+std::vector<BodyId> Scene::Impl::add(std::vector<ConvexPolyhedron> bodies,
+                                     std::vector<std::shared_ptr<const CompoundBody>> compounds,
+                                     const std::vector<Pose>& poses, const BodyFilter& filter) {
+  Impl& s = *this;
   if (!poses.empty() && poses.size() != bodies.size()) {
     throw std::invalid_argument("poses must have one pose per body: got " +
                                 std::to_string(poses.size()) + " poses for " +
@@ -492,6 +503,7 @@ std::vector<BodyId> Scene::add(std::vector<ConvexPolyhedron> bodies, const std::
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     const BodyId id = s.next_id++;
     auto body = std::make_unique<SceneBody>(id, std::move(bodies[i]),
+                                            compounds.empty() ? nullptr : std::move(compounds[i]),
                                             poses.empty() ? Pose{} : poses[i], filter);
     update_box(*body);
     body->object.set_box(padded(body->box, s.pad_of(*body, s.padded_for)));
@@ -502,6 +514,30 @@ std::vector<BodyId> Scene::add(std::vector<ConvexPolyhedron> bodies, const std::
   }
   s.broadphase.insert(objects);
   return ids;
+}
+
+std::vector<BodyId> Scene::add(std::vector<ConvexPolyhedron> bodies, const std::vector<Pose>& poses,
+                               const BodyFilter& filter) {
+  const std::lock_guard<std::mutex> lock(impl_->mutex);
+  return impl_->add(std::move(bodies), {}, poses, filter);
+}
+
+std::vector<BodyId> Scene::add(std::vector<CompoundBody> bodies, const std::vector<Pose>& poses,
+                               const BodyFilter& filter) {
+  std::vector<ConvexPolyhedron> envelopes;
+  std::vector<std::shared_ptr<const CompoundBody>> compounds;
+  for (CompoundBody& body : bodies) {
+    envelopes.push_back(body.envelope());
+    compounds.push_back(std::make_shared<const CompoundBody>(std::move(body)));
+  }
+  const std::lock_guard<std::mutex> lock(impl_->mutex);
+  return impl_->add(std::move(envelopes), std::move(compounds), poses, filter);
+}
+
+BodyId Scene::add(CompoundBody body, const Pose& pose, const BodyFilter& filter) {
+  std::vector<CompoundBody> one;
+  one.push_back(std::move(body));
+  return add(std::move(one), {pose}, filter).front();
 }
 
 BodyId Scene::add(ConvexPolyhedron body, const Pose& pose, const BodyFilter& filter) {
@@ -621,6 +657,11 @@ bool Scene::contains(BodyId id) const {
 const ConvexPolyhedron& Scene::body(BodyId id) const {
   const std::lock_guard<std::mutex> lock(impl_->mutex);
   return impl_->find(id).body;
+}
+
+const CompoundBody* Scene::compound(BodyId id) const {
+  const std::lock_guard<std::mutex> lock(impl_->mutex);
+  return impl_->find(id).compound.get();
 }
 
 const Pose& Scene::pose(BodyId id) const {
@@ -771,7 +812,8 @@ SceneResult Scene::Impl::nearest(const std::vector<BodyId>& ids, int k) {
         pair_options.seed = pair_seed(base.seed, detail::pair_key(lo->id, hi->id));
         q.threshold = thresholds[i];
         try {
-          detail::answer_pair({&lo->body, &lo->pose}, {&hi->body, &hi->pose}, scratch[i],
+          detail::answer_pair({&lo->body, &lo->pose, 0, lo->compound.get()},
+                              {&hi->body, &hi->pose, 0, hi->compound.get()}, scratch[i],
                               pair_options, q, answers[i]);
           if (flip) turn_around(answers[i]);
         } catch (const std::invalid_argument& error) {

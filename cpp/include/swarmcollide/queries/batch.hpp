@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "swarmcollide/geometry/compound_body.hpp"
 #include "swarmcollide/geometry/convex_polyhedron.hpp"
 #include "swarmcollide/geometry/pose.hpp"
 #include "swarmcollide/queries/options.hpp"
@@ -25,6 +26,9 @@ struct BatchResult {
   /// True where another method than the one asked for answered (see
   /// DistanceResult::escalated_from).
   Eigen::Array<bool, Eigen::Dynamic, 1> escalated;
+  /// The parts of A and of B that realise each answer (see CompoundResult); 0 for convex bodies.
+  Eigen::Array<int, Eigen::Dynamic, 1> part_a;
+  Eigen::Array<int, Eigen::Dynamic, 1> part_b;
 };
 
 /// Largest number of threads a batch may ask for.
@@ -95,5 +99,17 @@ BatchResult collide_many(const VertexStack& as, const VertexStack& bs, const Que
 BatchResult signed_distance_many(const VertexStack& as, const VertexStack& bs,
                                  const QueryOptions& options, const BatchSettings& settings = {},
                                  const BatchPoses& poses = {});
+
+/// The same between compound bodies (CompoundResult's answers, with the parts that realise them
+/// in `part_a` and `part_b`).
+BatchResult distance_many(const std::vector<CompoundBody>& as, const std::vector<CompoundBody>& bs,
+                          const QueryOptions& options, const BatchSettings& settings = {},
+                          const BatchPoses& poses = {});
+BatchResult collide_many(const std::vector<CompoundBody>& as, const std::vector<CompoundBody>& bs,
+                         const QueryOptions& options, const BatchSettings& settings = {},
+                         const BatchPoses& poses = {});
+BatchResult signed_distance_many(const std::vector<CompoundBody>& as,
+                                 const std::vector<CompoundBody>& bs, const QueryOptions& options,
+                                 const BatchSettings& settings = {}, const BatchPoses& poses = {});
 
 }  // namespace swarmcollide

@@ -1,7 +1,9 @@
 #pragma once
 
+#include "swarmcollide/geometry/compound_body.hpp"
 #include "swarmcollide/geometry/convex_polyhedron.hpp"
 #include "swarmcollide/geometry/pose.hpp"
+#include "swarmcollide/queries/compound_result.hpp"
 #include "swarmcollide/queries/distance_result.hpp"
 #include "swarmcollide/queries/options.hpp"
 
@@ -47,6 +49,31 @@ class Query {
   DistanceResult signed_distance(const ConvexPolyhedron& a, const ConvexPolyhedron& b) const;
   DistanceResult signed_distance(const ConvexPolyhedron& a, const Pose& pose_a,
                                  const ConvexPolyhedron& b, const Pose& pose_b) const;
+
+ /// The same queries between compound bodies (a convex body is a compound body of one part):
+  /// the answers of the nearest (for signed distances, the deepest) pair of parts, found by
+  /// branch and bound over the two bodies' trees. A pair of tree nodes whose bounding volumes are
+  /// proven farther apart than the best part-pair distance found so far (less the tolerance) is
+  /// never opened, and a part pair is screened by the separation along its centres' line before
+  /// any solver runs. The tolerance is relative to the size of the pair of whole bodies and
+  /// applies to every part pair alike, so the answer is certified to it; `collision` stops at the
+  /// first part pair proven in contact.
+  CompoundResult distance(const CompoundBody& a, const CompoundBody& b) const;
+  CompoundResult distance(const CompoundBody& a, const Pose& pose_a, const CompoundBody& b,
+                          const Pose& pose_b) const;
+  CompoundResult collision(const CompoundBody& a, const CompoundBody& b,
+                           bool escalate = true) const;
+  CompoundResult collision(const CompoundBody& a, const Pose& pose_a, const CompoundBody& b,
+                           const Pose& pose_b, bool escalate = true) const;
+  bool collide(const CompoundBody& a, const CompoundBody& b, bool escalate = true) const;
+  bool collide(const CompoundBody& a, const Pose& pose_a, const CompoundBody& b,
+               const Pose& pose_b, bool escalate = true) const;
+  /// The smallest signed distance between a part of A and a part of B: minus the deepest
+  /// part-pair penetration when parts overlap. That is not in general the penetration depth of
+  /// the non-convex union (the shortest translation separating the unions can be longer).
+  CompoundResult signed_distance(const CompoundBody& a, const CompoundBody& b) const;
+  CompoundResult signed_distance(const CompoundBody& a, const Pose& pose_a, const CompoundBody& b,
+                                 const Pose& pose_b) const;
 
  private:
   QueryOptions options_;

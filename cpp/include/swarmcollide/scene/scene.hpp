@@ -4,6 +4,7 @@
 #include <utility>
 #include <vector>
 
+#include "swarmcollide/geometry/compound_body.hpp"
 #include "swarmcollide/geometry/convex_polyhedron.hpp"
 #include "swarmcollide/geometry/pose.hpp"
 #include "swarmcollide/scene/scene_options.hpp"
@@ -11,9 +12,9 @@
 
 namespace swarmcollide {
 
-/// Many convex bodies, each defined once in its own frame and placed by a pose, and the queries
-/// that concern all their pairs: which collide, which lie within a distance, which are nearest,
-/// and where they touch.
+/// Many convex (or compound) bodies, each defined once in its own frame and placed by a pose, and
+/// the queries that concern all their pairs: which collide, which lie within a distance, which are
+/// nearest, and where they touch.
 ///
 /// An FCL broadphase manager, given tight boxes computed from the bodies' support functions,
 /// collects the candidate pairs; the narrowphase (the options' method, certified as
@@ -42,6 +43,13 @@ class Scene {
   std::vector<BodyId> add(std::vector<ConvexPolyhedron> bodies, const std::vector<Pose>& poses = {},
                           const BodyFilter& filter = {});
   BodyId add(ConvexPolyhedron body, const Pose& pose = {}, const BodyFilter& filter = {});
+  /// Adds compound bodies. The broadphase boxes, and the narrowphase first screens, a compound
+  /// body by its envelope (the hull of its parts); a pair that the envelopes do not settle is
+  /// answered as Query answers compound bodies (branch and bound over the parts, certified for
+  /// them), and contacts are found between the deepest pair of parts.
+  std::vector<BodyId> add(std::vector<CompoundBody> bodies, const std::vector<Pose>& poses = {},
+                          const BodyFilter& filter = {});
+  BodyId add(CompoundBody body, const Pose& pose = {}, const BodyFilter& filter = {});
   /// Moves bodies; their hulls are never recomputed. Throws std::invalid_argument, moving
   /// nothing, for an unknown id, lengths that differ or an invalid pose.
   void set_poses(const std::vector<BodyId>& ids, const std::vector<Pose>& poses);
@@ -60,8 +68,12 @@ class Scene {
   std::vector<BodyId> ids() const;
   /// True when the scene holds a body with this id.
   bool contains(BodyId id) const;
-  /// A body, its pose and its filter; std::invalid_argument for an unknown id.
+  /// A body (a compound body's envelope), its pose and its filter; std::invalid_argument for an
+  /// unknown id.
   const ConvexPolyhedron& body(BodyId id) const;
+  /// The compound body with this id, null for a convex body; std::invalid_argument for an
+  /// unknown id.
+  const CompoundBody* compound(BodyId id) const;
   const Pose& pose(BodyId id) const;
   const BodyFilter& filter(BodyId id) const;
 

@@ -1,0 +1,193 @@
+#include <pybind11/eigen.h>
+#include <pybind11/stl.h>
+
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "conversions.hpp"
+#include "swarmcollide/geometry/compound_body.hpp"
+#include "swarmcollide/queries/compound_result.hpp"
+#include "swarmcollide/queries/methods.hpp"
+
+namespace swarmcollide::bindings {
+
+namespace {
+
+// Parts from a sequence of polyhedra or (n, 3) array-likes.
+std::vector<ConvexPolyhedron> to_parts(const py::handle& parts) {
+  if (py::isinstance<py::str>(parts) || !py::isinstance<py::iterable>(parts) ||
+      py::isinstance<ConvexPolyhedron>(parts)) {
+    throw py::type_error(
+        "parts must be a sequence of ConvexPolyhedron or of (n, 3) point arrays, got " +
+        type_name(parts));
+  }
+  std::vector<ConvexPolyhedron> result;
+  std::size_t index = 0;
+  for (const py::handle part : parts) {
+    const std::string item = "parts[" + std::to_string(index++) + "]";
+    result.push_back(BodyArgument(part, item.c_str()).get());
+  }
+  if (result.empty()) {
+    throw py::value_error("parts is empty: a compound body needs at least one convex part");
+  }
+  return result;
+}
+
+std::string repr(const CompoundBody& body) {
+  const Aabb& box = body.bounds().box;
+  std::ostringstream out;
+  out << "CompoundBody(" << body.size() << (body.size() == 1 ? " part, " : " parts, ")
+      << body.point_count() << " points, bounds [" << box.min.x() << ", " << box.min.y() << ", "
+      << box.min.z() << "] to [" << box.max.x() << ", " << box.max.y() << ", " << box.max.z()
+      << "])";
+  return out.str();
+}
+
+std::string stats_repr(const CompoundStats& s) {
+  return "CompoundStats(part_pairs=" + std::to_string(s.part_pairs) +
+         ", volume_tests=" + std::to_string(s.volume_tests) +
+         ", screened=" + std::to_string(s.screened) + ", solved=" + std::to_string(s.solved) +
+         ", pruned=" + std::to_string(s.pruned()) + ")";
+}
+
+std::string result_repr(const CompoundResult& r) {
+  std::ostringstream out;
+  out.precision(6);
+  out << "CompoundResult(method='" << method_name(r.method) << "'";
+  if (r.escalated_from) out << ", escalated_from='" << method_name(*r.escalated_from) << "'";
+  out << ", distance=" << r.distance << ", lower_bound=" << r.lower_bound
+      << ", colliding=" << (r.colliding ? "True" : "False")
+      << ", certified=" << (r.certified ? "True" : "False") << ", part_a=" << r.part_a
+      << ", part_b=" << r.part_b << ", solved=" << r.stats.solved << " of " << r.stats.part_pairs
+      << " part pairs)";
+  return out.str();
+}
+
+}  // namespace
+
+void bind_compound(py::module_& m) {
+  py::class_<PartNode>(m, "PartNode", R"doc(
+A node of a compound body's bounding-volume tree, in the body's own frame.
+
+Attributes
+----------
+box : Aabb
+    The smallest axis-aligned box holding the parts below the node.
+centre, radius : numpy.ndarray, float
+    A ball holding the parts below the node.
+left, right : int
+    Indices of the children in ``CompoundBody.tree``; -1 for a leaf.
+part : int
+    The part a leaf holds; -1 for an inner node.
+)doc")
+      .def_readonly("box", &PartNode::box)
+      .def_readonly("centre", &PartNode::centre)
+      .def_readonly("radius", &PartNode::radius)
+      .def_readonly("left", &PartNode::left)
+      .def_readonly("right", &PartNode::right)
+      .def_readonly("part", &PartNode::part)
+      .def_property_readonly("leaf", &PartNode::leaf)
+      .def("__repr__", [](const PartNode& n) {
+        std::ostringstream out;
+        out << "PartNode("
+            << (n.leaf() ? "part=" + std::to_string(n.part)
+                         : "left=" + std::to_string(n.left) + ", right=" + std::to_string(n.right))
+            << ", radius=" << n.radius << ")";
+        return out.str();
+      });
+
+  py::class_<CompoundBody>(m, "CompoundBody", R"doc(
+A body that is the union of convex parts, each a ConvexPolyhedron in the body's own frame.
+
+The body keeps a bounding-volume tree over its parts whose every node holds a box, a ball and the
+convex hull of the parts below it, the paper's "convex Bounding Volume Hierarchies": queries between compound bodies (``distance``, ``collide``,
+``signed_distance``, the batches, scenes) open only the part pairs whose volumes' certified lower
+bounds cannot rule them out, and name the parts that realise the answer. Answers are certified
+for the union of the convex parts. ``CompoundBody.from_mesh`` builds one from a triangle mesh by
+convex decomposition.
+
+Parameters
+----------
+parts : sequence of ConvexPolyhedron or array_like of shape (n, 3)
+    At least one convex part (or the points whose hull it is).
+
+Examples
+--------
+>>> import swarmcollide as sc
+>>> cube = [[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)]
+>>> ell = sc.CompoundBody([cube, [[x + 1, y, z] for x, y, z in cube],
+...                        [[x, y + 1, z] for x, y, z in cube]])
+>>> ell
+CompoundBody(3 parts, 24 points, bounds [0, 0, 0] to [2, 2, 1])
+>>> r = sc.distance(ell, [[x + 1.6, y + 1.5, z] for x, y, z in cube])
+>>> round(r.distance, 9), r.part_a, r.certified  # the corner of the L is empty
+(0.5, 1, True)
+)doc")
+      .def(py::init([](const py::object& parts) {
+             if (py::isinstance<CompoundBody>(parts)) return parts.cast<CompoundBody>();
+             return CompoundBody(to_parts(parts));
+           }),
+           py::arg("parts"))
+      .def_property_readonly("parts", &CompoundBody::parts,
+                             "The convex parts (copies that share the parts' hulls).")
+      .def("__len__", &CompoundBody::size)
+      .def_property_readonly("tree", &CompoundBody::tree,
+                             "The bounding-volume tree: a list of PartNode, the root first.")
+      .def_property_readonly(
+          "envelope", &CompoundBody::envelope,
+          "The convex hull of every part's points (a ConvexPolyhedron holding the body).")
+      .def_property_readonly("node_envelopes", &CompoundBody::node_envelopes,
+                             "The convex hull of the parts below each node of ``tree``.")
+      .def_property_readonly("point_count", &CompoundBody::point_count,
+                             "Total number of points of the parts.")
+      .def(
+          "aabb", [](const CompoundBody& b) { return b.bounds().box; },
+          "Smallest axis-aligned box containing the body.")
+      .def_property_readonly(
+          "radius", [](const CompoundBody& b) { return b.bounds().radius; },
+          "Half the diagonal of the bounding box.")
+      .def("__repr__", &repr);
+
+  py::class_<CompoundStats>(m, "CompoundStats", R"doc(
+What a query between compound bodies did with their part pairs.
+
+Attributes
+----------
+part_pairs : int
+    Parts of A times parts of B.
+volume_tests : int
+    Pairs of tree nodes whose bounding volumes were compared.
+screened : int
+    Part pairs settled by the separation along their centres' line, with no solver.
+solved : int
+    Part pairs handed to the method's solver.
+pruned : int
+    Part pairs never looked at: ruled out by the tree's certified lower bounds.
+)doc")
+      .def_readonly("part_pairs", &CompoundStats::part_pairs)
+      .def_readonly("volume_tests", &CompoundStats::volume_tests)
+      .def_readonly("screened", &CompoundStats::screened)
+      .def_readonly("solved", &CompoundStats::solved)
+      .def_property_readonly("pruned", &CompoundStats::pruned)
+      .def("__repr__", &stats_repr);
+
+  py::class_<CompoundResult, DistanceResult>(m, "CompoundResult", R"doc(
+The answer of a query between compound bodies: a DistanceResult for the union of the convex parts,
+with the pair of parts that realises it.
+
+``lower_bound <= true value <= distance`` holds for the union of the parts (certified for the
+parts, not for the mesh they approximate). The witnesses lie on parts ``part_a`` and ``part_b``;
+``weights_a`` and ``weights_b`` are over those parts' points. For signed distances the value is
+the smallest signed distance over part pairs: minus the deepest part-pair penetration, which is
+not in general the penetration depth of the non-convex union.
+)doc")
+      .def_readonly("part_a", &CompoundResult::part_a,
+                    "Index of A's part that realises the answer.")
+      .def_readonly("part_b", &CompoundResult::part_b,
+                    "Index of B's part that realises the answer.")
+      .def_readonly("stats", &CompoundResult::stats, "What the search did (a CompoundStats).")
+      .def("__repr__", &result_repr);
+}
+
+}  // namespace swarmcollide::bindings

@@ -1,0 +1,67 @@
+#pragma once
+
+#include <vector>
+
+#include "swarmcollide/geometry/aabb.hpp"
+#include "swarmcollide/geometry/convex_polyhedron.hpp"
+#include "swarmcollide/types.hpp"
+
+namespace swarmcollide {
+
+/// A node of a compound body's bounding-volume tree, in the body's own frame: a box and a ball
+/// that hold every part below it.
+struct PartNode {
+  /// Smallest axis-aligned box holding the parts below.
+  Aabb box;
+  /// A ball holding the parts below: every point of them lies within `radius` of `centre`.
+  Vector3 centre = Vector3::Zero();
+  Scalar radius = 0;
+  /// Children (indices into `CompoundBody::tree()`), -1 for a leaf.
+  int left = -1;
+  int right = -1;
+  /// The part a leaf holds, -1 for an inner node.
+  int part = -1;
+
+  bool leaf() const { return part >= 0; }
+};
+
+/// A body that is the union of convex parts (a non-convex object, say, decomposed into convex
+/// pieces), each part a ConvexPolyhedron in the body's own frame. The paper expresses objects by
+/// "convex Bounding Volume Hierarchies": the body keeps a binary tree over its parts, built once,
+/// whose every node holds a box, a ball and the convex hull of the parts below it, so that
+/// queries between compound bodies visit only the part pairs that the volumes' certified lower
+/// bounds cannot rule out.
+///
+/// Copies share the parts (and their hulls); the class is safe to read from many threads.
+class CompoundBody {
+ public:
+  /// Throws std::invalid_argument if `parts` is empty.
+  explicit CompoundBody(std::vector<ConvexPolyhedron> parts);
+  /// A body of one part.
+  explicit CompoundBody(ConvexPolyhedron part);
+
+  /// The convex parts, in the order given.
+  const std::vector<ConvexPolyhedron>& parts() const { return parts_; }
+  /// Number of parts.
+  int size() const { return static_cast<int>(parts_.size()); }
+  /// The bounding-volume tree over the parts: node 0 is the root, each inner node has two
+  /// children and each leaf one part (a body of n parts has 2n - 1 nodes).
+  const std::vector<PartNode>& tree() const { return tree_; }
+  /// The convex hull of every part's points: a convex body holding the compound one, which
+  /// scenes box and screen with (its distance to another body bounds the compound's from below).
+  const ConvexPolyhedron& envelope() const { return node_envelopes_.front(); }
+  /// The convex hull of the parts below each node of `tree()` (a leaf's is its part, the root's
+  /// the envelope): a separation between two nodes' envelopes bounds every part pair below them.
+  const std::vector<ConvexPolyhedron>& node_envelopes() const { return node_envelopes_; }
+  /// The envelope's box, its centre and radius.
+  const BodyBounds& bounds() const { return envelope().bounds(); }
+  /// Total number of points of the parts.
+  int point_count() const;
+
+ private:
+  std::vector<ConvexPolyhedron> parts_;
+  std::vector<PartNode> tree_;
+  std::vector<ConvexPolyhedron> node_envelopes_;
+};
+
+}  // namespace swarmcollide

@@ -1,0 +1,105 @@
+#include "swarmcollide/geometry/compound_body.hpp"
+
+#include <algorithm>
+#include <numeric>
+#include <stdexcept>
+#include <utility>
+
+namespace swarmcollide {
+
+namespace {
+
+std::vector<ConvexPolyhedron> nonempty(std::vector<ConvexPolyhedron> parts) {
+  if (parts.empty()) {
+    throw std::invalid_argument("parts is empty: a compound body needs at least one convex part");
+  }
+  return parts;
+}
+
+// The convex hull of parts `order[begin, end)`: their points stacked (one part is its own
+// envelope, and shares its hull).
+ConvexPolyhedron envelope_of(const std::vector<ConvexPolyhedron>& parts,
+                             const std::vector<int>& order, int begin, int end) {
+  if (end - begin == 1) return parts[order[begin]];
+  Eigen::Index rows = 0;
+  for (int i = begin; i < end; ++i) rows += parts[order[i]].size();
+  VertexMatrix points(rows, 3);
+  Eigen::Index at = 0;
+  for (int i = begin; i < end; ++i) {
+    const ConvexPolyhedron& part = parts[order[i]];
+    points.middleRows(at, part.size()) = part.vertices();
+    at += part.size();
+  }
+  return ConvexPolyhedron(std::move(points));
+}
+
+// Builds the subtree over parts `order[begin, end)` at index `at` of `tree`, splitting at the
+// median of the parts' centres along the axis where they spread most: balanced, so a query
+// descends log2(n) levels.
+void build(const std::vector<ConvexPolyhedron>& parts, std::vector<int>& order, int begin, int end,
+           std::vector<PartNode>& tree, std::vector<ConvexPolyhedron>& envelopes, int at) {
+  envelopes[at] = envelope_of(parts, order, begin, end);
+  PartNode& node = tree[at];
+  node.box = parts[order[begin]].aabb();
+  for (int i = begin + 1; i < end; ++i) {
+    node.box.min = node.box.min.cwiseMin(parts[order[i]].aabb().min);
+    node.box.max = node.box.max.cwiseMax(parts[order[i]].aabb().max);
+  }
+  node.centre = (node.box.min + node.box.max) / 2;
+  // The ball around the box's centre through the farthest point: tighter than the box's half
+  // diagonal for parts that do not fill their box's corners.
+  Scalar radius = 0;
+  for (int i = begin; i < end; ++i) {
+    const VertexMatrix& points = parts[order[i]].vertices();
+    radius =
+        std::max(radius, (points.rowwise() - node.centre.transpose()).rowwise().norm().maxCoeff());
+  }
+  node.radius = radius;
+  if (end - begin == 1) {
+    node.part = order[begin];
+    return;
+  }
+  Vector3 low = parts[order[begin]].bounds().centre;
+  Vector3 high = low;
+  for (int i = begin + 1; i < end; ++i) {
+    low = low.cwiseMin(parts[order[i]].bounds().centre);
+    high = high.cwiseMax(parts[order[i]].bounds().centre);
+  }
+  int axis = 0;
+  (high - low).maxCoeff(&axis);
+  const int middle = begin + (end - begin) / 2;
+  std::nth_element(order.begin() + begin, order.begin() + middle, order.begin() + end,
+                   [&](int x, int y) {
+                     return parts[x].bounds().centre(axis) < parts[y].bounds().centre(axis);
+                   });
+  // A subtree over k parts takes 2k - 1 consecutive nodes: the left one right after its parent.
+  const int left = at + 1;
+  const int right = left + 2 * (middle - begin) - 1;
+  tree[at].left = left;
+  tree[at].right = right;
+  build(parts, order, begin, middle, tree, envelopes, left);
+  build(parts, order, middle, end, tree, envelopes, right);
+}
+
+}  // namespace
+
+CompoundBody::CompoundBody(std::vector<ConvexPolyhedron> parts)
+    : parts_(nonempty(std::move(parts))) {
+  std::vector<int> order(parts_.size());
+  std::iota(order.begin(), order.end(), 0);
+  tree_.resize(2 * parts_.size() - 1);
+  // Placeholders, each replaced by its node's envelope as the tree is built.
+  node_envelopes_.assign(tree_.size(), parts_.front());
+  build(parts_, order, 0, size(), tree_, node_envelopes_, 0);
+}
+
+CompoundBody::CompoundBody(ConvexPolyhedron part)
+    : CompoundBody(std::vector<ConvexPolyhedron>{std::move(part)}) {}
+
+int CompoundBody::point_count() const {
+  int count = 0;
+  for (const ConvexPolyhedron& part : parts_) count += part.size();
+  return count;
+}
+
+}  // namespace swarmcollide

@@ -1,0 +1,278 @@
+"""Non-convex bodies from meshes: loading, decomposition, the recorded error, and queries between
+compound bodies against python-fcl's exact triangle-mesh distance."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+import trimesh
+
+import swarmcollide as sc
+from swarmcollide import mesh as mesh_module
+
+from meshes import MESHES, box_with_hole, cup, fcl_distance, homogeneous, l_shape, torus, u_shape
+
+# Small and fast CoACD settings for tests: a coarse sampling and at most 8 parts.
+FAST = dict(decompose="coacd", concavity=0.1, max_hulls=8, resolution=1000, progress=False)
+
+
+@pytest.fixture(scope="session")
+def cache(tmp_path_factory):
+    return tmp_path_factory.mktemp("decompositions")
+
+
+@pytest.fixture(scope="session")
+def decomposed(cache):
+    """Every test mesh and its CoACD decomposition, made once per session."""
+    return {name: (make(), sc.CompoundBody.from_mesh(make(), cache=cache, **FAST))
+            for name, make in MESHES.items()}
+
+
+def rotation(seed: int) -> np.ndarray:
+    q, r = np.linalg.qr(np.random.default_rng(seed).normal(size=(3, 3)))
+    q *= np.sign(np.diag(r))
+    return q if np.linalg.det(q) > 0 else -q
+
+
+# Loading
+
+
+@pytest.mark.parametrize("suffix", [".obj", ".stl", ".ply", ".glb", ".off"])
+def test_every_format_loads_the_same_mesh(tmp_path, suffix):
+    path = tmp_path / f"l{suffix}"
+    l_shape().export(path)
+    loaded = sc.load_mesh(path)
+    assert loaded.volume == pytest.approx(3.0)
+    assert np.allclose(loaded.bounds, [[0, 0, 0], [2, 2, 1]])
+    assert sc.load_mesh(str(path)).faces.shape == loaded.faces.shape
+
+
+def test_unreadable_empty_non_finite_and_flat_meshes_are_refused(tmp_path):
+    with pytest.raises(ValueError, match="no such file"):
+        sc.load_mesh(tmp_path / "missing.obj")
+    garbage = tmp_path / "garbage.stl"
+    garbage.write_bytes(b"\x00\x01 not a mesh at all")
+    # trimesh reads some garbage as a mesh of no triangles.
+    with pytest.raises(ValueError, match="garbage.stl' (is empty|cannot)|cannot read mesh file"):
+        sc.load_mesh(garbage)
+    empty = tmp_path / "empty.obj"
+    empty.write_text("# nothing\n")
+    with pytest.raises(ValueError, match="empty|not a 3-D"):
+        sc.load_mesh(empty)
+    non_finite = tmp_path / "nan.obj"
+    non_finite.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 nan\nf 1 2 3\nf 1 2 4\nf 1 3 4\n")
+    with pytest.raises(ValueError, match="NaN or infinite"):
+        sc.load_mesh(non_finite)
+    flat = tmp_path / "flat.obj"
+    flat.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 4 3\n")
+    with pytest.raises(ValueError, match="one plane"):
+        sc.load_mesh(flat)
+    with pytest.raises(TypeError, match="path to a mesh file"):
+        sc.load_mesh(42)
+    with pytest.raises(ValueError, match="empty"):
+        sc.load_mesh(trimesh.Trimesh())
+
+
+# Decomposition
+
+
+def test_already_convex_parts_and_the_hull():
+    two = trimesh.util.concatenate([trimesh.creation.box((1, 1, 1)),
+                                    trimesh.creation.box((1, 1, 1)).apply_translation((3, 0, 0))])
+    parts = sc.CompoundBody.from_mesh(two, decompose=None, cache=False)
+    assert len(parts) == 2
+    assert parts.decomposition.hausdorff < 1e-9
+    with pytest.raises(ValueError, match="part 0 of 1 .* is not convex"):
+        sc.CompoundBody.from_mesh(l_shape(), decompose=None, cache=False)
+    hull = sc.CompoundBody.from_mesh(l_shape(), decompose="hull", cache=False)
+    assert len(hull) == 1
+    # The hull fills the L's empty corner: its farthest point, the middle of the diagonal
+    # face, is 0.5 from the L; it misses nothing of the L.
+    d = hull.decomposition
+    assert 0.5 - 2 * d.spacing < d.parts_to_mesh <= 0.5 + 1e-9
+    assert d.mesh_to_parts < 1e-9
+
+
+def test_decomposers_record_their_error_and_settings(decomposed):
+    for name, (mesh, body) in decomposed.items():
+        d = body.decomposition
+        assert d.method == "coacd" and d.parts == len(body) <= 8
+        assert d.parameters["threshold"] == 0.1 and d.parameters["max_convex_hull"] == 8
+        assert d.samples == sc.mesh.DEFAULT_SAMPLES
+        assert 0 <= d.mesh_to_parts < 0.2 and 0 <= d.parts_to_mesh < 0.2, name
+        assert d.mesh_hash == sc.mesh_hash(mesh)
+    # Boxes decompose into boxes: the L into its two cells.
+    _, ell = decomposed["l_shape"]
+    assert len(ell) == 2 and ell.decomposition.hausdorff < 0.01
+    vhacd = sc.CompoundBody.from_mesh(l_shape(), decompose="vhacd", max_hulls=4,
+                                      resolution=10000, cache=False, progress=False)
+    assert vhacd.decomposition.method == "vhacd" and 1 <= len(vhacd) <= 4
+    assert vhacd.decomposition.parameters["maxConvexHulls"] == 4
+
+
+def test_settings_are_checked():
+    with pytest.raises(ValueError, match="decompose must be one of"):
+        sc.CompoundBody.from_mesh(l_shape(), decompose="quickhull", cache=False)
+    with pytest.raises(ValueError, match="concavity"):
+        sc.CompoundBody.from_mesh(l_shape(), concavity=0, cache=False)
+    with pytest.raises(ValueError, match="max_hulls"):
+        sc.CompoundBody.from_mesh(l_shape(), max_hulls=0, cache=False)
+    with pytest.raises(TypeError, match="cache"):
+        sc.CompoundBody.from_mesh(l_shape(), decompose="hull", cache=3.5)
+
+
+def test_the_cache_returns_the_same_parts(tmp_path, monkeypatch):
+    first = sc.CompoundBody.from_mesh(u_shape(), cache=tmp_path, **FAST)
+    assert not first.decomposition.from_cache
+    assert len(list(tmp_path.glob("*.npz"))) == 1
+    again = sc.CompoundBody.from_mesh(u_shape(), cache=tmp_path, **FAST)
+    assert again.decomposition.from_cache
+    assert again.decomposition == first.decomposition
+    for p, q in zip(first.parts, again.parts):
+        assert np.array_equal(p.vertices, q.vertices)
+    # Other settings are another entry; the environment variable moves the default directory.
+    monkeypatch.setenv("SWARMCOLLIDE_CACHE_DIR", str(tmp_path / "elsewhere"))
+    assert sc.cache_directory() == tmp_path / "elsewhere"
+    sc.CompoundBody.from_mesh(u_shape(), decompose="hull", cache=True)
+    assert len(list((tmp_path / "elsewhere").glob("*.npz"))) == 1
+
+
+def test_a_slow_decomposition_shows_a_progress_bar(monkeypatch, capsys):
+    monkeypatch.setattr(mesh_module, "_PROGRESS_DELAY", 0.0)
+
+    def slow():
+        import time
+
+        time.sleep(0.5)
+        return [np.eye(3)]
+
+    assert len(mesh_module._with_progress("CoACD", slow, True)) == 1
+    assert "CoACD" in capsys.readouterr().err
+
+
+def test_parts_files_round_trip(tmp_path, decomposed):
+    _, body = decomposed["torus"]
+    body.save(tmp_path / "torus.npz")
+    loaded = sc.CompoundBody.load(tmp_path / "torus.npz")
+    assert len(loaded) == len(body) and loaded.decomposition == body.decomposition
+    (tmp_path / "bad.npz").write_bytes(b"no")
+    with pytest.raises(ValueError, match="not a parts file"):
+        sc.CompoundBody.load(tmp_path / "bad.npz")
+
+
+# Queries against the exact triangle-mesh distance
+
+
+POSES = [homogeneous(rotation(seed), (3.2 + 0.4 * seed, 0.5 * seed - 1, 0.3 * seed))
+         for seed in range(4)]
+
+
+@pytest.mark.parametrize("pair", [("l_shape", "u_shape"), ("torus", "cup"),
+                                  ("box_with_hole", "torus"), ("cup", "l_shape")])
+def test_distances_match_the_mesh_distance_within_the_recorded_error(decomposed, pair):
+    (mesh_a, a), (mesh_b, b) = decomposed[pair[0]], decomposed[pair[1]]
+    da, db = a.decomposition, b.decomposition
+    for pose in POSES:
+        r = sc.distance(a, b, pose_b=pose)
+        exact = fcl_distance(mesh_a, np.eye(4), mesh_b, pose)
+        assert r.certified and r.lower_bound <= r.distance + 1e-12  # up to rounding
+        # d_parts - hA - hB <= d_mesh <= d_parts + gA + gB, each sampled to about its spacing.
+        slack = da.spacing + db.spacing + 1e-6
+        assert exact >= r.distance - da.parts_to_mesh - db.parts_to_mesh - slack
+        assert exact <= r.distance + da.mesh_to_parts + db.mesh_to_parts + slack
+        assert r.stats.part_pairs == len(a) * len(b)
+
+
+def test_collide_where_the_hull_would_and_the_shape_does_not(decomposed):
+    _, cup_body = decomposed["cup"]
+    peg = trimesh.creation.box((0.5, 0.5, 3.0))  # in the cup's hole: its edges 0.24 from the wall
+    assert sc.collide(cup_body.envelope, peg.vertices)
+    assert not sc.collide(cup_body, peg.vertices)
+    assert fcl_distance(cup(), np.eye(4), peg, np.eye(4)) > 0.24
+    r = sc.collision(cup_body, peg.vertices)
+    assert r.certified and r.lower_bound > 0  # a verdict proves apart, not how far
+    d = cup_body.decomposition
+    assert sc.distance(cup_body, peg.vertices).distance > 0.24 - d.parts_to_mesh - d.spacing
+    beside = sc.collision(cup_body, peg.vertices, pose_b=homogeneous(translation=(0.6, 0, 0)))
+    assert beside.colliding and beside.certified
+    _, ring = decomposed["torus"]
+    point = [[0.0, 0.0, 0.0]]  # the centre of the torus's hole, 0.7 from the ring
+    assert sc.collide(ring.envelope, point) and not sc.collide(ring, point)
+    exact = trimesh.proximity.closest_point(torus(), point)[1][0]  # 0.7, less the facets' sag
+    d = ring.decomposition
+    between = sc.distance(ring, point).distance
+    assert exact - d.parts_to_mesh - d.spacing <= between <= exact + d.mesh_to_parts + d.spacing
+    # The U's gap and the box's hole hold a peg that the hulls would not.
+    _, u = decomposed["u_shape"]
+    _, holed = decomposed["box_with_hole"]
+    assert not sc.collide(u, trimesh.creation.box((0.6, 1.6, 3)).vertices + [1.5, 2, 0.5])
+    assert not sc.collide(holed, trimesh.creation.box((0.6, 0.6, 3)).vertices + [1.5, 1.5, 0.5])
+
+
+def test_signed_distance_is_the_deepest_part_pair(decomposed):
+    _, u = decomposed["u_shape"]
+    _, ell = decomposed["l_shape"]
+    pose = homogeneous(rotation(7), (1.0, 0.8, 0.4))
+    r = sc.signed_distance(u, ell, pose_b=pose)
+    deepest = min(sc.signed_distance(p, q, pose_b=pose).distance
+                  for p in u.parts for q in ell.parts)
+    assert r.distance == pytest.approx(deepest, abs=1e-8)
+    assert r.distance < 0 and r.certified
+    assert r.distance == pytest.approx(
+        sc.signed_distance(u.parts[r.part_a], ell.parts[r.part_b], pose_b=pose).distance,
+        abs=1e-8)
+
+
+def test_batches_and_poses_take_compound_bodies(decomposed):
+    _, ring = decomposed["torus"]
+    _, ell = decomposed["l_shape"]
+    poses = np.stack([homogeneous(translation=(x, 0, 0)) for x in (0.0, 4.0)])
+    batch = sc.distance_many([ring, ring], [ell, ell], poses_b=poses)
+    for k in range(2):
+        one = sc.distance(ring, ell, pose_b=poses[k])
+        assert batch.distance[k] == pytest.approx(one.distance, abs=1e-9)
+        assert (batch.part_a[k], batch.part_b[k]) == (one.part_a, one.part_b)
+    assert sc.collide_many([ring, ring], [ell, ell], poses_b=poses).colliding.tolist() == [True,
+                                                                                          False]
+    # A convex body beside compound ones is a compound body of one part.
+    mixed = sc.distance_many([ring, ring.parts[0]], [ell.parts[0], ell], poses_b=poses)
+    assert mixed.distance[1] == pytest.approx(
+        sc.distance(ring.parts[0], ell, pose_b=poses[1]).distance, abs=1e-9)
+
+
+def test_most_part_pairs_are_pruned(decomposed):
+    _, ring = decomposed["torus"]
+    _, mug = decomposed["cup"]
+    total = pruned = 0
+    for pose in POSES:
+        r = sc.distance(ring, mug, pose_b=pose)
+        total += r.stats.part_pairs
+        pruned += r.stats.pruned
+    assert pruned > total / 2
+    assert "part pairs" in repr(r) and "pruned" in repr(r.stats)
+
+
+def test_scenes_hold_compound_bodies(decomposed):
+    from swarmcollide.plot import plot_scene
+
+    _, mug = decomposed["cup"]
+    _, ring = decomposed["torus"]
+    peg = trimesh.creation.box((0.5, 0.5, 3.0)).vertices
+    scene = sc.Scene(threads=1)
+    ids = scene.add([mug, peg, ring], poses=np.stack([np.eye(4), np.eye(4),
+                                                      homogeneous(translation=(6, 0, 0))]))
+    assert ids.tolist() == [0, 1, 2]
+    assert len(scene.body(0)) == len(mug) and len(scene.body(1)) == 8
+    assert len(scene.colliding_pairs()) == 0  # the peg stands in the cup's hole
+    near = scene.pairs_within(0.5)
+    assert near.pairs.tolist() == [[0, 1]]
+    assert near.distance[0] == pytest.approx(sc.distance(mug, peg).distance, abs=1e-9)
+    scene.set_poses(1, homogeneous(translation=(0.6, 0, 0)))
+    hits = scene.colliding_pairs()
+    assert hits.pairs.tolist() == [[0, 1]] and hits.certified.all()
+    contacts = scene.contacts()
+    assert contacts.distance[0] == pytest.approx(
+        sc.signed_distance(mug, peg, pose_b=homogeneous(translation=(0.6, 0, 0))).distance,
+        abs=1e-8)
+    assert scene.min_distance().pairs.tolist() == [[0, 1]]
+    assert len(plot_scene(scene).axes[0].collections) == 3
