@@ -26,7 +26,7 @@ $(PY): | system-packages
 
 $(VENV)/.installed: $(PACKAGE_SOURCES) | system-packages $(PY)
 	$(PY) -m pip install --quiet $(BUILD_REQUIREMENTS)
-	$(PY) -m pip install --quiet --no-build-isolation ".[test]"
+	$(PY) -m pip install --quiet --no-build-isolation ".[test,dask]"
 	touch $@
 
 install: $(VENV)/.installed
@@ -43,7 +43,7 @@ BENCH_BUILD := build/bench
 BENCH_ARGS ?=
 
 $(VENV)/.bench-installed: $(VENV)/.installed
-	$(PY) -m pip install --quiet --no-build-isolation ".[test,bench]"
+	$(PY) -m pip install --quiet --no-build-isolation ".[test,dask,bench]"
 	touch $@
 
 bench: install $(VENV)/.bench-installed

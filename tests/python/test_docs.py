@@ -6,9 +6,10 @@ import pytest
 
 import swarmcollide
 import swarmcollide._core
+import swarmcollide.dask
 import swarmcollide.queries
 
-MODULES = [swarmcollide, swarmcollide.queries, swarmcollide._core]
+MODULES = [swarmcollide, swarmcollide.queries, swarmcollide._core, swarmcollide.dask]
 
 
 @pytest.mark.parametrize("module", MODULES, ids=lambda m: m.__name__)
