@@ -52,21 +52,19 @@ else:  # pragma: no cover - exercised on older interpreters only
 
 __all__ = ["BatchArrays", "collide_many", "distance_many", "signed_distance_many"]
 
-# The fields of a BatchResult as one record per pair: a chunk is answered once and every field's
-# chunk is a view of its records, however many of the fields are computed together.
-_RECORD = np.dtype(
-    [
-        ("distance", np.float64),
-        ("lower_bound", np.float64),
-        ("point_a", np.float64, (3,)),
-        ("point_b", np.float64, (3,)),
-        ("direction", np.float64, (3,)),
-        ("colliding", np.bool_),
-        ("certified", np.bool_),
-        ("escalated", np.bool_),
-        ("iterations", np.int32),
-    ]
-)
+# The fields of a BatchResult: their NumPy types, and whether they hold a point per pair.
+_FIELDS = {
+    "distance": (np.float64, False),
+    "lower_bound": (np.float64, False),
+    "point_a": (np.float64, True),
+    "point_b": (np.float64, True),
+    "direction": (np.float64, True),
+    "colliding": (np.bool_, False),
+    "certified": (np.bool_, False),
+    "escalated": (np.bool_, False),
+    "iterations": (np.int32, False),
+}
+
 
 ArrayT = TypeVar("ArrayT")
 
@@ -162,8 +160,10 @@ class _Call:
     keywords: Tuple[Tuple[str, Any], ...]
 
 
-def _answer(pairs: np.ndarray, As: np.ndarray, Bs: np.ndarray, call: _Call) -> np.ndarray:
-    """One chunk's records, from the in-memory batch call; ``pairs`` are its global indices."""
+def _answer(
+    pairs: np.ndarray, As: np.ndarray, Bs: np.ndarray, call: _Call
+) -> Tuple[np.ndarray, ...]:
+    """One chunk's fields, from the in-memory batch call; ``pairs`` are its global indices."""
     query = queries.query(
         call.method, tolerance=call.tolerance, seed=call.seed, **dict(call.parameters)
     )
@@ -174,10 +174,7 @@ def _answer(pairs: np.ndarray, As: np.ndarray, Bs: np.ndarray, call: _Call) -> n
         first_index=int(pairs[0]) if len(pairs) else 0,
         **dict(call.keywords),
     )
-    records = np.empty(len(result), _RECORD)
-    for name in _RECORD.names:
-        records[name] = getattr(result, name)
-    return records
+    return tuple(getattr(result, name) for name in _FIELDS)
 
 
 def _bodies(bodies: Any, name: str) -> da.Array:
@@ -234,7 +231,10 @@ def _many(
     # The global index of every pair rides along, aligned with the bodies' chunks, so a chunk
     # knows where it starts however the chunks of As and Bs are unified.
     pairs = da.arange(As.shape[0], chunks=(As.chunks[0],))
-    records = da.blockwise(
+    # One task per chunk answers it and gives a tuple of fields (as dask.array.apply_gufunc does
+    # for several outputs); each field's chunk takes its part, so whichever fields are computed
+    # together, the chunk is answered once.
+    answers = da.blockwise(
         _answer,
         "i",
         pairs,
@@ -246,23 +246,20 @@ def _many(
         call=call,
         token=f"{query}_many",
         concatenate=True,
-        meta=np.empty((0,), _RECORD),
+        meta=tuple(np.empty((0, 3) if point else (0,), dtype) for dtype, point in _FIELDS.values()),
     )
-    return BatchArrays(*(_field(records, name) for name in _RECORD.names))
-
-
-def _field(records: da.Array, name: str) -> da.Array:
-    dtype = _RECORD.fields[name][0]
-    if dtype.shape:
-        return records.map_blocks(
-            operator.getitem,
-            name,
-            token=name,
-            chunks=records.chunks + ((3,),),
-            new_axis=1,
-            meta=np.empty((0, 3), dtype.base),
+    return BatchArrays(
+        *(
+            answers.map_blocks(
+                operator.getitem,
+                index,
+                token=name,
+                meta=np.empty((0, 3) if point else (0,), dtype),
+                **({"chunks": answers.chunks + ((3,),), "new_axis": 1} if point else {}),
+            )
+            for index, (name, (dtype, point)) in enumerate(_FIELDS.items())
         )
-    return records.map_blocks(operator.getitem, name, token=name, meta=np.empty((0,), dtype))
+    )
 
 
 def distance_many(
