@@ -50,7 +50,7 @@ bench: install $(VENV)/.bench-installed
 	cmake -S . -B $(BENCH_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release \
 	  -DSWARMCOLLIDE_BUILD_BENCH=ON -DSWARMCOLLIDE_BUILD_PYTHON=OFF
 	cmake --build $(BENCH_BUILD) -j $(JOBS) --target swarmcollide-bench swarmcollide-batch-loop \
-	  swarmcollide-swarm-speed
+	  swarmcollide-swarm-speed swarmcollide-swarm-targets
 	mkdir -p bench/results bench/plots
 	$(BENCH_BUILD)/bench/swarmcollide-bench $(BENCH_ARGS) --json bench/results/cpp.json \
 	  > $(BENCH_BUILD)/console.txt
@@ -59,6 +59,11 @@ bench: install $(VENV)/.bench-installed
 	$(PY) bench/batch.py $(BENCH_ARGS) --json bench/results/batch.json \
 	  --loop-binary $(BENCH_BUILD)/bench/swarmcollide-batch-loop
 	$(BENCH_BUILD)/bench/swarmcollide-swarm-speed > bench/results/swarm_speed.txt
+	$(PY) bench/swarm_targets.py $(BENCH_ARGS) --json bench/results/swarm_targets.json \
+	  --binary $(BENCH_BUILD)/bench/swarmcollide-swarm-targets \
+	  --sweep bench/results/velocity_sweep.txt --choices bench/results/choices.txt
+	$(PY) bench/kernel_code.py > bench/results/kernel_code.txt \
+	  --object $(BENCH_BUILD)/cpp/CMakeFiles/swarmcollide.dir/src/solvers/swarm_kernels.cpp.o
 	$(PY) bench/report.py --results bench/results --plots bench/plots --out bench/RESULTS.md
 
 stubs: install

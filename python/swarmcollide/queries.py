@@ -119,7 +119,7 @@ def query(
     >>> import swarmcollide as sc
     >>> q = sc.query("ipso", swarm_size=20)
     >>> q
-    Query(method='ipso', tolerance=1e-09, seed=0, swarm_size=20, max_iterations=200, w_min=0.4, w_max=0.9, velocity_limit=1.0, feasibility_tolerance=1e-10, constraint_handling='projection')
+    Query(method='ipso', tolerance=1e-09, seed=0, swarm_size=20, max_iterations=200, w_min=0.4, w_max=0.9, velocity_limit=0.02, feasibility_tolerance=1e-10, constraint_handling='projection')
     >>> q is sc.query("ipso", swarm_size=20)
     True
     """

@@ -1,6 +1,9 @@
 """The primal swarms: the paper's improved PSO ("ipso") and its linear-inertia baseline ("pso")."""
 
 import math
+import os
+import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -89,3 +92,33 @@ def test_parameters_reach_the_solver(tetra_a, separate_b):
     keywords = dict(method="pso", tolerance=0, max_iterations=10)
     assert not np.array_equal(sc.distance(a, b, c1=0.5, **keywords).history,
                               sc.distance(a, b, **keywords).history)
+
+
+_SOLVE = """
+import numpy as np
+import swarmcollide as sc
+rng = np.random.default_rng(5)
+a, b = rng.normal(size=(12, 3)), rng.normal(size=(17, 3)) + [3, 0, 0]
+r = sc.distance(a, b, method="ipso", seed=4, tolerance=0)
+print(r.distance.hex(), *(float(w).hex() for w in np.concatenate([r.weights_a, r.weights_b])))
+"""
+
+
+def _solve_with_kernels(isa):
+    """A seeded solve in a fresh interpreter whose SWARMCOLLIDE_ISA is `isa` (None: unset)."""
+    env = {k: v for k, v in os.environ.items() if k != "SWARMCOLLIDE_ISA"}
+    if isa is not None:
+        env["SWARMCOLLIDE_ISA"] = isa
+    return subprocess.run([sys.executable, "-c", _SOLVE], env=env, capture_output=True, text=True)
+
+
+def test_forcing_the_baseline_kernels_changes_no_bit():
+    widest, baseline = _solve_with_kernels(None), _solve_with_kernels("baseline")
+    assert widest.returncode == 0 and baseline.returncode == 0, widest.stderr + baseline.stderr
+    assert baseline.stdout == widest.stdout
+
+
+def test_an_unknown_instruction_set_is_refused():
+    run = _solve_with_kernels("sse9")
+    assert run.returncode != 0
+    assert "SWARMCOLLIDE_ISA=sse9" in run.stderr

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <initializer_list>
+#include <numeric>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -51,12 +52,11 @@ struct SwarmWorkspace {
   std::vector<double> swarm;
   std::vector<double> per_particle;
   std::vector<double> uniforms;
-  std::vector<double> column;
   std::vector<double> signed_vertices;
   std::vector<double> global_best;
   std::vector<std::int64_t> best_key;
   std::vector<std::int64_t> improved;
-  std::vector<std::int64_t> rank;
+  std::vector<int> order;
   // (8)-(9) depend only on the rank, so they are tabulated, and kept while the swarm size and
   // inertia bounds stay the same.
   std::vector<ParticleCoefficients> by_rank;
@@ -100,22 +100,24 @@ class SwarmSolver {
               work_.swarm.data() + block,
               work_.swarm.data() + 2 * block};
     next_position_ = work_.swarm.data() + 3 * block;
-    work_.column.resize(rows);
     // Padding columns start as particles but keep zero coefficients, so they stay put.
     work_.per_particle.assign(static_cast<std::size_t>(kPerParticleArrays) * stride_, 0.0);
-    work_.global_best.resize(rows);
-    work_.signed_vertices.resize(3 * static_cast<std::size_t>(rows));
+    work_.global_best.resize(detail::kSplat * static_cast<std::size_t>(rows));
+    work_.signed_vertices.resize(3 * detail::kSplat * static_cast<std::size_t>(rows));
     pair.a.points(work_.points_a);
     pair.b.points(work_.points_b);
     for (int r = 0; r < rows; ++r) {
       const bool on_a = r < ka_;
       const Vector3 vertex = on_a ? Vector3(-work_.points_a.row(r).transpose())
                                   : Vector3(work_.points_b.row(r - ka_).transpose());
-      for (int c = 0; c < 3; ++c) work_.signed_vertices[3 * r + c] = vertex(c);
+      for (int c = 0; c < 3 * detail::kSplat; ++c) {
+        work_.signed_vertices[3 * detail::kSplat * r + c] = vertex(c / detail::kSplat);
+      }
     }
     work_.best_key.resize(stride_);
     work_.improved.resize(stride_);
-    work_.rank.resize(stride_);
+    work_.order.resize(size_);
+    std::iota(work_.order.begin(), work_.order.end(), 0);
     if (inertia == InertiaStrategy::rank_adaptive) tabulate_coefficients();
     work_.lambda.resize(ka_);
     work_.delta.resize(kb_);
@@ -200,35 +202,44 @@ class SwarmSolver {
       std::fill_n(pull_own, size_, options_.c1);
       std::fill_n(pull_global, size_, options_.c2);
     } else {
-      std::int64_t* rank = work_.rank.data();
-      detail::rank_personal_bests(size_, work_.best_key.data(), rank);
-      for (int j = 0; j < size_; ++j) {
-        const ParticleCoefficients& c = work_.by_rank[rank[j]];
-        inertia[j] = c.w;
-        pull_own[j] = c.c1;
-        pull_global[j] = c.c2;
+      int* order = work_.order.data();
+      detail::order_by_personal_best(size_, work_.best_key.data(), order);
+      for (int rank = 0; rank < size_; ++rank) {
+        const ParticleCoefficients& c = work_.by_rank[rank];
+        inertia[order[rank]] = c.w;
+        pull_own[order[rank]] = c.c1;
+        pull_global[order[rank]] = c.c2;
       }
     }
-    double* uniforms = work_.uniforms.data();
-    detail::draw_uniforms(lanes_, uniforms, 2 * stride_);
-    for (int j = 0; j < size_; ++j) {
-      pull_own[j] *= uniforms[j];
-      pull_global[j] *= uniforms[stride_ + j];
+    // The paper's feasibility rules need moves that keep the sums of (2): one pair r1, r2 per
+    // particle. With projection the kernel draws them per weight.
+    if (options_.constraint_handling == ConstraintHandling::feasibility) {
+      double* uniforms = work_.uniforms.data();
+      detail::draw_uniforms(lanes_, uniforms, 2 * stride_);
+      for (int j = 0; j < size_; ++j) {
+        pull_own[j] *= uniforms[j];
+        pull_global[j] *= uniforms[stride_ + j];
+      }
     }
   }
 
-  // Step 2: updates (10)-(11). r1 and r2 are one draw per particle, as (10) is written, so a
-  // move is a combination of differences of feasible points and keeps the sums of (2) at one.
+  // Step 2: updates (10)-(11) and Conditions 1-3, all particles against the global best of the
+  // previous generation.
   bool advance() {
     for (int r = 0; r < swarm_.rows; ++r) {
-      work_.global_best[r] = weight(swarm_.personal_best, r, global_best_);
+      for (int c = 0; c < detail::kSplat; ++c) {
+        work_.global_best[detail::kSplat * r + c] = weight(swarm_.personal_best, r, global_best_);
+      }
     }
-    const detail::Move move{
-        row(kInertia),           row(kPullOwn),
-        row(kPullGlobal),        work_.global_best.data(),
-        options_.velocity_limit, options_.constraint_handling == ConstraintHandling::projection};
-    const bool improved = detail::advance_particles(swarm_, ka_, move, fitness_, bests(),
-                                                    next_position_, work_.column.data());
+    const detail::Move move{row(kInertia),
+                            row(kPullOwn),
+                            row(kPullGlobal),
+                            work_.global_best.data(),
+                            options_.velocity_limit,
+                            options_.constraint_handling == ConstraintHandling::projection,
+                            &lanes_};
+    const bool improved =
+        detail::advance_particles(swarm_, ka_, move, fitness_, bests(), next_position_);
     std::swap(swarm_.position, next_position_);
     return improved;
   }
@@ -307,6 +318,8 @@ class SwarmSolver {
 };
 
 }  // namespace
+
+const char* swarm_instruction_set() { return detail::kernel_isa_name(detail::kernel_isa()); }
 
 namespace detail {
 

@@ -1,10 +1,14 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
+#include <string_view>
 
-// The swarm's inner loops over raw arrays. Each is compiled for several instruction sets and the
-// widest the processor has is chosen at load time; the files that include Eigen stay on the
-// baseline so that their objects keep the alignment FCL was built with.
+// The swarm's inner loops over raw arrays. Each is compiled once per instruction set (AVX-512,
+// AVX2, and the x86-64 baseline), with vectors one register wide; the widest set the processor
+// runs is used unless SWARMCOLLIDE_ISA names another. Every set gives the same bits for a seed.
+// The files that include Eigen stay on the baseline so that their objects keep the alignment FCL
+// was built with.
 //
 // Layout (structure of arrays): a swarm matrix has one row per weight (lambda then delta) and
 // one column per particle; row r of particle j is at `data[r * stride + j]`. Per-particle arrays
@@ -13,8 +17,8 @@
 namespace swarmcollide::detail {
 
 /// Eight xoshiro256++ generators stepped side by side, so that one step yields eight numbers in a
-/// few vector instructions. Integer arithmetic only: the same seed gives the same numbers on every
-/// processor.
+/// few vector instructions; lane l serves the particles j with j % kLanes == l. Integer arithmetic
+/// only: the same seed gives the same numbers on every processor.
 struct UniformLanes {
   static constexpr int kLanes = 8;
   std::uint64_t state[4][kLanes];
@@ -32,8 +36,8 @@ void draw_uniforms(UniformLanes& lanes, double* out, int count);
 void uniform_simplex_points(int count, int particles, int stride, double* uniforms, double* out,
                             double* column);
 
-/// Particles are processed a block of kLanes at a time: `stride` is a multiple of kLanes and
-/// the columns between `particles` and `stride` are computed too but never reported.
+/// Particles are processed in blocks of kLanes, one per generator lane: `stride` is a multiple of
+/// kLanes and the columns between `particles` and `stride` are computed too but never reported.
 struct SwarmView {
   int rows;
   int particles;
@@ -43,9 +47,13 @@ struct SwarmView {
   double* personal_best;
 };
 
+/// Values the kernels apply to every particle are stored kSplat times in a row, 16-byte aligned,
+/// so that the baseline (SSE2, which cannot broadcast from memory) loads one as a whole vector.
+constexpr int kSplat = 2;
+
 /// How particles are scored. `signed_vertices` holds, per row, -x_i for A's rows and y_j for
-/// B's, three values each, so that sum_r w_r v_r is the offset of (5). With `check_bounds`, a
-/// weight outside [0, 1] also makes a particle infeasible.
+/// B's, three coordinates each stored kSplat times (x x y y z z), so that sum_r w_r v_r is the
+/// offset of (5). With `check_bounds`, a weight outside [0, 1] also makes a particle infeasible.
 struct Fitness {
   const double* signed_vertices;
   bool check_bounds;
@@ -68,9 +76,13 @@ struct Bests {
 void score_initial_positions(const SwarmView& swarm, int rows_a, const Fitness& fitness,
                              const Bests& bests);
 
-/// One generation's move: per particle, the inertia w and the pulls c1 r1 and c2 r2 of (10); the
-/// global best's weights, one per row; the velocity limit; and whether a move that leaves a
-/// simplex is projected back onto it.
+/// One generation's move: per particle, the inertia w and the acceleration coefficients of (10);
+/// the global best's weights, one per row stored kSplat times; the velocity limit; and the
+/// constraint handling.
+/// - With `project` (ConstraintHandling::projection), r1 and r2 are drawn per weight from `lanes`,
+///   as (3) writes the update: `pull_own` and `pull_global` hold c1 and c2.
+/// - Without (the paper's feasibility rules), r1 and r2 are one pair per particle, already
+///   folded in: `pull_own` and `pull_global` hold c1 r1 and c2 r2.
 struct Move {
   const double* inertia;
   const double* pull_own;
@@ -78,28 +90,47 @@ struct Move {
   const double* global_best;
   double velocity_limit;
   bool project;
+  UniformLanes* lanes;
 };
 
-/// The most weights per body projected for a block of particles at once, by a sorting network;
-/// longer vectors are projected one particle at a time by std::sort.
-constexpr int kMaxRowsProjectedTogether = 8;
-
-/// One generation for every particle, block by block while its rows are in cache:
-/// - (10)-(11): v = w v + c1 r1 (p - x) + c2 r2 (g - x), and x + v written to `next`. A particle
-///   whose largest velocity component exceeds the limit has its whole velocity scaled down, so
-///   that the move keeps the weights' sums.
-/// - With `project`, a particle with a negative weight is projected onto the simplexes, by the
-///   sort-based threshold, and the displacement added to its velocity.
+/// One generation for every particle, a few columns at a time while their rows are in cache:
+/// - (10)-(11): v = w v + c1 r1 (p - x) + c2 r2 (g - x), and x + v written to `next`.
+/// - With `project`: each velocity component is clamped to the limit, each body's weights are
+///   projected onto its simplex (Michelot's method, exact to rounding, any number of weights),
+///   and the velocity becomes the move actually made.
+/// - Without: a velocity whose largest component exceeds the limit is scaled as a whole, so the
+///   move keeps the weights' sums; nothing is projected.
 /// - Conditions 1-3: a particle whose score beats its personal best's (feasible beats infeasible,
 ///   then the smaller value wins) takes its new position as personal best; `improved` marks it.
 /// Padding columns take part like particles and may be marked improved. Returns whether any
-/// column improved. `column` is scratch for `rows` values.
+/// column improved.
 bool advance_particles(const SwarmView& swarm, int rows_a, const Move& move, const Fitness& fitness,
-                       const Bests& bests, double* next, double* column);
+                       const Bests& bests, double* next);
 
-/// The rank (0 = best) of each particle's personal best score, ties going to the lower index.
-/// Counting rather than sorting: no branch depends on the data. `key` and `rank` hold
-/// `particles` values rounded up to whole blocks of kLanes.
-void rank_personal_bests(int particles, const std::int64_t* key, std::int64_t* rank);
+/// Sorts `order` (a permutation of the particles) by personal best score, ties going to the
+/// lower index, so that order[0] is the best. Insertion sort: scores only fall and, after the first
+/// generations, few particles improve in one, so last generation's order is nearly sorted and this
+/// costs little more than one pass. The same on every instruction set.
+void order_by_personal_best(int particles, const std::int64_t* key, int* order);
+
+/// The instruction sets the kernels are compiled for.
+enum class KernelIsa { baseline, avx2, avx512 };
+
+/// "baseline", "avx2" or "avx512".
+const char* kernel_isa_name(KernelIsa isa);
+
+/// The set named by `name` (as kernel_isa_name spells it), or nothing.
+std::optional<KernelIsa> kernel_isa_from_name(std::string_view name);
+
+/// Whether this build has kernels for `isa` and this processor can run them.
+bool kernel_isa_available(KernelIsa isa);
+
+/// The set whose kernels the functions above run: SWARMCOLLIDE_ISA's if it is set, else the
+/// widest available. Throws std::runtime_error when SWARMCOLLIDE_ISA names no available set.
+KernelIsa kernel_isa();
+
+/// Makes every later call run the kernels of `isa` (tests compare the sets in one process).
+/// Throws std::invalid_argument when it is not available.
+void use_kernel_isa(KernelIsa isa);
 
 }  // namespace swarmcollide::detail

@@ -19,4 +19,11 @@ ParticleCoefficients rank_adaptive_coefficients(int rank, int swarm_size, Scalar
 /// (7): the inertia weight after `iteration` of `max_iterations` iterations.
 Scalar linear_decreasing_inertia(int iteration, int max_iterations, Scalar w_start, Scalar w_end);
 
+/// The instruction set the swarm's vector kernels use in this process: "avx512", "avx2" or
+/// "baseline". It is the widest the processor runs unless the environment variable
+/// SWARMCOLLIDE_ISA names one of these (read once, at the first solve); every set gives the same
+/// answers. Throws std::runtime_error when SWARMCOLLIDE_ISA names a set that cannot run here.
+const char* swarm_instruction_set();
+
+
 }  // namespace swarmcollide

@@ -8,10 +8,12 @@ namespace swarmcollide {
 enum class ConstraintHandling {
   /// The paper's rules: fitness (5) for feasible particles, violation (6) for infeasible ones,
   /// compared by Conditions 1-3. A particle is feasible when its weights lie in [0, 1] and (6) is
-  /// at most the feasibility tolerance.
+  /// at most the feasibility tolerance. r1 and r2 are one pair per particle, as (10) reads, so that
+  /// a move keeps the sums of (2).
   feasibility,
   /// Each particle's lambda and delta are projected onto the probability simplex after every move,
-  /// so every particle is feasible and optima on the simplexes' faces are reached exactly.
+  /// so every particle is feasible and optima on the simplexes' faces are reached exactly. r1 and
+  /// r2 are drawn per weight, as (3) writes the update.
   projection,
 };
 
@@ -30,8 +32,11 @@ struct SwarmOptions {
   /// from (9).
   Scalar c1 = 2.0;
   Scalar c2 = 2.0;
-  /// Largest velocity component; the weights live in [0, 1], so 1 lets a particle cross the box.
-  Scalar velocity_limit = 1.0;
+  /// Largest velocity component: with projection each component is clamped to it, with the
+  /// paper's rules a velocity over it is scaled as a whole (which keeps the sums). The default was
+  /// chosen by a sweep over 4-64 vertices for projection (docs/method.md); the paper's rules do
+  /// better with 1.
+  Scalar velocity_limit = 0.02;
   /// Largest violation (6) that still counts as feasible.
   Scalar feasibility_tolerance = 1e-10;
 };
