@@ -1,27 +1,32 @@
 """swarmcollide.dask against the in-memory batch call: a million pairs of 8-point bodies with
-method "dual", on in-memory threads, on Dask's threaded scheduler and on a distributed
-LocalCluster of one and of two worker processes.
+method "dual", on in-memory threads, on Dask's threaded scheduler and on distributed LocalClusters
+of one and of two worker processes.
 
-Every configuration answers the same pairs (made chunk by chunk from fixed seeds) and is timed
-from the call to the answers; configurations take turns, each repeated, and the median is kept.
+Every configuration answers the same pairs (made block by block from fixed seeds) and is timed
+from the call to the answers:
 - in memory: ``sc.distance_many(As, Bs, threads=t)`` on NumPy arrays, t = 1 and every core.
-- threads: ``scd.distance_many`` on dask arrays wrapping the same NumPy arrays, every field
-  computed to NumPy with the threaded scheduler (one thread per core, one C++ thread per chunk).
-- cluster: the bodies made and kept on the workers beforehand (as data of that size would be),
-  then every field either kept on the workers (``persist``: the cluster's own throughput) or
-  gathered to the client (``compute``: plus moving 115 bytes per pair between processes).
-The overhead per chunk is the time beyond the in-memory call at the same number of cores, per
-chunk and core: ``(seconds - ideal) * cores / chunks``, where ideal is the in-memory call on all
-those cores (threads) or the one-thread call divided by the workers (cluster).
+- threaded scheduler: ``scd.distance_many`` on dask arrays wrapping the same NumPy arrays, every
+  field computed to NumPy (one Dask thread per core, one C++ thread per chunk).
+- LocalCluster: the bodies made and kept on the workers beforehand (as data of that size would
+  be), one thread per worker; every field either kept on the workers (``persist``: the cluster's
+  own throughput) or gathered to the client (``compute``: plus moving 115 bytes per pair between
+  processes).
+The machine is shared, so the configurations take turns in rounds (both clusters stay up
+throughout) and each ratio is also taken within each round, where the others' load is about the
+same for both sides; medians over rounds are reported, with the fastest run beside them. The
+overhead per chunk is the time beyond the in-memory call on the same cores, per chunk and core:
+``(seconds - ideal) * cores / chunks``, where ideal is the in-memory call on every core (threaded
+scheduler) or the one-thread call divided by the workers (cluster).
 
 Writes a JSON file, prints a Markdown section, and with ``--results-md`` puts that section into
-bench/RESULTS.md (replacing its previous version). Run it when the machine is quiet: the load
-averages before and after are recorded.
+bench/RESULTS.md (replacing its previous version). The load averages before and after are
+recorded.
 """
 
 from __future__ import annotations
 
 import argparse
+import contextlib
 import datetime
 import json
 import os
@@ -47,8 +52,8 @@ MARKER = "<!-- bench/dask_batch.py -->"
 
 
 def make_block(index: int, which: int) -> np.ndarray:
-    """Block ``index`` of the A bodies (which=0) or the B bodies (which=1): half of the pairs
-    overlap, as in bench/batch.py."""
+    """Block ``index`` of the A bodies (which=0) or the B bodies (which=1): unit point clouds,
+    B's moved by up to 3 along each axis, so that about a quarter of the pairs overlap."""
     rng = np.random.default_rng([index, which])
     bodies = rng.normal(size=(BLOCK, VERTICES, 3))
     if which:
@@ -68,10 +73,14 @@ def timed(run: Callable[[], object]) -> float:
     return time.perf_counter() - start
 
 
+def scheduler_tasks(client: Client) -> int:
+    return client.run_on_scheduler(lambda dask_scheduler: len(dask_scheduler.tasks))
+
+
 def settle(client: Client, tasks: int) -> None:
     """Wait until the scheduler holds no more than ``tasks`` tasks again, having forgotten the
     answers of the last run, which the next would otherwise find computed under the same keys."""
-    while client.run_on_scheduler(lambda dask_scheduler: len(dask_scheduler.tasks)) > tasks:
+    while scheduler_tasks(client) > tasks:
         time.sleep(0.01)
 
 
@@ -79,15 +88,50 @@ def loadavg() -> List[float]:
     return [round(x, 2) for x in os.getloadavg()]
 
 
+class Cluster:
+    """A LocalCluster of ``workers`` one-thread processes holding the bodies in each chunking."""
+
+    def __init__(self, stack: contextlib.ExitStack, workers: int, pairs: int, chunks: List[int]):
+        self.workers = workers
+        cluster = stack.enter_context(LocalCluster(
+            n_workers=workers, threads_per_worker=1, host="127.0.0.1",
+            dashboard_address="127.0.0.1:0"))
+        self.client = stack.enter_context(Client(cluster, set_as_default=False))
+        self.bodies = {}
+        for chunk in chunks:
+            self.bodies[chunk] = self.client.persist(
+                [lazy_bodies(pairs, which).rechunk((chunk, -1, -1)) for which in (0, 1)])
+            with self.client.as_current():
+                wait(self.bodies[chunk])
+        self.tasks = scheduler_tasks(self.client)
+        for chunk in chunks:  # workers import swarmcollide and warm up
+            self.client.compute(vars(scd.distance_many(*(x[:10] for x in self.bodies[chunk]))),
+                                sync=True)
+        settle(self.client, self.tasks)
+
+    def kept(self, chunk: int) -> float:
+        result = scd.distance_many(*self.bodies[chunk], method=METHOD)
+        with self.client.as_current():
+            seconds = timed(lambda: wait(self.client.persist(list(vars(result).values()))))
+        settle(self.client, self.tasks)
+        return seconds
+
+    def gathered(self, chunk: int) -> float:
+        result = scd.distance_many(*self.bodies[chunk], method=METHOD)
+        seconds = timed(lambda: self.client.compute(list(vars(result).values()), sync=True))
+        settle(self.client, self.tasks)
+        return seconds
+
+
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--quick", action="store_true", help="200,000 pairs, 2 repeats")
+    parser.add_argument("--quick", action="store_true", help="200,000 pairs, 2 rounds")
     parser.add_argument("--json", type=Path, required=True, help="where to write the results")
     parser.add_argument("--results-md", type=Path, help="put the section into this Markdown file")
-    parser.add_argument("--repeats", type=int, help="runs per configuration (default 5)")
+    parser.add_argument("--rounds", type=int, help="runs of every configuration (default 7)")
     args = parser.parse_args()
     pairs = 200_000 if args.quick else 1_000_000
-    repeats = args.repeats or (2 if args.quick else 5)
+    rounds = args.rounds or (2 if args.quick else 7)
     cores = os.cpu_count() or 1
     thread_chunks = [c for c in (1_000, 10_000, 100_000, 250_000) if c <= pairs]
     cluster_chunks = [c for c in (10_000, 100_000) if c <= pairs]
@@ -96,78 +140,48 @@ def main() -> int:
     As = np.concatenate([make_block(i, 0) for i in range(pairs // BLOCK)])
     Bs = np.concatenate([make_block(i, 1) for i in range(pairs // BLOCK)])
     sc.distance_many(As[:BLOCK], Bs[:BLOCK])  # load and warm up
-
-    rows: Dict[str, Dict] = {}
-
-    def record(key: str, seconds: float, **info) -> None:
-        rows.setdefault(key, {"seconds": [], **info})["seconds"].append(round(seconds, 4))
-
-    # In memory and the threaded scheduler, taking turns.
     lazy = {c: (da.from_array(As, chunks=(c, -1, -1)), da.from_array(Bs, chunks=(c, -1, -1)))
             for c in thread_chunks}
-    for _ in range(repeats):
-        for threads in (1, None):
-            record(f"memory-{threads or cores}",
-                   timed(lambda: sc.distance_many(As, Bs, method=METHOD, threads=threads)),
-                   kind="in memory", cores=threads or cores, chunk=None)
-        for chunk in thread_chunks:
-            record(f"threads-{chunk}",
-                   timed(lambda: scd.distance_many(*lazy[chunk], method=METHOD)
-                         .compute(scheduler="threads")),
-                   kind="threaded scheduler", cores=cores, chunk=chunk)
 
-    # Clusters of one and two processes, one thread each, bodies made and kept on the workers.
-    for workers in (1, 2):
-        kind = f"LocalCluster, {workers} process{'es' if workers > 1 else ''}"
-        with LocalCluster(n_workers=workers, threads_per_worker=1, host="127.0.0.1",
-                          dashboard_address="127.0.0.1:0") as cluster, Client(cluster) as client:
-            resident = {}
+    configurations: Dict[str, Dict] = {}
+
+    def add(key: str, run: Callable[[], float], **info) -> None:
+        configurations[key] = {"run": run, "seconds": [], **info}
+
+    for threads in (1, cores):
+        add(f"memory-{threads}",
+            lambda t=threads: timed(lambda: sc.distance_many(As, Bs, method=METHOD, threads=t)),
+            kind="in memory", cores=threads, chunk=None, answers="NumPy")
+    for chunk in thread_chunks:
+        add(f"threads-{chunk}",
+            lambda c=chunk: timed(lambda: scd.distance_many(*lazy[c], method=METHOD)
+                                  .compute(scheduler="threads")),
+            kind="threaded scheduler", cores=cores, chunk=chunk, answers="NumPy")
+    with contextlib.ExitStack() as stack:
+        for workers in (1, 2):
+            cluster = Cluster(stack, workers, pairs, cluster_chunks)
+            kind = f"LocalCluster, {workers} process{'es' if workers > 1 else ''}"
             for chunk in cluster_chunks:
-                resident[chunk] = client.persist(
-                    [lazy_bodies(pairs, which).rechunk((chunk, -1, -1)) for which in (0, 1)])
-                wait(resident[chunk])
-            tasks = client.run_on_scheduler(lambda dask_scheduler: len(dask_scheduler.tasks))
-            for chunk in cluster_chunks:
-                scd.distance_many(*(x[:10] for x in resident[chunk])).compute()  # warm up
-            settle(client, tasks)
-            for _ in range(repeats):
-                for chunk in cluster_chunks:
-                    result = scd.distance_many(*resident[chunk], method=METHOD)
+                add(f"cluster{workers}-{chunk}-kept", lambda c=chunk, k=cluster: k.kept(c),
+                    kind=kind, cores=workers, chunk=chunk, answers="kept on the workers")
+                add(f"cluster{workers}-{chunk}-gathered",
+                    lambda c=chunk, k=cluster: k.gathered(c),
+                    kind=kind, cores=workers, chunk=chunk, answers="gathered to the client")
+        for _ in range(rounds):
+            for configuration in configurations.values():
+                configuration["seconds"].append(round(configuration["run"](), 4))
 
-                    def kept():
-                        wait(client.persist(list(vars(result).values())))
-
-                    record(f"cluster{workers}-{chunk}-persist", timed(kept), kind=kind,
-                           cores=workers, chunk=chunk, answers="kept on the workers")
-                    settle(client, tasks)
-                    record(f"cluster{workers}-{chunk}-compute", timed(result.compute), kind=kind,
-                           cores=workers, chunk=chunk, answers="gathered to the client")
-                    settle(client, tasks)
-
-    one_thread = statistics.median(rows["memory-1"]["seconds"])
-    all_threads = statistics.median(rows[f"memory-{cores}"]["seconds"])
-    for row in rows.values():
-        row["median"] = statistics.median(row["seconds"])
-        row["pairs_per_second"] = round(pairs / row["median"])
-        if row["chunk"]:
-            ideal = all_threads if row["kind"] == "threaded scheduler" else one_thread / row["cores"]
-            chunks = -(-pairs // row["chunk"])
-            row["overhead_per_chunk_ms"] = round(
-                (row["median"] - ideal) * row["cores"] / chunks * 1e3, 2)
-    results = {
-        "pairs": pairs,
-        "vertices": VERTICES,
-        "method": METHOD,
-        "repeats": repeats,
-        "cores": cores,
-        "machine": platform.processor() or platform.machine(),
-        "load_average_before": load_before,
-        "load_average_after": loadavg(),
-        "date": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
-        "versions": {"swarmcollide": sc.__version__, "dask": dask.__version__,
-                     "distributed": distributed.__version__, "numpy": np.__version__},
-        "rows": rows,
-    }
+    for configuration in configurations.values():
+        del configuration["run"]
+    results = summarise(configurations, pairs, rounds, cores)
+    results.update(
+        load_average_before=load_before,
+        load_average_after=loadavg(),
+        machine=platform.processor() or platform.machine(),
+        date=datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
+        versions={"swarmcollide": sc.__version__, "dask": dask.__version__,
+                  "distributed": distributed.__version__, "numpy": np.__version__},
+    )
     args.json.parent.mkdir(parents=True, exist_ok=True)
     args.json.write_text(json.dumps(results, indent=2) + "\n")
     section = markdown(results)
@@ -175,6 +189,47 @@ def main() -> int:
     if args.results_md:
         put_section(args.results_md, section)
     return 0
+
+
+def summarise(rows: Dict[str, Dict], pairs: int, rounds: int, cores: int) -> Dict:
+    one_thread = rows["memory-1"]["seconds"]
+    every_core = rows[f"memory-{cores}"]["seconds"]
+    for row in rows.values():
+        row["median"] = statistics.median(row["seconds"])
+        row["fastest"] = min(row["seconds"])
+        row["pairs_per_second"] = round(pairs / row["median"])
+        if row["chunk"]:
+            ideal = (statistics.median(every_core) if row["kind"] == "threaded scheduler"
+                     else statistics.median(one_thread) / row["cores"])
+            chunks = -(-pairs // row["chunk"])
+            row["chunks"] = chunks
+            row["work_per_chunk_ms"] = round(statistics.median(one_thread) / chunks * 1e3, 1)
+            row["overhead_per_chunk_ms"] = round(
+                (row["median"] - ideal) * row["cores"] / chunks * 1e3, 1)
+
+    def within_rounds(numerator: str, denominator: str) -> float:
+        """The median over rounds of the ratio of the two configurations' times."""
+        return round(statistics.median(
+            a / b for a, b in zip(rows[numerator]["seconds"], rows[denominator]["seconds"])), 3)
+
+    targets = {}
+    if "threads-100000" in rows:
+        targets["threaded_throughput_vs_memory"] = {
+            "target": ">= 0.90 at chunks of 100,000 pairs",
+            "within_rounds": within_rounds(f"memory-{cores}", "threads-100000"),
+            "fastest": round(rows[f"memory-{cores}"]["fastest"]
+                             / rows["threads-100000"]["fastest"], 3),
+        }
+        for answers in ("kept", "gathered"):
+            targets[f"cluster_2_vs_1_{answers}"] = {
+                "target": ">= 1.7 (at chunks of 100,000 pairs)",
+                "within_rounds": within_rounds(f"cluster1-100000-{answers}",
+                                               f"cluster2-100000-{answers}"),
+                "fastest": round(rows[f"cluster1-100000-{answers}"]["fastest"]
+                                 / rows[f"cluster2-100000-{answers}"]["fastest"], 3),
+            }
+    return {"pairs": pairs, "vertices": VERTICES, "method": METHOD, "rounds": rounds,
+            "cores": cores, "rows": rows, "targets": targets}
 
 
 def markdown(results: Dict) -> str:
@@ -185,24 +240,36 @@ def markdown(results: Dict) -> str:
         "## Batches on Dask (bench/dask_batch.py)",
         "",
         f"{results['pairs']:,} pairs of {results['vertices']}-point bodies, method "
-        f"`{results['method']}`, every field computed; median of {results['repeats']} runs taken "
-        f"in turns; {results['cores']} cores; load average {results['load_average_before']} "
-        f"before, {results['load_average_after']} after; {results['date']}; dask "
-        f"{results['versions']['dask']}. Overhead per chunk: time beyond the in-memory call on "
-        "the same cores, times the cores, per chunk.",
+        f"`{results['method']}`, every field computed; {results['rounds']} rounds, every "
+        f"configuration once per round; {results['cores']} cores; load average "
+        f"{results['load_average_before']} before, {results['load_average_after']} after; "
+        f"{results['date']}; dask {results['versions']['dask']}. Seconds: median over rounds "
+        "(fastest). Work per chunk: the in-memory time of a chunk on one core. Overhead per "
+        "chunk: time beyond the in-memory call on the same cores, times the cores, per chunk.",
         "",
-        "| configuration | pairs per chunk | cores | answers | seconds | pairs/s | vs in memory "
-        "| overhead per chunk |",
-        "|---|---|---|---|---|---|---|---|",
+        "| configuration | pairs per chunk | work per chunk | cores | answers | seconds | pairs/s "
+        "| vs in memory | overhead per chunk |",
+        "|---|---|---|---|---|---|---|---|---|",
     ]
     for row in rows.values():
-        chunk = f"{row['chunk']:,}" if row["chunk"] else "all"
-        overhead = f"{row['overhead_per_chunk_ms']:.1f} ms" if row["chunk"] else ""
+        chunked = bool(row["chunk"])
         lines.append(
-            f"| {row['kind']} | {chunk} | {row['cores']} | {row.get('answers', 'NumPy')} "
-            f"| {row['median']:.3f} | {row['pairs_per_second']:,} "
-            f"| {row['pairs_per_second'] / memory['pairs_per_second']:.2f}x | {overhead} |"
+            f"| {row['kind']} | {format(row['chunk'], ',') if chunked else 'all'} "
+            f"| {format(row['work_per_chunk_ms'], '.1f') + ' ms' if chunked else ''} "
+            f"| {row['cores']} | {row['answers']} | {row['median']:.3f} ({row['fastest']:.3f}) "
+            f"| {row['pairs_per_second']:,} "
+            f"| {row['pairs_per_second'] / memory['pairs_per_second']:.2f}x "
+            f"| {format(row['overhead_per_chunk_ms'], '.1f') + ' ms' if chunked else ''} |"
         )
+    if results["targets"]:
+        lines += ["", "| target | measured: median of the ratios within rounds | fastest runs |",
+                  "|---|---|---|"]
+        names = {"threaded_throughput_vs_memory": "threaded scheduler / in memory, throughput",
+                 "cluster_2_vs_1_kept": "LocalCluster 2 processes / 1, answers kept",
+                 "cluster_2_vs_1_gathered": "LocalCluster 2 processes / 1, answers gathered"}
+        for key, target in results["targets"].items():
+            lines.append(f"| {names[key]} {target['target']} | {target['within_rounds']:.3f} "
+                         f"| {target['fastest']:.3f} |")
     return "\n".join(lines) + "\n"
 
 

@@ -40,7 +40,10 @@ from typing import Any, Generic, Mapping, Optional, Tuple, TypeVar
 
 import dask
 import dask.array as da
+import dask.local
+import dask.threaded
 import numpy as np
+from dask.base import get_scheduler
 
 from swarmcollide import queries
 from swarmcollide.queries import DEFAULT_TOLERANCE, Parameters
@@ -99,9 +102,19 @@ class BatchArrays(Generic[ArrayT]):
         """Every field as a NumPy array, each chunk answered once.
 
         ``kwargs`` go to ``dask.compute`` (``scheduler=``, ``num_workers=``, ...); with a
-        ``distributed.Client`` active, its cluster computes.
+        ``distributed.Client`` active, its cluster computes and the answers are gathered here.
+        With the threaded or the synchronous scheduler, each chunk's answers are copied into
+        the result by the thread that answered the chunk, as soon as it is answered, rather than
+        all joined at the end by one thread: faster, and holding only the chunks in flight
+        besides the result.
         """
-        return BatchArrays(*dask.compute(*(getattr(self, f.name) for f in fields(self)), **kwargs))
+        values = [getattr(self, f.name) for f in fields(self)]
+        local = (dask.threaded.get, dask.local.get_sync)
+        if get_scheduler(scheduler=kwargs.get("scheduler"), collections=values) not in local:
+            return BatchArrays(*dask.compute(*values, **kwargs))
+        result = BatchArrays(*(np.empty(value.shape, value.dtype) for value in values))
+        self.store({f.name: getattr(result, f.name) for f in fields(self)}, lock=False, **kwargs)
+        return result
 
     def store(self, targets: Mapping[str, Any], **kwargs: Any) -> None:
         """Write the fields named in ``targets`` into them, each chunk answered once.
