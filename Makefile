@@ -65,6 +65,8 @@ bench: install $(VENV)/.bench-installed
 	$(PY) bench/kernel_code.py > bench/results/kernel_code.txt \
 	  --object $(BENCH_BUILD)/cpp/CMakeFiles/swarmcollide.dir/src/solvers/swarm_kernels.cpp.o
 	$(PY) bench/report.py --results bench/results --plots bench/plots --out bench/RESULTS.md
+	$(PY) bench/dask_batch.py $(BENCH_ARGS) --json bench/results/dask_batch.json \
+	  --results-md bench/RESULTS.md
 
 stubs: install
 	$(PY) -m pybind11_stubgen swarmcollide._core -o python --numpy-array-use-type-var

@@ -9,7 +9,7 @@ from the call to the answers:
   field computed to NumPy (one Dask thread per core, one C++ thread per chunk).
 - LocalCluster: the bodies made and kept on the workers beforehand (as data of that size would
   be), one thread per worker; every field either kept on the workers (``persist``: the cluster's
-  own throughput) or gathered to the client (``compute``: plus moving 115 bytes per pair between
+  own throughput) or gathered to the client (``compute``: plus moving 95 bytes per pair between
   processes).
 The machine is shared, so the configurations take turns in rounds (both clusters stay up
 throughout) and each ratio is also taken within each round, where the others' load is about the
