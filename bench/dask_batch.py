@@ -12,8 +12,11 @@ from the call to the answers:
   own throughput) or gathered to the client (``compute``: plus moving 95 bytes per pair between
   processes).
 The machine is shared, so the configurations take turns in rounds (both clusters stay up
-throughout) and each ratio is also taken within each round, where the others' load is about the
-same for both sides; medians over rounds are reported, with the fastest run beside them. The
+throughout): first, in short rounds, those the targets compare (in memory, and chunks of 100,000
+pairs), then the other chunk sizes in a third as many rounds. Each target's ratio is taken within
+each round, where the others' load is about the same for both sides, and the median over rounds
+is reported; the in-memory speed-up from one core to every core says how many cores the run
+really had. Times are medians over rounds, with the fastest run beside them. The
 overhead per chunk is the time beyond the in-memory call on the same cores, per chunk and core:
 ``(seconds - ideal) * cores / chunks``, where ideal is the in-memory call on every core (threaded
 scheduler) or the one-thread call divided by the workers (cluster).
@@ -125,13 +128,16 @@ class Cluster:
 
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--quick", action="store_true", help="200,000 pairs, 2 rounds")
+    parser.add_argument("--quick", action="store_true", help="200,000 pairs, fewer rounds")
     parser.add_argument("--json", type=Path, required=True, help="where to write the results")
     parser.add_argument("--results-md", type=Path, help="put the section into this Markdown file")
-    parser.add_argument("--rounds", type=int, help="runs of every configuration (default 7)")
+    parser.add_argument("--rounds", type=int,
+                        help="rounds of the targets' configurations (default 9; the other chunk "
+                             "sizes get a third as many)")
     args = parser.parse_args()
     pairs = 200_000 if args.quick else 1_000_000
-    rounds = args.rounds or (2 if args.quick else 7)
+    rounds = args.rounds or (2 if args.quick else 9)
+    target_chunk = 100_000
     cores = os.cpu_count() or 1
     thread_chunks = [c for c in (1_000, 10_000, 100_000, 250_000) if c <= pairs]
     cluster_chunks = [c for c in (10_000, 100_000) if c <= pairs]
@@ -146,7 +152,9 @@ def main() -> int:
     configurations: Dict[str, Dict] = {}
 
     def add(key: str, run: Callable[[], float], **info) -> None:
-        configurations[key] = {"run": run, "seconds": [], **info}
+        # The targets' configurations take turns in short rounds; the other chunk sizes after.
+        target = info["chunk"] in (None, target_chunk)
+        configurations[key] = {"run": run, "seconds": [], "target": target, **info}
 
     for threads in (1, cores):
         add(f"memory-{threads}",
@@ -167,12 +175,14 @@ def main() -> int:
                 add(f"cluster{workers}-{chunk}-gathered",
                     lambda c=chunk, k=cluster: k.gathered(c),
                     kind=kind, cores=workers, chunk=chunk, answers="gathered to the client")
-        for _ in range(rounds):
-            for configuration in configurations.values():
-                configuration["seconds"].append(round(configuration["run"](), 4))
+        for phase, count in ((True, rounds), (False, max(1, rounds // 3))):
+            for _ in range(count):
+                for configuration in configurations.values():
+                    if configuration["target"] == phase:
+                        configuration["seconds"].append(round(configuration["run"](), 4))
 
     for configuration in configurations.values():
-        del configuration["run"]
+        del configuration["run"], configuration["target"]
     results = summarise(configurations, pairs, rounds, cores)
     results.update(
         load_average_before=load_before,
@@ -212,7 +222,13 @@ def summarise(rows: Dict[str, Dict], pairs: int, rounds: int, cores: int) -> Dic
         return round(statistics.median(
             a / b for a, b in zip(rows[numerator]["seconds"], rows[denominator]["seconds"])), 3)
 
-    targets = {}
+    targets = {
+        "memory_every_core_vs_one": {
+            "target": "(no target: the cores this run had)",
+            "within_rounds": within_rounds("memory-1", f"memory-{cores}"),
+            "fastest": round(rows["memory-1"]["fastest"] / rows[f"memory-{cores}"]["fastest"], 3),
+        }
+    }
     if "threads-100000" in rows:
         targets["threaded_throughput_vs_memory"] = {
             "target": ">= 0.90 at chunks of 100,000 pairs",
@@ -261,10 +277,11 @@ def markdown(results: Dict) -> str:
             f"| {row['pairs_per_second'] / memory['pairs_per_second']:.2f}x "
             f"| {format(row['overhead_per_chunk_ms'], '.1f') + ' ms' if chunked else ''} |"
         )
-    if results["targets"]:
+    if len(results["targets"]) > 1:
         lines += ["", "| target | measured: median of the ratios within rounds | fastest runs |",
                   "|---|---|---|"]
-        names = {"threaded_throughput_vs_memory": "threaded scheduler / in memory, throughput",
+        names = {"memory_every_core_vs_one": "in memory, every core / one core, throughput",
+                 "threaded_throughput_vs_memory": "threaded scheduler / in memory, throughput",
                  "cluster_2_vs_1_kept": "LocalCluster 2 processes / 1, answers kept",
                  "cluster_2_vs_1_gathered": "LocalCluster 2 processes / 1, answers gathered"}
         for key, target in results["targets"].items():
