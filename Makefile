@@ -1,5 +1,7 @@
 # make demo: set up everything and reproduce the paper's tables.
 # make test: set up everything and run the C++ (ctest) and Python (pytest) suites.
+# make test-sanitize: the same under AddressSanitizer and UBSan (the C++ tests and a pytest subset).
+# make census: the fuzz census (tests/fuzz/census.py); CENSUS_ARGS="--count 500" for a quick one.
 PYTHON ?= python3
 VENV := .venv
 PY := $(VENV)/bin/python
@@ -10,7 +12,8 @@ PACKAGE_SOURCES := CMakeLists.txt pyproject.toml $(shell find cpp bindings pytho
 # pybind11 is pinned because the checked-in stubs (python/swarmcollide/_core.pyi) follow its output.
 BUILD_REQUIREMENTS := "scikit-build-core>=0.10" "pybind11==3.1.0"
 
-.PHONY: demo test test-cpp test-python system-packages install stubs bench clean
+.PHONY: demo test test-cpp test-python test-sanitize census system-packages install stubs bench \
+  clean
 
 demo: install
 	$(PY) -m swarmcollide paper
@@ -67,6 +70,44 @@ bench: install $(VENV)/.bench-installed
 	$(PY) bench/report.py --results bench/results --plots bench/plots --out bench/RESULTS.md
 	$(PY) bench/dask_batch.py $(BENCH_ARGS) --json bench/results/dask_batch.json \
 	  --results-md bench/RESULTS.md
+
+# The core, the C++ tests and the extension, built with ASan and UBSan (SWARMCOLLIDE_SANITIZE) in
+# their own directory, at -O1 with assertions on (Eigen's index checks included). Python itself is
+# not instrumented, so the ASan and UBSan runtimes are preloaded into it, and pytest imports the
+# instrumented extension through PYTHONPATH (the .venv supplies NumPy, SciPy, pytest and the
+# package's metadata). CPython never frees some of its own memory at exit, so leak detection,
+# which would report that, is on for ctest only. PYTHONMALLOC=malloc routes Python's small objects
+# through ASan's malloc too. A report from a call in a sandboxed child (tests/python/sandbox.py)
+# appears in that test's failure message.
+SAN_BUILD := build/sanitize
+SAN_SITE := $(SAN_BUILD)/site
+SAN_PYTESTS ?= tests/python/test_trust.py tests/python/test_contract.py tests/python/test_batch.py \
+  tests/python/test_geometry.py tests/python/test_dual.py tests/python/test_problem.py
+SAN_RUNTIMES = $$(gcc -print-file-name=libasan.so) $$(gcc -print-file-name=libubsan.so)
+
+test-sanitize: install
+	cmake -S . -B $(SAN_BUILD) -G Ninja -DSWARMCOLLIDE_SANITIZE=ON \
+	  -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g" \
+	  -DCMAKE_INTERPROCEDURAL_OPTIMIZATION=OFF \
+	  -DSWARMCOLLIDE_BUILD_TESTS=ON -DSWARMCOLLIDE_BUILD_PYTHON=ON \
+	  -DPython_EXECUTABLE=$(abspath $(PY)) -Dpybind11_DIR="$$($(PY) -m pybind11 --cmakedir)"
+	cmake --build $(SAN_BUILD) -j $(JOBS)
+	rm -rf $(SAN_SITE)
+	mkdir -p $(SAN_SITE)/swarmcollide
+	cp python/swarmcollide/*.py python/swarmcollide/py.typed $(SAN_BUILD)/bindings/_core*.so \
+	  $(SAN_SITE)/swarmcollide/
+	status=0; \
+	UBSAN_OPTIONS=print_stacktrace=1 ctest --test-dir $(SAN_BUILD) --output-on-failure -j $(JOBS) \
+	  || status=1; \
+	ASAN_OPTIONS=detect_leaks=0 UBSAN_OPTIONS=print_stacktrace=1 PYTHONMALLOC=malloc \
+	  LD_PRELOAD="$(SAN_RUNTIMES)" PYTHONPATH=$(SAN_SITE) \
+	  $(PY) -m pytest -p no:cacheprovider $(SAN_PYTESTS) || status=1; \
+	exit $$status
+
+CENSUS_ARGS ?=
+
+census: install
+	$(PY) tests/fuzz/census.py --json build/fuzz/census.jsonl $(CENSUS_ARGS)
 
 stubs: install
 	$(PY) -m pybind11_stubgen swarmcollide._core -o python --numpy-array-use-type-var

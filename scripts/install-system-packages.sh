@@ -3,8 +3,10 @@
 # As root it installs them; otherwise it prints the command to run and fails.
 set -euo pipefail
 
+# libasan8 and libubsan1 (make test-sanitize) come with build-essential's gcc-12 already; they are
+# listed so that the sanitizer runtimes are a stated requirement, not an accident.
 packages=(
-  build-essential cmake ninja-build pkg-config git
+  build-essential libasan8 libubsan1 cmake ninja-build pkg-config git
   python3 python3-dev python3-venv
   libeigen3-dev libqhull-dev libfcl-dev libccd-dev liblbfgspp-dev
   libgtest-dev libbenchmark-dev

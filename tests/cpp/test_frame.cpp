@@ -169,7 +169,8 @@ TEST(Frame, TranslationsFarFromTheOriginChangeNoVerdict) {
         EXPECT_EQ(r.certified, home.certified);
         expect_contract(a, b, m.kind, m.method, r, reference(a, b),
                         scale_of(a, b, kDefaultTolerance));
-        if (method_info(m.method).always_certified) {
+        // A collide answer's distance is only the bound that settled the verdict.
+        if (method_info(m.method).always_certified && m.kind != QueryKind::collide) {
           EXPECT_NEAR(r.distance, home.distance, scale.tolerance + 1e-9 * scale.size);
         }
       }

@@ -42,10 +42,10 @@ class DualSearch {
     bounds_.offer_upper(vertex_witness(pair_, ia, ib));
     hint_a_ = ia;
     hint_b_ = ib;
-    history_.push_back(bounds_.upper().distance);
+    record();
     // Between well-separated bodies the features along the centres' direction are often the
     // optimal ones already, and the swarm has nothing left to do.
-    finish_.from(centre, hint_a_, hint_b_, bounds_, goal_);
+    if (!reached()) finish_.from(centre, hint_a_, hint_b_, bounds_, goal_);
     if (!reached()) try_common_point();
     Scalar radius = kPi / 2;
     Vector3 round_centre = bounds_.normal();
@@ -67,6 +67,11 @@ class DualSearch {
 
  private:
   bool reached() const { return bounds_.reached(pair_, goal_); }
+
+  // The best upper bound after the start and after each iteration; a verdict keeps none.
+  void record() {
+    if (goal_ != Goal::verdict) history_.push_back(bounds_.upper().distance);
+  }
 
   // Wolfe's algorithm on the whole difference, once, when no direction separates the bodies.
   void try_common_point() {
@@ -95,7 +100,7 @@ class DualSearch {
     for (int iteration = 0; iteration < options_.max_iterations && !reached(); ++iteration) {
       if (swarm_.step()) improve(false);
       ++iterations_;
-      history_.push_back(bounds_.upper().distance);
+      record();
     }
     if (!reached()) improve(true);
   }

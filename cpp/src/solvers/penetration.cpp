@@ -23,6 +23,8 @@ constexpr Scalar kSmallestCoordinate = 1e-100;
 // the polytope proves too little (tens of milliseconds); larger pairs keep the bounds they have,
 // unproven.
 constexpr long long kAxesFallbackWork = 1LL << 22;
+// Times the witnesses' feature slack may grow 16-fold (from about 1e-12 to 1e-7 of the frame).
+constexpr int kWitnessWidenings = 5;
 // Iterations of Wolfe's algorithm on the witnesses' features (it stops at rounding long before).
 constexpr int kWitnessIterations = 100;
 
@@ -246,9 +248,20 @@ class Solver {
   // difference shifted by it). At an optimal normal the foot of the origin on the facet of
   // A - B lies in that difference, and the residual is rounding.
   void witnesses(PenetrationBounds& r) {
-    const Vector3& n = normal_;
     const Scalar gap = std::isfinite(upper()) ? std::max(Scalar(0), upper() - lower()) : 0;
-    const Scalar slack = 1024 * margin() + 2 * std::min(gap, Scalar(1e-9));
+    // A normal a gap's worth of angle off the optimal facet's tilts the optimal features by
+    // more than the gap along long edges (a needle's, say): a feature cut to one of its vertices
+    // leaves witnesses apart by far more than the tolerance. The slack widens until they agree.
+    const Scalar target = std::max(tolerance_, 4 * margin());
+    Scalar slack = 1024 * margin() + 2 * std::min(gap, Scalar(1e-9));
+    for (int widening = 0; widening < kWitnessWidenings; ++widening, slack *= 16) {
+      witnesses_within(slack, r);
+      if (r.witness_residual <= target) return;
+    }
+  }
+
+  void witnesses_within(Scalar slack, PenetrationBounds& r) {
+    const Vector3& n = normal_;
     feature(a_, n, top_a_, slack, ws_.feature_a);
     feature(b_, -n, top_b_, slack, ws_.feature_b);
     const Vector3 shift = separation_ * n;
