@@ -29,7 +29,7 @@ $(PY): | system-packages
 
 $(VENV)/.installed: $(PACKAGE_SOURCES) | system-packages $(PY)
 	$(PY) -m pip install --quiet $(BUILD_REQUIREMENTS)
-	$(PY) -m pip install --quiet --no-build-isolation ".[test,plot,mesh]"
+	$(PY) -m pip install --quiet --no-build-isolation ".[test,plot,mesh,dask]"
 	touch $@
 
 install: $(VENV)/.installed
@@ -46,7 +46,7 @@ BENCH_BUILD := build/bench
 BENCH_ARGS ?=
 
 $(VENV)/.bench-installed: $(VENV)/.installed
-	$(PY) -m pip install --quiet --no-build-isolation ".[test,plot,mesh,bench]"
+	$(PY) -m pip install --quiet --no-build-isolation ".[test,plot,mesh,dask,bench]"
 	touch $@
 
 # make bench-scene: only the scene section (C++ against FCL's manager, Python against python-fcl
@@ -86,6 +86,8 @@ bench: install $(VENV)/.bench-installed bench-scene bench-compound
 	$(PY) bench/kernel_code.py > bench/results/kernel_code.txt \
 	  --object $(BENCH_BUILD)/cpp/CMakeFiles/swarmcollide.dir/src/solvers/swarm_kernels.cpp.o
 	$(PY) bench/report.py --results bench/results --plots bench/plots --out bench/RESULTS.md
+	$(PY) bench/dask_batch.py $(BENCH_ARGS) --json bench/results/dask_batch.json \
+	  --results-md bench/RESULTS.md
 
 # The core, the C++ tests and the extension, built with ASan and UBSan (SWARMCOLLIDE_SANITIZE) in
 # their own directory, at -O1 with assertions on (Eigen's index checks included). Python itself is

@@ -6,6 +6,7 @@ import pytest
 
 import swarmcollide
 import swarmcollide._core
+import swarmcollide.dask
 import swarmcollide.mesh
 import swarmcollide.plot
 import swarmcollide.queries
@@ -15,6 +16,7 @@ MODULES = [
     swarmcollide,
     swarmcollide.queries,
     swarmcollide._core,
+    swarmcollide.dask,
     swarmcollide.mesh,
     swarmcollide.plot,
     swarmcollide.scene_demo,

@@ -1,0 +1,305 @@
+"""swarmcollide.dask against the in-memory batch call: a million pairs of 8-point bodies with
+method "dual", on in-memory threads, on Dask's threaded scheduler and on distributed LocalClusters
+of one and of two worker processes.
+
+Every configuration answers the same pairs (made block by block from fixed seeds) and is timed
+from the call to the answers:
+- in memory: ``sc.distance_many(As, Bs, threads=t)`` on NumPy arrays, t = 1 and every core.
+- threaded scheduler: ``scd.distance_many`` on dask arrays wrapping the same NumPy arrays, every
+  field computed to NumPy (one Dask thread per core, one C++ thread per chunk).
+- LocalCluster: the bodies made and kept on the workers beforehand (as data of that size would
+  be), one thread per worker; every field either kept on the workers (``persist``: the cluster's
+  own throughput) or gathered to the client (``compute``: plus moving 95 bytes per pair between
+  processes).
+The machine is shared, so the configurations take turns in rounds (both clusters stay up
+throughout): first, in short rounds, those the targets compare (in memory, and chunks of 100,000
+pairs), then the other chunk sizes in a third as many rounds. Each target's ratio is taken within
+each round, where the others' load is about the same for both sides, and the median over rounds
+is reported; the in-memory speed-up from one core to every core says how many cores the run
+really had. Times are medians over rounds, with the fastest run beside them. The
+overhead per chunk is the time beyond the in-memory call on the same cores, per chunk and core:
+``(seconds - ideal) * cores / chunks``, where ideal is the in-memory call on every core (threaded
+scheduler) or the one-thread call divided by the workers (cluster).
+
+Writes a JSON file, prints a Markdown section, and with ``--results-md`` puts that section into
+bench/RESULTS.md (replacing its previous version). The load averages before and after are
+recorded.
+"""
+
+from __future__ import annotations
+
+import argparse
+import contextlib
+import datetime
+import json
+import os
+import platform
+import statistics
+import time
+from pathlib import Path
+from typing import Callable, Dict, List
+
+import dask
+import dask.array as da
+import distributed
+import numpy as np
+from distributed import Client, LocalCluster, wait
+
+import swarmcollide as sc
+import swarmcollide.dask as scd
+
+VERTICES = 8
+METHOD = "dual"
+BLOCK = 10_000  # pairs made per generator call; every chunk size here is a multiple of it
+MARKER = "<!-- bench/dask_batch.py -->"
+
+
+def make_block(index: int, which: int) -> np.ndarray:
+    """Block ``index`` of the A bodies (which=0) or the B bodies (which=1): unit point clouds,
+    B's moved by up to 3 along each axis, so that about a quarter of the pairs overlap."""
+    rng = np.random.default_rng([index, which])
+    bodies = rng.normal(size=(BLOCK, VERTICES, 3))
+    if which:
+        bodies += np.random.default_rng([index, 2]).uniform(-3, 3, size=(BLOCK, 1, 3))
+    return bodies
+
+
+def lazy_bodies(pairs: int, which: int) -> da.Array:
+    blocks = [da.from_delayed(dask.delayed(make_block)(i, which), (BLOCK, VERTICES, 3), float)
+              for i in range(pairs // BLOCK)]
+    return da.concatenate(blocks)
+
+
+def timed(run: Callable[[], object]) -> float:
+    start = time.perf_counter()
+    run()
+    return time.perf_counter() - start
+
+
+def scheduler_tasks(client: Client) -> int:
+    return client.run_on_scheduler(lambda dask_scheduler: len(dask_scheduler.tasks))
+
+
+def settle(client: Client, tasks: int) -> None:
+    """Wait until the scheduler holds no more than ``tasks`` tasks again, having forgotten the
+    answers of the last run, which the next would otherwise find computed under the same keys."""
+    while scheduler_tasks(client) > tasks:
+        time.sleep(0.01)
+
+
+def loadavg() -> List[float]:
+    return [round(x, 2) for x in os.getloadavg()]
+
+
+class Cluster:
+    """A LocalCluster of ``workers`` one-thread processes holding the bodies in each chunking."""
+
+    def __init__(self, stack: contextlib.ExitStack, workers: int, pairs: int, chunks: List[int]):
+        self.workers = workers
+        cluster = stack.enter_context(LocalCluster(
+            n_workers=workers, threads_per_worker=1, host="127.0.0.1",
+            dashboard_address="127.0.0.1:0"))
+        self.client = stack.enter_context(Client(cluster, set_as_default=False))
+        self.bodies = {}
+        for chunk in chunks:
+            self.bodies[chunk] = self.client.persist(
+                [lazy_bodies(pairs, which).rechunk((chunk, -1, -1)) for which in (0, 1)])
+            with self.client.as_current():
+                wait(self.bodies[chunk])
+        self.tasks = scheduler_tasks(self.client)
+        for chunk in chunks:  # workers import swarmcollide and warm up
+            self.client.compute(vars(scd.distance_many(*(x[:10] for x in self.bodies[chunk]))),
+                                sync=True)
+        settle(self.client, self.tasks)
+
+    def kept(self, chunk: int) -> float:
+        result = scd.distance_many(*self.bodies[chunk], method=METHOD)
+        with self.client.as_current():
+            seconds = timed(lambda: wait(self.client.persist(list(vars(result).values()))))
+        settle(self.client, self.tasks)
+        return seconds
+
+    def gathered(self, chunk: int) -> float:
+        result = scd.distance_many(*self.bodies[chunk], method=METHOD)
+        seconds = timed(lambda: self.client.compute(list(vars(result).values()), sync=True))
+        settle(self.client, self.tasks)
+        return seconds
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--quick", action="store_true", help="200,000 pairs, fewer rounds")
+    parser.add_argument("--json", type=Path, required=True, help="where to write the results")
+    parser.add_argument("--results-md", type=Path, help="put the section into this Markdown file")
+    parser.add_argument("--rounds", type=int,
+                        help="rounds of the targets' configurations (default 9; the other chunk "
+                             "sizes get a third as many)")
+    args = parser.parse_args()
+    pairs = 200_000 if args.quick else 1_000_000
+    rounds = args.rounds or (2 if args.quick else 9)
+    target_chunk = 100_000
+    cores = os.cpu_count() or 1
+    thread_chunks = [c for c in (1_000, 10_000, 100_000, 250_000) if c <= pairs]
+    cluster_chunks = [c for c in (10_000, 100_000) if c <= pairs]
+    load_before = loadavg()
+
+    As = np.concatenate([make_block(i, 0) for i in range(pairs // BLOCK)])
+    Bs = np.concatenate([make_block(i, 1) for i in range(pairs // BLOCK)])
+    sc.distance_many(As[:BLOCK], Bs[:BLOCK])  # load and warm up
+    lazy = {c: (da.from_array(As, chunks=(c, -1, -1)), da.from_array(Bs, chunks=(c, -1, -1)))
+            for c in thread_chunks}
+
+    configurations: Dict[str, Dict] = {}
+
+    def add(key: str, run: Callable[[], float], **info) -> None:
+        # The targets' configurations take turns in short rounds; the other chunk sizes after.
+        target = info["chunk"] in (None, target_chunk)
+        configurations[key] = {"run": run, "seconds": [], "target": target, **info}
+
+    for threads in (1, cores):
+        add(f"memory-{threads}",
+            lambda t=threads: timed(lambda: sc.distance_many(As, Bs, method=METHOD, threads=t)),
+            kind="in memory", cores=threads, chunk=None, answers="NumPy")
+    for chunk in thread_chunks:
+        add(f"threads-{chunk}",
+            lambda c=chunk: timed(lambda: scd.distance_many(*lazy[c], method=METHOD)
+                                  .compute(scheduler="threads")),
+            kind="threaded scheduler", cores=cores, chunk=chunk, answers="NumPy")
+    with contextlib.ExitStack() as stack:
+        clusters = {workers: Cluster(stack, workers, pairs, cluster_chunks) for workers in (1, 2)}
+        # The two clusters' runs that a ratio compares come one after the other.
+        for chunk in cluster_chunks:
+            for answers, where in (("kept", "kept on the workers"),
+                                   ("gathered", "gathered to the client")):
+                for workers, cluster in clusters.items():
+                    add(f"cluster{workers}-{chunk}-{answers}",
+                        lambda c=chunk, k=cluster, a=answers: getattr(k, a)(c),
+                        kind=f"LocalCluster, {workers} process{'es' if workers > 1 else ''}",
+                        cores=workers, chunk=chunk, answers=where)
+        for phase, count in ((True, rounds), (False, max(1, rounds // 3))):
+            for _ in range(count):
+                for configuration in configurations.values():
+                    if configuration["target"] == phase:
+                        configuration["seconds"].append(round(configuration["run"](), 4))
+
+    for configuration in configurations.values():
+        del configuration["run"], configuration["target"]
+    results = summarise(configurations, pairs, rounds, cores)
+    results.update(
+        load_average_before=load_before,
+        load_average_after=loadavg(),
+        machine=platform.processor() or platform.machine(),
+        date=datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
+        versions={"swarmcollide": sc.__version__, "dask": dask.__version__,
+                  "distributed": distributed.__version__, "numpy": np.__version__},
+    )
+    args.json.parent.mkdir(parents=True, exist_ok=True)
+    args.json.write_text(json.dumps(results, indent=2) + "\n")
+    section = markdown(results)
+    print(section)
+    if args.results_md:
+        put_section(args.results_md, section)
+    return 0
+
+
+def summarise(rows: Dict[str, Dict], pairs: int, rounds: int, cores: int) -> Dict:
+    one_thread = rows["memory-1"]["seconds"]
+    every_core = rows[f"memory-{cores}"]["seconds"]
+    for row in rows.values():
+        row["median"] = statistics.median(row["seconds"])
+        row["fastest"] = min(row["seconds"])
+        row["pairs_per_second"] = round(pairs / row["median"])
+        if row["chunk"]:
+            ideal = (statistics.median(every_core) if row["kind"] == "threaded scheduler"
+                     else statistics.median(one_thread) / row["cores"])
+            chunks = -(-pairs // row["chunk"])
+            row["chunks"] = chunks
+            row["work_per_chunk_ms"] = round(statistics.median(one_thread) / chunks * 1e3, 1)
+            row["overhead_per_chunk_ms"] = round(
+                (row["median"] - ideal) * row["cores"] / chunks * 1e3, 1)
+
+    # A round had both cores free when the in-memory call was about twice as fast on both.
+    free = [one / every >= 0.9 * cores for one, every in zip(one_thread, every_core)]
+    comparisons = [
+        ("memory_every_core_vs_one", "in memory, every core / one core, throughput",
+         "(no target: the cores the run had)", "memory-1", f"memory-{cores}"),
+        ("threaded_vs_memory", "threaded scheduler / in memory, throughput, chunks of 100,000",
+         ">= 0.90", f"memory-{cores}", "threads-100000"),
+        ("cluster_2_vs_1_kept", "LocalCluster 2 processes / 1, answers kept, chunks of 100,000",
+         ">= 1.7", "cluster1-100000-kept", "cluster2-100000-kept"),
+        ("cluster_2_vs_1_gathered",
+         "LocalCluster 2 processes / 1, answers gathered, chunks of 100,000", ">= 1.7",
+         "cluster1-100000-gathered", "cluster2-100000-gathered"),
+    ]
+    targets = {}
+    for key, name, target, numerator, denominator in comparisons:
+        if numerator in rows and denominator in rows:
+            ratios = [a / b for a, b in zip(rows[numerator]["seconds"],
+                                            rows[denominator]["seconds"])]
+            quiet = [ratio for ratio, both in zip(ratios, free) if both]
+            targets[key] = {
+                "name": name,
+                "target": target,
+                "within_rounds": round(statistics.median(ratios), 3),
+                "rounds_with_every_core_free": len(quiet),
+                "within_those_rounds": round(statistics.median(quiet), 3) if quiet else None,
+                "fastest": round(rows[numerator]["fastest"] / rows[denominator]["fastest"], 3),
+            }
+    return {"pairs": pairs, "vertices": VERTICES, "method": METHOD, "rounds": rounds,
+            "cores": cores, "rows": rows, "targets": targets}
+
+
+def markdown(results: Dict) -> str:
+    rows = results["rows"]
+    memory = rows[f"memory-{results['cores']}"]
+    lines = [
+        MARKER,
+        "## Batches on Dask (bench/dask_batch.py)",
+        "",
+        f"{results['pairs']:,} pairs of {results['vertices']}-point bodies, method "
+        f"`{results['method']}`, every field computed; {results['rounds']} rounds, every "
+        f"configuration once per round; {results['cores']} cores; load average "
+        f"{results['load_average_before']} before, {results['load_average_after']} after; "
+        f"{results['date']}; dask {results['versions']['dask']}. Seconds: median over rounds "
+        "(fastest). Work per chunk: the in-memory time of a chunk on one core. Overhead per "
+        "chunk: time beyond the in-memory call on the same cores, times the cores, per chunk.",
+        "",
+        "| configuration | pairs per chunk | work per chunk | cores | answers | seconds | pairs/s "
+        "| vs in memory | overhead per chunk |",
+        "|---|---|---|---|---|---|---|---|---|",
+    ]
+    for row in rows.values():
+        chunked = bool(row["chunk"])
+        lines.append(
+            f"| {row['kind']} | {format(row['chunk'], ',') if chunked else 'all'} "
+            f"| {format(row['work_per_chunk_ms'], '.1f') + ' ms' if chunked else ''} "
+            f"| {row['cores']} | {row['answers']} | {row['median']:.3f} ({row['fastest']:.3f}) "
+            f"| {row['pairs_per_second']:,} "
+            f"| {row['pairs_per_second'] / memory['pairs_per_second']:.2f}x "
+            f"| {format(row['overhead_per_chunk_ms'], '.1f') + ' ms' if chunked else ''} |"
+        )
+    lines += ["", "| ratio | target | median over rounds | median over rounds with every core "
+              "free (count) | fastest runs |", "|---|---|---|---|---|"]
+    for target in results["targets"].values():
+        quiet = target["within_those_rounds"]
+        lines.append(f"| {target['name']} | {target['target']} | {target['within_rounds']:.3f} "
+                     f"| {'-' if quiet is None else format(quiet, '.3f')} "
+                     f"({target['rounds_with_every_core_free']}) | {target['fastest']:.3f} |")
+    return "\n".join(lines) + "\n"
+
+
+def put_section(path: Path, section: str) -> None:
+    """Replace the section after MARKER (to the next '## ' heading or the end), or append it."""
+    text = path.read_text() if path.exists() else ""
+    if MARKER in text:
+        before, after = text.split(MARKER, 1)
+        rest = after.split("\n## ", 2)
+        after = "\n## " + rest[2] if len(rest) > 2 else ""
+        text = before + section + after
+    else:
+        text = text.rstrip("\n") + "\n\n" + section
+    path.write_text(text)
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

@@ -1,0 +1,382 @@
+"""The batch queries on Dask arrays, for batches beyond one call or one machine.
+
+``distance_many``, ``collide_many`` and ``signed_distance_many`` take bodies as dask arrays of
+shape ``(m, n, 3)`` chunked along the pair axis and return a ``BatchArrays`` whose fields are
+dask arrays, lazily. Each chunk is answered by the in-memory batch call (``Query.distance_many``
+and its siblings, which release the GIL) told the global index of its first pair, so every answer
+is bitwise the in-memory call's whatever the chunking, the scheduler or the number of workers:
+pair i is seeded with ``pair_seed(seed, i)`` and errors name pair i by its global index.
+
+The threaded scheduler (Dask's default for arrays) uses every core of one machine; a
+``distributed`` cluster spreads the chunks over processes and machines. Inputs that do not fit in
+memory stay on disk: ``dask.array.from_zarr`` reads bodies chunk by chunk and
+``BatchArrays.store`` writes the answers back, one pass over the chunks. Install with
+``pip install swarmcollide[dask]``; docs/dask.md says which scheduler and chunk size to choose.
+
+Examples
+--------
+>>> import dask.array as da, numpy as np
+>>> import swarmcollide as sc, swarmcollide.dask as scd
+>>> tetra = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], dtype=float)
+>>> As = np.stack([tetra] * 6)
+>>> Bs = np.stack([tetra + [k + 0.5, 0, 0] for k in range(6)])
+>>> lazy = scd.distance_many(da.from_array(As, chunks=(4, -1, -1)), da.from_array(Bs))
+>>> lazy
+BatchArrays(6 pairs in 2 chunks, lazy)
+>>> r = lazy.compute()
+>>> r.distance.round(9).tolist(), r.colliding.tolist()
+([0.0, 0.5, 1.5, 2.5, 3.5, 4.5], [True, False, False, False, False, False])
+>>> np.array_equal(r.point_b, sc.distance_many(As, Bs).point_b)
+True
+"""
+
+from __future__ import annotations
+
+import math
+import operator
+import sys
+from dataclasses import dataclass, fields
+from typing import Any, Generic, Mapping, Optional, Tuple, TypeVar
+
+import dask
+import dask.array as da
+import dask.local
+import dask.threaded
+import numpy as np
+from dask.base import get_scheduler
+
+from swarmcollide import queries
+from swarmcollide.queries import DEFAULT_TOLERANCE, Parameters
+
+if sys.version_info >= (3, 11):
+    from typing import Unpack
+else:  # pragma: no cover - exercised on older interpreters only
+    from typing_extensions import Unpack
+
+__all__ = ["BatchArrays", "collide_many", "distance_many", "signed_distance_many"]
+
+# The fields of a BatchResult: their NumPy types, and whether they hold a point per pair.
+_FIELDS = {
+    "distance": (np.float64, False),
+    "lower_bound": (np.float64, False),
+    "point_a": (np.float64, True),
+    "point_b": (np.float64, True),
+    "direction": (np.float64, True),
+    "colliding": (np.bool_, False),
+    "certified": (np.bool_, False),
+    "escalated": (np.bool_, False),
+    "iterations": (np.int32, False),
+}
+
+
+ArrayT = TypeVar("ArrayT")
+
+
+@dataclass(frozen=True, repr=False)
+class BatchArrays(Generic[ArrayT]):
+    """The fields of a ``BatchResult``, as dask arrays (lazy) or, once computed, NumPy arrays.
+
+    Compute fields together (``compute``, ``store`` or ``dask.compute(r.distance, r.colliding)``):
+    each chunk is then answered once for all of them, whereas computing two fields one after the
+    other answers every chunk twice.
+
+    Attributes
+    ----------
+    distance, lower_bound : array, shape (m,)
+    point_a, point_b, direction : array, shape (m, 3)
+    colliding, certified, escalated : array of bool, shape (m,)
+    iterations : array of int32, shape (m,)
+    """
+
+    distance: ArrayT
+    lower_bound: ArrayT
+    point_a: ArrayT
+    point_b: ArrayT
+    direction: ArrayT
+    colliding: ArrayT
+    certified: ArrayT
+    escalated: ArrayT
+    iterations: ArrayT
+
+    def compute(self, **kwargs: Any) -> BatchArrays[np.ndarray]:
+        """Every field as a NumPy array, each chunk answered once.
+
+        ``kwargs`` go to ``dask.compute`` (``scheduler=``, ``num_workers=``, ...); with a
+        ``distributed.Client`` active, its cluster computes and the answers are gathered here.
+        With the threaded or the synchronous scheduler, each chunk's answers are copied into
+        the result by the thread that answered the chunk, as soon as it is answered, rather than
+        all joined at the end by one thread: faster, and holding only the chunks in flight
+        besides the result.
+        """
+        values = [getattr(self, f.name) for f in fields(self)]
+        local = (dask.threaded.get, dask.local.get_sync)
+        if get_scheduler(scheduler=kwargs.get("scheduler"), collections=values) not in local:
+            return BatchArrays(*dask.compute(*values, **kwargs))
+        result = BatchArrays(*(np.empty(value.shape, value.dtype) for value in values))
+        self.store({f.name: getattr(result, f.name) for f in fields(self)}, lock=False, **kwargs)
+        return result
+
+    def store(self, targets: Mapping[str, Any], **kwargs: Any) -> None:
+        """Write the fields named in ``targets`` into them, each chunk answered once.
+
+        Parameters
+        ----------
+        targets : mapping from field name to array-like
+            Where each field goes: anything that takes ``target[region] = values``, such as a
+            Zarr array, an ``h5py`` dataset or a NumPy memmap (in this process only: a memmap
+            sent to another process is a copy). Chunks of a Zarr target should be whole chunks
+            of the result, or concurrent writers must share a lock.
+        **kwargs
+            Passed to ``dask.array.store`` (``lock=``, ``scheduler=``, ...).
+
+        Examples
+        --------
+        >>> import dask.array as da, numpy as np, swarmcollide.dask as scd
+        >>> cube = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)], float)
+        >>> As = np.stack([cube] * 4)
+        >>> Bs = np.stack([cube + [k * 0.5, 0, 0] for k in range(4)])
+        >>> chunked = [da.from_array(bodies, chunks=(2, -1, -1)) for bodies in (As, Bs)]
+        >>> lazy = scd.distance_many(*chunked)
+        >>> distance, colliding = np.empty(4), np.empty(4, bool)
+        >>> lazy.store({"distance": distance, "colliding": colliding})
+        >>> distance.round(9).tolist(), colliding.tolist()
+        ([0.0, 0.0, 0.0, 0.5], [True, True, True, False])
+        """
+        names = [f.name for f in fields(self)]
+        unknown = [name for name in targets if name not in names]
+        if unknown:
+            raise ValueError(f"targets has no field named {unknown[0]!r}; use some of {names}")
+        da.store([getattr(self, name) for name in targets], list(targets.values()), **kwargs)
+
+    def __len__(self) -> int:
+        return len(self.distance)  # type: ignore[arg-type]
+
+    def __repr__(self) -> str:
+        if isinstance(self.distance, da.Array):
+            return f"BatchArrays({len(self)} pairs in {self.distance.numblocks[0]} chunks, lazy)"
+        return (
+            f"BatchArrays({len(self)} pairs, {np.count_nonzero(self.colliding)} colliding, "
+            f"{np.count_nonzero(self.certified)} certified)"
+        )
+
+
+@dataclass(frozen=True)
+class _Call:
+    """What every chunk asks, in plain values: it travels to worker processes and names tasks."""
+
+    query: str
+    method: str
+    tolerance: float
+    seed: int
+    parameters: Tuple[Tuple[str, Any], ...]
+    threads: Optional[int]
+    keywords: Tuple[Tuple[str, Any], ...]
+
+
+def _answer(
+    pairs: np.ndarray, As: np.ndarray, Bs: np.ndarray, call: _Call
+) -> Tuple[np.ndarray, ...]:
+    """One chunk's fields, from the in-memory batch call; ``pairs`` are its global indices."""
+    query = queries.query(
+        call.method, tolerance=call.tolerance, seed=call.seed, **dict(call.parameters)
+    )
+    result = getattr(query, f"{call.query}_many")(
+        As,
+        Bs,
+        threads=call.threads,
+        first_index=int(pairs[0]) if len(pairs) else 0,
+        **dict(call.keywords),
+    )
+    return tuple(getattr(result, name) for name in _FIELDS)
+
+
+def _bodies(bodies: Any, name: str) -> da.Array:
+    if not isinstance(bodies, da.Array):
+        raise TypeError(
+            f"{name} must be a dask array of shape (m, n, 3), got {type(bodies).__name__}; wrap "
+            f"NumPy arrays and memmaps with dask.array.from_array({name}, chunks=(pairs, -1, -1))"
+            " or read Zarr with dask.array.from_zarr"
+        )
+    if bodies.ndim != 3 or bodies.shape[2] != 3 or bodies.shape[1] == 0:
+        raise ValueError(f"{name} must have shape (m, n, 3) with n >= 1, got {bodies.shape}")
+    if bodies.dtype.kind not in "fiu":
+        raise TypeError(f"{name} must hold real numbers, got an array of dtype {bodies.dtype}")
+    if math.isnan(bodies.shape[0]):
+        raise ValueError(
+            f"{name} has chunks of unknown size; call {name}.compute_chunk_sizes() first"
+        )
+    return bodies
+
+
+def _many(
+    query: str,
+    As: da.Array,
+    Bs: da.Array,
+    method: str,
+    tolerance: float,
+    seed: int,
+    threads: Optional[int],
+    keywords: Mapping[str, Any],
+    parameters: Mapping[str, Any],
+) -> BatchArrays[da.Array]:
+    As, Bs = _bodies(As, "As"), _bodies(Bs, "Bs")
+    if As.shape[0] != Bs.shape[0]:
+        raise ValueError(
+            f"As and Bs must hold the same number of pairs, got {As.shape[0]} and {Bs.shape[0]}"
+        )
+    # Arguments are checked now, by the core, rather than in every chunk when computed.
+    checked = queries.query(method, tolerance=tolerance, seed=seed, **parameters)
+    if query not in queries.METHODS[method].queries:
+        able = [name for name, info in queries.METHODS.items() if query in info.queries]
+        raise ValueError(f"{query} is not available with method {method!r}; use one of {able}")
+    empty = np.empty((0, 1, 3))
+    getattr(checked, f"{query}_many")(empty, empty, threads=threads, **keywords)
+
+    call = _Call(
+        query,
+        method,
+        tolerance,
+        seed,
+        tuple(sorted(parameters.items())),
+        threads,
+        tuple(sorted(keywords.items())),
+    )
+    # The global index of every pair rides along, aligned with the bodies' chunks, so a chunk
+    # knows where it starts however the chunks of As and Bs are unified.
+    pairs = da.arange(As.shape[0], chunks=(As.chunks[0],))
+    # One task per chunk answers it and gives a tuple of fields (as dask.array.apply_gufunc does
+    # for several outputs); each field's chunk takes its part, so whichever fields are computed
+    # together, the chunk is answered once.
+    answers = da.blockwise(
+        _answer,
+        "i",
+        pairs,
+        "i",
+        As,
+        "ijk",
+        Bs,
+        "ilk",
+        call=call,
+        token=f"{query}_many",
+        concatenate=True,
+        meta=tuple(np.empty((0, 3) if point else (0,), dtype) for dtype, point in _FIELDS.values()),
+    )
+    return BatchArrays(
+        *(
+            answers.map_blocks(
+                operator.getitem,
+                index,
+                token=name,
+                meta=np.empty((0, 3) if point else (0,), dtype),
+                **({"chunks": answers.chunks + ((3,),), "new_axis": 1} if point else {}),
+            )
+            for index, (name, (dtype, point)) in enumerate(_FIELDS.items())
+        )
+    )
+
+
+def distance_many(
+    As: da.Array,
+    Bs: da.Array,
+    *,
+    method: str = "dual",
+    tolerance: float = DEFAULT_TOLERANCE,
+    seed: int = 0,
+    threads: Optional[int] = 1,
+    **parameters: Unpack[Parameters],
+) -> BatchArrays[da.Array]:
+    """``swarmcollide.distance_many`` chunk by chunk, lazily.
+
+    Parameters
+    ----------
+    As, Bs : dask.array.Array, shape (m, n, 3)
+        The bodies, pairwise, chunked along the pair axis (the first); a chunk should hold 100 ms
+        of work or more (docs/dask.md). Where the chunks of As and Bs differ, both are cut at
+        the boundaries of either. The number of points ``n`` may differ between As and Bs.
+    threads : int, optional
+        C++ threads per chunk. The default, 1, leaves the parallelism to Dask (one chunk per
+        core); None uses every hardware thread in each chunk.
+    method, tolerance, seed, **parameters
+        As for ``swarmcollide.distance``, checked now.
+
+    Returns
+    -------
+    BatchArrays
+        Dask arrays chunked as the pairs; bitwise the fields of
+        ``swarmcollide.distance_many(As, Bs, ...)`` once computed.
+
+    Raises
+    ------
+    TypeError, ValueError
+        Now, for arguments the in-memory call would refuse, and when computed, for the pair with
+        the lowest global index that fails in the first chunk to fail (``"pair 12345: ..."``,
+        ``"As[12345]: ..."``), as the in-memory call raises it.
+
+    Examples
+    --------
+    >>> import dask.array as da, swarmcollide.dask as scd
+    >>> rng = da.random.default_rng(0)
+    >>> As = rng.normal(size=(1000, 8, 3), chunks=(250, 8, 3))
+    >>> Bs = rng.normal(size=(1000, 8, 3), chunks=(250, 8, 3)) + 5.0
+    >>> r = scd.distance_many(As, Bs)
+    >>> r.distance
+    dask.array<distance, shape=(1000,), dtype=float64, chunksize=(250,), chunktype=numpy.ndarray>
+    >>> bool((r.distance > 0).all().compute())
+    True
+    """
+    return _many("distance", As, Bs, method, tolerance, seed, threads, {}, parameters)
+
+
+def collide_many(
+    As: da.Array,
+    Bs: da.Array,
+    *,
+    method: str = "dual",
+    tolerance: float = DEFAULT_TOLERANCE,
+    seed: int = 0,
+    threads: Optional[int] = 1,
+    escalate: bool = True,
+    **parameters: Unpack[Parameters],
+) -> BatchArrays[da.Array]:
+    """``swarmcollide.collide_many`` chunk by chunk, lazily; the keywords of ``distance_many``.
+
+    Examples
+    --------
+    >>> import dask.array as da, numpy as np, swarmcollide.dask as scd
+    >>> cube = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)], float)
+    >>> As = np.stack([cube] * 4)
+    >>> Bs = np.stack([cube + [k * 0.6, 0, 0] for k in range(4)])
+    >>> r = scd.collide_many(*(da.from_array(x, chunks=(2, -1, -1)) for x in (As, Bs)))
+    >>> r.colliding.compute().tolist()
+    [True, True, False, False]
+    """
+    return _many(
+        "collide", As, Bs, method, tolerance, seed, threads, {"escalate": escalate}, parameters
+    )
+
+
+def signed_distance_many(
+    As: da.Array,
+    Bs: da.Array,
+    *,
+    method: str = "dual",
+    tolerance: float = DEFAULT_TOLERANCE,
+    seed: int = 0,
+    threads: Optional[int] = 1,
+    **parameters: Unpack[Parameters],
+) -> BatchArrays[da.Array]:
+    """``swarmcollide.signed_distance_many`` chunk by chunk, lazily; the keywords of
+    ``distance_many``.
+
+    Examples
+    --------
+    >>> import dask.array as da, numpy as np, swarmcollide.dask as scd
+    >>> cube = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)], float)
+    >>> As = np.stack([cube] * 4)
+    >>> Bs = np.stack([cube + [k * 0.5, 0, 0] for k in range(4)])
+    >>> r = scd.signed_distance_many(*(da.from_array(x, chunks=(2, -1, -1)) for x in (As, Bs)))
+    >>> r.distance.compute().round(9).tolist()
+    [-1.0, -0.5, 0.0, 0.5]
+    """
+    return _many("signed_distance", As, Bs, method, tolerance, seed, threads, {}, parameters)
+
