@@ -188,7 +188,7 @@ QueryOptions make_options(const std::string& method, const py::handle& tolerance
   return options;
 }
 
-py::class_<Query> bind_queries(py::module_& m) {
+void bind_distance_result(py::module_& m) {
   py::class_<DistanceResult>(m, "DistanceResult", R"doc(
 The answer of every query, whatever the method, in the units of the input.
 
@@ -240,7 +240,9 @@ depth when the bodies overlap, and ``point_b - point_a = distance * direction``.
           "gap", [](const DistanceResult& r) { return r.distance - r.lower_bound; },
           "``distance - lower_bound``: how far from exact the answer can be.")
       .def("__repr__", &repr);
+}
 
+py::class_<Query> bind_queries(py::module_& m) {
   m.def("method_table", &method_table_for_python,
         "Every method as a dictionary: name, summary, queries, always_certified, parameters.");
 

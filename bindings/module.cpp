@@ -19,8 +19,9 @@ PYBIND11_MODULE(_core, m) {
   bind_geometry(m);
   bind_problem(m);
   bind_solvers(m);
-  py::class_<swarmcollide::Query> query = bind_queries(m);
+  bind_distance_result(m);
   bind_compound(m);
+  py::class_<swarmcollide::Query> query = bind_queries(m);
   bind_batch(m, query);
   bind_scene(m);
 }

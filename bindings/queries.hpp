@@ -15,8 +15,11 @@ namespace py = pybind11;
 QueryOptions make_options(const std::string& method, const py::handle& tolerance,
                           const py::handle& seed, const py::kwargs& parameters);
 
-/// Binds DistanceResult, the method table and Query; returns Query's class so that other areas
-/// (batches) can add their methods to it.
+/// Binds DistanceResult, before CompoundResult (its subclass) and the queries returning either.
+void bind_distance_result(py::module_& m);
+
+/// Binds the method table and Query; returns Query's class so that other areas (batches) can add
+/// their methods to it.
 py::class_<Query> bind_queries(py::module_& m);
 
 }  // namespace swarmcollide::bindings

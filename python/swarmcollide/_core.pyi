@@ -472,7 +472,7 @@ class Query:
         ...
     def __repr__(self) -> str:
         ...
-    def collide(self, a: typing.Any, b: typing.Any, pose_a: typing.Any = None, pose_b: typing.Any = None, escalate: bool = True) -> typing.Any:
+    def collide(self, a: typing.Any, b: typing.Any, pose_a: typing.Any = None, pose_b: typing.Any = None, escalate: bool = True) -> bool:
         ...
     def collide_many(self, As: typing.Any, Bs: typing.Any, threads: typing.Any = None, first_index: typing.Any = 0, escalate: bool = True, poses_a: typing.Any = None, poses_b: typing.Any = None) -> BatchResult:
         """
@@ -484,9 +484,9 @@ class Query:
         freed by the thread that answers it). ``poses_a`` and ``poses_b`` place them: None (the identity),
         an ``(m, 4, 4)`` array of rigid transforms or a pair ``(rotations (m, 3, 3), translations (m, 3))``.
         """
-    def collision(self, a: typing.Any, b: typing.Any, pose_a: typing.Any = None, pose_b: typing.Any = None, escalate: bool = True) -> typing.Any:
+    def collision(self, a: typing.Any, b: typing.Any, pose_a: typing.Any = None, pose_b: typing.Any = None, escalate: bool = True) -> swarmcollide._core.DistanceResult | swarmcollide._core.CompoundResult:
         ...
-    def distance(self, a: typing.Any, b: typing.Any, pose_a: typing.Any = None, pose_b: typing.Any = None) -> typing.Any:
+    def distance(self, a: typing.Any, b: typing.Any, pose_a: typing.Any = None, pose_b: typing.Any = None) -> swarmcollide._core.DistanceResult | swarmcollide._core.CompoundResult:
         ...
     def distance_many(self, As: typing.Any, Bs: typing.Any, threads: typing.Any = None, first_index: typing.Any = 0, poses_a: typing.Any = None, poses_b: typing.Any = None) -> BatchResult:
         """
@@ -498,7 +498,7 @@ class Query:
         freed by the thread that answers it). ``poses_a`` and ``poses_b`` place them: None (the identity),
         an ``(m, 4, 4)`` array of rigid transforms or a pair ``(rotations (m, 3, 3), translations (m, 3))``.
         """
-    def signed_distance(self, a: typing.Any, b: typing.Any, pose_a: typing.Any = None, pose_b: typing.Any = None) -> typing.Any:
+    def signed_distance(self, a: typing.Any, b: typing.Any, pose_a: typing.Any = None, pose_b: typing.Any = None) -> swarmcollide._core.DistanceResult | swarmcollide._core.CompoundResult:
         ...
     def signed_distance_many(self, As: typing.Any, Bs: typing.Any, threads: typing.Any = None, first_index: typing.Any = 0, poses_a: typing.Any = None, poses_b: typing.Any = None) -> BatchResult:
         """
