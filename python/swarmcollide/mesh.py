@@ -211,10 +211,12 @@ class Decomposition:
     ``spacing`` of a sample, and the distance functions are 1-Lipschitz, so the true values
     exceed the measured ones by at most about ``spacing``.
 
-    What it means for queries: answers are certified for the parts, and the mesh's true distance
-    lies within ``parts_to_mesh`` (of each body) below and ``mesh_to_parts`` (of each body) above
-    the parts' distance: ``d_parts - hA - hB <= d_mesh <= d_parts + gA + gB`` with ``h`` the
-    ``parts_to_mesh`` and ``g`` the ``mesh_to_parts`` of bodies A and B.
+    What it means for queries: answers are certified for the parts, and the meshes' true distance
+    lies within ``mesh_to_parts`` (of each body) below and ``parts_to_mesh`` (of each body) above
+    the parts' distance: ``d_parts - gA - gB <= d_mesh <= d_parts + hA + hB`` with ``h`` the
+    ``parts_to_mesh`` and ``g`` the ``mesh_to_parts`` of bodies A and B (parts that miss some of
+    a mesh can leave the meshes closer than the parts, parts that stick out can leave them
+    farther apart), to within the true values' excess over the sampled ones.
 
     Attributes
     ----------
