@@ -176,7 +176,13 @@ class _Call:
 def _answer(
     pairs: np.ndarray, As: np.ndarray, Bs: np.ndarray, call: _Call
 ) -> Tuple[np.ndarray, ...]:
-    """One chunk's fields, from the in-memory batch call; ``pairs`` are its global indices."""
+    """One chunk's fields, from the in-memory batch call; ``pairs`` are its global indices.
+
+    ``As`` and ``Bs`` come as blockwise gives unconcatenated blocks, nested lists over their
+    point and coordinate axes, each of one block (``_many`` rechunks them so): taking that block
+    avoids the copy that concatenating a single block costs (about a tenth of the chunk's time).
+    """
+    As, Bs = As[0][0], Bs[0][0]
     query = queries.query(
         call.method, tolerance=call.tolerance, seed=call.seed, **dict(call.parameters)
     )
@@ -219,7 +225,9 @@ def _many(
     keywords: Mapping[str, Any],
     parameters: Mapping[str, Any],
 ) -> BatchArrays[da.Array]:
-    As, Bs = _bodies(As, "As"), _bodies(Bs, "Bs")
+    # A body's points in one block: chunks along the points or coordinates are joined here.
+    As = _bodies(As, "As").rechunk({1: -1, 2: -1})
+    Bs = _bodies(Bs, "Bs").rechunk({1: -1, 2: -1})
     if As.shape[0] != Bs.shape[0]:
         raise ValueError(
             f"As and Bs must hold the same number of pairs, got {As.shape[0]} and {Bs.shape[0]}"
@@ -258,7 +266,7 @@ def _many(
         "ilk",
         call=call,
         token=f"{query}_many",
-        concatenate=True,
+        concatenate=False,
         meta=tuple(np.empty((0, 3) if point else (0,), dtype) for dtype, point in _FIELDS.values()),
     )
     return BatchArrays(
