@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "sphere_polytope.hpp"
 #include "swarmcollide/queries/query.hpp"
 
 namespace sc = swarmcollide;
@@ -20,21 +21,6 @@ namespace {
 
 constexpr int kTimedSeeds = 3000;
 constexpr int kAccuracyPairs = 100;
-
-sc::VertexMatrix sphere_polytope(int n, std::mt19937_64& rng, double shift) {
-  std::normal_distribution<double> normal;
-  sc::VertexMatrix points(n, 3);
-  for (int i = 0; i < n; ++i) {
-    const sc::Vector3 v(normal(rng), normal(rng), normal(rng));
-    points.row(i) = v.normalized().transpose();
-  }
-  const sc::ConvexPolyhedron body(points);
-  const auto& hull = body.hull().vertex_indices;
-  sc::VertexMatrix vertices(hull.size(), 3);
-  for (std::size_t k = 0; k < hull.size(); ++k) vertices.row(k) = points.row(hull[k]);
-  vertices.col(0).array() += shift;
-  return vertices;
-}
 
 sc::QueryOptions ipso(sc::ConstraintHandling handling, double tolerance) {
   sc::QueryOptions options;

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "plain_pso.hpp"
+#include "sphere_polytope.hpp"
 #include "swarmcollide/queries/methods.hpp"
 #include "swarmcollide/queries/query.hpp"
 #include "swarmcollide/solvers/swarm.hpp"
@@ -33,22 +34,6 @@ struct Pair {
   sc::VertexMatrix a, b;  // row-major, so .data() is x y z per vertex, as plain_pso reads it
   double exact;
 };
-
-// The hull's vertices of n points drawn uniformly on the unit sphere, moved by `shift` along x.
-sc::VertexMatrix sphere_polytope(int n, std::mt19937_64& rng, double shift) {
-  std::normal_distribution<double> normal;
-  sc::VertexMatrix points(n, 3);
-  for (int i = 0; i < n; ++i) {
-    const sc::Vector3 v(normal(rng), normal(rng), normal(rng));
-    points.row(i) = v.normalized().transpose();
-  }
-  const sc::ConvexPolyhedron body(points);
-  const auto& hull = body.hull().vertex_indices;
-  sc::VertexMatrix vertices(hull.size(), 3);
-  for (std::size_t k = 0; k < hull.size(); ++k) vertices.row(k) = points.row(hull[k]);
-  vertices.col(0).array() += shift;
-  return vertices;
-}
 
 // `count` separated pairs of n-point sphere polytopes: B's centre 2.01 or 2.5 from A's along x,
 // so the bodies (inside unit balls) are apart by at least 0.01 or 0.5.
