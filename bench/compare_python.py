@@ -10,9 +10,7 @@ every library: the timed call is the query alone. Run from the repository root:
 from __future__ import annotations
 
 import argparse
-import json
 import logging
-import platform
 import statistics
 import sys
 import time
@@ -21,6 +19,7 @@ from typing import Callable, Dict, List, NamedTuple, Optional
 import numpy as np
 from tqdm import tqdm
 
+import record
 import swarmcollide as sc
 from workloads import Pair, Workload, paper_workloads, random_workloads
 
@@ -184,8 +183,8 @@ METHODS: Dict[str, Callable[[Pair], Query]] = {
     "swarmcollide pso": swarmcollide_method("pso"),
     "swarmcollide penalty": swarmcollide_method("penalty"),
     "swarmcollide dual": swarmcollide_method("dual"),
+    "swarmcollide exact": swarmcollide_method("exact"),
     "swarmcollide fcl": swarmcollide_method("fcl"),
-    "swarmcollide fcl-indep": swarmcollide_method("fcl-indep"),
     "pyswarms GlobalBestPSO": pyswarms_gbest,
     "scipy SLSQP": scipy_slsqp,
     "python-fcl GST_LIBCCD": python_fcl("GST_LIBCCD"),
@@ -271,18 +270,8 @@ def main(argv: Optional[List[str]] = None) -> int:
     budget = 0.01 if args.quick else 0.05
     cells = [(m, w) for w in workloads for m in METHODS]
     records = [run_cell(m, w, budget) for m, w in tqdm(cells, desc="python comparison")]
-    versions = {}
-    for module in ("numpy", "scipy", "pyswarms", "fcl", "coal", "swarmcollide"):
-        try:
-            versions[module] = getattr(__import__(module), "__version__", "unknown")
-        except ImportError:
-            versions[module] = "not installed"
-    output = {"context": {"python": platform.python_version(), "versions": versions,
-                          "date": time.strftime("%Y-%m-%d %H:%M:%S"), "quick": args.quick,
-                          "accuracy_threshold": ACCURACY, "pairs_per_random_workload": pairs},
-              "records": records}
-    with open(args.json, "w") as f:
-        json.dump(output, f, indent=1)
+    record.write(args.json, "python_comparison", records, quick=args.quick,
+                 accuracy_threshold=ACCURACY, pairs_per_random_workload=pairs)
     return 0
 
 

@@ -14,7 +14,6 @@ line. Run from the repository root:
 from __future__ import annotations
 
 import argparse
-import json
 import os
 import sys
 from typing import List, Optional
@@ -27,6 +26,7 @@ import numpy as np  # noqa: E402
 from scipy import stats  # noqa: E402
 from tqdm import tqdm  # noqa: E402
 
+import record  # noqa: E402
 import swarmcollide as sc  # noqa: E402
 from workloads import paper_workloads, random_workloads  # noqa: E402
 
@@ -139,9 +139,8 @@ def main(argv: Optional[List[str]] = None) -> int:
     fig.tight_layout()
     fig.savefig(os.path.join(args.plots, "convergence.png"), dpi=100)
 
-    with open(args.json, "w") as f:
-        json.dump({"floor": FLOOR, "checkpoints": CHECKPOINTS, "claim": list(CLAIM),
-                   "problems": results}, f)
+    record.write(args.json, "convergence", results, quick=args.quick, floor=FLOOR,
+                 checkpoints=CHECKPOINTS, claim=list(CLAIM))
     return 0
 
 
