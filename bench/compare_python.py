@@ -223,12 +223,12 @@ def time_query(query: Query, seed: int, budget: float) -> tuple:
 
 
 def run_cell(name: str, workload: Workload, budget: float) -> dict:
-    record = {"method": name, "workload": workload.name, "n": workload.n,
+    cell = {"method": name, "workload": workload.name, "n": workload.n,
               "proximity": workload.proximity, "pairs": len(workload.pairs)}
     reason = unavailable(name)
     if reason:
-        record["note"] = reason
-        return record
+        cell["note"] = reason
+        return cell
     times, errors, iterations, evaluations = [], [], [], []
     wrong = separated = within = 0
     for seed, pair in enumerate(workload.pairs):
@@ -245,13 +245,13 @@ def run_cell(name: str, workload: Workload, budget: float) -> dict:
                 separated += 1
                 within += error <= ACCURACY
     q = np.quantile(times, [0.25, 0.5, 0.75])
-    record.update(time_p25_s=q[0], time_median_s=q[1], time_p75_s=q[2], wrong_verdicts=wrong,
+    cell.update(time_p25_s=q[0], time_median_s=q[1], time_p75_s=q[2], wrong_verdicts=wrong,
                   separated=separated, within_1e6=within,
                   error_max=max(errors), error_median=float(np.median(errors)))
     if iterations:
-        record.update(iterations_mean=float(np.mean(iterations)),
+        cell.update(iterations_mean=float(np.mean(iterations)),
                       evaluations_mean=float(np.mean(evaluations)))
-    return record
+    return cell
 
 
 def main(argv: Optional[List[str]] = None) -> int:

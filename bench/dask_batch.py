@@ -36,6 +36,7 @@ import time
 from pathlib import Path
 from typing import Callable, Dict, List
 
+import dask
 import dask.array as da
 import numpy as np
 from distributed import Client, LocalCluster, wait

@@ -5,7 +5,8 @@ Bodies are the hull vertices of points on the unit sphere (8 and 64 points), bui
 are apart (distance 1) or overlapping by a tenth of their size. Each contender answers the same
 pairs in turn, round after round; a contender's time is the median over rounds of its mean time
 per call, and the ratios are taken against python-fcl's distance and collide and coal's signed
-distance from the same run. ``--json`` writes one row per contender and size (bench/record.py's format).
+distance from the same run. ``--json`` writes one row per contender and size (bench/record.py's
+format).
 """
 
 from __future__ import annotations

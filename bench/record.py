@@ -3,9 +3,9 @@
     {"bench": name, "machine": {...}, "command": "...", "rows": [...], ...the bench's own fields}
 
 ``machine`` holds the processor, the core count, the load average at the start and at the end,
-the date, and the versions of Python and of the libraries measured. A Python bench calls ``write``; a C++ binary is run through this module, which passes
-it ``--json TEMPORARY`` and wraps what it wrote (its ``rows``, or Google Benchmark's
-``benchmarks``) in the same header:
+the date, and the versions of Python and of the libraries measured. A Python bench calls
+``write``; a C++ binary is run through this module, which passes it ``--json TEMPORARY`` and
+wraps what it wrote (its ``rows``, or Google Benchmark's ``benchmarks``) in the same header:
 
     python bench/record.py --bench cpp --json bench/results/cpp.json -- BINARY ARGS...
 """
