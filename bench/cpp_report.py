@@ -177,23 +177,23 @@ def headline_section(names: "RowNames", cells, sizes, proximity) -> str:
     return table(["method \\ vertices per body"] + [str(n) for n in sizes], rows)
 
 
+def measured(cells, row: str, n: int, proximities) -> List[dict]:
+    """The cells of a row that ran, over the workloads of size n at these proximities."""
+    found = (cells.get((row, workload_name(n, p))) for p in proximities)
+    return [c for c in found if c and "error" not in c]
+
+
 def accuracy_section(names: "RowNames", cells, sizes, proximities) -> str:
     """Separated pairs within 1e-6 over every 'apart'/'gap' workload, and the worst error."""
     rows = []
     for row in names.distance:
         r = [row]
         for n in sizes:
-            within = separated = 0
-            worst = 0.0
-            wrong = 0
-            for p in proximities:
-                c = cells.get((row, workload_name(n, p)))
-                if not c or "error" in c:
-                    continue
-                within += c.get("within_1e-6", 0)
-                separated += c.get("separated", 0)
-                worst = max(worst, c.get("error_max", 0))
-                wrong += c.get("wrong_verdicts", 0)
+            done = measured(cells, row, n, proximities)
+            within = sum(c.get("within_1e-6", 0) for c in done)
+            separated = sum(c.get("separated", 0) for c in done)
+            worst = max([c.get("error_max", 0) for c in done], default=0.0)
+            wrong = sum(c.get("wrong_verdicts", 0) for c in done)
             text = f"{within:.0f}/{separated:.0f}, max {fmt_err(worst)}"
             if wrong:
                 text += f", {wrong:.0f} wrong verdicts"
@@ -207,12 +207,9 @@ def verdict_section(names: "RowNames", cells, sizes, proximities) -> str:
     for row in names.all:
         r = [row]
         for n in sizes:
-            wrong = total = 0
-            for p in proximities:
-                c = cells.get((row, workload_name(n, p)))
-                if c and "error" not in c:
-                    wrong += c.get("wrong_verdicts", 0)
-                    total += c.get("pairs", 0)
+            done = measured(cells, row, n, proximities)
+            wrong = sum(c.get("wrong_verdicts", 0) for c in done)
+            total = sum(c.get("pairs", 0) for c in done)
             r.append(f"{wrong:.0f}/{total:.0f}")
         rows.append(r)
     return table(["method \\ vertices per body"] + [str(n) for n in sizes], rows)
