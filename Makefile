@@ -40,8 +40,9 @@ test-cpp: system-packages
 	cmake --build $(CPP_BUILD) -j $(JOBS)
 	ctest --test-dir $(CPP_BUILD) --output-on-failure -j $(JOBS)
 
-# make bench: the benchmark binary, the Python comparisons, bench/RESULTS.md and its plots.
-# BENCH_ARGS=--quick runs a reduced set (both the binary and the Python scripts take it).
+# make bench: every bench (bench/README.md), each writing bench/results/NAME.json in one format
+# (bench/record.py), then bench/RESULTS.md and its plots from them (bench/report.py only renders).
+# BENCH_ARGS=--quick runs a reduced set (both the binaries and the Python scripts take it).
 BENCH_BUILD := build/bench
 BENCH_ARGS ?=
 
@@ -56,7 +57,8 @@ bench-scene: install $(VENV)/.bench-installed
 	  -DSWARMCOLLIDE_BUILD_BENCH=ON -DSWARMCOLLIDE_BUILD_PYTHON=OFF
 	cmake --build $(BENCH_BUILD) -j $(JOBS) --target swarmcollide-scene-bench
 	mkdir -p bench/results bench/plots
-	$(BENCH_BUILD)/bench/swarmcollide-scene-bench $(BENCH_ARGS) --json bench/results/scene.json
+	$(PY) bench/record.py --bench scene --json bench/results/scene.json -- \
+	  $(BENCH_BUILD)/bench/swarmcollide-scene-bench $(BENCH_ARGS)
 	$(PY) bench/scene.py $(BENCH_ARGS) --json bench/results/scene_python.json
 	$(PY) bench/report.py --results bench/results --plots bench/plots --out bench/RESULTS.md
 
@@ -73,21 +75,21 @@ bench: install $(VENV)/.bench-installed bench-scene bench-compound
 	cmake --build $(BENCH_BUILD) -j $(JOBS) --target swarmcollide-bench swarmcollide-batch-loop \
 	  swarmcollide-swarm-speed swarmcollide-swarm-targets
 	mkdir -p bench/results bench/plots
-	$(BENCH_BUILD)/bench/swarmcollide-bench $(BENCH_ARGS) --json bench/results/cpp.json \
-	  > $(BENCH_BUILD)/console.txt
+	$(PY) bench/record.py --bench cpp --json bench/results/cpp.json -- \
+	  $(BENCH_BUILD)/bench/swarmcollide-bench $(BENCH_ARGS) > $(BENCH_BUILD)/console.txt
 	$(PY) bench/compare_python.py $(BENCH_ARGS) --json bench/results/python_comparison.json
+	$(PY) bench/per_call.py $(BENCH_ARGS) --json bench/results/per_call.json
 	$(PY) bench/convergence.py $(BENCH_ARGS) --json bench/results/convergence.json --plots bench/plots
 	$(PY) bench/batch.py $(BENCH_ARGS) --json bench/results/batch.json \
 	  --loop-binary $(BENCH_BUILD)/bench/swarmcollide-batch-loop
-	$(BENCH_BUILD)/bench/swarmcollide-swarm-speed > bench/results/swarm_speed.txt
+	$(PY) bench/record.py --bench swarm_speed --json bench/results/swarm_speed.json -- \
+	  $(BENCH_BUILD)/bench/swarmcollide-swarm-speed
 	$(PY) bench/swarm_targets.py $(BENCH_ARGS) --json bench/results/swarm_targets.json \
-	  --binary $(BENCH_BUILD)/bench/swarmcollide-swarm-targets \
-	  --sweep bench/results/velocity_sweep.txt --choices bench/results/choices.txt
-	$(PY) bench/kernel_code.py > bench/results/kernel_code.txt \
+	  --binary $(BENCH_BUILD)/bench/swarmcollide-swarm-targets --sweep --choices
+	$(PY) bench/kernel_code.py --json bench/results/kernel_code.json \
 	  --object $(BENCH_BUILD)/cpp/CMakeFiles/swarmcollide.dir/src/solvers/swarm_kernels.cpp.o
+	$(PY) bench/dask_batch.py $(BENCH_ARGS) --json bench/results/dask_batch.json
 	$(PY) bench/report.py --results bench/results --plots bench/plots --out bench/RESULTS.md
-	$(PY) bench/dask_batch.py $(BENCH_ARGS) --json bench/results/dask_batch.json \
-	  --results-md bench/RESULTS.md
 
 # The core, the C++ tests and the extension, built with ASan and UBSan (SWARMCOLLIDE_SANITIZE) in
 # their own directory, at -O1 with assertions on (Eigen's index checks included). Python itself is

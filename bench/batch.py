@@ -6,7 +6,8 @@ FCL shapes, as the Python loops do. distance_many is timed on one thread (the li
 comparison with the single-threaded loops) and with its default, threads=None (every hardware
 thread); both are recorded and labelled.
 
-Writes a JSON file that bench/report.py turns into a section of bench/RESULTS.md.
+Writes a JSON file (bench/record.py's format, a row per method of the thread scaling) that
+bench/report.py turns into a section of bench/RESULTS.md.
 """
 
 from __future__ import annotations
@@ -25,12 +26,13 @@ from typing import Callable, Dict, List
 import numpy as np
 from tqdm import tqdm
 
+import record
 import swarmcollide as sc
 
 VERTICES = 8
 # Pairs per method for the thread-scaling runs: about a second of work each on one thread.
-SCALING_PAIRS = {"ipso": 4000, "pso": 4000, "penalty": 1000, "dual": 40000, "fcl": 20000,
-                 "fcl-indep": 20000}
+SCALING_PAIRS = {"ipso": 4000, "pso": 4000, "penalty": 1000, "dual": 40000, "exact": 20000,
+                 "fcl": 20000}
 
 
 def make_pairs(count: int, seed: int = 0):
@@ -107,6 +109,7 @@ def peak_memory(pairs: int, method: str) -> Dict[str, float]:
 import sys
 sys.path.insert(0, {str(Path(__file__).parent)!r})
 from batch import make_pairs
+import record
 import swarmcollide as sc
 
 def status_mib(field):
@@ -180,20 +183,19 @@ def main() -> int:
         }
     results["python_loops"] = python_loops
 
-    scaling = {}
+    scaling = []
     for method, count in tqdm(list(SCALING_PAIRS.items()), desc="thread scaling", leave=False):
         count = max(100, int(count * scale))
         one = median_seconds(
             lambda: sc.distance_many(As[:count], Bs[:count], method=method, threads=1), repeats)
         two = median_seconds(
             lambda: sc.distance_many(As[:count], Bs[:count], method=method, threads=2), repeats)
-        scaling[method] = {"pairs": count, "one_thread_seconds": one, "two_threads_seconds": two,
-                           "speedup": one / two}
-    results["thread_scaling"] = scaling
+        scaling.append({"method": method, "pairs": count, "one_thread_seconds": one,
+                        "two_threads_seconds": two, "speedup": one / two})
     results["memory"] = peak_memory(memory_pairs, "dual")
 
-    arguments.json.write_text(json.dumps(results, indent=2) + "\n")
-    print(json.dumps(results, indent=2))
+    written = record.write(arguments.json, "batch", scaling, **results)
+    print(json.dumps(written, indent=2))
     return 0
 
 

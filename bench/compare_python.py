@@ -10,9 +10,7 @@ every library: the timed call is the query alone. Run from the repository root:
 from __future__ import annotations
 
 import argparse
-import json
 import logging
-import platform
 import statistics
 import sys
 import time
@@ -21,6 +19,7 @@ from typing import Callable, Dict, List, NamedTuple, Optional
 import numpy as np
 from tqdm import tqdm
 
+import record
 import swarmcollide as sc
 from workloads import Pair, Workload, paper_workloads, random_workloads
 
@@ -184,8 +183,8 @@ METHODS: Dict[str, Callable[[Pair], Query]] = {
     "swarmcollide pso": swarmcollide_method("pso"),
     "swarmcollide penalty": swarmcollide_method("penalty"),
     "swarmcollide dual": swarmcollide_method("dual"),
+    "swarmcollide exact": swarmcollide_method("exact"),
     "swarmcollide fcl": swarmcollide_method("fcl"),
-    "swarmcollide fcl-indep": swarmcollide_method("fcl-indep"),
     "pyswarms GlobalBestPSO": pyswarms_gbest,
     "scipy SLSQP": scipy_slsqp,
     "python-fcl GST_LIBCCD": python_fcl("GST_LIBCCD"),
@@ -224,12 +223,12 @@ def time_query(query: Query, seed: int, budget: float) -> tuple:
 
 
 def run_cell(name: str, workload: Workload, budget: float) -> dict:
-    record = {"method": name, "workload": workload.name, "n": workload.n,
+    cell = {"method": name, "workload": workload.name, "n": workload.n,
               "proximity": workload.proximity, "pairs": len(workload.pairs)}
     reason = unavailable(name)
     if reason:
-        record["note"] = reason
-        return record
+        cell["note"] = reason
+        return cell
     times, errors, iterations, evaluations = [], [], [], []
     wrong = separated = within = 0
     for seed, pair in enumerate(workload.pairs):
@@ -246,13 +245,13 @@ def run_cell(name: str, workload: Workload, budget: float) -> dict:
                 separated += 1
                 within += error <= ACCURACY
     q = np.quantile(times, [0.25, 0.5, 0.75])
-    record.update(time_p25_s=q[0], time_median_s=q[1], time_p75_s=q[2], wrong_verdicts=wrong,
+    cell.update(time_p25_s=q[0], time_median_s=q[1], time_p75_s=q[2], wrong_verdicts=wrong,
                   separated=separated, within_1e6=within,
                   error_max=max(errors), error_median=float(np.median(errors)))
     if iterations:
-        record.update(iterations_mean=float(np.mean(iterations)),
+        cell.update(iterations_mean=float(np.mean(iterations)),
                       evaluations_mean=float(np.mean(evaluations)))
-    return record
+    return cell
 
 
 def main(argv: Optional[List[str]] = None) -> int:
@@ -271,18 +270,8 @@ def main(argv: Optional[List[str]] = None) -> int:
     budget = 0.01 if args.quick else 0.05
     cells = [(m, w) for w in workloads for m in METHODS]
     records = [run_cell(m, w, budget) for m, w in tqdm(cells, desc="python comparison")]
-    versions = {}
-    for module in ("numpy", "scipy", "pyswarms", "fcl", "coal", "swarmcollide"):
-        try:
-            versions[module] = getattr(__import__(module), "__version__", "unknown")
-        except ImportError:
-            versions[module] = "not installed"
-    output = {"context": {"python": platform.python_version(), "versions": versions,
-                          "date": time.strftime("%Y-%m-%d %H:%M:%S"), "quick": args.quick,
-                          "accuracy_threshold": ACCURACY, "pairs_per_random_workload": pairs},
-              "records": records}
-    with open(args.json, "w") as f:
-        json.dump(output, f, indent=1)
+    record.write(args.json, "python_comparison", records, quick=args.quick,
+                 accuracy_threshold=ACCURACY, pairs_per_random_workload=pairs)
     return 0
 
 

@@ -17,13 +17,14 @@ recorded error of python-fcl's.
 from __future__ import annotations
 
 import argparse
-import json
 import os
 import sys
 import time
 from typing import Dict, List, Optional
 
 import numpy as np
+
+import record
 
 BANDS = [(0.0, 0.02), (0.02, 0.1), (0.1, 0.4), (0.4, 1.5), (1.5, 6.0)]
 ROUNDS = 5
@@ -155,11 +156,8 @@ def measure(quick: bool) -> dict:
 
 def compound_section(results_dir: str) -> Optional[str]:
     """The RESULTS.md section from compound.json; None when it has not been measured."""
-    path = os.path.join(results_dir, "compound.json")
-    if not os.path.exists(path):
-        return None
-    with open(path) as f:
-        return section(json.load(f))
+    data = record.load(os.path.join(results_dir, "compound.json"))
+    return None if data is None else section(data)
 
 
 def section(data: dict) -> str:
@@ -230,10 +228,8 @@ def main(argv: Optional[List[str]] = None) -> int:
     args = parser.parse_args(argv)
     if args.json:
         data = measure(args.quick)
-        os.makedirs(os.path.dirname(os.path.abspath(args.json)), exist_ok=True)
-        with open(args.json, "w") as f:
-            json.dump(data, f, indent=1)
         print(section(data))
+        record.write(args.json, "compound", data.pop("rows"), quick=args.quick, **data)
     elif args.section:
         text = compound_section(args.section)
         if text is None:

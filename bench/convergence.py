@@ -14,7 +14,6 @@ line. Run from the repository root:
 from __future__ import annotations
 
 import argparse
-import json
 import os
 import sys
 from typing import List, Optional
@@ -27,6 +26,7 @@ import numpy as np  # noqa: E402
 from scipy import stats  # noqa: E402
 from tqdm import tqdm  # noqa: E402
 
+import record  # noqa: E402
 import swarmcollide as sc  # noqa: E402
 from workloads import paper_workloads, random_workloads  # noqa: E402
 
@@ -74,7 +74,7 @@ def main(argv: Optional[List[str]] = None) -> int:
 
     results = []
     for title, pairs in problems(args.quick):
-        record = {"problem": title, "seeds": len(pairs), "variants": {}}
+        problem = {"problem": title, "seeds": len(pairs), "variants": {}}
         finals = {}
         for name, params in tqdm(VARIANTS.items(), desc=title):
             errors = []
@@ -84,11 +84,11 @@ def main(argv: Optional[List[str]] = None) -> int:
             errors = np.array(errors)
             q = np.quantile(errors, [0.25, 0.5, 0.75], axis=0)
             finals[name] = errors[:, -1]
-            record["variants"][name] = {
+            problem["variants"][name] = {
                 "p25": q[0].tolist(), "median": q[1].tolist(), "p75": q[2].tolist(),
                 "within_1e6": int(np.sum(errors[:, -1] <= 1e-6)),
                 "final_errors": errors[:, -1].tolist()}
-        record["claim"] = paired(finals[CLAIM[0]], finals[CLAIM[1]])
+        problem["claim"] = paired(finals[CLAIM[0]], finals[CLAIM[1]])
         if "penalty" in sc.METHODS:
             final, outer, lbfgs = [], [], []
             for a, b, exact in pairs:
@@ -96,33 +96,33 @@ def main(argv: Optional[List[str]] = None) -> int:
                 final.append(max(r.distance - exact, 0.0))
                 outer.append(len(r.history))
                 lbfgs.append(r.iterations)
-            record["penalty"] = {"final_error_median": float(np.median(final)),
+            problem["penalty"] = {"final_error_median": float(np.median(final)),
                                  "final_error_p25": float(np.quantile(final, 0.25)),
                                  "final_error_p75": float(np.quantile(final, 0.75)),
                                  "outer_iterations_median": float(np.median(outer)),
                                  "lbfgs_iterations_median": float(np.median(lbfgs))}
         else:
-            record["penalty"] = {"note": "method 'penalty' is not in this swarmcollide's API"}
-        results.append(record)
+            problem["penalty"] = {"note": "method 'penalty' is not in this swarmcollide's API"}
+        results.append(problem)
 
     columns = 3
     rows = (len(results) + columns - 1) // columns
     fig, axes = plt.subplots(rows, columns, figsize=(5.0 * columns, 4.0 * rows), sharey=True,
                              squeeze=False)
-    for ax, record in zip(axes.flat, results):
-        for (name, curves), colour in zip(record["variants"].items(), COLOURS):
+    for ax, problem in zip(axes.flat, results):
+        for (name, curves), colour in zip(problem["variants"].items(), COLOURS):
             x = np.arange(len(curves["median"]))
             ax.plot(x, np.maximum(curves["median"], FLOOR), color=colour, label=name,
                     linestyle="-" if "projection" in name else ":")
             ax.fill_between(x, np.maximum(curves["p25"], FLOOR), np.maximum(curves["p75"], FLOOR),
                             color=colour, alpha=0.2, linewidth=0)
-        penalty = record["penalty"]
+        penalty = problem["penalty"]
         if "final_error_median" in penalty:
             ax.axhline(max(penalty["final_error_median"], FLOOR), color="k", linestyle="--",
                        label="penalty, final error")
         ax.set_yscale("log")
         ax.set_xlabel("iteration")
-        ax.set_title(f"{record['problem']} ({record['seeds']} seeds)", fontsize=10)
+        ax.set_title(f"{problem['problem']} ({problem['seeds']} seeds)", fontsize=10)
         ax.grid(True, which="major", alpha=0.3)
     for ax in axes[:, 0]:
         ax.set_ylabel("gbest distance - exact")
@@ -139,9 +139,8 @@ def main(argv: Optional[List[str]] = None) -> int:
     fig.tight_layout()
     fig.savefig(os.path.join(args.plots, "convergence.png"), dpi=100)
 
-    with open(args.json, "w") as f:
-        json.dump({"floor": FLOOR, "checkpoints": CHECKPOINTS, "claim": list(CLAIM),
-                   "problems": results}, f)
+    record.write(args.json, "convergence", results, quick=args.quick, floor=FLOOR,
+                 checkpoints=CHECKPOINTS, claim=list(CLAIM))
     return 0
 
 

@@ -21,19 +21,16 @@ overhead per chunk is the time beyond the in-memory call on the same cores, per 
 ``(seconds - ideal) * cores / chunks``, where ideal is the in-memory call on every core (threaded
 scheduler) or the one-thread call divided by the workers (cluster).
 
-Writes a JSON file, prints a Markdown section, and with ``--results-md`` puts that section into
-bench/RESULTS.md (replacing its previous version). The load averages before and after are
-recorded.
+Writes a JSON file in bench/record.py's format (a row per configuration; the load averages at
+the start and the end are in its machine record); bench/report.py renders it.
 """
 
 from __future__ import annotations
 
 import argparse
 import contextlib
-import datetime
 import json
 import os
-import platform
 import statistics
 import time
 from pathlib import Path
@@ -41,17 +38,16 @@ from typing import Callable, Dict, List
 
 import dask
 import dask.array as da
-import distributed
 import numpy as np
 from distributed import Client, LocalCluster, wait
 
+import record
 import swarmcollide as sc
 import swarmcollide.dask as scd
 
 VERTICES = 8
 METHOD = "dual"
 BLOCK = 10_000  # pairs made per generator call; every chunk size here is a multiple of it
-MARKER = "<!-- bench/dask_batch.py -->"
 
 
 def make_block(index: int, which: int) -> np.ndarray:
@@ -85,10 +81,6 @@ def settle(client: Client, tasks: int) -> None:
     answers of the last run, which the next would otherwise find computed under the same keys."""
     while scheduler_tasks(client) > tasks:
         time.sleep(0.01)
-
-
-def loadavg() -> List[float]:
-    return [round(x, 2) for x in os.getloadavg()]
 
 
 class Cluster:
@@ -130,7 +122,6 @@ def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--quick", action="store_true", help="200,000 pairs, fewer rounds")
     parser.add_argument("--json", type=Path, required=True, help="where to write the results")
-    parser.add_argument("--results-md", type=Path, help="put the section into this Markdown file")
     parser.add_argument("--rounds", type=int,
                         help="rounds of the targets' configurations (default 9; the other chunk "
                              "sizes get a third as many)")
@@ -141,7 +132,7 @@ def main() -> int:
     cores = os.cpu_count() or 1
     thread_chunks = [c for c in (1_000, 10_000, 100_000, 250_000) if c <= pairs]
     cluster_chunks = [c for c in (10_000, 100_000) if c <= pairs]
-    load_before = loadavg()
+    load_before = os.getloadavg()
 
     As = np.concatenate([make_block(i, 0) for i in range(pairs // BLOCK)])
     Bs = np.concatenate([make_block(i, 1) for i in range(pairs // BLOCK)])
@@ -185,20 +176,9 @@ def main() -> int:
     for configuration in configurations.values():
         del configuration["run"], configuration["target"]
     results = summarise(configurations, pairs, rounds, cores)
-    results.update(
-        load_average_before=load_before,
-        load_average_after=loadavg(),
-        machine=platform.processor() or platform.machine(),
-        date=datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
-        versions={"swarmcollide": sc.__version__, "dask": dask.__version__,
-                  "distributed": distributed.__version__, "numpy": np.__version__},
-    )
-    args.json.parent.mkdir(parents=True, exist_ok=True)
-    args.json.write_text(json.dumps(results, indent=2) + "\n")
-    section = markdown(results)
-    print(section)
-    if args.results_md:
-        put_section(args.results_md, section)
+    rows = [{"key": key, **row} for key, row in results.pop("rows").items()]
+    written = record.write(args.json, "dask_batch", rows, load_start=load_before, **results)
+    print(json.dumps(written, indent=1))
     return 0
 
 
@@ -247,58 +227,6 @@ def summarise(rows: Dict[str, Dict], pairs: int, rounds: int, cores: int) -> Dic
             }
     return {"pairs": pairs, "vertices": VERTICES, "method": METHOD, "rounds": rounds,
             "cores": cores, "rows": rows, "targets": targets}
-
-
-def markdown(results: Dict) -> str:
-    rows = results["rows"]
-    memory = rows[f"memory-{results['cores']}"]
-    lines = [
-        MARKER,
-        "## Batches on Dask (bench/dask_batch.py)",
-        "",
-        f"{results['pairs']:,} pairs of {results['vertices']}-point bodies, method "
-        f"`{results['method']}`, every field computed; {results['rounds']} rounds, every "
-        f"configuration once per round; {results['cores']} cores; load average "
-        f"{results['load_average_before']} before, {results['load_average_after']} after; "
-        f"{results['date']}; dask {results['versions']['dask']}. Seconds: median over rounds "
-        "(fastest). Work per chunk: the in-memory time of a chunk on one core. Overhead per "
-        "chunk: time beyond the in-memory call on the same cores, times the cores, per chunk.",
-        "",
-        "| configuration | pairs per chunk | work per chunk | cores | answers | seconds | pairs/s "
-        "| vs in memory | overhead per chunk |",
-        "|---|---|---|---|---|---|---|---|---|",
-    ]
-    for row in rows.values():
-        chunked = bool(row["chunk"])
-        lines.append(
-            f"| {row['kind']} | {format(row['chunk'], ',') if chunked else 'all'} "
-            f"| {format(row['work_per_chunk_ms'], '.1f') + ' ms' if chunked else ''} "
-            f"| {row['cores']} | {row['answers']} | {row['median']:.3f} ({row['fastest']:.3f}) "
-            f"| {row['pairs_per_second']:,} "
-            f"| {row['pairs_per_second'] / memory['pairs_per_second']:.2f}x "
-            f"| {format(row['overhead_per_chunk_ms'], '.1f') + ' ms' if chunked else ''} |"
-        )
-    lines += ["", "| ratio | target | median over rounds | median over rounds with every core "
-              "free (count) | fastest runs |", "|---|---|---|---|---|"]
-    for target in results["targets"].values():
-        quiet = target["within_those_rounds"]
-        lines.append(f"| {target['name']} | {target['target']} | {target['within_rounds']:.3f} "
-                     f"| {'-' if quiet is None else format(quiet, '.3f')} "
-                     f"({target['rounds_with_every_core_free']}) | {target['fastest']:.3f} |")
-    return "\n".join(lines) + "\n"
-
-
-def put_section(path: Path, section: str) -> None:
-    """Replace the section after MARKER (to the next '## ' heading or the end), or append it."""
-    text = path.read_text() if path.exists() else ""
-    if MARKER in text:
-        before, after = text.split(MARKER, 1)
-        rest = after.split("\n## ", 2)
-        after = "\n## " + rest[2] if len(rest) > 2 else ""
-        text = before + section + after
-    else:
-        text = text.rstrip("\n") + "\n\n" + section
-    path.write_text(text)
 
 
 if __name__ == "__main__":

@@ -5,9 +5,10 @@ compute on one double (``...sd`` arithmetic, comparisons, minima and maxima; mov
 of values shared by all particles are not counted), and the widest register it uses. A kernel
 compiled to scalar code shows many more scalar than packed instructions. It reads both this
 library's per-set namespaces and the ``target_clones`` suffixes of earlier versions. Run from the
-repository root after building:
+repository root after building (``--json`` writes a row per kernel and set in bench/record.py's
+format):
 
-    python bench/kernel_code.py \
+    python bench/kernel_code.py --json bench/results/kernel_code.json \
         --object build/bench/cpp/CMakeFiles/swarmcollide.dir/src/solvers/swarm_kernels.cpp.o
 """
 
@@ -19,6 +20,8 @@ import subprocess
 import sys
 from typing import List, Optional
 
+import record
+
 KERNEL = re.compile(r"swarmcollide::detail::(?:(avx512|avx2|baseline)::)?"
                     r"(?:\(anonymous namespace\)::)?(\w+)\(.*?(?:\[clone \.(\w+)\])?>:$")
 CLONES = {"arch_x86_64_v4": "avx512", "arch_x86_64_v3": "avx2", "default": "baseline"}
@@ -28,6 +31,7 @@ NOT_COMPUTING = {"movsd", "vmovsd", "vbroadcastsd", "movddup", "vmovddup"}
 def main(argv: Optional[List[str]] = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--object", required=True)
+    parser.add_argument("--json", help="where to write the rows")
     args = parser.parse_args(argv)
     listing = subprocess.run(["objdump", "-d", "--no-show-raw-insn", "-C", args.object],
                              capture_output=True, text=True, check=True).stdout
@@ -55,9 +59,14 @@ def main(argv: Optional[List[str]] = None) -> int:
                 break
     print(f"{'instruction set':<16}{'kernel':<26}{'instructions':>13}{'packed (pd)':>13}"
           f"{'scalar (sd)':>13}{'widest register':>17}")
+    rows = []
     for (isa, name), c in sorted(counts.items(), key=lambda kv: (kv[0][1], kv[0][0])):
         print(f"{isa:<16}{name:<26}{c['all']:>13}{c['pd']:>13}{c['sd']:>13}"
               f"{str(c['width']) + ' bits':>17}")
+        rows.append({"isa": isa, "kernel": name, "instructions": c["all"], "packed": c["pd"],
+                     "scalar": c["sd"], "widest_register_bits": c["width"]})
+    if args.json:
+        record.write(args.json, "kernel_code", rows)
     return 0
 
 

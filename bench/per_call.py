@@ -5,14 +5,13 @@ Bodies are the hull vertices of points on the unit sphere (8 and 64 points), bui
 are apart (distance 1) or overlapping by a tenth of their size. Each contender answers the same
 pairs in turn, round after round; a contender's time is the median over rounds of its mean time
 per call, and the ratios are taken against python-fcl's distance and collide and coal's signed
-distance from the same run. ``--json`` writes one record per contender and size.
+distance from the same run. ``--json`` writes one row per contender and size (bench/record.py's
+format).
 """
 
 from __future__ import annotations
 
 import argparse
-import json
-import os
 import statistics
 import time
 from pathlib import Path
@@ -21,6 +20,7 @@ from typing import Callable, Dict, List, Optional
 import numpy as np
 from scipy.spatial import ConvexHull
 
+import record
 import swarmcollide as sc
 
 
@@ -127,8 +127,8 @@ def main(argv: Optional[List[str]] = None) -> int:
         print(f"{r['vertices']:>3} {r['pairs']:<12} {r['contender']:<26} "
               f"{r['microseconds']:8.2f} us  {r['ratio']:5.2f}x {r['against']}")
     if arguments.json:
-        meta = {"load_average": os.getloadavg(), "rounds": rounds, "calls": calls}
-        arguments.json.write_text(json.dumps({"meta": meta, "records": records}, indent=1) + "\n")
+        record.write(arguments.json, "per_call", records, quick=arguments.quick, rounds=rounds,
+                     calls=calls)
     return 0
 
 

@@ -10,9 +10,7 @@ motion; every contender runs each frame in turn, on the same poses.
 from __future__ import annotations
 
 import argparse
-import json
 import os
-import platform
 import time
 from typing import Callable, Dict, List
 
@@ -21,6 +19,7 @@ import numpy as np
 import trimesh
 from trimesh.collision import CollisionManager
 
+import record
 import swarmcollide as sc
 
 # As in scene_bench.cpp: bodies per unit volume, and per-frame motion.
@@ -208,13 +207,9 @@ def main() -> int:
                   + " ".join(f"{k}={v:g}" for k, v in results[-1].items()
                              if k not in ("seconds", "cpu_seconds")), flush=True)
     if args.json:
-        context = {"python": platform.python_version(), "load_before": load_before,
-                   "load_after": os.getloadavg(), "mode": "quick" if args.quick else "full",
-                   "warm_frames": warm_frames, "cold_repeats": cold_repeats,
-                   "versions": {"python-fcl": getattr(fcl, "__version__", "?"),
-                                "trimesh": trimesh.__version__, "swarmcollide": sc.__version__}}
-        with open(args.json, "w") as f:
-            json.dump({"context": context, "rows": rows}, f, indent=1)
+        context = {"mode": "quick" if args.quick else "full", "warm_frames": warm_frames,
+                   "cold_repeats": cold_repeats}
+        record.write(args.json, "scene_python", rows, load_start=load_before, context=context)
     return 0
 
 

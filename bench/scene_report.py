@@ -6,20 +6,15 @@
 from __future__ import annotations
 
 import argparse
-import json
 import os
 from typing import Dict, List, Optional, Tuple
+
+from markdown import machine_line, table
+from record import load
 
 TARGET_SPEEDUP_WARM = 5
 TARGET_WARM_1000_MS = 11
 TARGET_PYTHON_SPEEDUP = 10
-
-
-def load(path: str) -> Optional[dict]:
-    if not os.path.exists(path):
-        return None
-    with open(path) as f:
-        return json.load(f)
 
 
 def by_key(rows: List[dict]) -> Dict[Tuple[str, int, str], dict]:
@@ -39,12 +34,6 @@ def ratio(slow: Optional[dict], fast: Optional[dict], field: str = "median_cpu_s
     if slow is None or fast is None or fast[field] <= 0:
         return float("nan")
     return slow[field] / fast[field]
-
-
-def table(header: List[str], rows: List[List[str]]) -> str:
-    lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
-    lines += ["| " + " | ".join(row) + " |" for row in rows]
-    return "\n".join(lines)
 
 
 def settled(row: dict) -> str:
@@ -110,7 +99,6 @@ def cpp_section(data: dict) -> Tuple[str, Dict]:
 
 def python_section(data: dict) -> Tuple[str, Dict]:
     rows = by_key(data["rows"])
-    context = data["context"]
     sizes = sorted({r["n"] for r in data["rows"]})
     names = [("python_fcl_counting", "python-fcl, counting callback"),
              ("python_fcl_collide", "python-fcl, fcl.collide in the callback"),
@@ -119,10 +107,7 @@ def python_section(data: dict) -> Tuple[str, Dict]:
     out = [
         "### Python: `bench/scene.py`",
         "",
-        f"Python {context['python']}, python-fcl {context['versions']['python-fcl']}, trimesh "
-        f"{context['versions']['trimesh']}; load average before/after: "
-        f"{[round(x, 2) for x in context['load_before']]} / "
-        f"{[round(x, 2) for x in context['load_after']]}. A frame sets every pose (python-fcl: "
+        f"Made by {machine_line(data)} A frame sets every pose (python-fcl: "
         "`setTransform` per object, then `update()`; trimesh: `set_transform` per object; "
         "sc.Scene: one `set_poses` with an (N, 4, 4) array) and asks for the colliding pairs "
         "(python-fcl counting: only counts the manager's candidate pairs in a Python callback).",

@@ -3,13 +3,12 @@
 Runs ``swarmcollide-swarm-targets`` once per instruction set (SWARMCOLLIDE_ISA=avx512, avx2,
 baseline), each run timing swarmcollide's ipso against bench/plain_pso.cpp in the same process,
 and collects the runs in one JSON file; a set the processor cannot run is recorded as such.
-With ``--sweep FILE`` it also runs the velocity-limit sweep and keeps its table in FILE, and with
-``--choices FILE`` the plain PSO under the alternatives to the other choices the paper leaves open.
-Run from the repository root:
+A row per run. With ``--sweep`` it also runs the velocity-limit sweep and keeps its table in the
+JSON's ``velocity_sweep``, and with ``--choices`` the plain PSO under the alternatives to the other
+choices the paper leaves open (``choices``). Run from the repository root:
 
     python bench/swarm_targets.py --binary build/bench/bench/swarmcollide-swarm-targets \\
-        --json bench/results/swarm_targets.json --sweep bench/results/velocity_sweep.txt \\
-        --choices bench/results/choices.txt
+        --json bench/results/swarm_targets.json --sweep --choices
 """
 
 from __future__ import annotations
@@ -21,6 +20,8 @@ import subprocess
 import sys
 import tempfile
 from typing import List, Optional
+
+import record
 
 ISAS = ["avx512", "avx2", "baseline"]
 
@@ -42,20 +43,21 @@ def main(argv: Optional[List[str]] = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--binary", required=True)
     parser.add_argument("--json", required=True)
-    parser.add_argument("--sweep", help="also run the velocity-limit sweep; its table goes here")
-    parser.add_argument("--choices", help="also run the open choices on the plain PSO; table here")
+    parser.add_argument("--sweep", action="store_true", help="also run the velocity-limit sweep")
+    parser.add_argument("--choices", action="store_true",
+                        help="also run the open choices on the plain PSO")
     parser.add_argument("--quick", action="store_true")
     args = parser.parse_args(argv)
 
     runs = [run(args.binary, isa, args.quick) for isa in ISAS]
-    with open(args.json, "w") as f:
-        json.dump({"quick": args.quick, "runs": runs}, f, indent=1)
-    for flag, path in (("--sweep", args.sweep), ("--choices", args.choices)):
-        if path:
+    tables = {}
+    for flag, key, wanted in (("--sweep", "velocity_sweep", args.sweep),
+                              ("--choices", "choices", args.choices)):
+        if wanted:
             done = subprocess.run([args.binary, flag] + (["--quick"] if args.quick else []),
                                   capture_output=True, text=True, check=True)
-            with open(path, "w") as f:
-                f.write(done.stdout)
+            tables[key] = done.stdout
+    record.write(args.json, "swarm_targets", runs, quick=args.quick, **tables)
     return 0
 
 

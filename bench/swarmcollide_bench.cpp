@@ -21,8 +21,8 @@
 #include <string>
 #include <vector>
 
-#include "swarmcollide/queries/collide.hpp"
-#include "swarmcollide/queries/distance.hpp"
+#include "swarmcollide/queries/methods.hpp"
+#include "swarmcollide/queries/query.hpp"
 
 namespace sc = swarmcollide;
 
@@ -30,6 +30,11 @@ namespace {
 
 // A separated pair counts as solved when the reported distance is within this of the reference.
 constexpr double kAccuracy = 1e-6;
+// Pairs per random workload in a full run; every seeded row prepares one query per pair.
+constexpr int kPairsPerWorkload = 20;
+// The GJK that swarmcollide's "fcl" method runs is FCL's own (GST_INDEP's implementation), so the
+// direct FCL distance rows call that one too.
+constexpr fcl::GJKSolverType kFclOwnGjk = fcl::GST_INDEP;
 
 // Standard normals by Box-Muller on mt19937_64, whose output the C++ standard fixes; the
 // standard's normal_distribution is not portable across library implementations.
@@ -124,9 +129,9 @@ std::unique_ptr<Pair> build_pair(sc::VertexMatrix a_points, sc::VertexMatrix b_p
   sc::ConvexPolyhedron b(std::move(b_points));
   const sc::Aabb box = a.aabb();
   const sc::Vector3 origin = (box.min + box.max) / 2;
-  sc::DistanceOptions exact;
-  exact.method = sc::Method::fcl;
-  sc::DistanceResult reference = sc::distance(a, b, exact);
+  sc::QueryOptions exact;
+  exact.method = sc::Method::exact;
+  sc::DistanceResult reference = sc::Query(exact).distance(a, b);
   auto pair = std::unique_ptr<Pair>(
       new Pair{a, b, reference, origin, to_fcl(a, origin), to_fcl(b, origin), {}, {}});
   pair->ccd_a = {&pair->a, origin, pair->a.vertices().colwise().mean().transpose() - origin};
@@ -176,20 +181,31 @@ struct Workload {
   std::vector<std::unique_ptr<Pair>> pairs;
 };
 
-enum class Kind { distance, fcl_distance, sc_collide, fcl_collide, ccd_gjk, ccd_mpr };
+enum class Kind { distance, fcl_distance, sc_collide, fcl_collide, ccd_gjk };
 
 struct Row {
   std::string name;
   Kind kind;
-  sc::DistanceOptions options;
+  sc::QueryOptions options;
   bool iterative;       // swarm and penalty: limited pairs at the largest size
   const char* library;  // whose code answers
+  // One query per pair index, seeded with it, built before timing as a user keeps a Query.
+  std::vector<sc::Query> seeded = {};
 };
 
-sc::DistanceOptions using_method(sc::Method method) {
-  sc::DistanceOptions options;
+sc::QueryOptions using_method(sc::Method method) {
+  sc::QueryOptions options;
   options.method = method;
   return options;
+}
+
+std::vector<sc::Query> seeded_queries(sc::QueryOptions options) {
+  std::vector<sc::Query> queries;
+  for (int seed = 0; seed < kPairsPerWorkload; ++seed) {
+    options.seed = static_cast<std::uint64_t>(seed);
+    queries.emplace_back(options);
+  }
+  return queries;
 }
 
 std::vector<Row> make_rows() {
@@ -197,28 +213,30 @@ std::vector<Row> make_rows() {
   for (auto method : {sc::Method::ipso, sc::Method::pso}) {
     for (auto handling :
          {sc::ConstraintHandling::projection, sc::ConstraintHandling::feasibility}) {
-      sc::DistanceOptions o = using_method(method);
+      sc::QueryOptions o = using_method(method);
       o.swarm.constraint_handling = handling;
       const std::string suffix =
           handling == sc::ConstraintHandling::projection ? "projection" : "feasibility";
-      rows.push_back(
-          {sc::method_name(method) + " " + suffix, Kind::distance, o, true, "swarmcollide"});
+      rows.push_back({std::string(sc::method_name(method)) + " " + suffix, Kind::distance, o, true,
+                      "swarmcollide"});
     }
   }
-  rows.push_back(
-      {"penalty", Kind::distance, using_method(sc::Method::penalty), true, "swarmcollide"});
-  rows.push_back({"dual", Kind::distance, using_method(sc::Method::dual), false, "swarmcollide"});
-  rows.push_back(
-      {"fcl (GST_LIBCCD)", Kind::distance, using_method(sc::Method::fcl), false, "swarmcollide"});
-  rows.push_back({"fcl-indep (GST_INDEP)", Kind::distance, using_method(sc::Method::fcl_indep),
-                  false, "swarmcollide"});
+  for (sc::Method method :
+       {sc::Method::penalty, sc::Method::dual, sc::Method::exact, sc::Method::fcl}) {
+    rows.push_back({sc::method_name(method), Kind::distance, using_method(method),
+                    method == sc::Method::penalty, "swarmcollide"});
+  }
   // FCL's own distance on prebuilt shapes, as an FCL user calls it: the cost of the query alone.
   rows.push_back({"FCL distance direct", Kind::fcl_distance, {}, false, "FCL"});
   rows.push_back({"collide libccd", Kind::sc_collide, using_method(sc::Method::libccd), false,
                   "swarmcollide"});
   rows.push_back({"FCL collide", Kind::fcl_collide, {}, false, "FCL"});
   rows.push_back({"libccd GJK intersect", Kind::ccd_gjk, {}, false, "libccd"});
-  rows.push_back({"libccd MPR intersect", Kind::ccd_mpr, {}, false, "libccd"});
+  for (Row& row : rows) {
+    if (row.kind == Kind::distance || row.kind == Kind::sc_collide) {
+      row.seeded = seeded_queries(row.options);
+    }
+  }
   return rows;
 }
 
@@ -233,27 +251,24 @@ ccd_t ccd_settings() {
   return ccd;
 }
 
-// One query of a row on a pair; returns the verdict and, for distance rows, the result.
-bool answer(const Row& row, const Pair& p, std::uint64_t seed, sc::DistanceResult* result) {
+// One query of a row on pair `index` of its workload (seeded with the index); returns the verdict
+// and, for distance rows, the result.
+bool answer(const Row& row, const Pair& p, std::size_t index, sc::DistanceResult* result) {
   switch (row.kind) {
-    case Kind::distance: {
-      sc::DistanceOptions o = row.options;
-      o.swarm.seed = seed;
-      o.dual.seed = seed;
-      *result = sc::distance(p.a, p.b, o);
+    case Kind::distance:
+      *result = row.seeded[index].distance(p.a, p.b);
       return result->colliding;
-    }
     case Kind::fcl_distance: {
-      // FCL answers -1 for touching and overlapping pairs.
+      // FCL answers -1 for touching and overlapping pairs; the bodies are of unit size, so the
+      // library's default relative tolerance is also the contact threshold here.
       const double d =
-          fcl_distance_raw(*p.fcl_a, *p.fcl_b, sc::Vector3::Zero(), false, fcl::GST_LIBCCD)
-              .min_distance;
+          fcl_distance_raw(*p.fcl_a, *p.fcl_b, sc::Vector3::Zero(), false, kFclOwnGjk).min_distance;
       result->distance = std::max(d, 0.0);
-      result->colliding = d <= sc::ExactOptions{}.tolerance;
+      result->colliding = d <= sc::kDefaultTolerance;
       return result->colliding;
     }
     case Kind::sc_collide:
-      return sc::collide(p.a, p.b, row.options);
+      return row.seeded[index].collide(p.a, p.b);
     case Kind::fcl_collide: {
       const fcl::CollisionRequestd request;  // GST_LIBCCD, one contact
       fcl::CollisionResultd out;
@@ -265,17 +280,13 @@ bool answer(const Row& row, const Pair& p, std::uint64_t seed, sc::DistanceResul
       static const ccd_t ccd = ccd_settings();
       return ccdGJKIntersect(&p.ccd_a, &p.ccd_b, &ccd) != 0;
     }
-    case Kind::ccd_mpr: {
-      static const ccd_t ccd = ccd_settings();
-      return ccdMPRIntersect(&p.ccd_a, &p.ccd_b, &ccd) != 0;
-    }
   }
   return false;
 }
 
 // What a direct FCL user gets for this pair, probed in a child process because some of FCL's
 // paths abort: 0 fine, 1 a wrong answer, -1 the query aborted (killed by a signal).
-int probe_raw_fcl(const Pair& p, fcl::GJKSolverType solver) {
+int probe_raw_fcl(const Pair& p) {
   std::fflush(nullptr);
   const pid_t pid = fork();
   if (pid == 0) {
@@ -285,11 +296,11 @@ int probe_raw_fcl(const Pair& p, fcl::GJKSolverType solver) {
     const sc::Vector3 zero = sc::Vector3::Zero();
     const bool colliding = p.reference.colliding;
     // Unsigned distance: FCL documents -1 for overlapping pairs, so only separated ones count.
-    const double d = fcl_distance_raw(*p.fcl_a, *p.fcl_b, zero, false, solver).min_distance;
+    const double d = fcl_distance_raw(*p.fcl_a, *p.fcl_b, zero, false, kFclOwnGjk).min_distance;
     int code = 0;
     if (!colliding && !(std::abs(d - p.reference.distance) <= kAccuracy)) code = 1;
     // Signed distance: for overlapping pairs it must not be positive.
-    const double s = fcl_distance_raw(*p.fcl_a, *p.fcl_b, zero, true, solver).min_distance;
+    const double s = fcl_distance_raw(*p.fcl_a, *p.fcl_b, zero, true, kFclOwnGjk).min_distance;
     if (colliding && !(s <= kAccuracy)) code = 1;
     if (!colliding && !(std::abs(s - p.reference.distance) <= kAccuracy)) code = 1;
     _exit(code);
@@ -330,7 +341,7 @@ Accuracy measure(const Row& row, const Workload& w, bool quick) {
   for (int i = 0; i < acc.pairs; ++i) {
     const Pair& p = *w.pairs[i];
     sc::DistanceResult r;
-    const bool verdict = answer(row, p, static_cast<std::uint64_t>(i), &r);
+    const bool verdict = answer(row, p, static_cast<std::size_t>(i), &r);
     if (verdict != p.reference.colliding) ++acc.wrong_verdicts;
     if (!acc.has_distance) continue;
     acc.iterations += r.iterations;
@@ -350,12 +361,10 @@ Accuracy measure(const Row& row, const Workload& w, bool quick) {
     acc.error_max = errors.back();
     acc.error_median = errors[errors.size() / 2];
   }
-  if (row.kind == Kind::distance &&
-      (row.options.method == sc::Method::fcl || row.options.method == sc::Method::fcl_indep)) {
-    const auto solver = row.options.method == sc::Method::fcl ? fcl::GST_LIBCCD : fcl::GST_INDEP;
+  if (row.kind == Kind::distance && row.options.method == sc::Method::fcl) {
     acc.raw_wrong = acc.raw_aborts = 0;
     for (int i = 0; i < acc.pairs; ++i) {
-      const int probe = probe_raw_fcl(*w.pairs[i], solver);
+      const int probe = probe_raw_fcl(*w.pairs[i]);
       if (probe == -1) ++acc.raw_aborts;
       if (probe == 1) ++acc.raw_wrong;
     }
@@ -369,7 +378,7 @@ void run(benchmark::State& state, const Row* row, const Workload* w, Accuracy ac
   sc::DistanceResult r;
   for (auto _ : state) {
     for (int i = 0; i < pairs; ++i) {
-      const bool verdict = answer(*row, *w->pairs[i], static_cast<std::uint64_t>(i), &r);
+      const bool verdict = answer(*row, *w->pairs[i], static_cast<std::size_t>(i), &r);
       benchmark::DoNotOptimize(verdict);
       benchmark::DoNotOptimize(r.distance);
     }
@@ -424,7 +433,7 @@ std::vector<Workload> make_workloads(bool quick, const std::vector<int>& only_si
       quick ? std::vector<int>{8, 64} : std::vector<int>{4, 8, 16, 64, 512, 4096};
   if (!only_sizes.empty()) sizes = only_sizes;
   const auto& proximities = quick ? quick_proximities : all_proximities;
-  const int pairs = quick ? 5 : 20;
+  const int pairs = quick ? 5 : kPairsPerWorkload;
   for (int n : sizes) {
     for (std::size_t k = 0; k < proximities.size(); ++k) {
       std::fprintf(stderr, "\rgenerating n=%d %-14s", n, proximities[k].name);
@@ -498,7 +507,7 @@ int main(int argc, char** argv) {
   benchmark::AddCustomContext("compiler", SWARMCOLLIDE_BENCH_COMPILER);
   benchmark::AddCustomContext("mode", quick ? "quick" : "full");
   benchmark::AddCustomContext("accuracy_threshold", "1e-6");
-  benchmark::AddCustomContext("reference", "swarmcollide::distance, method fcl (certified)");
+  benchmark::AddCustomContext("reference", "swarmcollide::Query, method exact (certified)");
 
   static const std::vector<Row> rows = make_rows();
   static const std::vector<Workload> workloads = make_workloads(quick, sizes);
