@@ -152,6 +152,21 @@ void take_values(const DistanceResult& r, PairAnswer& out) {
   out.normal = r.direction;
 }
 
+// The contact points of `pair` from its certified signed distance `contact`: the clipped
+// supporting features along its normal, or the midpoint of the witnesses when there is no normal
+// (the bodies only touch at a point).
+void add_contact_points(const FramedPair& pair, const DistanceResult& contact,
+                        const PairQuestion& question, PairAnswer& out) {
+  if (contact.direction.squaredNorm() > 0) {
+    std::vector<Vector3> points;
+    contact_points(pair, contact.direction, kContactFeatureTolerance * pair.frame.size,
+                   question.max_points, points);
+    for (const Vector3& p : points) out.points.push_back(pair.frame.point_to_world(p));
+  } else {
+    out.points.push_back(contact.point_a / 2 + contact.point_b / 2);
+  }
+}
+
 // A pair with a compound body, once the envelopes have not settled it: the compound queries,
 // whose answers name the parts, and contact points between the deepest pair of parts.
 void answer_compounds(const PlacedBody& a, const PlacedBody& b, const FramedPair& pair,
@@ -196,14 +211,7 @@ void answer_compounds(const PlacedBody& a, const PlacedBody& b, const FramedPair
   take_values(deepest, out);
   const FramedPair parts = frame_pair(ca.parts()[deepest.part_a], *a.pose,
                                       cb.parts()[deepest.part_b], *b.pose, options.tolerance);
-  if (deepest.direction.squaredNorm() > 0) {
-    std::vector<Vector3> points;
-    contact_points(parts, deepest.direction, kContactFeatureTolerance * parts.frame.size,
-                   question.max_points, points);
-    for (const Vector3& p : points) out.points.push_back(parts.frame.point_to_world(p));
-  } else {
-    out.points.push_back(deepest.point_a / 2 + deepest.point_b / 2);
-  }
+  add_contact_points(parts, deepest, question, out);
 }
 
 }  // namespace
@@ -327,14 +335,7 @@ void answer_pair(const PlacedBody& a, const PlacedBody& b, PairProof& proof,
     }
     out.certified = out.certified && contact.certified;
     take_values(contact, out);
-    if (contact.direction.squaredNorm() > 0) {
-      std::vector<Vector3> points;
-      contact_points(pair, contact.direction, kContactFeatureTolerance * pair.frame.size,
-                     question.max_points, points);
-      for (const Vector3& p : points) out.points.push_back(pair.frame.point_to_world(p));
-    } else {
-      out.points.push_back(contact.point_a / 2 + contact.point_b / 2);
-    }
+    add_contact_points(pair, contact, question, out);
   } else if (question.distance && !value_settled) {
     Answer measured = solve(pair, options, Goal::distance, next);
     if (question.warm) remember(pair, measured, proof);
