@@ -120,6 +120,7 @@ test-sanitize: install
 	UBSAN_OPTIONS=print_stacktrace=1 ctest --test-dir $(SAN_BUILD) --output-on-failure -j $(JOBS) \
 	  || status=1; \
 	ASAN_OPTIONS=detect_leaks=0 UBSAN_OPTIONS=print_stacktrace=1 PYTHONMALLOC=malloc \
+	  SWARMCOLLIDE_SANITIZED=1 \
 	  LD_PRELOAD="$(SAN_RUNTIMES)" PYTHONPATH=$(SAN_SITE) \
 	  $(PY) -m pytest -p no:cacheprovider $(SAN_PYTESTS) || status=1; \
 	exit $$status

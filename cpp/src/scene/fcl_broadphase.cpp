@@ -88,7 +88,14 @@ void FclBroadphase::insert(const std::vector<BoxedObject*>& objects) {
     return;
   }
   const std::vector<fcl::CollisionObjectd*> base(objects.begin(), objects.end());
-  manager_->registerObjects(base);
+  if (kind_ == Broadphase::dynamic_aabb_tree_array) {
+    // FCL 0.7's array tree leaks on a bulk registration into an empty tree (registerObjects
+    // never frees its leaves, and HierarchyTree::init_* drop the array clear() just allocated;
+    // LeakSanitizer found both). One at a time it inserts, and setup() balances the tree.
+    for (fcl::CollisionObjectd* object : base) manager_->registerObject(object);
+  } else {
+    manager_->registerObjects(base);
+  }
   manager_->setup();
 }
 
