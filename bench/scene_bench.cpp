@@ -23,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "normals.hpp"
 #include "swarmcollide/scene/scene.hpp"
 
 namespace sc = swarmcollide;
@@ -52,30 +53,6 @@ double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   return v.empty() ? 0 : v[v.size() / 2];
 }
-
-// Standard normals by Box-Muller on mt19937_64, whose output the C++ standard fixes.
-class Normals {
- public:
-  explicit Normals(std::uint64_t seed) : engine_(seed) {}
-  double next() {
-    const double u1 = static_cast<double>(engine_() >> 11) * 0x1.0p-53;
-    const double u2 = static_cast<double>(engine_() >> 11) * 0x1.0p-53;
-    return std::sqrt(-2 * std::log1p(-u1)) * std::cos(2 * M_PI * u2);
-  }
-  double uniform() { return static_cast<double>(engine_() >> 11) * 0x1.0p-53; }
-  sc::Vector3 unit() {
-    const sc::Vector3 v(next(), next(), next());
-    return v / v.norm();
-  }
-  sc::Matrix3 rotation() {
-    Eigen::Quaterniond q(next(), next(), next(), next());
-    q.normalize();
-    return q.toRotationMatrix();
-  }
-
- private:
-  std::mt19937_64 engine_;
-};
 
 // N hulls of 8 points on the sphere of radius 1/2 (every point is a vertex), and the poses of
 // `frames` frames: random rotations and positions in a cube, then small motion.

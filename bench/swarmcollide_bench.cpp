@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "normals.hpp"
 #include "swarmcollide/queries/methods.hpp"
 #include "swarmcollide/queries/query.hpp"
 
@@ -35,25 +36,6 @@ constexpr int kPairsPerWorkload = 20;
 // The GJK that swarmcollide's "fcl" method runs is FCL's own (GST_INDEP's implementation), so the
 // direct FCL distance rows call that one too.
 constexpr fcl::GJKSolverType kFclOwnGjk = fcl::GST_INDEP;
-
-// Standard normals by Box-Muller on mt19937_64, whose output the C++ standard fixes; the
-// standard's normal_distribution is not portable across library implementations.
-class Normals {
- public:
-  explicit Normals(std::uint64_t seed) : engine_(seed) {}
-  double next() {
-    const double u1 = static_cast<double>(engine_() >> 11) * 0x1.0p-53;
-    const double u2 = static_cast<double>(engine_() >> 11) * 0x1.0p-53;
-    return std::sqrt(-2 * std::log1p(-u1)) * std::cos(2 * M_PI * u2);
-  }
-  sc::Vector3 unit() {
-    const sc::Vector3 v(next(), next(), next());
-    return v / v.norm();
-  }
-
- private:
-  std::mt19937_64 engine_;
-};
 
 // The hull vertices of `n` random points on the unit sphere.
 sc::VertexMatrix sphere_polytope(int n, Normals& normals) {

@@ -14,7 +14,9 @@ void bind_scene(py::module_& m);
 }  // namespace swarmcollide::bindings
 
 PYBIND11_MODULE(_core, m) {
-  m.doc() = "swarmcollide's C++ core: convex polyhedra and compound bodies, model (2), its solvers, queries and scenes.";
+  m.doc() =
+      "swarmcollide's C++ core: convex polyhedra and compound bodies, model (2), its solvers, "
+      "queries and scenes.";
   using namespace swarmcollide::bindings;
   bind_geometry(m);
   bind_problem(m);

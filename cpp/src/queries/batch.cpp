@@ -196,8 +196,8 @@ ConvexPolyhedron body(const VertexStack& stack, std::size_t i, std::uint64_t fir
 
 template <typename Body>
 BatchResult bodies_batch(Kind kind, const std::vector<Body>& as, const std::vector<Body>& bs,
-                         const QueryOptions& options,
-                         const BatchSettings& settings, const BatchPoses& poses) {
+                         const QueryOptions& options, const BatchSettings& settings,
+                         const BatchPoses& poses) {
   return run_batch(as.size(), bs.size(), options, settings, poses,
                    [&](std::size_t i, const Query& query) {
                      return ask(kind, query, as[i], pose_of(poses.a, i), bs[i], pose_of(poses.b, i),

@@ -50,7 +50,7 @@ class Query {
   DistanceResult signed_distance(const ConvexPolyhedron& a, const Pose& pose_a,
                                  const ConvexPolyhedron& b, const Pose& pose_b) const;
 
- /// The same queries between compound bodies (a convex body is a compound body of one part):
+  /// The same queries between compound bodies (a convex body is a compound body of one part):
   /// the answers of the nearest (for signed distances, the deepest) pair of parts, found by
   /// branch and bound over the two bodies' trees. A pair of tree nodes whose bounding volumes are
   /// proven farther apart than the best part-pair distance found so far (less the tolerance) is
@@ -66,8 +66,8 @@ class Query {
   CompoundResult collision(const CompoundBody& a, const Pose& pose_a, const CompoundBody& b,
                            const Pose& pose_b, bool escalate = true) const;
   bool collide(const CompoundBody& a, const CompoundBody& b, bool escalate = true) const;
-  bool collide(const CompoundBody& a, const Pose& pose_a, const CompoundBody& b,
-               const Pose& pose_b, bool escalate = true) const;
+  bool collide(const CompoundBody& a, const Pose& pose_a, const CompoundBody& b, const Pose& pose_b,
+               bool escalate = true) const;
   /// The smallest signed distance between a part of A and a part of B: minus the deepest
   /// part-pair penetration when parts overlap. That is not in general the penetration depth of
   /// the non-convex union (the shortest translation separating the unions can be longer).
