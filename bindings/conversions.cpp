@@ -73,7 +73,14 @@ BodyArgument::BodyArgument(const py::handle& body, const char* name) {
   body_ = &*owned_;
 }
 
-bool is_compound(const py::handle& body) { return py::isinstance<CompoundBody>(body); }
+bool is_compound(const py::handle& body) {
+  // The common argument, an exact ConvexPolyhedron, is told apart by its type alone: the generic
+  // isinstance goes through the metaclass's __instancecheck__, a cost the size of a small query.
+  static PyTypeObject* const convex =
+      reinterpret_cast<PyTypeObject*>(py::type::of<ConvexPolyhedron>().ptr());
+  if (Py_TYPE(body.ptr()) == convex) return false;
+  return py::isinstance<CompoundBody>(body);
+}
 
 // True when `bodies` is a sequence (not an array) holding a CompoundBody.
 bool holds_compound(const py::handle& bodies) {

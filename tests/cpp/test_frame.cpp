@@ -255,7 +255,9 @@ TEST(Poses, AnswerAsTheTransformedPoints) {
       expect_contract(a, b, m.kind, m.method, posed, truth, scale);
       const DistanceResult moved_points = ask(query, m.kind, a, b);
       EXPECT_EQ(posed.colliding, moved_points.colliding);
-      if (method_info(m.method).always_certified) {
+      // A verdict's bounds are only its proof, which may come from the frame's own directions
+      // (the centres' line); values are the same in every frame.
+      if (method_info(m.method).always_certified && m.kind != QueryKind::collide) {
         EXPECT_NEAR(posed.distance, moved_points.distance, scale.tolerance + scale.rounding);
       }
       DistanceResult identity;

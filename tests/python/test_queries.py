@@ -6,7 +6,7 @@ import typing
 
 import numpy as np
 import pytest
-from contract import CUBE, check_contract, pair_scale
+from contract import CUBE, check_contract, pair_scale, separation
 from oracle import exact_distance, exact_signed_distance
 
 import swarmcollide as sc
@@ -69,6 +69,24 @@ def test_query_is_built_once_per_distinct_set_of_keywords():
         sc.query("dual", seed=True)
     with pytest.raises(TypeError, match="swarm_size must be an integer, got float"):
         sc.query("ipso", swarm_size=21.0)
+
+
+def test_the_default_keywords_reach_the_same_query_as_any_other_spelling():
+    a, b = CUBE, CUBE + [1.5, 0.2, 0.1]
+    for method in ("dual", "fcl"):
+        assert sc.distance(a, b, method=method).distance == sc.query(method).distance(a, b).distance
+        # An equal tolerance that is not the default object, and seeds equal to 0 but of another
+        # type, take the general path: the same answer, and the same type errors.
+        spelled = sc.distance(a, b, method=method, tolerance=float("1e-9"), seed=int("0"))
+        assert spelled.distance == sc.distance(a, b, method=method).distance
+    with pytest.raises(TypeError, match="seed must be an integer, got bool"):
+        sc.collide(a, b, seed=False)
+    with pytest.raises(TypeError, match="method: str"):
+        sc.collide(a, b, method=["dual"])
+    with pytest.raises(ValueError, match="unknown method 'gjk'"):
+        sc.collide(a, b, method="gjk")
+    with pytest.raises(ValueError, match="unknown method 'gjk'"):  # not remembered by the failure
+        sc.collide(a, b, method="gjk")
 
 
 def test_module_functions_are_the_cached_querys_answers():
@@ -149,9 +167,34 @@ def test_a_query_the_method_cannot_answer_names_those_that_can(method, kind):
     assert str(raised.value).endswith("use one of " + ", ".join(f"'{n}'" for n in able))
 
 
+def test_fcl_settles_overlapping_distances_with_its_own_enclosing_simplex():
+    # FCL's GJK ends on a tetrahedron around the origin: contact is proven and the distance is
+    # zero without the exact solver (whose answer agrees).
+    rng = np.random.default_rng(5)
+    answered_by_fcl = 0
+    for _ in range(20):
+        a = rng.normal(size=(64, 3))
+        b = rng.normal(size=(64, 3)) + rng.uniform(-0.3, 0.3, size=3)
+        r = sc.distance(a, b, method="fcl")
+        assert r.colliding and r.certified and r.distance <= pair_scale(a, b).tolerance
+        answered_by_fcl += r.method == "fcl"
+    assert answered_by_fcl >= 18
+
+
+def test_fcl_collide_proves_separated_bodies_apart_without_running_gjk():
+    b = CUBE + [3, 0.5, 0.2]
+    r = sc.collision(CUBE, b, method="fcl")
+    # One support evaluation along the centres' line, its separation the proof.
+    assert (r.method, r.certified, r.colliding, r.evaluations) == ("fcl", True, False, 1)
+    np.testing.assert_allclose(r.direction, [3, 0.5, 0.2] / np.linalg.norm([3, 0.5, 0.2]))
+    assert r.lower_bound == pytest.approx(separation(CUBE, b, r.direction), abs=1e-12)
+
+
 def test_escalated_from_is_none_or_the_method_asked_for(tetra_a, separate_b, touching_b):
     assert sc.distance(tetra_a, separate_b, method="fcl").escalated_from is None
-    touching = sc.distance(tetra_a, touching_b, method="fcl")
+    # FCL proves the contact itself; the depth takes the exact solver.
+    assert sc.distance(tetra_a, touching_b, method="fcl").escalated_from is None
+    touching = sc.signed_distance(tetra_a, touching_b, method="fcl")
     assert (touching.method, touching.escalated_from) == ("exact", "fcl")
     assert "escalated_from='fcl'" in repr(touching)
     near = separate_b + [0, 1 - 1e-10, 0]  # 1e-10 apart: within the tolerance

@@ -8,20 +8,34 @@
 
 namespace swarmcollide::detail {
 
-Answer exact_distance(const FramedPair& pair, int max_iterations, const Vector3& start) {
-  int hint_a = -1;
-  int hint_b = -1;
+namespace {
+
+// Wolfe's algorithm on B - A from `start` (a direction or a corral), the support hints starting
+// at `hint_a` and `hint_b`.
+template <class Start>
+Answer nearest_points(const FramedPair& pair, int max_iterations, const Start& start, int hint_a,
+                      int hint_b) {
   long evaluations = 0;
   const auto oracle = [&](const Vector3& d) {
     ++evaluations;
     return minkowski_support(pair.a, pair.b, d, hint_a, hint_b);
   };
-  const Vector3 from = start.norm() > 0 ? start : Vector3(pair.b.offset() - pair.a.offset());
-  const MinNormPoint nearest = wolfe_min_norm(oracle, from, 2, max_iterations);
+  const MinNormPoint nearest = wolfe_min_norm(oracle, start, 2, max_iterations);
   Answer answer = answer_from_corral(pair, nearest);
   answer.iterations = nearest.iterations;
   answer.evaluations = evaluations;
   return answer;
+}
+
+}  // namespace
+
+Answer exact_distance(const FramedPair& pair, int max_iterations, const Vector3& start) {
+  const Vector3 from = start.norm() > 0 ? start : Vector3(pair.b.offset() - pair.a.offset());
+  return nearest_points(pair, max_iterations, from, -1, -1);
+}
+
+Answer exact_distance(const FramedPair& pair, int max_iterations, const MinNormPoint& corral) {
+  return nearest_points(pair, max_iterations, corral, corral.corral[0].ia, corral.corral[0].ib);
 }
 
 Answer exact_penetration(const FramedPair& pair, int max_iterations, const Vector3& hint,

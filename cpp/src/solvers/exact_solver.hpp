@@ -4,6 +4,7 @@
 #include "../geometry/framed_body.hpp"
 #include "answer.hpp"
 #include "swarmcollide/queries/options.hpp"
+#include "wolfe_min_norm.hpp"
 
 namespace swarmcollide::detail {
 
@@ -12,6 +13,10 @@ namespace swarmcollide::detail {
 /// rounding for every body, flat, collinear and single-point ones included; for overlapping
 /// bodies a common point, with an intersection proof when Wolfe's corral encloses the origin.
 Answer exact_distance(const FramedPair& pair, int max_iterations, const Vector3& start);
+
+/// The exact distance continued from `corral`, another solver's last simplex of B - A (points
+/// with the bodies' support indices, positive weights summing to one).
+Answer exact_distance(const FramedPair& pair, int max_iterations, const MinNormPoint& corral);
 
 /// The certified penetration depth of touching or overlapping bodies, from the direction `hint`
 /// (which may be zero); `distance_upper`, any upper bound on their distance, also bounds the

@@ -90,9 +90,30 @@ fcl::detail::GJK<Scalar>::Status run_gjk(const FramedPair& pair, fcl::detail::GJ
   return gjk.evaluate(difference, guess);
 }
 
+// The answer along the line between the bodies' centres: its separation (the lower bound) and
+// the two support points (the upper bound).
+Answer along_centres(const FramedPair& pair) {
+  const Vector3 between = pair.b.offset() - pair.a.offset();
+  const Vector3 n = between.norm() > 0 ? Vector3(between.normalized()) : Vector3::UnitX();
+  int ia = -1;
+  int ib = -1;
+  const Scalar lower = separation(pair.a, pair.b, n, ia, ib);
+  Answer answer = answer_from_witness(pair, vertex_witness(pair, ia, ib));
+  answer.lower = lower;
+  answer.direction = n;
+  answer.evaluations = 1;
+  return answer;
+}
+
 }  // namespace
 
 Answer solve_fcl(const FramedPair& pair, const QueryOptions& options, Goal goal) {
+  // FCL's GJK has no early exit for an intersection test: it runs to the distance. The centres'
+  // line proves most separated pairs apart in two support scans (as libccd's test would stop).
+  if (goal == Goal::verdict) {
+    Answer screened = along_centres(pair);
+    if (verdict_proven(pair, screened)) return screened;
+  }
   using Gjk = fcl::detail::GJK<Scalar>;
   const int max_iterations = options.exact.max_iterations;
   Gjk gjk(static_cast<unsigned int>(max_iterations), kGjkTolerance);
@@ -103,27 +124,47 @@ Answer solve_fcl(const FramedPair& pair, const QueryOptions& options, Goal goal)
   const Gjk::Simplex& simplex = *gjk.getSimplex();
   const Matrix3 to_b = difference.toshape1;
   MinNormPoint corral;
-  corral.size = static_cast<int>(simplex.rank);
-  for (int k = 0; k < corral.size; ++k) {
+  Scalar total = 0;
+  for (unsigned int k = 0; k < simplex.rank; ++k) {
+    if (!(simplex.p[k] > 0)) continue;  // a point the last projection gave no weight
     const Vector3 d = simplex.c[k]->d;
     const int ia = pair.a.body().support_index(d);
     const int ib = pair.b.body().support_index(-(to_b * d));
-    corral.corral[k] = {pair.b.vertex(ib) - pair.a.vertex(ia), ia, ib};
-    corral.weights[k] = simplex.p[k];
+    total += simplex.p[k];
+    // Two of FCL's points may be the same pair of vertices: one corral point (Wolfe's affine
+    // solves need distinct points).
+    int same = 0;
+    while (same < corral.size && !(corral.corral[same].ia == ia && corral.corral[same].ib == ib))
+      ++same;
+    if (same == corral.size) {
+      corral.corral[corral.size++] = {pair.b.vertex(ib) - pair.a.vertex(ia), ia, ib};
+      corral.weights[same] = 0;
+    }
+    corral.weights[same] += simplex.p[k];
   }
-  // Where FCL's answer does not settle the goal, the exact solver starts from its direction.
-  Vector3 start = Vector3::Zero();
-  if (status != Gjk::Failed && corral.size > 0) {
+  for (int k = 0; k < corral.size; ++k) corral.weights[k] /= total;
+  const auto settles = [&pair, goal](const Answer& answer) {
+    return goal_reached(pair, goal, answer.lower, answer.upper, answer.intersection_proven);
+  };
+  const bool usable = status != Gjk::Failed && corral.size > 0;
+  if (usable) {
     Answer answer = answer_from_corral(pair, corral);
-    const bool settled = goal == Goal::verdict
-                             ? verdict_proven(pair, answer)
-                             : value_proven(pair, answer) &&
-                                   (goal == Goal::distance || answer.lower > kFrameRounding);
-    if (settled) return answer;
-    start = answer.point_b - answer.point_a;
+    if (settles(answer)) return answer;
   }
-  Answer exact = goal == Goal::signed_distance ? exact_signed_distance(pair, max_iterations, start)
-                                               : exact_distance(pair, max_iterations, start);
+  // Where FCL's answer does not settle the goal, the exact solver takes over: distances from
+  // FCL's simplex (FCL stops when a support point comes within sqrt(its tolerance) of an earlier
+  // one, often an iteration or two short), then from the direction if that simplex was too
+  // degenerate to continue; signed distances from its direction.
+  const Vector3 start =
+      usable ? Vector3(wolfe_detail::combine(corral.corral, corral.weights, corral.size))
+             : Vector3::Zero();
+  Answer exact;
+  if (goal == Goal::signed_distance) {
+    exact = exact_signed_distance(pair, max_iterations, start);
+  } else {
+    if (usable) exact = exact_distance(pair, max_iterations, corral);
+    if (!usable || !settles(exact)) exact = exact_distance(pair, max_iterations, start);
+  }
   exact.answered_by = Method::exact;
   return exact;
 }

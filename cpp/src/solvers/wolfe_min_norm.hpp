@@ -83,22 +83,22 @@ inline Vector3 combine(const std::array<OraclePoint, 4>& s, const std::array<Sca
 }  // namespace wolfe_detail
 
 /// Wolfe's nearest-point algorithm (Wolfe 1976) on the polytope spanned by `oracle`, where
-/// `oracle(d)` returns an OraclePoint minimising `d . q`. `scale` bounds the norms of the points
+/// `oracle(d)` returns an OraclePoint minimising `d . q`, continued from `initial`: a corral of
+/// the oracle's points with positive weights summing to one (another solver's last simplex, so
+/// that finishing its work costs an iteration or two). `scale` bounds the norms of the points
 /// and sets the stopping test: the gap `|x| - (x/|x|) . oracle(x)` at most 1e-14 `scale`, or no
 /// further decrease in `|x|` (rounding), or `max_iterations`.
 template <class Oracle>
-MinNormPoint wolfe_min_norm(const Oracle& oracle, const Vector3& start, Scalar scale,
+MinNormPoint wolfe_min_norm(const Oracle& oracle, MinNormPoint initial, Scalar scale,
                             int max_iterations) {
   using namespace wolfe_detail;
-  MinNormPoint best;
-  best.corral[0] = oracle(start);
-  best.weights[0] = 1;
-  best.size = 1;
-  best.x = best.corral[0].p;
+  MinNormPoint best = initial;
+  best.x = combine(best.corral, best.weights, best.size);
+  best.iterations = 0;
   std::array<OraclePoint, 4> s = best.corral;
   std::array<Scalar, 4> w = best.weights;
   std::array<Scalar, 4> alpha{};
-  int m = 1;
+  int m = best.size;
   Vector3 x = best.x;
   const Scalar gap_tolerance = 1e-14 * scale;
   for (int iteration = 1; iteration <= max_iterations; ++iteration) {
@@ -163,6 +163,17 @@ MinNormPoint wolfe_min_norm(const Oracle& oracle, const Vector3& start, Scalar s
     best.x = x;
   }
   return best;
+}
+
+/// Wolfe's algorithm from the oracle's point along `start`.
+template <class Oracle>
+MinNormPoint wolfe_min_norm(const Oracle& oracle, const Vector3& start, Scalar scale,
+                            int max_iterations) {
+  MinNormPoint first;
+  first.corral[0] = oracle(start);
+  first.weights[0] = 1;
+  first.size = 1;
+  return wolfe_min_norm(oracle, first, scale, max_iterations);
 }
 
 }  // namespace swarmcollide::detail
