@@ -38,6 +38,9 @@ Vector3 Frame::point_to_world(const Vector3& p) const {
 
 FramedBody::FramedBody(const ConvexPolyhedron& body, const Pose& pose, const Frame& frame)
     : body_(&body),
+      vertices_(&body.vertices()),
+      hull_(nullptr),
+      in_frame_(false),
       rotation_(pose.rotation),
       rotated_(!pose.has_identity_rotation()),
       body_centre_(body.bounds().centre),
@@ -47,6 +50,32 @@ FramedBody::FramedBody(const ConvexPolyhedron& body, const Pose& pose, const Fra
   scale_low_ = power_of_two(-exponent_ - half);
   const Vector3 from_centre = pose.rotation * body_centre_ + pose.translation - frame.centre;
   for (int k = 0; k < 3; ++k) offset_(k) = times_power_of_two(from_centre(k), -exponent_);
+}
+
+FramedBody::FramedBody(const VertexMatrix& points, const Hull& hull)
+    : body_(nullptr),
+      vertices_(&points),
+      hull_(&hull),
+      in_frame_(true),
+      rotation_(Matrix3::Identity()),
+      rotated_(false),
+      body_centre_(Vector3::Zero()),
+      offset_(Vector3::Zero()),
+      exponent_(0),
+      scale_high_(1),
+      scale_low_(1) {}
+
+int FramedBody::exact_support_index(const Vector3& d) const {
+  int best = 0;
+  Scalar highest = height(0, d);
+  for (int i = 1; i < size(); ++i) {
+    const Scalar h = height(i, d);
+    if (h > highest) {
+      highest = h;
+      best = i;
+    }
+  }
+  return best;
 }
 
 void FramedBody::points(VertexMatrix& out) const {
