@@ -1,8 +1,6 @@
 // The working frame of a query and the bodies placed in it; private to the library's sources.
 #pragma once
 
-#include <limits>
-
 #include "support.hpp"
 #include "swarmcollide/geometry/convex_polyhedron.hpp"
 #include "swarmcollide/geometry/pose.hpp"
@@ -26,11 +24,25 @@ struct Frame {
   Vector3 point_to_world(const Vector3& p) const;
 };
 
+/// The unit roundoff of double precision: every basic operation is exact to a factor `1 + d`,
+/// `|d| <= kRoundoff`. The rounding bounds of the exact paths are multiples of it.
+inline constexpr Scalar kRoundoff = 0x1p-53;
+
+/// Bound on the rounding error of a computed separation `min_j n.y_j - max_i n.x_i` along a
+/// rounded unit vector `n` (`|n| = 1` to 4 roundoffs), as a separation along `n / |n|`, for
+/// coordinates of magnitude at most `coordinate`: each dot product is within `3.01 u |n| |x|
+/// <= 5.3 u coordinate` (|x| <= sqrt(3) coordinate), the difference adds `u |s| <= 3.5 u
+/// coordinate` and dividing by `|n|` another `4 u |s| <= 14 u coordinate`; 28 u in all, doubled.
+/// The coordinates are those the dot products are computed from, and the supports must be the
+/// largest of those dot products (`FramedBody::exact_support_index`).
+inline Scalar separation_margin(Scalar coordinate) { return 64 * kRoundoff * coordinate; }
+
 /// A bound on the rounding of a separation `n . (y - x)` or of a distance `|y - x|` computed from
 /// frame coordinates (each of magnitude at most 1), in frame units. Each coordinate carries a
 /// few units of rounding from the translation, the scaling (exact) and the rotation, and a dot
-/// product a few more; 64 epsilons covers them with room to spare.
-inline constexpr Scalar kFrameRounding = 64 * std::numeric_limits<Scalar>::epsilon();
+/// product a few more; 128 roundoffs, twice `separation_margin(1)`, cover them with room to
+/// spare.
+inline constexpr Scalar kFrameRounding = 128 * kRoundoff;
 
 /// A body under a pose, seen in a frame: point i is at `rotation * (x_i - c) / 2^e + offset`,
 /// where c is the centre of the body's own bounding box. Support queries are answered in the
