@@ -65,19 +65,6 @@ FramedBody::FramedBody(const VertexMatrix& points, const Hull& hull)
       scale_high_(1),
       scale_low_(1) {}
 
-int FramedBody::exact_support_index(const Vector3& d) const {
-  int best = 0;
-  Scalar highest = height(0, d);
-  for (int i = 1; i < size(); ++i) {
-    const Scalar h = height(i, d);
-    if (h > highest) {
-      highest = h;
-      best = i;
-    }
-  }
-  return best;
-}
-
 void FramedBody::points(VertexMatrix& out) const {
   out.resize(size(), 3);
   for (int i = 0; i < size(); ++i) out.row(i) = vertex(i).transpose();

@@ -68,7 +68,6 @@ class FramedBody {
 
   /// Point i of the body in the frame.
   Vector3 vertex(int i) const {
-    if (in_frame_) return vertices_->row(i).transpose();
     const Vector3 local = scaled(vertices_->row(i).transpose() - body_centre_);
     return rotated_ ? Vector3(rotation_ * local + offset_) : Vector3(local + offset_);
   }
@@ -95,7 +94,19 @@ class FramedBody {
   /// by more than a margin in frame coordinates covers: a climb can stop early, and heights in the
   /// body's own coordinates are rounded relative to those coordinates, which may be far larger
   /// than the body.
-  int exact_support_index(const Vector3& d) const;
+  int exact_support_index(const Vector3& d) const {
+    if (in_frame_) return scan_support(*vertices_, d);
+    int best = 0;
+    Scalar highest = height(0, d);
+    for (int i = 1; i < size(); ++i) {
+      const Scalar h = height(i, d);
+      if (h > highest) {
+        highest = h;
+        best = i;
+      }
+    }
+    return best;
+  }
   Vector3 support(const Vector3& d) const { return vertex(support_index(d)); }
   /// Every point in the frame, one per row, into `out` (resized), for solvers that read each
   /// point many times.
@@ -115,8 +126,9 @@ class FramedBody {
   const ConvexPolyhedron* body_;
   const VertexMatrix* vertices_;
   const Hull* hull_;
-  // Points given in the frame: the placement below is the identity, and skipped (the penetration
-  // solver reads every point many times).
+  // Points given in the frame: the placement below is the identity, which heights and exact
+  // scans skip (they read every point). vertex() applies it all the same: a test there would slow
+  // every framed query's loops for the few penetration calls it would spare.
   bool in_frame_;
   Matrix3 rotation_;
   bool rotated_;

@@ -148,32 +148,29 @@ class Solver {
     }
   }
 
-  // Wolfe's nearest point of A - B to the origin: an upper bound |p| (p is a point of A - B, so
-  // s(n) <= -n.p <= |p| for every n) and, when the origin is inside, a tetrahedron around it for
+  // Wolfe's nearest point of B - A to the origin: an upper bound |p| (p is a point of B - A, so
+  // s(n) <= n.p <= |p| for every n) and, when the origin is inside, a tetrahedron around it for
   // the expanding polytope.
   void nearest_then_polytope() {
     int ia = climb_a_;
     int ib = climb_b_;
-    // The point of A - B least along d is minus that of B - A least along -d.
-    const auto oracle = [&](const Vector3& d) {
-      OraclePoint w = minkowski_support(a_, b_, -d, ia, ib);
-      w.p = -w.p;
-      return w;
-    };
-    Vector3 start = estimate_ > -kInfinity ? candidate_ : Vector3(a_.vertex(0) - b_.vertex(0));
-    if (!(start.norm() > 0)) start = Vector3::UnitX();
+    const auto oracle = [&](const Vector3& d) { return minkowski_support(a_, b_, d, ia, ib); };
+    // The first point is the one of B - A farthest along the best direction so far.
+    Vector3 start =
+        estimate_ > -kInfinity ? Vector3(-candidate_) : Vector3(b_.vertex(0) - a_.vertex(0));
+    if (!(start.norm() > 0)) start = -Vector3::UnitX();
     const MinNormPoint m = wolfe_min_norm(oracle, start, reach(), max_iterations_);
     iterations_ += m.iterations;
-    // The exact convex combination of the corral (weights normalised) is a point of A - B; the
+    // The exact convex combination of the corral (weights normalised) is a point of B - A; the
     // computed one is within 16 roundoffs of reach() of it (added in upper()).
     Scalar total = 0;
     for (int k = 0; k < m.size; ++k) total += m.weights[k];
     Vector3 p = Vector3::Zero();
     for (int k = 0; k < m.size; ++k) p += m.weights[k] / total * m.corral[k].p;
     if (p.norm() < nearest_length_) nearest_length_ = p.norm();
-    if (p.norm() > 0) offer(-p.normalized());
+    if (p.norm() > 0) offer(p.normalized());
     if (m.size == MinNormPoint::kCapacity && enclose(m)) return;
-    // Touching bodies: the origin is on the boundary of A - B and on the corral's triangles, which
+    // Touching bodies: the origin is on the boundary of B - A and on the corral's triangles, which
     // then lie in the supporting plane there, so their normals are the contact normal.
     for (int k = 0; m.size >= 3 && k < m.size; ++k) {
       const Vector3& p0 = m.corral[k].p;
@@ -187,12 +184,12 @@ class Solver {
     }
   }
 
-  // The expanding polytope from Wolfe's tetrahedron around the origin; true when it proved an
-  // upper bound.
+  // The expanding polytope, in A - B, from Wolfe's tetrahedron around the origin turned over;
+  // true when it proved an upper bound.
   bool enclose(const MinNormPoint& m) {
     std::array<DifferencePoint, 4> start_tetrahedron;
     for (int k = 0; k < 4; ++k) {
-      start_tetrahedron[k] = {m.corral[k].p, m.corral[k].ia, m.corral[k].ib};
+      start_tetrahedron[k] = {-m.corral[k].p, m.corral[k].ia, m.corral[k].ib};
     }
     const Scalar stop_gap = std::max(tolerance_ / 2, floor() / 4);
     const ExpansionResult e =
