@@ -304,5 +304,36 @@ TEST(Poses, OnlyFiniteProperRotationsAreRigidMotions) {
   EXPECT_NE(error(infinite).find("NaN or infinite"), std::string::npos);
 }
 
+// The exact support is the largest height computed in the frame, whatever the body's own
+// coordinates (here 1e8 from the body, where they round a hundred million times coarser than
+// its frame coordinates); points given in the frame are answered as they are.
+TEST(FramedBodies, ExactSupportIsTheLargestHeightInTheFrame) {
+  Random rng(5);
+  const ConvexPolyhedron far = moved(rng.body(40), Vector3(1e8, -1e8, 1e8));
+  const ConvexPolyhedron near = rng.body(12, {1.5, 0, 0});
+  const Pose home{rng.rotation(), Vector3(-1e8, 1e8, -1e8)};
+  const detail::FramedPair pair = detail::frame_pair(far, home, near, Pose{}, 1e-9);
+  VertexMatrix points;
+  pair.a.points(points);
+  const detail::FramedBody in_frame(points, far.hull());
+  for (int k = 0; k < 200; ++k) {
+    const Vector3 d = rng.unit();
+    for (const detail::FramedBody* body : {&pair.a, &pair.b, &in_frame}) {
+      int top = 0;
+      for (int i = 1; i < body->size(); ++i) {
+        if (body->height(i, d) > body->height(top, d)) top = i;
+      }
+      EXPECT_EQ(body->exact_support_index(d), top);
+    }
+    EXPECT_EQ(in_frame.support_index(d), in_frame.exact_support_index(d));
+    EXPECT_EQ(in_frame.exact_support_index(d), pair.a.exact_support_index(d));
+  }
+  for (int i = 0; i < in_frame.size(); ++i) {
+    EXPECT_EQ(in_frame.vertex(i), pair.a.vertex(i));
+    EXPECT_EQ(in_frame.height(i, Vector3(0.3, -0.2, 0.9)),
+              in_frame.vertex(i).dot(Vector3(0.3, -0.2, 0.9)));
+  }
+}
+
 }  // namespace
 }  // namespace swarmcollide::testing

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "normalise.hpp"
+#include "support.hpp"
 
 namespace swarmcollide {
 
@@ -101,42 +102,12 @@ ConvexPolyhedron::ConvexPolyhedron(VertexMatrix points)
 }
 
 int ConvexPolyhedron::support_index(const Vector3& direction) const {
-  int best = 0;
-  Scalar highest = vertices_.row(0).dot(direction);
-  for (int i = 1; i < size(); ++i) {
-    const Scalar value = vertices_.row(i).dot(direction);
-    if (value > highest) {
-      highest = value;
-      best = i;
-    }
-  }
-  return best;
+  return detail::scan_support(vertices_, direction);
 }
 
 int ConvexPolyhedron::support_index(const Vector3& direction, int start) const {
   if (size() <= kHillClimbingThreshold) return support_index(direction);
-  const Hull& h = hull();
-  int current =
-      start >= 0 && start < size() && h.neighbour_offsets[start + 1] > h.neighbour_offsets[start]
-          ? start
-          : h.vertex_indices.front();
-  if (h.neighbours.empty()) return current;
-  // On a convex polytope a vertex with no better neighbour is a global maximiser of a linear
-  // function; steepest ascent keeps the number of steps small.
-  Scalar height = vertices_.row(current).dot(direction);
-  for (;;) {
-    int next = current;
-    for (int k = h.neighbour_offsets[current]; k < h.neighbour_offsets[current + 1]; ++k) {
-      const int candidate = h.neighbours[k];
-      const Scalar value = vertices_.row(candidate).dot(direction);
-      if (value > height) {
-        height = value;
-        next = candidate;
-      }
-    }
-    if (next == current) return current;
-    current = next;
-  }
+  return detail::climb_support(vertices_, hull(), direction, start);
 }
 
 Vector3 ConvexPolyhedron::centroid() const {

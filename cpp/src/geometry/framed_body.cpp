@@ -38,6 +38,9 @@ Vector3 Frame::point_to_world(const Vector3& p) const {
 
 FramedBody::FramedBody(const ConvexPolyhedron& body, const Pose& pose, const Frame& frame)
     : body_(&body),
+      vertices_(&body.vertices()),
+      hull_(nullptr),
+      in_frame_(false),
       rotation_(pose.rotation),
       rotated_(!pose.has_identity_rotation()),
       body_centre_(body.bounds().centre),
@@ -48,6 +51,19 @@ FramedBody::FramedBody(const ConvexPolyhedron& body, const Pose& pose, const Fra
   const Vector3 from_centre = pose.rotation * body_centre_ + pose.translation - frame.centre;
   for (int k = 0; k < 3; ++k) offset_(k) = times_power_of_two(from_centre(k), -exponent_);
 }
+
+FramedBody::FramedBody(const VertexMatrix& points, const Hull& hull)
+    : body_(nullptr),
+      vertices_(&points),
+      hull_(&hull),
+      in_frame_(true),
+      rotation_(Matrix3::Identity()),
+      rotated_(false),
+      body_centre_(Vector3::Zero()),
+      offset_(Vector3::Zero()),
+      exponent_(0),
+      scale_high_(1),
+      scale_low_(1) {}
 
 void FramedBody::points(VertexMatrix& out) const {
   out.resize(size(), 3);

@@ -1,8 +1,7 @@
 // The working frame of a query and the bodies placed in it; private to the library's sources.
 #pragma once
 
-#include <limits>
-
+#include "support.hpp"
 #include "swarmcollide/geometry/convex_polyhedron.hpp"
 #include "swarmcollide/geometry/pose.hpp"
 #include "swarmcollide/types.hpp"
@@ -25,36 +24,88 @@ struct Frame {
   Vector3 point_to_world(const Vector3& p) const;
 };
 
+/// The unit roundoff of double precision: every basic operation is exact to a factor `1 + d`,
+/// `|d| <= kRoundoff`. The rounding bounds of the exact paths are multiples of it.
+inline constexpr Scalar kRoundoff = 0x1p-53;
+
+/// Bound on the rounding error of a computed separation `min_j n.y_j - max_i n.x_i` along a
+/// rounded unit vector `n` (`|n| = 1` to 4 roundoffs), as a separation along `n / |n|`, for
+/// coordinates of magnitude at most `coordinate`: each dot product is within `3.01 u |n| |x|
+/// <= 5.3 u coordinate` (|x| <= sqrt(3) coordinate), the difference adds `u |s| <= 3.5 u
+/// coordinate` and dividing by `|n|` another `4 u |s| <= 14 u coordinate`; 28 u in all, doubled.
+/// The coordinates are those the dot products are computed from, and the supports must be the
+/// largest of those dot products (`FramedBody::exact_support_index`).
+inline Scalar separation_margin(Scalar coordinate) { return 64 * kRoundoff * coordinate; }
+
 /// A bound on the rounding of a separation `n . (y - x)` or of a distance `|y - x|` computed from
 /// frame coordinates (each of magnitude at most 1), in frame units. Each coordinate carries a
 /// few units of rounding from the translation, the scaling (exact) and the rotation, and a dot
-/// product a few more; 64 epsilons covers them with room to spare.
-inline constexpr Scalar kFrameRounding = 64 * std::numeric_limits<Scalar>::epsilon();
+/// product a few more; 128 roundoffs, twice `separation_margin(1)`, cover them with room to
+/// spare.
+inline constexpr Scalar kFrameRounding = 128 * kRoundoff;
 
 /// A body under a pose, seen in a frame: point i is at `rotation * (x_i - c) / 2^e + offset`,
 /// where c is the centre of the body's own bounding box. Support queries are answered in the
 /// body's own frame (`rotation^T d`), so moving a body never touches its points or its hull.
+///
+/// The exact paths ask their support points of it, of two kinds: `support_index` (a scan of small
+/// bodies, a hill climb on large ones, comparing heights in the body's own coordinates) for
+/// searches, and `exact_support_index` (a scan of the heights computed in the frame), the one
+/// whose shortfall margins on frame coordinates provably cover, for proven lower bounds (the
+/// certified penetration solver's).
 class FramedBody {
  public:
   FramedBody(const ConvexPolyhedron& body, const Pose& pose, const Frame& frame);
+  /// Points already in the frame, with their hull (`points` of a framed body, for a solver that
+  /// reads every point many times): point i is row i as it is, and support queries compare these
+  /// coordinates themselves. `body()` is not available; `points` and `hull` must outlive it.
+  FramedBody(const VertexMatrix& points, const Hull& hull);
 
+  /// The body framed; only for a body framed from a ConvexPolyhedron.
   const ConvexPolyhedron& body() const { return *body_; }
-  int size() const { return body_->size(); }
-  const Hull& hull() const { return body_->hull(); }
+  int size() const { return static_cast<int>(vertices_->rows()); }
+  const Hull& hull() const { return in_frame_ ? *hull_ : body_->hull(); }
 
   /// Point i of the body in the frame.
   Vector3 vertex(int i) const {
-    const Vector3 local = scaled(body_->vertices().row(i).transpose() - body_centre_);
+    const Vector3 local = scaled(vertices_->row(i).transpose() - body_centre_);
     return rotated_ ? Vector3(rotation_ * local + offset_) : Vector3(local + offset_);
+  }
+  /// `d . vertex(i)`, as `exact_support_index` compares it.
+  Scalar height(int i, const Vector3& d) const {
+    return in_frame_ ? point_height(*vertices_, i, d) : vertex(i).dot(d);
   }
   /// A frame direction in the body's own frame (support points do not depend on the scale).
   Vector3 local_direction(const Vector3& d) const {
     return rotated_ ? Vector3(rotation_.transpose() * d) : d;
   }
-  /// Index of a point farthest along frame direction `d` (see ConvexPolyhedron::support_index).
-  int support_index(const Vector3& d) const { return body_->support_index(local_direction(d)); }
+  /// Index of a point farthest along frame direction `d`, by scanning the points in the body's
+  /// own frame (see ConvexPolyhedron::support_index).
+  int support_index(const Vector3& d) const { return scan_support(*vertices_, local_direction(d)); }
+  /// The same, climbing the hull from `start` when the body has more than
+  /// `kHillClimbingThreshold` points (see ConvexPolyhedron::support_index): for searches, whose
+  /// successive directions are close.
   int support_index(const Vector3& d, int start) const {
-    return body_->support_index(local_direction(d), start);
+    if (size() <= kHillClimbingThreshold) return support_index(d);
+    return climb_support(*vertices_, hull(), local_direction(d), start);
+  }
+  /// Index of a point maximising `height(i, d)` (the first one on ties), by scanning every point
+  /// in the frame: the support a proven lower bound uses. `support_index` may fall short of it
+  /// by more than a margin in frame coordinates covers: a climb can stop early, and heights in the
+  /// body's own coordinates are rounded relative to those coordinates, which may be far larger
+  /// than the body.
+  int exact_support_index(const Vector3& d) const {
+    if (in_frame_) return scan_support(*vertices_, d);
+    int best = 0;
+    Scalar highest = height(0, d);
+    for (int i = 1; i < size(); ++i) {
+      const Scalar h = height(i, d);
+      if (h > highest) {
+        highest = h;
+        best = i;
+      }
+    }
+    return best;
   }
   Vector3 support(const Vector3& d) const { return vertex(support_index(d)); }
   /// Every point in the frame, one per row, into `out` (resized), for solvers that read each
@@ -71,7 +122,14 @@ class FramedBody {
  private:
   Vector3 scaled(const Vector3& v) const { return v * scale_high_ * scale_low_; }
 
+  // The body's points in its own frame, and its hull when it is not the body's (lazily built).
   const ConvexPolyhedron* body_;
+  const VertexMatrix* vertices_;
+  const Hull* hull_;
+  // Points given in the frame: the placement below is the identity, which heights and exact
+  // scans skip (they read every point). vertex() applies it all the same: a test there would slow
+  // every framed query's loops for the few penetration calls it would spare.
+  bool in_frame_;
   Matrix3 rotation_;
   bool rotated_;
   Vector3 body_centre_;

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 
+#include "minkowski.hpp"
+
 namespace swarmcollide::detail {
 
 namespace {
@@ -41,20 +43,20 @@ void triangle_normal(const Vector3& p, const Vector3& q, const Vector3& r, Vecto
 
 }  // namespace
 
-void CandidateAxes::collect(const BodyView& body, bool negate, std::vector<Arc>& arcs,
+void CandidateAxes::collect(const FramedBody& body, bool negate, std::vector<Arc>& arcs,
                             std::vector<Facet>& facets, std::vector<int>& slot_face,
                             std::vector<int>& ring, Scalar& hull_error) {
   arcs.clear();
   facets.clear();
   hull_error = 0;
-  const Hull& hull = body.hull;
+  const Hull& hull = body.hull();
   const Scalar sign = negate ? -1 : 1;
   const auto add_arc = [&](int p, int q, const Vector3& u, const Vector3& v, Scalar tau,
                            bool full) {
     Arc arc;
     arc.p = p;
     arc.q = q;
-    arc.t = (body.point(q) - body.point(p)).normalized();
+    arc.t = (body.vertex(q) - body.vertex(p)).normalized();
     arc.u = sign * u;
     arc.v = sign * v;
     arc.P = arc.t.cross(arc.u);
@@ -71,7 +73,7 @@ void CandidateAxes::collect(const BodyView& body, bool negate, std::vector<Arc>&
   const auto stray = [&](const Vector3& normal, const Vector3& origin, bool both_sides) {
     Scalar worst = 0;
     for (int i = 0; i < body.size(); ++i) {
-      const Scalar h = normal.dot(body.point(i) - origin);
+      const Scalar h = normal.dot(body.vertex(i) - origin);
       worst = std::max(worst, both_sides ? std::abs(h) : h);
     }
     return worst;
@@ -80,8 +82,8 @@ void CandidateAxes::collect(const BodyView& body, bool negate, std::vector<Arc>&
   if (hull.dimension == 3) {
     facets.resize(count);
     for (int f = 0; f < count; ++f) {
-      const Vector3 p = body.point(hull.faces(f, 0));
-      triangle_normal(p, body.point(hull.faces(f, 1)), body.point(hull.faces(f, 2)),
+      const Vector3 p = body.vertex(hull.faces(f, 0));
+      triangle_normal(p, body.vertex(hull.faces(f, 1)), body.vertex(hull.faces(f, 2)),
                       facets[f].normal, facets[f].error);
       hull_error = std::max(hull_error, stray(facets[f].normal, p, false));
       facets[f].normal *= sign;
@@ -128,14 +130,14 @@ void CandidateAxes::collect(const BodyView& body, bool negate, std::vector<Arc>&
     for (int f = 0; f < fan; ++f) {
       Vector3 n;
       Scalar e;
-      triangle_normal(body.point(hull.faces(f, 0)), body.point(hull.faces(f, 1)),
-                      body.point(hull.faces(f, 2)), n, e);
+      triangle_normal(body.vertex(hull.faces(f, 0)), body.vertex(hull.faces(f, 1)),
+                      body.vertex(hull.faces(f, 2)), n, e);
       if (e < error) {
         error = e;
         normal = n;
       }
     }
-    hull_error = stray(normal, body.point(ring[0]), true);
+    hull_error = stray(normal, body.vertex(ring[0]), true);
     facets.push_back({sign * normal, error, ring[0]});
     facets.push_back({-sign * normal, error, ring[0]});
     const int size = static_cast<int>(ring.size());
@@ -148,13 +150,13 @@ void CandidateAxes::collect(const BodyView& body, bool negate, std::vector<Arc>&
     add_arc(p, q, Vector3::Zero(), Vector3::Zero(), 0, true);
     const Vector3 t = arcs.back().t;
     for (int i = 0; i < body.size(); ++i) {
-      const Vector3 d = body.point(i) - body.point(p);
+      const Vector3 d = body.vertex(i) - body.vertex(p);
       hull_error = std::max(hull_error, (d - d.dot(t) * t).norm());
     }
   } else {
-    const Vector3 origin = body.point(hull.vertex_indices[0]);
+    const Vector3 origin = body.vertex(hull.vertex_indices[0]);
     for (int i = 0; i < body.size(); ++i) {
-      hull_error = std::max(hull_error, (body.point(i) - origin).norm());
+      hull_error = std::max(hull_error, (body.vertex(i) - origin).norm());
     }
   }
 }
@@ -168,7 +170,7 @@ void CandidateAxes::offer(AxesBound& bound, const Vector3& n, Scalar estimate, S
   }
 }
 
-AxesBound CandidateAxes::run(const BodyView& a, const BodyView& b, Scalar coordinate) {
+AxesBound CandidateAxes::run(const FramedBody& a, const FramedBody& b, Scalar coordinate) {
   AxesBound bound;
   best_estimate_ = -std::numeric_limits<Scalar>::infinity();
   Scalar error_a = 0;
@@ -191,13 +193,13 @@ AxesBound CandidateAxes::run(const BodyView& a, const BodyView& b, Scalar coordi
   int climb_a = -1;
   int climb_b = -1;
   for (const Facet& f : facets_a_) {
-    climb_b = b.climb_max(-f.normal, climb_b);
-    const Vector3 w = b.point(climb_b) - a.point(f.vertex);
+    climb_b = b.support_index(-f.normal, climb_b);
+    const Vector3 w = b.vertex(climb_b) - a.vertex(f.vertex);
     offer(bound, f.normal, f.normal.dot(w), (f.error + 8 * kRoundoff) * w.norm());
   }
   for (const Facet& f : facets_b_) {
-    climb_a = a.climb_max(f.normal, climb_a);
-    const Vector3 w = b.point(f.vertex) - a.point(climb_a);
+    climb_a = a.support_index(f.normal, climb_a);
+    const Vector3 w = b.vertex(f.vertex) - a.vertex(climb_a);
     offer(bound, f.normal, f.normal.dot(w), (f.error + 8 * kRoundoff) * w.norm());
   }
 
@@ -224,14 +226,14 @@ AxesBound CandidateAxes::run(const BodyView& a, const BodyView& b, Scalar coordi
         const Scalar s = eb.tau + 1e-12;
         if ((du > s && dv > s) || (du < -s && dv < -s)) continue;
       }
-      const Vector3 w = b.point(eb.p) - a.point(ea.p);
+      const Vector3 w = b.vertex(eb.p) - a.vertex(ea.p);
       Vector3 k = ea.t.cross(eb.t);
       Scalar sine = k.norm();
       Scalar error = 16 * kRoundoff / sine + 4 * kRoundoff;
       if (!(sine >= kWellConditioned)) {
         using Extended = Eigen::Matrix<long double, 3, 1>;
-        const Extended da = a.point(ea.q).cast<long double>() - a.point(ea.p).cast<long double>();
-        const Extended db = b.point(eb.q).cast<long double>() - b.point(eb.p).cast<long double>();
+        const Extended da = a.vertex(ea.q).cast<long double>() - a.vertex(ea.p).cast<long double>();
+        const Extended db = b.vertex(eb.q).cast<long double>() - b.vertex(eb.p).cast<long double>();
         const Extended kx = da.cross(db);
         const long double relative = kx.norm() / (da.norm() * db.norm());
         sine = static_cast<Scalar>(relative);
@@ -318,8 +320,7 @@ AxesBound CandidateAxes::run(const BodyView& a, const BodyView& b, Scalar coordi
   for (int i = 0; i < extras; ++i) {
     for (const Scalar side : {1.0, -1.0}) {
       const Vector3 n = side * extra[i];
-      const Scalar s = b.point(b.scan_max(-n)).dot(n) - a.point(a.scan_max(n)).dot(n);
-      offer(bound, n, s, margin);
+      offer(bound, n, exact_separation(a, b, n), margin);
     }
   }
   bound.upper += hull_error;

@@ -3,7 +3,7 @@
 
 #include <vector>
 
-#include "penetration_support.hpp"
+#include "../geometry/framed_body.hpp"
 #include "swarmcollide/types.hpp"
 
 namespace swarmcollide::detail {
@@ -34,7 +34,7 @@ struct AxesBound {
 class CandidateAxes {
  public:
   /// The bound for A and B, whose coordinates are at most `coordinate` in magnitude.
-  AxesBound run(const BodyView& a, const BodyView& b, Scalar coordinate);
+  AxesBound run(const FramedBody& a, const FramedBody& b, Scalar coordinate);
 
  private:
   /// An edge's Gauss arc: the unit normals from `u` to `v`, rotating positively about `t`; on the
@@ -58,7 +58,7 @@ class CandidateAxes {
     int vertex;
   };
 
-  static void collect(const BodyView& body, bool negate, std::vector<Arc>& arcs,
+  static void collect(const FramedBody& body, bool negate, std::vector<Arc>& arcs,
                       std::vector<Facet>& facets, std::vector<int>& slot_face,
                       std::vector<int>& ring, Scalar& hull_error);
   /// Records a candidate: `estimate` is n.(y - x) for the features spanning it, `error` what

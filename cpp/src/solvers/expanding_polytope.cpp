@@ -5,6 +5,8 @@
 #include <functional>
 #include <limits>
 
+#include "minkowski.hpp"
+
 namespace swarmcollide::detail {
 
 namespace {
@@ -153,7 +155,7 @@ bool ExpandingPolytope::verify(Scalar& depth_lower) const {
   return true;
 }
 
-ExpansionResult ExpandingPolytope::run(const BodyView& a, const BodyView& b,
+ExpansionResult ExpandingPolytope::run(const FramedBody& a, const FramedBody& b,
                                        const std::array<DifferencePoint, 4>& start, Scalar stop_gap,
                                        int max_iterations) {
   ExpansionResult result;
@@ -206,12 +208,13 @@ ExpansionResult ExpandingPolytope::run(const BodyView& a, const BodyView& b,
     int start_b = vertices_[face.v[0]].ib;
     for (int k = 1; k < 3; ++k) {
       const DifferencePoint& corner = vertices_[face.v[k]];
-      if (a.point(corner.ia).dot(n) > a.point(start_a).dot(n)) start_a = corner.ia;
-      if (b.point(corner.ib).dot(n) < b.point(start_b).dot(n)) start_b = corner.ib;
+      if (a.height(corner.ia, n) > a.height(start_a, n)) start_a = corner.ia;
+      if (b.height(corner.ib, n) < b.height(start_b, n)) start_b = corner.ib;
     }
-    const int ia = a.climb_max(n, start_a);
-    const int ib = b.climb_max(-n, start_b);
-    const Vector3 w = a.point(ia) - b.point(ib);
+    // The support of A - B along n is minus the point of B - A least along n.
+    int ia = start_a;
+    int ib = start_b;
+    const Vector3 w = -minkowski_support(a, b, n, ia, ib).p;
     const Scalar h = n.dot(w);
     result.iterations = iteration + 1;
     if (-h > result.best_separation) {

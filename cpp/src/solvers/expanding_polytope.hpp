@@ -4,7 +4,7 @@
 #include <array>
 #include <vector>
 
-#include "penetration_support.hpp"
+#include "../geometry/framed_body.hpp"
 #include "swarmcollide/types.hpp"
 
 namespace swarmcollide::detail {
@@ -52,7 +52,7 @@ class ExpandingPolytope {
   /// is within `stop_gap` of its plane, the expansion cannot proceed safely, or after
   /// `max_iterations` steps; then verifies. Returns verified = false when the tetrahedron does
   /// not enclose the origin provably.
-  ExpansionResult run(const BodyView& a, const BodyView& b,
+  ExpansionResult run(const FramedBody& a, const FramedBody& b,
                       const std::array<DifferencePoint, 4>& start, Scalar stop_gap,
                       int max_iterations);
 

@@ -1,13 +1,10 @@
 #include "minkowski.hpp"
 
 #include <cmath>
-#include <limits>
 
 namespace swarmcollide::detail {
 
 namespace {
-
-constexpr Scalar kEpsilon = std::numeric_limits<Scalar>::epsilon();
 
 // Signed distance of the origin from the plane of (p, q, r), positive on the side the
 // right-hand normal points to, and whether its sign is beyond doubt: the determinant's
@@ -32,7 +29,7 @@ PlaneSide side_of_origin(const Vector3& p, const Vector3& q, const Vector3& r) {
   const Scalar permanent = ap.x() * (au.y() * av.z() + au.z() * av.y()) +
                            ap.y() * (au.z() * av.x() + au.x() * av.z()) +
                            ap.z() * (au.x() * av.y() + au.y() * av.x());
-  const Scalar rounding = 32 * kEpsilon * permanent;
+  const Scalar rounding = 64 * kRoundoff * permanent;
   const Scalar distance = determinant / length;
   return {distance, std::abs(determinant) > rounding && std::abs(distance) > 4 * kFrameRounding};
 }

@@ -32,6 +32,24 @@ inline Scalar separation(const FramedBody& a, const FramedBody& b, const Vector3
   return separation(a, b, n, hint_a, hint_b);
 }
 
+/// Separation along `n` from exact scans of both bodies (FramedBody::exact_support_index):
+/// `min_j n.y_j - max_i n.x_i` as computed in the frame, within `separation_margin` (of the
+/// largest frame coordinate) of the exact separation along `n / |n|`, so a proven lower bound may
+/// rest on it; `separation` may not, as its supports can fall short. The support indices are
+/// returned in `ia` and `ib`.
+inline Scalar exact_separation(const FramedBody& a, const FramedBody& b, const Vector3& n, int& ia,
+                               int& ib) {
+  ia = a.exact_support_index(n);
+  ib = b.exact_support_index(-n);
+  return b.height(ib, n) - a.height(ia, n);
+}
+
+inline Scalar exact_separation(const FramedBody& a, const FramedBody& b, const Vector3& n) {
+  int ia = 0;
+  int ib = 0;
+  return exact_separation(a, b, n, ia, ib);
+}
+
 /// True when the origin lies inside the tetrahedron of `points` (each of norm at most ~2) by
 /// more than the rounding of the points and of the orientation tests: a proof that the bodies
 /// whose difference they are share a point.

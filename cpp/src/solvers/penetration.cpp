@@ -8,7 +8,7 @@
 
 #include "candidate_axes.hpp"
 #include "expanding_polytope.hpp"
-#include "penetration_support.hpp"
+#include "minkowski.hpp"
 #include "wolfe_min_norm.hpp"
 
 namespace swarmcollide::detail {
@@ -50,20 +50,26 @@ long long edge_count(const Hull& hull) {
 
 // What the candidate axes cost: every edge pair, and every face against every point (the check
 // of how far the points stray from the hull's faces).
-long long axes_work(const BodyView& a, const BodyView& b) {
-  const auto faces_by_points = [](const BodyView& body) {
-    return body.hull.dimension == 3 ? static_cast<long long>(body.hull.faces.rows()) * body.size()
-                                    : 0;
+long long axes_work(const FramedBody& a, const FramedBody& b) {
+  const auto faces_by_points = [](const FramedBody& body) {
+    return body.hull().dimension == 3
+               ? static_cast<long long>(body.hull().faces.rows()) * body.size()
+               : 0;
   };
-  return edge_count(a.hull) * edge_count(b.hull) + faces_by_points(a) + faces_by_points(b);
+  return edge_count(a.hull()) * edge_count(b.hull()) + faces_by_points(a) + faces_by_points(b);
+}
+
+// Largest absolute coordinate of the pair: the rounding margins are multiples of it.
+Scalar largest_coordinate(const VertexMatrix& a, const VertexMatrix& b) {
+  return std::max(a.cwiseAbs().maxCoeff(), b.cwiseAbs().maxCoeff());
 }
 
 class Solver {
  public:
   Solver(const VertexMatrix& a, const Hull& hull_a, const VertexMatrix& b, const Hull& hull_b,
          Scalar tolerance, int max_iterations, Scalar coordinate)
-      : a_{a, hull_a},
-        b_{b, hull_b},
+      : a_(a, hull_a),
+        b_(b, hull_b),
         tolerance_(tolerance),
         max_iterations_(std::max(1, max_iterations)),
         ws_(thread_workspace()),
@@ -97,15 +103,15 @@ class Solver {
   void offer_flat_normals() {
     Vector3 axis[2];
     int segments = 0;
-    for (const BodyView* body : {&a_, &b_}) {
-      const Hull& h = body->hull;
+    for (const FramedBody* body : {&a_, &b_}) {
+      const Hull& h = body->hull();
       if (h.dimension == 2) {
-        const Vector3 p = body->point(h.faces(0, 0));
-        const Vector3 n = (body->point(h.faces(0, 1)) - p).cross(body->point(h.faces(0, 2)) - p);
+        const Vector3 p = body->vertex(h.faces(0, 0));
+        const Vector3 n = (body->vertex(h.faces(0, 1)) - p).cross(body->vertex(h.faces(0, 2)) - p);
         offer(n.normalized());
         offer(-n.normalized());
       } else if (h.dimension == 1) {
-        axis[segments++] = body->point(h.vertex_indices[1]) - body->point(h.vertex_indices[0]);
+        axis[segments++] = body->vertex(h.vertex_indices[1]) - body->vertex(h.vertex_indices[0]);
       }
     }
     if (segments == 2 && axis[0].cross(axis[1]).norm() > 0) {
@@ -118,9 +124,7 @@ class Solver {
   // exactly by `finish`.
   void offer(const Vector3& n) {
     if (!n.allFinite()) return;
-    climb_a_ = a_.climb_max(n, climb_a_);
-    climb_b_ = b_.climb_max(-n, climb_b_);
-    offer(n, (b_.point(climb_b_) - a_.point(climb_a_)).dot(n));
+    offer(n, separation(a_, b_, n, climb_a_, climb_b_));
   }
   void offer(const Vector3& n, Scalar estimate) {
     if (estimate > estimate_) {
@@ -133,10 +137,8 @@ class Solver {
   // can stop a rounding error short of the maximum).
   void finish() {
     if (!(estimate_ > -kInfinity)) offer(Vector3::UnitX());
-    top_a_ = a_.scan_max(candidate_);
-    top_b_ = b_.scan_max(-candidate_);
     normal_ = candidate_;
-    separation_ = b_.height(top_b_, candidate_) - a_.height(top_a_, candidate_);
+    separation_ = exact_separation(a_, b_, candidate_, top_a_, top_b_);
   }
 
   void set_upper(Scalar value, PenetrationProof proof) {
@@ -146,31 +148,29 @@ class Solver {
     }
   }
 
-  // Wolfe's nearest point of A - B to the origin: an upper bound |p| (p is a point of A - B, so
-  // s(n) <= -n.p <= |p| for every n) and, when the origin is inside, a tetrahedron around it for
+  // Wolfe's nearest point of B - A to the origin: an upper bound |p| (p is a point of B - A, so
+  // s(n) <= n.p <= |p| for every n) and, when the origin is inside, a tetrahedron around it for
   // the expanding polytope.
   void nearest_then_polytope() {
     int ia = climb_a_;
     int ib = climb_b_;
-    const auto oracle = [&](const Vector3& d) {
-      ia = a_.climb_max(-d, ia);
-      ib = b_.climb_max(d, ib);
-      return OraclePoint{a_.point(ia) - b_.point(ib), ia, ib};
-    };
-    Vector3 start = estimate_ > -kInfinity ? candidate_ : Vector3(a_.point(0) - b_.point(0));
-    if (!(start.norm() > 0)) start = Vector3::UnitX();
+    const auto oracle = [&](const Vector3& d) { return minkowski_support(a_, b_, d, ia, ib); };
+    // The first point is the one of B - A farthest along the best direction so far.
+    Vector3 start =
+        estimate_ > -kInfinity ? Vector3(-candidate_) : Vector3(b_.vertex(0) - a_.vertex(0));
+    if (!(start.norm() > 0)) start = -Vector3::UnitX();
     const MinNormPoint m = wolfe_min_norm(oracle, start, reach(), max_iterations_);
     iterations_ += m.iterations;
-    // The exact convex combination of the corral (weights normalised) is a point of A - B; the
+    // The exact convex combination of the corral (weights normalised) is a point of B - A; the
     // computed one is within 16 roundoffs of reach() of it (added in upper()).
     Scalar total = 0;
     for (int k = 0; k < m.size; ++k) total += m.weights[k];
     Vector3 p = Vector3::Zero();
     for (int k = 0; k < m.size; ++k) p += m.weights[k] / total * m.corral[k].p;
     if (p.norm() < nearest_length_) nearest_length_ = p.norm();
-    if (p.norm() > 0) offer(-p.normalized());
+    if (p.norm() > 0) offer(p.normalized());
     if (m.size == MinNormPoint::kCapacity && enclose(m)) return;
-    // Touching bodies: the origin is on the boundary of A - B and on the corral's triangles, which
+    // Touching bodies: the origin is on the boundary of B - A and on the corral's triangles, which
     // then lie in the supporting plane there, so their normals are the contact normal.
     for (int k = 0; m.size >= 3 && k < m.size; ++k) {
       const Vector3& p0 = m.corral[k].p;
@@ -184,12 +184,12 @@ class Solver {
     }
   }
 
-  // The expanding polytope from Wolfe's tetrahedron around the origin; true when it proved an
-  // upper bound.
+  // The expanding polytope, in A - B, from Wolfe's tetrahedron around the origin turned over;
+  // true when it proved an upper bound.
   bool enclose(const MinNormPoint& m) {
     std::array<DifferencePoint, 4> start_tetrahedron;
     for (int k = 0; k < 4; ++k) {
-      start_tetrahedron[k] = {m.corral[k].p, m.corral[k].ia, m.corral[k].ib};
+      start_tetrahedron[k] = {-m.corral[k].p, m.corral[k].ia, m.corral[k].ib};
     }
     const Scalar stop_gap = std::max(tolerance_ / 2, floor() / 4);
     const ExpansionResult e =
@@ -212,15 +212,15 @@ class Solver {
   // Points of `body` within `slack` of the top along n (whose top point is `top`): a scan for
   // small bodies, a flood over the hull's edge graph for large ones (the points above a plane
   // span a connected subgraph of a polytope's graph).
-  void feature(const BodyView& body, const Vector3& n, int top, Scalar slack,
+  void feature(const FramedBody& body, const Vector3& n, int top, Scalar slack,
                std::vector<int>& found) {
-    const Scalar floor = body.points.row(top).dot(n) - slack;
+    const Scalar floor = body.height(top, n) - slack;
     found.clear();
-    const Hull& h = body.hull;
+    const Hull& h = body.hull();
     const bool on_graph = h.neighbour_offsets[top] < h.neighbour_offsets[top + 1];
     if (body.size() <= kHillClimbingThreshold || !on_graph) {
       for (int i = 0; i < body.size(); ++i) {
-        if (body.points.row(i).dot(n) >= floor) found.push_back(i);
+        if (body.height(i, n) >= floor) found.push_back(i);
       }
       return;
     }
@@ -233,7 +233,7 @@ class Solver {
       const int i = found[k];
       for (int e = h.neighbour_offsets[i]; e < h.neighbour_offsets[i + 1]; ++e) {
         const int j = h.neighbours[e];
-        if (!ws_.visited[j] && body.points.row(j).dot(n) >= floor) {
+        if (!ws_.visited[j] && body.height(j, n) >= floor) {
           ws_.visited[j] = 1;
           found.push_back(j);
         }
@@ -267,13 +267,13 @@ class Solver {
     const auto oracle = [&](const Vector3& d) {
       int i = ws_.feature_a.front();
       for (int k : ws_.feature_a) {
-        if (a_.points.row(k).dot(d) > a_.points.row(i).dot(d)) i = k;
+        if (a_.height(k, d) > a_.height(i, d)) i = k;
       }
       int j = ws_.feature_b.front();
       for (int k : ws_.feature_b) {
-        if (b_.points.row(k).dot(d) < b_.points.row(j).dot(d)) j = k;
+        if (b_.height(k, d) < b_.height(j, d)) j = k;
       }
-      return OraclePoint{b_.point(j) - a_.point(i) - shift, i, j};
+      return OraclePoint{b_.vertex(j) - a_.vertex(i) - shift, i, j};
     };
     const MinNormPoint m = wolfe_min_norm(oracle, n, reach(), kWitnessIterations);
     Scalar total = 0;
@@ -286,8 +286,8 @@ class Solver {
       const Scalar w = m.weights[k] / total;
       r.weights_a(m.corral[k].ia) += w;
       r.weights_b(m.corral[k].ib) += w;
-      r.point_a += w * a_.point(m.corral[k].ia);
-      r.point_b += w * b_.point(m.corral[k].ib);
+      r.point_a += w * a_.vertex(m.corral[k].ia);
+      r.point_b += w * b_.vertex(m.corral[k].ib);
     }
     r.witness_residual = (r.point_b - r.point_a - shift).norm();
     r.feature_slack = slack;
@@ -308,8 +308,9 @@ class Solver {
     return r;
   }
 
-  BodyView a_;
-  BodyView b_;
+  // The points as given, in the frame the margins assume.
+  FramedBody a_;
+  FramedBody b_;
   Scalar tolerance_;
   int max_iterations_;
   Workspace& ws_;

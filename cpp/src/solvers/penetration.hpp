@@ -10,7 +10,7 @@ namespace swarmcollide::detail {
 enum class PenetrationProof {
   /// None: `upper` is +infinity.
   none,
-  /// A point `p` of `A - B` (Wolfe's nearest point): `sd <= |p|`.
+  /// A point `p` of `B - A` (Wolfe's nearest point): `sd <= |p|`.
   nearest_point,
   /// A verified polytope inside `A - B` around the origin: `sd <= -(its inner radius)`.
   polytope,
@@ -63,12 +63,12 @@ struct PenetrationBounds {
 /// largest coordinate outside [1e-100, 1e100] (other than 0) gets infinite bounds, unproven.
 /// `hint` is a good direction from A to B if one is known (zero otherwise); `tolerance` (absolute,
 /// >= 0) is the requested gap `upper - lower`; `max_iterations` (>= 1) caps each iterative stage.
-/// The solver works on the Minkowski difference `A - B`: Wolfe's nearest point to the origin,
-/// then an expanding polytope whose closed, origin-enclosing surface is verified before it proves
-/// `upper`, and when that leaves a gap (touching, flat or degenerate differences) the exhaustive
-/// candidate axes (face normals and crossing Gauss-map arcs), for pairs where they cost at most
-/// about 2^22 steps. Every loop is bounded; nothing aborts. Separated bodies get valid bounds too
-/// (Wolfe's distance). Once a thread's buffers have grown, only the result's weights are
+/// The solver works on the Minkowski difference: Wolfe's nearest point of `B - A` to the origin,
+/// then an expanding polytope in `A - B` whose closed, origin-enclosing surface is verified before
+/// it proves `upper`, and when that leaves a gap (touching, flat or degenerate differences) the
+/// exhaustive candidate axes (face normals and crossing Gauss-map arcs), for pairs where they cost
+/// at most about 2^22 steps. Every loop is bounded; nothing aborts. Separated bodies get valid
+/// bounds too (Wolfe's distance). Once a thread's buffers have grown, only the result's weights are
 /// allocated. Preconditions: finite points, `hull_a` and `hull_b` from `compute_hull` of them.
 PenetrationBounds penetration(const VertexMatrix& a, const Hull& hull_a, const VertexMatrix& b,
                               const Hull& hull_b, const Vector3& hint, Scalar tolerance,
