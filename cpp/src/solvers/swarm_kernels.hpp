@@ -93,11 +93,11 @@ struct Move {
   UniformLanes* lanes;
 };
 
-/// One generation for every particle, a few columns at a time while their rows are in cache:
+/// One generation for every particle, a few columns at a time:
 /// - (10)-(11): v = w v + c1 r1 (p - x) + c2 r2 (g - x), and x + v written to `next`.
 /// - With `project`: each velocity component is clamped to the limit, each body's weights are
-///   projected onto its simplex (Michelot's method, exact to rounding, any number of weights),
-///   and the velocity becomes the move actually made.
+///   projected onto its simplex (exact to rounding, any number of weights: a sorting network up to
+///   16, Michelot's method above), and the velocity becomes the move actually made.
 /// - Without: a velocity whose largest component exceeds the limit is scaled as a whole, so the
 ///   move keeps the weights' sums; nothing is projected.
 /// - Conditions 1-3: a particle whose score beats its personal best's (feasible beats infeasible,
