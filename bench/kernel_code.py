@@ -1,6 +1,7 @@
 """What the compiler made of the swarm's kernels, per instruction set (objdump of their object).
 
-For each kernel function: its instructions, how many work on packed doubles (``...pd``), how many
+For each kernel function (the instances of a template, such as the row functions for each number
+of rows, summed as one): its instructions, how many work on packed doubles (``...pd``), how many
 compute on one double (``...sd`` arithmetic, comparisons, minima and maxima; moves and broadcasts
 of values shared by all particles are not counted), and the widest register it uses. A kernel
 compiled to scalar code shows many more scalar than packed instructions. It reads both this
@@ -23,7 +24,7 @@ from typing import List, Optional
 import record
 
 KERNEL = re.compile(r"swarmcollide::detail::(?:(avx512|avx2|baseline)::)?"
-                    r"(?:\(anonymous namespace\)::)?(\w+)\(.*?(?:\[clone \.(\w+)\])?>:$")
+                    r"(?:\(anonymous namespace\)::)?(\w+)(?:<\d+>)?\(.*?(?:\[clone \.(\w+)\])?>:$")
 CLONES = {"arch_x86_64_v4": "avx512", "arch_x86_64_v3": "avx2", "default": "baseline"}
 NOT_COMPUTING = {"movsd", "vmovsd", "vbroadcastsd", "movddup", "vmovddup"}
 

@@ -57,6 +57,7 @@ struct SwarmWorkspace {
   std::vector<std::int64_t> best_key;
   std::vector<std::int64_t> improved;
   std::vector<int> order;
+  std::vector<detail::RankedParticle> ranked;
   // (8)-(9) depend only on the rank, so they are tabulated, and kept while the swarm size and
   // inertia bounds stay the same.
   std::vector<ParticleCoefficients> by_rank;
@@ -118,6 +119,7 @@ class SwarmSolver {
     work_.improved.resize(stride_);
     work_.order.resize(size_);
     std::iota(work_.order.begin(), work_.order.end(), 0);
+    work_.ranked.resize(2 * (static_cast<std::size_t>(size_) + 1));
     if (inertia == InertiaStrategy::rank_adaptive) tabulate_coefficients();
     work_.lambda.resize(ka_);
     work_.delta.resize(kb_);
@@ -203,7 +205,10 @@ class SwarmSolver {
       std::fill_n(pull_global, size_, options_.c2);
     } else {
       int* order = work_.order.data();
-      detail::order_by_personal_best(size_, work_.best_key.data(), order);
+      // Every particle is marked improved after the initial scoring, and after each generation
+      // those whose personal best it changed: the order of the others still holds.
+      detail::order_by_personal_best(size_, work_.best_key.data(), work_.improved.data(), order,
+                                     work_.ranked.data());
       for (int rank = 0; rank < size_; ++rank) {
         const ParticleCoefficients& c = work_.by_rank[rank];
         inertia[order[rank]] = c.w;

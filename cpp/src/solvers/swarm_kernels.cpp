@@ -215,17 +215,44 @@ bool advance_particles(const SwarmView& swarm, int rows_a, const Move& move, con
   return kernels().advance_particles(swarm, rows_a, move, fitness, bests, next);
 }
 
-void order_by_personal_best(int particles, const std::int64_t* key, int* order) {
-  for (int i = 1; i < particles; ++i) {
-    const int item = order[i];
-    const std::int64_t item_key = key[item];
+void order_by_personal_best(int particles, const std::int64_t* key, const std::int64_t* improved,
+                            int* order, RankedParticle* scratch) {
+  const auto before = [](const RankedParticle& a, const RankedParticle& b) {
+    return a.key < b.key || (a.key == b.key && a.particle < b.particle);
+  };
+  // The particles are split without a branch, with their keys beside them, so that the sort and
+  // the merge read no key through an index. Each list gets a last entry that no particle comes
+  // after, so that the merge needs no bounds test; its branch mostly takes the next kept particle.
+  RankedParticle* kept = scratch;
+  RankedParticle* moved = scratch + particles + 1;
+  int kept_count = 0;
+  int moved_count = 0;
+  for (int i = 0; i < particles; ++i) {
+    const int p = order[i];
+    const RankedParticle item{key[p], p};
+    const bool marked = improved[p] != 0;
+    kept[kept_count] = item;
+    moved[moved_count] = item;
+    kept_count += !marked;
+    moved_count += marked;
+  }
+  for (int i = 1; i < moved_count; ++i) {
+    const RankedParticle item = moved[i];
     int k = i;
-    for (; k > 0; --k) {
-      const int other = order[k - 1];
-      if (key[other] < item_key || (key[other] == item_key && other < item)) break;
-      order[k] = other;
-    }
-    order[k] = item;
+    for (; k > 0 && before(item, moved[k - 1]); --k) moved[k] = moved[k - 1];
+    moved[k] = item;
+  }
+  constexpr RankedParticle kLast{std::numeric_limits<std::int64_t>::max(),
+                                 std::numeric_limits<int>::max()};
+  kept[kept_count] = kLast;
+  moved[moved_count] = kLast;
+  int next_kept = 0;
+  int next_moved = 0;
+  for (int i = 0; i < particles; ++i) {
+    const bool take_moved = before(moved[next_moved], kept[next_kept]);
+    order[i] = take_moved ? moved[next_moved].particle : kept[next_kept].particle;
+    next_moved += take_moved;
+    next_kept += !take_moved;
   }
 }
 
