@@ -239,7 +239,9 @@ void answer_pair(const PlacedBody& a, const PlacedBody& b, PairProof& proof,
       return;
     }
   }
-  const FramedPair pair = frame_pair(*a.body, *a.pose, *b.body, *b.pose, options.tolerance);
+  // The scene validated both poses when they were set.
+  const FramedPair pair =
+      frame_validated_pair(*a.body, *a.pose, *b.body, *b.pose, options.tolerance);
   // The pair as the verdict sees it: in contact means within the threshold and the tolerance.
   FramedPair gate = pair;
   gate.tolerance += times_power_of_two(question.threshold, -pair.frame.exponent);
