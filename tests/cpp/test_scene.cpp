@@ -706,6 +706,19 @@ TEST(Scene, SearchesEndWhenNoPairCanBeFound) {
   EXPECT_EQ(nearest.pairs(0, 1), 2);
 }
 
+// The search's end is the extent of the bodies as they are now: two cubes that moved 99 apart
+// since the last query are still a pair.
+TEST(Scene, MinDistanceSearchesAsFarAsBodiesMovedSinceTheLastQuery) {
+  const ConvexPolyhedron cube = box(Vector3::Zero(), Vector3::Ones());
+  Scene scene;
+  scene.add({cube, cube}, {Pose{}, Pose{Matrix3::Identity(), Vector3(2, 0, 0)}});
+  scene.colliding_pairs();
+  scene.set_poses({1}, {Pose{Matrix3::Identity(), Vector3(100, 0, 0)}});
+  const SceneResult nearest = scene.min_distance();
+  ASSERT_EQ(nearest.size(), 1);
+  EXPECT_NEAR(nearest.distance(0), 99, 1e-6);
+}
+
 TEST(Scene, RejectsWhatItCannotAnswer) {
   Scene scene;
   const BodyId id = scene.add(box(Vector3::Zero(), Vector3::Ones()));

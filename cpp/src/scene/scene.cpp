@@ -925,6 +925,8 @@ SceneResult Scene::pairs_within(Scalar distance) {
 SceneResult Scene::Impl::min_distance() {
   require(kDistance, "min_distance");
   if (bodies.size() < 2) return sized(0);
+  // The extent of the bodies where they are now, not where the last query left them.
+  fit_boxes(padded_for);
   // Pairs within a threshold, the threshold raised until some are: every other pair is
   // farther than the threshold, so the nearest of those found is the nearest of all.
   const Scalar far = extent();
