@@ -276,14 +276,15 @@ What the last Scene query did with its candidate pairs.
 Attributes
 ----------
 candidates : int
-    Pairs the broadphase returned that passed the filters.
+    Pairs that passed the filters whose boxes, padded for the query, overlap.
 screened : int
     Found apart along the line between their centres, before any solver.
 warm_bounded : int
     Found apart by a cached lower bound on their distance less how far the bodies have moved
     since: no support evaluated.
 warm_rejected, warm_proven : int
-    Settled by re-evaluating a cached separating direction or enclosing simplex.
+    Settled by re-evaluating a cached separating direction or enclosing simplex (or one that
+    Wolfe's algorithm found from it in a step or two).
 solved : int
     Handed to the method's solver.
 escalations : int
@@ -291,7 +292,9 @@ escalations : int
 certified : int
     Candidates whose answer is proven.
 cached_pairs, cache_bytes : int
-    Pairs with a cached proof after the query, and the bytes their storage takes.
+    Pairs with a cached proof after the query, and the bytes their storage takes: a 64-byte
+    record for every pair whose broadphase boxes (padded boxes with margins for motion)
+    overlap.
 )doc")
       .def_readonly("candidates", &SceneStats::candidates)
       .def_readonly("screened", &SceneStats::screened)

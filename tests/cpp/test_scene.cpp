@@ -282,6 +282,119 @@ INSTANTIATE_TEST_SUITE_P(Broadphases, SceneOracle,
                                   (info.param.warm_start ? "_warm" : "_cold");
                          });
 
+// Frames in which a few bodies move, most a little (inside the margins of their broadphase boxes)
+// and some far, with bodies removed, added, filtered and excluded between them: the scene keeps
+// its pair table and asks the broadphase again only about the bodies that left their boxes. Every
+// frame's contacts equal the oracle's, and its candidates those of a scene made afresh.
+class ScenePairTable : public ::testing::TestWithParam<Broadphase> {};
+
+TEST_P(ScenePairTable, FewMovingBodiesGiveTheAnswersOfAFreshScene) {
+  std::mt19937_64 rng(23 + static_cast<int>(GetParam()));
+  SceneOptions options;
+  options.broadphase = GetParam();
+  options.threads = 2;
+  Scene scene(options);
+  World world;
+  std::map<BodyId, Vector3> velocity;
+  std::normal_distribution<Scalar> normal(0, 0.01);
+  std::uniform_real_distribution<Scalar> chance(0, 1);
+  const auto add = [&](int count) {
+    std::vector<ConvexPolyhedron> bodies;
+    std::vector<Pose> poses;
+    for (int i = 0; i < count; ++i) {
+      bodies.push_back(random_body(rng));
+      poses.push_back(random_pose(rng, 4));
+    }
+    const std::vector<BodyId> ids = scene.add(bodies, poses);
+    for (int i = 0; i < count; ++i) {
+      world.bodies.emplace(ids[i], bodies[i]);
+      world.poses[ids[i]] = poses[i];
+      world.filters[ids[i]] = {};
+      velocity[ids[i]] = Vector3(normal(rng), normal(rng), normal(rng));
+    }
+  };
+  const auto forget = [&](const std::vector<BodyId>& ids) {
+    scene.remove(ids);
+    for (BodyId id : ids) {
+      world.bodies.erase(id);
+      world.poses.erase(id);
+      world.filters.erase(id);
+      velocity.erase(id);
+    }
+  };
+  add(40);
+  const Query q(options.query);
+  const BodyFilter loners{2, ~2u};
+  for (int frame = 0; frame < 24; ++frame) {
+    if (frame == 8) forget({3, 17});
+    if (frame == 12) add(3);
+    if (frame == 16) {
+      scene.set_filter({5, 6, 7}, loners);
+      for (BodyId id : {5, 6, 7}) world.filters[id] = loners;
+    }
+    if (frame == 18) {
+      scene.exclude({{0, 1}, {9, 4}, {10, 11}});
+      world.excluded = {{0, 1}, {4, 9}, {10, 11}};
+    }
+    if (frame == 21) {
+      scene.include({{1, 0}});
+      world.excluded.erase({0, 1});
+    }
+    std::vector<BodyId> ids;
+    std::vector<Pose> poses;
+    for (auto& [id, pose] : world.poses) {
+      if (chance(rng) > 0.15) continue;
+      if (chance(rng) < 0.2) {
+        pose = random_pose(rng, 4);
+      } else {
+        pose.rotation = small_rotation(rng, 0.02) * pose.rotation;
+        pose.translation += velocity[id];
+      }
+      ids.push_back(id);
+      poses.push_back(pose);
+    }
+    scene.set_poses(ids, poses);
+    SCOPED_TRACE("frame " + std::to_string(frame));
+    std::set<Pair> colliding;
+    for (const Pair& p : world.pairs()) {
+      if (q.collision(world.bodies.at(p.first), world.poses.at(p.first), world.bodies.at(p.second),
+                      world.poses.at(p.second))
+              .colliding) {
+        colliding.insert(p);
+      }
+    }
+    const SceneResult contact = scene.colliding_pairs();
+    EXPECT_EQ(pairs_of(contact), colliding);
+    EXPECT_EQ(scene.stats().certified, scene.stats().candidates);
+    // The same world from nothing: its ids are the world's in order.
+    Scene fresh(options);
+    std::vector<ConvexPolyhedron> bodies;
+    std::vector<Pose> poses_now;
+    std::map<BodyId, BodyId> fresh_id;
+    for (const auto& [id, body] : world.bodies) {
+      fresh_id[id] = static_cast<BodyId>(bodies.size());
+      bodies.push_back(body);
+      poses_now.push_back(world.poses.at(id));
+    }
+    fresh.add(bodies, poses_now);
+    for (const auto& [id, filter] : world.filters) fresh.set_filter({fresh_id[id]}, filter);
+    for (const Pair& p : world.excluded) fresh.exclude({{fresh_id[p.first], fresh_id[p.second]}});
+    const SceneResult again = fresh.colliding_pairs();
+    EXPECT_EQ(scene.stats().candidates, fresh.stats().candidates);
+    EXPECT_EQ(again.size(), contact.size());
+    if (frame % 6 == 5) expect_matches_oracle(scene, world, "re-padded");
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Broadphases, ScenePairTable,
+                         ::testing::Values(Broadphase::dynamic_aabb_tree,
+                                           Broadphase::dynamic_aabb_tree_array, Broadphase::sap,
+                                           Broadphase::ssap, Broadphase::interval_tree,
+                                           Broadphase::spatial_hashing, Broadphase::brute_force),
+                         [](const ::testing::TestParamInfo<Broadphase>& info) {
+                           return broadphase_name(info.param);
+                         });
+
 TEST(Scene, FiltersAndExclusionsRemovePairs) {
   std::mt19937_64 rng(3);
   Scene scene;
@@ -591,6 +704,19 @@ TEST(Scene, SearchesEndWhenNoPairCanBeFound) {
   const SceneResult nearest = scene.nearest({0}, 2);
   ASSERT_EQ(nearest.size(), 1);
   EXPECT_EQ(nearest.pairs(0, 1), 2);
+}
+
+// The search's end is the extent of the bodies as they are now: two cubes that moved 99 apart
+// since the last query are still a pair.
+TEST(Scene, MinDistanceSearchesAsFarAsBodiesMovedSinceTheLastQuery) {
+  const ConvexPolyhedron cube = box(Vector3::Zero(), Vector3::Ones());
+  Scene scene;
+  scene.add({cube, cube}, {Pose{}, Pose{Matrix3::Identity(), Vector3(2, 0, 0)}});
+  scene.colliding_pairs();
+  scene.set_poses({1}, {Pose{Matrix3::Identity(), Vector3(100, 0, 0)}});
+  const SceneResult nearest = scene.min_distance();
+  ASSERT_EQ(nearest.size(), 1);
+  EXPECT_NEAR(nearest.distance(0), 99, 1e-6);
 }
 
 TEST(Scene, RejectsWhatItCannotAnswer) {

@@ -74,6 +74,12 @@ FramedPair frame_pair(const ConvexPolyhedron& a, const Pose& pose_a, const Conve
                       const Pose& pose_b, Scalar relative_tolerance) {
   validate_pose(pose_a, "pose_a");
   validate_pose(pose_b, "pose_b");
+  return frame_validated_pair(a, pose_a, b, pose_b, relative_tolerance);
+}
+
+FramedPair frame_validated_pair(const ConvexPolyhedron& a, const Pose& pose_a,
+                                const ConvexPolyhedron& b, const Pose& pose_b,
+                                Scalar relative_tolerance) {
   const Vector3 centre_a = world_centre(a, pose_a, "a");
   const Vector3 centre_b = world_centre(b, pose_b, "b");
   Frame frame;

@@ -155,4 +155,11 @@ struct FramedPair {
 FramedPair frame_pair(const ConvexPolyhedron& a, const Pose& pose_a, const ConvexPolyhedron& b,
                       const Pose& pose_b, Scalar relative_tolerance);
 
+/// frame_pair for poses the caller has already validated: a scene validates each pose once, when
+/// it is set, not once per candidate pair and frame. Still throws for positions or extents beyond
+/// the double range.
+FramedPair frame_validated_pair(const ConvexPolyhedron& a, const Pose& pose_a,
+                                const ConvexPolyhedron& b, const Pose& pose_b,
+                                Scalar relative_tolerance);
+
 }  // namespace swarmcollide::detail

@@ -29,30 +29,69 @@ struct CommonPoint {
   Vector3 point_b;
 };
 
-// The common point a cached tetrahedron of point pairs proves when, at the new poses, it still
-// encloses the origin (encloses_origin, beyond rounding): the origin's barycentric coordinates
-// weigh the pairs' points on each body.
-std::optional<CommonPoint> enclosed(const FramedPair& pair, const PairProof::Enclosing& proof) {
-  std::array<Vector3, 4> on_a;
-  std::array<Vector3, 4> on_b;
-  std::array<OraclePoint, 4> corral;
-  for (int k = 0; k < 4; ++k) {
-    on_a[k] = pair.a.vertex(proof.a[k]);
-    on_b[k] = pair.b.vertex(proof.b[k]);
-    corral[k] = {on_b[k] - on_a[k], proof.a[k], proof.b[k]};
-  }
+// The common point a tetrahedron of point pairs (on_a[k], on_b[k]) proves when it encloses the
+// origin (encloses_origin, beyond rounding): the origin's barycentric coordinates weigh the pairs'
+// points on each body.
+std::optional<CommonPoint> common_point(const std::array<Vector3, 4>& on_a,
+                                        const std::array<Vector3, 4>& on_b) {
   std::array<Scalar, 4> weight;
-  if (!wolfe_detail::affine_minimizer(corral, 4, weight)) return std::nullopt;
-  Scalar total = 0;
-  for (int k = 0; k < 4; ++k) {
-    if (!(weight[k] > 0)) return std::nullopt;
-    total += weight[k];
+  if (!encloses_origin({on_b[0] - on_a[0], on_b[1] - on_a[1], on_b[2] - on_a[2], on_b[3] - on_a[3]},
+                       weight)) {
+    return std::nullopt;
   }
-  if (!encloses_origin({corral[0].p, corral[1].p, corral[2].p, corral[3].p})) return std::nullopt;
+  const Scalar total = weight[0] + weight[1] + weight[2] + weight[3];
   CommonPoint common{Vector3::Zero(), Vector3::Zero()};
   for (int k = 0; k < 4; ++k) {
     common.point_a += (weight[k] / total) * on_a[k];
     common.point_b += (weight[k] / total) * on_b[k];
+  }
+  return common;
+}
+
+// The common point a cached tetrahedron proves when, at the new poses, it still encloses the
+// origin.
+std::optional<CommonPoint> enclosed(const FramedPair& pair, const PairProof::Enclosing& proof) {
+  std::array<Vector3, 4> on_a;
+  std::array<Vector3, 4> on_b;
+  for (int k = 0; k < 4; ++k) {
+    on_a[k] = pair.a.vertex(proof.a[k]);
+    on_b[k] = pair.b.vertex(proof.b[k]);
+  }
+  return common_point(on_a, on_b);
+}
+
+// A cached tetrahedron that no longer encloses the origin is where Wolfe's algorithm starts: after
+// a small motion a step or two find one that does, whose common point is the answer and which
+// replaces the cached one. Otherwise the pair is answered as if nothing were cached.
+std::optional<CommonPoint> repaired(const FramedPair& pair, PairProof::Enclosing& proof,
+                                    int max_iterations) {
+  MinNormPoint start;
+  for (int k = 0; k < 4; ++k) {
+    start.corral[k] = {pair.b.vertex(proof.b[k]) - pair.a.vertex(proof.a[k]), proof.a[k],
+                       proof.b[k]};
+    start.weights[k] = 0.25;
+    start.x += 0.25 * start.corral[k].p;
+  }
+  start.size = 4;
+  int ia = proof.a[0];
+  int ib = proof.b[0];
+  const auto oracle = [&](const Vector3& d) {
+    return minkowski_support(pair.a, pair.b, d, ia, ib);
+  };
+  const MinNormPoint found = wolfe_min_norm_from(oracle, start, 2, max_iterations);
+  if (found.size != 4) return std::nullopt;
+  std::array<Vector3, 4> on_a;
+  std::array<Vector3, 4> on_b;
+  for (int k = 0; k < 4; ++k) {
+    on_a[k] = pair.a.vertex(found.corral[k].ia);
+    on_b[k] = pair.b.vertex(found.corral[k].ib);
+  }
+  std::optional<CommonPoint> common = common_point(on_a, on_b);
+  if (common) {
+    for (int k = 0; k < 4; ++k) {
+      proof.a[k] = found.corral[k].ia;
+      proof.b[k] = found.corral[k].ib;
+    }
   }
   return common;
 }
@@ -239,10 +278,17 @@ void answer_pair(const PlacedBody& a, const PlacedBody& b, PairProof& proof,
       return;
     }
   }
-  const FramedPair pair = frame_pair(*a.body, *a.pose, *b.body, *b.pose, options.tolerance);
-  // The pair as the verdict sees it: in contact means within the threshold and the tolerance.
-  FramedPair gate = pair;
-  gate.tolerance += times_power_of_two(question.threshold, -pair.frame.exponent);
+  // The scene validated both poses when they were set.
+  const FramedPair pair =
+      frame_validated_pair(*a.body, *a.pose, *b.body, *b.pose, options.tolerance);
+  // The pair as the verdict sees it: in contact means within the threshold and the tolerance (a
+  // copy only when the threshold is not zero).
+  std::optional<FramedPair> padded_gate;
+  if (question.threshold != 0) {
+    padded_gate.emplace(pair);
+    padded_gate->tolerance += times_power_of_two(question.threshold, -pair.frame.exponent);
+  }
+  const FramedPair& gate = padded_gate ? *padded_gate : pair;
   const Method method = options.method;
 
   // A cached simplex that still encloses the origin proves contact at any threshold, and a
@@ -251,6 +297,7 @@ void answer_pair(const PlacedBody& a, const PlacedBody& b, PairProof& proof,
   std::optional<CommonPoint> common;
   if (question.warm && proof.kind == PairProof::Kind::enclosing && !compound) {
     common = enclosed(pair, proof.enclosing);
+    if (!common) common = repaired(pair, proof.enclosing, options.exact.max_iterations);
   }
   bool value_settled = true;
   std::optional<DualStart> next;

@@ -63,6 +63,7 @@ struct PairAnswer {
 struct PlacedBody {
   /// The body, or a compound body's envelope.
   const ConvexPolyhedron* body;
+  /// Its pose, already validated (see validate_pose): the narrowphase does not check it again.
   const Pose* pose;
   /// Its odometer: a bound on how far any of its points has moved since it was added.
   Scalar travelled = 0;

@@ -29,6 +29,8 @@ using detail::PairQuestion;
 constexpr Scalar kEpsilon = std::numeric_limits<Scalar>::epsilon();
 // Pairs a thread takes at a time: enough to make taking them cheap, few enough to balance.
 constexpr std::size_t kChunk = 32;
+// How many pairs ahead the table's scan asks for the bodies' padded boxes.
+constexpr std::size_t kBoxesAhead = 8;
 
 // The largest distance of the body's points from the centre of its box: what a turn about that
 // centre moves them by, per radian. Often well below the box's half-diagonal.
@@ -36,49 +38,63 @@ Scalar reach_about_centre(const ConvexPolyhedron& body) {
   return (body.vertices().rowwise() - body.bounds().centre.transpose()).rowwise().norm().maxCoeff();
 }
 
-// A body of the scene with what the broadphase keeps of it. What the narrowphase reads of every
-// candidate comes first, in the first four cache lines (see `prefetch`).
+// A body of the scene with what the broadphase keeps of it. What the narrowphase reads comes
+// first: the padded box of every pair of the table in the first cache line, what it reads of
+// every candidate in the next four (see `prefetch_body`).
 struct SceneBody {
   SceneBody(BodyId id_, ConvexPolyhedron body_, std::shared_ptr<const CompoundBody> compound_,
             const Pose& pose_, const BodyFilter& filter_)
       : id(id_),
         filter(filter_),
+        compound(std::move(compound_)),
         pose(pose_),
         body(std::move(body_)),
         reach(reach_about_centre(body)),
-        compound(std::move(compound_)),
         object(this, id_, filter_) {}
 
   BodyId id;
   BodyFilter filter;
+  /// `box` padded for the threshold of the last query (see `padding`): two bodies are a
+  /// candidate pair when these overlap.
+  Aabb padded;
   /// An odometer: a bound on how far any point of the body has moved since it was added.
   Scalar travelled = 0;
+  /// The compound body, null for a convex one.
+  std::shared_ptr<const CompoundBody> compound;
   Pose pose;
   /// The body, or a compound body's envelope (the hull of its parts), which the broadphase
   /// boxes and the narrowphase screens with.
   ConvexPolyhedron body;
   /// The largest distance of its points from the centre of its box (see displacement).
   Scalar reach;
-  /// The compound body, null for a convex one.
-  std::shared_ptr<const CompoundBody> compound;
+  /// What the last set_poses added to the odometer: how far the body may move by the next,
+  /// which sets the margin of its broadphase box (see `fatten`).
+  Scalar step = 0;
   /// The smallest box holding the body at its pose, widened by the rounding of computing it.
   Aabb box;
   /// Support points of the box's six faces, from which hill climbing on large bodies starts.
   std::array<int, 6> box_supports{-1, -1, -1, -1, -1, -1};
   /// Listed among the scene's moved bodies (its box is out of date).
   bool moved = false;
-  /// The box the broadphase holds: `box` padded for the threshold of the last query.
+  /// The box the broadphase holds: `padded` with a margin for motion (see `fatten`).
   detail::BoxedObject object;
 };
 
 // Asks for what the narrowphase will read of a body: its pose and the head of its polyhedron
 // now, its points once those have arrived. Candidates meet bodies in no particular order, so
 // without this every pair waits for memory several times.
-void prefetch_head(const SceneBody* b) {
+void prefetch_box(const SceneBody* b) { __builtin_prefetch(b); }
+void prefetch_body(const SceneBody* b) {
   const char* p = reinterpret_cast<const char*>(b);
-  for (int line = 0; line < 4; ++line) __builtin_prefetch(p + 64 * line);
+  for (int line = 1; line < 5; ++line) __builtin_prefetch(p + 64 * line);
 }
-void prefetch_points(const SceneBody* b) { __builtin_prefetch(b->body.vertices().data()); }
+void prefetch_points(const SceneBody* b) {
+  const char* p = reinterpret_cast<const char*>(b->body.vertices().data());
+  const std::size_t bytes = 3 * sizeof(Scalar) * static_cast<std::size_t>(b->body.size());
+  for (std::size_t at = 0; at < std::min<std::size_t>(bytes, 256); at += 64) {
+    __builtin_prefetch(p + at);
+  }
+}
 
 // The norm of R' - R, for rotations R and R' (to the 1e-9 that poses are validated to): from the
 // angle theta of R'^T R, |R' - R|_2 = 2 sin(theta / 2) = sqrt(3 - trace(R'^T R)), with a margin
@@ -152,12 +168,56 @@ Aabb padded(const Aabb& box, Scalar pad) {
   return {box.min - Vector3::Constant(pad), box.max + Vector3::Constant(pad)};
 }
 
-// A candidate pair, its bodies in id order.
+// FCL's test (AABB::overlap): boxes that touch overlap.
+bool overlap(const Aabb& a, const Aabb& b) {
+  return (a.min.array() <= b.max.array()).all() && (b.min.array() <= a.max.array()).all();
+}
+
+bool encloses(const fcl::AABBd& outer, const Aabb& inner) {
+  return (outer.min_.array() <= inner.min.array()).all() &&
+         (inner.max.array() <= outer.max_.array()).all();
+}
+
+// The broadphase holds each body's padded box with a margin, so that it is told of a body only
+// when its padded box leaves that larger box, and the pairs it returns stay valid meanwhile (a
+// superset of the candidates, which are sorted out by their padded boxes): the fat boxes of
+// Box2D's and Bullet's dynamic trees. The margin is a few of the body's last steps, at most a
+// fraction of its size; a body that has not moved gets none, so a still scene has no more pairs
+// than candidates.
+constexpr Scalar kMarginSteps = 12;
+constexpr Scalar kMarginOfRadius = 0.25;
+
+void fatten(SceneBody& b) {
+  const Scalar margin = std::min(kMarginSteps * b.step, kMarginOfRadius * b.body.bounds().radius);
+  b.object.set_box(padded(b.padded, margin));
+}
+
+// A pair of bodies, in id order.
 struct Candidate {
   std::uint64_t key;
   const SceneBody* first;
   const SceneBody* second;
+  /// In the pair table: the pair's proof is not empty (read with the boxes, so that the scan
+  /// touches a proof only to drop it).
+  bool cached = false;
 };
+
+// Sorts `items` by `rank(item)`, a number below 2^bits, with a least-significant-digit radix
+// sort through `scratch`: a frame sorts tens of thousands of pairs, where comparison sorting took
+// a tenth of the frame.
+template <typename T, typename Rank>
+void radix_sort(std::vector<T>& items, std::vector<T>& scratch, int bits, const Rank& rank) {
+  constexpr int kDigit = 11;
+  constexpr std::size_t kBuckets = std::size_t{1} << kDigit;
+  scratch.resize(items.size());
+  for (int shift = 0; shift < bits; shift += kDigit) {
+    std::array<std::size_t, kBuckets + 1> start{};
+    for (const T& item : items) ++start[((rank(item) >> shift) & (kBuckets - 1)) + 1];
+    for (std::size_t d = 1; d <= kBuckets; ++d) start[d] += start[d - 1];
+    for (const T& item : items) scratch[start[(rank(item) >> shift) & (kBuckets - 1)]++] = item;
+    items.swap(scratch);
+  }
+}
 
 std::string unknown_id(BodyId id) {
   return "no body with id " + std::to_string(id) + " in the scene";
@@ -183,30 +243,47 @@ struct Scene::Impl {
   BodyId next_id = 0;
   detail::FclBroadphase broadphase;
   detail::ThreadPool pool;
-  // Bodies moved (or added) since their boxes were computed.
+  // Bodies moved since their boxes were computed.
   std::vector<SceneBody*> moved;
-  // The threshold the broadphase's boxes are padded for.
+  // The threshold the bodies' padded boxes are padded for.
   Scalar padded_for = 0;
   std::unordered_set<std::uint64_t> excluded;
-  // Proofs of the last query's candidates, by key.
-  std::vector<PairProof> cache;
+  // The pair table: every pairable pair whose broadphase boxes overlap, once, in no particular
+  // order (in key order after it is made afresh), and beside each pair what the last query proved
+  // about it (with warm starts; a pair that was not a candidate has no proof). A query sorts out
+  // its candidates from the table by their padded boxes, so the broadphase is traversed only when
+  // bodies leave their boxes, and a proof stays where it is from frame to frame.
+  std::vector<Candidate> table;
+  std::vector<PairProof> proofs;
+  // Bodies whose pairs in the table are out of date (added, or their broadphase box changed),
+  // and the same as a flag per id, which the table's keys name without touching the bodies.
+  std::vector<SceneBody*> requery;
+  std::vector<std::uint8_t> requeried;
+  // The table is made afresh at the next query (boxes re-padded, filters or exclusions changed).
+  bool table_stale = true;
   SceneStats stats;
   // Buffers reused from query to query.
   std::vector<detail::ObjectPair> overlaps;
-  std::vector<Candidate> candidates;
+  std::vector<Candidate> fresh;
   std::vector<Candidate> sorted;
-  // What `answer` found, chunk by chunk (each chunk's pairs that belong, with their candidate
-  // index, and how every pair was settled), then all in candidate order. Only the pairs that
-  // belong are kept: at 10,000 bodies a frame has 50,000 candidates and a third of them belong.
+  std::vector<std::uint8_t> kept;
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> order;
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> order_scratch;
+  std::vector<PairProof> new_proofs;
+  // What `answer` found, chunk by chunk (each chunk's pairs that belong, with their keys, and how
+  // every pair was settled), then all in key order. Only the pairs that belong are kept: at
+  // 10,000 bodies a frame has 50,000 candidates and a third of them belong.
   struct ChunkOutput {
-    std::vector<std::pair<std::size_t, PairAnswer>> found;
+    std::vector<std::pair<std::uint64_t, PairAnswer>> found;
     SceneStats tally;
   };
   std::vector<ChunkOutput> chunk_outputs;
-  std::vector<std::pair<std::size_t, PairAnswer>> found;
-  // `nearest`'s answers, one per candidate.
+  using Found = std::pair<std::uint64_t, const PairAnswer*>;
+  std::vector<Found> found;
+  std::vector<Found> found_scratch;
+  // `nearest`'s candidates and answers, one per candidate.
+  std::vector<Candidate> candidates;
   std::vector<PairAnswer> answers;
-  std::vector<PairProof> proofs;
 
   SceneBody& find(BodyId id) {
     if (id >= slot.size() || slot[id] == kNoSlot) throw std::invalid_argument(unknown_id(id));
@@ -218,26 +295,48 @@ struct Scene::Impl {
     return padding(threshold, b.body.bounds().radius, options.query.tolerance);
   }
 
-  // Brings the broadphase's boxes up to date for queries at `threshold`.
-  void prepare(Scalar threshold) {
+  // The significant bits of an id, and a pair's key as a number of twice as many bits that
+  // sorts as the key does.
+  int id_bits() const {
+    int bits = 1;
+    while ((std::uint64_t{1} << bits) < next_id) ++bits;
+    return bits;
+  }
+
+  void mark_requery(SceneBody* b) {
+    if (requeried[b->id]) return;
+    requeried[b->id] = 1;
+    requery.push_back(b);
+  }
+
+  // Brings the padded boxes up to date for queries at `threshold`, and the broadphase's boxes
+  // where the padded ones left them.
+  void fit_boxes(Scalar threshold) {
     for (SceneBody* b : moved) {
       update_box(*b);
       b->moved = false;
     }
     const bool repad = threshold != padded_for;
-    if (repad) {
-      for (auto& b : bodies) b->object.set_box(padded(b->box, pad_of(*b, threshold)));
-    } else {
-      for (SceneBody* b : moved) b->object.set_box(padded(b->box, pad_of(*b, threshold)));
-    }
     padded_for = threshold;
     std::vector<detail::BoxedObject*> objects;
-    const bool all = repad || moved.size() * 4 > bodies.size();
-    if (!all) {
-      for (SceneBody* b : moved) objects.push_back(&b->object);
+    if (repad) {
+      for (auto& b : bodies) {
+        b->padded = padded(b->box, pad_of(*b, threshold));
+        fatten(*b);
+      }
+      table_stale = true;
+    } else {
+      for (SceneBody* b : moved) {
+        b->padded = padded(b->box, pad_of(*b, threshold));
+        if (encloses(b->object.getAABB(), b->padded)) continue;
+        fatten(*b);
+        objects.push_back(&b->object);
+        mark_requery(b);
+      }
     }
-    if (all || !objects.empty()) broadphase.refit(objects, all);
     moved.clear();
+    const bool all = repad || objects.size() * 4 > bodies.size();
+    if (all || !objects.empty()) broadphase.refit(objects, all);
   }
 
   // Read from the broadphase's objects, whose copies of the ids and filters lie beside the boxes
@@ -248,110 +347,221 @@ struct Scene::Impl {
             excluded.count(detail::pair_key(std::min(a.id, b.id), std::max(a.id, b.id))) == 0);
   }
 
-  void add_candidate(const detail::BoxedObject* a, const detail::BoxedObject* b) {
+  void add_pair(const detail::BoxedObject* a, const detail::BoxedObject* b,
+                std::vector<Candidate>& out) const {
     if (!pairable(*a, *b)) return;
     if (b->id < a->id) std::swap(a, b);
-    candidates.push_back({detail::pair_key(a->id, b->id), static_cast<const SceneBody*>(a->owner()),
-                          static_cast<const SceneBody*>(b->owner())});
+    out.push_back({detail::pair_key(a->id, b->id), static_cast<const SceneBody*>(a->owner()),
+                   static_cast<const SceneBody*>(b->owner())});
   }
 
-  // By key, then without repeats. A least-significant-digit radix sort on the ids' significant
-  // bits: the candidates of a frame number tens of thousands, where comparison sorting took a
-  // tenth of the frame.
-  void sort_candidates() {
-    int bits = 1;
-    while ((std::uint64_t{1} << bits) < next_id) ++bits;
-    const auto rank = [bits](const Candidate& c) {
+  // By key, then without repeats.
+  void sort_pairs(std::vector<Candidate>& pairs) {
+    const int bits = id_bits();
+    radix_sort(pairs, sorted, 2 * bits, [bits](const Candidate& c) {
       return (static_cast<std::uint64_t>(detail::key_first(c.key)) << bits) |
              detail::key_second(c.key);
-    };
-    constexpr int kDigit = 11;
-    constexpr std::size_t kBuckets = std::size_t{1} << kDigit;
-    sorted.resize(candidates.size());
-    for (int shift = 0; shift < 2 * bits; shift += kDigit) {
-      std::array<std::size_t, kBuckets + 1> start{};
-      for (const Candidate& c : candidates) ++start[((rank(c) >> shift) & (kBuckets - 1)) + 1];
-      for (std::size_t d = 1; d <= kBuckets; ++d) start[d] += start[d - 1];
-      for (const Candidate& c : candidates)
-        sorted[start[(rank(c) >> shift) & (kBuckets - 1)]++] = c;
-      candidates.swap(sorted);
-    }
-    candidates.erase(
-        std::unique(candidates.begin(), candidates.end(),
-                    [](const Candidate& x, const Candidate& y) { return x.key == y.key; }),
-        candidates.end());
+    });
+    pairs.erase(std::unique(pairs.begin(), pairs.end(),
+                            [](const Candidate& x, const Candidate& y) { return x.key == y.key; }),
+                pairs.end());
   }
 
-  // Every pairable pair whose padded boxes overlap, in key order.
-  void collect(Scalar threshold) {
-    prepare(threshold);
+  // The table from a traversal of the whole broadphase, in key order; with warm starts, the
+  // proofs of pairs it held already carried over.
+  void remake_table() {
     overlaps.clear();
     broadphase.overlapping_pairs(overlaps);
-    candidates.clear();
-    for (const auto& [p, q] : overlaps) add_candidate(p, q);
-    sort_candidates();
+    fresh.clear();
+    for (const auto& [p, q] : overlaps) add_pair(p, q, fresh);
+    sort_pairs(fresh);
+    new_proofs.clear();
+    new_proofs.reserve(fresh.size());
+    if (options.warm_start && !table.empty()) {
+      order.clear();
+      for (std::size_t i = 0; i < table.size(); ++i) {
+        order.emplace_back(table[i].key, static_cast<std::uint32_t>(i));
+      }
+      const int bits = id_bits();
+      radix_sort(order, order_scratch, 2 * bits, [bits](const auto& o) {
+        return (static_cast<std::uint64_t>(detail::key_first(o.first)) << bits) |
+               detail::key_second(o.first);
+      });
+      auto old = order.begin();
+      for (Candidate& c : fresh) {
+        while (old != order.end() && old->first < c.key) ++old;
+        if (old != order.end() && old->first == c.key) {
+          new_proofs.push_back(proofs[old->second]);
+          c.cached = table[old->second].cached;
+        } else {
+          new_proofs.emplace_back(c.key);
+        }
+      }
+    } else {
+      for (const Candidate& c : fresh) new_proofs.emplace_back(c.key);
+    }
+    table.swap(fresh);
+    proofs.swap(new_proofs);
   }
 
-  // Answers `question` for every candidate on the pool. With warm starts, `proofs` holds each
-  // candidate's cached proof (found by merging the sorted keys) and becomes the cache: pairs
-  // the broadphase no longer returned are dropped.
-  void answer(const PairQuestion& asked) {
-    const std::size_t n = candidates.size();
-    PairQuestion question = asked;
-    question.warm = asked.warm && options.warm_start;
-    proofs.clear();
-    proofs.reserve(n);
-    auto old = cache.begin();
-    for (const Candidate& c : candidates) {
-      while (question.warm && old != cache.end() && old->key < c.key) ++old;
-      if (question.warm && old != cache.end() && old->key == c.key) {
-        proofs.push_back(*old);
-      } else {
-        proofs.emplace_back(c.key);
+  // The table after the bodies in `requery` changed their broadphase boxes (or arrived): their
+  // pairs are asked of the broadphase again; those still there keep their places and proofs,
+  // the others leave, and new ones are appended.
+  void requery_table() {
+    fresh.clear();
+    for (SceneBody* b : requery) {
+      overlaps.clear();
+      broadphase.overlapping(&b->object, overlaps);
+      for (const auto& [self, other] : overlaps) add_pair(self, other, fresh);
+    }
+    // A pair of two such bodies is found from both.
+    sort_pairs(fresh);
+    kept.assign(fresh.size(), 0);
+    for (std::size_t i = 0; i < table.size();) {
+      const std::uint64_t key = table[i].key;
+      if (!requeried[detail::key_first(key)] && !requeried[detail::key_second(key)]) {
+        ++i;
+        continue;
+      }
+      const auto at =
+          std::lower_bound(fresh.begin(), fresh.end(), key,
+                           [](const Candidate& c, std::uint64_t k) { return c.key < k; });
+      if (at != fresh.end() && at->key == key) {
+        kept[at - fresh.begin()] = 1;
+        ++i;
+        continue;
+      }
+      table[i] = table.back();
+      table.pop_back();
+      proofs[i] = proofs.back();
+      proofs.pop_back();
+    }
+    for (std::size_t j = 0; j < fresh.size(); ++j) {
+      if (kept[j]) continue;
+      table.push_back(fresh[j]);
+      proofs.emplace_back(fresh[j].key);
+    }
+  }
+
+  // Brings the boxes and the pair table up to date for a query at `threshold`. The table is
+  // made afresh when many bodies left their boxes: one traversal then costs less than a query
+  // per body.
+  void collect(Scalar threshold) {
+    fit_boxes(threshold);
+    if (table_stale || requery.size() * 4 > bodies.size()) {
+      remake_table();
+    } else if (!requery.empty()) {
+      requery_table();
+    }
+    for (SceneBody* b : requery) requeried[b->id] = 0;
+    requery.clear();
+    table_stale = false;
+  }
+
+  std::size_t cached_pairs() const {
+    return static_cast<std::size_t>(
+        std::count_if(proofs.begin(), proofs.end(),
+                      [](const PairProof& p) { return p.kind != PairProof::Kind::none; }));
+  }
+
+  // Answers the candidates among the table's pairs [begin, end), at most kChunk of them. The
+  // candidates are sorted out first, then answered, each pass asking for the memory its next
+  // steps read.
+  void answer_chunk(const PairQuestion& question, std::size_t begin, std::size_t end) {
+    ChunkOutput& out = chunk_outputs[begin / kChunk];
+    thread_local PairAnswer answer;
+    thread_local PairProof unkept;
+    const QueryOptions& base = options.query;
+    QueryOptions pair_options = base;
+    std::array<std::uint32_t, kChunk> picked;
+    std::size_t count = 0;
+    for (std::size_t i = begin; i < std::min(end, begin + kBoxesAhead); ++i) {
+      prefetch_box(table[i].first);
+      prefetch_box(table[i].second);
+    }
+    for (std::size_t i = begin; i < end; ++i) {
+      if (i + kBoxesAhead < end) {
+        prefetch_box(table[i + kBoxesAhead].first);
+        prefetch_box(table[i + kBoxesAhead].second);
+      }
+      Candidate& c = table[i];
+      if (overlap(c.first->padded, c.second->padded)) {
+        picked[count++] = static_cast<std::uint32_t>(i);
+        prefetch_body(c.first);
+        prefetch_body(c.second);
+        __builtin_prefetch(&proofs[i]);
+      } else if (c.cached) {
+        // Not a candidate: its proof is dropped, as when the broadphase no longer returns a pair.
+        proofs[i] = PairProof(c.key);
+        c.cached = false;
       }
     }
+    out.tally.candidates += count;
+    for (std::size_t k = 0; k < count; ++k) {
+      if (k + 2 < count) {
+        prefetch_points(table[picked[k + 2]].first);
+        prefetch_points(table[picked[k + 2]].second);
+      }
+      Candidate& c = table[picked[k]];
+      PairProof& proof = question.warm ? proofs[picked[k]] : unkept;
+      if (!question.warm) proof = PairProof(c.key);
+      pair_options.seed = pair_seed(base.seed, c.key);
+      try {
+        detail::answer_pair(
+            {&c.first->body, &c.first->pose, c.first->travelled, c.first->compound.get()},
+            {&c.second->body, &c.second->pose, c.second->travelled, c.second->compound.get()},
+            proof, pair_options, question, answer);
+      } catch (const std::invalid_argument& error) {
+        throw std::invalid_argument("bodies " + std::to_string(c.first->id) + " and " +
+                                    std::to_string(c.second->id) + ": " + error.what());
+      }
+      tally(out.tally, answer);
+      if (question.warm) {
+        c.cached = proof.kind != PairProof::Kind::none;
+        out.tally.cached_pairs += c.cached;
+      }
+      if (answer.belongs) out.found.emplace_back(c.key, answer);
+    }
+  }
+
+  // Answers `question` for every candidate of the table, the pairs whose padded boxes overlap, on
+  // the pool. With warm starts, each candidate's proof is tried first and replaced by what its
+  // answer proves; the proofs of the table's other pairs are dropped, as they would be if the
+  // broadphase no longer returned the pair.
+  void answer(const PairQuestion& asked) {
+    const std::size_t n = table.size();
+    PairQuestion question = asked;
+    question.warm = asked.warm && options.warm_start;
     chunk_outputs.resize(n / kChunk + 1);
     for (ChunkOutput& out : chunk_outputs) {
       out.found.clear();
       out.tally = SceneStats{};
     }
-    const QueryOptions& base = options.query;
-    pool.for_each_chunk(n, kChunk, [&](std::size_t begin, std::size_t end) {
-      ChunkOutput& out = chunk_outputs[begin / kChunk];
-      thread_local PairAnswer answer;
-      QueryOptions pair_options = base;
-      for (std::size_t i = begin; i < end; ++i) {
-        if (i + 8 < end) prefetch_head(candidates[i + 8].second);
-        if (i + 4 < end) prefetch_points(candidates[i + 4].second);
-        const Candidate& c = candidates[i];
-        pair_options.seed = pair_seed(base.seed, c.key);
-        try {
-          detail::answer_pair(
-              {&c.first->body, &c.first->pose, c.first->travelled, c.first->compound.get()},
-              {&c.second->body, &c.second->pose, c.second->travelled, c.second->compound.get()},
-              proofs[i], pair_options, question, answer);
-        } catch (const std::invalid_argument& error) {
-          throw std::invalid_argument("bodies " + std::to_string(c.first->id) + " and " +
-                                      std::to_string(c.second->id) + ": " + error.what());
-        }
-        tally(out.tally, answer);
-        if (answer.belongs) out.found.emplace_back(i, answer);
+    // A single-threaded pool takes all the pairs at once; they are still answered a chunk at a
+    // time.
+    pool.for_each_chunk(n, kChunk, [&](std::size_t first, std::size_t last) {
+      for (std::size_t begin = first; begin < last; begin += kChunk) {
+        answer_chunk(question, begin, std::min(last, begin + kChunk));
       }
     });
     found.clear();
     stats = SceneStats{};
     for (ChunkOutput& out : chunk_outputs) {
-      for (auto& f : out.found) found.push_back(std::move(f));
+      for (const auto& [key, a] : out.found) found.emplace_back(key, &a);
       add(stats, out.tally);
+      stats.candidates += out.tally.candidates;
+      stats.cached_pairs += out.tally.cached_pairs;
     }
-    if (question.warm) {
-      proofs.erase(
-          std::remove_if(proofs.begin(), proofs.end(),
-                         [](const PairProof& p) { return p.kind == PairProof::Kind::none; }),
-          proofs.end());
-      cache.swap(proofs);
+    // In key order: the table is, except for pairs appended since it was made.
+    const auto by_key = [](const Found& x, const Found& y) { return x.first < y.first; };
+    if (!std::is_sorted(found.begin(), found.end(), by_key)) {
+      const int bits = id_bits();
+      radix_sort(found, found_scratch, 2 * bits, [bits](const Found& f) {
+        return (static_cast<std::uint64_t>(detail::key_first(f.first)) << bits) |
+               detail::key_second(f.first);
+      });
     }
-    finish_stats(n);
+    stats.cache_bytes = proofs.capacity() * sizeof(PairProof);
   }
 
   static void tally(SceneStats& s, const PairAnswer& a) {
@@ -374,18 +584,12 @@ struct Scene::Impl {
     s.certified += more.certified;
   }
 
-  void finish_stats(std::size_t candidates_answered) {
-    stats.candidates = candidates_answered;
-    stats.cached_pairs = cache.size();
-    stats.cache_bytes = cache.capacity() * sizeof(PairProof);
-  }
-
-  // The answers that belong, in candidate (key) order.
+  // The answers that belong, in key order.
   SceneResult gather() const {
     SceneResult result = sized(found.size());
     for (std::size_t r = 0; r < found.size(); ++r) {
-      const Candidate& c = candidates[found[r].first];
-      put(result, r, c.first->id, c.second->id, found[r].second);
+      const std::uint64_t key = found[r].first;
+      put(result, r, detail::key_first(key), detail::key_second(key), *found[r].second);
     }
     return result;
   }
@@ -506,9 +710,13 @@ std::vector<BodyId> Scene::Impl::add(std::vector<ConvexPolyhedron> bodies,
                                             compounds.empty() ? nullptr : std::move(compounds[i]),
                                             poses.empty() ? Pose{} : poses[i], filter);
     update_box(*body);
-    body->object.set_box(padded(body->box, s.pad_of(*body, s.padded_for)));
+    body->padded = padded(body->box, s.pad_of(*body, s.padded_for));
+    // No margin until it moves.
+    body->object.set_box(body->padded);
     objects.push_back(&body->object);
     s.slot.push_back(static_cast<std::uint32_t>(s.bodies.size()));
+    s.requeried.push_back(0);
+    s.mark_requery(body.get());
     s.bodies.push_back(std::move(body));
     ids.push_back(id);
   }
@@ -561,12 +769,14 @@ void Scene::set_poses(const std::vector<BodyId>& ids, const std::vector<Pose>& p
     validate_pose(poses[i], "poses", i);
   }
   for (std::size_t i = 0; i < ids.size(); ++i) {
-    targets[i]->travelled +=
-        displacement(targets[i]->body, targets[i]->reach, targets[i]->pose, poses[i]);
-    targets[i]->pose = poses[i];
-    // A body moved twice is boxed once.
-    if (!targets[i]->moved) s.moved.push_back(targets[i]);
-    targets[i]->moved = true;
+    SceneBody& b = *targets[i];
+    const Scalar step = displacement(b.body, b.reach, b.pose, poses[i]);
+    b.travelled += step;
+    b.pose = poses[i];
+    // A body moved twice is boxed once, its steps since the last boxing summed.
+    b.step = b.moved ? b.step + step : step;
+    if (!b.moved) s.moved.push_back(&b);
+    b.moved = true;
   }
 }
 
@@ -583,9 +793,10 @@ void Scene::remove(const std::vector<BodyId>& ids) {
   std::vector<detail::BoxedObject*> objects;
   for (BodyId id : ids) objects.push_back(&s.find(id).object);
   s.broadphase.erase(objects);
-  s.moved.erase(std::remove_if(s.moved.begin(), s.moved.end(),
-                               [&](const SceneBody* b) { return gone.count(b->id) > 0; }),
-                s.moved.end());
+  const auto leaving = [&](const SceneBody* b) { return gone.count(b->id) > 0; };
+  s.moved.erase(std::remove_if(s.moved.begin(), s.moved.end(), leaving), s.moved.end());
+  s.requery.erase(std::remove_if(s.requery.begin(), s.requery.end(), leaving), s.requery.end());
+  for (BodyId id : ids) s.requeried[id] = 0;
   for (BodyId id : ids) {
     const std::size_t at = s.slot[id];
     // The last body fills the slot.
@@ -599,9 +810,15 @@ void Scene::remove(const std::vector<BodyId>& ids) {
   const auto involves = [&](std::uint64_t key) {
     return gone.count(detail::key_first(key)) > 0 || gone.count(detail::key_second(key)) > 0;
   };
-  s.cache.erase(std::remove_if(s.cache.begin(), s.cache.end(),
-                               [&](const PairProof& p) { return involves(p.key); }),
-                s.cache.end());
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < s.table.size(); ++i) {
+    if (involves(s.table[i].key)) continue;
+    s.table[kept] = s.table[i];
+    s.proofs[kept] = s.proofs[i];
+    ++kept;
+  }
+  s.table.resize(kept);
+  s.proofs.resize(kept);
   for (auto it = s.excluded.begin(); it != s.excluded.end();) {
     it = involves(*it) ? s.excluded.erase(it) : std::next(it);
   }
@@ -616,6 +833,7 @@ void Scene::set_filter(const std::vector<BodyId>& ids, const BodyFilter& filter)
     b.filter = filter;
     b.object.filter = filter;
   }
+  s.table_stale = true;
 }
 
 void Scene::exclude(const std::vector<std::pair<BodyId, BodyId>>& pairs) {
@@ -627,6 +845,7 @@ void Scene::exclude(const std::vector<std::pair<BodyId, BodyId>>& pairs) {
   }
   for (const auto& [a, b] : pairs)
     s.excluded.insert(detail::pair_key(std::min(a, b), std::max(a, b)));
+  s.table_stale = true;
 }
 
 void Scene::include(const std::vector<std::pair<BodyId, BodyId>>& pairs) {
@@ -634,6 +853,7 @@ void Scene::include(const std::vector<std::pair<BodyId, BodyId>>& pairs) {
   const std::lock_guard<std::mutex> lock(s.mutex);
   for (const auto& [a, b] : pairs)
     s.excluded.erase(detail::pair_key(std::min(a, b), std::max(a, b)));
+  s.table_stale = true;
 }
 
 std::size_t Scene::size() const {
@@ -705,6 +925,8 @@ SceneResult Scene::pairs_within(Scalar distance) {
 SceneResult Scene::Impl::min_distance() {
   require(kDistance, "min_distance");
   if (bodies.size() < 2) return sized(0);
+  // The extent of the bodies where they are now, not where the last query left them.
+  fit_boxes(padded_for);
   // Pairs within a threshold, the threshold raised until some are: every other pair is
   // farther than the threshold, so the nearest of those found is the nearest of all.
   const Scalar far = extent();
@@ -716,14 +938,14 @@ SceneResult Scene::Impl::min_distance() {
     collect(threshold);
     question.threshold = threshold;
     answer(question);
-    const std::pair<std::size_t, PairAnswer>* best = nullptr;
-    for (const auto& f : found) {
-      if (best == nullptr || f.second.distance < best->second.distance) best = &f;
+    const Found* best = nullptr;
+    for (const Found& f : found) {
+      if (best == nullptr || f.second->distance < best->second->distance) best = &f;
     }
     if (best != nullptr) {
       SceneResult result = sized(1);
-      const Candidate& c = candidates[best->first];
-      put(result, 0, c.first->id, c.second->id, best->second);
+      put(result, 0, detail::key_first(best->first), detail::key_second(best->first),
+          *best->second);
       return result;
     }
     // No pairable pair at all once every box overlaps every other.
@@ -742,7 +964,7 @@ SceneResult Scene::Impl::nearest(const std::vector<BodyId>& ids, int k) {
   if (k < 1) throw std::invalid_argument("k must be at least 1, got " + std::to_string(k));
   std::vector<SceneBody*> asked;
   for (BodyId id : ids) asked.push_back(&find(id));
-  prepare(padded_for);
+  fit_boxes(padded_for);
   const Scalar far = extent();
   Scalar largest_radius = 0;
   for (const auto& b : bodies) largest_radius = std::max(largest_radius, b->body.bounds().radius);
@@ -786,12 +1008,16 @@ SceneResult Scene::Impl::nearest(const std::vector<BodyId>& ids, int k) {
       const Scalar pad =
           (search.threshold + 4 * tol * (b.body.bounds().radius + largest_radius)) / (1 - tol);
       detail::BoxedObject probe(search.body, b.id, b.filter);
-      probe.set_box(padded(b.box, pad));
+      const Aabb probe_box = padded(b.box, pad);
+      probe.set_box(probe_box);
       overlaps.clear();
       broadphase.overlapping(&probe, overlaps);
       for (const auto& [self, other] : overlaps) {
         if (!pairable(probe, *other)) continue;
         const auto* o = static_cast<const SceneBody*>(other->owner());
+        // The broadphase holds boxes with margins; the candidates are those whose padded boxes
+        // overlap the probe.
+        if (!overlap(probe_box, o->padded)) continue;
         candidates.push_back({detail::pair_key(b.id, o->id), &b, o});
         asker.push_back(s);
         thresholds.push_back(search.threshold);
@@ -824,7 +1050,9 @@ SceneResult Scene::Impl::nearest(const std::vector<BodyId>& ids, int k) {
     });
     stats = SceneStats{};
     for (const PairAnswer& a : answers) tally(stats, a);
-    finish_stats(candidates.size());
+    stats.candidates = candidates.size();
+    stats.cached_pairs = cached_pairs();
+    stats.cache_bytes = proofs.capacity() * sizeof(PairProof);
     for (Search& search : searches) {
       if (!search.done) search.found.clear();
     }
@@ -894,18 +1122,18 @@ ContactResult Scene::contacts(int max_points) {
   result.offsets.resize(m);
   std::size_t total = 0;
   Eigen::Index row = 0;
-  for (const auto& [index, answer] : s.found) {
+  for (const auto& [key, answer] : s.found) {
     result.offsets(row) = static_cast<std::int64_t>(total);
-    result.counts(row) = static_cast<int>(answer.points.size());
-    total += answer.points.size();
+    result.counts(row) = static_cast<int>(answer->points.size());
+    total += answer->points.size();
     ++row;
   }
   result.points.resize(static_cast<Eigen::Index>(total), 3);
   result.point_pair.resize(static_cast<Eigen::Index>(total));
   Eigen::Index p = 0;
   row = 0;
-  for (const auto& [index, answer] : s.found) {
-    for (const Vector3& point : answer.points) {
+  for (const auto& [key, answer] : s.found) {
+    for (const Vector3& point : answer->points) {
       result.points.row(p) = point.transpose();
       result.point_pair(p) = row;
       ++p;

@@ -1,6 +1,8 @@
 #include "exact_solver.hpp"
 
 #include <algorithm>
+#include <limits>
+#include <type_traits>
 
 #include "minkowski.hpp"
 #include "penetration.hpp"
@@ -20,7 +22,13 @@ Answer nearest_points(const FramedPair& pair, int max_iterations, const Start& s
     ++evaluations;
     return minkowski_support(pair.a, pair.b, d, hint_a, hint_b);
   };
-  const MinNormPoint nearest = wolfe_min_norm(oracle, start, 2, max_iterations);
+  const MinNormPoint nearest = [&] {
+    if constexpr (std::is_same_v<Start, MinNormPoint>) {
+      return wolfe_min_norm_from(oracle, start, 2, max_iterations);
+    } else {
+      return wolfe_min_norm(oracle, start, 2, max_iterations);
+    }
+  }();
   Answer answer = answer_from_corral(pair, nearest);
   answer.iterations = nearest.iterations;
   answer.evaluations = evaluations;
@@ -35,7 +43,12 @@ Answer exact_distance(const FramedPair& pair, int max_iterations, const Vector3&
 }
 
 Answer exact_distance(const FramedPair& pair, int max_iterations, const MinNormPoint& corral) {
-  return nearest_points(pair, max_iterations, corral, corral.corral[0].ia, corral.corral[0].ib);
+  // A corral of several points counts as no point reached yet: one already at its nearest point
+  // (FCL's projections leave it so) would otherwise end the search as making no progress.
+  MinNormPoint start = corral;
+  start.x = corral.size > 1 ? Vector3::Constant(std::numeric_limits<Scalar>::infinity())
+                            : corral.corral[0].p;
+  return nearest_points(pair, max_iterations, start, corral.corral[0].ia, corral.corral[0].ib);
 }
 
 Answer exact_penetration(const FramedPair& pair, int max_iterations, const Vector3& hint,

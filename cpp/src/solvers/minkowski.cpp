@@ -13,6 +13,9 @@ namespace {
 struct PlaneSide {
   Scalar distance;
   bool certain;
+  /// The plane's normal (q - p) x (r - p), and the origin's side as -p . normal.
+  Vector3 normal;
+  Scalar determinant;
 };
 
 PlaneSide side_of_origin(const Vector3& p, const Vector3& q, const Vector3& r) {
@@ -20,7 +23,7 @@ PlaneSide side_of_origin(const Vector3& p, const Vector3& q, const Vector3& r) {
   const Vector3 v = r - p;
   const Vector3 normal = u.cross(v);
   const Scalar length = normal.norm();
-  if (!(length > 0)) return {0, false};
+  if (!(length > 0)) return {0, false, normal, 0};
   const Scalar determinant = -p.dot(normal);
   // The permanent of the determinant p . (u x v): the sum of its terms' magnitudes.
   const Vector3 ap = p.cwiseAbs();
@@ -31,24 +34,29 @@ PlaneSide side_of_origin(const Vector3& p, const Vector3& q, const Vector3& r) {
                            ap.z() * (au.x() * av.y() + au.y() * av.x());
   const Scalar rounding = 64 * kRoundoff * permanent;
   const Scalar distance = determinant / length;
-  return {distance, std::abs(determinant) > rounding && std::abs(distance) > 4 * kFrameRounding};
+  return {distance, std::abs(determinant) > rounding && std::abs(distance) > 4 * kFrameRounding,
+          normal, determinant};
 }
 
 }  // namespace
 
-bool encloses_origin(const std::array<Vector3, 4>& points) {
-  // The origin is inside when it is on the inner side of each face, the side of the fourth point.
+bool encloses_origin(const std::array<Vector3, 4>& points, std::array<Scalar, 4>& weights) {
+  // The origin is inside when it is on the inner side of each face, the side of the fourth point;
+  // its barycentric coordinate for that point is the ratio of their two sides.
   constexpr int kFaces[4][4] = {{1, 2, 3, 0}, {0, 3, 2, 1}, {0, 1, 3, 2}, {0, 2, 1, 3}};
   for (const auto& face : kFaces) {
     const PlaneSide origin = side_of_origin(points[face[0]], points[face[1]], points[face[2]]);
-    const Vector3 normal =
-        (points[face[1]] - points[face[0]]).cross(points[face[2]] - points[face[0]]);
-    const Scalar opposite = normal.dot(points[face[3]] - points[face[0]]);
-    if (!origin.certain || !(opposite != 0) || (origin.distance > 0) != (opposite > 0)) {
-      return false;
-    }
+    if (!origin.certain) return false;
+    const Scalar opposite = origin.normal.dot(points[face[3]] - points[face[0]]);
+    if (!(opposite != 0) || (origin.distance > 0) != (opposite > 0)) return false;
+    weights[face[3]] = origin.determinant / opposite;
   }
   return true;
+}
+
+bool encloses_origin(const std::array<Vector3, 4>& points) {
+  std::array<Scalar, 4> weights;
+  return encloses_origin(points, weights);
 }
 
 }  // namespace swarmcollide::detail

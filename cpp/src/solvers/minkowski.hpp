@@ -54,5 +54,8 @@ inline Scalar exact_separation(const FramedBody& a, const FramedBody& b, const V
 /// more than the rounding of the points and of the orientation tests: a proof that the bodies
 /// whose difference they are share a point.
 bool encloses_origin(const std::array<Vector3, 4>& points);
+/// The same, with the origin's barycentric coordinates in the tetrahedron (positive, summing to
+/// one up to rounding) in `weights` when it is enclosed.
+bool encloses_origin(const std::array<Vector3, 4>& points, std::array<Scalar, 4>& weights);
 
 }  // namespace swarmcollide::detail

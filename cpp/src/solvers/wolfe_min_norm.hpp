@@ -80,81 +80,87 @@ inline Vector3 combine(const std::array<OraclePoint, 4>& s, const std::array<Sca
   return x;
 }
 
+// Wolfe's minor cycles: from the convex weights `w` on s[0], ..., s[m-1], towards the affine
+// minimiser, dropping points whose weight would turn negative (each cycle removes one, so there
+// are at most four), until the weights are the corral's minimiser. False when the points are
+// affinely dependent to rounding.
+inline bool minor_cycles(std::array<OraclePoint, 4>& s, std::array<Scalar, 4>& w, int& m) {
+  std::array<Scalar, 4> alpha{};
+  for (int minor = 0; minor < 5; ++minor) {
+    if (!affine_minimizer(s, m, alpha)) return false;
+    bool interior = true;
+    for (int k = 0; k < m; ++k) interior = interior && alpha[k] > 0;
+    if (interior) {
+      w = alpha;
+      return true;
+    }
+    Scalar theta = 1;
+    int leaving = -1;
+    for (int k = 0; k < m; ++k) {
+      if (alpha[k] <= 0) {
+        const Scalar t = w[k] / (w[k] - alpha[k]);  // NaN (skipped) when both are zero
+        if (t < theta) {
+          theta = t;
+          leaving = k;
+        }
+      }
+    }
+    for (int k = 0; k < m; ++k) w[k] = theta * alpha[k] + (1 - theta) * w[k];
+    if (leaving >= 0) w[leaving] = 0;
+    int kept = 0;
+    Scalar total = 0;
+    for (int k = 0; k < m; ++k) {
+      if (w[k] > 0) {
+        s[kept] = s[k];
+        w[kept] = w[k];
+        total += w[k];
+        ++kept;
+      }
+    }
+    m = kept;
+    for (int k = 0; k < m; ++k) w[k] /= total;
+    if (m == 1) return true;
+  }
+  return true;
+}
+
 }  // namespace wolfe_detail
 
 /// Wolfe's nearest-point algorithm (Wolfe 1976) on the polytope spanned by `oracle`, where
-/// `oracle(d)` returns an OraclePoint minimising `d . q`, continued from `initial`: a corral of
-/// the oracle's points with positive weights summing to one (another solver's last simplex, so
-/// that finishing its work costs an iteration or two). `scale` bounds the norms of the points
-/// and sets the stopping test: the gap `|x| - (x/|x|) . oracle(x)` at most 1e-14 `scale`, or no
-/// further decrease in `|x|` (rounding), or `max_iterations`.
+/// `oracle(d)` returns an OraclePoint minimising `d . q`, from `start`: up to four oracle points
+/// with positive weights summing to one (the minor cycles first bring them to their corral's
+/// nearest point). `scale` bounds the norms of the points and sets the stopping test: the gap
+/// `|x| - (x/|x|) . oracle(x)` at most 1e-14 `scale`, or no further decrease in `|x|`
+/// (rounding), or `max_iterations`.
 template <class Oracle>
-MinNormPoint wolfe_min_norm(const Oracle& oracle, MinNormPoint initial, Scalar scale,
-                            int max_iterations) {
+MinNormPoint wolfe_min_norm_from(const Oracle& oracle, const MinNormPoint& start, Scalar scale,
+                                 int max_iterations) {
   using namespace wolfe_detail;
-  MinNormPoint best = initial;
-  best.x = combine(best.corral, best.weights, best.size);
-  best.iterations = 0;
+  MinNormPoint best = start;
   std::array<OraclePoint, 4> s = best.corral;
   std::array<Scalar, 4> w = best.weights;
-  std::array<Scalar, 4> alpha{};
   int m = best.size;
   Vector3 x = best.x;
   const Scalar gap_tolerance = 1e-14 * scale;
+  // A start of several points is first settled on its own corral.
+  bool settle = m > 1;
   for (int iteration = 1; iteration <= max_iterations; ++iteration) {
     best.iterations = iteration;
-    const Scalar xx = x.squaredNorm();
-    if (xx == 0) break;
-    const OraclePoint q = oracle(x);
-    if (xx - x.dot(q.p) <= gap_tolerance * std::sqrt(xx)) break;
-    bool known = false;
-    for (int k = 0; k < m; ++k) known = known || (s[k].ia == q.ia && s[k].ib == q.ib);
-    if (known || m == MinNormPoint::kCapacity) break;  // rounding: the optimum is reached
-    s[m] = q;
-    w[m] = 0;
-    ++m;
-    // Minor cycles: move towards the affine minimiser, dropping points whose weight would turn
-    // negative; each cycle removes a point, so there are at most four.
-    bool dependent = false;
-    for (int minor = 0; minor < 5; ++minor) {
-      if (!affine_minimizer(s, m, alpha)) {
-        dependent = true;
-        break;
-      }
-      bool interior = true;
-      for (int k = 0; k < m; ++k) interior = interior && alpha[k] > 0;
-      if (interior) {
-        w = alpha;
-        break;
-      }
-      Scalar theta = 1;
-      int leaving = -1;
-      for (int k = 0; k < m; ++k) {
-        if (alpha[k] <= 0) {
-          const Scalar t = w[k] / (w[k] - alpha[k]);  // NaN (skipped) when both are zero
-          if (t < theta) {
-            theta = t;
-            leaving = k;
-          }
-        }
-      }
-      for (int k = 0; k < m; ++k) w[k] = theta * alpha[k] + (1 - theta) * w[k];
-      if (leaving >= 0) w[leaving] = 0;
-      int kept = 0;
-      Scalar total = 0;
-      for (int k = 0; k < m; ++k) {
-        if (w[k] > 0) {
-          s[kept] = s[k];
-          w[kept] = w[k];
-          total += w[k];
-          ++kept;
-        }
-      }
-      m = kept;
-      for (int k = 0; k < m; ++k) w[k] /= total;
-      if (m == 1) break;
+    if (!settle) {
+      const Scalar xx = x.squaredNorm();
+      if (xx == 0) break;
+      const OraclePoint q = oracle(x);
+      if (xx - x.dot(q.p) <= gap_tolerance * std::sqrt(xx)) break;
+      bool known = false;
+      for (int k = 0; k < m; ++k) known = known || (s[k].ia == q.ia && s[k].ib == q.ib);
+      if (known || m == MinNormPoint::kCapacity) break;  // rounding: the optimum is reached
+      s[m] = q;
+      w[m] = 0;
+      ++m;
     }
-    if (dependent) break;  // the new point lies in the corral's affine hull up to rounding
+    settle = false;
+    // The new point lies in the corral's affine hull up to rounding.
+    if (!minor_cycles(s, w, m)) break;
     x = combine(s, w, m);
     if (!(x.squaredNorm() < best.x.squaredNorm())) break;  // no progress left above rounding
     best.corral = s;
@@ -165,7 +171,7 @@ MinNormPoint wolfe_min_norm(const Oracle& oracle, MinNormPoint initial, Scalar s
   return best;
 }
 
-/// Wolfe's algorithm from the oracle's point along `start`.
+/// Wolfe's algorithm from the single oracle point along `start`.
 template <class Oracle>
 MinNormPoint wolfe_min_norm(const Oracle& oracle, const Vector3& start, Scalar scale,
                             int max_iterations) {
@@ -173,7 +179,8 @@ MinNormPoint wolfe_min_norm(const Oracle& oracle, const Vector3& start, Scalar s
   first.corral[0] = oracle(start);
   first.weights[0] = 1;
   first.size = 1;
-  return wolfe_min_norm(oracle, first, scale, max_iterations);
+  first.x = first.corral[0].p;
+  return wolfe_min_norm_from(oracle, first, scale, max_iterations);
 }
 
 }  // namespace swarmcollide::detail

@@ -16,13 +16,14 @@ namespace swarmcollide {
 /// the queries that concern all their pairs: which collide, which lie within a distance, which are
 /// nearest, and where they touch.
 ///
-/// An FCL broadphase manager, given tight boxes computed from the bodies' support functions,
+/// An FCL broadphase manager, given tight boxes computed from the bodies' support functions
+/// (with margins for motion, so that it is asked again only about bodies that left them),
 /// collects the candidate pairs; the narrowphase (the options' method, certified as
 /// `Query::collision` is) answers them on a pool of threads. With `warm_start`, each candidate
 /// pair keeps what the last query proved about it, a separating direction and its support points
 /// in the bodies' own frames or a simplex of their difference enclosing the origin; the next
 /// query re-evaluates it first (a few support evaluations) and starts the solver from it when it
-/// no longer settles the pair. A pair's cache is dropped when the broadphase stops returning it.
+/// no longer settles the pair. A pair's cache is dropped when it stops being a candidate.
 ///
 /// Results list pairs in increasing order of (first id, second id); for pair queries the first
 /// id is the smaller. Calls are serialised: a Scene may be shared between threads, and queries

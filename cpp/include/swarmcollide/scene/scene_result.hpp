@@ -55,7 +55,7 @@ struct ContactResult : SceneResult {
 
 /// What the last Scene query did.
 struct SceneStats {
-  /// Pairs the broadphase returned that passed the filters.
+  /// Pairs that passed the filters whose boxes, padded for the query, overlap.
   std::size_t candidates = 0;
   /// Candidates found apart by the separation along the line between their centres, before any
   /// solver (those without a cached proof are tried so first).
@@ -64,7 +64,8 @@ struct SceneStats {
   /// bodies have moved since: no support evaluated.
   std::size_t warm_bounded = 0;
   /// Candidates settled by re-evaluating what an earlier query proved: rejected by a cached
-  /// separating direction, or proven in contact by a cached simplex.
+  /// separating direction, or proven in contact by a cached simplex (or one that Wolfe's
+  /// algorithm found from it in a step or two).
   std::size_t warm_rejected = 0;
   std::size_t warm_proven = 0;
   /// Candidates handed to the method's solver (the others were screened or settled warm).
@@ -73,7 +74,8 @@ struct SceneStats {
   std::size_t escalations = 0;
   /// Candidates whose answer (verdict, and value where one is reported) is proven.
   std::size_t certified = 0;
-  /// Pairs with cached proofs after the query, and the bytes their storage takes.
+  /// Pairs with cached proofs after the query, and the bytes their storage takes: a 64-byte
+  /// record for every pair whose broadphase boxes (padded boxes with margins for motion) overlap.
   std::size_t cached_pairs = 0;
   std::size_t cache_bytes = 0;
 };
