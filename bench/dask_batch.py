@@ -2,15 +2,19 @@
 method "dual", on in-memory threads, on Dask's threaded scheduler and on distributed LocalClusters
 of one and of two worker processes.
 
-Every configuration answers the same pairs (made block by block from fixed seeds) and is timed
-from the call to the answers:
+Every configuration answers the same pairs (made block by block from fixed seeds), gives
+bitwise the in-memory answers (checked once for each before timing) and is timed from the call
+to the answers:
 - in memory: ``sc.distance_many(As, Bs, threads=t)`` on NumPy arrays, t = 1 and every core.
-- threaded scheduler: ``scd.distance_many`` on dask arrays wrapping the same NumPy arrays, every
-  field computed to NumPy (one Dask thread per core, one C++ thread per chunk).
+- threaded scheduler: ``scd.distance_many(...).compute(scheduler="threads")`` on dask arrays
+  wrapping the same NumPy arrays, every field to NumPy (one Dask thread per core, one C++ thread
+  per chunk).
 - LocalCluster: the bodies made and kept on the workers beforehand (as data of that size would
-  be), one thread per worker; every field either kept on the workers (``persist``: the cluster's
-  own throughput) or gathered to the client (``compute``: plus moving 95 bytes per pair between
-  processes).
+  be), one thread per worker, each chunk's A and B made by one task and the chunks dealt to the
+  workers in turn (where docs/dask.md says bodies should be: a chunk whose A and B are on two
+  workers moves one of them first); every field either kept on the workers (``persist()``: the
+  cluster's own throughput) or gathered to the client (``compute()``: plus moving 95 bytes per
+  pair between processes).
 The machine is shared, so the configurations take turns in rounds (both clusters stay up
 throughout): first, in short rounds, those the targets compare (in memory, and chunks of 100,000
 pairs), then the other chunk sizes in a third as many rounds. Each target's ratio is taken within
@@ -34,7 +38,7 @@ import os
 import statistics
 import time
 from pathlib import Path
-from typing import Callable, Dict, List
+from typing import Callable, Dict, List, Tuple
 
 import dask
 import dask.array as da
@@ -60,10 +64,31 @@ def make_block(index: int, which: int) -> np.ndarray:
     return bodies
 
 
-def lazy_bodies(pairs: int, which: int) -> da.Array:
-    blocks = [da.from_delayed(dask.delayed(make_block)(i, which), (BLOCK, VERTICES, 3), float)
-              for i in range(pairs // BLOCK)]
-    return da.concatenate(blocks)
+def make_chunk(first_block: int, blocks: int) -> Tuple[np.ndarray, np.ndarray]:
+    """The A and the B bodies of ``blocks`` blocks from ``first_block`` on, made together."""
+    return tuple(np.concatenate([make_block(first_block + j, which) for j in range(blocks)])
+                 for which in (0, 1))
+
+
+def placed_bodies(pairs: int, chunk: int, workers: List[str]) -> List[da.Array]:
+    """The A and the B bodies as dask arrays of ``chunk`` pairs per chunk, each chunk's A and B
+    made by one task on one worker and the chunks dealt to the workers in turn: where reading
+    each chunk in the graph would put them, and where docs/dask.md says persisted bodies
+    should be (a chunk whose A and B are on two workers moves one of them before it is
+    answered)."""
+    parts: Tuple[List[da.Array], List[da.Array]] = ([], [])
+    for k, start in enumerate(range(0, pairs, chunk)):
+        with dask.annotate(workers=[workers[k % len(workers)]], allow_other_workers=False):
+            both = dask.delayed(make_chunk, nout=2, pure=True)(start // BLOCK, chunk // BLOCK)
+            for which, part in enumerate(parts):
+                part.append(da.from_delayed(both[which], (chunk, VERTICES, 3), float))
+    return [da.concatenate(part) for part in parts]
+
+
+def warm_up() -> None:
+    """Import swarmcollide.dask in a worker and answer a few pairs there."""
+    bodies = np.stack([make_block(0, which)[:10] for which in (0, 1)])
+    sc.distance_many(*bodies, method=METHOD)
 
 
 def timed(run: Callable[[], object]) -> float:
@@ -92,28 +117,34 @@ class Cluster:
             n_workers=workers, threads_per_worker=1, host="127.0.0.1",
             dashboard_address="127.0.0.1:0"))
         self.client = stack.enter_context(Client(cluster, set_as_default=False))
-        self.bodies = {}
-        for chunk in chunks:
-            self.bodies[chunk] = self.client.persist(
-                [lazy_bodies(pairs, which).rechunk((chunk, -1, -1)) for which in (0, 1)])
-            with self.client.as_current():
-                wait(self.bodies[chunk])
+        addresses = sorted(self.client.scheduler_info()["workers"])
+        self.bodies = {chunk: self.client.persist(placed_bodies(pairs, chunk, addresses))
+                       for chunk in chunks}
+        with self.client.as_current():
+            wait(list(self.bodies.values()))
+        self.client.run(warm_up)
         self.tasks = scheduler_tasks(self.client)
-        for chunk in chunks:  # workers import swarmcollide and warm up
-            self.client.compute(vars(scd.distance_many(*(x[:10] for x in self.bodies[chunk]))),
-                                sync=True)
+
+    def check(self, expected: sc.BatchResult) -> None:
+        """Every chunking's answers on this cluster are bitwise those of the in-memory call."""
+        for chunk, bodies in self.bodies.items():
+            got = scd.distance_many(*bodies, method=METHOD).compute(scheduler=self.client)
+            for name in vars(got):
+                if getattr(got, name).tobytes() != getattr(expected, name).tobytes():
+                    raise AssertionError(f"{self.workers} workers, chunks of {chunk}: {name} "
+                                         "differs from the in-memory call")
         settle(self.client, self.tasks)
 
     def kept(self, chunk: int) -> float:
         result = scd.distance_many(*self.bodies[chunk], method=METHOD)
         with self.client.as_current():
-            seconds = timed(lambda: wait(self.client.persist(list(vars(result).values()))))
+            seconds = timed(lambda: wait(result.persist(scheduler=self.client).distance))
         settle(self.client, self.tasks)
         return seconds
 
     def gathered(self, chunk: int) -> float:
         result = scd.distance_many(*self.bodies[chunk], method=METHOD)
-        seconds = timed(lambda: self.client.compute(list(vars(result).values()), sync=True))
+        seconds = timed(lambda: result.compute(scheduler=self.client))
         settle(self.client, self.tasks)
         return seconds
 
@@ -136,9 +167,13 @@ def main() -> int:
 
     As = np.concatenate([make_block(i, 0) for i in range(pairs // BLOCK)])
     Bs = np.concatenate([make_block(i, 1) for i in range(pairs // BLOCK)])
-    sc.distance_many(As[:BLOCK], Bs[:BLOCK])  # load and warm up
+    expected = sc.distance_many(As, Bs, method=METHOD)  # also loads and warms up
     lazy = {c: (da.from_array(As, chunks=(c, -1, -1)), da.from_array(Bs, chunks=(c, -1, -1)))
             for c in thread_chunks}
+    for chunk, bodies in lazy.items():  # the answers timed are the in-memory ones
+        got = scd.distance_many(*bodies, method=METHOD).compute(scheduler="threads")
+        if any(getattr(got, n).tobytes() != getattr(expected, n).tobytes() for n in vars(got)):
+            raise AssertionError(f"threaded scheduler, chunks of {chunk}: answers differ")
 
     configurations: Dict[str, Dict] = {}
 
@@ -158,6 +193,9 @@ def main() -> int:
             kind="threaded scheduler", cores=cores, chunk=chunk, answers="NumPy")
     with contextlib.ExitStack() as stack:
         clusters = {workers: Cluster(stack, workers, pairs, cluster_chunks) for workers in (1, 2)}
+        for cluster in clusters.values():
+            cluster.check(expected)
+        del expected
         # The two clusters' runs that a ratio compares come one after the other.
         for chunk in cluster_chunks:
             for answers, where in (("kept", "kept on the workers"),

@@ -32,9 +32,12 @@ True
 
 from __future__ import annotations
 
+import contextlib
+import functools
 import math
 import operator
 import sys
+import uuid
 from dataclasses import dataclass, fields
 from typing import Any, Generic, Mapping, Optional, Tuple, TypeVar
 
@@ -44,6 +47,8 @@ import dask.local
 import dask.threaded
 import numpy as np
 from dask.base import get_scheduler
+from dask.layers import ArraySliceDep
+from dask.utils import get_scheduler_lock
 
 from swarmcollide import queries
 from swarmcollide.queries import DEFAULT_TOLERANCE, Parameters
@@ -76,9 +81,9 @@ ArrayT = TypeVar("ArrayT")
 class BatchArrays(Generic[ArrayT]):
     """The fields of a ``BatchResult``, as dask arrays (lazy) or, once computed, NumPy arrays.
 
-    Compute fields together (``compute``, ``store`` or ``dask.compute(r.distance, r.colliding)``):
-    each chunk is then answered once for all of them, whereas computing two fields one after the
-    other answers every chunk twice.
+    Compute fields together (``compute``, ``persist``, ``store`` or
+    ``dask.compute(r.distance, r.colliding)``): each chunk is then answered once for all of them,
+    whereas computing two fields one after the other answers every chunk twice.
 
     Attributes
     ----------
@@ -102,21 +107,58 @@ class BatchArrays(Generic[ArrayT]):
         """Every field as a NumPy array, each chunk answered once.
 
         ``kwargs`` go to ``dask.compute`` (``scheduler=``, ``num_workers=``, ...); with a
-        ``distributed.Client`` active, its cluster computes and the answers are gathered here.
-        With the threaded or the synchronous scheduler, each chunk's answers are copied into
-        the result by the thread that answered the chunk, as soon as it is answered, rather than
-        all joined at the end by one thread: faster, and holding only the chunks in flight
-        besides the result.
+        ``distributed.Client`` active or passed as ``scheduler=``, its cluster computes and the
+        answers come here. Each chunk's answers go into the result as soon as the chunk is
+        answered: with the threaded or the synchronous scheduler, by the thread that answered
+        it; from a cluster, by this process as each chunk arrives, straight from the worker
+        that holds it. Only the chunks in flight are held besides the result.
         """
-        values = [getattr(self, f.name) for f in fields(self)]
-        local = (dask.threaded.get, dask.local.get_sync)
-        if get_scheduler(scheduler=kwargs.get("scheduler"), collections=values) not in local:
-            return BatchArrays(*dask.compute(*values, **kwargs))
-        result = BatchArrays(*(np.empty(value.shape, value.dtype) for value in values))
-        self.store({f.name: getattr(result, f.name) for f in fields(self)}, lock=False, **kwargs)
+        chunks = _chunks_of(self)
+        if chunks is None:  # made from dask arrays by hand: compute them as they are
+            return BatchArrays(*dask.compute(*self._values(), **kwargs))
+        answers = chunks.answers
+        result = BatchArrays(*(np.empty(value.shape, value.dtype) for value in self._values()))
+        schedule = get_scheduler(scheduler=kwargs.get("scheduler"), collections=[answers])
+        if schedule in (dask.threaded.get, dask.local.get_sync):
+            dask.compute(chunks.written(vars(result), None), **kwargs)
+            return result
+        starts = np.cumsum((0,) + answers.chunks[0])
+        client = _client_of(schedule)
+        if client is None:  # another scheduler: the chunks' answers come back together
+            computed = dask.compute(*answers.to_delayed(), **kwargs)
+            for i, chunk in enumerate(computed):
+                _write_chunk(chunk, vars(result), slice(starts[i], starts[i + 1]), None)
+            return result
+        from distributed import as_completed, futures_of
+
+        kwargs.pop("scheduler", None)
+        futures = futures_of(client.persist(answers, **kwargs))
+        block = {future.key: i for i, future in enumerate(futures)}
+        # Straight from the worker that holds each chunk: through the scheduler, every chunk
+        # would be received and sent again by the scheduler's process.
+        for future in as_completed(futures, loop=client.loop):
+            i = block[future.key]
+            chunk = client.gather(future, direct=True)
+            _write_chunk(chunk, vars(result), slice(starts[i], starts[i + 1]), None)
+            future.release()
         return result
 
-    def store(self, targets: Mapping[str, Any], **kwargs: Any) -> None:
+    def persist(self, **kwargs: Any) -> BatchArrays[da.Array]:
+        """The answers computed and kept (on a cluster, in the memory of the workers that
+        answered them), each chunk once for all fields; the fields are then dask arrays that
+        take their parts from the kept chunks.
+
+        ``kwargs`` go to ``dask.persist`` (``scheduler=``, ...) or, with a ``distributed.Client``
+        active, to ``Client.persist``. A chunk's answers are kept as one piece with every field,
+        so a cluster tracks one key per chunk rather than one per field and chunk.
+        """
+        chunks = _chunks_of(self)
+        if chunks is None:
+            return BatchArrays(*dask.persist(*self._values(), **kwargs))
+        (answers,) = dask.persist(chunks.answers, **kwargs)
+        return _lazy(_Chunks(answers))
+
+    def store(self, targets: Mapping[str, Any], *, lock: Any = True, **kwargs: Any) -> None:
         """Write the fields named in ``targets`` into them, each chunk answered once.
 
         Parameters
@@ -126,8 +168,12 @@ class BatchArrays(Generic[ArrayT]):
             Zarr array, an ``h5py`` dataset or a NumPy memmap (in this process only: a memmap
             sent to another process is a copy). Chunks of a Zarr target should be whole chunks
             of the result, or concurrent writers must share a lock.
+        lock : bool or lock, default True
+            As in ``dask.array.store``: held while a chunk is written; True for one suited to
+            the scheduler, False for none (targets that take concurrent writes of disjoint
+            regions, such as NumPy arrays or Zarr arrays written in whole chunks).
         **kwargs
-            Passed to ``dask.array.store`` (``lock=``, ``scheduler=``, ...).
+            Passed to ``dask.compute`` (``scheduler=``, ...).
 
         Examples
         --------
@@ -146,7 +192,17 @@ class BatchArrays(Generic[ArrayT]):
         unknown = [name for name in targets if name not in names]
         if unknown:
             raise ValueError(f"targets has no field named {unknown[0]!r}; use some of {names}")
-        da.store([getattr(self, name) for name in targets], list(targets.values()), **kwargs)
+        chunks = _chunks_of(self)
+        if chunks is None:
+            sources = [getattr(self, name) for name in targets]
+            da.store(sources, list(targets.values()), lock=lock, **kwargs)
+            return
+        if lock is True:
+            lock = get_scheduler_lock(chunks.answers, scheduler=kwargs.get("scheduler"))
+        dask.compute(chunks.written(dict(targets), lock or None), **kwargs)
+
+    def _values(self) -> list:
+        return [getattr(self, f.name) for f in fields(self)]
 
     def __len__(self) -> int:
         return len(self.distance)  # type: ignore[arg-type]
@@ -174,9 +230,9 @@ class _Call:
 
 
 def _answer(
-    pairs: np.ndarray, As: np.ndarray, Bs: np.ndarray, call: _Call
+    where: Tuple[slice], As: np.ndarray, Bs: np.ndarray, call: _Call
 ) -> Tuple[np.ndarray, ...]:
-    """One chunk's fields, from the in-memory batch call; ``pairs`` are its global indices.
+    """One chunk's fields, from the in-memory batch call; ``where`` is its slice of the pairs.
 
     ``As`` and ``Bs`` come as blockwise gives unconcatenated blocks, nested lists over their
     point and coordinate axes, each of one block (``_many`` rechunks them so): taking that block
@@ -187,13 +243,108 @@ def _answer(
         call.method, tolerance=call.tolerance, seed=call.seed, **dict(call.parameters)
     )
     result = getattr(query, f"{call.query}_many")(
-        As,
-        Bs,
-        threads=call.threads,
-        first_index=int(pairs[0]) if len(pairs) else 0,
-        **dict(call.keywords),
+        As, Bs, threads=call.threads, first_index=where[0].start, **dict(call.keywords)
     )
     return tuple(getattr(result, name) for name in _FIELDS)
+
+
+def _write_chunk(
+    answers: Tuple[np.ndarray, ...], targets: Mapping[str, Any], rows: slice, lock: Any
+) -> None:
+    with lock if lock is not None else contextlib.nullcontext():
+        for index, name in enumerate(_FIELDS):
+            if name in targets:
+                targets[name][rows] = answers[index]
+
+
+def _write(
+    answers: Tuple[np.ndarray, ...], where: Tuple[slice], targets: Mapping[str, Any], lock: Any
+) -> np.ndarray:
+    _write_chunk(answers, targets, where[0], lock)
+    return np.empty(0, bool)
+
+
+def _answer_and_write(
+    where: Tuple[slice],
+    As: np.ndarray,
+    Bs: np.ndarray,
+    call: _Call,
+    targets: Mapping[str, Any],
+    lock: Any,
+) -> np.ndarray:
+    return _write(_answer(where, As, Bs, call), where, targets, lock)
+
+
+@dataclass(frozen=True)
+class _Chunks:
+    """What a lazy ``BatchArrays`` is made of: ``answers``, whose chunks are the tuples of the
+    fields, and, until they are persisted, the bodies and the call that answer them."""
+
+    answers: da.Array
+    bodies: Optional[Tuple[da.Array, da.Array, _Call]] = None
+
+    def written(self, targets: Mapping[str, Any], lock: Any) -> da.Array:
+        """Each chunk's fields written into ``targets`` (field name to array-like) by the task
+        that answers the chunk (and, where the bodies are read in the graph, reads them)."""
+        # The targets ride in the function: as an argument, dask would hash every byte of NumPy
+        # targets (95 bytes per pair) to name them.
+        common = dict(
+            name=f"write-{uuid.uuid4().hex}",
+            align_arrays=False,
+            concatenate=False,
+            adjust_chunks={"i": 0},
+            meta=np.empty(0, bool),
+        )
+        where = ArraySliceDep(self.answers.chunks)
+        if self.bodies is None:
+            write = functools.partial(_write, targets=targets, lock=lock)
+            return da.blockwise(write, "i", self.answers, "i", where, "i", **common)
+        # One task answers and writes: _write over answers would be a second task per chunk, as
+        # blockwise fuses no layers that differ in `concatenate` (answers contracts the point
+        # axes, a write does not).
+        As, Bs, call = self.bodies
+        answer_and_write = functools.partial(
+            _answer_and_write, call=call, targets=targets, lock=lock
+        )
+        return da.blockwise(
+            answer_and_write, "i", where, "i", As, "ijk", Bs, "ilk", **common
+        )
+
+
+def _lazy(chunks: _Chunks) -> BatchArrays[da.Array]:
+    """The fields as dask arrays, each of whose chunks takes its part of the chunk's answers;
+    ``compute``, ``persist`` and ``store`` use the chunks' answers themselves."""
+    token = chunks.answers.name.rsplit("-", 1)[-1]
+    result = BatchArrays(
+        *(
+            da.blockwise(
+                operator.getitem,
+                "ij" if point else "i",
+                chunks.answers,
+                "i",
+                index,
+                None,
+                new_axes={"j": 3} if point else None,
+                name=f"{name}-{token}",
+                meta=np.empty((0, 3) if point else (0,), dtype),
+            )
+            for index, (name, (dtype, point)) in enumerate(_FIELDS.items())
+        )
+    )
+    object.__setattr__(result, "_chunks", chunks)
+    return result
+
+
+def _chunks_of(result: BatchArrays) -> Optional[_Chunks]:
+    """What ``result`` is made of, or None for a BatchArrays made by hand or computed."""
+    return getattr(result, "_chunks", None)
+
+
+def _client_of(schedule: Any) -> Any:
+    """The ``distributed.Client`` whose ``get`` ``schedule`` is, or None."""
+    distributed = sys.modules.get("distributed")
+    client = getattr(schedule, "__self__", None)
+    return client if distributed is not None and isinstance(client, distributed.Client) else None
 
 
 def _bodies(bodies: Any, name: str) -> da.Array:
@@ -249,16 +400,16 @@ def _many(
         threads,
         tuple(sorted(keywords.items())),
     )
-    # The global index of every pair rides along, aligned with the bodies' chunks, so a chunk
-    # knows where it starts however the chunks of As and Bs are unified.
-    pairs = da.arange(As.shape[0], chunks=(As.chunks[0],))
+    # Where As and Bs are chunked differently, both are cut at the boundaries of either; each
+    # chunk is then told its slice of the pairs, so it knows where it starts.
+    _, (As, Bs) = da.core.unify_chunks(As, "ijk", Bs, "ilk")
     # One task per chunk answers it and gives a tuple of fields (as dask.array.apply_gufunc does
-    # for several outputs); each field's chunk takes its part, so whichever fields are computed
-    # together, the chunk is answered once.
+    # for several outputs): computed, persisted or stored together, the fields cost one task per
+    # chunk; a field computed alone takes its part of the tuple.
     answers = da.blockwise(
         _answer,
         "i",
-        pairs,
+        ArraySliceDep((As.chunks[0],)),
         "i",
         As,
         "ijk",
@@ -267,20 +418,10 @@ def _many(
         call=call,
         token=f"{query}_many",
         concatenate=False,
+        align_arrays=False,
         meta=tuple(np.empty((0, 3) if point else (0,), dtype) for dtype, point in _FIELDS.values()),
     )
-    return BatchArrays(
-        *(
-            answers.map_blocks(
-                operator.getitem,
-                index,
-                token=name,
-                meta=np.empty((0, 3) if point else (0,), dtype),
-                **({"chunks": answers.chunks + ((3,),), "new_axis": 1} if point else {}),
-            )
-            for index, (name, (dtype, point)) in enumerate(_FIELDS.items())
-        )
-    )
+    return _lazy(_Chunks(answers, (As, Bs, call)))
 
 
 def distance_many(

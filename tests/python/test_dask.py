@@ -83,6 +83,41 @@ def test_a_cluster_of_two_processes_gives_the_in_memory_answers_bitwise(
         assert_bitwise(lazy, eager, client)
 
 
+@pytest.mark.parametrize("where", ["threads", "cluster", "dask.get"])
+def test_persisted_answers_are_the_in_memory_answers_bitwise(request, bodies, where):
+    """persist keeps one piece per chunk with every field, which compute, store and each field
+    read. dask.get is neither a local scheduler nor a cluster: its chunks come back together."""
+    scheduler = {"cluster": request.getfixturevalue("client") if where == "cluster" else None,
+                 "dask.get": dask.get, "threads": "threads"}[where]
+    As, Bs = bodies
+    eager = sc.signed_distance_many(As, Bs, seed=5)
+    lazy = scd.signed_distance_many(*chunked(As, Bs, (1, 60, 59), 30), seed=5)
+    kept = lazy.persist(scheduler=scheduler)
+    assert repr(kept) == "BatchArrays(120 pairs in 6 chunks, lazy)"
+    assert_bitwise(kept, eager, scheduler)
+    assert_bitwise(lazy, eager, scheduler)
+    for field in ("distance", "point_b", "iterations"):
+        got = getattr(kept, field).compute(scheduler=scheduler)
+        assert got.tobytes() == getattr(eager, field).tobytes(), field
+    if where != "cluster":  # a NumPy target sent to another process is a copy
+        distance = np.empty(PAIRS)
+        kept.store({"distance": distance}, scheduler=scheduler)
+        assert distance.tobytes() == eager.distance.tobytes()
+
+
+def test_store_on_a_cluster_writes_zarr_targets_each_chunk_once(client, bodies, tmp_path):
+    As, Bs = bodies
+    eager = sc.distance_many(As, Bs)
+    lazy = scd.distance_many(*chunked(As, Bs, 40, 40))
+    targets = {name: zarr.open_array(str(tmp_path / f"{name}.zarr"), mode="w",
+                                     shape=getattr(eager, name).shape, chunks=(40, 3)[:getattr(
+                                         eager, name).ndim], dtype=getattr(eager, name).dtype)
+               for name in ("distance", "point_a", "colliding")}
+    lazy.store(targets, lock=False, scheduler=client)
+    for name, target in targets.items():
+        assert target[:].tobytes() == getattr(eager, name).tobytes(), name
+
+
 def test_answers_do_not_depend_on_threads_per_chunk(bodies):
     As, Bs = bodies
     eager = sc.distance_many(As, Bs, method="ipso", max_iterations=10)
@@ -114,9 +149,9 @@ def test_each_chunk_is_answered_once_for_all_fields(bodies, monkeypatch):
     answered = []
     answer = scd._answer
 
-    def counting(pairs, *args, **kwargs):
-        answered.append(int(pairs[0]))
-        return answer(pairs, *args, **kwargs)
+    def counting(where, *args, **kwargs):
+        answered.append(where[0].start)
+        return answer(where, *args, **kwargs)
 
     monkeypatch.setattr(scd, "_answer", counting)
     lazy = scd.distance_many(*chunked(As, Bs, 40, 40))
