@@ -1,5 +1,6 @@
 #include "swarmcollide/geometry/pose.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -15,8 +16,15 @@ std::string problem(const Pose& pose) {
     return " has a NaN or infinite entry";
   }
   if (pose.has_identity_rotation()) return {};
-  const Scalar orthogonality =
-      (pose.rotation.transpose() * pose.rotation - Matrix3::Identity()).cwiseAbs().maxCoeff();
+  // R^T R - I is symmetric: its six distinct entries, the columns' dot products.
+  const Matrix3& r = pose.rotation;
+  Scalar orthogonality = 0;
+  for (int i = 0; i < 3; ++i) {
+    for (int j = i; j < 3; ++j) {
+      const Scalar entry = r.col(i).dot(r.col(j)) - (i == j ? 1 : 0);
+      orthogonality = std::max(orthogonality, std::abs(entry));
+    }
+  }
   const Scalar determinant = pose.rotation.determinant();
   if (!(orthogonality <= kRotationTolerance) ||
       !(std::abs(determinant - 1) <= kRotationTolerance)) {

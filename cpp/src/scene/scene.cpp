@@ -102,7 +102,8 @@ void prefetch_points(const SceneBody* b) {
 // rotation that did not change, exactly zero).
 Scalar turn(const Matrix3& from, const Matrix3& to) {
   const Scalar frobenius = (to - from).norm();
-  const Scalar trace = (to.transpose() * from).trace();
+  // trace(R'^T R), the sum of the entries' products: no matrix product.
+  const Scalar trace = to.cwiseProduct(from).sum();
   return std::min(frobenius, std::sqrt(std::max(Scalar(0), 3 - trace) + 1e-8));
 }
 
