@@ -50,9 +50,9 @@ inline constexpr Scalar kFrameRounding = 128 * kRoundoff;
 ///
 /// The exact paths ask their support points of it, of two kinds: `support_index` (a scan of small
 /// bodies, a hill climb on large ones, comparing heights in the body's own coordinates) for
-/// searches, and `exact_support_index` (a scan of the heights computed in the frame), the one
-/// whose shortfall margins on frame coordinates provably cover, for proven lower bounds (the
-/// certified penetration solver's).
+/// searches, and `exact_support_index` (a scan of the heights computed in the frame) for proven
+/// lower bounds, the certified penetration solver's: only its shortfall is within the margins on
+/// frame coordinates.
 class FramedBody {
  public:
   FramedBody(const ConvexPolyhedron& body, const Pose& pose, const Frame& frame);
