@@ -155,6 +155,36 @@ def test_libccd_depth_is_right_when_certified(sandbox, pair):
     assert_right("signed_distance", a, b, r)
 
 
+def rotated_cubes_far_from_the_origin(count: int, offset: float) -> List[tuple]:
+    """Pairs of unit cubes turned at random, their points ``offset`` from the origin: faces meet
+    faces, so supports tie, and heights compared in the given coordinates round at 1e-8."""
+    rng = np.random.default_rng(21)
+    corners = CUBE - 0.5
+
+    def turned() -> np.ndarray:
+        q, _ = np.linalg.qr(rng.normal(size=(3, 3)))
+        return corners @ q.T + offset
+
+    return [(turned(), turned() + rng.normal(size=3) * 1.5) for _ in range(count)]
+
+
+@pytest.mark.parametrize(
+    "query, method",
+    [("distance", m) for m in DISTANCE] + [("signed_distance", m) for m in SIGNED],
+)
+def test_certified_bounds_of_unit_bodies_1e8_from_the_origin(sandbox, query, method):
+    # Supports chosen by heights rounded at the coordinates' 1e8 put certified lower bounds up to
+    # 6e-9 above the true distance (rotated cubes, dual, exact and fcl): the bounds are proven to
+    # the pair's size, so they must hold to within a few roundoffs of it, not of the coordinates.
+    for a, b in rotated_cubes_far_from_the_origin(25, 1e8):
+        r = answer(sandbox, query, a, b, method=method)
+        true = exact_signed_distance(a, b).signed_distance
+        if query == "distance":
+            true = max(true, 0.0)
+        if r["certified"]:
+            assert r["lower_bound"] <= true + 1e-12 and r["distance"] >= true - 1e-12, (r, true)
+
+
 @pytest.mark.parametrize("x", [0.3, 0.5465540192976328, 0.12361943746177984, -0.5726255611389037])
 @pytest.mark.parametrize("point_first", [False, True])
 def test_dual_signed_witnesses_of_a_point_on_a_segment(sandbox, x, point_first):

@@ -38,17 +38,18 @@ Vector3 Frame::point_to_world(const Vector3& p) const {
 
 FramedBody::FramedBody(const ConvexPolyhedron& body, const Pose& pose, const Frame& frame)
     : body_(&body),
-      vertices_(&body.vertices()),
+      vertices_(&body.support_points()),
       hull_(nullptr),
       in_frame_(false),
       rotation_(pose.rotation),
       rotated_(!pose.has_identity_rotation()),
-      body_centre_(body.bounds().centre),
+      body_centre_(body.bounds().centre - body.support_points_origin()),
       exponent_(frame.exponent) {
   const int half = -exponent_ / 2;
   scale_high_ = power_of_two(half);
   scale_low_ = power_of_two(-exponent_ - half);
-  const Vector3 from_centre = pose.rotation * body_centre_ + pose.translation - frame.centre;
+  const Vector3 from_centre =
+      pose.rotation * body.bounds().centre + pose.translation - frame.centre;
   for (int k = 0; k < 3; ++k) offset_(k) = times_power_of_two(from_centre(k), -exponent_);
 }
 

@@ -49,10 +49,11 @@ inline constexpr Scalar kFrameRounding = 128 * kRoundoff;
 /// body's own frame (`rotation^T d`), so moving a body never touches its points or its hull.
 ///
 /// The exact paths ask their support points of it, of two kinds: `support_index` (a scan of small
-/// bodies, a hill climb on large ones, comparing heights in the body's own coordinates) for
-/// searches, and `exact_support_index` (a scan of the heights computed in the frame) for proven
-/// lower bounds, the certified penetration solver's: only its shortfall is within the margins on
-/// frame coordinates.
+/// bodies, a hill climb on large ones, comparing heights in the body's own coordinates, centred on
+/// its box when the body lies far from its origin, so rounded relative to the body's size) for
+/// searches and the separations of lower bounds, and `exact_support_index` (a scan of the heights
+/// computed in the frame) for the certified penetration solver, whose margins assume the very
+/// maximum of the frame heights.
 class FramedBody {
  public:
   FramedBody(const ConvexPolyhedron& body, const Pose& pose, const Frame& frame);
@@ -90,10 +91,9 @@ class FramedBody {
     return climb_support(*vertices_, hull(), local_direction(d), start);
   }
   /// Index of a point maximising `height(i, d)` (the first one on ties), by scanning every point
-  /// in the frame: the support a proven lower bound uses. `support_index` may fall short of it
-  /// by more than a margin in frame coordinates covers: a climb can stop early, and heights in the
-  /// body's own coordinates are rounded relative to those coordinates, which may be far larger
-  /// than the body.
+  /// in the frame. `support_index` may fall short of it: a climb can stop early on heights that
+  /// rounding made equal, and a scan in the body's own frame rounds the rotated direction and
+  /// the heights differently (by a few roundoffs of the body's size).
   int exact_support_index(const Vector3& d) const {
     if (in_frame_) return scan_support(*vertices_, d);
     int best = 0;
@@ -122,7 +122,8 @@ class FramedBody {
  private:
   Vector3 scaled(const Vector3& v) const { return v * scale_high_ * scale_low_; }
 
-  // The body's points in its own frame, and its hull when it is not the body's (lazily built).
+  // The body's points in its own frame (its support points, see
+  // ConvexPolyhedron::support_points), and its hull when it is not the body's (lazily built).
   const ConvexPolyhedron* body_;
   const VertexMatrix* vertices_;
   const Hull* hull_;
@@ -132,6 +133,8 @@ class FramedBody {
   bool in_frame_;
   Matrix3 rotation_;
   bool rotated_;
+  // What centres a row of `vertices_` on the box: the box centre, or zero for points already
+  // centred.
   Vector3 body_centre_;
   Vector3 offset_;
   int exponent_;

@@ -44,7 +44,20 @@ class ConvexPolyhedron {
   /// Number of points (the `k` of model (2)).
   int size() const { return static_cast<int>(vertices_.rows()); }
 
-  /// Index of a point that maximises `direction . x` (the first one on ties).
+  /// The points as support queries compare them: the points themselves, or, for a body farther
+  /// from its own origin than its radius, the points less the centre of their box
+  /// (`support_points_origin()`). Heights `d . x` are then rounded relative to the body's size,
+  /// not to its distance from the origin, which may be many orders larger: otherwise a support
+  /// chosen among points 1e8 away from the origin can fall 1e-8 short, which no rounding margin
+  /// relative to the body covers.
+  const VertexMatrix& support_points() const { return centred_.rows() ? centred_ : vertices_; }
+  /// What was subtracted from the points to give `support_points()`: zero or the box's centre.
+  Vector3 support_points_origin() const {
+    return centred_.rows() ? bounds_.centre : Vector3::Zero();
+  }
+
+  /// Index of a point that maximises `direction . x` (the first one on ties), comparing
+  /// `support_points()`.
   int support_index(const Vector3& direction) const;
   /// Index of a point that maximises `direction . x`, found by hill climbing over the hull's
   /// vertex adjacency from the point `start` (any index; a point that is not a hull vertex starts
@@ -84,6 +97,9 @@ class ConvexPolyhedron {
 
   VertexMatrix vertices_;
   BodyBounds bounds_;
+  // The points less the box centre, for a body farther from its origin than its radius; empty
+  // otherwise (the points are then within twice the radius of the origin, as good as centred).
+  VertexMatrix centred_;
   std::shared_ptr<detail::HullCache> hull_cache_;
 };
 
