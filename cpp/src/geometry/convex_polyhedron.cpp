@@ -99,20 +99,16 @@ ConvexPolyhedron::ConvexPolyhedron(VertexMatrix points)
     : vertices_(std::move(points)), hull_cache_(std::make_shared<detail::HullCache>()) {
   check_points(vertices_);
   bounds_ = bounds_of(vertices_);
-  // Each difference is rounded relative to itself (at most the radius), so these points carry
-  // roundings of the body's size only.
-  if (bounds_.centre.norm() > bounds_.radius) {
-    centred_ = vertices_.rowwise() - bounds_.centre.transpose();
-  }
+  centred_ = vertices_.rowwise() - bounds_.centre.transpose();
 }
 
 int ConvexPolyhedron::support_index(const Vector3& direction) const {
-  return detail::scan_support(support_points(), direction);
+  return detail::scan_support(centred_, direction);
 }
 
 int ConvexPolyhedron::support_index(const Vector3& direction, int start) const {
   if (size() <= kHillClimbingThreshold) return support_index(direction);
-  return detail::climb_support(support_points(), hull(), direction, start);
+  return detail::climb_support(centred_, hull(), direction, start);
 }
 
 Vector3 ConvexPolyhedron::centroid() const {

@@ -38,12 +38,11 @@ Vector3 Frame::point_to_world(const Vector3& p) const {
 
 FramedBody::FramedBody(const ConvexPolyhedron& body, const Pose& pose, const Frame& frame)
     : body_(&body),
-      vertices_(&body.support_points()),
+      vertices_(&body.centred_vertices()),
       hull_(nullptr),
       in_frame_(false),
       rotation_(pose.rotation),
       rotated_(!pose.has_identity_rotation()),
-      body_centre_(body.bounds().centre - body.support_points_origin()),
       exponent_(frame.exponent) {
   const int half = -exponent_ / 2;
   scale_high_ = power_of_two(half);
@@ -60,7 +59,6 @@ FramedBody::FramedBody(const VertexMatrix& points, const Hull& hull)
       in_frame_(true),
       rotation_(Matrix3::Identity()),
       rotated_(false),
-      body_centre_(Vector3::Zero()),
       offset_(Vector3::Zero()),
       exponent_(0),
       scale_high_(1),

@@ -50,7 +50,7 @@ inline constexpr Scalar kFrameRounding = 128 * kRoundoff;
 ///
 /// The exact paths ask their support points of it, of two kinds: `support_index` (a scan of small
 /// bodies, a hill climb on large ones, comparing heights in the body's own coordinates, centred on
-/// its box when the body lies far from its origin, so rounded relative to the body's size) for
+/// its box, so rounded relative to the body's size) for
 /// searches and the separations of lower bounds, and `exact_support_index` (a scan of the heights
 /// computed in the frame) for the certified penetration solver, whose margins assume the very
 /// maximum of the frame heights.
@@ -69,7 +69,7 @@ class FramedBody {
 
   /// Point i of the body in the frame.
   Vector3 vertex(int i) const {
-    const Vector3 local = scaled(vertices_->row(i).transpose() - body_centre_);
+    const Vector3 local = scaled(vertices_->row(i).transpose());
     return rotated_ ? Vector3(rotation_ * local + offset_) : Vector3(local + offset_);
   }
   /// `d . vertex(i)`, as `exact_support_index` compares it.
@@ -122,8 +122,8 @@ class FramedBody {
  private:
   Vector3 scaled(const Vector3& v) const { return v * scale_high_ * scale_low_; }
 
-  // The body's points in its own frame (its support points, see
-  // ConvexPolyhedron::support_points), and its hull when it is not the body's (lazily built).
+  // The body's points in its own frame, centred on its box (ConvexPolyhedron::centred_vertices),
+  // and its hull when it is not the body's (lazily built).
   const ConvexPolyhedron* body_;
   const VertexMatrix* vertices_;
   const Hull* hull_;
@@ -133,9 +133,6 @@ class FramedBody {
   bool in_frame_;
   Matrix3 rotation_;
   bool rotated_;
-  // What centres a row of `vertices_` on the box: the box centre, or zero for points already
-  // centred.
-  Vector3 body_centre_;
   Vector3 offset_;
   int exponent_;
   // 2^-exponent as two factors, each representable even for the most extreme exponents.

@@ -35,7 +35,7 @@ constexpr std::size_t kBoxesAhead = 8;
 // The largest distance of the body's points from the centre of its box: what a turn about that
 // centre moves them by, per radian. Often well below the box's half-diagonal.
 Scalar reach_about_centre(const ConvexPolyhedron& body) {
-  return (body.vertices().rowwise() - body.bounds().centre.transpose()).rowwise().norm().maxCoeff();
+  return body.centred_vertices().rowwise().norm().maxCoeff();
 }
 
 // A body of the scene with what the broadphase keeps of it. What the narrowphase reads comes

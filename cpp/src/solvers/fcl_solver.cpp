@@ -33,13 +33,12 @@ struct FclConvex {
 FclConvex make_convex(const FramedBody& framed) {
   const ConvexPolyhedron& body = framed.body();
   const Hull& hull = body.hull();
-  const Vector3 centre = body.bounds().centre;
   auto vertices = std::make_shared<std::vector<fcl::Vector3d>>();
   vertices->reserve(hull.vertex_indices.size());
   for (int i : hull.vertex_indices) {
     fcl::Vector3d p;
     for (int k = 0; k < 3; ++k) {
-      p(k) = times_power_of_two(body.vertices()(i, k) - centre(k), -framed.exponent());
+      p(k) = times_power_of_two(body.centred_vertices()(i, k), -framed.exponent());
     }
     vertices->push_back(p);
   }

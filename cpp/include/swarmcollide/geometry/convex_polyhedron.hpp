@@ -44,20 +44,16 @@ class ConvexPolyhedron {
   /// Number of points (the `k` of model (2)).
   int size() const { return static_cast<int>(vertices_.rows()); }
 
-  /// The points as support queries compare them: the points themselves, or, for a body farther
-  /// from its own origin than its radius, the points less the centre of their box
-  /// (`support_points_origin()`). Heights `d . x` are then rounded relative to the body's size,
-  /// not to its distance from the origin, which may be many orders larger: otherwise a support
-  /// chosen among points 1e8 away from the origin can fall 1e-8 short, which no rounding margin
-  /// relative to the body covers.
-  const VertexMatrix& support_points() const { return centred_.rows() ? centred_ : vertices_; }
-  /// What was subtracted from the points to give `support_points()`: zero or the box's centre.
-  Vector3 support_points_origin() const {
-    return centred_.rows() ? bounds_.centre : Vector3::Zero();
-  }
+  /// The points less the centre of their box (`bounds().centre`), as support queries compare
+  /// them. Each difference is rounded relative to itself, so heights `d . x` are rounded relative
+  /// to the body's size, not to its distance from the origin, which may be many orders larger
+  /// (supports chosen among points 1e8 from the origin fell 6e-9 short); and they are the same
+  /// numbers, scaled, for a body scaled by a power of two or translated exactly, so such bodies
+  /// break ties alike and get the same answers.
+  const VertexMatrix& centred_vertices() const { return centred_; }
 
   /// Index of a point that maximises `direction . x` (the first one on ties), comparing
-  /// `support_points()`.
+  /// `centred_vertices()`.
   int support_index(const Vector3& direction) const;
   /// Index of a point that maximises `direction . x`, found by hill climbing over the hull's
   /// vertex adjacency from the point `start` (any index; a point that is not a hull vertex starts
@@ -97,8 +93,6 @@ class ConvexPolyhedron {
 
   VertexMatrix vertices_;
   BodyBounds bounds_;
-  // The points less the box centre, for a body farther from its origin than its radius; empty
-  // otherwise (the points are then within twice the radius of the origin, as good as centred).
   VertexMatrix centred_;
   std::shared_ptr<detail::HullCache> hull_cache_;
 };
