@@ -170,7 +170,7 @@ def headline_section(names: "RowNames", cells, sizes, proximity) -> str:
         ours = cells.get((fcl_row, workload_name(n, proximity)), {})
         theirs = cells.get(("FCL distance direct", workload_name(n, proximity)), {})
         if ours.get("time_median_us") and theirs.get("time_median_us"):
-            ratio.append(f"{ours['time_median_us'] / theirs['time_median_us']:.0f}x")
+            ratio.append(f"{ours['time_median_us'] / theirs['time_median_us']:.2f}x")
         else:
             ratio.append("n/a")
     rows.append(ratio)
