@@ -49,11 +49,10 @@ inline constexpr Scalar kFrameRounding = 128 * kRoundoff;
 /// body's own frame (`rotation^T d`), so moving a body never touches its points or its hull.
 ///
 /// The exact paths ask their support points of it, of two kinds: `support_index` (a scan of small
-/// bodies, a hill climb on large ones, comparing heights in the body's own coordinates, centred on
-/// its box, so rounded relative to the body's size) for
-/// searches and the separations of lower bounds, and `exact_support_index` (a scan of the heights
-/// computed in the frame) for the certified penetration solver, whose margins assume the very
-/// maximum of the frame heights.
+/// bodies, a hill climb on large ones, comparing heights in the body's own coordinates centred on
+/// its box, so rounded relative to the body's size) for searches and the separations of lower
+/// bounds, and `exact_support_index` (a scan of the heights computed in the frame) for the
+/// certified penetration solver, whose margins assume the very maximum of the frame heights.
 class FramedBody {
  public:
   FramedBody(const ConvexPolyhedron& body, const Pose& pose, const Frame& frame);
