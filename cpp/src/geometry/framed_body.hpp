@@ -95,16 +95,7 @@ class FramedBody {
   /// the heights differently (by a few roundoffs of the body's size).
   int exact_support_index(const Vector3& d) const {
     if (in_frame_) return scan_support(*vertices_, d);
-    int best = 0;
-    Scalar highest = height(0, d);
-    for (int i = 1; i < size(); ++i) {
-      const Scalar h = height(i, d);
-      if (h > highest) {
-        highest = h;
-        best = i;
-      }
-    }
-    return best;
+    return first_highest(size(), [&](int i) { return vertex(i).dot(d); });
   }
   Vector3 support(const Vector3& d) const { return vertex(support_index(d)); }
   /// Every point in the frame, one per row, into `out` (resized), for solvers that read each

@@ -15,19 +15,26 @@ inline Scalar point_height(const VertexMatrix& points, int i, const Vector3& d) 
   return x[0] * d.x() + x[1] * d.y() + x[2] * d.z();
 }
 
-/// Index of a point maximising `d . x` (the first one on ties), by scanning every point: each
-/// height is one rounded inner product, so the answer is the maximum to that rounding.
-inline int scan_support(const VertexMatrix& points, const Vector3& d) {
+/// The first index in [0, count) maximising `height(i)`.
+template <class Height>
+int first_highest(int count, const Height& height) {
   int best = 0;
-  Scalar highest = point_height(points, 0, d);
-  for (int i = 1; i < static_cast<int>(points.rows()); ++i) {
-    const Scalar h = point_height(points, i, d);
+  Scalar highest = height(0);
+  for (int i = 1; i < count; ++i) {
+    const Scalar h = height(i);
     if (h > highest) {
       highest = h;
       best = i;
     }
   }
   return best;
+}
+
+/// Index of a point maximising `d . x` (the first one on ties), by scanning every point: each
+/// height is one rounded inner product, so the answer is the maximum to that rounding.
+inline int scan_support(const VertexMatrix& points, const Vector3& d) {
+  return first_highest(static_cast<int>(points.rows()),
+                       [&](int i) { return point_height(points, i, d); });
 }
 
 /// Index of a point maximising `d . x`, by steepest ascent over `hull`'s edge graph from `start`

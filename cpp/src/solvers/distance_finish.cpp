@@ -15,9 +15,7 @@ namespace {
 constexpr int kFinishSteps = 10;
 
 struct Buffers {
-  // All zero between uses.
-  std::vector<char> visited_a;
-  std::vector<char> visited_b;
+  std::vector<char> visited;  // all zero between uses
   std::vector<int> feature_a;
   std::vector<int> feature_b;
   std::vector<int> grown;
@@ -43,73 +41,25 @@ bool merge(std::vector<int>& into, const std::vector<int>& more) {
 }  // namespace
 
 DistanceFinish::DistanceFinish(const FramedPair& pair, Scalar slack, int max_iterations)
-    : pair_(pair), slack_(slack), max_iterations_(max_iterations) {
-  Buffers& b = buffers();
-  if (b.visited_a.size() < static_cast<std::size_t>(pair.a.size()))
-    b.visited_a.resize(pair.a.size());
-  if (b.visited_b.size() < static_cast<std::size_t>(pair.b.size()))
-    b.visited_b.resize(pair.b.size());
-}
+    : pair_(pair), slack_(slack), max_iterations_(max_iterations) {}
 
-// Points of `body` within the slack of its supporting plane along `n`, highest first, into
-// `found`: a scan for small bodies, a flood over the hull's edge graph from the support point for
-// large ones (the vertices above a plane span a connected subgraph of a polytope's graph).
-void DistanceFinish::feature(const FramedBody& body, const Vector3& n, int& hint, Scalar slack,
-                             std::vector<char>& visited, std::vector<int>& found) {
+// Points of `body` within the slack of its supporting plane along `n` (its support point climbing
+// from, and returned in, `hint`), highest first, into `found`.
+void DistanceFinish::feature(const FramedBody& body, const Vector3& n, int& hint,
+                             std::vector<int>& found) {
   hint = body.support_index(n, hint);
-  const Scalar floor = body.vertex(hint).dot(n) - slack;
-  found.clear();
-  if (body.size() <= kHillClimbingThreshold) {
-    for (int i = 0; i < body.size(); ++i) {
-      if (body.vertex(i).dot(n) >= floor) found.push_back(i);
-    }
-  } else {
-    const Hull& h = body.hull();
-    found.push_back(hint);
-    visited[hint] = 1;
-    for (std::size_t k = 0; k < found.size(); ++k) {
-      const int i = found[k];
-      for (int e = h.neighbour_offsets[i]; e < h.neighbour_offsets[i + 1]; ++e) {
-        const int j = h.neighbours[e];
-        if (!visited[j] && body.vertex(j).dot(n) >= floor) {
-          visited[j] = 1;
-          found.push_back(j);
-        }
-      }
-    }
-    for (int i : found) visited[i] = 0;
-  }
+  supporting_feature(body, n, hint, slack_, buffers().visited, found);
   std::sort(found.begin(), found.end(),
-            [&](int i, int j) { return body.vertex(i).dot(n) > body.vertex(j).dot(n); });
+            [&](int i, int j) { return body.height(i, n) > body.height(j, n); });
 }
 
 // The exact nearest points of the hulls of two features: Wolfe's algorithm on their Minkowski
 // difference from `start`, with support points by scanning the features.
 Witness DistanceFinish::nearest_between(const std::vector<int>& fa, const std::vector<int>& fb,
                                         const Vector3& start) {
-  const FramedBody& a = pair_.a;
-  const FramedBody& b = pair_.b;
   const auto oracle = [&](const Vector3& d) {
     ++evaluations_;
-    int i = fa[0];
-    Scalar highest = a.vertex(i).dot(d);
-    for (std::size_t k = 1; k < fa.size(); ++k) {
-      const Scalar h = a.vertex(fa[k]).dot(d);
-      if (h > highest) {
-        highest = h;
-        i = fa[k];
-      }
-    }
-    int j = fb[0];
-    Scalar lowest = b.vertex(j).dot(d);
-    for (std::size_t k = 1; k < fb.size(); ++k) {
-      const Scalar h = b.vertex(fb[k]).dot(d);
-      if (h < lowest) {
-        lowest = h;
-        j = fb[k];
-      }
-    }
-    return OraclePoint{b.vertex(j) - a.vertex(i), i, j};
+    return feature_support(pair_.a, fa, pair_.b, fb, d);
   };
   // In the frame every point lies in the unit ball, so 2 bounds every difference.
   return witness_of(pair_, wolfe_min_norm(oracle, start, 2, max_iterations_));
@@ -120,8 +70,8 @@ void DistanceFinish::from(const Vector3& n, int& hint_a, int& hint_b, BestBounds
   Buffers& buf = buffers();
   std::vector<int>& fa = buf.feature_a;
   std::vector<int>& fb = buf.feature_b;
-  feature(pair_.a, n, hint_a, slack_, buf.visited_a, fa);
-  feature(pair_.b, -n, hint_b, slack_, buf.visited_b, fb);
+  feature(pair_.a, n, hint_a, fa);
+  feature(pair_.b, -n, hint_b, fb);
   // Each subproblem grows around the previous one's nearest points, so Wolfe starts there.
   Vector3 start = n;
   for (int step = 0; step < kFinishSteps; ++step) {
@@ -135,9 +85,9 @@ void DistanceFinish::from(const Vector3& n, int& hint_a, int& hint_b, BestBounds
     ++evaluations_;
     bounds.offer_lower(next, separation(pair_.a, pair_.b, next, ia, ib));
     if (bounds.reached(pair_, goal)) return;
-    feature(pair_.a, next, ia, slack_, buf.visited_a, buf.grown);
+    feature(pair_.a, next, ia, buf.grown);
     const bool grew_a = merge(fa, buf.grown);
-    feature(pair_.b, -next, ib, slack_, buf.visited_b, buf.grown);
+    feature(pair_.b, -next, ib, buf.grown);
     const bool grew_b = merge(fb, buf.grown);
     if (!grew_a && !grew_b) return;  // rounding: nothing left to add
   }

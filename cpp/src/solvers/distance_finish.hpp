@@ -30,8 +30,7 @@ class DistanceFinish {
   long evaluations() const { return evaluations_; }
 
  private:
-  void feature(const FramedBody& body, const Vector3& n, int& hint, Scalar slack,
-               std::vector<char>& visited, std::vector<int>& found);
+  void feature(const FramedBody& body, const Vector3& n, int& hint, std::vector<int>& found);
   Witness nearest_between(const std::vector<int>& fa, const std::vector<int>& fb,
                           const Vector3& start);
 

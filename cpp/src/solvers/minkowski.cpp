@@ -40,6 +40,34 @@ PlaneSide side_of_origin(const Vector3& p, const Vector3& q, const Vector3& r) {
 
 }  // namespace
 
+void supporting_feature(const FramedBody& body, const Vector3& n, int top, Scalar slack,
+                        std::vector<char>& visited, std::vector<int>& found) {
+  const Scalar floor = body.height(top, n) - slack;
+  found.clear();
+  const Hull& h = body.hull();
+  const bool on_graph = h.neighbour_offsets[top] < h.neighbour_offsets[top + 1];
+  if (body.size() <= kHillClimbingThreshold || !on_graph) {
+    for (int i = 0; i < body.size(); ++i) {
+      if (body.height(i, n) >= floor) found.push_back(i);
+    }
+    return;
+  }
+  if (visited.size() < static_cast<std::size_t>(body.size())) visited.resize(body.size(), 0);
+  found.push_back(top);
+  visited[top] = 1;
+  for (std::size_t k = 0; k < found.size(); ++k) {
+    const int i = found[k];
+    for (int e = h.neighbour_offsets[i]; e < h.neighbour_offsets[i + 1]; ++e) {
+      const int j = h.neighbours[e];
+      if (!visited[j] && body.height(j, n) >= floor) {
+        visited[j] = 1;
+        found.push_back(j);
+      }
+    }
+  }
+  for (int i : found) visited[i] = 0;
+}
+
 bool encloses_origin(const std::array<Vector3, 4>& points, std::array<Scalar, 4>& weights) {
   // The origin is inside when it is on the inner side of each face, the side of the fourth point;
   // its barycentric coordinate for that point is the ratio of their two sides.

@@ -2,6 +2,8 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
+#include <vector>
 
 #include "../geometry/framed_body.hpp"
 #include "wolfe_min_norm.hpp"
@@ -48,6 +50,39 @@ inline Scalar exact_separation(const FramedBody& a, const FramedBody& b, const V
   int ia = 0;
   int ib = 0;
   return exact_separation(a, b, n, ia, ib);
+}
+
+/// The points of `body` within `slack` below its supporting plane along `n`, whose highest point
+/// is `top`, into `found`: a scan for small bodies (in index order), a flood over the hull's edge
+/// graph from `top` for large ones (the points above a plane span a connected subgraph of a
+/// polytope's graph). `visited` is all zero between calls, and grown to the body's size here.
+void supporting_feature(const FramedBody& body, const Vector3& n, int top, Scalar slack,
+                        std::vector<char>& visited, std::vector<int>& found);
+
+/// The support oracle of `conv(b's points fb) - conv(a's points fa)`: the difference that
+/// minimises `d . (y - x)` over the two features (the first one on ties), with its indices.
+inline OraclePoint feature_support(const FramedBody& a, const std::vector<int>& fa,
+                                   const FramedBody& b, const std::vector<int>& fb,
+                                   const Vector3& d) {
+  int i = fa[0];
+  Scalar highest = a.height(i, d);
+  for (std::size_t k = 1; k < fa.size(); ++k) {
+    const Scalar h = a.height(fa[k], d);
+    if (h > highest) {
+      highest = h;
+      i = fa[k];
+    }
+  }
+  int j = fb[0];
+  Scalar lowest = b.height(j, d);
+  for (std::size_t k = 1; k < fb.size(); ++k) {
+    const Scalar h = b.height(fb[k], d);
+    if (h < lowest) {
+      lowest = h;
+      j = fb[k];
+    }
+  }
+  return {b.vertex(j) - a.vertex(i), i, j};
 }
 
 /// True when the origin lies inside the tetrahedron of `points` (each of norm at most ~2) by

@@ -209,39 +209,6 @@ class Solver {
     if (bound.upper < -bound.flat_slack) set_upper(bound.upper, PenetrationProof::candidate_axes);
   }
 
-  // Points of `body` within `slack` of the top along n (whose top point is `top`): a scan for
-  // small bodies, a flood over the hull's edge graph for large ones (the points above a plane
-  // span a connected subgraph of a polytope's graph).
-  void feature(const FramedBody& body, const Vector3& n, int top, Scalar slack,
-               std::vector<int>& found) {
-    const Scalar floor = body.height(top, n) - slack;
-    found.clear();
-    const Hull& h = body.hull();
-    const bool on_graph = h.neighbour_offsets[top] < h.neighbour_offsets[top + 1];
-    if (body.size() <= kHillClimbingThreshold || !on_graph) {
-      for (int i = 0; i < body.size(); ++i) {
-        if (body.height(i, n) >= floor) found.push_back(i);
-      }
-      return;
-    }
-    if (ws_.visited.size() < static_cast<std::size_t>(body.size())) {
-      ws_.visited.resize(body.size(), 0);
-    }
-    found.push_back(top);
-    ws_.visited[top] = 1;
-    for (std::size_t k = 0; k < found.size(); ++k) {
-      const int i = found[k];
-      for (int e = h.neighbour_offsets[i]; e < h.neighbour_offsets[i + 1]; ++e) {
-        const int j = h.neighbours[e];
-        if (!ws_.visited[j] && body.height(j, n) >= floor) {
-          ws_.visited[j] = 1;
-          found.push_back(j);
-        }
-      }
-    }
-    for (int i : found) ws_.visited[i] = 0;
-  }
-
   // Witnesses: on A's supporting feature along the normal and B's along its opposite, the pair
   // whose difference is nearest to separation * normal (Wolfe's algorithm on the features'
   // difference shifted by it). At an optimal normal the foot of the origin on the facet of
@@ -261,19 +228,13 @@ class Solver {
 
   void witnesses_within(Scalar slack, PenetrationBounds& r) {
     const Vector3& n = normal_;
-    feature(a_, n, top_a_, slack, ws_.feature_a);
-    feature(b_, -n, top_b_, slack, ws_.feature_b);
+    supporting_feature(a_, n, top_a_, slack, ws_.visited, ws_.feature_a);
+    supporting_feature(b_, -n, top_b_, slack, ws_.visited, ws_.feature_b);
     const Vector3 shift = separation_ * n;
     const auto oracle = [&](const Vector3& d) {
-      int i = ws_.feature_a.front();
-      for (int k : ws_.feature_a) {
-        if (a_.height(k, d) > a_.height(i, d)) i = k;
-      }
-      int j = ws_.feature_b.front();
-      for (int k : ws_.feature_b) {
-        if (b_.height(k, d) < b_.height(j, d)) j = k;
-      }
-      return OraclePoint{b_.vertex(j) - a_.vertex(i) - shift, i, j};
+      OraclePoint point = feature_support(a_, ws_.feature_a, b_, ws_.feature_b, d);
+      point.p -= shift;
+      return point;
     };
     const MinNormPoint m = wolfe_min_norm(oracle, n, reach(), kWitnessIterations);
     Scalar total = 0;
