@@ -58,15 +58,7 @@ BatchSettings settings_of(const py::object& threads, const py::object& first_ind
   BatchSettings settings;
   settings.escalate = escalate;
   if (!threads.is_none()) {
-    if (PyBool_Check(threads.ptr()) || !PyIndex_Check(threads.ptr())) {
-      throw py::type_error("threads must be an integer or None, got " + type_name(threads));
-    }
-    const long long count = py::int_(threads).cast<long long>();
-    if (count < 1 || count > kMaxThreads) {
-      throw py::value_error("threads must be in [1, " + std::to_string(kMaxThreads) +
-                            "] (None: one per hardware thread), got " + std::to_string(count));
-    }
-    settings.threads = static_cast<int>(count);
+    settings.threads = thread_count(threads);
   }
   if (PyBool_Check(first_index.ptr()) || !PyIndex_Check(first_index.ptr()) ||
       py::int_(first_index) < py::int_(0)) {

@@ -89,13 +89,14 @@ Examples
       .def("__len__", &ConvexPolyhedron::size)
       .def(
           "support",
-          [](const ConvexPolyhedron& body, const Vector3& direction) {
+          [](const ConvexPolyhedron& body, const py::object& direction) {
             return Vector3(body.support(finite_vector3(direction, "direction")));
           },
-          py::arg("direction"), "A point of the body farthest along ``direction``.")
+          py::arg("direction"),
+          "A point of the body farthest along ``direction`` (3 real numbers).")
       .def(
           "support_index",
-          [](const ConvexPolyhedron& body, const Vector3& direction) {
+          [](const ConvexPolyhedron& body, const py::object& direction) {
             return body.support_index(finite_vector3(direction, "direction"));
           },
           py::arg("direction"), "Index of the point farthest along ``direction`` (first on ties).")
@@ -112,8 +113,8 @@ Examples
 
   m.def(
       "as_polyhedron",
-      [](const py::object& body, const std::string& name) {
-        return BodyArgument(body, name.c_str()).get();
+      [](const py::object& body, const py::object& name) {
+        return BodyArgument(body, to_name(name, "name").c_str()).get();
       },
       py::arg("body"), py::arg("name") = "body",
       R"doc(

@@ -10,7 +10,8 @@ namespace swarmcollide::bindings {
 void bind_problem(py::module_& m) {
   m.def(
       "objective",
-      [](const py::object& a, const py::object& b, const VectorX& lambda, const VectorX& delta) {
+      [](const py::object& a, const py::object& b, const py::object& lambda,
+         const py::object& delta) {
         return objective(BodyArgument(a, "a").get(), BodyArgument(b, "b").get(),
                          finite_weights(lambda, "weights_a"), finite_weights(delta, "weights_b"));
       },
@@ -21,7 +22,7 @@ The weights need not be feasible; see ``constraint_violation`` and ``is_feasible
 )doc");
   m.def(
       "constraint_violation",
-      [](const VectorX& lambda, const VectorX& delta) {
+      [](const py::object& lambda, const py::object& delta) {
         return constraint_violation(finite_weights(lambda, "weights_a"),
                                     finite_weights(delta, "weights_b"));
       },
@@ -29,7 +30,7 @@ The weights need not be feasible; see ``constraint_violation`` and ``is_feasible
       "Constraint violation (6): ``(sum(weights_a) - 1)**2 + (sum(weights_b) - 1)**2``.");
   m.def(
       "is_feasible",
-      [](const VectorX& lambda, const VectorX& delta, Scalar tolerance) {
+      [](const py::object& lambda, const py::object& delta, Scalar tolerance) {
         return is_feasible(finite_weights(lambda, "weights_a"), finite_weights(delta, "weights_b"),
                            tolerance);
       },
@@ -37,8 +38,9 @@ The weights need not be feasible; see ``constraint_violation`` and ``is_feasible
       "True when all weights lie in [0, 1] and the violation (6) is at most ``tolerance``.");
   m.def(
       "separation",
-      [](const py::object& a, const py::object& b, const Vector3& direction) {
-        return separation(BodyArgument(a, "a").get(), BodyArgument(b, "b").get(), direction);
+      [](const py::object& a, const py::object& b, const py::object& direction) {
+        return separation(BodyArgument(a, "a").get(), BodyArgument(b, "b").get(),
+                          finite_vector3(direction, "direction"));
       },
       py::arg("a"), py::arg("b"), py::arg("direction"), R"doc(
 Separation of A and B along ``direction``: ``min_j n.y_j - max_i n.x_i`` for the unit ``n``.
@@ -56,7 +58,7 @@ Examples
 )doc");
   m.def(
       "project_onto_simplex",
-      [](const VectorX& weights) {
+      [](const py::object& weights) {
         return VectorX(project_onto_simplex(finite_weights(weights, "weights")));
       },
       py::arg("weights"), "Euclidean projection onto the probability simplex.");

@@ -142,10 +142,10 @@ py::object on_pair(const py::handle& a, const py::handle& b, const py::handle& p
 }  // namespace
 
 // Types are checked here, values by the method table (which names the valid range).
-QueryOptions make_options(const std::string& method, const py::handle& tolerance,
+QueryOptions make_options(const py::handle& method, const py::handle& tolerance,
                           const py::handle& seed, const py::kwargs& parameters) {
   QueryOptions options;
-  options.method = method_from_name(method);
+  options.method = method_from_name(to_name(method, "method"));
   if (!is_real(tolerance)) {
     throw py::type_error("tolerance must be a real number, got " + type_name(tolerance));
   }
@@ -254,7 +254,7 @@ the unit of length. ``tolerance`` is relative to the pair's size (the diameter o
 both bodies): it is the precision of every answer and the distance below which bodies collide.
 )doc");
   query
-      .def(py::init([](const std::string& method, const py::object& tolerance,
+      .def(py::init([](const py::object& method, const py::object& tolerance,
                        const py::object& seed, const py::kwargs& parameters) {
              return Query(make_options(method, tolerance, seed, parameters));
            }),

@@ -60,8 +60,10 @@ std::vector<std::pair<BodyId, BodyId>> to_id_pairs(const py::handle& pairs, cons
   return result;
 }
 
-// One body (a polyhedron or (n, 3) points) or many (a sequence of them, or an (m, n, 3) array).
-std::vector<ConvexPolyhedron> to_bodies(const py::handle& bodies) {
+// One body (a polyhedron, (n, 3) points or a mesh such as a trimesh.Trimesh: its vertices) or
+// many (a sequence of them, or an (m, n, 3) array).
+std::vector<ConvexPolyhedron> to_bodies(const py::handle& given) {
+  const py::object bodies = points_of(given);
   std::vector<ConvexPolyhedron> result;
   if (py::isinstance<ConvexPolyhedron>(bodies)) {
     result.push_back(bodies.cast<ConvexPolyhedron>());
@@ -311,26 +313,14 @@ cached_pairs, cache_bytes : int
   m.def("broadphases", &broadphase_names, "The names of the broadphase managers a Scene can use.");
 
   py::class_<Scene>(m, "Scene", kSceneDoc)
-      .def(py::init([](const std::string& method, const std::string& broadphase,
+      .def(py::init([](const py::object& method, const py::object& broadphase,
                        const py::object& threads, const py::object& tolerance,
                        const py::object& seed, bool warm_start, bool escalate,
                        const py::kwargs& parameters) {
              SceneOptions options;
              options.query = make_options(method, tolerance, seed, parameters);
-             options.broadphase = broadphase_from_name(broadphase);
-             if (!threads.is_none()) {
-               if (PyBool_Check(threads.ptr()) || !PyIndex_Check(threads.ptr())) {
-                 throw py::type_error("threads must be an integer or None, got " +
-                                      type_name(threads));
-               }
-               const long long count = py::int_(threads).cast<long long>();
-               if (count < 1 || count > kMaxThreads) {
-                 throw py::value_error("threads must be in [1, " + std::to_string(kMaxThreads) +
-                                       "] (None: one per hardware thread), got " +
-                                       std::to_string(count));
-               }
-               options.threads = static_cast<int>(count);
-             }
+             options.broadphase = broadphase_from_name(to_name(broadphase, "broadphase"));
+             if (!threads.is_none()) options.threads = thread_count(threads);
              options.warm_start = warm_start;
              options.escalate = escalate;
              return Scene(options);

@@ -3,6 +3,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "swarmcollide/queries/batch.hpp"
+
 namespace swarmcollide::bindings {
 
 namespace {
@@ -46,14 +48,63 @@ py::array_t<Scalar, py::array::c_style | py::array::forcecast> real_array(
   return py::array_t<Scalar, py::array::c_style | py::array::forcecast>::ensure(array);
 }
 
+// A tuple or list of `length` items.
+bool is_sequence_of(const py::handle& value, std::size_t length) {
+  return (PyTuple_Check(value.ptr()) || PyList_Check(value.ptr())) &&
+         static_cast<std::size_t>(PyObject_Length(value.ptr())) == length;
+}
+
+// A rotation object from another library (SciPy's Rotation: anything with an `as_matrix()`
+// method that is not itself an array or a sequence), or nothing.
+std::optional<py::object> rotation_matrices(const py::handle& rotation) {
+  if (py::isinstance<py::array>(rotation) || PyList_Check(rotation.ptr()) ||
+      PyTuple_Check(rotation.ptr()) || !py::hasattr(rotation, "as_matrix")) {
+    return std::nullopt;
+  }
+  return rotation.attr("as_matrix")();
+}
+
+// A pose argument given as a rotation object alone stands for the pair (rotation, no
+// translation); a pair whose rotation is a rotation object, for the pair of its matrices.
+py::object with_rotation_matrices(const py::handle& pose) {
+  if (const auto matrices = rotation_matrices(pose)) {
+    // The translations' shape: the rotations' without their last axis, (3,) or (m, 3).
+    const py::array rotations = py::module_::import("numpy").attr("asarray")(*matrices);
+    py::list shape;
+    for (py::ssize_t axis = 0; axis + 1 < rotations.ndim(); ++axis) shape.append(rotations.shape(axis));
+    return py::make_tuple(rotations, py::module_::import("numpy").attr("zeros")(py::tuple(shape)));
+  }
+  if (is_sequence_of(pose, 2)) {
+    const py::sequence parts = py::reinterpret_borrow<py::sequence>(pose);
+    if (const auto matrices = rotation_matrices(parts[0])) {
+      return py::make_tuple(*matrices, parts[1]);
+    }
+  }
+  return py::reinterpret_borrow<py::object>(pose);
+}
+
 }  // namespace
 
 std::string type_name(const py::handle& object) {
   return std::string(py::str(py::type::handle_of(object).attr("__name__")));
 }
 
+// A mesh from another library (trimesh's Trimesh or PointCloud: anything with a `vertices`
+// attribute that is not itself an array, a sequence of points or a ConvexPolyhedron) stands for
+// its vertices; their convex hull is the body, as for the points of any array. Its faces are not
+// needed: the hull of the vertices is the hull of the mesh. Arrays and sequences are told apart
+// first, so that the usual arguments never pay for the attribute lookup.
+py::object points_of(const py::handle& body) {
+  if (!py::isinstance<py::array>(body) && !PyList_Check(body.ptr()) &&
+      !PyTuple_Check(body.ptr()) && !py::isinstance<ConvexPolyhedron>(body) &&
+      py::hasattr(body, "vertices")) {
+    return body.attr("vertices");
+  }
+  return py::reinterpret_borrow<py::object>(body);
+}
+
 VertexMatrix to_vertex_matrix(const py::handle& points, const char* name) {
-  const auto doubles = real_array(points, {-1, 3}, name, "an (n, 3) array of numbers");
+  const auto doubles = real_array(points_of(points), {-1, 3}, name, "an (n, 3) array of numbers");
   if (doubles.shape(0) == 0) {
     throw py::value_error(std::string(name) + " is empty: a polyhedron needs at least one point");
   }
@@ -103,36 +154,56 @@ CompoundArgument::CompoundArgument(const py::handle& body, const char* name) {
   body_ = &*owned_;
 }
 
-Pose to_pose(const py::handle& pose, const char* name) {
+namespace {
+
+using RowMatrix3 = Eigen::Matrix<Scalar, 3, 3, Eigen::RowMajor>;
+using RowMatrix34 = Eigen::Matrix<Scalar, 3, 4, Eigen::RowMajor>;
+
+// The pose of a transform's `rows` rows, row-major: a (4, 4) homogeneous transform, whose last
+// row must be [0, 0, 0, 1], or its top (3, 4) rows [R | t]. `at` names it in messages.
+Pose from_rows(const Scalar* data, py::ssize_t rows, const std::string& at) {
+  if (rows == 4 && !(Eigen::Map<const Eigen::RowVector4d>(data + 12) ==
+                     Eigen::RowVector4d(0, 0, 0, 1))) {
+    throw py::value_error(at +
+                          " must be a homogeneous rigid transform: its last row must be "
+                          "[0, 0, 0, 1]");
+  }
+  const Eigen::Map<const RowMatrix34> top(data);
+  Pose pose;
+  pose.rotation = top.leftCols<3>();
+  pose.translation = top.col(3);
+  return pose;
+}
+
+}  // namespace
+
+Pose to_pose(const py::handle& given, const char* name) {
   Pose result;
-  if (pose.is_none()) return result;
+  if (given.is_none()) return result;
   const std::string arg(name);
-  if (py::isinstance<py::tuple>(pose) || py::isinstance<py::list>(pose)) {
+  const py::object pose = with_rotation_matrices(given);
+  const std::string forms =
+      "a (4, 4) or (3, 4) rigid transform or a pair (rotation, translation)";
+  if (is_sequence_of(pose, 2)) {
     const py::sequence parts = py::reinterpret_borrow<py::sequence>(pose);
-    if (parts.size() != 2) {
-      throw py::value_error(arg +
-                            " must be a (4, 4) matrix or a pair (rotation, translation), "
-                            "got a sequence of " +
-                            std::to_string(parts.size()) + " items");
-    }
     const auto rotation =
         real_array(parts[0], {3, 3}, arg + "'s rotation", "a (3, 3) rotation matrix");
     const auto translation =
         real_array(parts[1], {3}, arg + "'s translation", "a (3,) translation");
-    result.rotation =
-        Eigen::Map<const Eigen::Matrix<Scalar, 3, 3, Eigen::RowMajor>>(rotation.data());
+    result.rotation = Eigen::Map<const RowMatrix3>(rotation.data());
     result.translation = Eigen::Map<const Vector3>(translation.data());
   } else {
-    const auto matrix = real_array(
-        pose, {4, 4}, arg, "a (4, 4) homogeneous transform or a pair (rotation, translation)");
-    const Eigen::Map<const Eigen::Matrix<Scalar, 4, 4, Eigen::RowMajor>> m(matrix.data());
-    if (!(m.row(3) == Eigen::RowVector4d(0, 0, 0, 1))) {
-      throw py::value_error(arg +
-                            " must be a homogeneous rigid transform: its last row must be "
-                            "[0, 0, 0, 1]");
+    // A sequence of 3 or 4 rows is a transform written as lists; no other length can be one.
+    if ((PyTuple_Check(pose.ptr()) || PyList_Check(pose.ptr())) && !is_sequence_of(pose, 3) &&
+        !is_sequence_of(pose, 4)) {
+      throw py::value_error(arg + " must be " + forms + ", got a sequence of " +
+                            std::to_string(py::len(pose)) + " items");
     }
-    result.rotation = m.topLeftCorner<3, 3>();
-    result.translation = m.topRightCorner<3, 1>();
+    const auto matrix = real_array(pose, {-1, 4}, arg, forms);
+    if (matrix.shape(0) != 3 && matrix.shape(0) != 4) {
+      throw py::value_error(arg + " must be " + forms + ", got shape " + shape_of(matrix));
+    }
+    result = from_rows(matrix.data(), matrix.shape(0), arg);
   }
   try {
     validate_pose(result, name);
@@ -144,32 +215,35 @@ Pose to_pose(const py::handle& pose, const char* name) {
 
 namespace {
 
-using RowMatrix3 = Eigen::Matrix<Scalar, 3, 3, Eigen::RowMajor>;
-using RowMatrix4 = Eigen::Matrix<Scalar, 4, 4, Eigen::RowMajor>;
-
 // A pair (rotations, translations) rather than one array of transforms.
 bool is_pose_pair(const py::handle& poses) {
-  if (!py::isinstance<py::tuple>(poses) && !py::isinstance<py::list>(poses)) return false;
+  if (!is_sequence_of(poses, 2)) return false;
   const py::sequence parts = py::reinterpret_borrow<py::sequence>(poses);
-  if (parts.size() != 2) return false;
-  const py::array first = py::module_::import("numpy").attr("asarray")(parts[0]);
+  py::array first;
+  try {
+    first = py::module_::import("numpy").attr("asarray")(parts[0]);
+  } catch (py::error_already_set&) {
+    return false;  // ragged: not an array of rotations, and the transforms' message says so
+  }
   return first.ndim() >= 2 && first.shape(first.ndim() - 1) == 3 &&
          first.shape(first.ndim() - 2) == 3;
 }
 
 }  // namespace
 
-std::vector<Pose> to_poses(const py::handle& poses, std::size_t count, const char* name) {
+std::vector<Pose> to_poses(const py::handle& given, std::size_t count, const char* name) {
   std::vector<Pose> result;
-  if (poses.is_none()) return result;
+  if (given.is_none()) return result;
   const std::string arg(name);
+  const py::object poses = with_rotation_matrices(given);
   const auto n = static_cast<py::ssize_t>(count);
   const std::string shapes =
       count == 1
-          ? "a (4, 4) transform, a (1, 4, 4) array of them or a pair "
+          ? "a (4, 4) or (3, 4) transform, a (1, 4, 4) or (1, 3, 4) array of them or a pair "
             "(rotation, translation)"
-          : "a (" + std::to_string(count) + ", 4, 4) array of transforms or a pair (rotations (" +
-                std::to_string(count) + ", 3, 3), translations (" + std::to_string(count) + ", 3))";
+          : "a (" + std::to_string(count) + ", 4, 4) or (" + std::to_string(count) +
+                ", 3, 4) array of transforms or a pair (rotations (" + std::to_string(count) +
+                ", 3, 3), translations (" + std::to_string(count) + ", 3))";
   result.resize(count);
   if (is_pose_pair(poses)) {
     const py::sequence parts = py::reinterpret_borrow<py::sequence>(poses);
@@ -186,34 +260,62 @@ std::vector<Pose> to_poses(const py::handle& poses, std::size_t count, const cha
       result[i].translation = Eigen::Map<const Vector3>(translations.data() + 3 * i);
     }
   } else {
-    const py::array raw = py::module_::import("numpy").attr("asarray")(poses);
+    py::array raw;
+    try {
+      raw = py::module_::import("numpy").attr("asarray")(poses);
+    } catch (py::error_already_set& error) {
+      throw py::value_error(arg + " must be " + shapes + ": " + error.what());
+    }
     const bool single = count == 1 && raw.ndim() == 2;
     const auto matrices =
-        single ? real_array(poses, {4, 4}, arg, shapes) : real_array(poses, {n, 4, 4}, arg, shapes);
+        single ? real_array(poses, {-1, 4}, arg, shapes) : real_array(poses, {n, -1, 4}, arg, shapes);
+    const py::ssize_t rows = matrices.shape(matrices.ndim() - 2);
+    if (rows != 3 && rows != 4) {
+      throw py::value_error(arg + " must be " + shapes + ", got shape " + shape_of(matrices));
+    }
     for (std::size_t i = 0; i < count; ++i) {
-      const Eigen::Map<const RowMatrix4> m(matrices.data() + 16 * i);
-      if (!(m.row(3) == Eigen::RowVector4d(0, 0, 0, 1))) {
-        throw py::value_error(arg + "[" + std::to_string(i) +
-                              "] must be a homogeneous rigid transform: its last row must be "
-                              "[0, 0, 0, 1]");
-      }
-      result[i].rotation = m.topLeftCorner<3, 3>();
-      result[i].translation = m.topRightCorner<3, 1>();
+      result[i] = from_rows(matrices.data() + rows * 4 * i, rows,
+                            arg + "[" + std::to_string(i) + "]");
     }
   }
   return result;
 }
 
-Vector3 finite_vector3(const Vector3& vector, const char* name) {
-  if (!vector.allFinite()) throw py::value_error(std::string(name) + " must be finite");
-  return vector;
+Vector3 finite_vector3(const py::handle& vector, const char* name) {
+  const auto values = real_array(vector, {3}, name, "a 3-vector of real numbers");
+  const Vector3 result = Eigen::Map<const Vector3>(values.data());
+  if (!result.allFinite()) throw py::value_error(std::string(name) + " must be finite");
+  return result;
 }
 
-const VectorX& finite_weights(const VectorX& weights, const char* name) {
-  if (!weights.allFinite()) {
+VectorX finite_weights(const py::handle& weights, const char* name) {
+  const auto values = real_array(weights, {-1}, name, "a 1-D array of real numbers");
+  const VectorX result = Eigen::Map<const VectorX>(values.data(), values.shape(0));
+  if (!result.allFinite()) {
     throw py::value_error(std::string(name) + " has a NaN or infinite weight");
   }
-  return weights;
+  return result;
+}
+
+int thread_count(const py::handle& threads) {
+  if (PyBool_Check(threads.ptr()) || !PyIndex_Check(threads.ptr())) {
+    throw py::type_error("threads must be an integer or None, got " + type_name(threads));
+  }
+  // Compared as Python integers: 2**63 threads is out of range, not an overflow.
+  const py::int_ count = py::reinterpret_steal<py::int_>(PyNumber_Index(threads.ptr()));
+  if (count < py::int_(1) || count > py::int_(kMaxThreads)) {
+    throw py::value_error("threads must be in [1, " + std::to_string(kMaxThreads) +
+                          "] (None: one per hardware thread), got " + std::string(py::str(count)));
+  }
+  return count.cast<int>();
+}
+
+std::string to_name(const py::handle& value, const char* name) {
+  // pybind11 would take bytes for a std::string; a name is text.
+  if (!py::isinstance<py::str>(value)) {
+    throw py::type_error(std::string(name) + " must be a string, got " + type_name(value));
+  }
+  return value.cast<std::string>();
 }
 
 }  // namespace swarmcollide::bindings

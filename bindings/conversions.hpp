@@ -61,11 +61,24 @@ Pose to_pose(const py::handle& pose, const char* name);
 /// batches), which names it alike and checks it once.
 std::vector<Pose> to_poses(const py::handle& poses, std::size_t count, const char* name);
 
-/// A 3-vector that must be finite; ValueError naming `name` otherwise.
-Vector3 finite_vector3(const Vector3& vector, const char* name);
+/// A 3-vector of real, finite numbers; TypeError (complex numbers, text, objects) or ValueError
+/// (a shape other than (3,), NaN or infinity) naming `name` otherwise.
+Vector3 finite_vector3(const py::handle& vector, const char* name);
 
-/// A 1-D array of finite weights; ValueError naming `name` otherwise.
-const VectorX& finite_weights(const VectorX& weights, const char* name);
+/// A 1-D array of real, finite weights; TypeError or ValueError naming `name` otherwise.
+VectorX finite_weights(const py::handle& weights, const char* name);
+
+/// A `threads` argument other than None: an integer in [1, kMaxThreads]; TypeError for another
+/// type (bool included), ValueError for a value out of range however large.
+int thread_count(const py::handle& threads);
+
+/// A name argument (a method, a broadphase): TypeError naming `name` for anything but a str
+/// (bytes included, which pybind11 would otherwise take for a std::string).
+std::string to_name(const py::handle& value, const char* name);
+
+/// `body`'s points when it is a mesh from another library (an object with a `vertices`
+/// attribute, such as trimesh's Trimesh, that is not an array or a sequence); else `body`.
+py::object points_of(const py::handle& body);
 
 /// The name of the type of `object`, for messages.
 std::string type_name(const py::handle& object);

@@ -11,8 +11,9 @@ namespace swarmcollide::bindings {
 namespace py = pybind11;
 
 /// Options from the keyword arguments of `Query(...)` (and `Scene(...)`): TypeError for a value
-/// of the wrong type, ValueError for an unknown method or parameter or a value out of range.
-QueryOptions make_options(const std::string& method, const py::handle& tolerance,
+/// of the wrong type (a method that is not a str included), ValueError for an unknown method or
+/// parameter or a value out of range.
+QueryOptions make_options(const py::handle& method, const py::handle& tolerance,
                           const py::handle& seed, const py::kwargs& parameters);
 
 /// Binds DistanceResult, before CompoundResult (its subclass) and the queries returning either.

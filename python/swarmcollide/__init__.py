@@ -56,6 +56,7 @@ from .mesh import (
     measure_deviation,
     mesh_hash,
 )
+from .poses import QUATERNION_ORDERS, pose_from_quaternion
 from .queries import (
     DEFAULT_TOLERANCE,
     METHODS,
@@ -105,6 +106,7 @@ __all__ = [
     "PolyhedronLike",
     "PoseLike",
     "PosesLike",
+    "QUATERNION_ORDERS",
     "Query",
     "Scene",
     "SceneResult",
@@ -124,6 +126,7 @@ __all__ = [
     "mesh_hash",
     "objective",
     "pair_seed",
+    "pose_from_quaternion",
     "project_onto_simplex",
     "query",
     "rank_adaptive_coefficients",

@@ -272,11 +272,11 @@ class ConvexPolyhedron:
         """
         Convex hull through Qhull (an exact planar hull for flat bodies).
         """
-    def support(self, direction: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"]) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+    def support(self, direction: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
         """
-        A point of the body farthest along ``direction``.
+        A point of the body farthest along ``direction`` (3 real numbers).
         """
-    def support_index(self, direction: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"]) -> int:
+    def support_index(self, direction: typing.Any) -> int:
         """
         Index of the point farthest along ``direction`` (first on ties).
         """
@@ -468,7 +468,7 @@ class Query:
     the unit of length. ``tolerance`` is relative to the pair's size (the diameter of a ball around
     both bodies): it is the precision of every answer and the distance below which bodies collide.
     """
-    def __init__(self, method: str = 'dual', tolerance: typing.Any = 1e-09, seed: typing.Any = 0, **kwargs) -> None:
+    def __init__(self, method: typing.Any = 'dual', tolerance: typing.Any = 1e-09, seed: typing.Any = 0, **kwargs) -> None:
         ...
     def __repr__(self) -> str:
         ...
@@ -582,7 +582,7 @@ class Scene:
     """
     def __contains__(self, arg0: typing.Any) -> bool:
         ...
-    def __init__(self, method: str = 'dual', broadphase: str = 'dynamic_aabb_tree', threads: typing.Any = None, tolerance: typing.Any = 1e-09, seed: typing.Any = 0, warm_start: bool = True, escalate: bool = True, **kwargs) -> None:
+    def __init__(self, method: typing.Any = 'dual', broadphase: typing.Any = 'dynamic_aabb_tree', threads: typing.Any = None, tolerance: typing.Any = 1e-09, seed: typing.Any = 0, warm_start: bool = True, escalate: bool = True, **kwargs) -> None:
         ...
     def __len__(self) -> int:
         ...
@@ -783,7 +783,7 @@ class SceneStats:
     @property
     def warm_rejected(self) -> int:
         ...
-def as_polyhedron(body: typing.Any, name: str = 'body') -> ConvexPolyhedron:
+def as_polyhedron(body: typing.Any, name: typing.Any = 'body') -> ConvexPolyhedron:
     """
     Return ``body`` as a ConvexPolyhedron, building one from ``(n, 3)`` points if needed.
     
@@ -793,11 +793,11 @@ def broadphases() -> list[str]:
     """
     The names of the broadphase managers a Scene can use.
     """
-def constraint_violation(weights_a: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"], weights_b: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"]) -> float:
+def constraint_violation(weights_a: typing.Any, weights_b: typing.Any) -> float:
     """
     Constraint violation (6): ``(sum(weights_a) - 1)**2 + (sum(weights_b) - 1)**2``.
     """
-def is_feasible(weights_a: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"], weights_b: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"], tolerance: typing.SupportsFloat | typing.SupportsIndex = 1e-10) -> bool:
+def is_feasible(weights_a: typing.Any, weights_b: typing.Any, tolerance: typing.SupportsFloat | typing.SupportsIndex = 1e-10) -> bool:
     """
     True when all weights lie in [0, 1] and the violation (6) is at most ``tolerance``.
     """
@@ -809,7 +809,7 @@ def method_table() -> list:
     """
     Every method as a dictionary: name, summary, queries, always_certified, parameters.
     """
-def objective(a: typing.Any, b: typing.Any, weights_a: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"], weights_b: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"]) -> float:
+def objective(a: typing.Any, b: typing.Any, weights_a: typing.Any, weights_b: typing.Any) -> float:
     """
     Objective (5): ``|| sum_j weights_b[j] y_j - sum_i weights_a[i] x_i ||``.
     
@@ -819,7 +819,7 @@ def pair_seed(seed: typing.SupportsInt | typing.SupportsIndex, index: typing.Sup
     """
     The seed of the pair with global index ``index`` in a batch seeded with ``seed``.
     """
-def project_onto_simplex(weights: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"]) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+def project_onto_simplex(weights: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
     """
     Euclidean projection onto the probability simplex.
     """
@@ -827,7 +827,7 @@ def rank_adaptive_coefficients(rank: typing.SupportsInt | typing.SupportsIndex, 
     """
     (8)-(9): ``(w, c1, c2)`` of the particle ranked ``rank`` (1 = best).
     """
-def separation(a: typing.Any, b: typing.Any, direction: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"]) -> float:
+def separation(a: typing.Any, b: typing.Any, direction: typing.Any) -> float:
     """
     Separation of A and B along ``direction``: ``min_j n.y_j - max_i n.x_i`` for the unit ``n``.
     

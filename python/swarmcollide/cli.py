@@ -4,14 +4,17 @@ mesh's convex parts; ``swarmcollide paper`` reproduces the paper's Section IV; `
 scene`` runs a scene of moving bodies and prints each frame.
 
 Exit status: 0 on success, 1 when an input cannot be used (a missing or unreadable file, a mesh
-that is not a 3-D solid, a query the method cannot answer), 2 for wrong arguments."""
+that is not a 3-D solid, a query the method cannot answer), 2 for wrong arguments (an unknown
+method, a value out of range, a pose that is not rigid, a picture into a folder that does not
+exist). Either way one line on standard error says what is wrong; never a traceback."""
 
 from __future__ import annotations
 
 import argparse
 import json
 import sys
-from typing import Optional, Sequence
+from pathlib import Path
+from typing import Callable, Optional, Sequence
 
 import numpy as np
 
@@ -53,6 +56,38 @@ def _pose(text: str) -> np.ndarray:
     return matrix
 
 
+def _integer(low: int, high: Optional[int] = None) -> Callable[[str], int]:
+    """An argparse type: an integer in [low, high] (no upper end when high is None)."""
+    span = f"at least {low}" if high is None else f"in [{low}, {high}]"
+
+    def parse(text: str) -> int:
+        try:
+            value = int(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{text!r} is not an integer") from None
+        if value < low or (high is not None and value > high):
+            raise argparse.ArgumentTypeError(f"must be an integer {span}, got {value}")
+        return value
+
+    return parse
+
+
+def _concavity(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a number") from None
+    if not 0 < value <= 1:  # NaN fails too
+        raise argparse.ArgumentTypeError(f"must be a number in (0, 1], got {text}")
+    return value
+
+
+_SEED = _integer(0, 2**64 - 1)
+
+MAX_SCENE_BODIES = 100_000
+"""The most bodies ``scene`` makes: more would ask for memory the demo has no use for."""
+
+
 def _add_decomposer_options(parser: argparse.ArgumentParser, default: str) -> None:
     from .mesh import DEFAULT_CONCAVITY, DEFAULT_MAX_HULL_VERTICES
 
@@ -63,17 +98,17 @@ def _add_decomposer_options(parser: argparse.ArgumentParser, default: str) -> No
         f"(faster, coarser), their convex hull, or 'none' for meshes whose connected components "
         f"are convex already (default: {default})",
     )
-    group.add_argument("--concavity", type=float, default=DEFAULT_CONCAVITY,
+    group.add_argument("--concavity", type=_concavity, default=DEFAULT_CONCAVITY,
                        help=f"CoACD's concavity threshold; V-HACD's volume error as a fraction "
                        f"(default: {DEFAULT_CONCAVITY})")
-    group.add_argument("--max-hulls", type=int, default=None,
+    group.add_argument("--max-hulls", type=_integer(1), default=None,
                        help="at most this many parts (default: CoACD unlimited, V-HACD 32)")
-    group.add_argument("--max-hull-vertices", type=int, default=DEFAULT_MAX_HULL_VERTICES,
+    group.add_argument("--max-hull-vertices", type=_integer(4), default=DEFAULT_MAX_HULL_VERTICES,
                        help=f"at most this many vertices per part (default: "
                        f"{DEFAULT_MAX_HULL_VERTICES})")
-    group.add_argument("--resolution", type=int, default=None,
+    group.add_argument("--resolution", type=_integer(1), default=None,
                        help="CoACD's sampling resolution or V-HACD's voxel count")
-    group.add_argument("--seed", type=int, default=0, help="decomposition seed (default 0)")
+    group.add_argument("--seed", type=_SEED, default=0, help="decomposition seed (default 0)")
     group.add_argument("--no-cache", action="store_true",
                        help="decompose again instead of reading the on-disk cache "
                        "($SWARMCOLLIDE_CACHE_DIR, else the user cache directory)")
@@ -182,6 +217,8 @@ def _decompose(arguments: argparse.Namespace) -> int:
 
 
 def _parser() -> argparse.ArgumentParser:
+    from .queries import METHODS
+
     parser = argparse.ArgumentParser(prog="swarmcollide", description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     commands = parser.add_subparsers(dest="command", required=True)
@@ -198,8 +235,8 @@ def _parser() -> argparse.ArgumentParser:
     measure.add_argument("--pose-b", type=_pose, default=None, metavar="POSE", help=POSE_HELP)
     measure.add_argument("--query", choices=["distance", "signed", "collide"], default="distance",
                          help="what to compute (default: distance)")
-    measure.add_argument("--method", default="dual",
-                         help="the solver for each part pair: dual (default), exact, fcl, ...")
+    measure.add_argument("--method", default="dual", choices=list(METHODS),
+                         help="the solver for each part pair (default: dual)")
     measure.add_argument("--tolerance", type=float, default=1e-9,
                          help="relative to the pair's size (default 1e-9)")
     measure.add_argument("--json", action="store_true", help="print the answer as JSON")
@@ -220,18 +257,20 @@ def _parser() -> argparse.ArgumentParser:
     reproduce = commands.add_parser(
         "paper", help="print the paper's Tables 1 and 2 beside ours and the exact answers"
     )
-    reproduce.add_argument("--seed", type=int, default=0, help="solver seed (default 0)")
+    reproduce.add_argument("--seed", type=_SEED, default=0, help="solver seed (default 0)")
     reproduce.add_argument(
-        "--repeats", type=int, default=20, help="runs per row; the median time is shown"
+        "--repeats", type=_integer(1), default=20, help="runs per row; the median time is shown"
     )
     scene = commands.add_parser(
         "scene",
         help="boxes and random hulls moving through each other: contacts and times per frame",
     )
-    scene.add_argument("--bodies", type=int, default=300, help="number of bodies (default 300)")
-    scene.add_argument("--frames", type=int, default=60, help="number of frames (default 60)")
-    scene.add_argument("--seed", type=int, default=0, help="seed of the bodies and their motion")
-    scene.add_argument("--threads", type=int, default=None, help="narrowphase threads")
+    scene.add_argument("--bodies", type=_integer(2, MAX_SCENE_BODIES), default=300,
+                       help="number of bodies (default 300)")
+    scene.add_argument("--frames", type=_integer(1), default=60,
+                       help="number of frames (default 60)")
+    scene.add_argument("--seed", type=_SEED, default=0, help="seed of the bodies and their motion")
+    scene.add_argument("--threads", type=_integer(1), default=None, help="narrowphase threads")
     scene.add_argument(
         "--cold", action="store_true", help="answer every frame from scratch (no warm start)"
     )
@@ -241,27 +280,74 @@ def _parser() -> argparse.ArgumentParser:
     return parser
 
 
+def _check_picture(parser: argparse.ArgumentParser, path: Optional[str]) -> None:
+    """A usage error, before any work, for a picture matplotlib could not save at ``path``."""
+    if path is None:
+        return
+    folder = Path(path).parent
+    if not folder.is_dir():
+        parser.error(f"argument --plot: the folder {str(folder)!r} does not exist")
+    try:
+        from matplotlib.figure import Figure
+    except ImportError:
+        parser.error("argument --plot needs matplotlib: pip install 'swarmcollide[plot]'")
+    formats = Figure().canvas.get_supported_filetypes()
+    if Path(path).suffix.lstrip(".").lower() not in formats:
+        parser.error(f"argument --plot: {path!r} does not end in a picture format matplotlib "
+                     f"writes ({', '.join('.' + f for f in sorted(formats))})")
+
+
+# The options that name the core's arguments, for its messages ("pose_a must ...").
+_OPTION_OF = {"tolerance": "--tolerance", "pose_a": "--pose-a", "pose_b": "--pose-b",
+              "threads": "--threads"}
+
+
+def _check_core(parser: argparse.ArgumentParser, check: Callable[[], object]) -> None:
+    """Run ``check`` (the core validating options); a ValueError or TypeError is a usage error
+    naming the option."""
+    try:
+        check()
+    except (ValueError, TypeError) as error:
+        message = str(error)
+        first = message.replace("'", " ").split(" ", 1)[0]
+        option = _OPTION_OF.get(first)
+        parser.error(f"argument {option}: {message}" if option else message)
+
+
 def main(argv: Optional[Sequence[str]] = None) -> int:
     parser = _parser()
     arguments = parser.parse_args(argv)
-    if arguments.command in ("distance", "decompose"):
-        if arguments.command == "decompose" and not arguments.output.endswith(".npz"):
-            parser.error("-o/--output must name an .npz file")
-        try:
-            return _distance(arguments) if arguments.command == "distance" else _decompose(
-                arguments)
-        except BrokenPipeError:  # the reader went away (`| head`): nothing more to say
-            return 0
-        except (ValueError, TypeError, OSError, ImportError) as error:
-            print(f"swarmcollide {arguments.command}: error: {error}", file=sys.stderr)
-            return 1
+    if arguments.command in ("distance", "scene"):
+        _check_picture(parser, arguments.plot)
+    if arguments.command == "distance":
+        from .queries import query
+
+        point = [[0.0, 0.0, 0.0]]
+        _check_core(parser, lambda: query(arguments.method, tolerance=arguments.tolerance)
+                    .distance(point, point, arguments.pose_a, arguments.pose_b))
+    if arguments.command == "scene":
+        from . import _core
+
+        _check_core(parser, lambda: _core.Scene(threads=arguments.threads, seed=arguments.seed))
+    if arguments.command == "decompose" and not arguments.output.endswith(".npz"):
+        parser.error("-o/--output must name an .npz file")
+    try:
+        return _run(arguments)
+    except BrokenPipeError:  # the reader went away (`| head`): nothing more to say
+        return 0
+    except (ValueError, TypeError, OSError, ImportError, MemoryError) as error:
+        print(f"swarmcollide {arguments.command}: error: {error}", file=sys.stderr)
+        return 1
+
+
+def _run(arguments: argparse.Namespace) -> int:
+    if arguments.command == "distance":
+        return _distance(arguments)
+    if arguments.command == "decompose":
+        return _decompose(arguments)
     if arguments.command == "paper":
-        if arguments.repeats < 1:
-            parser.error("--repeats must be at least 1")
         print(paper.reproduce(seed=arguments.seed, repeats=arguments.repeats))
         return 0
-    if arguments.bodies < 2 or arguments.frames < 1:
-        parser.error("--bodies must be at least 2 and --frames at least 1")
     from . import scene_demo
 
     scene_demo.run(
@@ -273,4 +359,3 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
         plot=arguments.plot,
     )
     return 0
-

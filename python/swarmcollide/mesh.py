@@ -19,6 +19,7 @@ import sys
 import tempfile
 import threading
 import time
+import zipfile
 from dataclasses import asdict, dataclass, field
 from importlib.metadata import PackageNotFoundError, version
 from pathlib import Path
@@ -149,7 +150,8 @@ def load_mesh(source: MeshLike):
         checked = _checked(loaded, name)
         # STL and others repeat each triangle's corners: merged, the mesh's edges are shared.
         checked.merge_vertices()
-        return checked
+        # Checked again: trimesh merges points closer than 1e-8, which can flatten a tiny mesh.
+        return _checked(checked, name)
     raise TypeError(
         "mesh must be a path to a mesh file (OBJ, STL, PLY, GLB, OFF) or a trimesh.Trimesh, "
         f"got {type(source).__name__}"
@@ -172,13 +174,30 @@ def _checked(mesh, name: str):
     if not np.isfinite(vertices).all():
         raise ValueError(f"{name} has NaN or infinite coordinates; fix or remove those points")
     used = vertices[np.unique(faces)]
-    spread = used - used.mean(axis=0)
-    if np.linalg.matrix_rank(spread, tol=1e-12 * max(np.abs(spread).max(), 1e-300)) < 3:
+    if _thickness(used) <= _FLAT * np.abs(used).max():
         raise ValueError(
             f"{name} is not a 3-D solid: all its points lie in one plane (or on one line); "
             "a body needs points that span three dimensions"
         )
     return mesh
+
+
+# Thickness, relative to the largest coordinate, within which a mesh is flat: 4 units of float32
+# rounding (2**-24 of a coordinate each), since STL and most binary formats store float32, and
+# rounding lifts the corners of a tilted plane off it by about that much.
+_FLAT = 4 * float(np.finfo(np.float32).eps)
+
+
+def _thickness(points: np.ndarray) -> float:
+    """Width of ``points`` across their best-fitting plane (0 for a plane, a line or a point)."""
+    spread = points - points.mean(axis=0)
+    scale = np.abs(spread).max()
+    if scale == 0:
+        return 0.0
+    # Scaled first, so that neither 1e300 nor 1e-300 coordinates overflow or underflow.
+    normal = np.linalg.svd(spread / scale, full_matrices=False)[2][-1]
+    across = spread @ normal
+    return float(across.max() - across.min())
 
 
 def mesh_hash(mesh) -> str:
@@ -382,7 +401,10 @@ class CompoundBody(_core.CompoundBody):
     @classmethod
     def load(cls, path: Union[str, "os.PathLike[str]"]) -> "CompoundBody":
         """A compound body from a ``.npz`` file written by ``save`` (or ``swarmcollide
-        decompose``); ValueError for a file that is not one."""
+        decompose``); ValueError for a file that is not one, TypeError for a path that is not
+        a path."""
+        if not isinstance(path, (str, os.PathLike)):
+            raise TypeError(f"path must be a path to a parts file (.npz), got {type(path).__name__}")
         loaded = _read_parts(Path(path))
         if loaded is None:
             raise ValueError(
@@ -390,7 +412,10 @@ class CompoundBody(_core.CompoundBody):
                 "CompoundBody.save and 'swarmcollide decompose' write)"
             )
         parts, decomposition = loaded
-        return cls(parts, decomposition)
+        try:
+            return cls(parts, decomposition)
+        except (ValueError, TypeError) as error:  # NaN points, say: name the file
+            raise type(error)(f"parts file {str(path)!r}: {error}") from None
 
     def __repr__(self) -> str:
         text = super().__repr__()
@@ -601,16 +626,24 @@ def _write_parts(path: Path, parts: Sequence[np.ndarray],
 
 
 def _read_parts(path: Path):
+    """(parts, decomposition) from a parts file; None for anything else, however broken."""
     try:
-        with np.load(path, allow_pickle=False) as data:
-            points, offsets = data["points"], data["offsets"]
-            meta = str(data["decomposition"]) if "decomposition" in data else ""
-    except (OSError, ValueError, KeyError, EOFError):
-        return None
-    if points.ndim != 2 or points.shape[1] != 3 or offsets.ndim != 1 or len(offsets) < 2:
-        return None
+        # Opened here: np.load leaves a file it opened open when the file is a broken zip.
+        with open(path, "rb") as handle:
+            data = np.load(handle, allow_pickle=False)
+            if not isinstance(data, np.lib.npyio.NpzFile):
+                return None  # a single array (.npy), not a parts file
+            with data:
+                points, offsets = data["points"], data["offsets"]
+                meta = str(data["decomposition"]) if "decomposition" in data else ""
+        decomposition = Decomposition(**json.loads(meta)) if meta else None
+    except (OSError, ValueError, KeyError, EOFError, TypeError, zipfile.BadZipFile):
+        return None  # unreadable, not an .npz, or a record that is not a Decomposition's
+    if (points.ndim != 2 or points.shape[1] != 3 or points.dtype.kind not in "fiu"
+            or offsets.ndim != 1 or offsets.dtype.kind not in "iu" or len(offsets) < 2
+            or offsets[0] != 0 or offsets[-1] != len(points) or np.any(np.diff(offsets) < 1)):
+        return None  # each part's points, in order, and every point in one part
     parts = [points[offsets[k]:offsets[k + 1]] for k in range(len(offsets) - 1)]
-    decomposition = Decomposition(**json.loads(meta)) if meta else None
     return parts, decomposition
 
 

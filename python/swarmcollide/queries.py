@@ -26,16 +26,20 @@ Query = _core.Query
 DistanceResult = _core.DistanceResult
 BatchResult = _core.BatchResult
 
-PolyhedronLike = Union[_core.ConvexPolyhedron, _core.CompoundBody, npt.ArrayLike]
-"""A ``ConvexPolyhedron``, anything ``ConvexPolyhedron(points)`` accepts (``(n, 3)`` points), or a
+PolyhedronLike = Union[_core.ConvexPolyhedron, _core.CompoundBody, npt.ArrayLike, Any]
+"""A ``ConvexPolyhedron``, anything ``ConvexPolyhedron(points)`` accepts (``(n, 3)`` points, or a
+mesh such as a ``trimesh.Trimesh``, which stands for the convex hull of its ``vertices``), or a
 ``CompoundBody``: a query with a compound body on either side returns a ``CompoundResult``."""
 
-PoseLike = Union[None, npt.ArrayLike, Tuple[npt.ArrayLike, npt.ArrayLike]]
-"""None (the identity), a ``(4, 4)`` rigid transform, or a pair ``(rotation, translation)``."""
+PoseLike = Union[None, npt.ArrayLike, Tuple[Any, npt.ArrayLike], Any]
+"""None (the identity), a ``(4, 4)`` rigid transform or its top ``(3, 4)`` rows, a pair
+``(rotation, translation)`` whose rotation is a ``(3, 3)`` matrix or a SciPy ``Rotation``, or a
+``Rotation`` alone (no translation). ``pose_from_quaternion`` makes one from a quaternion."""
 
-PosesLike = Union[None, npt.ArrayLike, Tuple[npt.ArrayLike, npt.ArrayLike]]
-"""None (every body at the identity), an ``(m, 4, 4)`` array of rigid transforms, or a pair
-``(rotations (m, 3, 3), translations (m, 3))``."""
+PosesLike = Union[None, npt.ArrayLike, Tuple[Any, npt.ArrayLike], Any]
+"""None (every body at the identity), an ``(m, 4, 4)`` or ``(m, 3, 4)`` array of rigid
+transforms, or a pair ``(rotations, translations (m, 3))`` whose rotations are an ``(m, 3, 3)``
+array or a SciPy ``Rotation`` of m rotations (alone: no translations)."""
 
 BodiesLike = Union[Sequence[PolyhedronLike], npt.ArrayLike]
 """A sequence of polyhedra (or of ``(n, 3)`` point arrays, or of compound bodies), or an
@@ -188,7 +192,9 @@ def distance(
     Parameters
     ----------
     a, b : ConvexPolyhedron or array_like, shape (n, 3)
-        The bodies, or the points whose convex hulls they are, in their own frames.
+        The bodies, or the points whose convex hulls they are, in their own frames; a mesh
+        (a ``trimesh.Trimesh``, or any object with ``(n, 3)`` ``vertices``) stands for the convex
+        hull of its vertices (``CompoundBody.from_mesh`` keeps a non-convex one's shape).
     method : str
         One of ``METHODS``: ``"dual"`` (default; the paper's rank-adaptive swarm over separating
         directions, certified), ``"ipso"`` (the paper's improved PSO on model (2)), ``"pso"``
@@ -201,8 +207,10 @@ def distance(
     seed : int
         Seed of the randomised methods; the same seed gives the same answer.
     pose_a, pose_b : array_like, optional
-        Where the bodies are: a ``(4, 4)`` rigid transform or a pair ``(rotation, translation)``;
-        results are in world coordinates. Moving a body never recomputes its hull.
+        Where the bodies are: a ``(4, 4)`` rigid transform (or its top ``(3, 4)`` rows), a pair
+        ``(rotation, translation)`` whose rotation is a ``(3, 3)`` matrix or a SciPy ``Rotation``,
+        or a ``Rotation`` alone; ``pose_from_quaternion`` turns a quaternion into one. Results
+        are in world coordinates. Moving a body never recomputes its hull.
     **parameters
         Solver parameters of ``method`` (see ``METHODS[method].parameters``).
 
@@ -360,8 +368,9 @@ def distance_many(
     first_index : int
         The global index of the first pair, for seeds and error messages.
     poses_a, poses_b : array_like, optional
-        Where the bodies are: an ``(m, 4, 4)`` array of rigid transforms or a pair
-        ``(rotations (m, 3, 3), translations (m, 3))``; results are in world coordinates.
+        Where the bodies are: an ``(m, 4, 4)`` or ``(m, 3, 4)`` array of rigid transforms or a
+        pair ``(rotations, translations (m, 3))`` whose rotations are an ``(m, 3, 3)`` array or a
+        SciPy ``Rotation`` of m rotations; results are in world coordinates.
     method, tolerance, seed, **parameters
         As for ``distance``.
 

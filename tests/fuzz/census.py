@@ -5,8 +5,11 @@ case that is not "ok" (its id, category and reason), so that a fix can be checke
 
     .venv/bin/python tests/fuzz/census.py --json build/fuzz/census.jsonl   # 10000 cases
     .venv/bin/python tests/fuzz/census.py --rerun tests/fuzz/before.jsonl  # old -> new per case
+    .venv/bin/python tests/fuzz/census.py --corpus files --count 600       # meshes, CLI, inputs
 
-The categories are those of tests/python/fuzz_judge.py; the cases those of fuzz_cases.py.
+The query corpus's categories are those of tests/python/fuzz_judge.py and its cases those of
+fuzz_cases.py; the files corpus (mesh files, the command line, what users pass from other
+libraries) has both in tests/python/fuzz_files.py.
 """
 
 from __future__ import annotations
@@ -17,30 +20,42 @@ import sys
 import time
 from collections import Counter
 from pathlib import Path
-from typing import Any, Dict, Iterable, List, Tuple
+from typing import Any, Callable, Dict, Iterable, List, Tuple
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "python"))
 
 from fuzz_cases import make_case  # noqa: E402
+from fuzz_files import FILE_CATEGORIES, FILE_FAILURES, make_file_case, run_file_case  # noqa: E402
 from fuzz_judge import CATEGORIES, FAILURES, category_of, run_case  # noqa: E402
 from sandbox import Sandbox  # noqa: E402
 
 Record = Dict[str, Any]
 
+CORPORA: Dict[str, Tuple[Callable[[int, int], Any], Callable[..., Any], tuple, frozenset]] = {
+    "queries": (make_case, run_case, CATEGORIES, FAILURES),
+    "files": (make_file_case, run_file_case, FILE_CATEGORIES, FILE_FAILURES),
+}
+"""Each corpus's case maker, judge (run in the sandbox), categories and failing categories."""
+
 
 def census(
-    seed: int, indices: Iterable[int], workers: int, timeout: float, progress: bool
+    seed: int, indices: Iterable[int], workers: int, timeout: float, progress: bool,
+    corpus: str = "queries",
 ) -> List[Record]:
     """One record per case: id, index, family, query, method, note, category, reason."""
+    make, run, _, _ = CORPORA[corpus]
     records = []
     start = time.monotonic()
-    tasks = ((index, run_case, (seed, index)) for index in indices)
-    with Sandbox(parallel=workers) as sandbox:
-        for index, outcome in sandbox.map(tasks, timeout=timeout):
-            case = make_case(seed, index)
+    tasks = ((index, run, (seed, index)) for index in indices)
+    # A file case may ask for much memory (a huge STL header): 4 GB per child at most.
+    limit = 4 << 30 if corpus == "files" else None
+    with Sandbox(parallel=workers, preload=("fuzz_judge", "fuzz_files")) as sandbox:
+        for index, outcome in sandbox.map(tasks, timeout=timeout, memory_limit=limit):
+            case = make(seed, index)
             category, reason = category_of(outcome)
             records.append({
-                "id": case.id, "index": index, "family": case.family, "query": case.query,
+                "id": case.id, "index": index, "family": case.family,
+                "query": getattr(case, "query", case.family),
                 "method": case.label, "note": case.note, "category": category, "reason": reason,
             })  # fmt: skip
             if progress and len(records) % 100 == 0:
@@ -50,33 +65,37 @@ def census(
     return sorted(records, key=lambda r: r["index"])
 
 
-def table(records: List[Record]) -> str:
+def table(
+    records: List[Record], categories: tuple = CATEGORIES, failures: frozenset = FAILURES
+) -> str:
     """Counts per (query, method) and category, as Markdown."""
     counts: Dict[Tuple[str, str], Counter] = {}
     for record in records:
         counts.setdefault((record["query"], record["method"]), Counter())[record["category"]] += 1
     total = Counter(record["category"] for record in records)
     lines = [
-        "| query | method | cases | " + " | ".join(CATEGORIES) + " |",
-        "|---|---|---:|" + "---:|" * len(CATEGORIES),
+        "| query | method | cases | " + " | ".join(categories) + " |",
+        "|---|---|---:|" + "---:|" * len(categories),
     ]
     for (query, method), row in sorted(counts.items()):
-        cells = " | ".join(str(row[c]) for c in CATEGORIES)
+        cells = " | ".join(str(row[c]) for c in categories)
         lines.append(f"| {query} | {method} | {sum(row.values())} | {cells} |")
-    cells = " | ".join(f"**{total[c]}**" for c in CATEGORIES)
+    cells = " | ".join(f"**{total[c]}**" for c in categories)
     lines.append(f"| **all** | | **{len(records)}** | {cells} |")
-    failing = sum(total[c] for c in FAILURES)
-    lines.append(f"\n{failing} of {len(records)} cases fail ({', '.join(sorted(FAILURES))}).")
+    failing = sum(total[c] for c in failures)
+    lines.append(f"\n{failing} of {len(records)} cases fail ({', '.join(sorted(failures))}).")
     return "\n".join(lines)
 
 
 def write_report(
-    path: Path, seed: int, timeout: float, seconds: float, records: List[Record]
+    path: Path, seed: int, timeout: float, seconds: float, records: List[Record],
+    corpus: str = "queries",
 ) -> None:
     """JSON Lines: the run (seed, counts) first, then every case that is not ok, one a line."""
     path.parent.mkdir(parents=True, exist_ok=True)
     header = {
-        "seed": seed, "count": len(records), "timeout": timeout, "seconds": round(seconds),
+        "seed": seed, "corpus": corpus, "count": len(records), "timeout": timeout,
+        "seconds": round(seconds),
         "counts": dict(Counter(r["category"] for r in records)),
     }  # fmt: skip
     lines = [json.dumps(header)]
@@ -94,6 +113,8 @@ def read_report(path: Path) -> Tuple[Record, List[Record]]:
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--corpus", choices=sorted(CORPORA), default="queries",
+                        help="the query cases (default) or the files, CLI and inputs cases")
     parser.add_argument("--seed", type=int, default=0, help="the corpus (default 0)")
     parser.add_argument("--count", type=int, default=10000, help="cases 0 .. count-1")
     parser.add_argument("--workers", type=int, default=2, help="children at once")
@@ -103,25 +124,26 @@ def main() -> None:
     parser.add_argument("--quiet", action="store_true", help="no progress on stderr")
     args = parser.parse_args()
 
-    seed, indices, earlier = args.seed, range(args.count), {}
+    seed, indices, earlier, corpus = args.seed, range(args.count), {}, args.corpus
     if args.rerun:
         previous, cases = read_report(args.rerun)
-        seed = previous["seed"]
+        seed, corpus = previous["seed"], previous.get("corpus", "queries")
         earlier = {record["index"]: record["category"] for record in cases}
         indices = sorted(earlier)
     start = time.monotonic()
-    records = census(seed, indices, args.workers, args.timeout, not args.quiet)
+    records = census(seed, indices, args.workers, args.timeout, not args.quiet, corpus)
     seconds = time.monotonic() - start
-    print(f"corpus seed {seed}, {len(records)} cases, timeout {args.timeout:g} s, "
+    print(f"corpus {corpus!r} seed {seed}, {len(records)} cases, timeout {args.timeout:g} s, "
           f"{args.workers} workers, {seconds:.0f} s\n")  # fmt: skip
-    print(table(records))
+    _, _, categories, failures = CORPORA[corpus]
+    print(table(records, categories, failures))
     if earlier:
         moves = Counter((earlier[r["index"]], r["category"]) for r in records)
         print("\n| before | now | cases |\n|---|---|---:|")
         for (old, new), count in sorted(moves.items()):
             print(f"| {old} | {new} | {count} |")
     if args.json:
-        write_report(args.json, seed, args.timeout, seconds, records)
+        write_report(args.json, seed, args.timeout, seconds, records, corpus)
 
 
 

@@ -53,7 +53,7 @@ def test_module_entry_point_runs():
 def test_bad_arguments_exit_with_a_message(capsys):
     with pytest.raises(SystemExit):
         main(["paper", "--repeats", "0"])
-    assert "--repeats must be at least 1" in capsys.readouterr().err
+    assert "argument --repeats: must be an integer at least 1" in capsys.readouterr().err
 
 
 # Mesh files: distance and decompose
@@ -116,3 +116,47 @@ def test_mesh_commands_fail_as_a_shell_user_expects(mesh_files, capsys):
     assert main(["distance", box, box, "--decompose", "hull", "--method", "ipso", "--query",
                  "signed"]) == 1
     assert "signed_distance is not available with method 'ipso'" in capsys.readouterr().err
+
+
+def test_wrong_options_are_usage_errors_before_any_work(mesh_files, capsys):
+    box = str(mesh_files / "box.stl")
+    usage_errors = [
+        (["distance", box, box, "--method", "bogus"], "argument --method: invalid choice"),
+        (["distance", box, box, "--tolerance", "nan"], "argument --tolerance: tolerance must"),
+        (["distance", box, box, "--pose-a", "2,0,0,0,0,2,0,0,0,0,2,0,0,0,0,1"],
+         "argument --pose-a: pose_a"),
+        (["distance", box, box, "--plot", str(mesh_files / "no" / "pair.png")],
+         "argument --plot: the folder"),
+        (["distance", box, box, "--plot", str(mesh_files / "pair.notaformat")],
+         "argument --plot: .* does not end in a picture format"),
+        (["distance", box, box, "--concavity", "0"], r"argument --concavity: must be a number"),
+        (["distance", box, box, "--seed", "-1"], r"argument --seed: must be an integer in \[0, "),
+        (["decompose", box, "-o", "x.npz", "--max-hull-vertices", "3"],
+         "argument --max-hull-vertices: must be an integer at least 4"),
+        (["scene", "--plot", str(mesh_files / "no" / "scene.png")], "argument --plot: the folder"),
+        (["scene", "--threads", "0"], "argument --threads: must be an integer at least 1"),
+        (["scene", "--threads", str(2**63)], r"argument --threads: threads must be in \[1, 1024\]"),
+        (["scene", "--bodies", str(10**9)], r"argument --bodies: must be an integer in \[2, 100000\]"),
+        (["scene", "--seed", "-1"], "argument --seed"),
+        (["paper", "--repeats", "0"], "argument --repeats: must be an integer at least 1"),
+        (["paper", "--seed", str(2**64)], "argument --seed"),
+    ]
+    import re
+
+    for argv, message in usage_errors:
+        with pytest.raises(SystemExit) as usage:
+            main(argv)
+        assert usage.value.code == 2, argv
+        last = capsys.readouterr().err.strip().splitlines()[-1]
+        assert re.search(message, last), (argv, last)
+
+
+def test_an_unusable_parts_file_is_one_line_and_exit_1(mesh_files, capsys):
+    box = str(mesh_files / "box.stl")
+    garbage = mesh_files / "garbage.npz"
+    for content in (b"not an npz", b"PK\x03\x04 not a zip either"):
+        garbage.write_bytes(content)
+        assert main(["distance", box, str(garbage), "--decompose", "hull", "--quiet"]) == 1
+        err = capsys.readouterr().err
+        assert "Traceback" not in err and len(err.strip().splitlines()) == 1
+        assert "garbage.npz' is not a parts file" in err

@@ -12,6 +12,8 @@ from swarmcollide import mesh as mesh_module
 
 from meshes import MESHES, box_with_hole, cup, fcl_distance, homogeneous, l_shape, torus, u_shape
 
+CUBE = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)], dtype=float)
+
 # Small and fast CoACD settings for tests: a coarse sampling and at most 8 parts.
 FAST = dict(decompose="coacd", concavity=0.1, max_hulls=8, resolution=1000, progress=False)
 
@@ -71,6 +73,61 @@ def test_unreadable_empty_non_finite_and_flat_meshes_are_refused(tmp_path):
         sc.load_mesh(42)
     with pytest.raises(ValueError, match="empty"):
         sc.load_mesh(trimesh.Trimesh())
+
+
+def test_a_tilted_flat_stl_is_refused_though_float32_lifts_its_corners_off_the_plane(tmp_path):
+    # STL stores float32: the corners of a square in a tilted plane, rounded, no longer lie in one
+    # plane (by about 1e-7 of their size), and a rank test at double precision saw a solid.
+    turn = trimesh.transformations.rotation_matrix(0.7, [1, 2, 3])
+    square = trimesh.Trimesh([[0, 0, 0], [10, 0, 0], [10, 10, 0], [0, 10, 0]], [[0, 1, 2], [0, 2, 3]])
+    refused = 0
+    for shift in ([0, 0, 0], [1e3, -2e3, 5e2]):
+        square.apply_transform(turn @ trimesh.transformations.translation_matrix(shift))
+        square.export(tmp_path / "tilted.stl")
+        with pytest.raises(ValueError, match="tilted.stl' is not a 3-D solid: .* one plane"):
+            sc.load_mesh(tmp_path / "tilted.stl")
+        refused += 1
+    assert refused == 2
+    # A thin solid (a 10 x 10 x 0.01 slab, tilted) is a solid, and is kept.
+    slab = trimesh.creation.box((10, 10, 0.01))
+    slab.apply_transform(turn)
+    slab.export(tmp_path / "slab.stl")
+    assert len(sc.load_mesh(tmp_path / "slab.stl").vertices) == 8
+
+
+def test_parts_files_that_are_not_parts_files_are_refused_naming_the_file(tmp_path):
+    good = dict(points=np.vstack([CUBE, CUBE + 2]), offsets=np.array([0, 8, 16]),
+                decomposition=np.array(""))
+    broken = {
+        "zip.npz": b"PK\x03\x04 not a zip at all",
+        "npy.npz": None,
+        "keys.npz": dict(good, decomposition=np.array('{"method": "hull", "bogus": 1}')),
+        "json.npz": dict(good, decomposition=np.array("{not json")),
+        "beyond.npz": dict(good, offsets=np.array([0, 8, 40])),
+        "short.npz": dict(good, offsets=np.array([0, 8])),
+        "decreasing.npz": dict(good, offsets=np.array([0, 12, 4, 16])),
+        "floats.npz": dict(good, offsets=np.array([0.5, 8.5, 16.5])),
+        "complex.npz": dict(good, points=good["points"] + 1j),
+    }
+    for name, content in broken.items():
+        path = tmp_path / name
+        if isinstance(content, bytes):
+            path.write_bytes(content)
+        elif content is None:
+            with open(path, "wb") as handle:
+                np.save(handle, CUBE)
+        else:
+            np.savez(path, **content)
+        with pytest.raises(ValueError, match=f"{name}' is not a parts file"):
+            sc.CompoundBody.load(path)
+    nan = tmp_path / "nan.npz"
+    np.savez(nan, **dict(good, points=np.where(good["points"] == 1, np.nan, good["points"])))
+    with pytest.raises(ValueError, match="parts file .*nan.npz': parts"):
+        sc.CompoundBody.load(nan)
+    with pytest.raises(TypeError, match="path must be a path to a parts file"):
+        sc.CompoundBody.load(None)
+    np.savez(tmp_path / "good.npz", **good)
+    assert len(sc.CompoundBody.load(tmp_path / "good.npz")) == 2
 
 
 # Decomposition

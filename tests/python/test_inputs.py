@@ -1,0 +1,223 @@
+"""What users naturally pass (issue 23, items 7 and 8): trimesh meshes as bodies, SciPy rotations
+and (3, 4) matrices as poses, quaternions in either order; and the arguments that must be refused
+with a message naming them (bytes for names, complex directions, thread counts beyond any int)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+import trimesh
+from scipy.spatial.transform import Rotation
+
+import dask.array as da
+
+import swarmcollide as sc
+import swarmcollide.dask as scd
+
+CUBE = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)], dtype=float)
+TURN = Rotation.from_rotvec([0.3, -0.2, 0.9])
+SHIFT = np.array([3.0, 0.5, -0.25])
+STACK = da.from_array(np.stack([CUBE]), chunks=(1, -1, -1))
+
+
+def homogeneous(rotation: Rotation, translation) -> np.ndarray:
+    pose = np.eye(4)
+    pose[:3, :3], pose[:3, 3] = rotation.as_matrix(), translation
+    return pose
+
+
+def box_mesh() -> trimesh.Trimesh:
+    return trimesh.creation.box((1, 1, 1), transform=trimesh.transformations.translation_matrix(
+        [0.5, 0.5, 0.5]))
+
+
+# ----- trimesh meshes as bodies -----------------------------------------------------------------
+
+
+@pytest.mark.parametrize("query", [sc.distance, sc.signed_distance, sc.collision])
+def test_a_trimesh_mesh_is_the_convex_hull_of_its_vertices(query):
+    mesh = box_mesh()
+    pose = homogeneous(TURN, SHIFT)
+    expected = query(CUBE, CUBE, pose_b=pose)
+    got = query(mesh, mesh, pose_b=pose)
+    assert got.distance == expected.distance and got.certified
+    assert sc.collide(mesh, mesh, pose_b=pose) == sc.collide(CUBE, CUBE, pose_b=pose)
+    # Its hull has the same vertices, so it is the same body.
+    assert query(mesh.convex_hull, mesh, pose_b=pose).distance == pytest.approx(
+        expected.distance, abs=1e-12)
+
+
+def test_a_trimesh_mesh_builds_polyhedra_compound_bodies_scenes_and_batches():
+    mesh = box_mesh()
+    body = sc.ConvexPolyhedron(mesh)
+    assert np.array_equal(body.vertices, mesh.vertices)
+    assert np.array_equal(sc.as_polyhedron(mesh).vertices, mesh.vertices)
+    compound = sc.CompoundBody([mesh, trimesh.PointCloud(CUBE + [2, 0, 0])])
+    assert len(compound) == 2
+    batch = sc.distance_many([mesh, mesh], [mesh, CUBE], poses_b=np.stack([np.eye(4)] * 2) +
+                             np.pad(np.array([[[0, 0, 0, 3.0]]] * 2), ((0, 0), (0, 3), (0, 0))))
+    assert batch.distance.tolist() == [2.0, 2.0]
+    scene = sc.Scene()
+    ids = scene.add(mesh)
+    more = scene.add([mesh, CUBE], np.stack([homogeneous(TURN, SHIFT), np.eye(4)]))
+    assert len(ids) == 1 and len(more) == 2
+    found = scene.pairs_within(10.0)
+    assert len(found) == 3
+
+
+def test_a_mesh_that_is_not_three_dimensional_points_is_refused_naming_the_argument():
+    class Drawing:  # what trimesh's Path2D looks like to the queries: 2-D vertices
+        vertices = np.zeros((4, 2))
+
+    with pytest.raises(ValueError, match=r"^a must be an \(n, 3\) array"):
+        sc.distance(Drawing(), CUBE)
+
+
+# ----- poses -------------------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("form", ["rotation-pair", "3x4", "list-4x4", "list-3x4", "tuple-pair"])
+def test_poses_in_the_forms_users_have(form):
+    expected = sc.distance(CUBE, CUBE, pose_b=homogeneous(TURN, SHIFT))
+    pose = {
+        "rotation-pair": (TURN, SHIFT),
+        "3x4": homogeneous(TURN, SHIFT)[:3],
+        "list-4x4": homogeneous(TURN, SHIFT).tolist(),
+        "list-3x4": homogeneous(TURN, SHIFT)[:3].tolist(),
+        "tuple-pair": (TURN.as_matrix().tolist(), tuple(SHIFT)),
+    }[form]
+    got = sc.distance(CUBE, CUBE, pose_b=pose)
+    assert got.distance == expected.distance and got.certified
+
+
+def test_a_rotation_alone_turns_the_body_about_its_origin():
+    far = CUBE + [4, 0, 0]
+    expected = sc.distance(CUBE, far, pose_b=homogeneous(TURN, [0, 0, 0]))
+    assert sc.distance(CUBE, far, pose_b=TURN).distance == expected.distance
+
+
+def test_batches_and_scenes_take_rotation_stacks_and_3x4_poses():
+    turns = Rotation.from_rotvec([[0.3, -0.2, 0.9], [0, 0, 1.5], [1, 0, 0]])
+    shifts = np.array([[3.0, 0, 0], [0, 4, 0], [0, 0, 5]])
+    matrices = np.stack([homogeneous(turns[i], shifts[i]) for i in range(3)])
+    expected = sc.distance_many([CUBE] * 3, [CUBE] * 3, poses_b=matrices).distance
+    assert sc.distance_many([CUBE] * 3, [CUBE] * 3, poses_b=(turns, shifts)).distance.tolist() \
+        == expected.tolist()
+    assert sc.distance_many([CUBE] * 3, [CUBE] * 3, poses_b=matrices[:, :3]).distance.tolist() \
+        == expected.tolist()
+    scene = sc.Scene()
+    ids = scene.add([CUBE] * 3, (turns, shifts))
+    placed = np.stack([scene.pose(int(i)) for i in ids])
+    assert np.allclose(placed, matrices, atol=1e-15)
+    scene.set_poses(ids, matrices[:, :3] + [0, 0, 0, 1])
+    assert np.allclose(scene.pose(int(ids[0]))[:3, 3], shifts[0] + 1)
+
+
+@pytest.mark.parametrize(
+    ("pose", "error", "message"),
+    [
+        (np.zeros((3, 5)), ValueError, r"pose_b must be a \(4, 4\) or \(3, 4\) rigid transform"),
+        (np.eye(4)[:2], ValueError, r"got shape \(2, 4\)"),
+        (np.eye(4)[:3] * 2, ValueError, "pose_b"),
+        ([np.eye(4)[0]] * 5, ValueError, "got a sequence of 5 items"),
+        ((TURN, [1, 2]), ValueError, r"pose_b's translation must be a \(3,\) translation"),
+        ((Rotation.from_rotvec([[0, 0, 1]] * 2), SHIFT), ValueError, "pose_b's rotation"),
+    ],
+)
+def test_wrong_poses_are_refused_naming_the_argument(pose, error, message):
+    with pytest.raises(error, match=message):
+        sc.distance(CUBE, CUBE, pose_b=pose)
+
+
+# ----- quaternions -------------------------------------------------------------------------------
+
+
+def test_quaternions_in_either_order_give_scipys_rotation():
+    turns = Rotation.from_rotvec(np.random.default_rng(0).normal(size=(5, 3)))
+    xyzw = turns.as_quat()  # SciPy writes the scalar last
+    wxyz = np.roll(xyzw, 1, axis=1)
+    for order, q in (("xyzw", xyzw), ("wxyz", wxyz)):
+        single = sc.pose_from_quaternion(q[0], SHIFT, order=order)
+        assert np.allclose(single[:3, :3], turns[0].as_matrix(), atol=1e-15)
+        assert single[:3, 3].tolist() == SHIFT.tolist() and single[3].tolist() == [0, 0, 0, 1]
+        many = sc.pose_from_quaternion(q, np.tile(SHIFT, (5, 1)), order=order)
+        assert many.shape == (5, 4, 4)
+        assert np.allclose(many[:, :3, :3], turns.as_matrix(), atol=1e-15)
+    # Slightly off unit norm (printed to 4 digits): normalised, then a rigid pose.
+    rounded = sc.pose_from_quaternion([0.7071, 0.7071, 0, 0], order="wxyz")
+    assert sc.distance(CUBE, CUBE + [3, 0, 0], pose_b=rounded).certified
+
+
+@pytest.mark.parametrize(
+    ("arguments", "keywords", "error", "message"),
+    [
+        (([1, 0, 0, 0],), {}, TypeError, "order"),
+        (([1, 0, 0, 0],), {"order": "zyxw"}, ValueError, "order must be 'wxyz'"),
+        (([1, 0, 0, 0],), {"order": b"wxyz"}, TypeError, "order must be a string"),
+        (([0, 0, 0, 0],), {"order": "wxyz"}, ValueError, "quaternion has norm 0"),
+        (([2, 0, 0, 0],), {"order": "wxyz"}, ValueError, "quaternion has norm 2"),
+        (([[1, 0, 0, 0], [0, 0, 0, 0]],), {"order": "xyzw"}, ValueError, r"quaternion\[1\]"),
+        (([1, 0, 0, np.nan],), {"order": "wxyz"}, ValueError, "NaN or infinite"),
+        (([1, 0, 0],), {"order": "wxyz"}, ValueError, r"shape \(4,\) or \(m, 4\)"),
+        (([1j, 0, 0, 0],), {"order": "wxyz"}, TypeError, "quaternion must hold real numbers"),
+        (("1 0 0 0",), {"order": "wxyz"}, TypeError, "quaternion must be an array"),
+        (([1, 0, 0, 0], [1, 2]), {"order": "wxyz"}, ValueError, r"translation must have shape"),
+        (([1, 0, 0, 0], [1, 2, np.inf]), {"order": "wxyz"}, ValueError, "translation has a NaN"),
+    ],
+)
+def test_bad_quaternions_are_refused_naming_the_argument(arguments, keywords, error, message):
+    with pytest.raises(error, match=message):
+        sc.pose_from_quaternion(*arguments, **keywords)
+
+
+# ----- arguments refused with a message that names them (item 8) ---------------------------------
+
+
+def test_thread_counts_beyond_any_integer_are_value_errors_everywhere():
+    huge = 2**63
+    for call in (
+        lambda: sc.distance_many([CUBE], [CUBE], threads=huge),
+        lambda: sc.collide_many([CUBE], [CUBE], threads=huge),
+        lambda: sc.signed_distance_many([CUBE], [CUBE], threads=huge),
+        lambda: sc.Scene(threads=huge),
+        lambda: scd.distance_many(STACK, STACK, threads=huge),
+    ):
+        with pytest.raises(ValueError, match=r"threads must be in \[1, 1024\].*got 9223372036854775808"):
+            call()
+
+
+def test_names_given_as_bytes_are_type_errors_naming_the_argument():
+    for call, name in (
+        (lambda: sc.distance(CUBE, CUBE, method=b"fcl"), "method"),
+        (lambda: sc.Query(b"fcl"), "method"),
+        (lambda: sc.distance_many([CUBE], [CUBE], method=b"fcl"), "method"),
+        (lambda: sc.Scene(method=b"fcl"), "method"),
+        (lambda: sc.Scene(broadphase=b"naive"), "broadphase"),
+        (lambda: scd.distance_many(STACK, STACK, method=b"fcl"), "method"),
+        (lambda: sc.as_polyhedron(CUBE, name=b"body"), "name"),
+    ):
+        with pytest.raises(TypeError, match=f"^{name} must be a string, got bytes"):
+            call()
+
+
+def test_complex_directions_and_weights_are_type_errors_naming_the_argument():
+    body = sc.ConvexPolyhedron(CUBE)
+    complex_direction = np.array([1j, 0, 0])
+    for call, name in (
+        (lambda: body.support(complex_direction), "direction"),
+        (lambda: body.support_index(complex_direction), "direction"),
+        (lambda: sc.separation(CUBE, CUBE, complex_direction), "direction"),
+        (lambda: sc.objective(CUBE, CUBE, np.full(8, 1 / 8 + 0j), np.full(8, 1 / 8)), "weights_a"),
+        (lambda: sc.constraint_violation(np.ones(2), np.ones(2) * 1j), "weights_b"),
+        (lambda: sc.is_feasible(np.ones(2) * 1j, np.ones(2)), "weights_a"),
+        (lambda: sc.project_onto_simplex(np.ones(3) * 1j), "weights"),
+        (lambda: body.support("xyz"), "direction"),
+    ):
+        with pytest.raises(TypeError, match=f"^{name} must"):
+            call()
+    with pytest.raises(ValueError, match=r"direction must be a 3-vector .* got shape \(2,\)"):
+        body.support([1, 0])
+    with pytest.raises(ValueError, match="direction must be finite"):
+        body.support([np.nan, 0, 0])
+    assert body.support([1, 1, 1]).tolist() == [1, 1, 1]
+    assert body.support(np.array([1, 1, 1], dtype=np.float32)).tolist() == [1, 1, 1]
