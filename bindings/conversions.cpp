@@ -71,7 +71,9 @@ py::object with_rotation_matrices(const py::handle& pose) {
     // The translations' shape: the rotations' without their last axis, (3,) or (m, 3).
     const py::array rotations = py::module_::import("numpy").attr("asarray")(*matrices);
     py::list shape;
-    for (py::ssize_t axis = 0; axis + 1 < rotations.ndim(); ++axis) shape.append(rotations.shape(axis));
+    for (py::ssize_t axis = 0; axis + 1 < rotations.ndim(); ++axis) {
+      shape.append(rotations.shape(axis));
+    }
     return py::make_tuple(rotations, py::module_::import("numpy").attr("zeros")(py::tuple(shape)));
   }
   if (is_sequence_of(pose, 2)) {
@@ -267,8 +269,8 @@ std::vector<Pose> to_poses(const py::handle& given, std::size_t count, const cha
       throw py::value_error(arg + " must be " + shapes + ": " + error.what());
     }
     const bool single = count == 1 && raw.ndim() == 2;
-    const auto matrices =
-        single ? real_array(poses, {-1, 4}, arg, shapes) : real_array(poses, {n, -1, 4}, arg, shapes);
+    const auto matrices = single ? real_array(poses, {-1, 4}, arg, shapes)
+                                 : real_array(poses, {n, -1, 4}, arg, shapes);
     const py::ssize_t rows = matrices.shape(matrices.ndim() - 2);
     if (rows != 3 && rows != 4) {
       throw py::value_error(arg + " must be " + shapes + ", got shape " + shape_of(matrices));

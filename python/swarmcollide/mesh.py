@@ -404,7 +404,9 @@ class CompoundBody(_core.CompoundBody):
         decompose``); ValueError for a file that is not one, TypeError for a path that is not
         a path."""
         if not isinstance(path, (str, os.PathLike)):
-            raise TypeError(f"path must be a path to a parts file (.npz), got {type(path).__name__}")
+            raise TypeError(
+                f"path must be a path to a parts file (.npz), got {type(path).__name__}"
+            )
         loaded = _read_parts(Path(path))
         if loaded is None:
             raise ValueError(
