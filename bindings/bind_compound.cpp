@@ -18,9 +18,12 @@ namespace {
 std::vector<ConvexPolyhedron> to_parts(const py::handle& parts) {
   if (py::isinstance<py::str>(parts) || !py::isinstance<py::iterable>(parts) ||
       py::isinstance<ConvexPolyhedron>(parts)) {
+    // A mesh given whole is one body; its parts come from a decomposition.
     throw py::type_error(
-        "parts must be a sequence of ConvexPolyhedron or of (n, 3) point arrays, got " +
-        type_name(parts));
+        "parts must be a sequence of ConvexPolyhedron or of (n, 3) point arrays (or meshes), got " +
+        type_name(parts) +
+        (py::hasattr(parts, "vertices") ? "; CompoundBody.from_mesh decomposes a mesh into parts"
+                                        : ""));
   }
   std::vector<ConvexPolyhedron> result;
   std::size_t index = 0;

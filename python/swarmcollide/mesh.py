@@ -447,6 +447,8 @@ def measure_deviation(mesh, body: _core.CompoundBody, *, samples: int = DEFAULT_
     (True, 0.0)
     """
     trimesh = _trimesh()
+    if isinstance(samples, bool) or not isinstance(samples, (int, np.integer)):
+        raise TypeError(f"samples must be an integer, got {type(samples).__name__}")
     if samples < 1:
         raise ValueError(f"samples must be at least 1, got {samples}")
     parts = body.parts

@@ -54,11 +54,12 @@ def pose_from_quaternion(
     Examples
     --------
     >>> import swarmcollide as sc
-    >>> half_turn = [0.0, 0.0, 0.0, 1.0]  # 180 degrees about z, scalar last
-    >>> sc.pose_from_quaternion(half_turn, [1, 2, 3], order="xyzw").round(12).tolist()
+    >>> half_turn = [0.0, 0.0, 1.0, 0.0]  # 180 degrees about z, scalar last
+    >>> (sc.pose_from_quaternion(half_turn, [1, 2, 3], order="xyzw") + 0.0).tolist()
     [[-1.0, 0.0, 0.0, 1.0], [0.0, -1.0, 0.0, 2.0], [0.0, 0.0, 1.0, 3.0], [0.0, 0.0, 0.0, 1.0]]
-    >>> sc.pose_from_quaternion([0.7071, 0, 0, 0.7071], order="wxyz").round(6)[:3, :3].tolist()
-    [[1.0, 0.0, 0.0], [0.0, 0.0, -1.0], [0.0, 1.0, 0.0]]
+    >>> quarter_turn = [0.7071, 0, 0, 0.7071]  # 90 degrees about z, scalar first, 4 digits
+    >>> (sc.pose_from_quaternion(quarter_turn, order="wxyz")[:3, :3].round(12) + 0.0).tolist()
+    [[0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]]
     """
     if not isinstance(order, str):
         raise TypeError(f"order must be a string, 'wxyz' or 'xyzw', got {type(order).__name__}")

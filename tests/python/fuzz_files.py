@@ -302,7 +302,7 @@ def _cli(rng: np.random.Generator, case_id: str) -> FileCase:
     options = [
         ("distance", "--method", ["bogus", "", "DUAL", "ipso "], ("--method",)),
         ("distance", "--tolerance", ["nan", "-1", "abc", "inf", "1e400"], ("--tolerance",)),
-        ("distance", "--pose-a", ["1,2", "nan,0,0", "1,0,0,0,0,1,0,0,0,0,1,0,0,0,0,1",
+        ("distance", "--pose-a", ["1,2", "nan,0,0", "1,0,0,0,1,0,0,0,0,0,1,0,0,0,0,1",
                                   "2,0,0,0,0,2,0,0,0,0,2,0,0,0,0,1", "1,0,0,0,1,0,0,0,0,0,1,0,1,1,1,1",
                                   "x"], ("--pose-a",)),
         ("distance", "--query", ["bogus"], ("--query",)),

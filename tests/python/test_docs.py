@@ -9,6 +9,7 @@ import swarmcollide._core
 import swarmcollide.dask
 import swarmcollide.mesh
 import swarmcollide.plot
+import swarmcollide.poses
 import swarmcollide.queries
 import swarmcollide.scene_demo
 
@@ -19,6 +20,7 @@ MODULES = [
     swarmcollide.dask,
     swarmcollide.mesh,
     swarmcollide.plot,
+    swarmcollide.poses,
     swarmcollide.scene_demo,
 ]
 

@@ -221,3 +221,14 @@ def test_complex_directions_and_weights_are_type_errors_naming_the_argument():
         body.support([np.nan, 0, 0])
     assert body.support([1, 1, 1]).tolist() == [1, 1, 1]
     assert body.support(np.array([1, 1, 1], dtype=np.float32)).tolist() == [1, 1, 1]
+
+
+def test_a_mesh_given_whole_as_parts_points_to_from_mesh():
+    with pytest.raises(TypeError, match="CompoundBody.from_mesh decomposes a mesh into parts"):
+        sc.CompoundBody(box_mesh())
+
+
+def test_a_sample_count_that_is_not_an_integer_is_refused_by_name():
+    with pytest.raises(TypeError, match="samples must be an integer, got float"):
+        sc.CompoundBody.from_mesh(box_mesh(), decompose="hull", samples=2.5, cache=False,
+                                  progress=False)
