@@ -4,7 +4,6 @@ sandboxed children: a few dozen cases of another seed than the census's keep ``m
 
 from __future__ import annotations
 
-import pytest
 from fuzz_files import ERROR, FILE_FAILURES, FILE_FAMILIES, FileCase, _judge, make_file_case
 from fuzz_judge import category_of
 from sandbox import Sandbox
@@ -27,9 +26,9 @@ def test_the_files_judge_finds_unclear_messages_and_refusals(tmp_path):
     assert _judge(wrong_name, str(tmp_path))[0] == "unclear"
     refused = FileCase("t:1", "cli", "paper", "", {}, ("paper", "--repeats", "0"))
     assert _judge(refused, str(tmp_path))[0] == "refused"
-    slipped = FileCase("t:2", "mesh", "CompoundBody.load", "", {}, (str(tmp_path / "p.npz"),),
+    missing = FileCase("t:2", "mesh", "CompoundBody.load", "", {}, (str(tmp_path / "p.npz"),),
                        {}, ERROR, ("p.npz",))  # fmt: skip
-    assert _judge(slipped, str(tmp_path))[0] == "ok"  # a missing file, refused by name
+    assert _judge(missing, str(tmp_path))[0] == "ok"  # a missing file, refused by name
 
 
 def test_the_files_cases_neither_crash_hang_nor_answer_unclearly():
@@ -46,8 +45,3 @@ def test_the_files_cases_neither_crash_hang_nor_answer_unclearly():
                                 f"{category}: {reason[:200]}")  # fmt: skip
     assert not failures, "\n".join(failures)
 
-
-@pytest.mark.parametrize("index", [0])
-def test_a_files_case_names_what_it_runs(index):
-    case = make_file_case(FILES_SEED, index)
-    assert case.id == f"files:{FILES_SEED}:{index}" and case.label == case.call
