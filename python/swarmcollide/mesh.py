@@ -76,7 +76,7 @@ CACHE_ENVIRONMENT = "SWARMCOLLIDE_CACHE_DIR"
 _CACHE_FORMAT = 2
 # A decomposition shows a progress bar once it has run this long (seconds).
 _PROGRESS_DELAY = 1.0
-# An estimate at least this long (seconds) is announced before the decomposition starts.
+# A typical time at least this long (seconds) is announced before the decomposition starts.
 _LONG_RUN = 20.0
 # Points times part vertices per batch of exact distances: each row of a batch holds its own copy
 # of the part's points, so the batch is cut to hold at most this many (about 25 MB).
@@ -670,12 +670,12 @@ def _decompose(mesh, decompose, parameters, preset, progress) -> List[np.ndarray
             return [np.asarray(v, dtype=float) for v, _ in hulls]
 
         custom = any(parameters[k] != v for k, v in PRESETS[preset].items())
-        estimate = None if custom else _estimated_seconds(len(mesh.faces), preset)
+        estimate = None if custom else _TYPICAL_SECONDS[preset]
         note = ""
         if estimate is not None:
-            note = f"preset={preset!r}, ~{estimate:.0f} s estimated"
+            note = f"preset={preset!r}, typically ~{estimate:.0f} s"
             if preset != "fast":
-                note += f"; preset='fast' ~{_estimated_seconds(len(mesh.faces), 'fast'):.0f} s"
+                note += f"; preset='fast' ~{_TYPICAL_SECONDS['fast']:.0f} s"
         return _with_progress("CoACD", run, progress, estimate, note)
     import vhacdx
 
@@ -687,15 +687,11 @@ def _decompose(mesh, decompose, parameters, preset, progress) -> List[np.ndarray
     return _with_progress("V-HACD", run, progress)
 
 
-# CoACD's time per preset as ``seconds = a * (triangles / 1000) ** b``, fitted to the runs of
-# bench/decomposers.py --real on this project's 2-core machine: a rough guide (the runs scatter
-# by a factor of about 3 around it), shown before a long run so that nobody waits blind.
-_TIME_MODEL = {"fast": (5.0, 0.3), "quality": (60.0, 0.3)}
-
-
-def _estimated_seconds(faces: int, preset: str) -> float:
-    a, b = _TIME_MODEL[preset]
-    return a * (max(faces, 1) / 1000.0) ** b
+# CoACD's typical time per preset (seconds): the median of the runs of
+# bench/decomposers.py --real on five pybullet_data meshes on this project's 2-core machine. It
+# does not predict the mesh at hand (CoACD's time follows the cuts a shape needs, not its
+# triangles), but says before a long run what to expect and what the fast preset would take.
+_TYPICAL_SECONDS = {"fast": 8.0, "quality": 150.0}
 
 
 def _ready_made_parts(source, mesh) -> List[np.ndarray]:

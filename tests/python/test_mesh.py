@@ -168,12 +168,19 @@ def test_max_hull_vertices_bounds_coacd_parts(decomposed):
     assert max(len(p.vertices) for p in exact.parts) > 8  # CoACD's exact hulls
 
 
-def test_a_long_decomposition_says_how_long_before_it_starts(monkeypatch, capsys):
+def test_a_long_decomposition_says_how_long_before_it_starts(tmp_path, monkeypatch, capsys):
+    from swarmcollide.cli import main
+
     monkeypatch.setattr(mesh_module, "_LONG_RUN", 0.0)
-    monkeypatch.setattr(mesh_module, "_TIME_MODEL", {"fast": (42.0, 0.0), "quality": (420.0, 0.0)})
-    sc.CompoundBody.from_mesh(l_shape(), decompose="coacd", preset="quality", cache=False)
+    monkeypatch.setattr(mesh_module, "_TYPICAL_SECONDS", {"fast": 42.0, "quality": 420.0})
+    l_shape().export(tmp_path / "l.obj")
+    parts = tmp_path / "l.npz"
+    assert main(["decompose", str(tmp_path / "l.obj"), "-o", str(parts), "--preset", "quality",
+                 "--no-cache"]) == 0
     err = capsys.readouterr().err
-    assert "~420 s estimated" in err and "preset='fast' ~42 s" in err
+    assert "typically ~420 s" in err and "preset='fast' ~42 s" in err
+    used = sc.CompoundBody.load(parts).decomposition.parameters
+    assert used["mcts_iterations"] == sc.mesh.PRESETS["quality"]["mcts_iterations"]
 
 
 def test_settings_are_checked():
