@@ -53,7 +53,7 @@ DEFAULT_CONCAVITY = PRESETS[DEFAULT_PRESET]["threshold"]
 """CoACD's concavity threshold (its ``threshold``) of the default preset: the largest concavity
 a part may keep, relative to the mesh's bounding-box diagonal."""
 
-DEFAULT_MAX_FACES = 50_000
+DEFAULT_MAX_FACES = 20_000
 """Meshes with more triangles are simplified to this many (quadric decimation, by
 fast-simplification through trimesh) before they are decomposed, which bounds the decomposers'
 memory and time; the error that adds is measured and recorded (``simplification_error``)."""
@@ -88,6 +88,9 @@ _PROXIMITY_POINTS = 256
 # diagonal) makes a ready-made part not convex: trimesh's planar tolerance, which the six digits
 # of typical OBJ files stay within (1.3e-6 at most on pybullet_data's V-HACD files).
 _CONVEX_TOLERANCE = 1e-5
+# Probe points times hull facets, at most, of that comparison (beyond it trimesh's verdict
+# stands): the work and, in pieces, the memory of the heights of every probe over every facet.
+_CONVEX_CHECK_PAIRS = 1 << 28
 
 MeshLike = Union[str, "os.PathLike[str]", Any]
 """A path to a mesh file, or a ``trimesh.Trimesh``."""
@@ -595,7 +598,14 @@ def _simplified(mesh, faces: int):
             "simplifying it needs fast-simplification: pip install 'swarmcollide[mesh]' (or "
             "raise max_faces, which costs memory and time)"
         ) from error
-    return _checked(simplified, "the simplified mesh")
+    # Quadric decimation leaves some triangles twice, back to back (a fin that encloses nothing),
+    # which make a closed mesh open and its signed distance unavailable: both copies go.
+    corners = np.sort(np.asarray(simplified.faces), axis=1)
+    _, index, counts = np.unique(corners, axis=0, return_inverse=True, return_counts=True)
+    single = counts[index.ravel()] == 1
+    trimesh = _trimesh()
+    return _checked(trimesh.Trimesh(simplified.vertices, simplified.faces[single]),
+                    "the simplified mesh")
 
 
 def _surface_distance(mesh, simplified, samples: int, seed: int) -> float:
@@ -705,12 +715,12 @@ def _ready_made_parts(source, mesh) -> List[np.ndarray]:
                   for k, c in enumerate(components)]
     parts = []
     for name, piece in pieces:
-        depth = _concavity_depth(piece)
-        if depth > _CONVEX_TOLERANCE:
+        defect = _convexity_defect(piece)
+        if defect is not None:
             raise ValueError(
                 f"decompose=None needs convex parts, but {name}, with {len(piece.faces)} "
-                f"triangles, is not convex (a face lies {depth:.3g} of its size inside its "
-                "hull); use decompose='coacd' or 'vhacd' to split it, or 'hull' for its hull"
+                f"triangles, is not convex ({defect}); use decompose='coacd' or 'vhacd' to "
+                "split it, or 'hull' for its hull"
             )
         parts.append(np.asarray(piece.vertices, dtype=float))
     return parts
@@ -739,31 +749,39 @@ def _file_groups(path) -> Optional[List[Any]]:
     return groups
 
 
-def _concavity_depth(piece) -> float:
-    """How deep the piece's deepest vertex or face centre lies inside the piece's convex hull,
-    relative to its bounding-box diagonal: 0 for a convex surface (a triangle whose centre lies
-    on the hull's boundary lies in a facet of it), more for a dent. A flat piece is compared by
-    area with its hull instead."""
+def _convexity_defect(piece) -> Optional[str]:
+    """None for a convex piece, else what makes it not convex.
+
+    trimesh's test (every pair of adjacent faces folds outward) accepts most pieces at once. One
+    it refuses, often for the rounding of a file's six digits, is compared with its hull: a face
+    whose centre lies on the hull's boundary lies in a facet of it, so the piece is convex when
+    no vertex or face centre lies deeper inside than ``_CONVEX_TOLERANCE`` of its size. A flat
+    piece is compared with its hull by area.
+    """
+    if piece.is_convex:
+        return None
     points = np.asarray(piece.vertices, dtype=float)
     size = float(np.linalg.norm(points.max(axis=0) - points.min(axis=0)))
     hull = _core.ConvexPolyhedron(points).hull()
     if size == 0 or hull.dimension < 2:
-        return 0.0
+        return None
     corners = points[hull.faces]
+    normals = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
     if hull.dimension == 2:
         # The flat hull lists each triangle once facing each side.
-        hull_area = np.linalg.norm(np.cross(corners[:, 1] - corners[:, 0],
-                                            corners[:, 2] - corners[:, 0]), axis=1).sum() / 4
-        return max(0.0, 1.0 - float(piece.area) / hull_area) if hull_area > 0 else 0.0
-    normals = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
+        shortfall = 1.0 - float(piece.area) / (np.linalg.norm(normals, axis=1).sum() / 4)
+        return (None if shortfall <= _CONVEX_TOLERANCE else
+                f"it is flat and covers {shortfall:.3g} less than its hull")
+    probes = np.vstack([points, points[np.asarray(piece.faces)].mean(axis=1)])
+    if len(probes) * len(normals) > _CONVEX_CHECK_PAIRS:
+        return "two of its adjacent faces fold inward"
     normals /= np.linalg.norm(normals, axis=1, keepdims=True)
     offsets = np.einsum("ij,ij->i", normals, corners[:, 0])
-    probes = np.vstack([points, points[np.asarray(piece.faces)].mean(axis=1)])
-    depth = 0.0
-    for begin in range(0, len(probes), 4096):
-        heights = probes[begin:begin + 4096] @ normals.T - offsets
-        depth = max(depth, float((-heights.max(axis=1)).max()))
-    return max(depth, 0.0) / size
+    rows = max(1, _CONVEX_CHECK_PAIRS // 64 // len(normals))
+    depth = max(float((offsets - (probes[k:k + rows] @ normals.T)).min(axis=1).max())
+                for k in range(0, len(probes), rows))
+    return (None if depth <= _CONVEX_TOLERANCE * size else
+            f"a face lies {depth / size:.3g} of its size inside its hull")
 
 
 def _with_progress(label: str, run: Callable[[], List[np.ndarray]], enabled: bool,
