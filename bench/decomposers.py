@@ -23,7 +23,7 @@ from typing import List, Optional
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "tests", "python"))
 
 SETTINGS = [
-    ("coacd", dict(concavity=0.05)),  # the library's default
+    ("coacd", dict(concavity=0.05)),  # the default threshold before the presets
     ("coacd", dict(concavity=0.1)),
     ("coacd", dict(concavity=0.03)),
     ("coacd", dict(concavity=0.05, max_hulls=8)),

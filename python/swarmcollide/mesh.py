@@ -701,7 +701,7 @@ def _decompose(mesh, decompose, parameters, preset, progress) -> List[np.ndarray
 # bench/decomposers.py --real on five pybullet_data meshes on this project's 2-core machine. It
 # does not predict the mesh at hand (CoACD's time follows the cuts a shape needs, not its
 # triangles), but says before a long run what to expect and what the fast preset would take.
-_TYPICAL_SECONDS = {"fast": 8.0, "quality": 150.0}
+_TYPICAL_SECONDS = {"fast": 8.0, "quality": 185.0}
 
 
 def _ready_made_parts(source, mesh) -> List[np.ndarray]:
