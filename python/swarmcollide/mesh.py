@@ -611,10 +611,11 @@ def _simplified(mesh, faces: int):
 def _surface_distance(mesh, simplified, samples: int, seed: int) -> float:
     """The sampled Hausdorff distance between a mesh's surface and its simplification.
 
-    Points sampled on the mesh get their distance to the simplified surface (trimesh); points
-    sampled on the simplified surface get their distance to the mesh's nearest vertex, which
-    overstates the distance to its surface by at most its longest edge and costs one k-d tree
-    instead of trimesh's proximity query over every triangle of a large mesh.
+    Points sampled on the mesh get their distance to the simplified surface (trimesh). Points
+    sampled on the simplified surface get their distance to the nearest of the mesh's triangles
+    around its 4 nearest vertices: never less than the distance to the mesh's surface, and for
+    points this close to it the same in practice, at the cost of one k-d tree where trimesh's
+    query gathers every triangle near each point of a large mesh (a minute and 1.5 GB at 2M).
     """
     trimesh = _trimesh()
     from scipy.spatial import cKDTree
@@ -623,7 +624,23 @@ def _surface_distance(mesh, simplified, samples: int, seed: int) -> float:
     on_simplified, _ = trimesh.sample.sample_surface(simplified, samples, seed=seed + 3)
     to_simplified = _in_chunks(lambda m, p: trimesh.proximity.closest_point(m, p)[1], simplified,
                                on_mesh)
-    to_mesh = cKDTree(np.asarray(mesh.vertices)).query(on_simplified)[0]
+    points = np.asarray(mesh.vertices, dtype=float)
+    faces = np.asarray(mesh.faces)
+    _, nearest = cKDTree(points).query(on_simplified, k=min(4, len(points)))
+    nearest = nearest.reshape(len(on_simplified), -1)
+    # The triangles around each vertex: the corners sorted by vertex, and where each one starts.
+    corner_order = np.argsort(faces.ravel(), kind="stable")
+    starts = np.searchsorted(faces.ravel()[corner_order], np.arange(len(points) + 1))
+    vertex = nearest.ravel()
+    around = starts[vertex + 1] - starts[vertex]
+    sample = np.repeat(np.repeat(np.arange(len(on_simplified)), nearest.shape[1]), around)
+    corner = (np.repeat(starts[vertex] - np.cumsum(around) + around, around)
+              + np.arange(around.sum()))
+    triangles = points[faces[corner_order[corner] // 3]]
+    gaps = np.linalg.norm(trimesh.triangles.closest_point(triangles, on_simplified[sample])
+                          - on_simplified[sample], axis=1)
+    to_mesh = np.full(len(on_simplified), np.inf)
+    np.minimum.at(to_mesh, sample, gaps)
     return float(max(to_simplified.max(), to_mesh.max()))
 
 
