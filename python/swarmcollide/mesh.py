@@ -919,7 +919,7 @@ def _read_cache(path: Path):
         return None
     try:
         loaded = _read_parts(path)
-    except TypeError:  # a file of an older format's fields
+    except TypeError:  # a file written by a version with other fields
         return None
     if loaded is None or loaded[1] is None:
         return None
