@@ -98,14 +98,16 @@ def _add_decomposer_options(parser: argparse.ArgumentParser, default: str) -> No
         f"(faster, coarser), their convex hull, or 'none' for meshes whose connected components "
         f"are convex already (default: {default})",
     )
-    group.add_argument("--concavity", type=_concavity, default=DEFAULT_CONCAVITY,
+    group.add_argument("--preset", choices=["fast", "quality"], default="fast",
+                       help="CoACD's settings: fast (seconds) or quality (minutes) (default: fast)")
+    group.add_argument("--concavity", type=_concavity, default=None,
                        help=f"CoACD's concavity threshold; V-HACD's volume error as a fraction "
-                       f"(default: {DEFAULT_CONCAVITY})")
+                       f"(default: the preset's, {DEFAULT_CONCAVITY} for fast)")
     group.add_argument("--max-hulls", type=_integer(1), default=None,
                        help="at most this many parts (default: CoACD unlimited, V-HACD 32)")
-    group.add_argument("--max-hull-vertices", type=_integer(4), default=DEFAULT_MAX_HULL_VERTICES,
-                       help=f"at most this many vertices per part (default: "
-                       f"{DEFAULT_MAX_HULL_VERTICES})")
+    group.add_argument("--max-hull-vertices", type=_integer(4), default=None,
+                       help=f"at most this many vertices per part (default: CoACD's exact hulls, "
+                       f"V-HACD {DEFAULT_MAX_HULL_VERTICES})")
     group.add_argument("--resolution", type=_integer(1), default=None,
                        help="CoACD's sampling resolution or V-HACD's voxel count")
     group.add_argument("--seed", type=_SEED, default=0, help="decomposition seed (default 0)")
@@ -124,6 +126,7 @@ def _body(path: str, arguments: argparse.Namespace):
     return CompoundBody.from_mesh(
         path,
         decompose=None if arguments.decompose == "none" else arguments.decompose,
+        preset=arguments.preset,
         concavity=arguments.concavity,
         max_hulls=arguments.max_hulls,
         max_hull_vertices=arguments.max_hull_vertices,

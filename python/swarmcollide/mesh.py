@@ -7,7 +7,7 @@ decomposition on disk. Queries between compound bodies are certified for the con
 far that is from the mesh is what ``CompoundBody.decomposition`` records.
 
 Needs the ``mesh`` extra: ``pip install swarmcollide[mesh]`` (trimesh, rtree, scipy, coacd, vhacdx,
-tqdm).
+tqdm, fast-simplification).
 """
 
 from __future__ import annotations
@@ -36,13 +36,32 @@ coarser), one convex hull, or None for a mesh whose connected components are con
 DEFAULT_SAMPLES = 4000
 """Surface points sampled on each side when the parts' distance from the mesh is measured."""
 
-DEFAULT_CONCAVITY = 0.05
-"""CoACD's concavity threshold (its ``threshold``): the largest concavity a part may keep,
-relative to the mesh's bounding-box diagonal."""
+PRESETS: Dict[str, Dict[str, Any]] = {
+    "fast": {"threshold": 0.1, "resolution": 1000, "preprocess_resolution": 30,
+             "mcts_nodes": 8, "mcts_iterations": 30, "mcts_max_depth": 2},
+    "quality": {"threshold": 0.05, "resolution": 2000, "preprocess_resolution": 50,
+                "mcts_nodes": 20, "mcts_iterations": 100, "mcts_max_depth": 3},
+}
+"""CoACD's settings for ``CompoundBody.from_mesh(preset=...)``: ``"fast"`` (the default) answers
+in seconds on robot-link meshes, ``"quality"`` fits closer and takes a minute or more (docs/mesh.md
+has the measured table). Explicit ``concavity`` and ``resolution`` override a preset's
+``threshold`` and ``resolution``."""
+
+DEFAULT_PRESET = "fast"
+"""The preset ``from_mesh`` uses when none is given."""
+
+DEFAULT_CONCAVITY = PRESETS[DEFAULT_PRESET]["threshold"]
+"""CoACD's concavity threshold (its ``threshold``) of the default preset: the largest concavity
+a part may keep, relative to the mesh's bounding-box diagonal."""
+
+DEFAULT_MAX_FACES = 20_000
+"""Meshes with more triangles are simplified to this many (quadric decimation, by
+fast-simplification through trimesh) before they are decomposed, which bounds the decomposers'
+memory and time; the error that adds is measured and recorded (``simplification_error``)."""
 
 DEFAULT_MAX_HULL_VERTICES = 64
-"""Vertices per convex part, at most (CoACD's ``max_ch_vertex``, V-HACD's
-``maxNumVerticesPerCH``)."""
+"""V-HACD's ``maxNumVerticesPerCH`` when ``max_hull_vertices`` is not given (CoACD's parts are
+then the exact hulls of its pieces, which never miss any of the mesh)."""
 
 DEFAULT_VHACD_MAX_HULLS = 32
 """V-HACD's ``maxConvexHulls`` when ``max_hulls`` is not given (it needs a number; CoACD does
@@ -55,9 +74,24 @@ CACHE_ENVIRONMENT = "SWARMCOLLIDE_CACHE_DIR"
 """The environment variable that, when set, names the decomposition cache's directory."""
 
 # Bumped when what a cache file holds, or how it is computed, changes.
-_CACHE_FORMAT = 1
+_CACHE_FORMAT = 2
 # A decomposition shows a progress bar once it has run this long (seconds).
 _PROGRESS_DELAY = 1.0
+# A typical time at least this long (seconds) is announced before the decomposition starts.
+_LONG_RUN = 20.0
+# Points times part vertices per batch of exact distances: each row of a batch holds its own copy
+# of the part's points, so the batch is cut to hold at most this many (about 25 MB).
+_DEVIATION_POINTS = 1 << 20
+# Query points per call of trimesh's proximity queries, whose memory grows with the points times
+# the triangles near each.
+_PROXIMITY_POINTS = 256
+# A face or vertex deeper than this inside its hull (relative to the piece's bounding-box
+# diagonal) makes a ready-made part not convex: trimesh's planar tolerance, which the six digits
+# of typical OBJ files stay within (1.3e-6 at most on pybullet_data's V-HACD files).
+_CONVEX_TOLERANCE = 1e-5
+# Probe points times hull facets, at most, of that comparison (beyond it trimesh's verdict
+# stands): the work and, in pieces, the memory of the heights of every probe over every facet.
+_CONVEX_CHECK_PAIRS = 1 << 28
 
 MeshLike = Union[str, "os.PathLike[str]", Any]
 """A path to a mesh file, or a ``trimesh.Trimesh``."""
@@ -201,18 +235,41 @@ def _thickness(points: np.ndarray) -> float:
 
 
 def mesh_hash(mesh) -> str:
-    """SHA-256 of a mesh's points (as float64) and triangles (as int64): the cache's key.
+    """SHA-256 of a mesh's triangles as coordinates: the cache's key for a mesh.
+
+    The triangles are hashed as their corners' float64 coordinates, each triangle starting at its
+    smallest corner (which keeps its orientation) and the triangles in sorted order, so the hash
+    does not depend on how a loader numbered, merged or duplicated the points, nor on the order of
+    the triangles.
 
     Examples
     --------
-    >>> import trimesh, swarmcollide as sc
-    >>> len(sc.mesh_hash(trimesh.creation.box()))
+    >>> import numpy as np, trimesh, swarmcollide as sc
+    >>> box = trimesh.creation.box()
+    >>> corners = box.vertices[box.faces[::-1]].reshape(-1, 3)  # unmerged, triangles reversed
+    >>> unmerged = trimesh.Trimesh(corners, np.arange(36).reshape(-1, 3), process=False)
+    >>> sc.mesh_hash(unmerged) == sc.mesh_hash(box)
+    True
+    >>> len(sc.mesh_hash(box))
     64
     """
-    digest = hashlib.sha256()
-    digest.update(np.ascontiguousarray(mesh.vertices, dtype=np.float64).tobytes())
-    digest.update(np.ascontiguousarray(mesh.faces, dtype=np.int64).tobytes())
-    return digest.hexdigest()
+    # + 0.0 turns -0.0 into 0.0, which compare equal but hash apart.
+    points = np.asarray(mesh.vertices, dtype=np.float64) + 0.0
+    # Each point's rank in lexicographic order (equal points share one), then each triangle
+    # rolled to start at its lowest corner.
+    order = np.lexsort(points.T[::-1])
+    ordered_points = points[order]
+    new = np.ones(len(points), dtype=bool)
+    new[1:] = (ordered_points[1:] != ordered_points[:-1]).any(axis=1)
+    rank = np.empty(len(points), dtype=np.int64)
+    rank[order] = np.cumsum(new)
+    faces = np.asarray(mesh.faces, dtype=np.int64)
+    first = rank[faces].argmin(axis=1)
+    rolled = faces[np.arange(len(faces))[:, None], (first[:, None] + np.arange(3)) % 3]
+    # Triangles in the order of their corners' ranks: the same order as their coordinates.
+    keys = rank[rolled]
+    ordered = rolled[np.lexsort(keys.T[::-1])]
+    return hashlib.sha256(np.ascontiguousarray(points[ordered]).tobytes()).hexdigest()
 
 
 @dataclass(frozen=True)
@@ -230,6 +287,11 @@ class Decomposition:
     ``spacing`` of a sample, and the distance functions are 1-Lipschitz, so the true values
     exceed the measured ones by at most about ``spacing``.
 
+    A mesh of more than ``max_faces`` triangles is simplified before it is decomposed; the parts
+    are then measured against the simplified mesh, and ``simplification_error`` (the sampled
+    Hausdorff distance between the two surfaces) is added to both distances, which by the
+    triangle inequality makes them the parts' distances from the mesh as given.
+
     What it means for queries: answers are certified for the parts, and the meshes' true distance
     lies within ``mesh_to_parts`` (of each body) below and ``parts_to_mesh`` (of each body) above
     the parts' distance: ``d_parts - gA - gB <= d_mesh <= d_parts + hA + hB`` with ``h`` the
@@ -240,7 +302,8 @@ class Decomposition:
     Attributes
     ----------
     method : str
-        ``"coacd"``, ``"vhacd"``, ``"hull"`` or ``"none"`` (the mesh's convex components).
+        ``"coacd"``, ``"vhacd"``, ``"hull"`` or ``"none"`` (the file's groups or the mesh's convex
+        components).
     parameters : dict
         The decomposer's settings, as passed to it.
     parts : int
@@ -248,13 +311,21 @@ class Decomposition:
     seconds : float
         Time the decomposition took when it was computed (a cached one reports that time).
     parts_to_mesh, mesh_to_parts : float
-        The sampled one-sided Hausdorff distances, in the mesh's units.
+        The sampled one-sided Hausdorff distances, in the mesh's units (with
+        ``simplification_error`` included).
     samples : int
         Points sampled on each surface.
     spacing : float
         ``sqrt(area / samples)`` of the larger surface: the typical distance between samples.
     mesh_hash : str
         SHA-256 of the mesh (``mesh_hash``).
+    faces : int
+        Triangles of the mesh as given.
+    decomposed_faces : int
+        Triangles of the mesh the decomposer saw (``faces`` unless it was simplified).
+    simplification_error : float
+        Sampled Hausdorff distance between the simplified surface and the mesh's (0 when the mesh
+        was not simplified).
     from_cache : bool
         True when the parts came from the on-disk cache.
     """
@@ -268,6 +339,9 @@ class Decomposition:
     samples: int
     spacing: float
     mesh_hash: str
+    faces: int = 0
+    decomposed_faces: int = 0
+    simplification_error: float = 0.0
     from_cache: bool = field(default=False, compare=False)
 
     @property
@@ -276,10 +350,13 @@ class Decomposition:
         return max(self.parts_to_mesh, self.mesh_to_parts)
 
     def __repr__(self) -> str:
+        simplified = (f", simplified {self.faces} to {self.decomposed_faces} faces "
+                      f"(error {self.simplification_error:.4g})"
+                      if self.decomposed_faces != self.faces else "")
         return (
             f"Decomposition(method={self.method!r}, parts={self.parts}, "
             f"parts_to_mesh={self.parts_to_mesh:.4g}, mesh_to_parts={self.mesh_to_parts:.4g}, "
-            f"samples={self.samples}, seconds={self.seconds:.3g}"
+            f"samples={self.samples}, seconds={self.seconds:.3g}{simplified}"
             f"{', from_cache=True' if self.from_cache else ''})"
         )
 
@@ -318,10 +395,12 @@ class CompoundBody(_core.CompoundBody):
         mesh: MeshLike,
         decompose: Optional[str] = "coacd",
         *,
-        concavity: float = DEFAULT_CONCAVITY,
+        preset: str = DEFAULT_PRESET,
+        concavity: Optional[float] = None,
         max_hulls: Optional[int] = None,
-        max_hull_vertices: int = DEFAULT_MAX_HULL_VERTICES,
+        max_hull_vertices: Optional[int] = None,
         resolution: Optional[int] = None,
+        max_faces: int = DEFAULT_MAX_FACES,
         seed: int = 0,
         samples: int = DEFAULT_SAMPLES,
         cache: Union[bool, str, "os.PathLike[str]"] = True,
@@ -335,59 +414,98 @@ class CompoundBody(_core.CompoundBody):
             A mesh file or a mesh (see ``load_mesh``).
         decompose : {"coacd", "vhacd", "hull", None}
             ``"coacd"`` (default): CoACD, collision-aware approximate convex decomposition, the
-            closest fit (seconds to minutes). ``"vhacd"``: V-HACD, voxel-based, faster and
-            coarser. ``"hull"``: the mesh's convex hull, one part. None: the mesh's connected
-            components, each of which must be convex already (ValueError names one that is not).
-        concavity : float
+            closest fit. ``"vhacd"``: V-HACD, voxel-based, faster and coarser. ``"hull"``: the
+            mesh's convex hull, one part. None: parts that are convex already: each ``o``/``g``
+            group of an OBJ file (each geometry of a multi-mesh file) is one part, as V-HACD and
+            CoACD write them; a single mesh is split into its connected components. ValueError
+            names the group or component that is not convex.
+        preset : {"fast", "quality"}
+            CoACD's settings (``PRESETS``): ``"fast"`` answers in seconds on robot-link meshes,
+            ``"quality"`` fits closer and can take minutes.
+        concavity : float, optional
             CoACD: the concavity threshold (its ``threshold``, relative to the bounding-box
-            diagonal; smaller gives more parts, closer). V-HACD: the allowed volume error as a
-            fraction (its ``minimumVolumePercentErrorAllowed`` is ``100 * concavity``).
+            diagonal; smaller gives more parts, closer), the preset's when None. V-HACD: the
+            allowed volume error as a fraction (its ``minimumVolumePercentErrorAllowed`` is
+            ``100 * concavity``; 0.05 when None).
         max_hulls : int, optional
             At most this many parts (CoACD: unlimited when None; V-HACD: 32 when None).
-        max_hull_vertices : int
-            At most this many vertices per part.
+        max_hull_vertices : int, optional
+            At most this many vertices per part. CoACD: when given, it decimates its hulls to it
+            (a decimated hull can miss some of the mesh, which ``mesh_to_parts`` records); when
+            None its parts are the exact hulls of its pieces. V-HACD: 64 when None.
         resolution : int, optional
-            CoACD's surface sampling resolution (2000 when None) or V-HACD's voxel count (20000
-            when None).
+            CoACD's surface sampling resolution (the preset's when None) or V-HACD's voxel count
+            (20000 when None).
+        max_faces : int
+            A mesh with more triangles is simplified to this many before it is decomposed (not
+            for ``decompose=None``); ``simplification_error`` records what that cost.
         seed : int
             Seed of CoACD's search and of the surface sampling.
         samples : int
             Points sampled on each surface to measure the parts' distance from the mesh.
         cache : bool or path
-            Keep the decomposition on disk, keyed by the mesh's hash and the settings: True uses
-            ``cache_directory()``, a path that directory, False nothing.
+            Keep the decomposition on disk, keyed by the settings and the mesh's hash, and by the
+            file's bytes when ``mesh`` is a path (so a file read again, by any loader, is found):
+            True uses ``cache_directory()``, a path that directory, False nothing.
         progress : bool
-            Show a tqdm progress bar (on stderr) when decomposing takes over a second.
+            Show a tqdm progress bar (on stderr) when decomposing takes over a second, with an
+            estimate of the time before a long run.
 
         Returns
         -------
         CompoundBody
         """
-        loaded = load_mesh(mesh)
-        parameters = _parameters(decompose, concavity, max_hulls, max_hull_vertices, resolution,
-                                 seed)
-        key = _cache_key(loaded, decompose, parameters, samples)
+        parameters = _parameters(decompose, preset, concavity, max_hulls, max_hull_vertices,
+                                 resolution, seed)
+        if not (isinstance(max_faces, int) and max_faces >= 4):
+            raise ValueError(f"max_faces must be an integer >= 4, got {max_faces!r}")
+        settings = [decompose, parameters, samples,
+                    max_faces if decompose is not None else None]
         folder = _cache_folder(cache)
-        if folder is not None:
-            cached = _read_cache(folder / f"{key}.npz")
+        file_key = None
+        if folder is not None and isinstance(mesh, (str, os.PathLike)) and Path(mesh).is_file():
+            file_key = _cache_key(settings, file_digest=_file_digest(Path(mesh)))
+            cached = _read_cache(folder / f"{file_key}.npz")
             if cached is not None:
-                parts, decomposition = cached
-                return cls(parts, decomposition)
+                return cls(*cached)
+        loaded = load_mesh(mesh)
+        mesh_key = _cache_key(settings, mesh_digest=mesh_hash(loaded))
+        if folder is not None:
+            cached = _read_cache(folder / f"{mesh_key}.npz")
+            if cached is not None:
+                if file_key is not None:
+                    _write_cache(folder / f"{file_key}.npz", *cached)
+                return cls(*cached)
+        decomposed, simplification_error = loaded, 0.0
+        if decompose is not None and len(loaded.faces) > max_faces:
+            decomposed = _simplified(loaded, max_faces)
+            simplification_error = _surface_distance(loaded, decomposed, samples, seed)
         start = time.perf_counter()
-        parts = _decompose(loaded, decompose, parameters, progress)
+        if decompose is None:
+            parts = _ready_made_parts(mesh, loaded)
+        else:
+            parts = _decompose(decomposed, decompose, parameters, preset, progress)
         seconds = time.perf_counter() - start
         body = cls(parts)
-        deviation = measure_deviation(loaded, body, samples=samples, seed=seed)
+        deviation = measure_deviation(decomposed, body, samples=samples, seed=seed)
         body.decomposition = Decomposition(
             method=decompose or "none",
             parameters=parameters,
             parts=len(parts),
             seconds=seconds,
+            parts_to_mesh=deviation["parts_to_mesh"] + simplification_error,
+            mesh_to_parts=deviation["mesh_to_parts"] + simplification_error,
+            samples=deviation["samples"],
+            spacing=deviation["spacing"],
             mesh_hash=mesh_hash(loaded),
-            **deviation,
+            faces=len(loaded.faces),
+            decomposed_faces=len(decomposed.faces),
+            simplification_error=simplification_error,
         )
         if folder is not None:
-            _write_cache(folder / f"{key}.npz", parts, body.decomposition)
+            for key in (mesh_key, file_key):
+                if key is not None:
+                    _write_cache(folder / f"{key}.npz", parts, body.decomposition)
         return body
 
     def save(self, path: Union[str, "os.PathLike[str]"]) -> None:
@@ -435,7 +553,9 @@ def measure_deviation(mesh, body: _core.CompoundBody, *, samples: int = DEFAULT_
     """The one-sided Hausdorff distances between a mesh's solid and a compound body's parts.
 
     Returns the fields ``parts_to_mesh``, ``mesh_to_parts``, ``samples`` and ``spacing`` of a
-    ``Decomposition`` (which says what they mean).
+    ``Decomposition`` (which says what they mean). Memory stays bounded whatever the sizes: the
+    exact distances run in batches of at most about a million part points, trimesh's proximity
+    queries in chunks of points.
 
     Examples
     --------
@@ -455,23 +575,28 @@ def measure_deviation(mesh, body: _core.CompoundBody, *, samples: int = DEFAULT_
     # Points on the mesh's surface, and their exact distance to the union of the parts.
     on_mesh, _ = trimesh.sample.sample_surface(mesh, samples, seed=seed)
     to_parts = np.full(len(on_mesh), np.inf)
-    singles = on_mesh[:, None, :]
+    exact = _core.Query("exact")
     for part in parts:
-        to_parts = np.minimum(to_parts, _core.Query("exact").distance_many(
-            [part] * len(on_mesh), singles, threads=None).distance)
+        rows = max(1, _DEVIATION_POINTS // len(part.vertices))
+        for begin in range(0, len(on_mesh), rows):
+            chunk = on_mesh[begin:begin + rows]
+            to_parts[begin:begin + rows] = np.minimum(
+                to_parts[begin:begin + rows],
+                exact.distance_many([part] * len(chunk), chunk[:, None, :], threads=None).distance)
     # Points on the parts' surfaces (in proportion to their areas), and their distance to the
     # mesh's solid: outside a watertight mesh its signed distance (trimesh: positive inside),
     # else the distance to its surface, which can only overstate.
-    hulls = trimesh.util.concatenate(
-        [trimesh.Trimesh(p.vertices, p.hull().faces, process=False) for p in parts
-         if p.hull().dimension == 3]
-    ) if any(p.hull().dimension == 3 for p in parts) else None
-    if hulls is not None and len(hulls.faces):
+    solids = [p for p in parts if p.hull().dimension == 3]
+    if solids:
+        hulls = trimesh.util.concatenate(
+            [trimesh.Trimesh(p.vertices, p.hull().faces, process=False) for p in solids])
         on_parts, _ = trimesh.sample.sample_surface(hulls, samples, seed=seed + 1)
         if mesh.is_watertight:
-            outside = np.maximum(-trimesh.proximity.signed_distance(mesh, on_parts), 0.0)
+            outside = np.maximum(-_in_chunks(trimesh.proximity.signed_distance, mesh, on_parts),
+                                 0.0)
         else:
-            outside = trimesh.proximity.closest_point(mesh, on_parts)[1]
+            outside = _in_chunks(lambda m, p: trimesh.proximity.closest_point(m, p)[1], mesh,
+                                 on_parts)
         parts_to_mesh = float(outside.max())
         area = max(mesh.area, hulls.area)
     else:
@@ -484,44 +609,113 @@ def measure_deviation(mesh, body: _core.CompoundBody, *, samples: int = DEFAULT_
     }
 
 
-def _parameters(decompose, concavity, max_hulls, max_hull_vertices, resolution, seed):
+def _in_chunks(distance: Callable[[Any, np.ndarray], np.ndarray], mesh,
+               points: np.ndarray) -> np.ndarray:
+    """``distance(mesh, points)`` a chunk of points at a time: trimesh gathers every triangle
+    near each point at once, which for many points on a fine mesh takes gigabytes."""
+    return np.concatenate([np.asarray(distance(mesh, points[k:k + _PROXIMITY_POINTS]))
+                           for k in range(0, len(points), _PROXIMITY_POINTS)])
+
+
+def _simplified(mesh, faces: int):
+    """The mesh simplified to about ``faces`` triangles by quadric decimation."""
+    try:
+        simplified = mesh.simplify_quadric_decimation(face_count=faces)
+    except ImportError as error:  # pragma: no cover - the mesh extra installs it
+        raise ImportError(
+            f"the mesh has {len(mesh.faces)} triangles, more than max_faces={faces}, and "
+            "simplifying it needs fast-simplification: pip install 'swarmcollide[mesh]' (or "
+            "raise max_faces, which costs memory and time)"
+        ) from error
+    # Quadric decimation leaves some triangles twice, back to back (a fin that encloses nothing),
+    # which make a closed mesh open and its signed distance unavailable: both copies go.
+    corners = np.sort(np.asarray(simplified.faces), axis=1)
+    _, index, counts = np.unique(corners, axis=0, return_inverse=True, return_counts=True)
+    single = counts[index.ravel()] == 1
+    trimesh = _trimesh()
+    return _checked(trimesh.Trimesh(simplified.vertices, simplified.faces[single]),
+                    "the simplified mesh")
+
+
+def _surface_distance(mesh, simplified, samples: int, seed: int) -> float:
+    """The sampled Hausdorff distance between a mesh's surface and its simplification.
+
+    Points sampled on the mesh get their distance to the simplified surface (trimesh). Points
+    sampled on the simplified surface get their distance to the nearest of the mesh's triangles
+    around its 4 nearest vertices: never less than the distance to the mesh's surface, and for
+    points this close to it the same in practice, at the cost of one k-d tree where trimesh's
+    query gathers every triangle near each point of a large mesh (a minute and 1.5 GB at 2M).
+    """
+    trimesh = _trimesh()
+    from scipy.spatial import cKDTree
+
+    on_mesh, _ = trimesh.sample.sample_surface(mesh, samples, seed=seed + 2)
+    on_simplified, _ = trimesh.sample.sample_surface(simplified, samples, seed=seed + 3)
+    to_simplified = _in_chunks(lambda m, p: trimesh.proximity.closest_point(m, p)[1], simplified,
+                               on_mesh)
+    points = np.asarray(mesh.vertices, dtype=float)
+    faces = np.asarray(mesh.faces)
+    _, nearest = cKDTree(points).query(on_simplified, k=min(4, len(points)))
+    nearest = nearest.reshape(len(on_simplified), -1)
+    # The triangles around each vertex: the corners sorted by vertex, and where each one starts.
+    corner_order = np.argsort(faces.ravel(), kind="stable")
+    starts = np.searchsorted(faces.ravel()[corner_order], np.arange(len(points) + 1))
+    vertex = nearest.ravel()
+    around = starts[vertex + 1] - starts[vertex]
+    sample = np.repeat(np.repeat(np.arange(len(on_simplified)), nearest.shape[1]), around)
+    corner = (np.repeat(starts[vertex] - np.cumsum(around) + around, around)
+              + np.arange(around.sum()))
+    triangles = points[faces[corner_order[corner] // 3]]
+    gaps = np.linalg.norm(trimesh.triangles.closest_point(triangles, on_simplified[sample])
+                          - on_simplified[sample], axis=1)
+    to_mesh = np.full(len(on_simplified), np.inf)
+    np.minimum.at(to_mesh, sample, gaps)
+    return float(max(to_simplified.max(), to_mesh.max()))
+
+
+def _parameters(decompose, preset, concavity, max_hulls, max_hull_vertices, resolution, seed):
     if decompose not in DECOMPOSERS:
         raise ValueError(
             f"decompose must be one of 'coacd', 'vhacd', 'hull' or None, got {decompose!r}"
         )
+    if preset not in PRESETS:
+        raise ValueError(f"preset must be one of {', '.join(map(repr, PRESETS))}, got {preset!r}")
     if decompose in ("hull", None):
         return {}
-    if not (isinstance(concavity, (int, float)) and 0 < concavity <= 1):
-        raise ValueError(f"concavity must be a number in (0, 1], got {concavity!r}")
+    if concavity is not None and not (isinstance(concavity, (int, float)) and 0 < concavity <= 1):
+        raise ValueError(f"concavity must be a number in (0, 1] or None, got {concavity!r}")
     if max_hulls is not None and not (isinstance(max_hulls, int) and max_hulls >= 1):
         raise ValueError(f"max_hulls must be a positive integer or None, got {max_hulls!r}")
-    if not (isinstance(max_hull_vertices, int) and max_hull_vertices >= 4):
-        raise ValueError(f"max_hull_vertices must be an integer >= 4, got {max_hull_vertices!r}")
+    if max_hull_vertices is not None and not (isinstance(max_hull_vertices, int)
+                                              and max_hull_vertices >= 4):
+        raise ValueError(
+            f"max_hull_vertices must be an integer >= 4 or None, got {max_hull_vertices!r}")
     if resolution is not None and not (isinstance(resolution, int) and resolution >= 1):
         raise ValueError(f"resolution must be a positive integer or None, got {resolution!r}")
     if not (isinstance(seed, int) and seed >= 0):
         raise ValueError(f"seed must be a nonnegative integer, got {seed!r}")
     if decompose == "coacd":
-        return {
-            "threshold": float(concavity),
-            "max_convex_hull": -1 if max_hulls is None else max_hulls,
-            "max_ch_vertex": max_hull_vertices,
-            "resolution": 2000 if resolution is None else resolution,
-            "seed": seed,
-        }
+        chosen = dict(PRESETS[preset])
+        if concavity is not None:
+            chosen["threshold"] = float(concavity)
+        if resolution is not None:
+            chosen["resolution"] = resolution
+        decimation = ({} if max_hull_vertices is None else
+                      {"decimate": True, "max_ch_vertex": max_hull_vertices})
+        return {**chosen, "max_convex_hull": -1 if max_hulls is None else max_hulls,
+                **decimation, "seed": seed}
     return {
         "maxConvexHulls": DEFAULT_VHACD_MAX_HULLS if max_hulls is None else max_hulls,
-        "minimumVolumePercentErrorAllowed": 100.0 * concavity,
-        "maxNumVerticesPerCH": max_hull_vertices,
+        "minimumVolumePercentErrorAllowed": 100.0 * (0.05 if concavity is None else concavity),
+        "maxNumVerticesPerCH": (DEFAULT_MAX_HULL_VERTICES if max_hull_vertices is None
+                                else max_hull_vertices),
         "resolution": DEFAULT_VHACD_RESOLUTION if resolution is None else resolution,
     }
 
 
-def _decompose(mesh, decompose, parameters, progress) -> List[np.ndarray]:
+def _decompose(mesh, decompose, parameters, preset, progress) -> List[np.ndarray]:
     if decompose == "hull":
         return [np.asarray(mesh.convex_hull.vertices, dtype=float)]
-    if decompose is None:
-        return _convex_components(mesh)
     if decompose == "coacd":
         import coacd
 
@@ -531,7 +725,14 @@ def _decompose(mesh, decompose, parameters, progress) -> List[np.ndarray]:
             hulls = coacd.run_coacd(coacd.Mesh(mesh.vertices, mesh.faces), **parameters)
             return [np.asarray(v, dtype=float) for v, _ in hulls]
 
-        return _with_progress("CoACD", run, progress)
+        custom = any(parameters[k] != v for k, v in PRESETS[preset].items())
+        estimate = None if custom else _TYPICAL_SECONDS[preset]
+        note = ""
+        if estimate is not None:
+            note = f"preset={preset!r}, typically ~{estimate:.0f} s"
+            if preset != "fast":
+                note += f"; preset='fast' ~{_TYPICAL_SECONDS['fast']:.0f} s"
+        return _with_progress("CoACD", run, progress, estimate, note)
     import vhacdx
 
     def run() -> List[np.ndarray]:
@@ -542,25 +743,98 @@ def _decompose(mesh, decompose, parameters, progress) -> List[np.ndarray]:
     return _with_progress("V-HACD", run, progress)
 
 
-def _convex_components(mesh) -> List[np.ndarray]:
-    components = mesh.split(only_watertight=False)
+# CoACD's typical time per preset (seconds): the median of the runs of
+# bench/decomposers.py --real on five pybullet_data meshes on this project's 2-core machine. It
+# does not predict the mesh at hand (CoACD's time follows the cuts a shape needs, not its
+# triangles), but says before a long run what to expect and what the fast preset would take.
+_TYPICAL_SECONDS = {"fast": 8.0, "quality": 185.0}
+
+
+def _ready_made_parts(source, mesh) -> List[np.ndarray]:
+    """The parts of a mesh whose pieces are convex already: the file's groups (OBJ ``o``/``g``,
+    the geometries of a scene file) when it has several, else the connected components."""
+    pieces = _file_groups(source) if isinstance(source, (str, os.PathLike)) else None
+    if pieces is None:
+        components = mesh.split(only_watertight=False, repair=False)
+        pieces = [(f"the connected component {k} of {len(components)} (around "
+                   f"{np.round(c.centroid, 6).tolist()})", c)
+                  for k, c in enumerate(components)]
     parts = []
-    for index, component in enumerate(components):
-        if not component.is_convex:
+    for name, piece in pieces:
+        defect = _convexity_defect(piece)
+        if defect is not None:
             raise ValueError(
-                f"decompose=None needs convex parts, but part {index} of {len(components)} "
-                f"(the connected component with {len(component.faces)} triangles around "
-                f"{np.round(component.centroid, 6).tolist()}) is not convex; use "
-                "decompose='coacd' or 'vhacd' to split it, or 'hull' for its hull"
+                f"decompose=None needs convex parts, but {name}, with {len(piece.faces)} "
+                f"triangles, is not convex ({defect}); use decompose='coacd' or 'vhacd' to "
+                "split it, or 'hull' for its hull"
             )
-        parts.append(np.asarray(component.vertices, dtype=float))
+        parts.append(np.asarray(piece.vertices, dtype=float))
     return parts
 
 
-def _with_progress(label: str, run: Callable[[], List[np.ndarray]],
-                   enabled: bool) -> List[np.ndarray]:
-    """``run()`` in a worker thread; once it has taken over a second, a tqdm bar shows the time
-    it has run (decomposers report no progress of their own), then how many parts it made."""
+def _file_groups(path) -> Optional[List[Any]]:
+    """``(name, mesh)`` for each geometry of a file (an OBJ's ``o`` objects and ``g`` groups),
+    in the file's frame, or None for a file of one geometry."""
+    trimesh = _trimesh()
+    options = {}
+    if str(path).lower().endswith(".obj"):
+        options = {"split_objects": True, "split_groups": True, "group_material": False,
+                   "skip_materials": True}
+    scene = trimesh.load(Path(path), force="scene", process=False, **options)
+    nodes = [node for node in scene.graph.nodes_geometry
+             if isinstance(scene.geometry[scene.graph[node][1]], trimesh.Trimesh)]
+    if len(nodes) < 2:
+        return None
+    groups = []
+    for node in nodes:
+        transform, geometry = scene.graph[node]
+        piece = scene.geometry[geometry].copy()
+        piece.apply_transform(transform)
+        piece.merge_vertices()
+        groups.append((f"the group {node!r}", piece))
+    return groups
+
+
+def _convexity_defect(piece) -> Optional[str]:
+    """None for a convex piece, else what makes it not convex.
+
+    trimesh's test (every pair of adjacent faces folds outward) accepts most pieces at once. One
+    it refuses, often for the rounding of a file's six digits, is compared with its hull: a face
+    whose centre lies on the hull's boundary lies in a facet of it, so the piece is convex when
+    no vertex or face centre lies deeper inside than ``_CONVEX_TOLERANCE`` of its size. A flat
+    piece is compared with its hull by area.
+    """
+    if piece.is_convex:
+        return None
+    points = np.asarray(piece.vertices, dtype=float)
+    size = float(np.linalg.norm(points.max(axis=0) - points.min(axis=0)))
+    hull = _core.ConvexPolyhedron(points).hull()
+    if size == 0 or hull.dimension < 2:
+        return None
+    corners = points[hull.faces]
+    normals = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
+    if hull.dimension == 2:
+        # The flat hull lists each triangle once facing each side.
+        shortfall = 1.0 - float(piece.area) / (np.linalg.norm(normals, axis=1).sum() / 4)
+        return (None if shortfall <= _CONVEX_TOLERANCE else
+                f"it is flat and covers {shortfall:.3g} less than its hull")
+    probes = np.vstack([points, points[np.asarray(piece.faces)].mean(axis=1)])
+    if len(probes) * len(normals) > _CONVEX_CHECK_PAIRS:
+        return "two of its adjacent faces fold inward"
+    normals /= np.linalg.norm(normals, axis=1, keepdims=True)
+    offsets = np.einsum("ij,ij->i", normals, corners[:, 0])
+    rows = max(1, _CONVEX_CHECK_PAIRS // 64 // len(normals))
+    depth = max(float((offsets - (probes[k:k + rows] @ normals.T)).min(axis=1).max())
+                for k in range(0, len(probes), rows))
+    return (None if depth <= _CONVEX_TOLERANCE * size else
+            f"a face lies {depth / size:.3g} of its size inside its hull")
+
+
+def _with_progress(label: str, run: Callable[[], List[np.ndarray]], enabled: bool,
+                   estimate: Optional[float] = None, note: str = "") -> List[np.ndarray]:
+    """``run()`` in a worker thread; once it has taken over a second (at once when the estimate
+    says it is long), a tqdm bar shows the time it has run against the estimate (decomposers
+    report no progress of their own), then how many parts it made."""
     if not enabled:
         return run()
     outcome: Dict[str, Any] = {}
@@ -572,19 +846,28 @@ def _with_progress(label: str, run: Callable[[], List[np.ndarray]],
             outcome["error"] = error
 
     worker = threading.Thread(target=work, name=f"swarmcollide {label}", daemon=True)
+    delay = 0.0 if estimate is not None and estimate >= _LONG_RUN else _PROGRESS_DELAY
     start = time.perf_counter()
     worker.start()
     bar = None
     while worker.is_alive():
-        worker.join(0.2)
-        if bar is None and worker.is_alive() and time.perf_counter() - start > _PROGRESS_DELAY:
+        if bar is None and time.perf_counter() - start >= delay:
             from tqdm import tqdm
 
-            bar = tqdm(desc=f"{label} decomposing", bar_format="{desc}: {elapsed}",
-                       leave=False, file=sys.stderr)
+            description = f"{label} decomposing" + (f" ({note})" if note else "")
+            if estimate is None:
+                bar = tqdm(desc=description, bar_format="{desc}: {elapsed}", leave=False,
+                           file=sys.stderr)
+            else:
+                bar = tqdm(desc=description, total=max(1, round(estimate)), unit="s",
+                           bar_format="{desc}: {bar} {elapsed} of ~{total} s", leave=False,
+                           file=sys.stderr)
             bar.start_t -= time.perf_counter() - start  # the time since the decomposer started
         if bar is not None:
+            if estimate is not None:
+                bar.n = min(int(time.perf_counter() - start), bar.total)
             bar.refresh()
+        worker.join(0.2)
     if bar is not None:
         bar.set_description_str(f"{label}: {len(outcome.get('parts', []))} parts")
         bar.close()
@@ -593,16 +876,26 @@ def _with_progress(label: str, run: Callable[[], List[np.ndarray]],
     return outcome["parts"]
 
 
-def _cache_key(mesh, decompose, parameters, samples) -> str:
+def _file_digest(path: Path) -> str:
+    digest = hashlib.sha256()
+    with open(path, "rb") as handle:
+        for block in iter(lambda: handle.read(1 << 20), b""):
+            digest.update(block)
+    return digest.hexdigest()
+
+
+def _cache_key(settings: List[Any], *, file_digest: Optional[str] = None,
+               mesh_digest: Optional[str] = None) -> str:
+    """The key of a decomposition: the settings with either the file's bytes (found before the
+    file is read) or the mesh's triangles (found whichever loader read it)."""
+    decompose = settings[0]
     package = {"coacd": "coacd", "vhacd": "vhacdx"}.get(decompose or "")
     try:
         decomposer = version(package) if package else ""
     except PackageNotFoundError:  # pragma: no cover - the mesh extra installs both
         decomposer = ""
-    description = json.dumps(
-        [_CACHE_FORMAT, mesh_hash(mesh), decompose, parameters, decomposer, samples],
-        sort_keys=True,
-    )
+    source = ["file", file_digest] if file_digest is not None else ["mesh", mesh_digest]
+    description = json.dumps([_CACHE_FORMAT, source, settings, decomposer], sort_keys=True)
     return hashlib.sha256(description.encode()).hexdigest()[:32]
 
 
@@ -661,7 +954,10 @@ def _write_cache(path: Path, parts, decomposition: Decomposition) -> None:
 def _read_cache(path: Path):
     if not path.is_file():
         return None
-    loaded = _read_parts(path)
+    try:
+        loaded = _read_parts(path)
+    except TypeError:  # a file written by a version with other fields
+        return None
     if loaded is None or loaded[1] is None:
         return None
     parts, decomposition = loaded

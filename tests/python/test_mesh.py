@@ -3,6 +3,9 @@ compound bodies against python-fcl's exact triangle-mesh distance."""
 
 from __future__ import annotations
 
+import subprocess
+import sys
+
 import numpy as np
 import pytest
 import trimesh
@@ -139,7 +142,7 @@ def test_already_convex_parts_and_the_hull():
     parts = sc.CompoundBody.from_mesh(two, decompose=None, cache=False)
     assert len(parts) == 2
     assert parts.decomposition.hausdorff < 1e-9
-    with pytest.raises(ValueError, match="part 0 of 1 .* is not convex"):
+    with pytest.raises(ValueError, match="component 0 of 1 .* is not convex"):
         sc.CompoundBody.from_mesh(l_shape(), decompose=None, cache=False)
     hull = sc.CompoundBody.from_mesh(l_shape(), decompose="hull", cache=False)
     assert len(hull) == 1
@@ -165,6 +168,76 @@ def test_decomposers_record_their_error_and_settings(decomposed):
                                       resolution=10000, cache=False, progress=False)
     assert vhacd.decomposition.method == "vhacd" and 1 <= len(vhacd) <= 4
     assert vhacd.decomposition.parameters["maxConvexHulls"] == 4
+
+
+def test_a_mesh_above_max_faces_is_simplified_and_its_error_recorded():
+    sphere = trimesh.creation.icosphere(subdivisions=3)  # 1280 triangles
+    body = sc.CompoundBody.from_mesh(sphere, decompose="hull", max_faces=200, cache=False)
+    d = body.decomposition
+    assert d.faces == 1280 and d.decomposed_faces <= 200
+    assert 0 < d.simplification_error < 0.2
+    # The recorded distances hold against the mesh as given, not only the simplified one.
+    on_sphere, _ = trimesh.sample.sample_surface(sphere, 500, seed=5)
+    missed = sc.distance_many([body.parts[0]] * 500, on_sphere[:, None, :]).distance
+    assert missed.max() <= d.mesh_to_parts + d.spacing
+    assert d.mesh_to_parts >= d.simplification_error
+    assert "simplified 1280 to" in repr(d)
+    untouched = sc.CompoundBody.from_mesh(sphere, decompose="hull", cache=False)
+    assert untouched.decomposition.decomposed_faces == 1280
+    assert untouched.decomposition.simplification_error == 0
+    with pytest.raises(ValueError, match="max_faces"):
+        sc.CompoundBody.from_mesh(sphere, decompose="hull", max_faces=0, cache=False)
+
+
+def test_measuring_a_part_of_many_vertices_stays_in_bounded_memory():
+    # Each row of a batch copies its part's points: 4000 samples against one part of 10,242
+    # points took 2 GB when the batch was not cut into pieces.
+    script = (
+        "import resource, trimesh, swarmcollide as sc\n"
+        "sphere = trimesh.creation.icosphere(subdivisions=5)\n"
+        "before = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss\n"
+        "d = sc.measure_deviation(sphere, sc.CompoundBody([sphere.vertices]), samples=4000)\n"
+        "assert d['mesh_to_parts'] < 1e-9, d\n"
+        "print((resource.getrusage(resource.RUSAGE_SELF).ru_maxrss - before) // 1024)\n"
+    )
+    grown = int(subprocess.run([sys.executable, "-c", script], check=True, capture_output=True,
+                               text=True).stdout)
+    assert grown < 500, f"measuring grew the process by {grown} MB"
+
+
+def test_presets_and_explicit_settings():
+    fast = sc.CompoundBody.from_mesh(l_shape(), cache=False, progress=False)
+    assert fast.decomposition.parameters["threshold"] == sc.mesh.PRESETS["fast"]["threshold"]
+    assert (fast.decomposition.parameters["mcts_iterations"]
+            == sc.mesh.PRESETS["fast"]["mcts_iterations"])
+    assert len(fast) == 2
+    chosen = sc.mesh._parameters("coacd", "quality", 0.2, None, None, 500, 0)
+    assert chosen["threshold"] == 0.2 and chosen["resolution"] == 500
+    assert chosen["mcts_iterations"] == sc.mesh.PRESETS["quality"]["mcts_iterations"]
+    with pytest.raises(ValueError, match="preset must be one of 'fast', 'quality'"):
+        sc.CompoundBody.from_mesh(l_shape(), preset="slow", cache=False)
+
+
+def test_max_hull_vertices_bounds_coacd_parts(decomposed):
+    body = sc.CompoundBody.from_mesh(torus(), cache=False, max_hull_vertices=8, **FAST)
+    assert max(len(p.vertices) for p in body.parts) <= 8
+    _, exact = decomposed["torus"]
+    assert max(len(p.vertices) for p in exact.parts) > 8  # CoACD's exact hulls
+
+
+def test_a_long_decomposition_says_how_long_before_it_starts(tmp_path, monkeypatch, capsys):
+    from swarmcollide.cli import main
+
+    monkeypatch.setattr(mesh_module, "_LONG_RUN", 0.0)
+    monkeypatch.setattr(mesh_module, "_TYPICAL_SECONDS", {"fast": 42.0, "quality": 420.0})
+    l_shape().export(tmp_path / "l.obj")
+    parts = tmp_path / "l.npz"
+    assert main(["decompose", str(tmp_path / "l.obj"), "-o", str(parts), "--preset", "quality",
+                 "--no-cache"]) == 0
+    err = capsys.readouterr().err
+    assert "typically ~420 s" in err and "preset='fast' ~42 s" in err
+    used = sc.CompoundBody.load(parts).decomposition.parameters
+    assert used["mcts_iterations"] == sc.mesh.PRESETS["quality"]["mcts_iterations"]
 
 
 def test_settings_are_checked():
@@ -194,6 +267,23 @@ def test_the_cache_returns_the_same_parts(tmp_path, monkeypatch):
     assert len(list((tmp_path / "elsewhere").glob("*.npz"))) == 1
 
 
+def test_the_cache_is_found_by_file_bytes_and_by_any_loader(tmp_path, monkeypatch):
+    path = tmp_path / "l.stl"
+    l_shape().export(path)
+    # Read unmerged (three points per triangle, as STL stores them): another loader's mesh.
+    raw = trimesh.load_mesh(path, process=False)
+    assert len(raw.vertices) == 3 * len(raw.faces)
+    first = sc.CompoundBody.from_mesh(raw, decompose="hull", cache=tmp_path)
+    assert not first.decomposition.from_cache
+    by_path = sc.CompoundBody.from_mesh(path, decompose="hull", cache=tmp_path)
+    assert by_path.decomposition.from_cache and by_path.decomposition == first.decomposition
+    # The file's bytes now name the entry too: found without reading the mesh at all.
+    monkeypatch.setattr(mesh_module, "load_mesh", lambda source: pytest.fail("mesh was read"))
+    again = sc.CompoundBody.from_mesh(str(path), decompose="hull", cache=tmp_path)
+    assert again.decomposition.from_cache
+    assert len(list(tmp_path.glob("*.npz"))) == 2
+
+
 def test_a_slow_decomposition_shows_a_progress_bar(monkeypatch, capsys):
     monkeypatch.setattr(mesh_module, "_PROGRESS_DELAY", 0.0)
 
@@ -205,6 +295,55 @@ def test_a_slow_decomposition_shows_a_progress_bar(monkeypatch, capsys):
 
     assert len(mesh_module._with_progress("CoACD", slow, True)) == 1
     assert "CoACD" in capsys.readouterr().err
+
+
+CUBE = """v {x0} 0 0
+v {x1} 0 0
+v {x1} 1 0
+v {x0} 1 0
+v {x0} 0 1
+v {x1} 0 1
+v {x1} 1 1
+v {x0} 1 1
+f {a} {d} {c}
+f {a} {c} {b}
+f {e} {f} {g}
+f {e} {g} {h}
+f {a} {b} {f}
+f {a} {f} {e}
+f {b} {c} {g}
+f {b} {g} {f}
+f {c} {d} {h}
+f {c} {h} {g}
+f {d} {a} {e}
+f {d} {e} {h}
+"""
+
+
+def cube_text(x0: float, first: int) -> str:
+    """A unit cube from x0 to x0 + 1 as OBJ points and outward triangles, its points numbered
+    from ``first``."""
+    corners = dict(zip("abcdefgh", range(first, first + 8)))
+    return CUBE.format(x0=x0, x1=x0 + 1, **corners)
+
+
+def test_each_obj_group_is_a_ready_made_part(tmp_path):
+    # Two cubes side by side, as V-HACD writes hulls: one object each. Their shared face makes
+    # them one connected 2 x 1 x 1 bar, and their groups two cells.
+    path = tmp_path / "hulls.obj"
+    path.write_text("o convex_0\n" + cube_text(0, 1) + "o convex_1\n" + cube_text(1, 9))
+    body = sc.CompoundBody.from_mesh(path, decompose=None, cache=False)
+    assert len(body) == 2
+    assert sorted(p.aabb().min[0] for p in body.parts) == [0, 1]
+    assert body.decomposition.hausdorff < 1e-9
+    # `g` groups as well; a group that is not convex is named.
+    ell = l_shape()
+    points = "".join(f"v {x} {y} {z}\n" for x, y, z in ell.vertices)
+    faces = "".join(f"f {i + 9} {j + 9} {k + 9}\n" for i, j, k in ell.faces)  # after the cube's
+    elbow = tmp_path / "elbow.obj"
+    elbow.write_text("g box\n" + cube_text(5, 1) + "g elbow\n" + points + faces)
+    with pytest.raises(ValueError, match=r"group 'elbow', with 28 triangles, is not convex"):
+        sc.CompoundBody.from_mesh(elbow, decompose=None, cache=False)
 
 
 def test_parts_files_round_trip(tmp_path, decomposed):
