@@ -16,7 +16,8 @@ struct HullCache;
 }
 
 /// Number of points above which `support_index(direction, start)` climbs the hull instead of
-/// scanning the points.
+/// scanning the points, and above which a body finds its hull points (`hull_points()`): smaller
+/// bodies are scanned whole.
 inline constexpr int kHillClimbingThreshold = 32;
 
 /// A body's extent, computed once when it is built: every query needs it.
