@@ -43,44 +43,48 @@ namespace {
 constexpr Scalar kOrientationBound = 8 * detail::kRoundoff;
 constexpr Scalar kUnderflow = std::numeric_limits<Scalar>::min();
 
-// A triangle of the hull's surface set up for orientation tests against many points: its first
-// corner a, the 2x2 minors of its edges u = b - a and v = c - a (their cross product, outward by
-// the right-hand rule) and the magnitudes of each minor's two terms.
-struct Plane {
-  Vector3 corner;
-  Vector3 minors;
-  Vector3 magnitudes;
-};
+// The triangles of the hull's surface set up for orientation tests against many points, one
+// array per quantity so that the test of a point against all of them vectorises: for each, its
+// first corner a, the 2x2 minors of its edges u = b - a and v = c - a (their cross product,
+// outward by the right-hand rule) and the magnitudes of each minor's two terms.
+struct Planes {
+  std::vector<Scalar> corner[3];
+  std::vector<Scalar> minor[3];
+  std::vector<Scalar> magnitude[3];
 
-Plane plane_of(const VertexMatrix& points, int a, int b, int c) {
-  const Vector3 u = points.row(b) - points.row(a);
-  const Vector3 v = points.row(c) - points.row(a);
-  Plane plane;
-  plane.corner = points.row(a);
-  for (int k = 0; k < 3; ++k) {
-    const int i = (k + 1) % 3;
-    const int j = (k + 2) % 3;
-    const Scalar first = u(i) * v(j);
-    const Scalar second = u(j) * v(i);
-    plane.minors(k) = first - second;
-    plane.magnitudes(k) = std::abs(first) + std::abs(second);
+  void add(const VertexMatrix& points, int a, int b, int c) {
+    const Vector3 u = points.row(b) - points.row(a);
+    const Vector3 v = points.row(c) - points.row(a);
+    for (int k = 0; k < 3; ++k) {
+      const int i = (k + 1) % 3;
+      const int j = (k + 2) % 3;
+      const Scalar first = u(i) * v(j);
+      const Scalar second = u(j) * v(i);
+      corner[k].push_back(points(a, k));
+      minor[k].push_back(first - second);
+      magnitude[k].push_back(std::abs(first) + std::abs(second));
+    }
   }
-  return plane;
-}
 
-// True when `x` is strictly behind the plane beyond doubt. The determinant (x - a) . (u x v) is
-// a sum of three coordinates times 2x2 minors of the other two rows, as orient3dfast sums it
-// (expanded along x - a rather than along the z column: the same form for Shewchuk's analysis),
-// and its permanent the same sum of magnitudes.
-bool strictly_behind(const Plane& plane, const Vector3& x) {
-  const Vector3 w = x - plane.corner;
-  const Scalar determinant =
-      w.x() * plane.minors.x() + w.y() * plane.minors.y() + w.z() * plane.minors.z();
-  const Scalar permanent = std::abs(w.x()) * plane.magnitudes.x() +
-                           std::abs(w.y()) * plane.magnitudes.y() +
-                           std::abs(w.z()) * plane.magnitudes.z();
-  return determinant < -(kOrientationBound * permanent + kUnderflow);
-}
+  // True when `x` is strictly behind every plane beyond doubt. Each determinant
+  // (x - a) . (u x v) is a sum of three coordinates times 2x2 minors of the other two rows, as
+  // orient3dfast sums it (expanded along x - a rather than along the z column: the same form for
+  // Shewchuk's analysis), and its permanent the same sum of magnitudes.
+  bool all_behind(const Vector3& x) const {
+    const std::size_t count = corner[0].size();
+    bool behind = true;
+    for (std::size_t t = 0; t < count; ++t) {
+      const Scalar wx = x.x() - corner[0][t];
+      const Scalar wy = x.y() - corner[1][t];
+      const Scalar wz = x.z() - corner[2][t];
+      const Scalar determinant = wx * minor[0][t] + wy * minor[1][t] + wz * minor[2][t];
+      const Scalar permanent = std::abs(wx) * magnitude[0][t] + std::abs(wy) * magnitude[1][t] +
+                               std::abs(wz) * magnitude[2][t];
+      behind &= determinant < -(kOrientationBound * permanent + kUnderflow);
+    }
+    return behind;
+  }
+};
 
 // For each point, the first point with exactly its coordinates (itself when it is the first).
 std::vector<int> first_copies(const VertexMatrix& points) {
@@ -103,6 +107,8 @@ std::vector<int> first_copies(const VertexMatrix& points) {
 
 HullPoints find_hull_points(const VertexMatrix& centred, const Hull& hull) {
   const int n = static_cast<int>(centred.rows());
+  // Every point a vertex (so no two alike): all are read.
+  if (static_cast<int>(hull.vertex_indices.size()) == n) return HullPoints{};
   const std::vector<int> first = first_copies(centred);
   std::vector<char> kept(n, 0);
   for (int v : hull.vertex_indices) kept[first[v]] = 1;
@@ -117,14 +123,10 @@ HullPoints find_hull_points(const VertexMatrix& centred, const Hull& hull) {
     for (int i = 0; i < n; ++i) {
       for (int k = 0; k < 3; ++k) unit(i, k) = detail::times_power_of_two(centred(i, k), -exponent);
     }
-    std::vector<Plane> planes;
-    planes.reserve(triangles.size());
-    for (const auto& t : triangles) planes.push_back(plane_of(unit, t(0), t(1), t(2)));
+    Planes planes;
+    for (const auto& t : triangles) planes.add(unit, t(0), t(1), t(2));
     for (int i = 0; i < n; ++i) {
-      if (first[i] != i || kept[i]) continue;
-      const Vector3 x = unit.row(i);
-      kept[i] = !std::all_of(planes.begin(), planes.end(),
-                             [&x](const Plane& plane) { return strictly_behind(plane, x); });
+      if (first[i] == i && !kept[i]) kept[i] = !planes.all_behind(unit.row(i).transpose());
     }
   } else {
     for (int i = 0; i < n; ++i) kept[i] = kept[i] || first[i] == i;
