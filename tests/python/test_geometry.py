@@ -163,3 +163,18 @@ def test_answers_over_the_hull_points_report_weights_over_every_given_point(meth
         off_hull = np.setdiff1d(np.arange(len(points)), hull_rows)
         assert not r.weights_a[off_hull].any()
         assert r.distance == pytest.approx(query(hull, other, method=method).distance, abs=1e-9)
+
+
+@pytest.mark.parametrize("method", ["dual", "exact", "fcl"])
+def test_compound_parts_read_their_hull_points_and_report_weights_over_their_given_points(method):
+    points, hull_rows = _sphere_among_inside_points(300, seed=5)
+    box = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)], float) + 3
+    compound = sc.CompoundBody([points, box])
+    other = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)], float) * 0.5
+    other += [1.3, 0.2, -0.1]
+    r = sc.distance(compound, other, method=method)
+    assert r.part_a == 0 and r.certified
+    assert r.weights_a.shape == (len(points),)
+    assert not r.weights_a[np.setdiff1d(np.arange(len(points)), hull_rows)].any()
+    expected = sc.distance(points[hull_rows], other, method=method).distance
+    assert r.distance == pytest.approx(expected, abs=1e-9)
