@@ -186,6 +186,45 @@ TEST(HullPoints, AnExtremePointTheHullLeavesOutIsKept) {
   }
 }
 
+// A cube's corners among points on its faces, a few ulps inside them and deep inside, and one
+// point a few ulps outside a face (the only point beyond that face's plane: extreme, so it must
+// be kept): whatever Qhull merges, no point left out is above the hull points along any
+// direction, beyond the rounding of the heights.
+TEST(HullPoints, NoPointLeftOutIsAboveTheKeptOnesNearCoplanarFaces) {
+  Random rng(10);
+  int left_off_by_qhull = 0;
+  for (int trial = 0; trial < 20; ++trial) {
+    SCOPED_TRACE(trial);
+    VertexMatrix points(300, 3);
+    for (int i = 0; i < 8; ++i) points.row(i) << (i & 1), (i >> 1 & 1), (i >> 2 & 1);
+    const int outside = 8 + 7 * trial;
+    for (int i = 8; i < points.rows(); ++i) {
+      Vector3 p(rng.uniform(0, 1), rng.uniform(0, 1), rng.uniform(0, 1));
+      const int axis = i % 3;
+      const int kind = i % 3;
+      if (kind < 2 || i == outside) p(axis) = rng.uniform() < 0 ? 0 : 1;  // on a face
+      const Scalar nudge = std::ldexp(1.0, -52) * (1 + i % 5);
+      const Scalar out = p(axis) == 1 ? nudge : -nudge;
+      if (kind == 1 && i != outside) p(axis) -= out;  // inside by a few ulps
+      if (i == outside) p(axis) += out;
+      points.row(i) = p.transpose();
+    }
+    const ConvexPolyhedron body(points);
+    const HullPoints& read = body.hull_points();
+    ASSERT_FALSE(read.every_point);
+    EXPECT_TRUE(std::binary_search(read.indices.begin(), read.indices.end(), outside));
+    const std::vector<int>& vertices = body.hull().vertex_indices;
+    left_off_by_qhull += !std::binary_search(vertices.begin(), vertices.end(), outside);
+    VertexMatrix kept(read.indices.size(), 3);
+    for (std::size_t k = 0; k < read.indices.size(); ++k) kept.row(k) = points.row(read.indices[k]);
+    for (int k = 0; k < 50; ++k) {
+      const Vector3 d = rng.unit();
+      EXPECT_LE((points * d).maxCoeff(), (kept * d).maxCoeff() + 1e-15);
+    }
+  }
+  EXPECT_GT(left_off_by_qhull, 0);  // the case this guards against does occur
+}
+
 TEST(HullPoints, DegenerateBodiesKeepEveryPointButRepeats) {
   Random rng(8);
   VertexMatrix flat(60, 3);

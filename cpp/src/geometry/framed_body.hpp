@@ -2,9 +2,9 @@
 #pragma once
 
 #include "support.hpp"
-#include "swarmcollide/problem/convex_weights.hpp"
 #include "swarmcollide/geometry/convex_polyhedron.hpp"
 #include "swarmcollide/geometry/pose.hpp"
+#include "swarmcollide/problem/convex_weights.hpp"
 #include "swarmcollide/types.hpp"
 
 namespace swarmcollide::detail {
