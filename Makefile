@@ -80,6 +80,7 @@ bench: install $(VENV)/.bench-installed bench-scene bench-compound
 	  $(BENCH_BUILD)/bench/swarmcollide-bench $(BENCH_ARGS) > $(BENCH_BUILD)/console.txt
 	$(PY) bench/compare_python.py $(BENCH_ARGS) --json bench/results/python_comparison.json
 	$(PY) bench/per_call.py $(BENCH_ARGS) --json bench/results/per_call.json
+	$(PY) bench/hull_points.py $(BENCH_ARGS) --json bench/results/hull_points.json
 	$(PY) bench/convergence.py $(BENCH_ARGS) --json bench/results/convergence.json --plots bench/plots
 	$(PY) bench/batch.py $(BENCH_ARGS) --json bench/results/batch.json \
 	  --loop-binary $(BENCH_BUILD)/bench/swarmcollide-batch-loop

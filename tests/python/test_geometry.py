@@ -123,3 +123,58 @@ def test_hulls_match_an_independent_qhull(count):
         corners = points[hull.faces]
         volume = np.einsum("ij,ij->i", corners[:, 0], np.cross(corners[:, 1], corners[:, 2])).sum() / 6
         assert volume == pytest.approx(reference.volume, rel=1e-12)
+
+
+def _sphere_among_inside_points(inside: int, seed: int):
+    """45 points of a Fibonacci lattice on the unit sphere (every one a hull vertex) shuffled among
+    points strictly inside their hull; returns the points and the rows of the 45."""
+    i = np.arange(45)
+    z = 1 - 2 * (i + 0.5) / 45
+    angle = np.pi * (3 - np.sqrt(5)) * i
+    sphere = np.column_stack([np.sqrt(1 - z * z) * np.cos(angle),
+                              np.sqrt(1 - z * z) * np.sin(angle), z])
+    rng = np.random.default_rng(seed)
+    weights = rng.uniform(size=(inside, 4))
+    weights /= weights.sum(axis=1, keepdims=True)
+    interior = 0.98 * np.einsum("ik,ikj->ij", weights, sphere[rng.integers(45, size=(inside, 4))])
+    order = rng.permutation(45 + inside)
+    points = np.vstack([sphere, interior])[order]
+    return points, np.sort(np.argsort(order)[:45])
+
+
+# Budgets that keep the paper's methods quick on 345 points: they are not asked to converge,
+# only to keep their contract over every given point.
+_SHORT_BUDGETS = {"ipso": {"max_iterations": 20}, "pso": {"max_iterations": 20},
+                  "penalty": {"outer_iterations": 2}}
+
+
+@pytest.mark.parametrize("method", sorted(sc.METHODS))
+def test_answers_over_the_hull_points_report_weights_over_every_given_point(method):
+    points, hull_rows = _sphere_among_inside_points(300, seed=4)
+    body = sc.ConvexPolyhedron(points)
+    hull = sc.ConvexPolyhedron(points[hull_rows])
+    other = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)], float) + 1.2
+    info = sc.METHODS[method]
+    query = getattr(sc, "distance" if "distance" in info.queries else "signed_distance")
+    r = query(body, other, method=method, **_SHORT_BUDGETS.get(method, {}))
+    assert r.weights_a.shape == (len(points),)
+    np.testing.assert_allclose(r.weights_a @ points, r.point_a, atol=1e-12)
+    if info.always_certified:
+        off_hull = np.setdiff1d(np.arange(len(points)), hull_rows)
+        assert not r.weights_a[off_hull].any()
+        assert r.distance == pytest.approx(query(hull, other, method=method).distance, abs=1e-9)
+
+
+@pytest.mark.parametrize("method", ["dual", "exact", "fcl"])
+def test_compound_parts_read_their_hull_points_and_report_weights_over_their_given_points(method):
+    points, hull_rows = _sphere_among_inside_points(300, seed=5)
+    box = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)], float) + 3
+    compound = sc.CompoundBody([points, box])
+    other = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)], float) * 0.5
+    other += [1.3, 0.2, -0.1]
+    r = sc.distance(compound, other, method=method)
+    assert r.part_a == 0 and r.certified
+    assert r.weights_a.shape == (len(points),)
+    assert not r.weights_a[np.setdiff1d(np.arange(len(points)), hull_rows)].any()
+    expected = sc.distance(points[hull_rows], other, method=method).distance
+    assert r.distance == pytest.approx(expected, abs=1e-9)

@@ -1,5 +1,6 @@
 #include "swarmcollide/geometry/convex_polyhedron.hpp"
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <mutex>
@@ -21,6 +22,7 @@ struct HullCache {
   std::atomic<bool> hull_ready{false};
   std::mutex hull_mutex;
   Hull hull;
+  HullPoints hull_points;
   std::mutex derived_mutex;
   struct Derived {
     std::type_index type;
@@ -103,12 +105,21 @@ ConvexPolyhedron::ConvexPolyhedron(VertexMatrix points)
 }
 
 int ConvexPolyhedron::support_index(const Vector3& direction) const {
-  return detail::scan_support(centred_, direction);
+  const HullPoints& read = hull_points();
+  if (read.every_point) return detail::scan_support(centred_, direction);
+  return read.indices[detail::scan_support(read.centred, direction)];
 }
 
 int ConvexPolyhedron::support_index(const Vector3& direction, int start) const {
   if (size() <= kHillClimbingThreshold) return support_index(direction);
-  return detail::climb_support(centred_, hull(), direction, start);
+  const HullPoints& read = hull_points();
+  if (read.every_point) return detail::climb_support(centred_, hull(), direction, start);
+  if (read.centred.rows() <= kHillClimbingThreshold) return support_index(direction);
+  const auto found = std::lower_bound(read.indices.begin(), read.indices.end(), start);
+  const int from = found != read.indices.end() && *found == start
+                       ? static_cast<int>(found - read.indices.begin())
+                       : -1;
+  return read.indices[detail::climb_support(read.centred, read.hull, direction, from)];
 }
 
 Vector3 ConvexPolyhedron::centroid() const {
@@ -147,10 +158,21 @@ const Hull& ConvexPolyhedron::hull() const {
     const std::lock_guard<std::mutex> lock(hull_cache_->hull_mutex);
     if (!hull_cache_->hull_ready.load(std::memory_order_relaxed)) {
       hull_cache_->hull = compute_hull(vertices_);
+      if (size() > kHillClimbingThreshold) {
+        hull_cache_->hull_points = find_hull_points(centred_, hull_cache_->hull);
+      }
       hull_cache_->hull_ready.store(true, std::memory_order_release);
     }
   }
   return hull_cache_->hull;
+}
+
+const HullPoints& ConvexPolyhedron::hull_points() const {
+  // Small bodies are scanned whole: their hull is not needed for it.
+  static const HullPoints kEveryPoint;
+  if (size() <= kHillClimbingThreshold) return kEveryPoint;
+  hull();
+  return hull_cache_->hull_points;
 }
 
 }  // namespace swarmcollide

@@ -1,8 +1,11 @@
 #include "framed_body.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <stdexcept>
+#include <utility>
+#include <vector>
 
 #include "normalise.hpp"
 
@@ -40,10 +43,17 @@ FramedBody::FramedBody(const ConvexPolyhedron& body, const Pose& pose, const Fra
     : body_(&body),
       vertices_(&body.centred_vertices()),
       hull_(nullptr),
+      given_(nullptr),
       in_frame_(false),
       rotation_(pose.rotation),
       rotated_(!pose.has_identity_rotation()),
       exponent_(frame.exponent) {
+  const HullPoints& read = body.hull_points();
+  if (!read.every_point) {
+    vertices_ = &read.centred;
+    hull_ = &read.hull;
+    given_ = &read;
+  }
   const int half = -exponent_ / 2;
   scale_high_ = power_of_two(half);
   scale_low_ = power_of_two(-exponent_ - half);
@@ -56,6 +66,7 @@ FramedBody::FramedBody(const VertexMatrix& points, const Hull& hull)
     : body_(nullptr),
       vertices_(&points),
       hull_(&hull),
+      given_(nullptr),
       in_frame_(true),
       rotation_(Matrix3::Identity()),
       rotated_(false),
@@ -67,6 +78,33 @@ FramedBody::FramedBody(const VertexMatrix& points, const Hull& hull)
 void FramedBody::points(VertexMatrix& out) const {
   out.resize(size(), 3);
   for (int i = 0; i < size(); ++i) out.row(i) = vertex(i).transpose();
+}
+
+void FramedBody::given_points(VertexMatrix& out) const {
+  if (!given_) return points(out);
+  const VertexMatrix& all = body_->centred_vertices();
+  out.resize(all.rows(), 3);
+  for (Eigen::Index i = 0; i < all.rows(); ++i) out.row(i) = placed(all.row(i).transpose());
+}
+
+ConvexWeights FramedBody::given_weights(ConvexWeights weights) const {
+  if (!given_ || weights.count() == body_->size()) return weights;
+  const std::vector<int>& given = given_->indices;
+  std::array<int, ConvexWeights::kSparseCapacity> index{};
+  std::array<Scalar, ConvexWeights::kSparseCapacity> weight{};
+  int stored = 0;
+  weights.for_each([&](int, Scalar) { ++stored; });
+  if (stored <= ConvexWeights::kSparseCapacity) {
+    int k = 0;
+    weights.for_each([&](int i, Scalar w) {
+      index[k] = given[i];
+      weight[k++] = w;
+    });
+    return ConvexWeights(body_->size(), index, weight, stored);
+  }
+  VectorX dense = VectorX::Zero(body_->size());
+  weights.for_each([&](int i, Scalar w) { dense(given[i]) += w; });
+  return ConvexWeights(std::move(dense));
 }
 
 FramedPair frame_pair(const ConvexPolyhedron& a, const Pose& pose_a, const ConvexPolyhedron& b,

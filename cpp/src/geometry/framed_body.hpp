@@ -4,6 +4,7 @@
 #include "support.hpp"
 #include "swarmcollide/geometry/convex_polyhedron.hpp"
 #include "swarmcollide/geometry/pose.hpp"
+#include "swarmcollide/problem/convex_weights.hpp"
 #include "swarmcollide/types.hpp"
 
 namespace swarmcollide::detail {
@@ -47,6 +48,10 @@ inline constexpr Scalar kFrameRounding = 128 * kRoundoff;
 /// A body under a pose, seen in a frame: point i is at `rotation * (x_i - c) / 2^e + offset`,
 /// where c is the centre of the body's own bounding box. Support queries are answered in the
 /// body's own frame (`rotation^T d`), so moving a body never touches its points or its hull.
+/// Its points are the body's hull points (ConvexPolyhedron::hull_points), numbered among
+/// themselves: the exact solvers read nothing else. The paper's methods, whose model (2) is over
+/// every given point, read those through `given_points`, and `given_weights` turns weights over
+/// the hull points into weights over the given points.
 ///
 /// The exact paths ask their support points of it, of two kinds: `support_index` (a scan of small
 /// bodies, a hill climb on large ones, comparing heights in the body's own coordinates centred on
@@ -63,14 +68,23 @@ class FramedBody {
 
   /// The body framed; only for a body framed from a ConvexPolyhedron.
   const ConvexPolyhedron& body() const { return *body_; }
+  /// Number of points (the hull points of a ConvexPolyhedron).
   int size() const { return static_cast<int>(vertices_->rows()); }
-  const Hull& hull() const { return in_frame_ ? *hull_ : body_->hull(); }
+  /// The hull, with indices among the points.
+  const Hull& hull() const { return hull_ ? *hull_ : body_->hull(); }
+  /// The points in the body's own frame, centred on its box and not yet scaled.
+  const VertexMatrix& local_points() const { return *vertices_; }
+  /// Number of points the body was given (the `k` of model (2)).
+  int given_size() const { return given_ ? body_->size() : size(); }
+  /// Every given point in the frame, one per row, into `out` (resized): the paper's methods
+  /// solve model (2) over these.
+  void given_points(VertexMatrix& out) const;
+  /// `weights` over the given points: weights over the points (`size()` of them) are spread to
+  /// the given points they are (zero elsewhere); weights already over the given points pass.
+  ConvexWeights given_weights(ConvexWeights weights) const;
 
   /// Point i of the body in the frame.
-  Vector3 vertex(int i) const {
-    const Vector3 local = scaled(vertices_->row(i).transpose());
-    return rotated_ ? Vector3(rotation_ * local + offset_) : Vector3(local + offset_);
-  }
+  Vector3 vertex(int i) const { return placed(vertices_->row(i).transpose()); }
   /// `d . vertex(i)`, as `exact_support_index` compares it.
   Scalar height(int i, const Vector3& d) const {
     return in_frame_ ? point_height(*vertices_, i, d) : vertex(i).dot(d);
@@ -82,6 +96,8 @@ class FramedBody {
   /// Index of a point farthest along frame direction `d`, by scanning the points in the body's
   /// own frame (see ConvexPolyhedron::support_index).
   int support_index(const Vector3& d) const { return scan_support(*vertices_, local_direction(d)); }
+  /// The same for a direction already in the body's own frame.
+  int local_support_index(const Vector3& local) const { return scan_support(*vertices_, local); }
   /// The same, climbing the hull from `start` when the body has more than
   /// `kHillClimbingThreshold` points (see ConvexPolyhedron::support_index): for searches, whose
   /// successive directions are close.
@@ -111,12 +127,19 @@ class FramedBody {
 
  private:
   Vector3 scaled(const Vector3& v) const { return v * scale_high_ * scale_low_; }
+  // A point of the body's own frame, centred on its box, in the frame.
+  Vector3 placed(const Vector3& centred) const {
+    const Vector3 local = scaled(centred);
+    return rotated_ ? Vector3(rotation_ * local + offset_) : Vector3(local + offset_);
+  }
 
   // The body's points in its own frame, centred on its box (ConvexPolyhedron::centred_vertices),
-  // and its hull when it is not the body's (lazily built).
+  // and its hull when it is not the body's (lazily built); the hull points when they are not
+  // every given point.
   const ConvexPolyhedron* body_;
   const VertexMatrix* vertices_;
   const Hull* hull_;
+  const HullPoints* given_;
   // Points given in the frame: the placement below is the identity, which heights and exact
   // scans skip (they read every point). vertex() applies it all the same: a test there would slow
   // every framed query's loops for the few penetration calls it would spare.

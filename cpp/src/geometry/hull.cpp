@@ -16,6 +16,7 @@ extern "C" {
 #include <libqhull_r/qhull_ra.h>
 }
 
+#include "hull_graph.hpp"
 #include "normalise.hpp"
 
 namespace swarmcollide {
@@ -300,8 +301,10 @@ bool general_position_hull(const VertexMatrix& points, Hull& hull) {
   return true;
 }
 
-// True when the triangles form a closed, consistently oriented surface: every directed edge is
-// used once and its reverse once.
+}  // namespace
+
+namespace detail {
+
 bool closed_surface(const std::vector<Eigen::RowVector3i>& triangles) {
   std::vector<std::pair<int, int>> edges;
   for (const auto& t : triangles) {
@@ -313,6 +316,10 @@ bool closed_surface(const std::vector<Eigen::RowVector3i>& triangles) {
     return std::binary_search(edges.begin(), edges.end(), std::make_pair(e.second, e.first));
   });
 }
+
+}  // namespace detail
+
+namespace {
 
 // Exact hull of a small solid point set: every plane through three points with all points on one
 // side is a face; the points on it form a convex polygon, triangulated as a fan. Returns false
@@ -370,7 +377,7 @@ bool small_solid_hull(const VertexMatrix& points, Hull& hull) {
       }
     }
   }
-  if (triangles.size() < 4 || !closed_surface(triangles)) return false;
+  if (triangles.size() < 4 || !detail::closed_surface(triangles)) return false;
   hull.dimension = 3;
   hull.faces.resize(static_cast<Eigen::Index>(triangles.size()), 3);
   for (std::size_t t = 0; t < triangles.size(); ++t) {
@@ -433,6 +440,10 @@ bool qhull_solid(const VertexMatrix& points, Hull& hull) {
   return ok;
 }
 
+}  // namespace
+
+namespace detail {
+
 // The edge graph from the triangles (or the segment) in compressed rows, each point's neighbours
 // ascending. Every edge of a closed surface (a doubled polygon too) is listed in both directions,
 // so bucketing the directed edges by their first point finds all neighbours; a point's bucket
@@ -468,6 +479,10 @@ void fill_adjacency(Hull& hull, Eigen::Index points) {
   neighbours.resize(static_cast<std::size_t>(written));
 }
 
+}  // namespace detail
+
+namespace {
+
 Hull hull_without_adjacency(const VertexMatrix& points) {
   {
     Hull hull;
@@ -500,7 +515,7 @@ Hull compute_hull(const VertexMatrix& points) {
   // The hull's combinatorics do not change under translation and scaling; in the unit ball the
   // cross products of coordinates near 1e300 (or 1e-300) neither overflow nor underflow.
   Hull hull = hull_without_adjacency(detail::normalise(points).points);
-  fill_adjacency(hull, points.rows());
+  detail::fill_adjacency(hull, points.rows());
   return hull;
 }
 

@@ -335,8 +335,10 @@ class CompoundSearch {
     r.point_b = pair.frame.point_to_world(pair.b.vertex(ib));
     r.distance = (r.point_b - r.point_a).norm() * (1 + kWorldRounding);
     r.lower_bound = s_world;
-    r.weights_a = ConvexWeights(pair.a.size(), {ia, 0, 0, 0}, {1, 0, 0, 0}, 1);
-    r.weights_b = ConvexWeights(pair.b.size(), {ib, 0, 0, 0}, {1, 0, 0, 0}, 1);
+    r.weights_a =
+        pair.a.given_weights(ConvexWeights(pair.a.size(), {ia, 0, 0, 0}, {1, 0, 0, 0}, 1));
+    r.weights_b =
+        pair.b.given_weights(ConvexWeights(pair.b.size(), {ib, 0, 0, 0}, {1, 0, 0, 0}, 1));
     r.direction = n;
     r.method = options_.method;
     r.certified = true;

@@ -78,8 +78,8 @@ DistanceResult finish_result(const FramedPair& pair, Answer&& answer, Method req
   }
   r.point_a = frame.point_to_world(answer.point_a);
   r.point_b = frame.point_to_world(answer.point_b);
-  r.weights_a = std::move(answer.weights_a);
-  r.weights_b = std::move(answer.weights_b);
+  r.weights_a = pair.a.given_weights(std::move(answer.weights_a));
+  r.weights_b = pair.b.given_weights(std::move(answer.weights_b));
   r.direction = answer.direction;
   r.iterations = answer.iterations;
   r.evaluations = answer.evaluations;

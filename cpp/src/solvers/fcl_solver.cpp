@@ -31,14 +31,13 @@ struct FclConvex {
 };
 
 FclConvex make_convex(const FramedBody& framed) {
-  const ConvexPolyhedron& body = framed.body();
-  const Hull& hull = body.hull();
+  const Hull& hull = framed.hull();
   auto vertices = std::make_shared<std::vector<fcl::Vector3d>>();
   vertices->reserve(hull.vertex_indices.size());
   for (int i : hull.vertex_indices) {
     fcl::Vector3d p;
     for (int k = 0; k < 3; ++k) {
-      p(k) = times_power_of_two(body.centred_vertices()(i, k), -framed.exponent());
+      p(k) = times_power_of_two(framed.local_points()(i, k), -framed.exponent());
     }
     vertices->push_back(p);
   }
@@ -47,7 +46,7 @@ FclConvex make_convex(const FramedBody& framed) {
   auto faces = std::make_shared<std::vector<int>>();
   int face_count = 0;
   if (vertices->size() > kFclEdgeWalkingAbove) {
-    std::vector<int> local(body.size(), -1);
+    std::vector<int> local(framed.size(), -1);
     for (std::size_t k = 0; k < hull.vertex_indices.size(); ++k) {
       local[hull.vertex_indices[k]] = static_cast<int>(k);
     }
@@ -127,8 +126,8 @@ Answer solve_fcl(const FramedPair& pair, const QueryOptions& options, Goal goal)
   for (unsigned int k = 0; k < simplex.rank; ++k) {
     if (!(simplex.p[k] > 0)) continue;  // a point the last projection gave no weight
     const Vector3 d = simplex.c[k]->d;
-    const int ia = pair.a.body().support_index(d);
-    const int ib = pair.b.body().support_index(-(to_b * d));
+    const int ia = pair.a.local_support_index(d);
+    const int ib = pair.b.local_support_index(-(to_b * d));
     total += simplex.p[k];
     // Two of FCL's points may be the same pair of vertices: one corral point (Wolfe's affine
     // solves need distinct points).

@@ -71,12 +71,12 @@ Answer solve_penalty(const FramedPair& pair, const QueryOptions& query, Goal goa
     throw std::invalid_argument("the penalty method measures no penetration depth");
   }
   const PenaltyOptions& options = query.penalty;
-  const int ka = pair.a.size();
-  const int kb = pair.b.size();
+  const int ka = pair.a.given_size();
+  const int kb = pair.b.given_size();
   VertexMatrix points_a;
   VertexMatrix points_b;
-  pair.a.points(points_a);
-  pair.b.points(points_b);
+  pair.a.given_points(points_a);
+  pair.b.given_points(points_b);
   // The frame's coordinates are of order one, so the weights mean the same for bodies of any
   // size and position.
   PenalisedObjective objective(points_a.transpose(), points_b.transpose());

@@ -84,8 +84,8 @@ class SwarmSolver {
         options_(options),
         inertia_(inertia),
         tolerance_(pair.tolerance),
-        ka_(static_cast<int>(pair.a.size())),
-        kb_(static_cast<int>(pair.b.size())),
+        ka_(static_cast<int>(pair.a.given_size())),
+        kb_(static_cast<int>(pair.b.given_size())),
         size_(options.swarm_size),
         stride_(padded(options.swarm_size)),
         work_(workspace),
@@ -105,8 +105,8 @@ class SwarmSolver {
     work_.per_particle.assign(static_cast<std::size_t>(kPerParticleArrays) * stride_, 0.0);
     work_.global_best.resize(detail::kSplat * static_cast<std::size_t>(rows));
     work_.signed_vertices.resize(3 * detail::kSplat * static_cast<std::size_t>(rows));
-    pair.a.points(work_.points_a);
-    pair.b.points(work_.points_b);
+    pair.a.given_points(work_.points_a);
+    pair.b.given_points(work_.points_b);
     for (int r = 0; r < rows; ++r) {
       const bool on_a = r < ka_;
       const Vector3 vertex = on_a ? Vector3(-work_.points_a.row(r).transpose())
@@ -336,7 +336,7 @@ Answer solve_primal_swarm(const FramedPair& pair, const QueryOptions& options, G
     throw std::invalid_argument("the primal swarms measure no penetration depth");
   }
   const double entries =
-      static_cast<double>(options.swarm.swarm_size) * (pair.a.size() + pair.b.size());
+      static_cast<double>(options.swarm.swarm_size) * (pair.a.given_size() + pair.b.given_size());
   if (entries > kMaxSwarmEntries) {
     throw std::invalid_argument(
         "swarm_size x (points of both bodies) must be at most 2^26 = 67,108,864 (the swarm's "

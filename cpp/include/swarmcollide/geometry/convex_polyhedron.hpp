@@ -6,6 +6,7 @@
 
 #include "swarmcollide/geometry/aabb.hpp"
 #include "swarmcollide/geometry/hull.hpp"
+#include "swarmcollide/geometry/hull_points.hpp"
 #include "swarmcollide/types.hpp"
 
 namespace swarmcollide {
@@ -15,7 +16,8 @@ struct HullCache;
 }
 
 /// Number of points above which `support_index(direction, start)` climbs the hull instead of
-/// scanning the points.
+/// scanning the points, and above which a body finds its hull points (`hull_points()`): smaller
+/// bodies are scanned whole.
 inline constexpr int kHillClimbingThreshold = 32;
 
 /// A body's extent, computed once when it is built: every query needs it.
@@ -31,8 +33,10 @@ struct BodyBounds {
 /// A convex polyhedron: the convex hull of a finite point set (the paper's Definition 3).
 ///
 /// The points are kept as given; they are the `x_i` of model (2), so a point inside the hull is a
-/// legitimate (if redundant) vertex of the model. Flat, collinear and single-point sets are valid
-/// bodies. Copies share the lazily computed hull; the class is safe to read from many threads.
+/// legitimate (if redundant) vertex of the model. The exact solvers and support queries read only
+/// the hull points (`hull_points()`), found with the hull. Flat, collinear and single-point sets
+/// are valid bodies. Copies share the lazily computed hull; the class is safe to read from many
+/// threads.
 class ConvexPolyhedron {
  public:
   /// Throws std::invalid_argument if `points` is empty, has a NaN or infinite coordinate, or
@@ -52,13 +56,13 @@ class ConvexPolyhedron {
   /// break ties alike and get the same answers.
   const VertexMatrix& centred_vertices() const { return centred_; }
 
-  /// Index of a point that maximises `direction . x` (the first one on ties), comparing
-  /// `centred_vertices()`.
+  /// Index of a point that maximises `direction . x` (the first of the hull points on ties),
+  /// comparing `centred_vertices()` of the hull points.
   int support_index(const Vector3& direction) const;
   /// Index of a point that maximises `direction . x`, found by hill climbing over the hull's
   /// vertex adjacency from the point `start` (any index; a point that is not a hull vertex starts
-  /// from the first one) when the body has more than `kHillClimbingThreshold` points, as FCL and
-  /// coal do, and by scanning the points otherwise. Passing the previous answer as `start` for a
+  /// from the first one) when the body has more than `kHillClimbingThreshold` hull points, as FCL
+  /// and coal do, and by scanning them otherwise. Passing the previous answer as `start` for a
   /// nearby direction makes a query cost a few neighbour checks. On ties any maximiser is returned.
   int support_index(const Vector3& direction, int start) const;
   /// A point of the body farthest along `direction`.
@@ -75,6 +79,10 @@ class ConvexPolyhedron {
   Vector3 centroid() const;
   /// Convex hull, computed on first use.
   const Hull& hull() const;
+  /// The points the exact solvers read: the hull's vertices and any point not proven inside their
+  /// hull (see HullPoints), found with the hull for bodies of more than `kHillClimbingThreshold`
+  /// points; smaller bodies read every point.
+  const HullPoints& hull_points() const;
 
   /// Data a solver derives from the body (an FCL shape at some scale, say): made by `make()` on
   /// the first call for type `T` and `key`, then shared by every copy of the body. Safe to call

@@ -1,0 +1,20 @@
+// The surface and edge graph of a hull, shared by hull.cpp and hull_points.cpp; private to the
+// library's sources.
+#pragma once
+
+#include <vector>
+
+#include "swarmcollide/geometry/hull.hpp"
+#include "swarmcollide/types.hpp"
+
+namespace swarmcollide::detail {
+
+/// True when the triangles form a closed, consistently oriented surface: every directed edge is
+/// used once and its reverse once.
+bool closed_surface(const std::vector<Eigen::RowVector3i>& triangles);
+
+/// Sets `hull.neighbour_offsets` and `hull.neighbours` from its faces (or its segment), for a
+/// set of `points` points.
+void fill_adjacency(Hull& hull, Eigen::Index points);
+
+}  // namespace swarmcollide::detail
