@@ -543,9 +543,9 @@ class Scene:
     method : str
         The narrowphase's method (see ``METHODS``); ``"dual"`` by default.
     broadphase : str
-        FCL's manager: ``"dynamic_aabb_tree"`` (default), ``"dynamic_aabb_tree_array"``, ``"sap"``,
-        ``"ssap"``, ``"interval_tree"``, ``"spatial_hashing"`` or ``"brute_force"``. Answers do not
-        depend on it.
+        FCL's manager: ``"dynamic_aabb_tree"`` (default), ``"sap"``, ``"ssap"``,
+        ``"interval_tree"``, ``"spatial_hashing"`` or ``"brute_force"`` (``BROADPHASES``). Answers do
+        not depend on it.
     threads : int, optional
         Narrowphase threads, the caller's included; None uses one per hardware thread.
     tolerance : float

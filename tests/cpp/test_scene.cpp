@@ -271,7 +271,6 @@ TEST_P(SceneOracle, EveryQueryEqualsTheOracleThroughMovesAddsAndRemoves) {
 INSTANTIATE_TEST_SUITE_P(Broadphases, SceneOracle,
                          ::testing::Values(SceneCase{Broadphase::dynamic_aabb_tree, true},
                                            SceneCase{Broadphase::dynamic_aabb_tree, false},
-                                           SceneCase{Broadphase::dynamic_aabb_tree_array, true},
                                            SceneCase{Broadphase::sap, true},
                                            SceneCase{Broadphase::ssap, true},
                                            SceneCase{Broadphase::interval_tree, true},
@@ -387,8 +386,7 @@ TEST_P(ScenePairTable, FewMovingBodiesGiveTheAnswersOfAFreshScene) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Broadphases, ScenePairTable,
-                         ::testing::Values(Broadphase::dynamic_aabb_tree,
-                                           Broadphase::dynamic_aabb_tree_array, Broadphase::sap,
+                         ::testing::Values(Broadphase::dynamic_aabb_tree, Broadphase::sap,
                                            Broadphase::ssap, Broadphase::interval_tree,
                                            Broadphase::spatial_hashing, Broadphase::brute_force),
                          [](const ::testing::TestParamInfo<Broadphase>& info) {
@@ -744,6 +742,12 @@ TEST(Scene, RejectsWhatItCannotAnswer) {
   EXPECT_NO_THROW(ccd.colliding_pairs());
   EXPECT_THROW(broadphase_from_name("octree"), std::invalid_argument);
   EXPECT_EQ(broadphase_from_name("sap"), Broadphase::sap);
+  try {
+    broadphase_from_name("dynamic_aabb_tree_array");
+    ADD_FAILURE() << "FCL's array tree is offered";
+  } catch (const std::invalid_argument& error) {
+    EXPECT_NE(std::string(error.what()).find("use 'dynamic_aabb_tree'"), std::string::npos);
+  }
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <mutex>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -218,6 +219,23 @@ void radix_sort(std::vector<T>& items, std::vector<T>& scratch, int bits, const 
     for (const T& item : items) scratch[start[(rank(item) >> shift) & (kBuckets - 1)]++] = item;
     items.swap(scratch);
   }
+}
+
+// How far from the origin `body` at `pose` reaches along an axis, at most: its bounding ball,
+// placed by the pose, bounds every coordinate.
+Scalar reach_from_origin(const ConvexPolyhedron& body, const Pose& pose) {
+  const Vector3 centre = pose.rotation * body.bounds().centre + pose.translation;
+  return centre.cwiseAbs().maxCoeff() + body.bounds().radius;
+}
+
+// Refuses a body that reaches `reach` (beyond kMaxSceneCoordinate) from the origin, as `what`.
+[[noreturn]] void refuse_placement(const std::string& what, Scalar reach) {
+  std::ostringstream message;
+  message << what << " reaches " << reach << " from the origin; a scene holds bodies within "
+          << kMaxSceneCoordinate
+          << " of it (its broadphase squares box extents): use a larger unit of length, or the "
+             "pair queries (distance, collide), which take any finite coordinates";
+  throw std::invalid_argument(message.str());
 }
 
 std::string unknown_id(BodyId id) {
@@ -699,6 +717,12 @@ std::vector<BodyId> Scene::Impl::add(std::vector<ConvexPolyhedron> bodies,
   for (std::size_t i = 0; i < poses.size(); ++i) {
     validate_pose(poses[i], "poses", i);
   }
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    const Scalar reach = reach_from_origin(bodies[i], poses.empty() ? Pose{} : poses[i]);
+    if (!(reach <= kMaxSceneCoordinate)) {
+      refuse_placement("bodies[" + std::to_string(i) + "] at its pose", reach);
+    }
+  }
   if (bodies.size() > std::numeric_limits<BodyId>::max() - std::size_t{s.next_id}) {
     throw std::invalid_argument("the scene has given out every id (2**32); build a new scene");
   }
@@ -768,6 +792,12 @@ void Scene::set_poses(const std::vector<BodyId>& ids, const std::vector<Pose>& p
   for (std::size_t i = 0; i < ids.size(); ++i) {
     targets.push_back(&s.find(ids[i]));
     validate_pose(poses[i], "poses", i);
+    const Scalar reach = reach_from_origin(targets[i]->body, poses[i]);
+    if (!(reach <= kMaxSceneCoordinate)) {
+      refuse_placement("poses[" + std::to_string(i) + "] moves body " + std::to_string(ids[i]) +
+                           " so that it",
+                       reach);
+    }
   }
   for (std::size_t i = 0; i < ids.size(); ++i) {
     SceneBody& b = *targets[i];
@@ -909,9 +939,10 @@ SceneResult Scene::colliding_pairs() {
 SceneResult Scene::pairs_within(Scalar distance) {
   Impl& s = *impl_;
   const std::lock_guard<std::mutex> lock(s.mutex);
-  if (!(distance >= 0) || !std::isfinite(distance)) {
-    throw std::invalid_argument("distance must be a finite number >= 0, got " +
-                                std::to_string(distance));
+  if (!(distance >= 0) || !(distance <= kMaxSceneCoordinate)) {
+    std::ostringstream message;
+    message << "distance must be a number in [0, " << kMaxSceneCoordinate << "], got " << distance;
+    throw std::invalid_argument(message.str());
   }
   s.require(kDistance, "pairs_within");
   s.collect(distance);
