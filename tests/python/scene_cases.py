@@ -43,6 +43,18 @@ def random_rotations(rng: np.random.Generator, count: int, angle: float) -> np.n
     return np.eye(3) + s * k + (1 - c) * k @ k
 
 
+def pair_size(a: np.ndarray, pose_a: np.ndarray, b: np.ndarray, pose_b: np.ndarray) -> float:
+    """The size tolerances are relative to (docs: the diameter of a ball around both bodies):
+    |c_b - c_a| + 2 max(r_a, r_b), each body's ball centred on its own box, of half its diagonal.
+    """
+    def ball(points: np.ndarray, pose: np.ndarray) -> Tuple[np.ndarray, float]:
+        low, high = points.min(axis=0), points.max(axis=0)
+        return pose[:3, :3] @ ((low + high) / 2) + pose[:3, 3], float(np.linalg.norm(high - low) / 2)
+
+    (ca, ra), (cb, rb) = ball(a, pose_a), ball(b, pose_b)
+    return float(np.linalg.norm(cb - ca)) + 2 * max(ra, rb)
+
+
 class Motion:
     """A seeded world of bodies in a box, moved frame by frame.
 
@@ -112,7 +124,8 @@ class Motion:
         placed = {i: self.hulls[i] @ self.poses[i][:3, :3].T + self.poses[i][:3, 3] for i in ids}
         result = sc.distance_many([placed[i] for i in first], [placed[i] for i in second],
                                   method="exact")  # fmt: skip
-        sizes = [np.ptp(np.vstack([placed[a], placed[b]]), axis=0).max() for a, b in pairs]
+        sizes = [pair_size(self.hulls[a], self.poses[a], self.hulls[b], self.poses[b])
+                 for a, b in pairs]  # fmt: skip
         distance = dict(zip(pairs, result.distance.tolist()))
         allowance = {p: tolerance * s + 1e-12 * s for p, s in zip(pairs, sizes)}
         return distance, allowance
@@ -166,6 +179,48 @@ def motion_mismatches(
                                  allowance, 0.0)  # fmt: skip
             problems += _compare(f"{where}, pairs_within({THRESHOLD})",
                                  scene.pairs_within(THRESHOLD), truth, allowance, THRESHOLD)
+    return problems
+
+
+SCENE_QUERIES = {
+    "colliding_pairs": ("collide", lambda scene: scene.colliding_pairs()),
+    "pairs_within": ("distance", lambda scene: scene.pairs_within(0.5)),
+    "min_distance": ("distance", lambda scene: scene.min_distance()),
+    "nearest": ("distance", lambda scene: scene.nearest(scene.ids[:10], k=3)),
+    "contacts": ("signed_distance", lambda scene: scene.contacts()),
+}
+"""Each scene query: the pair query whose capability it needs, and how a check calls it."""
+
+
+def certified_wrong(method: str, seed: int, bodies: int, side: float) -> List[str]:
+    """Certified rows of every scene query whose bounds miss the exact distance, or whose
+    distance is farther from it than tolerance x size (pairs_within, min_distance, nearest)."""
+    motion = Motion(seed, bodies, side)
+    ids = sorted(motion.hulls)
+    scene = sc.Scene(method=method, threads=1)
+    scene.add([motion.hulls[i] for i in ids], np.stack([motion.poses[i] for i in ids]))
+    truth, allowance = motion.truth(scene.tolerance)
+    problems = []
+    for name, (capability, query) in SCENE_QUERIES.items():
+        if capability not in sc.METHODS[method].queries:
+            continue
+        rows = query(scene)
+        for k, (a, b) in enumerate(rows.pairs.tolist()):
+            if not rows.certified[k]:
+                continue
+            pair = (min(a, b), max(a, b))
+            t, slack = truth[pair], allowance[pair]
+            lower, upper = rows.lower_bound[k], rows.distance[k]
+            if capability == "signed_distance":
+                wrong = t > slack or upper > slack  # in contact, at a signed distance <= 0
+            elif capability == "collide":
+                # Methods without distances (libccd) bound the signed distance, negative here.
+                wrong = t > slack or lower - slack > t
+            else:
+                wrong = not lower - slack <= t <= upper + slack or upper - t > slack
+            if wrong:
+                problems.append(f"{method} {name}: pair {pair} certified with [{lower!r}, "
+                                f"{upper!r}], exact distance {t!r}, tolerance x size {slack:.3g}")
     return problems
 
 
