@@ -73,3 +73,62 @@ def test_pairs_within_refuses_distances_beyond_the_range():
     scene.add([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]])
     with pytest.raises(ValueError, match=r"distance must be a number in \[0, 1e\+150\], got 1e\+200"):
         scene.pairs_within(1e200)
+
+
+def test_pair_lists_name_self_pairs_and_unknown_ids():
+    scene = sc.Scene()
+    scene.add(np.stack([np.eye(3)] * 2))
+    for call in (scene.exclude, scene.include):
+        with pytest.raises(ValueError, match=r"pairs lists \(0, 0\): a body is never paired"):
+            call([0, 0])
+        with pytest.raises(ValueError, match="no body with id 7"):
+            call([0, 7])
+    assert len(scene.colliding_pairs()) == 1
+
+
+def test_group_and_mask_take_numpy_integers_and_name_arrays():
+    scene = sc.Scene()
+    assert scene.add(np.eye(3), group=np.int64(2), mask=np.array(3)).tolist() == [0]
+    with pytest.raises(TypeError, match=r"group must be one integer bit mask .* shape \(2,\)"):
+        scene.add(np.eye(3), group=np.array([1, 2]))
+
+
+def test_an_empty_move_is_a_no_op():
+    scene = sc.Scene()
+    scene.add(np.eye(3))
+    scene.set_poses([], [])
+    scene.set_poses(np.array([], dtype=int), np.zeros((0, 4, 4)))
+    with pytest.raises(ValueError, match=r"one pose per id \(got None for 1 ids\)"):
+        scene.set_poses([0], None)
+
+
+@pytest.mark.parametrize("call,message", [
+    (lambda s: s.pairs_within("a"), "distance must be a real number, got str"),
+    (lambda s: s.pairs_within(np.array([0.5])), "distance must be a real number, got ndarray"),
+    (lambda s: s.pairs_within(1j), "distance must be a real number, got complex"),
+    (lambda s: s.contacts("x"), "max_points must be an integer, got str"),
+    (lambda s: s.contacts(2.5), "max_points must be an integer, got float"),
+    (lambda s: s.nearest([0], k="2"), "k must be an integer, got str"),
+    (lambda s: s.nearest([0], k=True), "k must be an integer, got bool"),
+])  # fmt: skip
+def test_query_arguments_of_the_wrong_type_are_named(call, message):
+    scene = sc.Scene()
+    scene.add(np.stack([np.eye(3)] * 2))
+    with pytest.raises(TypeError, match=message):
+        call(scene)
+
+
+def test_query_arguments_take_numpy_scalars_and_name_their_range():
+    scene = sc.Scene()
+    scene.add(np.stack([np.eye(3)] * 2))
+    assert len(scene.pairs_within(np.float64(0.5))) == len(scene.contacts(np.int64(2))) == 1
+    assert len(scene.nearest([0], k=np.int32(1))) == 1
+    with pytest.raises(ValueError, match=r"k must be at most 2\*\*31 - 1, got 1099511627776"):
+        scene.nearest([0], k=2**40)
+
+
+def test_a_rejected_rotation_prints_its_deviation_in_general_notation():
+    pose = np.eye(4)
+    pose[0, 0] = 1 + 3e-8
+    with pytest.raises(ValueError, match=r"\|R\^T R - I\| = 6e-08, det R = 1.00000003\)"):
+        sc.Scene().add(np.eye(3), pose)

@@ -310,6 +310,19 @@ struct Scene::Impl {
   }
   const SceneBody& find(BodyId id) const { return const_cast<Impl*>(this)->find(id); }
 
+  // Throws std::invalid_argument for a pair of an unknown body or of a body with itself.
+  void check_pairs(const std::vector<std::pair<BodyId, BodyId>>& pairs) const {
+    for (const auto& [a, b] : pairs) {
+      find(a);
+      find(b);
+      if (a == b) {
+        throw std::invalid_argument("pairs lists (" + std::to_string(a) + ", " +
+                                    std::to_string(b) +
+                                    "): a body is never paired with itself; list two ids");
+      }
+    }
+  }
+
   Scalar pad_of(const SceneBody& b, Scalar threshold) const {
     return padding(threshold, b.body.bounds().radius, options.query.tolerance);
   }
@@ -870,10 +883,7 @@ void Scene::set_filter(const std::vector<BodyId>& ids, const BodyFilter& filter)
 void Scene::exclude(const std::vector<std::pair<BodyId, BodyId>>& pairs) {
   Impl& s = *impl_;
   const std::lock_guard<std::mutex> lock(s.mutex);
-  for (const auto& [a, b] : pairs) {
-    s.find(a);
-    s.find(b);
-  }
+  s.check_pairs(pairs);
   for (const auto& [a, b] : pairs)
     s.excluded.insert(detail::pair_key(std::min(a, b), std::max(a, b)));
   s.table_stale = true;
@@ -882,6 +892,7 @@ void Scene::exclude(const std::vector<std::pair<BodyId, BodyId>>& pairs) {
 void Scene::include(const std::vector<std::pair<BodyId, BodyId>>& pairs) {
   Impl& s = *impl_;
   const std::lock_guard<std::mutex> lock(s.mutex);
+  s.check_pairs(pairs);
   for (const auto& [a, b] : pairs)
     s.excluded.erase(detail::pair_key(std::min(a, b), std::max(a, b)));
   s.table_stale = true;
