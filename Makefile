@@ -1,7 +1,8 @@
 # make demo: set up everything and reproduce the paper's tables.
 # make test: set up everything and run the C++ (ctest) and Python (pytest) suites.
 # make test-sanitize: the same under AddressSanitizer and UBSan (the C++ tests and a pytest subset).
-# make census: the fuzz census (tests/fuzz/census.py); CENSUS_ARGS="--count 500" for a quick one.
+# make census: the fuzz census (tests/fuzz/census.py) of the pair queries, then of scenes;
+# CENSUS_ARGS="--count 500" SCENE_CENSUS_ARGS="--count 40" for a quick one.
 PYTHON ?= python3
 VENV := .venv
 PY := $(VENV)/bin/python
@@ -126,9 +127,13 @@ test-sanitize: install
 	exit $$status
 
 CENSUS_ARGS ?=
+# The scene surface: long seeded motions through every broadphase, every method's certified rows,
+# far bodies and bad arguments (tests/python/scene_cases.py).
+SCENE_CENSUS_ARGS ?= --count 200
 
 census: install
 	$(PY) tests/fuzz/census.py --json build/fuzz/census.jsonl $(CENSUS_ARGS)
+	$(PY) tests/fuzz/census.py --surface scene --json build/fuzz/scene.jsonl $(SCENE_CENSUS_ARGS)
 
 stubs: install
 	$(PY) -m pybind11_stubgen swarmcollide._core -o python --numpy-array-use-type-var

@@ -5,8 +5,12 @@ case that is not "ok" (its id, category and reason), so that a fix can be checke
 
     .venv/bin/python tests/fuzz/census.py --json build/fuzz/census.jsonl   # 10000 cases
     .venv/bin/python tests/fuzz/census.py --rerun tests/fuzz/before.jsonl  # old -> new per case
+    .venv/bin/python tests/fuzz/census.py --surface scene --count 200     # scenes
 
-The categories are those of tests/python/fuzz_judge.py; the cases those of fuzz_cases.py.
+The categories are those of tests/python/fuzz_judge.py; the cases those of fuzz_cases.py, or with
+``--surface scene`` those of scene_cases.py: every broadphase through long seeded motions against
+brute force, every method's certified rows against exact distances, bodies far from the origin,
+and bad arguments (a case whose error does not name its argument counts as "error-type").
 """
 
 from __future__ import annotations
@@ -24,25 +28,37 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "python"))
 from fuzz_cases import make_case  # noqa: E402
 from fuzz_judge import CATEGORIES, FAILURES, category_of, run_case  # noqa: E402
 from sandbox import Sandbox  # noqa: E402
+from scene_cases import run_scene_case, scene_case  # noqa: E402
 
 Record = Dict[str, Any]
 
 
+def describe(surface: str, seed: int, index: int) -> Record:
+    """What case ``index`` of ``surface`` is: id, index, family, query, method, note."""
+    if surface == "scene":
+        family, query, label, arguments = scene_case(seed, index)
+        return {"id": f"scene-{seed}-{index}", "index": index, "family": family, "query": query,
+                "method": label, "note": repr(arguments)}  # fmt: skip
+    case = make_case(seed, index)
+    return {"id": case.id, "index": index, "family": case.family, "query": case.query,
+            "method": case.label, "note": case.note}  # fmt: skip
+
+
 def census(
-    seed: int, indices: Iterable[int], workers: int, timeout: float, progress: bool
+    seed: int, indices: Iterable[int], workers: int, timeout: float, progress: bool,
+    surface: str = "pairs",
 ) -> List[Record]:
     """One record per case: id, index, family, query, method, note, category, reason."""
     records = []
     start = time.monotonic()
-    tasks = ((index, run_case, (seed, index)) for index in indices)
-    with Sandbox(parallel=workers) as sandbox:
+    judge = run_scene_case if surface == "scene" else run_case
+    tasks = ((index, judge, (seed, index)) for index in indices)
+    preload = ("scene_cases",) if surface == "scene" else ("fuzz_judge",)
+    with Sandbox(parallel=workers, preload=preload) as sandbox:
         for index, outcome in sandbox.map(tasks, timeout=timeout):
-            case = make_case(seed, index)
             category, reason = category_of(outcome)
-            records.append({
-                "id": case.id, "index": index, "family": case.family, "query": case.query,
-                "method": case.label, "note": case.note, "category": category, "reason": reason,
-            })  # fmt: skip
+            records.append({**describe(surface, seed, index), "category": category,
+                            "reason": reason})  # fmt: skip
             if progress and len(records) % 100 == 0:
                 counts = Counter(r["category"] for r in records)
                 print(f"{len(records)} cases, {time.monotonic() - start:.0f} s: {dict(counts)}",
@@ -95,9 +111,11 @@ def read_report(path: Path) -> Tuple[Record, List[Record]]:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--seed", type=int, default=0, help="the corpus (default 0)")
+    parser.add_argument("--surface", choices=("pairs", "scene"), default="pairs",
+                        help="pair queries (fuzz_cases.py) or scenes (scene_cases.py)")
     parser.add_argument("--count", type=int, default=10000, help="cases 0 .. count-1")
     parser.add_argument("--workers", type=int, default=2, help="children at once")
-    parser.add_argument("--timeout", type=float, default=20.0, help="seconds before a hang")
+    parser.add_argument("--timeout", type=float, help="seconds before a hang (20; scenes 120)")
     parser.add_argument("--json", type=Path, help="write the cases not ok here (JSON Lines)")
     parser.add_argument("--rerun", type=Path, help="rerun the cases of an earlier --json file")
     parser.add_argument("--quiet", action="store_true", help="no progress on stderr")
@@ -109,8 +127,10 @@ def main() -> None:
         seed = previous["seed"]
         earlier = {record["index"]: record["category"] for record in cases}
         indices = sorted(earlier)
+    if args.timeout is None:
+        args.timeout = 120.0 if args.surface == "scene" else 20.0
     start = time.monotonic()
-    records = census(seed, indices, args.workers, args.timeout, not args.quiet)
+    records = census(seed, indices, args.workers, args.timeout, not args.quiet, args.surface)
     seconds = time.monotonic() - start
     print(f"corpus seed {seed}, {len(records)} cases, timeout {args.timeout:g} s, "
           f"{args.workers} workers, {seconds:.0f} s\n")  # fmt: skip

@@ -43,14 +43,21 @@ def random_rotations(rng: np.random.Generator, count: int, angle: float) -> np.n
     return np.eye(3) + s * k + (1 - c) * k @ k
 
 
+NEAR = 1.0
+"""Pairs whose bounding balls are farther apart than this are farther than every query's
+threshold here (``THRESHOLD``, and 0.5 for ``certified_wrong``)."""
+
+
+def ball(points: np.ndarray, pose: np.ndarray) -> Tuple[np.ndarray, float]:
+    """The ball the library sizes a body by: centred on its own box, of half its diagonal."""
+    low, high = points.min(axis=0), points.max(axis=0)
+    return pose[:3, :3] @ ((low + high) / 2) + pose[:3, 3], float(np.linalg.norm(high - low) / 2)
+
+
 def pair_size(a: np.ndarray, pose_a: np.ndarray, b: np.ndarray, pose_b: np.ndarray) -> float:
     """The size tolerances are relative to (docs: the diameter of a ball around both bodies):
-    |c_b - c_a| + 2 max(r_a, r_b), each body's ball centred on its own box, of half its diagonal.
+    |c_b - c_a| + 2 max(r_a, r_b), with each body's ``ball``.
     """
-    def ball(points: np.ndarray, pose: np.ndarray) -> Tuple[np.ndarray, float]:
-        low, high = points.min(axis=0), points.max(axis=0)
-        return pose[:3, :3] @ ((low + high) / 2) + pose[:3, 3], float(np.linalg.norm(high - low) / 2)
-
     (ca, ra), (cb, rb) = ball(a, pose_a), ball(b, pose_b)
     return float(np.linalg.norm(cb - ca)) + 2 * max(ra, rb)
 
@@ -114,21 +121,35 @@ class Motion:
                 del self.hulls[i], self.poses[i]
             self.added = self.new_bodies(count)
 
+    def placed(self, i: int) -> np.ndarray:
+        return self.hulls[i] @ self.poses[i][:3, :3].T + self.poses[i][:3, 3]
+
     def truth(self, tolerance: float) -> Tuple[Dict[Tuple[int, int], float], Dict[Tuple[int, int], float]]:
-        """(exact distance, tolerance x size) of every pair, by ``distance_many``."""
+        """(exact distance, tolerance x size) of every pair whose bounding balls lie within
+        ``NEAR`` of each other (the others are farther apart than any query here asks about),
+        by ``distance_many``; ``exact`` answers the others."""
         ids = sorted(self.poses)
-        pairs = list(itertools.combinations(ids, 2))
+        balls = [ball(self.hulls[i], self.poses[i]) for i in ids]
+        centres = np.array([c for c, _ in balls]).reshape(-1, 3)
+        radii = np.array([r for _, r in balls])
+        gaps = np.linalg.norm(centres[:, None] - centres[None], axis=2) - radii[:, None] - radii
+        first, second = np.nonzero(np.triu(gaps <= NEAR, 1))
+        pairs = [(ids[a], ids[b]) for a, b in zip(first.tolist(), second.tolist())]
         if not pairs:
             return {}, {}
-        first, second = zip(*pairs)
-        placed = {i: self.hulls[i] @ self.poses[i][:3, :3].T + self.poses[i][:3, 3] for i in ids}
-        result = sc.distance_many([placed[i] for i in first], [placed[i] for i in second],
-                                  method="exact")  # fmt: skip
-        sizes = [pair_size(self.hulls[a], self.poses[a], self.hulls[b], self.poses[b])
-                 for a, b in pairs]  # fmt: skip
+        result = sc.distance_many([self.placed(a) for a, _ in pairs],
+                                  [self.placed(b) for _, b in pairs], method="exact")  # fmt: skip
         distance = dict(zip(pairs, result.distance.tolist()))
-        allowance = {p: tolerance * s + 1e-12 * s for p, s in zip(pairs, sizes)}
+        allowance = {(a, b): self.allowance(a, b, tolerance) for a, b in pairs}
         return distance, allowance
+
+    def allowance(self, a: int, b: int, tolerance: float) -> float:
+        """tolerance x size of the pair, and rounding."""
+        size = pair_size(self.hulls[a], self.poses[a], self.hulls[b], self.poses[b])
+        return tolerance * size + 1e-12 * size
+
+    def exact(self, a: int, b: int) -> float:
+        return sc.distance(self.placed(a), self.placed(b), method="exact").distance
 
 
 def _apply(scene: "sc.Scene", motion: Motion, first: bool) -> None:
@@ -143,7 +164,9 @@ def _apply(scene: "sc.Scene", motion: Motion, first: bool) -> None:
         scene.set_poses(moved, np.stack([motion.poses[i] for i in moved]))
 
 
-def _compare(name: str, rows: Any, truth: Dict, allowance: Dict, within: float) -> List[str]:
+def _compare(
+    name: str, rows: Any, truth: Dict, allowance: Dict, within: float, ids: Any
+) -> List[str]:
     """What is wrong with ``rows`` (a SceneResult) for pairs within ``within`` of each other."""
     problems = []
     found = {tuple(p): k for k, p in enumerate(rows.pairs.tolist())}
@@ -153,8 +176,11 @@ def _compare(name: str, rows: Any, truth: Dict, allowance: Dict, within: float) 
         if d > within + allowance[pair] and pair in found:
             problems.append(f"{name}: pair {pair} at distance {d:.3g} is listed")
     for pair, k in found.items():
-        if pair not in truth:
+        if pair[0] not in ids or pair[1] not in ids or pair[0] >= pair[1]:
             problems.append(f"{name}: pair {pair} is not a pair of the scene")
+            continue
+        if pair not in truth:
+            problems.append(f"{name}: pair {pair} is listed, its balls {NEAR} apart or more")
             continue
         if not rows.certified[k]:
             problems.append(f"{name}: pair {pair} is not certified")
@@ -176,9 +202,10 @@ def motion_mismatches(
             _apply(scene, motion, first=frame == 0)
             where = f"frame {frame}, {broadphase}"
             problems += _compare(f"{where}, colliding_pairs", scene.colliding_pairs(), truth,
-                                 allowance, 0.0)  # fmt: skip
+                                 allowance, 0.0, motion.poses)  # fmt: skip
             problems += _compare(f"{where}, pairs_within({THRESHOLD})",
-                                 scene.pairs_within(THRESHOLD), truth, allowance, THRESHOLD)
+                                 scene.pairs_within(THRESHOLD), truth, allowance, THRESHOLD,
+                                 motion.poses)
     return problems
 
 
@@ -209,7 +236,8 @@ def certified_wrong(method: str, seed: int, bodies: int, side: float) -> List[st
             if not rows.certified[k]:
                 continue
             pair = (min(a, b), max(a, b))
-            t, slack = truth[pair], allowance[pair]
+            t = truth[pair] if pair in truth else motion.exact(*pair)
+            slack = allowance[pair] if pair in allowance else motion.allowance(*pair, scene.tolerance)
             lower, upper = rows.lower_bound[k], rows.distance[k]
             if capability == "signed_distance":
                 wrong = t > slack or upper > slack  # in contact, at a signed distance <= 0
@@ -274,3 +302,125 @@ def timed(function: Any, *args: Any) -> Dict[str, Any]:
     start = time.monotonic()
     value = function(*args)
     return {"value": value, "seconds": time.monotonic() - start}
+
+
+# ----- the census's scene surface --------------------------------------------------------------
+
+FAMILIES = ("motion", "certified", "far", "argument")
+"""The scene census's families of cases, taken in turn by case index."""
+
+FAR = (1e100, 1e149, 1e155, 1e200, 1e300)
+
+UNCLEAR = ("incompatible function arguments", "only integer scalar arrays", "must not be None")
+"""Fragments of error messages that do not name the argument and the fix."""
+
+BAD_ARGUMENTS = {
+    "exclude([0, 0])": lambda s: s.exclude([0, 0]),
+    "include([0, 0])": lambda s: s.include([0, 0]),
+    "include([0, 99])": lambda s: s.include([0, 99]),
+    "add(group=array)": lambda s: s.add(np.eye(3), group=np.array([1, 2])),
+    "pairs_within('a')": lambda s: s.pairs_within("a"),
+    "pairs_within(-1)": lambda s: s.pairs_within(-1.0),
+    "pairs_within(inf)": lambda s: s.pairs_within(float("inf")),
+    "pairs_within(1e200)": lambda s: s.pairs_within(1e200),
+    "contacts('x')": lambda s: s.contacts("x"),
+    "contacts(0)": lambda s: s.contacts(0),
+    "nearest(k='2')": lambda s: s.nearest([0], k="2"),
+    "nearest(k=0)": lambda s: s.nearest([0], k=0),
+    "nearest([99])": lambda s: s.nearest([99]),
+    "set_poses(99)": lambda s: s.set_poses(99, np.eye(4)),
+    "set_poses(nan)": lambda s: s.set_poses(0, np.full((4, 4), np.nan)),
+    "remove([0, 0])": lambda s: s.remove([0, 0]),
+}
+"""Calls a scene of three bodies must refuse with a ValueError or TypeError that names the
+argument: (name, call)."""
+
+NO_OPS = {"set_poses([], [])": lambda s: s.set_poses([], [])}
+"""Calls that must change nothing and answer nothing."""
+
+
+def _verdict(category: str, reason: str = "") -> Dict[str, Any]:
+    return {"category": category, "reason": reason}
+
+
+def scene_case(seed: int, index: int) -> Tuple[str, str, str, tuple]:
+    """(family, query, label, arguments) of case ``index`` of corpus ``seed``."""
+    rng = np.random.default_rng([seed, index, 23])
+    family = FAMILIES[index % len(FAMILIES)]
+    broadphases = tuple(sc.BROADPHASES) + ("dynamic_aabb_tree_array",)
+    if family == "motion":
+        broadphase = broadphases[int(rng.integers(len(broadphases)))]
+        bodies, frames = int(rng.integers(60, 301)), int(rng.integers(20, 61))
+        side = float(rng.uniform(3.0, 6.0)) * (bodies / 150) ** (1 / 3)
+        return family, "motion", broadphase, (broadphase, int(rng.integers(2**31)), bodies, frames,
+                                              side)  # fmt: skip
+    if family == "certified":
+        method = list(sc.METHODS)[int(rng.integers(len(sc.METHODS)))]
+        return family, "every query", method, (method, int(rng.integers(2**31)), 80, 4.0)
+    if family == "far":
+        broadphase = broadphases[int(rng.integers(len(broadphases)))]
+        how = ("batch", "alone", "moved")[int(rng.integers(3))]
+        far = FAR[int(rng.integers(len(FAR)))]
+        return family, f"far {far:g}", broadphase, (broadphase, how, far)
+    names = list(BAD_ARGUMENTS) + list(NO_OPS)
+    name = names[int(rng.integers(len(names)))]
+    return family, "argument", name, (name,)
+
+
+def run_scene_case(seed: int, index: int) -> Dict[str, Any]:
+    """Make and judge scene case ``index``: ``{"category", "reason"}`` (fuzz_judge's categories)."""
+    family, _, _, arguments = scene_case(seed, index)
+    try:
+        if family == "motion":
+            broadphase, *rest = arguments
+            problems = motion_mismatches((broadphase,), *rest)
+            return _verdict("wrong", problems[0]) if problems else _verdict("ok")
+        if family == "certified":
+            problems = certified_wrong(*arguments)
+            return _verdict("wrong", problems[0]) if problems else _verdict("ok")
+        if family == "far":
+            return _judge_far(*arguments)
+        return _judge_argument(*arguments)
+    except (ValueError, TypeError) as error:
+        if "dynamic_aabb_tree_array" in str(error) and "no longer offered" in str(error):
+            return _verdict("ok", str(error))
+        return _verdict("error-type", f"an answer was due: {type(error).__name__}: {error}")
+
+
+def _judge_far(broadphase: str, how: str, far: float) -> Dict[str, Any]:
+    answers = far_body_answers(broadphase, how, far)
+    if "refused" in answers:
+        if far > 1e150 and "within 1e+150" in answers["refused"]:
+            return _verdict("ok", answers["refused"])
+        return _verdict("error-type", f"refused: {answers['refused']}")
+    expected = {
+        "colliding_pairs": [],
+        "pairs_within": [((0, 1), 2.5)],
+        "min_distance": [((0, 1), 2.5)],
+        "nearest": [((0, 1), 2.5), ((0, 2), far - 1), ((2, 0), far - 1), ((2, 1), far - 4.5)],
+        "contacts": [],
+    }
+    for query, rows in expected.items():
+        pairs, distances, certified = answers[query]
+        got = [(tuple(p), d) for p, d in zip(pairs, distances)]
+        if [p for p, _ in got] != [p for p, _ in rows] or not all(certified) or any(
+            abs(d - e) > 1e-12 * max(1.0, e) + 1e-9 for (_, d), (_, e) in zip(got, rows)
+        ):
+            return _verdict("wrong", f"{query}: {answers[query]}")
+    return _verdict("ok")
+
+
+def _judge_argument(name: str) -> Dict[str, Any]:
+    scene = sc.Scene()
+    scene.add([CUBE] * 3, np.stack([_at(0.0), _at(0.5), _at(3.0)]))
+    if name in NO_OPS:
+        NO_OPS[name](scene)
+        return _verdict("ok")
+    try:
+        BAD_ARGUMENTS[name](scene)
+    except (ValueError, TypeError) as error:
+        text = f"{type(error).__name__}: {error}"
+        if any(fragment in str(error) for fragment in UNCLEAR):
+            return _verdict("error-type", f"unclear: {text[:200]}")
+        return _verdict("ok", text)
+    return _verdict("slipped", f"{name} was accepted")
