@@ -729,6 +729,15 @@ TEST(Scene, RejectsWhatItCannotAnswer) {
   EXPECT_THROW(scene.remove({id, id}), std::invalid_argument);
   EXPECT_THROW(scene.pairs_within(-1), std::invalid_argument);
   EXPECT_THROW(scene.nearest({id}, 0), std::invalid_argument);
+  EXPECT_THROW(scene.exclude({{id, id}}), std::invalid_argument);
+  EXPECT_THROW(scene.include({{id, id + 1}}), std::invalid_argument);
+  // Beyond 1e150 FCL's trees square box extents past the double range: refused, not crashed.
+  Pose far;
+  far.translation.x() = 1e155;
+  const ConvexPolyhedron unit = box(Vector3::Zero(), Vector3::Ones());
+  EXPECT_THROW(scene.add({unit, unit}, {Pose{}, far}), std::invalid_argument);
+  EXPECT_THROW(scene.set_poses({id}, {far}), std::invalid_argument);
+  EXPECT_THROW(scene.pairs_within(1e200), std::invalid_argument);
   EXPECT_EQ(scene.size(), 1u);
   EXPECT_EQ(scene.min_distance().size(), 0);
   EXPECT_EQ(scene.nearest({id}).size(), 0);
