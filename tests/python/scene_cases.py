@@ -12,8 +12,6 @@ children (tests/python/sandbox.py), so that a crash or a hang fails one case, no
 
 from __future__ import annotations
 
-import itertools
-import time
 from typing import Any, Dict, List, Tuple
 
 import numpy as np
@@ -295,13 +293,6 @@ def far_body_answers(broadphase: str, how: str, far: float) -> Dict[str, Any]:
         r = query()
         answers[name] = (r.pairs.tolist(), r.distance.tolist(), r.certified.tolist())
     return answers
-
-
-def timed(function: Any, *args: Any) -> Dict[str, Any]:
-    """``function(*args)`` with the seconds it took (for the census)."""
-    start = time.monotonic()
-    value = function(*args)
-    return {"value": value, "seconds": time.monotonic() - start}
 
 
 # ----- the census's scene surface --------------------------------------------------------------
