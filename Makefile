@@ -1,8 +1,9 @@
 # make demo: set up everything and reproduce the paper's tables.
 # make test: set up everything and run the C++ (ctest) and Python (pytest) suites.
 # make test-sanitize: the same under AddressSanitizer and UBSan (the C++ tests and a pytest subset).
-# make census: the fuzz census (tests/fuzz/census.py): the queries, then the files, CLI and inputs
-# corpus; CENSUS_ARGS="--count 500" (FILES_CENSUS_ARGS="--count 100") for a quick one.
+# make census: the fuzz census (tests/fuzz/census.py): the pair queries, then the files, CLI and
+# inputs corpus, then scenes; CENSUS_ARGS="--count 500" FILES_CENSUS_ARGS="--count 100"
+# SCENE_CENSUS_ARGS="--count 40" for a quick one.
 PYTHON ?= python3
 VENV := .venv
 PY := $(VENV)/bin/python
@@ -129,11 +130,15 @@ test-sanitize: install
 
 CENSUS_ARGS ?=
 FILES_CENSUS_ARGS ?=
+# The scene corpus: long seeded motions through every broadphase, every method's certified rows,
+# far bodies and bad arguments (tests/python/scene_cases.py).
+SCENE_CENSUS_ARGS ?= --count 200
 
 census: install
 	$(PY) tests/fuzz/census.py --json build/fuzz/census.jsonl $(CENSUS_ARGS)
 	$(PY) tests/fuzz/census.py --corpus files --count 1000 --timeout 30 \
 	  --json build/fuzz/files.jsonl $(FILES_CENSUS_ARGS)
+	$(PY) tests/fuzz/census.py --corpus scene --json build/fuzz/scene.jsonl $(SCENE_CENSUS_ARGS)
 
 stubs: install
 	$(PY) -m pybind11_stubgen swarmcollide._core -o python --numpy-array-use-type-var

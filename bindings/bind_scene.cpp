@@ -30,6 +30,8 @@ IdArray id_array(const std::vector<BodyId>& ids) {
 std::vector<BodyId> to_ids(const py::handle& ids, const char* name) {
   const py::array array = py::module_::import("numpy").attr("asarray")(ids);
   const char kind = array.dtype().kind();
+  // An empty list is an array of floats to NumPy, and names no body.
+  if (array.ndim() == 1 && array.size() == 0) return {};
   if ((kind != 'i' && kind != 'u') || array.ndim() > 1) {
     throw py::type_error(std::string(name) + " must be an id or a 1-D array of integer ids, got " +
                          type_name(ids));
@@ -113,7 +115,19 @@ std::vector<ConvexPolyhedron> to_bodies(const py::handle& given) {
   return result;
 }
 
+// True for a NumPy array of one or more dimensions, which Python's number protocols would turn
+// into a scalar or refuse with NumPy's own message.
+bool is_array(const py::handle& value) {
+  return py::isinstance<py::array>(value) && value.cast<py::array>().ndim() > 0;
+}
+
 std::uint32_t to_bits(const py::handle& value, const char* name) {
+  if (is_array(value)) {
+    throw py::type_error(std::string(name) +
+                         " must be one integer bit mask (it applies to every body of the call), "
+                         "got an array of shape " +
+                         std::string(py::str(value.attr("shape"))));
+  }
   if (PyBool_Check(value.ptr()) || !PyIndex_Check(value.ptr())) {
     throw py::type_error(std::string(name) + " must be an integer bit mask, got " +
                          type_name(value));
@@ -124,6 +138,37 @@ std::uint32_t to_bits(const py::handle& value, const char* name) {
                           std::string(py::str(bits)));
   }
   return bits.cast<std::uint32_t>();
+}
+
+// A real number (Python's or NumPy's), as `name`.
+Scalar to_real(const py::handle& value, const char* name) {
+  if (PyBool_Check(value.ptr()) || py::isinstance<py::str>(value) ||
+      py::isinstance<py::bytes>(value) || is_array(value) || !PyNumber_Check(value.ptr())) {
+    throw py::type_error(std::string(name) + " must be a real number, got " + type_name(value));
+  }
+  PyObject* real = PyNumber_Float(value.ptr());
+  if (real == nullptr) {
+    PyErr_Clear();
+    throw py::type_error(std::string(name) + " must be a real number, got " + type_name(value));
+  }
+  return py::reinterpret_steal<py::float_>(real).cast<Scalar>();
+}
+
+// An integer (Python's or NumPy's) of at least `least`, as `name`.
+int to_count(const py::handle& value, const char* name, int least) {
+  if (PyBool_Check(value.ptr()) || is_array(value) || !PyIndex_Check(value.ptr())) {
+    throw py::type_error(std::string(name) + " must be an integer, got " + type_name(value));
+  }
+  const py::int_ count = py::reinterpret_steal<py::int_>(PyNumber_Index(value.ptr()));
+  if (count < py::int_(least)) {
+    throw py::value_error(std::string(name) + " must be at least " + std::to_string(least) +
+                          ", got " + std::string(py::str(count)));
+  }
+  if (count > py::int_(std::numeric_limits<int>::max())) {
+    throw py::value_error(std::string(name) + " must be at most 2**31 - 1, got " +
+                          std::string(py::str(count)));
+  }
+  return count.cast<int>();
 }
 
 py::array_t<Scalar> homogeneous(const Pose& pose) {
@@ -176,9 +221,9 @@ Parameters
 method : str
     The narrowphase's method (see ``METHODS``); ``"dual"`` by default.
 broadphase : str
-    FCL's manager: ``"dynamic_aabb_tree"`` (default), ``"dynamic_aabb_tree_array"``, ``"sap"``,
-    ``"ssap"``, ``"interval_tree"``, ``"spatial_hashing"`` or ``"brute_force"``. Answers do not
-    depend on it.
+    FCL's manager: ``"dynamic_aabb_tree"`` (default), ``"sap"``, ``"ssap"``,
+    ``"interval_tree"``, ``"spatial_hashing"`` or ``"brute_force"`` (``BROADPHASES``). Answers do
+    not depend on it.
 threads : int, optional
     Narrowphase threads, the caller's included; None uses one per hardware thread.
 tolerance : float
@@ -381,8 +426,17 @@ Bodies A and B are paired when ``A.group & B.mask`` and ``B.group & A.mask`` are
           "set_poses",
           [](Scene& scene, const py::handle& ids, const py::handle& poses) {
             const std::vector<BodyId> which = to_ids(ids, "ids");
+            // No ids and no poses (None or empty) move nothing.
+            if (which.empty() &&
+                (poses.is_none() ||
+                 py::module_::import("numpy").attr("size")(poses).cast<py::ssize_t>() == 0)) {
+              return;
+            }
             const std::vector<Pose> placed = to_poses(poses, which.size(), "poses");
-            if (placed.empty()) throw py::value_error("poses must not be None");
+            if (placed.empty()) {
+              throw py::value_error("poses must hold one pose per id (got None for " +
+                                    std::to_string(which.size()) + " ids)");
+            }
             py::gil_scoped_release release;
             scene.set_poses(which, placed);
           },
@@ -409,23 +463,36 @@ Bodies A and B are paired when ``A.group & B.mask`` and ``B.group & A.mask`` are
           py::arg("pairs"), "Pair again the bodies of excluded pairs.")
       .def("colliding_pairs", &Scene::colliding_pairs, py::call_guard<py::gil_scoped_release>(),
            "Every pair in contact (within the tolerance of each other), certified.")
-      .def("pairs_within", &Scene::pairs_within, py::arg("distance"),
-           py::call_guard<py::gil_scoped_release>(),
-           "Every pair whose distance is at most ``distance`` (up to the tolerance), with its "
+      .def(
+          "pairs_within",
+          [](Scene& scene, const py::handle& distance) {
+            const Scalar threshold = to_real(distance, "distance");
+            py::gil_scoped_release release;
+            return scene.pairs_within(threshold);
+          },
+          py::arg("distance"),
+          "Every pair whose distance is at most ``distance`` (up to the tolerance), with its "
            "distance to the tolerance.")
       .def("min_distance", &Scene::min_distance, py::call_guard<py::gil_scoped_release>(),
            "The pair at the smallest distance (one row; none for fewer than two pairable bodies).")
       .def(
           "nearest",
-          [](Scene& scene, const py::handle& ids, int k) {
+          [](Scene& scene, const py::handle& ids, const py::handle& k) {
             const std::vector<BodyId> which = to_ids(ids, "ids");
+            const int count = to_count(k, "k", 1);
             py::gil_scoped_release release;
-            return scene.nearest(which, k);
+            return scene.nearest(which, count);
           },
           py::arg("ids"), py::arg("k") = 1,
           "For each of ``ids``, its ``k`` nearest bodies, nearest first: rows ``(id, other)``.")
-      .def("contacts", &Scene::contacts, py::arg("max_points") = 4,
-           py::call_guard<py::gil_scoped_release>(), R"doc(
+      .def(
+          "contacts",
+          [](Scene& scene, const py::handle& max_points) {
+            const int most = to_count(max_points, "max_points", 1);
+            py::gil_scoped_release release;
+            return scene.contacts(most);
+          },
+          py::arg("max_points") = 4, R"doc(
 Every pair in contact with its certified signed distance, contact normal (from A to B) and up to
 ``max_points`` contact points, from clipping the two supporting features along the normal
 against each other: a box resting on a face gives its four corners.

@@ -543,9 +543,9 @@ class Scene:
     method : str
         The narrowphase's method (see ``METHODS``); ``"dual"`` by default.
     broadphase : str
-        FCL's manager: ``"dynamic_aabb_tree"`` (default), ``"dynamic_aabb_tree_array"``, ``"sap"``,
-        ``"ssap"``, ``"interval_tree"``, ``"spatial_hashing"`` or ``"brute_force"``. Answers do not
-        depend on it.
+        FCL's manager: ``"dynamic_aabb_tree"`` (default), ``"sap"``, ``"ssap"``,
+        ``"interval_tree"``, ``"spatial_hashing"`` or ``"brute_force"`` (``BROADPHASES``). Answers do
+        not depend on it.
     threads : int, optional
         Narrowphase threads, the caller's included; None uses one per hardware thread.
     tolerance : float
@@ -609,7 +609,7 @@ class Scene:
         """
         Every pair in contact (within the tolerance of each other), certified.
         """
-    def contacts(self, max_points: typing.SupportsInt | typing.SupportsIndex = 4) -> ContactResult:
+    def contacts(self, max_points: typing.Any = 4) -> ContactResult:
         """
         Every pair in contact with its certified signed distance, contact normal (from A to B) and up to
         ``max_points`` contact points, from clipping the two supporting features along the normal
@@ -627,11 +627,11 @@ class Scene:
         """
         The pair at the smallest distance (one row; none for fewer than two pairable bodies).
         """
-    def nearest(self, ids: typing.Any, k: typing.SupportsInt | typing.SupportsIndex = 1) -> SceneResult:
+    def nearest(self, ids: typing.Any, k: typing.Any = 1) -> SceneResult:
         """
         For each of ``ids``, its ``k`` nearest bodies, nearest first: rows ``(id, other)``.
         """
-    def pairs_within(self, distance: typing.SupportsFloat | typing.SupportsIndex) -> SceneResult:
+    def pairs_within(self, distance: typing.Any) -> SceneResult:
         """
         Every pair whose distance is at most ``distance`` (up to the tolerance), with its distance to the tolerance.
         """

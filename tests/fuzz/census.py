@@ -6,10 +6,14 @@ case that is not "ok" (its id, category and reason), so that a fix can be checke
     .venv/bin/python tests/fuzz/census.py --json build/fuzz/census.jsonl   # 10000 cases
     .venv/bin/python tests/fuzz/census.py --rerun tests/fuzz/before.jsonl  # old -> new per case
     .venv/bin/python tests/fuzz/census.py --corpus files --count 600       # meshes, CLI, inputs
+    .venv/bin/python tests/fuzz/census.py --corpus scene --count 200       # scenes
 
 The query corpus's categories are those of tests/python/fuzz_judge.py and its cases those of
 fuzz_cases.py; the files corpus (mesh files, the command line, what users pass from other
-libraries) has both in tests/python/fuzz_files.py.
+libraries) has both in tests/python/fuzz_files.py; the scene corpus's cases are those of
+scene_cases.py, judged in fuzz_judge.py's categories: every broadphase through long seeded motions
+against brute force, every method's certified rows against exact distances, bodies far from the
+origin, and bad arguments (a case whose error does not name its argument counts as "error-type").
 """
 
 from __future__ import annotations
@@ -20,6 +24,7 @@ import sys
 import time
 from collections import Counter
 from pathlib import Path
+from types import SimpleNamespace
 from typing import Any, Callable, Dict, Iterable, List, Tuple
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "python"))
@@ -28,14 +33,31 @@ from fuzz_cases import make_case  # noqa: E402
 from fuzz_files import FILE_CATEGORIES, FILE_FAILURES, make_file_case, run_file_case  # noqa: E402
 from fuzz_judge import CATEGORIES, FAILURES, category_of, run_case  # noqa: E402
 from sandbox import Sandbox  # noqa: E402
+from scene_cases import run_scene_case, scene_case  # noqa: E402
 
 Record = Dict[str, Any]
+
+
+def make_scene_case(seed: int, index: int) -> SimpleNamespace:
+    """Scene case ``index`` described as the other corpora describe theirs."""
+    family, query, label, arguments = scene_case(seed, index)
+    return SimpleNamespace(id=f"scene-{seed}-{index}", family=family, query=query, label=label,
+                           note=repr(arguments))  # fmt: skip
+
 
 CORPORA: Dict[str, Tuple[Callable[[int, int], Any], Callable[..., Any], tuple, frozenset]] = {
     "queries": (make_case, run_case, CATEGORIES, FAILURES),
     "files": (make_file_case, run_file_case, FILE_CATEGORIES, FILE_FAILURES),
+    "scene": (make_scene_case, run_scene_case, CATEGORIES, FAILURES),
 }
 """Each corpus's case maker, judge (run in the sandbox), categories and failing categories."""
+
+PRELOAD = {"queries": ("fuzz_judge",), "files": ("fuzz_judge", "fuzz_files"),
+           "scene": ("scene_cases",)}  # fmt: skip
+"""The modules each corpus's children import once, before their first case."""
+
+TIMEOUT = {"queries": 20.0, "files": 30.0, "scene": 120.0}
+"""Seconds before a case counts as a hang: a scene case runs a long motion."""
 
 
 def census(
@@ -49,7 +71,7 @@ def census(
     tasks = ((index, run, (seed, index)) for index in indices)
     # A file case may ask for much memory (a huge STL header): 4 GB per child at most.
     limit = 4 << 30 if corpus == "files" else None
-    with Sandbox(parallel=workers, preload=("fuzz_judge", "fuzz_files")) as sandbox:
+    with Sandbox(parallel=workers, preload=PRELOAD[corpus]) as sandbox:
         for index, outcome in sandbox.map(tasks, timeout=timeout, memory_limit=limit):
             case = make(seed, index)
             category, reason = category_of(outcome)
@@ -114,11 +136,12 @@ def read_report(path: Path) -> Tuple[Record, List[Record]]:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--corpus", choices=sorted(CORPORA), default="queries",
-                        help="the query cases (default) or the files, CLI and inputs cases")
+                        help="the query cases (default), the files, CLI and inputs cases, or scenes")
     parser.add_argument("--seed", type=int, default=0, help="the corpus (default 0)")
     parser.add_argument("--count", type=int, default=10000, help="cases 0 .. count-1")
     parser.add_argument("--workers", type=int, default=2, help="children at once")
-    parser.add_argument("--timeout", type=float, default=20.0, help="seconds before a hang")
+    parser.add_argument("--timeout", type=float,
+                        help="seconds before a hang (default: queries 20, files 30, scene 120)")
     parser.add_argument("--json", type=Path, help="write the cases not ok here (JSON Lines)")
     parser.add_argument("--rerun", type=Path, help="rerun the cases of an earlier --json file")
     parser.add_argument("--quiet", action="store_true", help="no progress on stderr")
@@ -130,6 +153,8 @@ def main() -> None:
         seed, corpus = previous["seed"], previous.get("corpus", "queries")
         earlier = {record["index"]: record["category"] for record in cases}
         indices = sorted(earlier)
+    if args.timeout is None:
+        args.timeout = TIMEOUT[corpus]
     start = time.monotonic()
     records = census(seed, indices, args.workers, args.timeout, not args.quiet, corpus)
     seconds = time.monotonic() - start

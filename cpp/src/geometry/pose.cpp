@@ -2,12 +2,21 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 
 namespace swarmcollide {
 
 namespace {
+
+// A number as printf's %g writes it with `digits` significant digits: std::to_string's fixed six
+// decimals print a deviation of 3e-9 as 0.000000.
+std::string general(Scalar x, int digits) {
+  char text[40];
+  std::snprintf(text, sizeof text, "%.*g", digits, x);
+  return text;
+}
 
 // What is wrong with the pose, after its name; empty when nothing is. Messages are built only
 // for invalid poses: scenes validate thousands of poses a frame.
@@ -30,7 +39,7 @@ std::string problem(const Pose& pose) {
       !(std::abs(determinant - 1) <= kRotationTolerance)) {
     return " is not a rigid motion: its rotation must satisfy R^T R = I and det R = 1 to within "
            "1e-9 (got |R^T R - I| = " +
-           std::to_string(orthogonality) + ", det R = " + std::to_string(determinant) +
+           general(orthogonality, 3) + ", det R = " + general(determinant, 12) +
            "); scaling and reflection are not poses, scale the points instead";
   }
   return {};

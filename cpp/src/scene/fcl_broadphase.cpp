@@ -4,7 +4,6 @@
 #include <fcl/broadphase/broadphase_SaP.h>
 #include <fcl/broadphase/broadphase_bruteforce.h>
 #include <fcl/broadphase/broadphase_dynamic_AABB_tree.h>
-#include <fcl/broadphase/broadphase_dynamic_AABB_tree_array.h>
 #include <fcl/broadphase/broadphase_interval_tree.h>
 #include <fcl/broadphase/broadphase_spatialhash.h>
 #include <fcl/geometry/shape/box.h>
@@ -30,8 +29,6 @@ std::unique_ptr<fcl::BroadPhaseCollisionManagerd> make_manager(Broadphase kind) 
   switch (kind) {
     case Broadphase::dynamic_aabb_tree:
       return std::make_unique<fcl::DynamicAABBTreeCollisionManagerd>();
-    case Broadphase::dynamic_aabb_tree_array:
-      return std::make_unique<fcl::DynamicAABBTreeCollisionManager_Arrayd>();
     case Broadphase::sap:
       return std::make_unique<fcl::SaPCollisionManagerd>();
     case Broadphase::ssap:
@@ -87,15 +84,7 @@ void FclBroadphase::insert(const std::vector<BoxedObject*>& objects) {
     stale_ = true;
     return;
   }
-  const std::vector<fcl::CollisionObjectd*> base(objects.begin(), objects.end());
-  if (kind_ == Broadphase::dynamic_aabb_tree_array) {
-    // FCL 0.7's array tree leaks on a bulk registration into an empty tree (registerObjects
-    // never frees its leaves, and HierarchyTree::init_* drop the array clear() just allocated;
-    // LeakSanitizer found both). One at a time it inserts, and setup() balances the tree.
-    for (fcl::CollisionObjectd* object : base) manager_->registerObject(object);
-  } else {
-    manager_->registerObjects(base);
-  }
+  manager_->registerObjects(std::vector<fcl::CollisionObjectd*>(objects.begin(), objects.end()));
   manager_->setup();
 }
 

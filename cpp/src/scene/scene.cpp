@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <mutex>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -14,6 +15,7 @@
 #include "fcl_broadphase.hpp"
 #include "narrowphase.hpp"
 #include "pair_cache.hpp"
+#include "scene_body.hpp"
 #include "swarmcollide/queries/batch.hpp"
 #include "swarmcollide/queries/methods.hpp"
 #include "thread_pool.hpp"
@@ -22,176 +24,28 @@ namespace swarmcollide {
 
 namespace {
 
+using detail::displacement;
+using detail::encloses;
+using detail::fatten;
+using detail::overlap;
 using detail::PairAnswer;
 using detail::PairProof;
 using detail::PairQuestion;
+using detail::padded;
+using detail::padding;
+using detail::prefetch_body;
+using detail::prefetch_box;
+using detail::prefetch_points;
+using detail::reach_from_origin;
+using detail::refuse_placement;
+using detail::SceneBody;
+using detail::update_box;
 
 constexpr Scalar kEpsilon = std::numeric_limits<Scalar>::epsilon();
 // Pairs a thread takes at a time: enough to make taking them cheap, few enough to balance.
 constexpr std::size_t kChunk = 32;
 // How many pairs ahead the table's scan asks for the bodies' padded boxes.
 constexpr std::size_t kBoxesAhead = 8;
-
-// The largest distance of the body's points from the centre of its box: what a turn about that
-// centre moves them by, per radian. Often well below the box's half-diagonal.
-Scalar reach_about_centre(const ConvexPolyhedron& body) {
-  return body.centred_vertices().rowwise().norm().maxCoeff();
-}
-
-// A body of the scene with what the broadphase keeps of it. What the narrowphase reads comes
-// first: the padded box of every pair of the table in the first cache line, what it reads of
-// every candidate in the next four (see `prefetch_body`).
-struct SceneBody {
-  SceneBody(BodyId id_, ConvexPolyhedron body_, std::shared_ptr<const CompoundBody> compound_,
-            const Pose& pose_, const BodyFilter& filter_)
-      : id(id_),
-        filter(filter_),
-        compound(std::move(compound_)),
-        pose(pose_),
-        body(std::move(body_)),
-        reach(reach_about_centre(body)),
-        object(this, id_, filter_) {}
-
-  BodyId id;
-  BodyFilter filter;
-  /// `box` padded for the threshold of the last query (see `padding`): two bodies are a
-  /// candidate pair when these overlap.
-  Aabb padded;
-  /// An odometer: a bound on how far any point of the body has moved since it was added.
-  Scalar travelled = 0;
-  /// The compound body, null for a convex one.
-  std::shared_ptr<const CompoundBody> compound;
-  Pose pose;
-  /// The body, or a compound body's envelope (the hull of its parts), which the broadphase
-  /// boxes and the narrowphase screens with.
-  ConvexPolyhedron body;
-  /// The largest distance of its points from the centre of its box (see displacement).
-  Scalar reach;
-  /// What the last set_poses added to the odometer: how far the body may move by the next,
-  /// which sets the margin of its broadphase box (see `fatten`).
-  Scalar step = 0;
-  /// The smallest box holding the body at its pose, widened by the rounding of computing it.
-  Aabb box;
-  /// Support points of the box's six faces, from which hill climbing on large bodies starts.
-  std::array<int, 6> box_supports{-1, -1, -1, -1, -1, -1};
-  /// Listed among the scene's moved bodies (its box is out of date).
-  bool moved = false;
-  /// The box the broadphase holds: `padded` with a margin for motion (see `fatten`).
-  detail::BoxedObject object;
-};
-
-// Asks for what the narrowphase will read of a body: its pose and the head of its polyhedron
-// now, its points once those have arrived. Candidates meet bodies in no particular order, so
-// without this every pair waits for memory several times.
-void prefetch_box(const SceneBody* b) { __builtin_prefetch(b); }
-void prefetch_body(const SceneBody* b) {
-  const char* p = reinterpret_cast<const char*>(b);
-  for (int line = 1; line < 5; ++line) __builtin_prefetch(p + 64 * line);
-}
-void prefetch_points(const SceneBody* b) {
-  const char* p = reinterpret_cast<const char*>(b->body.vertices().data());
-  const std::size_t bytes = 3 * sizeof(Scalar) * static_cast<std::size_t>(b->body.size());
-  for (std::size_t at = 0; at < std::min<std::size_t>(bytes, 256); at += 64) {
-    __builtin_prefetch(p + at);
-  }
-}
-
-// The norm of R' - R, for rotations R and R' (to the 1e-9 that poses are validated to): from the
-// angle theta of R'^T R, |R' - R|_2 = 2 sin(theta / 2) = sqrt(3 - trace(R'^T R)), with a margin
-// for the rotations' own error; or the Frobenius norm, never smaller, when that is less (for a
-// rotation that did not change, exactly zero).
-Scalar turn(const Matrix3& from, const Matrix3& to) {
-  const Scalar frobenius = (to - from).norm();
-  // trace(R'^T R), the sum of the entries' products: no matrix product.
-  const Scalar trace = to.cwiseProduct(from).sum();
-  return std::min(frobenius, std::sqrt(std::max(Scalar(0), 3 - trace) + 1e-8));
-}
-
-// A bound on how far any point of a body moves from `from` to `to`: its box centre c moves by
-// |c' - c|, and every point turns about it by at most |R' - R| times `reach`. Each term is
-// computed with a few roundings of the magnitudes involved, which the margins cover.
-Scalar displacement(const ConvexPolyhedron& body, Scalar reach, const Pose& from, const Pose& to) {
-  const Vector3& c = body.bounds().centre;
-  const Vector3 old_centre = from.rotation * c + from.translation;
-  const Vector3 new_centre = to.rotation * c + to.translation;
-  const Scalar moved = (new_centre - old_centre).norm() + turn(from.rotation, to.rotation) * reach;
-  const Scalar magnitude = old_centre.cwiseAbs().maxCoeff() + new_centre.cwiseAbs().maxCoeff() +
-                           c.cwiseAbs().maxCoeff() + reach;
-  return moved * (1 + 1e-12) + 16 * kEpsilon * magnitude;
-}
-
-// The world box of `b`: its points' extremes along the axes, found in the body's own frame
-// (scanning small bodies, climbing large ones from the last frame's supports), so moving a body
-// never touches its hull. Each coordinate R x + t carries at most a few roundings of |x| + |t|.
-void update_box(SceneBody& b) {
-  const Matrix3& r = b.pose.rotation;
-  const Vector3& t = b.pose.translation;
-  const VertexMatrix& points = b.body.vertices();
-  Vector3 low;
-  Vector3 high;
-  if (b.body.size() <= kHillClimbingThreshold) {
-    low = r * points.row(0).transpose() + t;
-    high = low;
-    for (int i = 1; i < b.body.size(); ++i) {
-      const Vector3 p = r * points.row(i).transpose() + t;
-      low = low.cwiseMin(p);
-      high = high.cwiseMax(p);
-    }
-  } else {
-    for (int k = 0; k < 3; ++k) {
-      const Vector3 axis = r.row(k).transpose();
-      int& up = b.box_supports[2 * k];
-      int& down = b.box_supports[2 * k + 1];
-      up = b.body.support_index(axis, up);
-      down = b.body.support_index(-axis, down);
-      high(k) = axis.dot(points.row(up).transpose()) + t(k);
-      low(k) = axis.dot(points.row(down).transpose()) + t(k);
-    }
-  }
-  const Scalar reach = b.body.bounds().centre.cwiseAbs().maxCoeff() + b.body.bounds().radius +
-                       t.cwiseAbs().maxCoeff();
-  const Vector3 rounding = Vector3::Constant(16 * kEpsilon * reach);
-  b.box = {low - rounding, high + rounding};
-}
-
-// How far the broadphase box of a body of radius `radius` is padded so that every pair within
-// `threshold` plus the tolerance of each other has overlapping boxes. Such a pair is at most
-// d <= threshold + tol S apart, where the pair's size S = |c_b - c_a| + 2 max(r_a, r_b) is at
-// most d + 4 max(r_a, r_b) (each body lies within its radius of its centre); so d <= (threshold
-// + 4 tol max(r)) / (1 - tol), and padding each box by (threshold / 2 + 4 tol r) / (1 - tol)
-// covers it. The verdict's rounding margin is absorbed by raising tol by 1e-12.
-Scalar padding(Scalar threshold, Scalar radius, Scalar tolerance) {
-  const Scalar tol = tolerance + 1e-12;
-  return (threshold / 2 + 4 * tol * radius) / (1 - tol);
-}
-
-Aabb padded(const Aabb& box, Scalar pad) {
-  return {box.min - Vector3::Constant(pad), box.max + Vector3::Constant(pad)};
-}
-
-// FCL's test (AABB::overlap): boxes that touch overlap.
-bool overlap(const Aabb& a, const Aabb& b) {
-  return (a.min.array() <= b.max.array()).all() && (b.min.array() <= a.max.array()).all();
-}
-
-bool encloses(const fcl::AABBd& outer, const Aabb& inner) {
-  return (outer.min_.array() <= inner.min.array()).all() &&
-         (inner.max.array() <= outer.max_.array()).all();
-}
-
-// The broadphase holds each body's padded box with a margin, so that it is told of a body only
-// when its padded box leaves that larger box, and the pairs it returns stay valid meanwhile (a
-// superset of the candidates, which are sorted out by their padded boxes): the fat boxes of
-// Box2D's and Bullet's dynamic trees. The margin is a few of the body's last steps, at most a
-// fraction of its size; a body that has not moved gets none, so a still scene has no more pairs
-// than candidates.
-constexpr Scalar kMarginSteps = 12;
-constexpr Scalar kMarginOfRadius = 0.25;
-
-void fatten(SceneBody& b) {
-  const Scalar margin = std::min(kMarginSteps * b.step, kMarginOfRadius * b.body.bounds().radius);
-  b.object.set_box(padded(b.padded, margin));
-}
 
 // A pair of bodies, in id order.
 struct Candidate {
@@ -291,6 +145,19 @@ struct Scene::Impl {
     return *bodies[slot[id]];
   }
   const SceneBody& find(BodyId id) const { return const_cast<Impl*>(this)->find(id); }
+
+  // Throws std::invalid_argument for a pair of an unknown body or of a body with itself.
+  void check_pairs(const std::vector<std::pair<BodyId, BodyId>>& pairs) const {
+    for (const auto& [a, b] : pairs) {
+      find(a);
+      find(b);
+      if (a == b) {
+        throw std::invalid_argument("pairs lists (" + std::to_string(a) + ", " +
+                                    std::to_string(b) +
+                                    "): a body is never paired with itself; list two ids");
+      }
+    }
+  }
 
   Scalar pad_of(const SceneBody& b, Scalar threshold) const {
     return padding(threshold, b.body.bounds().radius, options.query.tolerance);
@@ -699,6 +566,12 @@ std::vector<BodyId> Scene::Impl::add(std::vector<ConvexPolyhedron> bodies,
   for (std::size_t i = 0; i < poses.size(); ++i) {
     validate_pose(poses[i], "poses", i);
   }
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    const Scalar reach = reach_from_origin(bodies[i], poses.empty() ? Pose{} : poses[i]);
+    if (!(reach <= kMaxSceneCoordinate)) {
+      refuse_placement("bodies[" + std::to_string(i) + "] at its pose", reach);
+    }
+  }
   if (bodies.size() > std::numeric_limits<BodyId>::max() - std::size_t{s.next_id}) {
     throw std::invalid_argument("the scene has given out every id (2**32); build a new scene");
   }
@@ -768,6 +641,12 @@ void Scene::set_poses(const std::vector<BodyId>& ids, const std::vector<Pose>& p
   for (std::size_t i = 0; i < ids.size(); ++i) {
     targets.push_back(&s.find(ids[i]));
     validate_pose(poses[i], "poses", i);
+    const Scalar reach = reach_from_origin(targets[i]->body, poses[i]);
+    if (!(reach <= kMaxSceneCoordinate)) {
+      refuse_placement("poses[" + std::to_string(i) + "] moves body " + std::to_string(ids[i]) +
+                           " so that it",
+                       reach);
+    }
   }
   for (std::size_t i = 0; i < ids.size(); ++i) {
     SceneBody& b = *targets[i];
@@ -840,10 +719,7 @@ void Scene::set_filter(const std::vector<BodyId>& ids, const BodyFilter& filter)
 void Scene::exclude(const std::vector<std::pair<BodyId, BodyId>>& pairs) {
   Impl& s = *impl_;
   const std::lock_guard<std::mutex> lock(s.mutex);
-  for (const auto& [a, b] : pairs) {
-    s.find(a);
-    s.find(b);
-  }
+  s.check_pairs(pairs);
   for (const auto& [a, b] : pairs)
     s.excluded.insert(detail::pair_key(std::min(a, b), std::max(a, b)));
   s.table_stale = true;
@@ -852,6 +728,7 @@ void Scene::exclude(const std::vector<std::pair<BodyId, BodyId>>& pairs) {
 void Scene::include(const std::vector<std::pair<BodyId, BodyId>>& pairs) {
   Impl& s = *impl_;
   const std::lock_guard<std::mutex> lock(s.mutex);
+  s.check_pairs(pairs);
   for (const auto& [a, b] : pairs)
     s.excluded.erase(detail::pair_key(std::min(a, b), std::max(a, b)));
   s.table_stale = true;
@@ -909,9 +786,10 @@ SceneResult Scene::colliding_pairs() {
 SceneResult Scene::pairs_within(Scalar distance) {
   Impl& s = *impl_;
   const std::lock_guard<std::mutex> lock(s.mutex);
-  if (!(distance >= 0) || !std::isfinite(distance)) {
-    throw std::invalid_argument("distance must be a finite number >= 0, got " +
-                                std::to_string(distance));
+  if (!(distance >= 0) || !(distance <= kMaxSceneCoordinate)) {
+    std::ostringstream message;
+    message << "distance must be a number in [0, " << kMaxSceneCoordinate << "], got " << distance;
+    throw std::invalid_argument(message.str());
   }
   s.require(kDistance, "pairs_within");
   s.collect(distance);

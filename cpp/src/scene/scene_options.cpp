@@ -17,7 +17,6 @@ struct BroadphaseName {
 const std::vector<BroadphaseName>& table() {
   static const std::vector<BroadphaseName> names = {
       {Broadphase::dynamic_aabb_tree, "dynamic_aabb_tree"},
-      {Broadphase::dynamic_aabb_tree_array, "dynamic_aabb_tree_array"},
       {Broadphase::sap, "sap"},
       {Broadphase::ssap, "ssap"},
       {Broadphase::interval_tree, "interval_tree"},
@@ -43,6 +42,16 @@ const std::string& broadphase_name(Broadphase broadphase) {
 }
 
 Broadphase broadphase_from_name(const std::string& name) {
+  if (name == "dynamic_aabb_tree_array") {
+    // FCL 0.7 (and FCL's master) cannot keep this manager sound through its public interface: a
+    // top-down rebalance renumbers the leaves behind the manager's table of objects, so later
+    // updates move other bodies' boxes and pairs are lost; and inserting reads the node array
+    // after reallocating it.
+    throw std::invalid_argument(
+        "broadphase 'dynamic_aabb_tree_array' is no longer offered: FCL's array tree loses pairs "
+        "once it rebalances itself and reads freed memory as it grows; use 'dynamic_aabb_tree', "
+        "the same tree with its nodes on the heap");
+  }
   std::string list;
   for (const BroadphaseName& entry : table()) {
     if (entry.name == name) return entry.broadphase;

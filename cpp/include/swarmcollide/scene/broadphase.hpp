@@ -11,8 +11,6 @@ enum class Broadphase {
   /// fcl::DynamicAABBTreeCollisionManager: a bounding-volume tree refitted as bodies move. The
   /// default.
   dynamic_aabb_tree,
-  /// fcl::DynamicAABBTreeCollisionManager_Array: the same tree stored in one array.
-  dynamic_aabb_tree_array,
   /// fcl::SaPCollisionManager: sweep and prune on all three axes.
   sap,
   /// fcl::SSaPCollisionManager: sweep and prune along the axis of largest spread.
@@ -32,7 +30,8 @@ const std::vector<std::string>& broadphase_names();
 /// The name of `broadphase`.
 const std::string& broadphase_name(Broadphase broadphase);
 
-/// The broadphase called `name`; throws std::invalid_argument listing the valid names.
+/// The broadphase called `name`; throws std::invalid_argument listing the valid names (and, for
+/// "dynamic_aabb_tree_array", saying why it is no longer offered).
 Broadphase broadphase_from_name(const std::string& name);
 
 }  // namespace swarmcollide

@@ -59,7 +59,8 @@ class Scene {
   void remove(const std::vector<BodyId>& ids);
   /// Sets the group and mask of bodies (see BodyFilter).
   void set_filter(const std::vector<BodyId>& ids, const BodyFilter& filter);
-  /// Never pair (or pair again) the bodies of each of `pairs`.
+  /// Never pair (or pair again) the bodies of each of `pairs`. Throws std::invalid_argument,
+  /// changing nothing, for an unknown id or a body paired with itself.
   void exclude(const std::vector<std::pair<BodyId, BodyId>>& pairs);
   void include(const std::vector<std::pair<BodyId, BodyId>>& pairs);
 

@@ -12,6 +12,12 @@ namespace swarmcollide {
 /// finite only for tolerances well below one.
 inline constexpr Scalar kMaxSceneTolerance = 0.1;
 
+/// Farthest from the origin, along any axis, that a Scene takes a body's points (and largest
+/// distance `pairs_within` takes): FCL's trees compare boxes by their squared extents, which
+/// overflow beyond 1.3e154 (a tree then dereferences a null node), and the searches of
+/// `min_distance` and `nearest` pad boxes by up to twice the scene's extent.
+inline constexpr Scalar kMaxSceneCoordinate = 1e150;
+
 /// How a Scene answers: the narrowphase's method, tolerance, seed and solver parameters (one
 /// QueryOptions, as for a Query), the broadphase, the threads, and whether frames start from
 /// what earlier frames proved.

@@ -1,0 +1,96 @@
+#include "scene_body.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+namespace swarmcollide::detail {
+
+namespace {
+
+constexpr Scalar kEpsilon = std::numeric_limits<Scalar>::epsilon();
+
+// The norm of R' - R, for rotations R and R' (to the 1e-9 that poses are validated to): from the
+// angle theta of R'^T R, |R' - R|_2 = 2 sin(theta / 2) = sqrt(3 - trace(R'^T R)), with a margin
+// for the rotations' own error; or the Frobenius norm, never smaller, when that is less (for a
+// rotation that did not change, exactly zero).
+Scalar turn(const Matrix3& from, const Matrix3& to) {
+  const Scalar frobenius = (to - from).norm();
+  // trace(R'^T R), the sum of the entries' products: no matrix product.
+  const Scalar trace = to.cwiseProduct(from).sum();
+  return std::min(frobenius, std::sqrt(std::max(Scalar(0), 3 - trace) + 1e-8));
+}
+
+constexpr Scalar kMarginSteps = 12;
+constexpr Scalar kMarginOfRadius = 0.25;
+
+}  // namespace
+
+Scalar reach_about_centre(const ConvexPolyhedron& body) {
+  return body.centred_vertices().rowwise().norm().maxCoeff();
+}
+
+Scalar displacement(const ConvexPolyhedron& body, Scalar reach, const Pose& from, const Pose& to) {
+  const Vector3& c = body.bounds().centre;
+  const Vector3 old_centre = from.rotation * c + from.translation;
+  const Vector3 new_centre = to.rotation * c + to.translation;
+  const Scalar moved = (new_centre - old_centre).norm() + turn(from.rotation, to.rotation) * reach;
+  const Scalar magnitude = old_centre.cwiseAbs().maxCoeff() + new_centre.cwiseAbs().maxCoeff() +
+                           c.cwiseAbs().maxCoeff() + reach;
+  return moved * (1 + 1e-12) + 16 * kEpsilon * magnitude;
+}
+
+void update_box(SceneBody& b) {
+  const Matrix3& r = b.pose.rotation;
+  const Vector3& t = b.pose.translation;
+  const VertexMatrix& points = b.body.vertices();
+  Vector3 low;
+  Vector3 high;
+  if (b.body.size() <= kHillClimbingThreshold) {
+    low = r * points.row(0).transpose() + t;
+    high = low;
+    for (int i = 1; i < b.body.size(); ++i) {
+      const Vector3 p = r * points.row(i).transpose() + t;
+      low = low.cwiseMin(p);
+      high = high.cwiseMax(p);
+    }
+  } else {
+    for (int k = 0; k < 3; ++k) {
+      const Vector3 axis = r.row(k).transpose();
+      int& up = b.box_supports[2 * k];
+      int& down = b.box_supports[2 * k + 1];
+      up = b.body.support_index(axis, up);
+      down = b.body.support_index(-axis, down);
+      high(k) = axis.dot(points.row(up).transpose()) + t(k);
+      low(k) = axis.dot(points.row(down).transpose()) + t(k);
+    }
+  }
+  const Scalar reach = b.body.bounds().centre.cwiseAbs().maxCoeff() + b.body.bounds().radius +
+                       t.cwiseAbs().maxCoeff();
+  const Vector3 rounding = Vector3::Constant(16 * kEpsilon * reach);
+  b.box = {low - rounding, high + rounding};
+}
+
+void fatten(SceneBody& b) {
+  const Scalar margin = std::min(kMarginSteps * b.step, kMarginOfRadius * b.body.bounds().radius);
+  b.object.set_box(padded(b.padded, margin));
+}
+
+
+Scalar reach_from_origin(const ConvexPolyhedron& body, const Pose& pose) {
+  const Vector3 centre = pose.rotation * body.bounds().centre + pose.translation;
+  return centre.cwiseAbs().maxCoeff() + body.bounds().radius;
+}
+
+[[noreturn]] void refuse_placement(const std::string& what, Scalar reach) {
+  std::ostringstream message;
+  message << what << " reaches " << reach << " from the origin; a scene holds bodies within "
+          << kMaxSceneCoordinate
+          << " of it (its broadphase squares box extents): use a larger unit of length, or the "
+             "pair queries (distance, collide), which take any finite coordinates";
+  throw std::invalid_argument(message.str());
+}
+
+}  // namespace swarmcollide::detail
