@@ -297,7 +297,7 @@ def test_a_slow_decomposition_shows_a_progress_bar(monkeypatch, capsys):
     assert "CoACD" in capsys.readouterr().err
 
 
-CUBE = """v {x0} 0 0
+CUBE_OBJ = """v {x0} 0 0
 v {x1} 0 0
 v {x1} 1 0
 v {x0} 1 0
@@ -324,7 +324,7 @@ def cube_text(x0: float, first: int) -> str:
     """A unit cube from x0 to x0 + 1 as OBJ points and outward triangles, its points numbered
     from ``first``."""
     corners = dict(zip("abcdefgh", range(first, first + 8)))
-    return CUBE.format(x0=x0, x1=x0 + 1, **corners)
+    return CUBE_OBJ.format(x0=x0, x1=x0 + 1, **corners)
 
 
 def test_each_obj_group_is_a_ready_made_part(tmp_path):
