@@ -115,7 +115,7 @@ def main() -> None:
                         help="pair queries (fuzz_cases.py) or scenes (scene_cases.py)")
     parser.add_argument("--count", type=int, default=10000, help="cases 0 .. count-1")
     parser.add_argument("--workers", type=int, default=2, help="children at once")
-    parser.add_argument("--timeout", type=float, help="seconds before a hang (20; scenes 120)")
+    parser.add_argument("--timeout", type=float, help="seconds before a hang (20; scenes 600)")
     parser.add_argument("--json", type=Path, help="write the cases not ok here (JSON Lines)")
     parser.add_argument("--rerun", type=Path, help="rerun the cases of an earlier --json file")
     parser.add_argument("--quiet", action="store_true", help="no progress on stderr")
@@ -128,7 +128,7 @@ def main() -> None:
         earlier = {record["index"]: record["category"] for record in cases}
         indices = sorted(earlier)
     if args.timeout is None:
-        args.timeout = 120.0 if args.surface == "scene" else 20.0
+        args.timeout = 600.0 if args.surface == "scene" else 20.0
     start = time.monotonic()
     records = census(seed, indices, args.workers, args.timeout, not args.quiet, args.surface)
     seconds = time.monotonic() - start
