@@ -56,7 +56,7 @@ PRELOAD = {"queries": ("fuzz_judge",), "files": ("fuzz_judge", "fuzz_files"),
            "scene": ("scene_cases",)}  # fmt: skip
 """The modules each corpus's children import once, before their first case."""
 
-TIMEOUT = {"queries": 20.0, "files": 30.0, "scene": 120.0}
+TIMEOUT = {"queries": 20.0, "files": 30.0, "scene": 600.0}
 """Seconds before a case counts as a hang: a scene case runs a long motion."""
 
 
@@ -141,7 +141,7 @@ def main() -> None:
     parser.add_argument("--count", type=int, default=10000, help="cases 0 .. count-1")
     parser.add_argument("--workers", type=int, default=2, help="children at once")
     parser.add_argument("--timeout", type=float,
-                        help="seconds before a hang (default: queries 20, files 30, scene 120)")
+                        help="seconds before a hang (default: queries 20, files 30, scene 600)")
     parser.add_argument("--json", type=Path, help="write the cases not ok here (JSON Lines)")
     parser.add_argument("--rerun", type=Path, help="rerun the cases of an earlier --json file")
     parser.add_argument("--quiet", action="store_true", help="no progress on stderr")

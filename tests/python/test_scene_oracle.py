@@ -48,8 +48,10 @@ def test_far_bodies_are_refused_with_the_range_never_a_crash_or_hang(sandbox, br
             outcome = sandbox.run(far_body_answers, broadphase, how, far, timeout=30)
             assert outcome.kind == RETURNED, f"{how} at {far:g}: {outcome.describe()}"
             refused = outcome.value.get("refused", "")
-            assert "within 1e+150" in refused, f"{how} at {far:g}: {outcome.value}"
-            assert ("poses[0] moves body 2" if how == "moved" else "bodies[") in refused
+            assert "stays within 1e+150" in refused, f"{how} at {far:g}: {outcome.value}"
+            expected = {"batch": "poses[2] moves its body", "alone": "poses[0] moves its body",
+                        "moved": "poses[0] moves body 2"}[how]  # fmt: skip
+            assert f"{expected} along an axis by {far:g}" in refused
             assert outcome.value["bodies"] == (3 if how == "moved" else 2 if how == "alone" else 0)
 
 
@@ -66,6 +68,11 @@ def test_bodies_far_but_within_range_get_every_answer(sandbox, broadphase):
             assert pairs == [[0, 1], [0, 2], [2, 0], [2, 1]] and all(certified)
             np.testing.assert_allclose(distances, [2.5, far - 1, far - 1, far - 4.5], rtol=1e-12)
             assert answers["contacts"] == ([], [], [])
+
+
+def test_bodies_reaching_far_from_their_own_origin_are_refused():
+    with pytest.raises(ValueError, match=r"bodies\[0\] reaches from its own origin to 1.7\d*e\+155"):
+        sc.Scene().add(np.eye(3) * 1e155)
 
 
 def test_pairs_within_refuses_distances_beyond_the_range():

@@ -36,10 +36,11 @@ using detail::padding;
 using detail::prefetch_body;
 using detail::prefetch_box;
 using detail::prefetch_points;
-using detail::reach_from_origin;
+using detail::own_reach;
 using detail::refuse_placement;
 using detail::SceneBody;
 using detail::update_box;
+using detail::within_range;
 
 constexpr Scalar kEpsilon = std::numeric_limits<Scalar>::epsilon();
 // Pairs a thread takes at a time: enough to make taking them cheap, few enough to balance.
@@ -567,9 +568,13 @@ std::vector<BodyId> Scene::Impl::add(std::vector<ConvexPolyhedron> bodies,
     validate_pose(poses[i], "poses", i);
   }
   for (std::size_t i = 0; i < bodies.size(); ++i) {
-    const Scalar reach = reach_from_origin(bodies[i], poses.empty() ? Pose{} : poses[i]);
-    if (!(reach <= kMaxSceneCoordinate)) {
-      refuse_placement("bodies[" + std::to_string(i) + "] at its pose", reach);
+    const Scalar reach = own_reach(bodies[i]);
+    if (!(reach <= kMaxSceneCoordinate / 2)) {
+      refuse_placement("bodies[" + std::to_string(i) + "] reaches from its own origin to", reach);
+    }
+    if (!poses.empty() && !within_range(poses[i])) {
+      refuse_placement("poses[" + std::to_string(i) + "] moves its body along an axis by",
+                       poses[i].translation.cwiseAbs().maxCoeff());
     }
   }
   if (bodies.size() > std::numeric_limits<BodyId>::max() - std::size_t{s.next_id}) {
@@ -641,11 +646,10 @@ void Scene::set_poses(const std::vector<BodyId>& ids, const std::vector<Pose>& p
   for (std::size_t i = 0; i < ids.size(); ++i) {
     targets.push_back(&s.find(ids[i]));
     validate_pose(poses[i], "poses", i);
-    const Scalar reach = reach_from_origin(targets[i]->body, poses[i]);
-    if (!(reach <= kMaxSceneCoordinate)) {
+    if (!within_range(poses[i])) {
       refuse_placement("poses[" + std::to_string(i) + "] moves body " + std::to_string(ids[i]) +
-                           " so that it",
-                       reach);
+                           " along an axis by",
+                       poses[i].translation.cwiseAbs().maxCoeff());
     }
   }
   for (std::size_t i = 0; i < ids.size(); ++i) {

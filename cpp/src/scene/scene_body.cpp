@@ -78,18 +78,17 @@ void fatten(SceneBody& b) {
   b.object.set_box(padded(b.padded, margin));
 }
 
-
-Scalar reach_from_origin(const ConvexPolyhedron& body, const Pose& pose) {
-  const Vector3 centre = pose.rotation * body.bounds().centre + pose.translation;
-  return centre.cwiseAbs().maxCoeff() + body.bounds().radius;
+Scalar own_reach(const ConvexPolyhedron& body) {
+  return body.bounds().centre.stableNorm() + body.bounds().radius;
 }
 
-[[noreturn]] void refuse_placement(const std::string& what, Scalar reach) {
+[[noreturn]] void refuse_placement(const std::string& what, Scalar value) {
   std::ostringstream message;
-  message << what << " reaches " << reach << " from the origin; a scene holds bodies within "
-          << kMaxSceneCoordinate
-          << " of it (its broadphase squares box extents): use a larger unit of length, or the "
-             "pair queries (distance, collide), which take any finite coordinates";
+  message << what << " " << value << "; a scene takes bodies within " << kMaxSceneCoordinate / 2
+          << " of their own origin, moved by at most " << kMaxSceneCoordinate / 2
+          << " along each axis, so that every coordinate stays within " << kMaxSceneCoordinate
+          << " (its broadphase squares box extents): use a larger unit of length, or the pair "
+             "queries (distance, collide), which take any finite coordinates";
   throw std::invalid_argument(message.str());
 }
 

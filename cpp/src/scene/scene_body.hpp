@@ -123,11 +123,18 @@ inline bool encloses(const fcl::AABBd& outer, const Aabb& inner) {
 // than candidates.
 void fatten(SceneBody& b);
 
-// How far from the origin `body` at `pose` reaches along an axis, at most: its bounding ball,
-// placed by the pose, bounds every coordinate.
-Scalar reach_from_origin(const ConvexPolyhedron& body, const Pose& pose);
+// How far from its own origin `body` reaches: its points lie within this of it. A scene takes
+// bodies that reach at most kMaxSceneCoordinate / 2, moved by at most as much along each axis, so
+// that every coordinate stays within kMaxSceneCoordinate; set_poses then checks a pose without
+// reading its body (a pass over every body's memory cost about a tenth of a warm frame).
+Scalar own_reach(const ConvexPolyhedron& body);
 
-// Refuses a body that reaches `reach` (beyond kMaxSceneCoordinate) from the origin, as `what`.
-[[noreturn]] void refuse_placement(const std::string& what, Scalar reach);
+// True when `pose` moves a body by at most kMaxSceneCoordinate / 2 along each axis.
+inline bool within_range(const Pose& pose) {
+  return pose.translation.cwiseAbs().maxCoeff() <= kMaxSceneCoordinate / 2;
+}
+
+// Refuses a body out of range: "`what` `value`; a scene takes ..." and the fix.
+[[noreturn]] void refuse_placement(const std::string& what, Scalar value);
 
 }  // namespace swarmcollide::detail

@@ -15,7 +15,8 @@ inline constexpr Scalar kMaxSceneTolerance = 0.1;
 /// Farthest from the origin, along any axis, that a Scene takes a body's points (and largest
 /// distance `pairs_within` takes): FCL's trees compare boxes by their squared extents, which
 /// overflow beyond 1.3e154 (a tree then dereferences a null node), and the searches of
-/// `min_distance` and `nearest` pad boxes by up to twice the scene's extent.
+/// `min_distance` and `nearest` pad boxes by up to twice the scene's extent. A body must lie
+/// within half of it from its own origin, and a pose move it by at most half along each axis.
 inline constexpr Scalar kMaxSceneCoordinate = 1e150;
 
 /// How a Scene answers: the narrowphase's method, tolerance, seed and solver parameters (one
