@@ -59,7 +59,11 @@ def test_the_unit_of_length_changes_no_verdict(a, b, method_query, exponent):
     s = 10.0**exponent
     scaled = ask(method, kind, a * s, b * s)
     assert scaled.colliding == unit.colliding
-    assert scaled.certified == unit.certified
+    # A distance of a swarm that stops at its budget (ipso, pso, penalty) is certified only where
+    # the swarm reached the tolerance, and scaling by 10**k rounds the input differently, which
+    # changes a swarm's path; its verdicts, and every answer of the exact methods, stay the same.
+    if kind == "collide" or sc.METHODS[method].always_certified:
+        assert scaled.certified == unit.certified
     scale = pair_scale(a, b)
     if sc.METHODS[method].always_certified:
         assert abs(scaled.distance / s - unit.distance) <= scale.tolerance + scale.rounding

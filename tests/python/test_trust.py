@@ -326,3 +326,26 @@ def test_census_case(sandbox, case):
     seed, index = map(int, case.split(":"))
     verdict = sandbox.run(run_case, seed, index, timeout=TIMEOUT).unwrap()
     assert verdict["category"] in ("ok", "uncertified"), (CENSUS_CASES[case], verdict)
+
+
+# ----- certified means the value too ------------------------------------------------------------
+
+
+@pytest.mark.parametrize("method", ["ipso", "pso", "penalty"])
+def test_a_certified_distance_is_within_the_tolerance_of_the_true_one(method):
+    # These methods stop at their iteration budget. A separation that proved the verdict used to
+    # certify their distances too, up to 3e-3 of the pair's size away from the true distance.
+    from scene_cases import pair_size
+
+    rng = np.random.default_rng(23)
+    identity = np.eye(4)
+    for index in range(40):
+        a = rng.normal(size=(8, 3))
+        b = rng.normal(size=(8, 3)) + rng.normal(size=3) * 3
+        r = sc.distance(a, b, method=method, seed=index)
+        if not r.certified:
+            continue
+        true = max(exact_signed_distance(a, b).signed_distance, 0.0)
+        size = pair_size(a, identity, b, identity)
+        assert r.distance - true <= 1e-9 * size + 1e-12 * size, (index, r, true)
+        assert r.lower_bound <= true + 1e-12 * size, (index, r, true)

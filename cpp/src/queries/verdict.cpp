@@ -87,7 +87,10 @@ DistanceResult finish_result(const FramedPair& pair, Answer&& answer, Method req
   for (Scalar& h : r.history) h = frame.length_to_world(h);
   // Unproven, the verdict errs on the side of contact: bodies not shown apart may touch.
   r.colliding = !apart;
-  r.certified = (apart || close) && (goal != Goal::signed_distance || exact);
+  // A distance or a signed distance is certified only when its bounds also enclose it to the
+  // tolerance: a proven verdict alone leaves the value of a swarm stopped early unproven.
+  r.certified = (apart || close) &&
+                goal_reached(pair, goal, answer.lower, answer.upper, answer.intersection_proven);
   // For a signed distance, contact alone does not settle the depth.
   const bool settled = exact || (close && goal != Goal::signed_distance);
   r.status = settled ? SolverStatus::converged : SolverStatus::max_iterations;

@@ -11,8 +11,8 @@ namespace swarmcollide::detail {
 /// is accounted for: a bound proves a verdict only when it does so by more than
 /// `kFrameRounding`. So `colliding` is proven by an intersection proof or by witnesses within
 /// the tolerance, never by comparing a rounded distance with zero; and apart by a separation
-/// above the tolerance. For signed distances, `certified` also requires both bounds proven and
-/// within the tolerance of each other.
+/// above the tolerance. For distances and signed distances, `certified` also requires the bounds
+/// to enclose the value to the tolerance (`goal_reached`).
 DistanceResult finish_result(const FramedPair& pair, Answer&& answer, Method requested, Goal goal);
 
 /// True when the bounds prove a verdict at the pair's tolerance (what `finish_result` calls

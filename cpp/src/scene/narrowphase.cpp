@@ -386,12 +386,8 @@ void answer_pair(const PlacedBody& a, const PlacedBody& b, PairProof& proof,
   } else if (question.distance && !value_settled) {
     Answer measured = solve(pair, options, Goal::distance, next);
     if (question.warm) remember(pair, measured, proof);
-    // A row's distance is certified only when its bounds enclose it to the tolerance: a verdict
-    // alone (what finish_result certifies for a distance) leaves it unproven.
-    const bool measured_settled = goal_reached(pair, Goal::distance, measured.lower,
-                                               measured.upper, measured.intersection_proven);
     const DistanceResult d = finish_result(pair, std::move(measured), method, Goal::distance);
-    out.certified = out.certified && d.certified && measured_settled;
+    out.certified = out.certified && d.certified;
     take_values(d, out);
   }
 }
