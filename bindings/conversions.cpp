@@ -168,7 +168,8 @@ std::vector<Pose> to_poses(const py::handle& poses, std::size_t count, const cha
       count == 1
           ? "a (4, 4) transform, a (1, 4, 4) array of them or a pair "
             "(rotation, translation)"
-          : "a (" + std::to_string(count) + ", 4, 4) array of transforms or a pair (rotations (" +
+          : "a (" + std::to_string(count) + ", 4, 4) or (" + std::to_string(count) +
+                ", 3, 4) array of transforms or a pair (rotations (" +
                 std::to_string(count) + ", 3, 3), translations (" + std::to_string(count) + ", 3))";
   result.resize(count);
   if (is_pose_pair(poses)) {
@@ -188,6 +189,18 @@ std::vector<Pose> to_poses(const py::handle& poses, std::size_t count, const cha
   } else {
     const py::array raw = py::module_::import("numpy").attr("asarray")(poses);
     const bool single = count == 1 && raw.ndim() == 2;
+    // (m, 3, 4): the transforms without their constant last row.
+    const bool affine = !single && raw.ndim() == 3 && raw.shape(1) == 3 && raw.shape(2) == 4;
+    if (affine) {
+      const auto matrices = real_array(poses, {n, 3, 4}, arg, shapes);
+      for (std::size_t i = 0; i < count; ++i) {
+        const Eigen::Map<const Eigen::Matrix<Scalar, 3, 4, Eigen::RowMajor>> m(matrices.data() +
+                                                                                12 * i);
+        result[i].rotation = m.leftCols<3>();
+        result[i].translation = m.col(3);
+      }
+      return result;
+    }
     const auto matrices =
         single ? real_array(poses, {4, 4}, arg, shapes) : real_array(poses, {n, 4, 4}, arg, shapes);
     for (std::size_t i = 0; i < count; ++i) {
