@@ -14,6 +14,7 @@ import sys
 from typing import Callable, List, Optional, Tuple
 
 from compound import compound_section
+from pose_batch import section as pose_batch_section
 from cpp_report import cpp_sections, every_workload_section
 from record import load
 from scene_report import scene_section
@@ -72,6 +73,8 @@ SECTIONS: List[Section] = [
     ("convergence.json", "Convergence (the paper's claim)",
      "![convergence]({plots}/convergence.png)", convergence_section, ""),
     ("batch.json", "Batch queries from Python", "", batch_section, ""),
+    ("pose_batch.json", "Batches over poses from Python (bench/pose_batch.py)", "",
+     pose_batch_section, ""),
 ]
 LATE_SECTIONS: List[Section] = [
     ("swarm_speed.json", "The swarm's speed and accuracy at the paper's budget", SWARM_SPEED,
