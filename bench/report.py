@@ -58,7 +58,11 @@ SWARM_SPEED = (
 PER_CALL = (
     "`bench/per_call.py`: the cost of one call from Python on prebuilt bodies, swarmcollide's "
     "functions and `sc.Query` beside python-fcl and coal; ratios are against python-fcl's "
-    "distance and collide and coal's signed distance from the same run.")
+    "distance and collide and coal's signed distance from the same run. Until issue 24 the "
+    "python-fcl and coal contenders built a new result object (and coal a new request) on every "
+    "call, which their users do not: that added the objects' construction to their time and "
+    "flattered swarmcollide's ratios (the 2026-11-23 run gave sc.distance dual 0.58x python-fcl's "
+    "distance at 8 vertices with that handicap). They now reuse them.")
 
 # (results file, heading, text before, the section's renderer, text after), in document order.
 Section = Tuple[str, str, str, Callable[[dict], str], str]
