@@ -158,9 +158,10 @@ Asked asked(Kind kind) {
 }
 
 // Runs `answer(i, options_i)` for every pair, where options_i are the validated options seeded
-// for pair i and `answer` is the thread's own `make_answer()` (with the thread's state), on a pool of threads that take pairs in chunks, in increasing order: when a pair
-// fails, every pair before it has been taken, so the error of the lowest failing index is found
-// whatever the threads. Everything a row shares with the others (the options, the poses, the
+// for pair i and `answer` is the thread's own `make_answer()` (with the thread's state), on a
+// pool of threads that take pairs in chunks, in increasing order: when a pair fails, every pair
+// before it has been taken, so the error of the lowest failing index is found whatever the
+// threads. Everything a row shares with the others (the options, the poses, the
 // method's capability) is checked here, once.
 template <typename MakeAnswer>
 BatchResult run_batch(Kind kind, std::size_t count, const QueryOptions& options,
