@@ -340,8 +340,8 @@ TEST(Batch, PosesAreCheckedOnceNamingTheRow) {
   const std::string message = error_of([&] { distance_many(a, a, {}, settings, poses); });
   EXPECT_EQ(message.rfind("poses_b[23] is not a rigid motion", 0), 0u) << message;
   poses.b[3].rotation(0, 0) = std::numeric_limits<double>::quiet_NaN();
-  EXPECT_NE(error_of([&] { collide_many(a, a, {}, settings, poses); }).find("poses_b[23] has a NaN"),
-            std::string::npos);
+  const std::string not_finite = error_of([&] { collide_many(a, a, {}, settings, poses); });
+  EXPECT_NE(not_finite.find("poses_b[23] has a NaN"), std::string::npos) << not_finite;
   poses.a = random_poses(4, rng, 1);
   EXPECT_NE(error_of([&] { distance_many(a, a, {}, {}, poses); })
                 .find("poses_b must have one pose per pair, got 5 for 4 pairs"),
