@@ -85,6 +85,7 @@ bench: install $(VENV)/.bench-installed bench-scene bench-compound
 	$(PY) bench/convergence.py $(BENCH_ARGS) --json bench/results/convergence.json --plots bench/plots
 	$(PY) bench/batch.py $(BENCH_ARGS) --json bench/results/batch.json \
 	  --loop-binary $(BENCH_BUILD)/bench/swarmcollide-batch-loop
+	$(PY) bench/batch.py $(BENCH_ARGS) --poses --json bench/results/pose_batch.json
 	$(PY) bench/record.py --bench swarm_speed --json bench/results/swarm_speed.json -- \
 	  $(BENCH_BUILD)/bench/swarmcollide-swarm-speed
 	$(PY) bench/swarm_targets.py $(BENCH_ARGS) --json bench/results/swarm_targets.json \

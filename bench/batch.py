@@ -136,10 +136,22 @@ def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("--quick", action="store_true", help="a reduced run, under a minute")
     parser.add_argument("--json", type=Path, required=True, help="where to write the results")
-    parser.add_argument("--loop-binary", type=Path, required=True,
+    parser.add_argument("--loop-binary", type=Path,
                         help="the swarmcollide-batch-loop binary (the plain C++ loop)")
+    parser.add_argument("--poses", action="store_true",
+                        help="only the pose batches of issue 24 (bench/pose_batch.py)")
     arguments = parser.parse_args()
     quick = arguments.quick
+    if arguments.poses:
+        import pose_batch
+
+        data = pose_batch.run(rows=2_000 if quick else 20_000, rounds=3 if quick else 7)
+        written = record.write(arguments.json, "pose_batch", data.pop("rows"), quick=quick,
+                               load_start=data["load_before"], **data)
+        print(json.dumps(written, indent=1))
+        return 0
+    if arguments.loop_binary is None:
+        parser.error("--loop-binary is required (except with --poses)")
     pairs = 10_000 if quick else 100_000
     loop_pairs = 1_000 if quick else 10_000
     memory_pairs = 100_000 if quick else 1_000_000

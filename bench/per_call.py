@@ -2,8 +2,10 @@
 coal, in one process, the contenders interleaved round by round (issue 13's fast path).
 
 Bodies are the hull vertices of points on the unit sphere (8 and 64 points), built once; pairs
-are apart (distance 1) or overlapping by a tenth of their size. Each contender answers the same
-pairs in turn, round after round; a contender's time is the median over rounds of its mean time
+are apart (distance 1) or overlapping by a tenth of their size. python-fcl and coal reuse their
+request and result objects, as their users write a loop (until issue 24 a new result per call
+added its construction to their time, which flattered swarmcollide's ratios). Each contender
+answers the same pairs in turn, round after round; a contender's time is the median over rounds of its mean time
 per call, and the ratios are taken against python-fcl's distance and collide and coal's signed
 distance from the same run. ``--json`` writes one row per contender and size (bench/record.py's
 format).
@@ -58,15 +60,17 @@ def contenders(a: np.ndarray, b: np.ndarray) -> Dict[str, Callable[[], object]]:
     oa, ob = fcl_object(a), fcl_object(b)
     ca, cb = coal_shape(a), coal_shape(b)
     identity = coal.Transform3s()
+    # Requests and results made once and reused, as python-fcl's and coal's users write a loop.
     distance_request, collision_request = fcl.DistanceRequest(), fcl.CollisionRequest()
+    distance_result, collision_result = fcl.DistanceResult(), fcl.CollisionResult()
+    coal_request, coal_result = coal.DistanceRequest(), coal.DistanceResult()
     A, B = sc.ConvexPolyhedron(a), sc.ConvexPolyhedron(b)
     dual, via_fcl = sc.Query("dual"), sc.Query("fcl")
     return {
-        "python-fcl distance": lambda: fcl.distance(oa, ob, distance_request, fcl.DistanceResult()),
-        "python-fcl collide": lambda: fcl.collide(oa, ob, collision_request, fcl.CollisionResult()),
-        "coal distance": lambda: coal.distance(
-            ca, identity, cb, identity, coal.DistanceRequest(), coal.DistanceResult()
-        ),
+        "python-fcl distance": lambda: fcl.distance(oa, ob, distance_request, distance_result),
+        "python-fcl collide": lambda: fcl.collide(oa, ob, collision_request, collision_result),
+        "coal distance": lambda: coal.distance(ca, identity, cb, identity, coal_request,
+                                               coal_result),
         "sc.distance fcl": lambda: sc.distance(A, B, method="fcl"),
         "sc.distance dual": lambda: sc.distance(A, B),
         "Query.distance fcl": lambda: via_fcl.distance(A, B),

@@ -1,7 +1,10 @@
 #include <pybind11/eigen.h>
 
+#include <algorithm>
+#include <deque>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "conversions.hpp"
@@ -33,22 +36,56 @@ std::optional<Stack> as_stack(const py::handle& bodies, const char* name) {
   return stack;
 }
 
-// Bodies from a sequence of polyhedra or (n, 3) array-likes.
-std::vector<ConvexPolyhedron> to_polyhedra(const py::handle& bodies, const char* name,
-                                           std::uint64_t first_index) {
-  if (py::isinstance<py::str>(bodies) || !py::isinstance<py::iterable>(bodies)) {
-    throw py::type_error(std::string(name) +
-                         " must be a sequence of polyhedra or an (m, n, 3) array, got " +
-                         type_name(bodies));
-  }
-  std::vector<ConvexPolyhedron> result;
-  std::uint64_t index = first_index;
-  for (const py::handle body : bodies) {
-    const std::string item = std::string(name) + "[" + std::to_string(index++) + "]";
-    result.push_back(BodyArgument(body, item.c_str()).get());
-  }
-  return result;
+// True when `bodies` is one body for every row: a ConvexPolyhedron, a CompoundBody or an (n, 3)
+// NumPy array (a nested list stays a sequence of bodies).
+bool is_single(const py::handle& bodies) {
+  if (py::isinstance<py::array>(bodies)) return bodies.cast<py::array>().ndim() == 2;
+  return py::isinstance<ConvexPolyhedron>(bodies) || is_compound(bodies);
 }
+
+// One side of a batch as the core reads it: the bodies where Python holds them (kept alive here
+// while the GIL is released), and those built here from points; a single body serves every row.
+// `Argument` is BodyArgument or CompoundArgument, which use a body in place or build one.
+template <typename Body, typename Argument>
+class BatchSide {
+ public:
+  BatchSide(const py::handle& bodies, const char* name, std::uint64_t first_index) {
+    if (is_single(bodies)) {
+      keep_ = py::reinterpret_borrow<py::object>(bodies);
+      const Body& body = arguments_.emplace_back(bodies, name).get();
+      bodies_.emplace(body);
+      return;
+    }
+    if (py::isinstance<py::str>(bodies) || !py::isinstance<py::iterable>(bodies)) {
+      throw py::type_error(std::string(name) +
+                           " must be a body (for every row), a sequence of bodies or an (m, n, 3) "
+                           "array, got " +
+                           type_name(bodies));
+    }
+    // A tuple of the items holds them even if the caller's sequence changes meanwhile.
+    const py::tuple items(py::reinterpret_borrow<py::object>(bodies));
+    keep_ = items;
+    std::vector<const Body*> pointers;
+    pointers.reserve(items.size());
+    std::uint64_t index = first_index;
+    for (const py::handle body : items) {
+      const std::string item = std::string(name) + "[" + std::to_string(index++) + "]";
+      pointers.push_back(&arguments_.emplace_back(body, item.c_str()).get());
+    }
+    bodies_.emplace(std::move(pointers));
+  }
+
+  const BatchBodies<Body>& get() const { return *bodies_; }
+
+ private:
+  py::object keep_;
+  // A deque never moves its items, which point into themselves when they own their body.
+  std::deque<Argument> arguments_;
+  std::optional<BatchBodies<Body>> bodies_;
+};
+
+using ConvexSide = BatchSide<ConvexPolyhedron, BodyArgument>;
+using CompoundSide = BatchSide<CompoundBody, CompoundArgument>;
 
 VertexStack view(const Stack& stack, const char* name) {
   return {stack.data(), static_cast<std::size_t>(stack.shape(0)), stack.shape(1), name};
@@ -68,34 +105,58 @@ BatchSettings settings_of(const py::object& threads, const py::object& first_ind
   return settings;
 }
 
+// The number of poses an argument holds when it is an array of them (or a pair of arrays of
+// rotations and translations), 1 otherwise (to_poses then checks it all).
+std::size_t pose_count(const py::handle& poses) {
+  if (poses.is_none()) return 0;
+  py::handle leading = poses;
+  if (py::isinstance<py::tuple>(poses) || py::isinstance<py::list>(poses)) {
+    const py::sequence parts = py::reinterpret_borrow<py::sequence>(poses);
+    if (parts.size() != 2) return 1;
+    leading = parts[0];
+  }
+  const py::array array = py::module_::import("numpy").attr("asarray")(leading);
+  return array.ndim() == 3 ? static_cast<std::size_t>(array.shape(0)) : 1;
+}
+
+// The rows of a batch whose sides hold `count_a` and `count_b` bodies (0 for a single body): the
+// length of a sequence, or with single bodies on both sides the number of poses (one without).
+std::size_t row_count(std::size_t count_a, std::size_t count_b, const py::object& poses_a,
+                      const py::object& poses_b) {
+  if (count_a > 0 || count_b > 0) return std::max(count_a, count_b);
+  const std::size_t posed = std::max(pose_count(poses_a), pose_count(poses_b));
+  return posed > 0 ? posed : 1;
+}
+
+template <typename Side>
+std::size_t rows_given(const Side& side) {
+  return side.get().single() ? 0 : side.get().size();
+}
+
 BatchPoses poses_of(const py::object& poses_a, const py::object& poses_b, std::size_t count) {
   return {to_poses(poses_a, count, "poses_a"), to_poses(poses_b, count, "poses_b")};
 }
 
-// Compound bodies from a sequence of compound bodies, polyhedra or (n, 3) array-likes.
-std::vector<CompoundBody> to_compounds(const py::handle& bodies, const char* name,
-                                       std::uint64_t first_index) {
-  std::vector<CompoundBody> result;
-  std::uint64_t index = first_index;
-  for (const py::handle body : bodies) {
-    const std::string item = std::string(name) + "[" + std::to_string(index++) + "]";
-    result.push_back(CompoundArgument(body, item.c_str()).get());
-  }
-  return result;
+// True when `bodies` is a CompoundBody or a sequence holding one.
+bool compound_side(const py::handle& bodies) {
+  return is_compound(bodies) || holds_compound(bodies);
 }
 
-// `query(as, bs, poses)` without the GIL. Sequences holding a CompoundBody are answered by the
-// compound queries. Two (m, n, 3) arrays are passed as vertex stacks, so that the threads build
-// and free the bodies; anything else is converted to bodies here first.
+// `query(as, bs, poses)` without the GIL. A CompoundBody on either side (alone or in a sequence)
+// makes it a compound batch. Two (m, n, 3) arrays are passed as vertex stacks, so that the threads
+// build and free the bodies; other bodies are read where they are, and points converted to bodies
+// here first. A single body on a side serves every row. When the sequences of the two sides
+// differ in length the core names both lengths; the poses are converted for the sides' rows.
 template <typename Ask>
 BatchResult run(const py::object& as, const py::object& bs, const py::object& poses_a,
                 const py::object& poses_b, const BatchSettings& settings, const Ask& ask) {
-  if (holds_compound(as) || holds_compound(bs)) {
-    const auto bodies_a = to_compounds(as, "As", settings.first_index);
-    const auto bodies_b = to_compounds(bs, "Bs", settings.first_index);
-    const BatchPoses poses = poses_of(poses_a, poses_b, bodies_a.size());
+  if (compound_side(as) || compound_side(bs)) {
+    const CompoundSide side_a(as, "As", settings.first_index);
+    const CompoundSide side_b(bs, "Bs", settings.first_index);
+    const BatchPoses poses = poses_of(
+        poses_a, poses_b, row_count(rows_given(side_a), rows_given(side_b), poses_a, poses_b));
     py::gil_scoped_release release;
-    return ask(bodies_a, bodies_b, poses);
+    return ask(side_a.get(), side_b.get(), poses);
   }
   const std::optional<Stack> stack_a = as_stack(as, "As");
   const std::optional<Stack> stack_b = as_stack(bs, "Bs");
@@ -105,21 +166,25 @@ BatchResult run(const py::object& as, const py::object& bs, const py::object& po
     py::gil_scoped_release release;
     return ask(view(*stack_a, "As"), view(*stack_b, "Bs"), poses);
   }
-  const auto bodies_a = to_polyhedra(as, "As", settings.first_index);
-  const auto bodies_b = to_polyhedra(bs, "Bs", settings.first_index);
-  const BatchPoses poses = poses_of(poses_a, poses_b, bodies_a.size());
+  const ConvexSide side_a(as, "As", settings.first_index);
+  const ConvexSide side_b(bs, "Bs", settings.first_index);
+  const BatchPoses poses = poses_of(
+      poses_a, poses_b, row_count(rows_given(side_a), rows_given(side_b), poses_a, poses_b));
   py::gil_scoped_release release;
-  return ask(bodies_a, bodies_b, poses);
+  return ask(side_a.get(), side_b.get(), poses);
 }
 
 constexpr const char* kBatchDoc = R"doc(
-The query for every pair ``(As[i], Bs[i])``, in C++ threads without the GIL.
+The query for every row ``(As[i], Bs[i])``, in C++ threads without the GIL.
 
-Pair i is seeded with ``pair_seed(seed, first_index + i)``, so answers do not depend on the
-number of threads or on how a batch is split. ``As`` and ``Bs`` are sequences of polyhedra or
-``(n, 3)`` arrays (or compound bodies), or ``(m, n, 3)`` arrays (the fastest: each pair's bodies are then built and
-freed by the thread that answers it). ``poses_a`` and ``poses_b`` place them: None (the identity),
-an ``(m, 4, 4)`` array of rigid transforms or a pair ``(rotations (m, 3, 3), translations (m, 3))``.
+Row i is seeded with ``pair_seed(seed, first_index + i)``, so answers do not depend on the
+number of threads or on how a batch is split. ``As`` and ``Bs`` are each a single body used in
+every row (a ConvexPolyhedron, a CompoundBody or an ``(n, 3)`` NumPy array: never copied), a
+sequence of bodies (polyhedra, compound bodies or ``(n, 3)`` arrays), or an ``(m, n, 3)`` array
+(each row's bodies then built and freed by the thread that answers it). ``poses_a`` and
+``poses_b`` place them: None (the identity), an ``(m, 4, 4)`` or ``(m, 3, 4)`` array of rigid
+transforms or a pair ``(rotations (m, 3, 3), translations (m, 3))``. With a single body on both
+sides the poses set the number of rows: "A against B at these m poses" is one call.
 )doc";
 
 }  // namespace

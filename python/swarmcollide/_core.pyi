@@ -476,13 +476,16 @@ class Query:
         ...
     def collide_many(self, As: typing.Any, Bs: typing.Any, threads: typing.Any = None, first_index: typing.Any = 0, escalate: bool = True, poses_a: typing.Any = None, poses_b: typing.Any = None) -> BatchResult:
         """
-        The query for every pair ``(As[i], Bs[i])``, in C++ threads without the GIL.
+        The query for every row ``(As[i], Bs[i])``, in C++ threads without the GIL.
         
-        Pair i is seeded with ``pair_seed(seed, first_index + i)``, so answers do not depend on the
-        number of threads or on how a batch is split. ``As`` and ``Bs`` are sequences of polyhedra or
-        ``(n, 3)`` arrays (or compound bodies), or ``(m, n, 3)`` arrays (the fastest: each pair's bodies are then built and
-        freed by the thread that answers it). ``poses_a`` and ``poses_b`` place them: None (the identity),
-        an ``(m, 4, 4)`` array of rigid transforms or a pair ``(rotations (m, 3, 3), translations (m, 3))``.
+        Row i is seeded with ``pair_seed(seed, first_index + i)``, so answers do not depend on the
+        number of threads or on how a batch is split. ``As`` and ``Bs`` are each a single body used in
+        every row (a ConvexPolyhedron, a CompoundBody or an ``(n, 3)`` NumPy array: never copied), a
+        sequence of bodies (polyhedra, compound bodies or ``(n, 3)`` arrays), or an ``(m, n, 3)`` array
+        (each row's bodies then built and freed by the thread that answers it). ``poses_a`` and
+        ``poses_b`` place them: None (the identity), an ``(m, 4, 4)`` or ``(m, 3, 4)`` array of rigid
+        transforms or a pair ``(rotations (m, 3, 3), translations (m, 3))``. With a single body on both
+        sides the poses set the number of rows: "A against B at these m poses" is one call.
         """
     def collision(self, a: typing.Any, b: typing.Any, pose_a: typing.Any = None, pose_b: typing.Any = None, escalate: bool = True) -> swarmcollide._core.DistanceResult | swarmcollide._core.CompoundResult:
         ...
@@ -490,25 +493,31 @@ class Query:
         ...
     def distance_many(self, As: typing.Any, Bs: typing.Any, threads: typing.Any = None, first_index: typing.Any = 0, poses_a: typing.Any = None, poses_b: typing.Any = None) -> BatchResult:
         """
-        The query for every pair ``(As[i], Bs[i])``, in C++ threads without the GIL.
+        The query for every row ``(As[i], Bs[i])``, in C++ threads without the GIL.
         
-        Pair i is seeded with ``pair_seed(seed, first_index + i)``, so answers do not depend on the
-        number of threads or on how a batch is split. ``As`` and ``Bs`` are sequences of polyhedra or
-        ``(n, 3)`` arrays (or compound bodies), or ``(m, n, 3)`` arrays (the fastest: each pair's bodies are then built and
-        freed by the thread that answers it). ``poses_a`` and ``poses_b`` place them: None (the identity),
-        an ``(m, 4, 4)`` array of rigid transforms or a pair ``(rotations (m, 3, 3), translations (m, 3))``.
+        Row i is seeded with ``pair_seed(seed, first_index + i)``, so answers do not depend on the
+        number of threads or on how a batch is split. ``As`` and ``Bs`` are each a single body used in
+        every row (a ConvexPolyhedron, a CompoundBody or an ``(n, 3)`` NumPy array: never copied), a
+        sequence of bodies (polyhedra, compound bodies or ``(n, 3)`` arrays), or an ``(m, n, 3)`` array
+        (each row's bodies then built and freed by the thread that answers it). ``poses_a`` and
+        ``poses_b`` place them: None (the identity), an ``(m, 4, 4)`` or ``(m, 3, 4)`` array of rigid
+        transforms or a pair ``(rotations (m, 3, 3), translations (m, 3))``. With a single body on both
+        sides the poses set the number of rows: "A against B at these m poses" is one call.
         """
     def signed_distance(self, a: typing.Any, b: typing.Any, pose_a: typing.Any = None, pose_b: typing.Any = None) -> swarmcollide._core.DistanceResult | swarmcollide._core.CompoundResult:
         ...
     def signed_distance_many(self, As: typing.Any, Bs: typing.Any, threads: typing.Any = None, first_index: typing.Any = 0, poses_a: typing.Any = None, poses_b: typing.Any = None) -> BatchResult:
         """
-        The query for every pair ``(As[i], Bs[i])``, in C++ threads without the GIL.
+        The query for every row ``(As[i], Bs[i])``, in C++ threads without the GIL.
         
-        Pair i is seeded with ``pair_seed(seed, first_index + i)``, so answers do not depend on the
-        number of threads or on how a batch is split. ``As`` and ``Bs`` are sequences of polyhedra or
-        ``(n, 3)`` arrays (or compound bodies), or ``(m, n, 3)`` arrays (the fastest: each pair's bodies are then built and
-        freed by the thread that answers it). ``poses_a`` and ``poses_b`` place them: None (the identity),
-        an ``(m, 4, 4)`` array of rigid transforms or a pair ``(rotations (m, 3, 3), translations (m, 3))``.
+        Row i is seeded with ``pair_seed(seed, first_index + i)``, so answers do not depend on the
+        number of threads or on how a batch is split. ``As`` and ``Bs`` are each a single body used in
+        every row (a ConvexPolyhedron, a CompoundBody or an ``(n, 3)`` NumPy array: never copied), a
+        sequence of bodies (polyhedra, compound bodies or ``(n, 3)`` arrays), or an ``(m, n, 3)`` array
+        (each row's bodies then built and freed by the thread that answers it). ``poses_a`` and
+        ``poses_b`` place them: None (the identity), an ``(m, 4, 4)`` or ``(m, 3, 4)`` array of rigid
+        transforms or a pair ``(rotations (m, 3, 3), translations (m, 3))``. With a single body on both
+        sides the poses set the number of rows: "A against B at these m poses" is one call.
         """
     @property
     def method(self) -> str:

@@ -41,8 +41,9 @@ PosesLike = Union[None, npt.ArrayLike, Tuple[Any, npt.ArrayLike], Any]
 transforms, or a pair ``(rotations, translations (m, 3))`` whose rotations are an ``(m, 3, 3)``
 array or a SciPy ``Rotation`` of m rotations (alone: no translations)."""
 
-BodiesLike = Union[Sequence[PolyhedronLike], npt.ArrayLike]
-"""A sequence of polyhedra (or of ``(n, 3)`` point arrays, or of compound bodies), or an
+BodiesLike = Union[PolyhedronLike, Sequence[PolyhedronLike], npt.ArrayLike]
+"""One body for every row (a ``ConvexPolyhedron``, a ``CompoundBody`` or an ``(n, 3)`` NumPy
+array), a sequence of polyhedra (or of ``(n, 3)`` point arrays, or of compound bodies), or an
 ``(m, n, 3)`` array."""
 
 DEFAULT_TOLERANCE = 1e-9
@@ -353,16 +354,20 @@ def distance_many(
     poses_b: PosesLike = None,
     **parameters: Unpack[Parameters],
 ) -> _core.BatchResult:
-    """``distance(As[i], Bs[i])`` for every i, in C++ threads without the GIL.
+    """``distance(As[i], Bs[i])`` for every row i, in C++ threads without the GIL.
 
-    Pair i is seeded with ``pair_seed(seed, first_index + i)``, so the results depend neither on
+    Row i is seeded with ``pair_seed(seed, first_index + i)``, so the results depend neither on
     the number of threads nor on how a batch is split (``first_index`` is the global index of the
-    first pair). Two ``(m, n, 3)`` arrays are the fastest input.
+    first row). The options and poses are checked once, and bodies are read where they are, never
+    copied: "A against B at these m poses" is ``distance_many(A, B, poses_b=poses)``.
 
     Parameters
     ----------
-    As, Bs : sequence of ConvexPolyhedron or array_like, or array_like of shape (m, n, 3)
-        The bodies, pairwise.
+    As, Bs : body, sequence of bodies, or array_like of shape (m, n, 3)
+        The bodies, row by row. A single body (a ConvexPolyhedron, a CompoundBody or an
+        ``(n, 3)`` NumPy array) is used in every row; with single bodies on both sides the poses
+        set the number of rows (one without poses). ``(m, n, 3)`` arrays are built into bodies
+        row by row on the threads.
     threads : int, optional
         Worker threads (at most 1024); None uses one per hardware thread.
     first_index : int
@@ -388,6 +393,10 @@ def distance_many(
     >>> r = sc.distance_many(As, Bs)
     >>> r.distance.round(9).tolist(), r.colliding.tolist(), r.certified.tolist()
     ([0.5, 1.5, 2.5], [False, False, False], [True, True, True])
+    >>> moves = np.tile(np.eye(4), (3, 1, 1))
+    >>> moves[:, 0, 3] = [1.5, 2.5, 3.5]
+    >>> sc.distance_many(tetra, tetra, poses_b=moves).distance.round(9).tolist()
+    [0.5, 1.5, 2.5]
     """
     return _query_for(method, tolerance, seed, parameters).distance_many(
         As, Bs, threads, first_index, poses_a, poses_b
@@ -411,7 +420,10 @@ def collide_many(
     """``collision(As[i], Bs[i])`` for every i: the batch form of ``collide``.
 
     ``result.colliding`` holds the verdicts and ``result.escalated`` marks the pairs another
-    method decided. Takes the keywords of ``distance_many`` and ``escalate``.
+    method decided. A row whose bodies' bounding balls (about the centres of their boxes) are
+    proven apart is settled by them before any solver runs: its ``lower_bound`` is the balls'
+    separation and its ``distance`` that of the bodies' first points (its witnesses), both valid
+    bounds, looser than a solver's. Takes the keywords of ``distance_many`` and ``escalate``.
 
     Examples
     --------

@@ -9,6 +9,8 @@
 
 #include "solvers/penetration.hpp"
 #include "swarmcollide/geometry/hull.hpp"
+#include "swarmcollide/queries/batch.hpp"
+#include "swarmcollide/queries/methods.hpp"
 #include "swarmcollide/queries/query.hpp"
 
 extern "C" void* __libc_malloc(std::size_t size);
@@ -109,6 +111,53 @@ TEST(PenetrationSteadyState, AllocatesOnlyTheWeights) {
         EXPECT_LE(solve, 2) << n << " points, " << iterations << " iterations, flat " << flat;
       }
     }
+  }
+}
+
+// A batch allocates its result columns and its bookkeeping, and per row no more than the single
+// query allocates for its own result's arrays (the dual's history, a penetration's weights): no
+// body is copied, no query rebuilt, no pose list made (one thread, so no thread is started).
+TEST(BatchSteadyState, RowsAllocateNoMoreThanTheirSingleQueries) {
+  VertexMatrix points(40, 3);
+  for (int i = 0; i < 40; ++i) {
+    const double t = 2.399963 * i;
+    const double z = 1 - (2.0 * i + 1) / 40;
+    const double r = std::sqrt(1 - z * z);
+    points.row(i) << r * std::cos(t), r * std::sin(t), z;
+  }
+  const ConvexPolyhedron a(points);
+  const ConvexPolyhedron b(points.topRows(8).eval());
+  BatchPoses few, many;
+  for (int i = 0; i < 1000; ++i) {
+    Pose pose;
+    pose.rotation = Eigen::AngleAxisd(0.01 * i, Vector3(1, 2, 3).normalized()).toRotationMatrix();
+    pose.translation = Vector3(0.5 + 0.003 * i, 0.2, -0.1);  // overlapping to well apart
+    if (i % 100 == 0) few.b.push_back(pose);
+    many.b.push_back(pose);
+  }
+  BatchSettings one_thread;
+  one_thread.threads = 1;
+  for (const Method method : {Method::dual, Method::exact}) {
+    QueryOptions options;
+    options.method = method;
+    collide_many(a, b, options, one_thread, many);  // the bodies' hulls and balls, once
+    const Query query(options);
+    const long singles = allocations_during([&] {
+      for (const Pose& pose : many.b) {
+        query.distance(a, {}, b, pose);
+        query.signed_distance(a, {}, b, pose);
+      }
+    });
+    const long rows_10 =
+        allocations_during([&] { distance_many(a, b, options, one_thread, few); }) +
+        allocations_during([&] { collide_many(a, b, options, one_thread, few); }) +
+        allocations_during([&] { signed_distance_many(a, b, options, one_thread, few); });
+    const long rows_1000 =
+        allocations_during([&] { distance_many(a, b, options, one_thread, many); }) +
+        allocations_during([&] { collide_many(a, b, options, one_thread, many); }) +
+        allocations_during([&] { signed_distance_many(a, b, options, one_thread, many); });
+    EXPECT_LE(rows_1000 - rows_10, singles) << method_name(method);
+    if (method == Method::exact) EXPECT_LT(rows_1000 - rows_10, 200);  // penetrations' weights
   }
 }
 

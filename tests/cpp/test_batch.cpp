@@ -223,7 +223,129 @@ TEST(Batch, SettingsAndLengthsAreChecked) {
   invalid.dual.swarm_size = 1;
   EXPECT_NE(error_of([&] { distance_many(two, two, invalid); }).find("swarm_size"),
             std::string::npos);
-  EXPECT_EQ(distance_many(std::vector<ConvexPolyhedron>{}, {}, {}).distance.size(), 0);
+  const std::vector<ConvexPolyhedron> none;
+  EXPECT_EQ(distance_many(none, none, {}).distance.size(), 0);
+}
+
+// Random rigid poses, B's centres from overlapping A to well apart.
+std::vector<Pose> random_poses(int count, Random& rng, Scalar spread) {
+  std::vector<Pose> poses(static_cast<std::size_t>(count));
+  for (Pose& pose : poses) {
+    pose.rotation = rng.rotation();
+    pose.translation = rng.vector(spread);
+  }
+  return poses;
+}
+
+// One body on a side serves every row: the answers are those of the body repeated in a sequence,
+// and of the single queries, row by row, for every kind of batch.
+TEST(Batch, ASingleBodyServesEveryRow) {
+  Random rng(8);
+  const ConvexPolyhedron a = rng.body(40);
+  const ConvexPolyhedron b = rng.body(9);
+  BatchPoses poses;
+  poses.a = random_poses(90, rng, 0.5);
+  poses.b = random_poses(90, rng, 2.5);
+  const std::vector<ConvexPolyhedron> as(90, a), bs(90, b);
+  const QueryOptions options = seeded(Method::dual);
+  const BatchSettings two{2};
+  expect_same(distance_many(a, b, options, two, poses), distance_many(as, bs, options, two, poses));
+  expect_same(collide_many(a, bs, options, two, poses), collide_many(as, b, options, two, poses));
+  expect_same(signed_distance_many(as, b, options, two, poses),
+              signed_distance_many(as, bs, options, two, poses));
+  const BatchResult distances = distance_many(a, b, options, two, poses);
+  for (std::size_t i : {0u, 31u, 89u}) {
+    QueryOptions single = options;
+    single.seed = pair_seed(options.seed, i);
+    const DistanceResult r = Query(single).distance(a, poses.a[i], b, poses.b[i]);
+    EXPECT_EQ(distances.distance(static_cast<Eigen::Index>(i)), r.distance);
+    EXPECT_EQ(distances.point_a.row(static_cast<Eigen::Index>(i)), r.point_a.transpose());
+  }
+  // Single bodies on both sides: the poses count the rows, and without poses there is one.
+  BatchPoses only_b;
+  only_b.b = poses.b;
+  EXPECT_EQ(distance_many(a, b, options, two, only_b).distance.size(), 90);
+  EXPECT_EQ(distance_many(a, b, options).distance.size(), 1);
+  const std::vector<CompoundBody> compounds(90, CompoundBody({a}));
+  expect_same(distance_many(CompoundBody({a}), CompoundBody({b}), options, two, poses),
+              distance_many(compounds, std::vector<CompoundBody>(90, CompoundBody({b})), options,
+                            two, poses));
+}
+
+// Every row of a collision batch keeps valid bounds, whether its bodies' balls settled it or a
+// solver did: the lower bound is at most, and the distance at least, the exact distance.
+TEST(Batch, CollisionsSettledByBallsKeepValidBounds) {
+  Random rng(9);
+  const ConvexPolyhedron a = rng.body(30);
+  const ConvexPolyhedron b = rng.body(12);
+  BatchPoses poses;
+  poses.b = random_poses(300, rng, 4);
+  QueryOptions options;
+  const BatchResult verdicts = collide_many(a, b, options, {2}, poses);
+  QueryOptions exact;
+  exact.method = Method::exact;
+  exact.tolerance = 0;
+  int settled_by_balls = 0;
+  for (std::size_t i = 0; i < 300; ++i) {
+    const auto row = static_cast<Eigen::Index>(i);
+    const DistanceResult truth = Query(exact).distance(a, {}, b, poses.b[i]);
+    const Scalar rounding = 1e-12;
+    EXPECT_LE(verdicts.lower_bound(row), truth.distance + rounding) << i;
+    EXPECT_GE(verdicts.distance(row), truth.lower_bound - rounding) << i;
+    EXPECT_TRUE(verdicts.certified(row)) << i;
+    EXPECT_EQ(verdicts.colliding(row), truth.colliding) << i;
+    // The witnesses are the bodies' first points, placed; the direction is a unit vector.
+    const Vector3 first_b = poses.b[i].rotation * b.vertices().row(0).transpose() +
+                            poses.b[i].translation;
+    if (verdicts.iterations(row) == 0 && !verdicts.colliding(row) &&
+        (verdicts.point_b.row(row).transpose() - first_b).norm() < 1e-12) {
+      ++settled_by_balls;
+      EXPECT_NEAR(verdicts.direction.row(row).norm(), 1, 1e-12);
+    }
+  }
+  EXPECT_GT(settled_by_balls, 30);  // the spread puts many pairs beyond their balls
+}
+
+// Answers are bitwise the same whatever the threads, and whatever the batch is cut into.
+TEST(Batch, PosedBatchesAnswerAlikeOnAnyThreadsAndCuts) {
+  Random rng(10);
+  const ConvexPolyhedron a = rng.body(50);
+  const ConvexPolyhedron b = rng.body(8);
+  BatchPoses poses;
+  poses.b = random_poses(200, rng, 3);
+  const QueryOptions options = seeded(Method::dual);
+  const BatchResult one = collide_many(a, b, options, {1}, poses);
+  for (int threads : {2, 3, 7}) expect_same(one, collide_many(a, b, options, {threads}, poses));
+  const BatchResult whole = distance_many(a, b, options, {1}, poses);
+  for (int threads : {2, 5}) expect_same(whole, distance_many(a, b, options, {threads}, poses));
+  for (std::size_t cut : {1u, 63u, 130u}) {
+    BatchPoses tail;
+    tail.b.assign(poses.b.begin() + static_cast<std::ptrdiff_t>(cut), poses.b.end());
+    BatchSettings settings;
+    settings.threads = 2;
+    settings.first_index = cut;
+    expect_rows(distance_many(a, b, options, settings, tail), whole,
+                static_cast<Eigen::Index>(cut));
+  }
+}
+
+TEST(Batch, PosesAreCheckedOnceNamingTheRow) {
+  Random rng(11);
+  const ConvexPolyhedron a = rng.body(6);
+  BatchPoses poses;
+  poses.b = random_poses(5, rng, 2);
+  poses.b[3].rotation(0, 0) *= 1.5;
+  BatchSettings settings;
+  settings.first_index = 20;
+  const std::string message = error_of([&] { distance_many(a, a, {}, settings, poses); });
+  EXPECT_EQ(message.rfind("poses_b[23] is not a rigid motion", 0), 0u) << message;
+  poses.b[3].rotation(0, 0) = std::numeric_limits<double>::quiet_NaN();
+  const std::string not_finite = error_of([&] { collide_many(a, a, {}, settings, poses); });
+  EXPECT_NE(not_finite.find("poses_b[23] has a NaN"), std::string::npos) << not_finite;
+  poses.a = random_poses(4, rng, 1);
+  EXPECT_NE(error_of([&] { distance_many(a, a, {}, {}, poses); })
+                .find("poses_b must have one pose per pair, got 5 for 4 pairs"),
+            std::string::npos);
 }
 
 TEST(Batch, PairSeedsDiffer) {

@@ -119,8 +119,8 @@ def test_the_lowest_failing_pair_is_reported(pairs):
         (np.ones((2, 4, 3), dtype=bool), np.zeros((2, 4, 3)), {}, TypeError, "As must hold real"),
         (np.zeros((2, 4, 3)), np.zeros((2, 4, 3), dtype=complex), {}, TypeError, "Bs must hold"),
         (np.zeros((2, 4, 3), dtype="U1"), np.zeros((2, 4, 3)), {}, TypeError, "As must hold real"),
-        (5, [TETRA], {}, TypeError, "As must be a sequence"),
-        ("bodies", [TETRA], {}, TypeError, "As must be a sequence"),
+        (5, [TETRA], {}, TypeError, "As must be a body .*, a sequence of bodies"),
+        ("bodies", [TETRA], {}, TypeError, "As must be a body .*, a sequence of bodies"),
         ([TETRA], [TETRA], {"threads": 0}, ValueError, r"threads must be in \[1, 1024\]"),
         ([TETRA], [TETRA], {"threads": 2**31}, ValueError, r"threads must be in \[1, 1024\]"),
         ([TETRA], [TETRA], {"threads": 1.5}, TypeError, "threads must be an integer or None"),
@@ -142,3 +142,133 @@ def test_the_most_threads_are_no_more_than_the_pairs():
 def test_repr():
     r = sc.collide_many([TETRA], [TETRA + 0.1])
     assert repr(r) == "BatchResult(1 pairs, 1 colliding, 1 certified)"
+
+
+def random_transforms(count, seed, spread):
+    """``count`` rigid (4, 4) transforms: random rotations, translations up to ``spread``."""
+    from scipy.spatial.transform import Rotation
+
+    rng = np.random.default_rng(seed)
+    poses = np.tile(np.eye(4), (count, 1, 1))
+    poses[:, :3, :3] = Rotation.random(count, random_state=seed).as_matrix()
+    poses[:, :3, 3] = rng.uniform(-spread, spread, size=(count, 3))
+    return poses
+
+
+@pytest.fixture
+def posed():
+    rng = np.random.default_rng(24)
+    a = sc.ConvexPolyhedron(rng.normal(size=(30, 3)))
+    b = sc.ConvexPolyhedron(rng.normal(size=(9, 3)))
+    return a, b, random_transforms(60, 1, 0.5), random_transforms(60, 2, 4.0)
+
+
+def assert_same(x, y):
+    for field in ("distance", "lower_bound", "point_a", "point_b", "direction", "colliding",
+                  "certified", "iterations", "escalated", "part_a", "part_b"):
+        np.testing.assert_array_equal(getattr(x, field), getattr(y, field), err_msg=field)
+
+
+@pytest.mark.parametrize("batch", [sc.distance_many, sc.collide_many, sc.signed_distance_many])
+def test_a_single_body_serves_every_row(batch, posed):
+    a, b, poses_a, poses_b = posed
+    listed = batch([a] * 60, [b] * 60, poses_a=poses_a, poses_b=poses_b, threads=2)
+    assert_same(batch(a, b, poses_a=poses_a, poses_b=poses_b, threads=2), listed)
+    assert_same(batch(a, [b] * 60, poses_a=poses_a, poses_b=poses_b), listed)
+    assert_same(batch(a.vertices, b, poses_a=poses_a, poses_b=poses_b), listed)
+    # Every pose form gives the same rows.
+    rotations, translations = poses_b[:, :3, :3], poses_b[:, :3, 3]
+    assert_same(batch(a, b, poses_a=poses_a, poses_b=poses_b[:, :3, :]), listed)
+    assert_same(batch(a, b, poses_a=poses_a, poses_b=(rotations, translations)), listed)
+    # With single bodies on both sides, the poses count the rows; without them there is one.
+    assert len(batch(a, b, poses_b=poses_b)) == 60
+    assert len(batch(a, b)) == 1
+
+
+def test_single_body_rows_are_the_single_queries(posed):
+    a, b, poses_a, poses_b = posed
+    distances = sc.distance_many(a, b, poses_a=poses_a, poses_b=poses_b, seed=3)
+    depths = sc.signed_distance_many(a, b, poses_a=poses_a, poses_b=poses_b, seed=3)
+    for i in (0, 17, 59):
+        seed = sc.pair_seed(3, i)
+        single = sc.distance(a, b, pose_a=poses_a[i], pose_b=poses_b[i], seed=seed)
+        assert distances.distance[i] == single.distance
+        np.testing.assert_array_equal(distances.point_b[i], single.point_b)
+        signed = sc.signed_distance(a, b, pose_a=poses_a[i], pose_b=poses_b[i], seed=seed)
+        assert depths.distance[i] == signed.distance
+
+
+def test_a_single_compound_body_serves_every_row(posed):
+    a, b, _, poses_b = posed
+    ring = sc.CompoundBody([a, sc.ConvexPolyhedron(a.vertices + [3, 0, 0])])
+    listed = sc.distance_many([ring] * 60, [b] * 60, poses_b=poses_b)
+    assert_same(sc.distance_many(ring, b, poses_b=poses_b), listed)
+    assert_same(sc.collide_many(ring, b, poses_b=poses_b),
+                sc.collide_many([ring] * 60, [b] * 60, poses_b=poses_b))
+
+
+def test_posed_rows_answer_alike_on_any_threads_and_cuts(posed):
+    a, b, poses_a, poses_b = posed
+    for batch in (sc.distance_many, sc.collide_many, sc.signed_distance_many):
+        whole = batch(a, b, poses_a=poses_a, poses_b=poses_b, threads=1)
+        for threads in (2, 3, None):
+            assert_same(batch(a, b, poses_a=poses_a, poses_b=poses_b, threads=threads), whole)
+        cut = 37
+        tail = batch(a, b, poses_a=poses_a[cut:], poses_b=poses_b[cut:], first_index=cut)
+        np.testing.assert_array_equal(tail.distance, whole.distance[cut:])
+        np.testing.assert_array_equal(tail.point_a, whole.point_a[cut:])
+
+
+def test_collisions_settled_by_the_balls_keep_their_bounds(posed):
+    a, b, _, _ = posed
+    poses_b = random_transforms(60, 3, 8.0)
+    verdicts = sc.collide_many(a, b, poses_b=poses_b)
+    assert verdicts.certified.all()
+    settled = 0
+    for i in range(60):
+        truth = sc.distance(a, b, pose_b=poses_b[i], method="exact", tolerance=0)
+        assert verdicts.lower_bound[i] <= truth.distance + 1e-12
+        assert verdicts.distance[i] >= truth.lower_bound - 1e-12
+        assert verdicts.colliding[i] == truth.colliding
+        first_b = poses_b[i, :3, :3] @ b.vertices[0] + poses_b[i, :3, 3]
+        settled += bool(np.allclose(verdicts.point_b[i], first_b, atol=1e-12)
+                        and verdicts.iterations[i] == 0)
+    assert settled > 10  # pairs beyond their balls are settled without a solver
+
+
+ROTATION = np.eye(3)
+
+
+@pytest.mark.parametrize(
+    ("poses_b", "error", "message"),
+    [
+        (np.tile(np.eye(4), (3, 1, 1)), ValueError, r"poses_b must be a \(4, 4, 4\) or \(4, 3, 4\)"),
+        (np.tile(np.eye(4), (4, 1, 1))[:, :, :3], ValueError, r"poses_b must be a \(4, 4, 4\)"),
+        (np.tile(np.eye(4), (4, 1, 1)).astype(complex), TypeError, "poses_b must hold real"),
+        (np.tile(np.eye(4), (4, 1, 1)).astype(str), TypeError, "poses_b must hold real"),
+        (np.stack([np.eye(4)] * 3 + [np.diag([2.0, 1, 1, 1])]), ValueError,
+         r"poses_b\[3\] is not a rigid motion"),
+        (np.stack([np.eye(4)] * 2 + [np.diag([1.0, 1, -1, 1])] * 2), ValueError,
+         r"poses_b\[2\] is not a rigid motion"),
+        (np.stack([np.eye(4)] + [np.full((4, 4), np.nan)] * 3), ValueError,
+         r"poses_b\[1\] must be a homogeneous"),
+        ((np.tile(ROTATION, (4, 1, 1)), np.array([[0, 0, 0]] * 3 + [[np.inf, 0, 0]])),
+         ValueError, r"poses_b\[3\] has a NaN or infinite entry"),
+        ((np.tile(ROTATION, (4, 1, 1)), np.zeros((3, 3))), ValueError,
+         r"poses_b's translations must be"),
+        (np.tile(np.eye(4)[:3], (4, 1, 1)) * [1, 1, 1, np.nan], ValueError,
+         r"poses_b\[0\] has a NaN"),
+    ],
+)
+def test_bad_poses_name_the_argument_and_the_row(poses_b, error, message):
+    with pytest.raises(error, match=message):
+        sc.collide_many(sc.ConvexPolyhedron(TETRA), TETRA, poses_a=np.tile(np.eye(4), (4, 1, 1)),
+                        poses_b=poses_b)
+
+
+def test_mismatched_rows_are_refused():
+    poses = np.tile(np.eye(4), (3, 1, 1))
+    with pytest.raises(ValueError, match=r"poses_b must be a \(2, 4, 4\)"):
+        sc.distance_many([TETRA, TETRA], TETRA, poses_b=poses)
+    with pytest.raises(ValueError, match=r"poses_b must be a \(3, 4, 4\)"):
+        sc.distance_many(TETRA, sc.ConvexPolyhedron(TETRA), poses_a=poses, poses_b=poses[:2])

@@ -5,11 +5,16 @@
 #include <exception>
 #include <limits>
 #include <mutex>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <system_error>
 #include <thread>
+#include <utility>
 
+#include "../geometry/framed_body.hpp"
+#include "ball_screen.hpp"
+#include "dispatch.hpp"
 #include "swarmcollide/detail/random.hpp"
 #include "swarmcollide/queries/query.hpp"
 
@@ -117,35 +122,73 @@ const Pose& pose_of(const std::vector<Pose>& poses, std::size_t i) {
   return poses.empty() ? kIdentity : poses[i];
 }
 
-// Runs `answer(i, query_i)` for every pair on a pool of threads that take pairs in chunks, in
-// increasing order: when a pair fails, every pair before it has been taken, so the error of the
-// lowest failing index is found whatever the threads.
-template <typename Answer>
-BatchResult run_batch(std::size_t count, std::size_t other_count, const QueryOptions& options,
-                      const BatchSettings& settings, const BatchPoses& poses,
-                      const Answer& answer) {
-  if (count != other_count) {
+// The rows of a batch: the length of the sequences of bodies, or with a single body on both
+// sides that of the poses (one row without them).
+template <typename Body>
+std::size_t row_count(const BatchBodies<Body>& as, const BatchBodies<Body>& bs,
+                      const BatchPoses& poses) {
+  if (!as.single() && !bs.single() && as.size() != bs.size()) {
     throw std::invalid_argument("As and Bs must have the same length, got " +
-                                std::to_string(count) + " and " + std::to_string(other_count));
+                                std::to_string(as.size()) + " and " + std::to_string(bs.size()));
   }
+  if (!as.single()) return as.size();
+  if (!bs.single()) return bs.size();
+  if (!poses.a.empty()) return poses.a.size();
+  if (!poses.b.empty()) return poses.b.size();
+  return 1;
+}
+
+// What a batch's rows ask: the query's goal, and `require`'s capability and name for it.
+struct Asked {
+  detail::Goal goal;
+  Capability capability;
+  const char* name;
+};
+
+Asked asked(Kind kind) {
+  switch (kind) {
+    case Kind::distance:
+      return {detail::Goal::distance, kDistance, "distance"};
+    case Kind::collide:
+      return {detail::Goal::verdict, kCollide, "collide"};
+    case Kind::signed_distance:
+      break;
+  }
+  return {detail::Goal::signed_distance, kSignedDistance, "signed_distance"};
+}
+
+// Runs `answer(i, options_i)` for every pair, where options_i are the validated options seeded
+// for pair i and `answer` is the thread's own `make_answer()` (with the thread's state), on a
+// pool of threads that take pairs in chunks, in increasing order: when a pair fails, every pair
+// before it has been taken, so the error of the lowest failing index is found whatever the
+// threads. Everything a row shares with the others (the options, the poses, the
+// method's capability) is checked here, once.
+template <typename MakeAnswer>
+BatchResult run_batch(Kind kind, std::size_t count, const QueryOptions& options,
+                      const BatchSettings& settings, const BatchPoses& poses,
+                      const MakeAnswer& make_answer) {
   check_poses(poses.a, count, "poses_a", settings.first_index);
   check_poses(poses.b, count, "poses_b", settings.first_index);
   const std::size_t workers = worker_count(settings.threads, count);
   const Query validated(options);
+  detail::require(options.method, asked(kind).capability, asked(kind).name);
   BatchResult batch = sized(count);
+  // Chunks small enough to balance the threads when rows differ in cost, large enough that the
+  // rows two threads write next to each other (their results' cache lines) are few.
   constexpr std::size_t kChunk = 64;
   std::atomic<std::size_t> next{0};
   std::atomic<bool> stop{false};
   FirstFailure failure;
   const auto work = [&] {
     QueryOptions pair_options = validated.options();
+    auto answer = make_answer();
     for (std::size_t start = next.fetch_add(kChunk); start < count && !stop.load();
          start = next.fetch_add(kChunk)) {
       const std::size_t end = std::min(count, start + kChunk);
       for (std::size_t i = start; i < end; ++i) {
         try {
           pair_options.seed = pair_seed(options.seed, settings.first_index + i);
-          store(batch, i, answer(i, Query(pair_options)));
+          store(batch, i, answer(i, pair_options));
         } catch (...) {
           failure.offer(i);
           stop.store(true);
@@ -168,19 +211,60 @@ BatchResult run_batch(std::size_t count, std::size_t other_count, const QueryOpt
   return batch;
 }
 
-// DistanceResult for convex bodies, CompoundResult for compound ones.
-template <typename Body>
-auto ask(Kind kind, const Query& query, const Body& a, const Pose& pose_a, const Body& b,
-         const Pose& pose_b, bool escalate) {
-  switch (kind) {
-    case Kind::distance:
-      return query.distance(a, pose_a, b, pose_b);
-    case Kind::collide:
-      return query.collision(a, pose_a, b, pose_b, escalate);
-    case Kind::signed_distance:
-      break;
+// The ball radius of the body of each row, looked up again only when the body changes (a
+// single body, or a sequence repeating one, costs one lookup per thread and run of rows).
+class BallRadii {
+ public:
+  Scalar of(const ConvexPolyhedron& body) {
+    if (&body != body_) {
+      body_ = &body;
+      radius_ = detail::ball_radius(body);
+    }
+    return radius_;
   }
-  return query.signed_distance(a, pose_a, b, pose_b);
+
+ private:
+  const ConvexPolyhedron* body_ = nullptr;
+  Scalar radius_ = 0;
+};
+
+// A convex pair framed from poses validated once for the batch, answered as Query answers it;
+// collisions whose bounding balls prove them apart are settled without a solver.
+DistanceResult answer_convex(Kind kind, const QueryOptions& options, const ConvexPolyhedron& a,
+                             const Pose& pose_a, const ConvexPolyhedron& b, const Pose& pose_b,
+                             bool escalate, BallRadii& radii_a, BallRadii& radii_b) {
+  const detail::FramedPair pair =
+      detail::frame_validated_pair(a, pose_a, b, pose_b, options.tolerance);
+  if (kind == Kind::collide) {
+    std::optional<DistanceResult> settled =
+        detail::collision_by_balls(pair, radii_a.of(a), radii_b.of(b), options.method);
+    if (settled) return std::move(*settled);
+  }
+  return detail::answer_pair(options, asked(kind).goal, pair, escalate);
+}
+
+BatchResult convex_batch(Kind kind, const BatchBodies<ConvexPolyhedron>& as,
+                         const BatchBodies<ConvexPolyhedron>& bs, const QueryOptions& options,
+                         const BatchSettings& settings, const BatchPoses& poses) {
+  return run_batch(kind, row_count(as, bs, poses), options, settings, poses, [&] {
+    // Each thread keeps the radii of the bodies it last met.
+    return [&, radii_a = BallRadii(), radii_b = BallRadii()](
+               std::size_t i, const QueryOptions& pair_options) mutable {
+      return answer_convex(kind, pair_options, as[i], pose_of(poses.a, i), bs[i],
+                           pose_of(poses.b, i), settings.escalate, radii_a, radii_b);
+    };
+  });
+}
+
+BatchResult compound_batch(Kind kind, const BatchBodies<CompoundBody>& as,
+                           const BatchBodies<CompoundBody>& bs, const QueryOptions& options,
+                           const BatchSettings& settings, const BatchPoses& poses) {
+  return run_batch(kind, row_count(as, bs, poses), options, settings, poses, [&] {
+    return [&](std::size_t i, const QueryOptions& pair_options) {
+      return detail::answer_compound(pair_options, asked(kind).goal, settings.escalate, as[i],
+                                     pose_of(poses.a, i), bs[i], pose_of(poses.b, i));
+    };
+  });
 }
 
 // Body i of a stack, built on the calling thread.
@@ -194,47 +278,44 @@ ConvexPolyhedron body(const VertexStack& stack, std::size_t i, std::uint64_t fir
   }
 }
 
-template <typename Body>
-BatchResult bodies_batch(Kind kind, const std::vector<Body>& as, const std::vector<Body>& bs,
-                         const QueryOptions& options, const BatchSettings& settings,
-                         const BatchPoses& poses) {
-  return run_batch(as.size(), bs.size(), options, settings, poses,
-                   [&](std::size_t i, const Query& query) {
-                     return ask(kind, query, as[i], pose_of(poses.a, i), bs[i], pose_of(poses.b, i),
-                                settings.escalate);
-                   });
-}
-
 BatchResult stack_batch(Kind kind, const VertexStack& as, const VertexStack& bs,
                         const QueryOptions& options, const BatchSettings& settings,
                         const BatchPoses& poses) {
-  return run_batch(
-      as.count, bs.count, options, settings, poses, [&](std::size_t i, const Query& query) {
-        const ConvexPolyhedron a = body(as, i, settings.first_index);
-        const ConvexPolyhedron b = body(bs, i, settings.first_index);
-        return ask(kind, query, a, pose_of(poses.a, i), b, pose_of(poses.b, i), settings.escalate);
-      });
+  if (as.count != bs.count) {
+    throw std::invalid_argument("As and Bs must have the same length, got " +
+                                std::to_string(as.count) + " and " + std::to_string(bs.count));
+  }
+  return run_batch(kind, as.count, options, settings, poses, [&] {
+    return [&](std::size_t i, const QueryOptions& pair_options) {
+      const ConvexPolyhedron a = body(as, i, settings.first_index);
+      const ConvexPolyhedron b = body(bs, i, settings.first_index);
+      // Every row's bodies are new (and may reuse the last row's addresses): no radius is kept.
+      BallRadii radius_a, radius_b;
+      return answer_convex(kind, pair_options, a, pose_of(poses.a, i), b, pose_of(poses.b, i),
+                           settings.escalate, radius_a, radius_b);
+    };
+  });
 }
 
 }  // namespace
 
-BatchResult distance_many(const std::vector<ConvexPolyhedron>& as,
-                          const std::vector<ConvexPolyhedron>& bs, const QueryOptions& options,
+BatchResult distance_many(const BatchBodies<ConvexPolyhedron>& as,
+                          const BatchBodies<ConvexPolyhedron>& bs, const QueryOptions& options,
                           const BatchSettings& settings, const BatchPoses& poses) {
-  return bodies_batch(Kind::distance, as, bs, options, settings, poses);
+  return convex_batch(Kind::distance, as, bs, options, settings, poses);
 }
 
-BatchResult collide_many(const std::vector<ConvexPolyhedron>& as,
-                         const std::vector<ConvexPolyhedron>& bs, const QueryOptions& options,
+BatchResult collide_many(const BatchBodies<ConvexPolyhedron>& as,
+                         const BatchBodies<ConvexPolyhedron>& bs, const QueryOptions& options,
                          const BatchSettings& settings, const BatchPoses& poses) {
-  return bodies_batch(Kind::collide, as, bs, options, settings, poses);
+  return convex_batch(Kind::collide, as, bs, options, settings, poses);
 }
 
-BatchResult signed_distance_many(const std::vector<ConvexPolyhedron>& as,
-                                 const std::vector<ConvexPolyhedron>& bs,
+BatchResult signed_distance_many(const BatchBodies<ConvexPolyhedron>& as,
+                                 const BatchBodies<ConvexPolyhedron>& bs,
                                  const QueryOptions& options, const BatchSettings& settings,
                                  const BatchPoses& poses) {
-  return bodies_batch(Kind::signed_distance, as, bs, options, settings, poses);
+  return convex_batch(Kind::signed_distance, as, bs, options, settings, poses);
 }
 
 BatchResult distance_many(const VertexStack& as, const VertexStack& bs, const QueryOptions& options,
@@ -253,22 +334,22 @@ BatchResult signed_distance_many(const VertexStack& as, const VertexStack& bs,
   return stack_batch(Kind::signed_distance, as, bs, options, settings, poses);
 }
 
-BatchResult distance_many(const std::vector<CompoundBody>& as, const std::vector<CompoundBody>& bs,
+BatchResult distance_many(const BatchBodies<CompoundBody>& as, const BatchBodies<CompoundBody>& bs,
                           const QueryOptions& options, const BatchSettings& settings,
                           const BatchPoses& poses) {
-  return bodies_batch(Kind::distance, as, bs, options, settings, poses);
+  return compound_batch(Kind::distance, as, bs, options, settings, poses);
 }
 
-BatchResult collide_many(const std::vector<CompoundBody>& as, const std::vector<CompoundBody>& bs,
+BatchResult collide_many(const BatchBodies<CompoundBody>& as, const BatchBodies<CompoundBody>& bs,
                          const QueryOptions& options, const BatchSettings& settings,
                          const BatchPoses& poses) {
-  return bodies_batch(Kind::collide, as, bs, options, settings, poses);
+  return compound_batch(Kind::collide, as, bs, options, settings, poses);
 }
 
-BatchResult signed_distance_many(const std::vector<CompoundBody>& as,
-                                 const std::vector<CompoundBody>& bs, const QueryOptions& options,
+BatchResult signed_distance_many(const BatchBodies<CompoundBody>& as,
+                                 const BatchBodies<CompoundBody>& bs, const QueryOptions& options,
                                  const BatchSettings& settings, const BatchPoses& poses) {
-  return bodies_batch(Kind::signed_distance, as, bs, options, settings, poses);
+  return compound_batch(Kind::signed_distance, as, bs, options, settings, poses);
 }
 
 }  // namespace swarmcollide

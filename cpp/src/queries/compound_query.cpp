@@ -431,6 +431,16 @@ class CompoundSearch {
 
 }  // namespace
 
+namespace detail {
+
+CompoundResult answer_compound(const QueryOptions& options, Goal goal, bool escalate,
+                               const CompoundBody& a, const Pose& pose_a, const CompoundBody& b,
+                               const Pose& pose_b) {
+  return CompoundSearch(options, goal, escalate, a, pose_a, b, pose_b).run();
+}
+
+}  // namespace detail
+
 CompoundResult Query::distance(const CompoundBody& a, const CompoundBody& b) const {
   return distance(a, kIdentity, b, kIdentity);
 }
@@ -438,7 +448,7 @@ CompoundResult Query::distance(const CompoundBody& a, const CompoundBody& b) con
 CompoundResult Query::distance(const CompoundBody& a, const Pose& pose_a, const CompoundBody& b,
                                const Pose& pose_b) const {
   detail::require(options_.method, kDistance, "distance");
-  return CompoundSearch(options_, Goal::distance, false, a, pose_a, b, pose_b).run();
+  return detail::answer_compound(options_, Goal::distance, false, a, pose_a, b, pose_b);
 }
 
 CompoundResult Query::collision(const CompoundBody& a, const CompoundBody& b, bool escalate) const {
@@ -448,7 +458,7 @@ CompoundResult Query::collision(const CompoundBody& a, const CompoundBody& b, bo
 CompoundResult Query::collision(const CompoundBody& a, const Pose& pose_a, const CompoundBody& b,
                                 const Pose& pose_b, bool escalate) const {
   detail::require(options_.method, kCollide, "collide");
-  return CompoundSearch(options_, Goal::verdict, escalate, a, pose_a, b, pose_b).run();
+  return detail::answer_compound(options_, Goal::verdict, escalate, a, pose_a, b, pose_b);
 }
 
 bool Query::collide(const CompoundBody& a, const CompoundBody& b, bool escalate) const {
@@ -467,7 +477,7 @@ CompoundResult Query::signed_distance(const CompoundBody& a, const CompoundBody&
 CompoundResult Query::signed_distance(const CompoundBody& a, const Pose& pose_a,
                                       const CompoundBody& b, const Pose& pose_b) const {
   detail::require(options_.method, kSignedDistance, "signed_distance");
-  return CompoundSearch(options_, Goal::signed_distance, false, a, pose_a, b, pose_b).run();
+  return detail::answer_compound(options_, Goal::signed_distance, false, a, pose_a, b, pose_b);
 }
 
 }  // namespace swarmcollide

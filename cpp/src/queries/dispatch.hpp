@@ -3,6 +3,9 @@
 
 #include "../geometry/framed_body.hpp"
 #include "../solvers/answer.hpp"
+#include "swarmcollide/geometry/compound_body.hpp"
+#include "swarmcollide/queries/compound_result.hpp"
+#include "swarmcollide/queries/distance_result.hpp"
 #include "swarmcollide/queries/methods.hpp"
 #include "swarmcollide/queries/options.hpp"
 
@@ -17,5 +20,17 @@ Solver solver_for(Method method);
 /// Throws std::invalid_argument when `method` cannot answer `query` (which has `capability`),
 /// naming the methods that can.
 void require(Method method, Capability capability, const char* query);
+
+/// What Query answers between the convex bodies of `pair` (framed, so with their poses checked)
+/// for `goal`, with options already validated and the method's capability already required:
+/// the method's answer, and for a verdict that it leaves unproven, with `escalate`, the exact
+/// method's. Query's convex queries and the batches (which validate once per batch) share it.
+DistanceResult answer_pair(const QueryOptions& options, Goal goal, const FramedPair& pair,
+                           bool escalate);
+
+/// The same between compound bodies (compound_query.cpp); the poses are validated here.
+CompoundResult answer_compound(const QueryOptions& options, Goal goal, bool escalate,
+                               const CompoundBody& a, const Pose& pose_a, const CompoundBody& b,
+                               const Pose& pose_b);
 
 }  // namespace swarmcollide::detail

@@ -46,6 +46,25 @@ DistanceResult answer(const QueryOptions& options, detail::Goal goal,
 
 }  // namespace
 
+namespace detail {
+
+DistanceResult answer_pair(const QueryOptions& options, Goal goal, const FramedPair& pair,
+                           bool escalate) {
+  DistanceResult result = answer(options, goal, pair);
+  if (goal != Goal::verdict || result.certified || !escalate) return result;
+  // The exact method decides with its own iteration cap: a budget too small for the method
+  // asked for (max_iterations of 1, say) must not leave the verdict unproven again.
+  QueryOptions exact;
+  exact.method = Method::exact;
+  exact.tolerance = options.tolerance;
+  exact.exact.max_iterations = std::max(options.exact.max_iterations, exact.exact.max_iterations);
+  DistanceResult decided = answer(exact, goal, pair);
+  if (options.method != Method::exact) decided.escalated_from = options.method;
+  return decided;
+}
+
+}  // namespace detail
+
 Query::Query(QueryOptions options) : options_(std::move(options)) { options_.validate(); }
 
 DistanceResult Query::distance(const ConvexPolyhedron& a, const ConvexPolyhedron& b) const {
@@ -55,8 +74,8 @@ DistanceResult Query::distance(const ConvexPolyhedron& a, const ConvexPolyhedron
 DistanceResult Query::distance(const ConvexPolyhedron& a, const Pose& pose_a,
                                const ConvexPolyhedron& b, const Pose& pose_b) const {
   require(options_.method, kDistance, "distance");
-  return answer(options_, detail::Goal::distance,
-                detail::frame_pair(a, pose_a, b, pose_b, options_.tolerance));
+  return detail::answer_pair(options_, detail::Goal::distance,
+                             detail::frame_pair(a, pose_a, b, pose_b, options_.tolerance), false);
 }
 
 DistanceResult Query::collision(const ConvexPolyhedron& a, const ConvexPolyhedron& b,
@@ -68,19 +87,9 @@ DistanceResult Query::collision(const ConvexPolyhedron& a, const Pose& pose_a,
                                 const ConvexPolyhedron& b, const Pose& pose_b,
                                 bool escalate) const {
   require(options_.method, kCollide, "collide");
-  const detail::FramedPair pair = detail::frame_pair(a, pose_a, b, pose_b, options_.tolerance);
-  const detail::Goal goal = detail::Goal::verdict;
-  DistanceResult result = answer(options_, goal, pair);
-  if (result.certified || !escalate) return result;
-  // The exact method decides with its own iteration cap: a budget too small for the method
-  // asked for (max_iterations of 1, say) must not leave the verdict unproven again.
-  QueryOptions exact;
-  exact.method = Method::exact;
-  exact.tolerance = options_.tolerance;
-  exact.exact.max_iterations = std::max(options_.exact.max_iterations, exact.exact.max_iterations);
-  DistanceResult decided = answer(exact, goal, pair);
-  if (options_.method != Method::exact) decided.escalated_from = options_.method;
-  return decided;
+  return detail::answer_pair(options_, detail::Goal::verdict,
+                             detail::frame_pair(a, pose_a, b, pose_b, options_.tolerance),
+                             escalate);
 }
 
 bool Query::collide(const ConvexPolyhedron& a, const ConvexPolyhedron& b, bool escalate) const {
@@ -99,8 +108,8 @@ DistanceResult Query::signed_distance(const ConvexPolyhedron& a, const ConvexPol
 DistanceResult Query::signed_distance(const ConvexPolyhedron& a, const Pose& pose_a,
                                       const ConvexPolyhedron& b, const Pose& pose_b) const {
   require(options_.method, kSignedDistance, "signed_distance");
-  return answer(options_, detail::Goal::signed_distance,
-                detail::frame_pair(a, pose_a, b, pose_b, options_.tolerance));
+  return detail::answer_pair(options_, detail::Goal::signed_distance,
+                             detail::frame_pair(a, pose_a, b, pose_b, options_.tolerance), false);
 }
 
 DistanceResult distance(const ConvexPolyhedron& a, const ConvexPolyhedron& b,

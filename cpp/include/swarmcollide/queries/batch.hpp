@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "swarmcollide/geometry/compound_body.hpp"
@@ -47,6 +48,36 @@ struct BatchSettings {
   bool escalate = true;
 };
 
+/// The bodies on one side of a batch, read where they are (never copied): a body per row, or one
+/// body for every row ("A against B at these m poses" is one body on each side and m poses).
+template <typename Body>
+class BatchBodies {
+ public:
+  /// Row i's body is `bodies[i]`.
+  BatchBodies(const std::vector<Body>& bodies)  // NOLINT(google-explicit-constructor)
+      : single_(false) {
+    items_.reserve(bodies.size());
+    for (const Body& body : bodies) items_.push_back(&body);
+  }
+  /// Row i's body is `*bodies[i]` (bodies held elsewhere, as a binding's arguments are).
+  explicit BatchBodies(std::vector<const Body*> bodies)
+      : items_(std::move(bodies)), single_(false) {}
+  /// `body` in every row.
+  BatchBodies(const Body& body)  // NOLINT(google-explicit-constructor)
+      : items_{&body}, single_(true) {}
+
+  /// True when one body serves every row.
+  bool single() const { return single_; }
+  /// The number of bodies given (1 for a single body).
+  std::size_t size() const { return items_.size(); }
+  /// The body of row `row`.
+  const Body& operator[](std::size_t row) const { return *items_[single_ ? 0 : row]; }
+
+ private:
+  std::vector<const Body*> items_;
+  bool single_;
+};
+
 /// Where the bodies of a batch are: pair i's A at `a[i]` and B at `b[i]`; an empty list puts
 /// every body of its side at the identity.
 struct BatchPoses {
@@ -68,23 +99,27 @@ struct VertexStack {
   const char* name;
 };
 
-/// `Query(options).distance(as[i], poses.a[i], bs[i], poses.b[i])` for every i, spread over
-/// threads, with pair i seeded by `pair_seed(options.seed, first_index + i)`. Throws
-/// std::invalid_argument if the sequences (or non-empty pose lists) differ in length, a pose
-/// or a setting is invalid, and rethrows the error of the pair with the lowest index that
-/// failed, prefixed with "pair N: ".
-BatchResult distance_many(const std::vector<ConvexPolyhedron>& as,
-                          const std::vector<ConvexPolyhedron>& bs, const QueryOptions& options,
+/// `Query(options).distance(as[i], poses.a[i], bs[i], poses.b[i])` for every row i, spread
+/// over threads, with row i seeded by `pair_seed(options.seed, first_index + i)`. The options and
+/// every pose are validated once, before any row is answered. The rows are as many as the
+/// sequences of bodies (which must agree), or with a single body on both sides as the poses (one
+/// row without poses). Throws std::invalid_argument if the sequences (or non-empty pose lists)
+/// differ in length, a pose or a setting is invalid, and rethrows the error of the pair with the
+/// lowest index that failed, prefixed with "pair N: ".
+BatchResult distance_many(const BatchBodies<ConvexPolyhedron>& as,
+                          const BatchBodies<ConvexPolyhedron>& bs, const QueryOptions& options,
                           const BatchSettings& settings = {}, const BatchPoses& poses = {});
 /// `Query(options).collision(as[i], poses.a[i], bs[i], poses.b[i], settings.escalate)` for
-/// every i, like distance_many.
-BatchResult collide_many(const std::vector<ConvexPolyhedron>& as,
-                         const std::vector<ConvexPolyhedron>& bs, const QueryOptions& options,
+/// every row i, like distance_many, except that a row whose bodies' bounding balls (about their
+/// boxes' centres) prove them apart is settled by them, without a solver: its lower bound is the
+/// balls' separation and its distance that of the bodies' first points, its witnesses.
+BatchResult collide_many(const BatchBodies<ConvexPolyhedron>& as,
+                         const BatchBodies<ConvexPolyhedron>& bs, const QueryOptions& options,
                          const BatchSettings& settings = {}, const BatchPoses& poses = {});
-/// `Query(options).signed_distance(as[i], poses.a[i], bs[i], poses.b[i])` for every i, like
+/// `Query(options).signed_distance(as[i], poses.a[i], bs[i], poses.b[i])` for every row i, like
 /// distance_many.
-BatchResult signed_distance_many(const std::vector<ConvexPolyhedron>& as,
-                                 const std::vector<ConvexPolyhedron>& bs,
+BatchResult signed_distance_many(const BatchBodies<ConvexPolyhedron>& as,
+                                 const BatchBodies<ConvexPolyhedron>& bs,
                                  const QueryOptions& options, const BatchSettings& settings = {},
                                  const BatchPoses& poses = {});
 
@@ -101,15 +136,16 @@ BatchResult signed_distance_many(const VertexStack& as, const VertexStack& bs,
                                  const BatchPoses& poses = {});
 
 /// The same between compound bodies (CompoundResult's answers, with the parts that realise them
-/// in `part_a` and `part_b`).
-BatchResult distance_many(const std::vector<CompoundBody>& as, const std::vector<CompoundBody>& bs,
+/// in `part_a` and `part_b`); collide_many settles no row by balls beyond what the compound
+/// search's own bounding volumes do.
+BatchResult distance_many(const BatchBodies<CompoundBody>& as, const BatchBodies<CompoundBody>& bs,
                           const QueryOptions& options, const BatchSettings& settings = {},
                           const BatchPoses& poses = {});
-BatchResult collide_many(const std::vector<CompoundBody>& as, const std::vector<CompoundBody>& bs,
+BatchResult collide_many(const BatchBodies<CompoundBody>& as, const BatchBodies<CompoundBody>& bs,
                          const QueryOptions& options, const BatchSettings& settings = {},
                          const BatchPoses& poses = {});
-BatchResult signed_distance_many(const std::vector<CompoundBody>& as,
-                                 const std::vector<CompoundBody>& bs, const QueryOptions& options,
+BatchResult signed_distance_many(const BatchBodies<CompoundBody>& as,
+                                 const BatchBodies<CompoundBody>& bs, const QueryOptions& options,
                                  const BatchSettings& settings = {}, const BatchPoses& poses = {});
 
 }  // namespace swarmcollide
