@@ -24,6 +24,7 @@ from scipy.spatial import ConvexHull
 
 import record
 import swarmcollide as sc
+from peers import coal_convex, fcl_convex_object
 
 
 def sphere_pair(n: int, gap: float, rng: np.random.Generator):
@@ -43,22 +44,8 @@ def contenders(a: np.ndarray, b: np.ndarray) -> Dict[str, Callable[[], object]]:
     import coal
     import fcl
 
-    def fcl_object(points):
-        faces = ConvexHull(points).simplices
-        flat = np.hstack([np.full((len(faces), 1), 3), faces]).ravel()
-        return fcl.CollisionObject(fcl.Convex(points, len(faces), flat), fcl.Transform())
-
-    def coal_shape(points):
-        vertices = coal.StdVec_Vec3s()
-        for p in points:
-            vertices.append(np.asarray(p, dtype=float))
-        triangles = coal.StdVec_Triangle()
-        for i, j, k in ConvexHull(points).simplices:
-            triangles.append(coal.Triangle(int(i), int(j), int(k)))
-        return coal.Convex(vertices, triangles)
-
-    oa, ob = fcl_object(a), fcl_object(b)
-    ca, cb = coal_shape(a), coal_shape(b)
+    oa, ob = fcl_convex_object(a), fcl_convex_object(b)
+    ca, cb = coal_convex(a), coal_convex(b)
     identity = coal.Transform3s()
     # Requests and results made once and reused, as python-fcl's and coal's users write a loop.
     distance_request, collision_request = fcl.DistanceRequest(), fcl.CollisionRequest()

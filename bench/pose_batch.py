@@ -21,6 +21,7 @@ from scipy.spatial import ConvexHull
 from scipy.spatial.transform import Rotation
 
 import swarmcollide as sc
+from peers import coal_convex, fcl_convex_object
 
 SIZES = (8, 260)
 STATES = {"apart": 1.0, "overlapping": -0.2}  # gap between the unit spheres' surfaces
@@ -37,23 +38,9 @@ def contenders(a: np.ndarray, b: np.ndarray, rotations: np.ndarray,
     import coal
     import fcl
 
-    def fcl_object(points):
-        faces = ConvexHull(points).simplices
-        flat = np.hstack([np.full((len(faces), 1), 3), faces]).ravel()
-        return fcl.CollisionObject(fcl.Convex(points, len(faces), flat), fcl.Transform())
-
-    def coal_shape(points):
-        vertices = coal.StdVec_Vec3s()
-        for p in points:
-            vertices.append(np.asarray(p, dtype=float))
-        triangles = coal.StdVec_Triangle()
-        for i, j, k in ConvexHull(points).simplices:
-            triangles.append(coal.Triangle(int(i), int(j), int(k)))
-        return coal.Convex(vertices, triangles)
-
-    oa, ob = fcl_object(a), fcl_object(b)
+    oa, ob = fcl_convex_object(a), fcl_convex_object(b)
     fcl_poses = [fcl.Transform(r, t) for r, t in zip(rotations, translations)]
-    ca, cb = coal_shape(a), coal_shape(b)
+    ca, cb = coal_convex(a), coal_convex(b)
     identity = coal.Transform3s()
     coal_poses = [coal.Transform3s(r, t) for r, t in zip(rotations, translations)]
     collision_request, collision_result = fcl.CollisionRequest(), fcl.CollisionResult()
