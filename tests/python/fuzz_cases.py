@@ -432,7 +432,7 @@ def _shape(rng: np.random.Generator, case_id: str) -> Case:
         ("m mismatch", stack, other[:1], ERROR), ("(m,0,3)", stack[:, :0], other[:, :0], ERROR),
         ("(m,n,2)", stack[:, :, :2], other[:, :, :2], ERROR),
         ("(0,n,3)", stack[:0], other[:0], EITHER),
-        ("(n,3) as a batch", a, b, ERROR), ("mixed lists", [a, b], [b[:1], a], ANSWER),
+        ("(n,3) for every row", a, b, ANSWER), ("mixed lists", [a, b], [b[:1], a], ANSWER),
         ("nested lists and tuples", [a.tolist()], (b,), ANSWER),
     ]  # fmt: skip
     name, As, Bs, expect = cases[int(rng.integers(len(cases)))]

@@ -29,7 +29,7 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass
-from typing import Any, Dict, List, Tuple
+from typing import Any, Dict, List, Optional, Tuple
 
 import numpy as np
 
@@ -213,9 +213,20 @@ def _verdict_problems(colliding: Any, true: float, tolerance: Tolerance) -> List
     return [f"verdict colliding={bool(colliding)} for a true signed distance {true:.9g}"]
 
 
+def _rows(bodies: Any) -> Optional[List[Any]]:
+    """The bodies of a batch's side, one per row; None for one ``(n, 3)`` array, which the batch
+    uses for every row."""
+    if isinstance(bodies, np.ndarray) and bodies.ndim == 2:
+        return None
+    return list(bodies)
+
+
 def _judge_batch(case: Case, answer: Dict[str, Any]) -> tuple:
     """(problems, all certified) of a ``distance_many`` or ``collide_many`` answer."""
-    As, Bs = list(case.a), list(case.b)
+    As, Bs = _rows(case.a), _rows(case.b)
+    rows = len(As) if As is not None else len(Bs) if Bs is not None else 1
+    As = [case.a] * rows if As is None else As
+    Bs = [case.b] * rows if Bs is None else Bs
     if len(answer["distance"]) != len(As):
         return [f"{len(answer['distance'])} answers for {len(As)} pairs"], False
     problems: List[str] = []
