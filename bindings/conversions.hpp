@@ -54,11 +54,12 @@ class CompoundArgument {
 Pose to_pose(const py::handle& pose, const char* name);
 
 /// Poses for `count` bodies: None (none: every body at the identity), a `(count, 4, 4)` array of
-/// homogeneous rigid transforms (or `(count, 3, 4)`, without their last row), or a pair `(rotations (count, 3, 3), translations (count, 3))`;
-/// for one body also a single `(4, 4)` transform or `((3, 3), (3,))` pair. TypeError or
-/// ValueError naming `name` (and the offending `name[i]`) for another shape or a last row other
-/// than [0, 0, 0, 1]. Whether each pose is a rigid motion is left to the core (Scene, the
-/// batches), which names it alike and checks it once.
+/// homogeneous rigid transforms (or `(count, 3, 4)`, without their last row), or a pair
+/// `(rotations (count, 3, 3), translations (count, 3))`; for one body also a single `(4, 4)` or
+/// `(3, 4)` transform or `((3, 3), (3,))` pair. TypeError or ValueError naming `name` (and the
+/// offending `name[i]`) for another shape or a last row other than [0, 0, 0, 1]. Whether each
+/// pose is a rigid motion is left to the core (Scene, the batches), which names it alike and
+/// checks it once.
 std::vector<Pose> to_poses(const py::handle& poses, std::size_t count, const char* name);
 
 /// A 3-vector of real, finite numbers; TypeError (complex numbers, text, objects) or ValueError

@@ -122,15 +122,19 @@ const Pose& pose_of(const std::vector<Pose>& poses, std::size_t i) {
   return poses.empty() ? kIdentity : poses[i];
 }
 
+void check_same_length(std::size_t count_a, std::size_t count_b) {
+  if (count_a != count_b) {
+    throw std::invalid_argument("As and Bs must have the same length, got " +
+                                std::to_string(count_a) + " and " + std::to_string(count_b));
+  }
+}
+
 // The rows of a batch: the length of the sequences of bodies, or with a single body on both
 // sides that of the poses (one row without them).
 template <typename Body>
 std::size_t row_count(const BatchBodies<Body>& as, const BatchBodies<Body>& bs,
                       const BatchPoses& poses) {
-  if (!as.single() && !bs.single() && as.size() != bs.size()) {
-    throw std::invalid_argument("As and Bs must have the same length, got " +
-                                std::to_string(as.size()) + " and " + std::to_string(bs.size()));
-  }
+  if (!as.single() && !bs.single()) check_same_length(as.size(), bs.size());
   if (!as.single()) return as.size();
   if (!bs.single()) return bs.size();
   if (!poses.a.empty()) return poses.a.size();
@@ -281,10 +285,7 @@ ConvexPolyhedron body(const VertexStack& stack, std::size_t i, std::uint64_t fir
 BatchResult stack_batch(Kind kind, const VertexStack& as, const VertexStack& bs,
                         const QueryOptions& options, const BatchSettings& settings,
                         const BatchPoses& poses) {
-  if (as.count != bs.count) {
-    throw std::invalid_argument("As and Bs must have the same length, got " +
-                                std::to_string(as.count) + " and " + std::to_string(bs.count));
-  }
+  check_same_length(as.count, bs.count);
   return run_batch(kind, as.count, options, settings, poses, [&] {
     return [&](std::size_t i, const QueryOptions& pair_options) {
       const ConvexPolyhedron a = body(as, i, settings.first_index);
