@@ -54,8 +54,8 @@ struct DistanceResult {
   bool colliding = false;
   /// True when the answer is proven: the bounds (with their rounding) prove the verdict, and for
   /// distances and signed distances they also enclose the value to within the tolerance (a
-  /// distance proven within the tolerance of zero by contact counts as enclosed). A verdict is proven
-  /// by a separating direction (`lower_bound > tolerance`), by witness points within the
+  /// distance proven within the tolerance of zero by contact counts as enclosed). A verdict is
+  /// proven by a separating direction (`lower_bound > tolerance`), by witness points within the
   /// tolerance, or by a simplex of the bodies' difference that encloses the origin.
   bool certified = false;
   /// The method that produced the answer.
