@@ -1,14 +1,18 @@
 """Per-call cost of one query from Python on prebuilt bodies: swarmcollide beside python-fcl and
-coal, in one process, the contenders interleaved round by round (issue 13's fast path).
+coal, in one process, the contenders interleaved round by round (issues 13 and 24).
 
-Bodies are the hull vertices of points on the unit sphere (8 and 64 points), built once; pairs
-are apart (distance 1) or overlapping by a tenth of their size. python-fcl and coal reuse their
-request and result objects, as their users write a loop (until issue 24 a new result per call
-added its construction to their time, which flattered swarmcollide's ratios). Each contender
-answers the same pairs in turn, round after round; a contender's time is the median over rounds of its mean time
-per call, and the ratios are taken against python-fcl's distance and collide and coal's signed
-distance from the same run. ``--json`` writes one row per contender and size (bench/record.py's
-format).
+Bodies are the hull vertices of points on the unit sphere (8 and 64 points), built once. Each
+pair is placed, by bisection on the exact signed distance along a random axis, at distance 1
+("apart") or overlapping by 0.1 ("overlapping"); before any timing every contender's answer on
+every pair is checked against swarmcollide's exact method, so that no contender is timed on a
+wrong or mislabelled answer. The peers get their best correct usage: python-fcl reuses its
+request and result objects (its call returns the answer; the result object only accumulates) and
+coal both its free functions with reused requests and results and its ``ComputeDistance`` and
+``ComputeCollision`` functors, which keep their solver between calls. Each contender answers the
+same pairs in turn, round after round; a contender's time is the median over rounds of its mean
+time per call, and each ratio is against the faster python-fcl and the faster coal contender for
+the same query from the same run. ``--json`` writes one row per contender and size
+(bench/record.py's format).
 """
 
 from __future__ import annotations
@@ -17,7 +21,7 @@ import argparse
 import statistics
 import time
 from pathlib import Path
-from typing import Callable, Dict, List, Optional
+from typing import Callable, Dict, List, Optional, Tuple
 
 import numpy as np
 from scipy.spatial import ConvexHull
@@ -26,21 +30,38 @@ import record
 import swarmcollide as sc
 from peers import coal_convex, fcl_convex_object
 
+STATES = {"apart": 1.0, "overlapping": -0.1}
+"""The exact signed distance of the pairs in each state."""
 
-def sphere_pair(n: int, gap: float, rng: np.random.Generator):
-    """Two hulls of n points on unit spheres whose centres are 2 + gap apart along a random axis."""
+
+def sphere_pair(n: int, signed_distance: float, rng: np.random.Generator):
+    """Two hulls of n points on unit spheres, the second moved along a random axis until the
+    pair's exact signed distance is ``signed_distance`` (to 1e-12)."""
 
     def hull_points():
         p = rng.normal(size=(n, 3))
         p /= np.linalg.norm(p, axis=1, keepdims=True)
         return p[ConvexHull(p).vertices]
 
+    a, b = hull_points(), hull_points()
     axis = rng.normal(size=3)
     axis /= np.linalg.norm(axis)
-    return hull_points(), hull_points() + (2 + gap) * axis
+    # Coincident centres overlap; 4 + the distance apart along the axis is farther than needed.
+    near, far = 0.0, 4.0 + max(signed_distance, 0.0)
+    while far - near > 1e-12:
+        middle = (near + far) / 2
+        if sc.signed_distance(a, b + middle * axis, method="exact").distance < signed_distance:
+            near = middle
+        else:
+            far = middle
+    return a, b + far * axis
 
 
-def contenders(a: np.ndarray, b: np.ndarray) -> Dict[str, Callable[[], object]]:
+# A contender: the query it answers ("distance", "signed" or "collide") and the call.
+Contender = Tuple[str, Callable[[], object]]
+
+
+def contenders(a: np.ndarray, b: np.ndarray) -> Dict[str, Contender]:
     import coal
     import fcl
 
@@ -50,60 +71,94 @@ def contenders(a: np.ndarray, b: np.ndarray) -> Dict[str, Callable[[], object]]:
     # Requests and results made once and reused, as python-fcl's and coal's users write a loop.
     distance_request, collision_request = fcl.DistanceRequest(), fcl.CollisionRequest()
     distance_result, collision_result = fcl.DistanceResult(), fcl.CollisionResult()
-    coal_request, coal_result = coal.DistanceRequest(), coal.DistanceResult()
+    coal_distance_request, coal_distance_result = coal.DistanceRequest(), coal.DistanceResult()
+    coal_collision_request, coal_collision_result = coal.CollisionRequest(), coal.CollisionResult()
+    coal_distance, coal_collision = coal.ComputeDistance(ca, cb), coal.ComputeCollision(ca, cb)
     A, B = sc.ConvexPolyhedron(a), sc.ConvexPolyhedron(b)
     dual, via_fcl = sc.Query("dual"), sc.Query("fcl")
     return {
-        "python-fcl distance": lambda: fcl.distance(oa, ob, distance_request, distance_result),
-        "python-fcl collide": lambda: fcl.collide(oa, ob, collision_request, collision_result),
-        "coal distance": lambda: coal.distance(ca, identity, cb, identity, coal_request,
-                                               coal_result),
-        "sc.distance fcl": lambda: sc.distance(A, B, method="fcl"),
-        "sc.distance dual": lambda: sc.distance(A, B),
-        "Query.distance fcl": lambda: via_fcl.distance(A, B),
-        "Query.distance dual": lambda: dual.distance(A, B),
-        "sc.collide fcl": lambda: sc.collide(A, B, method="fcl"),
-        "sc.collide dual": lambda: sc.collide(A, B),
-        "sc.signed_distance dual": lambda: sc.signed_distance(A, B),
-        "sc.signed_distance exact": lambda: sc.signed_distance(A, B, method="exact"),
+        "python-fcl distance": ("distance", lambda: fcl.distance(
+            oa, ob, distance_request, distance_result)),
+        "python-fcl collide": ("collide", lambda: fcl.collide(
+            oa, ob, collision_request, collision_result) > 0),
+        "coal distance": ("signed", lambda: coal.distance(
+            ca, identity, cb, identity, coal_distance_request, coal_distance_result)),
+        "coal ComputeDistance": ("signed", lambda: coal_distance(
+            identity, identity, coal_distance_request, coal_distance_result)),
+        "coal collide": ("collide", lambda: coal.collide(
+            ca, identity, cb, identity, coal_collision_request, coal_collision_result)),
+        "coal ComputeCollision": ("collide", lambda: coal_collision(
+            identity, identity, coal_collision_request, coal_collision_result)),
+        "sc.distance fcl": ("distance", lambda: sc.distance(A, B, method="fcl")),
+        "sc.distance dual": ("distance", lambda: sc.distance(A, B)),
+        "Query.distance fcl": ("distance", lambda: via_fcl.distance(A, B)),
+        "Query.distance dual": ("distance", lambda: dual.distance(A, B)),
+        "sc.collide fcl": ("collide", lambda: sc.collide(A, B, method="fcl")),
+        "sc.collide dual": ("collide", lambda: sc.collide(A, B)),
+        "Query.collide dual": ("collide", lambda: dual.collide(A, B)),
+        "sc.signed_distance dual": ("signed", lambda: sc.signed_distance(A, B)),
+        "sc.signed_distance exact": ("signed", lambda: sc.signed_distance(A, B, method="exact")),
+        "Query.signed_distance dual": ("signed", lambda: dual.signed_distance(A, B)),
     }
 
 
-REFERENCE = {"distance": "python-fcl distance", "collide": "python-fcl collide",
-             "signed": "coal distance"}
+def value_of(answer: object) -> float:
+    """A contender's answer as a number: a result's distance, a verdict as 0 or 1."""
+    if isinstance(answer, sc.DistanceResult):
+        return answer.distance
+    return float(answer)
 
 
-def reference_of(name: str) -> str:
-    if "collide" in name:
-        return REFERENCE["collide"]
-    if "signed" in name or name.startswith("coal"):
-        return REFERENCE["signed"]
-    return REFERENCE["distance"]
+def check(cases: List[Dict[str, Contender]], pairs: List[tuple], state: str) -> None:
+    """Every contender's answer on every pair agrees with the exact method's: distances within
+    1e-6 (0 for overlapping pairs, whose python-fcl distance is negative: no distance), signed
+    distances within 1e-6, verdicts equal."""
+    for case, (a, b) in zip(cases, pairs):
+        exact = sc.signed_distance(a, b, method="exact").distance
+        expected = {"distance": max(exact, 0.0), "signed": exact, "collide": float(exact <= 0)}
+        for name, (query, call) in case.items():
+            got = value_of(call())
+            if name.startswith("python-fcl distance") and state == "overlapping":
+                assert got < 0, f"{name} on an overlapping pair gave {got}"
+                continue
+            assert abs(got - expected[query]) <= 1e-6, f"{name}: {got} against {expected[query]}"
 
 
 def run(sizes: List[int], pairs: int, rounds: int, calls: int) -> List[dict]:
     rng = np.random.default_rng(13)
     records = []
     for n in sizes:
-        for state, gap in (("apart", 1.0), ("overlapping", -0.1)):
-            cases = [contenders(*sphere_pair(n, gap, rng)) for _ in range(pairs)]
+        for state, signed in STATES.items():
+            placed = [sphere_pair(n, signed, rng) for _ in range(pairs)]
+            cases = [contenders(a, b) for a, b in placed]
+            check(cases, placed, state)
             times: Dict[str, List[float]] = {name: [] for name in cases[0]}
             for _ in range(rounds):
                 for name in times:
                     start = time.perf_counter()
                     for case in cases:
-                        query = case[name]
+                        query = case[name][1]
                         for _ in range(calls):
                             query()
                     times[name].append((time.perf_counter() - start) / (pairs * calls))
             medians = {name: statistics.median(values) for name, values in times.items()}
+            kinds = {name: query for name, (query, _) in cases[0].items()}
+
+            def fastest(peer: str, query: str) -> Optional[str]:
+                # coal's distance is signed: it answers the distance queries too.
+                wanted = "signed" if peer == "coal" and query == "distance" else query
+                named = [name for name in medians if name.startswith(peer) and
+                         kinds[name] == wanted]
+                return min(named, key=medians.get) if named else None
+
             for name, seconds in medians.items():
-                records.append({
-                    "vertices": n, "pairs": state, "contender": name,
-                    "microseconds": seconds * 1e6,
-                    "ratio": seconds / medians[reference_of(name)],
-                    "against": reference_of(name),
-                })
+                row = {"vertices": n, "pairs": state, "contender": name,
+                       "microseconds": seconds * 1e6}
+                for peer in ("python-fcl", "coal"):
+                    against = fastest(peer, kinds[name])
+                    row[f"against_{peer}"] = against
+                    row[f"ratio_{peer}"] = seconds / medians[against] if against else None
+                records.append(row)
     return records
 
 
@@ -115,8 +170,11 @@ def main(argv: Optional[List[str]] = None) -> int:
     rounds, calls = (5, 50) if arguments.quick else (15, 200)
     records = run([8, 64], pairs=10, rounds=rounds, calls=calls)
     for r in records:
-        print(f"{r['vertices']:>3} {r['pairs']:<12} {r['contender']:<26} "
-              f"{r['microseconds']:8.2f} us  {r['ratio']:5.2f}x {r['against']}")
+        ratios = "  ".join(
+            f"{r['ratio_' + peer]:5.2f}x {r['against_' + peer]:<22}" if r["ratio_" + peer]
+            else f"{'-':>6} {'':<22}" for peer in ("python-fcl", "coal"))
+        print(f"{r['vertices']:>3} {r['pairs']:<12} {r['contender']:<27} "
+              f"{r['microseconds']:8.3f} us  {ratios}")
     if arguments.json:
         record.write(arguments.json, "per_call", records, quick=arguments.quick, rounds=rounds,
                      calls=calls)
