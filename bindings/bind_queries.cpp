@@ -335,7 +335,8 @@ py::object make_query_function(const py::function& python_path,
     kind = PairQuery::collide;
     entry = &query_function<PairQuery::collide>;
   } else {
-    throw py::value_error("python_path must be distance, signed_distance, collision or collide, got " + name);
+    throw py::value_error(
+        "python_path must be distance, signed_distance, collision or collide, got " + name);
   }
   PyObject*& held = python_paths[static_cast<int>(kind)];
   Py_XDECREF(held);
