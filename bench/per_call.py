@@ -4,11 +4,12 @@ coal, in one process, the contenders interleaved round by round (issues 13 and 2
 Bodies are the hull vertices of points on the unit sphere (8 and 64 points), built once. Each
 pair is placed, by bisection on the exact signed distance along a random axis, at distance 1
 ("apart") or overlapping by 0.1 ("overlapping"); before any timing every contender's answer on
-every pair is checked against swarmcollide's exact method, so that no contender is timed on a
-wrong or mislabelled answer. The peers get their best correct usage: python-fcl reuses its
-request and result objects (its call returns the answer; the result object only accumulates) and
-coal both its free functions with reused requests and results and its ``ComputeDistance`` and
-``ComputeCollision`` functors, which keep their solver between calls. Each contender answers the
+every pair is checked against swarmcollide's exact method (the overlapping pairs first, with the
+peers' request and result objects shared by all pairs), so that no contender is timed on a wrong,
+stale or mislabelled answer. The peers get their best correct usage (``Reused``): requests and
+results made once and reused, coal's results cleared before each call, and besides coal's free
+functions its ``ComputeDistance`` and ``ComputeCollision`` functors, which keep their solver
+between calls. Each contender answers the
 same pairs in turn, round after round; a contender's time is the median over rounds of its mean
 time per call, and each ratio is against the faster python-fcl and the faster coal contender for
 the same query from the same run. ``--json`` writes one row per contender and size
@@ -61,34 +62,70 @@ def sphere_pair(n: int, signed_distance: float, rng: np.random.Generator):
 Contender = Tuple[str, Callable[[], object]]
 
 
-def contenders(a: np.ndarray, b: np.ndarray) -> Dict[str, Contender]:
+class Reused:
+    """The peers' request and result objects, made once for a whole run and reused by every call
+    on every pair, as a loop over poses or pairs reuses them. coal's results keep their contact
+    or distance from one call to the next (a reused result answers an apart pair after an
+    overlapping one with the overlap), so each coal call clears its result first; python-fcl's
+    calls return their answers, and its collision result, which appends a contact for every
+    colliding call, is emptied after one so that it does not grow."""
+
+    def __init__(self):
+        import coal
+        import fcl
+
+        self.fcl_distance = fcl.DistanceRequest(), fcl.DistanceResult()
+        self.fcl_collision = fcl.CollisionRequest(), fcl.CollisionResult()
+        self.coal_distance = coal.DistanceRequest(), coal.DistanceResult()
+        self.coal_collision = coal.CollisionRequest(), coal.CollisionResult()
+        self.identity = coal.Transform3s()
+
+
+def contenders(a: np.ndarray, b: np.ndarray, reused: Reused) -> Dict[str, Contender]:
     import coal
     import fcl
 
     oa, ob = fcl_convex_object(a), fcl_convex_object(b)
     ca, cb = coal_convex(a), coal_convex(b)
-    identity = coal.Transform3s()
-    # Requests and results made once and reused, as python-fcl's and coal's users write a loop.
-    distance_request, collision_request = fcl.DistanceRequest(), fcl.CollisionRequest()
-    distance_result, collision_result = fcl.DistanceResult(), fcl.CollisionResult()
-    coal_distance_request, coal_distance_result = coal.DistanceRequest(), coal.DistanceResult()
-    coal_collision_request, coal_collision_result = coal.CollisionRequest(), coal.CollisionResult()
+    identity = reused.identity
     coal_distance, coal_collision = coal.ComputeDistance(ca, cb), coal.ComputeCollision(ca, cb)
     A, B = sc.ConvexPolyhedron(a), sc.ConvexPolyhedron(b)
     dual, via_fcl = sc.Query("dual"), sc.Query("fcl")
+
+    def fcl_collide() -> bool:
+        request, result = reused.fcl_collision
+        contacts = fcl.collide(oa, ob, request, result)
+        if contacts:
+            result.contacts.clear()
+        return contacts > 0
+
+    def coal_collide() -> bool:
+        request, result = reused.coal_collision
+        result.clear()
+        return coal.collide(ca, identity, cb, identity, request, result)
+
+    def coal_functor_collide() -> bool:
+        request, result = reused.coal_collision
+        result.clear()
+        return coal_collision(identity, identity, request, result)
+
+    def coal_signed() -> float:
+        request, result = reused.coal_distance
+        result.clear()
+        return coal.distance(ca, identity, cb, identity, request, result)
+
+    def coal_functor_signed() -> float:
+        request, result = reused.coal_distance
+        result.clear()
+        return coal_distance(identity, identity, request, result)
+
     return {
-        "python-fcl distance": ("distance", lambda: fcl.distance(
-            oa, ob, distance_request, distance_result)),
-        "python-fcl collide": ("collide", lambda: fcl.collide(
-            oa, ob, collision_request, collision_result) > 0),
-        "coal distance": ("signed", lambda: coal.distance(
-            ca, identity, cb, identity, coal_distance_request, coal_distance_result)),
-        "coal ComputeDistance": ("signed", lambda: coal_distance(
-            identity, identity, coal_distance_request, coal_distance_result)),
-        "coal collide": ("collide", lambda: coal.collide(
-            ca, identity, cb, identity, coal_collision_request, coal_collision_result)),
-        "coal ComputeCollision": ("collide", lambda: coal_collision(
-            identity, identity, coal_collision_request, coal_collision_result)),
+        "python-fcl distance": ("distance", lambda: fcl.distance(oa, ob, *reused.fcl_distance)),
+        "python-fcl collide": ("collide", fcl_collide),
+        "coal distance": ("signed", coal_signed),
+        "coal ComputeDistance": ("signed", coal_functor_signed),
+        "coal collide": ("collide", coal_collide),
+        "coal ComputeCollision": ("collide", coal_functor_collide),
         "sc.distance fcl": ("distance", lambda: sc.distance(A, B, method="fcl")),
         "sc.distance dual": ("distance", lambda: sc.distance(A, B)),
         "Query.distance fcl": ("distance", lambda: via_fcl.distance(A, B)),
@@ -109,29 +146,35 @@ def value_of(answer: object) -> float:
     return float(answer)
 
 
-def check(cases: List[Dict[str, Contender]], pairs: List[tuple], state: str) -> None:
-    """Every contender's answer on every pair agrees with the exact method's: distances within
-    1e-6 (0 for overlapping pairs, whose python-fcl distance is negative: no distance), signed
-    distances within 1e-6, verdicts equal."""
-    for case, (a, b) in zip(cases, pairs):
-        exact = sc.signed_distance(a, b, method="exact").distance
-        expected = {"distance": max(exact, 0.0), "signed": exact, "collide": float(exact <= 0)}
-        for name, (query, call) in case.items():
-            got = value_of(call())
-            if name.startswith("python-fcl distance") and state == "overlapping":
+def check(cases: List[Dict[str, Contender]], pairs: List[tuple]) -> None:
+    """Each contender in turn answers every pair as the exact method does: distances within 1e-6
+    (python-fcl's distance is negative for overlapping pairs, where it measures none), signed
+    distances within 1e-6, verdicts equal. A contender answers all the pairs in a row, so a
+    result object that keeps an answer from one pair to the next is caught."""
+    exact = [sc.signed_distance(a, b, method="exact").distance for a, b in pairs]
+    for name, (query, _) in cases[0].items():
+        for case, signed in zip(cases, exact):
+            got = value_of(case[name][1]())
+            if name.startswith("python-fcl distance") and signed < 0:
                 assert got < 0, f"{name} on an overlapping pair gave {got}"
                 continue
-            assert abs(got - expected[query]) <= 1e-6, f"{name}: {got} against {expected[query]}"
+            expected = {"distance": max(signed, 0.0), "signed": signed,
+                        "collide": float(signed <= 0)}[query]
+            assert abs(got - expected) <= 1e-6, f"{name}: {got} against {expected}"
 
 
 def run(sizes: List[int], pairs: int, rounds: int, calls: int) -> List[dict]:
     rng = np.random.default_rng(13)
+    reused = Reused()
     records = []
     for n in sizes:
-        for state, signed in STATES.items():
-            placed = [sphere_pair(n, signed, rng) for _ in range(pairs)]
-            cases = [contenders(a, b) for a, b in placed]
-            check(cases, placed, state)
+        placed = {state: [sphere_pair(n, signed, rng) for _ in range(pairs)]
+                  for state, signed in STATES.items()}
+        every = {state: [contenders(a, b, reused) for a, b in placed[state]] for state in STATES}
+        # Overlapping pairs first: a result that kept an answer would give it for the apart ones.
+        check(every["overlapping"] + every["apart"], placed["overlapping"] + placed["apart"])
+        for state in STATES:
+            cases = every[state]
             times: Dict[str, List[float]] = {name: [] for name in cases[0]}
             for _ in range(rounds):
                 for name in times:

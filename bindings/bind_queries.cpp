@@ -8,6 +8,7 @@
 #include <sstream>
 #include <string>
 #include <tuple>
+#include <vector>
 
 #include "conversions.hpp"
 #include "queries.hpp"
@@ -121,10 +122,12 @@ using AnyResult = py::typing::Union<DistanceResult, CompoundResult>;
 // The pair queries of Query and of the module's functions (swarmcollide.queries).
 enum class PairQuery { distance, signed_distance, collision, collide };
 
-// Above this many points in a pair, an exact method's query releases the GIL while it runs.
-// Releasing and taking it back costs 0.1-0.2 us, a fifth of a query between small bodies, which
-// no other thread could use meanwhile; between larger bodies the queries take microseconds.
-constexpr int kReleaseAbovePoints = 32;
+// Above this many given points in a pair, an exact method's query releases the GIL while it
+// runs. Below, a query takes microseconds (a first one on a body also finds its hull, in
+// milliseconds only for bodies of thousands of points): releasing the GIL and taking it back
+// (0.1-0.2 us, a quarter of a query between 64-vertex hulls) would cost more than another thread
+// could gain in that time. python-fcl and coal never release it.
+constexpr int kReleaseAbovePoints = 1024;
 
 // Whether a query of `options` between bodies of `points` given points in all releases the GIL:
 // the swarms (the methods not always certified) run hundreds of iterations whatever the size.
@@ -255,6 +258,26 @@ bool read_keywords(PairQuery kind, PyObject* const* values, PyObject* names, Que
   return true;
 }
 
+// The method a str names, or none (Python then says which names are valid). The names of the
+// method table are interned, as are names written in calls, so identities usually decide.
+std::optional<Method> method_named(PyObject* name) {
+  static const std::vector<PyObject*> interned = [] {
+    std::vector<PyObject*> names;
+    for (const MethodInfo& info : method_table()) {
+      names.push_back(PyUnicode_InternFromString(info.name));
+    }
+    return names;
+  }();
+  const std::vector<MethodInfo>& table = method_table();
+  for (std::size_t i = 0; i < table.size(); ++i) {
+    if (name == interned[i]) return table[i].method;
+  }
+  for (std::size_t i = 0; i < table.size(); ++i) {
+    if (PyUnicode_CompareWithASCIIString(name, table[i].name) == 0) return table[i].method;
+  }
+  return std::nullopt;
+}
+
 // The Query of a call's method, tolerance and seed, built on first use with Query(...)'s checks
 // (as Python's query() builds it) and kept; none when they are not a str, a float and an int,
 // which the Python path tells apart by type (True is not 1) or rejects. Called with the GIL held,
@@ -264,7 +287,7 @@ std::optional<Query> query_for(const QueryCall& call) {
   static PyObject* const default_method = PyUnicode_InternFromString("dual");
   static PyObject* const default_tolerance = PyFloat_FromDouble(kDefaultTolerance);
   static PyObject* const default_seed = PyLong_FromLong(0);
-  static std::map<std::tuple<std::string, double, unsigned long long>, Query> cache;
+  static std::map<std::tuple<Method, double, unsigned long long>, Query> cache;
   constexpr std::size_t kCacheSize = 256;  // as Python's query() cache
   PyObject* const method = call.method ? call.method : default_method;
   PyObject* const tolerance = call.tolerance ? call.tolerance : default_tolerance;
@@ -274,20 +297,18 @@ std::optional<Query> query_for(const QueryCall& call) {
       std::isnan(PyFloat_AS_DOUBLE(tolerance)) || !PyLong_CheckExact(seed)) {
     return std::nullopt;
   }
-  Py_ssize_t length = 0;
-  const char* const name = PyUnicode_AsUTF8AndSize(method, &length);
+  const std::optional<Method> named = method_named(method);
   const unsigned long long seed_value = PyLong_AsUnsignedLongLong(seed);
-  if (name == nullptr || PyErr_Occurred()) {
-    PyErr_Clear();  // a negative or huge seed, or a name with lone surrogates: Python says so
+  if (!named || PyErr_Occurred()) {
+    PyErr_Clear();  // a negative or huge seed: Python says so
     return std::nullopt;
   }
-  auto key = std::make_tuple(std::string(name, static_cast<std::size_t>(length)),
-                             PyFloat_AS_DOUBLE(tolerance), seed_value);
+  const auto key = std::make_tuple(*named, PyFloat_AS_DOUBLE(tolerance), seed_value);
   const auto found = cache.find(key);
   if (found != cache.end()) return found->second;
   Query built(make_options(method, tolerance, seed, py::kwargs()));
   if (cache.size() >= kCacheSize) cache.clear();
-  cache.emplace(std::move(key), built);
+  cache.emplace(key, built);
   return built;
 }
 
