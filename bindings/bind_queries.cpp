@@ -2,6 +2,7 @@
 #include <pybind11/stl.h>
 #include <pybind11/typing.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <optional>
@@ -376,6 +377,93 @@ py::object make_query_function(const py::function& python_path,
   return py::reinterpret_steal<py::object>(function);
 }
 
+// Query's pybind11 methods, by PairQuery: the C++ methods below (query_method) hand them every
+// call they do not answer themselves, so that such calls behave and fail as they always have.
+PyObject* bound_methods[4] = {};
+
+// The Query `self` when its type is exactly Query, read as exact_polyhedron reads a body.
+const Query* exact_query(PyObject* self) {
+  static PyTypeObject* const type = reinterpret_cast<PyTypeObject*>(py::type::of<Query>().ptr());
+  static py::detail::type_info* const record = py::detail::get_type_info(typeid(Query));
+  if (Py_TYPE(self) != type) return nullptr;
+  auto* instance = reinterpret_cast<py::detail::instance*>(self);
+  return static_cast<const Query*>(instance->get_value_and_holder(record, false).value_ptr());
+}
+
+// Reads the arguments of a call to Query's method `kind` after `a` and `b`: `pose_a`, `pose_b`
+// and, for the verdicts, `escalate`, by position or keyword; false for anything else (a keyword
+// given twice, `escalate` that is not a bool), which pybind11's method then refuses or converts.
+bool read_method_arguments(PairQuery kind, PyObject* const* arguments, Py_ssize_t count,
+                           PyObject* names, QueryCall& call) {
+  static const KeywordNames keyword;
+  const bool verdict = kind == PairQuery::collision || kind == PairQuery::collide;
+  if (count < 2 || count > (verdict ? 5 : 4)) return false;
+  if (count > 2) call.pose_a = arguments[2];
+  if (count > 3) call.pose_b = arguments[3];
+  if (count > 4) {
+    if (!PyBool_Check(arguments[4])) return false;
+    call.escalate = arguments[4] == Py_True;
+  }
+  const Py_ssize_t keywords = names ? PyTuple_GET_SIZE(names) : 0;
+  for (Py_ssize_t i = 0; i < keywords; ++i) {
+    PyObject* const name = PyTuple_GET_ITEM(names, i);
+    PyObject* const value = arguments[count + i];
+    if (name == keyword.pose_a && count <= 2) {
+      call.pose_a = value;
+    } else if (name == keyword.pose_b && count <= 3) {
+      call.pose_b = value;
+    } else if (name == keyword.escalate && verdict && count <= 4 && PyBool_Check(value)) {
+      call.escalate = value == Py_True;
+    } else {
+      return false;
+    }
+  }
+  return true;
+}
+
+// Query's method `kind` in C++: pybind11's dispatch costs about a tenth of a microsecond, a
+// quarter of a query between small bodies. Calls it does not read, and calls that raise, go to
+// the pybind11 method.
+template <PairQuery kind>
+PyObject* query_method(PyObject* self, PyObject* const* arguments, Py_ssize_t count,
+                       PyObject* names) {
+  QueryCall call;
+  const Query* query = exact_query(self);
+  if (query != nullptr && read_method_arguments(kind, arguments, count, names, call)) {
+    try {
+      return answer(*query, kind, arguments[0], arguments[1], call.pose_a, call.pose_b,
+                    call.escalate)
+          .release()
+          .ptr();
+    } catch (...) {
+      // The pybind11 method raises it again, with the message it has always given.
+    }
+  }
+  const Py_ssize_t keywords = names ? PyTuple_GET_SIZE(names) : 0;
+  std::vector<PyObject*> with_self(static_cast<std::size_t>(count + keywords + 1));
+  with_self[0] = self;
+  std::copy(arguments, arguments + count + keywords, with_self.begin() + 1);
+  return PyObject_Vectorcall(bound_methods[static_cast<int>(kind)], with_self.data(),
+                             static_cast<std::size_t>(count + 1), names);
+}
+
+// Replaces Query's pybind11 method `name` by query_method<kind>, with its documentation (whose
+// first line is pybind11's typed signature, which the stubs read).
+template <PairQuery kind>
+void answer_in_cpp(py::class_<Query>& query_class, const char* name) {
+  const py::object bound = query_class.attr(name);
+  bound_methods[static_cast<int>(kind)] = bound.inc_ref().ptr();
+  // Kept for the life of the module, as the class keeps its methods.
+  const auto* const documentation = new std::string(py::str(bound.attr("__doc__")));
+  auto* const definition = new PyMethodDef{
+      name, reinterpret_cast<PyCFunction>(reinterpret_cast<void (*)()>(&query_method<kind>)),
+      METH_FASTCALL | METH_KEYWORDS, documentation->c_str()};
+  PyObject* const method =
+      PyDescr_NewMethod(reinterpret_cast<PyTypeObject*>(query_class.ptr()), definition);
+  if (method == nullptr) throw py::error_already_set();
+  py::setattr(query_class, name, py::reinterpret_steal<py::object>(method));
+}
+
 }  // namespace
 
 // Types are checked here, values by the method table (which names the valid range).
@@ -558,6 +646,10 @@ both bodies): it is the precision of every answer and the distance below which b
         }
         return text + ")";
       });
+  answer_in_cpp<PairQuery::distance>(query, "distance");
+  answer_in_cpp<PairQuery::signed_distance>(query, "signed_distance");
+  answer_in_cpp<PairQuery::collision>(query, "collision");
+  answer_in_cpp<PairQuery::collide>(query, "collide");
   return query;
 }
 

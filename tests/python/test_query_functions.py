@@ -197,3 +197,49 @@ def test_the_usual_calls_stay_in_cpp_and_the_others_go_to_python():
     assert python_calls(lambda: sc.distance(a, b, tolerance=0)) == 1  # an int: Python keys it
     assert python_calls(lambda: sc.collide(a, b, escalate=1)) == 1
     assert python_calls(lambda: sc.distance(a, b=b)) == 1
+
+
+class Subquery(sc.Query):
+    """A Query subclass: its calls take pybind11's methods."""
+
+
+@pytest.mark.parametrize("name", NAMES)
+@pytest.mark.parametrize("method", ["dual", "exact", "ipso"])
+def test_query_methods_read_in_cpp_answer_as_pybind11s(name, method):
+    q, sub = sc.Query(method), Subquery(method)
+    a, b = sc.ConvexPolyhedron(CUBE), sc.ConvexPolyhedron(TETRA + [1.5, 0, 0])
+    pose = moved(0.25, 0, 0)
+    verdict = name in VERDICTS
+    usual = outcome(getattr(q, name), a, b)
+    assert usual[0] == "answer" or (name == "signed_distance" and method == "ipso")
+    forms = [
+        ((a, b), {}),
+        ((a, b, None, pose), {}),
+        ((a, b), {"pose_b": pose}),
+        ((a,), {"b": b}),  # pybind11's dispatch reads this one
+        ((), {"a": a, "b": b, "pose_a": pose}),
+    ]
+    if verdict:
+        forms += [((a, b, None, None, False), {}), ((a, b), {"escalate": False}),
+                  ((a, b), {"escalate": 0})]
+    for arguments, keywords in forms:
+        got = outcome(getattr(q, name), *arguments, **keywords)
+        via_pybind11 = outcome(getattr(sub, name), *arguments, **keywords)
+        assert got[0] == via_pybind11[0]
+        if got[0] == "answer":
+            same_answer(got[1], via_pybind11[1])
+        else:
+            assert got[1] == via_pybind11[1]
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_query_methods_refuse_wrong_calls_as_pybind11_does(name):
+    q = sc.Query()
+    wrong = [((CUBE,), {}), ((CUBE, CUBE, None, None, True, True), {}),
+             ((CUBE, CUBE, None), {"pose_a": None}), ((CUBE, CUBE), {"unknown": 1})]
+    for arguments, keywords in wrong:
+        with pytest.raises(TypeError, match=f"{name}\\(\\): incompatible function arguments"):
+            getattr(q, name)(*arguments, **keywords)
+    with pytest.raises(ValueError, match="pose_b must be a"):
+        getattr(q, name)(CUBE, CUBE, pose_b=np.eye(3))
+    assert getattr(sc.Query, name).__doc__.startswith(f"{name}(self: swarmcollide._core.Query")
