@@ -9,11 +9,11 @@ peers' request and result objects shared by all pairs), so that no contender is 
 stale or mislabelled answer. The peers get their best correct usage (``Reused``): requests and
 results made once and reused, coal's results cleared before each call, and besides coal's free
 functions its ``ComputeDistance`` and ``ComputeCollision`` functors, which keep their solver
-between calls. Each contender answers the
-same pairs in turn, round after round; a contender's time is the median over rounds of its mean
-time per call, and each ratio is against the faster python-fcl and the faster coal contender for
-the same query from the same run. ``--json`` writes one row per contender and size
-(bench/record.py's format).
+between calls. Each contender answers the same pairs in turn, round after round; a contender's
+time is the median over rounds of its mean CPU time per call (the thread's, so that other jobs on
+a shared machine do not enter it), and each ratio is against the faster python-fcl and the faster
+coal contender for the same query from the same run. ``--json`` writes one row per contender and
+size (bench/record.py's format).
 """
 
 from __future__ import annotations
@@ -178,12 +178,12 @@ def run(sizes: List[int], pairs: int, rounds: int, calls: int) -> List[dict]:
             times: Dict[str, List[float]] = {name: [] for name in cases[0]}
             for _ in range(rounds):
                 for name in times:
-                    start = time.perf_counter()
+                    start = time.thread_time()
                     for case in cases:
                         query = case[name][1]
                         for _ in range(calls):
                             query()
-                    times[name].append((time.perf_counter() - start) / (pairs * calls))
+                    times[name].append((time.thread_time() - start) / (pairs * calls))
             medians = {name: statistics.median(values) for name, values in times.items()}
             kinds = {name: query for name, (query, _) in cases[0].items()}
 

@@ -212,8 +212,9 @@ def per_call_section(data: dict) -> str:
     return "\n".join([
         f"Made by {machine_line(data)} {data['rounds']} rounds of {data['calls']} calls per "
         "pair; the contenders take turns within each round, and a time is the median over "
-        "rounds of the mean time per call. Each ratio is against the faster python-fcl or coal "
-        "contender for the same query in the same run.", "",
+        "rounds of the mean CPU time per call (rows recorded before issue 24: wall time). Each "
+        "ratio is against the faster python-fcl or coal contender for the same query in the "
+        "same run.", "",
         table(["vertices", "pairs", "contender", "per call", "against python-fcl",
                "against coal"], rows)])
 

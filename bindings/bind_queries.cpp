@@ -365,8 +365,8 @@ py::object make_query_function(const py::function& python_path,
   held = python_path.inc_ref().ptr();
   // A function's name and documentation must outlive it, and the module keeps its functions:
   // they are made once per import and never freed.
-  const auto* const documentation = new std::string(
-      name + text_signature + "\n--\n\n" + py::str(python_path.attr("__doc__")).cast<std::string>());
+  const std::string docstring = py::str(python_path.attr("__doc__"));
+  const auto* const documentation = new std::string(name + text_signature + "\n--\n\n" + docstring);
   const auto* const function_name = new std::string(name);
   auto* const definition = new PyMethodDef{
       function_name->c_str(), reinterpret_cast<PyCFunction>(reinterpret_cast<void (*)()>(entry)),
