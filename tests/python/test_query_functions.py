@@ -243,3 +243,39 @@ def test_query_methods_refuse_wrong_calls_as_pybind11_does(name):
     with pytest.raises(ValueError, match="pose_b must be a"):
         getattr(q, name)(CUBE, CUBE, pose_b=np.eye(3))
     assert getattr(sc.Query, name).__doc__.startswith(f"{name}(self: swarmcollide._core.Query")
+
+
+def poses():
+    rotation = Rotation.from_euler("xyz", [10, 20, 30], degrees=True).as_matrix()
+    pose = np.eye(4)
+    pose[:3, :3], pose[:3, 3] = rotation, [0.5, -0.25, 2.0]
+    return pose
+
+
+@pytest.mark.parametrize("name", NAMES)
+@pytest.mark.parametrize(
+    "form",
+    [lambda p: p, lambda p: p[:3], lambda p: np.asfortranarray(p), lambda p: p[:3].copy(order="F"),
+     lambda p: p.astype(">f8"), lambda p: p.tolist()],
+    ids=["c4x4", "c3x4", "fortran", "fortran3x4", "big-endian", "lists"],
+)
+def test_array_poses_read_in_place_answer_as_the_pair_form(name, form):
+    a, b = sc.ConvexPolyhedron(CUBE), sc.ConvexPolyhedron(TETRA)
+    pose = poses()
+    pair = (pose[:3, :3].tolist(), pose[:3, 3].tolist())
+    same_answer(getattr(sc, name)(a, b, pose_b=form(pose)), getattr(sc, name)(a, b, pose_b=pair))
+
+
+@pytest.mark.parametrize(
+    "pose",
+    [np.diag([1.0, 1.0, 1.0, 2.0]), np.diag([2.0, 1.0, 1.0, 1.0]),
+     np.diag([1.0, 1.0, 1.0, 1.0])[:3] * np.nan, np.full((3, 4), np.inf), -np.eye(4)[:3]],
+    ids=["last-row", "scaled", "nan", "inf", "reflection"],
+)
+def test_array_poses_read_in_place_fail_as_lists_do(pose):
+    messages = []
+    for given in (pose, pose.tolist()):
+        with pytest.raises(ValueError) as error:
+            sc.distance(CUBE, CUBE, pose_a=given)
+        messages.append(str(error.value))
+    assert messages[0] == messages[1] and messages[0].startswith("pose_a")
