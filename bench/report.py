@@ -57,12 +57,32 @@ SWARM_SPEED = (
     "targets section compares the swarm with the plain PSO inside one process).")
 PER_CALL = (
     "`bench/per_call.py`: the cost of one call from Python on prebuilt bodies, swarmcollide's "
-    "functions and `sc.Query` beside python-fcl and coal; ratios are against python-fcl's "
-    "distance and collide and coal's signed distance from the same run. Until issue 24 the "
-    "python-fcl and coal contenders built a new result object (and coal a new request) on every "
-    "call, which their users do not: that added the objects' construction to their time and "
-    "flattered swarmcollide's ratios (the 2026-11-23 run gave sc.distance dual 0.58x python-fcl's "
-    "distance at 8 vertices with that handicap). They now reuse them.")
+    "functions and `sc.Query` beside python-fcl and coal, each ratio against the faster "
+    "python-fcl and the faster coal contender for the same query in the same run (coal's "
+    "distance is signed, so it stands for both distances). Pairs are placed by bisection on the "
+    "exact signed distance (1 apart, -0.1 overlapping), and every contender's answer on every "
+    "pair is checked against the exact method before any timing, pair after pair with the "
+    "peers' request and result objects shared, as a loop over pairs shares them. Earlier "
+    "figures here were flattered:\n\n"
+    "- Until issue 24 the python-fcl and coal contenders built new result objects on every call "
+    "(and coal a new request), which flattered swarmcollide's ratios (the 2026-11-23 run gave "
+    "sc.distance dual 0.58x python-fcl's distance at 8 vertices).\n"
+    "- The 2026-11-26 08:47 run's overlapping pairs were not overlapping: its pairs had centres "
+    "1.9 apart, but hulls of points on a unit sphere are smaller than the sphere, so the "
+    "8-vertex pairs were 0.19 to 1.23 apart and half the 64-vertex ones apart by up to 0.011. "
+    "Its overlapping rows timed apart or touching pairs, which flattered swarmcollide (its "
+    "overlapping path is the slower one).\n"
+    "- That run reused coal's results without clearing them. coal takes a result's distance as "
+    "the bound to beat, so on the same pair again it skips the work (0.23 us for "
+    "ComputeDistance on the overlapping pairs, against 1.9-3.3 us cleared), and in a loop over "
+    "different pairs it answers with the previous pair's overlap. That flattered coal; each "
+    "coal call now clears its result. coal's `ComputeDistance` and `ComputeCollision` functors, "
+    "which keep their solver between calls and are 0.2-1 us faster than its free functions, "
+    "were not timed, which flattered swarmcollide against coal.\n"
+    "- python-fcl's reused collision result appends a contact on every colliding call; the "
+    "bench empties it after one, so that the list does not grow through the run.\n\n"
+    "Times are the thread's CPU time, so that other jobs on the shared machine do not enter "
+    "them.")
 
 # (results file, heading, text before, the section's renderer, text after), in document order.
 Section = Tuple[str, str, str, Callable[[dict], str], str]

@@ -2,8 +2,14 @@
 #include <pybind11/stl.h>
 #include <pybind11/typing.h>
 
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <optional>
 #include <sstream>
 #include <string>
+#include <tuple>
+#include <vector>
 
 #include "conversions.hpp"
 #include "queries.hpp"
@@ -111,32 +117,351 @@ py::dict parameters_of(const QueryOptions& options) {
   return values;
 }
 
-// `query(a, pose_a, b, pose_b)` without the GIL, the bodies converted while holding it: the
-// compound queries (a CompoundResult) when either body is a CompoundBody, else the convex ones.
 // What the queries return: a CompoundResult (a DistanceResult naming parts) for compound bodies.
 using AnyResult = py::typing::Union<DistanceResult, CompoundResult>;
 
-template <typename Call>
-py::object on_pair(const py::handle& a, const py::handle& b, const py::handle& pose_a,
-                   const py::handle& pose_b, const Call& call) {
+// The pair queries of Query and of the module's functions (swarmcollide.queries).
+enum class PairQuery { distance, signed_distance, collision, collide };
+
+// Above this many given points in a pair, an exact method's query releases the GIL while it
+// runs. Below, a query takes microseconds (a first one on a body also finds its hull, in
+// milliseconds only for bodies of thousands of points): releasing the GIL and taking it back
+// (0.1-0.2 us, a quarter of a query between 64-vertex hulls) would cost more than another thread
+// could gain in that time. python-fcl and coal never release it.
+constexpr int kReleaseAbovePoints = 1024;
+
+// Whether a query of `options` between bodies of `points` given points in all releases the GIL:
+// the swarms (the methods not always certified) run hundreds of iterations whatever the size.
+bool releases_gil(const QueryOptions& options, int points) {
+  return points > kReleaseAbovePoints || !method_info(options.method).always_certified;
+}
+
+// `kind` between convex bodies or compound bodies, `escalate` for the verdicts.
+template <typename Body>
+auto answer_bodies(const Query& query, PairQuery kind, const Body& a, const Pose& pose_a,
+                   const Body& b, const Pose& pose_b, bool escalate) {
+  switch (kind) {
+    case PairQuery::distance:
+      return query.distance(a, pose_a, b, pose_b);
+    case PairQuery::signed_distance:
+      return query.signed_distance(a, pose_a, b, pose_b);
+    case PairQuery::collision:
+    case PairQuery::collide:
+      break;
+  }
+  return query.collision(a, pose_a, b, pose_b, escalate);
+}
+
+// The polyhedron of `body` when its type is exactly ConvexPolyhedron (the usual argument), read
+// from the instance with the type's record found once: a cast looks the record up by the C++
+// type's name on every call. Null for anything else (BodyArgument then converts it).
+const ConvexPolyhedron* exact_polyhedron(const py::handle& body) {
+  static PyTypeObject* const type =
+      reinterpret_cast<PyTypeObject*>(py::type::of<ConvexPolyhedron>().ptr());
+  static py::detail::type_info* const record =
+      py::detail::get_type_info(typeid(ConvexPolyhedron));
+  if (Py_TYPE(body.ptr()) != type) return nullptr;
+  auto* instance = reinterpret_cast<py::detail::instance*>(body.ptr());
+  // Null for an instance whose __init__ has not run: the cast then says so.
+  return static_cast<const ConvexPolyhedron*>(
+      instance->get_value_and_holder(record, false).value_ptr());
+}
+
+// `kind` between `a` and `b` as Python sees it: a bool for collide, else a DistanceResult (a
+// CompoundResult when either body is a CompoundBody). The arguments are converted while holding
+// the GIL, which the query itself releases unless it is a small one (releases_gil).
+py::object answer(const Query& query, PairQuery kind, const py::handle& a, const py::handle& b,
+                  const py::handle& pose_a, const py::handle& pose_b, bool escalate) {
   const Pose place_a = to_pose(pose_a, "pose_a");
   const Pose place_b = to_pose(pose_b, "pose_b");
   if (is_compound(a) || is_compound(b)) {
     const CompoundArgument body_a(a, "a");
     const CompoundArgument body_b(b, "b");
-    auto result = [&] {
+    CompoundResult result = [&] {
       py::gil_scoped_release release;
-      return call(body_a.get(), place_a, body_b.get(), place_b);
+      return answer_bodies(query, kind, body_a.get(), place_a, body_b.get(), place_b, escalate);
     }();
+    if (kind == PairQuery::collide) return py::bool_(result.colliding);
     return py::cast(std::move(result));
   }
-  const BodyArgument body_a(a, "a");
-  const BodyArgument body_b(b, "b");
-  auto result = [&] {
+  const ConvexPolyhedron* polyhedron_a = exact_polyhedron(a);
+  const ConvexPolyhedron* polyhedron_b = polyhedron_a ? exact_polyhedron(b) : nullptr;
+  std::optional<BodyArgument> body_a, body_b;
+  if (!polyhedron_b) {
+    polyhedron_a = &body_a.emplace(a, "a").get();
+    polyhedron_b = &body_b.emplace(b, "b").get();
+  }
+  const auto solve = [&] {
+    return answer_bodies(query, kind, *polyhedron_a, place_a, *polyhedron_b, place_b, escalate);
+  };
+  DistanceResult result;
+  if (releases_gil(query.options(), polyhedron_a->size() + polyhedron_b->size())) {
     py::gil_scoped_release release;
-    return call(body_a.get(), place_a, body_b.get(), place_b);
-  }();
+    result = solve();
+  } else {
+    result = solve();
+  }
+  if (kind == PairQuery::collide) return py::bool_(result.colliding);
   return py::cast(std::move(result));
+}
+
+// The module's query functions (swarmcollide.queries) as written in Python, by PairQuery: their
+// C++ versions (query_function) hand them every call they do not answer themselves.
+PyObject* python_paths[4] = {};
+
+// The keywords a query function reads in C++, interned: a keyword written in a call is interned
+// too, so comparing identities finds it (any other spelling goes to the Python path).
+struct KeywordNames {
+  PyObject* method = PyUnicode_InternFromString("method");
+  PyObject* tolerance = PyUnicode_InternFromString("tolerance");
+  PyObject* seed = PyUnicode_InternFromString("seed");
+  PyObject* pose_a = PyUnicode_InternFromString("pose_a");
+  PyObject* pose_b = PyUnicode_InternFromString("pose_b");
+  PyObject* escalate = PyUnicode_InternFromString("escalate");
+};
+
+// The arguments of a call to a query function, defaults for those not given.
+struct QueryCall {
+  PyObject* method = nullptr;
+  PyObject* tolerance = nullptr;
+  PyObject* seed = nullptr;
+  PyObject* pose_a = Py_None;
+  PyObject* pose_b = Py_None;
+  bool escalate = true;
+};
+
+// Reads the keywords of a call to the query function of `kind` into `call`; false for a call
+// the C++ path leaves to Python: a solver parameter, `escalate` that is not a bool, a keyword
+// that does not apply to `kind` (Python then says so).
+bool read_keywords(PairQuery kind, PyObject* const* values, PyObject* names, QueryCall& call) {
+  if (names == nullptr) return true;
+  static const KeywordNames keyword;
+  const bool verdict = kind == PairQuery::collision || kind == PairQuery::collide;
+  for (Py_ssize_t i = 0; i < PyTuple_GET_SIZE(names); ++i) {
+    PyObject* const name = PyTuple_GET_ITEM(names, i);
+    PyObject* const value = values[i];
+    if (name == keyword.pose_a) {
+      call.pose_a = value;
+    } else if (name == keyword.pose_b) {
+      call.pose_b = value;
+    } else if (name == keyword.method) {
+      call.method = value;
+    } else if (name == keyword.tolerance) {
+      call.tolerance = value;
+    } else if (name == keyword.seed) {
+      call.seed = value;
+    } else if (name == keyword.escalate && verdict && PyBool_Check(value)) {
+      call.escalate = value == Py_True;
+    } else {
+      return false;
+    }
+  }
+  return true;
+}
+
+// The method a str names, or none (Python then says which names are valid). The names of the
+// method table are interned, as are names written in calls, so identities usually decide.
+std::optional<Method> method_named(PyObject* name) {
+  static const std::vector<PyObject*> interned = [] {
+    std::vector<PyObject*> names;
+    for (const MethodInfo& info : method_table()) {
+      names.push_back(PyUnicode_InternFromString(info.name));
+    }
+    return names;
+  }();
+  const std::vector<MethodInfo>& table = method_table();
+  for (std::size_t i = 0; i < table.size(); ++i) {
+    if (name == interned[i]) return table[i].method;
+  }
+  for (std::size_t i = 0; i < table.size(); ++i) {
+    if (PyUnicode_CompareWithASCIIString(name, table[i].name) == 0) return table[i].method;
+  }
+  return std::nullopt;
+}
+
+// The Query of a call's method, tolerance and seed, built on first use with Query(...)'s checks
+// (as Python's query() builds it) and kept; none when they are not a str, a float and an int,
+// which the Python path tells apart by type (True is not 1) or rejects. Called with the GIL held,
+// which guards the cache; a copy is returned because another thread may clear the cache while
+// this one answers without the GIL.
+std::optional<Query> query_for(const QueryCall& call) {
+  static PyObject* const default_method = PyUnicode_InternFromString("dual");
+  static PyObject* const default_tolerance = PyFloat_FromDouble(kDefaultTolerance);
+  static PyObject* const default_seed = PyLong_FromLong(0);
+  static std::map<std::tuple<Method, double, unsigned long long>, Query> cache;
+  constexpr std::size_t kCacheSize = 256;  // as Python's query() cache
+  PyObject* const method = call.method ? call.method : default_method;
+  PyObject* const tolerance = call.tolerance ? call.tolerance : default_tolerance;
+  PyObject* const seed = call.seed ? call.seed : default_seed;
+  // A NaN tolerance would match any key of the map: Python rejects it.
+  if (!PyUnicode_CheckExact(method) || !PyFloat_CheckExact(tolerance) ||
+      std::isnan(PyFloat_AS_DOUBLE(tolerance)) || !PyLong_CheckExact(seed)) {
+    return std::nullopt;
+  }
+  const std::optional<Method> named = method_named(method);
+  const unsigned long long seed_value = PyLong_AsUnsignedLongLong(seed);
+  if (!named || PyErr_Occurred()) {
+    PyErr_Clear();  // a negative or huge seed: Python says so
+    return std::nullopt;
+  }
+  const auto key = std::make_tuple(*named, PyFloat_AS_DOUBLE(tolerance), seed_value);
+  const auto found = cache.find(key);
+  if (found != cache.end()) return found->second;
+  Query built(make_options(method, tolerance, seed, py::kwargs()));
+  if (cache.size() >= kCacheSize) cache.clear();
+  cache.emplace(key, built);
+  return built;
+}
+
+// The query function of `kind` in C++: `kind(a, b, *, method, tolerance, seed, pose_a, pose_b)`
+// (and `escalate` for the verdicts) answered here, about half a microsecond sooner than through
+// Python; any other call, and any call that raises, goes to the Python definition, which answers
+// it or raises its own error.
+template <PairQuery kind>
+PyObject* query_function(PyObject*, PyObject* const* arguments, Py_ssize_t count,
+                         PyObject* names) {
+  QueryCall call;
+  if (count == 2 && read_keywords(kind, arguments + 2, names, call)) {
+    try {
+      if (const std::optional<Query> query = query_for(call)) {
+        return answer(*query, kind, arguments[0], arguments[1], call.pose_a, call.pose_b,
+                      call.escalate)
+            .release()
+            .ptr();
+      }
+    } catch (...) {
+      // The Python path raises it again, with the message it has always given.
+    }
+  }
+  return PyObject_Vectorcall(python_paths[static_cast<int>(kind)], arguments,
+                             static_cast<std::size_t>(count), names);
+}
+
+// `python_path`, the Python definition of one of the module's query functions (told by its
+// name), as a C++ function with its name, module, documentation and signature.
+py::object make_query_function(const py::function& python_path,
+                               const std::string& text_signature) {
+  const auto name = python_path.attr("__name__").cast<std::string>();
+  // METH_FASTCALL | METH_KEYWORDS's calling convention (named so from Python 3.13 only).
+  PyObject* (*entry)(PyObject*, PyObject* const*, Py_ssize_t, PyObject*) = nullptr;
+  PairQuery kind = PairQuery::distance;
+  if (name == "distance") {
+    entry = &query_function<PairQuery::distance>;
+  } else if (name == "signed_distance") {
+    kind = PairQuery::signed_distance;
+    entry = &query_function<PairQuery::signed_distance>;
+  } else if (name == "collision") {
+    kind = PairQuery::collision;
+    entry = &query_function<PairQuery::collision>;
+  } else if (name == "collide") {
+    kind = PairQuery::collide;
+    entry = &query_function<PairQuery::collide>;
+  } else {
+    throw py::value_error(
+        "python_path must be distance, signed_distance, collision or collide, got " + name);
+  }
+  PyObject*& held = python_paths[static_cast<int>(kind)];
+  Py_XDECREF(held);
+  held = python_path.inc_ref().ptr();
+  // A function's name and documentation must outlive it, and the module keeps its functions:
+  // they are made once per import and never freed.
+  const std::string docstring = py::str(python_path.attr("__doc__"));
+  const auto* const documentation = new std::string(name + text_signature + "\n--\n\n" + docstring);
+  const auto* const function_name = new std::string(name);
+  auto* const definition = new PyMethodDef{
+      function_name->c_str(), reinterpret_cast<PyCFunction>(reinterpret_cast<void (*)()>(entry)),
+      METH_FASTCALL | METH_KEYWORDS, documentation->c_str()};
+  const py::object module = python_path.attr("__module__");
+  PyObject* const function = PyCFunction_NewEx(definition, nullptr, module.ptr());
+  if (function == nullptr) throw py::error_already_set();
+  return py::reinterpret_steal<py::object>(function);
+}
+
+// Query's pybind11 methods, by PairQuery: the C++ methods below (query_method) hand them every
+// call they do not answer themselves, so that such calls behave and fail as they always have.
+PyObject* bound_methods[4] = {};
+
+// The Query `self` when its type is exactly Query, read as exact_polyhedron reads a body.
+const Query* exact_query(PyObject* self) {
+  static PyTypeObject* const type = reinterpret_cast<PyTypeObject*>(py::type::of<Query>().ptr());
+  static py::detail::type_info* const record = py::detail::get_type_info(typeid(Query));
+  if (Py_TYPE(self) != type) return nullptr;
+  auto* instance = reinterpret_cast<py::detail::instance*>(self);
+  return static_cast<const Query*>(instance->get_value_and_holder(record, false).value_ptr());
+}
+
+// Reads the arguments of a call to Query's method `kind` after `a` and `b`: `pose_a`, `pose_b`
+// and, for the verdicts, `escalate`, by position or keyword; false for anything else (a keyword
+// given twice, `escalate` that is not a bool), which pybind11's method then refuses or converts.
+bool read_method_arguments(PairQuery kind, PyObject* const* arguments, Py_ssize_t count,
+                           PyObject* names, QueryCall& call) {
+  static const KeywordNames keyword;
+  const bool verdict = kind == PairQuery::collision || kind == PairQuery::collide;
+  if (count < 2 || count > (verdict ? 5 : 4)) return false;
+  if (count > 2) call.pose_a = arguments[2];
+  if (count > 3) call.pose_b = arguments[3];
+  if (count > 4) {
+    if (!PyBool_Check(arguments[4])) return false;
+    call.escalate = arguments[4] == Py_True;
+  }
+  const Py_ssize_t keywords = names ? PyTuple_GET_SIZE(names) : 0;
+  for (Py_ssize_t i = 0; i < keywords; ++i) {
+    PyObject* const name = PyTuple_GET_ITEM(names, i);
+    PyObject* const value = arguments[count + i];
+    if (name == keyword.pose_a && count <= 2) {
+      call.pose_a = value;
+    } else if (name == keyword.pose_b && count <= 3) {
+      call.pose_b = value;
+    } else if (name == keyword.escalate && verdict && count <= 4 && PyBool_Check(value)) {
+      call.escalate = value == Py_True;
+    } else {
+      return false;
+    }
+  }
+  return true;
+}
+
+// Query's method `kind` in C++: pybind11's dispatch costs about a tenth of a microsecond, a
+// quarter of a query between small bodies. Calls it does not read, and calls that raise, go to
+// the pybind11 method.
+template <PairQuery kind>
+PyObject* query_method(PyObject* self, PyObject* const* arguments, Py_ssize_t count,
+                       PyObject* names) {
+  QueryCall call;
+  const Query* query = exact_query(self);
+  if (query != nullptr && read_method_arguments(kind, arguments, count, names, call)) {
+    try {
+      return answer(*query, kind, arguments[0], arguments[1], call.pose_a, call.pose_b,
+                    call.escalate)
+          .release()
+          .ptr();
+    } catch (...) {
+      // The pybind11 method raises it again, with the message it has always given.
+    }
+  }
+  const Py_ssize_t keywords = names ? PyTuple_GET_SIZE(names) : 0;
+  std::vector<PyObject*> with_self(static_cast<std::size_t>(count + keywords + 1));
+  with_self[0] = self;
+  std::copy(arguments, arguments + count + keywords, with_self.begin() + 1);
+  return PyObject_Vectorcall(bound_methods[static_cast<int>(kind)], with_self.data(),
+                             static_cast<std::size_t>(count + 1), names);
+}
+
+// Replaces Query's pybind11 method `name` by query_method<kind>, with its documentation (whose
+// first line is pybind11's typed signature, which the stubs read).
+template <PairQuery kind>
+void answer_in_cpp(py::class_<Query>& query_class, const char* name) {
+  const py::object bound = query_class.attr(name);
+  bound_methods[static_cast<int>(kind)] = bound.inc_ref().ptr();
+  // Kept for the life of the module, as the class keeps its methods.
+  const auto* const documentation = new std::string(py::str(bound.attr("__doc__")));
+  auto* const definition = new PyMethodDef{
+      name, reinterpret_cast<PyCFunction>(reinterpret_cast<void (*)()>(&query_method<kind>)),
+      METH_FASTCALL | METH_KEYWORDS, documentation->c_str()};
+  PyObject* const method =
+      PyDescr_NewMethod(reinterpret_cast<PyTypeObject*>(query_class.ptr()), definition);
+  if (method == nullptr) throw py::error_already_set();
+  py::setattr(query_class, name, py::reinterpret_steal<py::object>(method));
 }
 
 }  // namespace
@@ -245,6 +570,18 @@ depth when the bodies overlap, and ``point_b - point_a = distance * direction``.
 py::class_<Query> bind_queries(py::module_& m) {
   m.def("method_table", &method_table_for_python,
         "Every method as a dictionary: name, summary, queries, always_certified, parameters.");
+  m.def("query_function", &make_query_function, py::arg("python_path"), py::arg("text_signature"),
+        R"doc(
+``python_path`` (``distance``, ``signed_distance``, ``collision`` or ``collide`` of
+swarmcollide.queries, told by its ``__name__``) as a C++ function with its name, module,
+documentation and ``text_signature`` (without annotations).
+
+The C++ function answers ``f(a, b, *, method, tolerance, seed, pose_a, pose_b, escalate)``
+itself (a method that is a str, a float tolerance, an int seed, ``escalate`` a bool and only for
+the verdicts), with a Query per method, tolerance and seed kept as Python's ``query`` keeps them,
+and hands every other call (solver parameters, other types, calls that raise) to
+``python_path``, which answers it or raises as it always has.
+)doc");
 
   py::class_<Query> query(m, "Query", R"doc(
 A method with its parameters, validated once, that answers queries between pairs of bodies.
@@ -271,8 +608,7 @@ both bodies): it is the precision of every answer and the distance below which b
           "distance",
           [](const Query& q, const py::handle& a, const py::handle& b, const py::handle& pose_a,
              const py::handle& pose_b) {
-            return AnyResult(on_pair(a, b, pose_a, pose_b,
-                                     [&q](const auto&... args) { return q.distance(args...); }));
+            return AnyResult(answer(q, PairQuery::distance, a, b, pose_a, pose_b, false));
           },
           py::arg("a"), py::arg("b"), py::arg("pose_a") = py::none(),
           py::arg("pose_b") = py::none())
@@ -280,9 +616,7 @@ both bodies): it is the precision of every answer and the distance below which b
           "collision",
           [](const Query& q, const py::handle& a, const py::handle& b, const py::handle& pose_a,
              const py::handle& pose_b, bool escalate) {
-            return AnyResult(on_pair(a, b, pose_a, pose_b, [&](const auto&... args) {
-              return q.collision(args..., escalate);
-            }));
+            return AnyResult(answer(q, PairQuery::collision, a, b, pose_a, pose_b, escalate));
           },
           py::arg("a"), py::arg("b"), py::arg("pose_a") = py::none(),
           py::arg("pose_b") = py::none(), py::arg("escalate") = true)
@@ -290,9 +624,7 @@ both bodies): it is the precision of every answer and the distance below which b
           "collide",
           [](const Query& q, const py::handle& a, const py::handle& b, const py::handle& pose_a,
              const py::handle& pose_b, bool escalate) {
-            return on_pair(a, b, pose_a, pose_b,
-                           [&](const auto&... args) { return q.collide(args..., escalate); })
-                .cast<bool>();
+            return answer(q, PairQuery::collide, a, b, pose_a, pose_b, escalate).ptr() == Py_True;
           },
           py::arg("a"), py::arg("b"), py::arg("pose_a") = py::none(),
           py::arg("pose_b") = py::none(), py::arg("escalate") = true)
@@ -300,9 +632,7 @@ both bodies): it is the precision of every answer and the distance below which b
           "signed_distance",
           [](const Query& q, const py::handle& a, const py::handle& b, const py::handle& pose_a,
              const py::handle& pose_b) {
-            return AnyResult(on_pair(a, b, pose_a, pose_b, [&q](const auto&... args) {
-              return q.signed_distance(args...);
-            }));
+            return AnyResult(answer(q, PairQuery::signed_distance, a, b, pose_a, pose_b, false));
           },
           py::arg("a"), py::arg("b"), py::arg("pose_a") = py::none(),
           py::arg("pose_b") = py::none())
@@ -316,6 +646,10 @@ both bodies): it is the precision of every answer and the distance below which b
         }
         return text + ")";
       });
+  answer_in_cpp<PairQuery::distance>(query, "distance");
+  answer_in_cpp<PairQuery::signed_distance>(query, "signed_distance");
+  answer_in_cpp<PairQuery::collision>(query, "collision");
+  answer_in_cpp<PairQuery::collide>(query, "collide");
   return query;
 }
 

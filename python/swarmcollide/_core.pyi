@@ -2,10 +2,11 @@
 swarmcollide's C++ core: convex polyhedra and compound bodies, model (2), its solvers, queries and scenes.
 """
 from __future__ import annotations
+import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['Aabb', 'BatchResult', 'CompoundBody', 'CompoundResult', 'CompoundStats', 'ContactResult', 'ConvexPolyhedron', 'DistanceResult', 'Hull', 'PartNode', 'ParticleCoefficients', 'Query', 'Scene', 'SceneResult', 'SceneStats', 'as_polyhedron', 'broadphases', 'constraint_violation', 'is_feasible', 'linear_decreasing_inertia', 'method_table', 'objective', 'pair_seed', 'project_onto_simplex', 'rank_adaptive_coefficients', 'separation']
+__all__: list[str] = ['Aabb', 'BatchResult', 'CompoundBody', 'CompoundResult', 'CompoundStats', 'ContactResult', 'ConvexPolyhedron', 'DistanceResult', 'Hull', 'PartNode', 'ParticleCoefficients', 'Query', 'Scene', 'SceneResult', 'SceneStats', 'as_polyhedron', 'broadphases', 'constraint_violation', 'is_feasible', 'linear_decreasing_inertia', 'method_table', 'objective', 'pair_seed', 'project_onto_simplex', 'query_function', 'rank_adaptive_coefficients', 'separation']
 class Aabb:
     """
     An axis-aligned bounding box with corners ``min`` and ``max``.
@@ -831,6 +832,18 @@ def pair_seed(seed: typing.SupportsInt | typing.SupportsIndex, index: typing.Sup
 def project_onto_simplex(weights: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
     """
     Euclidean projection onto the probability simplex.
+    """
+def query_function(python_path: collections.abc.Callable, text_signature: str) -> typing.Any:
+    """
+    ``python_path`` (``distance``, ``signed_distance``, ``collision`` or ``collide`` of
+    swarmcollide.queries, told by its ``__name__``) as a C++ function with its name, module,
+    documentation and ``text_signature`` (without annotations).
+    
+    The C++ function answers ``f(a, b, *, method, tolerance, seed, pose_a, pose_b, escalate)``
+    itself (a method that is a str, a float tolerance, an int seed, ``escalate`` a bool and only for
+    the verdicts), with a Query per method, tolerance and seed kept as Python's ``query`` keeps them,
+    and hands every other call (solver parameters, other types, calls that raise) to
+    ``python_path``, which answers it or raises as it always has.
     """
 def rank_adaptive_coefficients(rank: typing.SupportsInt | typing.SupportsIndex, swarm_size: typing.SupportsInt | typing.SupportsIndex, w_min: typing.SupportsFloat | typing.SupportsIndex = 0.4, w_max: typing.SupportsFloat | typing.SupportsIndex = 0.9) -> ParticleCoefficients:
     """

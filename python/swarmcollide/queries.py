@@ -3,15 +3,18 @@
 Every query function takes the same keywords: ``method``, ``tolerance``, ``seed``, the bodies'
 poses, and the solver parameters of ``Parameters`` that apply to the method (``METHODS`` lists
 them). The work is done by a cached ``Query`` per distinct set of keywords, so repeated calls
-cost a dictionary lookup before the C++ solver runs; build a ``Query`` yourself to skip even that.
+cost a dictionary lookup before the C++ solver runs. ``distance``, ``signed_distance``,
+``collision`` and ``collide`` are read in C++ (``_core.query_function``) when no solver parameter
+is given, which costs less than a call to a Python function.
 """
 
 from __future__ import annotations
 
+import inspect
 import sys
 from dataclasses import dataclass
 from types import MappingProxyType
-from typing import Any, Dict, Mapping, Optional, Sequence, Tuple, Union
+from typing import Any, Callable, Dict, Mapping, Optional, Sequence, Tuple, TypeVar, Union, cast
 
 import numpy.typing as npt
 
@@ -177,6 +180,27 @@ def _query_for(method: str, tolerance: float, seed: int, parameters: Mapping[str
     return query(method, tolerance=tolerance, seed=seed, **parameters)
 
 
+QueryFunction = TypeVar("QueryFunction", bound=Callable[..., Any])
+
+PYTHON_PATHS: Dict[str, Callable[..., Any]] = {}
+"""The query functions as written in Python, by name: their C++ versions hand them every call they
+do not answer themselves (solver parameters, unusual types, errors), and the tests check that
+both give the same answers."""
+
+
+def _answered_in_cpp(python_path: QueryFunction) -> QueryFunction:
+    """``python_path`` as a C++ function with its name, documentation and signature (less the
+    annotations, which only the Python definition keeps for type checkers)."""
+    PYTHON_PATHS[python_path.__name__] = python_path
+    signature = inspect.signature(python_path)
+    plain = signature.replace(
+        parameters=[p.replace(annotation=p.empty) for p in signature.parameters.values()],
+        return_annotation=signature.empty,
+    )
+    return cast(QueryFunction, _core.query_function(python_path, str(plain)))
+
+
+@_answered_in_cpp
 def distance(
     a: PolyhedronLike,
     b: PolyhedronLike,
@@ -242,6 +266,7 @@ def distance(
     )
 
 
+@_answered_in_cpp
 def signed_distance(
     a: PolyhedronLike,
     b: PolyhedronLike,
@@ -280,6 +305,7 @@ def signed_distance(
     )
 
 
+@_answered_in_cpp
 def collide(
     a: PolyhedronLike,
     b: PolyhedronLike,
@@ -310,6 +336,7 @@ def collide(
     )
 
 
+@_answered_in_cpp
 def collision(
     a: PolyhedronLike,
     b: PolyhedronLike,
