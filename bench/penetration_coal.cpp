@@ -2,7 +2,9 @@
 // against coal's GJK + EPA (issue 25, item 2), C++ against C++ on shapes built once.
 //
 //   swarmcollide-penetration-coal [--quick] [--repeats K] [--sizes 8,64] [--json FILE]
+//                                 [--only ours|coal]
 //
+// `--only` times one contender alone (for a profiler; the ratios are then meaningless).
 // Pairs: two random polytopes of n vertices (the hull of n points on the unit sphere, so the
 // bodies' diameter is about 2) under random rotations, B moved along a random direction until the
 // exact signed distance is -1e-2 or -0.6 (0.3 of the diameter). Each pair is timed K times per
@@ -142,9 +144,16 @@ struct Outcome {
   double coal_excess = 0;     // the largest amount by which it was beyond them
   double widest_gap = 0;      // our largest (upper - lower)
   double largest_angle = 0;   // degrees between our normal and coal's
+  double iterations = 0;      // our mean iterations (the search's and the expansion's)
 };
 
-Outcome measure(const Workload& w, int repeats) {
+// Which contenders run: both unless `--only` names one.
+struct Contenders {
+  bool ours = true;
+  bool coal = true;
+};
+
+Outcome measure(const Workload& w, int repeats, Contenders run) {
   const sc::Query ours;  // the defaults: method dual, tolerance 1e-9
   coal::GJKSolver solver;
   Outcome out;
@@ -155,17 +164,20 @@ Outcome measure(const Workload& w, int repeats) {
     std::vector<double> ours_times, coal_times;
     for (int r = 0; r < repeats; ++r) {
       auto start = std::chrono::steady_clock::now();
-      answer = ours.signed_distance(p->a, p->pose_a, p->b, p->pose_b);
+      if (run.ours) answer = ours.signed_distance(p->a, p->pose_a, p->b, p->pose_b);
       ours_times.push_back(seconds_since(start));
       start = std::chrono::steady_clock::now();
-      coal_distance = solver.shapeDistance(*p->coal_a, p->coal_pose_a, *p->coal_b,
-                                           p->coal_pose_b, true, p1, p2, coal_normal);
+      if (run.coal) {
+        coal_distance = solver.shapeDistance(*p->coal_a, p->coal_pose_a, *p->coal_b,
+                                             p->coal_pose_b, true, p1, p2, coal_normal);
+      }
       coal_times.push_back(seconds_since(start));
     }
     out.ours_us += 1e6 * median(ours_times);
     out.coal_us += 1e6 * median(coal_times);
     ++out.pairs;
     out.certified += answer.certified;
+    out.iterations += static_cast<double>(answer.iterations) / w.pairs.size();
     const double excess =
         std::max(answer.lower_bound - coal_distance, coal_distance - answer.distance);
     if (excess > kCoalTolerance) ++out.coal_outside;
@@ -191,6 +203,7 @@ int main(int argc, char** argv) {
   bool quick = false;
   int repeats = 0;
   std::string json;
+  Contenders run;
   std::vector<int> sizes = {4, 8, 16, 32, 64, 128, 256, 512, 1024, 2048, 4096};
   for (int k = 1; k < argc; ++k) {
     if (!std::strcmp(argv[k], "--quick")) {
@@ -199,10 +212,14 @@ int main(int argc, char** argv) {
       repeats = std::atoi(argv[++k]);
     } else if (!std::strcmp(argv[k], "--sizes") && k + 1 < argc) {
       sizes = parse_sizes(argv[++k]);
+    } else if (!std::strcmp(argv[k], "--only") && k + 1 < argc) {
+      const std::string only = argv[++k];
+      run.ours = only == "ours";
+      run.coal = only == "coal";
     } else if (!std::strcmp(argv[k], "--json") && k + 1 < argc) {
       json = argv[++k];
     } else {
-      std::fprintf(stderr, "usage: %s [--quick] [--repeats K] [--sizes 8,64] [--json FILE]\n",
+      std::fprintf(stderr, "usage: %s [--quick] [--repeats K] [--sizes 8,64] [--json FILE] [--only ours|coal]\n",
                    argv[0]);
       return 2;
     }
@@ -222,21 +239,22 @@ int main(int argc, char** argv) {
     }
   }
   std::ostringstream rows;
-  std::printf("%6s %8s %10s %10s %7s %10s %12s %11s %10s\n", "n", "overlap", "ours_us", "coal_us",
-              "ratio", "certified", "coal_outside", "coal_excess", "angle_deg");
+  std::printf("%6s %8s %10s %10s %7s %10s %12s %11s %10s %6s\n", "n", "overlap", "ours_us",
+              "coal_us", "ratio", "certified", "coal_outside", "coal_excess", "angle_deg", "iters");
   for (const Workload& w : workloads) {
-    const Outcome o = measure(w, repeats);
+    const Outcome o = measure(w, repeats, run);
     const double ratio = o.ours_us / o.coal_us;
-    std::printf("%6d %8s %10.2f %10.2f %7.2f %7d/%-2d %12d %11.2e %10.2e\n", w.n,
+    std::printf("%6d %8s %10.2f %10.2f %7.2f %7d/%-2d %12d %11.2e %10.2e %6.1f\n", w.n,
                 w.overlap.c_str(), o.ours_us / o.pairs, o.coal_us / o.pairs, ratio, o.certified,
-                o.pairs, o.coal_outside, o.coal_excess, o.largest_angle);
+                o.pairs, o.coal_outside, o.coal_excess, o.largest_angle, o.iterations);
     std::fflush(stdout);
     rows << (rows.tellp() > 0 ? ",\n" : "") << "{\"n\": " << w.n << ", \"overlap\": \""
          << w.overlap << "\", \"pairs\": " << o.pairs << ", \"ours_us\": " << o.ours_us / o.pairs
          << ", \"coal_us\": " << o.coal_us / o.pairs << ", \"ratio\": " << ratio
          << ", \"certified\": " << o.certified << ", \"coal_outside\": " << o.coal_outside
          << ", \"coal_excess\": " << o.coal_excess << ", \"widest_gap\": " << o.widest_gap
-         << ", \"largest_angle_deg\": " << o.largest_angle << "}";
+         << ", \"largest_angle_deg\": " << o.largest_angle
+         << ", \"mean_iterations\": " << o.iterations << "}";
   }
   if (!json.empty()) {
     std::ofstream out(json);
