@@ -7,6 +7,7 @@
 #include <optional>
 #include <vector>
 
+#include "../geometry/support_tree.hpp"
 #include "candidate_axes.hpp"
 #include "expanding_polytope.hpp"
 #include "minkowski.hpp"
@@ -73,6 +74,19 @@ Scalar largest_coordinate(const VertexMatrix& a, const VertexMatrix& b) {
 Scalar coordinate_bound(const FramedBody& body) {
   const Scalar radius = std::ldexp(body.body().bounds().radius, -body.exponent());
   return (body.offset().cwiseAbs().maxCoeff() + radius) * (1 + 16 * kRoundoff);
+}
+
+// A point of `body` highest along `n` as a scan of its points finds it (FramedBody::
+// support_index, whose shortfall margin() covers): for large placed bodies by the branch and
+// bound of their support tree (built once per body), seeded by a climb from `hint`.
+int scanned_support(const FramedBody& body, const Vector3& n, int hint) {
+  if (body.size() <= kHillClimbingThreshold || body.scan_shortfall() == 0) {
+    return body.support_index(n);
+  }
+  const VertexMatrix& points = body.local_points();
+  const int key = &points == &body.body().centred_vertices() ? 0 : 1;
+  const auto tree = body.body().derived<SupportTree>([&] { return SupportTree(points); }, key);
+  return tree->support_index(points, body.local_direction(n), body.support_index(n, hint));
 }
 
 class Solver {
@@ -154,8 +168,8 @@ class Solver {
   void finish() {
     if (!(estimate_ > -kInfinity)) offer(Vector3::UnitX());
     normal_ = candidate_;
-    top_a_ = a_.support_index(candidate_);
-    top_b_ = b_.support_index(-candidate_);
+    top_a_ = scanned_support(a_, candidate_, climb_a_);
+    top_b_ = scanned_support(b_, -candidate_, climb_b_);
     separation_ = b_.height(top_b_, candidate_) - a_.height(top_a_, candidate_);
   }
 

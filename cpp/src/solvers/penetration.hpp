@@ -77,8 +77,9 @@ struct PenetrationBounds {
 /// crossing Gauss-map arcs), for pairs where they cost at most about 2^22 steps. Every loop is
 /// bounded; nothing aborts. Separated bodies get valid bounds too (Wolfe's distance). Support
 /// points are climbed or scanned in each body's own frame (no point is placed in the frame but
-/// those read), so the lower bound's margin includes both bodies' `scan_shortfall`. Once a
-/// thread's buffers have grown, nothing is allocated.
+/// those read; a large body's scan is the branch and bound of its SupportTree, built once per
+/// body), so the lower bound's margin includes both bodies' `scan_shortfall`. Once a thread's
+/// buffers have grown (and the bodies' trees are built), nothing is allocated.
 PenetrationBounds penetration(const FramedBody& a, const FramedBody& b, const Vector3& hint,
                               const MinNormPoint* enclosing, Scalar tolerance, int max_iterations);
 
