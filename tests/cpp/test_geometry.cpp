@@ -10,6 +10,8 @@
 #include <thread>
 #include <utility>
 
+#include "geometry/support.hpp"
+#include "geometry/support_tree.hpp"
 #include "paper_cases.hpp"
 #include "swarmcollide/geometry/convex_polyhedron.hpp"
 
@@ -163,6 +165,34 @@ TEST(ConvexPolyhedron, ThreadsAskingForTheHullAtOnceShareOne) {
     for (const Hull* hull : seen) {
       EXPECT_EQ(hull, &cube.hull());
       EXPECT_EQ(hull->faces.rows(), 12);
+    }
+  }
+}
+
+// The tree's support point is as high as a scan's, to the rounding of the heights: on random
+// clouds, on a sphere, and on a grid whose faces tie (every point of a top face is a maximum).
+TEST(SupportTree, FindsThePointAScanFinds) {
+  std::mt19937_64 rng(7);
+  std::normal_distribution<double> normal;
+  std::uniform_int_distribution<int> pick(-1, 999);
+  for (int shape = 0; shape < 3; ++shape) {
+    VertexMatrix points(1000, 3);
+    for (int i = 0; i < 1000; ++i) {
+      Vector3 p(normal(rng), normal(rng), normal(rng));
+      if (shape == 1) p.normalize();
+      if (shape == 2) p = Vector3(i % 10, (i / 10) % 10, i / 100);
+      points.row(i) = 3 * p.transpose();
+    }
+    const detail::SupportTree tree(points);
+    for (int trial = 0; trial < 200; ++trial) {
+      Vector3 d(normal(rng), normal(rng), normal(rng));
+      if (trial % 4 == 0) d = Vector3::Unit(trial % 3);
+      const int found = tree.support_index(points, d, pick(rng));
+      const int scanned = detail::scan_support(points, d);
+      const Scalar rounding = 1e-15 * points.norm() * d.norm();
+      EXPECT_GE(detail::point_height(points, found, d),
+                detail::point_height(points, scanned, d) - rounding)
+          << "shape " << shape << " trial " << trial;
     }
   }
 }

@@ -77,17 +77,19 @@ void check_contract(const VertexMatrix& a, const VertexMatrix& b, const Penetrat
   EXPECT_NEAR(r.separation, hb.minCoeff() - ha.maxCoeff(), 1e-15);
   EXPECT_EQ(r.lower, r.separation - r.margin);
   EXPECT_LE(r.margin, 1e-13);
-  EXPECT_GE(r.weights_a.minCoeff(), 0);
-  EXPECT_GE(r.weights_b.minCoeff(), 0);
-  EXPECT_NEAR(r.weights_a.sum(), 1, 1e-14);
-  EXPECT_NEAR(r.weights_b.sum(), 1, 1e-14);
-  EXPECT_LE((a.transpose() * r.weights_a - r.point_a).norm(), 1e-14);
-  EXPECT_LE((b.transpose() * r.weights_b - r.point_b).norm(), 1e-14);
+  const VectorX weights_a = r.weights_a.dense();
+  const VectorX weights_b = r.weights_b.dense();
+  EXPECT_GE(weights_a.minCoeff(), 0);
+  EXPECT_GE(weights_b.minCoeff(), 0);
+  EXPECT_NEAR(weights_a.sum(), 1, 1e-14);
+  EXPECT_NEAR(weights_b.sum(), 1, 1e-14);
+  EXPECT_LE((a.transpose() * weights_a - r.point_a).norm(), 1e-14);
+  EXPECT_LE((b.transpose() * weights_b - r.point_b).norm(), 1e-14);
   for (Eigen::Index i = 0; i < a.rows(); ++i) {
-    if (r.weights_a(i) > 0) EXPECT_GE(ha(i), ha.maxCoeff() - r.feature_slack - 1e-15);
+    if (weights_a(i) > 0) EXPECT_GE(ha(i), ha.maxCoeff() - r.feature_slack - 1e-15);
   }
   for (Eigen::Index j = 0; j < b.rows(); ++j) {
-    if (r.weights_b(j) > 0) EXPECT_LE(hb(j), hb.minCoeff() + r.feature_slack + 1e-15);
+    if (weights_b(j) > 0) EXPECT_LE(hb(j), hb.minCoeff() + r.feature_slack + 1e-15);
   }
   if (r.proven) {
     EXPECT_LE((r.point_b - r.point_a - r.separation * r.normal).norm(), 1e-9);

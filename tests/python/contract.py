@@ -147,6 +147,14 @@ class Scale:
     point_rounding: float
 
 
+def norm(v) -> float:
+    """The Euclidean norm without underflow: np.linalg.norm squares the entries, so vectors of
+    entries below 1e-154 come out 0 (and a pair of such bodies would get size 0)."""
+    v = np.asarray(v, float)
+    largest = float(np.abs(v).max()) if v.size else 0.0
+    return largest * float(np.linalg.norm(v / largest)) if largest > 0 else 0.0
+
+
 def pair_scale(a, b, tolerance: float = sc.DEFAULT_TOLERANCE) -> Scale:
     """The size is the diameter of the ball around both bodies that queries compute in: the
     distance between their boxes' centres plus the longer box diagonal. Bounds and the oracle
@@ -154,8 +162,8 @@ def pair_scale(a, b, tolerance: float = sc.DEFAULT_TOLERANCE) -> Scale:
     besides 16 epsilons of their largest coordinate."""
     a, b = np.asarray(a, float), np.asarray(b, float)
     lo_a, hi_a, lo_b, hi_b = a.min(0), a.max(0), b.min(0), b.max(0)
-    centres = np.linalg.norm((lo_b / 2 + hi_b / 2) - (lo_a / 2 + hi_a / 2))
-    size = float(centres + max(np.linalg.norm(hi_a - lo_a), np.linalg.norm(hi_b - lo_b)))
+    centres = norm((lo_b / 2 + hi_b / 2) - (lo_a / 2 + hi_a / 2))
+    size = float(centres + max(norm(hi_a - lo_a), norm(hi_b - lo_b)))
     magnitude = float(max(np.abs(a).max(), np.abs(b).max()))
     return Scale(size, tolerance * size, 1e-12 * size, 16 * np.finfo(float).eps * magnitude)
 
@@ -203,10 +211,10 @@ def check_contract(
     assert wb.dtype == np.float64 and wb.shape == (len(b),)
     assert wa.min() >= 0 and wb.min() >= 0
     assert abs(wa.sum() - 1) <= 1e-12 and abs(wb.sum() - 1) <= 1e-12
-    assert np.linalg.norm(a.T @ wa - r.point_a) <= points
-    assert np.linalg.norm(b.T @ wb - r.point_b) <= points
-    norm = float(np.linalg.norm(r.direction))
-    assert norm == 0 or abs(norm - 1) <= 1e-12
+    assert norm(a.T @ wa - r.point_a) <= points
+    assert norm(b.T @ wb - r.point_b) <= points
+    direction_norm = norm(r.direction)
+    assert direction_norm == 0 or abs(direction_norm - 1) <= 1e-12
     # Methods without distances answer collide with their signed distance, unless "exact" took
     # over; either way the true signed distance is at most the distance.
     signed_query = kind == "signed_distance" or (
@@ -214,8 +222,8 @@ def check_contract(
     )
     gap = r.distance - r.lower_bound
     if kind == "signed_distance":
-        assert np.linalg.norm(r.point_b - r.point_a - r.distance * r.direction) <= gap + points
-        if norm > 0:
+        assert norm(r.point_b - r.point_a - r.distance * r.direction) <= gap + points
+        if direction_norm > 0:
             assert abs(separation(a, b, r.direction) - r.lower_bound) <= rounding
             # The witnesses lie on the supporting planes along the normal, to within the gap.
             assert abs(r.direction @ r.point_a - np.max(a @ r.direction)) <= gap + points
@@ -224,12 +232,12 @@ def check_contract(
         assert signed_distance <= r.distance + rounding
     else:
         if signed_query:
-            assert abs(np.linalg.norm(r.point_b - r.point_a) - abs(r.distance)) <= gap + points
+            assert abs(norm(r.point_b - r.point_a) - abs(r.distance)) <= gap + points
         else:
-            assert abs(r.distance - np.linalg.norm(r.point_b - r.point_a)) <= points
+            assert abs(r.distance - norm(r.point_b - r.point_a)) <= points
             assert r.lower_bound >= 0
         if r.lower_bound > 0:
-            assert abs(norm - 1) <= 1e-12
+            assert abs(direction_norm - 1) <= 1e-12
             assert abs(separation(a, b, r.direction) - r.lower_bound) <= rounding
         assert r.lower_bound <= distance + rounding
         assert (signed_distance if signed_query else distance) <= r.distance + rounding

@@ -60,6 +60,16 @@ FramedBody::FramedBody(const ConvexPolyhedron& body, const Pose& pose, const Fra
   const Vector3 from_centre =
       pose.rotation * body.bounds().centre + pose.translation - frame.centre;
   for (int k = 0; k < 3; ++k) offset_(k) = times_power_of_two(from_centre(k), -exponent_);
+  // A placed point is p_i = fl(R q_i + o), q_i = 2^-e x_i, and the scan compares g_i =
+  // fl(fl(R^T d) . x_i). With the reach r >= |o| + |q_i| (the frame holds the body, so r <= 1
+  // up to rounding): |p_i - (R q_i + o)| <= 5.2u |q_i| + 1.8u r (a 3-term product per
+  // coordinate, then the sum); fl(R^T d) is within 5.2u |d| of R^T d, which moves d . R q_i by
+  // 5.2u |q_i|; and 2^-e g_i is within 3.1u |q_i| of 2^-e fl(R^T d) . x_i. So every d . p_i is
+  // 2^-e g_i + d . o to within 15.3u r, and the scan's point is within 30.6u r of the highest;
+  // the computed heights add what separation_margin covers. 64u r, with r rounded up, doubles it.
+  const Scalar reach =
+      offset_.norm() + times_power_of_two(body.bounds().radius, -exponent_) * (1 + 16 * kRoundoff);
+  scan_shortfall_ = 64 * kRoundoff * reach * (1 + 16 * kRoundoff);
 }
 
 FramedBody::FramedBody(const VertexMatrix& points, const Hull& hull)
@@ -73,7 +83,8 @@ FramedBody::FramedBody(const VertexMatrix& points, const Hull& hull)
       offset_(Vector3::Zero()),
       exponent_(0),
       scale_high_(1),
-      scale_low_(1) {}
+      scale_low_(1),
+      scan_shortfall_(0) {}
 
 void FramedBody::points(VertexMatrix& out) const {
   out.resize(size(), 3);

@@ -113,6 +113,11 @@ class FramedBody {
     if (in_frame_) return scan_support(*vertices_, d);
     return first_highest(size(), [&](int i) { return vertex(i).dot(d); });
   }
+  /// How far `height(support_index(d), d)` may fall below the greatest `height(i, d)` for a
+  /// direction `|d| <= 1 + 8u`: zero for points given in the frame (the scan compares those
+  /// heights themselves); for a placed body, whose scan compares heights in its own frame, a
+  /// multiple of the roundoff and of the reach `|offset| + 2^-e radius` (see framed_body.cpp).
+  Scalar scan_shortfall() const { return scan_shortfall_; }
   Vector3 support(const Vector3& d) const { return vertex(support_index(d)); }
   /// Every point in the frame, one per row, into `out` (resized), for solvers that read each
   /// point many times.
@@ -151,6 +156,7 @@ class FramedBody {
   // 2^-exponent as two factors, each representable even for the most extreme exponents.
   Scalar scale_high_;
   Scalar scale_low_;
+  Scalar scan_shortfall_;
 };
 
 /// Two bodies in their common frame, with the query's tolerance in frame units.

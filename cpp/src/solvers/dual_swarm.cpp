@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -11,6 +12,8 @@
 #include "distance_finish.hpp"
 #include "exact_solver.hpp"
 #include "minkowski.hpp"
+#include "wolfe_min_norm.hpp"
+#include "witness.hpp"
 
 namespace swarmcollide::detail {
 
@@ -127,8 +130,48 @@ class DualSearch {
   std::vector<Scalar> history_;
 };
 
+// A signed distance's overlapping pairs skip the search: once the separation along the start's
+// direction (or the centres') leaves the bodies possibly in contact, Wolfe's algorithm on B - A
+// runs from it, as the search's common point would. A corral around the origin proves the
+// overlap, which no separating direction can, and its tetrahedron starts the penetration solver's
+// expanding polytope; a nearest point that settles the pair as a distance is the answer as well.
+// Otherwise (touching pairs, mostly) nothing: the search runs as for any distance.
+std::optional<Answer> overlap_first(const FramedPair& pair, const QueryOptions& options,
+                                    const DualStart* start) {
+  const Vector3 between = pair.b.offset() - pair.a.offset();
+  const Vector3 direction = start != nullptr    ? start->direction
+                            : between.norm() > 0 ? Vector3(between.normalized())
+                                                 : Vector3::UnitX();
+  int ia = start != nullptr ? start->support_a : -1;
+  int ib = start != nullptr ? start->support_b : -1;
+  long evaluations = 1;
+  if (separation(pair.a, pair.b, direction, ia, ib) > pair.tolerance) return std::nullopt;
+  const auto oracle = [&](const Vector3& d) {
+    ++evaluations;
+    return minkowski_support(pair.a, pair.b, d, ia, ib);
+  };
+  const MinNormPoint corral = wolfe_min_norm(oracle, direction, 2, options.exact.max_iterations);
+  const Witness common = witness_of(pair, corral);
+  Answer answer;
+  if (common.encloses_origin) {
+    answer = exact_penetration(pair, options.exact.max_iterations, direction, common.distance,
+                               &corral);
+    answer.intersection_proven = true;
+  } else {
+    answer = answer_from_corral(pair, corral);
+    ++evaluations;
+    if (!(answer.lower > kFrameRounding && value_proven(pair, answer))) return std::nullopt;
+  }
+  answer.iterations += corral.iterations;
+  answer.evaluations += evaluations;
+  return answer;
+}
+
 Answer solve_dual_from(const FramedPair& pair, const QueryOptions& options, Goal goal,
                        const DualStart* start) {
+  if (goal == Goal::signed_distance) {
+    if (std::optional<Answer> settled = overlap_first(pair, options, start)) return *settled;
+  }
   const Goal search = goal == Goal::signed_distance ? Goal::distance : goal;
   Answer answer = DualSearch(pair, options, search, start).run();
   if (goal != Goal::signed_distance) return answer;

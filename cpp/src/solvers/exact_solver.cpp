@@ -52,24 +52,20 @@ Answer exact_distance(const FramedPair& pair, int max_iterations, const MinNormP
 }
 
 Answer exact_penetration(const FramedPair& pair, int max_iterations, const Vector3& hint,
-                         Scalar distance_upper) {
-  // The penetration solver reads every point several times: the frame's points once, in place.
-  thread_local VertexMatrix points_a;
-  thread_local VertexMatrix points_b;
-  pair.a.points(points_a);
-  pair.b.points(points_b);
-  PenetrationBounds bounds = penetration(points_a, pair.a.hull(), points_b, pair.b.hull(), hint,
-                                         pair.tolerance, max_iterations);
+                         Scalar distance_upper, const MinNormPoint* enclosing) {
+  PenetrationBounds bounds =
+      penetration(pair.a, pair.b, hint, enclosing, pair.tolerance, max_iterations);
   Answer answer;
-  // The raw separation: the query layer's verdicts subtract kFrameRounding, which covers the
-  // solver's own margin (64 u times the largest coordinate, at most 1 in the frame).
-  answer.lower = bounds.separation;
+  // The separation less what the scans in the bodies' own frames may fall short by: the query
+  // layer's verdicts subtract kFrameRounding, which covers the rest of the solver's margin (64 u
+  // times the largest coordinate, at most 1 in the frame).
+  answer.lower = bounds.separation - bounds.scan_shortfall;
   answer.upper = std::min(bounds.upper, distance_upper);
   answer.direction = bounds.normal;
   answer.point_a = bounds.point_a;
   answer.point_b = bounds.point_b;
-  answer.weights_a = ConvexWeights(std::move(bounds.weights_a));
-  answer.weights_b = ConvexWeights(std::move(bounds.weights_b));
+  answer.weights_a = std::move(bounds.weights_a);
+  answer.weights_b = std::move(bounds.weights_b);
   answer.iterations = bounds.iterations;
   return answer;
 }

@@ -4,8 +4,10 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <vector>
 
+#include "../geometry/support_tree.hpp"
 #include "candidate_axes.hpp"
 #include "expanding_polytope.hpp"
 #include "minkowski.hpp"
@@ -32,6 +34,9 @@ constexpr int kWitnessIterations = 100;
 struct Workspace {
   ExpandingPolytope polytope;
   CandidateAxes axes;
+  // The frame's points of placed bodies, for the candidate axes, which read each many times.
+  VertexMatrix points_a;
+  VertexMatrix points_b;
   std::vector<int> feature_a;
   std::vector<int> feature_b;
   std::vector<char> visited;  // all zero between uses
@@ -64,21 +69,43 @@ Scalar largest_coordinate(const VertexMatrix& a, const VertexMatrix& b) {
   return std::max(a.cwiseAbs().maxCoeff(), b.cwiseAbs().maxCoeff());
 }
 
+// A bound on the absolute coordinates of a placed body's points, without reading them: the
+// centre of its box in the frame plus its radius, rounded up.
+Scalar coordinate_bound(const FramedBody& body) {
+  const Scalar radius = std::ldexp(body.body().bounds().radius, -body.exponent());
+  return (body.offset().cwiseAbs().maxCoeff() + radius) * (1 + 16 * kRoundoff);
+}
+
+// A point of `body` highest along `n` as a scan of its points finds it (FramedBody::
+// support_index, whose shortfall margin() covers): for large placed bodies by the branch and
+// bound of their support tree (built once per body), seeded by a climb from `hint`.
+int scanned_support(const FramedBody& body, const Vector3& n, int hint) {
+  if (body.size() <= kHillClimbingThreshold || body.scan_shortfall() == 0) {
+    return body.support_index(n);
+  }
+  const VertexMatrix& points = body.local_points();
+  const int key = &points == &body.body().centred_vertices() ? 0 : 1;
+  const auto tree = body.body().derived<SupportTree>([&] { return SupportTree(points); }, key);
+  return tree->support_index(points, body.local_direction(n), body.support_index(n, hint));
+}
+
 class Solver {
  public:
-  Solver(const VertexMatrix& a, const Hull& hull_a, const VertexMatrix& b, const Hull& hull_b,
-         Scalar tolerance, int max_iterations, Scalar coordinate)
-      : a_(a, hull_a),
-        b_(b, hull_b),
+  Solver(const FramedBody& a, const FramedBody& b, Scalar tolerance, int max_iterations,
+         Scalar coordinate)
+      : a_(a),
+        b_(b),
         tolerance_(tolerance),
         max_iterations_(std::max(1, max_iterations)),
         ws_(thread_workspace()),
         coordinate_(coordinate) {}
 
-  PenetrationBounds solve(const Vector3& hint) {
+  PenetrationBounds solve(const Vector3& hint, const MinNormPoint* enclosing) {
     if (hint.allFinite() && hint.norm() > 0) offer(hint.normalized());
     offer_flat_normals();
-    nearest_then_polytope();
+    // An intersection proof's tetrahedron starts the polytope at once; Wolfe's algorithm finds
+    // one otherwise (and the nearest point, for pairs that turn out not to overlap).
+    if (enclosing == nullptr || !enclose(*enclosing)) nearest_then_polytope();
     finish();
     if (!done() && axes_work(a_, b_) <= kAxesFallbackWork) {
       enumerate_axes();
@@ -88,7 +115,9 @@ class Solver {
   }
 
  private:
-  Scalar margin() const { return separation_margin(coordinate_); }
+  Scalar margin() const {
+    return separation_margin(coordinate_) + a_.scan_shortfall() + b_.scan_shortfall();
+  }
   Scalar reach() const { return 2 * std::sqrt(Scalar(3)) * coordinate_; }
   Scalar lower() const { return separation_ - margin(); }
   // The gap below which the rounding margins leave nothing to gain.
@@ -134,11 +163,14 @@ class Solver {
   }
 
   // The candidate's separation by scanning every point, which a proven lower bound needs (a climb
-  // can stop a rounding error short of the maximum).
+  // can stop a rounding error short of the maximum). The scans compare heights in each body's
+  // own frame, within its `scan_shortfall` (in margin()) of the frame's highest.
   void finish() {
     if (!(estimate_ > -kInfinity)) offer(Vector3::UnitX());
     normal_ = candidate_;
-    separation_ = exact_separation(a_, b_, candidate_, top_a_, top_b_);
+    top_a_ = scanned_support(a_, candidate_, climb_a_);
+    top_b_ = scanned_support(b_, -candidate_, climb_b_);
+    separation_ = b_.height(top_b_, candidate_) - a_.height(top_a_, candidate_);
   }
 
   void set_upper(Scalar value, PenetrationProof proof) {
@@ -200,8 +232,22 @@ class Solver {
     return e.verified;
   }
 
+  // The axes read every point many times: a placed body's points are placed once, as the frame
+  // computes them (the same values `vertex` gives).
   void enumerate_axes() {
-    const AxesBound bound = ws_.axes.run(a_, b_, coordinate_);
+    const FramedBody* a = &a_;
+    const FramedBody* b = &b_;
+    std::optional<FramedBody> placed_a;
+    std::optional<FramedBody> placed_b;
+    if (a_.scan_shortfall() > 0) {
+      a_.points(ws_.points_a);
+      a = &placed_a.emplace(ws_.points_a, a_.hull());
+    }
+    if (b_.scan_shortfall() > 0) {
+      b_.points(ws_.points_b);
+      b = &placed_b.emplace(ws_.points_b, b_.hull());
+    }
+    const AxesBound bound = ws_.axes.run(*a, *b, coordinate_);
     offer(bound.best_normal);
     // Below -flat_slack the difference is full-dimensional with the origin inside. Otherwise the
     // facets bound sd only if the origin is inside, |p| bounds it if not, and their maximum is
@@ -239,17 +285,20 @@ class Solver {
     const MinNormPoint m = wolfe_min_norm(oracle, n, reach(), kWitnessIterations);
     Scalar total = 0;
     for (int k = 0; k < m.size; ++k) total += m.weights[k];
-    r.weights_a = VectorX::Zero(a_.size());
-    r.weights_b = VectorX::Zero(b_.size());
+    std::array<int, MinNormPoint::kCapacity> ia{};
+    std::array<int, MinNormPoint::kCapacity> ib{};
+    std::array<Scalar, MinNormPoint::kCapacity> weights{};
     r.point_a.setZero();
     r.point_b.setZero();
     for (int k = 0; k < m.size; ++k) {
-      const Scalar w = m.weights[k] / total;
-      r.weights_a(m.corral[k].ia) += w;
-      r.weights_b(m.corral[k].ib) += w;
-      r.point_a += w * a_.vertex(m.corral[k].ia);
-      r.point_b += w * b_.vertex(m.corral[k].ib);
+      ia[k] = m.corral[k].ia;
+      ib[k] = m.corral[k].ib;
+      weights[k] = m.weights[k] / total;
+      r.point_a += weights[k] * a_.vertex(ia[k]);
+      r.point_b += weights[k] * b_.vertex(ib[k]);
     }
+    r.weights_a = ConvexWeights(a_.size(), ia, weights, m.size);
+    r.weights_b = ConvexWeights(b_.size(), ib, weights, m.size);
     r.witness_residual = (r.point_b - r.point_a - shift).norm();
     r.feature_slack = slack;
   }
@@ -259,6 +308,7 @@ class Solver {
     r.normal = normal_;
     r.separation = separation_;
     r.margin = margin();
+    r.scan_shortfall = a_.scan_shortfall() + b_.scan_shortfall();
     r.lower = lower();
     r.upper = upper();
     r.proof = proven_upper_ <= r.upper ? proof_ : PenetrationProof::nearest_point;
@@ -269,9 +319,8 @@ class Solver {
     return r;
   }
 
-  // The points as given, in the frame the margins assume.
-  FramedBody a_;
-  FramedBody b_;
+  const FramedBody& a_;
+  const FramedBody& b_;
   Scalar tolerance_;
   int max_iterations_;
   Workspace& ws_;
@@ -293,6 +342,14 @@ class Solver {
 
 }  // namespace
 
+PenetrationBounds penetration(const FramedBody& a, const FramedBody& b, const Vector3& hint,
+                              const MinNormPoint* enclosing, Scalar tolerance,
+                              int max_iterations) {
+  const Scalar coordinate = std::max(coordinate_bound(a), coordinate_bound(b));
+  Solver solver(a, b, tolerance, max_iterations, coordinate);
+  return solver.solve(hint, enclosing);
+}
+
 PenetrationBounds penetration(const VertexMatrix& a, const Hull& hull_a, const VertexMatrix& b,
                               const Hull& hull_b, const Vector3& hint, Scalar tolerance,
                               int max_iterations) {
@@ -303,14 +360,16 @@ PenetrationBounds penetration(const VertexMatrix& a, const Hull& hull_a, const V
     PenetrationBounds r;
     r.lower = -kInfinity;
     r.upper = kInfinity;
-    r.weights_a = VectorX::Constant(a.rows(), Scalar(1) / a.rows());
-    r.weights_b = VectorX::Constant(b.rows(), Scalar(1) / b.rows());
-    r.point_a = a.transpose() * r.weights_a;
-    r.point_b = b.transpose() * r.weights_b;
+    r.weights_a = ConvexWeights(VectorX::Constant(a.rows(), Scalar(1) / a.rows()));
+    r.weights_b = ConvexWeights(VectorX::Constant(b.rows(), Scalar(1) / b.rows()));
+    r.point_a = a.transpose() * r.weights_a.dense();
+    r.point_b = b.transpose() * r.weights_b.dense();
     return r;
   }
-  Solver solver(a, hull_a, b, hull_b, tolerance, max_iterations, coordinate);
-  return solver.solve(hint);
+  const FramedBody framed_a(a, hull_a);
+  const FramedBody framed_b(b, hull_b);
+  Solver solver(framed_a, framed_b, tolerance, max_iterations, coordinate);
+  return solver.solve(hint, nullptr);
 }
 
 }  // namespace swarmcollide::detail

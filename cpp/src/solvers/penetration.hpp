@@ -1,8 +1,11 @@
 // The certified penetration solver; private to the library's sources.
 #pragma once
 
+#include "../geometry/framed_body.hpp"
 #include "swarmcollide/geometry/hull.hpp"
+#include "swarmcollide/problem/convex_weights.hpp"
 #include "swarmcollide/types.hpp"
+#include "wolfe_min_norm.hpp"
 
 namespace swarmcollide::detail {
 
@@ -33,16 +36,21 @@ struct PenetrationBounds {
   Vector3 normal = Vector3::UnitX();
   /// `s(normal)` computed by scanning every point (the margin not subtracted).
   Scalar separation = 0;
-  /// The rounding margin: `lower = separation - margin`.
+  /// The rounding margin: `lower = separation - margin`. It is `separation_margin` of the largest
+  /// coordinate plus `scan_shortfall`.
   Scalar margin = 0;
+  /// The part of `margin` that covers support points found by scanning in the bodies' own frames
+  /// (FramedBody::scan_shortfall of both; zero for points given in the frame).
+  Scalar scan_shortfall = 0;
   /// Points of A's supporting feature along `normal` and of B's along `-normal` (each within
   /// `feature_slack` of the supporting plane) with `point_b - point_a` closest to
   /// `separation * normal`; equal to it up to rounding when `normal` is optimal.
   Vector3 point_a = Vector3::Zero();
   Vector3 point_b = Vector3::Zero();
-  /// Convex weights over the rows of `a` and `b` that give `point_a` and `point_b`.
-  VectorX weights_a;
-  VectorX weights_b;
+  /// Convex weights over the bodies' points that give `point_a` and `point_b` (at most four
+  /// nonzero, held sparsely).
+  ConvexWeights weights_a;
+  ConvexWeights weights_b;
   /// `|point_b - point_a - separation * normal|`, as computed.
   Scalar witness_residual = 0;
   /// The slack within which the witnesses' supporting features were collected.
@@ -56,20 +64,32 @@ struct PenetrationBounds {
 };
 
 /// Certified signed distance (mostly for overlapping bodies: minus the penetration depth) of the
-/// convex hulls of the rows of `a` and `b`, whose hulls are `hull_a` and `hull_b`.
+/// framed bodies `a` and `b`, whose points lie in the frame's unit ball (a FramedPair's bodies).
+///
+/// `hint` is a good direction from A to B if one is known (zero otherwise); `enclosing`, when not
+/// null, is a corral of Wolfe's algorithm on `B - A` whose tetrahedron encloses the origin (an
+/// intersection proof), from which the expanding polytope starts at once; `tolerance` (absolute,
+/// >= 0) is the requested gap `upper - lower`; `max_iterations` (>= 1) caps each iterative stage.
+/// The solver works on the Minkowski difference: Wolfe's nearest point of `B - A` to the origin
+/// (unless `enclosing` is given), then an expanding polytope in `A - B` whose closed,
+/// origin-enclosing surface is verified before it proves `upper`, and when that leaves a gap
+/// (touching, flat or degenerate differences) the exhaustive candidate axes (face normals and
+/// crossing Gauss-map arcs), for pairs where they cost at most about 2^22 steps. Every loop is
+/// bounded; nothing aborts. Separated bodies get valid bounds too (Wolfe's distance). Support
+/// points are climbed or scanned in each body's own frame (no point is placed in the frame but
+/// those read; a large body's scan is the branch and bound of its SupportTree, built once per
+/// body), so the lower bound's margin includes both bodies' `scan_shortfall`. Once a thread's
+/// buffers have grown (and the bodies' trees are built), nothing is allocated.
+PenetrationBounds penetration(const FramedBody& a, const FramedBody& b, const Vector3& hint,
+                              const MinNormPoint* enclosing, Scalar tolerance, int max_iterations);
+
+/// The same for the convex hulls of the rows of `a` and `b` (points given in the frame), whose
+/// hulls are `hull_a` and `hull_b`.
 ///
 /// The pair should be in a normalised frame (coordinates of magnitude about 1 or less): the
 /// rounding margins are absolute multiples of the unit roundoff times the largest coordinate. A
 /// largest coordinate outside [1e-100, 1e100] (other than 0) gets infinite bounds, unproven.
-/// `hint` is a good direction from A to B if one is known (zero otherwise); `tolerance` (absolute,
-/// >= 0) is the requested gap `upper - lower`; `max_iterations` (>= 1) caps each iterative stage.
-/// The solver works on the Minkowski difference: Wolfe's nearest point of `B - A` to the origin,
-/// then an expanding polytope in `A - B` whose closed, origin-enclosing surface is verified before
-/// it proves `upper`, and when that leaves a gap (touching, flat or degenerate differences) the
-/// exhaustive candidate axes (face normals and crossing Gauss-map arcs), for pairs where they cost
-/// at most about 2^22 steps. Every loop is bounded; nothing aborts. Separated bodies get valid
-/// bounds too (Wolfe's distance). Once a thread's buffers have grown, only the result's weights are
-/// allocated. Preconditions: finite points, `hull_a` and `hull_b` from `compute_hull` of them.
+/// Preconditions: finite points, `hull_a` and `hull_b` from `compute_hull` of them.
 PenetrationBounds penetration(const VertexMatrix& a, const Hull& hull_a, const VertexMatrix& b,
                               const Hull& hull_b, const Vector3& hint, Scalar tolerance,
                               int max_iterations);
