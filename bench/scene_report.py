@@ -217,7 +217,7 @@ CONTACTS = (
 def contacts_section(data: dict) -> str:
     """The contacts table of contacts.json."""
     context = data["context"]
-    header = ["contender", "median ms (CPU)", "swarmcollide (1 thread) / this, CPU", "pairs",
+    header = ["contender", "median ms (CPU)", "swarmcollide 1 thread / this (CPU; above 1: ours slower)", "pairs",
               "depth outliers", "angle outliers", "normal outliers", "largest depth error",
               "largest angle (deg)"]
     body = []
