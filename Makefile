@@ -93,6 +93,7 @@ bench: install $(VENV)/.bench-installed bench-scene bench-compound
 	$(PY) bench/kernel_code.py --json bench/results/kernel_code.json \
 	  --object $(BENCH_BUILD)/cpp/CMakeFiles/swarmcollide.dir/src/solvers/swarm_kernels.cpp.o
 	$(PY) bench/dask_batch.py $(BENCH_ARGS) --json bench/results/dask_batch.json
+	$(PY) bench/contacts.py $(BENCH_ARGS) --json bench/results/contacts.json
 	$(PY) bench/report.py --results bench/results --plots bench/plots --out bench/RESULTS.md
 
 # The core, the C++ tests and the extension, built with ASan and UBSan (SWARMCOLLIDE_SANITIZE) in

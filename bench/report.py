@@ -17,7 +17,7 @@ from compound import compound_section
 from pose_batch import section as pose_batch_section
 from cpp_report import cpp_sections, every_workload_section
 from record import load
-from scene_report import scene_section
+from scene_report import CONTACTS, contacts_section, scene_section
 from sections import (
     batch_section,
     convergence_section,
@@ -104,6 +104,8 @@ LATE_SECTIONS: List[Section] = [
     ("swarm_speed.json", "The swarm's speed and accuracy at the paper's budget", SWARM_SPEED,
      swarm_speed_section, ""),
     ("dask_batch.json", "Batches on Dask (bench/dask_batch.py)", "", dask_section, ""),
+    ("contacts.json", "Contacts of real object meshes: the scene against MuJoCo and coal",
+     CONTACTS, contacts_section, ""),
 ]
 
 

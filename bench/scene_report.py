@@ -200,6 +200,44 @@ def scene_section(results: str) -> Optional[str]:
     return "\n".join(parts) + "\n"
 
 
+CONTACTS = (
+    "`bench/contacts.py`: convex hulls of pybullet_data's named object meshes (duck, teddy, "
+    "bunny, mug, ...) and of its random objects, centred on their boxes and scaled to radii in "
+    "[0.3, 0.6], drifting and turning in a cube of 2.5 bodies per unit volume. Each frame every "
+    "contender runs in turn on the same poses: the scene's `set_poses` and `contacts()`; MuJoCo's "
+    "qpos written, `mj_kinematics` and `mj_collision` (free bodies, one mesh geom each, with "
+    "and without `multiccd`); coal's transforms set from Python, its DynamicAABBTree updated and "
+    "its default callback running GJK and EPA with contacts in C++. Ratios are of median CPU "
+    "time per frame inside the run. Each peer contact is checked against the scene's certified "
+    "signed distance and normal: outliers are depths off by more than the tolerance times the "
+    "smaller radius, normals more than the angle off, and normals along which the bodies' gap "
+    "(from the hulls' vertices) is off the signed distance by more than the tolerance.")
+
+
+def contacts_section(data: dict) -> str:
+    """The contacts table of contacts.json."""
+    context = data["context"]
+    header = ["contender", "median ms (CPU)", "swarmcollide 1 thread / this (CPU; above 1: ours slower)", "pairs",
+              "depth outliers", "angle outliers", "normal outliers", "largest depth error",
+              "largest angle (deg)"]
+    body = []
+    for r in data["rows"]:
+        ours = r["contender"].startswith("swarmcollide")
+        body.append([
+            r["contender"], f"{r['median_ms']:.2f} ({r['median_cpu_ms']:.2f})",
+            f"{r['ours_over_this_cpu']:.2f}",
+            f"{r['contacts']} ({r['certified']} certified)" if ours else str(r["pairs"]),
+            "—" if ours else str(r["depth_outliers"]), "—" if ours else str(r["angle_outliers"]),
+            "—" if ours else str(r["normal_outliers"]),
+            "—" if ours else f"{r['depth_error_max']:.2g}",
+            "—" if ours else f"{r['angle_max_degrees']:.3g}"])
+    return "\n".join([
+        f"{context['bodies']} hulls of {context['vertices_min']}-{context['vertices_max']} vertices "
+        f"(median {context['vertices_median']}), {context['frames']} frames; tolerances: depth "
+        f"{context['depth_tolerance']:g} of the smaller radius, angle {context['angle_degrees']:g} "
+        "degree.", "", machine_line(data), "", table(header, body)])
+
+
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--results", default="bench/results")

@@ -163,7 +163,16 @@ struct Workload {
   std::vector<std::unique_ptr<Pair>> pairs;
 };
 
-enum class Kind { distance, fcl_distance, sc_collide, fcl_collide, ccd_gjk };
+enum class Kind {
+  distance,
+  fcl_distance,
+  sc_collide,
+  fcl_collide,
+  fcl_collide_direct,
+  sc_signed,
+  fcl_signed_direct,
+  ccd_gjk
+};
 
 struct Row {
   std::string name;
@@ -210,12 +219,21 @@ std::vector<Row> make_rows() {
   }
   // FCL's own distance on prebuilt shapes, as an FCL user calls it: the cost of the query alone.
   rows.push_back({"FCL distance direct", Kind::fcl_distance, {}, false, "FCL"});
+  // The fcl method's collide and signed distance beside the FCL calls they wrap (GST_INDEP's GJK;
+  // for an overlapping pair's signed distance FCL runs its EPA, the method the library's own).
+  rows.push_back({"collide fcl", Kind::sc_collide, using_method(sc::Method::fcl), false,
+                  "swarmcollide"});
+  rows.push_back({"FCL collide direct", Kind::fcl_collide_direct, {}, false, "FCL"});
+  rows.push_back({"signed fcl", Kind::sc_signed, using_method(sc::Method::fcl), false,
+                  "swarmcollide"});
+  rows.push_back({"FCL signed distance direct", Kind::fcl_signed_direct, {}, false, "FCL"});
   rows.push_back({"collide libccd", Kind::sc_collide, using_method(sc::Method::libccd), false,
                   "swarmcollide"});
   rows.push_back({"FCL collide", Kind::fcl_collide, {}, false, "FCL"});
   rows.push_back({"libccd GJK intersect", Kind::ccd_gjk, {}, false, "libccd"});
   for (Row& row : rows) {
-    if (row.kind == Kind::distance || row.kind == Kind::sc_collide) {
+    if (row.kind == Kind::distance || row.kind == Kind::sc_collide ||
+        row.kind == Kind::sc_signed) {
       row.seeded = seeded_queries(row.options);
     }
   }
@@ -251,8 +269,21 @@ bool answer(const Row& row, const Pair& p, std::size_t index, sc::DistanceResult
     }
     case Kind::sc_collide:
       return row.seeded[index].collide(p.a, p.b);
-    case Kind::fcl_collide: {
-      const fcl::CollisionRequestd request;  // GST_LIBCCD, one contact
+    case Kind::sc_signed:
+      *result = row.seeded[index].signed_distance(p.a, p.b);
+      return result->colliding;
+    case Kind::fcl_signed_direct: {
+      const double d =
+          fcl_distance_raw(*p.fcl_a, *p.fcl_b, sc::Vector3::Zero(), true, kFclOwnGjk).min_distance;
+      result->distance = d;
+      result->colliding = d <= sc::kDefaultTolerance;
+      return result->colliding;
+    }
+    case Kind::fcl_collide:
+    case Kind::fcl_collide_direct: {
+      // The default request: GST_LIBCCD, one contact, no contact data; "direct" GST_INDEP.
+      fcl::CollisionRequestd request;
+      if (row.kind == Kind::fcl_collide_direct) request.gjk_solver_type = kFclOwnGjk;
       fcl::CollisionResultd out;
       fcl::collide(p.fcl_a.get(), fcl::Transform3d::Identity(), p.fcl_b.get(),
                    fcl::Transform3d::Identity(), request, out);
@@ -318,7 +349,8 @@ Accuracy measure(const Row& row, const Workload& w, bool quick) {
   Accuracy acc;
   acc.of_pairs = static_cast<int>(w.pairs.size());
   acc.pairs = pairs_for(row, w, quick);
-  acc.has_distance = row.kind == Kind::distance || row.kind == Kind::fcl_distance;
+  acc.has_distance = row.kind == Kind::distance || row.kind == Kind::fcl_distance ||
+                     row.kind == Kind::sc_signed || row.kind == Kind::fcl_signed_direct;
   std::vector<double> errors;
   for (int i = 0; i < acc.pairs; ++i) {
     const Pair& p = *w.pairs[i];
@@ -329,7 +361,8 @@ Accuracy measure(const Row& row, const Workload& w, bool quick) {
     acc.iterations += r.iterations;
     acc.evaluations += static_cast<double>(r.evaluations);
     if (r.certified) ++acc.certified;
-    const double error = std::abs(r.distance - p.reference.distance);
+    // Signed rows are compared on their distance: their depths are not the reference's.
+    const double error = std::abs(std::max(r.distance, 0.0) - p.reference.distance);
     errors.push_back(error);
     if (!p.reference.colliding) {
       ++acc.separated;
@@ -451,6 +484,7 @@ int main(int argc, char** argv) {
   bool quick = false;
   std::string json;
   std::vector<int> sizes;
+  std::vector<std::string> only_rows;
   std::vector<char*> args = {argv[0]};
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
@@ -465,11 +499,19 @@ int main(int argc, char** argv) {
         sizes.push_back(std::stoi(list.substr(pos, comma - pos)));
         pos = comma + 1;
       }
+    } else if (arg == "--rows" && i + 1 < argc) {
+      std::string list = argv[++i];
+      for (std::size_t pos = 0; pos < list.size();) {
+        const std::size_t comma = std::min(list.find(',', pos), list.size());
+        only_rows.push_back(list.substr(pos, comma - pos));
+        pos = comma + 1;
+      }
     } else if (arg == "--help" || arg == "-h") {
       std::cout << "usage: swarmcollide-bench [--quick] [--json FILE] [--benchmark_* flags]\n"
                    "  --quick      a reduced set (paper pairs, n = 8, 64, three proximities)\n"
                    "  --json FILE  Google Benchmark JSON with the accuracy counters\n"
-                   "  --sizes LIST only these vertex counts, e.g. 8,64 (the paper pairs always)\n";
+                   "  --sizes LIST only these vertex counts, e.g. 8,64 (the paper pairs always)\n"
+                   "  --rows LIST  only these rows, e.g. 'fcl,FCL distance direct'\n";
       return 0;
     } else {
       args.push_back(argv[i]);
@@ -500,6 +542,13 @@ int main(int argc, char** argv) {
   for (const Workload& w : workloads) {
     ++done;
     for (const Row& row : rows) {
+      if (!only_rows.empty() &&
+          std::find(only_rows.begin(), only_rows.end(), row.name) == only_rows.end()) {
+        continue;
+      }
+      // FCL's signed distance asserts on some touching and overlapping pairs (its EPA finds no
+      // contact): it is timed where it answers, on separated pairs.
+      if (row.kind == Kind::fcl_signed_direct && !(w.target > 0)) continue;
       const Accuracy acc = measure(row, w, quick);
       std::fprintf(stderr, "\raccuracy pass %zu/%zu %-24s %-22s %8.3f s", done, workloads.size(),
                    w.name.c_str(), row.name.c_str(), acc.seconds);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -144,13 +145,42 @@ TEST(ConvexPolyhedron, DerivedDataIsMadeOncePerBodyAndSharedByCopies) {
   const ConvexPolyhedron copy = cube;
   int made = 0;
   const auto make = [&made] { return ++made; };
-  const std::shared_ptr<const int> first = cube.derived<int>(make);
-  EXPECT_EQ(*copy.derived<int>(make), 1);
-  EXPECT_EQ(copy.derived<int>(make), first);
+  const int& first = cube.derived<int>(make);
+  EXPECT_EQ(copy.derived<int>(make), 1);
+  EXPECT_EQ(&copy.derived<int>(make), &first);
   EXPECT_EQ(made, 1);
-  // Another type is another slot; another body has its own.
-  EXPECT_EQ(*cube.derived<double>([] { return 2.5; }), 2.5);
-  EXPECT_EQ(*ConvexPolyhedron(unit_cube()).derived<int>(make), 2);
+  // Another type is another slot, and so is another key; another body has its own.
+  EXPECT_EQ(cube.derived<double>([] { return 2.5; }), 2.5);
+  EXPECT_EQ(cube.derived<int>(make, 7), 2);
+  EXPECT_EQ(&cube.derived<int>(make), &first);
+  EXPECT_EQ(ConvexPolyhedron(unit_cube()).derived<int>(make), 3);
+}
+
+TEST(ConvexPolyhedron, ThreadsAskingForDerivedDataAtOnceShareOne) {
+  // Each thread asks for several keys, so that threads read the list while others add to it.
+  for (int trial = 0; trial < 20; ++trial) {
+    const ConvexPolyhedron cube(unit_cube());
+    std::atomic<int> made{0};
+    std::vector<std::vector<const int*>> seen(4, std::vector<const int*>(8, nullptr));
+    std::vector<std::thread> threads;
+    for (std::size_t t = 0; t < seen.size(); ++t) {
+      threads.emplace_back([&cube, &seen, &made, t] {
+        for (int key = 0; key < 8; ++key) {
+          const int k = (key + static_cast<int>(t)) % 8;
+          seen[t][k] = &cube.derived<int>([&made, k] {
+            ++made;
+            return k;
+          }, k);
+        }
+      });
+    }
+    for (std::thread& thread : threads) thread.join();
+    EXPECT_EQ(made.load(), 8);
+    for (int key = 0; key < 8; ++key) {
+      EXPECT_EQ(*seen[0][key], key);
+      for (std::size_t t = 1; t < seen.size(); ++t) EXPECT_EQ(seen[t][key], seen[0][key]);
+    }
+  }
 }
 
 TEST(ConvexPolyhedron, ThreadsAskingForTheHullAtOnceShareOne) {

@@ -23,13 +23,25 @@ struct HullCache {
   std::mutex hull_mutex;
   Hull hull;
   HullPoints hull_points;
-  std::mutex derived_mutex;
+  // Derived data: a list that only grows, newest first, read without a lock (every fcl query
+  // asks for its shapes, and a mutex there made threads on one body wait on each other). Entries
+  // are never changed once published, and live as long as the cache.
   struct Derived {
     std::type_index type;
     int key;
     std::shared_ptr<const void> data;
+    std::unique_ptr<const Derived> next;
   };
-  std::vector<Derived> derived;
+  std::mutex derived_mutex;
+  std::atomic<const Derived*> derived_head{nullptr};
+  std::unique_ptr<const Derived> derived;
+
+  const Derived* find(std::type_index type, int key) const {
+    for (const Derived* d = derived_head.load(std::memory_order_acquire); d; d = d->next.get()) {
+      if (d->key == key && d->type == type) return d;
+    }
+    return nullptr;
+  }
 };
 }  // namespace detail
 
@@ -143,14 +155,20 @@ Vector3 ConvexPolyhedron::centroid() const {
   return unit.centre + centre;
 }
 
-std::shared_ptr<const void> ConvexPolyhedron::derived_slot(
+const void* ConvexPolyhedron::find_derived(std::type_index type, int key) const {
+  const detail::HullCache::Derived* found = hull_cache_->find(type, key);
+  return found ? found->data.get() : nullptr;
+}
+
+const void* ConvexPolyhedron::add_derived(
     std::type_index type, int key, const std::function<std::shared_ptr<const void>()>& make) const {
-  const std::lock_guard<std::mutex> lock(hull_cache_->derived_mutex);
-  for (const auto& stored : hull_cache_->derived) {
-    if (stored.type == type && stored.key == key) return stored.data;
-  }
-  hull_cache_->derived.push_back({type, key, make()});
-  return hull_cache_->derived.back().data;
+  detail::HullCache& cache = *hull_cache_;
+  const std::lock_guard<std::mutex> lock(cache.derived_mutex);
+  if (const detail::HullCache::Derived* found = cache.find(type, key)) return found->data.get();
+  cache.derived.reset(
+      new detail::HullCache::Derived{type, key, make(), std::move(cache.derived)});
+  cache.derived_head.store(cache.derived.get(), std::memory_order_release);
+  return cache.derived->data.get();
 }
 
 const Hull& ConvexPolyhedron::hull() const {

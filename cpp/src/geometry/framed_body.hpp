@@ -98,6 +98,11 @@ class FramedBody {
   int support_index(const Vector3& d) const { return scan_support(*vertices_, local_direction(d)); }
   /// The same for a direction already in the body's own frame.
   int local_support_index(const Vector3& local) const { return scan_support(*vertices_, local); }
+  /// The same, climbing the hull from `start` on large bodies (as `support_index(d, start)`).
+  int local_support_index(const Vector3& local, int start) const {
+    if (size() <= kHillClimbingThreshold) return local_support_index(local);
+    return climb_support(*vertices_, hull(), local, start);
+  }
   /// The same, climbing the hull from `start` when the body has more than
   /// `kHillClimbingThreshold` points (see ConvexPolyhedron::support_index): for searches, whose
   /// successive directions are close.

@@ -25,7 +25,7 @@ Scalar ball_radius(const ConvexPolyhedron& body) {
         const Scalar largest = body.centred_vertices().rowwise().norm().maxCoeff();
         return BallRadius{largest * (1 + 0x1p-40)};
       })
-      ->radius;
+      .radius;
 }
 
 std::optional<DistanceResult> collision_by_balls(const FramedPair& pair, Scalar radius_a,

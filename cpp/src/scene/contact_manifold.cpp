@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "../solvers/witness.hpp"
+#include "../solvers/minkowski.hpp"
 
 namespace swarmcollide::detail {
 
@@ -229,10 +229,15 @@ Polygon reduce(const Polygon& polygon, int count) {
 
 void contact_points(const FramedPair& pair, const Vector3& n, Scalar slack, int max_points,
                     std::vector<Vector3>& out) {
+  // The features from their top points: found by climbing and flooding the hulls on large
+  // bodies, whose every point a scan would place in the frame.
   thread_local std::vector<int> feature_a;
   thread_local std::vector<int> feature_b;
-  supporting_feature(pair.a, n, slack, feature_a);
-  supporting_feature(pair.b, -n, slack, feature_b);
+  thread_local std::vector<char> visited;
+  const int top_index_a = pair.a.support_index(n, -1);
+  const int top_index_b = pair.b.support_index(-n, -1);
+  supporting_feature(pair.a, n, top_index_a, slack, visited, feature_a);
+  supporting_feature(pair.b, -n, top_index_b, slack, visited, feature_b);
   const Vector3 helper = std::abs(n.x()) < 0.6 ? Vector3::UnitX() : Vector3::UnitY();
   const Vector3 u = n.cross(helper).normalized();
   const Vector3 v = n.cross(u);
@@ -240,9 +245,8 @@ void contact_points(const FramedPair& pair, const Vector3& n, Scalar slack, int 
   Polygon pb;
   for (int i : feature_a) pa.emplace_back(u.dot(pair.a.vertex(i)), v.dot(pair.a.vertex(i)));
   for (int j : feature_b) pb.emplace_back(u.dot(pair.b.vertex(j)), v.dot(pair.b.vertex(j)));
-  // The highest point of A and the lowest of B along n come first in their features.
-  const Scalar top_a = n.dot(pair.a.vertex(feature_a.front()));
-  const Scalar bottom_b = n.dot(pair.b.vertex(feature_b.front()));
+  const Scalar top_a = n.dot(pair.a.vertex(top_index_a));
+  const Scalar bottom_b = n.dot(pair.b.vertex(top_index_b));
   const Scalar height = top_a / 2 + bottom_b / 2;
   Polygon meet = intersect(convex_hull(pa, slack), convex_hull(pb, slack), slack);
   if (meet.empty()) {

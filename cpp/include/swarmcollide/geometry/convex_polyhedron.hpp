@@ -85,19 +85,26 @@ class ConvexPolyhedron {
   const HullPoints& hull_points() const;
 
   /// Data a solver derives from the body (an FCL shape at some scale, say): made by `make()` on
-  /// the first call for type `T` and `key`, then shared by every copy of the body. Safe to call
-  /// from many threads.
+  /// the first call for type `T` and `key`, then shared by every copy of the body, and kept as
+  /// long as one of them lives. Safe to call from many threads; once made, finding it takes no
+  /// lock (a solver asks for it on every query).
   template <typename T, typename Make>
-  std::shared_ptr<const T> derived(const Make& make, int key = 0) const {
-    return std::static_pointer_cast<const T>(derived_slot(typeid(T), key, [&make] {
-      return std::shared_ptr<const void>(std::make_shared<const T>(make()));
-    }));
+  const T& derived(const Make& make, int key = 0) const {
+    const void* found = find_derived(typeid(T), key);
+    if (!found) {
+      found = add_derived(typeid(T), key, [&make] {
+        return std::shared_ptr<const void>(std::make_shared<const T>(make()));
+      });
+    }
+    return *static_cast<const T*>(found);
   }
 
  private:
-  std::shared_ptr<const void> derived_slot(
-      std::type_index type, int key,
-      const std::function<std::shared_ptr<const void>()>& make) const;
+  // The data kept for (type, key), null when there is none yet.
+  const void* find_derived(std::type_index type, int key) const;
+  // The data for (type, key), made by `make` unless another thread made it first.
+  const void* add_derived(std::type_index type, int key,
+                          const std::function<std::shared_ptr<const void>()>& make) const;
 
   VertexMatrix vertices_;
   BodyBounds bounds_;
