@@ -85,8 +85,9 @@ int scanned_support(const FramedBody& body, const Vector3& n, int hint) {
   }
   const VertexMatrix& points = body.local_points();
   const int key = &points == &body.body().centred_vertices() ? 0 : 1;
-  const auto tree = body.body().derived<SupportTree>([&] { return SupportTree(points); }, key);
-  return tree->support_index(points, body.local_direction(n), body.support_index(n, hint));
+  const SupportTree& tree =
+      body.body().derived<SupportTree>([&] { return SupportTree(points); }, key);
+  return tree.support_index(points, body.local_direction(n), body.support_index(n, hint));
 }
 
 class Solver {
