@@ -71,12 +71,21 @@ bench-compound: install $(VENV)/.bench-installed
 	$(PY) bench/compound.py $(BENCH_ARGS) --json bench/results/compound.json
 	$(PY) bench/report.py --results bench/results --plots bench/plots --out bench/RESULTS.md
 
+# coal's C++ library comes with its pip wheel (the bench extra), under site-packages/cmeel.prefix.
+COAL_PREFIX = $$($(PY) -c "import sysconfig; print(sysconfig.get_paths()['purelib'])")/cmeel.prefix
+
 bench: install $(VENV)/.bench-installed bench-scene bench-compound
 	cmake -S . -B $(BENCH_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release \
-	  -DSWARMCOLLIDE_BUILD_BENCH=ON -DSWARMCOLLIDE_BUILD_PYTHON=OFF
+	  -DSWARMCOLLIDE_BUILD_BENCH=ON -DSWARMCOLLIDE_BUILD_PYTHON=OFF \
+	  -DSWARMCOLLIDE_COAL_PREFIX="$(COAL_PREFIX)"
 	cmake --build $(BENCH_BUILD) -j $(JOBS) --target swarmcollide-bench swarmcollide-batch-loop \
-	  swarmcollide-swarm-speed swarmcollide-swarm-targets
+	  swarmcollide-swarm-speed swarmcollide-swarm-targets swarmcollide-narrowphase-coal \
+	  swarmcollide-penetration-coal
 	mkdir -p bench/results bench/plots
+	$(PY) bench/record.py --bench narrowphase_coal --json bench/results/narrowphase_coal.json -- \
+	  $(BENCH_BUILD)/bench/swarmcollide-narrowphase-coal $(BENCH_ARGS)
+	$(PY) bench/record.py --bench penetration_coal --json bench/results/penetration_coal.json -- \
+	  $(BENCH_BUILD)/bench/swarmcollide-penetration-coal $(BENCH_ARGS)
 	$(PY) bench/record.py --bench cpp --json bench/results/cpp.json -- \
 	  $(BENCH_BUILD)/bench/swarmcollide-bench $(BENCH_ARGS) > $(BENCH_BUILD)/console.txt
 	$(PY) bench/compare_python.py $(BENCH_ARGS) --json bench/results/python_comparison.json

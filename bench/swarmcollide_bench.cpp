@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "normals.hpp"
+#include "random_pairs.hpp"
 #include "swarmcollide/queries/methods.hpp"
 #include "swarmcollide/queries/query.hpp"
 
@@ -36,45 +37,6 @@ constexpr int kPairsPerWorkload = 20;
 // The GJK that swarmcollide's "fcl" method runs is FCL's own (GST_INDEP's implementation), so the
 // direct FCL distance rows call that one too.
 constexpr fcl::GJKSolverType kFclOwnGjk = fcl::GST_INDEP;
-
-// The hull vertices of `n` random points on the unit sphere.
-sc::VertexMatrix sphere_polytope(int n, Normals& normals) {
-  sc::VertexMatrix points(n, 3);
-  for (int i = 0; i < n; ++i) points.row(i) = normals.unit().transpose();
-  const sc::ConvexPolyhedron body(points);
-  const std::vector<int>& indices = body.hull().vertex_indices;
-  sc::VertexMatrix vertices(static_cast<Eigen::Index>(indices.size()), 3);
-  for (std::size_t k = 0; k < indices.size(); ++k) vertices.row(k) = points.row(indices[k]);
-  return vertices;
-}
-
-// The body's hull as an fcl::Convexd translated by -origin, as an FCL user would build it.
-std::shared_ptr<fcl::Convexd> to_fcl(const sc::ConvexPolyhedron& body, const sc::Vector3& origin) {
-  const sc::Hull& hull = body.hull();
-  std::vector<int> local(body.size(), -1);
-  auto vertices = std::make_shared<std::vector<fcl::Vector3d>>();
-  for (int i : hull.vertex_indices) {
-    local[i] = static_cast<int>(vertices->size());
-    vertices->push_back(body.vertices().row(i).transpose() - origin);
-  }
-  auto faces = std::make_shared<std::vector<int>>();
-  for (Eigen::Index f = 0; f < hull.faces.rows(); ++f) {
-    faces->insert(faces->end(),
-                  {3, local[hull.faces(f, 0)], local[hull.faces(f, 1)], local[hull.faces(f, 2)]});
-  }
-  return std::make_shared<fcl::Convexd>(vertices, static_cast<int>(hull.faces.rows()), faces);
-}
-
-fcl::DistanceResultd fcl_distance_raw(const fcl::Convexd& a, const fcl::Convexd& b,
-                                      const sc::Vector3& shift_b, bool signed_distance,
-                                      fcl::GJKSolverType solver) {
-  const fcl::DistanceRequestd request(true, signed_distance, 0, 0, 1e-10, solver);
-  fcl::DistanceResultd result;
-  fcl::Transform3d pose_b = fcl::Transform3d::Identity();
-  pose_b.translation() = shift_b;
-  fcl::distance(&a, fcl::Transform3d::Identity(), &b, pose_b, request, result);
-  return result;
-}
 
 // What libccd's callbacks see: a body, shifted like the FCL shapes.
 struct CcdShape {
@@ -121,38 +83,10 @@ std::unique_ptr<Pair> build_pair(sc::VertexMatrix a_points, sc::VertexMatrix b_p
   return pair;
 }
 
-// Two random n-vertex polytopes, B moved along a random ray from A's centroid until FCL's
-// distance (GST_LIBCCD; for overlaps its signed distance, EPA) is `target`, by bisection on the
-// translation. Thin bodies cannot overlap by some targets: such draws are replaced by the next.
+// Two random n-vertex polytopes at signed distance `target` (random_pairs.hpp).
 std::unique_ptr<Pair> random_pair(int n, double target, std::uint64_t seed) {
-  Normals normals(seed);
-  for (;;) {
-    const sc::VertexMatrix a_points = sphere_polytope(n, normals);
-    sc::VertexMatrix b0_points = sphere_polytope(n, normals);
-    const sc::Vector3 u = normals.unit();
-    b0_points.rowwise() += (a_points.colwise().mean() - b0_points.colwise().mean()).eval();
-    const sc::ConvexPolyhedron a(a_points), b0(b0_points);
-    const sc::Vector3 origin = a.aabb().min / 2 + a.aabb().max / 2;
-    const auto fa = to_fcl(a, origin), fb = to_fcl(b0, origin);
-    auto signed_distance = [&](double t) {
-      return fcl_distance_raw(*fa, *fb, t * u, target < 0, fcl::GST_LIBCCD).min_distance;
-    };
-    // At t = 0 the centroids coincide; at t0 the separation along u is `target`, a lower bound
-    // on the signed distance.
-    double lo = 0;
-    if (!(signed_distance(lo) < target)) continue;
-    double hi = std::max(0.0, target + (a_points * u).maxCoeff() - (b0_points * u).minCoeff());
-    for (int k = 0; signed_distance(hi) < target; ++k) {
-      if (k == 100) throw std::runtime_error("random_pair: no upper bracket");
-      hi += 0.5;
-    }
-    for (int step = 0; step < 64 && hi - lo > 1e-15; ++step) {
-      const double mid = (lo + hi) / 2;
-      (signed_distance(mid) < target ? lo : hi) = mid;
-    }
-    sc::VertexMatrix b_points = b0_points.rowwise() + hi * u.transpose();
-    return build_pair(a_points, std::move(b_points));
-  }
+  auto [a_points, b_points] = random_pair_points(n, target, seed);
+  return build_pair(std::move(a_points), std::move(b_points));
 }
 
 struct Workload {
@@ -459,7 +393,7 @@ std::vector<Workload> make_workloads(bool quick, const std::vector<int>& only_si
                  {}};
       for (int i = 0; i < pairs; ++i) {
         // The seed depends on the size, proximity and index, not on --quick.
-        const std::uint64_t seed = 1000003ULL * static_cast<std::uint64_t>(n) + 1009ULL * k + i;
+        const std::uint64_t seed = random_pair_seed(n, static_cast<int>(k), i);
         w.pairs.push_back(random_pair(n, proximities[k].target, seed));
       }
       workloads.push_back(std::move(w));

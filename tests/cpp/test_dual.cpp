@@ -66,6 +66,31 @@ TEST(Dual, LargeBodiesAreCertifiedAndAgreeWithTheExactMethod) {
 }
 
 // The signed distance of bodies too large for the oracle agrees with the exact method's.
+// Wolfe's algorithm on the whole difference settles the pair before any swarm round, and a
+// verdict stops at the first proof: no more support evaluations than the exact method's solve
+// (plus the start's), where the supporting-feature finish used to run first and cost more.
+TEST(Dual, TheStartSettlesPairsWithoutTheSwarm) {
+  Random rng(7);
+  const Query dual(with(Method::dual));
+  const Query exact(with(Method::exact));
+  for (int n : {8, 64, 512}) {
+    for (Scalar gap : {1e-2, -1e-2}) {
+      const auto [a, b] = placed_pair(n, gap, rng);
+      SCOPED_TRACE("n = " + std::to_string(n) + ", gap = " + std::to_string(gap));
+      const DistanceResult distance = dual.distance(a, b);
+      const DistanceResult verdict = dual.collision(a, b);
+      EXPECT_TRUE(distance.certified);
+      EXPECT_TRUE(verdict.certified);
+      EXPECT_EQ(verdict.colliding, gap < 0);
+      EXPECT_EQ(distance.iterations, 0);
+      EXPECT_EQ(verdict.iterations, 0);
+      const long reference = exact.distance(a, b).evaluations;
+      EXPECT_LE(distance.evaluations, reference + 2);
+      EXPECT_LE(verdict.evaluations, reference + 2);
+    }
+  }
+}
+
 TEST(Dual, SignedDistancesAgreeWithTheExactMethod) {
   Random rng(7);
   const Query dual(with(Method::dual));

@@ -403,5 +403,29 @@ TEST(HillClimbing, SupportMatchesTheScan) {
   }
 }
 
+// A climb without a start begins at the highest of the hull's climbing starts: for each of the
+// 26 directions of a cube's faces, edges and corners, one of them is a support point.
+TEST(HillClimbing, ClimbStartsSupportTheCubeDirections) {
+  std::mt19937_64 rng(11);
+  std::normal_distribution<Scalar> normal;
+  VertexMatrix points(300, 3);
+  for (int i = 0; i < points.rows(); ++i) points.row(i) << normal(rng), normal(rng), normal(rng);
+  const ConvexPolyhedron body(points);
+  const std::vector<int>& starts = body.hull().climb_starts;
+  ASSERT_FALSE(starts.empty());
+  EXPECT_LE(starts.size(), 26u);
+  for (int x = -1; x <= 1; ++x) {
+    for (int y = -1; y <= 1; ++y) {
+      for (int z = -1; z <= 1; ++z) {
+        if (x == 0 && y == 0 && z == 0) continue;
+        const Vector3 d(x, y, z);
+        Scalar highest = -std::numeric_limits<Scalar>::infinity();
+        for (int i : starts) highest = std::max(highest, points.row(i).dot(d));
+        EXPECT_NEAR(highest, (points * d).maxCoeff(), 1e-12);
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace swarmcollide

@@ -18,6 +18,7 @@ extern "C" {
 
 #include "hull_graph.hpp"
 #include "normalise.hpp"
+#include "support.hpp"
 
 namespace swarmcollide {
 
@@ -448,7 +449,8 @@ namespace detail {
 // ascending. Every edge of a closed surface (a doubled polygon too) is listed in both directions,
 // so bucketing the directed edges by their first point finds all neighbours; a point's bucket
 // repeats a neighbour only on a doubled polygon.
-void fill_adjacency(Hull& hull, Eigen::Index points) {
+void fill_adjacency(Hull& hull, const VertexMatrix& vertices) {
+  const Eigen::Index points = vertices.rows();
   const auto for_each_edge = [&hull](const auto& visit) {
     if (hull.dimension == 1) {
       visit(hull.vertex_indices[0], hull.vertex_indices[1]);
@@ -477,6 +479,23 @@ void fill_adjacency(Hull& hull, Eigen::Index points) {
   }
   offsets[points] = written;
   neighbours.resize(static_cast<std::size_t>(written));
+  hull.climb_starts.clear();
+  for (int x = -1; x <= 1; ++x) {
+    for (int y = -1; y <= 1; ++y) {
+      for (int z = -1; z <= 1; ++z) {
+        if (x == 0 && y == 0 && z == 0) continue;
+        const Vector3 d(x, y, z);
+        int top = hull.vertex_indices.front();
+        for (int v : hull.vertex_indices) {
+          if (point_height(vertices, v, d) > point_height(vertices, top, d)) top = v;
+        }
+        if (std::find(hull.climb_starts.begin(), hull.climb_starts.end(), top) ==
+            hull.climb_starts.end()) {
+          hull.climb_starts.push_back(top);
+        }
+      }
+    }
+  }
 }
 
 }  // namespace detail
@@ -514,8 +533,9 @@ Hull compute_hull(const VertexMatrix& points) {
   }
   // The hull's combinatorics do not change under translation and scaling; in the unit ball the
   // cross products of coordinates near 1e300 (or 1e-300) neither overflow nor underflow.
-  Hull hull = hull_without_adjacency(detail::normalise(points).points);
-  detail::fill_adjacency(hull, points.rows());
+  const VertexMatrix unit = detail::normalise(points).points;
+  Hull hull = hull_without_adjacency(unit);
+  detail::fill_adjacency(hull, unit);
   return hull;
 }
 

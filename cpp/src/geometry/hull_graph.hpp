@@ -13,8 +13,8 @@ namespace swarmcollide::detail {
 /// used once and its reverse once.
 bool closed_surface(const std::vector<Eigen::RowVector3i>& triangles);
 
-/// Sets `hull.neighbour_offsets` and `hull.neighbours` from its faces (or its segment), for a
-/// set of `points` points.
-void fill_adjacency(Hull& hull, Eigen::Index points);
+/// Sets `hull.neighbour_offsets` and `hull.neighbours` from its faces (or its segment), and
+/// `hull.climb_starts`, for the point set `points` whose hull it is.
+void fill_adjacency(Hull& hull, const VertexMatrix& points);
 
 }  // namespace swarmcollide::detail

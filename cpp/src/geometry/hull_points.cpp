@@ -151,7 +151,7 @@ HullPoints find_hull_points(const VertexMatrix& centred, const Hull& hull) {
   for (Eigen::Index f = 0; f < hull.faces.rows(); ++f) {
     for (int k = 0; k < 3; ++k) points.hull.faces(f, k) = position[triangles[f](k)];
   }
-  detail::fill_adjacency(points.hull, count);
+  detail::fill_adjacency(points.hull, points.centred);
   return points;
 }
 

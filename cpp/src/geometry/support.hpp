@@ -37,9 +37,12 @@ inline int scan_support(const VertexMatrix& points, const Vector3& d) {
                        [&](int i) { return point_height(points, i, d); });
 }
 
-/// Index of a point maximising `d . x`, by steepest ascent over `hull`'s edge graph from `start`
-/// (a point with no neighbours, or out of range, starts from the hull's first vertex), as FCL and
-/// coal do. On a convex polytope a vertex with no higher neighbour maximises a linear function;
+/// Index of a point maximising `d . x`, by steepest ascent over `hull`'s edge graph, as FCL and
+/// coal do, from `start`: a search passes the previous answer, which is best for a nearby
+/// direction. Without one (a point with no neighbours, or out of range, is none), or after a
+/// jump, the climb starts from the highest of the hull's `climb_starts` (coal keeps such a table
+/// too), so it crosses at most the part of the hull within about 25 degrees of `d`.
+/// On a convex polytope a vertex with no higher neighbour maximises a linear function;
 /// with rounded heights the climb can stop short of the maximum, so its answers serve search and
 /// upper bounds (any point of the body does), never a proven lower bound on their own. Every
 /// step strictly raises the height, so the climb ends.
@@ -47,11 +50,21 @@ inline int climb_support(const VertexMatrix& points, const Hull& hull, const Vec
                          int start) {
   const int* offsets = hull.neighbour_offsets.data();
   const int* neighbours = hull.neighbours.data();
-  int current =
-      start >= 0 && start < static_cast<int>(points.rows()) && offsets[start + 1] > offsets[start]
-          ? start
-          : hull.vertex_indices.front();
-  Scalar highest = point_height(points, current, d);
+  int current = start;
+  Scalar highest;
+  if (start >= 0 && start < static_cast<int>(points.rows()) && offsets[start + 1] > offsets[start]) {
+    highest = point_height(points, current, d);
+  } else {
+    current = hull.climb_starts.front();
+    highest = point_height(points, current, d);
+    for (int s : hull.climb_starts) {
+      const Scalar h = point_height(points, s, d);
+      if (h > highest) {
+        highest = h;
+        current = s;
+      }
+    }
+  }
   for (;;) {
     int next = current;
     for (int e = offsets[current]; e < offsets[current + 1]; ++e) {

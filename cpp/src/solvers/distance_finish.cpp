@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <vector>
 
+#include "../queries/verdict.hpp"
 #include "minkowski.hpp"
 
 namespace swarmcollide::detail {
@@ -13,6 +14,10 @@ namespace {
 // again. From the first generation's best direction, 512-vertex pairs need up to 10; with fewer,
 // a quarter of them wait a dozen swarm iterations for the next finish.
 constexpr int kFinishSteps = 10;
+
+// Directions closer than this cosine (about 25 degrees) are nearby: a climb for one starts from
+// the support of the other (coal's threshold too).
+constexpr Scalar kNearbyCosine = 0.9;
 
 struct Buffers {
   std::vector<char> visited;  // all zero between uses
@@ -93,21 +98,65 @@ void DistanceFinish::from(const Vector3& n, int& hint_a, int& hint_b, BestBounds
   }
 }
 
-void DistanceFinish::common_point(const Vector3& start, int hint_a, int hint_b,
-                                  BestBounds& bounds) {
-  int ia = hint_a;
-  int ib = hint_b;
+void DistanceFinish::whole(const Vector3& start, int& hint_a, int& hint_b, BestBounds& bounds,
+                           Goal goal) {
+  // The supports climb from the previous ones, unless the direction turned by more than about 25
+  // degrees (as Wolfe's first steps do): the hull's climbing starts are then nearer.
+  Vector3 previous = start;
   const auto oracle = [&](const Vector3& d) {
     ++evaluations_;
-    return minkowski_support(pair_.a, pair_.b, d, ia, ib);
+    const Scalar along = d.dot(previous);
+    if (along < 0 || along * along < kNearbyCosine * kNearbyCosine * d.squaredNorm() *
+                                          previous.squaredNorm()) {
+      hint_a = hint_b = -1;
+    }
+    previous = d;
+    return minkowski_support(pair_.a, pair_.b, d, hint_a, hint_b);
   };
-  const Witness w = witness_of(pair_, wolfe_min_norm(oracle, start, 2, max_iterations_));
-  bounds.offer_upper(w);
-  if (w.distance > 0) {
+  // The bounds of a corral: its witnesses (an upper bound) and the separation along them (a lower
+  // bound, its supports climbing from the hints).
+  const auto offer = [&](const MinNormPoint& corral) {
+    const Witness w = witness_of(pair_, corral);
+    bounds.offer_upper(w);
+    if (!(w.distance > 0)) return;
     const Vector3 n = (w.point_b - w.point_a) / w.distance;
+    int ia = hint_a;
+    int ib = hint_b;
     ++evaluations_;
     bounds.offer_lower(n, separation(pair_.a, pair_.b, n, ia, ib));
-  }
+  };
+  // The corral bounds the distance above by `|x|`, and each iteration's oracle point below by
+  // `(x/|x|) . q` (its supports along `x` are those along `x/|x|`): once these meet the goal, the
+  // bounds are proven, the upper one from the corral's witnesses, and the search stops if they
+  // meet it too (rounding aside, they do).
+  bool offered = false;
+  const auto stop = [&](const MinNormPoint& current, const OraclePoint* q) {
+    const Scalar norm = current.x.norm();
+    const Scalar lower = q != nullptr ? current.x.dot(q->p) / norm : bounds.lower();
+    const Scalar best_lower = std::max(lower, bounds.lower());
+    // Every goal needs the bounds within the tolerance (and rounding) of each other, or a
+    // separation above the tolerance: a cheap test first, as most iterations meet neither.
+    const Scalar slack = pair_.tolerance + 2 * kFrameRounding;
+    if (norm - std::max(best_lower, Scalar(0)) > slack && !(best_lower > pair_.tolerance)) return false;
+    if (!goal_reached(pair_, goal, best_lower, norm, false)) return false;
+    bounds.offer_upper(witness_of(pair_, current));
+    if (q != nullptr) bounds.offer_lower(current.x / norm, lower);
+    offered = bounds.reached(pair_, goal);
+    return offered;
+  };
+  // The first oracle point is the supporting pair along `start`, whose separation and distance
+  // often settle a verdict at once.
+  MinNormPoint first;
+  first.corral[0] = oracle(start);
+  first.weights[0] = 1;
+  first.size = 1;
+  first.x = first.corral[0].p;
+  bounds.offer_lower(start, start.dot(first.x));
+  bounds.offer_upper(vertex_witness(pair_, first.corral[0].ia, first.corral[0].ib));
+  if (bounds.reached(pair_, goal)) return;
+  // In the frame every point lies in the unit ball, so 2 bounds every difference.
+  const MinNormPoint nearest = wolfe_min_norm_from(oracle, first, 2, max_iterations_, stop);
+  if (!offered) offer(nearest);
 }
 
 }  // namespace swarmcollide::detail

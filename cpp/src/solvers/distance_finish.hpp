@@ -22,10 +22,14 @@ class DistanceFinish {
   /// solved again, a few times before the caller's search takes over. Offers every bound found.
   void from(const Vector3& n, int& hint_a, int& hint_b, BestBounds& bounds, Goal goal);
 
-  /// Wolfe's algorithm on the whole Minkowski difference B - A from `start`: a common point (with
-  /// an intersection proof when its corral encloses the origin) when the bodies overlap, which no
-  /// direction can show, else the exact nearest points.
-  void common_point(const Vector3& start, int hint_a, int hint_b, BestBounds& bounds);
+  /// Wolfe's algorithm on the whole Minkowski difference B - A from the unit direction `start`
+  /// (GJK with Wolfe's corrals), its supports climbing from, and returned in, the hints: the
+  /// exact nearest points, or a common point (with an intersection proof when its corral encloses
+  /// the origin) when the bodies overlap, which no direction can show. Stops as soon as its bounds
+  /// settle `goal`, so a verdict stops at the first separating direction or common point. Offers
+  /// the separation along `start` and the supporting points' distance, then the witnesses and
+  /// the separation along them.
+  void whole(const Vector3& start, int& hint_a, int& hint_b, BestBounds& bounds, Goal goal);
 
   long evaluations() const { return evaluations_; }
 

@@ -21,10 +21,11 @@ namespace {
 
 constexpr Scalar kPi = 3.14159265358979323846;
 
-// The search for the distance (or only a verdict): the exact finish from the direction between
-// the bodies' centres, a common point when no direction separates them, then rounds of the
-// direction swarm whose improvements the finish polishes, re-seeded around the best direction
-// in discs that shrink unless the best moved far.
+// The search for the distance (or only a verdict): Wolfe's algorithm on the whole difference
+// from the given start or the direction between the bodies' centres, which settles most pairs;
+// where it stops short (rounding, its iteration cap), the exact finish on the supporting features
+// of the best direction, then rounds of the direction swarm whose improvements the finish
+// polishes, re-seeded around the best direction in discs that shrink unless the best moved far.
 class DualSearch {
  public:
   DualSearch(const FramedPair& pair, const QueryOptions& options, Goal goal, const DualStart* start)
@@ -41,27 +42,16 @@ class DualSearch {
     const Vector3 centre = start_ != nullptr    ? start_->direction
                            : between.norm() > 0 ? Vector3(between.normalized())
                                                 : Vector3::UnitX();
-    int ia = start_ != nullptr ? start_->support_a : -1;
-    int ib = start_ != nullptr ? start_->support_b : -1;
-    ++evaluations_;
-    bounds_.offer_lower(centre, separation(pair_.a, pair_.b, centre, ia, ib));
-    bounds_.offer_upper(vertex_witness(pair_, ia, ib));
-    hint_a_ = ia;
-    hint_b_ = ib;
+    hint_a_ = start_ != nullptr ? start_->support_a : -1;
+    hint_b_ = start_ != nullptr ? start_->support_b : -1;
+    finish_.whole(centre, hint_a_, hint_b_, bounds_, goal_);
     record();
-    // A given start that no longer separates the bodies (a scene's pair that moved into
-    // contact) points at an overlap: a common point proves it without the finish.
-    if (start_ != nullptr) try_common_point();
-    // Between well-separated bodies the features along the centres' direction are often the
-    // optimal ones already, and the swarm has nothing left to do.
-    if (!reached()) finish_.from(centre, hint_a_, hint_b_, bounds_, goal_);
-    if (!reached()) try_common_point();
+    if (!reached()) finish_.from(bounds_.normal(), hint_a_, hint_b_, bounds_, goal_);
     Scalar radius = kPi / 2;
     Vector3 round_centre = bounds_.normal();
     for (int r = 0; r < options_.max_rounds && !reached(); ++r) {
       round(round_centre, radius);
       if (reached()) break;
-      try_common_point();
       const Scalar moved =
           std::acos(std::clamp(round_centre.dot(bounds_.normal()), Scalar(-1), Scalar(1)));
       radius = std::min(radius, std::max(2 * moved, radius / 4));
@@ -69,7 +59,7 @@ class DualSearch {
     }
     Answer answer = bounds_.answer(pair_);
     answer.iterations = iterations_;
-    answer.evaluations = evaluations_ + swarm_.evaluations() + finish_.evaluations();
+    answer.evaluations = swarm_.evaluations() + finish_.evaluations();
     answer.history = std::move(history_);
     return answer;
   }
@@ -80,13 +70,6 @@ class DualSearch {
   // The best upper bound after the start and after each iteration; a verdict keeps none.
   void record() {
     if (goal_ != Goal::verdict) history_.push_back(bounds_.upper().distance);
-  }
-
-  // Wolfe's algorithm on the whole difference, once, when no direction separates the bodies.
-  void try_common_point() {
-    if (tried_common_point_ || bounds_.lower() > pair_.tolerance) return;
-    tried_common_point_ = true;
-    finish_.common_point(bounds_.normal(), hint_a_, hint_b_, bounds_);
   }
 
   // The swarm's global best becomes a lower bound, and the finish runs from it whenever it
@@ -124,9 +107,7 @@ class DualSearch {
   std::pair<int, int> finished_{-1, -1};
   int hint_a_ = -1;
   int hint_b_ = -1;
-  bool tried_common_point_ = false;
   int iterations_ = 0;
-  long evaluations_ = 0;
   std::vector<Scalar> history_;
 };
 

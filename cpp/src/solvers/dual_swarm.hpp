@@ -11,12 +11,16 @@ namespace swarmcollide::detail {
 /// `s(n) = min_j n.y_j - max_i n.x_i`, a function of two parameters whatever the vertex count,
 /// searched by the paper's rank-adaptive swarm (8)-(11) over an exponential chart of the sphere.
 ///
-/// Exact finish: the nearest points of the supporting features along the best direction (points
-/// within the feature slack of each supporting plane), by Wolfe's algorithm, give weights (an
-/// upper bound) and a direction (a new lower bound). When no separating direction is found, a
-/// common point is sought by Wolfe's algorithm on the Minkowski difference, started from the
-/// swarm's direction. For signed distances of overlapping bodies the swarm searches the basin of
-/// the largest separation and the exact penetration solver proves the depth from its direction.
+/// The search starts with Wolfe's algorithm on the whole Minkowski difference (GJK with Wolfe's
+/// corrals) from the direction between the bodies' centres, its supports climbing the hulls of
+/// large bodies from the previous ones: its corrals give weights (an upper bound) and its
+/// directions separations (lower bounds), and it stops as soon as these settle the goal (for a
+/// verdict, at the first separating direction or proven common point). That settles almost
+/// every pair; the swarm runs only where it stops short (rounding, its iteration cap). Exact
+/// finish of the swarm's directions: the nearest points of the supporting features along the
+/// best direction (points within the feature slack of each supporting plane), by Wolfe's
+/// algorithm, give weights and a direction (a new lower bound). For signed distances of
+/// overlapping bodies the exact penetration solver proves the depth from the best direction.
 /// A warmed-up distance solve allocates only its answer's arrays (its buffers are thread-local).
 /// Deterministic for a given seed.
 Answer solve_dual(const FramedPair& pair, const QueryOptions& options, Goal goal);
@@ -29,13 +33,11 @@ struct DualStart {
   int support_b = -1;
 };
 
-/// `solve_dual` started from `start` instead of the direction between the bodies' centres. A
-/// scene passes the direction that separated (or nearly separated) the pair in the previous
-/// frame, or the centres' direction that it found not to separate them: after a small motion the
-/// finish from it usually settles the pair at once. When `start` does not separate the bodies by
-/// more than the tolerance, the common point is sought first (the bodies have likely moved into
-/// contact, and it proves that without the finish). Otherwise the search, its bounds and the
-/// verdicts made of them are `solve_dual`'s.
+/// `solve_dual` started from `start` (its direction and support points) instead of the direction
+/// between the bodies' centres. A scene passes the direction that separated (or nearly
+/// separated) the pair in the previous frame, or the centres' direction that it found not to
+/// separate them: after a small motion Wolfe's algorithm from it usually settles the pair in a
+/// few steps. Otherwise the search, its bounds and the verdicts made of them are `solve_dual`'s.
 Answer solve_dual(const FramedPair& pair, const QueryOptions& options, Goal goal,
                   const DualStart& start);
 

@@ -131,10 +131,13 @@ inline bool minor_cycles(std::array<OraclePoint, 4>& s, std::array<Scalar, 4>& w
 /// with positive weights summing to one (the minor cycles first bring them to their corral's
 /// nearest point). `scale` bounds the norms of the points and sets the stopping test: the gap
 /// `|x| - (x/|x|) . oracle(x)` at most 1e-14 `scale`, or no further decrease in `|x|`
-/// (rounding), or `max_iterations`.
-template <class Oracle>
+/// (rounding), or `max_iterations`, or `stop(current, q)` true for the current corral, first
+/// with `q` null, then with its new oracle point `q = oracle(current.x)` (whose `(x/|x|) . q`
+/// bounds the norm of every point below): a caller with a coarser goal stops as soon as it is
+/// met, before the oracle call when the corral alone meets it.
+template <class Oracle, class Stop>
 MinNormPoint wolfe_min_norm_from(const Oracle& oracle, const MinNormPoint& start, Scalar scale,
-                                 int max_iterations) {
+                                 int max_iterations, const Stop& stop) {
   using namespace wolfe_detail;
   MinNormPoint best = start;
   std::array<OraclePoint, 4> s = best.corral;
@@ -148,9 +151,9 @@ MinNormPoint wolfe_min_norm_from(const Oracle& oracle, const MinNormPoint& start
     best.iterations = iteration;
     if (!settle) {
       const Scalar xx = x.squaredNorm();
-      if (xx == 0) break;
+      if (xx == 0 || stop(best, static_cast<const OraclePoint*>(nullptr))) break;
       const OraclePoint q = oracle(x);
-      if (xx - x.dot(q.p) <= gap_tolerance * std::sqrt(xx)) break;
+      if (stop(best, &q) || xx - x.dot(q.p) <= gap_tolerance * std::sqrt(xx)) break;
       bool known = false;
       for (int k = 0; k < m; ++k) known = known || (s[k].ia == q.ia && s[k].ib == q.ib);
       if (known || m == MinNormPoint::kCapacity) break;  // rounding: the optimum is reached
@@ -171,16 +174,32 @@ MinNormPoint wolfe_min_norm_from(const Oracle& oracle, const MinNormPoint& start
   return best;
 }
 
-/// Wolfe's algorithm from the single oracle point along `start`.
+/// The same, run to its own stopping tests.
 template <class Oracle>
+MinNormPoint wolfe_min_norm_from(const Oracle& oracle, const MinNormPoint& start, Scalar scale,
+                                 int max_iterations) {
+  return wolfe_min_norm_from(oracle, start, scale, max_iterations,
+                             [](const MinNormPoint&, const OraclePoint*) { return false; });
+}
+
+/// Wolfe's algorithm from the single oracle point along `start`, with `stop` as above.
+template <class Oracle, class Stop>
 MinNormPoint wolfe_min_norm(const Oracle& oracle, const Vector3& start, Scalar scale,
-                            int max_iterations) {
+                            int max_iterations, const Stop& stop) {
   MinNormPoint first;
   first.corral[0] = oracle(start);
   first.weights[0] = 1;
   first.size = 1;
   first.x = first.corral[0].p;
-  return wolfe_min_norm_from(oracle, first, scale, max_iterations);
+  return wolfe_min_norm_from(oracle, first, scale, max_iterations, stop);
+}
+
+/// Wolfe's algorithm from the single oracle point along `start`.
+template <class Oracle>
+MinNormPoint wolfe_min_norm(const Oracle& oracle, const Vector3& start, Scalar scale,
+                            int max_iterations) {
+  return wolfe_min_norm(oracle, start, scale, max_iterations,
+                        [](const MinNormPoint&, const OraclePoint*) { return false; });
 }
 
 }  // namespace swarmcollide::detail

@@ -21,6 +21,10 @@ struct Hull {
   /// none. `neighbour_offsets` has one entry per point plus one.
   std::vector<int> neighbour_offsets;
   std::vector<int> neighbours;
+  /// The vertices farthest along 26 fixed directions (towards the faces, edges and corners of a
+  /// cube), each once: a hill climb starts from the highest of them when its own start is lower,
+  /// so that it crosses at most the part of the hull within about 25 degrees of its direction.
+  std::vector<int> climb_starts;
 };
 
 /// Relative size below which a singular value of the centred points counts as zero when
