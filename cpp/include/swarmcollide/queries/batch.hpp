@@ -100,19 +100,22 @@ struct VertexStack {
 };
 
 /// `Query(options).distance(as[i], poses.a[i], bs[i], poses.b[i])` for every row i, spread
-/// over threads, with row i seeded by `pair_seed(options.seed, first_index + i)`. The options and
-/// every pose are validated once, before any row is answered. The rows are as many as the
-/// sequences of bodies (which must agree), or with a single body on both sides as the poses (one
-/// row without poses). Throws std::invalid_argument if the sequences (or non-empty pose lists)
-/// differ in length, a pose or a setting is invalid, and rethrows the error of the pair with the
-/// lowest index that failed, prefixed with "pair N: ".
+/// over threads, with row i seeded by `pair_seed(options.seed, first_index + i)`. The options are
+/// validated once, before any row is answered, and each row's poses once, by the thread that
+/// answers the row. The rows are as many as the sequences of bodies (which must agree), or with a
+/// single body on both sides as the poses (one row without poses). Throws std::invalid_argument
+/// if the sequences (or non-empty pose lists) differ in length or a setting is invalid, and
+/// rethrows the error of the pair with the lowest index that failed (an invalid pose, named
+/// "poses_b[N]", or the query's error, prefixed with "pair N: ").
 BatchResult distance_many(const BatchBodies<ConvexPolyhedron>& as,
                           const BatchBodies<ConvexPolyhedron>& bs, const QueryOptions& options,
                           const BatchSettings& settings = {}, const BatchPoses& poses = {});
 /// `Query(options).collision(as[i], poses.a[i], bs[i], poses.b[i], settings.escalate)` for
-/// every row i, like distance_many, except that a row whose bodies' bounding balls (about their
-/// boxes' centres) prove them apart is settled by them, without a solver: its lower bound is the
-/// balls' separation and its distance that of the bodies' first points, its witnesses.
+/// every row i, like distance_many, except that a row whose bodies' balls about their boxes'
+/// centres settle it needs no solver: bounding balls proven apart (the lower bound is their
+/// separation, the distance that of the bodies' first given points, its witnesses), or balls
+/// inside the bodies that overlap (distance and lower bound 0, both witnesses a point common to
+/// the balls). Bodies built from vertex stacks are screened by their bounding balls only.
 BatchResult collide_many(const BatchBodies<ConvexPolyhedron>& as,
                          const BatchBodies<ConvexPolyhedron>& bs, const QueryOptions& options,
                          const BatchSettings& settings = {}, const BatchPoses& poses = {});
