@@ -418,6 +418,35 @@ TEST(Batch, InnerBallsProveContact) {
   EXPECT_GT(settled_by_balls, 20);
 }
 
+// The screens' lengths neither underflow nor overflow: bodies 1e-200 across, placed a billion
+// times their size from the origin and rotated about it, get the exact verdicts, as do bodies
+// 1e200 across.
+TEST(Batch, BallScreensHoldAtAnyScale) {
+  for (const Scalar scale : {1e-200, 1e200}) {
+    Random rng(14);
+    const ConvexPolyhedron unit_a = rng.body(20);
+    const ConvexPolyhedron unit_b = rng.body(30);
+    const Vector3 far(3e9, -1e9, 2e9);
+    const ConvexPolyhedron a((unit_a.vertices().rowwise() + far.transpose()) * scale);
+    const ConvexPolyhedron b((unit_b.vertices().rowwise() + far.transpose()) * scale);
+    BatchPoses poses;
+    poses.b = random_poses(60, rng, 2);
+    for (Pose& pose : poses.b) pose.translation *= scale;
+    poses.b[0].rotation.setIdentity();  // the bodies overlap where they were given
+    const BatchResult verdicts = collide_many(a, b, {}, {2}, poses);
+    QueryOptions exact;
+    exact.method = Method::exact;
+    exact.tolerance = 0;
+    for (std::size_t i = 0; i < 60; ++i) {
+      const auto row = static_cast<Eigen::Index>(i);
+      const DistanceResult truth = Query(exact).distance(a, {}, b, poses.b[i]);
+      EXPECT_EQ(verdicts.colliding(row), truth.colliding) << scale << " " << i;
+      EXPECT_LE(verdicts.lower_bound(row), truth.distance * (1 + 1e-12)) << scale << " " << i;
+      EXPECT_GE(verdicts.distance(row), truth.lower_bound * (1 - 1e-12)) << scale << " " << i;
+    }
+  }
+}
+
 TEST(Batch, PosesAreCheckedOnceNamingTheRow) {
   Random rng(11);
   const ConvexPolyhedron a = rng.body(6);

@@ -27,15 +27,30 @@ struct OuterRadius {
   Scalar radius;
 };
 
+// |v|, without the squares of tiny or huge components underflowing or overflowing: for bodies
+// 1e-200 across, the plain norm is 0.
+Scalar length(const Vector3& v) {
+  const Scalar largest = v.cwiseAbs().maxCoeff();
+  return largest > 0 ? largest * (v / largest).norm() : 0;
+}
+
 struct InnerRadius {
   Scalar radius;
 };
 
 Scalar outer_radius(const ConvexPolyhedron& body) {
-  // Each norm is within a few roundoffs of the exact distance of its point from the box centre
-  // (the centred points are themselves rounded relative to it); 2^-40 is far more.
-  const Scalar largest = body.centred_vertices().rowwise().norm().maxCoeff();
-  return largest * (1 + 0x1p-40);
+  const VertexMatrix& centred = body.centred_vertices();
+  // In the unit ball (exactly, by a power of two), where no square underflows. Each norm is
+  // within a few roundoffs of the exact distance of its point from the box centre (the centred
+  // points are themselves rounded relative to it); 2^-40 is far more.
+  const int exponent = exponent_above(centred.cwiseAbs().maxCoeff());
+  Scalar largest = 0;
+  for (Eigen::Index i = 0; i < centred.rows(); ++i) {
+    Vector3 unit;
+    for (int k = 0; k < 3; ++k) unit(k) = times_power_of_two(centred(i, k), -exponent);
+    largest = std::max(largest, unit.norm());
+  }
+  return times_power_of_two(largest * (1 + 0x1p-40), exponent);
 }
 
 // The radius of a ball about the box centre (the origin of the centred points) inside the hull of
@@ -105,15 +120,16 @@ std::optional<BallVerdict> collision_by_balls(const ConvexPolyhedron& a, const P
   const Vector3 centre_a = pose_a.rotation * a.bounds().centre + pose_a.translation;
   const Vector3 centre_b = pose_b.rotation * b.bounds().centre + pose_b.translation;
   const Vector3 between = centre_b - centre_a;
-  const Scalar centres = between.norm();
+  const Scalar centres = length(between);
   const Scalar outer = (balls_a.outer + balls_b.outer) * (1 + kStretch);
   // Each centre's coordinates are rounded by at most 7 u of |c| + |t| (c the box centre), their
-  // distance by another 4 u of itself, and the sums below by a few u of their terms: 16 u of it
-  // all is more than twice that.
+  // distance by another 5 u of itself, and the sums below by a few u of their terms: 16 u of it
+  // all is more than twice that (the 1-norms bound the lengths and do not underflow; the last
+  // term covers products that do).
   const Scalar margin =
       16 * kRoundoff *
-          (a.bounds().centre.norm() + pose_a.translation.norm() + b.bounds().centre.norm() +
-           pose_b.translation.norm() + centres + outer) +
+          (a.bounds().centre.lpNorm<1>() + pose_a.translation.lpNorm<1>() +
+           b.bounds().centre.lpNorm<1>() + pose_b.translation.lpNorm<1>() + centres + outer) +
       16 * kUnderflow;
   if (!std::isfinite(margin)) return std::nullopt;
   BallVerdict verdict;
@@ -126,7 +142,7 @@ std::optional<BallVerdict> collision_by_balls(const ConvexPolyhedron& a, const P
     verdict.direction = between / centres;
     verdict.point_a = pose_a.rotation * a.vertices().row(0).transpose() + pose_a.translation;
     verdict.point_b = pose_b.rotation * b.vertices().row(0).transpose() + pose_b.translation;
-    verdict.distance = (verdict.point_b - verdict.point_a).norm();
+    verdict.distance = length(verdict.point_b - verdict.point_a);
     if (!std::isfinite(verdict.distance)) return std::nullopt;
     return verdict;
   }
