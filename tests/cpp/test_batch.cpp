@@ -447,6 +447,38 @@ TEST(Batch, BallScreensHoldAtAnyScale) {
   }
 }
 
+// Poses read in place from arrays, as (m, 4, 4) transforms or as (m, 3, 3) rotations beside (m, 3)
+// translations, answer as the same poses listed.
+TEST(Batch, PoseArraysAnswerAsPoseLists) {
+  Random rng(15);
+  const ConvexPolyhedron a = rng.body(20);
+  const ConvexPolyhedron b = rng.body(9);
+  BatchPoses listed;
+  listed.a = random_poses(70, rng, 1);
+  listed.b = random_poses(70, rng, 2.5);
+  std::vector<Scalar> transforms(70 * 16), rotations(70 * 9), translations(70 * 3);
+  for (std::size_t i = 0; i < 70; ++i) {
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c < 3; ++c) {
+        transforms[16 * i + 4 * r + c] = listed.a[i].rotation(r, c);
+        rotations[9 * i + 3 * r + c] = listed.b[i].rotation(r, c);
+      }
+      transforms[16 * i + 4 * r + 3] = listed.a[i].translation(r);
+      translations[3 * i + r] = listed.b[i].translation(r);
+    }
+  }
+  BatchPoses arrays;
+  arrays.array_a = {transforms.data(), transforms.data() + 3, 70, 16, 4, 16, 4};
+  arrays.array_b = {rotations.data(), translations.data(), 70, 9, 3, 3, 1};
+  const QueryOptions options = seeded(Method::dual);
+  expect_same(distance_many(a, b, options, {2}, arrays), distance_many(a, b, options, {2}, listed));
+  expect_same(collide_many(a, b, options, {2}, arrays), collide_many(a, b, options, {2}, listed));
+  arrays.a = listed.a;
+  EXPECT_NE(error_of([&] { distance_many(a, b, options, {}, arrays); })
+                .find("poses_a: give the poses as a list or as an array, not both"),
+            std::string::npos);
+}
+
 TEST(Batch, PosesAreCheckedOnceNamingTheRow) {
   Random rng(11);
   const ConvexPolyhedron a = rng.body(6);

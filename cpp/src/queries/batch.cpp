@@ -104,20 +104,40 @@ std::size_t worker_count(int threads, std::size_t pairs) {
   return std::min(wanted, std::max<std::size_t>(pairs, 1));
 }
 
-const Pose kIdentity{};
-
-// One pose per pair (or none).
-void check_pose_count(const std::vector<Pose>& poses, std::size_t count, const char* name) {
-  if (!poses.empty() && poses.size() != count) {
-    throw std::invalid_argument(std::string(name) + " must have one pose per pair, got " +
-                                std::to_string(poses.size()) + " for " + std::to_string(count) +
-                                " pairs");
+// The poses of one side of a batch: a list, an array read in place, or none (the identity).
+class SidePoses {
+ public:
+  SidePoses(const std::vector<Pose>& list, const PoseArray& array, const char* name)
+      : list_(list), array_(array), name_(name) {
+    if (!list.empty() && array.count > 0) {
+      throw std::invalid_argument(std::string(name) +
+                                  ": give the poses as a list or as an array, not both");
+    }
   }
-}
 
-const Pose& pose_of(const std::vector<Pose>& poses, std::size_t i) {
-  return poses.empty() ? kIdentity : poses[i];
-}
+  const char* name() const { return name_; }
+  std::size_t size() const { return array_.count > 0 ? array_.count : list_.size(); }
+  bool empty() const { return size() == 0; }
+  /// The pose of row i.
+  Pose at(std::size_t i) const {
+    if (array_.count > 0) return array_[i];
+    return list_.empty() ? Pose{} : list_[i];
+  }
+
+  // One pose per pair (or none).
+  void check_count(std::size_t count) const {
+    if (!empty() && size() != count) {
+      throw std::invalid_argument(std::string(name_) + " must have one pose per pair, got " +
+                                  std::to_string(size()) + " for " + std::to_string(count) +
+                                  " pairs");
+    }
+  }
+
+ private:
+  const std::vector<Pose>& list_;
+  const PoseArray& array_;
+  const char* name_;
+};
 
 void check_same_length(std::size_t count_a, std::size_t count_b) {
   if (count_a != count_b) {
@@ -134,8 +154,10 @@ std::size_t row_count(const BatchBodies<Body>& as, const BatchBodies<Body>& bs,
   if (!as.single() && !bs.single()) check_same_length(as.size(), bs.size());
   if (!as.single()) return as.size();
   if (!bs.single()) return bs.size();
-  if (!poses.a.empty()) return poses.a.size();
-  if (!poses.b.empty()) return poses.b.size();
+  const SidePoses a(poses.a, poses.array_a, "poses_a");
+  const SidePoses b(poses.b, poses.array_b, "poses_b");
+  if (!a.empty()) return a.size();
+  if (!b.empty()) return b.size();
   return 1;
 }
 
@@ -158,19 +180,21 @@ Asked asked(Kind kind) {
   return {detail::Goal::signed_distance, kSignedDistance, "signed_distance"};
 }
 
-// Runs `answer(i, options_i)`, which writes row i of the batch, for every pair, where options_i
-// are the validated options seeded for pair i and `answer` is the thread's own
-// `make_answer(batch)` (with the thread's state), on a pool of threads that take pairs in chunks,
-// in increasing order: when a pair fails, every pair before it has been taken, so the error of
-// the lowest failing index is found whatever the threads. Everything the rows share (the options,
-// the method's capability, the pose counts) is checked here, once; each row's poses once, by the
-// thread that answers it.
+// Runs `answer(i, options_i, pose_a_i, pose_b_i)`, which writes row i of the batch, for every
+// pair, where options_i are the validated options seeded for pair i and `answer` is the thread's
+// own `make_answer(batch)` (with the thread's state), on a pool of threads that take pairs in
+// chunks, in increasing order: when a pair fails, every pair before it has been taken, so the
+// error of the lowest failing index is found whatever the threads. Everything the rows share
+// (the options, the method's capability, the pose counts) is checked here, once; each row's poses
+// once, by the thread that answers it.
 template <typename MakeAnswer>
 BatchResult run_batch(Kind kind, std::size_t count, const QueryOptions& options,
                       const BatchSettings& settings, const BatchPoses& poses,
                       const MakeAnswer& make_answer) {
-  check_pose_count(poses.a, count, "poses_a");
-  check_pose_count(poses.b, count, "poses_b");
+  const SidePoses poses_a(poses.a, poses.array_a, "poses_a");
+  const SidePoses poses_b(poses.b, poses.array_b, "poses_b");
+  poses_a.check_count(count);
+  poses_b.check_count(count);
   const std::size_t workers = worker_count(settings.threads, count);
   const Query validated(options);
   detail::require(options.method, asked(kind).capability, asked(kind).name);
@@ -193,10 +217,12 @@ BatchResult run_batch(Kind kind, std::size_t count, const QueryOptions& options,
           // Each pose is validated once, by the thread that answers its row (a check in one
           // thread before the rows would not be spread over the threads).
           const std::uint64_t index = settings.first_index + i;
-          if (!poses.a.empty()) validate_pose(poses.a[i], "poses_a", index);
-          if (!poses.b.empty()) validate_pose(poses.b[i], "poses_b", index);
+          const Pose pose_a = poses_a.at(i);
+          const Pose pose_b = poses_b.at(i);
+          if (!poses_a.empty()) validate_pose(pose_a, "poses_a", index);
+          if (!poses_b.empty()) validate_pose(pose_b, "poses_b", index);
           pair_options.seed = pair_seed(options.seed, index);
-          answer(i, pair_options);
+          answer(i, pair_options, pose_a, pose_b);
         } catch (...) {
           failure.offer(i);
           stop.store(true);
@@ -286,9 +312,9 @@ BatchResult convex_batch(Kind kind, const BatchBodies<ConvexPolyhedron>& as,
                    [&](BatchResult& batch) {
                      // Each thread keeps the balls of the bodies it last met.
                      return [&, rows = ConvexRows(kind, batch, settings.escalate, true)](
-                                std::size_t i, const QueryOptions& pair_options) mutable {
-                       rows.answer(i, pair_options, as[i], pose_of(poses.a, i), bs[i],
-                                   pose_of(poses.b, i));
+                                std::size_t i, const QueryOptions& pair_options,
+                                const Pose& pose_a, const Pose& pose_b) mutable {
+                       rows.answer(i, pair_options, as[i], pose_a, bs[i], pose_b);
                      };
                    });
 }
@@ -298,11 +324,12 @@ BatchResult compound_batch(Kind kind, const BatchBodies<CompoundBody>& as,
                            const BatchSettings& settings, const BatchPoses& poses) {
   return run_batch(kind, row_count(as, bs, poses), options, settings, poses,
                    [&](BatchResult& batch) {
-                     return [&](std::size_t i, const QueryOptions& pair_options) {
+                     return [&](std::size_t i, const QueryOptions& pair_options,
+                                const Pose& pose_a, const Pose& pose_b) {
                        store(batch, i,
                              detail::answer_compound(pair_options, asked(kind).goal,
-                                                     settings.escalate, as[i], pose_of(poses.a, i),
-                                                     bs[i], pose_of(poses.b, i)));
+                                                     settings.escalate, as[i], pose_a, bs[i],
+                                                     pose_b));
                      };
                    });
 }
@@ -323,13 +350,14 @@ BatchResult stack_batch(Kind kind, const VertexStack& as, const VertexStack& bs,
                         const BatchPoses& poses) {
   check_same_length(as.count, bs.count);
   return run_batch(kind, as.count, options, settings, poses, [&](BatchResult& batch) {
-    return [&](std::size_t i, const QueryOptions& pair_options) {
+    return [&](std::size_t i, const QueryOptions& pair_options, const Pose& pose_a,
+               const Pose& pose_b) {
       const ConvexPolyhedron a = body(as, i, settings.first_index);
       const ConvexPolyhedron b = body(bs, i, settings.first_index);
       // Every row's bodies are new (and may reuse the last row's addresses): no ball is kept, and
       // no hull is built for an inner ball.
       ConvexRows(kind, batch, settings.escalate, false)
-          .answer(i, pair_options, a, pose_of(poses.a, i), b, pose_of(poses.b, i));
+          .answer(i, pair_options, a, pose_a, b, pose_b);
     };
   });
 }

@@ -78,11 +78,42 @@ class BatchBodies {
   bool single_;
 };
 
-/// Where the bodies of a batch are: pair i's A at `a[i]` and B at `b[i]`; an empty list puts
-/// every body of its side at the identity.
+/// Poses read where they are (never copied), as a binding's arrays hold them: entry (r, c) of
+/// pose i's rotation is `rotations[i * rotation_stride + r * rotation_row_stride + c]` and entry
+/// r of its translation `translations[i * translation_stride + r * translation_row_stride]`
+/// (strides in elements). So an (m, 4, 4) array of transforms is read with strides 16 and 4 for
+/// both, a pair of (m, 3, 3) and (m, 3) arrays with strides 9 and 3, and 3 and 1.
+struct PoseArray {
+  const Scalar* rotations = nullptr;
+  const Scalar* translations = nullptr;
+  std::size_t count = 0;
+  std::ptrdiff_t rotation_stride = 9;
+  std::ptrdiff_t rotation_row_stride = 3;
+  std::ptrdiff_t translation_stride = 3;
+  std::ptrdiff_t translation_row_stride = 1;
+
+  /// Pose i.
+  Pose operator[](std::size_t i) const {
+    Pose pose;
+    const Scalar* rotation = rotations + static_cast<std::ptrdiff_t>(i) * rotation_stride;
+    const Scalar* translation =
+        translations + static_cast<std::ptrdiff_t>(i) * translation_stride;
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c < 3; ++c) pose.rotation(r, c) = rotation[r * rotation_row_stride + c];
+      pose.translation(r) = translation[r * translation_row_stride];
+    }
+    return pose;
+  }
+};
+
+/// Where the bodies of a batch are: pair i's A at `a[i]` and B at `b[i]`, or read in place at
+/// `array_a[i]` and `array_b[i]` when those hold poses (`count` > 0; then their lists must be
+/// empty); a side without poses puts every body of its side at the identity.
 struct BatchPoses {
   std::vector<Pose> a;
   std::vector<Pose> b;
+  PoseArray array_a;
+  PoseArray array_b;
 };
 
 /// The seed of the pair with global index `index` in a batch seeded with `seed`: independent of
