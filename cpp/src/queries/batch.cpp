@@ -115,10 +115,9 @@ class SidePoses {
     }
   }
 
-  const char* name() const { return name_; }
   std::size_t size() const { return array_.count > 0 ? array_.count : list_.size(); }
   bool empty() const { return size() == 0; }
-  /// The pose of row i.
+  // The pose of row i.
   Pose at(std::size_t i) const {
     if (array_.count > 0) return array_[i];
     return list_.empty() ? Pose{} : list_[i];
