@@ -1,6 +1,7 @@
 #include <pybind11/eigen.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <deque>
 #include <initializer_list>
 #include <optional>
@@ -134,13 +135,15 @@ std::size_t rows_given(const Side& side) {
   return side.get().single() ? 0 : side.get().size();
 }
 
-// `value` when it is a C-contiguous float64 NumPy array of `shape`, which can be read in place.
+// `value` when it is an aligned, C-contiguous float64 NumPy array of `shape`, which can be read
+// in place.
 std::optional<py::array> doubles_in_place(const py::handle& value,
                                           std::initializer_list<py::ssize_t> shape) {
   if (!py::isinstance<py::array>(value)) return std::nullopt;
   const py::array array = py::reinterpret_borrow<py::array>(value);
   if (!array.dtype().is(py::dtype::of<Scalar>()) || !(array.flags() & py::array::c_style) ||
-      array.ndim() != static_cast<py::ssize_t>(shape.size())) {
+      array.ndim() != static_cast<py::ssize_t>(shape.size()) ||
+      reinterpret_cast<std::uintptr_t>(array.data()) % alignof(Scalar) != 0) {
     return std::nullopt;
   }
   py::ssize_t axis = 0;
