@@ -97,17 +97,28 @@ def run(rows: int, rounds: int) -> Dict[str, object]:
             translations = axes * (2 + gap)
             cases = contenders(a, b, rotations, translations)
             times: Dict[str, List[float]] = {name: [] for name in cases}
+            cpu: Dict[str, List[float]] = {name: [] for name in cases}
             for _ in range(rounds):
                 for name, call in cases.items():
-                    start = time.perf_counter()
+                    start, start_cpu = time.perf_counter(), time.process_time()
                     call()
                     times[name].append((time.perf_counter() - start) / rows)
+                    cpu[name].append((time.process_time() - start_cpu) / rows)
             per_row = {name: statistics.median(values) for name, values in times.items()}
+            cpu_per_row = {name: statistics.median(values) for name, values in cpu.items()}
+            # CPU time over wall time: about 2 for two busy threads; less when the machine's
+            # other work (or a serial part) leaves a thread waiting.
+            busy = {name: statistics.median(c / w for c, w in zip(cpu[name], times[name]))
+                    for name in cases if "2 threads" in name}
             colliding = int(sc.collide_many(a, b, poses_b=(rotations, translations))
                             .colliding.sum())
             records.append({"vertices": len(a), "pairs": state, "rows": rows,
                             "colliding_rows": colliding,
-                            "microseconds_per_row": {k: v * 1e6 for k, v in per_row.items()}})
+                            "microseconds_per_row": {k: v * 1e6 for k, v in per_row.items()},
+                            # The process's CPU time: less sensitive to a loaded machine.
+                            "cpu_microseconds_per_row": {k: v * 1e6
+                                                         for k, v in cpu_per_row.items()},
+                            "cpu_over_wall": busy})
     return {"rows": records, "rounds": rounds, "load_before": load_before,
             "load_after": os.getloadavg()}
 
@@ -116,9 +127,10 @@ TARGETS = (("collide_many 1 thread", ("python-fcl collide loop", "coal collide l
            ("distance_many 1 thread", ("python-fcl distance loop", "coal distance loop"), 0.35))
 
 
-def ratios(record: dict) -> Dict[str, float]:
-    """The issue's ratios for one workload: ours over each loop, and 2 threads' gain over 1."""
-    t = record["microseconds_per_row"]
+def ratios(record: dict, clock: str = "microseconds_per_row") -> Dict[str, float]:
+    """The issue's ratios for one workload: ours over each loop, and 2 threads' gain over 1, by
+    wall time (``clock="cpu_microseconds_per_row"``: by CPU time; the gain is then meaningless)."""
+    t = record[clock]
     out = {}
     for ours, loops, _ in TARGETS:
         for loop in loops:
@@ -145,16 +157,19 @@ def section(data: dict) -> str:
     rows = []
     for r in data["rows"]:
         found = ratios(r)
+        by_cpu = ratios(r, "cpu_microseconds_per_row") if "cpu_microseconds_per_row" in r else {}
         for ours, loops, target in TARGETS:
             for loop in loops:
                 value = found[f"{ours} / {loop}"]
+                cpu = by_cpu.get(f"{ours} / {loop}")
                 rows.append([str(r["vertices"]), r["pairs"], f"{ours} / {loop}",
-                             f"**{value:.2f}x**", f"<= {target}x: "
-                             + ("met" if value <= target else "**not met**")])
+                             f"**{value:.2f}x**" + (f" (CPU {cpu:.2f}x)" if cpu else ""),
+                             f"<= {target}x: " + ("met" if value <= target else "**not met**")])
         for kind in ("collide_many", "distance_many"):
             value = found[f"{kind} 2 threads gain"]
+            busy = r.get("cpu_over_wall", {}).get(f"{kind} 2 threads")
             rows.append([str(r["vertices"]), r["pairs"], f"{kind}: 2 threads / 1",
-                         f"**{value:.2f}x**", ">= 1.8x: " + ("met" if value >= 1.8 else
-                                                            "**not met**")])
+                         f"**{value:.2f}x**" + (f" (CPU/wall {busy:.2f})" if busy else ""),
+                         ">= 1.8x: " + ("met" if value >= 1.8 else "**not met**")])
     lines.append(table(["vertices", "pairs", "ratio", "measured", "issue 24's target"], rows))
     return "\n".join(lines)

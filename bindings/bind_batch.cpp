@@ -1,7 +1,9 @@
 #include <pybind11/eigen.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <deque>
+#include <initializer_list>
 #include <optional>
 #include <string>
 #include <utility>
@@ -133,8 +135,74 @@ std::size_t rows_given(const Side& side) {
   return side.get().single() ? 0 : side.get().size();
 }
 
-BatchPoses poses_of(const py::object& poses_a, const py::object& poses_b, std::size_t count) {
-  return {to_poses(poses_a, count, "poses_a"), to_poses(poses_b, count, "poses_b")};
+// `value` when it is an aligned, C-contiguous float64 NumPy array of `shape`, which can be read
+// in place.
+std::optional<py::array> doubles_in_place(const py::handle& value,
+                                          std::initializer_list<py::ssize_t> shape) {
+  if (!py::isinstance<py::array>(value)) return std::nullopt;
+  const py::array array = py::reinterpret_borrow<py::array>(value);
+  if (!array.dtype().is(py::dtype::of<Scalar>()) || !(array.flags() & py::array::c_style) ||
+      array.ndim() != static_cast<py::ssize_t>(shape.size()) ||
+      reinterpret_cast<std::uintptr_t>(array.data()) % alignof(Scalar) != 0) {
+    return std::nullopt;
+  }
+  py::ssize_t axis = 0;
+  for (py::ssize_t length : shape) {
+    if (array.shape(axis++) != length) return std::nullopt;
+  }
+  return array;
+}
+
+// The poses of `count` rows read in place, for the forms that need no conversion: an (m, 4, 4)
+// array of transforms whose last rows are all [0, 0, 0, 1], an (m, 3, 4) one, or a pair of
+// (m, 3, 3) rotations and (m, 3) translations, all C-contiguous float64. Nothing for any other
+// form: to_poses converts it, or names what is wrong with it. `keep` holds the arrays read. Copying
+// the poses would cost more than many rows do (a pass over them while the GIL is held, and fresh
+// memory); the core validates each pose where it answers its row, as it does a copied one.
+std::optional<PoseArray> pose_array(const py::handle& given, std::size_t count,
+                                    std::vector<py::object>& keep) {
+  const auto m = static_cast<py::ssize_t>(count);
+  if (PyTuple_Check(given.ptr()) || PyList_Check(given.ptr())) {
+    const py::sequence parts = py::reinterpret_borrow<py::sequence>(given);
+    if (parts.size() != 2) return std::nullopt;
+    const auto rotations = doubles_in_place(parts[0], {m, 3, 3});
+    const auto translations = doubles_in_place(parts[1], {m, 3});
+    if (!rotations || !translations) return std::nullopt;
+    keep.push_back(*rotations);
+    keep.push_back(*translations);
+    return PoseArray{static_cast<const Scalar*>(rotations->data()),
+                     static_cast<const Scalar*>(translations->data()), count, 9, 3, 3, 1};
+  }
+  for (const py::ssize_t rows : {4, 3}) {
+    const auto transforms = doubles_in_place(given, {m, rows, 4});
+    if (!transforms) continue;
+    const auto* data = static_cast<const Scalar*>(transforms->data());
+    if (rows == 4) {
+      for (std::size_t i = 0; i < count; ++i) {
+        const Scalar* last = data + 16 * i + 12;
+        if (!(last[0] == 0 && last[1] == 0 && last[2] == 0 && last[3] == 1)) return std::nullopt;
+      }
+    }
+    keep.push_back(*transforms);
+    return PoseArray{data, data + 3, count, rows * 4, 4, rows * 4, 4};
+  }
+  return std::nullopt;
+}
+
+BatchPoses poses_of(const py::object& poses_a, const py::object& poses_b, std::size_t count,
+                    std::vector<py::object>& keep) {
+  BatchPoses poses;
+  if (const auto array = pose_array(poses_a, count, keep)) {
+    poses.array_a = *array;
+  } else {
+    poses.a = to_poses(poses_a, count, "poses_a");
+  }
+  if (const auto array = pose_array(poses_b, count, keep)) {
+    poses.array_b = *array;
+  } else {
+    poses.b = to_poses(poses_b, count, "poses_b");
+  }
+  return poses;
 }
 
 // True when `bodies` is a CompoundBody or a sequence holding one.
@@ -150,11 +218,14 @@ bool compound_side(const py::handle& bodies) {
 template <typename Ask>
 BatchResult run(const py::object& as, const py::object& bs, const py::object& poses_a,
                 const py::object& poses_b, const BatchSettings& settings, const Ask& ask) {
+  // The pose arrays read in place, held until the GIL is back.
+  std::vector<py::object> keep;
   if (compound_side(as) || compound_side(bs)) {
     const CompoundSide side_a(as, "As", settings.first_index);
     const CompoundSide side_b(bs, "Bs", settings.first_index);
-    const BatchPoses poses = poses_of(
-        poses_a, poses_b, row_count(rows_given(side_a), rows_given(side_b), poses_a, poses_b));
+    const BatchPoses poses =
+        poses_of(poses_a, poses_b,
+                 row_count(rows_given(side_a), rows_given(side_b), poses_a, poses_b), keep);
     py::gil_scoped_release release;
     return ask(side_a.get(), side_b.get(), poses);
   }
@@ -162,14 +233,14 @@ BatchResult run(const py::object& as, const py::object& bs, const py::object& po
   const std::optional<Stack> stack_b = as_stack(bs, "Bs");
   if (stack_a && stack_b) {
     const BatchPoses poses =
-        poses_of(poses_a, poses_b, static_cast<std::size_t>(stack_a->shape(0)));
+        poses_of(poses_a, poses_b, static_cast<std::size_t>(stack_a->shape(0)), keep);
     py::gil_scoped_release release;
     return ask(view(*stack_a, "As"), view(*stack_b, "Bs"), poses);
   }
   const ConvexSide side_a(as, "As", settings.first_index);
   const ConvexSide side_b(bs, "Bs", settings.first_index);
   const BatchPoses poses = poses_of(
-      poses_a, poses_b, row_count(rows_given(side_a), rows_given(side_b), poses_a, poses_b));
+      poses_a, poses_b, row_count(rows_given(side_a), rows_given(side_b), poses_a, poses_b), keep);
   py::gil_scoped_release release;
   return ask(side_a.get(), side_b.get(), poses);
 }

@@ -188,6 +188,13 @@ TEST(BatchSteadyState, RowsAllocateNoMoreThanTheirSingleQueries) {
         allocations_during([&] { signed_distance_many(a, b, options, one_thread, many); });
     EXPECT_LE(rows_1000 - rows_10, singles) << method_name(method);
     if (method == Method::exact) EXPECT_LT(rows_1000 - rows_10, 200);  // penetrations' weights
+    // The dual's distances and verdicts allocate nothing per row: a batch keeps no history.
+    const long verdicts_and_distances =
+        allocations_during([&] { distance_many(a, b, options, one_thread, many); }) +
+        allocations_during([&] { collide_many(a, b, options, one_thread, many); }) -
+        allocations_during([&] { distance_many(a, b, options, one_thread, few); }) -
+        allocations_during([&] { collide_many(a, b, options, one_thread, few); });
+    if (method == Method::dual) EXPECT_EQ(verdicts_and_distances, 0);
   }
 }
 

@@ -2,6 +2,7 @@
 // batch is split; errors name the lowest failing pair.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <functional>
 #include <limits>
 #include <stdexcept>
@@ -9,6 +10,7 @@
 #include <vector>
 
 #include "paper_cases.hpp"
+#include "queries/ball_screen.hpp"
 #include "shapes.hpp"
 #include "swarmcollide/queries/batch.hpp"
 #include "swarmcollide/queries/methods.hpp"
@@ -327,6 +329,154 @@ TEST(Batch, PosedBatchesAnswerAlikeOnAnyThreadsAndCuts) {
     expect_rows(distance_many(a, b, options, settings, tail), whole,
                 static_cast<Eigen::Index>(cut));
   }
+}
+
+// The smallest of `h(n) - n . centre` over the hull's facet normals n, h the support function:
+// the radius of the largest ball about `centre` inside the body (up to rounding).
+Scalar largest_inner_radius(const ConvexPolyhedron& body, const Vector3& centre) {
+  const Hull& hull = body.hull();
+  Scalar radius = std::numeric_limits<Scalar>::infinity();
+  for (Eigen::Index f = 0; f < hull.faces.rows(); ++f) {
+    const Vector3 p = body.vertices().row(hull.faces(f, 0)).transpose();
+    const Vector3 n = (body.vertices().row(hull.faces(f, 1)).transpose() - p)
+                          .cross(body.vertices().row(hull.faces(f, 2)).transpose() - p)
+                          .normalized();
+    radius = std::min(radius, n.dot(body.support(n)) - n.dot(centre));
+  }
+  return radius;
+}
+
+// The inner ball about a body's box centre lies inside the body and is nearly the largest there:
+// a cube's is its half-width; a corner tetrahedron, whose box centre lies outside it, and a flat
+// square have none.
+TEST(BallScreen, InnerBallsLieInsideTheirBodies) {
+  VertexMatrix cube(8, 3);
+  for (int i = 0; i < 8; ++i) {
+    cube.row(i) << (i & 1 ? 7 : 3), (i & 2 ? -1 : -5), (i & 4 ? 3 : -1);
+  }
+  const detail::BodyBalls cube_balls = detail::body_balls(ConvexPolyhedron(cube), true);
+  EXPECT_LE(cube_balls.inner, 2);
+  EXPECT_GT(cube_balls.inner, 2 * (1 - 1e-12));
+  EXPECT_GE(cube_balls.outer, 2 * std::sqrt(3.0));
+  EXPECT_EQ(detail::body_balls(point_set({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}}), true).inner,
+            0);
+  EXPECT_EQ(detail::body_balls(point_set({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}}), true).inner,
+            0);
+  EXPECT_EQ(detail::body_balls(ConvexPolyhedron(cube), false).inner, 0);  // not asked for
+  Random rng(12);
+  int found = 0;
+  for (int trial = 0; trial < 30; ++trial) {
+    const ConvexPolyhedron body = rng.body(12 + trial);
+    const Scalar inner = detail::body_balls(body, true).inner;
+    const Scalar largest = largest_inner_radius(body, body.bounds().centre);
+    EXPECT_LE(inner, std::max(largest, 0.0) + 1e-14) << trial;
+    if (largest > 0) {
+      EXPECT_GT(inner, largest * (1 - 1e-9)) << trial;
+      ++found;
+    }
+  }
+  EXPECT_GT(found, 20);
+}
+
+// Rows whose bodies' inner balls overlap are settled as colliding without a solver, at a point
+// common to both balls (so to both bodies); every verdict is the exact one.
+TEST(Batch, InnerBallsProveContact) {
+  Random rng(13);
+  const ConvexPolyhedron a = rng.body(40);
+  const ConvexPolyhedron b = rng.body(25, Vector3(4, -2, 1));
+  BatchPoses poses;
+  poses.a = random_poses(200, rng, 1);
+  poses.b = random_poses(200, rng, 1.5);
+  for (Pose& pose : poses.b) pose.translation -= pose.rotation * Vector3(4, -2, 1);
+  const BatchResult verdicts = collide_many(a, b, {}, {2}, poses);
+  const detail::BodyBalls balls_a = detail::body_balls(a, true);
+  const detail::BodyBalls balls_b = detail::body_balls(b, true);
+  QueryOptions exact;
+  exact.method = Method::exact;
+  exact.tolerance = 0;
+  int settled_by_balls = 0;
+  for (std::size_t i = 0; i < 200; ++i) {
+    const auto row = static_cast<Eigen::Index>(i);
+    const Pose& pa = poses.a[i];
+    const Pose& pb = poses.b[i];
+    EXPECT_EQ(verdicts.colliding(row), Query(exact).collide(a, pa, b, pb)) << i;
+    EXPECT_TRUE(verdicts.certified(row)) << i;
+    const Vector3 centre_a = pa.rotation * a.bounds().centre + pa.translation;
+    const Vector3 centre_b = pb.rotation * b.bounds().centre + pb.translation;
+    const Vector3 common =
+        centre_a + balls_a.inner / (balls_a.inner + balls_b.inner) * (centre_b - centre_a);
+    if (verdicts.colliding(row) && verdicts.iterations(row) == 0 &&
+        (verdicts.point_a.row(row).transpose() - common).norm() < 1e-12) {
+      ++settled_by_balls;
+      EXPECT_EQ(verdicts.point_a.row(row), verdicts.point_b.row(row));
+      EXPECT_EQ(verdicts.distance(row), 0);
+      const ConvexPolyhedron point = point_set({common});
+      EXPECT_LT(Query(exact).distance(point, {}, a, pa).distance, 1e-12) << i;
+      EXPECT_LT(Query(exact).distance(point, {}, b, pb).distance, 1e-12) << i;
+    }
+  }
+  EXPECT_GT(settled_by_balls, 20);
+}
+
+// The screens' lengths neither underflow nor overflow: bodies 1e-200 across, placed a billion
+// times their size from the origin and rotated about it, get the exact verdicts, as do bodies
+// 1e200 across.
+TEST(Batch, BallScreensHoldAtAnyScale) {
+  for (const Scalar scale : {1e-200, 1e200}) {
+    Random rng(14);
+    const ConvexPolyhedron unit_a = rng.body(20);
+    const ConvexPolyhedron unit_b = rng.body(30);
+    const Vector3 far(3e9, -1e9, 2e9);
+    const ConvexPolyhedron a((unit_a.vertices().rowwise() + far.transpose()) * scale);
+    const ConvexPolyhedron b((unit_b.vertices().rowwise() + far.transpose()) * scale);
+    BatchPoses poses;
+    poses.b = random_poses(60, rng, 2);
+    for (Pose& pose : poses.b) pose.translation *= scale;
+    poses.b[0].rotation.setIdentity();  // the bodies overlap where they were given
+    const BatchResult verdicts = collide_many(a, b, {}, {2}, poses);
+    QueryOptions exact;
+    exact.method = Method::exact;
+    exact.tolerance = 0;
+    for (std::size_t i = 0; i < 60; ++i) {
+      const auto row = static_cast<Eigen::Index>(i);
+      const DistanceResult truth = Query(exact).distance(a, {}, b, poses.b[i]);
+      EXPECT_EQ(verdicts.colliding(row), truth.colliding) << scale << " " << i;
+      EXPECT_LE(verdicts.lower_bound(row), truth.distance * (1 + 1e-12)) << scale << " " << i;
+      EXPECT_GE(verdicts.distance(row), truth.lower_bound * (1 - 1e-12)) << scale << " " << i;
+    }
+  }
+}
+
+// Poses read in place from arrays, as (m, 4, 4) transforms or as (m, 3, 3) rotations beside (m, 3)
+// translations, answer as the same poses listed.
+TEST(Batch, PoseArraysAnswerAsPoseLists) {
+  Random rng(15);
+  const ConvexPolyhedron a = rng.body(20);
+  const ConvexPolyhedron b = rng.body(9);
+  BatchPoses listed;
+  listed.a = random_poses(70, rng, 1);
+  listed.b = random_poses(70, rng, 2.5);
+  std::vector<Scalar> transforms(70 * 16), rotations(70 * 9), translations(70 * 3);
+  for (std::size_t i = 0; i < 70; ++i) {
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c < 3; ++c) {
+        transforms[16 * i + 4 * r + c] = listed.a[i].rotation(r, c);
+        rotations[9 * i + 3 * r + c] = listed.b[i].rotation(r, c);
+      }
+      transforms[16 * i + 4 * r + 3] = listed.a[i].translation(r);
+      translations[3 * i + r] = listed.b[i].translation(r);
+    }
+  }
+  BatchPoses arrays;
+  arrays.array_a = {transforms.data(), transforms.data() + 3, 70, 16, 4, 16, 4};
+  arrays.array_b = {rotations.data(), translations.data(), 70, 9, 3, 3, 1};
+  const QueryOptions options = seeded(Method::dual);
+  expect_same(distance_many(a, b, options, {2}, arrays), distance_many(a, b, options, {2}, listed));
+  expect_same(collide_many(a, b, options, {2}, arrays), collide_many(a, b, options, {2}, listed));
+  arrays.a = listed.a;
+  EXPECT_NE(error_of([&] { distance_many(a, b, options, {}, arrays); })
+                .find("poses_a: give the poses as a list or as an array, not both"),
+            std::string::npos);
 }
 
 TEST(Batch, PosesAreCheckedOnceNamingTheRow) {

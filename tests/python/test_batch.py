@@ -185,6 +185,29 @@ def test_a_single_body_serves_every_row(batch, posed):
     assert len(batch(a, b)) == 1
 
 
+def test_pose_arrays_read_in_place_answer_as_converted_poses(posed):
+    # C-contiguous float64 arrays are read where they are; lists, other dtypes and strided views
+    # are converted first: the rows are the same.
+    a, b, poses_a, poses_b = posed
+    rotations = np.ascontiguousarray(poses_b[:, :3, :3])
+    translations = np.ascontiguousarray(poses_b[:, :3, 3])
+    for batch in (sc.distance_many, sc.collide_many):
+        in_place = batch(a, b, poses_a=poses_a, poses_b=(rotations, translations))
+        assert_same(batch(a, b, poses_a=list(poses_a), poses_b=(list(rotations), translations)),
+                    in_place)
+        assert_same(batch(a, b, poses_a=np.asfortranarray(poses_a), poses_b=poses_b), in_place)
+        assert_same(batch(a, b, poses_a=np.ascontiguousarray(poses_a[:, :3]), poses_b=poses_b),
+                    in_place)
+    broken = poses_b.copy()
+    broken[7, 3, 0] = 1e-3
+    with pytest.raises(ValueError, match=r"poses_b\[7\] must be a homogeneous rigid transform"):
+        sc.distance_many(a, b, poses_b=broken)
+    bent = poses_b.copy()
+    bent[9, 0, 0] = 1.5
+    with pytest.raises(ValueError, match=r"^poses_b\[9\] is not a rigid motion"):
+        sc.collide_many(a, b, poses_b=bent, first_index=0)
+
+
 def test_single_body_rows_are_the_single_queries(posed):
     a, b, poses_a, poses_b = posed
     distances = sc.distance_many(a, b, poses_a=poses_a, poses_b=poses_b, seed=3)

@@ -1,53 +1,159 @@
 #include "ball_screen.hpp"
 
-#include <utility>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
 
+#include "../geometry/framed_body.hpp"
+#include "../geometry/hull_graph.hpp"
 #include "../geometry/normalise.hpp"
-#include "../solvers/answer.hpp"
-#include "verdict.hpp"
 
 namespace swarmcollide::detail {
 
 namespace {
 
-// The body's ball radius, as kept with its derived data.
-struct BallRadius {
+// Shewchuk's bound on the rounding of orient3d's determinant computed from rounded differences,
+// relative to its permanent (o3derrboundA = (7 + 56 u) u, rounded up to 8 u), as hull_points.cpp
+// uses it; the absolute term covers products that underflow.
+constexpr Scalar kOrientationBound = 8 * kRoundoff;
+constexpr Scalar kUnderflow = std::numeric_limits<Scalar>::min();
+
+// A validated rotation has |R^T R - I| <= kRotationTolerance entrywise, so it stretches or shrinks
+// a vector's length by less than 1.5 of those (Gershgorin on R^T R); 2 covers it.
+constexpr Scalar kStretch = 2 * kRotationTolerance;
+
+struct OuterRadius {
   Scalar radius;
 };
 
-}  // namespace
-
-Scalar ball_radius(const ConvexPolyhedron& body) {
-  return body
-      .derived<BallRadius>([&body] {
-        // Each norm is within a few roundoffs of the exact distance of its point from the box
-        // centre (the centred points are themselves rounded relative to it); 2^-40 is far more.
-        const Scalar largest = body.centred_vertices().rowwise().norm().maxCoeff();
-        return BallRadius{largest * (1 + 0x1p-40)};
-      })
-      .radius;
+// |v|, without the squares of tiny or huge components underflowing or overflowing: for bodies
+// 1e-200 across, the plain norm is 0.
+Scalar length(const Vector3& v) {
+  const Scalar largest = v.cwiseAbs().maxCoeff();
+  return largest > 0 ? largest * (v / largest).norm() : 0;
 }
 
-std::optional<DistanceResult> collision_by_balls(const FramedPair& pair, Scalar radius_a,
-                                                 Scalar radius_b, Method method) {
-  // The box centres land at the bodies' offsets; the balls scale with the frame, exactly.
-  const Vector3 between = pair.b.offset() - pair.a.offset();
-  const Scalar centres = between.norm();
-  const Scalar lower = centres - times_power_of_two(radius_a, -pair.a.exponent()) -
-                       times_power_of_two(radius_b, -pair.b.exponent());
-  // A cheap test first: most pairs that reach here are not apart by their balls.
-  if (!(lower > pair.tolerance)) return std::nullopt;
-  Answer answer;
-  answer.lower = lower;
-  answer.direction = between / centres;
-  answer.point_a = pair.a.vertex(0);
-  answer.point_b = pair.b.vertex(0);
-  answer.upper = (answer.point_b - answer.point_a).norm();
-  answer.weights_a = ConvexWeights(pair.a.size(), {0, 0, 0, 0}, {1, 0, 0, 0}, 1);
-  answer.weights_b = ConvexWeights(pair.b.size(), {0, 0, 0, 0}, {1, 0, 0, 0}, 1);
-  // The rounding margins are the verdict's: it is proven only beyond them.
-  if (!verdict_proven(pair, answer)) return std::nullopt;
-  return finish_result(pair, std::move(answer), method, Goal::verdict);
+struct InnerRadius {
+  Scalar radius;
+};
+
+Scalar outer_radius(const ConvexPolyhedron& body) {
+  const VertexMatrix& centred = body.centred_vertices();
+  // In the unit ball (exactly, by a power of two), where no square underflows. Each norm is
+  // within a few roundoffs of the exact distance of its point from the box centre (the centred
+  // points are themselves rounded relative to it); 2^-40 is far more.
+  const int exponent = exponent_above(centred.cwiseAbs().maxCoeff());
+  Scalar largest = 0;
+  for (Eigen::Index i = 0; i < centred.rows(); ++i) {
+    Vector3 unit;
+    for (int k = 0; k < 3; ++k) unit(k) = times_power_of_two(centred(i, k), -exponent);
+    largest = std::max(largest, unit.norm());
+  }
+  return times_power_of_two(largest * (1 + 0x1p-40), exponent);
+}
+
+// The radius of a ball about the box centre (the origin of the centred points) inside the hull of
+// the centred points, as the solvers read them; 0 when none is proven. The hull's triangles must
+// form a closed, consistently oriented surface with the centre strictly behind every triangle's
+// plane, beyond rounding: then the surface winds around the centre (as hull_points.cpp argues for
+// the points it leaves out), and so around every point of a ball about it that meets no plane,
+// which therefore lies in the hull of the triangles' corners. A ball meets no plane when its
+// radius is below each plane's distance, bounded here from below: the determinant less
+// Shewchuk's bound, over an upper bound of the exact normal's length.
+Scalar inner_radius(const ConvexPolyhedron& body) {
+  const Hull& hull = body.hull();
+  if (hull.dimension != 3) return 0;
+  std::vector<Eigen::RowVector3i> triangles;
+  triangles.reserve(static_cast<std::size_t>(hull.faces.rows()));
+  for (Eigen::Index f = 0; f < hull.faces.rows(); ++f) triangles.emplace_back(hull.faces.row(f));
+  if (!closed_surface(triangles)) return 0;
+  const VertexMatrix& centred = body.centred_vertices();
+  // In the unit ball (exactly, by a power of two), where nothing overflows.
+  const int exponent = exponent_above(centred.cwiseAbs().maxCoeff());
+  const auto unit = [&](int i) -> Vector3 {
+    Vector3 p;
+    for (int k = 0; k < 3; ++k) p(k) = times_power_of_two(centred(i, k), -exponent);
+    return p;
+  };
+  Scalar nearest = std::numeric_limits<Scalar>::infinity();
+  for (const Eigen::RowVector3i& t : triangles) {
+    const Vector3 a = unit(t(0));
+    const Vector3 u = unit(t(1)) - a;
+    const Vector3 v = unit(t(2)) - a;
+    Vector3 minor, magnitude;
+    for (int k = 0; k < 3; ++k) {
+      const int i = (k + 1) % 3;
+      const int j = (k + 2) % 3;
+      minor(k) = u(i) * v(j) - u(j) * v(i);
+      magnitude(k) = std::abs(u(i) * v(j)) + std::abs(u(j) * v(i));
+    }
+    // The centre's orientation determinant (0 - a) . (u x v), negative behind the plane.
+    const Scalar behind = a.dot(minor) - (kOrientationBound * a.cwiseAbs().dot(magnitude) +
+                                          kUnderflow);
+    if (!(behind > 0)) return 0;
+    // Each computed minor is within 4.1 u of its terms' magnitudes of the exact one.
+    const Scalar normal = minor.norm() * (1 + 4 * kRoundoff) +
+                          8 * kRoundoff * magnitude.norm() + kUnderflow;
+    nearest = std::min(nearest, behind / normal);
+  }
+  return times_power_of_two(nearest * (1 - 4 * kRoundoff), exponent);
+}
+
+}  // namespace
+
+BodyBalls body_balls(const ConvexPolyhedron& body, bool with_inner) {
+  BodyBalls balls;
+  balls.outer =
+      body.derived<OuterRadius>([&body] { return OuterRadius{outer_radius(body)}; }).radius;
+  if (with_inner) {
+    balls.inner =
+        body.derived<InnerRadius>([&body] { return InnerRadius{inner_radius(body)}; }).radius;
+  }
+  return balls;
+}
+
+std::optional<BallVerdict> collision_by_balls(const ConvexPolyhedron& a, const Pose& pose_a,
+                                              const BodyBalls& balls_a, const ConvexPolyhedron& b,
+                                              const Pose& pose_b, const BodyBalls& balls_b,
+                                              Scalar relative_tolerance) {
+  const Vector3 centre_a = pose_a.rotation * a.bounds().centre + pose_a.translation;
+  const Vector3 centre_b = pose_b.rotation * b.bounds().centre + pose_b.translation;
+  const Vector3 between = centre_b - centre_a;
+  const Scalar centres = length(between);
+  const Scalar outer = (balls_a.outer + balls_b.outer) * (1 + kStretch);
+  // Each centre's coordinates are rounded by at most 7 u of |c| + |t| (c the box centre), their
+  // distance by another 5 u of itself, and the sums below by a few u of their terms: 16 u of it
+  // all is more than twice that (the 1-norms bound the lengths and do not underflow; the last
+  // term covers products that do).
+  const Scalar margin =
+      16 * kRoundoff *
+          (a.bounds().centre.lpNorm<1>() + pose_a.translation.lpNorm<1>() +
+           b.bounds().centre.lpNorm<1>() + pose_b.translation.lpNorm<1>() + centres + outer) +
+      16 * kUnderflow;
+  if (!std::isfinite(margin)) return std::nullopt;
+  BallVerdict verdict;
+  const Scalar lower = centres - outer - margin;
+  // The tolerance in world units: relative to the pair's size, the diameter of a ball about both
+  // bodies as frame_pair measures it (a hair more, for its rounding).
+  const Scalar size = centres + 2 * std::max(a.bounds().radius, b.bounds().radius);
+  if (lower > relative_tolerance * size * (1 + 0x1p-40)) {
+    verdict.lower_bound = lower;
+    verdict.direction = between / centres;
+    verdict.point_a = pose_a.rotation * a.vertices().row(0).transpose() + pose_a.translation;
+    verdict.point_b = pose_b.rotation * b.vertices().row(0).transpose() + pose_b.translation;
+    verdict.distance = length(verdict.point_b - verdict.point_a);
+    if (!std::isfinite(verdict.distance)) return std::nullopt;
+    return verdict;
+  }
+  const Scalar inner_a = balls_a.inner * (1 - kStretch);
+  const Scalar inner_b = balls_b.inner * (1 - kStretch);
+  if (!(centres + margin < (inner_a + inner_b) * (1 - 4 * kRoundoff))) return std::nullopt;
+  // The point splitting the centres' segment in the inner radii's ratio is within each inner ball.
+  verdict.colliding = true;
+  verdict.point_a = centre_a + (inner_a / (inner_a + inner_b)) * between;
+  verdict.point_b = verdict.point_a;
+  return verdict;
 }
 
 }  // namespace swarmcollide::detail

@@ -1,26 +1,49 @@
-// Verdicts that the bodies' bounding balls prove before any solver runs; private to the library's
-// sources.
+// Verdicts that the bodies' balls prove before any frame is set up or any solver runs; private to
+// the library's sources.
 #pragma once
 
 #include <optional>
 
-#include "../geometry/framed_body.hpp"
 #include "swarmcollide/geometry/convex_polyhedron.hpp"
-#include "swarmcollide/queries/distance_result.hpp"
+#include "swarmcollide/geometry/pose.hpp"
+#include "swarmcollide/types.hpp"
 
 namespace swarmcollide::detail {
 
-/// The radius of a ball about the centre of `body`'s box (`bounds().centre`) holding every point
-/// of it, rounded up: computed on first use and kept with the body's derived data. Tighter than
-/// the box's half diagonal (`bounds().radius`) by up to sqrt(3) for round bodies.
-Scalar ball_radius(const ConvexPolyhedron& body);
+/// Two balls about the centre of a body's box (`bounds().centre`), in the body's own units: every
+/// point of the body lies within `outer` of the centre, and the ball of radius `inner` about it
+/// lies inside the body (0 when none is proven).
+struct BodyBalls {
+  Scalar outer = 0;
+  Scalar inner = 0;
+};
 
-/// The collision result for `pair` when the balls about its bodies' box centres, of radii
-/// `radius_a` and `radius_b` (each body's own units, as `ball_radius` gives them), prove it apart:
-/// the lower bound is the balls' separation along the line of their centres (the direction), the
-/// upper bound the distance between the bodies' first points (the witnesses, with one weight
-/// each). Nothing when the balls prove no verdict. `method` is the method asked for.
-std::optional<DistanceResult> collision_by_balls(const FramedPair& pair, Scalar radius_a,
-                                                 Scalar radius_b, Method method);
+/// `body`'s balls, computed on first use and kept with its derived data. The inner ball needs the
+/// hull, so it is found only `with_inner` (else 0): a batch that builds its bodies row by row
+/// screens by the outer balls alone.
+BodyBalls body_balls(const ConvexPolyhedron& body, bool with_inner);
+
+/// A collision's answer settled by balls, in world units.
+struct BallVerdict {
+  bool colliding = false;
+  /// Apart: the distance between the bodies' first given points (an upper bound), and the balls'
+  /// separation (a lower bound, along `direction`, the unit vector between the centres).
+  /// Colliding: 0 and 0, both witnesses a point common to the inner balls, no direction.
+  Scalar distance = 0;
+  Scalar lower_bound = 0;
+  Vector3 point_a = Vector3::Zero();
+  Vector3 point_b = Vector3::Zero();
+  Vector3 direction = Vector3::Zero();
+};
+
+/// The collision verdict of `a` and `b` under validated poses when their balls prove it beyond
+/// rounding: apart when the outer balls are farther apart than the tolerance (relative to the
+/// pair's size, as frame_pair measures it), colliding when the inner balls overlap. Nothing
+/// otherwise, and nothing where the world coordinates leave the double range (the framed query
+/// then answers, or names the problem).
+std::optional<BallVerdict> collision_by_balls(const ConvexPolyhedron& a, const Pose& pose_a,
+                                              const BodyBalls& balls_a, const ConvexPolyhedron& b,
+                                              const Pose& pose_b, const BodyBalls& balls_b,
+                                              Scalar relative_tolerance);
 
 }  // namespace swarmcollide::detail

@@ -80,8 +80,10 @@ class FirstFailure {
       std::rethrow_exception(error_);
     } catch (const std::invalid_argument& e) {
       const std::string message = e.what();
-      // Body errors already name their body ("As[3]: ...").
-      if (message.rfind("As[", 0) == 0 || message.rfind("Bs[", 0) == 0) throw;
+      // Body and pose errors already name their row ("As[3]: ...", "poses_b[3] is ...").
+      for (const char* named : {"As[", "Bs[", "poses_a[", "poses_b["}) {
+        if (message.rfind(named, 0) == 0) throw;
+      }
       throw std::invalid_argument("pair " + std::to_string(first_index + index_) + ": " + message);
     }
   }
@@ -102,25 +104,39 @@ std::size_t worker_count(int threads, std::size_t pairs) {
   return std::min(wanted, std::max<std::size_t>(pairs, 1));
 }
 
-const Pose kIdentity{};
-
-// Every pose valid, one per pair (or none).
-void check_poses(const std::vector<Pose>& poses, std::size_t count, const char* name,
-                 std::uint64_t first_index) {
-  if (poses.empty()) return;
-  if (poses.size() != count) {
-    throw std::invalid_argument(std::string(name) + " must have one pose per pair, got " +
-                                std::to_string(poses.size()) + " for " + std::to_string(count) +
-                                " pairs");
+// The poses of one side of a batch: a list, an array read in place, or none (the identity).
+class SidePoses {
+ public:
+  SidePoses(const std::vector<Pose>& list, const PoseArray& array, const char* name)
+      : list_(list), array_(array), name_(name) {
+    if (!list.empty() && array.count > 0) {
+      throw std::invalid_argument(std::string(name) +
+                                  ": give the poses as a list or as an array, not both");
+    }
   }
-  for (std::size_t i = 0; i < count; ++i) {
-    validate_pose(poses[i], name, first_index + i);
-  }
-}
 
-const Pose& pose_of(const std::vector<Pose>& poses, std::size_t i) {
-  return poses.empty() ? kIdentity : poses[i];
-}
+  std::size_t size() const { return array_.count > 0 ? array_.count : list_.size(); }
+  bool empty() const { return size() == 0; }
+  // The pose of row i.
+  Pose at(std::size_t i) const {
+    if (array_.count > 0) return array_[i];
+    return list_.empty() ? Pose{} : list_[i];
+  }
+
+  // One pose per pair (or none).
+  void check_count(std::size_t count) const {
+    if (!empty() && size() != count) {
+      throw std::invalid_argument(std::string(name_) + " must have one pose per pair, got " +
+                                  std::to_string(size()) + " for " + std::to_string(count) +
+                                  " pairs");
+    }
+  }
+
+ private:
+  const std::vector<Pose>& list_;
+  const PoseArray& array_;
+  const char* name_;
+};
 
 void check_same_length(std::size_t count_a, std::size_t count_b) {
   if (count_a != count_b) {
@@ -137,8 +153,10 @@ std::size_t row_count(const BatchBodies<Body>& as, const BatchBodies<Body>& bs,
   if (!as.single() && !bs.single()) check_same_length(as.size(), bs.size());
   if (!as.single()) return as.size();
   if (!bs.single()) return bs.size();
-  if (!poses.a.empty()) return poses.a.size();
-  if (!poses.b.empty()) return poses.b.size();
+  const SidePoses a(poses.a, poses.array_a, "poses_a");
+  const SidePoses b(poses.b, poses.array_b, "poses_b");
+  if (!a.empty()) return a.size();
+  if (!b.empty()) return b.size();
   return 1;
 }
 
@@ -161,18 +179,21 @@ Asked asked(Kind kind) {
   return {detail::Goal::signed_distance, kSignedDistance, "signed_distance"};
 }
 
-// Runs `answer(i, options_i)` for every pair, where options_i are the validated options seeded
-// for pair i and `answer` is the thread's own `make_answer()` (with the thread's state), on a
-// pool of threads that take pairs in chunks, in increasing order: when a pair fails, every pair
-// before it has been taken, so the error of the lowest failing index is found whatever the
-// threads. Everything a row shares with the others (the options, the poses, the
-// method's capability) is checked here, once.
+// Runs `answer(i, options_i, pose_a_i, pose_b_i)`, which writes row i of the batch, for every
+// pair, where options_i are the validated options seeded for pair i and `answer` is the thread's
+// own `make_answer(batch)` (with the thread's state), on a pool of threads that take pairs in
+// chunks, in increasing order: when a pair fails, every pair before it has been taken, so the
+// error of the lowest failing index is found whatever the threads. Everything the rows share
+// (the options, the method's capability, the pose counts) is checked here, once; each row's poses
+// once, by the thread that answers it.
 template <typename MakeAnswer>
 BatchResult run_batch(Kind kind, std::size_t count, const QueryOptions& options,
                       const BatchSettings& settings, const BatchPoses& poses,
                       const MakeAnswer& make_answer) {
-  check_poses(poses.a, count, "poses_a", settings.first_index);
-  check_poses(poses.b, count, "poses_b", settings.first_index);
+  const SidePoses poses_a(poses.a, poses.array_a, "poses_a");
+  const SidePoses poses_b(poses.b, poses.array_b, "poses_b");
+  poses_a.check_count(count);
+  poses_b.check_count(count);
   const std::size_t workers = worker_count(settings.threads, count);
   const Query validated(options);
   detail::require(options.method, asked(kind).capability, asked(kind).name);
@@ -185,14 +206,22 @@ BatchResult run_batch(Kind kind, std::size_t count, const QueryOptions& options,
   FirstFailure failure;
   const auto work = [&] {
     QueryOptions pair_options = validated.options();
-    auto answer = make_answer();
+    pair_options.dual.record_history = false;  // a batch reports no history
+    auto answer = make_answer(batch);
     for (std::size_t start = next.fetch_add(kChunk); start < count && !stop.load();
          start = next.fetch_add(kChunk)) {
       const std::size_t end = std::min(count, start + kChunk);
       for (std::size_t i = start; i < end; ++i) {
         try {
-          pair_options.seed = pair_seed(options.seed, settings.first_index + i);
-          store(batch, i, answer(i, pair_options));
+          // Each pose is validated once, by the thread that answers its row (a check in one
+          // thread before the rows would not be spread over the threads).
+          const std::uint64_t index = settings.first_index + i;
+          const Pose pose_a = poses_a.at(i);
+          const Pose pose_b = poses_b.at(i);
+          if (!poses_a.empty()) validate_pose(pose_a, "poses_a", index);
+          if (!poses_b.empty()) validate_pose(pose_b, "poses_b", index);
+          pair_options.seed = pair_seed(options.seed, index);
+          answer(i, pair_options, pose_a, pose_b);
         } catch (...) {
           failure.offer(i);
           stop.store(true);
@@ -215,60 +244,93 @@ BatchResult run_batch(Kind kind, std::size_t count, const QueryOptions& options,
   return batch;
 }
 
-// The ball radius of the body of each row, looked up again only when the body changes (a
-// single body, or a sequence repeating one, costs one lookup per thread and run of rows).
-class BallRadii {
+// The balls of the body of each row, looked up again only when the body changes (a single
+// body, or a sequence repeating one, costs one lookup per thread and run of rows).
+class BallsCache {
  public:
-  Scalar of(const ConvexPolyhedron& body) {
+  explicit BallsCache(bool with_inner) : with_inner_(with_inner) {}
+  const detail::BodyBalls& of(const ConvexPolyhedron& body) {
     if (&body != body_) {
       body_ = &body;
-      radius_ = detail::ball_radius(body);
+      balls_ = detail::body_balls(body, with_inner_);
     }
-    return radius_;
+    return balls_;
   }
 
  private:
+  bool with_inner_;
   const ConvexPolyhedron* body_ = nullptr;
-  Scalar radius_ = 0;
+  detail::BodyBalls balls_;
 };
 
-// A convex pair framed from poses validated once for the batch, answered as Query answers it;
-// collisions whose bounding balls prove them apart are settled without a solver.
-DistanceResult answer_convex(Kind kind, const QueryOptions& options, const ConvexPolyhedron& a,
-                             const Pose& pose_a, const ConvexPolyhedron& b, const Pose& pose_b,
-                             bool escalate, BallRadii& radii_a, BallRadii& radii_b) {
-  const detail::FramedPair pair =
-      detail::frame_validated_pair(a, pose_a, b, pose_b, options.tolerance);
-  if (kind == Kind::collide) {
-    std::optional<DistanceResult> settled =
-        detail::collision_by_balls(pair, radii_a.of(a), radii_b.of(b), options.method);
-    if (settled) return std::move(*settled);
-  }
-  return detail::answer_pair(options, asked(kind).goal, pair, escalate);
+void store(BatchResult& batch, std::size_t index, const detail::BallVerdict& verdict) {
+  const auto i = static_cast<Eigen::Index>(index);
+  batch.distance(i) = verdict.distance;
+  batch.lower_bound(i) = verdict.lower_bound;
+  batch.point_a.row(i) = verdict.point_a.transpose();
+  batch.point_b.row(i) = verdict.point_b.transpose();
+  batch.direction.row(i) = verdict.direction.transpose();
+  batch.colliding(i) = verdict.colliding;
+  batch.certified(i) = true;
+  batch.iterations(i) = 0;
+  batch.escalated(i) = false;
 }
+
+// Answers a convex pair under poses validated once for the batch into its row, as Query answers
+// it; a collision that the bodies' balls settle needs neither a frame nor a solver.
+class ConvexRows {
+ public:
+  ConvexRows(Kind kind, BatchResult& batch, bool escalate, bool with_inner)
+      : kind_(kind), batch_(batch), escalate_(escalate), balls_a_(with_inner),
+        balls_b_(with_inner) {}
+
+  void answer(std::size_t row, const QueryOptions& options, const ConvexPolyhedron& a,
+              const Pose& pose_a, const ConvexPolyhedron& b, const Pose& pose_b) {
+    if (kind_ == Kind::collide) {
+      const std::optional<detail::BallVerdict> settled = detail::collision_by_balls(
+          a, pose_a, balls_a_.of(a), b, pose_b, balls_b_.of(b), options.tolerance);
+      if (settled) return store(batch_, row, *settled);
+    }
+    const detail::FramedPair pair =
+        detail::frame_validated_pair(a, pose_a, b, pose_b, options.tolerance);
+    store(batch_, row, detail::answer_pair(options, asked(kind_).goal, pair, escalate_));
+  }
+
+ private:
+  Kind kind_;
+  BatchResult& batch_;
+  bool escalate_;
+  BallsCache balls_a_;
+  BallsCache balls_b_;
+};
 
 BatchResult convex_batch(Kind kind, const BatchBodies<ConvexPolyhedron>& as,
                          const BatchBodies<ConvexPolyhedron>& bs, const QueryOptions& options,
                          const BatchSettings& settings, const BatchPoses& poses) {
-  return run_batch(kind, row_count(as, bs, poses), options, settings, poses, [&] {
-    // Each thread keeps the radii of the bodies it last met.
-    return [&, radii_a = BallRadii(), radii_b = BallRadii()](
-               std::size_t i, const QueryOptions& pair_options) mutable {
-      return answer_convex(kind, pair_options, as[i], pose_of(poses.a, i), bs[i],
-                           pose_of(poses.b, i), settings.escalate, radii_a, radii_b);
-    };
-  });
+  return run_batch(kind, row_count(as, bs, poses), options, settings, poses,
+                   [&](BatchResult& batch) {
+                     // Each thread keeps the balls of the bodies it last met.
+                     return [&, rows = ConvexRows(kind, batch, settings.escalate, true)](
+                                std::size_t i, const QueryOptions& pair_options,
+                                const Pose& pose_a, const Pose& pose_b) mutable {
+                       rows.answer(i, pair_options, as[i], pose_a, bs[i], pose_b);
+                     };
+                   });
 }
 
 BatchResult compound_batch(Kind kind, const BatchBodies<CompoundBody>& as,
                            const BatchBodies<CompoundBody>& bs, const QueryOptions& options,
                            const BatchSettings& settings, const BatchPoses& poses) {
-  return run_batch(kind, row_count(as, bs, poses), options, settings, poses, [&] {
-    return [&](std::size_t i, const QueryOptions& pair_options) {
-      return detail::answer_compound(pair_options, asked(kind).goal, settings.escalate, as[i],
-                                     pose_of(poses.a, i), bs[i], pose_of(poses.b, i));
-    };
-  });
+  return run_batch(kind, row_count(as, bs, poses), options, settings, poses,
+                   [&](BatchResult& batch) {
+                     return [&](std::size_t i, const QueryOptions& pair_options,
+                                const Pose& pose_a, const Pose& pose_b) {
+                       store(batch, i,
+                             detail::answer_compound(pair_options, asked(kind).goal,
+                                                     settings.escalate, as[i], pose_a, bs[i],
+                                                     pose_b));
+                     };
+                   });
 }
 
 // Body i of a stack, built on the calling thread.
@@ -286,14 +348,15 @@ BatchResult stack_batch(Kind kind, const VertexStack& as, const VertexStack& bs,
                         const QueryOptions& options, const BatchSettings& settings,
                         const BatchPoses& poses) {
   check_same_length(as.count, bs.count);
-  return run_batch(kind, as.count, options, settings, poses, [&] {
-    return [&](std::size_t i, const QueryOptions& pair_options) {
+  return run_batch(kind, as.count, options, settings, poses, [&](BatchResult& batch) {
+    return [&](std::size_t i, const QueryOptions& pair_options, const Pose& pose_a,
+               const Pose& pose_b) {
       const ConvexPolyhedron a = body(as, i, settings.first_index);
       const ConvexPolyhedron b = body(bs, i, settings.first_index);
-      // Every row's bodies are new (and may reuse the last row's addresses): no radius is kept.
-      BallRadii radius_a, radius_b;
-      return answer_convex(kind, pair_options, a, pose_of(poses.a, i), b, pose_of(poses.b, i),
-                           settings.escalate, radius_a, radius_b);
+      // Every row's bodies are new (and may reuse the last row's addresses): no ball is kept, and
+      // no hull is built for an inner ball.
+      ConvexRows(kind, batch, settings.escalate, false)
+          .answer(i, pair_options, a, pose_a, b, pose_b);
     };
   });
 }

@@ -67,9 +67,12 @@ class DualSearch {
  private:
   bool reached() const { return bounds_.reached(pair_, goal_); }
 
-  // The best upper bound after the start and after each iteration; a verdict keeps none.
+  // The best upper bound after the start and after each iteration; a verdict keeps none, nor
+  // does a search asked not to.
   void record() {
-    if (goal_ != Goal::verdict) history_.push_back(bounds_.upper().distance);
+    if (goal_ != Goal::verdict && options_.record_history) {
+      history_.push_back(bounds_.upper().distance);
+    }
   }
 
   // The swarm's global best becomes a lower bound, and the finish runs from it whenever it

@@ -78,11 +78,42 @@ class BatchBodies {
   bool single_;
 };
 
-/// Where the bodies of a batch are: pair i's A at `a[i]` and B at `b[i]`; an empty list puts
-/// every body of its side at the identity.
+/// Poses read where they are (never copied), as a binding's arrays hold them: entry (r, c) of
+/// pose i's rotation is `rotations[i * rotation_stride + r * rotation_row_stride + c]` and entry
+/// r of its translation `translations[i * translation_stride + r * translation_row_stride]`
+/// (strides in elements). So an (m, 4, 4) array of transforms is read with strides 16 and 4 for
+/// both, a pair of (m, 3, 3) and (m, 3) arrays with strides 9 and 3, and 3 and 1.
+struct PoseArray {
+  const Scalar* rotations = nullptr;
+  const Scalar* translations = nullptr;
+  std::size_t count = 0;
+  std::ptrdiff_t rotation_stride = 9;
+  std::ptrdiff_t rotation_row_stride = 3;
+  std::ptrdiff_t translation_stride = 3;
+  std::ptrdiff_t translation_row_stride = 1;
+
+  /// Pose i.
+  Pose operator[](std::size_t i) const {
+    Pose pose;
+    const Scalar* rotation = rotations + static_cast<std::ptrdiff_t>(i) * rotation_stride;
+    const Scalar* translation =
+        translations + static_cast<std::ptrdiff_t>(i) * translation_stride;
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c < 3; ++c) pose.rotation(r, c) = rotation[r * rotation_row_stride + c];
+      pose.translation(r) = translation[r * translation_row_stride];
+    }
+    return pose;
+  }
+};
+
+/// Where the bodies of a batch are: pair i's A at `a[i]` and B at `b[i]`, or read in place at
+/// `array_a[i]` and `array_b[i]` when those hold poses (`count` > 0; then their lists must be
+/// empty); a side without poses puts every body of its side at the identity.
 struct BatchPoses {
   std::vector<Pose> a;
   std::vector<Pose> b;
+  PoseArray array_a;
+  PoseArray array_b;
 };
 
 /// The seed of the pair with global index `index` in a batch seeded with `seed`: independent of
@@ -100,19 +131,22 @@ struct VertexStack {
 };
 
 /// `Query(options).distance(as[i], poses.a[i], bs[i], poses.b[i])` for every row i, spread
-/// over threads, with row i seeded by `pair_seed(options.seed, first_index + i)`. The options and
-/// every pose are validated once, before any row is answered. The rows are as many as the
-/// sequences of bodies (which must agree), or with a single body on both sides as the poses (one
-/// row without poses). Throws std::invalid_argument if the sequences (or non-empty pose lists)
-/// differ in length, a pose or a setting is invalid, and rethrows the error of the pair with the
-/// lowest index that failed, prefixed with "pair N: ".
+/// over threads, with row i seeded by `pair_seed(options.seed, first_index + i)`. The options are
+/// validated once, before any row is answered, and each row's poses once, by the thread that
+/// answers the row. The rows are as many as the sequences of bodies (which must agree), or with a
+/// single body on both sides as the poses (one row without poses). Throws std::invalid_argument
+/// if the sequences (or non-empty pose lists) differ in length or a setting is invalid, and
+/// rethrows the error of the pair with the lowest index that failed (an invalid pose, named
+/// "poses_b[N]", or the query's error, prefixed with "pair N: ").
 BatchResult distance_many(const BatchBodies<ConvexPolyhedron>& as,
                           const BatchBodies<ConvexPolyhedron>& bs, const QueryOptions& options,
                           const BatchSettings& settings = {}, const BatchPoses& poses = {});
 /// `Query(options).collision(as[i], poses.a[i], bs[i], poses.b[i], settings.escalate)` for
-/// every row i, like distance_many, except that a row whose bodies' bounding balls (about their
-/// boxes' centres) prove them apart is settled by them, without a solver: its lower bound is the
-/// balls' separation and its distance that of the bodies' first points, its witnesses.
+/// every row i, like distance_many, except that a row whose bodies' balls about their boxes'
+/// centres settle it needs no solver: bounding balls proven apart (the lower bound is their
+/// separation, the distance that of the bodies' first given points, its witnesses), or balls
+/// inside the bodies that overlap (distance and lower bound 0, both witnesses a point common to
+/// the balls). Bodies built from vertex stacks are screened by their bounding balls only.
 BatchResult collide_many(const BatchBodies<ConvexPolyhedron>& as,
                          const BatchBodies<ConvexPolyhedron>& bs, const QueryOptions& options,
                          const BatchSettings& settings = {}, const BatchPoses& poses = {});

@@ -26,6 +26,9 @@ struct DualOptions {
   Scalar feature_tolerance = 1e-3;
   /// Largest number of rounds (the first plus re-seedings).
   int max_rounds = 20;
+  /// Keep the best upper bound after each iteration (the answer's `history`). Batches, which
+  /// report none, turn it off: it is what a warmed-up search would otherwise allocate per pair.
+  bool record_history = true;
 };
 
 }  // namespace swarmcollide
