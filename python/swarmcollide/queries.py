@@ -447,10 +447,13 @@ def collide_many(
     """``collision(As[i], Bs[i])`` for every i: the batch form of ``collide``.
 
     ``result.colliding`` holds the verdicts and ``result.escalated`` marks the pairs another
-    method decided. A row whose bodies' bounding balls (about the centres of their boxes) are
-    proven apart is settled by them before any solver runs: its ``lower_bound`` is the balls'
-    separation and its ``distance`` that of the bodies' first points (its witnesses), both valid
-    bounds, looser than a solver's. Takes the keywords of ``distance_many`` and ``escalate``.
+    method decided. Balls about the centres of the bodies' boxes settle rows before any solver
+    runs. Bounding balls proven apart settle a row as apart: its ``lower_bound`` is the balls'
+    separation and its ``distance`` that of the bodies' first points (its witnesses). Balls
+    proven inside both bodies (a closed hull surface around the centre) that overlap settle it as
+    colliding: distance and ``lower_bound`` 0, a point common to both balls as the witness. Both
+    are valid bounds, looser than a solver's. Takes the keywords of ``distance_many`` and
+    ``escalate``.
 
     Examples
     --------
