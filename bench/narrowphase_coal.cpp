@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "random_pairs.hpp"
+#include "coal_convex.hpp"
 #include "swarmcollide/queries/query.hpp"
 
 namespace sc = swarmcollide;
@@ -47,26 +48,6 @@ struct Proximity {
 };
 
 using CoalConvex = coal::Convex<coal::Triangle>;
-
-// The body's hull as a coal::Convex, its points numbered as coal's users number them.
-std::shared_ptr<CoalConvex> to_coal(const sc::ConvexPolyhedron& body) {
-  const sc::Hull& hull = body.hull();
-  std::vector<int> local(body.size(), -1);
-  auto points = std::make_shared<std::vector<coal::Vec3s>>();
-  for (int i : hull.vertex_indices) {
-    local[i] = static_cast<int>(points->size());
-    points->push_back(body.vertices().row(i).transpose());
-  }
-  auto triangles = std::make_shared<std::vector<coal::Triangle>>();
-  for (Eigen::Index f = 0; f < hull.faces.rows(); ++f) {
-    triangles->emplace_back(local[hull.faces(f, 0)], local[hull.faces(f, 1)],
-                            local[hull.faces(f, 2)]);
-  }
-  auto shape = std::make_shared<CoalConvex>(points, static_cast<unsigned>(points->size()),
-                                            triangles, static_cast<unsigned>(triangles->size()));
-  shape->computeLocalAABB();
-  return shape;
-}
 
 struct Pair {
   sc::ConvexPolyhedron a;

@@ -30,6 +30,7 @@
 #include <string>
 #include <vector>
 
+#include "coal_convex.hpp"
 #include "normals.hpp"
 #include "swarmcollide/queries/methods.hpp"
 #include "swarmcollide/queries/query.hpp"
@@ -53,29 +54,7 @@ sc::VertexMatrix sphere_polytope(int n, Normals& normals) {
   return vertices;
 }
 
-// The body's hull as a coal convex with its triangles (so coal builds its vertex neighbours and
-// support warm starts), as a coal user builds a mesh's hull once.
-std::shared_ptr<coal::ConvexBase> to_coal(const sc::ConvexPolyhedron& body) {
-  const sc::Hull& hull = body.hull();
-  std::vector<int> local(body.size(), -1);
-  auto points = std::make_shared<std::vector<coal::Vec3s>>();
-  for (int i : hull.vertex_indices) {
-    local[i] = static_cast<int>(points->size());
-    points->push_back(body.vertices().row(i).transpose());
-  }
-  auto triangles = std::make_shared<std::vector<coal::Triangle>>();
-  for (Eigen::Index f = 0; f < hull.faces.rows(); ++f) {
-    triangles->emplace_back(local[hull.faces(f, 0)], local[hull.faces(f, 1)],
-                            local[hull.faces(f, 2)]);
-  }
-  auto convex = std::make_shared<coal::Convex<coal::Triangle>>(
-      points, static_cast<unsigned int>(points->size()), triangles,
-      static_cast<unsigned int>(triangles->size()));
-  convex->computeLocalAABB();
-  return convex;
-}
-
-coal::Transform3s to_coal(const sc::Pose& pose) {
+coal::Transform3s coal_transform(const sc::Pose& pose) {
   return coal::Transform3s(pose.rotation, pose.translation);
 }
 
@@ -114,7 +93,7 @@ std::unique_ptr<Pair> overlapping_pair(int n, double target, std::uint64_t seed)
   }
   pose_b.translation = hi * u;
   auto pair = std::make_unique<Pair>(Pair{a, b, pose_a, pose_b, to_coal(a), to_coal(b),
-                                          to_coal(pose_a), to_coal(pose_b)});
+                                          coal_transform(pose_a), coal_transform(pose_b)});
   return pair;
 }
 
