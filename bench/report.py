@@ -13,6 +13,7 @@ import os
 import sys
 from typing import Callable, List, Optional, Tuple
 
+from coal_report import NARROWPHASE, PENETRATION, narrowphase_section, penetration_section
 from compound import compound_section
 from pose_batch import section as pose_batch_section
 from cpp_report import cpp_sections, every_workload_section
@@ -89,6 +90,10 @@ Section = Tuple[str, str, str, Callable[[dict], str], str]
 SECTIONS: List[Section] = [
     ("python_comparison.json", "From Python: swarmcollide against pyswarms, SciPy, python-fcl "
      "and coal", "", python_section, PYTHON_COMPARISON),
+    ("narrowphase_coal.json", "Distance and verdicts against coal's GJK (C++)", NARROWPHASE,
+     narrowphase_section, ""),
+    ("penetration_coal.json", "Penetration against coal's EPA (C++)", PENETRATION,
+     penetration_section, ""),
     ("per_call.json", "Per call from Python", PER_CALL, per_call_section, ""),
     ("swarm_targets.json", "The paper's swarm at its budget against a plain scalar PSO",
      SWARM_TARGETS, swarm_targets_section, ""),
