@@ -152,19 +152,18 @@ auto answer_bodies(const Query& query, PairQuery kind, const Body& a, const Pose
   return query.collision(a, pose_a, b, pose_b, escalate);
 }
 
-// The polyhedron of `body` when its type is exactly ConvexPolyhedron (the usual argument), read
-// from the instance with the type's record found once: a cast looks the record up by the C++
-// type's name on every call. Null for anything else (BodyArgument then converts it).
-const ConvexPolyhedron* exact_polyhedron(const py::handle& body) {
-  static PyTypeObject* const type =
-      reinterpret_cast<PyTypeObject*>(py::type::of<ConvexPolyhedron>().ptr());
-  static py::detail::type_info* const record =
-      py::detail::get_type_info(typeid(ConvexPolyhedron));
-  if (Py_TYPE(body.ptr()) != type) return nullptr;
-  auto* instance = reinterpret_cast<py::detail::instance*>(body.ptr());
-  // Null for an instance whose __init__ has not run: the cast then says so.
-  return static_cast<const ConvexPolyhedron*>(
-      instance->get_value_and_holder(record, false).value_ptr());
+// The C++ object of `object` when its Python type is exactly T's bound class (the usual argument:
+// a ConvexPolyhedron, a Query), read from the instance with the type's record found once: a cast
+// looks the record up by the C++ type's name on every call. Null for anything else (a subclass,
+// another type), which the callers then convert as pybind11 does, or for an instance whose
+// __init__ has not run (the cast then says so).
+template <typename T>
+const T* exact_instance(PyObject* object) {
+  static PyTypeObject* const type = reinterpret_cast<PyTypeObject*>(py::type::of<T>().ptr());
+  static py::detail::type_info* const record = py::detail::get_type_info(typeid(T));
+  if (Py_TYPE(object) != type) return nullptr;
+  auto* instance = reinterpret_cast<py::detail::instance*>(object);
+  return static_cast<const T*>(instance->get_value_and_holder(record, false).value_ptr());
 }
 
 // `kind` between `a` and `b` as Python sees it: a bool for collide, else a DistanceResult (a
@@ -184,8 +183,9 @@ py::object answer(const Query& query, PairQuery kind, const py::handle& a, const
     if (kind == PairQuery::collide) return py::bool_(result.colliding);
     return py::cast(std::move(result));
   }
-  const ConvexPolyhedron* polyhedron_a = exact_polyhedron(a);
-  const ConvexPolyhedron* polyhedron_b = polyhedron_a ? exact_polyhedron(b) : nullptr;
+  const ConvexPolyhedron* polyhedron_a = exact_instance<ConvexPolyhedron>(a.ptr());
+  const ConvexPolyhedron* polyhedron_b =
+      polyhedron_a ? exact_instance<ConvexPolyhedron>(b.ptr()) : nullptr;
   std::optional<BodyArgument> body_a, body_b;
   if (!polyhedron_b) {
     polyhedron_a = &body_a.emplace(a, "a").get();
@@ -381,15 +381,6 @@ py::object make_query_function(const py::function& python_path,
 // call they do not answer themselves, so that such calls behave and fail as they always have.
 PyObject* bound_methods[4] = {};
 
-// The Query `self` when its type is exactly Query, read as exact_polyhedron reads a body.
-const Query* exact_query(PyObject* self) {
-  static PyTypeObject* const type = reinterpret_cast<PyTypeObject*>(py::type::of<Query>().ptr());
-  static py::detail::type_info* const record = py::detail::get_type_info(typeid(Query));
-  if (Py_TYPE(self) != type) return nullptr;
-  auto* instance = reinterpret_cast<py::detail::instance*>(self);
-  return static_cast<const Query*>(instance->get_value_and_holder(record, false).value_ptr());
-}
-
 // Reads the arguments of a call to Query's method `kind` after `a` and `b`: `pose_a`, `pose_b`
 // and, for the verdicts, `escalate`, by position or keyword; false for anything else (a keyword
 // given twice, `escalate` that is not a bool), which pybind11's method then refuses or converts.
@@ -428,7 +419,7 @@ template <PairQuery kind>
 PyObject* query_method(PyObject* self, PyObject* const* arguments, Py_ssize_t count,
                        PyObject* names) {
   QueryCall call;
-  const Query* query = exact_query(self);
+  const Query* query = exact_instance<Query>(self);
   if (query != nullptr && read_method_arguments(kind, arguments, count, names, call)) {
     try {
       return answer(*query, kind, arguments[0], arguments[1], call.pose_a, call.pose_b,

@@ -403,28 +403,25 @@ TEST(HillClimbing, SupportMatchesTheScan) {
   }
 }
 
-// A climb without a start begins at the highest of the hull's climbing starts: for each of the
-// 26 directions of a cube's faces, edges and corners, one of them is a support point.
-TEST(HillClimbing, ClimbStartsSupportTheCubeDirections) {
+// A climb without a start begins at the hull's start for its direction's cube-map cell: each
+// cell's start supports the body along the cell's centre, and every direction, the centres
+// included, falls in the cell whose centre is nearest along its major axis.
+TEST(HillClimbing, ClimbStartsSupportTheirCells) {
   std::mt19937_64 rng(11);
   std::normal_distribution<Scalar> normal;
   VertexMatrix points(300, 3);
   for (int i = 0; i < points.rows(); ++i) points.row(i) << normal(rng), normal(rng), normal(rng);
   const ConvexPolyhedron body(points);
   const std::vector<int>& starts = body.hull().climb_starts;
-  ASSERT_FALSE(starts.empty());
-  EXPECT_LE(starts.size(), 26u);
-  for (int x = -1; x <= 1; ++x) {
-    for (int y = -1; y <= 1; ++y) {
-      for (int z = -1; z <= 1; ++z) {
-        if (x == 0 && y == 0 && z == 0) continue;
-        const Vector3 d(x, y, z);
-        Scalar highest = -std::numeric_limits<Scalar>::infinity();
-        for (int i : starts) highest = std::max(highest, points.row(i).dot(d));
-        EXPECT_NEAR(highest, (points * d).maxCoeff(), 1e-12);
-      }
-    }
+  ASSERT_EQ(starts.size(), static_cast<std::size_t>(detail::kClimbStartCount));
+  for (int cell = 0; cell < detail::kClimbStartCount; ++cell) {
+    const Vector3 d = detail::climb_cell_centre(cell);
+    EXPECT_EQ(detail::climb_cell(d), cell);
+    EXPECT_EQ(detail::climb_cell(3 * d), cell);
+    EXPECT_NEAR(points.row(starts[cell]).dot(d), (points * d).maxCoeff(), 1e-12);
   }
+  EXPECT_EQ(detail::climb_cell(Vector3::Zero()), 0);
+  EXPECT_EQ(detail::climb_cell(Vector3(1, std::nan(""), 0)), 0);
 }
 
 }  // namespace

@@ -479,22 +479,17 @@ void fill_adjacency(Hull& hull, const VertexMatrix& vertices) {
   }
   offsets[points] = written;
   neighbours.resize(static_cast<std::size_t>(written));
-  hull.climb_starts.clear();
-  for (int x = -1; x <= 1; ++x) {
-    for (int y = -1; y <= 1; ++y) {
-      for (int z = -1; z <= 1; ++z) {
-        if (x == 0 && y == 0 && z == 0) continue;
-        const Vector3 d(x, y, z);
-        int top = hull.vertex_indices.front();
-        for (int v : hull.vertex_indices) {
-          if (point_height(vertices, v, d) > point_height(vertices, top, d)) top = v;
-        }
-        if (std::find(hull.climb_starts.begin(), hull.climb_starts.end(), top) ==
-            hull.climb_starts.end()) {
-          hull.climb_starts.push_back(top);
-        }
-      }
-    }
+  // Each cell's start by a climb from the previous cell's (the first by a scan), as the
+  // adjacency is now in place; a climb stopped short by rounding only makes a start worse.
+  hull.climb_starts.assign(kClimbStartCount, hull.vertex_indices.front());
+  int last = hull.vertex_indices.front();
+  const Vector3 first = climb_cell_centre(0);
+  for (int v : hull.vertex_indices) {
+    if (point_height(vertices, v, first) > point_height(vertices, last, first)) last = v;
+  }
+  for (int cell = 0; cell < kClimbStartCount; ++cell) {
+    last = climb_support(vertices, hull, climb_cell_centre(cell), last);
+    hull.climb_starts[static_cast<std::size_t>(cell)] = last;
   }
 }
 

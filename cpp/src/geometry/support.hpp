@@ -2,6 +2,8 @@
 // FramedBody share; private to the library's sources.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 
 #include "swarmcollide/geometry/hull.hpp"
@@ -37,11 +39,47 @@ inline int scan_support(const VertexMatrix& points, const Vector3& d) {
                        [&](int i) { return point_height(points, i, d); });
 }
 
+/// Cells along each edge of a face of the cube map of climb starts (Hull::climb_starts): six faces
+/// of kClimbStartCells^2 cells, each about 11 degrees wide.
+constexpr int kClimbStartCells = 8;
+constexpr int kClimbStartCount = 6 * kClimbStartCells * kClimbStartCells;
+
+/// The direction through the centre of cube-map cell `cell` (face `cell / kClimbStartCells^2`,
+/// whose axis is face / 2, negative for odd faces).
+inline Vector3 climb_cell_centre(int cell) {
+  const int face = cell / (kClimbStartCells * kClimbStartCells);
+  const int u = cell / kClimbStartCells % kClimbStartCells;
+  const int v = cell % kClimbStartCells;
+  const int axis = face / 2;
+  Vector3 d;
+  d(axis) = face % 2 ? -1 : 1;
+  d((axis + 1) % 3) = (2 * u + 1) / Scalar(kClimbStartCells) - 1;
+  d((axis + 2) % 3) = (2 * v + 1) / Scalar(kClimbStartCells) - 1;
+  return d;
+}
+
+/// The cube-map cell that the direction `d` falls in; 0 for a zero or non-finite `d`.
+inline int climb_cell(const Vector3& d) {
+  int axis = 0;
+  for (int k = 1; k < 3; ++k) {
+    if (std::abs(d(k)) > std::abs(d(axis))) axis = k;
+  }
+  const Scalar major = std::abs(d(axis));
+  if (!(major > 0) || !d.allFinite()) return 0;
+  const int face = 2 * axis + (d(axis) < 0 ? 1 : 0);
+  const auto cell = [major](Scalar t) {
+    const auto i = static_cast<int>((t / major + 1) * (kClimbStartCells / Scalar(2)));
+    return std::clamp(i, 0, kClimbStartCells - 1);
+  };
+  return (face * kClimbStartCells + cell(d((axis + 1) % 3))) * kClimbStartCells +
+         cell(d((axis + 2) % 3));
+}
+
 /// Index of a point maximising `d . x`, by steepest ascent over `hull`'s edge graph, as FCL and
 /// coal do, from `start`: a search passes the previous answer, which is best for a nearby
-/// direction. Without one (a point with no neighbours, or out of range, is none), or after a
-/// jump, the climb starts from the highest of the hull's `climb_starts` (coal keeps such a table
-/// too), so it crosses at most the part of the hull within about 25 degrees of `d`.
+/// direction. Without one (a point with no neighbours, or out of range, is none), as after a
+/// jump, the climb starts from the hull's climb start for the cube-map cell of `d` (coal keeps
+/// such a table too), a step or two from the answer whatever the direction.
 /// On a convex polytope a vertex with no higher neighbour maximises a linear function;
 /// with rounded heights the climb can stop short of the maximum, so its answers serve search and
 /// upper bounds (any point of the body does), never a proven lower bound on their own. Every
@@ -50,21 +88,10 @@ inline int climb_support(const VertexMatrix& points, const Hull& hull, const Vec
                          int start) {
   const int* offsets = hull.neighbour_offsets.data();
   const int* neighbours = hull.neighbours.data();
-  int current = start;
-  Scalar highest;
-  if (start >= 0 && start < static_cast<int>(points.rows()) && offsets[start + 1] > offsets[start]) {
-    highest = point_height(points, current, d);
-  } else {
-    current = hull.climb_starts.front();
-    highest = point_height(points, current, d);
-    for (int s : hull.climb_starts) {
-      const Scalar h = point_height(points, s, d);
-      if (h > highest) {
-        highest = h;
-        current = s;
-      }
-    }
-  }
+  const bool given =
+      start >= 0 && start < static_cast<int>(points.rows()) && offsets[start + 1] > offsets[start];
+  int current = given ? start : hull.climb_starts[static_cast<std::size_t>(climb_cell(d))];
+  Scalar highest = point_height(points, current, d);
   for (;;) {
     int next = current;
     for (int e = offsets[current]; e < offsets[current + 1]; ++e) {

@@ -3,8 +3,6 @@
 #include <fcl/geometry/shape/convex.h>
 #include <fcl/narrowphase/detail/convexity_based_algorithm/gjk.h>
 
-#include <algorithm>
-#include <cmath>
 #include <memory>
 #include <vector>
 
@@ -21,70 +19,10 @@ namespace {
 // GJK's stopping threshold in frame units (the bodies lie in the unit ball): relative precision
 // near double's; whatever GJK leaves unproven goes to the exact solver.
 constexpr Scalar kGjkTolerance = 1e-14;
-// Cells along each edge of a face of the cube map of climb starts (ClimbStarts).
-constexpr int kStartCells = 8;
-
-// Where a hill climb along a direction starts on a large body: the support point of the centre
-// of the direction's cell in a cube map (six faces of kStartCells^2 cells, about 11 degrees
-// wide), so that a climb is a step or two whatever the direction. Climbs chained from one
-// direction to the next would cross half the hull between FCL's simplex directions, which point
-// every way around an overlap: as many heights as a scan.
-class ClimbStarts {
- public:
-  explicit ClimbStarts(const FramedBody& body) {
-    if (body.size() <= kHillClimbingThreshold) return;
-    starts_.resize(6 * kStartCells * kStartCells);
-    int last = -1;
-    for (int face = 0; face < 6; ++face) {
-      for (int u = 0; u < kStartCells; ++u) {
-        for (int v = 0; v < kStartCells; ++v) {
-          last = body.local_support_index(centre(face, u, v), last);
-          starts_[(face * kStartCells + u) * kStartCells + v] = last;
-        }
-      }
-    }
-  }
-
-  /// The start for a climb along `d` (the body's own frame); -1 (any start) for a small body,
-  /// which is scanned.
-  int operator()(const Vector3& d) const {
-    if (starts_.empty()) return -1;
-    int axis = 0;
-    for (int k = 1; k < 3; ++k) {
-      if (std::abs(d(k)) > std::abs(d(axis))) axis = k;
-    }
-    const Scalar major = std::abs(d(axis));
-    if (!(major > 0) || !std::isfinite(major)) return starts_.front();
-    const int face = 2 * axis + (d(axis) < 0 ? 1 : 0);
-    const auto cell = [major](Scalar t) {
-      const auto i = static_cast<int>((t / major + 1) * (kStartCells / Scalar(2)));
-      return std::clamp(i, 0, kStartCells - 1);
-    };
-    return starts_[(face * kStartCells + cell(d((axis + 1) % 3))) * kStartCells +
-                   cell(d((axis + 2) % 3))];
-  }
-
- private:
-  // The direction through the centre of cell (u, v) of face `face` (axis face / 2, negative for
-  // odd faces).
-  static Vector3 centre(int face, int u, int v) {
-    const int axis = face / 2;
-    Vector3 d;
-    d(axis) = face % 2 ? -1 : 1;
-    d((axis + 1) % 3) = (2 * u + 1) / Scalar(kStartCells) - 1;
-    d((axis + 2) % 3) = (2 * v + 1) / Scalar(kStartCells) - 1;
-    return d;
-  }
-
-  std::vector<int> starts_;
-};
-
 // A body's hull as an fcl::Convexd: local points around the body's box centre, divided by
-// 2^exponent, as FramedBody places them before its rotation; and where climbs on it start. Built
-// once per body and exponent.
+// 2^exponent, as FramedBody places them before its rotation. Built once per body and exponent.
 struct FclConvex {
   std::shared_ptr<const fcl::Convexd> shape;
-  ClimbStarts starts;
 };
 
 FclConvex make_convex(const FramedBody& framed) {
@@ -100,8 +38,7 @@ FclConvex make_convex(const FramedBody& framed) {
   }
   // No faces: GJK_indep's supports (fcl::detail::MinkowskiDiff) scan the vertices whatever the
   // size, never walking the faces, which would only cost the constructor an adjacency build.
-  return {std::make_shared<const fcl::Convexd>(vertices, 0, std::make_shared<std::vector<int>>()),
-          ClimbStarts(framed)};
+  return {std::make_shared<const fcl::Convexd>(vertices, 0, std::make_shared<std::vector<int>>())};
 }
 
 // Kept with the body (ConvexPolyhedron::derived), found without a lock or a reference count.
@@ -134,11 +71,11 @@ fcl::detail::GJK<Scalar>::Status run_gjk(const FramedPair& pair, const FclConvex
 
 // The answer along the line between the bodies' centres: its separation (the lower bound) and
 // the two support points (the upper bound).
-Answer along_centres(const FramedPair& pair, const FclConvex& a, const FclConvex& b) {
+Answer along_centres(const FramedPair& pair) {
   const Vector3 between = pair.b.offset() - pair.a.offset();
   const Vector3 n = between.norm() > 0 ? Vector3(between.normalized()) : Vector3::UnitX();
-  int ia = a.starts(pair.a.local_direction(n));
-  int ib = b.starts(pair.b.local_direction(-n));
+  int ia = -1;  // large bodies climb from their hulls' cube maps of starts
+  int ib = -1;
   const Scalar lower = separation(pair.a, pair.b, n, ia, ib);
   Answer answer = answer_from_witness(pair, vertex_witness(pair, ia, ib));
   answer.lower = lower;
@@ -155,7 +92,7 @@ Answer solve_fcl(const FramedPair& pair, const QueryOptions& options, Goal goal)
   const FclConvex& convex_a = convex_of(pair.a);
   const FclConvex& convex_b = convex_of(pair.b);
   if (goal == Goal::verdict) {
-    Answer screened = along_centres(pair, convex_a, convex_b);
+    Answer screened = along_centres(pair);
     if (verdict_proven(pair, screened)) return screened;
   }
   using Gjk = fcl::detail::GJK<Scalar>;
@@ -164,9 +101,9 @@ Answer solve_fcl(const FramedPair& pair, const QueryOptions& options, Goal goal)
   fcl::detail::MinkowskiDiff<Scalar> difference;
   const Gjk::Status status = run_gjk(pair, convex_a, convex_b, gjk, difference);
   // FCL's simplex as the bodies' own points: the support indices along each simplex vertex's
-  // direction, found in the bodies' own frames; on large bodies by a climb from the cube map's
-  // start, a few neighbour checks where a scan would cost as much as an iteration of FCL's GJK
-  // (whose supports scan every vertex). Any points of the bodies give a valid witness: the
+  // direction, found in the bodies' own frames; on large bodies by a climb from their hulls' cube
+  // maps of starts (Hull::climb_starts), a few neighbour checks where a scan would cost as much
+  // as an iteration of FCL's GJK (whose supports scan every vertex). Any points of the bodies give a valid witness: the
   // bounds are computed from these points, not from FCL's.
   const Gjk::Simplex& simplex = *gjk.getSimplex();
   const Matrix3 to_b = difference.toshape1;
@@ -176,8 +113,8 @@ Answer solve_fcl(const FramedPair& pair, const QueryOptions& options, Goal goal)
     if (!(simplex.p[k] > 0)) continue;  // a point the last projection gave no weight
     const Vector3 d = simplex.c[k]->d;
     const Vector3 d_b = -(to_b * d);
-    const int ia = pair.a.local_support_index(d, convex_a.starts(d));
-    const int ib = pair.b.local_support_index(d_b, convex_b.starts(d_b));
+    const int ia = pair.a.local_support_index(d, -1);
+    const int ib = pair.b.local_support_index(d_b, -1);
     total += simplex.p[k];
     // Two of FCL's points may be the same pair of vertices: one corral point (Wolfe's affine
     // solves need distinct points).

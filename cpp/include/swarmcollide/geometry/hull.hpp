@@ -21,9 +21,9 @@ struct Hull {
   /// none. `neighbour_offsets` has one entry per point plus one.
   std::vector<int> neighbour_offsets;
   std::vector<int> neighbours;
-  /// The vertices farthest along 26 fixed directions (towards the faces, edges and corners of a
-  /// cube), each once: a hill climb starts from the highest of them when its own start is lower,
-  /// so that it crosses at most the part of the hull within about 25 degrees of its direction.
+  /// Where hill climbs without a start begin: per cell of a cube map of directions (six faces of
+  /// 8 x 8 cells, about 11 degrees wide), a vertex farthest along the cell's centre, so that a
+  /// climb from the cell of its direction is a step or two.
   std::vector<int> climb_starts;
 };
 
