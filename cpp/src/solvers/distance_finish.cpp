@@ -146,11 +146,7 @@ void DistanceFinish::whole(const Vector3& start, int& hint_a, int& hint_b, BestB
   };
   // The first oracle point is the supporting pair along `start`, whose separation and distance
   // often settle a verdict at once.
-  MinNormPoint first;
-  first.corral[0] = oracle(start);
-  first.weights[0] = 1;
-  first.size = 1;
-  first.x = first.corral[0].p;
+  const MinNormPoint first = single_point(oracle(start));
   bounds.offer_lower(start, start.dot(first.x));
   bounds.offer_upper(vertex_witness(pair_, first.corral[0].ia, first.corral[0].ib));
   if (bounds.reached(pair_, goal)) return;

@@ -21,6 +21,14 @@ namespace {
 
 constexpr Scalar kPi = 3.14159265358979323846;
 
+// Where a search starts: the given start's direction and support points (a scene's pair seen
+// before), else the direction between the bodies' centres and no support hints.
+DualStart first_start(const FramedPair& pair, const DualStart* start) {
+  if (start != nullptr) return *start;
+  const Vector3 between = pair.b.offset() - pair.a.offset();
+  return {between.norm() > 0 ? Vector3(between.normalized()) : Vector3::UnitX(), -1, -1};
+}
+
 // The search for the distance (or only a verdict): Wolfe's algorithm on the whole difference
 // from the given start or the direction between the bodies' centres, which settles most pairs;
 // where it stops short (rounding, its iteration cap), the exact finish on the supporting features
@@ -38,13 +46,10 @@ class DualSearch {
                 options.exact.max_iterations) {}
 
   Answer run() {
-    const Vector3 between = pair_.b.offset() - pair_.a.offset();
-    const Vector3 centre = start_ != nullptr    ? start_->direction
-                           : between.norm() > 0 ? Vector3(between.normalized())
-                                                : Vector3::UnitX();
-    hint_a_ = start_ != nullptr ? start_->support_a : -1;
-    hint_b_ = start_ != nullptr ? start_->support_b : -1;
-    finish_.whole(centre, hint_a_, hint_b_, bounds_, goal_);
+    const DualStart first = first_start(pair_, start_);
+    hint_a_ = first.support_a;
+    hint_b_ = first.support_b;
+    finish_.whole(first.direction, hint_a_, hint_b_, bounds_, goal_);
     record();
     if (!reached()) finish_.from(bounds_.normal(), hint_a_, hint_b_, bounds_, goal_);
     Scalar radius = kPi / 2;
@@ -122,12 +127,10 @@ class DualSearch {
 // Otherwise (touching pairs, mostly) nothing: the search runs as for any distance.
 std::optional<Answer> overlap_first(const FramedPair& pair, const QueryOptions& options,
                                     const DualStart* start) {
-  const Vector3 between = pair.b.offset() - pair.a.offset();
-  const Vector3 direction = start != nullptr    ? start->direction
-                            : between.norm() > 0 ? Vector3(between.normalized())
-                                                 : Vector3::UnitX();
-  int ia = start != nullptr ? start->support_a : -1;
-  int ib = start != nullptr ? start->support_b : -1;
+  const DualStart first = first_start(pair, start);
+  const Vector3& direction = first.direction;
+  int ia = first.support_a;
+  int ib = first.support_b;
   long evaluations = 1;
   if (separation(pair.a, pair.b, direction, ia, ib) > pair.tolerance) return std::nullopt;
   const auto oracle = [&](const Vector3& d) {

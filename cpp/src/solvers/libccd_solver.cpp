@@ -131,12 +131,8 @@ Answer verdict(const FramedPair& pair, int max_iterations) {
       // support points along the direction bound the distance from above.
       int ia = -1;
       int ib = -1;
-      const OraclePoint p = minkowski_support(pair.a, pair.b, n, ia, ib);
-      MinNormPoint single;
-      single.corral[0] = p;
-      single.weights[0] = 1;
-      single.size = 1;
-      Answer witnessed = answer_from_corral(pair, single);
+      Answer witnessed =
+          answer_from_corral(pair, single_point(minkowski_support(pair.a, pair.b, n, ia, ib)));
       witnessed.lower = answer.lower;
       witnessed.direction = n;
       return witnessed;

@@ -174,6 +174,17 @@ MinNormPoint wolfe_min_norm_from(const Oracle& oracle, const MinNormPoint& start
   return best;
 }
 
+/// The corral of the one oracle point `q`, whose nearest point it is: where Wolfe's algorithm
+/// starts.
+inline MinNormPoint single_point(const OraclePoint& q) {
+  MinNormPoint point;
+  point.corral[0] = q;
+  point.weights[0] = 1;
+  point.size = 1;
+  point.x = q.p;
+  return point;
+}
+
 /// The same, run to its own stopping tests.
 template <class Oracle>
 MinNormPoint wolfe_min_norm_from(const Oracle& oracle, const MinNormPoint& start, Scalar scale,
@@ -186,12 +197,7 @@ MinNormPoint wolfe_min_norm_from(const Oracle& oracle, const MinNormPoint& start
 template <class Oracle, class Stop>
 MinNormPoint wolfe_min_norm(const Oracle& oracle, const Vector3& start, Scalar scale,
                             int max_iterations, const Stop& stop) {
-  MinNormPoint first;
-  first.corral[0] = oracle(start);
-  first.weights[0] = 1;
-  first.size = 1;
-  first.x = first.corral[0].p;
-  return wolfe_min_norm_from(oracle, first, scale, max_iterations, stop);
+  return wolfe_min_norm_from(oracle, single_point(oracle(start)), scale, max_iterations, stop);
 }
 
 /// Wolfe's algorithm from the single oracle point along `start`.
