@@ -97,6 +97,26 @@ def run(rounds: int, calls: int) -> List[dict]:
     return records
 
 
+def section(data: dict) -> str:
+    """bench/RESULTS.md's section: each query's time on the dense body and on its hull, and the
+    issue's ratio against its target."""
+    from markdown import fmt_time, machine_line, table
+
+    rows = data["rows"]
+    first = rows[0]
+    lines = [f"Made by {machine_line(data)} {data['rounds']} rounds of {data['calls']} calls; a "
+             f"body of {first['points']:,} points whose hull has {first['hull_vertices']} "
+             "vertices against that hull alone, the two in turn within each round, each facing "
+             "the same other body (times are medians over rounds of wall time per call from "
+             "Python, so the load enters both sides alike).", ""]
+    lines.append(table(
+        ["method", "query", "pairs", "dense body", "its hull", "dense / hull", "target <= 1.2x"],
+        [[r["method"], r["query"], r["pairs"], fmt_time(r["dense_microseconds"]),
+          fmt_time(r["hull_microseconds"]), f"{r['ratio']:.2f}x",
+          "met" if r["ratio"] <= 1.2 else "**not met**"] for r in rows]))
+    return "\n".join(lines)
+
+
 def main(argv: Optional[List[str]] = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--quick", action="store_true", help="fewer rounds, under a minute")

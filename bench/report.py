@@ -15,6 +15,7 @@ from typing import Callable, List, Optional, Tuple
 
 from coal_report import NARROWPHASE, PENETRATION, narrowphase_section, penetration_section
 from compound import compound_section
+from hull_points import section as hull_points_section
 from pose_batch import section as pose_batch_section
 from cpp_report import cpp_sections, every_workload_section
 from record import load
@@ -95,6 +96,8 @@ SECTIONS: List[Section] = [
     ("penetration_coal.json", "Penetration against coal's EPA (C++)", PENETRATION,
      penetration_section, ""),
     ("per_call.json", "Per call from Python", PER_CALL, per_call_section, ""),
+    ("hull_points.json", "A body of many points against its hull (bench/hull_points.py)", "",
+     hull_points_section, ""),
     ("swarm_targets.json", "The paper's swarm at its budget against a plain scalar PSO",
      SWARM_TARGETS, swarm_targets_section, ""),
     ("kernel_code.json", "The kernels' machine code per instruction set", KERNEL_CODE,
