@@ -1,5 +1,7 @@
 #include "conversions.hpp"
 
+#include <initializer_list>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -179,23 +181,54 @@ Pose from_rows(const Scalar* data, py::ssize_t rows, const std::string& at) {
 
 }  // namespace
 
+namespace {
+
+// `given` when it is a C-contiguous float64 array of exactly this shape, else null.
+const Scalar* float64_data(const py::handle& given, std::initializer_list<py::ssize_t> shape) {
+  if (!py::isinstance<py::array_t<Scalar, py::array::c_style>>(given)) return nullptr;
+  const auto array = py::reinterpret_borrow<py::array>(given);
+  if (array.ndim() != static_cast<py::ssize_t>(shape.size())) return nullptr;
+  py::ssize_t axis = 0;
+  for (const py::ssize_t extent : shape) {
+    if (array.shape(axis++) != extent) return nullptr;
+  }
+  return static_cast<const Scalar*>(array.data());
+}
+
+// The usual poses, a C-contiguous float64 (4, 4) or (3, 4) array or a tuple or list of a (3, 3)
+// rotation and a (3,) translation of such arrays, read in place (not validated): the general
+// path (numpy.asarray, scipy rotations, checks naming what is wrong) costs 0.5-4 us, more than a
+// small query. Nothing when `given` is none of these.
+std::optional<Pose> read_in_place(const py::handle& given, const char* name) {
+  for (const py::ssize_t rows : {4, 3}) {
+    if (const Scalar* data = float64_data(given, {rows, 4})) return from_rows(data, rows, name);
+  }
+  if ((PyTuple_Check(given.ptr()) || PyList_Check(given.ptr())) && py::len(given) == 2) {
+    const py::sequence parts = py::reinterpret_borrow<py::sequence>(given);
+    const Scalar* rotation = float64_data(parts[0], {3, 3});
+    const Scalar* translation = float64_data(parts[1], {3});
+    if (rotation != nullptr && translation != nullptr) {
+      Pose pose;
+      pose.rotation = Eigen::Map<const RowMatrix3>(rotation);
+      pose.translation = Eigen::Map<const Vector3>(translation);
+      return pose;
+    }
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
 Pose to_pose(const py::handle& given, const char* name) {
   Pose result;
   if (given.is_none()) return result;
-  // The usual pose, a C-contiguous float64 (4, 4) or (3, 4) array, is read in place: the general
-  // path below (numpy.asarray and its checks) costs half a microsecond, as much as a small query.
-  if (py::isinstance<py::array_t<Scalar, py::array::c_style>>(given)) {
-    const auto matrix = py::reinterpret_borrow<py::array>(given);
-    if (matrix.ndim() == 2 && matrix.shape(1) == 4 &&
-        (matrix.shape(0) == 3 || matrix.shape(0) == 4)) {
-      result = from_rows(static_cast<const Scalar*>(matrix.data()), matrix.shape(0), name);
-      try {
-        validate_pose(result, name);
-      } catch (const std::invalid_argument& error) {
-        throw py::value_error(error.what());
-      }
-      return result;
+  if (const std::optional<Pose> read = read_in_place(given, name)) {
+    try {
+      validate_pose(*read, name);
+    } catch (const std::invalid_argument& error) {
+      throw py::value_error(error.what());
     }
+    return *read;
   }
   const std::string arg(name);
   const py::object pose = with_rotation_matrices(given);

@@ -266,6 +266,40 @@ def test_array_poses_read_in_place_answer_as_the_pair_form(name, form):
     same_answer(getattr(sc, name)(a, b, pose_b=form(pose)), getattr(sc, name)(a, b, pose_b=pair))
 
 
+@pytest.mark.parametrize("name", NAMES)
+@pytest.mark.parametrize(
+    "form",
+    [lambda r, t: (r, t), lambda r, t: [r, t], lambda r, t: (np.asfortranarray(r), t),
+     lambda r, t: (np.hstack([r, r])[:, :3], t), lambda r, t: (r, t.reshape(3, 1))],
+    ids=["tuple", "list", "fortran-rotation", "strided-rotation", "column-translation"],
+)
+def test_rotation_translation_pairs_read_in_place_answer_as_lists(name, form):
+    a, b = sc.ConvexPolyhedron(CUBE), sc.ConvexPolyhedron(TETRA)
+    pose = poses()
+    given = form(pose[:3, :3].copy(), pose[:3, 3].copy())
+    if given[1].shape == (3, 1):
+        with pytest.raises(ValueError, match="pose_b's translation"):
+            getattr(sc, name)(a, b, pose_b=given)
+        return
+    lists = tuple(np.asarray(part, dtype=float).tolist() for part in given)
+    same_answer(getattr(sc, name)(a, b, pose_b=given), getattr(sc, name)(a, b, pose_b=lists))
+
+
+@pytest.mark.parametrize(
+    "rotation, translation",
+    [(2 * np.eye(3), np.zeros(3)), (-np.eye(3), np.zeros(3)),
+     (np.full((3, 3), np.nan), np.zeros(3)), (np.eye(3), np.array([np.inf, 0.0, 0.0]))],
+    ids=["scaled", "reflection", "nan", "inf"],
+)
+def test_rotation_translation_pairs_read_in_place_fail_as_lists_do(rotation, translation):
+    messages = []
+    for given in ((rotation, translation), (rotation.tolist(), translation.tolist())):
+        with pytest.raises(ValueError) as error:
+            sc.distance(CUBE, CUBE, pose_a=given)
+        messages.append(str(error.value))
+    assert messages[0] == messages[1] and messages[0].startswith("pose_a")
+
+
 @pytest.mark.parametrize(
     "pose",
     [np.diag([1.0, 1.0, 1.0, 2.0]), np.diag([2.0, 1.0, 1.0, 1.0]),
