@@ -10,6 +10,7 @@
 #include "../queries/dispatch.hpp"
 #include "../queries/verdict.hpp"
 #include "../solvers/dual_swarm.hpp"
+#include "../solvers/exact_solver.hpp"
 #include "../solvers/minkowski.hpp"
 #include "../solvers/witness.hpp"
 #include "contact_manifold.hpp"
@@ -48,6 +49,21 @@ std::optional<CommonPoint> common_point(const std::array<Vector3, 4>& on_a,
   return common;
 }
 
+// The cached tetrahedron as a corral of Wolfe's algorithm (equal weights): where Wolfe's algorithm
+// restarts, or, once it is known to enclose the origin at the new poses, where the expanding
+// polytope starts.
+MinNormPoint corral_of(const FramedPair& pair, const PairProof::Enclosing& proof) {
+  MinNormPoint corral;
+  for (int k = 0; k < 4; ++k) {
+    corral.corral[k] = {pair.b.vertex(proof.b[k]) - pair.a.vertex(proof.a[k]), proof.a[k],
+                        proof.b[k]};
+    corral.weights[k] = 0.25;
+    corral.x += 0.25 * corral.corral[k].p;
+  }
+  corral.size = 4;
+  return corral;
+}
+
 // The common point a cached tetrahedron proves when, at the new poses, it still encloses the
 // origin.
 std::optional<CommonPoint> enclosed(const FramedPair& pair, const PairProof::Enclosing& proof) {
@@ -65,14 +81,7 @@ std::optional<CommonPoint> enclosed(const FramedPair& pair, const PairProof::Enc
 // replaces the cached one. Otherwise the pair is answered as if nothing were cached.
 std::optional<CommonPoint> repaired(const FramedPair& pair, PairProof::Enclosing& proof,
                                     int max_iterations) {
-  MinNormPoint start;
-  for (int k = 0; k < 4; ++k) {
-    start.corral[k] = {pair.b.vertex(proof.b[k]) - pair.a.vertex(proof.a[k]), proof.a[k],
-                       proof.b[k]};
-    start.weights[k] = 0.25;
-    start.x += 0.25 * start.corral[k].p;
-  }
-  start.size = 4;
+  const MinNormPoint start = corral_of(pair, proof);
   int ia = proof.a[0];
   int ib = proof.b[0];
   const auto oracle = [&](const Vector3& d) {
@@ -369,9 +378,27 @@ void answer_pair(const PlacedBody& a, const PlacedBody& b, PairProof& proof,
   }
 
   if (question.contacts) {
+    // The dual's signed distance of an overlapping pair is the penetration solver's, started from
+    // a tetrahedron of the pair's points around the origin (overlap_first): the cached one, or the
+    // one the verdict just proved and kept, when it encloses the origin at these poses, saves
+    // running Wolfe's algorithm again to find one.
+    std::optional<CommonPoint> tetrahedron_common = common;
+    if (!common && question.warm && proof.kind == PairProof::Kind::enclosing) {
+      tetrahedron_common = enclosed(pair, proof.enclosing);
+    }
     const auto signed_distance = [&](Method m) {
       QueryOptions o = options;
       o.method = m;
+      if (m == Method::dual && tetrahedron_common) {
+        const MinNormPoint corral = corral_of(pair, proof.enclosing);
+        const Vector3 hint = next ? next->direction : Vector3(pair.b.offset() - pair.a.offset());
+        Answer overlap =
+            exact_penetration(pair, o.exact.max_iterations, hint,
+                              (tetrahedron_common->point_b - tetrahedron_common->point_a).norm(),
+                              &corral);
+        overlap.intersection_proven = true;
+        return finish_result(pair, std::move(overlap), m, Goal::signed_distance);
+      }
       return finish_result(pair, solve(pair, o, Goal::signed_distance, next), m,
                            Goal::signed_distance);
     };
