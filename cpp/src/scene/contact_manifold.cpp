@@ -265,11 +265,11 @@ void reduce(const Polygon& polygon, int count, Polygon& reduced, std::vector<std
 }  // namespace
 
 void contact_points(const FramedPair& pair, const Vector3& n, Scalar slack, int max_points,
-                    std::vector<Vector3>& out) {
+                    std::vector<Vector3>& out, ContactFeatures& features) {
   // The features from their top points: found by climbing and flooding the hulls on large
   // bodies, whose every point a scan would place in the frame.
-  thread_local std::vector<int> feature_a;
-  thread_local std::vector<int> feature_b;
+  std::vector<int>& feature_a = features.a;
+  std::vector<int>& feature_b = features.b;
   thread_local std::vector<char> visited;
   const int top_index_a = pair.a.support_index(n, -1);
   const int top_index_b = pair.b.support_index(-n, -1);

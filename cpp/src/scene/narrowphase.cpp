@@ -14,6 +14,7 @@
 #include "../solvers/minkowski.hpp"
 #include "../solvers/witness.hpp"
 #include "contact_manifold.hpp"
+#include "contact_tetrahedron.hpp"
 #include "swarmcollide/queries/methods.hpp"
 #include "swarmcollide/queries/query.hpp"
 
@@ -201,18 +202,21 @@ void take_values(const DistanceResult& r, PairAnswer& out) {
 }
 
 // The contact points of `pair` from its certified signed distance `contact`: the clipped
-// supporting features along its normal, or the midpoint of the witnesses when there is no normal
-// (the bodies only touch at a point).
-void add_contact_points(const FramedPair& pair, const DistanceResult& contact,
-                        const PairQuestion& question, PairAnswer& out) {
-  if (contact.direction.squaredNorm() > 0) {
-    std::vector<Vector3> points;
-    contact_points(pair, contact.direction, kContactFeatureTolerance * pair.frame.size,
-                   question.max_points, points);
-    for (const Vector3& p : points) out.points.push_back(pair.frame.point_to_world(p));
-  } else {
+// supporting features along its normal (left in `features`; true), or the midpoint of the
+// witnesses when there is no normal (the bodies only touch at a point; false).
+bool add_contact_points(const FramedPair& pair, const DistanceResult& contact,
+                        const PairQuestion& question, PairAnswer& out, ContactFeatures& features) {
+  if (!(contact.direction.squaredNorm() > 0)) {
     out.points.push_back(contact.point_a / 2 + contact.point_b / 2);
+    return false;
   }
+  const std::size_t first = out.points.size();
+  contact_points(pair, contact.direction, kContactFeatureTolerance * pair.frame.size,
+                 question.max_points, out.points, features);
+  for (std::size_t k = first; k < out.points.size(); ++k) {
+    out.points[k] = pair.frame.point_to_world(out.points[k]);
+  }
+  return true;
 }
 
 // A pair with a compound body, once the envelopes have not settled it: the compound queries,
@@ -259,7 +263,8 @@ void answer_compounds(const PlacedBody& a, const PlacedBody& b, const FramedPair
   take_values(deepest, out);
   const FramedPair parts = frame_pair(ca.parts()[deepest.part_a], *a.pose,
                                       cb.parts()[deepest.part_b], *b.pose, options.tolerance);
-  add_contact_points(parts, deepest, question, out);
+  thread_local ContactFeatures features;
+  add_contact_points(parts, deepest, question, out, features);
 }
 
 }  // namespace
@@ -409,7 +414,17 @@ void answer_pair(const PlacedBody& a, const PlacedBody& b, PairProof& proof,
     }
     out.certified = out.certified && contact.certified;
     take_values(contact, out);
-    add_contact_points(pair, contact, question, out);
+    thread_local ContactFeatures features;
+    // An overlap's contact face makes the tetrahedron the next frame's penetration starts from.
+    if (add_contact_points(pair, contact, question, out, features) && question.warm &&
+        contact.distance < 0) {
+      PairProof::Enclosing tetrahedron;
+      if (contact_tetrahedron(pair, contact.direction, features, tetrahedron)) {
+        proof.kind = PairProof::Kind::enclosing;
+        proof.enclosing = tetrahedron;
+        proof.lower = -std::numeric_limits<float>::infinity();
+      }
+    }
   } else if (question.distance && !value_settled) {
     Answer measured = solve(pair, options, Goal::distance, next);
     if (question.warm) remember(pair, measured, proof);
