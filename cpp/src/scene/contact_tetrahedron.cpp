@@ -20,8 +20,8 @@ bool contact_tetrahedron(const FramedPair& pair, const Vector3& n, const Contact
                          PairProof::Enclosing& out) {
   const std::size_t count = features.a.size() * features.b.size();
   if (count < 3 || count > kMostFacePoints) return false;
-  int apex_a = -1;
-  int apex_b = -1;
+  int apex_a = out.a[3];
+  int apex_b = out.b[3];
   const Vector3 apex = minkowski_support(pair.a, pair.b, -n, apex_a, apex_b).p;
   std::array<Vector3, kMostFacePoints> face;
   std::array<int, kMostFacePoints> face_a;

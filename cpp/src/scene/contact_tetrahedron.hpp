@@ -11,9 +11,10 @@ namespace swarmcollide::detail {
 /// along the contact normal `n` (unit, frame coordinates, from A to B): three differences of the
 /// contact's supporting `features`, around where the line from the apex (the point of B - A
 /// farthest along `n`) through the origin meets that face. The expanding polytope started from
-/// it meets the face it has to prove at once, where a tetrahedron of Wolfe's corral needs tens
-/// of expansions to find it; after a small motion the same points usually still enclose the
-/// origin and are still on the face. Written to `out` only when found (false otherwise: a vertex
+/// it meets the face it has to prove at once, where a tetrahedron of Wolfe's corral needs more
+/// expansions to find it; after a small motion the same points usually still enclose the origin
+/// and are still on the face. The climbs to the apex start from `out`'s fourth pair (-1: from
+/// the hulls' cube maps of starts). Written to `out` only when found (false otherwise: a vertex
 /// touching a vertex, features too large to search, or no triangle of them around the line).
 bool contact_tetrahedron(const FramedPair& pair, const Vector3& n, const ContactFeatures& features,
                          PairProof::Enclosing& out);

@@ -396,9 +396,10 @@ void answer_pair(const PlacedBody& a, const PlacedBody& b, PairProof& proof,
       o.method = m;
       if (m == Method::dual && tetrahedron_common) {
         const MinNormPoint corral = corral_of(pair, proof.enclosing);
-        const Vector3 hint = next ? next->direction : Vector3(pair.b.offset() - pair.a.offset());
+        // No direction to try first: the polytope from the tetrahedron finds the normal, and a
+        // hint would only cost two more support climbs.
         Answer overlap =
-            exact_penetration(pair, o.exact.max_iterations, hint,
+            exact_penetration(pair, o.exact.max_iterations, Vector3::Zero(),
                               (tetrahedron_common->point_b - tetrahedron_common->point_a).norm(),
                               &corral);
         overlap.intersection_proven = true;
@@ -418,7 +419,9 @@ void answer_pair(const PlacedBody& a, const PlacedBody& b, PairProof& proof,
     // An overlap's contact face makes the tetrahedron the next frame's penetration starts from.
     if (add_contact_points(pair, contact, question, out, features) && question.warm &&
         contact.distance < 0) {
-      PairProof::Enclosing tetrahedron;
+      // The last tetrahedron's apex starts the climbs to the new one's.
+      PairProof::Enclosing tetrahedron = proof.enclosing;
+      if (proof.kind != PairProof::Kind::enclosing) tetrahedron.a[3] = tetrahedron.b[3] = -1;
       if (contact_tetrahedron(pair, contact.direction, features, tetrahedron)) {
         proof.kind = PairProof::Kind::enclosing;
         proof.enclosing = tetrahedron;
