@@ -374,3 +374,22 @@ def test_warm_contacts_equal_cold_ones_up_to_the_certificate():
     assert after.pairs.tolist() == before.pairs.tolist() == b.pairs.tolist()
     assert (np.maximum(after.lower_bound, b.lower_bound)
             <= np.minimum(after.distance, b.distance) + 1e-12).all()
+
+
+def test_a_sinking_turning_box_keeps_four_contact_points_warm_or_cold():
+    # Face on face: the contact tetrahedron's base is searched among 4 x 4 differences of the
+    # faces' corners, and the manifold's buffers are reused from frame to frame.
+    box = CENTRED * [1.0, 1.0, 0.5]
+    scenes = [sc.Scene(threads=1), sc.Scene(warm_start=False, threads=1)]
+    for scene in scenes:
+        scene.add(np.stack([box, box]), np.stack([np.eye(4), transform(np.eye(3), [0, 0, 0.5])]))
+    for frame in range(1, 8):
+        top = transform(rotation([0, 0, 1], 0.05 * frame), [0.02 * frame, 0, 0.5 - 1e-3 * frame])
+        warm, cold = [(s.set_poses([1], top[None]), s.contacts())[1] for s in scenes]
+        for c in (warm, cold):
+            assert c.pairs.tolist() == [[0, 1]] and c.certified.all()
+            assert c.counts.tolist() == [4]
+            np.testing.assert_allclose(c.normal, [[0, 0, 1]], atol=1e-9)
+            assert c.distance[0] == pytest.approx(-1e-3 * frame, abs=1e-9)
+        same_points(warm.points, cold.points)
+    assert scenes[0].stats.warm_proven == 1
