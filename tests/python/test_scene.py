@@ -328,3 +328,68 @@ def test_the_scene_demo_prints_frames_and_saves_a_picture(tmp_path, capsys):
     frames = scene_demo.run(bodies=30, frames=3, seed=0, out=lambda line: None)
     again = scene_demo.run(bodies=30, frames=3, seed=0, out=lambda line: None)
     assert [f.colliding for f in frames] == [f.colliding for f in again]
+
+
+def test_warm_contacts_equal_cold_ones_up_to_the_certificate():
+    # Overlapping pairs that stay in contact start their penetration from the tetrahedron their
+    # warm proof keeps; a pair teleported into contact, bodies sent far away and back, and a
+    # refused NaN pose must all give what a scene without warm starts gives.
+    rng = np.random.default_rng(26)
+    bodies = [random_body(rng) for _ in range(24)]
+    bodies += [rng.normal(size=(60, 3)) * 0.4 for _ in range(6)]  # climbed, not scanned
+    poses = np.stack([transform(random_rotation(rng), rng.uniform(0, 2.2, 3)) for _ in bodies])
+    warm = sc.Scene(threads=1)
+    cold = sc.Scene(warm_start=False, threads=2)
+    ids = warm.add(bodies, poses)
+    cold.add(bodies, poses)
+    steps = [transform(rotation(rng.normal(size=3), 0.03), rng.normal(0, 0.02, 3))
+             for _ in bodies]
+    warm_proven = 0
+    for frame in range(12):
+        poses = np.stack([p @ s for p, s in zip(poses, steps)])
+        if frame == 5:
+            poses[3] = poses[4]  # into contact in one frame: same place as body 4
+            poses[7:10, :3, 3] += 1e6
+        if frame == 8:
+            poses[7:10, :3, 3] -= 1e6
+        warm.set_poses(ids, poses)
+        cold.set_poses(ids, poses)
+        a, b = warm.contacts(), cold.contacts()
+        warm_proven += warm.stats.warm_proven
+        assert a.certified.all() and b.certified.all()
+        assert a.pairs.tolist() == b.pairs.tolist()
+        if frame == 5:
+            assert [3, 4] in a.pairs.tolist()
+        # Each answer's bounds [lower_bound, distance] enclose the signed distance.
+        assert (np.maximum(a.lower_bound, b.lower_bound)
+                <= np.minimum(a.distance, b.distance) + 1e-12).all()
+        assert (a.counts >= 1).all()
+    assert warm_proven > 0
+    before = warm.contacts()
+    nan_pose = poses.copy()
+    nan_pose[2, 0, 3] = np.nan
+    with pytest.raises(ValueError, match="NaN"):
+        warm.set_poses(ids, nan_pose)
+    after = warm.contacts()  # at the poses before the refused call
+    assert after.pairs.tolist() == before.pairs.tolist() == b.pairs.tolist()
+    assert (np.maximum(after.lower_bound, b.lower_bound)
+            <= np.minimum(after.distance, b.distance) + 1e-12).all()
+
+
+def test_a_sinking_turning_box_keeps_four_contact_points_warm_or_cold():
+    # Face on face: the contact tetrahedron's base is searched among 4 x 4 differences of the
+    # faces' corners, and the manifold's buffers are reused from frame to frame.
+    box = CENTRED * [1.0, 1.0, 0.5]
+    scenes = [sc.Scene(threads=1), sc.Scene(warm_start=False, threads=1)]
+    for scene in scenes:
+        scene.add(np.stack([box, box]), np.stack([np.eye(4), transform(np.eye(3), [0, 0, 0.5])]))
+    for frame in range(1, 8):
+        top = transform(rotation([0, 0, 1], 0.05 * frame), [0.02 * frame, 0, 0.5 - 1e-3 * frame])
+        warm, cold = [(s.set_poses([1], top[None]), s.contacts())[1] for s in scenes]
+        for c in (warm, cold):
+            assert c.pairs.tolist() == [[0, 1]] and c.certified.all()
+            assert c.counts.tolist() == [4]
+            np.testing.assert_allclose(c.normal, [[0, 0, 1]], atol=1e-9)
+            assert c.distance[0] == pytest.approx(-1e-3 * frame, abs=1e-9)
+        same_points(warm.points, cold.points)
+    assert scenes[0].stats.warm_proven == 1

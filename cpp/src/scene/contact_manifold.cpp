@@ -12,6 +12,20 @@ namespace {
 using Point2 = Eigen::Vector2d;
 using Polygon = std::vector<Point2>;
 
+// The polygons of one contact_points call, kept by each thread from call to call so that a frame
+// of contacts allocates nothing once they have grown: the projected features, their hulls, the
+// clipped overlap and the reduced one, and the clipping's and reduction's scratch.
+struct Polygons {
+  Polygon pa;
+  Polygon pb;
+  Polygon hull_a;
+  Polygon hull_b;
+  Polygon meet;
+  Polygon reduced;
+  Polygon scratch;
+  std::vector<std::size_t> chosen;
+};
+
 Scalar cross(const Point2& a, const Point2& b) { return a.x() * b.y() - a.y() * b.x(); }
 
 // Signed distance of `p` from the line through the edge (a, b), positive on its left.
@@ -20,10 +34,10 @@ Scalar side(const Point2& a, const Point2& b, const Point2& p) {
   return cross(edge, p - a) / edge.norm();
 }
 
-// The convex hull of `points`, counter-clockwise, dropping points within `eps` of the hull's
-// edges: one point when all lie within `eps` of each other, the two ends when they lie within
-// `eps` of a line.
-Polygon convex_hull(Polygon points, Scalar eps) {
+// The convex hull of `points` (sorted in place) into `hull`, counter-clockwise, dropping points
+// within `eps` of the hull's edges: one point when all lie within `eps` of each other, the two
+// ends when they lie within `eps` of a line.
+void convex_hull(Polygon& points, Scalar eps, Polygon& hull) {
   std::sort(points.begin(), points.end(), [](const Point2& a, const Point2& b) {
     return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
   });
@@ -31,7 +45,10 @@ Polygon convex_hull(Polygon points, Scalar eps) {
   for (std::size_t k = 1; k < points.size(); ++k) {
     if ((points[k] - points[0]).norm() > (points[far] - points[0]).norm()) far = k;
   }
-  if ((points[far] - points[0]).norm() <= eps) return {points[0]};
+  if ((points[far] - points[0]).norm() <= eps) {
+    hull.assign(1, points[0]);
+    return;
+  }
   const Point2 a = points[0];
   const Point2 b = points[far];
   Scalar off_line = 0;
@@ -43,10 +60,13 @@ Polygon convex_hull(Polygon points, Scalar eps) {
       return u.dot(p) < u.dot(q);
     };
     const auto ends = std::minmax_element(points.begin(), points.end(), by_projection);
-    return {*ends.first, *ends.second};
+    const Point2 first = *ends.first;
+    const Point2 last = *ends.second;
+    hull.assign({first, last});
+    return;
   }
   // Andrew's monotone chain; a turn within eps of straight does not make a vertex.
-  Polygon hull(2 * points.size());
+  hull.resize(2 * points.size());
   std::size_t k = 0;
   const auto turns_left = [&](const Point2& o, const Point2& p, const Point2& q) {
     return (p - o).norm() > 0 && side(o, p, q) > eps;
@@ -60,13 +80,15 @@ Polygon convex_hull(Polygon points, Scalar eps) {
     hull[k++] = points[i];
   }
   hull.resize(k - 1);
-  return hull;
 }
 
 // The part of convex polygon `subject` inside convex polygon `clip` (both counter-clockwise,
-// at least three vertices): Sutherland and Hodgman, one edge of `clip` at a time.
-Polygon clip_polygon(Polygon subject, const Polygon& clip, Scalar eps) {
-  Polygon next;
+// at least three vertices) into `out`: Sutherland and Hodgman, one edge of `clip` at a time,
+// alternating between `out` and `next`.
+void clip_polygon(const Polygon& polygon, const Polygon& clip, Scalar eps, Polygon& out,
+                  Polygon& next) {
+  Polygon& subject = out;
+  subject.assign(polygon.begin(), polygon.end());
   for (std::size_t e = 0; e < clip.size() && !subject.empty(); ++e) {
     const Point2& a = clip[e];
     const Point2& b = clip[(e + 1) % clip.size()];
@@ -83,12 +105,13 @@ Polygon clip_polygon(Polygon subject, const Polygon& clip, Scalar eps) {
     }
     subject.swap(next);
   }
-  return subject;
 }
 
 // The part of segment (s, t) inside convex polygon `clip` (counter-clockwise, at least three
-// vertices): its ends, one point when they coincide, none when it misses.
-Polygon clip_segment(const Point2& s, const Point2& t, const Polygon& clip, Scalar eps) {
+// vertices) into `out`: its ends, one point when they coincide, none when it misses.
+void clip_segment(const Point2& s, const Point2& t, const Polygon& clip, Scalar eps,
+                  Polygon& out) {
+  out.clear();
   Scalar low = 0;
   Scalar high = 1;
   for (std::size_t e = 0; e < clip.size(); ++e) {
@@ -97,15 +120,19 @@ Polygon clip_segment(const Point2& s, const Point2& t, const Polygon& clip, Scal
     const Scalar fs = side(a, b, s) + eps;
     const Scalar ft = side(a, b, t) + eps;
     // Inside where fs + u (ft - fs) >= 0.
-    if (fs < 0 && ft < 0) return {};
+    if (fs < 0 && ft < 0) return;
     if (fs < 0) low = std::max(low, fs / (fs - ft));
     if (ft < 0) high = std::min(high, fs / (fs - ft));
   }
-  if (low > high) return {};
+  if (low > high) return;
   const Point2 p = s + low * (t - s);
   const Point2 q = s + high * (t - s);
-  if ((q - p).norm() <= eps) return {(p + q) / 2};
-  return {p, q};
+  if ((q - p).norm() <= eps) {
+    out.push_back((p + q) / 2);
+  } else {
+    out.push_back(p);
+    out.push_back(q);
+  }
 }
 
 // The nearest points of segments (p0, p1) and (q0, q1) (either may be a point), their midpoint.
@@ -143,10 +170,10 @@ Point2 nearest_midpoint(const Point2& p0, const Point2& p1, const Point2& q0, co
   return (p0 + s * d1 + q0 + t * d2) / 2;
 }
 
-// Two segments: where they cross (one point), or the ends of their common part when they are
-// parallel and overlap (two points).
-Polygon meet_segments(const Point2& p0, const Point2& p1, const Point2& q0, const Point2& q1,
-                      Scalar eps) {
+// Two segments, into `out`: where they cross (one point), or the ends of their common part when
+// they are parallel and overlap (two points).
+void meet_segments(const Point2& p0, const Point2& p1, const Point2& q0, const Point2& q1,
+                   Scalar eps, Polygon& out) {
   const Point2 d = p1 - p0;
   const Scalar length = d.norm();
   const Point2 u = d / length;
@@ -154,35 +181,46 @@ Polygon meet_segments(const Point2& p0, const Point2& p1, const Point2& q0, cons
     // Along one line: the common interval of the projections onto it.
     const Scalar a = std::max(Scalar(0), std::min(u.dot(q0 - p0), u.dot(q1 - p0)));
     const Scalar b = std::min(length, std::max(u.dot(q0 - p0), u.dot(q1 - p0)));
-    if (b - a > eps) return {p0 + a * u, p0 + b * u};
+    if (b - a > eps) {
+      out.assign({Point2(p0 + a * u), Point2(p0 + b * u)});
+      return;
+    }
   }
-  return {nearest_midpoint(p0, p1, q0, q1)};
+  out.assign(1, nearest_midpoint(p0, p1, q0, q1));
 }
 
-// Where features `fa` and `fb` (each a point, a segment or a polygon) overlap.
-Polygon intersect(const Polygon& fa, const Polygon& fb, Scalar eps) {
+// Where features `fa` and `fb` (each a point, a segment or a polygon) overlap, into `out`.
+void intersect(const Polygon& fa, const Polygon& fb, Scalar eps, Polygon& out, Polygon& scratch) {
   const Polygon& small = fa.size() <= fb.size() ? fa : fb;
   const Polygon& large = fa.size() <= fb.size() ? fb : fa;
   if (small.size() == 1) {
-    if (large.size() <= 2) return {nearest_midpoint(small[0], small[0], large[0], large.back())};
-    return {small[0]};
+    out.assign(1, large.size() <= 2 ? nearest_midpoint(small[0], small[0], large[0], large.back())
+                                    : small[0]);
+  } else if (small.size() == 2) {
+    if (large.size() == 2) {
+      meet_segments(small[0], small[1], large[0], large[1], eps, out);
+    } else {
+      clip_segment(small[0], small[1], large, eps, out);
+    }
+  } else {
+    clip_polygon(large, small, eps, out, scratch);
   }
-  if (small.size() == 2) {
-    if (large.size() == 2) return meet_segments(small[0], small[1], large[0], large[1], eps);
-    return clip_segment(small[0], small[1], large, eps);
-  }
-  return clip_polygon(large, small, eps);
 }
 
 // The `count` vertices of counter-clockwise polygon `polygon` spanning the largest area found
-// greedily: the two farthest apart, then each time the vertex adding the largest triangle.
-Polygon reduce(const Polygon& polygon, int count) {
+// greedily, into `reduced`: the two farthest apart, then each time the vertex adding the largest
+// triangle (`chosen` holds their indices).
+void reduce(const Polygon& polygon, int count, Polygon& reduced, std::vector<std::size_t>& chosen) {
   const std::size_t n = polygon.size();
-  if (n <= static_cast<std::size_t>(count)) return polygon;
+  if (n <= static_cast<std::size_t>(count)) {
+    reduced.assign(polygon.begin(), polygon.end());
+    return;
+  }
   if (count == 1) {
     Point2 mean = Point2::Zero();
     for (const Point2& p : polygon) mean += p;
-    return {mean / static_cast<Scalar>(n)};
+    reduced.assign(1, mean / static_cast<Scalar>(n));
+    return;
   }
   std::size_t first = 0;
   std::size_t second = 1;
@@ -195,7 +233,7 @@ Polygon reduce(const Polygon& polygon, int count) {
       }
     }
   }
-  std::vector<std::size_t> chosen{first, second};
+  chosen.assign({first, second});
   while (chosen.size() < static_cast<std::size_t>(count)) {
     std::size_t best = n;
     Scalar best_area = -1;
@@ -220,19 +258,18 @@ Polygon reduce(const Polygon& polygon, int count) {
     }
     chosen.insert(std::upper_bound(chosen.begin(), chosen.end(), best), best);
   }
-  Polygon reduced;
+  reduced.clear();
   for (std::size_t i : chosen) reduced.push_back(polygon[i]);
-  return reduced;
 }
 
 }  // namespace
 
 void contact_points(const FramedPair& pair, const Vector3& n, Scalar slack, int max_points,
-                    std::vector<Vector3>& out) {
+                    std::vector<Vector3>& out, ContactFeatures& features) {
   // The features from their top points: found by climbing and flooding the hulls on large
   // bodies, whose every point a scan would place in the frame.
-  thread_local std::vector<int> feature_a;
-  thread_local std::vector<int> feature_b;
+  std::vector<int>& feature_a = features.a;
+  std::vector<int>& feature_b = features.b;
   thread_local std::vector<char> visited;
   const int top_index_a = pair.a.support_index(n, -1);
   const int top_index_b = pair.b.support_index(-n, -1);
@@ -241,27 +278,34 @@ void contact_points(const FramedPair& pair, const Vector3& n, Scalar slack, int 
   const Vector3 helper = std::abs(n.x()) < 0.6 ? Vector3::UnitX() : Vector3::UnitY();
   const Vector3 u = n.cross(helper).normalized();
   const Vector3 v = n.cross(u);
-  Polygon pa;
-  Polygon pb;
-  for (int i : feature_a) pa.emplace_back(u.dot(pair.a.vertex(i)), v.dot(pair.a.vertex(i)));
-  for (int j : feature_b) pb.emplace_back(u.dot(pair.b.vertex(j)), v.dot(pair.b.vertex(j)));
+  thread_local Polygons polygons;
+  Polygons& g = polygons;
+  g.pa.clear();
+  g.pb.clear();
+  for (int i : feature_a) {
+    const Vector3 p = pair.a.vertex(i);
+    g.pa.emplace_back(u.dot(p), v.dot(p));
+  }
+  for (int j : feature_b) {
+    const Vector3 p = pair.b.vertex(j);
+    g.pb.emplace_back(u.dot(p), v.dot(p));
+  }
   const Scalar top_a = n.dot(pair.a.vertex(top_index_a));
   const Scalar bottom_b = n.dot(pair.b.vertex(top_index_b));
   const Scalar height = top_a / 2 + bottom_b / 2;
-  Polygon meet = intersect(convex_hull(pa, slack), convex_hull(pb, slack), slack);
-  if (meet.empty()) {
+  convex_hull(g.pa, slack, g.hull_a);
+  convex_hull(g.pb, slack, g.hull_b);
+  intersect(g.hull_a, g.hull_b, slack, g.meet, g.scratch);
+  if (g.meet.empty()) {
     // Rounding, for features that barely touch at their borders: where they come nearest.
-    const Polygon ha = convex_hull(pa, slack);
-    const Polygon hb = convex_hull(pb, slack);
     Point2 mean_a = Point2::Zero();
     Point2 mean_b = Point2::Zero();
-    for (const Point2& p : ha) mean_a += p / static_cast<Scalar>(ha.size());
-    for (const Point2& p : hb) mean_b += p / static_cast<Scalar>(hb.size());
-    meet = {(mean_a + mean_b) / 2};
+    for (const Point2& p : g.hull_a) mean_a += p / static_cast<Scalar>(g.hull_a.size());
+    for (const Point2& p : g.hull_b) mean_b += p / static_cast<Scalar>(g.hull_b.size());
+    g.meet.assign(1, (mean_a + mean_b) / 2);
   }
-  for (const Point2& p : reduce(meet, max_points)) {
-    out.push_back(p.x() * u + p.y() * v + height * n);
-  }
+  reduce(g.meet, max_points, g.reduced, g.chosen);
+  for (const Point2& p : g.reduced) out.push_back(p.x() * u + p.y() * v + height * n);
 }
 
 }  // namespace swarmcollide::detail

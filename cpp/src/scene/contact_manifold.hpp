@@ -12,6 +12,13 @@ namespace swarmcollide::detail {
 /// so that a box resting on a face gives four corners and one tilted by a degree gives an edge.
 inline constexpr Scalar kContactFeatureTolerance = 1e-6;
 
+/// The supporting features contact_points clipped: the indices of A's points within the slack of
+/// its supporting plane along the normal, and of B's along its opposite.
+struct ContactFeatures {
+  std::vector<int> a;
+  std::vector<int> b;
+};
+
 /// Up to `max_points` points where A and B touch along the unit normal `n` (frame coordinates,
 /// from A to B), in the frame, appended to `out` (at least one): A's supporting feature along
 /// `n` and B's along `-n` (their points within `slack` of the supporting planes: a face, an edge
@@ -19,7 +26,8 @@ inline constexpr Scalar kContactFeatureTolerance = 1e-6;
 /// and lifted halfway between the two supporting planes. Face on face gives the corners of the
 /// overlap polygon, reduced to the `max_points` that span the largest area; edge on face the
 /// ends of the edge's part over the face; a vertex (or crossing edges) one point.
+/// The features are left in `features` (buffers reused from call to call).
 void contact_points(const FramedPair& pair, const Vector3& n, Scalar slack, int max_points,
-                    std::vector<Vector3>& out);
+                    std::vector<Vector3>& out, ContactFeatures& features);
 
 }  // namespace swarmcollide::detail

@@ -10,9 +10,11 @@
 #include "../queries/dispatch.hpp"
 #include "../queries/verdict.hpp"
 #include "../solvers/dual_swarm.hpp"
+#include "../solvers/exact_solver.hpp"
 #include "../solvers/minkowski.hpp"
 #include "../solvers/witness.hpp"
 #include "contact_manifold.hpp"
+#include "contact_tetrahedron.hpp"
 #include "swarmcollide/queries/methods.hpp"
 #include "swarmcollide/queries/query.hpp"
 
@@ -48,6 +50,21 @@ std::optional<CommonPoint> common_point(const std::array<Vector3, 4>& on_a,
   return common;
 }
 
+// The cached tetrahedron as a corral of Wolfe's algorithm (equal weights): where Wolfe's algorithm
+// restarts, or, once it is known to enclose the origin at the new poses, where the expanding
+// polytope starts.
+MinNormPoint corral_of(const FramedPair& pair, const PairProof::Enclosing& proof) {
+  MinNormPoint corral;
+  for (int k = 0; k < 4; ++k) {
+    corral.corral[k] = {pair.b.vertex(proof.b[k]) - pair.a.vertex(proof.a[k]), proof.a[k],
+                        proof.b[k]};
+    corral.weights[k] = 0.25;
+    corral.x += 0.25 * corral.corral[k].p;
+  }
+  corral.size = 4;
+  return corral;
+}
+
 // The common point a cached tetrahedron proves when, at the new poses, it still encloses the
 // origin.
 std::optional<CommonPoint> enclosed(const FramedPair& pair, const PairProof::Enclosing& proof) {
@@ -65,14 +82,7 @@ std::optional<CommonPoint> enclosed(const FramedPair& pair, const PairProof::Enc
 // replaces the cached one. Otherwise the pair is answered as if nothing were cached.
 std::optional<CommonPoint> repaired(const FramedPair& pair, PairProof::Enclosing& proof,
                                     int max_iterations) {
-  MinNormPoint start;
-  for (int k = 0; k < 4; ++k) {
-    start.corral[k] = {pair.b.vertex(proof.b[k]) - pair.a.vertex(proof.a[k]), proof.a[k],
-                       proof.b[k]};
-    start.weights[k] = 0.25;
-    start.x += 0.25 * start.corral[k].p;
-  }
-  start.size = 4;
+  const MinNormPoint start = corral_of(pair, proof);
   int ia = proof.a[0];
   int ib = proof.b[0];
   const auto oracle = [&](const Vector3& d) {
@@ -192,18 +202,21 @@ void take_values(const DistanceResult& r, PairAnswer& out) {
 }
 
 // The contact points of `pair` from its certified signed distance `contact`: the clipped
-// supporting features along its normal, or the midpoint of the witnesses when there is no normal
-// (the bodies only touch at a point).
-void add_contact_points(const FramedPair& pair, const DistanceResult& contact,
-                        const PairQuestion& question, PairAnswer& out) {
-  if (contact.direction.squaredNorm() > 0) {
-    std::vector<Vector3> points;
-    contact_points(pair, contact.direction, kContactFeatureTolerance * pair.frame.size,
-                   question.max_points, points);
-    for (const Vector3& p : points) out.points.push_back(pair.frame.point_to_world(p));
-  } else {
+// supporting features along its normal (left in `features`; true), or the midpoint of the
+// witnesses when there is no normal (the bodies only touch at a point; false).
+bool add_contact_points(const FramedPair& pair, const DistanceResult& contact,
+                        const PairQuestion& question, PairAnswer& out, ContactFeatures& features) {
+  if (!(contact.direction.squaredNorm() > 0)) {
     out.points.push_back(contact.point_a / 2 + contact.point_b / 2);
+    return false;
   }
+  const std::size_t first = out.points.size();
+  contact_points(pair, contact.direction, kContactFeatureTolerance * pair.frame.size,
+                 question.max_points, out.points, features);
+  for (std::size_t k = first; k < out.points.size(); ++k) {
+    out.points[k] = pair.frame.point_to_world(out.points[k]);
+  }
+  return true;
 }
 
 // A pair with a compound body, once the envelopes have not settled it: the compound queries,
@@ -250,7 +263,8 @@ void answer_compounds(const PlacedBody& a, const PlacedBody& b, const FramedPair
   take_values(deepest, out);
   const FramedPair parts = frame_pair(ca.parts()[deepest.part_a], *a.pose,
                                       cb.parts()[deepest.part_b], *b.pose, options.tolerance);
-  add_contact_points(parts, deepest, question, out);
+  thread_local ContactFeatures features;
+  add_contact_points(parts, deepest, question, out, features);
 }
 
 }  // namespace
@@ -369,9 +383,28 @@ void answer_pair(const PlacedBody& a, const PlacedBody& b, PairProof& proof,
   }
 
   if (question.contacts) {
+    // The dual's signed distance of an overlapping pair is the penetration solver's, started from
+    // a tetrahedron of the pair's points around the origin (overlap_first): the cached one, or the
+    // one the verdict just proved and kept, when it encloses the origin at these poses, saves
+    // running Wolfe's algorithm again to find one.
+    std::optional<CommonPoint> tetrahedron_common = common;
+    if (!common && question.warm && proof.kind == PairProof::Kind::enclosing) {
+      tetrahedron_common = enclosed(pair, proof.enclosing);
+    }
     const auto signed_distance = [&](Method m) {
       QueryOptions o = options;
       o.method = m;
+      if (m == Method::dual && tetrahedron_common) {
+        const MinNormPoint corral = corral_of(pair, proof.enclosing);
+        // No direction to try first: the polytope from the tetrahedron finds the normal, and a
+        // hint would only cost two more support climbs.
+        Answer overlap =
+            exact_penetration(pair, o.exact.max_iterations, Vector3::Zero(),
+                              (tetrahedron_common->point_b - tetrahedron_common->point_a).norm(),
+                              &corral);
+        overlap.intersection_proven = true;
+        return finish_result(pair, std::move(overlap), m, Goal::signed_distance);
+      }
       return finish_result(pair, solve(pair, o, Goal::signed_distance, next), m,
                            Goal::signed_distance);
     };
@@ -382,7 +415,19 @@ void answer_pair(const PlacedBody& a, const PlacedBody& b, PairProof& proof,
     }
     out.certified = out.certified && contact.certified;
     take_values(contact, out);
-    add_contact_points(pair, contact, question, out);
+    thread_local ContactFeatures features;
+    // An overlap's contact face makes the tetrahedron the next frame's penetration starts from.
+    if (add_contact_points(pair, contact, question, out, features) && question.warm &&
+        contact.distance < 0) {
+      // The last tetrahedron's apex starts the climbs to the new one's.
+      PairProof::Enclosing tetrahedron = proof.enclosing;
+      if (proof.kind != PairProof::Kind::enclosing) tetrahedron.a[3] = tetrahedron.b[3] = -1;
+      if (contact_tetrahedron(pair, contact.direction, features, tetrahedron)) {
+        proof.kind = PairProof::Kind::enclosing;
+        proof.enclosing = tetrahedron;
+        proof.lower = -std::numeric_limits<float>::infinity();
+      }
+    }
   } else if (question.distance && !value_settled) {
     Answer measured = solve(pair, options, Goal::distance, next);
     if (question.warm) remember(pair, measured, proof);

@@ -129,8 +129,11 @@ struct Scene::Impl {
   // What `answer` found, chunk by chunk (each chunk's pairs that belong, with their keys, and how
   // every pair was settled), then all in key order. Only the pairs that belong are kept: at
   // 10,000 bodies a frame has 50,000 candidates and a third of them belong.
+  // `found` holds `size` answers; the entries past it are kept with their contact point buffers,
+  // which the next query's answers take over instead of allocating their own.
   struct ChunkOutput {
     std::vector<std::pair<std::uint64_t, PairAnswer>> found;
+    std::size_t size = 0;
     SceneStats tally;
   };
   std::vector<ChunkOutput> chunk_outputs;
@@ -389,7 +392,13 @@ struct Scene::Impl {
         c.cached = proof.kind != PairProof::Kind::none;
         out.tally.cached_pairs += c.cached;
       }
-      if (answer.belongs) out.found.emplace_back(c.key, answer);
+      if (answer.belongs) {
+        if (out.size == out.found.size()) out.found.emplace_back();
+        out.found[out.size].first = c.key;
+        // The reused buffer goes back to `answer`, which answer_pair clears.
+        std::swap(out.found[out.size].second, answer);
+        ++out.size;
+      }
     }
   }
 
@@ -403,7 +412,7 @@ struct Scene::Impl {
     question.warm = asked.warm && options.warm_start;
     chunk_outputs.resize(n / kChunk + 1);
     for (ChunkOutput& out : chunk_outputs) {
-      out.found.clear();
+      out.size = 0;
       out.tally = SceneStats{};
     }
     // A single-threaded pool takes all the pairs at once; they are still answered a chunk at a
@@ -416,7 +425,9 @@ struct Scene::Impl {
     found.clear();
     stats = SceneStats{};
     for (ChunkOutput& out : chunk_outputs) {
-      for (const auto& [key, a] : out.found) found.emplace_back(key, &a);
+      for (std::size_t k = 0; k < out.size; ++k) {
+        found.emplace_back(out.found[k].first, &out.found[k].second);
+      }
       add(stats, out.tally);
       stats.candidates += out.tally.candidates;
       stats.cached_pairs += out.tally.cached_pairs;

@@ -3,6 +3,7 @@
 #include <fcl/geometry/shape/convex.h>
 #include <fcl/narrowphase/detail/convexity_based_algorithm/gjk.h>
 
+#include <array>
 #include <memory>
 #include <vector>
 
@@ -46,27 +47,51 @@ const FclConvex& convex_of(const FramedBody& body) {
   return body.body().derived<FclConvex>([&body] { return make_convex(body); }, body.exponent());
 }
 
-fcl::Transform3d transform_of(const FramedBody& body) {
-  fcl::Transform3d transform = fcl::Transform3d::Identity();
-  transform.linear() = body.rotation();
-  transform.translation() = body.offset();
-  return transform;
-}
-
 // FCL's GJK on the pair; on return `gjk` holds its final simplex in A's shape frame.
 fcl::detail::GJK<Scalar>::Status run_gjk(const FramedPair& pair, const FclConvex& a,
                                          const FclConvex& b, fcl::detail::GJK<Scalar>& gjk,
                                          fcl::detail::MinkowskiDiff<Scalar>& difference) {
-  const fcl::Transform3d place_a = transform_of(pair.a);
-  const fcl::Transform3d place_b = transform_of(pair.b);
+  // B's placement seen from A's shape frame, and directions from there into B's, from the
+  // rotations themselves (no 4 x 4 transforms to build, invert and multiply).
+  const Matrix3& rotation_a = pair.a.rotation();
+  const Matrix3& rotation_b = pair.b.rotation();
   difference.shapes[0] = a.shape.get();
   difference.shapes[1] = b.shape.get();
-  difference.toshape1.noalias() = place_b.linear().transpose() * place_a.linear();
-  difference.toshape0 = place_a.inverse(Eigen::Isometry) * place_b;
+  difference.toshape1.noalias() = rotation_b.transpose() * rotation_a;
+  difference.toshape0.linear().noalias() = rotation_a.transpose() * rotation_b;
+  difference.toshape0.translation().noalias() =
+      rotation_a.transpose() * (pair.b.offset() - pair.a.offset());
   // Start towards B, as seen from A.
-  Vector3 guess = place_a.linear().transpose() * (pair.a.offset() - pair.b.offset());
+  Vector3 guess = -difference.toshape0.translation();
   if (!(guess.norm() > 0)) guess = Vector3::UnitX();
   return gjk.evaluate(difference, guess);
+}
+
+// The support indices of `body` along `count` (at most 4) directions `local` in its own frame, into
+// `out`: on a small body one pass over its points for all the directions (the first highest
+// point each, as a scan finds it), on a large one a climb each from its hull's cube map of
+// starts (Hull::climb_starts).
+void local_supports(const FramedBody& body, const std::array<Vector3, 4>& local, int count,
+                    std::array<int, 4>& out) {
+  if (body.size() > kHillClimbingThreshold) {
+    for (int k = 0; k < count; ++k) out[k] = body.local_support_index(local[k], -1);
+    return;
+  }
+  const VertexMatrix& points = body.local_points();
+  std::array<Scalar, 4> highest;
+  for (int k = 0; k < count; ++k) {
+    out[k] = 0;
+    highest[k] = point_height(points, 0, local[k]);
+  }
+  for (int i = 1; i < body.size(); ++i) {
+    for (int k = 0; k < count; ++k) {
+      const Scalar h = point_height(points, i, local[k]);
+      if (h > highest[k]) {
+        highest[k] = h;
+        out[k] = i;
+      }
+    }
+  }
 }
 
 // The answer along the line between the bodies' centres: its separation (the lower bound) and
@@ -101,21 +126,31 @@ Answer solve_fcl(const FramedPair& pair, const QueryOptions& options, Goal goal)
   fcl::detail::MinkowskiDiff<Scalar> difference;
   const Gjk::Status status = run_gjk(pair, convex_a, convex_b, gjk, difference);
   // FCL's simplex as the bodies' own points: the support indices along each simplex vertex's
-  // direction, found in the bodies' own frames; on large bodies by a climb from their hulls' cube
-  // maps of starts (Hull::climb_starts), a few neighbour checks where a scan would cost as much
-  // as an iteration of FCL's GJK (whose supports scan every vertex). Any points of the bodies give a valid witness: the
-  // bounds are computed from these points, not from FCL's.
+  // direction, found in the bodies' own frames (local_supports); on large bodies a climb is a few
+  // neighbour checks where a scan would cost as much as an iteration of FCL's GJK (whose supports
+  // scan every vertex). Any points of the bodies give a valid witness: the bounds are computed
+  // from these points, not from FCL's.
   const Gjk::Simplex& simplex = *gjk.getSimplex();
-  const Matrix3 to_b = difference.toshape1;
-  MinNormPoint corral;
-  Scalar total = 0;
+  std::array<Vector3, 4> along_a;
+  std::array<Vector3, 4> along_b;
+  std::array<Scalar, 4> weight;
+  int count = 0;
   for (unsigned int k = 0; k < simplex.rank; ++k) {
     if (!(simplex.p[k] > 0)) continue;  // a point the last projection gave no weight
-    const Vector3 d = simplex.c[k]->d;
-    const Vector3 d_b = -(to_b * d);
-    const int ia = pair.a.local_support_index(d, -1);
-    const int ib = pair.b.local_support_index(d_b, -1);
-    total += simplex.p[k];
+    along_a[count] = simplex.c[k]->d;
+    along_b[count].noalias() = -(difference.toshape1 * simplex.c[k]->d);
+    weight[count++] = simplex.p[k];
+  }
+  std::array<int, 4> support_a;
+  std::array<int, 4> support_b;
+  local_supports(pair.a, along_a, count, support_a);
+  local_supports(pair.b, along_b, count, support_b);
+  MinNormPoint corral;
+  Scalar total = 0;
+  for (int k = 0; k < count; ++k) {
+    const int ia = support_a[k];
+    const int ib = support_b[k];
+    total += weight[k];
     // Two of FCL's points may be the same pair of vertices: one corral point (Wolfe's affine
     // solves need distinct points).
     int same = 0;
@@ -125,7 +160,7 @@ Answer solve_fcl(const FramedPair& pair, const QueryOptions& options, Goal goal)
       corral.corral[corral.size++] = {pair.b.vertex(ib) - pair.a.vertex(ia), ia, ib};
       corral.weights[same] = 0;
     }
-    corral.weights[same] += simplex.p[k];
+    corral.weights[same] += weight[k];
   }
   for (int k = 0; k < corral.size; ++k) corral.weights[k] /= total;
   const auto settles = [&pair, goal](const Answer& answer) {
@@ -133,7 +168,17 @@ Answer solve_fcl(const FramedPair& pair, const QueryOptions& options, Goal goal)
   };
   const bool usable = status != Gjk::Failed && corral.size > 0;
   if (usable) {
-    Answer answer = answer_from_corral(pair, corral);
+    // As answer_from_corral, except that a corral around the origin proves the overlap, which
+    // settles a verdict and a distance (zero) whatever the separation along the witnesses: those
+    // skip its two scans.
+    const Witness witness = witness_of(pair, corral);
+    Answer answer = answer_from_witness(pair, witness);
+    if (answer.upper > 0) answer.direction = (answer.point_b - answer.point_a) / answer.upper;
+    if (answer.upper > 0 && !(witness.encloses_origin && goal != Goal::signed_distance)) {
+      int hint_a = corral.corral[0].ia;
+      int hint_b = corral.corral[0].ib;
+      answer.lower = separation(pair.a, pair.b, answer.direction, hint_a, hint_b);
+    }
     if (settles(answer)) return answer;
   }
   // Where FCL's answer does not settle the goal, the exact solver takes over: distances from
