@@ -207,13 +207,17 @@ ExpansionResult ExpandingPolytope::run(const FramedBody& a, const FramedBody& b,
     const Face& face = faces_[closest];
     const Vector3 n = face.normal;
     // The climbs start from the face's corner highest along n (and lowest, for B): the support
-    // is usually a few steps from it.
+    // is usually a few steps from it. Small bodies are scanned, from no start.
     int start_a = vertices_[face.v[0]].ia;
     int start_b = vertices_[face.v[0]].ib;
     for (int k = 1; k < 3; ++k) {
       const DifferencePoint& corner = vertices_[face.v[k]];
-      if (a.height(corner.ia, n) > a.height(start_a, n)) start_a = corner.ia;
-      if (b.height(corner.ib, n) < b.height(start_b, n)) start_b = corner.ib;
+      if (a.size() > kHillClimbingThreshold && a.height(corner.ia, n) > a.height(start_a, n)) {
+        start_a = corner.ia;
+      }
+      if (b.size() > kHillClimbingThreshold && b.height(corner.ib, n) < b.height(start_b, n)) {
+        start_b = corner.ib;
+      }
     }
     // The support of A - B along n is minus the point of B - A least along n.
     int ia = start_a;
