@@ -205,6 +205,12 @@ ExpansionResult ExpandingPolytope::run(const FramedBody& a, const FramedBody& b,
     }
     const int closest = heap_.front().second;
     const Face& face = faces_[closest];
+    // The gap the answer will carry is the least support met against the nearest face's plane:
+    // once a direction met earlier closes it, no support call is needed.
+    if (-result.best_separation - face.distance <= stop_gap) {
+      result.converged = true;
+      break;
+    }
     const Vector3 n = face.normal;
     // The climbs start from the face's corner highest along n (and lowest, for B): the support
     // is usually a few steps from it. Small bodies are scanned, from no start.
@@ -232,7 +238,7 @@ ExpansionResult ExpandingPolytope::run(const FramedBody& a, const FramedBody& b,
       result.best_ib = ib;
       for (int k = 0; k < 3; ++k) result.best_face[k] = vertices_[face.v[k]];
     }
-    if (h - face.distance <= stop_gap) {
+    if (-result.best_separation - face.distance <= stop_gap) {
       result.converged = true;
       break;
     }

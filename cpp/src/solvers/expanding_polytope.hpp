@@ -32,7 +32,8 @@ struct ExpansionResult {
   /// The corners of the face whose normal is `best_normal`: where the expansion converged, the
   /// origin's foot on it combines them into witnesses.
   std::array<DifferencePoint, 3> best_face;
-  /// The gap `h - distance` at the face expanded last fell to the requested one.
+  /// The gap between the least support met, `-best_separation`, and the nearest face's plane
+  /// fell to the requested one.
   bool converged = false;
   int iterations = 0;
 };
@@ -52,10 +53,10 @@ struct ExpansionResult {
 /// (triangle plane distance) lies in `A - B`.
 class ExpandingPolytope {
  public:
-  /// Expands from the tetrahedron `start` until the support along the nearest triangle's normal
-  /// is within `stop_gap` of its plane, the expansion cannot proceed safely, or after
-  /// `max_iterations` steps; then verifies. Returns verified = false when the tetrahedron does
-  /// not enclose the origin provably.
+  /// Expands from the tetrahedron `start` until the least support met along a triangle's normal
+  /// is within `stop_gap` of the nearest triangle's plane, the expansion cannot proceed safely,
+  /// or after `max_iterations` steps; then verifies. Returns verified = false when the
+  /// tetrahedron does not enclose the origin provably.
   ExpansionResult run(const FramedBody& a, const FramedBody& b,
                       const std::array<DifferencePoint, 4>& start, Scalar stop_gap,
                       int max_iterations);
