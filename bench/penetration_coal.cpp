@@ -11,7 +11,8 @@
 // contender, the two contenders alternating call by call; the per-pair medians are summed per
 // workload and reported as the ratio ours / coal. Accuracy: coal's depth (its EPA's tolerance is
 // 1e-6) against our certified bounds, counted as outside when it falls beyond them by more than
-// coal's tolerance, and whether each of our answers is certified.
+// coal's tolerance, and whether each of our answers is certified. Iterations: ours are Wolfe's
+// and the expanding polytope's, coal's its GJK's and its EPA's.
 #include <coal/collision_data.h>
 #include <coal/distance.h>
 #include <coal/narrowphase/narrowphase.h>
@@ -124,6 +125,7 @@ struct Outcome {
   double widest_gap = 0;      // our largest (upper - lower)
   double largest_angle = 0;   // degrees between our normal and coal's
   double iterations = 0;      // our mean iterations (the search's and the expansion's)
+  double coal_iterations = 0;  // coal's mean iterations (its GJK's and its EPA's)
 };
 
 // Which contenders run: both unless `--only` names one.
@@ -157,6 +159,11 @@ Outcome measure(const Workload& w, int repeats, Contenders run) {
     ++out.pairs;
     out.certified += answer.certified;
     out.iterations += static_cast<double>(answer.iterations) / w.pairs.size();
+    if (run.coal) {
+      out.coal_iterations +=
+          static_cast<double>(solver.gjk.getNumIterations() + solver.epa.getNumIterations()) /
+          w.pairs.size();
+    }
     const double excess =
         std::max(answer.lower_bound - coal_distance, coal_distance - answer.distance);
     if (excess > kCoalTolerance) ++out.coal_outside;
@@ -218,14 +225,16 @@ int main(int argc, char** argv) {
     }
   }
   std::ostringstream rows;
-  std::printf("%6s %8s %10s %10s %7s %10s %12s %11s %10s %6s\n", "n", "overlap", "ours_us",
-              "coal_us", "ratio", "certified", "coal_outside", "coal_excess", "angle_deg", "iters");
+  std::printf("%6s %8s %10s %10s %7s %10s %12s %11s %10s %6s %10s\n", "n", "overlap", "ours_us",
+              "coal_us", "ratio", "certified", "coal_outside", "coal_excess", "angle_deg", "iters",
+              "coal_iters");
   for (const Workload& w : workloads) {
     const Outcome o = measure(w, repeats, run);
     const double ratio = o.ours_us / o.coal_us;
-    std::printf("%6d %8s %10.2f %10.2f %7.2f %7d/%-2d %12d %11.2e %10.2e %6.1f\n", w.n,
+    std::printf("%6d %8s %10.2f %10.2f %7.2f %7d/%-2d %12d %11.2e %10.2e %6.1f %10.1f\n", w.n,
                 w.overlap.c_str(), o.ours_us / o.pairs, o.coal_us / o.pairs, ratio, o.certified,
-                o.pairs, o.coal_outside, o.coal_excess, o.largest_angle, o.iterations);
+                o.pairs, o.coal_outside, o.coal_excess, o.largest_angle, o.iterations,
+                o.coal_iterations);
     std::fflush(stdout);
     rows << (rows.tellp() > 0 ? ",\n" : "") << "{\"n\": " << w.n << ", \"overlap\": \""
          << w.overlap << "\", \"pairs\": " << o.pairs << ", \"ours_us\": " << o.ours_us / o.pairs
@@ -233,7 +242,8 @@ int main(int argc, char** argv) {
          << ", \"certified\": " << o.certified << ", \"coal_outside\": " << o.coal_outside
          << ", \"coal_excess\": " << o.coal_excess << ", \"widest_gap\": " << o.widest_gap
          << ", \"largest_angle_deg\": " << o.largest_angle
-         << ", \"mean_iterations\": " << o.iterations << "}";
+         << ", \"mean_iterations\": " << o.iterations
+         << ", \"coal_mean_iterations\": " << o.coal_iterations << "}";
   }
   if (!json.empty()) {
     std::ofstream out(json);

@@ -90,8 +90,17 @@ inline int climb_support(const VertexMatrix& points, const Hull& hull, const Vec
   const int* neighbours = hull.neighbours.data();
   const bool given =
       start >= 0 && start < static_cast<int>(points.rows()) && offsets[start + 1] > offsets[start];
-  int current = given ? start : hull.climb_starts[static_cast<std::size_t>(climb_cell(d))];
+  // A search's previous answer can be far from the new one (Wolfe's algorithm turns its direction
+  // by up to half a turn): the cell's start, a step or two from any support, is taken when higher.
+  int current = hull.climb_starts[static_cast<std::size_t>(climb_cell(d))];
   Scalar highest = point_height(points, current, d);
+  if (given) {
+    const Scalar h = point_height(points, start, d);
+    if (h >= highest) {
+      current = start;
+      highest = h;
+    }
+  }
   for (;;) {
     int next = current;
     for (int e = offsets[current]; e < offsets[current + 1]; ++e) {

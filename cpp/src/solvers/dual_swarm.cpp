@@ -119,9 +119,25 @@ class DualSearch {
   std::vector<Scalar> history_;
 };
 
+// Where Wolfe's walk towards an intersection proof starts: `direction` turned 45 degrees about an
+// axis across it. From the contact direction itself (the centres', or a scene's last normal) the
+// walk ends on a tetrahedron pressed against the contact region, the origin a hair from one face,
+// from which the expanding polytope needs half as many steps again to surround the depth's ball
+// (bench/penetration_coal.cpp: 41 against 24 iterations at 4,096 vertices overlapping by 0.6;
+// coal's 27 start from a fixed axis, as unrelated to the contact as this one).
+Vector3 tilted(const Vector3& direction) {
+  if (!(direction.norm() > 0)) return direction;
+  const Vector3 unit = direction.normalized();
+  int least = 0;
+  for (int k = 1; k < 3; ++k) {
+    if (std::abs(unit(k)) < std::abs(unit(least))) least = k;
+  }
+  return (unit + unit.cross(Vector3::Unit(least)).normalized()).normalized();
+}
+
 // A signed distance's overlapping pairs skip the search: once the separation along the start's
 // direction (or the centres') leaves the bodies possibly in contact, Wolfe's algorithm on B - A
-// runs from it, as the search's common point would. A corral around the origin proves the
+// runs from it, tilted. A corral around the origin proves the
 // overlap, which no separating direction can, and its tetrahedron starts the penetration solver's
 // expanding polytope; a nearest point that settles the pair as a distance is the answer as well.
 // Otherwise (touching pairs, mostly) nothing: the search runs as for any distance.
@@ -137,7 +153,8 @@ std::optional<Answer> overlap_first(const FramedPair& pair, const QueryOptions& 
     ++evaluations;
     return minkowski_support(pair.a, pair.b, d, ia, ib);
   };
-  const MinNormPoint corral = wolfe_min_norm(oracle, direction, 2, options.exact.max_iterations);
+  const MinNormPoint corral =
+      wolfe_min_norm(oracle, tilted(direction), 2, options.exact.max_iterations);
   const Witness common = witness_of(pair, corral);
   Answer answer;
   if (common.encloses_origin) {

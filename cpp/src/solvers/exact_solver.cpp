@@ -13,33 +13,46 @@ namespace swarmcollide::detail {
 namespace {
 
 // Wolfe's algorithm on B - A from `start` (a direction or a corral), the support hints starting
-// at `hint_a` and `hint_b`.
+// at `hint_a` and `hint_b`; its support evaluations are added to `evaluations`.
 template <class Start>
-Answer nearest_points(const FramedPair& pair, int max_iterations, const Start& start, int hint_a,
-                      int hint_b) {
-  long evaluations = 0;
+MinNormPoint nearest_corral(const FramedPair& pair, int max_iterations, const Start& start,
+                            int hint_a, int hint_b, long& evaluations) {
   const auto oracle = [&](const Vector3& d) {
     ++evaluations;
     return minkowski_support(pair.a, pair.b, d, hint_a, hint_b);
   };
-  const MinNormPoint nearest = [&] {
-    if constexpr (std::is_same_v<Start, MinNormPoint>) {
-      return wolfe_min_norm_from(oracle, start, 2, max_iterations);
-    } else {
-      return wolfe_min_norm(oracle, start, 2, max_iterations);
-    }
-  }();
+  if constexpr (std::is_same_v<Start, MinNormPoint>) {
+    return wolfe_min_norm_from(oracle, start, 2, max_iterations);
+  } else {
+    return wolfe_min_norm(oracle, start, 2, max_iterations);
+  }
+}
+
+// The answer of Wolfe's corral, with its iterations and evaluations.
+Answer corral_answer(const FramedPair& pair, const MinNormPoint& nearest, long evaluations) {
   Answer answer = answer_from_corral(pair, nearest);
   answer.iterations = nearest.iterations;
   answer.evaluations = evaluations;
   return answer;
 }
 
+template <class Start>
+Answer nearest_points(const FramedPair& pair, int max_iterations, const Start& start, int hint_a,
+                      int hint_b) {
+  long evaluations = 0;
+  const MinNormPoint nearest =
+      nearest_corral(pair, max_iterations, start, hint_a, hint_b, evaluations);
+  return corral_answer(pair, nearest, evaluations);
+}
+
+Vector3 start_direction(const FramedPair& pair, const Vector3& start) {
+  return start.norm() > 0 ? start : Vector3(pair.b.offset() - pair.a.offset());
+}
+
 }  // namespace
 
 Answer exact_distance(const FramedPair& pair, int max_iterations, const Vector3& start) {
-  const Vector3 from = start.norm() > 0 ? start : Vector3(pair.b.offset() - pair.a.offset());
-  return nearest_points(pair, max_iterations, from, -1, -1);
+  return nearest_points(pair, max_iterations, start_direction(pair, start), -1, -1);
 }
 
 Answer exact_distance(const FramedPair& pair, int max_iterations, const MinNormPoint& corral) {
@@ -71,11 +84,16 @@ Answer exact_penetration(const FramedPair& pair, int max_iterations, const Vecto
 }
 
 Answer exact_signed_distance(const FramedPair& pair, int max_iterations, const Vector3& hint) {
-  Answer apart = exact_distance(pair, max_iterations, hint);
+  long evaluations = 0;
+  const MinNormPoint nearest =
+      nearest_corral(pair, max_iterations, start_direction(pair, hint), -1, -1, evaluations);
+  Answer apart = corral_answer(pair, nearest, evaluations);
   // A positive separation proves the bodies apart, and their distance is the signed distance.
   if (apart.lower > kFrameRounding) return apart;
   const Vector3 start = hint.norm() > 0 ? hint : apart.direction;
-  Answer overlap = exact_penetration(pair, max_iterations, start, apart.upper);
+  // A corral around the origin starts the expanding polytope, as the dual's does.
+  Answer overlap = exact_penetration(pair, max_iterations, start, apart.upper,
+                                     apart.intersection_proven ? &nearest : nullptr);
   overlap.iterations = apart.iterations;
   overlap.evaluations += apart.evaluations;
   overlap.intersection_proven = apart.intersection_proven;

@@ -14,15 +14,17 @@ namespace {
 // Bound on the error of det(p, q, r) computed as p . (q x r) from points each rounded by one
 // roundoff per coordinate (they are differences x_i - y_j): the cross product and the dot product
 // add at most 5 roundoffs on sqrt(2) |p| |q| |r| and the rounded inputs another 3 |p| |q| |r|
-// (to first order); 16 roundoffs cover both, doubled here.
-Scalar determinant_bound(const Vector3& p, const Vector3& q, const Vector3& r) {
-  return 32 * kRoundoff * p.norm() * q.norm() * r.norm();
+// (to first order); 16 roundoffs cover both, doubled here. The norms are computed once, when
+// their point joins the polytope.
+Scalar determinant_bound(Scalar norm_p, Scalar norm_q, Scalar norm_r) {
+  return 32 * kRoundoff * norm_p * norm_q * norm_r;
 }
 
-// True when det(p, q, r) is provably positive. Where the bound underflows, so may the
-// determinant's terms, and no sign is trusted.
-bool positively_oriented(const Vector3& p, const Vector3& q, const Vector3& r) {
-  const Scalar bound = determinant_bound(p, q, r);
+// True when det(p, q, r) is provably positive, given the points' norms. Where the bound
+// underflows, so may the determinant's terms, and no sign is trusted.
+bool positively_oriented(const Vector3& p, const Vector3& q, const Vector3& r, Scalar norm_p,
+                         Scalar norm_q, Scalar norm_r) {
+  const Scalar bound = determinant_bound(norm_p, norm_q, norm_r);
   return bound >= std::numeric_limits<Scalar>::min() && p.dot(q.cross(r)) > bound;
 }
 
@@ -35,7 +37,10 @@ bool ExpandingPolytope::make_face(int v0, int v1, int v2, Face& face) const {
   const Vector3& p = vertices_[v0].w;
   const Vector3& q = vertices_[v1].w;
   const Vector3& r = vertices_[v2].w;
-  if (!positively_oriented(p, q, r)) return false;
+  const Scalar norm_p = norms_[v0];
+  const Scalar norm_q = norms_[v1];
+  const Scalar norm_r = norms_[v2];
+  if (!positively_oriented(p, q, r, norm_p, norm_q, norm_r)) return false;
   Vector3 n = (q - p).cross(r - p);
   const Scalar length = n.norm();
   if (!(length > 0)) return false;
@@ -47,6 +52,10 @@ bool ExpandingPolytope::make_face(int v0, int v1, int v2, Face& face) const {
   face.normal = n;
   face.distance = std::min({hp, hq, hr});
   face.top = std::max({hp, hq, hr});
+  // Any unit vector n bounds the distance of every point of the triangle from below by
+  // min_k n . v_k; 16 roundoffs of the largest |v_k| cover the dot products and the rounded
+  // vertices (and 8 more on the result, in verify, the rounding of |n|).
+  face.low = face.distance - 16 * kRoundoff * std::max({norm_p, norm_q, norm_r});
   face.alive = true;
   return true;
 }
@@ -138,17 +147,9 @@ bool ExpandingPolytope::verify(Scalar& depth_lower) const {
       if (h.adj[e] != i || h.adj_edge[e] != k) return false;
       if (h.v[e] != f.v[(k + 1) % 3] || h.v[(e + 1) % 3] != f.v[k]) return false;
     }
-    const Vector3& p = vertices_[f.v[0]].w;
-    const Vector3& q = vertices_[f.v[1]].w;
-    const Vector3& r = vertices_[f.v[2]].w;
-    if (!positively_oriented(p, q, r)) return false;
-    // Any unit vector n bounds the distance of every point of the triangle from below by
-    // min_k n . v_k; 16 roundoffs of the largest |v_k| cover the dot products and the rounded
-    // vertices (and 8 more on the result the rounding of |n|).
-    const Scalar reach = std::max({p.norm(), q.norm(), r.norm()});
-    const Scalar low =
-        std::min({f.normal.dot(p), f.normal.dot(q), f.normal.dot(r)}) - 16 * kRoundoff * reach;
-    nearest = std::min(nearest, low);
+    // Its orientation was proven and its bound `low` computed when make_face built it, from
+    // these very vertices (a face never changes; the expansion replaces faces whole).
+    nearest = std::min(nearest, f.low);
   }
   if (!any) return false;
   depth_lower = std::max(Scalar(0), nearest) * (1 - 8 * kRoundoff);
@@ -160,12 +161,15 @@ ExpansionResult ExpandingPolytope::run(const FramedBody& a, const FramedBody& b,
                                        int max_iterations) {
   ExpansionResult result;
   vertices_.assign(start.begin(), start.end());
+  norms_.clear();
+  for (const DifferencePoint& v : vertices_) norms_.push_back(v.w.norm());
   faces_.clear();
   heap_.clear();
   {
     const Vector3& p = vertices_[0].w;
     if ((vertices_[1].w - p).cross(vertices_[2].w - p).dot(vertices_[3].w - p) > 0) {
       std::swap(vertices_[1], vertices_[2]);
+      std::swap(norms_[1], norms_[2]);
     }
   }
   // With vertex 3 behind the triangle (0, 1, 2), these four face away from the opposite corner.
@@ -201,15 +205,25 @@ ExpansionResult ExpandingPolytope::run(const FramedBody& a, const FramedBody& b,
     }
     const int closest = heap_.front().second;
     const Face& face = faces_[closest];
+    // The gap the answer will carry is the least support met against the nearest face's plane:
+    // once a direction met earlier closes it, no support call is needed.
+    if (-result.best_separation - face.distance <= stop_gap) {
+      result.converged = true;
+      break;
+    }
     const Vector3 n = face.normal;
     // The climbs start from the face's corner highest along n (and lowest, for B): the support
-    // is usually a few steps from it.
+    // is usually a few steps from it. Small bodies are scanned, from no start.
     int start_a = vertices_[face.v[0]].ia;
     int start_b = vertices_[face.v[0]].ib;
     for (int k = 1; k < 3; ++k) {
       const DifferencePoint& corner = vertices_[face.v[k]];
-      if (a.height(corner.ia, n) > a.height(start_a, n)) start_a = corner.ia;
-      if (b.height(corner.ib, n) < b.height(start_b, n)) start_b = corner.ib;
+      if (a.size() > kHillClimbingThreshold && a.height(corner.ia, n) > a.height(start_a, n)) {
+        start_a = corner.ia;
+      }
+      if (b.size() > kHillClimbingThreshold && b.height(corner.ib, n) < b.height(start_b, n)) {
+        start_b = corner.ib;
+      }
     }
     // The support of A - B along n is minus the point of B - A least along n.
     int ia = start_a;
@@ -222,8 +236,9 @@ ExpansionResult ExpandingPolytope::run(const FramedBody& a, const FramedBody& b,
       result.best_normal = n;
       result.best_ia = ia;
       result.best_ib = ib;
+      for (int k = 0; k < 3; ++k) result.best_face[k] = vertices_[face.v[k]];
     }
-    if (h - face.distance <= stop_gap) {
+    if (-result.best_separation - face.distance <= stop_gap) {
       result.converged = true;
       break;
     }
@@ -232,8 +247,10 @@ ExpansionResult ExpandingPolytope::run(const FramedBody& a, const FramedBody& b,
                                    [&](const auto& v) { return v.ia == ia && v.ib == ib; });
     if (known) break;
     vertices_.push_back({w, ia, ib});
+    norms_.push_back(w.norm());
     if (!expand(closest, static_cast<int>(vertices_.size()) - 1)) {
       vertices_.pop_back();
+      norms_.pop_back();
       break;
     }
   }

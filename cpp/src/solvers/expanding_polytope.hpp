@@ -29,7 +29,11 @@ struct ExpansionResult {
   /// Support indices at `best_normal`, to warm-start later climbs.
   int best_ia = -1;
   int best_ib = -1;
-  /// The gap `h - distance` at the face expanded last fell to the requested one.
+  /// The corners of the face whose normal is `best_normal`: where the expansion converged, the
+  /// origin's foot on it combines them into witnesses.
+  std::array<DifferencePoint, 3> best_face;
+  /// The gap between the least support met, `-best_separation`, and the nearest face's plane
+  /// fell to the requested one.
   bool converged = false;
   int iterations = 0;
 };
@@ -41,17 +45,18 @@ struct ExpansionResult {
 /// whose plane is nearest the origin, finds the support point of `A - B` along its normal, and
 /// replaces the triangles that point sees by a cone from it, but only if every new triangle is
 /// provably oriented with the origin inside (otherwise the expansion stops where it is). At the
-/// end `verify` checks the surface from scratch: every triangle's edges are matched by reversed
-/// edges of its neighbours (a closed 2-cycle) and every triangle has `det(v0, v1, v2)` above its
-/// rounding bound, so the radial projection from the origin covers the sphere with a positive
-/// degree, every ray from the origin meets a triangle, and the triangles' vertices being points
-/// of `A - B`, the ball of radius `min` (triangle plane distance) lies in `A - B`.
+/// end `verify` checks the surface's topology from scratch: every triangle's edges are matched by
+/// reversed edges of its neighbours (a closed 2-cycle); every triangle had `det(v0, v1, v2)` above
+/// its rounding bound when it was made (and a triangle never changes), so the radial projection
+/// from the origin covers the sphere with a positive degree, every ray from the origin meets a
+/// triangle, and the triangles' vertices being points of `A - B`, the ball of radius `min`
+/// (triangle plane distance) lies in `A - B`.
 class ExpandingPolytope {
  public:
-  /// Expands from the tetrahedron `start` until the support along the nearest triangle's normal
-  /// is within `stop_gap` of its plane, the expansion cannot proceed safely, or after
-  /// `max_iterations` steps; then verifies. Returns verified = false when the tetrahedron does
-  /// not enclose the origin provably.
+  /// Expands from the tetrahedron `start` until the least support met along a triangle's normal
+  /// is within `stop_gap` of the nearest triangle's plane, the expansion cannot proceed safely,
+  /// or after `max_iterations` steps; then verifies. Returns verified = false when the
+  /// tetrahedron does not enclose the origin provably.
   ExpansionResult run(const FramedBody& a, const FramedBody& b,
                       const std::array<DifferencePoint, 4>& start, Scalar stop_gap,
                       int max_iterations);
@@ -64,6 +69,7 @@ class ExpandingPolytope {
     Vector3 normal;               // unit, outward
     Scalar distance;              // min_k normal . v[k]: a lower bound of the plane's distance
     Scalar top;                   // max_k normal . v[k]: a point beyond it sees the face
+    Scalar low;                   // `distance` less its rounding: every point of it is farther
     bool alive;
   };
 
@@ -72,6 +78,7 @@ class ExpandingPolytope {
   bool verify(Scalar& depth_lower) const;
 
   std::vector<DifferencePoint> vertices_;
+  std::vector<Scalar> norms_;  // |w| of each vertex, for the rounding bounds
   std::vector<Face> faces_;
   std::vector<std::pair<Scalar, int>> heap_;  // (distance, face), a min-heap with stale entries
   std::vector<int> stack_;

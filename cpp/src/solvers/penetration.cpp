@@ -102,12 +102,18 @@ class Solver {
         coordinate_(coordinate) {}
 
   PenetrationBounds solve(const Vector3& hint, const MinNormPoint* enclosing) {
-    if (hint.allFinite() && hint.norm() > 0) offer(hint.normalized());
     offer_flat_normals();
-    // An intersection proof's tetrahedron starts the polytope at once; Wolfe's algorithm finds
-    // one otherwise (and the nearest point, for pairs that turn out not to overlap).
-    if (enclosing == nullptr || !enclose(*enclosing)) nearest_then_polytope();
+    // An intersection proof's tetrahedron starts the polytope at once, whose faces' normals are
+    // the directions to measure: the hint is tried only if they leave a gap. Wolfe's algorithm
+    // finds a tetrahedron otherwise (and the nearest point, for pairs that turn out not to
+    // overlap), starting from the hint.
+    const bool enclosed = enclosing != nullptr && enclose(*enclosing);
+    if (!enclosed) {
+      offer_hint(hint);
+      nearest_then_polytope();
+    }
     finish();
+    if (!done() && enclosed && offer_hint(hint)) finish();
     if (!done() && axes_work(a_, b_) <= kAxesFallbackWork) {
       enumerate_axes();
       finish();
@@ -151,16 +157,19 @@ class Solver {
   }
 
   // A direction to try: its separation from climbed supports ranks it; the best one is measured
-  // exactly by `finish`.
-  void offer(const Vector3& n) {
-    if (!n.allFinite()) return;
-    offer(n, separation(a_, b_, n, climb_a_, climb_b_));
+  // exactly by `finish`. True when it became the candidate.
+  bool offer(const Vector3& n) {
+    if (!n.allFinite()) return false;
+    return offer(n, separation(a_, b_, n, climb_a_, climb_b_));
   }
-  void offer(const Vector3& n, Scalar estimate) {
-    if (estimate > estimate_) {
-      estimate_ = estimate;
-      candidate_ = n;
-    }
+  bool offer(const Vector3& n, Scalar estimate) {
+    if (!(estimate > estimate_)) return false;
+    estimate_ = estimate;
+    candidate_ = n;
+    return true;
+  }
+  bool offer_hint(const Vector3& hint) {
+    return hint.allFinite() && hint.norm() > 0 && offer(hint.normalized());
   }
 
   // The candidate's separation by scanning every point, which a proven lower bound needs (a climb
@@ -228,7 +237,13 @@ class Solver {
     const ExpansionResult e =
         ws_.polytope.run(a_, b_, start_tetrahedron, stop_gap, max_iterations_);
     iterations_ += e.iterations;
-    if (e.best_separation > -kInfinity) offer(e.best_normal, e.best_separation);
+    if (e.best_separation > -kInfinity && offer(e.best_normal, e.best_separation)) {
+      // The supports there seed the scans that measure it, and the face may give the witnesses.
+      climb_a_ = e.best_ia;
+      climb_b_ = e.best_ib;
+      face_ = e.best_face;
+      face_normal_ = e.best_normal;
+    }
     if (e.verified) set_upper(-e.depth_lower, PenetrationProof::polytope);
     return e.verified;
   }
@@ -267,10 +282,54 @@ class Solver {
     // leaves witnesses apart by far more than the tolerance. The slack widens until they agree.
     const Scalar target = std::max(tolerance_, 4 * margin());
     Scalar slack = 1024 * margin() + 2 * std::min(gap, Scalar(1e-9));
+    if (normal_ == face_normal_ && witnesses_from_face(slack, target, r)) return;
     for (int widening = 0; widening < kWitnessWidenings; ++widening, slack *= 16) {
       witnesses_within(slack, r);
       if (r.witness_residual <= target) return;
     }
+  }
+
+  // The witnesses the expansion's last face gives: where it converged, the face lies in the
+  // facet of A - B along the normal, and the origin's foot on it (affine weights, all
+  // nonnegative) combines the face's corners into points of both supporting features whose
+  // difference is the separation along the normal. False, leaving `r` alone, when the weights
+  // or the features' slack or the residual say otherwise.
+  bool witnesses_from_face(Scalar slack, Scalar target, PenetrationBounds& r) const {
+    std::array<OraclePoint, MinNormPoint::kCapacity> corners;
+    for (int k = 0; k < 3; ++k) corners[k] = {face_[k].w, face_[k].ia, face_[k].ib};
+    std::array<Scalar, MinNormPoint::kCapacity> alpha{};
+    if (!wolfe_detail::affine_minimizer(corners, 3, alpha)) return false;
+    const Vector3& n = normal_;
+    const Scalar top_a = a_.height(top_a_, n);
+    const Scalar bottom_b = b_.height(top_b_, n);
+    std::array<int, MinNormPoint::kCapacity> ia{};
+    std::array<int, MinNormPoint::kCapacity> ib{};
+    std::array<Scalar, MinNormPoint::kCapacity> weights{};
+    int count = 0;
+    Vector3 point_a = Vector3::Zero();
+    Vector3 point_b = Vector3::Zero();
+    for (int k = 0; k < 3; ++k) {
+      if (!(alpha[k] >= 0)) return false;
+      if (alpha[k] == 0) continue;
+      const int i = corners[k].ia;
+      const int j = corners[k].ib;
+      if (!(top_a - a_.height(i, n) <= slack && b_.height(j, n) - bottom_b <= slack)) return false;
+      ia[count] = i;
+      ib[count] = j;
+      weights[count] = alpha[k];
+      point_a += alpha[k] * a_.vertex(i);
+      point_b += alpha[k] * b_.vertex(j);
+      ++count;
+    }
+    const Scalar residual = (point_b - point_a - separation_ * n).norm();
+    if (!(residual <= target)) return false;
+    r.point_a = point_a;
+    r.point_b = point_b;
+    r.weights_a = ConvexWeights(a_.size(), ia, weights, count);
+    r.weights_b = ConvexWeights(b_.size(), ib, weights, count);
+    r.witness_residual = residual;
+    r.feature_slack = slack;
+    return true;
   }
 
   void witnesses_within(Scalar slack, PenetrationBounds& r) {
@@ -339,6 +398,9 @@ class Solver {
   PenetrationProof proof_ = PenetrationProof::none;
   Scalar nearest_length_ = kInfinity;
   int iterations_ = 0;
+  // The expanding polytope's face along its best normal, `face_normal_` (NaN until it has one).
+  std::array<DifferencePoint, 3> face_;
+  Vector3 face_normal_ = Vector3::Constant(std::numeric_limits<Scalar>::quiet_NaN());
 };
 
 }  // namespace
