@@ -379,7 +379,8 @@ BatchResult convex_batch(Kind kind, const BatchBodies<ConvexPolyhedron>& as,
                    [&](const RowWriter& writer) {
                      // Each thread keeps the balls of the bodies it last met.
                      return [rows = ConvexRows(kind, writer, settings.escalate, true),
-                             a = BodyRows<ConvexPolyhedron>(as), b = BodyRows<ConvexPolyhedron>(bs)](
+                             a = BodyRows<ConvexPolyhedron>(as),
+                             b = BodyRows<ConvexPolyhedron>(bs)](
                                 std::size_t i, const QueryOptions& pair_options,
                                 const Pose& pose_a, const Pose& pose_b) mutable {
                        rows.answer(i, pair_options, a[i], pose_a, b[i], pose_b);
