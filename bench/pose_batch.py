@@ -1,6 +1,7 @@
 """Batches over poses (issue 24): one prebuilt body against another at m poses, per row on one
 thread, against a prebuilt python-fcl loop (``setTransform`` then the call, request and result
-reused) and a coal loop (the same), and 2 threads against 1.
+reused) and a coal loop (the same), and 2 threads against 1; ``signed_distance_many`` is timed
+beside them (neither loop computes a penetration depth this way).
 
 Bodies are the hulls of 8 and 260 points on the unit sphere; B's centre is 3 from A's (apart) or
 1.8 (overlapping), along random directions, under random rotations. The contenders take turns
@@ -77,6 +78,8 @@ def contenders(a: np.ndarray, b: np.ndarray, rotations: np.ndarray,
         "collide_many 2 threads": lambda: sc.collide_many(A, B, poses_b=poses, threads=2),
         "distance_many 1 thread": lambda: sc.distance_many(A, B, poses_b=poses, threads=1),
         "distance_many 2 threads": lambda: sc.distance_many(A, B, poses_b=poses, threads=2),
+        "signed_distance_many 1 thread": lambda: sc.signed_distance_many(A, B, poses_b=poses,
+                                                                          threads=1),
         "python-fcl collide loop": fcl_collide,
         "python-fcl distance loop": fcl_distance,
         "coal collide loop": coal_collide,

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -444,6 +445,137 @@ TEST(Batch, BallScreensHoldAtAnyScale) {
       EXPECT_LE(verdicts.lower_bound(row), truth.distance * (1 + 1e-12)) << scale << " " << i;
       EXPECT_GE(verdicts.distance(row), truth.lower_bound * (1 - 1e-12)) << scale << " " << i;
     }
+  }
+}
+
+// Pairs of small bodies (scanned whole by the solvers) near each other: most are apart though
+// their bounding balls overlap. `count` rows, B's centre 1.6 to 2.2 from A's.
+BatchPoses near_poses(int count, Random& rng) {
+  BatchPoses poses;
+  poses.b = random_poses(count, rng, 1);
+  for (Pose& pose : poses.b) {
+    pose.translation = rng.unit() * rng.uniform(1.6, 2.2);
+  }
+  return poses;
+}
+
+// The unit sphere's points: small bodies whose balls are nearly their own.
+ConvexPolyhedron sphere_body(int count, Random& rng) {
+  VertexMatrix points(count, 3);
+  for (int i = 0; i < count; ++i) points.row(i) = rng.unit().transpose();
+  return ConvexPolyhedron(points);
+}
+
+// The axis through the boxes' centres proves only true separations: wherever it settles a pair,
+// its lower bound is at most the exact distance (and above the tolerance), and its distance, that
+// of two points of the bodies, at least it; it settles most pairs of small bodies near each other
+// whose balls overlap, and leaves bodies of more than kHillClimbingThreshold points alone.
+TEST(BallScreen, TheCentresAxisProvesOnlyTrueSeparations) {
+  Random rng(16);
+  QueryOptions exact;
+  exact.method = Method::exact;
+  exact.tolerance = 0;
+  int settled = 0, balls_overlap = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    const ConvexPolyhedron a = sphere_body(4 + trial % 29, rng);
+    const ConvexPolyhedron b = sphere_body(4 + trial % 17, rng);
+    const detail::BodyBalls balls_a = detail::body_balls(a, true);
+    const detail::BodyBalls balls_b = detail::body_balls(b, true);
+    const Pose pose_a{rng.rotation(), rng.vector(0.1)};
+    const Pose pose_b = near_poses(1, rng).b[0];
+    const DistanceResult truth = Query(exact).distance(a, pose_a, b, pose_b);
+    const std::optional<detail::ScreenVerdict> verdict =
+        detail::apart_along_centres(a, pose_a, balls_a, b, pose_b, balls_b, 1e-9);
+    if (!detail::collision_by_balls(a, pose_a, balls_a, b, pose_b, balls_b, 1e-9)) ++balls_overlap;
+    if (!verdict) continue;
+    ++settled;
+    EXPECT_FALSE(verdict->colliding) << trial;
+    EXPECT_GT(verdict->lower_bound, 0) << trial;
+    EXPECT_LE(verdict->lower_bound, truth.lower_bound) << trial;
+    EXPECT_GE(verdict->distance, truth.distance * (1 - 1e-14)) << trial;
+    EXPECT_NEAR(verdict->direction.norm(), 1, 1e-15) << trial;
+    EXPECT_NEAR((verdict->point_b - verdict->point_a).norm(), verdict->distance, 1e-15) << trial;
+  }
+  EXPECT_GT(settled, 200);
+  EXPECT_GT(balls_overlap, 300);
+  const ConvexPolyhedron large = sphere_body(kHillClimbingThreshold + 1, rng);
+  const ConvexPolyhedron small = sphere_body(8, rng);
+  const Pose far{Matrix3::Identity(), Vector3(2.2, 0, 0)};
+  const detail::BodyBalls large_balls = detail::body_balls(large, true);
+  const detail::BodyBalls small_balls = detail::body_balls(small, true);
+  EXPECT_TRUE(detail::apart_along_centres(small, {}, small_balls, small, far, small_balls, 1e-9));
+  EXPECT_FALSE(detail::apart_along_centres(large, {}, large_balls, small, far, small_balls, 1e-9));
+}
+
+// A collision batch of small bodies near each other settles most rows by the centres' axis (its
+// verdict is the row's), gets every verdict right with valid bounds, and answers alike on any
+// number of threads and however the batch is cut.
+TEST(Batch, NearApartRowsAreSettledByTheCentresAxis) {
+  Random rng(17);
+  const ConvexPolyhedron a = sphere_body(8, rng);
+  const ConvexPolyhedron b = sphere_body(12, rng);
+  const BatchPoses poses = near_poses(300, rng);
+  const QueryOptions options;
+  const BatchResult verdicts = collide_many(a, b, options, {1}, poses);
+  const detail::BodyBalls balls_a = detail::body_balls(a, true);
+  const detail::BodyBalls balls_b = detail::body_balls(b, true);
+  QueryOptions exact;
+  exact.method = Method::exact;
+  exact.tolerance = 0;
+  int by_axis = 0;
+  for (std::size_t i = 0; i < 300; ++i) {
+    const auto row = static_cast<Eigen::Index>(i);
+    const DistanceResult truth = Query(exact).distance(a, {}, b, poses.b[i]);
+    EXPECT_TRUE(verdicts.certified(row)) << i;
+    EXPECT_EQ(verdicts.colliding(row), truth.colliding) << i;
+    EXPECT_LE(verdicts.lower_bound(row), truth.distance + 1e-12) << i;
+    EXPECT_GE(verdicts.distance(row), truth.lower_bound - 1e-12) << i;
+    const std::optional<detail::ScreenVerdict> axis =
+        detail::apart_along_centres(a, {}, balls_a, b, poses.b[i], balls_b, options.tolerance);
+    if (axis && !detail::collision_by_balls(a, {}, balls_a, b, poses.b[i], balls_b,
+                                            options.tolerance)) {
+      ++by_axis;
+      EXPECT_EQ(verdicts.lower_bound(row), axis->lower_bound) << i;
+      EXPECT_EQ(verdicts.distance(row), axis->distance) << i;
+      EXPECT_EQ(verdicts.direction.row(row), axis->direction.transpose()) << i;
+      EXPECT_EQ(verdicts.iterations(row), 0) << i;
+    }
+  }
+  EXPECT_GT(by_axis, 100);
+  for (int threads : {2, 3}) expect_same(verdicts, collide_many(a, b, options, {threads}, poses));
+  for (std::size_t cut : {1u, 64u, 201u}) {
+    BatchPoses tail;
+    tail.b.assign(poses.b.begin() + static_cast<std::ptrdiff_t>(cut), poses.b.end());
+    BatchSettings settings;
+    settings.threads = 2;
+    settings.first_index = cut;
+    expect_rows(collide_many(a, b, options, settings, tail), verdicts,
+                static_cast<Eigen::Index>(cut));
+  }
+}
+
+// Identity poses given explicitly, as a list or as an array, answer as no poses at all.
+TEST(Batch, IdentityPosesAnswerAsNoPoses) {
+  Random rng(18);
+  const ConvexPolyhedron a = rng.body(9);
+  const std::vector<ConvexPolyhedron> bs = {rng.body(7, Vector3(2, 0, 0)),
+                                            rng.body(7, Vector3(0.5, 0, 0)),
+                                            rng.body(40, Vector3(0, 1.5, 0))};
+  const QueryOptions options = seeded(Method::dual);
+  BatchPoses listed;
+  listed.a.assign(3, Pose{});
+  listed.b.assign(3, Pose{});
+  std::vector<Scalar> transforms(3 * 12, 0);
+  for (int i = 0; i < 3; ++i) {
+    for (int k = 0; k < 3; ++k) transforms[12 * i + 4 * k + k] = 1;
+  }
+  BatchPoses arrays;
+  arrays.array_b = {transforms.data(), transforms.data() + 3, 3, 12, 4, 12, 4};
+  for (const BatchPoses& poses : {listed, arrays}) {
+    expect_same(distance_many(a, bs, options, {2}, poses), distance_many(a, bs, options, {2}));
+    expect_same(collide_many(a, bs, options, {2}, poses), collide_many(a, bs, options, {2}));
+    expect_same(signed_distance_many(a, bs, options, {2}, poses),
+                signed_distance_many(a, bs, options, {2}));
   }
 }
 

@@ -39,7 +39,8 @@ Vector3 Frame::point_to_world(const Vector3& p) const {
   return world;
 }
 
-FramedBody::FramedBody(const ConvexPolyhedron& body, const Pose& pose, const Frame& frame)
+FramedBody::FramedBody(const ConvexPolyhedron& body, const Pose& pose, const Vector3& world_centre,
+                       const Frame& frame)
     : body_(&body),
       vertices_(&body.centred_vertices()),
       hull_(nullptr),
@@ -57,8 +58,7 @@ FramedBody::FramedBody(const ConvexPolyhedron& body, const Pose& pose, const Fra
   const int half = -exponent_ / 2;
   scale_high_ = power_of_two(half);
   scale_low_ = power_of_two(-exponent_ - half);
-  const Vector3 from_centre =
-      pose.rotation * body.bounds().centre + pose.translation - frame.centre;
+  const Vector3 from_centre = world_centre - frame.centre;
   for (int k = 0; k < 3; ++k) offset_(k) = times_power_of_two(from_centre(k), -exponent_);
   // A placed point is p_i = fl(R q_i + o), q_i = 2^-e x_i, and the scan compares g_i =
   // fl(fl(R^T d) . x_i). With the reach r >= |o| + |q_i| (the frame holds the body, so r <= 1
@@ -142,7 +142,7 @@ FramedPair frame_validated_pair(const ConvexPolyhedron& a, const Pose& pose_a,
   }
   frame.exponent = exponent_above(extent);
   frame.size = 2 * times_power_of_two(extent, -frame.exponent);
-  return {frame, FramedBody(a, pose_a, frame), FramedBody(b, pose_b, frame),
+  return {frame, FramedBody(a, pose_a, centre_a, frame), FramedBody(b, pose_b, centre_b, frame),
           relative_tolerance * frame.size};
 }
 

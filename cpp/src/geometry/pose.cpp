@@ -18,44 +18,63 @@ std::string general(Scalar x, int digits) {
   return text;
 }
 
-// What is wrong with the pose, after its name; empty when nothing is. Messages are built only
-// for invalid poses: scenes validate thousands of poses a frame.
+// |R^T R - I| (largest entry) and det R: how far a rotation is from a proper rotation.
+struct Deviation {
+  Scalar orthogonality;
+  Scalar determinant;
+};
+
+Deviation deviation(const Matrix3& r) {
+  // R^T R - I is symmetric: its six distinct entries, the columns' dot products (written out:
+  // every row of a batch checks its poses).
+  const auto dot = [&r](int i, int j) {
+    return r(0, i) * r(0, j) + r(1, i) * r(1, j) + r(2, i) * r(2, j);
+  };
+  const Scalar orthogonality =
+      std::max({std::abs(dot(0, 0) - 1), std::abs(dot(1, 1) - 1), std::abs(dot(2, 2) - 1),
+                std::abs(dot(0, 1)), std::abs(dot(0, 2)), std::abs(dot(1, 2))});
+  return {orthogonality, r.determinant()};
+}
+
+bool finite(const Pose& pose) {
+  // x - x is 0 for a finite x and NaN otherwise, and a NaN stays in the sum.
+  Scalar sum = 0;
+  for (int k = 0; k < 9; ++k) sum += pose.rotation.data()[k] - pose.rotation.data()[k];
+  for (int k = 0; k < 3; ++k) sum += pose.translation(k) - pose.translation(k);
+  return sum == 0;
+}
+
+bool rigid(const Deviation& d) {
+  return d.orthogonality <= kRotationTolerance &&
+         std::abs(d.determinant - 1) <= kRotationTolerance;
+}
+
+// True when the pose is valid. No message is built here: batches and scenes check thousands of
+// poses a call, nearly all of them valid.
+bool valid(const Pose& pose) {
+  return finite(pose) && (pose.has_identity_rotation() || rigid(deviation(pose.rotation)));
+}
+
+// What is wrong with an invalid pose, after its name.
 std::string problem(const Pose& pose) {
-  if (!pose.rotation.allFinite() || !pose.translation.allFinite()) {
-    return " has a NaN or infinite entry";
-  }
-  if (pose.has_identity_rotation()) return {};
-  // R^T R - I is symmetric: its six distinct entries, the columns' dot products.
-  const Matrix3& r = pose.rotation;
-  Scalar orthogonality = 0;
-  for (int i = 0; i < 3; ++i) {
-    for (int j = i; j < 3; ++j) {
-      const Scalar entry = r.col(i).dot(r.col(j)) - (i == j ? 1 : 0);
-      orthogonality = std::max(orthogonality, std::abs(entry));
-    }
-  }
-  const Scalar determinant = pose.rotation.determinant();
-  if (!(orthogonality <= kRotationTolerance) ||
-      !(std::abs(determinant - 1) <= kRotationTolerance)) {
-    return " is not a rigid motion: its rotation must satisfy R^T R = I and det R = 1 to within "
-           "1e-9 (got |R^T R - I| = " +
-           general(orthogonality, 3) + ", det R = " + general(determinant, 12) +
-           "); scaling and reflection are not poses, scale the points instead";
-  }
-  return {};
+  if (!finite(pose)) return " has a NaN or infinite entry";
+  const Deviation d = deviation(pose.rotation);
+  return " is not a rigid motion: its rotation must satisfy R^T R = I and det R = 1 to within "
+         "1e-9 (got |R^T R - I| = " +
+         general(d.orthogonality, 3) + ", det R = " + general(d.determinant, 12) +
+         "); scaling and reflection are not poses, scale the points instead";
 }
 
 }  // namespace
 
 void validate_pose(const Pose& pose, const char* name) {
-  const std::string what = problem(pose);
-  if (!what.empty()) throw std::invalid_argument(std::string(name) + what);
+  if (!valid(pose)) throw std::invalid_argument(std::string(name) + problem(pose));
 }
 
 void validate_pose(const Pose& pose, const char* name, std::size_t index) {
-  const std::string what = problem(pose);
-  if (!what.empty()) {
-    throw std::invalid_argument(std::string(name) + "[" + std::to_string(index) + "]" + what);
+  if (!valid(pose)) {
+    throw std::invalid_argument(std::string(name) + "[" + std::to_string(index) + "]" +
+                                problem(pose));
   }
 }
 

@@ -100,6 +100,15 @@ Scalar inner_radius(const ConvexPolyhedron& body) {
   return times_power_of_two(nearest * (1 - 4 * kRoundoff), exponent);
 }
 
+// The tolerance in world units of a pair whose centres are `centres` apart: relative to the
+// pair's size, the diameter of a ball about both bodies as frame_pair measures it (a hair more,
+// for its rounding).
+Scalar world_tolerance(const ConvexPolyhedron& a, const ConvexPolyhedron& b, Scalar centres,
+                       Scalar relative_tolerance) {
+  const Scalar size = centres + 2 * std::max(a.bounds().radius, b.bounds().radius);
+  return relative_tolerance * size * (1 + 0x1p-40);
+}
+
 }  // namespace
 
 BodyBalls body_balls(const ConvexPolyhedron& body, bool with_inner) {
@@ -113,7 +122,7 @@ BodyBalls body_balls(const ConvexPolyhedron& body, bool with_inner) {
   return balls;
 }
 
-std::optional<BallVerdict> collision_by_balls(const ConvexPolyhedron& a, const Pose& pose_a,
+std::optional<ScreenVerdict> collision_by_balls(const ConvexPolyhedron& a, const Pose& pose_a,
                                               const BodyBalls& balls_a, const ConvexPolyhedron& b,
                                               const Pose& pose_b, const BodyBalls& balls_b,
                                               Scalar relative_tolerance) {
@@ -132,12 +141,9 @@ std::optional<BallVerdict> collision_by_balls(const ConvexPolyhedron& a, const P
            b.bounds().centre.lpNorm<1>() + pose_b.translation.lpNorm<1>() + centres + outer) +
       16 * kUnderflow;
   if (!std::isfinite(margin)) return std::nullopt;
-  BallVerdict verdict;
+  ScreenVerdict verdict;
   const Scalar lower = centres - outer - margin;
-  // The tolerance in world units: relative to the pair's size, the diameter of a ball about both
-  // bodies as frame_pair measures it (a hair more, for its rounding).
-  const Scalar size = centres + 2 * std::max(a.bounds().radius, b.bounds().radius);
-  if (lower > relative_tolerance * size * (1 + 0x1p-40)) {
+  if (lower > world_tolerance(a, b, centres, relative_tolerance)) {
     verdict.lower_bound = lower;
     verdict.direction = between / centres;
     verdict.point_a = pose_a.rotation * a.vertices().row(0).transpose() + pose_a.translation;
@@ -153,6 +159,57 @@ std::optional<BallVerdict> collision_by_balls(const ConvexPolyhedron& a, const P
   verdict.colliding = true;
   verdict.point_a = centre_a + (inner_a / (inner_a + inner_b)) * between;
   verdict.point_b = verdict.point_a;
+  return verdict;
+}
+
+std::optional<ScreenVerdict> apart_along_centres(const ConvexPolyhedron& a, const Pose& pose_a,
+                                                 const BodyBalls& balls_a,
+                                                 const ConvexPolyhedron& b, const Pose& pose_b,
+                                                 const BodyBalls& balls_b,
+                                                 Scalar relative_tolerance) {
+  if (a.size() > kHillClimbingThreshold || b.size() > kHillClimbingThreshold) return std::nullopt;
+  const Vector3 centre_a = pose_a.rotation * a.bounds().centre + pose_a.translation;
+  const Vector3 centre_b = pose_b.rotation * b.bounds().centre + pose_b.translation;
+  const Vector3 between = centre_b - centre_a;
+  const Scalar centres = length(between);
+  if (!(centres > 0) || !std::isfinite(centres)) return std::nullopt;
+  const Vector3 axis = between / centres;
+  // A placed point is R (c + x) + t, x a centred point, so its height along the axis is
+  // axis . (R c + t) + (R^T axis) . x: the heights are compared in each body's own frame, where
+  // they are rounded relative to the body's size, as the solvers compare them.
+  const Vector3 up_a = pose_a.rotation.transpose() * axis;
+  const Vector3 down_b = -(pose_b.rotation.transpose() * axis);
+  const VertexMatrix& points_a = a.centred_vertices();
+  const VertexMatrix& points_b = b.centred_vertices();
+  const int top_a = scan_support(points_a, up_a);
+  const int bottom_b = scan_support(points_b, down_b);
+  const Scalar separation = axis.dot(between) - point_height(points_b, bottom_b, down_b) -
+                            point_height(points_a, top_a, up_a);
+  // The rounding, against the exact separation of the placed bodies along the computed axis: the
+  // centres' coordinates are within 7 u of |c| + |t| (1-norms), which moves axis . between by
+  // that and 4 u of |between|; a rotated axis is within 5.3 u of R^T axis (|axis| = 1 to 5 u),
+  // which with the centring's rounding (u of each centred point) and the inner products' moves
+  // each height by at most 9.4 u of the body's outer radius (which bounds its centred points);
+  // the last two sums add 2 u of their terms. 32 u of it all is more than twice that (the last
+  // term covers products that underflow).
+  const Scalar margin =
+      32 * kRoundoff *
+          (a.bounds().centre.lpNorm<1>() + pose_a.translation.lpNorm<1>() +
+           b.bounds().centre.lpNorm<1>() + pose_b.translation.lpNorm<1>() + centres +
+           balls_a.outer + balls_b.outer) +
+      16 * kUnderflow;
+  // Dividing by |axis| <= 1 + 5 u turns the separation along the axis into a distance.
+  const Scalar lower = (separation - margin) * (1 - 8 * kRoundoff);
+  if (!std::isfinite(lower) || !(lower > world_tolerance(a, b, centres, relative_tolerance))) {
+    return std::nullopt;
+  }
+  ScreenVerdict verdict;
+  verdict.lower_bound = lower;
+  verdict.direction = axis;
+  verdict.point_a = pose_a.rotation * a.vertices().row(top_a).transpose() + pose_a.translation;
+  verdict.point_b = pose_b.rotation * b.vertices().row(bottom_b).transpose() + pose_b.translation;
+  verdict.distance = length(verdict.point_b - verdict.point_a);
+  if (!std::isfinite(verdict.distance)) return std::nullopt;
   return verdict;
 }
 

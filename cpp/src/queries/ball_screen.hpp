@@ -1,5 +1,5 @@
-// Verdicts that the bodies' balls prove before any frame is set up or any solver runs; private to
-// the library's sources.
+// Verdicts that the bodies' balls, or an axis through their centres, prove before any frame is set
+// up or any solver runs; private to the library's sources.
 #pragma once
 
 #include <optional>
@@ -23,11 +23,12 @@ struct BodyBalls {
 /// screens by the outer balls alone.
 BodyBalls body_balls(const ConvexPolyhedron& body, bool with_inner);
 
-/// A collision's answer settled by balls, in world units.
-struct BallVerdict {
+/// A collision's answer settled by a screen, in world units.
+struct ScreenVerdict {
   bool colliding = false;
-  /// Apart: the distance between the bodies' first given points (an upper bound), and the balls'
-  /// separation (a lower bound, along `direction`, the unit vector between the centres).
+  /// Apart: the distance between two points of the bodies (an upper bound: their first given
+  /// points, or their supporting points along the axis), and the separation of the balls or of
+  /// the bodies along `direction`, the unit vector between the centres (a lower bound).
   /// Colliding: 0 and 0, both witnesses a point common to the inner balls, no direction.
   Scalar distance = 0;
   Scalar lower_bound = 0;
@@ -41,9 +42,22 @@ struct BallVerdict {
 /// pair's size, as frame_pair measures it), colliding when the inner balls overlap. Nothing
 /// otherwise, and nothing where the world coordinates leave the double range (the framed query
 /// then answers, or names the problem).
-std::optional<BallVerdict> collision_by_balls(const ConvexPolyhedron& a, const Pose& pose_a,
+std::optional<ScreenVerdict> collision_by_balls(const ConvexPolyhedron& a, const Pose& pose_a,
                                               const BodyBalls& balls_a, const ConvexPolyhedron& b,
                                               const Pose& pose_b, const BodyBalls& balls_b,
                                               Scalar relative_tolerance);
+
+/// The bodies proven apart along the axis through their boxes' centres, for bodies of at most
+/// kHillClimbingThreshold points (scanned whole, as the solvers scan them): the separation of
+/// their supporting points along it, less a bound on its rounding, exceeds the tolerance as
+/// collision_by_balls measures it. The bodies' outer balls (`balls_a`, `balls_b`) bound the
+/// rounding. It settles most pairs whose balls overlap though the bodies do not: bodies near each
+/// other face each other across that axis. Nothing otherwise, or for larger bodies, or where the
+/// world coordinates leave the double range.
+std::optional<ScreenVerdict> apart_along_centres(const ConvexPolyhedron& a, const Pose& pose_a,
+                                                 const BodyBalls& balls_a,
+                                                 const ConvexPolyhedron& b, const Pose& pose_b,
+                                                 const BodyBalls& balls_b,
+                                                 Scalar relative_tolerance);
 
 }  // namespace swarmcollide::detail

@@ -45,24 +45,84 @@ BatchResult sized(std::size_t count) {
   return result;
 }
 
-void store(BatchResult& batch, std::size_t index, const DistanceResult& r) {
-  const auto i = static_cast<Eigen::Index>(index);
-  batch.distance(i) = r.distance;
-  batch.lower_bound(i) = r.lower_bound;
-  batch.point_a.row(i) = r.point_a.transpose();
-  batch.point_b.row(i) = r.point_b.transpose();
-  batch.direction.row(i) = r.direction.transpose();
-  batch.colliding(i) = r.colliding;
-  batch.certified(i) = r.certified;
-  batch.iterations(i) = r.iterations;
-  batch.escalated(i) = r.escalated_from.has_value();
-}
+// The rows of a BatchResult's arrays, through pointers that each thread copies before its first
+// row: a thread that read them through the BatchResult (on the calling thread's stack, beside the
+// locals that thread writes for every row it answers) would pull that cache line back and forth
+// on every row, which doubled the CPU time of the rows the ball screens settle on two threads.
+class RowWriter {
+ public:
+  explicit RowWriter(BatchResult& batch)
+      : distance_(batch.distance.data()),
+        lower_bound_(batch.lower_bound.data()),
+        point_a_(batch.point_a.data()),
+        point_b_(batch.point_b.data()),
+        direction_(batch.direction.data()),
+        colliding_(batch.colliding.data()),
+        certified_(batch.certified.data()),
+        iterations_(batch.iterations.data()),
+        escalated_(batch.escalated.data()),
+        part_a_(batch.part_a.data()),
+        part_b_(batch.part_b.data()) {}
 
-void store(BatchResult& batch, std::size_t index, const CompoundResult& r) {
-  store(batch, index, static_cast<const DistanceResult&>(r));
-  batch.part_a(static_cast<Eigen::Index>(index)) = r.part_a;
-  batch.part_b(static_cast<Eigen::Index>(index)) = r.part_b;
-}
+  void write(std::size_t row, const DistanceResult& r) const {
+    write(row, r.distance, r.lower_bound, r.point_a, r.point_b, r.direction, r.colliding,
+          r.certified, r.iterations, r.escalated_from.has_value());
+  }
+  void write(std::size_t row, const CompoundResult& r) const {
+    write(row, static_cast<const DistanceResult&>(r));
+    part_a_[row] = r.part_a;
+    part_b_[row] = r.part_b;
+  }
+  // A verdict proven without a solver: certified, no iterations.
+  void write(std::size_t row, const detail::ScreenVerdict& v) const {
+    write(row, v.distance, v.lower_bound, v.point_a, v.point_b, v.direction, v.colliding, true, 0,
+          false);
+  }
+
+ private:
+  void write(std::size_t row, Scalar distance, Scalar lower_bound, const Vector3& point_a,
+             const Vector3& point_b, const Vector3& direction, bool colliding, bool certified,
+             int iterations, bool escalated) const {
+    distance_[row] = distance;
+    lower_bound_[row] = lower_bound;
+    // The (m, 3) arrays are row-major: row i's coordinates are 3i, 3i + 1 and 3i + 2.
+    for (int k = 0; k < 3; ++k) {
+      point_a_[3 * row + k] = point_a(k);
+      point_b_[3 * row + k] = point_b(k);
+      direction_[3 * row + k] = direction(k);
+    }
+    colliding_[row] = colliding;
+    certified_[row] = certified;
+    iterations_[row] = iterations;
+    escalated_[row] = escalated;
+  }
+
+  Scalar* distance_;
+  Scalar* lower_bound_;
+  Scalar* point_a_;
+  Scalar* point_b_;
+  Scalar* direction_;
+  bool* colliding_;
+  bool* certified_;
+  int* iterations_;
+  bool* escalated_;
+  int* part_a_;
+  int* part_b_;
+};
+
+// The bodies of one side as a thread reads them, from its own copy of the pointers (see
+// RowWriter).
+template <typename Body>
+class BodyRows {
+ public:
+  explicit BodyRows(const BatchBodies<Body>& bodies)
+      : items_(bodies.data()), single_(bodies.single()) {}
+  const Body& operator[](std::size_t row) const { return *items_[single_ ? 0 : row]; }
+
+ private:
+  const Body* const* items_;
+  bool single_;
+};
 
 // The error of the pair with the lowest index, whatever thread met it.
 class FirstFailure {
@@ -104,23 +164,24 @@ std::size_t worker_count(int threads, std::size_t pairs) {
   return std::min(wanted, std::max<std::size_t>(pairs, 1));
 }
 
-// The poses of one side of a batch: a list, an array read in place, or none (the identity).
+// The poses of one side of a batch: a list, an array read in place, or none (the identity). A
+// small value that each thread copies before its first row (see RowWriter).
 class SidePoses {
  public:
   SidePoses(const std::vector<Pose>& list, const PoseArray& array, const char* name)
-      : list_(list), array_(array), name_(name) {
-    if (!list.empty() && array.count > 0) {
+      : list_(list.data()), listed_(list.size()), array_(array), name_(name) {
+    if (listed_ > 0 && array.count > 0) {
       throw std::invalid_argument(std::string(name) +
                                   ": give the poses as a list or as an array, not both");
     }
   }
 
-  std::size_t size() const { return array_.count > 0 ? array_.count : list_.size(); }
+  std::size_t size() const { return array_.count > 0 ? array_.count : listed_; }
   bool empty() const { return size() == 0; }
   // The pose of row i.
   Pose at(std::size_t i) const {
     if (array_.count > 0) return array_[i];
-    return list_.empty() ? Pose{} : list_[i];
+    return listed_ == 0 ? Pose{} : list_[i];
   }
 
   // One pose per pair (or none).
@@ -133,8 +194,9 @@ class SidePoses {
   }
 
  private:
-  const std::vector<Pose>& list_;
-  const PoseArray& array_;
+  const Pose* list_;
+  std::size_t listed_;
+  PoseArray array_;
   const char* name_;
 };
 
@@ -181,11 +243,12 @@ Asked asked(Kind kind) {
 
 // Runs `answer(i, options_i, pose_a_i, pose_b_i)`, which writes row i of the batch, for every
 // pair, where options_i are the validated options seeded for pair i and `answer` is the thread's
-// own `make_answer(batch)` (with the thread's state), on a pool of threads that take pairs in
-// chunks, in increasing order: when a pair fails, every pair before it has been taken, so the
-// error of the lowest failing index is found whatever the threads. Everything the rows share
+// own `make_answer(RowWriter(batch))` (with the thread's state), on a pool of threads that take
+// pairs in chunks, in increasing order: when a pair fails, every pair before it has been taken, so
+// the error of the lowest failing index is found whatever the threads. Everything the rows share
 // (the options, the method's capability, the pose counts) is checked here, once; each row's poses
-// once, by the thread that answers it.
+// once, by the thread that answers it. A thread's rows read only its own copies of what they
+// share (see RowWriter) and the counter of chunks taken, which has a cache line to itself.
 template <typename MakeAnswer>
 BatchResult run_batch(Kind kind, std::size_t count, const QueryOptions& options,
                       const BatchSettings& settings, const BatchPoses& poses,
@@ -201,30 +264,40 @@ BatchResult run_batch(Kind kind, std::size_t count, const QueryOptions& options,
   // Chunks small enough to balance the threads when rows differ in cost, large enough that the
   // rows two threads write next to each other (their results' cache lines) are few.
   constexpr std::size_t kChunk = 64;
-  std::atomic<std::size_t> next{0};
-  std::atomic<bool> stop{false};
+  struct alignas(64) Progress {
+    std::atomic<std::size_t> next{0};
+    std::atomic<bool> stop{false};
+  };
+  Progress progress;
   FirstFailure failure;
   const auto work = [&] {
+    const SidePoses own_a = poses_a;
+    const SidePoses own_b = poses_b;
+    const bool posed_a = !own_a.empty();
+    const bool posed_b = !own_b.empty();
+    const std::uint64_t first_index = settings.first_index;
+    const std::uint64_t seed = options.seed;
     QueryOptions pair_options = validated.options();
     pair_options.dual.record_history = false;  // a batch reports no history
-    auto answer = make_answer(batch);
-    for (std::size_t start = next.fetch_add(kChunk); start < count && !stop.load();
-         start = next.fetch_add(kChunk)) {
+    auto answer = make_answer(RowWriter(batch));
+    for (std::size_t start = progress.next.fetch_add(kChunk);
+         start < count && !progress.stop.load(std::memory_order_relaxed);
+         start = progress.next.fetch_add(kChunk)) {
       const std::size_t end = std::min(count, start + kChunk);
       for (std::size_t i = start; i < end; ++i) {
         try {
           // Each pose is validated once, by the thread that answers its row (a check in one
           // thread before the rows would not be spread over the threads).
-          const std::uint64_t index = settings.first_index + i;
-          const Pose pose_a = poses_a.at(i);
-          const Pose pose_b = poses_b.at(i);
-          if (!poses_a.empty()) validate_pose(pose_a, "poses_a", index);
-          if (!poses_b.empty()) validate_pose(pose_b, "poses_b", index);
-          pair_options.seed = pair_seed(options.seed, index);
+          const std::uint64_t index = first_index + i;
+          const Pose pose_a = own_a.at(i);
+          const Pose pose_b = own_b.at(i);
+          if (posed_a) validate_pose(pose_a, "poses_a", index);
+          if (posed_b) validate_pose(pose_b, "poses_b", index);
+          pair_options.seed = pair_seed(seed, index);
           answer(i, pair_options, pose_a, pose_b);
         } catch (...) {
           failure.offer(i);
-          stop.store(true);
+          progress.stop.store(true);
           break;
         }
       }
@@ -263,42 +336,37 @@ class BallsCache {
   detail::BodyBalls balls_;
 };
 
-void store(BatchResult& batch, std::size_t index, const detail::BallVerdict& verdict) {
-  const auto i = static_cast<Eigen::Index>(index);
-  batch.distance(i) = verdict.distance;
-  batch.lower_bound(i) = verdict.lower_bound;
-  batch.point_a.row(i) = verdict.point_a.transpose();
-  batch.point_b.row(i) = verdict.point_b.transpose();
-  batch.direction.row(i) = verdict.direction.transpose();
-  batch.colliding(i) = verdict.colliding;
-  batch.certified(i) = true;
-  batch.iterations(i) = 0;
-  batch.escalated(i) = false;
-}
-
 // Answers a convex pair under poses validated once for the batch into its row, as Query answers
-// it; a collision that the bodies' balls settle needs neither a frame nor a solver.
+// it; a collision that the screens settle (the bodies' balls, or an axis through their centres)
+// needs neither a frame nor a solver.
 class ConvexRows {
  public:
-  ConvexRows(Kind kind, BatchResult& batch, bool escalate, bool with_inner)
-      : kind_(kind), batch_(batch), escalate_(escalate), balls_a_(with_inner),
+  ConvexRows(Kind kind, const RowWriter& rows, bool escalate, bool with_inner)
+      : kind_(kind), rows_(rows), escalate_(escalate), balls_a_(with_inner),
         balls_b_(with_inner) {}
 
   void answer(std::size_t row, const QueryOptions& options, const ConvexPolyhedron& a,
               const Pose& pose_a, const ConvexPolyhedron& b, const Pose& pose_b) {
     if (kind_ == Kind::collide) {
-      const std::optional<detail::BallVerdict> settled = detail::collision_by_balls(
-          a, pose_a, balls_a_.of(a), b, pose_b, balls_b_.of(b), options.tolerance);
-      if (settled) return store(batch_, row, *settled);
+      const detail::BodyBalls& balls_a = balls_a_.of(a);
+      const detail::BodyBalls& balls_b = balls_b_.of(b);
+      std::optional<detail::ScreenVerdict> settled =
+          detail::collision_by_balls(a, pose_a, balls_a, b, pose_b, balls_b, options.tolerance);
+      if (!settled) {
+        settled = detail::apart_along_centres(a, pose_a, balls_a, b, pose_b, balls_b,
+                                              options.tolerance);
+      }
+      if (settled) return rows_.write(row, *settled);
     }
     const detail::FramedPair pair =
         detail::frame_validated_pair(a, pose_a, b, pose_b, options.tolerance);
-    store(batch_, row, detail::answer_pair(options, asked(kind_).goal, pair, escalate_));
+    rows_.write(row, detail::answer_pair(options, asked(kind_).goal, pair, escalate_,
+                                         detail::Weights::none));
   }
 
  private:
   Kind kind_;
-  BatchResult& batch_;
+  RowWriter rows_;
   bool escalate_;
   BallsCache balls_a_;
   BallsCache balls_b_;
@@ -308,12 +376,14 @@ BatchResult convex_batch(Kind kind, const BatchBodies<ConvexPolyhedron>& as,
                          const BatchBodies<ConvexPolyhedron>& bs, const QueryOptions& options,
                          const BatchSettings& settings, const BatchPoses& poses) {
   return run_batch(kind, row_count(as, bs, poses), options, settings, poses,
-                   [&](BatchResult& batch) {
+                   [&](const RowWriter& writer) {
                      // Each thread keeps the balls of the bodies it last met.
-                     return [&, rows = ConvexRows(kind, batch, settings.escalate, true)](
+                     return [rows = ConvexRows(kind, writer, settings.escalate, true),
+                             a = BodyRows<ConvexPolyhedron>(as),
+                             b = BodyRows<ConvexPolyhedron>(bs)](
                                 std::size_t i, const QueryOptions& pair_options,
                                 const Pose& pose_a, const Pose& pose_b) mutable {
-                       rows.answer(i, pair_options, as[i], pose_a, bs[i], pose_b);
+                       rows.answer(i, pair_options, a[i], pose_a, b[i], pose_b);
                      };
                    });
 }
@@ -322,13 +392,13 @@ BatchResult compound_batch(Kind kind, const BatchBodies<CompoundBody>& as,
                            const BatchBodies<CompoundBody>& bs, const QueryOptions& options,
                            const BatchSettings& settings, const BatchPoses& poses) {
   return run_batch(kind, row_count(as, bs, poses), options, settings, poses,
-                   [&](BatchResult& batch) {
-                     return [&](std::size_t i, const QueryOptions& pair_options,
+                   [&](const RowWriter& writer) {
+                     return [writer, goal = asked(kind).goal, escalate = settings.escalate,
+                             a = BodyRows<CompoundBody>(as), b = BodyRows<CompoundBody>(bs)](
+                                std::size_t i, const QueryOptions& pair_options,
                                 const Pose& pose_a, const Pose& pose_b) {
-                       store(batch, i,
-                             detail::answer_compound(pair_options, asked(kind).goal,
-                                                     settings.escalate, as[i], pose_a, bs[i],
-                                                     pose_b));
+                       writer.write(i, detail::answer_compound(pair_options, goal, escalate, a[i],
+                                                               pose_a, b[i], pose_b));
                      };
                    });
 }
@@ -348,15 +418,15 @@ BatchResult stack_batch(Kind kind, const VertexStack& as, const VertexStack& bs,
                         const QueryOptions& options, const BatchSettings& settings,
                         const BatchPoses& poses) {
   check_same_length(as.count, bs.count);
-  return run_batch(kind, as.count, options, settings, poses, [&](BatchResult& batch) {
-    return [&](std::size_t i, const QueryOptions& pair_options, const Pose& pose_a,
-               const Pose& pose_b) {
-      const ConvexPolyhedron a = body(as, i, settings.first_index);
-      const ConvexPolyhedron b = body(bs, i, settings.first_index);
+  return run_batch(kind, as.count, options, settings, poses, [&](const RowWriter& writer) {
+    return [writer, kind, as, bs, first_index = settings.first_index,
+            escalate = settings.escalate](std::size_t i, const QueryOptions& pair_options,
+                                          const Pose& pose_a, const Pose& pose_b) {
+      const ConvexPolyhedron a = body(as, i, first_index);
+      const ConvexPolyhedron b = body(bs, i, first_index);
       // Every row's bodies are new (and may reuse the last row's addresses): no ball is kept, and
       // no hull is built for an inner ball.
-      ConvexRows(kind, batch, settings.escalate, false)
-          .answer(i, pair_options, a, pose_a, b, pose_b);
+      ConvexRows(kind, writer, escalate, false).answer(i, pair_options, a, pose_a, b, pose_b);
     };
   });
 }

@@ -8,6 +8,7 @@
 #include "swarmcollide/queries/distance_result.hpp"
 #include "swarmcollide/queries/methods.hpp"
 #include "swarmcollide/queries/options.hpp"
+#include "verdict.hpp"
 
 namespace swarmcollide::detail {
 
@@ -24,9 +25,10 @@ void require(Method method, Capability capability, const char* query);
 /// What Query answers between the convex bodies of `pair` (framed, so with their poses checked)
 /// for `goal`, with options already validated and the method's capability already required:
 /// the method's answer, and for a verdict that it leaves unproven, with `escalate`, the exact
-/// method's. Query's convex queries and the batches (which validate once per batch) share it.
+/// method's. Query's convex queries and the batches (which validate once per batch, and report no
+/// weights) share it.
 DistanceResult answer_pair(const QueryOptions& options, Goal goal, const FramedPair& pair,
-                           bool escalate);
+                           bool escalate, Weights weights = Weights::given);
 
 /// The same between compound bodies (compound_query.cpp); the poses are validated here.
 CompoundResult answer_compound(const QueryOptions& options, Goal goal, bool escalate,

@@ -39,9 +39,9 @@ namespace {
 
 // The result of `options.method`'s solver working towards `goal` on `pair`.
 DistanceResult answer(const QueryOptions& options, detail::Goal goal,
-                      const detail::FramedPair& pair) {
+                      const detail::FramedPair& pair, detail::Weights weights) {
   return detail::finish_result(pair, detail::solver_for(options.method)(pair, options, goal),
-                               options.method, goal);
+                               options.method, goal, weights);
 }
 
 }  // namespace
@@ -49,8 +49,8 @@ DistanceResult answer(const QueryOptions& options, detail::Goal goal,
 namespace detail {
 
 DistanceResult answer_pair(const QueryOptions& options, Goal goal, const FramedPair& pair,
-                           bool escalate) {
-  DistanceResult result = answer(options, goal, pair);
+                           bool escalate, Weights weights) {
+  DistanceResult result = answer(options, goal, pair, weights);
   if (goal != Goal::verdict || result.certified || !escalate) return result;
   // The exact method decides with its own iteration cap: a budget too small for the method
   // asked for (max_iterations of 1, say) must not leave the verdict unproven again.
@@ -58,7 +58,7 @@ DistanceResult answer_pair(const QueryOptions& options, Goal goal, const FramedP
   exact.method = Method::exact;
   exact.tolerance = options.tolerance;
   exact.exact.max_iterations = std::max(options.exact.max_iterations, exact.exact.max_iterations);
-  DistanceResult decided = answer(exact, goal, pair);
+  DistanceResult decided = answer(exact, goal, pair, weights);
   if (options.method != Method::exact) decided.escalated_from = options.method;
   return decided;
 }

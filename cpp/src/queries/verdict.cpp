@@ -60,7 +60,8 @@ bool goal_reached(const FramedPair& pair, Goal goal, Scalar lower, Scalar upper,
   return value_proven(pair, lower, upper);
 }
 
-DistanceResult finish_result(const FramedPair& pair, Answer&& answer, Method requested, Goal goal) {
+DistanceResult finish_result(const FramedPair& pair, Answer&& answer, Method requested, Goal goal,
+                             Weights weights) {
   // A distance is never negative, so zero bounds it below whatever the solver found; and in the
   // frame both bodies lie in the unit ball, so a translation by 2 separates them.
   answer.lower = std::max(answer.lower, goal == Goal::signed_distance ? -2.0 : 0.0);
@@ -78,8 +79,10 @@ DistanceResult finish_result(const FramedPair& pair, Answer&& answer, Method req
   }
   r.point_a = frame.point_to_world(answer.point_a);
   r.point_b = frame.point_to_world(answer.point_b);
-  r.weights_a = pair.a.given_weights(std::move(answer.weights_a));
-  r.weights_b = pair.b.given_weights(std::move(answer.weights_b));
+  if (weights == Weights::given) {
+    r.weights_a = pair.a.given_weights(std::move(answer.weights_a));
+    r.weights_b = pair.b.given_weights(std::move(answer.weights_b));
+  }
   r.direction = answer.direction;
   r.iterations = answer.iterations;
   r.evaluations = answer.evaluations;

@@ -7,13 +7,19 @@
 
 namespace swarmcollide::detail {
 
+/// Whether a result carries the witnesses' weights over the given points: a batch reports no
+/// weights, and spreading them over the given points is a good part of what finishing costs.
+enum class Weights { given, none };
+
 /// The result of `answer` to a query of `goal` asked of `requested`, in world units. Rounding
 /// is accounted for: a bound proves a verdict only when it does so by more than
 /// `kFrameRounding`. So `colliding` is proven by an intersection proof or by witnesses within
 /// the tolerance, never by comparing a rounded distance with zero; and apart by a separation
 /// above the tolerance. For distances and signed distances, `certified` also requires the bounds
 /// to enclose the value to the tolerance (`goal_reached`).
-DistanceResult finish_result(const FramedPair& pair, Answer&& answer, Method requested, Goal goal);
+/// With `Weights::none` the result's weights are left empty.
+DistanceResult finish_result(const FramedPair& pair, Answer&& answer, Method requested, Goal goal,
+                             Weights weights = Weights::given);
 
 /// True when the bounds prove a verdict at the pair's tolerance (what `finish_result` calls
 /// certified for a verdict): a separation above it, witnesses within it, or an intersection

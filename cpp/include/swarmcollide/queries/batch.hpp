@@ -72,6 +72,9 @@ class BatchBodies {
   std::size_t size() const { return items_.size(); }
   /// The body of row `row`.
   const Body& operator[](std::size_t row) const { return *items_[single_ ? 0 : row]; }
+  /// The bodies given, one pointer each (one for a single body): what a thread copies once, so
+  /// that its rows read no memory beside what other threads write.
+  const Body* const* data() const { return items_.data(); }
 
  private:
   std::vector<const Body*> items_;
@@ -146,7 +149,10 @@ BatchResult distance_many(const BatchBodies<ConvexPolyhedron>& as,
 /// centres settle it needs no solver: bounding balls proven apart (the lower bound is their
 /// separation, the distance that of the bodies' first given points, its witnesses), or balls
 /// inside the bodies that overlap (distance and lower bound 0, both witnesses a point common to
-/// the balls). Bodies built from vertex stacks are screened by their bounding balls only.
+/// the balls). Nor does a row of bodies of at most kHillClimbingThreshold points that are proven
+/// apart along the axis through those centres (the lower bound is their separation along it, the
+/// witnesses their supporting points). Bodies built from vertex stacks are screened by their
+/// bounding balls and that axis only.
 BatchResult collide_many(const BatchBodies<ConvexPolyhedron>& as,
                          const BatchBodies<ConvexPolyhedron>& bs, const QueryOptions& options,
                          const BatchSettings& settings = {}, const BatchPoses& poses = {});

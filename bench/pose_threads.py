@@ -1,0 +1,71 @@
+"""Two threads against one on batches over poses (issue 24): wall time of each batch call with
+``threads=1`` and ``threads=2``, in interleaved rounds (the order alternating), as the median ratio,
+with the CPU time over the wall time of the 2-thread calls and the load average before and after.
+
+One random body of n points on the unit sphere against itself, B under random rotations and
+translations of length 2.4 ("apart": most collide rows settled by the ball screens) or 1.9
+("near": most rows need a solver), ``poses_b=(rotations, translations)``. Prints a line per case;
+nothing is recorded (bench/pose_batch.py records the 20,000-row figures).
+
+    .venv/bin/python bench/pose_threads.py --rows 100000 --rounds 7
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import statistics
+import time
+
+import numpy as np
+from scipy.spatial.transform import Rotation
+
+import swarmcollide as sc
+
+CALLS = ("collide_many", "distance_many", "signed_distance_many")
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--rows", type=int, default=100_000, help="rows per batch call")
+    parser.add_argument("--rounds", type=int, default=7, help="interleaved rounds per case")
+    parser.add_argument("--sizes", default="8,260", help="body sizes (points), comma-separated")
+    parser.add_argument("--calls", default=",".join(CALLS), help="batch calls, comma-separated")
+    arguments = parser.parse_args()
+    rng = np.random.default_rng(0)
+    m = arguments.rows
+    print(f"load before {os.getloadavg()}", flush=True)
+    for n in (int(s) for s in arguments.sizes.split(",")):
+        points = rng.normal(size=(n, 3))
+        points /= np.linalg.norm(points, axis=1)[:, None]
+        body = sc.ConvexPolyhedron(points)
+        rotations = Rotation.random(m, random_state=1).as_matrix()
+        for label, length in (("apart", 2.4), ("near", 1.9)):
+            translations = rng.normal(size=(m, 3))
+            translations *= length / np.linalg.norm(translations, axis=1)[:, None]
+            poses = (rotations, translations)
+            for name in arguments.calls.split(","):
+                call = getattr(sc, name)
+                call(body, body, poses_b=poses, threads=1)  # warm the body's caches
+                gains, busy, one = [], [], []
+                for r in range(arguments.rounds):
+                    wall, cpu = {}, {}
+                    for threads in ((1, 2) if r % 2 == 0 else (2, 1)):
+                        start, start_cpu = time.perf_counter(), time.process_time()
+                        call(body, body, poses_b=poses, threads=threads)
+                        wall[threads] = time.perf_counter() - start
+                        cpu[threads] = time.process_time() - start_cpu
+                    gains.append(wall[1] / wall[2])
+                    busy.append(cpu[2] / wall[2])
+                    one.append(wall[1] / m * 1e6)
+                print(f"n={n:4d} {label:5s} {name:20s} 1 thread {statistics.median(one):.3f} "
+                      f"us/row  2 threads/1 median {statistics.median(gains):.2f} "
+                      f"(min {min(gains):.2f} max {max(gains):.2f}) "
+                      f"cpu/wall(2) {statistics.median(busy):.2f}", flush=True)
+    print(f"load after {os.getloadavg()}")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
