@@ -140,7 +140,8 @@ Vector3 tilted(const Vector3& direction) {
 // runs from it, tilted. A corral around the origin proves the
 // overlap, which no separating direction can, and its tetrahedron starts the penetration solver's
 // expanding polytope; a nearest point that settles the pair as a distance is the answer as well.
-// Otherwise (touching pairs, mostly) nothing: the search runs as for any distance.
+// Otherwise (touching pairs, mostly) nothing: the search runs as for any distance, and its
+// direction, the contact normal, is the penetration solver's hint.
 std::optional<Answer> overlap_first(const FramedPair& pair, const QueryOptions& options,
                                     const DualStart* start) {
   const DualStart first = first_start(pair, start);

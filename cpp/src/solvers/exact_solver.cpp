@@ -65,9 +65,9 @@ Answer exact_distance(const FramedPair& pair, int max_iterations, const MinNormP
 }
 
 Answer exact_penetration(const FramedPair& pair, int max_iterations, const Vector3& hint,
-                         Scalar distance_upper, const MinNormPoint* enclosing) {
+                         Scalar distance_upper, const MinNormPoint* nearest) {
   PenetrationBounds bounds =
-      penetration(pair.a, pair.b, hint, enclosing, pair.tolerance, max_iterations);
+      penetration(pair.a, pair.b, hint, nearest, pair.tolerance, max_iterations);
   Answer answer;
   // The separation less what the scans in the bodies' own frames may fall short by: the query
   // layer's verdicts subtract kFrameRounding, which covers the rest of the solver's margin (64 u
@@ -91,9 +91,8 @@ Answer exact_signed_distance(const FramedPair& pair, int max_iterations, const V
   // A positive separation proves the bodies apart, and their distance is the signed distance.
   if (apart.lower > kFrameRounding) return apart;
   const Vector3 start = hint.norm() > 0 ? hint : apart.direction;
-  // A corral around the origin starts the expanding polytope, as the dual's does.
-  Answer overlap = exact_penetration(pair, max_iterations, start, apart.upper,
-                                     apart.intersection_proven ? &nearest : nullptr);
+  // Wolfe's corral is not computed again; around the origin it starts the expanding polytope.
+  Answer overlap = exact_penetration(pair, max_iterations, start, apart.upper, &nearest);
   overlap.iterations = apart.iterations;
   overlap.evaluations += apart.evaluations;
   overlap.intersection_proven = apart.intersection_proven;

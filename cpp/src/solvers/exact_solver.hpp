@@ -20,10 +20,11 @@ Answer exact_distance(const FramedPair& pair, int max_iterations, const MinNormP
 
 /// The certified penetration depth of touching or overlapping bodies, from the direction `hint`
 /// (which may be zero); `distance_upper`, any upper bound on their distance, also bounds the
-/// signed distance. `enclosing`, when not null, is a corral of Wolfe's algorithm on B - A that
-/// encloses the origin (an intersection proof): the expanding polytope starts from it.
+/// signed distance. `nearest`, when not null, is the corral of Wolfe's algorithm on B - A run to
+/// its stopping tests: the solver does not run it again, and the expanding polytope starts from
+/// its tetrahedron if that encloses the origin (an intersection proof).
 Answer exact_penetration(const FramedPair& pair, int max_iterations, const Vector3& hint,
-                         Scalar distance_upper, const MinNormPoint* enclosing = nullptr);
+                         Scalar distance_upper, const MinNormPoint* nearest = nullptr);
 
 /// The exact signed distance: `exact_distance` when a direction proves the bodies apart, the
 /// certified penetration depth otherwise (starting from the direction `hint`, which may be zero).

@@ -101,18 +101,29 @@ class Solver {
         ws_(thread_workspace()),
         coordinate_(coordinate) {}
 
-  PenetrationBounds solve(const Vector3& hint, const MinNormPoint* enclosing) {
+  PenetrationBounds solve(const Vector3& hint, const MinNormPoint* nearest) {
     offer_flat_normals();
     // An intersection proof's tetrahedron starts the polytope at once, whose faces' normals are
-    // the directions to measure: the hint is tried only if they leave a gap. Wolfe's algorithm
-    // finds a tetrahedron otherwise (and the nearest point, for pairs that turn out not to
-    // overlap), starting from the hint.
-    const bool enclosed = enclosing != nullptr && enclose(*enclosing);
+    // the directions to measure: the hint is tried only if they leave a gap. Otherwise Wolfe's
+    // nearest point (the caller's, or found here from the hint) bounds the distance, and its
+    // tetrahedron, if it encloses the origin, starts the polytope.
+    const bool enclosed = nearest != nullptr && nearest->size == MinNormPoint::kCapacity &&
+                          enclose(*nearest);
     if (!enclosed) {
       offer_hint(hint);
-      nearest_then_polytope();
+      if (nearest != nullptr) {
+        use_nearest(*nearest);
+      } else {
+        nearest_then_polytope();
+      }
     }
     finish();
+    // A given corral that leaves a gap (touching pairs whose triangles missed the contact plane)
+    // is followed by Wolfe's algorithm from the best direction, as when none is given.
+    if (!done() && nearest != nullptr && !enclosed) {
+      nearest_then_polytope();
+      finish();
+    }
     if (!done() && enclosed && offer_hint(hint)) finish();
     if (!done() && axes_work(a_, b_) <= kAxesFallbackWork) {
       enumerate_axes();
@@ -203,6 +214,13 @@ class Solver {
     if (!(start.norm() > 0)) start = -Vector3::UnitX();
     const MinNormPoint m = wolfe_min_norm(oracle, start, reach(), max_iterations_);
     iterations_ += m.iterations;
+    if (m.size == MinNormPoint::kCapacity && enclose(m)) return;
+    use_nearest(m);
+  }
+
+  // Wolfe's nearest point `m` of B - A, whose tetrahedron (if any) does not start the polytope:
+  // the upper bound |p| and the directions it suggests.
+  void use_nearest(const MinNormPoint& m) {
     // The exact convex combination of the corral (weights normalised) is a point of B - A; the
     // computed one is within 16 roundoffs of reach() of it (added in upper()).
     Scalar total = 0;
@@ -211,7 +229,6 @@ class Solver {
     for (int k = 0; k < m.size; ++k) p += m.weights[k] / total * m.corral[k].p;
     if (p.norm() < nearest_length_) nearest_length_ = p.norm();
     if (p.norm() > 0) offer(p.normalized());
-    if (m.size == MinNormPoint::kCapacity && enclose(m)) return;
     // Touching bodies: the origin is on the boundary of B - A and on the corral's triangles, which
     // then lie in the supporting plane there, so their normals are the contact normal.
     for (int k = 0; m.size >= 3 && k < m.size; ++k) {
@@ -406,11 +423,11 @@ class Solver {
 }  // namespace
 
 PenetrationBounds penetration(const FramedBody& a, const FramedBody& b, const Vector3& hint,
-                              const MinNormPoint* enclosing, Scalar tolerance,
+                              const MinNormPoint* nearest, Scalar tolerance,
                               int max_iterations) {
   const Scalar coordinate = std::max(coordinate_bound(a), coordinate_bound(b));
   Solver solver(a, b, tolerance, max_iterations, coordinate);
-  return solver.solve(hint, enclosing);
+  return solver.solve(hint, nearest);
 }
 
 PenetrationBounds penetration(const VertexMatrix& a, const Hull& hull_a, const VertexMatrix& b,

@@ -66,12 +66,13 @@ struct PenetrationBounds {
 /// Certified signed distance (mostly for overlapping bodies: minus the penetration depth) of the
 /// framed bodies `a` and `b`, whose points lie in the frame's unit ball (a FramedPair's bodies).
 ///
-/// `hint` is a good direction from A to B if one is known (zero otherwise); `enclosing`, when not
-/// null, is a corral of Wolfe's algorithm on `B - A` whose tetrahedron encloses the origin (an
-/// intersection proof), from which the expanding polytope starts at once; `tolerance` (absolute,
-/// >= 0) is the requested gap `upper - lower`; `max_iterations` (>= 1) caps each iterative stage.
+/// `hint` is a good direction from A to B if one is known (zero otherwise); `nearest`, when not
+/// null, is the corral of Wolfe's algorithm on `B - A` run to its stopping tests (its nearest
+/// point to the origin), whose tetrahedron, if it encloses the origin (an intersection proof),
+/// starts the expanding polytope at once; `tolerance` (absolute, >= 0) is the requested gap
+/// `upper - lower`; `max_iterations` (>= 1) caps each iterative stage.
 /// The solver works on the Minkowski difference: Wolfe's nearest point of `B - A` to the origin
-/// (unless `enclosing` is given), then an expanding polytope in `A - B` whose closed,
+/// (unless `nearest` is given), then an expanding polytope in `A - B` whose closed,
 /// origin-enclosing surface is verified before it proves `upper`, and when that leaves a gap
 /// (touching, flat or degenerate differences) the exhaustive candidate axes (face normals and
 /// crossing Gauss-map arcs), for pairs where they cost at most about 2^22 steps. Every loop is
@@ -81,7 +82,7 @@ struct PenetrationBounds {
 /// body), so the lower bound's margin includes both bodies' `scan_shortfall`. Once a thread's
 /// buffers have grown (and the bodies' trees are built), nothing is allocated.
 PenetrationBounds penetration(const FramedBody& a, const FramedBody& b, const Vector3& hint,
-                              const MinNormPoint* enclosing, Scalar tolerance, int max_iterations);
+                              const MinNormPoint* nearest, Scalar tolerance, int max_iterations);
 
 /// The same for the convex hulls of the rows of `a` and `b` (points given in the frame), whose
 /// hulls are `hull_a` and `hull_b`.
