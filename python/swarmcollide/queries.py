@@ -451,9 +451,11 @@ def collide_many(
     runs. Bounding balls proven apart settle a row as apart: its ``lower_bound`` is the balls'
     separation and its ``distance`` that of the bodies' first points (its witnesses). Balls
     proven inside both bodies (a closed hull surface around the centre) that overlap settle it as
-    colliding: distance and ``lower_bound`` 0, a point common to both balls as the witness. Both
-    are valid bounds, looser than a solver's. Takes the keywords of ``distance_many`` and
-    ``escalate``.
+    colliding: distance and ``lower_bound`` 0, a point common to both balls as the witness. Bodies
+    of at most 32 points proven apart along the axis through those centres (outward-rounded) are
+    settled as apart too: ``lower_bound`` is their separation along it, the witnesses their
+    supporting points. All are valid bounds, looser than a solver's. Takes the keywords of
+    ``distance_many`` and ``escalate``.
 
     Examples
     --------
