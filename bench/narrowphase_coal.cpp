@@ -109,6 +109,15 @@ struct Options {
   std::string only;
 };
 
+// Ends the process without running the libraries' static destructors. Two octomap versions are
+// loaded (Debian's, which FCL links, and coal's own), and their static objects share symbols:
+// exit would destroy one of them twice ("free(): double free detected", an abort).
+[[noreturn]] void leave(int status) {
+  std::fflush(stdout);
+  std::fflush(stderr);
+  std::_Exit(status);
+}
+
 Options parse(int argc, char** argv) {
   Options o;
   for (int i = 1; i < argc; ++i) {
@@ -132,7 +141,7 @@ Options parse(int argc, char** argv) {
       std::fprintf(stderr,
                    "usage: %s [--quick] [--sizes 8,64,...] [--rounds R] [--only NAME] [--json PATH]\n",
                    argv[0]);
-      std::exit(2);
+      leave(2);
     }
   }
   if (o.sizes.empty()) {
@@ -320,5 +329,5 @@ int main(int argc, char** argv) {
         << ",\n\"rows\": [\n"
         << rows << "\n]}\n";
   }
-  return 0;
+  leave(0);
 }

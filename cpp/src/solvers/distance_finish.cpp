@@ -100,17 +100,22 @@ void DistanceFinish::from(const Vector3& n, int& hint_a, int& hint_b, BestBounds
 
 void DistanceFinish::whole(const Vector3& start, int& hint_a, int& hint_b, BestBounds& bounds,
                            Goal goal) {
-  // The supports climb from the previous ones, unless the direction turned by more than about 25
-  // degrees (as Wolfe's first steps do): the hull's climbing starts are then nearer.
+  // The supports of large bodies climb from the previous ones, unless the direction turned by
+  // more than about 25 degrees (as Wolfe's first steps do): the hull's climbing starts are then
+  // nearer. Small bodies are scanned, whatever the hints.
+  const bool climbs =
+      pair_.a.size() > kHillClimbingThreshold || pair_.b.size() > kHillClimbingThreshold;
   Vector3 previous = start;
   const auto oracle = [&](const Vector3& d) {
     ++evaluations_;
-    const Scalar along = d.dot(previous);
-    if (along < 0 || along * along < kNearbyCosine * kNearbyCosine * d.squaredNorm() *
-                                          previous.squaredNorm()) {
-      hint_a = hint_b = -1;
+    if (climbs) {
+      const Scalar along = d.dot(previous);
+      if (along < 0 || along * along < kNearbyCosine * kNearbyCosine * d.squaredNorm() *
+                                            previous.squaredNorm()) {
+        hint_a = hint_b = -1;
+      }
+      previous = d;
     }
-    previous = d;
     return minkowski_support(pair_.a, pair_.b, d, hint_a, hint_b);
   };
   // The bounds of a corral: its witnesses (an upper bound) and the separation along them (a lower
@@ -130,8 +135,7 @@ void DistanceFinish::whole(const Vector3& start, int& hint_a, int& hint_b, BestB
   // bounds are proven, the upper one from the corral's witnesses, and the search stops if they
   // meet it too (rounding aside, they do).
   bool offered = false;
-  const auto stop = [&](const MinNormPoint& current, const OraclePoint* q) {
-    const Scalar norm = current.x.norm();
+  const auto stop = [&](const MinNormPoint& current, Scalar norm, const OraclePoint* q) {
     const Scalar lower = q != nullptr ? current.x.dot(q->p) / norm : bounds.lower();
     const Scalar best_lower = std::max(lower, bounds.lower());
     // Every goal needs the bounds within the tolerance (and rounding) of each other, or a

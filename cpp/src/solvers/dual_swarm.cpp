@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <optional>
 #include <utility>
 #include <vector>
@@ -40,8 +41,8 @@ class DualSearch {
       : pair_(pair),
         start_(start),
         options_(options.dual),
+        seed_(options.seed),
         goal_(goal),
-        swarm_(pair, options.dual, options.seed),
         finish_(pair, options.dual.feature_tolerance * pair.frame.size,
                 options.exact.max_iterations) {}
 
@@ -64,7 +65,7 @@ class DualSearch {
     }
     Answer answer = bounds_.answer(pair_);
     answer.iterations = iterations_;
-    answer.evaluations = swarm_.evaluations() + finish_.evaluations();
+    answer.evaluations = (swarm_ ? swarm_->evaluations() : 0) + finish_.evaluations();
     answer.history = std::move(history_);
     return answer;
   }
@@ -83,9 +84,9 @@ class DualSearch {
   // The swarm's global best becomes a lower bound, and the finish runs from it whenever it
   // reaches a new pair of support points (or always, with `force`).
   void improve(bool force) {
-    const Vector3 n = swarm_.best_direction();
-    bounds_.offer_lower(n, swarm_.best_value());
-    const std::pair<int, int> supports{swarm_.best_support_a(), swarm_.best_support_b()};
+    const Vector3 n = swarm_->best_direction();
+    bounds_.offer_lower(n, swarm_->best_value());
+    const std::pair<int, int> supports{swarm_->best_support_a(), swarm_->best_support_b()};
     if (!force && supports == finished_) return;
     finished_ = supports;
     hint_a_ = supports.first;
@@ -94,11 +95,13 @@ class DualSearch {
   }
 
   void round(const Vector3& centre, Scalar radius) {
-    swarm_.seed(centre, radius, hint_a_, hint_b_);
+    // Built at the first round: Wolfe's algorithm settles most pairs without one.
+    if (!swarm_) swarm_.emplace(pair_, options_, seed_);
+    swarm_->seed(centre, radius, hint_a_, hint_b_);
     finished_ = {-1, -1};
     improve(false);
     for (int iteration = 0; iteration < options_.max_iterations && !reached(); ++iteration) {
-      if (swarm_.step()) improve(false);
+      if (swarm_->step()) improve(false);
       ++iterations_;
       record();
     }
@@ -108,8 +111,9 @@ class DualSearch {
   const FramedPair& pair_;
   const DualStart* start_;
   const DualOptions& options_;
+  const std::uint64_t seed_;
   const Goal goal_;
-  DirectionSwarm swarm_;
+  std::optional<DirectionSwarm> swarm_;
   DistanceFinish finish_;
   BestBounds bounds_;
   std::pair<int, int> finished_{-1, -1};

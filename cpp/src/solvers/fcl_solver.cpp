@@ -186,7 +186,7 @@ Answer solve_fcl(const FramedPair& pair, const QueryOptions& options, Goal goal)
   // one, often an iteration or two short), then from the direction if that simplex was too
   // degenerate to continue; signed distances from its direction.
   const Vector3 start =
-      usable ? Vector3(wolfe_detail::combine(corral.corral, corral.weights, corral.size))
+      usable ? Vector3(combination(corral.corral, corral.weights, corral.size))
              : Vector3::Zero();
   Answer exact;
   if (goal == Goal::signed_distance) {

@@ -21,14 +21,22 @@ Witness witness_of(const FramedPair& pair, const MinNormPoint& corral) {
   w.size = corral.size;
   Scalar total = 0;
   for (int k = 0; k < corral.size; ++k) total += corral.weights[k];
+  // Summed in locals: the compiler cannot keep the witness's own fields in registers across the
+  // vertex reads (they might alias), and the stores and reloads of each sum would stall.
+  Vector3 point_a = Vector3::Zero();
+  Vector3 point_b = Vector3::Zero();
   for (int k = 0; k < corral.size; ++k) {
-    w.ia[k] = corral.corral[k].ia;
-    w.ib[k] = corral.corral[k].ib;
-    w.weights[k] = corral.weights[k] / total;
-    w.point_a += w.weights[k] * pair.a.vertex(w.ia[k]);
-    w.point_b += w.weights[k] * pair.b.vertex(w.ib[k]);
+    const OraclePoint& q = corral.corral[k];
+    const Scalar weight = corral.weights[k] / total;
+    w.ia[k] = q.ia;
+    w.ib[k] = q.ib;
+    w.weights[k] = weight;
+    point_a += weight * pair.a.vertex(q.ia);
+    point_b += weight * pair.b.vertex(q.ib);
   }
-  w.distance = (w.point_b - w.point_a).norm();
+  w.point_a = point_a;
+  w.point_b = point_b;
+  w.distance = (point_b - point_a).norm();
   if (corral.size == 4) {
     w.encloses_origin = encloses_origin(
         {corral.corral[0].p, corral.corral[1].p, corral.corral[2].p, corral.corral[3].p});

@@ -1,0 +1,212 @@
+// The point of least norm of a simplex of up to four points, in closed form; private to the
+// library's sources.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+#include "swarmcollide/types.hpp"
+
+namespace swarmcollide::detail {
+
+/// The nearest point to the origin of the hull of `s[0], ..., s[m-1]` (m <= 4, each `s[k].p` a
+/// point), as positive weights on the smallest face of the simplex that holds it: that face's
+/// points, in their order, into `face` (another array than `s`), their weights (summing to one
+/// up to rounding) into `w`, and their count into `size`.
+///
+/// Closed form, as GJK projects (Ericson, Real-Time Collision Detection, 5.1): the origin's
+/// barycentric coordinates in the simplex's affine hull; when all are positive the nearest point
+/// is inside, otherwise it lies on a face opposite a point whose coordinate is not positive (only
+/// those faces face the origin), and the nearest of those faces' nearest points is taken. The
+/// coordinates come from cross products of the edges from `s[0]`, which keeps them accurate for
+/// long thin simplexes. For degenerate simplexes (duplicate, collinear or coplanar points, to
+/// within a sine of 1e-8) all faces are tried: the answer is always a convex combination of the
+/// points, and the nearest one whenever the coordinates are decided above rounding.
+template <class Point>
+void nearest_simplex_point(const std::array<Point, 4>& s, int m, std::array<Point, 4>& face,
+                           std::array<Scalar, 4>& w, int& size);
+
+namespace nearest_simplex_detail {
+
+// Below this sine of the angle between an edge and the rest of the simplex (the line of the
+// other edge, the plane of the other two), the barycentric coordinates are left undecided by
+// rounding: every face is tried.
+constexpr Scalar kFlat = 1e-8;
+
+// The nearest point found so far: a face of the simplex (`size` of its points, by index,
+// increasing) with weights on them, and the squared norm of their combination. Candidates are
+// offered to it in place: returning faces by value costs more than the arithmetic here.
+struct Nearest {
+  std::array<int, 4> index{};
+  std::array<Scalar, 4> weight{};
+  int size = 0;
+  Scalar norm2 = std::numeric_limits<Scalar>::infinity();
+};
+
+inline void offer_vertex(const Vector3& p, int i, Nearest& best) {
+  const Scalar norm2 = p.squaredNorm();
+  if (!(norm2 < best.norm2)) return;
+  best.index[0] = i;
+  best.weight[0] = 1;
+  best.size = 1;
+  best.norm2 = norm2;
+}
+
+// The segment from a (index ia) to b (index ib).
+inline void offer_segment(const Vector3& a, const Vector3& b, int ia, int ib, Nearest& best) {
+  const Vector3 ab = b - a;
+  const Scalar along = -a.dot(ab);  // the origin's projection, times |ab|^2
+  if (!(along > 0)) return offer_vertex(a, ia, best);
+  const Scalar length2 = ab.squaredNorm();
+  if (!(along < length2)) return offer_vertex(b, ib, best);
+  const Scalar wb = along / length2;
+  const Scalar wa = 1 - wb;
+  if (!(wa > 0)) return offer_vertex(b, ib, best);
+  const Scalar norm2 = (wa * a + wb * b).squaredNorm();
+  if (!(norm2 < best.norm2)) return;
+  best.index[0] = ia;
+  best.index[1] = ib;
+  best.weight[0] = wa;
+  best.weight[1] = wb;
+  best.size = 2;
+  best.norm2 = norm2;
+}
+
+// The triangle a, b, c (indices ia, ib, ic).
+inline void offer_triangle(const Vector3& a, const Vector3& b, const Vector3& c, int ia, int ib,
+                           int ic, Nearest& best) {
+  const Vector3 ab = b - a;
+  const Vector3 ac = c - a;
+  const Vector3 n = ab.cross(ac);
+  const Scalar nn = n.squaredNorm();
+  // The barycentric coordinates times |n|^2, by Lagrange's identity.
+  const Scalar vb = -n.dot(a.cross(ac));
+  const Scalar vc = -n.dot(ab.cross(a));
+  const Scalar va = nn - vb - vc;
+  if (!(nn > kFlat * kFlat * ab.squaredNorm() * ac.squaredNorm())) {
+    offer_segment(b, c, ib, ic, best);
+    offer_segment(a, c, ia, ic, best);
+    return offer_segment(a, b, ia, ib, best);
+  }
+  if (va > 0 && vb > 0 && vc > 0) {
+    const Scalar wb = vb / nn;
+    const Scalar wc = vc / nn;
+    const Scalar wa = 1 - wb - wc;
+    if (wa > 0 && wb > 0 && wc > 0) {
+      const Scalar norm2 = (wa * a + wb * b + wc * c).squaredNorm();
+      if (norm2 < best.norm2) {
+        best.index[0] = ia;
+        best.index[1] = ib;
+        best.index[2] = ic;
+        best.weight[0] = wa;
+        best.weight[1] = wb;
+        best.weight[2] = wc;
+        best.size = 3;
+        best.norm2 = norm2;
+      }
+      return;
+    }
+    // Coordinates positive yet a weight rounded to zero: every edge.
+    offer_segment(b, c, ib, ic, best);
+    offer_segment(a, c, ia, ic, best);
+    return offer_segment(a, b, ia, ib, best);
+  }
+  // Outside (or degenerate): the edges opposite the coordinates that are not positive.
+  if (!(va > 0)) offer_segment(b, c, ib, ic, best);
+  if (!(vb > 0)) offer_segment(a, c, ia, ic, best);
+  if (!(vc > 0)) offer_segment(a, b, ia, ib, best);
+}
+
+// The tetrahedron a, b, c, d (indices 0 to 3).
+inline void offer_tetrahedron(const Vector3& a, const Vector3& b, const Vector3& c,
+                              const Vector3& d, Nearest& best) {
+  const Vector3 e1 = b - a;
+  const Vector3 e2 = c - a;
+  const Vector3 e3 = d - a;
+  const Vector3 e23 = e2.cross(e3);
+  const Scalar volume = e1.dot(e23);
+  // Flat: e1 nearly in the plane of e2 and e3, or those two nearly parallel.
+  const Scalar area2 = e23.squaredNorm();
+  constexpr Scalar kFlat2 = kFlat * kFlat;
+  if (!(volume * volume > kFlat2 * e1.squaredNorm() * area2 &&
+        area2 > kFlat2 * e2.squaredNorm() * e3.squaredNorm())) {
+    offer_triangle(b, c, d, 1, 2, 3, best);
+    offer_triangle(a, c, d, 0, 2, 3, best);
+    offer_triangle(a, b, d, 0, 1, 3, best);
+    return offer_triangle(a, b, c, 0, 1, 2, best);
+  }
+  // Cramer's rule; where the origin is inside, repeated once for its residual (iterative
+  // refinement), the common point's distance from the origin: for a flat tetrahedron the first
+  // solve's can be far above rounding.
+  const Scalar inverse = 1 / volume;
+  std::array<Scalar, 4> alpha{};
+  Vector3 r = a;
+  const auto interior = [&alpha] {
+    alpha[0] = 1 - alpha[1] - alpha[2] - alpha[3];
+    return alpha[0] > 0 && alpha[1] > 0 && alpha[2] > 0 && alpha[3] > 0;
+  };
+  for (int pass = 0; pass < 2; ++pass) {
+    alpha[1] -= r.dot(e23) * inverse;
+    alpha[2] -= e1.dot(r.cross(e3)) * inverse;
+    alpha[3] -= e1.dot(e2.cross(r)) * inverse;
+    r = a + alpha[1] * e1 + alpha[2] * e2 + alpha[3] * e3;
+    if (!interior()) break;
+  }
+  if (interior()) {
+    best.index = {0, 1, 2, 3};
+    best.weight = alpha;
+    best.size = 4;
+    best.norm2 = r.squaredNorm();
+    return;
+  }
+  if (!(alpha[0] > 0)) offer_triangle(b, c, d, 1, 2, 3, best);
+  if (!(alpha[1] > 0)) offer_triangle(a, c, d, 0, 2, 3, best);
+  if (!(alpha[2] > 0)) offer_triangle(a, b, d, 0, 1, 3, best);
+  if (!(alpha[3] > 0)) offer_triangle(a, b, c, 0, 1, 2, best);
+}
+
+}  // namespace nearest_simplex_detail
+
+template <class Point>
+void nearest_simplex_point(const std::array<Point, 4>& s, int m, std::array<Point, 4>& face,
+                           std::array<Scalar, 4>& w, int& size) {
+  using namespace nearest_simplex_detail;
+  Scalar reach = 0;
+  for (int k = 0; k < m; ++k) reach = std::max(reach, s[k].p.cwiseAbs().maxCoeff());
+  std::array<Vector3, 4> scaled;
+  std::array<const Vector3*, 4> p = {&s[0].p, &s[1].p, &s[2].p, &s[3].p};
+  // The triangle's squared normal is of the fourth power of the coordinates, which overflows or
+  // underflows for coordinates far from one: such points are first scaled by a power of two
+  // (exactly), which leaves the weights as they are.
+  constexpr Scalar kSmallest = 0x1p-100;
+  constexpr Scalar kLargest = 0x1p100;
+  if ((reach < kSmallest && reach > 0) || (reach > kLargest && std::isfinite(reach))) {
+    const Scalar factor = std::ldexp(Scalar(1), -std::ilogb(reach));
+    for (int k = 0; k < m; ++k) {
+      scaled[k] = factor * s[k].p;
+      p[k] = &scaled[k];
+    }
+  }
+  Nearest f;
+  switch (m) {
+    case 1:
+      offer_vertex(*p[0], 0, f);
+      break;
+    case 2:
+      offer_segment(*p[0], *p[1], 0, 1, f);
+      break;
+    case 3:
+      offer_triangle(*p[0], *p[1], *p[2], 0, 1, 2, f);
+      break;
+    default:
+      offer_tetrahedron(*p[0], *p[1], *p[2], *p[3], f);
+      break;
+  }
+  for (int k = 0; k < f.size; ++k) face[k] = s[f.index[k]];
+  w = f.weight;
+  size = f.size;
+}
+
+}  // namespace swarmcollide::detail
