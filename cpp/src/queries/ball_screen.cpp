@@ -122,14 +122,33 @@ BodyBalls body_balls(const ConvexPolyhedron& body, bool with_inner) {
   return balls;
 }
 
-std::optional<ScreenVerdict> collision_by_balls(const ConvexPolyhedron& a, const Pose& pose_a,
-                                              const BodyBalls& balls_a, const ConvexPolyhedron& b,
-                                              const Pose& pose_b, const BodyBalls& balls_b,
-                                              Scalar relative_tolerance) {
-  const Vector3 centre_a = pose_a.rotation * a.bounds().centre + pose_a.translation;
-  const Vector3 centre_b = pose_b.rotation * b.bounds().centre + pose_b.translation;
-  const Vector3 between = centre_b - centre_a;
-  const Scalar centres = length(between);
+namespace {
+
+// Where the centres of the bodies' boxes land, as both screens read them.
+struct Centres {
+  Vector3 a;
+  Vector3 b;
+  Vector3 between;
+  Scalar length;
+};
+
+Centres centres_of(const ConvexPolyhedron& a, const Pose& pose_a, const ConvexPolyhedron& b,
+                   const Pose& pose_b) {
+  Centres c;
+  c.a = pose_a.rotation * a.bounds().centre + pose_a.translation;
+  c.b = pose_b.rotation * b.bounds().centre + pose_b.translation;
+  c.between = c.b - c.a;
+  c.length = length(c.between);
+  return c;
+}
+
+std::optional<ScreenVerdict> by_balls(const ConvexPolyhedron& a, const Pose& pose_a,
+                                      const BodyBalls& balls_a, const ConvexPolyhedron& b,
+                                      const Pose& pose_b, const BodyBalls& balls_b,
+                                      const Centres& at, Scalar relative_tolerance) {
+  const Vector3& centre_a = at.a;
+  const Vector3& between = at.between;
+  const Scalar centres = at.length;
   const Scalar outer = (balls_a.outer + balls_b.outer) * (1 + kStretch);
   // Each centre's coordinates are rounded by at most 7 u of |c| + |t| (c the box centre), their
   // distance by another 5 u of itself, and the sums below by a few u of their terms: 16 u of it
@@ -162,16 +181,13 @@ std::optional<ScreenVerdict> collision_by_balls(const ConvexPolyhedron& a, const
   return verdict;
 }
 
-std::optional<ScreenVerdict> apart_along_centres(const ConvexPolyhedron& a, const Pose& pose_a,
-                                                 const BodyBalls& balls_a,
-                                                 const ConvexPolyhedron& b, const Pose& pose_b,
-                                                 const BodyBalls& balls_b,
-                                                 Scalar relative_tolerance) {
+std::optional<ScreenVerdict> along_centres(const ConvexPolyhedron& a, const Pose& pose_a,
+                                           const BodyBalls& balls_a, const ConvexPolyhedron& b,
+                                           const Pose& pose_b, const BodyBalls& balls_b,
+                                           const Centres& at, Scalar relative_tolerance) {
   if (a.size() > kHillClimbingThreshold || b.size() > kHillClimbingThreshold) return std::nullopt;
-  const Vector3 centre_a = pose_a.rotation * a.bounds().centre + pose_a.translation;
-  const Vector3 centre_b = pose_b.rotation * b.bounds().centre + pose_b.translation;
-  const Vector3 between = centre_b - centre_a;
-  const Scalar centres = length(between);
+  const Vector3& between = at.between;
+  const Scalar centres = at.length;
   if (!(centres > 0) || !std::isfinite(centres)) return std::nullopt;
   const Vector3 axis = between / centres;
   // A placed point is R (c + x) + t, x a centred point, so its height along the axis is
@@ -211,6 +227,39 @@ std::optional<ScreenVerdict> apart_along_centres(const ConvexPolyhedron& a, cons
   verdict.distance = length(verdict.point_b - verdict.point_a);
   if (!std::isfinite(verdict.distance)) return std::nullopt;
   return verdict;
+}
+
+}  // namespace
+
+std::optional<ScreenVerdict> collision_by_balls(const ConvexPolyhedron& a, const Pose& pose_a,
+                                              const BodyBalls& balls_a, const ConvexPolyhedron& b,
+                                              const Pose& pose_b, const BodyBalls& balls_b,
+                                              Scalar relative_tolerance) {
+  return by_balls(a, pose_a, balls_a, b, pose_b, balls_b, centres_of(a, pose_a, b, pose_b),
+                  relative_tolerance);
+}
+
+std::optional<ScreenVerdict> apart_along_centres(const ConvexPolyhedron& a, const Pose& pose_a,
+                                                 const BodyBalls& balls_a,
+                                                 const ConvexPolyhedron& b, const Pose& pose_b,
+                                                 const BodyBalls& balls_b,
+                                                 Scalar relative_tolerance) {
+  return along_centres(a, pose_a, balls_a, b, pose_b, balls_b, centres_of(a, pose_a, b, pose_b),
+                       relative_tolerance);
+}
+
+std::optional<ScreenVerdict> collision_by_screens(const ConvexPolyhedron& a, const Pose& pose_a,
+                                                  const BodyBalls& balls_a,
+                                                  const ConvexPolyhedron& b, const Pose& pose_b,
+                                                  const BodyBalls& balls_b,
+                                                  Scalar relative_tolerance) {
+  const Centres at = centres_of(a, pose_a, b, pose_b);
+  std::optional<ScreenVerdict> settled =
+      by_balls(a, pose_a, balls_a, b, pose_b, balls_b, at, relative_tolerance);
+  if (!settled) {
+    settled = along_centres(a, pose_a, balls_a, b, pose_b, balls_b, at, relative_tolerance);
+  }
+  return settled;
 }
 
 }  // namespace swarmcollide::detail

@@ -60,4 +60,11 @@ std::optional<ScreenVerdict> apart_along_centres(const ConvexPolyhedron& a, cons
                                                  const BodyBalls& balls_b,
                                                  Scalar relative_tolerance);
 
+/// collision_by_balls, then apart_along_centres, placing the centres once: what a batch row asks.
+std::optional<ScreenVerdict> collision_by_screens(const ConvexPolyhedron& a, const Pose& pose_a,
+                                                  const BodyBalls& balls_a,
+                                                  const ConvexPolyhedron& b, const Pose& pose_b,
+                                                  const BodyBalls& balls_b,
+                                                  Scalar relative_tolerance);
+
 }  // namespace swarmcollide::detail

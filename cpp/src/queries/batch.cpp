@@ -350,12 +350,8 @@ class ConvexRows {
     if (kind_ == Kind::collide) {
       const detail::BodyBalls& balls_a = balls_a_.of(a);
       const detail::BodyBalls& balls_b = balls_b_.of(b);
-      std::optional<detail::ScreenVerdict> settled =
-          detail::collision_by_balls(a, pose_a, balls_a, b, pose_b, balls_b, options.tolerance);
-      if (!settled) {
-        settled = detail::apart_along_centres(a, pose_a, balls_a, b, pose_b, balls_b,
-                                              options.tolerance);
-      }
+      const std::optional<detail::ScreenVerdict> settled =
+          detail::collision_by_screens(a, pose_a, balls_a, b, pose_b, balls_b, options.tolerance);
       if (settled) return rows_.write(row, *settled);
     }
     const detail::FramedPair pair =
