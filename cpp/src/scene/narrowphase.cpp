@@ -420,8 +420,10 @@ void answer_pair(const PlacedBody& a, const PlacedBody& b, PairProof& proof,
     if (add_contact_points(pair, contact, question, out, features) && question.warm &&
         contact.distance < 0) {
       // The last tetrahedron's apex starts the climbs to the new one's.
-      PairProof::Enclosing tetrahedron = proof.enclosing;
-      if (proof.kind != PairProof::Kind::enclosing) tetrahedron.a[3] = tetrahedron.b[3] = -1;
+      PairProof::Enclosing tetrahedron{};
+      const bool kept = proof.kind == PairProof::Kind::enclosing;
+      tetrahedron.a[3] = kept ? proof.enclosing.a[3] : -1;
+      tetrahedron.b[3] = kept ? proof.enclosing.b[3] : -1;
       if (contact_tetrahedron(pair, contact.direction, features, tetrahedron)) {
         proof.kind = PairProof::Kind::enclosing;
         proof.enclosing = tetrahedron;
