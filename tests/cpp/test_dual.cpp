@@ -177,9 +177,9 @@ TEST(Dual, SignedWitnessesLieAlongTheNormalAtAnyTolerance) {
 // The signed distance's proven bounds hold the brute-force one (the oracle's hull of every
 // difference of points) on overlapping, touching, flat and apart pairs, placed by rotations and
 // translations, at scales 2^-997 and 2^996 (about 1e-300 and 1e300) as at 1: the intersection
-// proof, the expanding polytope's verified surface, its witnesses from the last face and the
-// scans that measure the normal. Scales are powers of two, so the oracle of the unscaled pair,
-// scaled, is the truth.
+// proof, the expanding polytope's verified surface, its witnesses from the last face (along the
+// normal at the reported distance) and the scans that measure the normal. Scales are powers of
+// two, so the oracle of the unscaled pair, scaled, is the truth.
 TEST(Dual, SignedDistanceBoundsHoldTheBruteForceOneAtEveryScale) {
   Random rng(2611);
   struct Case {
@@ -232,6 +232,9 @@ TEST(Dual, SignedDistanceBoundsHoldTheBruteForceOneAtEveryScale) {
         EXPECT_GE(r.distance, scale * truth - s.rounding);
         EXPECT_TRUE(r.certified) << "gap " << r.distance - r.lower_bound;
         EXPECT_LE(r.distance - r.lower_bound, s.tolerance + s.rounding);
+        // Measured at unit scale, where the squares of the norm do not overflow.
+        const Vector3 off = (r.point_b - r.point_a - r.distance * r.direction) / scale;
+        EXPECT_LE(off.norm(), (r.distance - r.lower_bound + s.rounding + s.point_rounding) / scale);
         if (truth < -1e-9) EXPECT_TRUE(r.colliding);
         if (truth > 1e-9) EXPECT_FALSE(r.colliding);
       }

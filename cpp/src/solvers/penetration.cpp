@@ -309,8 +309,12 @@ class Solver {
   // The witnesses the expansion's last face gives: where it converged, the face lies in the
   // facet of A - B along the normal, and the origin's foot on it (affine weights, all
   // nonnegative) combines the face's corners into points of both supporting features whose
-  // difference is the separation along the normal. False, leaving `r` alone, when the weights
-  // or the features' slack or the residual say otherwise.
+  // difference is the separation along the normal. Where it stopped early (a loose tolerance),
+  // the corners lie below the supporting planes, by the feature slack reported (at least
+  // `slack`), and the difference is the face's plane distance, the upper bound, along the normal.
+  // False, leaving `r` alone, when the weights are not convex, or the difference is off
+  // `separation * normal` by more than `target` or off `upper * normal` by more than the gap (an
+  // answer's witnesses lie along its normal at its upper bound, to within the gap).
   bool witnesses_from_face(Scalar slack, Scalar target, PenetrationBounds& r) const {
     std::array<OraclePoint, MinNormPoint::kCapacity> corners;
     for (int k = 0; k < 3; ++k) corners[k] = {face_[k].w, face_[k].ia, face_[k].ib};
@@ -330,7 +334,10 @@ class Solver {
       if (alpha[k] == 0) continue;
       const int i = corners[k].ia;
       const int j = corners[k].ib;
-      if (!(top_a - a_.height(i, n) <= slack && b_.height(j, n) - bottom_b <= slack)) return false;
+      // How far the corners fall short of the supporting planes: the features they lie on.
+      const Scalar short_of = std::max(top_a - a_.height(i, n), b_.height(j, n) - bottom_b);
+      if (!std::isfinite(short_of)) return false;
+      slack = std::max(slack, short_of);
       ia[count] = i;
       ib[count] = j;
       weights[count] = alpha[k];
@@ -340,6 +347,7 @@ class Solver {
     }
     const Scalar residual = (point_b - point_a - separation_ * n).norm();
     if (!(residual <= target)) return false;
+    if (!((point_b - point_a - upper() * n).norm() <= upper() - lower())) return false;
     r.point_a = point_a;
     r.point_b = point_b;
     r.weights_a = ConvexWeights(a_.size(), ia, weights, count);
