@@ -151,8 +151,8 @@ Answer solve_fcl(const FramedPair& pair, const QueryOptions& options, Goal goal)
     const int ia = support_a[k];
     const int ib = support_b[k];
     total += weight[k];
-    // Two of FCL's points may be the same pair of vertices: one corral point (Wolfe's affine
-    // solves need distinct points).
+    // Two of FCL's points may be the same pair of vertices: one corral point, their weights
+    // summed.
     int same = 0;
     while (same < corral.size && !(corral.corral[same].ia == ia && corral.corral[same].ib == ib))
       ++same;

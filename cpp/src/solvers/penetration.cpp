@@ -11,6 +11,7 @@
 #include "candidate_axes.hpp"
 #include "expanding_polytope.hpp"
 #include "minkowski.hpp"
+#include "nearest_simplex_point.hpp"
 #include "wolfe_min_norm.hpp"
 
 namespace swarmcollide::detail {
@@ -307,51 +308,50 @@ class Solver {
   }
 
   // The witnesses the expansion's last face gives: where it converged, the face lies in the
-  // facet of A - B along the normal, and the origin's foot on it (affine weights, all
-  // nonnegative) combines the face's corners into points of both supporting features whose
-  // difference is the separation along the normal. Where it stopped early (a loose tolerance),
-  // the corners lie below the supporting planes, by the feature slack reported (at least
-  // `slack`), and the difference is the face's plane distance, the upper bound, along the normal.
-  // False, leaving `r` alone, when the weights are not convex, or the difference is off
-  // `separation * normal` by more than `target` or off `upper * normal` by more than the gap (an
-  // answer's witnesses lie along its normal at its upper bound, to within the gap).
+  // facet of A - B along the normal, and the origin's nearest point on it (its foot on the
+  // face's plane, inside the face) combines the face's corners into points of both supporting
+  // features whose difference is the separation along the normal. Where it stopped early (a
+  // loose tolerance), the corners lie below the supporting planes, by the feature slack reported
+  // (at least `slack`), and the difference is the face's plane distance, the upper bound, along
+  // the normal. False, leaving `r` alone, when the difference is off `separation * normal` by
+  // more than `target` (a foot outside the face, among others) or off `upper * normal` by more
+  // than the gap (an answer's witnesses lie along its normal at its upper bound, to within the
+  // gap).
   bool witnesses_from_face(Scalar slack, Scalar target, PenetrationBounds& r) const {
     std::array<OraclePoint, MinNormPoint::kCapacity> corners;
     for (int k = 0; k < 3; ++k) corners[k] = {face_[k].w, face_[k].ia, face_[k].ib};
+    std::array<OraclePoint, MinNormPoint::kCapacity> nearest;
     std::array<Scalar, MinNormPoint::kCapacity> alpha{};
-    if (!wolfe_detail::affine_minimizer(corners, 3, alpha)) return false;
+    int size = 0;
+    nearest_simplex_point(corners, 3, nearest, alpha, size);
     const Vector3& n = normal_;
     const Scalar top_a = a_.height(top_a_, n);
     const Scalar bottom_b = b_.height(top_b_, n);
     std::array<int, MinNormPoint::kCapacity> ia{};
     std::array<int, MinNormPoint::kCapacity> ib{};
     std::array<Scalar, MinNormPoint::kCapacity> weights{};
-    int count = 0;
     Vector3 point_a = Vector3::Zero();
     Vector3 point_b = Vector3::Zero();
-    for (int k = 0; k < 3; ++k) {
-      if (!(alpha[k] >= 0)) return false;
-      if (alpha[k] == 0) continue;
-      const int i = corners[k].ia;
-      const int j = corners[k].ib;
+    for (int k = 0; k < size; ++k) {
+      const int i = nearest[k].ia;
+      const int j = nearest[k].ib;
       // How far the corners fall short of the supporting planes: the features they lie on.
       const Scalar short_of = std::max(top_a - a_.height(i, n), b_.height(j, n) - bottom_b);
       if (!std::isfinite(short_of)) return false;
       slack = std::max(slack, short_of);
-      ia[count] = i;
-      ib[count] = j;
-      weights[count] = alpha[k];
+      ia[k] = i;
+      ib[k] = j;
+      weights[k] = alpha[k];
       point_a += alpha[k] * a_.vertex(i);
       point_b += alpha[k] * b_.vertex(j);
-      ++count;
     }
     const Scalar residual = (point_b - point_a - separation_ * n).norm();
     if (!(residual <= target)) return false;
     if (!((point_b - point_a - upper() * n).norm() <= upper() - lower())) return false;
     r.point_a = point_a;
     r.point_b = point_b;
-    r.weights_a = ConvexWeights(a_.size(), ia, weights, count);
-    r.weights_b = ConvexWeights(b_.size(), ib, weights, count);
+    r.weights_a = ConvexWeights(a_.size(), ia, weights, size);
+    r.weights_b = ConvexWeights(b_.size(), ib, weights, size);
     r.witness_residual = residual;
     r.feature_slack = slack;
     return true;
