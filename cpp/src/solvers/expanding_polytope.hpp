@@ -2,6 +2,7 @@
 #pragma once
 
 #include <array>
+#include <limits>
 #include <vector>
 
 #include "../geometry/framed_body.hpp"
@@ -23,9 +24,10 @@ struct ExpansionResult {
   /// Proven `depth >= depth_lower >= 0` when `verified` (the origin is then in `A - B`).
   Scalar depth_lower = 0;
   /// The direction of least support `h(n) = max_i n.x_i - min_j n.y_j` met, i.e. of largest
-  /// separation `s(n) = -h(n)`, from hill-climbed supports (not proven).
+  /// separation `s(n) = -h(n)`, from hill-climbed supports (not proven); minus infinity when the
+  /// expansion met none (its start was too flat to make a face).
   Vector3 best_normal = Vector3::UnitX();
-  Scalar best_separation = -1e300;
+  Scalar best_separation = -std::numeric_limits<Scalar>::infinity();
   /// Support indices at `best_normal`, to warm-start later climbs.
   int best_ia = -1;
   int best_ib = -1;
