@@ -419,6 +419,35 @@ TEST(Batch, InnerBallsProveContact) {
   EXPECT_GT(settled_by_balls, 20);
 }
 
+// A thin tetrahedron's box centre lies outside it, so it has no inner ball (radius 0). A small
+// cube about that centre, apart from the tetrahedron, has an inner ball holding the centre: the
+// balls must not prove contact (they did, with a common point outside the tetrahedron).
+TEST(Batch, AThinBodyWithoutAnInnerBallIsNotProvenInContact) {
+  const ConvexPolyhedron thin =
+      point_set({Vector3(0, 0, 0), Vector3(1, 0, 0), Vector3(0, 1, 0), Vector3(0, 0, 0.01)});
+  const Vector3 centre(0.5, 0.5, 0.005);
+  ASSERT_EQ(thin.bounds().centre, centre);
+  const auto corner = [&centre](int k) {
+    return Vector3(centre + 0.002 * Vector3(k & 1 ? 1 : -1, k & 2 ? 1 : -1, k & 4 ? 1 : -1));
+  };
+  const ConvexPolyhedron cube = point_set({corner(0), corner(1), corner(2), corner(3), corner(4),
+                                           corner(5), corner(6), corner(7)});
+  EXPECT_EQ(detail::body_balls(thin, true).inner, 0);
+  EXPECT_GT(detail::body_balls(cube, true).inner, 0);
+  QueryOptions exact;
+  exact.method = Method::exact;
+  ASSERT_FALSE(Query(exact).collide(cube, {}, thin, {}));
+  for (const auto& [a, b] : {std::pair{&cube, &thin}, std::pair{&thin, &cube}}) {
+    EXPECT_FALSE(detail::collision_by_balls(*a, {}, detail::body_balls(*a, true), *b, {},
+                                            detail::body_balls(*b, true), 1e-9));
+    BatchPoses poses;
+    poses.b = {Pose{}};
+    const BatchResult verdicts = collide_many(*a, *b, {}, {1}, poses);
+    EXPECT_FALSE(verdicts.colliding(0));
+    EXPECT_TRUE(verdicts.certified(0));
+  }
+}
+
 // The screens' lengths neither underflow nor overflow: bodies 1e-200 across, placed a billion
 // times their size from the origin and rotated about it, get the exact verdicts, as do bodies
 // 1e200 across.

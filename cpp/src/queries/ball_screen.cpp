@@ -173,6 +173,9 @@ std::optional<ScreenVerdict> by_balls(const ConvexPolyhedron& a, const Pose& pos
   }
   const Scalar inner_a = balls_a.inner * (1 - kStretch);
   const Scalar inner_b = balls_b.inner * (1 - kStretch);
+  // A radius of 0 proves nothing, not even the centre: a thin body's box centre may lie outside
+  // it, and taking the centre for a point of the body proved thin bodies in contact that were not.
+  if (!(inner_a > 0 && inner_b > 0)) return std::nullopt;
   if (!(centres + margin < (inner_a + inner_b) * (1 - 4 * kRoundoff))) return std::nullopt;
   // The point splitting the centres' segment in the inner radii's ratio is within each inner ball.
   verdict.colliding = true;
