@@ -1,8 +1,10 @@
-// The coal benches' conversion of a body to coal's convex shape.
+// What the coal benches share: the conversion of a body to coal's convex shape, and how they end.
 #pragma once
 
 #include <coal/shape/convex.h>
 
+#include <cstdio>
+#include <cstdlib>
 #include <memory>
 #include <vector>
 
@@ -29,4 +31,13 @@ inline std::shared_ptr<coal::Convex<coal::Triangle>> to_coal(
       static_cast<unsigned>(triangles->size()));
   shape->computeLocalAABB();
   return shape;
+}
+
+/// Ends the process without running the libraries' static destructors. Two octomap versions are
+/// loaded (Debian's, which FCL links, and coal's own), and their static objects share symbols:
+/// exit would destroy one of them twice ("free(): double free detected", an abort).
+[[noreturn]] inline void leave(int status) {
+  std::fflush(stdout);
+  std::fflush(stderr);
+  std::_Exit(status);
 }

@@ -109,15 +109,6 @@ struct Options {
   std::string only;
 };
 
-// Ends the process without running the libraries' static destructors. Two octomap versions are
-// loaded (Debian's, which FCL links, and coal's own), and their static objects share symbols:
-// exit would destroy one of them twice ("free(): double free detected", an abort).
-[[noreturn]] void leave(int status) {
-  std::fflush(stdout);
-  std::fflush(stderr);
-  std::_Exit(status);
-}
-
 Options parse(int argc, char** argv) {
   Options o;
   for (int i = 1; i < argc; ++i) {

@@ -207,7 +207,7 @@ int main(int argc, char** argv) {
     } else {
       std::fprintf(stderr, "usage: %s [--quick] [--repeats K] [--sizes 8,64] [--json FILE] [--only ours|coal]\n",
                    argv[0]);
-      return 2;
+      leave(2);
     }
   }
   if (quick && sizes.size() == 11) sizes = {4, 8, 64, 512, 4096};
@@ -249,8 +249,5 @@ int main(int argc, char** argv) {
     std::ofstream out(json);
     out << "{\"repeats\": " << repeats << ", \"rows\": [\n" << rows.str() << "\n]}\n";
   }
-  // FCL (through swarmcollide) and coal load two versions of liboctomap, whose static destructors
-  // both free the same objects at exit: leave without running them.
-  std::fflush(stdout);
-  std::_Exit(0);
+  leave(0);
 }
