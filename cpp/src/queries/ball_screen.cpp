@@ -124,6 +124,21 @@ BodyBalls body_balls(const ConvexPolyhedron& body, bool with_inner) {
 
 namespace {
 
+// Apart, proven `lower` apart along `direction`, with the placed points a[i] and b[j] as
+// witnesses; nothing when their distance overflows.
+std::optional<ScreenVerdict> apart(Scalar lower, const Vector3& direction,
+                                   const ConvexPolyhedron& a, const Pose& pose_a, int i,
+                                   const ConvexPolyhedron& b, const Pose& pose_b, int j) {
+  ScreenVerdict verdict;
+  verdict.lower_bound = lower;
+  verdict.direction = direction;
+  verdict.point_a = pose_a.rotation * a.vertices().row(i).transpose() + pose_a.translation;
+  verdict.point_b = pose_b.rotation * b.vertices().row(j).transpose() + pose_b.translation;
+  verdict.distance = length(verdict.point_b - verdict.point_a);
+  if (!std::isfinite(verdict.distance)) return std::nullopt;
+  return verdict;
+}
+
 // Where the centres of the bodies' boxes land, as both screens read them.
 struct Centres {
   Vector3 a;
@@ -160,16 +175,9 @@ std::optional<ScreenVerdict> by_balls(const ConvexPolyhedron& a, const Pose& pos
            b.bounds().centre.lpNorm<1>() + pose_b.translation.lpNorm<1>() + centres + outer) +
       16 * kUnderflow;
   if (!std::isfinite(margin)) return std::nullopt;
-  ScreenVerdict verdict;
   const Scalar lower = centres - outer - margin;
   if (lower > world_tolerance(a, b, centres, relative_tolerance)) {
-    verdict.lower_bound = lower;
-    verdict.direction = between / centres;
-    verdict.point_a = pose_a.rotation * a.vertices().row(0).transpose() + pose_a.translation;
-    verdict.point_b = pose_b.rotation * b.vertices().row(0).transpose() + pose_b.translation;
-    verdict.distance = length(verdict.point_b - verdict.point_a);
-    if (!std::isfinite(verdict.distance)) return std::nullopt;
-    return verdict;
+    return apart(lower, between / centres, a, pose_a, 0, b, pose_b, 0);
   }
   const Scalar inner_a = balls_a.inner * (1 - kStretch);
   const Scalar inner_b = balls_b.inner * (1 - kStretch);
@@ -178,6 +186,7 @@ std::optional<ScreenVerdict> by_balls(const ConvexPolyhedron& a, const Pose& pos
   if (!(inner_a > 0 && inner_b > 0)) return std::nullopt;
   if (!(centres + margin < (inner_a + inner_b) * (1 - 4 * kRoundoff))) return std::nullopt;
   // The point splitting the centres' segment in the inner radii's ratio is within each inner ball.
+  ScreenVerdict verdict;
   verdict.colliding = true;
   verdict.point_a = centre_a + (inner_a / (inner_a + inner_b)) * between;
   verdict.point_b = verdict.point_a;
@@ -222,14 +231,7 @@ std::optional<ScreenVerdict> along_centres(const ConvexPolyhedron& a, const Pose
   if (!std::isfinite(lower) || !(lower > world_tolerance(a, b, centres, relative_tolerance))) {
     return std::nullopt;
   }
-  ScreenVerdict verdict;
-  verdict.lower_bound = lower;
-  verdict.direction = axis;
-  verdict.point_a = pose_a.rotation * a.vertices().row(top_a).transpose() + pose_a.translation;
-  verdict.point_b = pose_b.rotation * b.vertices().row(bottom_b).transpose() + pose_b.translation;
-  verdict.distance = length(verdict.point_b - verdict.point_a);
-  if (!std::isfinite(verdict.distance)) return std::nullopt;
-  return verdict;
+  return apart(lower, axis, a, pose_a, top_a, b, pose_b, bottom_b);
 }
 
 }  // namespace

@@ -167,7 +167,7 @@ std::optional<Answer> overlap_first(const FramedPair& pair, const QueryOptions& 
                                &corral);
     answer.intersection_proven = true;
   } else {
-    answer = answer_from_corral(pair, corral);
+    answer = answer_from_corral(pair, corral, common);
     ++evaluations;
     if (!(answer.lower > kFrameRounding && value_proven(pair, answer))) return std::nullopt;
   }

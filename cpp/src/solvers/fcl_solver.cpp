@@ -168,17 +168,11 @@ Answer solve_fcl(const FramedPair& pair, const QueryOptions& options, Goal goal)
   };
   const bool usable = status != Gjk::Failed && corral.size > 0;
   if (usable) {
-    // As answer_from_corral, except that a corral around the origin proves the overlap, which
-    // settles a verdict and a distance (zero) whatever the separation along the witnesses: those
-    // skip its two scans.
+    // A corral around the origin proves the overlap, which settles a verdict and a distance
+    // (zero) whatever the separation along the witnesses: those skip its two scans.
     const Witness witness = witness_of(pair, corral);
-    Answer answer = answer_from_witness(pair, witness);
-    if (answer.upper > 0) answer.direction = (answer.point_b - answer.point_a) / answer.upper;
-    if (answer.upper > 0 && !(witness.encloses_origin && goal != Goal::signed_distance)) {
-      int hint_a = corral.corral[0].ia;
-      int hint_b = corral.corral[0].ib;
-      answer.lower = separation(pair.a, pair.b, answer.direction, hint_a, hint_b);
-    }
+    const bool separated = !witness.encloses_origin || goal == Goal::signed_distance;
+    Answer answer = answer_from_corral(pair, corral, witness, separated);
     if (settles(answer)) return answer;
   }
   // Where FCL's answer does not settle the goal, the exact solver takes over: distances from

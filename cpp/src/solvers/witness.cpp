@@ -68,13 +68,20 @@ Answer answer_from_witness(const FramedPair& pair, const Witness& witness) {
 }
 
 Answer answer_from_corral(const FramedPair& pair, const MinNormPoint& corral) {
-  Answer answer = answer_from_witness(pair, witness_of(pair, corral));
+  return answer_from_corral(pair, corral, witness_of(pair, corral));
+}
+
+Answer answer_from_corral(const FramedPair& pair, const MinNormPoint& corral,
+                          const Witness& witness, bool separated) {
+  Answer answer = answer_from_witness(pair, witness);
   if (answer.upper > 0) {
     answer.direction = (answer.point_b - answer.point_a) / answer.upper;
-    // Started from the corral's points, hill climbing on large bodies is a few steps.
-    int hint_a = corral.corral[0].ia;
-    int hint_b = corral.corral[0].ib;
-    answer.lower = separation(pair.a, pair.b, answer.direction, hint_a, hint_b);
+    if (separated) {
+      // Started from the corral's points, hill climbing on large bodies is a few steps.
+      int hint_a = corral.corral[0].ia;
+      int hint_b = corral.corral[0].ib;
+      answer.lower = separation(pair.a, pair.b, answer.direction, hint_a, hint_b);
+    }
   }
   return answer;
 }

@@ -43,6 +43,11 @@ Answer answer_from_witness(const FramedPair& pair, const Witness& witness);
 /// encloses the origin.
 Answer answer_from_corral(const FramedPair& pair, const MinNormPoint& corral);
 
+/// The same from the corral's witness, already computed. Without `separated`, no separation is
+/// measured (`lower` stays 0): a caller whose goal a proven intersection settles skips its scans.
+Answer answer_from_corral(const FramedPair& pair, const MinNormPoint& corral,
+                          const Witness& witness, bool separated = true);
+
 /// The answer dense weights on the simplexes give: the witness points they combine from the
 /// bodies' frame points, the distance between them (`upper`) and the separation along them
 /// (`lower`, with its `direction`).
