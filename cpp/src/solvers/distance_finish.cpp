@@ -118,10 +118,15 @@ void DistanceFinish::whole(const Vector3& start, int& hint_a, int& hint_b, BestB
     }
     return minkowski_support(pair_.a, pair_.b, d, hint_a, hint_b);
   };
+  // A corral's witnesses. A distance needs no intersection proof where they prove contact; a
+  // verdict's is kept, as a scene keeps the tetrahedron of one for the pair's next frame.
+  const auto witness = [&](const MinNormPoint& corral) {
+    return goal == Goal::distance ? contact_witness_of(pair_, corral) : witness_of(pair_, corral);
+  };
   // The bounds of a corral: its witnesses (an upper bound) and the separation along them (a lower
   // bound, its supports climbing from the hints).
   const auto offer = [&](const MinNormPoint& corral) {
-    const Witness w = witness_of(pair_, corral);
+    const Witness w = witness(corral);
     bounds.offer_upper(w);
     if (!(w.distance > 0)) return;
     const Vector3 n = (w.point_b - w.point_a) / w.distance;
@@ -143,7 +148,7 @@ void DistanceFinish::whole(const Vector3& start, int& hint_a, int& hint_b, BestB
     const Scalar slack = pair_.tolerance + 2 * kFrameRounding;
     if (norm - std::max(best_lower, Scalar(0)) > slack && !(best_lower > pair_.tolerance)) return false;
     if (!goal_reached(pair_, goal, best_lower, norm, false)) return false;
-    bounds.offer_upper(witness_of(pair_, current));
+    bounds.offer_upper(witness(current));
     if (q != nullptr) bounds.offer_lower(current.x / norm, lower);
     offered = bounds.reached(pair_, goal);
     return offered;
