@@ -140,8 +140,12 @@ void DistanceFinish::whole(const Vector3& start, int& hint_a, int& hint_b, BestB
   // bounds are proven, the upper one from the corral's witnesses, and the search stops if they
   // meet it too (rounding aside, they do).
   bool offered = false;
+  // 1 / |x| of the corral being tested, taken at its first test, before its oracle call: the
+  // division then runs beside the support scans instead of after them.
+  Scalar inverse_norm = 0;
   const auto stop = [&](const MinNormPoint& current, Scalar norm, const OraclePoint* q) {
-    const Scalar lower = q != nullptr ? current.x.dot(q->p) / norm : bounds.lower();
+    if (q == nullptr) inverse_norm = 1 / norm;
+    const Scalar lower = q != nullptr ? current.x.dot(q->p) * inverse_norm : bounds.lower();
     const Scalar best_lower = std::max(lower, bounds.lower());
     // Every goal needs the bounds within the tolerance (and rounding) of each other, or a
     // separation above the tolerance: a cheap test first, as most iterations meet neither.
@@ -149,7 +153,7 @@ void DistanceFinish::whole(const Vector3& start, int& hint_a, int& hint_b, BestB
     if (norm - std::max(best_lower, Scalar(0)) > slack && !(best_lower > pair_.tolerance)) return false;
     if (!goal_reached(pair_, goal, best_lower, norm, false)) return false;
     bounds.offer_upper(witness(current));
-    if (q != nullptr) bounds.offer_lower(current.x / norm, lower);
+    if (q != nullptr) bounds.offer_lower(current.x * inverse_norm, lower);
     offered = bounds.reached(pair_, goal);
     return offered;
   };
