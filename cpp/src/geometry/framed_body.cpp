@@ -19,8 +19,12 @@ Scalar robust_norm(const Vector3& v) {
   return largest > 0 ? largest * (v / largest).norm() : 0;
 }
 
-Vector3 world_centre(const ConvexPolyhedron& body, const Pose& pose, const char* name) {
-  const Vector3 centre = pose.rotation * body.bounds().centre + pose.translation;
+// Where the centre of the body's box lands under the pose (`turned`: its rotation is not the
+// identity, whose product is skipped).
+Vector3 world_centre(const ConvexPolyhedron& body, const Pose& pose, bool turned,
+                     const char* name) {
+  const Vector3 centre = turned ? Vector3(pose.rotation * body.bounds().centre + pose.translation)
+                                : Vector3(body.bounds().centre + pose.translation);
   if (!centre.allFinite()) {
     throw std::invalid_argument(std::string(name) +
                                 " is placed beyond the double range (1.8e308): its position is "
@@ -39,15 +43,15 @@ Vector3 Frame::point_to_world(const Vector3& p) const {
   return world;
 }
 
-FramedBody::FramedBody(const ConvexPolyhedron& body, const Pose& pose, const Vector3& world_centre,
-                       const Frame& frame)
+FramedBody::FramedBody(const ConvexPolyhedron& body, const Pose& pose, bool rotated,
+                       const Vector3& world_centre, const Frame& frame)
     : body_(&body),
       vertices_(&body.centred_vertices()),
       hull_(nullptr),
       given_(nullptr),
       in_frame_(false),
       rotation_(pose.rotation),
-      rotated_(!pose.has_identity_rotation()),
+      rotated_(rotated),
       exponent_(frame.exponent) {
   const HullPoints& read = body.hull_points();
   if (!read.every_point) {
@@ -128,8 +132,10 @@ FramedPair frame_pair(const ConvexPolyhedron& a, const Pose& pose_a, const Conve
 FramedPair frame_validated_pair(const ConvexPolyhedron& a, const Pose& pose_a,
                                 const ConvexPolyhedron& b, const Pose& pose_b,
                                 Scalar relative_tolerance) {
-  const Vector3 centre_a = world_centre(a, pose_a, "a");
-  const Vector3 centre_b = world_centre(b, pose_b, "b");
+  const bool turned_a = !pose_a.has_identity_rotation();
+  const bool turned_b = !pose_b.has_identity_rotation();
+  const Vector3 centre_a = world_centre(a, pose_a, turned_a, "a");
+  const Vector3 centre_b = world_centre(b, pose_b, turned_b, "b");
   Frame frame;
   // Halves first: the sum and difference of two coordinates near the largest double overflow.
   frame.centre = centre_a / 2 + centre_b / 2;
@@ -142,8 +148,8 @@ FramedPair frame_validated_pair(const ConvexPolyhedron& a, const Pose& pose_a,
   }
   frame.exponent = exponent_above(extent);
   frame.size = 2 * times_power_of_two(extent, -frame.exponent);
-  return {frame, FramedBody(a, pose_a, centre_a, frame), FramedBody(b, pose_b, centre_b, frame),
-          relative_tolerance * frame.size};
+  return {frame, FramedBody(a, pose_a, turned_a, centre_a, frame),
+          FramedBody(b, pose_b, turned_b, centre_b, frame), relative_tolerance * frame.size};
 }
 
 }  // namespace swarmcollide::detail

@@ -62,9 +62,9 @@ class FramedBody {
  public:
   /// `world_centre` is where the centre of the body's box lands under the pose,
   /// `pose.rotation * body.bounds().centre + pose.translation`, as frame_pair computed it to
-  /// centre the frame.
-  FramedBody(const ConvexPolyhedron& body, const Pose& pose, const Vector3& world_centre,
-             const Frame& frame);
+  /// centre the frame; `rotated` is `!pose.has_identity_rotation()`, which frame_pair knows too.
+  FramedBody(const ConvexPolyhedron& body, const Pose& pose, bool rotated,
+             const Vector3& world_centre, const Frame& frame);
   /// Points already in the frame, with their hull (`points` of a framed body, for a solver that
   /// reads every point many times): point i is row i as it is, and support queries compare these
   /// coordinates themselves. `body()` is not available; `points` and `hull` must outlive it.

@@ -32,9 +32,17 @@ inline Scalar times_power_of_two(Scalar x, int exponent) {
 /// `length` into [0.5, 1).
 inline int exponent_above(Scalar length) {
   if (!(length > 0)) return 0;
-  int exponent = 0;
-  std::frexp(length, &exponent);
-  return exponent;
+  // A normal double's exponent field, read from its bits (frexp is a library call, and every
+  // query frames its pair with this); subnormals and infinity take frexp.
+  std::uint64_t bits = 0;
+  std::memcpy(&bits, &length, sizeof bits);
+  const int biased = static_cast<int>(bits >> 52) & 0x7ff;
+  if (biased == 0 || biased == 0x7ff) {
+    int exponent = 0;
+    std::frexp(length, &exponent);
+    return exponent;
+  }
+  return biased - 1022;
 }
 
 /// Points translated by `centre` and divided by 2^exponent, which puts them in the unit ball.

@@ -118,10 +118,15 @@ void DistanceFinish::whole(const Vector3& start, int& hint_a, int& hint_b, BestB
     }
     return minkowski_support(pair_.a, pair_.b, d, hint_a, hint_b);
   };
+  // A corral's witnesses. A distance needs no intersection proof where they prove contact; a
+  // verdict's is kept, as a scene keeps the tetrahedron of one for the pair's next frame.
+  const auto witness = [&](const MinNormPoint& corral) {
+    return goal == Goal::distance ? contact_witness_of(pair_, corral) : witness_of(pair_, corral);
+  };
   // The bounds of a corral: its witnesses (an upper bound) and the separation along them (a lower
   // bound, its supports climbing from the hints).
   const auto offer = [&](const MinNormPoint& corral) {
-    const Witness w = witness_of(pair_, corral);
+    const Witness w = witness(corral);
     bounds.offer_upper(w);
     if (!(w.distance > 0)) return;
     const Vector3 n = (w.point_b - w.point_a) / w.distance;
@@ -135,16 +140,20 @@ void DistanceFinish::whole(const Vector3& start, int& hint_a, int& hint_b, BestB
   // bounds are proven, the upper one from the corral's witnesses, and the search stops if they
   // meet it too (rounding aside, they do).
   bool offered = false;
+  // 1 / |x| of the corral being tested, taken at its first test, before its oracle call: the
+  // division then runs beside the support scans instead of after them.
+  Scalar inverse_norm = 0;
   const auto stop = [&](const MinNormPoint& current, Scalar norm, const OraclePoint* q) {
-    const Scalar lower = q != nullptr ? current.x.dot(q->p) / norm : bounds.lower();
+    if (q == nullptr) inverse_norm = 1 / norm;
+    const Scalar lower = q != nullptr ? current.x.dot(q->p) * inverse_norm : bounds.lower();
     const Scalar best_lower = std::max(lower, bounds.lower());
     // Every goal needs the bounds within the tolerance (and rounding) of each other, or a
     // separation above the tolerance: a cheap test first, as most iterations meet neither.
     const Scalar slack = pair_.tolerance + 2 * kFrameRounding;
     if (norm - std::max(best_lower, Scalar(0)) > slack && !(best_lower > pair_.tolerance)) return false;
     if (!goal_reached(pair_, goal, best_lower, norm, false)) return false;
-    bounds.offer_upper(witness_of(pair_, current));
-    if (q != nullptr) bounds.offer_lower(current.x / norm, lower);
+    bounds.offer_upper(witness(current));
+    if (q != nullptr) bounds.offer_lower(current.x * inverse_norm, lower);
     offered = bounds.reached(pair_, goal);
     return offered;
   };

@@ -16,7 +16,10 @@ static_assert(Witness::kCapacity == ConvexWeights::kSparseCapacity);
 
 }  // namespace
 
-Witness witness_of(const FramedPair& pair, const MinNormPoint& corral) {
+namespace {
+
+// The witness of `corral`, without the enclosure test.
+Witness combined_witness(const FramedPair& pair, const MinNormPoint& corral) {
   Witness w;
   w.size = corral.size;
   Scalar total = 0;
@@ -37,9 +40,26 @@ Witness witness_of(const FramedPair& pair, const MinNormPoint& corral) {
   w.point_a = point_a;
   w.point_b = point_b;
   w.distance = (point_b - point_a).norm();
-  if (corral.size == 4) {
-    w.encloses_origin = encloses_origin(
-        {corral.corral[0].p, corral.corral[1].p, corral.corral[2].p, corral.corral[3].p});
+  return w;
+}
+
+bool corral_encloses_origin(const MinNormPoint& corral) {
+  return corral.size == 4 && encloses_origin({corral.corral[0].p, corral.corral[1].p,
+                                              corral.corral[2].p, corral.corral[3].p});
+}
+
+}  // namespace
+
+Witness witness_of(const FramedPair& pair, const MinNormPoint& corral) {
+  Witness w = combined_witness(pair, corral);
+  w.encloses_origin = corral_encloses_origin(corral);
+  return w;
+}
+
+Witness contact_witness_of(const FramedPair& pair, const MinNormPoint& corral) {
+  Witness w = combined_witness(pair, corral);
+  if (!(w.distance + kFrameRounding <= pair.tolerance)) {
+    w.encloses_origin = corral_encloses_origin(corral);
   }
   return w;
 }

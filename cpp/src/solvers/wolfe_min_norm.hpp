@@ -73,13 +73,16 @@ MinNormPoint wolfe_min_norm_from(const Oracle& oracle, const MinNormPoint& start
       if (xx == 0) break;
       const Scalar norm = std::sqrt(xx);
       if (stop(now, norm, static_cast<const OraclePoint*>(nullptr))) break;
+      // A corral of four holds its nearest point inside (the origin, up to rounding): no point can
+      // join it, so no oracle point is asked for.
+      if (m == MinNormPoint::kCapacity) break;
       const OraclePoint q = oracle(x);
       if (stop(now, norm, &q) || xx - x.dot(q.p) <= gap_tolerance * norm) break;
       bool known = false;
       for (int k = 0; k < m; ++k) {
         known = known || (now.corral[k].ia == q.ia && now.corral[k].ib == q.ib);
       }
-      if (known || m == MinNormPoint::kCapacity) break;  // rounding: the optimum is reached
+      if (known) break;  // rounding: the optimum is reached
       now.corral[m] = q;
       ++m;
     }
