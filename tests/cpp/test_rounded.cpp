@@ -11,6 +11,7 @@
 #include "shapes.hpp"
 #include "swarmcollide/geometry/compound_body.hpp"
 #include "swarmcollide/geometry/shapes.hpp"
+#include "swarmcollide/queries/methods.hpp"
 #include "swarmcollide/queries/query.hpp"
 
 namespace swarmcollide::testing {
@@ -256,8 +257,8 @@ TEST(Rounded, VerdictsAtTouchingArePrecise) {
 
 TEST(Rounded, CompoundBodiesOfRoundedParts) {
   const CompoundBody dumbbell(std::vector<ConvexPolyhedron>{
-      ConvexPolyhedron(point_set({Vector3(-2, 0, 0)}), 1),
-      ConvexPolyhedron(point_set({Vector3(2, 0, 0)}), 0.5)});
+      ConvexPolyhedron(point_set({Vector3(-2, 0, 0)}).vertices(), 1),
+      ConvexPolyhedron(point_set({Vector3(2, 0, 0)}).vertices(), 0.5)});
   const CompoundBody ball(ConvexPolyhedron(Sphere(0.25)));
   const Query query = query_of(Method::dual);
   const CompoundResult d = query.distance(dumbbell, {}, ball, at(Vector3(4, 1, 0)));
@@ -291,7 +292,7 @@ TEST(Rounded, BadParametersAreRefusedByName) {
     EXPECT_NE(std::string(error.what()).find("half_length"), std::string::npos);
   }
   // A radius that takes the body past the double range.
-  EXPECT_THROW(Sphere(1.7e308), std::invalid_argument);
+  EXPECT_THROW(Sphere(std::numeric_limits<Scalar>::max()), std::invalid_argument);
   EXPECT_NO_THROW(Box(Vector3::Ones(), 0));
 }
 

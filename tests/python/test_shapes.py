@@ -213,3 +213,17 @@ def test_shapes_are_polyhedra_with_a_radius():
     assert sc.ConvexPolyhedron(rounded, radius=0).radius == 0
     for shape in (sc.Sphere, sc.Capsule, sc.Box, sc.ConvexPolyhedron):
         assert "'ipso'" in shape.__doc__ and "'fcl'" in shape.__doc__
+
+
+def test_a_warm_scene_keeps_the_bound_of_the_rounded_bodies():
+    """A warm scene settles a pair that moved less than its cached lower bound: that bound must be
+    the spheres' (0.26 here), not their centres' (2.26), or the pair moved 0.42 closer stays apart."""
+    scene = sc.Scene(warm_start=True)
+    poses = np.tile(np.eye(4), (2, 1, 1))
+    poses[1, :2, 3] = [1.6, 1.6]  # boxes overlap, spheres 0.26 apart
+    scene.add([sc.Sphere(1.0), sc.Sphere(1.0)], poses=poses)
+    assert scene.colliding_pairs().pairs.tolist() == []
+    moved = np.eye(4)
+    moved[:2, 3] = [1.3, 1.3]  # 1.84 apart: overlapping by 0.16
+    scene.set_poses(1, moved)
+    assert scene.colliding_pairs().pairs.tolist() == [[0, 1]]
