@@ -211,7 +211,8 @@ TEST(Rounded, RoundedBoxesMatchTheSharpBoxesLessTheRadius) {
   for (Method method : kMeasuring) {
     SCOPED_TRACE(method_name(method));
     const Query query = query_of(method);
-    expect_answer(query.distance(round, {}, sharp, beside), 0.75, size_of(round, {}, sharp, beside));
+    expect_answer(query.distance(round, {}, sharp, beside), 0.75,
+                  size_of(round, {}, sharp, beside));
     expect_answer(query.distance(round, {}, round, diagonal), std::sqrt(3.0) - 0.5,
                   size_of(round, {}, round, diagonal));
     expect_answer(query.signed_distance(round, {}, sharp, at(Vector3(2, 0, 0))), -0.25,

@@ -48,7 +48,8 @@ def test_sphere_pairs_match_the_closed_form(method):
 @pytest.mark.parametrize("method", SIGNED_METHODS)
 def test_overlapping_spheres_have_their_depth(method):
     for gap in (0.0, 0.3, 1.2):
-        result = sc.signed_distance(sc.Sphere(1.0), sc.Sphere(0.5), pose_b=at(0, gap), method=method)
+        result = sc.signed_distance(sc.Sphere(1.0), sc.Sphere(0.5), pose_b=at(0, gap),
+                                    method=method)
         assert_encloses(result, gap - 1.5, gap + 2)
         assert result.colliding
         np.testing.assert_allclose(result.point_b - result.point_a,
@@ -66,7 +67,8 @@ def test_a_sphere_against_a_box_is_the_point_distance_less_the_radius(method):
         outside = point_to_box(centre, half)
         if outside == 0:
             continue
-        result = sc.signed_distance(box, sc.Sphere(radius), pose_b=(IDENTITY, centre), method=method)
+        result = sc.signed_distance(box, sc.Sphere(radius), pose_b=(IDENTITY, centre),
+                                    method=method)
         size = np.linalg.norm(centre) + 2 * max(np.linalg.norm(half), radius)
         assert_encloses(result, outside - radius, size)
 
@@ -162,8 +164,8 @@ def test_scenes_of_spheres_and_capsules():
     poses[:, :3, 3] = [[0, 0, 0], [0.7, 0, 0], [3.0, 0, 0]]
     scene.add(bodies, poses=poses)
     # The sphere and the capsule overlap by 0.05 (their cores' boxes are 0.7 apart: the
-    # broadphase finds them only by boxes grown by the radii); the rounded box is 3 - 0.6 - 0.95 = 1.45 from
-    # the capsule.
+    # broadphase finds them only by boxes grown by the radii); the rounded box is
+    # 3 - 0.6 - 0.95 = 1.45 from the capsule.
     assert scene.colliding_pairs().pairs.tolist() == [[0, 1]]
     within = scene.pairs_within(1.5)
     assert within.pairs.tolist() == [[0, 1], [1, 2]]
@@ -217,7 +219,8 @@ def test_shapes_are_polyhedra_with_a_radius():
 
 def test_a_warm_scene_keeps_the_bound_of_the_rounded_bodies():
     """A warm scene settles a pair that moved less than its cached lower bound: that bound must be
-    the spheres' (0.26 here), not their centres' (2.26), or the pair moved 0.42 closer stays apart."""
+    the spheres' (0.26 here), not their cores' (2.26), or the pair moved 0.42 closer stays
+    apart."""
     scene = sc.Scene(warm_start=True)
     poses = np.tile(np.eye(4), (2, 1, 1))
     poses[1, :2, 3] = [1.6, 1.6]  # boxes overlap, spheres 0.26 apart
@@ -227,3 +230,26 @@ def test_a_warm_scene_keeps_the_bound_of_the_rounded_bodies():
     moved[:2, 3] = [1.3, 1.3]  # 1.84 apart: overlapping by 0.16
     scene.set_poses(1, moved)
     assert scene.colliding_pairs().pairs.tolist() == [[0, 1]]
+
+
+@pytest.mark.parametrize("warm", [False, True])
+def test_scene_queries_agree_with_the_pair_queries(warm):
+    rng = np.random.default_rng(4)
+    n = 30
+    radii = rng.uniform(0.05, 0.6, n)
+    bodies = [sc.Sphere(r) if i % 2 else sc.Capsule(r, 0.5) for i, r in enumerate(radii)]
+    poses = np.tile(np.eye(4), (n, 1, 1))
+    poses[:, :3, 3] = rng.uniform(-3, 3, (n, 3))
+    scene = sc.Scene(warm_start=warm)
+    scene.add(bodies, poses=poses)
+    apart = np.full((n, n), np.inf)
+    for i in range(n):
+        for j in range(i + 1, n):
+            apart[i, j] = apart[j, i] = sc.distance(bodies[i], bodies[j], pose_a=poses[i],
+                                                    pose_b=poses[j]).distance
+    pairs = [[i, j] for i in range(n) for j in range(i + 1, n)]
+    assert scene.colliding_pairs().pairs.tolist() == [p for p in pairs if apart[tuple(p)] == 0]
+    assert scene.pairs_within(0.3).pairs.tolist() == [p for p in pairs if apart[tuple(p)] <= 0.3]
+    nearest = scene.nearest(list(range(n)), k=1)
+    np.testing.assert_allclose(nearest.distance, apart.min(axis=1), atol=1e-12)
+    assert nearest.certified.all()
