@@ -271,6 +271,42 @@ TEST(Rounded, CompoundBodiesOfRoundedParts) {
   expect_answer(s, -0.75, 12);
 }
 
+// Random hulls rounded by random radii, under random poses: every method's signed distance is
+// the exact method's on the cores less both radii, symmetric in A and B, and its bounds hold.
+TEST(Rounded, RandomRoundedHullsAreTheirCoresLessTheRadii) {
+  Random rng(11);
+  const Query exact = query_of(Method::exact);
+  for (int trial = 0; trial < 30; ++trial) {
+    const ConvexPolyhedron core_a = rng.body(3 + trial % 6);
+    const ConvexPolyhedron core_b = rng.body(4 + trial % 5);
+    const Scalar r = trial % 3 == 0 ? 0 : rng.uniform(0.01, 1);
+    const Scalar s = rng.uniform(0.01, 1);
+    const ConvexPolyhedron a(core_a.vertices(), r);
+    const ConvexPolyhedron b(core_b.vertices(), s);
+    const Pose pa = at(rng.vector(1), rng.rotation());
+    const Pose pb = at(rng.vector(3), rng.rotation());
+    const Scalar size = size_of(a, pa, b, pb);
+    const DistanceResult cores = exact.signed_distance(core_a, pa, core_b, pb);
+    ASSERT_TRUE(cores.certified);
+    for (Method method : kSigned) {
+      SCOPED_TRACE(method_name(method));
+      const Query query = query_of(method);
+      const DistanceResult ab = query.signed_distance(a, pa, b, pb);
+      const DistanceResult ba = query.signed_distance(b, pb, a, pa);
+      // The cores' value is known to their own tolerance, which the rounded pair's size exceeds.
+      const Scalar value = cores.distance - r - s;
+      const Scalar known = cores.distance - cores.lower_bound + 1e-13 * size;
+      EXPECT_TRUE(ab.certified);
+      EXPECT_LE(ab.lower_bound, value + known);
+      EXPECT_GE(ab.distance, value - known);
+      EXPECT_NEAR(ab.distance, ba.distance, 2 * kDefaultTolerance * size);
+      EXPECT_NEAR((ab.point_b - ab.point_a - ab.distance * ab.direction).norm(), 0,
+                  1e-9 * size);
+      EXPECT_EQ(query.collide(a, pa, b, pb), ab.colliding);
+    }
+  }
+}
+
 TEST(Rounded, BadParametersAreRefusedByName) {
   const Scalar nan = std::numeric_limits<Scalar>::quiet_NaN();
   const Scalar inf = std::numeric_limits<Scalar>::infinity();
