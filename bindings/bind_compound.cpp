@@ -150,6 +150,9 @@ CompoundBody(3 parts, 24 points, bounds [0, 0, 0] to [2, 2, 1])
       .def_property_readonly(
           "radius", [](const CompoundBody& b) { return b.bounds().radius; },
           "Half the diagonal of the bounding box.")
+      .def_property_readonly(
+          "bounding_radius", [](const CompoundBody& b) { return b.bounds().radius; },
+          "Half the diagonal of the bounding box (as ConvexPolyhedron.bounding_radius).")
       .def("__repr__", &repr);
 
   py::class_<CompoundStats>(m, "CompoundStats", R"doc(

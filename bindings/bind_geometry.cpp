@@ -5,6 +5,7 @@
 
 #include "conversions.hpp"
 #include "swarmcollide/geometry/convex_polyhedron.hpp"
+#include "swarmcollide/geometry/shapes.hpp"
 
 namespace swarmcollide::bindings {
 
@@ -15,9 +16,41 @@ std::string repr(const ConvexPolyhedron& body) {
   std::ostringstream out;
   out << "ConvexPolyhedron(" << body.size() << (body.size() == 1 ? " point" : " points")
       << ", bounds [" << box.min.x() << ", " << box.min.y() << ", " << box.min.z() << "] to ["
-      << box.max.x() << ", " << box.max.y() << ", " << box.max.z() << "])";
+      << box.max.x() << ", " << box.max.y() << ", " << box.max.z() << "]";
+  if (body.radius() > 0) out << ", radius=" << body.radius();
+  out << ")";
   return out.str();
 }
+
+std::string sphere_repr(const Sphere& s) {
+  std::ostringstream out;
+  out << "Sphere(radius=" << s.radius() << ")";
+  return out.str();
+}
+
+std::string capsule_repr(const Capsule& c) {
+  std::ostringstream out;
+  out << "Capsule(radius=" << c.radius() << ", half_length=" << c.half_length() << ")";
+  return out.str();
+}
+
+std::string box_repr(const Box& b) {
+  std::ostringstream out;
+  const Vector3& h = b.half_extents();
+  out << "Box(half_extents=[" << h.x() << ", " << h.y() << ", " << h.z() << "]";
+  if (b.radius() > 0) out << ", radius=" << b.radius();
+  out << ")";
+  return out.str();
+}
+
+// Every query answers rounded bodies the same way; each shape's docstring says so.
+#define SWARMCOLLIDE_ROUNDED_NOTE                                                              \
+  "Queries answer rounded bodies on their cores (the points' hull) and subtract the radii: the " \
+  "signed distance of two rounded convex bodies is exactly that of their cores less both "       \
+  "radii, so bounds, certificates and verdicts keep their meaning, relative to the size of the " \
+  "rounded bodies. Methods ``'ipso'``, ``'pso'`` and ``'penalty'`` (model (2)) weigh the "       \
+  "core's points; ``'fcl'`` and ``'libccd'`` also answer on the cores (not on FCL's own sphere " \
+  "and capsule primitives). Support points, hulls, centroids and weights are the core's."
 
 }  // namespace
 
@@ -60,13 +93,20 @@ faces : numpy.ndarray
       });
 
   py::class_<ConvexPolyhedron>(m, "ConvexPolyhedron", R"doc(
-A convex polyhedron: the convex hull of a finite set of points (the paper's Definition 3).
+A convex polyhedron: the convex hull of a finite set of points (the paper's Definition 3),
+rounded by ``radius``: the set of points within ``radius`` of that hull (a sphere is one point
+rounded, a capsule a segment; see ``Sphere``, ``Capsule`` and ``Box``).
+
+)doc" SWARMCOLLIDE_ROUNDED_NOTE R"doc(
 
 Parameters
 ----------
 points : array_like, shape (n, 3)
     At least one finite point. The points are kept as given: they are the vertices ``x_i`` of
-    model (2). Flat, collinear and single-point sets are valid bodies.
+    model (2). Flat, collinear and single-point sets are valid bodies. A ConvexPolyhedron is
+    taken as it is (with its radius unless ``radius`` is given).
+radius : float, optional
+    The rounding radius, finite and ``>= 0``; 0 (the default) for a plain polyhedron.
 
 Examples
 --------
@@ -76,13 +116,19 @@ Examples
 [1.0, 0.0, 0.0]
 >>> tetra.hull().dimension
 3
+>>> sc.distance(sc.ConvexPolyhedron([[0, 0, 0]], radius=1), [[3, 0, 0]]).distance
+2.0
 )doc")
-      .def(py::init([](const py::object& points) {
+      .def(py::init([](const py::object& points, std::optional<Scalar> radius) {
              // A body given for its points is the same body: copies share the hull.
-             if (py::isinstance<ConvexPolyhedron>(points)) return points.cast<ConvexPolyhedron>();
-             return ConvexPolyhedron(to_vertex_matrix(points, "points"));
+             if (py::isinstance<ConvexPolyhedron>(points)) {
+               ConvexPolyhedron body = points.cast<ConvexPolyhedron>();
+               if (!radius || *radius == body.radius()) return body;
+               return ConvexPolyhedron(body.vertices(), *radius);
+             }
+             return ConvexPolyhedron(to_vertex_matrix(points, "points"), radius.value_or(0));
            }),
-           py::arg("points"))
+           py::arg("points"), py::arg("radius") = py::none())
       .def_property_readonly("vertices", &ConvexPolyhedron::vertices,
                              py::return_value_policy::reference_internal,
                              "The ``(n, 3)`` points the body was built from (read-only).")
@@ -100,16 +146,100 @@ Examples
             return body.support_index(finite_vector3(direction, "direction"));
           },
           py::arg("direction"), "Index of the point farthest along ``direction`` (first on ties).")
-      .def("aabb", &ConvexPolyhedron::aabb, "Smallest axis-aligned box containing the body.")
+      .def("aabb", &ConvexPolyhedron::aabb,
+           "Smallest axis-aligned box containing the body (its rounding included).")
+      .def_property_readonly("radius", &ConvexPolyhedron::radius,
+                             "The rounding radius (0 for a plain polyhedron).")
       .def_property_readonly(
-          "radius", [](const ConvexPolyhedron& body) { return body.bounds().radius; },
-          "Half the diagonal of the bounding box: every point lies within it of the box's centre.")
+          "bounding_radius", [](const ConvexPolyhedron& body) { return body.bounds().radius; },
+          "Half the diagonal of the points' bounding box plus the rounding radius: every point of "
+          "the body lies within it of the box's centre.")
       .def("centroid", &ConvexPolyhedron::centroid,
            "Centre of mass of the solid (of the polygon, segment or point for lower-dimensional "
            "bodies).")
       .def("hull", &ConvexPolyhedron::hull, py::return_value_policy::copy,
            "Convex hull through Qhull (an exact planar hull for flat bodies).")
       .def("__repr__", &repr);
+
+  py::class_<Sphere, ConvexPolyhedron>(m, "Sphere", R"doc(
+A ball of radius ``radius`` centred on the origin of its frame (URDF's ``<sphere radius>``;
+MJCF's sphere geom, size = radius): the one point ``(0, 0, 0)`` rounded by ``radius``.
+
+)doc" SWARMCOLLIDE_ROUNDED_NOTE R"doc(
+
+Parameters
+----------
+radius : float
+    Finite and ``> 0``.
+
+Examples
+--------
+>>> import swarmcollide as sc
+>>> a, b = sc.Sphere(1.0), sc.Sphere(0.5)
+>>> sc.distance(a, b, pose_b=([[1, 0, 0], [0, 1, 0], [0, 0, 1]], [3, 0, 0])).distance
+1.5
+>>> sc.signed_distance(a, b).distance
+-1.5
+)doc")
+      .def(py::init<Scalar>(), py::arg("radius"))
+      .def("__repr__", &sphere_repr);
+
+  py::class_<Capsule, ConvexPolyhedron>(m, "Capsule", R"doc(
+A capsule along the z axis of its frame, centred on its origin (MJCF's capsule geom, size =
+(radius, half_length)): the segment from ``(0, 0, -half_length)`` to ``(0, 0, half_length)``
+rounded by ``radius``, ``2 (half_length + radius)`` long in all.
+
+)doc" SWARMCOLLIDE_ROUNDED_NOTE R"doc(
+
+Parameters
+----------
+radius : float
+    Finite and ``> 0``.
+half_length : float
+    Half the length of the core segment (of the cylinder part), finite and ``> 0``.
+
+Examples
+--------
+>>> import swarmcollide as sc
+>>> upright = sc.Capsule(0.5, 1.0)
+>>> identity = [[1, 0, 0], [0, 1, 0], [0, 0, 1]]
+>>> sc.distance(upright, upright, pose_b=(identity, [2, 0, 0.5])).distance
+1.0
+)doc")
+      .def(py::init<Scalar, Scalar>(), py::arg("radius"), py::arg("half_length"))
+      .def_property_readonly("half_length", &Capsule::half_length,
+                             "Half the length of the core segment.")
+      .def("__repr__", &capsule_repr);
+
+  py::class_<Box, ConvexPolyhedron>(m, "Box", R"doc(
+An axis-aligned box centred on the origin of its frame, ``2 half_extents`` across (URDF's
+``<box size>`` is ``2 half_extents``; MJCF's box geom size is ``half_extents``): the hull of its
+8 corners, rounded by ``radius`` (a rounded box then spans ``half_extents + radius``).
+
+)doc" SWARMCOLLIDE_ROUNDED_NOTE R"doc(
+
+Parameters
+----------
+half_extents : array_like, shape (3,)
+    Half the box's size along x, y and z, each finite and ``> 0``.
+radius : float, optional
+    The rounding radius, finite and ``>= 0`` (0, the default, for a sharp box).
+
+Examples
+--------
+>>> import swarmcollide as sc
+>>> box = sc.Box([1, 2, 3])
+>>> identity = [[1, 0, 0], [0, 1, 0], [0, 0, 1]]
+>>> sc.distance(box, sc.Sphere(1), pose_b=(identity, [3, 0, 0])).distance
+1.0
+)doc")
+      .def(py::init([](const py::object& half_extents, Scalar radius) {
+             return Box(finite_vector3(half_extents, "half_extents"), radius);
+           }),
+           py::arg("half_extents"), py::arg("radius") = 0.0)
+      .def_property_readonly("half_extents", &Box::half_extents,
+                             "Half the box's size along x, y and z.")
+      .def("__repr__", &box_repr);
 
   m.def(
       "as_polyhedron",

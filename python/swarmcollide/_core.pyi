@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['Aabb', 'BatchResult', 'CompoundBody', 'CompoundResult', 'CompoundStats', 'ContactResult', 'ConvexPolyhedron', 'DistanceResult', 'Hull', 'PartNode', 'ParticleCoefficients', 'Query', 'Scene', 'SceneResult', 'SceneStats', 'as_polyhedron', 'broadphases', 'constraint_violation', 'is_feasible', 'linear_decreasing_inertia', 'method_table', 'objective', 'pair_seed', 'project_onto_simplex', 'query_function', 'rank_adaptive_coefficients', 'separation']
+__all__: list[str] = ['Aabb', 'BatchResult', 'Box', 'Capsule', 'CompoundBody', 'CompoundResult', 'CompoundStats', 'ContactResult', 'ConvexPolyhedron', 'DistanceResult', 'Hull', 'PartNode', 'ParticleCoefficients', 'Query', 'Scene', 'SceneResult', 'SceneStats', 'Sphere', 'as_polyhedron', 'broadphases', 'constraint_violation', 'is_feasible', 'linear_decreasing_inertia', 'method_table', 'objective', 'pair_seed', 'project_onto_simplex', 'query_function', 'rank_adaptive_coefficients', 'separation']
 class Aabb:
     """
     An axis-aligned bounding box with corners ``min`` and ``max``.
@@ -70,6 +70,72 @@ class BatchResult:
     @property
     def point_b(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
         ...
+class Box(ConvexPolyhedron):
+    """
+    
+    An axis-aligned box centred on the origin of its frame, ``2 half_extents`` across (URDF's
+    ``<box size>`` is ``2 half_extents``; MJCF's box geom size is ``half_extents``): the hull of its
+    8 corners, rounded by ``radius`` (a rounded box then spans ``half_extents + radius``).
+    
+    Queries answer rounded bodies on their cores (the points' hull) and subtract the radii: the signed distance of two rounded convex bodies is exactly that of their cores less both radii, so bounds, certificates and verdicts keep their meaning, relative to the size of the rounded bodies. Methods ``'ipso'``, ``'pso'`` and ``'penalty'`` (model (2)) weigh the core's points; ``'fcl'`` and ``'libccd'`` also answer on the cores (not on FCL's own sphere and capsule primitives). Support points, hulls, centroids and weights are the core's.
+    
+    Parameters
+    ----------
+    half_extents : array_like, shape (3,)
+        Half the box's size along x, y and z, each finite and ``> 0``.
+    radius : float, optional
+        The rounding radius, finite and ``>= 0`` (0, the default, for a sharp box).
+    
+    Examples
+    --------
+    >>> import swarmcollide as sc
+    >>> box = sc.Box([1, 2, 3])
+    >>> identity = [[1, 0, 0], [0, 1, 0], [0, 0, 1]]
+    >>> sc.distance(box, sc.Sphere(1), pose_b=(identity, [3, 0, 0])).distance
+    1.0
+    """
+    def __init__(self, half_extents: typing.Any, radius: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> None:
+        ...
+    def __repr__(self) -> str:
+        ...
+    @property
+    def half_extents(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+        """
+        Half the box's size along x, y and z.
+        """
+class Capsule(ConvexPolyhedron):
+    """
+    
+    A capsule along the z axis of its frame, centred on its origin (MJCF's capsule geom, size =
+    (radius, half_length)): the segment from ``(0, 0, -half_length)`` to ``(0, 0, half_length)``
+    rounded by ``radius``, ``2 (half_length + radius)`` long in all.
+    
+    Queries answer rounded bodies on their cores (the points' hull) and subtract the radii: the signed distance of two rounded convex bodies is exactly that of their cores less both radii, so bounds, certificates and verdicts keep their meaning, relative to the size of the rounded bodies. Methods ``'ipso'``, ``'pso'`` and ``'penalty'`` (model (2)) weigh the core's points; ``'fcl'`` and ``'libccd'`` also answer on the cores (not on FCL's own sphere and capsule primitives). Support points, hulls, centroids and weights are the core's.
+    
+    Parameters
+    ----------
+    radius : float
+        Finite and ``> 0``.
+    half_length : float
+        Half the length of the core segment (of the cylinder part), finite and ``> 0``.
+    
+    Examples
+    --------
+    >>> import swarmcollide as sc
+    >>> upright = sc.Capsule(0.5, 1.0)
+    >>> identity = [[1, 0, 0], [0, 1, 0], [0, 0, 1]]
+    >>> sc.distance(upright, upright, pose_b=(identity, [2, 0, 0.5])).distance
+    1.0
+    """
+    def __init__(self, radius: typing.SupportsFloat | typing.SupportsIndex, half_length: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    def __repr__(self) -> str:
+        ...
+    @property
+    def half_length(self) -> float:
+        """
+        Half the length of the core segment.
+        """
 class CompoundBody:
     """
     
@@ -108,6 +174,11 @@ class CompoundBody:
     def aabb(self) -> Aabb:
         """
         Smallest axis-aligned box containing the body.
+        """
+    @property
+    def bounding_radius(self) -> float:
+        """
+        Half the diagonal of the bounding box (as ConvexPolyhedron.bounding_radius).
         """
     @property
     def envelope(self) -> ConvexPolyhedron:
@@ -238,13 +309,20 @@ class ContactResult(SceneResult):
 class ConvexPolyhedron:
     """
     
-    A convex polyhedron: the convex hull of a finite set of points (the paper's Definition 3).
+    A convex polyhedron: the convex hull of a finite set of points (the paper's Definition 3),
+    rounded by ``radius``: the set of points within ``radius`` of that hull (a sphere is one point
+    rounded, a capsule a segment; see ``Sphere``, ``Capsule`` and ``Box``).
+    
+    Queries answer rounded bodies on their cores (the points' hull) and subtract the radii: the signed distance of two rounded convex bodies is exactly that of their cores less both radii, so bounds, certificates and verdicts keep their meaning, relative to the size of the rounded bodies. Methods ``'ipso'``, ``'pso'`` and ``'penalty'`` (model (2)) weigh the core's points; ``'fcl'`` and ``'libccd'`` also answer on the cores (not on FCL's own sphere and capsule primitives). Support points, hulls, centroids and weights are the core's.
     
     Parameters
     ----------
     points : array_like, shape (n, 3)
         At least one finite point. The points are kept as given: they are the vertices ``x_i`` of
-        model (2). Flat, collinear and single-point sets are valid bodies.
+        model (2). Flat, collinear and single-point sets are valid bodies. A ConvexPolyhedron is
+        taken as it is (with its radius unless ``radius`` is given).
+    radius : float, optional
+        The rounding radius, finite and ``>= 0``; 0 (the default) for a plain polyhedron.
     
     Examples
     --------
@@ -254,8 +332,10 @@ class ConvexPolyhedron:
     [1.0, 0.0, 0.0]
     >>> tetra.hull().dimension
     3
+    >>> sc.distance(sc.ConvexPolyhedron([[0, 0, 0]], radius=1), [[3, 0, 0]]).distance
+    2.0
     """
-    def __init__(self, points: typing.Any) -> None:
+    def __init__(self, points: typing.Any, radius: typing.SupportsFloat | typing.SupportsIndex | None = None) -> None:
         ...
     def __len__(self) -> int:
         ...
@@ -263,7 +343,7 @@ class ConvexPolyhedron:
         ...
     def aabb(self) -> Aabb:
         """
-        Smallest axis-aligned box containing the body.
+        Smallest axis-aligned box containing the body (its rounding included).
         """
     def centroid(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
         """
@@ -282,9 +362,14 @@ class ConvexPolyhedron:
         Index of the point farthest along ``direction`` (first on ties).
         """
     @property
+    def bounding_radius(self) -> float:
+        """
+        Half the diagonal of the points' bounding box plus the rounding radius: every point of the body lies within it of the box's centre.
+        """
+    @property
     def radius(self) -> float:
         """
-        Half the diagonal of the bounding box: every point lies within it of the box's centre.
+        The rounding radius (0 for a plain polyhedron).
         """
     @property
     def vertices(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
@@ -792,6 +877,32 @@ class SceneStats:
         ...
     @property
     def warm_rejected(self) -> int:
+        ...
+class Sphere(ConvexPolyhedron):
+    """
+    
+    A ball of radius ``radius`` centred on the origin of its frame (URDF's ``<sphere radius>``;
+    MJCF's sphere geom, size = radius): the one point ``(0, 0, 0)`` rounded by ``radius``.
+    
+    Queries answer rounded bodies on their cores (the points' hull) and subtract the radii: the signed distance of two rounded convex bodies is exactly that of their cores less both radii, so bounds, certificates and verdicts keep their meaning, relative to the size of the rounded bodies. Methods ``'ipso'``, ``'pso'`` and ``'penalty'`` (model (2)) weigh the core's points; ``'fcl'`` and ``'libccd'`` also answer on the cores (not on FCL's own sphere and capsule primitives). Support points, hulls, centroids and weights are the core's.
+    
+    Parameters
+    ----------
+    radius : float
+        Finite and ``> 0``.
+    
+    Examples
+    --------
+    >>> import swarmcollide as sc
+    >>> a, b = sc.Sphere(1.0), sc.Sphere(0.5)
+    >>> sc.distance(a, b, pose_b=([[1, 0, 0], [0, 1, 0], [0, 0, 1]], [3, 0, 0])).distance
+    1.5
+    >>> sc.signed_distance(a, b).distance
+    -1.5
+    """
+    def __init__(self, radius: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    def __repr__(self) -> str:
         ...
 def as_polyhedron(body: typing.Any, name: typing.Any = 'body') -> ConvexPolyhedron:
     """

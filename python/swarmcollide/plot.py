@@ -71,7 +71,7 @@ def plot_scene(
     for body_id in scene.ids.tolist():
         body = scene.body(body_id)
         pose = scene.pose(body_id)
-        sizes.append(2 * body.radius)
+        sizes.append(2 * body.bounding_radius)
         for part in _parts_of(body):  # a compound body's parts, or the convex body itself
             points = part.vertices @ pose[:3, :3].T + pose[:3, 3]
             hull = part.hull()

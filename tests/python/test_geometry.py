@@ -93,7 +93,8 @@ def test_degenerate_bodies_have_exact_lower_dimensional_hulls(points, dimension,
 def test_a_polyhedron_is_accepted_where_points_are():
     body = sc.ConvexPolyhedron(CUBE)
     np.testing.assert_array_equal(sc.ConvexPolyhedron(body).vertices, CUBE)
-    assert body.radius == pytest.approx(np.sqrt(3) / 2)
+    assert body.bounding_radius == pytest.approx(np.sqrt(3) / 2)
+    assert body.radius == 0
 
 
 def test_repr_tells_what_it_holds():

@@ -22,7 +22,12 @@ ConvexPolyhedron envelope_of(const std::vector<ConvexPolyhedron>& parts,
                              const std::vector<int>& order, int begin, int end) {
   if (end - begin == 1) return parts[order[begin]];
   Eigen::Index rows = 0;
-  for (int i = begin; i < end; ++i) rows += parts[order[i]].size();
+  // The hull of rounded parts lies in the hull of their cores grown by their largest radius.
+  Scalar radius = 0;
+  for (int i = begin; i < end; ++i) {
+    rows += parts[order[i]].size();
+    radius = std::max(radius, parts[order[i]].radius());
+  }
   VertexMatrix points(rows, 3);
   Eigen::Index at = 0;
   for (int i = begin; i < end; ++i) {
@@ -30,7 +35,7 @@ ConvexPolyhedron envelope_of(const std::vector<ConvexPolyhedron>& parts,
     points.middleRows(at, part.size()) = part.vertices();
     at += part.size();
   }
-  return ConvexPolyhedron(std::move(points));
+  return ConvexPolyhedron(std::move(points), radius);
 }
 
 // Builds the subtree over parts `order[begin, end)` at index `at` of `tree`, splitting at the
@@ -50,9 +55,10 @@ void build(const std::vector<ConvexPolyhedron>& parts, std::vector<int>& order, 
   // diagonal for parts that do not fill their box's corners.
   Scalar radius = 0;
   for (int i = begin; i < end; ++i) {
-    const VertexMatrix& points = parts[order[i]].vertices();
-    radius =
-        std::max(radius, (points.rowwise() - node.centre.transpose()).rowwise().norm().maxCoeff());
+    const ConvexPolyhedron& part = parts[order[i]];
+    const VertexMatrix& points = part.vertices();
+    const Scalar reach = (points.rowwise() - node.centre.transpose()).rowwise().norm().maxCoeff();
+    radius = std::max(radius, part.radius() > 0 ? (reach + part.radius()) * (1 + 1e-15) : reach);
   }
   node.radius = radius;
   if (end - begin == 1) {

@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <limits>
 #include <mutex>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -47,6 +49,10 @@ struct HullCache {
 
 namespace {
 
+// Twice the unit roundoff: the ball's radius is a sum and a norm of rounded terms, a few of these
+// each.
+constexpr Scalar kRoundoffBound = std::numeric_limits<Scalar>::epsilon();
+
 void check_points(const VertexMatrix& points) {
   if (points.rows() == 0) {
     throw std::invalid_argument("points is empty: a polyhedron needs at least one point");
@@ -59,19 +65,36 @@ void check_points(const VertexMatrix& points) {
   }
 }
 
+void check_radius(Scalar radius) {
+  if (!(radius >= 0) || !std::isfinite(radius)) {
+    std::ostringstream message;
+    message << "radius must be a finite number >= 0 (the rounding radius), got " << radius;
+    throw std::invalid_argument(message.str());
+  }
+}
+
 // Halves are taken before differences and sums, so coordinates up to the largest double give a
-// finite centre and half-extent.
-BodyBounds bounds_of(const VertexMatrix& points) {
+// finite centre and half-extent. The rounding grows the box by `radius` on every side and the
+// ball by as much; both are rounded outward, so they still hold the body.
+BodyBounds bounds_of(const VertexMatrix& points, Scalar radius) {
   BodyBounds bounds;
   bounds.box = {points.colwise().minCoeff().transpose(), points.colwise().maxCoeff().transpose()};
   bounds.centre = bounds.box.min / 2 + bounds.box.max / 2;
   const Vector3 half_extent = bounds.box.max / 2 - bounds.box.min / 2;
   const Scalar largest = half_extent.maxCoeff();
   bounds.radius = largest > 0 ? largest * (half_extent / largest).norm() : 0;
-  if (!std::isfinite(bounds.radius)) {
+  if (radius > 0) {
+    const Scalar huge = std::numeric_limits<Scalar>::infinity();
+    for (int k = 0; k < 3; ++k) {
+      bounds.box.min(k) = std::nextafter(bounds.box.min(k) - radius, -huge);
+      bounds.box.max(k) = std::nextafter(bounds.box.max(k) + radius, huge);
+    }
+    bounds.radius = std::nextafter((bounds.radius + radius) * (1 + 4 * kRoundoffBound), huge);
+  }
+  if (!std::isfinite(bounds.radius) || !bounds.box.min.allFinite() || !bounds.box.max.allFinite()) {
     throw std::invalid_argument(
-        "points span more than the largest double (1.8e308): the body's size is not "
-        "representable; use a unit of length in which the coordinates are smaller");
+        "points (with the radius) span more than the largest double (1.8e308): the body's size "
+        "is not representable; use a unit of length in which the coordinates are smaller");
   }
   return bounds;
 }
@@ -109,10 +132,13 @@ Vector3 flat_centroid(const VertexMatrix& points, const FaceMatrix& faces) {
 
 }  // namespace
 
-ConvexPolyhedron::ConvexPolyhedron(VertexMatrix points)
-    : vertices_(std::move(points)), hull_cache_(std::make_shared<detail::HullCache>()) {
+ConvexPolyhedron::ConvexPolyhedron(VertexMatrix points, Scalar radius)
+    : vertices_(std::move(points)),
+      radius_(radius),
+      hull_cache_(std::make_shared<detail::HullCache>()) {
   check_points(vertices_);
-  bounds_ = bounds_of(vertices_);
+  check_radius(radius_);
+  bounds_ = bounds_of(vertices_, radius_);
   centred_ = vertices_.rowwise() - bounds_.centre.transpose();
 }
 

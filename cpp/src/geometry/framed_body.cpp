@@ -148,8 +148,14 @@ FramedPair frame_validated_pair(const ConvexPolyhedron& a, const Pose& pose_a,
   }
   frame.exponent = exponent_above(extent);
   frame.size = 2 * times_power_of_two(extent, -frame.exponent);
-  return {frame, FramedBody(a, pose_a, turned_a, centre_a, frame),
-          FramedBody(b, pose_b, turned_b, centre_b, frame), relative_tolerance * frame.size};
+  // The extent counts the rounding (it is in the bounds' radius), so the frame holds the rounded
+  // bodies and the tolerance is relative to their size.
+  return {frame,
+          FramedBody(a, pose_a, turned_a, centre_a, frame),
+          FramedBody(b, pose_b, turned_b, centre_b, frame),
+          relative_tolerance * frame.size,
+          times_power_of_two(a.radius(), -frame.exponent),
+          times_power_of_two(b.radius(), -frame.exponent)};
 }
 
 }  // namespace swarmcollide::detail

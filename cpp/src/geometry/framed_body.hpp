@@ -175,6 +175,10 @@ struct FramedPair {
   FramedBody b;
   /// Absolute tolerance in the frame: the relative tolerance times `frame.size`.
   Scalar tolerance;
+  /// The bodies' rounding radii in the frame, A's and B's (0 for polyhedra): the solvers answer
+  /// on the cores, and queries/rounded.hpp turns their bounds into the rounded bodies'.
+  Scalar radius_a = 0;
+  Scalar radius_b = 0;
 };
 
 /// The frame of a pair and the bodies in it. Throws std::invalid_argument for an invalid pose

@@ -119,13 +119,25 @@ BodyBalls body_balls(const ConvexPolyhedron& body, bool with_inner) {
     balls.inner =
         body.derived<InnerRadius>([&body] { return InnerRadius{inner_radius(body)}; }).radius;
   }
+  // A rounded body's balls grow by its radius; its inner ball is the radius alone when its core
+  // is one point or a segment, whose box centre is on it (the point, the segment's midpoint).
+  const Scalar r = body.radius();
+  if (r > 0) {
+    balls.outer = (balls.outer + r) * (1 + 0x1p-40);
+    if (balls.inner > 0) {
+      balls.inner = (balls.inner + r) * (1 - 0x1p-40);
+    } else if (with_inner && body.size() <= 2) {
+      balls.inner = r * (1 - 0x1p-40);
+    }
+  }
   return balls;
 }
 
 namespace {
 
 // Apart, proven `lower` apart along `direction`, with the placed points a[i] and b[j] as
-// witnesses; nothing when their distance overflows.
+// witnesses (moved out by the radii of rounded bodies, towards each other: the lower bound keeps
+// them apart); nothing when their distance overflows.
 std::optional<ScreenVerdict> apart(Scalar lower, const Vector3& direction,
                                    const ConvexPolyhedron& a, const Pose& pose_a, int i,
                                    const ConvexPolyhedron& b, const Pose& pose_b, int j) {
@@ -134,6 +146,12 @@ std::optional<ScreenVerdict> apart(Scalar lower, const Vector3& direction,
   verdict.direction = direction;
   verdict.point_a = pose_a.rotation * a.vertices().row(i).transpose() + pose_a.translation;
   verdict.point_b = pose_b.rotation * b.vertices().row(j).transpose() + pose_b.translation;
+  if (a.radius() > 0 || b.radius() > 0) {
+    const Vector3 between = verdict.point_b - verdict.point_a;
+    const Vector3 n = between / length(between);
+    verdict.point_a += a.radius() * n;
+    verdict.point_b -= b.radius() * n;
+  }
   verdict.distance = length(verdict.point_b - verdict.point_a);
   if (!std::isfinite(verdict.distance)) return std::nullopt;
   return verdict;
@@ -226,8 +244,10 @@ std::optional<ScreenVerdict> along_centres(const ConvexPolyhedron& a, const Pose
            b.bounds().centre.lpNorm<1>() + pose_b.translation.lpNorm<1>() + centres +
            balls_a.outer + balls_b.outer) +
       16 * kUnderflow;
-  // Dividing by |axis| <= 1 + 5 u turns the separation along the axis into a distance.
-  const Scalar lower = (separation - margin) * (1 - 8 * kRoundoff);
+  // Dividing by |axis| <= 1 + 5 u turns the separation along the axis into a distance; a rounded
+  // body's radius is then taken off (rounded up), and the difference's rounding (down).
+  const Scalar radii = (a.radius() + b.radius()) * (1 + 4 * kRoundoff);
+  const Scalar lower = ((separation - margin) * (1 - 8 * kRoundoff) - radii) * (1 - 4 * kRoundoff);
   if (!std::isfinite(lower) || !(lower > world_tolerance(a, b, centres, relative_tolerance))) {
     return std::nullopt;
   }

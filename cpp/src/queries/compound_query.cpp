@@ -14,6 +14,7 @@
 #include "../solvers/dual_swarm.hpp"
 #include "../solvers/minkowski.hpp"
 #include "dispatch.hpp"
+#include "rounded.hpp"
 #include "swarmcollide/queries/batch.hpp"
 #include "swarmcollide/queries/query.hpp"
 #include "verdict.hpp"
@@ -187,7 +188,9 @@ class CompoundSearch {
     hb = eb.support_index(-db, hb);
     const Scalar high_a = da.dot(ea.vertices().row(ha).transpose()) + n.dot(pose_a_.translation);
     const Scalar low_b = db.dot(eb.vertices().row(hb).transpose()) + n.dot(pose_b_.translation);
-    return low_b - high_a - kWorldRounding * (placed_a_[na].scale + placed_b_[nb].scale);
+    // The envelopes are rounded by their parts' largest radius (the scales count it).
+    return low_b - high_a - (ea.radius() + eb.radius()) -
+           kWorldRounding * (placed_a_[na].scale + placed_b_[nb].scale);
   }
 
   // True when every part pair at least `lower` apart can be left out: it cannot come closer
@@ -199,9 +202,10 @@ class CompoundSearch {
 
   Scalar upper() const { return best_ ? best_->result.distance : kInfinity; }
 
-  // A separation `s` of the pair's frame as a certified world-unit bound.
+  // A separation `s` of the cores of the pair's frame as a certified world-unit bound on the
+  // (rounded) parts' distance.
   static Scalar world(const FramedPair& pair, Scalar s) {
-    return pair.frame.length_to_world(s - detail::kFrameRounding);
+    return pair.frame.length_to_world(detail::rounded_lower(pair, s) - detail::kFrameRounding);
   }
 
   // The pair of parts i (of A) and j (of B) in their own frame, its tolerance the whole pair's.
@@ -308,8 +312,7 @@ class CompoundSearch {
       const Goal verdict = method_can_measure_ ? Goal::verdict : Goal::signed_distance;
       Answer screened = solve(gate, options, verdict, start);
       if (detail::verdict_proven(gate, screened.lower, kInfinity, false)) {
-        lower_ =
-            std::min(lower_, pair.frame.length_to_world(screened.lower - detail::kFrameRounding));
+        lower_ = std::min(lower_, world(pair, screened.lower));
         iterations_ += screened.iterations;
         evaluations_ += screened.evaluations;
         return;
@@ -326,13 +329,18 @@ class CompoundSearch {
           i, j);
   }
 
-  // A part pair's witnesses from a separation: the support points along `n` bound the distance
-  // from above, the separation from below.
+  // A part pair's witnesses from a separation: the support points along `n` (moved out to the
+  // rounded parts' surfaces) bound the distance from above, the separation from below.
   void offer_witnesses(const FramedPair& pair, const Vector3& n, Scalar s_world, int ia, int ib,
                        int i, int j) {
     DistanceResult r;
-    r.point_a = pair.frame.point_to_world(pair.a.vertex(ia));
-    r.point_b = pair.frame.point_to_world(pair.b.vertex(ib));
+    Answer core;
+    core.point_a = pair.a.vertex(ia);
+    core.point_b = pair.b.vertex(ib);
+    core.upper = (core.point_b - core.point_a).norm();
+    detail::round_answer(pair, Goal::distance, core);
+    r.point_a = pair.frame.point_to_world(core.point_a);
+    r.point_b = pair.frame.point_to_world(core.point_b);
     r.distance = (r.point_b - r.point_a).norm() * (1 + kWorldRounding);
     r.lower_bound = s_world;
     r.weights_a =
@@ -371,7 +379,7 @@ class CompoundSearch {
     int ia = -1;
     int ib = -1;
     const Scalar s = detail::separation(pair.a, pair.b, n, ia, ib);
-    offer_witnesses(pair, n, pair.frame.length_to_world(s - detail::kFrameRounding), ia, ib, i, j);
+    offer_witnesses(pair, n, world(pair, s), ia, ib, i, j);
   }
 
   CompoundResult finish() {

@@ -5,9 +5,14 @@
 #include <stdexcept>
 #include <utility>
 
+#include "rounded.hpp"
+
 namespace swarmcollide::detail {
 
 namespace {
+
+// The tests below read bounds on the rounded bodies (rounded.hpp): the public functions, which
+// the solvers call with bounds on the cores, shift theirs first; finish_result its answer.
 
 bool apart_proven(const FramedPair& pair, Scalar lower) {
   return lower - kFrameRounding > pair.tolerance;
@@ -19,10 +24,33 @@ bool close_proven(const FramedPair& pair, Scalar upper, bool intersection_proven
   return intersection_proven || upper + kFrameRounding <= pair.tolerance || pair.frame.size == 0;
 }
 
+bool proven_verdict(const FramedPair& pair, Scalar lower, Scalar upper, bool intersection_proven) {
+  return apart_proven(pair, lower) || close_proven(pair, upper, intersection_proven);
+}
+
+bool proven_value(const FramedPair& pair, Scalar lower, Scalar upper) {
+  return upper - lower <= pair.tolerance + 2 * kFrameRounding;
+}
+
+bool reached(const FramedPair& pair, Goal goal, Scalar lower, Scalar upper,
+             bool intersection_proven) {
+  switch (goal) {
+    case Goal::verdict:
+      return proven_verdict(pair, lower, upper, intersection_proven);
+    case Goal::distance:
+      return proven_value(pair, std::max(lower, 0.0), upper) ||
+             close_proven(pair, upper, intersection_proven);
+    case Goal::signed_distance:
+      break;
+  }
+  return proven_value(pair, lower, upper);
+}
+
 }  // namespace
 
 bool verdict_proven(const FramedPair& pair, Scalar lower, Scalar upper, bool intersection_proven) {
-  return apart_proven(pair, lower) || close_proven(pair, upper, intersection_proven);
+  return proven_verdict(pair, rounded_lower(pair, lower), rounded_upper(pair, upper),
+                        intersection_proven);
 }
 
 bool verdict_proven(const FramedPair& pair, const Answer& answer) {
@@ -30,7 +58,7 @@ bool verdict_proven(const FramedPair& pair, const Answer& answer) {
 }
 
 bool value_proven(const FramedPair& pair, Scalar lower, Scalar upper) {
-  return upper - lower <= pair.tolerance + 2 * kFrameRounding;
+  return proven_value(pair, rounded_lower(pair, lower), rounded_upper(pair, upper));
 }
 
 bool value_proven(const FramedPair& pair, const Answer& answer) {
@@ -48,26 +76,20 @@ bool apart_after_motion(Scalar lower, Scalar size, Scalar moved, Scalar threshol
 
 bool goal_reached(const FramedPair& pair, Goal goal, Scalar lower, Scalar upper,
                   bool intersection_proven) {
-  switch (goal) {
-    case Goal::verdict:
-      return verdict_proven(pair, lower, upper, intersection_proven);
-    case Goal::distance:
-      return value_proven(pair, std::max(lower, 0.0), upper) ||
-             close_proven(pair, upper, intersection_proven);
-    case Goal::signed_distance:
-      break;
-  }
-  return value_proven(pair, lower, upper);
+  return reached(pair, goal, rounded_lower(pair, lower), rounded_upper(pair, upper),
+                 intersection_proven);
 }
 
 DistanceResult finish_result(const FramedPair& pair, Answer&& answer, Method requested, Goal goal,
                              Weights weights) {
+  // From here on the answer is the rounded bodies' (the same for two polyhedra).
+  round_answer(pair, goal, answer);
   // A distance is never negative, so zero bounds it below whatever the solver found; and in the
   // frame both bodies lie in the unit ball, so a translation by 2 separates them.
   answer.lower = std::max(answer.lower, goal == Goal::signed_distance ? -2.0 : 0.0);
   const bool apart = apart_proven(pair, answer.lower);
   const bool close = close_proven(pair, answer.upper, answer.intersection_proven);
-  const bool exact = value_proven(pair, answer);
+  const bool exact = proven_value(pair, answer.lower, answer.upper);
   DistanceResult r;
   const Frame& frame = pair.frame;
   r.distance = frame.length_to_world(answer.upper);
@@ -93,7 +115,7 @@ DistanceResult finish_result(const FramedPair& pair, Answer&& answer, Method req
   // A distance or a signed distance is certified only when its bounds also enclose it to the
   // tolerance: a proven verdict alone leaves the value of a swarm stopped early unproven.
   r.certified = (apart || close) &&
-                goal_reached(pair, goal, answer.lower, answer.upper, answer.intersection_proven);
+                reached(pair, goal, answer.lower, answer.upper, answer.intersection_proven);
   // For a signed distance, contact alone does not settle the depth.
   const bool settled = exact || (close && goal != Goal::signed_distance);
   r.status = settled ? SolverStatus::converged : SolverStatus::max_iterations;

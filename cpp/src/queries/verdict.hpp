@@ -11,6 +11,9 @@ namespace swarmcollide::detail {
 /// weights, and spreading them over the given points is a good part of what finishing costs.
 enum class Weights { given, none };
 
+/// Every function here takes bounds on the cores of `pair` (what the solvers find) and reads
+/// them as the rounded bodies' (rounded.hpp): the same for two polyhedra.
+///
 /// The result of `answer` to a query of `goal` asked of `requested`, in world units. Rounding
 /// is accounted for: a bound proves a verdict only when it does so by more than
 /// `kFrameRounding`. So `colliding` is proven by an intersection proof or by witnesses within

@@ -292,7 +292,8 @@ void contact_points(const FramedPair& pair, const Vector3& n, Scalar slack, int 
   }
   const Scalar top_a = n.dot(pair.a.vertex(top_index_a));
   const Scalar bottom_b = n.dot(pair.b.vertex(top_index_b));
-  const Scalar height = top_a / 2 + bottom_b / 2;
+  // Halfway between the supporting planes of the rounded bodies: the cores' moved out by the radii.
+  const Scalar height = (top_a + pair.radius_a) / 2 + (bottom_b - pair.radius_b) / 2;
   convex_hull(g.pa, slack, g.hull_a);
   convex_hull(g.pb, slack, g.hull_b);
   intersect(g.hull_a, g.hull_b, slack, g.meet, g.scratch);

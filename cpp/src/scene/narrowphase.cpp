@@ -8,6 +8,7 @@
 
 #include "../geometry/normalise.hpp"
 #include "../queries/dispatch.hpp"
+#include "../queries/rounded.hpp"
 #include "../queries/verdict.hpp"
 #include "../solvers/dual_swarm.hpp"
 #include "../solvers/exact_solver.hpp"
@@ -132,9 +133,9 @@ float float_above(Scalar x) {
                                      : std::nextafter(f, std::numeric_limits<float>::infinity());
 }
 
-// A separating proof: unit direction `n` (frame) with separation `s` along it (frame units, so
-// that `s - kFrameRounding` is certified), support points `ia` and `ib`, made when the bodies'
-// odometers summed to `travelled`.
+// A separating proof: unit direction `n` (frame) with separation `s` of the cores along it
+// (frame units, so that `s - kFrameRounding` is certified, less the radii for rounded bodies),
+// support points `ia` and `ib`, made when the bodies' odometers summed to `travelled`.
 void keep_separating(const FramedPair& pair, const Vector3& n, Scalar s, int ia, int ib,
                      Scalar travelled, PairProof& proof) {
   const Vector3 local = pair.a.local_direction(n);
@@ -143,7 +144,7 @@ void keep_separating(const FramedPair& pair, const Vector3& n, Scalar s, int ia,
       {static_cast<float>(local.x()), static_cast<float>(local.y()), static_cast<float>(local.z())},
       ia,
       ib};
-  proof.lower = float_below(pair.frame.length_to_world(s - kFrameRounding));
+  proof.lower = float_below(pair.frame.length_to_world(rounded_lower(pair, s) - kFrameRounding));
   proof.size = float_above(pair.frame.length_to_world(pair.frame.size) * (1 + 1e-12));
   proof.travelled = travelled;
 }
@@ -345,7 +346,7 @@ void answer_pair(const PlacedBody& a, const PlacedBody& b, PairProof& proof,
     if (verdict_proven(gate, s, kInfinity, false)) {
       out.settled = cached ? Settled::warm_rejected : Settled::screened;
       out.certified = true;
-      out.lower_bound = pair.frame.length_to_world(s);
+      out.lower_bound = pair.frame.length_to_world(rounded_lower(pair, s));
       if (question.warm) keep_separating(pair, n, s, ia, ib, travelled, proof);
       return;
     }

@@ -69,7 +69,8 @@ void update_box(SceneBody& b) {
   }
   const Scalar reach = b.body.bounds().centre.cwiseAbs().maxCoeff() + b.body.bounds().radius +
                        t.cwiseAbs().maxCoeff();
-  const Vector3 rounding = Vector3::Constant(16 * kEpsilon * reach);
+  // A rounded body's box grows by its radius (the reach counts it, for the rounding).
+  const Vector3 rounding = Vector3::Constant(16 * kEpsilon * reach + b.body.radius());
   b.box = {low - rounding, high + rounding};
 }
 

@@ -20,17 +20,26 @@ struct HullCache;
 /// bodies are scanned whole.
 inline constexpr int kHillClimbingThreshold = 32;
 
-/// A body's extent, computed once when it is built: every query needs it.
+/// A body's extent, computed once when it is built: every query needs it. For a rounded body
+/// (`ConvexPolyhedron::radius() > 0`) it is the extent of the rounded body, rounding included.
 struct BodyBounds {
-  /// Smallest axis-aligned box containing the points.
+  /// Smallest axis-aligned box containing the body (its points, grown by the rounding radius).
   Aabb box;
-  /// The box's centre.
+  /// The box's centre (the centre of the points' box: the rounding grows it evenly).
   Vector3 centre = Vector3::Zero();
-  /// Half the box's diagonal: every point lies within `radius` of `centre`.
+  /// A bound on the distance from `centre` of every point of the body: half the points' box
+  /// diagonal plus the rounding radius, rounded up.
   Scalar radius = 0;
 };
 
-/// A convex polyhedron: the convex hull of a finite point set (the paper's Definition 3).
+/// A convex polyhedron: the convex hull of a finite point set (the paper's Definition 3), or,
+/// with a rounding radius r > 0, the rounded body: that hull (the core) grown by a ball of
+/// radius r (their Minkowski sum), which makes a sphere of one point, a capsule of a segment and
+/// a rounded box of a box's corners (shapes.hpp).
+///
+/// The queries answer a pair of rounded bodies on their cores and subtract both radii: the signed
+/// distance of A + B(r) and B + B(s) is exactly that of A and B less r + s, for convex A and B
+/// (rounded.hpp).
 ///
 /// The points are kept as given; they are the `x_i` of model (2), so a point inside the hull is a
 /// legitimate (if redundant) vertex of the model. The exact solvers and support queries read only
@@ -40,13 +49,17 @@ struct BodyBounds {
 class ConvexPolyhedron {
  public:
   /// Throws std::invalid_argument if `points` is empty, has a NaN or infinite coordinate, or
-  /// spans so far that the body's size is not representable in double precision.
-  explicit ConvexPolyhedron(VertexMatrix points);
+  /// spans so far that the body's size is not representable in double precision, or if `radius`
+  /// (the rounding radius) is negative, NaN or infinite.
+  explicit ConvexPolyhedron(VertexMatrix points, Scalar radius = 0);
 
   /// The points the body was built from, one per row.
   const VertexMatrix& vertices() const { return vertices_; }
   /// Number of points (the `k` of model (2)).
   int size() const { return static_cast<int>(vertices_.rows()); }
+  /// The rounding radius: the body is the hull of the points grown by a ball of this radius (0
+  /// for a plain polyhedron). Support points, hulls and centroids are those of the core.
+  Scalar radius() const { return radius_; }
 
   /// The points less the centre of their box (`bounds().centre`), as support queries compare
   /// them. Each difference is rounded relative to itself, so heights `d . x` are rounded relative
@@ -65,12 +78,13 @@ class ConvexPolyhedron {
   /// and coal do, and by scanning them otherwise. Passing the previous answer as `start` for a
   /// nearby direction makes a query cost a few neighbour checks. On ties any maximiser is returned.
   int support_index(const Vector3& direction, int start) const;
-  /// A point of the body farthest along `direction`.
+  /// A point of the core (the points' hull) farthest along `direction`; the rounded body's is
+  /// this plus `radius()` times the unit direction.
   Vector3 support(const Vector3& direction) const {
     return vertices_.row(support_index(direction));
   }
 
-  /// Smallest axis-aligned box containing the body.
+  /// Smallest axis-aligned box containing the body (the rounded body when `radius() > 0`).
   const Aabb& aabb() const { return bounds_.box; }
   /// The box, its centre and the radius of the ball around that centre holding the body.
   const BodyBounds& bounds() const { return bounds_; }
@@ -107,6 +121,7 @@ class ConvexPolyhedron {
                           const std::function<std::shared_ptr<const void>()>& make) const;
 
   VertexMatrix vertices_;
+  Scalar radius_;
   BodyBounds bounds_;
   VertexMatrix centred_;
   std::shared_ptr<detail::HullCache> hull_cache_;

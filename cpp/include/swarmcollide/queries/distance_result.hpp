@@ -25,15 +25,19 @@ enum class SolverStatus {
 /// points with `weights_a` and `weights_b`, and `lower_bound` is the separation along
 /// `direction`. For `distance` queries the true value is the distance and `lower_bound >= 0`;
 /// for `signed_distance` it is the signed distance (minus the penetration depth when the bodies
-/// overlap) and neither bound is clamped.
+/// overlap) and neither bound is clamped. For rounded bodies (ConvexPolyhedron::radius) the
+/// values and bounds are the rounded bodies', the weights those of the cores' witnesses, and each
+/// witness is its core's moved out by the radius along the normal (rounded.hpp).
 struct DistanceResult {
   /// Upper bound on the distance (signed distance), achieved by the witness points.
   Scalar distance = 0;
   /// Lower bound on the distance (signed distance), certified by `direction`.
   Scalar lower_bound = 0;
-  /// Witness point on A: the combination of A's points with `weights_a`.
+  /// Witness point on A: the combination of A's points with `weights_a` (plus A's radius times
+  /// the unit normal towards B, for a rounded body).
   Vector3 point_a = Vector3::Zero();
-  /// Witness point on B: the combination of B's points with `weights_b`.
+  /// Witness point on B: the combination of B's points with `weights_b` (less B's radius times
+  /// the unit normal, for a rounded body).
   Vector3 point_b = Vector3::Zero();
   /// lambda of model (2): nonnegative, summing to one.
   ConvexWeights weights_a;

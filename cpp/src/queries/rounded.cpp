@@ -1,0 +1,85 @@
+#include "rounded.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace swarmcollide::detail {
+
+namespace {
+
+// A bound on the rounding of `core - (r_a + r_b)` computed in the frame: each radius is exact in
+// the frame (a power-of-two scaling) but for underflow, half the smallest subnormal each; their
+// sum rounds by u of itself, the difference by u of its size. Twice that, and two subnormals.
+Scalar subtraction_rounding(const FramedPair& pair, Scalar core) {
+  const Scalar radii = pair.radius_a + pair.radius_b;
+  return 4 * kRoundoff * (std::abs(core) + radii) + 4 * std::numeric_limits<Scalar>::denorm_min();
+}
+
+// The rounding error of the sum `sum` computed as `a + b` (Knuth's TwoSum: exact).
+Scalar sum_error(Scalar a, Scalar b, Scalar sum) {
+  const Scalar b_part = sum - a;
+  const Scalar a_part = sum - b_part;
+  return (a - a_part) + (b - b_part);
+}
+
+// A radius that may have lost bits when it was scaled into the frame.
+bool underflowed(Scalar radius) {
+  return radius > 0 && radius < std::numeric_limits<Scalar>::min();
+}
+
+// `core - r_a - r_b`, moved `outward` (-1 down, +1 up) by a bound on its rounding unless the
+// sum and the difference are proven exact: sphere radii and distances such as 1.5 stay 1.5.
+Scalar shifted(const FramedPair& pair, Scalar core, Scalar outward) {
+  const Scalar radii = pair.radius_a + pair.radius_b;
+  const Scalar value = core - radii;
+  if (!rounded(pair) || !std::isfinite(core)) return value;
+  const bool exact = sum_error(pair.radius_a, pair.radius_b, radii) == 0 &&
+                     sum_error(core, -radii, value) == 0 && !underflowed(pair.radius_a) &&
+                     !underflowed(pair.radius_b);
+  if (exact) return value;
+  return std::nextafter(value + outward * subtraction_rounding(pair, core),
+                        outward * std::numeric_limits<Scalar>::infinity());
+}
+
+}  // namespace
+
+Scalar rounded_lower(const FramedPair& pair, Scalar core_lower) {
+  return shifted(pair, core_lower, -1);
+}
+
+Scalar rounded_upper(const FramedPair& pair, Scalar core_upper) {
+  return shifted(pair, core_upper, 1);
+}
+
+void round_answer(const FramedPair& pair, Goal goal, Answer& answer) {
+  if (!rounded(pair)) return;
+  const Scalar radius_a = pair.radius_a;
+  const Scalar radius_b = pair.radius_b;
+  const bool signed_goal = goal == Goal::signed_distance;
+  answer.lower = rounded_lower(pair, answer.lower);
+  answer.upper = rounded_upper(pair, answer.upper);
+  for (Scalar& h : answer.history) {
+    h = rounded_upper(pair, h);
+    if (!signed_goal) h = std::max(h, 0.0);
+  }
+  const Vector3 between = answer.point_b - answer.point_a;
+  const Scalar gap = between.norm();
+  if (signed_goal || answer.upper >= 0) {
+    // The contact normal, else the witnesses' direction; cores that share their witness (one
+    // point twice, as two concentric spheres) have every direction for a normal.
+    Vector3 n = signed_goal ? answer.direction : Vector3::Zero();
+    if (!(n.squaredNorm() > 0)) n = gap > 0 ? Vector3(between / gap) : Vector3::UnitZ();
+    answer.point_a += radius_a * n;
+    answer.point_b -= radius_b * n;
+    return;
+  }
+  // Cores closer than r_a + r_b: the rounded bodies overlap, and the point at r_a / (r_a + r_b)
+  // along the witnesses' segment is within r_a of A's and r_b of B's.
+  answer.point_a += (radius_a / (radius_a + radius_b)) * between;
+  answer.point_b = answer.point_a;
+  if (answer.upper + kFrameRounding < 0) answer.intersection_proven = true;
+  answer.upper = 0;
+}
+
+}  // namespace swarmcollide::detail
