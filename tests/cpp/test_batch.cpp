@@ -3,11 +3,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <functional>
 #include <limits>
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "paper_cases.hpp"
@@ -657,6 +659,87 @@ TEST(Batch, PosesAreCheckedOnceNamingTheRow) {
   EXPECT_NE(error_of([&] { distance_many(a, a, {}, {}, poses); })
                 .find("poses_b must have one pose per pair, got 5 for 4 pairs"),
             std::string::npos);
+}
+
+// A result's arrays are views of one block: each starts on a cache line (so that chunks of 64
+// rows share none), a large block on a huge page's boundary; copies are deep and a moved-from
+// result is empty.
+TEST(BatchResultBlock, ArraysStartOnCacheLinesAndCopiesAreDeep) {
+  const auto line = [](const void* data) { return reinterpret_cast<std::uintptr_t>(data) % 64; };
+  for (std::size_t rows : {1u, 3u, 65u, 30000u}) {
+    SCOPED_TRACE(rows);
+    BatchResult r(rows);
+    EXPECT_EQ(r.rows(), rows);
+    for (const void* data : {static_cast<const void*>(r.distance.data()),
+                             static_cast<const void*>(r.lower_bound.data()),
+                             static_cast<const void*>(r.point_a.data()),
+                             static_cast<const void*>(r.point_b.data()),
+                             static_cast<const void*>(r.direction.data()),
+                             static_cast<const void*>(r.colliding.data()),
+                             static_cast<const void*>(r.certified.data()),
+                             static_cast<const void*>(r.iterations.data()),
+                             static_cast<const void*>(r.escalated.data()),
+                             static_cast<const void*>(r.part_a.data()),
+                             static_cast<const void*>(r.part_b.data())}) {
+      EXPECT_EQ(line(data), 0u);
+    }
+    EXPECT_EQ(r.point_a.rows(), static_cast<Eigen::Index>(rows));
+    EXPECT_EQ(r.part_b.size(), static_cast<Eigen::Index>(rows));
+    // The arrays do not overlap: writing each leaves the others as written.
+    r.distance.setConstant(1);
+    r.lower_bound.setConstant(2);
+    r.point_a.setConstant(3);
+    r.point_b.setConstant(4);
+    r.direction.setConstant(5);
+    r.iterations.setConstant(6);
+    r.part_a.setConstant(7);
+    r.part_b.setConstant(8);
+    r.colliding.setConstant(true);
+    r.certified.setConstant(false);
+    r.escalated.setConstant(true);
+    const BatchResult copy = r;
+    EXPECT_NE(copy.distance.data(), r.distance.data());
+    r.point_b(rows - 1, 2) = -1;
+    EXPECT_EQ(copy.point_b(rows - 1, 2), 4);
+    EXPECT_TRUE((copy.distance.array() == 1).all() && (copy.lower_bound.array() == 2).all());
+    EXPECT_TRUE((copy.point_a.array() == 3).all() && (copy.direction.array() == 5).all());
+    EXPECT_TRUE((copy.iterations == 6).all() && (copy.part_a == 7).all() &&
+                (copy.part_b == 8).all());
+    EXPECT_TRUE(copy.colliding.all() && !copy.certified.any() && copy.escalated.all());
+    BatchResult moved = std::move(r);
+    EXPECT_EQ(moved.point_b(rows - 1, 2), -1);
+    EXPECT_EQ(r.rows(), 0u);  // NOLINT(bugprone-use-after-move): a moved-from result is empty
+    EXPECT_EQ(r.distance.size(), 0);
+    r = copy;
+    EXPECT_EQ(r.point_b(rows - 1, 2), 4);
+  }
+  EXPECT_EQ(reinterpret_cast<std::uintptr_t>(BatchResult(30000).distance.data()) % (2 << 20), 0u);
+}
+
+// Tens of thousands of rows go to the threads in large chunks: the answers are still those of one
+// thread, bit for bit, and an error is still the lowest failing row's, wherever the chunks fall.
+TEST(Batch, LargeBatchesAnswerAlikeOnAnyThreads) {
+  Random rng(12);
+  const ConvexPolyhedron a = rng.body(8);
+  const ConvexPolyhedron b = rng.body(8);
+  BatchPoses poses;
+  poses.b = random_poses(30000, rng, 2.5);
+  const QueryOptions options = seeded(Method::dual);
+  const BatchResult one = collide_many(a, b, options, {1}, poses);
+  for (int threads : {2, 3}) expect_same(one, collide_many(a, b, options, {threads}, poses));
+  BatchPoses fewer;
+  fewer.b.assign(poses.b.begin(), poses.b.begin() + 3000);
+  const BatchResult distances = distance_many(a, b, options, {1}, fewer);
+  for (int threads : {2, 3}) expect_same(distances, distance_many(a, b, options, {threads}, fewer));
+  for (std::size_t bad : {29990u, 17000u, 130u}) {
+    poses.b[bad].rotation(1, 1) = std::numeric_limits<double>::quiet_NaN();
+    for (int threads : {1, 2, 3}) {
+      const std::string message =
+          error_of([&] { collide_many(a, b, options, {threads}, poses); });
+      EXPECT_EQ(message.rfind("poses_b[" + std::to_string(bad) + "] has a NaN", 0), 0u)
+          << message;
+    }
+  }
 }
 
 TEST(Batch, PairSeedsDiffer) {

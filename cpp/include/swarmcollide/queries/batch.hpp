@@ -7,30 +7,11 @@
 #include "swarmcollide/geometry/compound_body.hpp"
 #include "swarmcollide/geometry/convex_polyhedron.hpp"
 #include "swarmcollide/geometry/pose.hpp"
+#include "swarmcollide/queries/batch_result.hpp"
 #include "swarmcollide/queries/options.hpp"
 #include "swarmcollide/types.hpp"
 
 namespace swarmcollide {
-
-/// The answers to many queries, one entry (or row) per pair, in the units of the input.
-struct BatchResult {
-  VectorX distance;
-  VectorX lower_bound;
-  VertexMatrix point_a;
-  VertexMatrix point_b;
-  /// Unit directions from A to B certifying the lower bounds (contact normals for signed
-  /// distances); zero rows where none was found.
-  VertexMatrix direction;
-  Eigen::Array<bool, Eigen::Dynamic, 1> colliding;
-  Eigen::Array<bool, Eigen::Dynamic, 1> certified;
-  Eigen::Array<int, Eigen::Dynamic, 1> iterations;
-  /// True where another method than the one asked for answered (see
-  /// DistanceResult::escalated_from).
-  Eigen::Array<bool, Eigen::Dynamic, 1> escalated;
-  /// The parts of A and of B that realise each answer (see CompoundResult); 0 for convex bodies.
-  Eigen::Array<int, Eigen::Dynamic, 1> part_a;
-  Eigen::Array<int, Eigen::Dynamic, 1> part_b;
-};
 
 /// Largest number of threads a batch may ask for.
 inline constexpr int kMaxThreads = 1024;
