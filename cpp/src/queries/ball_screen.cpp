@@ -28,8 +28,13 @@ struct OuterRadius {
 };
 
 // |v|, without the squares of tiny or huge components underflowing or overflowing: for bodies
-// 1e-200 across, the plain norm is 0.
+// 1e-200 across, the plain norm is 0. Where the sum of squares is far from both ends of the
+// double range, the largest square is a normal number and the plain norm is as close (a squared
+// component that underflows there is below 2^-1000 of the sum); it saves a division on the
+// path of every row the screens settle.
 Scalar length(const Vector3& v) {
+  const Scalar squares = v.squaredNorm();
+  if (squares > 0x1p-1000 && squares < 0x1p1000) return std::sqrt(squares);
   const Scalar largest = v.cwiseAbs().maxCoeff();
   return largest > 0 ? largest * (v / largest).norm() : 0;
 }

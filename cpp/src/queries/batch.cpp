@@ -276,6 +276,44 @@ class RowChunks {
   std::atomic<bool> stopped_{false};
 };
 
+// The poses of a thread's rows, read from their lists or arrays a few rows before the row is
+// answered. A pose read from an array is stored into a Pose 8 bytes at a time, and the row's first
+// 16-byte reads of it cannot be served from those stores while they are in flight: they wait for
+// the stores to retire, at the pace of the whole pipeline. On 8-vertex rows that the ball screens
+// settle that wait was a sixth of the time (0.118 against 0.098 us a row read 2, 4 or 8 rows
+// ahead). A thread's own copy of the sides (see RowWriter).
+class PosesAhead {
+ public:
+  PosesAhead(const SidePoses& a, const SidePoses& b) : a_(a), b_(b) {}
+
+  // Starts on the rows [start, end).
+  void start(std::size_t start, std::size_t end) {
+    end_ = end;
+    for (std::size_t row = start; row < std::min(end, start + kAhead); ++row) read(row);
+  }
+  // The poses of `row`, the first row started or done not yet done.
+  const Pose& a(std::size_t row) const { return a_ahead_[row % kAhead]; }
+  const Pose& b(std::size_t row) const { return b_ahead_[row % kAhead]; }
+  // `row` is answered: its poses give way to those kAhead rows on.
+  void done(std::size_t row) {
+    if (row + kAhead < end_) read(row + kAhead);
+  }
+
+ private:
+  static constexpr std::size_t kAhead = 4;
+
+  void read(std::size_t row) {
+    a_ahead_[row % kAhead] = a_.at(row);
+    b_ahead_[row % kAhead] = b_.at(row);
+  }
+
+  SidePoses a_;
+  SidePoses b_;
+  std::size_t end_ = 0;
+  Pose a_ahead_[kAhead];
+  Pose b_ahead_[kAhead];
+};
+
 // Runs `answer(i, options_i, pose_a_i, pose_b_i)`, which writes row i of the batch, for every
 // pair, where options_i are the validated options seeded for pair i and `answer` is the thread's
 // own `make_answer(RowWriter(batch))` (with the thread's state), on a pool of threads that take
@@ -299,27 +337,28 @@ BatchResult run_batch(Kind kind, std::size_t count, const QueryOptions& options,
   RowChunks chunks(count, workers);
   FirstFailure failure;
   const auto work = [&] {
-    const SidePoses own_a = poses_a;
-    const SidePoses own_b = poses_b;
-    const bool posed_a = !own_a.empty();
-    const bool posed_b = !own_b.empty();
+    PosesAhead ahead(poses_a, poses_b);
+    const bool posed_a = !poses_a.empty();
+    const bool posed_b = !poses_b.empty();
     const std::uint64_t first_index = settings.first_index;
     const std::uint64_t seed = options.seed;
     QueryOptions pair_options = validated.options();
     pair_options.dual.record_history = false;  // a batch reports no history
     auto answer = make_answer(RowWriter(batch));
     for (RowChunks::Chunk chunk; chunks.take(chunk);) {
+      ahead.start(chunk.start, chunk.end);
       for (std::size_t i = chunk.start; i < chunk.end; ++i) {
         try {
           // Each pose is validated once, by the thread that answers its row (a check in one
           // thread before the rows would not be spread over the threads).
           const std::uint64_t index = first_index + i;
-          const Pose pose_a = own_a.at(i);
-          const Pose pose_b = own_b.at(i);
+          const Pose& pose_a = ahead.a(i);
+          const Pose& pose_b = ahead.b(i);
           if (posed_a) validate_pose(pose_a, "poses_a", index);
           if (posed_b) validate_pose(pose_b, "poses_b", index);
           pair_options.seed = pair_seed(seed, index);
           answer(i, pair_options, pose_a, pose_b);
+          ahead.done(i);
         } catch (...) {
           failure.offer(i);
           chunks.stop();
