@@ -716,6 +716,29 @@ TEST(BatchResultBlock, ArraysStartOnCacheLinesAndCopiesAreDeep) {
   EXPECT_EQ(reinterpret_cast<std::uintptr_t>(BatchResult(30000).distance.data()) % (2 << 20), 0u);
 }
 
+// The block of a large result, once freed, serves the next result of its size (and only of its
+// size), whose rows are written as any others.
+TEST(BatchResultBlock, AFreedLargeBlockServesTheNextResultOfItsSize) {
+  const void* freed = nullptr;
+  {
+    BatchResult first(30000);
+    first.distance.setConstant(1);
+    freed = first.distance.data();
+  }
+  {
+    BatchResult next(30000);
+    EXPECT_EQ(static_cast<const void*>(next.distance.data()), freed);
+    next.distance.setConstant(2);
+    EXPECT_TRUE((next.distance.array() == 2).all());
+  }
+  const BatchResult larger(60000);
+  EXPECT_NE(static_cast<const void*>(larger.distance.data()), freed);
+  const BatchResult small(100);
+  EXPECT_NE(static_cast<const void*>(small.distance.data()), freed);
+  const BatchResult again(30000);
+  EXPECT_EQ(static_cast<const void*>(again.distance.data()), freed);
+}
+
 // Tens of thousands of rows go to the threads in large chunks: the answers are still those of one
 // thread, bit for bit, and an error is still the lowest failing row's, wherever the chunks fall.
 TEST(Batch, LargeBatchesAnswerAlikeOnAnyThreads) {

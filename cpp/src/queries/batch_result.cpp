@@ -2,6 +2,7 @@
 
 #include <cstdlib>
 #include <cstring>
+#include <mutex>
 #include <new>
 #include <utility>
 
@@ -49,19 +50,72 @@ struct Layout {
       colliding, certified, escalated, end;
 };
 
+// The size of the block of a result of `rows` rows, and its alignment.
+struct BlockSize {
+  explicit BlockSize(std::size_t rows) {
+    const std::size_t bytes = Layout(rows).end;
+    alignment = bytes >= kHugePage ? kHugePage : kCacheLine;
+    size = round_up(bytes, alignment);
+  }
+  std::size_t size;
+  std::size_t alignment;
+};
+
+// The largest block kept for reuse once its result is freed (a result of about 600,000 rows).
+constexpr std::size_t kLargestKept = std::size_t{64} << 20;
+
+// One freed large block, kept for the next result of the same size: a batch repeated over poses
+// (a planner's loop, a bench) then writes into memory that is already mapped, instead of faulting
+// and zeroing every page again (a tenth of a cheap row's time on one thread, more on two threads
+// faulting the same huge pages). The kernel may still take its pages back (MADV_FREE) under
+// memory pressure; the block's contents do not matter.
+class KeptBlock {
+ public:
+  // The kept block when it has `size` bytes (then no longer kept), else null.
+  void* take(std::size_t size) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (block_ == nullptr || size_ != size) return nullptr;
+    return std::exchange(block_, nullptr);
+  }
+  // Keeps `block` of `size` bytes (freeing the one kept before), or frees it when it is not a
+  // large block.
+  void keep(void* block, std::size_t size) {
+    if (size < kHugePage || size > kLargestKept) return std::free(block);
+#if defined(__linux__) && defined(MADV_FREE)
+    madvise(block, size, MADV_FREE);
+#endif
+    void* freed = nullptr;
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      freed = std::exchange(block_, block);
+      size_ = size;
+    }
+    std::free(freed);
+  }
+
+ private:
+  std::mutex mutex_;
+  void* block_ = nullptr;
+  std::size_t size_ = 0;
+};
+
+// Never destroyed: a result may be freed after static destructors have run.
+KeptBlock& kept_block() {
+  static KeptBlock* const kept = new KeptBlock;
+  return *kept;
+}
+
 // The block of a result of `rows` rows (null for none).
 unsigned char* allocate(std::size_t rows) {
-  const std::size_t bytes = Layout(rows).end;
-  if (bytes == 0) return nullptr;
-  const bool huge = bytes >= kHugePage;
-  const std::size_t alignment = huge ? kHugePage : kCacheLine;
-  const std::size_t size = round_up(bytes, alignment);
-  void* block = std::aligned_alloc(alignment, size);
+  const BlockSize block_size(rows);
+  if (block_size.size == 0) return nullptr;
+  if (void* kept = kept_block().take(block_size.size)) return static_cast<unsigned char*>(kept);
+  void* block = std::aligned_alloc(block_size.alignment, block_size.size);
   if (block == nullptr) throw std::bad_alloc();
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
   // Advice only: where huge pages are off (or not offered on request), the block stays on small
   // pages and nothing else changes.
-  if (huge) madvise(block, size, MADV_HUGEPAGE);
+  if (block_size.alignment == kHugePage) madvise(block, block_size.size, MADV_HUGEPAGE);
 #endif
   return static_cast<unsigned char*>(block);
 }
@@ -74,9 +128,11 @@ void point(Map& map, void* data, Eigen::Index rows) {
 
 }  // namespace
 
-void BatchResult::Free::operator()(void* block) const { std::free(block); }
+void detail::FreeBatchBlock::operator()(void* block) const {
+  kept_block().keep(block, BlockSize(rows).size);
+}
 
-BatchResult::BatchResult(std::size_t rows) : block_(allocate(rows)) { place(rows); }
+BatchResult::BatchResult(std::size_t rows) : block_(allocate(rows), detail::FreeBatchBlock{rows}) { place(rows); }
 
 BatchResult::BatchResult(const BatchResult& other) : BatchResult(other.rows_) {
   if (rows_ > 0) std::memcpy(block_.get(), other.block_.get(), Layout(rows_).end);

@@ -7,13 +7,23 @@
 
 namespace swarmcollide {
 
+namespace detail {
+/// Frees (or keeps for reuse) the block of a BatchResult of `rows` rows.
+struct FreeBatchBlock {
+  std::size_t rows = 0;
+  void operator()(void* block) const;
+};
+}  // namespace detail
+
 /// The answers to many queries, one entry (or row) per pair, in the units of the input.
 ///
 /// The arrays are views of one block of memory that the result owns: each array starts on a cache
 /// line, and a block of 2 MiB or more lies on huge pages where the system offers them. A batch's
 /// threads write chunks of rows that then share no cache line, and fault a large result's memory
 /// in a few pages rather than in thousands (which cost a fifth of a cheap row's time, and more on
-/// two threads). Copies copy the block; a moved-from result is empty.
+/// two threads). The last large block freed (up to 64 MiB) is kept for the next result of its
+/// size, so that a batch repeated over poses writes into memory already mapped. Copies copy the
+/// block; a moved-from result is empty.
 class BatchResult {
  public:
   /// A column of values, one per row.
@@ -51,15 +61,11 @@ class BatchResult {
   Column<int> part_b{nullptr, 0};
 
  private:
-  struct Free {
-    void operator()(void* block) const;
-  };
-
   // Points the arrays at `rows` rows of `block_`.
   void place(std::size_t rows);
 
   std::size_t rows_ = 0;
-  std::unique_ptr<unsigned char, Free> block_;
+  std::unique_ptr<unsigned char, detail::FreeBatchBlock> block_;
 };
 
 }  // namespace swarmcollide
