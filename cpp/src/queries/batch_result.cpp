@@ -132,7 +132,10 @@ void detail::FreeBatchBlock::operator()(void* block) const {
   kept_block().keep(block, BlockSize(rows).size);
 }
 
-BatchResult::BatchResult(std::size_t rows) : block_(allocate(rows), detail::FreeBatchBlock{rows}) { place(rows); }
+BatchResult::BatchResult(std::size_t rows)
+    : block_(allocate(rows), detail::FreeBatchBlock{rows}) {
+  place(rows);
+}
 
 BatchResult::BatchResult(const BatchResult& other) : BatchResult(other.rows_) {
   if (rows_ > 0) std::memcpy(block_.get(), other.block_.get(), Layout(rows_).end);
