@@ -141,7 +141,14 @@ TEST(Batch, VertexStacksGiveTheAnswersOfTheBodiesTheyHold) {
   const VertexStack stack_b{points_b.data(), pairs, vertices, "Bs"};
   const QueryOptions options = seeded(Method::ipso);
   expect_same(distance_many(stack_a, stack_b, options, {2}), distance_many(as, bs, options, {1}));
-  expect_same(collide_many(stack_a, stack_b, options, {2}), collide_many(as, bs, options, {1}));
+  // Bodies built row by row have no hull for the face screens: the same verdicts, whose bounds may
+  // come from another screen or the solver but bracket the same distances.
+  const BatchResult stacked = collide_many(stack_a, stack_b, options, {2});
+  const BatchResult built = collide_many(as, bs, options, {1});
+  EXPECT_TRUE((stacked.colliding == built.colliding).all());
+  EXPECT_TRUE((stacked.certified == built.certified).all());
+  EXPECT_TRUE((stacked.lower_bound.array() <= built.distance.array()).all());
+  EXPECT_TRUE((built.lower_bound.array() <= stacked.distance.array()).all());
   const QueryOptions dual = seeded(Method::dual);
   expect_same(signed_distance_many(stack_a, stack_b, dual, {2}),
               signed_distance_many(as, bs, dual, {1}));
@@ -541,6 +548,49 @@ TEST(BallScreen, TheCentresAxisProvesOnlyTrueSeparations) {
 // A collision batch of small bodies near each other settles most rows by the centres' axis (its
 // verdict is the row's), gets every verdict right with valid bounds, and answers alike on any
 // number of threads and however the batch is cut.
+// Where the centres' axis proves nothing, the face normals nearest it prove most separations that
+// exist, and only those: every lower bound stays below the exact distance.
+TEST(BallScreen, TheFaceAxesProveOnlyTrueSeparations) {
+  Random rng(18);
+  QueryOptions exact;
+  exact.method = Method::exact;
+  exact.tolerance = 0;
+  int by_faces = 0, apart_unsettled_by_axis = 0;
+  for (int trial = 0; trial < 600; ++trial) {
+    const ConvexPolyhedron a = sphere_body(4 + trial % 29, rng);
+    const ConvexPolyhedron b = sphere_body(4 + trial % 17, rng);
+    const detail::BodyBalls balls_a = detail::body_balls(a, true);
+    const detail::BodyBalls balls_b = detail::body_balls(b, true);
+    ASSERT_NE(balls_a.face_normals, nullptr);
+    const Pose pose_a{rng.rotation(), rng.vector(0.1)};
+    const Pose pose_b = near_poses(1, rng).b[0];
+    if (detail::apart_along_centres(a, pose_a, balls_a, b, pose_b, balls_b, 1e-9)) continue;
+    const DistanceResult truth = Query(exact).distance(a, pose_a, b, pose_b);
+    if (!truth.colliding) ++apart_unsettled_by_axis;
+    const std::optional<detail::ScreenVerdict> verdict =
+        detail::apart_across_faces(a, pose_a, balls_a, b, pose_b, balls_b, 1e-9);
+    if (!verdict) continue;
+    ++by_faces;
+    EXPECT_FALSE(truth.colliding) << trial;
+    EXPECT_FALSE(verdict->colliding) << trial;
+    EXPECT_GT(verdict->lower_bound, 0) << trial;
+    EXPECT_LE(verdict->lower_bound, truth.lower_bound) << trial;
+    EXPECT_GE(verdict->distance, truth.distance * (1 - 1e-14)) << trial;
+    EXPECT_NEAR(verdict->direction.norm(), 1, 1e-15) << trial;
+    EXPECT_NEAR((verdict->point_b - verdict->point_a).norm(), verdict->distance, 1e-15) << trial;
+  }
+  EXPECT_GT(apart_unsettled_by_axis, 50);
+  EXPECT_GT(by_faces, apart_unsettled_by_axis / 2);
+  // Without face normals (a batch over vertex stacks) the screen proves nothing.
+  const ConvexPolyhedron small = sphere_body(8, rng);
+  const Pose far{Matrix3::Identity(), Vector3(2.2, 0, 0)};
+  const detail::BodyBalls outer_only = detail::body_balls(small, false);
+  EXPECT_EQ(outer_only.face_normals, nullptr);
+  EXPECT_FALSE(detail::apart_across_faces(small, {}, outer_only, small, far, outer_only, 1e-9));
+  const detail::BodyBalls with_faces = detail::body_balls(small, true);
+  EXPECT_TRUE(detail::apart_across_faces(small, {}, with_faces, small, far, with_faces, 1e-9));
+}
+
 TEST(Batch, NearApartRowsAreSettledByTheCentresAxis) {
   Random rng(17);
   const ConvexPolyhedron a = sphere_body(8, rng);

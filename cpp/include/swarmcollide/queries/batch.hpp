@@ -131,9 +131,10 @@ BatchResult distance_many(const BatchBodies<ConvexPolyhedron>& as,
 /// separation, the distance that of the bodies' first given points, its witnesses), or balls
 /// inside the bodies that overlap (distance and lower bound 0, both witnesses a point common to
 /// the balls). Nor does a row of bodies of at most kHillClimbingThreshold points that are proven
-/// apart along the axis through those centres (the lower bound is their separation along it, the
-/// witnesses their supporting points). Bodies built from vertex stacks are screened by their
-/// bounding balls and that axis only.
+/// apart along the axis through those centres, or along the face normal of either body nearest
+/// that axis (the lower bound is their separation along the axis, the witnesses their supporting
+/// points, the distance theirs). Bodies built from vertex stacks are screened by their bounding
+/// balls and the centres' axis only.
 BatchResult collide_many(const BatchBodies<ConvexPolyhedron>& as,
                          const BatchBodies<ConvexPolyhedron>& bs, const QueryOptions& options,
                          const BatchSettings& settings = {}, const BatchPoses& poses = {});
