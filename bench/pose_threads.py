@@ -7,6 +7,11 @@ translations of length 2.4 ("apart": most collide rows settled by the ball scree
 ("near": most rows need a solver), ``poses_b=(rotations, translations)``. Prints a line per case;
 nothing is recorded (bench/pose_batch.py records the 20,000-row figures).
 
+A result freed before the next call leaves its memory for the next result of its size (see
+BatchResult), as in a loop that uses each batch's answers and drops them. ``--hold`` keeps every
+result of a case alive instead, so that each call writes into fresh memory (faulted and zeroed
+inside the call), as when a caller keeps many results.
+
     .venv/bin/python bench/pose_threads.py --rows 100000 --rounds 7
 """
 
@@ -32,6 +37,8 @@ def main() -> int:
     parser.add_argument("--rounds", type=int, default=7, help="interleaved rounds per case")
     parser.add_argument("--sizes", default="8,260", help="body sizes (points), comma-separated")
     parser.add_argument("--calls", default=",".join(CALLS), help="batch calls, comma-separated")
+    parser.add_argument("--hold", action="store_true",
+                        help="keep every result of a case alive (no freed memory reused)")
     arguments = parser.parse_args()
     rng = np.random.default_rng(0)
     m = arguments.rows
@@ -48,14 +55,17 @@ def main() -> int:
             for name in arguments.calls.split(","):
                 call = getattr(sc, name)
                 call(body, body, poses_b=poses, threads=1)  # warm the body's caches
-                gains, busy, one = [], [], []
+                gains, busy, one, held = [], [], [], []
                 for r in range(arguments.rounds):
                     wall, cpu = {}, {}
                     for threads in ((1, 2) if r % 2 == 0 else (2, 1)):
                         start, start_cpu = time.perf_counter(), time.process_time()
-                        call(body, body, poses_b=poses, threads=threads)
+                        result = call(body, body, poses_b=poses, threads=threads)
                         wall[threads] = time.perf_counter() - start
                         cpu[threads] = time.process_time() - start_cpu
+                        if arguments.hold:
+                            held.append(result)
+                        del result
                     gains.append(wall[1] / wall[2])
                     busy.append(cpu[2] / wall[2])
                     one.append(wall[1] / m * 1e6)

@@ -245,6 +245,20 @@ BatchResult run(const py::object& as, const py::object& bs, const py::object& po
   return ask(side_a.get(), side_b.get(), poses);
 }
 
+// A getter of one of a BatchResult's arrays as a read-only NumPy view of it, which keeps the
+// result alive.
+template <typename Map>
+py::cpp_function read_only(Map BatchResult::*field) {
+  using Plain = typename Map::PlainObject;
+  using Constant = Eigen::Map<const Plain>;
+  return py::cpp_function(
+      [field](const BatchResult& result) {
+        const Map& values = result.*field;
+        return Constant(values.data(), values.rows(), values.cols());
+      },
+      py::return_value_policy::reference_internal);
+}
+
 constexpr const char* kBatchDoc = R"doc(
 The query for every row ``(As[i], Bs[i])``, in C++ threads without the GIL.
 
@@ -273,18 +287,18 @@ iterations : numpy.ndarray of int, shape (m,)
 part_a, part_b : numpy.ndarray of int, shape (m,)
     The parts of compound bodies that realise each answer (0 for convex bodies).
 )doc")
-      .def_readonly("distance", &BatchResult::distance)
-      .def_readonly("lower_bound", &BatchResult::lower_bound)
-      .def_readonly("point_a", &BatchResult::point_a)
-      .def_readonly("point_b", &BatchResult::point_b)
-      .def_readonly("direction", &BatchResult::direction)
-      .def_readonly("colliding", &BatchResult::colliding)
-      .def_readonly("certified", &BatchResult::certified)
-      .def_readonly("iterations", &BatchResult::iterations)
-      .def_readonly("escalated", &BatchResult::escalated)
-      .def_readonly("part_a", &BatchResult::part_a)
-      .def_readonly("part_b", &BatchResult::part_b)
-      .def("__len__", [](const BatchResult& r) { return r.distance.size(); })
+      .def_property_readonly("distance", read_only(&BatchResult::distance))
+      .def_property_readonly("lower_bound", read_only(&BatchResult::lower_bound))
+      .def_property_readonly("point_a", read_only(&BatchResult::point_a))
+      .def_property_readonly("point_b", read_only(&BatchResult::point_b))
+      .def_property_readonly("direction", read_only(&BatchResult::direction))
+      .def_property_readonly("colliding", read_only(&BatchResult::colliding))
+      .def_property_readonly("certified", read_only(&BatchResult::certified))
+      .def_property_readonly("iterations", read_only(&BatchResult::iterations))
+      .def_property_readonly("escalated", read_only(&BatchResult::escalated))
+      .def_property_readonly("part_a", read_only(&BatchResult::part_a))
+      .def_property_readonly("part_b", read_only(&BatchResult::part_b))
+      .def("__len__", &BatchResult::rows)
       .def("__repr__", [](const BatchResult& r) {
         return "BatchResult(" + std::to_string(r.distance.size()) + " pairs, " +
                std::to_string(r.colliding.count()) + " colliding, " +

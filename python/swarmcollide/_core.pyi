@@ -44,7 +44,7 @@ class BatchResult:
     def colliding(self) -> typing.Annotated[numpy.typing.NDArray[numpy.bool], "[m, 1]"]:
         ...
     @property
-    def direction(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
+    def direction(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]", "flags.c_contiguous"]:
         ...
     @property
     def distance(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
@@ -65,10 +65,10 @@ class BatchResult:
     def part_b(self) -> typing.Annotated[numpy.typing.NDArray[numpy.int32], "[m, 1]"]:
         ...
     @property
-    def point_a(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
+    def point_a(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]", "flags.c_contiguous"]:
         ...
     @property
-    def point_b(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
+    def point_b(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]", "flags.c_contiguous"]:
         ...
 class Box(ConvexPolyhedron):
     """

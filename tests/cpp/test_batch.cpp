@@ -3,11 +3,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <functional>
 #include <limits>
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "paper_cases.hpp"
@@ -139,7 +141,14 @@ TEST(Batch, VertexStacksGiveTheAnswersOfTheBodiesTheyHold) {
   const VertexStack stack_b{points_b.data(), pairs, vertices, "Bs"};
   const QueryOptions options = seeded(Method::ipso);
   expect_same(distance_many(stack_a, stack_b, options, {2}), distance_many(as, bs, options, {1}));
-  expect_same(collide_many(stack_a, stack_b, options, {2}), collide_many(as, bs, options, {1}));
+  // Bodies built row by row have no hull for the face screens: the same verdicts, whose bounds may
+  // come from another screen or the solver but bracket the same distances.
+  const BatchResult stacked = collide_many(stack_a, stack_b, options, {2});
+  const BatchResult built = collide_many(as, bs, options, {1});
+  EXPECT_TRUE((stacked.colliding == built.colliding).all());
+  EXPECT_TRUE((stacked.certified == built.certified).all());
+  EXPECT_TRUE((stacked.lower_bound.array() <= built.distance.array()).all());
+  EXPECT_TRUE((built.lower_bound.array() <= stacked.distance.array()).all());
   const QueryOptions dual = seeded(Method::dual);
   expect_same(signed_distance_many(stack_a, stack_b, dual, {2}),
               signed_distance_many(as, bs, dual, {1}));
@@ -539,6 +548,49 @@ TEST(BallScreen, TheCentresAxisProvesOnlyTrueSeparations) {
 // A collision batch of small bodies near each other settles most rows by the centres' axis (its
 // verdict is the row's), gets every verdict right with valid bounds, and answers alike on any
 // number of threads and however the batch is cut.
+// Where the centres' axis proves nothing, the face normals nearest it prove most separations that
+// exist, and only those: every lower bound stays below the exact distance.
+TEST(BallScreen, TheFaceAxesProveOnlyTrueSeparations) {
+  Random rng(18);
+  QueryOptions exact;
+  exact.method = Method::exact;
+  exact.tolerance = 0;
+  int by_faces = 0, apart_unsettled_by_axis = 0;
+  for (int trial = 0; trial < 600; ++trial) {
+    const ConvexPolyhedron a = sphere_body(4 + trial % 29, rng);
+    const ConvexPolyhedron b = sphere_body(4 + trial % 17, rng);
+    const detail::BodyBalls balls_a = detail::body_balls(a, true);
+    const detail::BodyBalls balls_b = detail::body_balls(b, true);
+    ASSERT_NE(balls_a.face_normals, nullptr);
+    const Pose pose_a{rng.rotation(), rng.vector(0.1)};
+    const Pose pose_b = near_poses(1, rng).b[0];
+    if (detail::apart_along_centres(a, pose_a, balls_a, b, pose_b, balls_b, 1e-9)) continue;
+    const DistanceResult truth = Query(exact).distance(a, pose_a, b, pose_b);
+    if (!truth.colliding) ++apart_unsettled_by_axis;
+    const std::optional<detail::ScreenVerdict> verdict =
+        detail::apart_across_faces(a, pose_a, balls_a, b, pose_b, balls_b, 1e-9);
+    if (!verdict) continue;
+    ++by_faces;
+    EXPECT_FALSE(truth.colliding) << trial;
+    EXPECT_FALSE(verdict->colliding) << trial;
+    EXPECT_GT(verdict->lower_bound, 0) << trial;
+    EXPECT_LE(verdict->lower_bound, truth.lower_bound) << trial;
+    EXPECT_GE(verdict->distance, truth.distance * (1 - 1e-14)) << trial;
+    EXPECT_NEAR(verdict->direction.norm(), 1, 1e-15) << trial;
+    EXPECT_NEAR((verdict->point_b - verdict->point_a).norm(), verdict->distance, 1e-15) << trial;
+  }
+  EXPECT_GT(apart_unsettled_by_axis, 50);
+  EXPECT_GT(by_faces, apart_unsettled_by_axis / 2);
+  // Without face normals (a batch over vertex stacks) the screen proves nothing.
+  const ConvexPolyhedron small = sphere_body(8, rng);
+  const Pose far{Matrix3::Identity(), Vector3(2.2, 0, 0)};
+  const detail::BodyBalls outer_only = detail::body_balls(small, false);
+  EXPECT_EQ(outer_only.face_normals, nullptr);
+  EXPECT_FALSE(detail::apart_across_faces(small, {}, outer_only, small, far, outer_only, 1e-9));
+  const detail::BodyBalls with_faces = detail::body_balls(small, true);
+  EXPECT_TRUE(detail::apart_across_faces(small, {}, with_faces, small, far, with_faces, 1e-9));
+}
+
 TEST(Batch, NearApartRowsAreSettledByTheCentresAxis) {
   Random rng(17);
   const ConvexPolyhedron a = sphere_body(8, rng);
@@ -657,6 +709,110 @@ TEST(Batch, PosesAreCheckedOnceNamingTheRow) {
   EXPECT_NE(error_of([&] { distance_many(a, a, {}, {}, poses); })
                 .find("poses_b must have one pose per pair, got 5 for 4 pairs"),
             std::string::npos);
+}
+
+// A result's arrays are views of one block: each starts on a cache line (so that chunks of 64
+// rows share none), a large block on a huge page's boundary; copies are deep and a moved-from
+// result is empty.
+TEST(BatchResultBlock, ArraysStartOnCacheLinesAndCopiesAreDeep) {
+  const auto line = [](const void* data) { return reinterpret_cast<std::uintptr_t>(data) % 64; };
+  for (std::size_t rows : {1u, 3u, 65u, 30000u}) {
+    SCOPED_TRACE(rows);
+    BatchResult r(rows);
+    EXPECT_EQ(r.rows(), rows);
+    for (const void* data : {static_cast<const void*>(r.distance.data()),
+                             static_cast<const void*>(r.lower_bound.data()),
+                             static_cast<const void*>(r.point_a.data()),
+                             static_cast<const void*>(r.point_b.data()),
+                             static_cast<const void*>(r.direction.data()),
+                             static_cast<const void*>(r.colliding.data()),
+                             static_cast<const void*>(r.certified.data()),
+                             static_cast<const void*>(r.iterations.data()),
+                             static_cast<const void*>(r.escalated.data()),
+                             static_cast<const void*>(r.part_a.data()),
+                             static_cast<const void*>(r.part_b.data())}) {
+      EXPECT_EQ(line(data), 0u);
+    }
+    EXPECT_EQ(r.point_a.rows(), static_cast<Eigen::Index>(rows));
+    EXPECT_EQ(r.part_b.size(), static_cast<Eigen::Index>(rows));
+    // The arrays do not overlap: writing each leaves the others as written.
+    r.distance.setConstant(1);
+    r.lower_bound.setConstant(2);
+    r.point_a.setConstant(3);
+    r.point_b.setConstant(4);
+    r.direction.setConstant(5);
+    r.iterations.setConstant(6);
+    r.part_a.setConstant(7);
+    r.part_b.setConstant(8);
+    r.colliding.setConstant(true);
+    r.certified.setConstant(false);
+    r.escalated.setConstant(true);
+    const BatchResult copy = r;
+    EXPECT_NE(copy.distance.data(), r.distance.data());
+    r.point_b(rows - 1, 2) = -1;
+    EXPECT_EQ(copy.point_b(rows - 1, 2), 4);
+    EXPECT_TRUE((copy.distance.array() == 1).all() && (copy.lower_bound.array() == 2).all());
+    EXPECT_TRUE((copy.point_a.array() == 3).all() && (copy.direction.array() == 5).all());
+    EXPECT_TRUE((copy.iterations == 6).all() && (copy.part_a == 7).all() &&
+                (copy.part_b == 8).all());
+    EXPECT_TRUE(copy.colliding.all() && !copy.certified.any() && copy.escalated.all());
+    BatchResult moved = std::move(r);
+    EXPECT_EQ(moved.point_b(rows - 1, 2), -1);
+    EXPECT_EQ(r.rows(), 0u);  // NOLINT(bugprone-use-after-move): a moved-from result is empty
+    EXPECT_EQ(r.distance.size(), 0);
+    r = copy;
+    EXPECT_EQ(r.point_b(rows - 1, 2), 4);
+  }
+  EXPECT_EQ(reinterpret_cast<std::uintptr_t>(BatchResult(30000).distance.data()) % (2 << 20), 0u);
+}
+
+// The block of a large result, once freed, serves the next result of its size (and only of its
+// size), whose rows are written as any others.
+TEST(BatchResultBlock, AFreedLargeBlockServesTheNextResultOfItsSize) {
+  const void* freed = nullptr;
+  {
+    BatchResult first(30000);
+    first.distance.setConstant(1);
+    freed = first.distance.data();
+  }
+  {
+    BatchResult next(30000);
+    EXPECT_EQ(static_cast<const void*>(next.distance.data()), freed);
+    next.distance.setConstant(2);
+    EXPECT_TRUE((next.distance.array() == 2).all());
+  }
+  const BatchResult larger(60000);
+  EXPECT_NE(static_cast<const void*>(larger.distance.data()), freed);
+  const BatchResult small(100);
+  EXPECT_NE(static_cast<const void*>(small.distance.data()), freed);
+  const BatchResult again(30000);
+  EXPECT_EQ(static_cast<const void*>(again.distance.data()), freed);
+}
+
+// Tens of thousands of rows go to the threads in large chunks: the answers are still those of one
+// thread, bit for bit, and an error is still the lowest failing row's, wherever the chunks fall.
+TEST(Batch, LargeBatchesAnswerAlikeOnAnyThreads) {
+  Random rng(12);
+  const ConvexPolyhedron a = rng.body(8);
+  const ConvexPolyhedron b = rng.body(8);
+  BatchPoses poses;
+  poses.b = random_poses(30000, rng, 2.5);
+  const QueryOptions options = seeded(Method::dual);
+  const BatchResult one = collide_many(a, b, options, {1}, poses);
+  for (int threads : {2, 3}) expect_same(one, collide_many(a, b, options, {threads}, poses));
+  BatchPoses fewer;
+  fewer.b.assign(poses.b.begin(), poses.b.begin() + 3000);
+  const BatchResult distances = distance_many(a, b, options, {1}, fewer);
+  for (int threads : {2, 3}) expect_same(distances, distance_many(a, b, options, {threads}, fewer));
+  for (std::size_t bad : {29990u, 17000u, 130u}) {
+    poses.b[bad].rotation(1, 1) = std::numeric_limits<double>::quiet_NaN();
+    for (int threads : {1, 2, 3}) {
+      const std::string message =
+          error_of([&] { collide_many(a, b, options, {threads}, poses); });
+      EXPECT_EQ(message.rfind("poses_b[" + std::to_string(bad) + "] has a NaN", 0), 0u)
+          << message;
+    }
+  }
 }
 
 TEST(Batch, PairSeedsDiffer) {

@@ -295,3 +295,25 @@ def test_mismatched_rows_are_refused():
         sc.distance_many([TETRA, TETRA], TETRA, poses_b=poses)
     with pytest.raises(ValueError, match=r"poses_b must be a \(3, 4, 4\)"):
         sc.distance_many(TETRA, sc.ConvexPolyhedron(TETRA), poses_a=poses, poses_b=poses[:2])
+
+
+def test_result_arrays_are_read_only_views_that_keep_their_memory():
+    # A large result's memory is kept for the next result of its size once the result is freed:
+    # an array still held keeps its result (and memory) alive, so later batches never write
+    # into it.
+    rng = np.random.default_rng(27)
+    body = sc.ConvexPolyhedron(rng.normal(size=(8, 3)))
+    translations = rng.normal(size=(30_000, 3)) * 3
+    rotations = np.broadcast_to(np.eye(3), (30_000, 3, 3)).copy()
+    first = sc.collide_many(body, body, poses_b=(rotations, translations))
+    distance, points = first.distance, first.point_a
+    kept = distance.copy(), points.copy()
+    assert not distance.flags.writeable and not points.flags.writeable
+    assert points.flags.c_contiguous and points.shape == (30_000, 3)
+    with pytest.raises(ValueError):
+        distance[0] = 1
+    del first
+    for _ in range(3):
+        sc.collide_many(body, body, poses_b=(rotations, translations[::-1].copy()))
+    np.testing.assert_array_equal(distance, kept[0])
+    np.testing.assert_array_equal(points, kept[1])

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <optional>
+#include <vector>
 
 #include "swarmcollide/geometry/convex_polyhedron.hpp"
 #include "swarmcollide/geometry/pose.hpp"
@@ -16,11 +17,14 @@ namespace swarmcollide::detail {
 struct BodyBalls {
   Scalar outer = 0;
   Scalar inner = 0;
+  /// The unit outward normals of the hull's triangles in the body's frame, found with the inner
+  /// ball (else null): the axes apart_across_faces tries.
+  const std::vector<Vector3>* face_normals = nullptr;
 };
 
-/// `body`'s balls, computed on first use and kept with its derived data. The inner ball needs the
-/// hull, so it is found only `with_inner` (else 0): a batch that builds its bodies row by row
-/// screens by the outer balls alone.
+/// `body`'s balls, computed on first use and kept with its derived data. The inner ball and the
+/// face normals need the hull, so they are found only `with_inner` (else 0 and none): a batch that
+/// builds its bodies row by row screens by the outer balls and the centres' axis alone.
 BodyBalls body_balls(const ConvexPolyhedron& body, bool with_inner);
 
 /// A collision's answer settled by a screen, in world units.
@@ -28,7 +32,8 @@ struct ScreenVerdict {
   bool colliding = false;
   /// Apart: the distance between two points of the bodies (an upper bound: their first given
   /// points, or their supporting points along the axis), and the separation of the balls or of
-  /// the bodies along `direction`, the unit vector between the centres (a lower bound).
+  /// the bodies along `direction` (a lower bound), the unit vector between the centres or a placed
+  /// face normal.
   /// Colliding: 0 and 0, both witnesses a point common to the inner balls, no direction.
   Scalar distance = 0;
   Scalar lower_bound = 0;
@@ -60,7 +65,21 @@ std::optional<ScreenVerdict> apart_along_centres(const ConvexPolyhedron& a, cons
                                                  const BodyBalls& balls_b,
                                                  Scalar relative_tolerance);
 
-/// collision_by_balls, then apart_along_centres, placing the centres once: what a batch row asks.
+/// The bodies proven apart along one of two face normals, for bodies of at most
+/// kHillClimbingThreshold points whose balls carry face normals: A's normal nearest the direction
+/// from A's centre to B's, then B's normal nearest the opposite direction, each placed in the world
+/// and tested as apart_along_centres tests its axis (the same bound on the rounding holds for any
+/// unit axis). Where the centres' axis fails, one of these proves most pairs that are apart
+/// (separating axis theorem: a face normal or an edge pair separates two polytopes), each try
+/// costing a fraction of a solver's answer. Nothing otherwise.
+std::optional<ScreenVerdict> apart_across_faces(const ConvexPolyhedron& a, const Pose& pose_a,
+                                                const BodyBalls& balls_a,
+                                                const ConvexPolyhedron& b, const Pose& pose_b,
+                                                const BodyBalls& balls_b,
+                                                Scalar relative_tolerance);
+
+/// collision_by_balls, then apart_along_centres, then apart_across_faces, placing the centres
+/// once: what a batch row asks.
 std::optional<ScreenVerdict> collision_by_screens(const ConvexPolyhedron& a, const Pose& pose_a,
                                                   const BodyBalls& balls_a,
                                                   const ConvexPolyhedron& b, const Pose& pose_b,

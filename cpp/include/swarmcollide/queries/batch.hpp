@@ -7,30 +7,11 @@
 #include "swarmcollide/geometry/compound_body.hpp"
 #include "swarmcollide/geometry/convex_polyhedron.hpp"
 #include "swarmcollide/geometry/pose.hpp"
+#include "swarmcollide/queries/batch_result.hpp"
 #include "swarmcollide/queries/options.hpp"
 #include "swarmcollide/types.hpp"
 
 namespace swarmcollide {
-
-/// The answers to many queries, one entry (or row) per pair, in the units of the input.
-struct BatchResult {
-  VectorX distance;
-  VectorX lower_bound;
-  VertexMatrix point_a;
-  VertexMatrix point_b;
-  /// Unit directions from A to B certifying the lower bounds (contact normals for signed
-  /// distances); zero rows where none was found.
-  VertexMatrix direction;
-  Eigen::Array<bool, Eigen::Dynamic, 1> colliding;
-  Eigen::Array<bool, Eigen::Dynamic, 1> certified;
-  Eigen::Array<int, Eigen::Dynamic, 1> iterations;
-  /// True where another method than the one asked for answered (see
-  /// DistanceResult::escalated_from).
-  Eigen::Array<bool, Eigen::Dynamic, 1> escalated;
-  /// The parts of A and of B that realise each answer (see CompoundResult); 0 for convex bodies.
-  Eigen::Array<int, Eigen::Dynamic, 1> part_a;
-  Eigen::Array<int, Eigen::Dynamic, 1> part_b;
-};
 
 /// Largest number of threads a batch may ask for.
 inline constexpr int kMaxThreads = 1024;
@@ -150,9 +131,10 @@ BatchResult distance_many(const BatchBodies<ConvexPolyhedron>& as,
 /// separation, the distance that of the bodies' first given points, its witnesses), or balls
 /// inside the bodies that overlap (distance and lower bound 0, both witnesses a point common to
 /// the balls). Nor does a row of bodies of at most kHillClimbingThreshold points that are proven
-/// apart along the axis through those centres (the lower bound is their separation along it, the
-/// witnesses their supporting points). Bodies built from vertex stacks are screened by their
-/// bounding balls and that axis only.
+/// apart along the axis through those centres, or along the face normal of either body nearest
+/// that axis (the lower bound is their separation along the axis, the witnesses their supporting
+/// points, the distance theirs). Bodies built from vertex stacks are screened by their bounding
+/// balls and the centres' axis only.
 BatchResult collide_many(const BatchBodies<ConvexPolyhedron>& as,
                          const BatchBodies<ConvexPolyhedron>& bs, const QueryOptions& options,
                          const BatchSettings& settings = {}, const BatchPoses& poses = {});
