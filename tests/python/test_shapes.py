@@ -157,6 +157,23 @@ def test_the_ball_screens_count_the_radii():
     assert 0 < r.lower_bound[0] <= 0.1
 
 
+def test_the_face_screens_count_the_radii():
+    """Rounded unit boxes whose cores are 0.5 apart across x and offset 1.9 along y: the
+    centres' axis proves nothing once the radii are taken off, a face normal does, and only when
+    the radii leave a gap (0.5 - 2r)."""
+    offsets = np.array([[2.5, 1.9, 0.0], [2.5, -1.9, 0.1], [-2.5, 1.9, 0.0]])
+    poses_b = (np.tile(np.eye(3), (3, 1, 1)), offsets)
+    for radius, gap in [(0.2, 0.1), (0.24, 0.02), (0.26, -0.02), (0.3, -0.1)]:
+        box = sc.Box([1.0, 1.0, 1.0], radius=radius)
+        r = sc.collide_many(box, box, poses_b=poses_b)
+        assert r.certified.all()
+        np.testing.assert_array_equal(r.colliding, [gap < 0] * 3)
+        if gap > 0:
+            exact = sc.distance_many(box, box, poses_b=poses_b, method="exact")
+            assert (r.lower_bound <= exact.lower_bound + 1e-15).all()
+            assert (r.lower_bound > 0.9 * gap).all()
+
+
 def test_scenes_of_spheres_and_capsules():
     scene = sc.Scene()
     bodies = [sc.Sphere(0.5), sc.Capsule(0.25, 1.0), sc.Box([0.5, 0.5, 0.5], radius=0.1)]
