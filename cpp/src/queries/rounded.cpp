@@ -28,28 +28,20 @@ bool underflowed(Scalar radius) {
   return radius > 0 && radius < std::numeric_limits<Scalar>::min();
 }
 
-// `core - r_a - r_b`, moved `outward` (-1 down, +1 up) by a bound on its rounding unless the
-// sum and the difference are proven exact: sphere radii and distances such as 1.5 stay 1.5.
-Scalar shifted(const FramedPair& pair, Scalar core, Scalar outward) {
+}  // namespace
+
+// Moved by nothing when the sum and the difference are proven exact: sphere radii and distances
+// such as 1.5 stay 1.5.
+Scalar shifted_by_radii(const FramedPair& pair, Scalar core, Scalar outward) {
   const Scalar radii = pair.radius_a + pair.radius_b;
   const Scalar value = core - radii;
-  if (!rounded(pair) || !std::isfinite(core)) return value;
+  if (!std::isfinite(core)) return value;
   const bool exact = sum_error(pair.radius_a, pair.radius_b, radii) == 0 &&
                      sum_error(core, -radii, value) == 0 && !underflowed(pair.radius_a) &&
                      !underflowed(pair.radius_b);
   if (exact) return value;
   return std::nextafter(value + outward * subtraction_rounding(pair, core),
                         outward * std::numeric_limits<Scalar>::infinity());
-}
-
-}  // namespace
-
-Scalar rounded_lower(const FramedPair& pair, Scalar core_lower) {
-  return shifted(pair, core_lower, -1);
-}
-
-Scalar rounded_upper(const FramedPair& pair, Scalar core_upper) {
-  return shifted(pair, core_upper, 1);
 }
 
 void round_answer(const FramedPair& pair, Goal goal, Answer& answer) {

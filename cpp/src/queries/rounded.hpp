@@ -10,14 +10,24 @@ namespace swarmcollide::detail {
 /// True when either body of `pair` is rounded (ConvexPolyhedron::radius() > 0).
 inline bool rounded(const FramedPair& pair) { return pair.radius_a > 0 || pair.radius_b > 0; }
 
+/// `core - r_a - r_b` moved `outward` (-1 down, +1 up) by a bound on its rounding, for a rounded
+/// pair: what rounded_lower and rounded_upper return when a radius is not zero.
+Scalar shifted_by_radii(const FramedPair& pair, Scalar core, Scalar outward);
+
 /// A lower bound on the signed distance of the rounded bodies from `core_lower`, one on their
 /// cores': for convex cores the rounded bodies' Minkowski difference is the cores' grown by a
 /// ball of radius `r_a + r_b`, so the signed distance drops by exactly that. The subtraction's
 /// rounding is bounded and taken off, so the bound stays proven. `core_lower` itself (to the
 /// bit) for two polyhedra.
-Scalar rounded_lower(const FramedPair& pair, Scalar core_lower);
+/// Inline, so that the solvers' stop tests (several per query) pay one comparison for two
+/// polyhedra.
+inline Scalar rounded_lower(const FramedPair& pair, Scalar core_lower) {
+  return rounded(pair) ? shifted_by_radii(pair, core_lower, -1) : core_lower;
+}
 /// The same for an upper bound: `core_upper - r_a - r_b`, rounded up.
-Scalar rounded_upper(const FramedPair& pair, Scalar core_upper);
+inline Scalar rounded_upper(const FramedPair& pair, Scalar core_upper) {
+  return rounded(pair) ? shifted_by_radii(pair, core_upper, 1) : core_upper;
+}
 
 /// Turns `answer`, found on the cores of `pair` for `goal`, into the rounded bodies' answer, in
 /// place: both bounds (and the history) by rounded_lower and rounded_upper; the witnesses moved
