@@ -103,6 +103,7 @@ bench: install $(VENV)/.bench-installed bench-scene bench-compound
 	  --object $(BENCH_BUILD)/cpp/CMakeFiles/swarmcollide.dir/src/solvers/swarm_kernels.cpp.o
 	$(PY) bench/dask_batch.py $(BENCH_ARGS) --json bench/results/dask_batch.json
 	$(PY) bench/contacts.py $(BENCH_ARGS) --json bench/results/contacts.json
+	$(PY) bench/contacts.py $(BENCH_ARGS) --scene pile --json bench/results/contacts_pile.json
 	$(PY) bench/report.py --results bench/results --plots bench/plots --out bench/RESULTS.md
 
 # The core, the C++ tests and the extension, built with ASan and UBSan (SWARMCOLLIDE_SANITIZE) in

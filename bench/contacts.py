@@ -1,12 +1,18 @@
 """Contacts of a few hundred real object meshes (pybullet_data's duck, teddy, bunny, mug, ... and
-its random objects, as convex hulls) moving over ~100 frames: ``Scene.contacts()`` against MuJoCo
+its random objects, as convex hulls) over ~100 frames: ``Scene.contacts()`` against MuJoCo
 (``mj_kinematics`` + ``mj_collision``, free bodies) and coal (its DynamicAABBTree broadphase with
 GJK/EPA contacts in C++), interleaved frame by frame on the same poses, with wall and CPU time per
 frame and the load average. Every peer contact is checked against the exact reference, the scene's
 certified signed distance and normal: depth errors, normal angles, and whether the peer's normal
 separates the bodies by the true depth (its separation along it, from the hulls' vertices).
 
-    python bench/contacts.py [--quick] [--json bench/results/contacts.json]
+Two scenes: ``drift`` (bodies drifting and turning through a box, about one contact per body,
+mostly vertex and edge contacts) and ``pile`` (the bodies dropped on a floor slab and left to
+settle under MuJoCo's own simulation; the frames are its last steps, so faces rest on the floor
+and on each other, the contacts a physics loop asks for frame after frame, with manifolds of
+several points). The floor is one more hull, posed like the others in every contender.
+
+    python bench/contacts.py [--quick] [--scene drift|pile] [--json bench/results/contacts.json]
 """
 
 from __future__ import annotations
@@ -87,6 +93,59 @@ def motion(n: int, frames: int, seed: int) -> Tuple[np.ndarray, np.ndarray]:
         translations[f] = position
         rotation = spin * rotation
         position = position + velocity
+    return rotations, translations
+
+
+def floor_slab(points: List[np.ndarray]) -> Tuple[np.ndarray, float]:
+    """The corners of a slab 0.5 thick (top face at z = 0) under a square grid of the bodies, and
+    the grid's spacing (1.2: the bodies' largest diameter, so neighbours touch as they tumble)."""
+    columns = int(np.ceil(np.sqrt(len(points))))
+    half = columns * 1.2 / 2 + 1
+    corners = np.array([[x, y, z] for x in (-half, half) for y in (-half, half)
+                        for z in (-0.25, 0.25)])
+    return corners, 1.2
+
+
+def settled_pile(points: List[np.ndarray], frames: int, seed: int) -> Tuple[np.ndarray, np.ndarray]:
+    """Rotations (frames, n + 1, 3, 3) and translations (frames, n + 1, 3): the bodies dropped in a
+    grid on the floor slab (body n, fixed, centre at z = -0.25), simulated by MuJoCo until they
+    rest, the frames being its last ``frames`` steps, two steps apart."""
+    import mujoco
+
+    corners, spacing = floor_slab(points)
+    columns = int(np.ceil(np.sqrt(len(points))))
+    rng = np.random.default_rng(seed)
+    start = Rotation.random(len(points), random_state=seed).as_quat(scalar_first=True)
+    assets = "".join(f'<mesh name="m{i}" vertex="{" ".join(f"{x:.17g}" for x in p.ravel())}"/>'
+                     for i, p in enumerate(points))
+    bodies = []
+    for i, p in enumerate(points):
+        x = (i % columns - (columns - 1) / 2) * spacing + rng.uniform(-0.05, 0.05)
+        y = (i // columns - (columns - 1) / 2) * spacing + rng.uniform(-0.05, 0.05)
+        z = float(np.linalg.norm(p, axis=1).max()) + 0.02
+        quat = " ".join(f"{v:.17g}" for v in start[i])
+        bodies.append(f'<body pos="{x} {y} {z}" quat="{quat}"><freejoint/>'
+                      f'<geom type="mesh" mesh="m{i}" density="500"/></body>')
+    slab = " ".join(f"{v:.17g}" for v in np.abs(corners).max(axis=0))
+    xml = (f'<mujoco><option timestep="0.004"><flag multiccd="enable"/></option>'
+           f'<size memory="400M"/><asset>{assets}</asset><worldbody>'
+           f'<geom type="box" size="{slab}" pos="0 0 -0.25"/>{"".join(bodies)}'
+           f"</worldbody></mujoco>")
+    model = mujoco.MjModel.from_xml_string(xml)
+    data = mujoco.MjData(model)
+    settle = 300
+    rotations = np.empty((frames, len(points) + 1, 3, 3))
+    translations = np.empty((frames, len(points) + 1, 3))
+    rotations[:, -1] = np.eye(3)
+    translations[:, -1] = (0, 0, -0.25)
+    for step in range(settle + 2 * frames):
+        mujoco.mj_step(model, data)
+        kept = step - settle
+        if kept >= 0 and kept % 2 == 1:
+            # A mesh geom's frame is the mesh's inertial frame, offset within its body so that
+            # the mesh's own coordinates are the body's: the hull's pose is the body's.
+            rotations[kept // 2, :-1] = data.xmat[1:].reshape(-1, 3, 3)
+            translations[kept // 2, :-1] = data.xpos[1:]
     return rotations, translations
 
 
@@ -239,14 +298,20 @@ def main() -> int:
     parser.add_argument("--quick", action="store_true", help="100 bodies, 20 frames")
     parser.add_argument("--bodies", type=int, default=None, help="bodies (default 300)")
     parser.add_argument("--frames", type=int, default=None, help="frames (default 100)")
+    parser.add_argument("--scene", choices=("drift", "pile"), default="drift",
+                        help="bodies drifting through a box, or settled on a floor (see above)")
     parser.add_argument("--json", default=None, help="write the results there")
     args = parser.parse_args()
     n = args.bodies or (100 if args.quick else 300)
     frames = args.frames or (20 if args.quick else 100)
     load_before = os.getloadavg()
     points = hulls(n, seed=25)
+    if args.scene == "pile":
+        rotations, translations = settled_pile(points, frames + 1, seed=25)
+        points.append(floor_slab(points)[0])
+    else:
+        rotations, translations = motion(n, frames + 1, seed=25)
     radii = [float(np.linalg.norm(p, axis=1).max()) for p in points]
-    rotations, translations = motion(n, frames + 1, seed=25)
     contenders = [Ours(points, 1), Ours(points, 2), MuJoCo(points, False), MuJoCo(points, True),
                   Coal(points)]
     # Frame 0 builds the peers' caches and ours (hulls, boxes, proofs): untimed.
@@ -276,7 +341,7 @@ def main() -> int:
     for name, samples in times.items():
         wall = np.array([t[0] for t in samples])
         cpu = np.array([t[1] for t in samples])
-        row = {"contender": name, "bodies": n, "frames": frames,
+        row = {"contender": name, "bodies": len(points), "scene": args.scene, "frames": frames,
                "median_ms": 1e3 * float(np.median(wall)), "median_cpu_ms": 1e3 * float(np.median(cpu)),
                "min_ms": 1e3 * float(wall.min()),
                "ours_over_this_cpu": float(ours_cpu / np.median(cpu))}
@@ -299,7 +364,8 @@ def main() -> int:
     print(f"{n} hulls of {min(vertex_counts)}-{max(vertex_counts)} vertices (median "
           f"{int(np.median(vertex_counts))}); load {load_before} -> {os.getloadavg()}")
     if args.json:
-        context = {"mode": "quick" if args.quick else "full", "bodies": n, "frames": frames,
+        context = {"mode": "quick" if args.quick else "full", "scene": args.scene,
+                   "bodies": len(points), "frames": frames,
                    "vertices_min": min(vertex_counts), "vertices_max": max(vertex_counts),
                    "vertices_median": int(np.median(vertex_counts)),
                    "depth_tolerance": DEPTH_TOLERANCE, "angle_degrees": ANGLE_DEGREES}

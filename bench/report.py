@@ -19,7 +19,7 @@ from hull_points import section as hull_points_section
 from pose_batch import section as pose_batch_section
 from cpp_report import cpp_sections, every_workload_section
 from record import load
-from scene_report import CONTACTS, contacts_section, scene_section
+from scene_report import CONTACTS, CONTACTS_PILE, contacts_section, scene_section
 from sections import (
     batch_section,
     convergence_section,
@@ -114,6 +114,8 @@ LATE_SECTIONS: List[Section] = [
     ("dask_batch.json", "Batches on Dask (bench/dask_batch.py)", "", dask_section, ""),
     ("contacts.json", "Contacts of real object meshes: the scene against MuJoCo and coal",
      CONTACTS, contacts_section, ""),
+    ("contacts_pile.json", "Resting contacts: the same meshes settled on a floor",
+     CONTACTS_PILE, contacts_section, ""),
 ]
 
 
