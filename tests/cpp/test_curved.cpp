@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -382,7 +383,7 @@ ConvexPolyhedron ellipsoid_points(const Vector3& radii, int n, Scalar& hausdorff
 TEST(Curved, RandomPosedPairsLieWithinTheirPolytopeBrackets) {
   Random rng(23);
   const Query polytopes = query_of(Method::exact);
-  for (int trial = 0; trial < 24; ++trial) {
+  for (int trial = 0; trial < 12; ++trial) {
     const Scalar r = rng.uniform(0.2, 1);
     const Scalar h = rng.uniform(0.2, 1);
     const Vector3 radii(rng.uniform(0.2, 1), rng.uniform(0.2, 1), rng.uniform(0.2, 1));
@@ -395,15 +396,15 @@ TEST(Curved, RandomPosedPairsLieWithinTheirPolytopeBrackets) {
       Scalar e = 0;
       switch (kind) {
         case 0: {
-          ConvexPolyhedron inner = cylinder_points(r, h, 512, e);
+          ConvexPolyhedron inner = cylinder_points(r, h, 256, e);
           return {Cylinder(r, h), inner, e};
         }
         case 1: {
-          ConvexPolyhedron inner = cone_points(r, h, 512, e);
+          ConvexPolyhedron inner = cone_points(r, h, 256, e);
           return {Cone(r, h), inner, e};
         }
         case 2: {
-          ConvexPolyhedron inner = ellipsoid_points(radii, 48, e);
+          ConvexPolyhedron inner = ellipsoid_points(radii, 32, e);
           return {Ellipsoid(radii), inner, e};
         }
         default:
@@ -495,6 +496,52 @@ TEST(Curved, ScenesAnswerAsThePairQueries) {
     scene.set_poses(ids, poses);
   }
   EXPECT_GT(colliding, 3);
+}
+
+// Random posed pairs of every kind (curved, polyhedra, rounded): every distance and verdict
+// certified at the default tolerance. On curved bodies Wolfe's algorithm stalls on rounding (the
+// squared norm's decrease) before the separation proves the distance; "exact" restarts it from
+// the best direction (before that, 2 in 3000 distances and 3 in 3000 signed distances stayed
+// unproven). Signed distances of overlapping curved pairs can stay unproven where the expanding
+// polytope stops on faces too thin to add to (a box's corner in a cone's rim: 1 in 3000 here),
+// and say so.
+TEST(Curved, RandomPairsOfEveryKindAreCertified) {
+  Random rng(31);
+  const auto make = [&](int kind) -> std::unique_ptr<ConvexPolyhedron> {
+    const Scalar a = rng.uniform(0.1, 1.1);
+    const Scalar b = rng.uniform(0.1, 1.1);
+    const Scalar c = rng.uniform(0.1, 1.1);
+    switch (kind % 5) {
+      case 0: return std::make_unique<Cylinder>(a, b);
+      case 1: return std::make_unique<Cone>(a, b);
+      case 2: return std::make_unique<Ellipsoid>(Vector3(a, b, c));
+      case 3: return std::make_unique<Box>(Vector3(a, b, c), kind % 2 ? 0.0 : 0.1);
+      default: return std::make_unique<Sphere>(a);
+    }
+  };
+  for (Method method : kCurvedMethods) {
+    SCOPED_TRACE(method_name(method));
+    const Query query = query_of(method);
+    int unproven = 0;
+    int unproven_signed = 0;
+    for (int i = 0; i < 3000; ++i) {
+      const std::unique_ptr<ConvexPolyhedron> a = make(i);
+      const std::unique_ptr<ConvexPolyhedron> b = make(i / 5);
+      const Pose pa = at(Vector3::Zero(), rng.rotation());
+      const Pose pb = at(rng.vector(1.5), rng.rotation());
+      const DistanceResult d = query.distance(*a, pa, *b, pb);
+      const DistanceResult s = query.signed_distance(*a, pa, *b, pb);
+      const DistanceResult c = query.collision(*a, pa, *b, pb);
+      unproven += !d.certified + !c.certified;
+      unproven_signed += !s.certified;
+      const Scalar size = size_of(*a, pa, *b, pb);
+      EXPECT_LE(s.lower_bound, s.distance + 1e-15 * size);
+      EXPECT_LE(d.lower_bound, d.distance + 1e-15 * size);
+      EXPECT_EQ(c.colliding, d.distance <= kDefaultTolerance * size);
+    }
+    EXPECT_EQ(unproven, 0);
+    EXPECT_LE(unproven_signed, 1);
+  }
 }
 
 }  // namespace
