@@ -33,6 +33,14 @@ Vector3 world_centre(const ConvexPolyhedron& body, const Pose& pose, bool turned
   return centre;
 }
 
+// A curved body's support error in a frame of exponent `exponent` (FramedBody::support_error),
+// for unit directions: SupportFunction's bound on the outer radius, which bounds.radius holds.
+Scalar curved_support_error(const ConvexPolyhedron& body, int exponent) {
+  if (!body.curved()) return 0;
+  return SupportFunction::kSupportErrorRoundoffs * kRoundoff *
+         times_power_of_two(body.bounds().radius, -exponent) * (1 + 16 * kRoundoff);
+}
+
 }  // namespace
 
 Scalar Frame::length_to_world(Scalar length) const { return times_power_of_two(length, exponent); }
@@ -80,9 +88,7 @@ FramedBody::FramedBody(const ConvexPolyhedron& body, const Pose& pose, bool rota
     vertices_ = found_.get();
     hull_ = nullptr;
     given_ = nullptr;
-    // The support function's bound, in frame units, for unit directions (SupportFunction).
-    support_error_ = SupportFunction::kSupportErrorRoundoffs * kRoundoff *
-                     times_power_of_two(body.bounds().radius, -exponent_) * (1 + 16 * kRoundoff);
+    support_error_ = curved_support_error(body, exponent_);
   }
 }
 
@@ -178,16 +184,21 @@ FramedPair frame_validated_pair(const ConvexPolyhedron& a, const Pose& pose_a,
   frame.size = 2 * times_power_of_two(extent, -frame.exponent);
   // The extent counts the rounding (it is in the bounds' radius), so the frame holds the rounded
   // bodies and the tolerance is relative to their size.
-  FramedPair pair{frame,
-                  FramedBody(a, pose_a, turned_a, centre_a, frame),
-                  FramedBody(b, pose_b, turned_b, centre_b, frame),
-                  relative_tolerance * frame.size,
-                  times_power_of_two(a.radius(), -frame.exponent),
-                  times_power_of_two(b.radius(), -frame.exponent)};
-  if (a.curved() || b.curved()) {
-    pair.support_error = (pair.a.support_error() + pair.b.support_error()) * (1 + 4 * kRoundoff);
-  }
-  return pair;
+  const Scalar radius_a = times_power_of_two(a.radius(), -frame.exponent);
+  const Scalar radius_b = times_power_of_two(b.radius(), -frame.exponent);
+  const Scalar support_error =
+      a.curved() || b.curved() ? (curved_support_error(a, frame.exponent) +
+                                  curved_support_error(b, frame.exponent)) *
+                                     (1 + 4 * kRoundoff)
+                               : 0;
+  return {frame,
+          FramedBody(a, pose_a, turned_a, centre_a, frame),
+          FramedBody(b, pose_b, turned_b, centre_b, frame),
+          relative_tolerance * frame.size,
+          radius_a,
+          radius_b,
+          support_error,
+          radius_a > 0 || radius_b > 0 || support_error > 0};
 }
 
 }  // namespace swarmcollide::detail

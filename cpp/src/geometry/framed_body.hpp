@@ -213,6 +213,9 @@ struct FramedPair {
   /// What the support points of curved bodies may fall short by, A's and B's added
   /// (FramedBody::support_error; 0 for polyhedra): every lower bound of the pair loses it.
   Scalar support_error = 0;
+  /// True when a radius or the support error is not zero: the solvers' bounds then go through
+  /// queries/rounded.hpp (one test in every stop test, for two polyhedra).
+  bool adjusted = false;
 };
 
 /// The frame of a pair and the bodies in it. Throws std::invalid_argument for an invalid pose
