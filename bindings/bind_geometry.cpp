@@ -64,11 +64,11 @@ std::string ellipsoid_repr(const Ellipsoid& e) {
 }
 
 // Every curved shape is answered the same way; each one's docstring says so.
-#define SWARMCOLLIDE_CURVED_NOTE                                                                  \
-  "A curved shape, defined by its support function: methods ``'dual'`` (the default) and "       \
+#define SWARMCOLLIDE_CURVED_NOTE                                                                   \
+  "A curved shape, defined by its support function: methods ``'dual'`` (the default) and "         \
   "``'exact'`` answer it, exactly to their tolerance and certified, against any other body; "      \
   "the methods that read a body's points (``'ipso'``, ``'pso'``, ``'penalty'``, ``'fcl'``, "       \
-  "``'libccd'``) raise ValueError, and so does a CompoundBody with a curved part. Its "             \
+  "``'libccd'``) raise ValueError, and so does a CompoundBody with a curved part. Its "            \
   "``vertices`` are a few points on its surface (an inner polytope with the shape's bounding "     \
   "box), not the body; results carry no weights (empty), and witnesses are points of the shape."
 
@@ -321,8 +321,8 @@ Examples
 
   py::class_<Cone, ConvexPolyhedron>(m, "Cone", R"doc(
 A solid right circular cone along the z axis of its frame, centred on its axis' midpoint (FCL's
-and coal's convention): its base, a disk of radius ``radius``, at ``z = -half_length``, its apex at
-``(0, 0, half_length)``; its centre of mass is at ``z = -half_length / 2``.
+and coal's convention): its base, a disk of radius ``radius``, at ``z = -half_length``, its apex
+at ``(0, 0, half_length)``; its centre of mass is at ``z = -half_length / 2``.
 
 )doc" SWARMCOLLIDE_CURVED_NOTE R"doc(
 

@@ -169,7 +169,8 @@ TEST(Curved, SupportPointsAreInsideAndHighest) {
       const Eigen::Matrix<long double, 3, 1> q =
           p.cast<long double>().cwiseQuotient(radii.cast<long double>());
       EXPECT_LE(q.squaredNorm(), 1.0L);
-      const long double value = radii.cast<long double>().cwiseProduct(d.cast<long double>()).norm();
+      const long double value =
+          radii.cast<long double>().cwiseProduct(d.cast<long double>()).norm();
       const long double height = d.cast<long double>().dot(p.cast<long double>());
       EXPECT_LE(value - height, 32 * u * e.curved()->outer_radius() * length);
     }
@@ -310,7 +311,9 @@ TEST(Curved, TheAnswerDoesNotDependOnTheUnit) {
         EXPECT_LE(r->lower_bound, r->distance);
       }
       if (scale == 1e-100 && method == Method::dual) {
-        for (const DistanceResult* r : {&one, &two, &three}) unit_answers.push_back(r->distance / scale);
+        for (const DistanceResult* r : {&one, &two, &three}) {
+          unit_answers.push_back(r->distance / scale);
+        }
       } else {
         int k = 0;
         for (const DistanceResult* r : {&one, &two, &three}) {

@@ -292,7 +292,8 @@ std::optional<ScreenVerdict> apart_along(const Vector3& axis, const ConvexPolyhe
 // kHillClimbingThreshold points (scanned whole, as the solvers scan them) whose centres are apart.
 // A curved shape's points are a few on its surface, not the body: its supports are not theirs.
 bool scannable(const ConvexPolyhedron& a, const ConvexPolyhedron& b, const Centres& at) {
-  return !a.curved() && !b.curved() && a.size() <= kHillClimbingThreshold && b.size() <= kHillClimbingThreshold &&
+  return !a.curved() && !b.curved() && a.size() <= kHillClimbingThreshold &&
+         b.size() <= kHillClimbingThreshold &&
          at.length > 0 && std::isfinite(at.length);
 }
 

@@ -100,8 +100,8 @@ class ConvexPolyhedron {
   const Aabb& aabb() const { return bounds_.box; }
   /// The box, its centre and the radius of the ball around that centre holding the body.
   const BodyBounds& bounds() const { return bounds_; }
-  /// Centre of mass of the solid (a curved shape's own); for flat, collinear and single-point bodies, of the polygon,
-  /// segment or point they are.
+  /// Centre of mass of the solid (a curved shape's own); for flat, collinear and single-point
+  /// bodies, of the polygon, segment or point they are.
   Vector3 centroid() const;
   /// Convex hull, computed on first use (of the points: for a curved shape, an inner polytope).
   const Hull& hull() const;
@@ -129,7 +129,8 @@ class ConvexPolyhedron {
   /// A curved shape: `points` on its surface (whose box must be the shape's), rounded by
   /// `radius`, answering its support points from `shape`; the bounds' ball is the shape's outer
   /// radius (plus `radius`).
-  ConvexPolyhedron(VertexMatrix points, Scalar radius, std::shared_ptr<const SupportFunction> shape);
+  ConvexPolyhedron(VertexMatrix points, Scalar radius,
+                   std::shared_ptr<const SupportFunction> shape);
 
  private:
   // The data kept for (type, key), null when there is none yet.
