@@ -2,6 +2,7 @@
 #include <pybind11/stl.h>
 
 #include <sstream>
+#include <string>
 
 #include "conversions.hpp"
 #include "swarmcollide/geometry/convex_polyhedron.hpp"
@@ -42,6 +43,34 @@ std::string box_repr(const Box& b) {
   out << ")";
   return out.str();
 }
+
+std::string cylinder_repr(const Cylinder& c) {
+  std::ostringstream out;
+  out << "Cylinder(radius=" << c.cylinder_radius() << ", half_length=" << c.half_length() << ")";
+  return out.str();
+}
+
+std::string cone_repr(const Cone& c) {
+  std::ostringstream out;
+  out << "Cone(radius=" << c.base_radius() << ", half_length=" << c.half_length() << ")";
+  return out.str();
+}
+
+std::string ellipsoid_repr(const Ellipsoid& e) {
+  std::ostringstream out;
+  const Vector3& r = e.radii();
+  out << "Ellipsoid(radii=[" << r.x() << ", " << r.y() << ", " << r.z() << "])";
+  return out.str();
+}
+
+// Every curved shape is answered the same way; each one's docstring says so.
+#define SWARMCOLLIDE_CURVED_NOTE                                                                   \
+  "A curved shape, defined by its support function: methods ``'dual'`` (the default) and "         \
+  "``'exact'`` answer it, exactly to their tolerance and certified, against any other body; "      \
+  "the methods that read a body's points (``'ipso'``, ``'pso'``, ``'penalty'``, ``'fcl'``, "       \
+  "``'libccd'``) raise ValueError, and so does a CompoundBody with a curved part. Its "            \
+  "``vertices`` are a few points on its surface (an inner polytope with the shape's bounding "     \
+  "box), not the body; results carry no weights (empty), and witnesses are points of the shape."
 
 // Every query answers rounded bodies the same way; each shape's docstring says so.
 #define SWARMCOLLIDE_ROUNDED_NOTE                                                              \
@@ -124,6 +153,11 @@ Examples
              if (py::isinstance<ConvexPolyhedron>(points)) {
                ConvexPolyhedron body = points.cast<ConvexPolyhedron>();
                if (!radius || *radius == body.radius()) return body;
+               if (const SupportFunction* shape = body.curved()) {
+                 throw py::value_error(std::string("radius: a ") + shape->name() +
+                                       " is a curved shape and cannot be rounded; its vertices "
+                                       "are only a few points on its surface");
+               }
                return ConvexPolyhedron(body.vertices(), *radius);
              }
              return ConvexPolyhedron(to_vertex_matrix(points, "points"), radius.value_or(0));
@@ -143,9 +177,16 @@ Examples
       .def(
           "support_index",
           [](const ConvexPolyhedron& body, const py::object& direction) {
+            if (const SupportFunction* shape = body.curved()) {
+              throw py::value_error(std::string("a ") + shape->name() +
+                                    " is a curved shape: its support points are not among its "
+                                    "vertices; use support(direction)");
+            }
             return body.support_index(finite_vector3(direction, "direction"));
           },
-          py::arg("direction"), "Index of the point farthest along ``direction`` (first on ties).")
+          py::arg("direction"),
+          "Index of the point farthest along ``direction`` (first on ties); ValueError for a "
+          "curved shape, whose support points are not among its vertices.")
       .def("aabb", &ConvexPolyhedron::aabb,
            "Smallest axis-aligned box containing the body (its rounding included).")
       .def_property_readonly("radius", &ConvexPolyhedron::radius,
@@ -154,6 +195,10 @@ Examples
           "bounding_radius", [](const ConvexPolyhedron& body) { return body.bounds().radius; },
           "Half the diagonal of the points' bounding box plus the rounding radius: every point of "
           "the body lies within it of the box's centre.")
+      .def_property_readonly(
+          "curved", [](const ConvexPolyhedron& body) { return body.curved() != nullptr; },
+          "True for a curved shape (Cylinder, Cone, Ellipsoid), defined by its support function "
+          "rather than by the hull of its vertices.")
       .def("centroid", &ConvexPolyhedron::centroid,
            "Centre of mass of the solid (of the polygon, segment or point for lower-dimensional "
            "bodies).")
@@ -240,6 +285,94 @@ Examples
       .def_property_readonly("half_extents", &Box::half_extents,
                              "Half the box's size along x, y and z.")
       .def("__repr__", &box_repr);
+
+  py::class_<Cylinder, ConvexPolyhedron>(m, "Cylinder", R"doc(
+A solid circular cylinder along the z axis of its frame, centred on its origin: radius
+``radius``, from ``z = -half_length`` to ``z = half_length`` (FCL's and coal's convention; URDF's
+``<cylinder radius length>`` has ``length = 2 half_length``; MJCF's cylinder geom has size =
+(radius, half_length)).
+
+)doc" SWARMCOLLIDE_CURVED_NOTE R"doc(
+
+Parameters
+----------
+radius : float
+    The radius of the circular section, finite and ``> 0``.
+half_length : float
+    Half the cylinder's length along z, finite and ``> 0``.
+
+Examples
+--------
+>>> import swarmcollide as sc
+>>> can = sc.Cylinder(0.5, 1.0)
+>>> identity = [[1, 0, 0], [0, 1, 0], [0, 0, 1]]
+>>> round(sc.distance(can, sc.Sphere(0.25), pose_b=(identity, [2, 0, 0])).distance, 9)
+1.25
+>>> round(sc.signed_distance(can, can, pose_b=(identity, [0, 0, 1.5])).distance, 9)
+-0.5
+)doc")
+      .def(py::init<Scalar, Scalar>(), py::arg("radius"), py::arg("half_length"))
+      .def_property_readonly("radius", &Cylinder::cylinder_radius,
+                             "The radius of the circular section (a cylinder is not rounded: its "
+                             "rounding radius is 0).")
+      .def_property_readonly("half_length", &Cylinder::half_length,
+                             "Half the cylinder's length along z.")
+      .def("__repr__", &cylinder_repr);
+
+  py::class_<Cone, ConvexPolyhedron>(m, "Cone", R"doc(
+A solid right circular cone along the z axis of its frame, centred on its axis' midpoint (FCL's
+and coal's convention): its base, a disk of radius ``radius``, at ``z = -half_length``, its apex
+at ``(0, 0, half_length)``; its centre of mass is at ``z = -half_length / 2``.
+
+)doc" SWARMCOLLIDE_CURVED_NOTE R"doc(
+
+Parameters
+----------
+radius : float
+    The radius of the base disk, finite and ``> 0``.
+half_length : float
+    Half the cone's height, finite and ``> 0``.
+
+Examples
+--------
+>>> import swarmcollide as sc
+>>> cone = sc.Cone(1.0, 1.0)
+>>> identity = [[1, 0, 0], [0, 1, 0], [0, 0, 1]]
+>>> round(sc.distance(cone, sc.Sphere(0.5), pose_b=(identity, [0, 0, 3])).distance, 9)
+1.5
+)doc")
+      .def(py::init<Scalar, Scalar>(), py::arg("radius"), py::arg("half_length"))
+      .def_property_readonly("radius", &Cone::base_radius,
+                             "The radius of the base disk (a cone is not rounded: its rounding "
+                             "radius is 0).")
+      .def_property_readonly("half_length", &Cone::half_length, "Half the cone's height.")
+      .def("__repr__", &cone_repr);
+
+  py::class_<Ellipsoid, ConvexPolyhedron>(m, "Ellipsoid", R"doc(
+A solid ellipsoid centred on the origin of its frame with semi-axes ``radii`` along x, y and z:
+the points with ``(x/a)^2 + (y/b)^2 + (z/c)^2 <= 1`` (MJCF's ellipsoid geom, size = radii).
+
+)doc" SWARMCOLLIDE_CURVED_NOTE R"doc(
+
+Parameters
+----------
+radii : array_like, shape (3,)
+    The semi-axes along x, y and z, each finite and ``> 0``.
+
+Examples
+--------
+>>> import swarmcollide as sc
+>>> egg = sc.Ellipsoid([1, 2, 3])
+>>> identity = [[1, 0, 0], [0, 1, 0], [0, 0, 1]]
+>>> round(sc.distance(egg, sc.Sphere(1), pose_b=(identity, [0, 0, 5])).distance, 9)
+1.0
+)doc")
+      .def(py::init([](const py::object& radii) {
+             return Ellipsoid(finite_vector3(radii, "radii"));
+           }),
+           py::arg("radii"))
+      .def_property_readonly("radii", &Ellipsoid::radii, "The semi-axes along x, y and z.")
+      .def("__repr__", &ellipsoid_repr);
 
   m.def(
       "as_polyhedron",

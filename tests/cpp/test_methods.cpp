@@ -67,8 +67,11 @@ TEST(MethodTable, WhatEachMethodAnswers) {
     EXPECT_EQ(answers(m), unsigned{kDistance | kCollide}) << method_name(m);
     EXPECT_FALSE(method_info(m).always_certified);
   }
-  for (Method m : {Method::dual, Method::exact, Method::fcl}) {
-    EXPECT_EQ(answers(m), unsigned{kDistance | kCollide | kSignedDistance}) << method_name(m);
+  EXPECT_EQ(answers(Method::fcl), unsigned{kDistance | kCollide | kSignedDistance});
+  // The support-function methods answer curved shapes too.
+  for (Method m : {Method::dual, Method::exact}) {
+    EXPECT_EQ(answers(m), unsigned{kDistance | kCollide | kSignedDistance | kCurvedShapes})
+        << method_name(m);
   }
   for (Method m : {Method::dual, Method::exact, Method::fcl, Method::libccd}) {
     EXPECT_TRUE(method_info(m).always_certified) << method_name(m);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <numeric>
 #include <stdexcept>
+#include <string>
 #include <utility>
 
 namespace swarmcollide {
@@ -12,6 +13,14 @@ namespace {
 std::vector<ConvexPolyhedron> nonempty(std::vector<ConvexPolyhedron> parts) {
   if (parts.empty()) {
     throw std::invalid_argument("parts is empty: a compound body needs at least one convex part");
+  }
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    if (const SupportFunction* shape = parts[i].curved()) {
+      // The envelopes stack the parts' points, which are not a curved part's body.
+      throw std::invalid_argument("parts[" + std::to_string(i) + "] is a " + shape->name() +
+                                  ": compound bodies take polyhedra (rounded or not), not curved "
+                                  "shapes; query the curved part on its own");
+    }
   }
   return parts;
 }

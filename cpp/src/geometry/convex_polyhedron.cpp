@@ -142,6 +142,21 @@ ConvexPolyhedron::ConvexPolyhedron(VertexMatrix points, Scalar radius)
   centred_ = vertices_.rowwise() - bounds_.centre.transpose();
 }
 
+ConvexPolyhedron::ConvexPolyhedron(VertexMatrix points, Scalar radius,
+                                   std::shared_ptr<const SupportFunction> shape)
+    : ConvexPolyhedron(std::move(points), radius) {
+  curved_ = std::move(shape);
+  // The points' box is the shape's, but their ball is not: the shape's outer radius bounds it.
+  const Scalar huge = std::numeric_limits<Scalar>::infinity();
+  bounds_.radius =
+      std::nextafter((curved_->outer_radius() + radius) * (1 + 4 * kRoundoffBound), huge);
+  if (!std::isfinite(bounds_.radius)) {
+    throw std::invalid_argument(
+        "the shape (with the radius) spans more than the largest double (1.8e308): its size is "
+        "not representable; use a unit of length in which its dimensions are smaller");
+  }
+}
+
 int ConvexPolyhedron::support_index(const Vector3& direction) const {
   const HullPoints& read = hull_points();
   if (read.every_point) return detail::scan_support(centred_, direction);
@@ -161,6 +176,7 @@ int ConvexPolyhedron::support_index(const Vector3& direction, int start) const {
 }
 
 Vector3 ConvexPolyhedron::centroid() const {
+  if (curved_) return curved_->centroid() + bounds_.centre;
   const Hull& h = hull();
   // Volumes and areas are computed in the unit ball, where their cubes and squares of the
   // coordinates can neither overflow nor underflow.

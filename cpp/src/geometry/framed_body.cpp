@@ -33,6 +33,14 @@ Vector3 world_centre(const ConvexPolyhedron& body, const Pose& pose, bool turned
   return centre;
 }
 
+// A curved body's support error in a frame of exponent `exponent` (FramedBody::support_error),
+// for unit directions: SupportFunction's bound on the outer radius, which bounds.radius holds.
+Scalar curved_support_error(const ConvexPolyhedron& body, int exponent) {
+  if (!body.curved()) return 0;
+  return SupportFunction::kSupportErrorRoundoffs * kRoundoff *
+         times_power_of_two(body.bounds().radius, -exponent) * (1 + 16 * kRoundoff);
+}
+
 }  // namespace
 
 Scalar Frame::length_to_world(Scalar length) const { return times_power_of_two(length, exponent); }
@@ -74,6 +82,29 @@ FramedBody::FramedBody(const ConvexPolyhedron& body, const Pose& pose, bool rota
   const Scalar reach =
       offset_.norm() + times_power_of_two(body.bounds().radius, -exponent_) * (1 + 16 * kRoundoff);
   scan_shortfall_ = 64 * kRoundoff * reach * (1 + 16 * kRoundoff);
+  if (const SupportFunction* shape = body.curved()) {
+    curved_ = shape;
+    found_ = std::make_shared<VertexMatrix>(body.centred_vertices());
+    vertices_ = found_.get();
+    hull_ = nullptr;
+    given_ = nullptr;
+    support_error_ = curved_support_error(body, exponent_);
+  }
+}
+
+int FramedBody::curved_support(const Vector3& local) const {
+  const Vector3 point = curved_->support(local) - body_->bounds().centre;
+  VertexMatrix& found = *found_;
+  const Eigen::Index count = found.rows();
+  // Searches ask for the same point again and again as they converge: it keeps its index.
+  for (Eigen::Index i = count - 1; i >= 0; --i) {
+    if (found(i, 0) == point.x() && found(i, 1) == point.y() && found(i, 2) == point.z()) {
+      return static_cast<int>(i);
+    }
+  }
+  found.conservativeResize(count + 1, Eigen::NoChange);
+  found.row(count) = point.transpose();
+  return static_cast<int>(count);
 }
 
 FramedBody::FramedBody(const VertexMatrix& points, const Hull& hull)
@@ -103,6 +134,9 @@ void FramedBody::given_points(VertexMatrix& out) const {
 }
 
 ConvexWeights FramedBody::given_weights(ConvexWeights weights) const {
+  // A curved body's points are this query's support points: weights over them mean nothing to
+  // the caller.
+  if (curved_) return ConvexWeights();
   if (!given_ || weights.count() == body_->size()) return weights;
   const std::vector<int>& given = given_->indices;
   std::array<int, ConvexWeights::kSparseCapacity> index{};
@@ -150,12 +184,21 @@ FramedPair frame_validated_pair(const ConvexPolyhedron& a, const Pose& pose_a,
   frame.size = 2 * times_power_of_two(extent, -frame.exponent);
   // The extent counts the rounding (it is in the bounds' radius), so the frame holds the rounded
   // bodies and the tolerance is relative to their size.
+  const Scalar radius_a = times_power_of_two(a.radius(), -frame.exponent);
+  const Scalar radius_b = times_power_of_two(b.radius(), -frame.exponent);
+  const Scalar support_error =
+      a.curved() || b.curved() ? (curved_support_error(a, frame.exponent) +
+                                  curved_support_error(b, frame.exponent)) *
+                                     (1 + 4 * kRoundoff)
+                               : 0;
   return {frame,
           FramedBody(a, pose_a, turned_a, centre_a, frame),
           FramedBody(b, pose_b, turned_b, centre_b, frame),
           relative_tolerance * frame.size,
-          times_power_of_two(a.radius(), -frame.exponent),
-          times_power_of_two(b.radius(), -frame.exponent)};
+          radius_a,
+          radius_b,
+          support_error,
+          radius_a > 0 || radius_b > 0 || support_error > 0};
 }
 
 }  // namespace swarmcollide::detail

@@ -1,6 +1,8 @@
 // The working frame of a query and the bodies placed in it; private to the library's sources.
 #pragma once
 
+#include <memory>
+
 #include "support.hpp"
 #include "swarmcollide/geometry/convex_polyhedron.hpp"
 #include "swarmcollide/geometry/pose.hpp"
@@ -58,6 +60,14 @@ inline constexpr Scalar kFrameRounding = 128 * kRoundoff;
 /// its box, so rounded relative to the body's size) for searches and the separations of lower
 /// bounds, and `exact_support_index` (a scan of the heights computed in the frame) for the
 /// certified penetration solver, whose margins assume the very maximum of the frame heights.
+///
+/// A curved body (ConvexPolyhedron::curved) answers its support points from its support function:
+/// each new one is appended to the body's points for this query (a cache that starts with the
+/// body's points, all on its surface) and its index returned, so the solvers, which trade in
+/// point indices, read it as any other point. Its points are points of the body (the support
+/// function pulls them inside); the heights of its support points fall short of the support value
+/// by at most `support_error()` beyond `scan_shortfall()`. It has no hull the solvers may read:
+/// the parts that walk a hull or enumerate its faces check `curved()`.
 class FramedBody {
  public:
   /// `world_centre` is where the centre of the body's box lands under the pose,
@@ -70,6 +80,12 @@ class FramedBody {
   /// coordinates themselves. `body()` is not available; `points` and `hull` must outlive it.
   FramedBody(const VertexMatrix& points, const Hull& hull);
 
+  /// True for a curved body: its points are the support points found so far in this query.
+  bool curved() const { return curved_ != nullptr; }
+  /// A bound on how far the support value along a unit frame direction may exceed the height of
+  /// a curved body's support point for it (in frame units), beyond `scan_shortfall()`; 0 for a
+  /// polyhedron. rounded.hpp takes it off every lower bound of a pair (FramedPair::support_error).
+  Scalar support_error() const { return support_error_; }
   /// The body framed; only for a body framed from a ConvexPolyhedron.
   const ConvexPolyhedron& body() const { return *body_; }
   /// Number of points (the hull points of a ConvexPolyhedron).
@@ -99,19 +115,25 @@ class FramedBody {
   }
   /// Index of a point farthest along frame direction `d`, by scanning the points in the body's
   /// own frame (see ConvexPolyhedron::support_index).
-  int support_index(const Vector3& d) const { return scan_support(*vertices_, local_direction(d)); }
+  int support_index(const Vector3& d) const {
+    if (curved_) return curved_support(local_direction(d));
+    return scan_support(*vertices_, local_direction(d));
+  }
   /// The same for a direction already in the body's own frame.
-  int local_support_index(const Vector3& local) const { return scan_support(*vertices_, local); }
+  int local_support_index(const Vector3& local) const {
+    if (curved_) return curved_support(local);
+    return scan_support(*vertices_, local);
+  }
   /// The same, climbing the hull from `start` on large bodies (as `support_index(d, start)`).
   int local_support_index(const Vector3& local, int start) const {
-    if (size() <= kHillClimbingThreshold) return local_support_index(local);
+    if (curved_ || size() <= kHillClimbingThreshold) return local_support_index(local);
     return climb_support(*vertices_, hull(), local, start);
   }
   /// The same, climbing the hull from `start` when the body has more than
   /// `kHillClimbingThreshold` points (see ConvexPolyhedron::support_index): for searches, whose
   /// successive directions are close.
   int support_index(const Vector3& d, int start) const {
-    if (size() <= kHillClimbingThreshold) return support_index(d);
+    if (curved_ || size() <= kHillClimbingThreshold) return support_index(d);
     return climb_support(*vertices_, hull(), local_direction(d), start);
   }
   /// Index of a point maximising `height(i, d)` (the first one on ties), by scanning every point
@@ -119,6 +141,7 @@ class FramedBody {
   /// rounding made equal, and a scan in the body's own frame rounds the rotated direction and
   /// the heights differently (by a few roundoffs of the body's size).
   int exact_support_index(const Vector3& d) const {
+    if (curved_) return curved_support(local_direction(d));
     if (in_frame_) return scan_support(*vertices_, d);
     return first_highest(size(), [&](int i) { return vertex(i).dot(d); });
   }
@@ -140,6 +163,9 @@ class FramedBody {
   int exponent() const { return exponent_; }
 
  private:
+  // The index of the curved body's support point along `local` (its own frame), appended to the
+  // points unless it is one of them already.
+  int curved_support(const Vector3& local) const;
   Vector3 scaled(const Vector3& v) const { return v * scale_high_ * scale_low_; }
   // A point of the body's own frame, centred on its box, in the frame.
   Vector3 placed(const Vector3& centred) const {
@@ -166,6 +192,11 @@ class FramedBody {
   Scalar scale_high_;
   Scalar scale_low_;
   Scalar scan_shortfall_;
+  // A curved body's support function, its support points so far in its own frame (centred on its
+  // box; `vertices_` points here), and their support error.
+  const SupportFunction* curved_ = nullptr;
+  std::shared_ptr<VertexMatrix> found_;
+  Scalar support_error_ = 0;
 };
 
 /// Two bodies in their common frame, with the query's tolerance in frame units.
@@ -179,6 +210,12 @@ struct FramedPair {
   /// on the cores, and queries/rounded.hpp turns their bounds into the rounded bodies'.
   Scalar radius_a = 0;
   Scalar radius_b = 0;
+  /// What the support points of curved bodies may fall short by, A's and B's added
+  /// (FramedBody::support_error; 0 for polyhedra): every lower bound of the pair loses it.
+  Scalar support_error = 0;
+  /// True when a radius or the support error is not zero: the solvers' bounds then go through
+  /// queries/rounded.hpp (one test in every stop test, for two polyhedra).
+  bool adjusted = false;
 };
 
 /// The frame of a pair and the bodies in it. Throws std::invalid_argument for an invalid pose

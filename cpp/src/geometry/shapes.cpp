@@ -1,8 +1,12 @@
 #include "swarmcollide/geometry/shapes.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <memory>
 #include <sstream>
 #include <stdexcept>
+
+#include "normalise.hpp"
 
 namespace swarmcollide {
 
@@ -36,6 +40,139 @@ VertexMatrix corners(const Vector3& half_extents) {
   return points;
 }
 
+// The support points of the curved shapes below are pulled towards the centre by this factor
+// (1 - 8u, exact), after their last rounding: a computed point is within a few roundoffs of the
+// surface, perhaps outside it, and scaled so it lies inside (each shape is star-shaped about its
+// centre), as witnesses and the expanding polytope's corners must. It costs 8u of the support
+// value, within SupportFunction::kSupportErrorRoundoffs.
+constexpr Scalar kInward = 1 - 0x1p-50;
+
+// `d` scaled by a power of two (exactly) so that its largest component is in [0.5, 1): support
+// points do not depend on the length of the direction, and nothing below under- or overflows.
+// Zero for a zero or non-finite direction (whose support point is then the centre, a point of
+// the shape).
+Vector3 unit_scaled(const Vector3& d) {
+  const Scalar largest = d.cwiseAbs().maxCoeff();
+  if (!(largest > 0) || !std::isfinite(largest)) return Vector3::Zero();
+  const int exponent = detail::exponent_above(largest);
+  Vector3 scaled;
+  for (int k = 0; k < 3; ++k) scaled(k) = detail::times_power_of_two(d(k), -exponent);
+  return scaled;
+}
+
+// The unit vector along (x, y), or zero: the components are divided by the larger first, so no
+// square under- or overflows. Each coordinate is within 4 roundoffs of the exact one.
+Eigen::Matrix<Scalar, 2, 1> unit_in_plane(Scalar x, Scalar y) {
+  const Scalar larger = std::max(std::abs(x), std::abs(y));
+  if (!(larger > 0)) return {0, 0};
+  const Scalar sx = x / larger;
+  const Scalar sy = y / larger;
+  const Scalar length = std::sqrt(sx * sx + sy * sy);
+  return {sx / length, sy / length};
+}
+
+// A cylinder's support: the rim point of the cap the direction points to. The height of the
+// computed point falls short of the support value `r |d_xy| + h |d_z|` by the rounding of the
+// unit vector in the plane (4u, first order in its length) and kInward's 8u, with the product's
+// u: 13u of `r |d|`.
+class CylinderSupport final : public SupportFunction {
+ public:
+  CylinderSupport(Scalar radius, Scalar half_length) : r_(radius), h_(half_length) {}
+  Vector3 support(const Vector3& direction) const override {
+    const Vector3 d = unit_scaled(direction);
+    const auto in_plane = unit_in_plane(d.x(), d.y());
+    const Scalar z = d.z() > 0 ? h_ : d.z() < 0 ? -h_ : 0;
+    return {r_ * in_plane.x() * kInward, r_ * in_plane.y() * kInward, z};
+  }
+  Scalar outer_radius() const override { return std::hypot(r_, h_); }
+  Vector3 centroid() const override { return Vector3::Zero(); }
+  const char* name() const override { return "cylinder"; }
+
+ private:
+  Scalar r_;
+  Scalar h_;
+};
+
+// A cone's support: its apex or the rim point of its base, whichever is higher; the comparison
+// rounds by a few u of `h |d_z| + r |d_xy|` and the rim point as the cylinder's: under 20u of
+// `outer_radius() |d|` in all.
+class ConeSupport final : public SupportFunction {
+ public:
+  ConeSupport(Scalar radius, Scalar half_length) : r_(radius), h_(half_length) {}
+  Vector3 support(const Vector3& direction) const override {
+    const Vector3 d = unit_scaled(direction);
+    const auto in_plane = unit_in_plane(d.x(), d.y());
+    const Scalar apex = h_ * d.z();
+    const Scalar rim = r_ * (in_plane.x() * d.x() + in_plane.y() * d.y()) - h_ * d.z();
+    if (apex >= rim) return {0, 0, h_};
+    return {r_ * in_plane.x() * kInward, r_ * in_plane.y() * kInward, -h_};
+  }
+  Scalar outer_radius() const override { return std::hypot(r_, h_); }
+  Vector3 centroid() const override { return {0, 0, -h_ / 2}; }
+  const char* name() const override { return "cone"; }
+
+ private:
+  Scalar r_;
+  Scalar h_;
+};
+
+// An ellipsoid's support `R^2 d / |R d|` (R = diag(radii)), as `R u` with u the unit vector along
+// `R d`: u is within 4u of it, which moves the height `|R d| cos` by second order in the angle
+// and first order in |u|; with R's products and kInward, under 16u of `|R d| <= max radius |d|`.
+class EllipsoidSupport final : public SupportFunction {
+ public:
+  explicit EllipsoidSupport(const Vector3& radii) : radii_(radii) {}
+  Vector3 support(const Vector3& direction) const override {
+    const Vector3 stretched = unit_scaled(unit_scaled(direction).cwiseProduct(radii_));
+    const Scalar length = stretched.norm();
+    if (!(length > 0)) return Vector3::Zero();
+    return radii_.cwiseProduct(stretched / length) * kInward;
+  }
+  Scalar outer_radius() const override { return radii_.maxCoeff(); }
+  Vector3 centroid() const override { return Vector3::Zero(); }
+  const char* name() const override { return "ellipsoid"; }
+
+ private:
+  Vector3 radii_;
+};
+
+// Points on a shape's surface whose box is the shape's: its inner polytope.
+VertexMatrix rims(Scalar radius, Scalar bottom, Scalar top, bool apex) {
+  VertexMatrix points(apex ? 5 : 8, 3);
+  int row = 0;
+  for (Scalar z : {bottom, top}) {
+    if (apex && z == top) break;
+    points.row(row++) << radius, 0, z;
+    points.row(row++) << -radius, 0, z;
+    points.row(row++) << 0, radius, z;
+    points.row(row++) << 0, -radius, z;
+  }
+  if (apex) points.row(row) << 0, 0, top;
+  return points;
+}
+
+VertexMatrix cylinder_points(Scalar radius, Scalar half_length) {
+  positive(radius, "radius");
+  positive(half_length, "half_length");
+  return rims(radius, -half_length, half_length, false);
+}
+
+VertexMatrix cone_points(Scalar radius, Scalar half_length) {
+  positive(radius, "radius");
+  positive(half_length, "half_length");
+  return rims(radius, -half_length, half_length, true);
+}
+
+VertexMatrix axis_points(const Vector3& radii) {
+  static const char* const kNames[3] = {"radii[0]", "radii[1]", "radii[2]"};
+  VertexMatrix points = VertexMatrix::Zero(6, 3);
+  for (int k = 0; k < 3; ++k) {
+    points(2 * k, k) = positive(radii(k), kNames[k]);
+    points(2 * k + 1, k) = -radii(k);
+  }
+  return points;
+}
+
 }  // namespace
 
 Sphere::Sphere(Scalar radius) : ConvexPolyhedron(one_point(), positive(radius, "radius")) {}
@@ -46,5 +183,21 @@ Capsule::Capsule(Scalar radius, Scalar half_length)
 
 Box::Box(const Vector3& half_extents, Scalar radius)
     : ConvexPolyhedron(corners(half_extents), radius), half_extents_(half_extents) {}
+
+Cylinder::Cylinder(Scalar radius, Scalar half_length)
+    : ConvexPolyhedron(cylinder_points(radius, half_length), 0,
+                       std::make_shared<const CylinderSupport>(radius, half_length)),
+      cylinder_radius_(radius),
+      half_length_(half_length) {}
+
+Cone::Cone(Scalar radius, Scalar half_length)
+    : ConvexPolyhedron(cone_points(radius, half_length), 0,
+                       std::make_shared<const ConeSupport>(radius, half_length)),
+      base_radius_(radius),
+      half_length_(half_length) {}
+
+Ellipsoid::Ellipsoid(const Vector3& radii)
+    : ConvexPolyhedron(axis_points(radii), 0, std::make_shared<const EllipsoidSupport>(radii)),
+      radii_(radii) {}
 
 }  // namespace swarmcollide

@@ -68,6 +68,8 @@ std::vector<Vector3> face_normals(const ConvexPolyhedron& body) {
 }
 
 Scalar outer_radius(const ConvexPolyhedron& body) {
+  // A curved shape reaches beyond its points (a few on its surface); its own bound holds it.
+  if (const SupportFunction* shape = body.curved()) return shape->outer_radius() * (1 + 0x1p-40);
   const VertexMatrix& centred = body.centred_vertices();
   // In the unit ball (exactly, by a power of two), where no square underflows. Each norm is
   // within a few roundoffs of the exact distance of its point from the box centre (the centred
@@ -288,8 +290,10 @@ std::optional<ScreenVerdict> apart_along(const Vector3& axis, const ConvexPolyhe
 
 // True when the screens that scan the bodies' points may: bodies of at most
 // kHillClimbingThreshold points (scanned whole, as the solvers scan them) whose centres are apart.
+// A curved shape's points are a few on its surface, not the body: its supports are not theirs.
 bool scannable(const ConvexPolyhedron& a, const ConvexPolyhedron& b, const Centres& at) {
-  return a.size() <= kHillClimbingThreshold && b.size() <= kHillClimbingThreshold &&
+  return !a.curved() && !b.curved() && a.size() <= kHillClimbingThreshold &&
+         b.size() <= kHillClimbingThreshold &&
          at.length > 0 && std::isfinite(at.length);
 }
 

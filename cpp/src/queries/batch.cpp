@@ -411,6 +411,8 @@ class ConvexRows {
 
   void answer(std::size_t row, const QueryOptions& options, const ConvexPolyhedron& a,
               const Pose& pose_a, const ConvexPolyhedron& b, const Pose& pose_b) {
+    // Before the screens, which would settle a curved pair for a method that cannot answer it.
+    detail::require_shapes(options.method, a, b);
     if (kind_ == Kind::collide) {
       const detail::BodyBalls& balls_a = balls_a_.of(a);
       const detail::BodyBalls& balls_b = balls_b_.of(b);

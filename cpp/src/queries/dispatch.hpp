@@ -22,6 +22,18 @@ Solver solver_for(Method method);
 /// naming the methods that can.
 void require(Method method, Capability capability, const char* query);
 
+/// Throws std::invalid_argument naming the methods that answer curved shapes, for a method that
+/// cannot (`curved` is the curved body).
+[[noreturn]] void refuse_curved(Method method, const ConvexPolyhedron* curved);
+
+/// Throws std::invalid_argument when `method` cannot answer a pair with the curved body `a` or
+/// `b` (ConvexPolyhedron::curved), naming the methods that can. Cheap for polyhedra.
+inline void require_shapes(Method method, const ConvexPolyhedron& a, const ConvexPolyhedron& b) {
+  if (!a.curved() && !b.curved()) return;
+  if (method_info(method).capabilities & kCurvedShapes) return;
+  refuse_curved(method, a.curved() ? &a : &b);
+}
+
 /// What Query answers between the convex bodies of `pair` (framed, so with their poses checked)
 /// for `goal`, with options already validated and the method's capability already required:
 /// the method's answer, and for a verdict that it leaves unproven, with `escalate`, the exact

@@ -101,7 +101,7 @@ const std::vector<MethodEntry>& entries() {
         "dual",
         "the paper's rank-adaptive swarm (8)-(11) over separating directions, with an exact "
         "finish: certified",
-        kDistance | kCollide | kSignedDistance,
+        kDistance | kCollide | kSignedDistance | kCurvedShapes,
         true,
         {parameter<&QueryOptions::dual, &DualOptions::swarm_size>(
              "swarm_size", Kind::integer, 2, 10000, "N_p, the number of particles of a round"),
@@ -146,7 +146,7 @@ const std::vector<MethodEntry>& entries() {
         "exact",
         "the library's own exact solvers: Wolfe's nearest points and a certified penetration "
         "depth",
-        kDistance | kCollide | kSignedDistance,
+        kDistance | kCollide | kSignedDistance | kCurvedShapes,
         true,
         {exact_iterations()}},
        detail::solve_exact},
@@ -272,6 +272,19 @@ void QueryOptions::validate() const {
 namespace detail {
 
 Solver solver_for(Method method) { return entry(method).solve; }
+
+void refuse_curved(Method method, const ConvexPolyhedron* curved) {
+  std::string able;
+  for (const MethodEntry& e : entries()) {
+    if (e.info.capabilities & kCurvedShapes)
+      able += std::string(able.empty() ? "'" : ", '") + e.info.name + "'";
+  }
+  throw std::invalid_argument(std::string("method '") + method_name(method) +
+                              "' reads a body's points (vertices), and a " +
+                              curved->curved()->name() +
+                              " is a curved shape defined by its support function: use method " +
+                              able + ", which answer every pair of shapes");
+}
 
 }  // namespace detail
 

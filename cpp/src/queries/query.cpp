@@ -50,6 +50,9 @@ namespace detail {
 
 DistanceResult answer_pair(const QueryOptions& options, Goal goal, const FramedPair& pair,
                            bool escalate, Weights weights) {
+  if (pair.a.curved() || pair.b.curved()) {
+    require_shapes(options.method, pair.a.body(), pair.b.body());
+  }
   DistanceResult result = answer(options, goal, pair, weights);
   if (goal != Goal::verdict || result.certified || !escalate) return result;
   // The exact method decides with its own iteration cap: a budget too small for the method

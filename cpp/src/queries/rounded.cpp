@@ -36,6 +36,10 @@ Scalar shifted_by_radii(const FramedPair& pair, Scalar core, Scalar outward) {
   const Scalar radii = pair.radius_a + pair.radius_b;
   const Scalar value = core - radii;
   if (!std::isfinite(core)) return value;
+  if (outward < 0 && pair.support_error > 0) {
+    return std::nextafter(value - subtraction_rounding(pair, core) - pair.support_error,
+                          -std::numeric_limits<Scalar>::infinity());
+  }
   const bool exact = sum_error(pair.radius_a, pair.radius_b, radii) == 0 &&
                      sum_error(core, -radii, value) == 0 && !underflowed(pair.radius_a) &&
                      !underflowed(pair.radius_b);
@@ -66,6 +70,7 @@ void round_answer(const FramedPair& pair, Goal goal, Answer& answer) {
     answer.point_b -= radius_b * n;
     return;
   }
+  if (!(radius_a + radius_b > 0)) return;
   // Cores closer than r_a + r_b: the rounded bodies overlap, and the point at r_a / (r_a + r_b)
   // along the witnesses' segment is within r_a of A's and r_b of B's.
   answer.point_a += (radius_a / (radius_a + radius_b)) * between;

@@ -7,11 +7,14 @@
 
 namespace swarmcollide::detail {
 
-/// True when either body of `pair` is rounded (ConvexPolyhedron::radius() > 0).
-inline bool rounded(const FramedPair& pair) { return pair.radius_a > 0 || pair.radius_b > 0; }
+/// True when either body of `pair` is rounded (ConvexPolyhedron::radius() > 0) or curved (whose
+/// support points may fall short: FramedPair::support_error).
+inline bool rounded(const FramedPair& pair) { return pair.adjusted; }
 
 /// `core - r_a - r_b` moved `outward` (-1 down, +1 up) by a bound on its rounding, for a rounded
-/// pair: what rounded_lower and rounded_upper return when a radius is not zero.
+/// pair: what rounded_lower and rounded_upper return when a radius is not zero. A lower bound
+/// (outward -1) also loses `pair.support_error`: the separations of curved bodies are measured at
+/// support points that may fall that short of the support function.
 Scalar shifted_by_radii(const FramedPair& pair, Scalar core, Scalar outward);
 
 /// A lower bound on the signed distance of the rounded bodies from `core_lower`, one on their

@@ -154,7 +154,9 @@ void keep_separating(const FramedPair& pair, const Vector3& n, Scalar s, int ia,
 // Its bound stays the last one proven, with the odometers then: still sound, since `moved`
 // counts every motion since.
 void remember(const FramedPair& pair, const Answer& answer, PairProof& proof) {
-  if (answer.intersection_proven) {
+  // A curved body's point indices are its support points of one query: a tetrahedron of them
+  // means nothing in the next frame, so its pairs keep separating directions only.
+  if (answer.intersection_proven && !pair.a.curved() && !pair.b.curved()) {
     PairProof::Enclosing enclosing{};
     int count_a = 0;
     int count_b = 0;
@@ -425,7 +427,8 @@ void answer_pair(const PlacedBody& a, const PlacedBody& b, PairProof& proof,
       const bool kept = proof.kind == PairProof::Kind::enclosing;
       tetrahedron.a[3] = kept ? proof.enclosing.a[3] : -1;
       tetrahedron.b[3] = kept ? proof.enclosing.b[3] : -1;
-      if (contact_tetrahedron(pair, contact.direction, features, tetrahedron)) {
+      if (!pair.a.curved() && !pair.b.curved() &&
+          contact_tetrahedron(pair, contact.direction, features, tetrahedron)) {
         proof.kind = PairProof::Kind::enclosing;
         proof.enclosing = tetrahedron;
         proof.lower = -std::numeric_limits<float>::infinity();

@@ -10,6 +10,7 @@
 #include <unordered_set>
 #include <utility>
 
+#include "../queries/dispatch.hpp"
 #include "radix_sort.hpp"
 #include "scene_impl.hpp"
 #include "swarmcollide/queries/batch.hpp"
@@ -282,6 +283,7 @@ std::vector<BodyId> Scene::Impl::add(std::vector<ConvexPolyhedron> bodies,
     validate_pose(poses[i], "poses", i);
   }
   for (std::size_t i = 0; i < bodies.size(); ++i) {
+    detail::require_shapes(s.options.query.method, bodies[i], bodies[i]);
     const Scalar reach = own_reach(bodies[i]);
     if (!(reach <= kMaxSceneCoordinate / 2)) {
       refuse_placement("bodies[" + std::to_string(i) + "] reaches from its own origin to", reach);

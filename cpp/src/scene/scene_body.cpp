@@ -29,6 +29,8 @@ constexpr Scalar kMarginOfRadius = 0.25;
 }  // namespace
 
 Scalar reach_about_centre(const ConvexPolyhedron& body) {
+  // A curved shape's points are a few on its surface; its outer radius holds all of it.
+  if (body.curved()) return body.curved()->outer_radius();
   return body.centred_vertices().rowwise().norm().maxCoeff();
 }
 
@@ -48,7 +50,18 @@ void update_box(SceneBody& b) {
   const VertexMatrix& points = b.body.vertices();
   Vector3 low;
   Vector3 high;
-  if (b.body.size() <= kHillClimbingThreshold) {
+  Scalar shortfall = 0;
+  if (const SupportFunction* shape = b.body.curved()) {
+    // The support points along the world axes, in the shape's frame; their heights fall short of
+    // the support values by at most the support function's error bound, added to the box.
+    for (int k = 0; k < 3; ++k) {
+      const Vector3 axis = r.row(k).transpose();
+      const Vector3 centre = b.body.bounds().centre;
+      high(k) = axis.dot(shape->support(axis) + centre) + t(k);
+      low(k) = axis.dot(shape->support(-axis) + centre) + t(k);
+    }
+    shortfall = SupportFunction::kSupportErrorRoundoffs * kEpsilon * shape->outer_radius();
+  } else if (b.body.size() <= kHillClimbingThreshold) {
     low = r * points.row(0).transpose() + t;
     high = low;
     for (int i = 1; i < b.body.size(); ++i) {
@@ -70,7 +83,7 @@ void update_box(SceneBody& b) {
   const Scalar reach = b.body.bounds().centre.cwiseAbs().maxCoeff() + b.body.bounds().radius +
                        t.cwiseAbs().maxCoeff();
   // A rounded body's box grows by its radius (the reach counts it, for the rounding).
-  const Vector3 rounding = Vector3::Constant(16 * kEpsilon * reach + b.body.radius());
+  const Vector3 rounding = Vector3::Constant(16 * kEpsilon * reach + b.body.radius() + shortfall);
   b.box = {low - rounding, high + rounding};
 }
 

@@ -35,7 +35,7 @@ Particles& particles() {
 // and the nearest earlier answer spares most of the climb from the centre's.
 int nearest_start(const FramedBody& body, const Vector3& n, const std::vector<int>& found,
                   int count, int start) {
-  if (body.size() <= kHillClimbingThreshold) return start;
+  if (body.curved() || body.size() <= kHillClimbingThreshold) return start;
   Scalar highest = body.vertex(start).dot(n);
   for (int k = 0; k < count; ++k) {
     const Scalar h = body.vertex(found[k]).dot(n);

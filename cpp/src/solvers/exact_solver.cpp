@@ -4,6 +4,7 @@
 #include <limits>
 #include <type_traits>
 
+#include "../queries/verdict.hpp"
 #include "minkowski.hpp"
 #include "penetration.hpp"
 #include "witness.hpp"
@@ -15,8 +16,8 @@ namespace {
 // Wolfe's algorithm on B - A from `start` (a direction or a corral), the support hints starting
 // at `hint_a` and `hint_b`; its support evaluations are added to `evaluations`.
 template <class Start>
-MinNormPoint nearest_corral(const FramedPair& pair, int max_iterations, const Start& start,
-                            int hint_a, int hint_b, long& evaluations) {
+MinNormPoint wolfe_corral(const FramedPair& pair, int max_iterations, const Start& start,
+                          int hint_a, int hint_b, long& evaluations) {
   const auto oracle = [&](const Vector3& d) {
     ++evaluations;
     return minkowski_support(pair.a, pair.b, d, hint_a, hint_b);
@@ -26,6 +27,32 @@ MinNormPoint nearest_corral(const FramedPair& pair, int max_iterations, const St
   } else {
     return wolfe_min_norm(oracle, start, 2, max_iterations);
   }
+}
+
+// Restarts of Wolfe's algorithm on curved bodies (each a few iterations).
+constexpr int kCurvedRestarts = 8;
+
+// The same; for curved bodies, restarted from its nearest point's direction while it leaves an
+// apart pair's distance unproven. On a curved difference every oracle point is new, and the
+// squared norm's decrease falls below rounding (Wolfe's stop) while the separation along the
+// corral's direction still lags the distance by more than the tolerance; a corral built afresh
+// from points near the optimum goes on from there. Kept while the gap shrinks.
+template <class Start>
+MinNormPoint nearest_corral(const FramedPair& pair, int max_iterations, const Start& start,
+                            int hint_a, int hint_b, long& evaluations) {
+  MinNormPoint nearest = wolfe_corral(pair, max_iterations, start, hint_a, hint_b, evaluations);
+  if (!pair.a.curved() && !pair.b.curved()) return nearest;
+  Answer best = answer_from_corral(pair, nearest);
+  for (int k = 0; k < kCurvedRestarts && best.lower > kFrameRounding && !value_proven(pair, best);
+       ++k) {
+    const MinNormPoint again =
+        wolfe_corral(pair, max_iterations, Vector3(nearest.x), -1, -1, evaluations);
+    const Answer answer = answer_from_corral(pair, again);
+    if (!(answer.upper - answer.lower < best.upper - best.lower)) break;
+    best = answer;
+    nearest = again;
+  }
+  return nearest;
 }
 
 // The answer of Wolfe's corral, with its iterations and evaluations.

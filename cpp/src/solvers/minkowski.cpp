@@ -44,9 +44,9 @@ void supporting_feature(const FramedBody& body, const Vector3& n, int top, Scala
                         std::vector<char>& visited, std::vector<int>& found) {
   const Scalar floor = body.height(top, n) - slack;
   found.clear();
-  const Hull& h = body.hull();
-  const bool on_graph = h.neighbour_offsets[top] < h.neighbour_offsets[top + 1];
-  if (body.size() <= kHillClimbingThreshold || !on_graph) {
+  // A curved body's points (its support points so far) have no hull to flood: they are scanned.
+  const Hull* h = body.curved() || body.size() <= kHillClimbingThreshold ? nullptr : &body.hull();
+  if (h == nullptr || !(h->neighbour_offsets[top] < h->neighbour_offsets[top + 1])) {
     for (int i = 0; i < body.size(); ++i) {
       if (body.height(i, n) >= floor) found.push_back(i);
     }
@@ -57,8 +57,8 @@ void supporting_feature(const FramedBody& body, const Vector3& n, int top, Scala
   visited[top] = 1;
   for (std::size_t k = 0; k < found.size(); ++k) {
     const int i = found[k];
-    for (int e = h.neighbour_offsets[i]; e < h.neighbour_offsets[i + 1]; ++e) {
-      const int j = h.neighbours[e];
+    for (int e = h->neighbour_offsets[i]; e < h->neighbour_offsets[i + 1]; ++e) {
+      const int j = h->neighbours[e];
       if (!visited[j] && body.height(j, n) >= floor) {
         visited[j] = 1;
         found.push_back(j);

@@ -57,6 +57,8 @@ long long edge_count(const Hull& hull) {
 // What the candidate axes cost: every edge pair, and every face against every point (the check
 // of how far the points stray from the hull's faces).
 long long axes_work(const FramedBody& a, const FramedBody& b) {
+  // A curved body has no faces or edges to enumerate.
+  if (a.curved() || b.curved()) return std::numeric_limits<long long>::max();
   const auto faces_by_points = [](const FramedBody& body) {
     return body.hull().dimension == 3
                ? static_cast<long long>(body.hull().faces.rows()) * body.size()
@@ -81,7 +83,7 @@ Scalar coordinate_bound(const FramedBody& body) {
 // support_index, whose shortfall margin() covers): for large placed bodies by the branch and
 // bound of their support tree (built once per body), seeded by a climb from `hint`.
 int scanned_support(const FramedBody& body, const Vector3& n, int hint) {
-  if (body.size() <= kHillClimbingThreshold || body.scan_shortfall() == 0) {
+  if (body.curved() || body.size() <= kHillClimbingThreshold || body.scan_shortfall() == 0) {
     return body.support_index(n);
   }
   const VertexMatrix& points = body.local_points();
@@ -126,6 +128,7 @@ class Solver {
       finish();
     }
     if (!done() && enclosed && offer_hint(hint)) finish();
+    if (!done() && (a_.curved() || b_.curved()) && complete_tetrahedron()) finish();
     if (!done() && axes_work(a_, b_) <= kAxesFallbackWork) {
       enumerate_axes();
       finish();
@@ -152,6 +155,7 @@ class Solver {
     Vector3 axis[2];
     int segments = 0;
     for (const FramedBody* body : {&a_, &b_}) {
+      if (body->curved()) continue;  // never flat, and its points have no hull
       const Hull& h = body->hull();
       if (h.dimension == 2) {
         const Vector3 p = body->vertex(h.faces(0, 0));
@@ -222,6 +226,7 @@ class Solver {
   // Wolfe's nearest point `m` of B - A, whose tetrahedron (if any) does not start the polytope:
   // the upper bound |p| and the directions it suggests.
   void use_nearest(const MinNormPoint& m) {
+    last_corral_ = m;
     // The exact convex combination of the corral (weights normalised) is a point of B - A; the
     // computed one is within 16 roundoffs of reach() of it (added in upper()).
     Scalar total = 0;
@@ -264,6 +269,51 @@ class Solver {
     }
     if (e.verified) set_upper(-e.depth_lower, PenetrationProof::polytope);
     return e.verified;
+  }
+
+  // Curved bodies have no candidate axes to fall back on. Where Wolfe's corral stops short of a
+  // tetrahedron around the origin (touching bodies, or coaxial ones whose supports along the
+  // axis line up through it), points of B - A along the axes of the best direction's frame and
+  // their diagonals, with the corral's, make tetrahedra: the one that encloses the origin deepest
+  // (its least barycentric weight largest) starts the expanding polytope. True when one did.
+  bool complete_tetrahedron() {
+    constexpr int kDirections = 10;
+    std::array<OraclePoint, MinNormPoint::kCapacity + kDirections> points;
+    int count = 0;
+    for (int k = 0; k < last_corral_.size; ++k) points[count++] = last_corral_.corral[k];
+    const Vector3 w = candidate_.allFinite() && candidate_.norm() > 0 ? candidate_.normalized()
+                                                                       : Vector3::UnitX();
+    const Vector3 helper = std::abs(w.x()) < 0.6 ? Vector3::UnitX() : Vector3::UnitY();
+    const Vector3 u = w.cross(helper).normalized();
+    const Vector3 v = w.cross(u);
+    const Vector3 directions[kDirections] = {w,  -w, u,       -u,       v,
+                                             -v, u + v, -u - v, u - v, v - u};
+    for (const Vector3& d : directions) {
+      int ia = -1;
+      int ib = -1;
+      points[count++] = minkowski_support(a_, b_, d, ia, ib);
+    }
+    MinNormPoint best;
+    Scalar deepest = 0;
+    std::array<Scalar, 4> weights;
+    for (int i = 0; i < count; ++i) {
+      for (int j = i + 1; j < count; ++j) {
+        for (int k = j + 1; k < count; ++k) {
+          for (int l = k + 1; l < count; ++l) {
+            if (!encloses_origin({points[i].p, points[j].p, points[k].p, points[l].p}, weights)) {
+              continue;
+            }
+            const Scalar least = *std::min_element(weights.begin(), weights.end());
+            if (least > deepest) {
+              deepest = least;
+              best.corral = {points[i], points[j], points[k], points[l]};
+              best.size = MinNormPoint::kCapacity;
+            }
+          }
+        }
+      }
+    }
+    return best.size == MinNormPoint::kCapacity && enclose(best);
   }
 
   // The axes read every point many times: a placed body's points are placed once, as the frame
@@ -423,6 +473,8 @@ class Solver {
   PenetrationProof proof_ = PenetrationProof::none;
   Scalar nearest_length_ = kInfinity;
   int iterations_ = 0;
+  // Wolfe's last corral on B - A (none yet: size 0).
+  MinNormPoint last_corral_;
   // The expanding polytope's face along its best normal, `face_normal_` (NaN until it has one).
   std::array<DifferencePoint, 3> face_;
   Vector3 face_normal_ = Vector3::Constant(std::numeric_limits<Scalar>::quiet_NaN());

@@ -7,6 +7,7 @@
 #include "swarmcollide/geometry/aabb.hpp"
 #include "swarmcollide/geometry/hull.hpp"
 #include "swarmcollide/geometry/hull_points.hpp"
+#include "swarmcollide/geometry/support_function.hpp"
 #include "swarmcollide/types.hpp"
 
 namespace swarmcollide {
@@ -46,6 +47,12 @@ struct BodyBounds {
 /// the hull points (`hull_points()`), found with the hull. Flat, collinear and single-point sets
 /// are valid bodies. Copies share the lazily computed hull; the class is safe to read from many
 /// threads.
+///
+/// A curved shape (Cylinder, Cone, Ellipsoid) is a ConvexPolyhedron whose `curved()` support
+/// function defines it: its points are a few points on its surface (an inner polytope, whose box
+/// is the shape's), which the support-function solvers never read as the body; they ask `curved()`
+/// for support points. Methods that enumerate vertices (the paper's swarms, the penalty method,
+/// fcl, libccd) refuse curved shapes, and so do compound bodies.
 class ConvexPolyhedron {
  public:
   /// Throws std::invalid_argument if `points` is empty, has a NaN or infinite coordinate, or
@@ -69,6 +76,10 @@ class ConvexPolyhedron {
   /// break ties alike and get the same answers.
   const VertexMatrix& centred_vertices() const { return centred_; }
 
+  /// The support function of a curved shape (shapes.hpp), null for a polyhedron: the body is
+  /// then that shape (rounded by `radius()`), not the hull of its points.
+  const SupportFunction* curved() const { return curved_.get(); }
+
   /// Index of a point that maximises `direction . x` (the first of the hull points on ties),
   /// comparing `centred_vertices()` of the hull points.
   int support_index(const Vector3& direction) const;
@@ -78,9 +89,10 @@ class ConvexPolyhedron {
   /// and coal do, and by scanning them otherwise. Passing the previous answer as `start` for a
   /// nearby direction makes a query cost a few neighbour checks. On ties any maximiser is returned.
   int support_index(const Vector3& direction, int start) const;
-  /// A point of the core (the points' hull) farthest along `direction`; the rounded body's is
-  /// this plus `radius()` times the unit direction.
+  /// A point of the core (the points' hull, or the curved shape) farthest along `direction`; the
+  /// rounded body's is this plus `radius()` times the unit direction.
   Vector3 support(const Vector3& direction) const {
+    if (curved_) return curved_->support(direction) + bounds_.centre;
     return vertices_.row(support_index(direction));
   }
 
@@ -88,10 +100,10 @@ class ConvexPolyhedron {
   const Aabb& aabb() const { return bounds_.box; }
   /// The box, its centre and the radius of the ball around that centre holding the body.
   const BodyBounds& bounds() const { return bounds_; }
-  /// Centre of mass of the solid; for flat, collinear and single-point bodies, of the polygon,
-  /// segment or point they are.
+  /// Centre of mass of the solid (a curved shape's own); for flat, collinear and single-point
+  /// bodies, of the polygon, segment or point they are.
   Vector3 centroid() const;
-  /// Convex hull, computed on first use.
+  /// Convex hull, computed on first use (of the points: for a curved shape, an inner polytope).
   const Hull& hull() const;
   /// The points the exact solvers read: the hull's vertices and any point not proven inside their
   /// hull (see HullPoints), found with the hull for bodies of more than `kHillClimbingThreshold`
@@ -113,6 +125,13 @@ class ConvexPolyhedron {
     return *static_cast<const T*>(found);
   }
 
+ protected:
+  /// A curved shape: `points` on its surface (whose box must be the shape's), rounded by
+  /// `radius`, answering its support points from `shape`; the bounds' ball is the shape's outer
+  /// radius (plus `radius`).
+  ConvexPolyhedron(VertexMatrix points, Scalar radius,
+                   std::shared_ptr<const SupportFunction> shape);
+
  private:
   // The data kept for (type, key), null when there is none yet.
   const void* find_derived(std::type_index type, int key) const;
@@ -125,6 +144,7 @@ class ConvexPolyhedron {
   BodyBounds bounds_;
   VertexMatrix centred_;
   std::shared_ptr<detail::HullCache> hull_cache_;
+  std::shared_ptr<const SupportFunction> curved_;
 };
 
 }  // namespace swarmcollide

@@ -41,4 +41,52 @@ class Box : public ConvexPolyhedron {
   Vector3 half_extents_;
 };
 
+/// A solid circular cylinder along z, centred: radius `cylinder_radius()`, from z = -half_length
+/// to z = half_length (FCL's and coal's convention). URDF's `<cylinder radius length>` has
+/// length = 2 half_length; MJCF's cylinder geom has size = (radius, half_length). A curved shape:
+/// answered from its support function (ConvexPolyhedron::curved) by the methods "dual" and
+/// "exact".
+class Cylinder : public ConvexPolyhedron {
+ public:
+  /// Throws std::invalid_argument unless `radius` and `half_length` are finite and positive.
+  Cylinder(Scalar radius, Scalar half_length);
+  /// The radius of the cylinder's circular section (`radius()` is the rounding radius, 0).
+  Scalar cylinder_radius() const { return cylinder_radius_; }
+  Scalar half_length() const { return half_length_; }
+
+ private:
+  Scalar cylinder_radius_;
+  Scalar half_length_;
+};
+
+/// A solid right circular cone along z, centred on its axis' midpoint (FCL's and coal's
+/// convention): its base, a disk of radius `base_radius()`, at z = -half_length, its apex at
+/// (0, 0, half_length). Its centre of mass is at z = -half_length / 2. A curved shape, answered
+/// by the methods "dual" and "exact".
+class Cone : public ConvexPolyhedron {
+ public:
+  /// Throws std::invalid_argument unless `radius` and `half_length` are finite and positive.
+  Cone(Scalar radius, Scalar half_length);
+  /// The radius of the base disk.
+  Scalar base_radius() const { return base_radius_; }
+  Scalar half_length() const { return half_length_; }
+
+ private:
+  Scalar base_radius_;
+  Scalar half_length_;
+};
+
+/// A solid ellipsoid centred on the origin with semi-axes `radii()` along x, y and z: the points
+/// with (x/a)^2 + (y/b)^2 + (z/c)^2 <= 1. MJCF's ellipsoid geom has size = radii. A curved shape,
+/// answered by the methods "dual" and "exact".
+class Ellipsoid : public ConvexPolyhedron {
+ public:
+  /// Throws std::invalid_argument unless every radius is finite and positive.
+  explicit Ellipsoid(const Vector3& radii);
+  const Vector3& radii() const { return radii_; }
+
+ private:
+  Vector3 radii_;
+};
+
 }  // namespace swarmcollide

@@ -12,6 +12,9 @@ enum Capability : unsigned {
   kDistance = 1u << 0,
   kCollide = 1u << 1,
   kSignedDistance = 1u << 2,
+  /// Answers curved shapes (ConvexPolyhedron::curved: Cylinder, Cone, Ellipsoid) through their
+  /// support functions; the other methods enumerate a body's points.
+  kCurvedShapes = 1u << 3,
 };
 
 /// A solver parameter that a method reads from QueryOptions.

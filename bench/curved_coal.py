@@ -1,0 +1,153 @@
+"""Curved shapes from Python: swarmcollide's Cylinder, Cone and Ellipsoid (support-function bodies,
+issue 26) against coal's own primitives, in one process, the contenders interleaved round by round.
+
+For each pair of shape kinds (cylinder, cone, ellipsoid, and sphere and box beside them), random
+sizes in [0.2, 1] and random poses give pairs apart and overlapping. Before any timing, coal's
+signed distance on every pair is checked against swarmcollide's certified bounds: it must lie in
+``[lower_bound - 1e-6 size, distance + 1e-6 size]`` (coal stops at 1e-6), and the verdicts agree
+where the bounds leave no doubt. coal gets its best correct usage (requests and results made
+once, results cleared before each call, shapes and transforms built once); swarmcollide is called
+as a user would, ``sc.signed_distance(a, b, pose_a=..., pose_b=...)`` with 4x4 poses and the
+default method ``dual``. A contender's time is the median over rounds of its mean CPU time per
+call (the thread's); the ratio is ours / coal's for the same pairs in the same run. ``--json``
+writes one row per pair kind and contender (bench/record.py's format).
+
+    python bench/curved_coal.py [--pairs 200] [--rounds 5] [--json bench/results/curved_coal.json]
+"""
+
+from __future__ import annotations
+
+import argparse
+import statistics
+import time
+from typing import Dict, List
+
+import numpy as np
+
+import record
+import swarmcollide as sc
+
+KINDS = ("cylinder", "cone", "ellipsoid", "sphere", "box")
+PAIRS = [("cylinder", "cylinder"), ("cylinder", "cone"), ("cone", "cone"),
+         ("ellipsoid", "ellipsoid"), ("cylinder", "ellipsoid"), ("cone", "ellipsoid"),
+         ("cylinder", "sphere"), ("ellipsoid", "box"), ("cone", "box")]
+
+
+def random_rotation(rng: np.random.Generator) -> np.ndarray:
+    q, r = np.linalg.qr(rng.normal(size=(3, 3)))
+    q = q * np.sign(np.diag(r))
+    return q if np.linalg.det(q) > 0 else -q
+
+
+def make(kind: str, rng: np.random.Generator):
+    """The shape in both libraries, with the same conventions (coal's lengths are full lengths:
+    lz = 2 half_length; its cone has its base at -lz/2 and its apex at +lz/2, as ours)."""
+    import coal
+
+    r, h = rng.uniform(0.2, 1.0, 2)
+    if kind == "cylinder":
+        return sc.Cylinder(r, h), coal.Cylinder(r, 2 * h)
+    if kind == "cone":
+        return sc.Cone(r, h), coal.Cone(r, 2 * h)
+    if kind == "ellipsoid":
+        radii = rng.uniform(0.2, 1.0, 3)
+        return sc.Ellipsoid(radii), coal.Ellipsoid(*radii)
+    if kind == "sphere":
+        return sc.Sphere(r), coal.Sphere(r)
+    half = rng.uniform(0.2, 1.0, 3)
+    return sc.Box(half), coal.Box(*(2 * half))
+
+
+def pose(rng: np.random.Generator, spread: float) -> np.ndarray:
+    p = np.eye(4)
+    p[:3, :3] = random_rotation(rng)
+    p[:3, 3] = rng.uniform(-spread, spread, 3)
+    return p
+
+
+def cases_for(pair, count: int, rng: np.random.Generator) -> List[dict]:
+    import coal
+
+    cases = []
+    for _ in range(count):
+        (a, ca), (b, cb) = make(pair[0], rng), make(pair[1], rng)
+        pa, pb = pose(rng, 0.2), pose(rng, 1.6)
+        ta = coal.Transform3s(pa[:3, :3], pa[:3, 3])
+        tb = coal.Transform3s(pb[:3, :3], pb[:3, 3])
+        cases.append({"a": a, "b": b, "ca": ca, "cb": cb, "pa": pa, "pb": pb, "ta": ta, "tb": tb})
+    return cases
+
+
+def check(cases: List[dict], request, result) -> Dict[str, int]:
+    """coal's signed distance inside our certified bounds (to coal's 1e-6), per pair."""
+    import coal
+
+    found = {"pairs": len(cases), "certified": 0, "overlapping": 0, "coal_outside": 0}
+    for c in cases:
+        ours = sc.signed_distance(c["a"], c["b"], pose_a=c["pa"], pose_b=c["pb"])
+        result.clear()
+        theirs = coal.distance(c["ca"], c["ta"], c["cb"], c["tb"], request, result)
+        size = np.linalg.norm(c["pb"][:3, 3] - c["pa"][:3, 3]) + 2 * max(
+            c["a"].bounding_radius, c["b"].bounding_radius)
+        found["certified"] += bool(ours.certified)
+        found["overlapping"] += bool(ours.distance < 0)
+        if not ours.lower_bound - 1e-6 * size <= theirs <= ours.distance + 1e-6 * size:
+            found["coal_outside"] += 1
+    return found
+
+
+def run(pairs: int, rounds: int) -> List[dict]:
+    import coal
+
+    rng = np.random.default_rng(26)
+    request, result = coal.DistanceRequest(), coal.DistanceResult()
+    rows = []
+    for pair in PAIRS:
+        cases = cases_for(pair, pairs, rng)
+        checked = check(cases, request, result)
+
+        def ours():
+            for c in cases:
+                sc.signed_distance(c["a"], c["b"], pose_a=c["pa"], pose_b=c["pb"])
+
+        def theirs():
+            for c in cases:
+                result.clear()
+                coal.distance(c["ca"], c["ta"], c["cb"], c["tb"], request, result)
+
+        times = {"swarmcollide dual": [], "coal": []}
+        for _ in range(rounds):
+            for name, call in (("swarmcollide dual", ours), ("coal", theirs)):
+                start = time.thread_time()
+                call()
+                times[name].append((time.thread_time() - start) / len(cases))
+        medians = {name: statistics.median(t) * 1e6 for name, t in times.items()}
+        ratio = medians["swarmcollide dual"] / medians["coal"]
+        print(f"{pair[0]:>9} - {pair[1]:<9}: ours {medians['swarmcollide dual']:7.2f} us, coal "
+              f"{medians['coal']:7.2f} us, ratio {ratio:5.2f}; certified {checked['certified']}/"
+              f"{checked['pairs']}, overlapping {checked['overlapping']}, coal outside our "
+              f"bounds {checked['coal_outside']}")
+        for name, microseconds in medians.items():
+            rows.append({"shapes": f"{pair[0]}-{pair[1]}", "contender": name,
+                         "microseconds": microseconds, "ratio_to_coal": microseconds /
+                         medians["coal"], **checked})
+    return rows
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--pairs", type=int, default=200)
+    parser.add_argument("--rounds", type=int, default=5)
+    parser.add_argument("--quick", action="store_true", help="40 pairs, 3 rounds")
+    parser.add_argument("--json", help="write the results here")
+    args = parser.parse_args()
+    if args.quick:
+        args.pairs, args.rounds = 40, 3
+    rows = run(args.pairs, args.rounds)
+    if args.json:
+        record.write(args.json, "curved_coal", rows)
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

@@ -1,0 +1,35 @@
+#pragma once
+
+#include "swarmcollide/types.hpp"
+
+namespace swarmcollide {
+
+/// A curved convex shape given by its support function, in its own frame (centred on its box):
+/// the one thing the support-function solvers ("dual", "exact") ask of a shape. Cylinder, Cone
+/// and Ellipsoid (shapes.hpp) implement it; a ConvexPolyhedron built from one answers its
+/// support points from it (ConvexPolyhedron::curved).
+///
+/// The contract every implementation keeps, which the certificates rest on: `support(d)` is a
+/// point of the shape (inside or on it, rounding included: the computed point is pulled towards
+/// the centre by a few roundoffs), and `d . support(d)` falls below the shape's support value
+/// `max_x d . x` by at most `kSupportErrorRoundoffs` roundoffs (2^-53) of `outer_radius() |d|`.
+class SupportFunction {
+ public:
+  /// Roundoffs of `outer_radius() |d|` by which `d . support(d)` may fall short of the support
+  /// value.
+  static constexpr double kSupportErrorRoundoffs = 32;
+
+  virtual ~SupportFunction() = default;
+  /// A point of the shape farthest along `direction` (to within the bound above), in the shape's
+  /// own frame. A direction along which a whole face or segment is farthest gets its centre (a
+  /// cylinder's cap along +-z gets the cap's centre); the zero direction gets the origin.
+  virtual Vector3 support(const Vector3& direction) const = 0;
+  /// A bound on the distance of every point of the shape from the origin (its centre).
+  virtual Scalar outer_radius() const = 0;
+  /// The centre of mass of the solid.
+  virtual Vector3 centroid() const = 0;
+  /// The shape's name ("cylinder", ...), for messages.
+  virtual const char* name() const = 0;
+};
+
+}  // namespace swarmcollide

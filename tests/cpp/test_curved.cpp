@@ -1,0 +1,551 @@
+// Curved shapes (Cylinder, Cone, Ellipsoid: support-function bodies) against closed forms and
+// against polytope brackets: an inner polytope of points on the surface, and that polytope grown
+// by its Hausdorff distance to the shape, enclose the shape's distance.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "shapes.hpp"
+#include "swarmcollide/geometry/compound_body.hpp"
+#include "swarmcollide/geometry/shapes.hpp"
+#include "swarmcollide/queries/methods.hpp"
+#include "swarmcollide/queries/query.hpp"
+#include "swarmcollide/scene/scene.hpp"
+
+namespace swarmcollide::testing {
+namespace {
+
+const std::vector<Method> kCurvedMethods = {Method::dual, Method::exact};
+constexpr Scalar kPi = 3.14159265358979323846;
+
+Query query_of(Method method, Scalar tolerance = kDefaultTolerance) {
+  QueryOptions options;
+  options.method = method;
+  options.tolerance = tolerance;
+  return Query(options);
+}
+
+Pose at(const Vector3& translation, const Matrix3& rotation = Matrix3::Identity()) {
+  return {rotation, translation};
+}
+
+// The pair's size as the queries measure it: the tolerance's scale.
+Scalar size_of(const ConvexPolyhedron& a, const Pose& pose_a, const ConvexPolyhedron& b,
+               const Pose& pose_b) {
+  const Vector3 ca = pose_a.rotation * a.bounds().centre + pose_a.translation;
+  const Vector3 cb = pose_b.rotation * b.bounds().centre + pose_b.translation;
+  return (cb - ca).norm() + 2 * std::max(a.bounds().radius, b.bounds().radius);
+}
+
+// The bounds enclose `expected` (to rounding) and the distance is within the tolerance of it,
+// certified.
+void expect_answer(const DistanceResult& r, Scalar expected, Scalar size,
+                   Scalar tolerance = kDefaultTolerance) {
+  const Scalar slack = 1e-13 * size;
+  EXPECT_TRUE(r.certified);
+  EXPECT_LE(r.lower_bound, expected + slack);
+  EXPECT_GE(r.distance, expected - slack);
+  EXPECT_NEAR(r.distance, expected, tolerance * size + slack);
+}
+
+// Signed distance from the point p to the cylinder of radius r and half length h along z.
+Scalar point_to_cylinder(const Vector3& p, Scalar r, Scalar h) {
+  const Scalar radial = std::hypot(p.x(), p.y()) - r;
+  const Scalar axial = std::abs(p.z()) - h;
+  if (radial <= 0 && axial <= 0) return std::max(radial, axial);
+  return std::hypot(std::max(radial, 0.0), std::max(axial, 0.0));
+}
+
+Scalar point_to_segment_2d(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
+                           const Eigen::Vector2d& b) {
+  const Eigen::Vector2d d = b - a;
+  const Scalar t = std::clamp((p - a).dot(d) / d.squaredNorm(), 0.0, 1.0);
+  return (p - (a + t * d)).norm();
+}
+
+// Signed distance from p to the cone of base radius r at z = -h and apex (0, 0, h): in the
+// half-plane (rho, z) of p the cone is the triangle (0, -h), (r, -h), (0, h), whose boundary
+// there is the base and the slant side (the axis is inside the solid).
+Scalar point_to_cone(const Vector3& p, Scalar r, Scalar h) {
+  const Eigen::Vector2d q(std::hypot(p.x(), p.y()), p.z());
+  const Eigen::Vector2d base0(0, -h), rim(r, -h), apex(0, h);
+  const Scalar to_base = point_to_segment_2d(q, base0, rim);
+  const Scalar to_side = point_to_segment_2d(q, rim, apex);
+  // Inside: above the base and below the slant line through the rim and the apex.
+  const bool inside = q.y() >= -h && q.x() * (2 * h) + (q.y() - h) * r <= 0;
+  const Scalar nearest = std::min(to_base, to_side);
+  return inside ? -nearest : nearest;
+}
+
+// Support value of the ellipsoid of `radii`, turned by `turn`, along the unit vector n.
+Scalar ellipsoid_support(const Vector3& radii, const Matrix3& turn, const Vector3& n) {
+  return radii.cwiseProduct(turn.transpose() * n).norm();
+}
+
+TEST(Curved, BadParametersNameTheParameter) {
+  const Scalar nan = std::numeric_limits<Scalar>::quiet_NaN();
+  const Scalar inf = std::numeric_limits<Scalar>::infinity();
+  for (Scalar bad : {0.0, -1.0, nan, inf}) {
+    SCOPED_TRACE(bad);
+    const auto names = [](const auto& build, const std::string& name) {
+      try {
+        build();
+        ADD_FAILURE() << "no error for " << name;
+      } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << e.what();
+      }
+    };
+    names([&] { Cylinder(bad, 1); }, "radius");
+    names([&] { Cylinder(1, bad); }, "half_length");
+    names([&] { Cone(bad, 1); }, "radius");
+    names([&] { Cone(1, bad); }, "half_length");
+    names([&] { Ellipsoid(Vector3(1, bad, 1)); }, "radii[1]");
+    names([&] { Ellipsoid(Vector3(1, 1, bad)); }, "radii[2]");
+  }
+}
+
+TEST(Curved, BoundsHoldTheShape) {
+  const Cylinder cylinder(2, 3);
+  EXPECT_EQ(cylinder.aabb().min, Vector3(-2, -2, -3));
+  EXPECT_EQ(cylinder.aabb().max, Vector3(2, 2, 3));
+  EXPECT_GE(cylinder.bounds().radius, std::hypot(2.0, 3.0));
+  EXPECT_LE(cylinder.bounds().radius, std::hypot(2.0, 3.0) * (1 + 1e-12));
+  EXPECT_EQ(cylinder.radius(), 0);
+  const Cone cone(2, 3);
+  EXPECT_EQ(cone.aabb().min, Vector3(-2, -2, -3));
+  EXPECT_EQ(cone.aabb().max, Vector3(2, 2, 3));
+  EXPECT_NEAR(cone.centroid().z(), -1.5, 1e-15);
+  const Ellipsoid ellipsoid(Vector3(1, 2, 3));
+  EXPECT_EQ(ellipsoid.aabb().max, Vector3(1, 2, 3));
+  EXPECT_GE(ellipsoid.bounds().radius, 3);
+  EXPECT_LE(ellipsoid.bounds().radius, 3 * (1 + 1e-12));
+  EXPECT_NE(ellipsoid.curved(), nullptr);
+  EXPECT_EQ(Box(Vector3(1, 1, 1)).curved(), nullptr);
+}
+
+// The support function's contract (SupportFunction): its points are inside the shape, and their
+// heights within 32 roundoffs of the outer radius of the support value, computed in long double.
+TEST(Curved, SupportPointsAreInsideAndHighest) {
+  Random rng(11);
+  const Scalar u = 0x1p-53;
+  for (int trial = 0; trial < 2000; ++trial) {
+    const Scalar r = std::exp(rng.uniform(-3, 3));
+    const Scalar h = std::exp(rng.uniform(-3, 3));
+    const Vector3 radii(std::exp(rng.uniform(-3, 3)), std::exp(rng.uniform(-3, 3)),
+                        std::exp(rng.uniform(-3, 3)));
+    Vector3 d = rng.unit();
+    if (trial % 4 == 1) d.x() = d.y() = 0;  // along the axis: a cap's centre
+    if (trial % 4 == 2) d.z() = 0;
+    if (trial % 4 == 3) d *= std::exp(rng.uniform(-600, 600));  // any length
+    const long double dxy = std::hypot(static_cast<long double>(d.x()), d.y());
+    const long double dz = d.z();
+    const long double length = d.stableNorm();
+    {
+      const Cylinder c(r, h);
+      const Vector3 p = c.curved()->support(d);
+      EXPECT_LE(std::hypot(p.x(), p.y()), r);
+      EXPECT_LE(std::abs(p.z()), h);
+      const long double value = r * dxy + h * std::abs(dz);
+      const long double height = d.cast<long double>().dot(p.cast<long double>());
+      EXPECT_LE(value - height, 32 * u * c.curved()->outer_radius() * length);
+    }
+    {
+      const Cone c(r, h);
+      const Vector3 p = c.curved()->support(d);
+      EXPECT_LE(point_to_cone(p, r, h), 1e-300);
+      const long double value = std::max<long double>(h * dz, r * dxy - h * dz);
+      const long double height = d.cast<long double>().dot(p.cast<long double>());
+      EXPECT_LE(value - height, 32 * u * c.curved()->outer_radius() * length);
+    }
+    {
+      const Ellipsoid e(radii);
+      const Vector3 p = e.curved()->support(d);
+      const Eigen::Matrix<long double, 3, 1> q =
+          p.cast<long double>().cwiseQuotient(radii.cast<long double>());
+      EXPECT_LE(q.squaredNorm(), 1.0L);
+      const long double value =
+          radii.cast<long double>().cwiseProduct(d.cast<long double>()).norm();
+      const long double height = d.cast<long double>().dot(p.cast<long double>());
+      EXPECT_LE(value - height, 32 * u * e.curved()->outer_radius() * length);
+    }
+  }
+}
+
+TEST(Curved, SpheresAgainstCylindersAndConesMatchThePointDistance) {
+  Random rng(13);
+  for (int trial = 0; trial < 30; ++trial) {
+    const Scalar r = rng.uniform(0.2, 2);
+    const Scalar h = rng.uniform(0.2, 2);
+    const Cylinder cylinder(r, h);
+    const Cone cone(r, h);
+    const Sphere ball(rng.uniform(0.05, 0.5));
+    const Matrix3 turn = rng.rotation();
+    const Pose pose_shape = at(rng.vector(1), turn);
+    const Vector3 local = rng.vector(3);
+    const Pose pose_ball = at(turn * local + pose_shape.translation);
+    for (Method method : kCurvedMethods) {
+      SCOPED_TRACE(method_name(method));
+      const Query query = query_of(method);
+      const Scalar to_cylinder = point_to_cylinder(local, r, h) - ball.radius();
+      const Scalar size_c = size_of(cylinder, pose_shape, ball, pose_ball);
+      expect_answer(query.signed_distance(cylinder, pose_shape, ball, pose_ball), to_cylinder,
+                    size_c);
+      expect_answer(query.distance(ball, pose_ball, cylinder, pose_shape),
+                    std::max(to_cylinder, 0.0), size_c);
+      const DistanceResult verdict = query.collision(cylinder, pose_shape, ball, pose_ball);
+      EXPECT_TRUE(verdict.certified);
+      EXPECT_EQ(verdict.colliding, to_cylinder <= kDefaultTolerance * size_c);
+      const Scalar to_cone = point_to_cone(local, r, h) - ball.radius();
+      const Scalar size_k = size_of(cone, pose_shape, ball, pose_ball);
+      expect_answer(query.signed_distance(ball, pose_ball, cone, pose_shape), to_cone, size_k);
+      expect_answer(query.distance(cone, pose_shape, ball, pose_ball), std::max(to_cone, 0.0),
+                    size_k);
+    }
+  }
+}
+
+TEST(Curved, CoaxialAndSideBySideCylinders) {
+  const Cylinder a(1, 2);
+  const Cylinder b(0.5, 1);
+  for (Method method : kCurvedMethods) {
+    SCOPED_TRACE(method_name(method));
+    const Query query = query_of(method);
+    // Coaxial, the caps 0.25 apart, then overlapping by 0.25 (the depth along the axis: the
+    // radial way out is 1.5).
+    for (Scalar gap : {0.25, -0.25}) {
+      const Pose pb = at(Vector3(0, 0, 3 + gap));
+      const Scalar size = size_of(a, {}, b, pb);
+      expect_answer(query.signed_distance(a, {}, b, pb), gap, size);
+      expect_answer(query.distance(a, {}, b, pb), std::max(gap, 0.0), size);
+      EXPECT_EQ(query.collide(a, {}, b, pb), gap < 0);
+    }
+    // Side by side, parallel axes 2 apart: 0.5 between the mantles.
+    const Pose side = at(Vector3(2, 0, 0.5));
+    expect_answer(query.signed_distance(a, {}, b, side), 0.5, size_of(a, {}, b, side));
+    // Crossed: b lying along x above a's cap.
+    Matrix3 lying;
+    lying << 0, 0, 1, 0, 1, 0, -1, 0, 0;  // z onto x
+    const Pose crossed = at(Vector3(0.3, 0.1, 2.75), lying);
+    expect_answer(query.distance(a, {}, b, crossed), 0.25, size_of(a, {}, b, crossed));
+  }
+}
+
+// An ellipsoid against a box face: the distance is the face's offset less the support value of
+// the (turned) ellipsoid along the face normal.
+TEST(Curved, EllipsoidAgainstABoxFace) {
+  Random rng(17);
+  const Box wall(Vector3(0.1, 3, 3));
+  for (int trial = 0; trial < 20; ++trial) {
+    const Vector3 radii(rng.uniform(0.2, 1), rng.uniform(0.2, 1), rng.uniform(0.2, 1));
+    const Ellipsoid e(radii);
+    const Matrix3 turn = rng.rotation();
+    const Scalar face = rng.uniform(0.5, 1.5);
+    const Pose pose_wall = at(Vector3(face + 0.1, 0, 0));
+    const Scalar expected = face - ellipsoid_support(radii, turn, Vector3::UnitX());
+    for (Method method : kCurvedMethods) {
+      SCOPED_TRACE(method_name(method));
+      const Query query = query_of(method);
+      const Scalar size = size_of(e, at(Vector3::Zero(), turn), wall, pose_wall);
+      expect_answer(query.signed_distance(e, at(Vector3::Zero(), turn), wall, pose_wall), expected,
+                    size);
+      expect_answer(query.distance(wall, pose_wall, e, at(Vector3::Zero(), turn)),
+                    std::max(expected, 0.0), size);
+    }
+  }
+}
+
+// Two ellipsoids along x touching to within 1e-9 of their size, at tolerance 1e-12: apart or in
+// contact as the gap says, and certified.
+TEST(Curved, NearlyTouchingShapesGetTheRightVerdict) {
+  const Ellipsoid a(Vector3(1, 0.5, 0.7));
+  const Ellipsoid b(Vector3(0.6, 0.9, 0.4));
+  const Cylinder c(0.6, 0.9);
+  for (Scalar relative : {1e-9, -1e-9}) {
+    const Scalar gap = relative * 4;
+    const Pose pb = at(Vector3(1.6 + gap, 0, 0));
+    Matrix3 lying;
+    lying << 0, 0, 1, 0, 1, 0, -1, 0, 0;  // the cylinder's axis along x: its cap faces a
+    const Pose pc = at(Vector3(1.9 + gap, 0, 0), lying);
+    for (Method method : kCurvedMethods) {
+      SCOPED_TRACE(method_name(method));
+      const Query query = query_of(method, 1e-12);
+      const DistanceResult ab = query.collision(a, {}, b, pb);
+      EXPECT_TRUE(ab.certified);
+      EXPECT_EQ(ab.colliding, gap < 0);
+      const DistanceResult sd = query.signed_distance(a, {}, b, pb);
+      expect_answer(sd, gap, size_of(a, {}, b, pb), 1e-12);
+      const DistanceResult ac = query.collision(a, {}, c, pc);
+      EXPECT_TRUE(ac.certified);
+      EXPECT_EQ(ac.colliding, gap < 0);
+      expect_answer(query.signed_distance(a, {}, c, pc), gap, size_of(a, {}, c, pc), 1e-12);
+    }
+  }
+}
+
+// The same pair in any unit: a cylinder and a cone (and an ellipsoid) scaled by 10^k answer the
+// scaled distance.
+TEST(Curved, TheAnswerDoesNotDependOnTheUnit) {
+  const Matrix3 turn = Random(19).rotation();
+  std::vector<Scalar> unit_answers;
+  for (Scalar scale : {1e-100, 1e-50, 1.0, 3e7, 1e50, 1e100}) {
+    SCOPED_TRACE(scale);
+    const Cylinder cylinder(0.5 * scale, 1 * scale);
+    const Cone cone(0.7 * scale, 0.4 * scale);
+    const Ellipsoid ellipsoid(Vector3(0.3, 0.6, 0.9) * scale);
+    const Pose pose_cone = at(Vector3(0.9, 0.4, 0.2) * scale, turn);
+    const Pose pose_ellipsoid = at(Vector3(-0.2, 0.3, 1.3) * scale, turn.transpose());
+    for (Method method : kCurvedMethods) {
+      SCOPED_TRACE(method_name(method));
+      const Query query = query_of(method);
+      const DistanceResult one = query.signed_distance(cylinder, {}, cone, pose_cone);
+      const DistanceResult two = query.signed_distance(cylinder, {}, ellipsoid, pose_ellipsoid);
+      const DistanceResult three = query.distance(cone, pose_cone, ellipsoid, pose_ellipsoid);
+      for (const DistanceResult* r : {&one, &two, &three}) {
+        EXPECT_TRUE(r->certified);
+        EXPECT_LE(r->lower_bound, r->distance);
+      }
+      if (scale == 1e-100 && method == Method::dual) {
+        for (const DistanceResult* r : {&one, &two, &three}) {
+          unit_answers.push_back(r->distance / scale);
+        }
+      } else {
+        int k = 0;
+        for (const DistanceResult* r : {&one, &two, &three}) {
+          EXPECT_NEAR(r->distance / scale, unit_answers[k++], 2 * kDefaultTolerance * 4);
+        }
+      }
+    }
+  }
+}
+
+// Points on a cylinder's rims, n per rim: the inner polytope, within r (1 - cos(pi / n)) of the
+// cylinder everywhere (the chord's sagitta).
+ConvexPolyhedron cylinder_points(Scalar r, Scalar h, int n, Scalar& hausdorff) {
+  VertexMatrix v(2 * n, 3);
+  for (int i = 0; i < n; ++i) {
+    const Scalar t = 2 * kPi * i / n;
+    v.row(2 * i) << r * std::cos(t), r * std::sin(t), -h;
+    v.row(2 * i + 1) << r * std::cos(t), r * std::sin(t), h;
+  }
+  hausdorff = r * (1 - std::cos(kPi / n)) * (1 + 1e-9) + 1e-14;
+  return ConvexPolyhedron(v);
+}
+
+ConvexPolyhedron cone_points(Scalar r, Scalar h, int n, Scalar& hausdorff) {
+  VertexMatrix v(n + 1, 3);
+  for (int i = 0; i < n; ++i) {
+    const Scalar t = 2 * kPi * i / n;
+    v.row(i) << r * std::cos(t), r * std::sin(t), -h;
+  }
+  v.row(n) << 0, 0, h;
+  hausdorff = r * (1 - std::cos(kPi / n)) * (1 + 1e-9) + 1e-14;
+  return ConvexPolyhedron(v);
+}
+
+// An ellipsoid's points: the unit sphere's on a latitude-longitude grid, stretched. The sphere's
+// polytope holds the ball of its least face distance, so the ellipsoid is within the largest
+// radius times (1 - that) of the stretched polytope.
+ConvexPolyhedron ellipsoid_points(const Vector3& radii, int n, Scalar& hausdorff) {
+  std::vector<Vector3> sphere;
+  sphere.emplace_back(0, 0, 1);
+  sphere.emplace_back(0, 0, -1);
+  for (int i = 1; i < n; ++i) {
+    const Scalar polar = kPi * i / n;
+    for (int j = 0; j < 2 * n; ++j) {
+      const Scalar t = kPi * j / n;
+      sphere.emplace_back(std::sin(polar) * std::cos(t), std::sin(polar) * std::sin(t),
+                          std::cos(polar));
+    }
+  }
+  VertexMatrix unit(static_cast<Eigen::Index>(sphere.size()), 3);
+  for (std::size_t i = 0; i < sphere.size(); ++i) unit.row(i) = sphere[i].transpose();
+  const ConvexPolyhedron ball(unit);
+  const Hull& hull = ball.hull();
+  Scalar inner = 1;
+  for (Eigen::Index f = 0; f < hull.faces.rows(); ++f) {
+    const Vector3 p = unit.row(hull.faces(f, 0));
+    const Vector3 normal =
+        (Vector3(unit.row(hull.faces(f, 1))) - p).cross(Vector3(unit.row(hull.faces(f, 2))) - p);
+    inner = std::min(inner, std::abs(normal.normalized().dot(p)));
+  }
+  hausdorff = radii.maxCoeff() * (1 - inner) * (1 + 1e-6) + 1e-14;
+  VertexMatrix v = unit;
+  for (Eigen::Index i = 0; i < v.rows(); ++i) v.row(i) = v.row(i).cwiseProduct(radii.transpose());
+  return ConvexPolyhedron(v);
+}
+
+// Random posed pairs of every curved kind (and curved against a rounded box): the signed distance
+// lies between the inner polytopes' and that less both Hausdorff distances (sd can only grow as a
+// body shrinks, and by no more than the distance it shrinks by).
+TEST(Curved, RandomPosedPairsLieWithinTheirPolytopeBrackets) {
+  Random rng(23);
+  const Query polytopes = query_of(Method::exact);
+  for (int trial = 0; trial < 12; ++trial) {
+    const Scalar r = rng.uniform(0.2, 1);
+    const Scalar h = rng.uniform(0.2, 1);
+    const Vector3 radii(rng.uniform(0.2, 1), rng.uniform(0.2, 1), rng.uniform(0.2, 1));
+    struct Made {
+      ConvexPolyhedron shape;
+      ConvexPolyhedron inner;
+      Scalar hausdorff;
+    };
+    const auto make = [&](int kind) -> Made {
+      Scalar e = 0;
+      switch (kind) {
+        case 0: {
+          ConvexPolyhedron inner = cylinder_points(r, h, 256, e);
+          return {Cylinder(r, h), inner, e};
+        }
+        case 1: {
+          ConvexPolyhedron inner = cone_points(r, h, 256, e);
+          return {Cone(r, h), inner, e};
+        }
+        case 2: {
+          ConvexPolyhedron inner = ellipsoid_points(radii, 32, e);
+          return {Ellipsoid(radii), inner, e};
+        }
+        default:
+          return {Box(radii, 0.1), Box(radii, 0.1), 0};
+      }
+    };
+    const Made a = make(trial % 3);
+    const Made b = make((trial / 3) % 4);
+    const Pose pa = at(rng.vector(0.5), rng.rotation());
+    const Pose pb = at(rng.vector(1.5), rng.rotation());
+    const DistanceResult in = polytopes.signed_distance(a.inner, pa, b.inner, pb);
+    ASSERT_TRUE(in.certified);
+    const Scalar size = size_of(a.shape, pa, b.shape, pb);
+    const Scalar slack = 2 * kDefaultTolerance * size;
+    for (Method method : kCurvedMethods) {
+      SCOPED_TRACE(::testing::Message() << method_name(method) << " trial " << trial);
+      const Query query = query_of(method);
+      const DistanceResult s = query.signed_distance(a.shape, pa, b.shape, pb);
+      EXPECT_TRUE(s.certified);
+      EXPECT_LE(s.lower_bound, s.distance);
+      EXPECT_LE(s.distance, in.distance + slack);
+      EXPECT_GE(s.distance, in.lower_bound - a.hausdorff - b.hausdorff - slack);
+      EXPECT_LE(s.lower_bound, in.distance + slack);
+      // The witnesses are on the bodies' surfaces and along the normal.
+      EXPECT_NEAR((s.point_b - s.point_a - s.distance * s.direction).norm(), 0, slack);
+      const DistanceResult d = query.distance(b.shape, pb, a.shape, pa);
+      EXPECT_TRUE(d.certified);
+      EXPECT_NEAR(d.distance, std::max(s.distance, 0.0), slack);
+      EXPECT_EQ(query.collide(a.shape, pa, b.shape, pb), s.distance <= kDefaultTolerance * size);
+    }
+  }
+}
+
+TEST(Curved, MethodsThatReadPointsRefuseCurvedShapes) {
+  const Cylinder cylinder(1, 1);
+  const ConvexPolyhedron cube = unit_cube();
+  for (Method method : {Method::ipso, Method::pso, Method::penalty, Method::fcl, Method::libccd}) {
+    SCOPED_TRACE(method_name(method));
+    try {
+      query_of(method).collide(cylinder, {}, cube, at(Vector3(3, 0, 0)));
+      ADD_FAILURE() << "no error";
+    } catch (const std::invalid_argument& e) {
+      const std::string message = e.what();
+      EXPECT_NE(message.find("cylinder"), std::string::npos) << message;
+      EXPECT_NE(message.find("'dual', 'exact'"), std::string::npos) << message;
+    }
+  }
+  EXPECT_THROW(CompoundBody({Cone(1, 1)}), std::invalid_argument);
+}
+
+// A scene of curved shapes answers as the pair queries do, warm and cold.
+TEST(Curved, ScenesAnswerAsThePairQueries) {
+  Random rng(29);
+  std::vector<ConvexPolyhedron> bodies;
+  std::vector<Pose> poses;
+  for (int i = 0; i < 12; ++i) {
+    switch (i % 4) {
+      case 0: bodies.push_back(Cylinder(rng.uniform(0.2, 0.5), rng.uniform(0.2, 0.5))); break;
+      case 1: bodies.push_back(Cone(rng.uniform(0.2, 0.5), rng.uniform(0.2, 0.5))); break;
+      case 2: bodies.push_back(Ellipsoid(Vector3(0.3, 0.4, 0.5))); break;
+      default: bodies.push_back(Sphere(0.3)); break;
+    }
+    poses.push_back(at(rng.vector(1.2), rng.rotation()));
+  }
+  SceneOptions options;
+  Scene scene(options);
+  const std::vector<BodyId> ids = scene.add(bodies, poses);
+  const Query query = query_of(Method::dual);
+  int colliding = 0;
+  for (int frame = 0; frame < 3; ++frame) {
+    const SceneResult pairs = scene.colliding_pairs();
+    std::vector<std::pair<BodyId, BodyId>> found;
+    for (Eigen::Index k = 0; k < pairs.size(); ++k) {
+      EXPECT_TRUE(pairs.certified(k));
+      found.emplace_back(static_cast<BodyId>(std::min(pairs.pairs(k, 0), pairs.pairs(k, 1))),
+                         static_cast<BodyId>(std::max(pairs.pairs(k, 0), pairs.pairs(k, 1))));
+    }
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+      for (std::size_t j = i + 1; j < bodies.size(); ++j) {
+        const DistanceResult r = query.collision(bodies[i], poses[i], bodies[j], poses[j]);
+        ASSERT_TRUE(r.certified);
+        const bool listed = std::find(found.begin(), found.end(),
+                                      std::make_pair(ids[i], ids[j])) != found.end();
+        EXPECT_EQ(listed, r.colliding) << i << " " << j;
+        colliding += r.colliding;
+      }
+    }
+    for (Pose& p : poses) p.translation += rng.vector(0.1);
+    scene.set_poses(ids, poses);
+  }
+  EXPECT_GT(colliding, 3);
+}
+
+// Random posed pairs of every kind (curved, polyhedra, rounded): every distance and verdict
+// certified at the default tolerance. On curved bodies Wolfe's algorithm stalls on rounding (the
+// squared norm's decrease) before the separation proves the distance; "exact" restarts it from
+// the best direction (before that, 2 in 3000 distances and 3 in 3000 signed distances stayed
+// unproven). Signed distances of overlapping curved pairs can stay unproven where the expanding
+// polytope stops on faces too thin to add to (a box's corner in a cone's rim: 1 in 3000 here),
+// and say so.
+TEST(Curved, RandomPairsOfEveryKindAreCertified) {
+  Random rng(31);
+  const auto make = [&](int kind) -> std::unique_ptr<ConvexPolyhedron> {
+    const Scalar a = rng.uniform(0.1, 1.1);
+    const Scalar b = rng.uniform(0.1, 1.1);
+    const Scalar c = rng.uniform(0.1, 1.1);
+    switch (kind % 5) {
+      case 0: return std::make_unique<Cylinder>(a, b);
+      case 1: return std::make_unique<Cone>(a, b);
+      case 2: return std::make_unique<Ellipsoid>(Vector3(a, b, c));
+      case 3: return std::make_unique<Box>(Vector3(a, b, c), kind % 2 ? 0.0 : 0.1);
+      default: return std::make_unique<Sphere>(a);
+    }
+  };
+  for (Method method : kCurvedMethods) {
+    SCOPED_TRACE(method_name(method));
+    const Query query = query_of(method);
+    int unproven = 0;
+    int unproven_signed = 0;
+    for (int i = 0; i < 3000; ++i) {
+      const std::unique_ptr<ConvexPolyhedron> a = make(i);
+      const std::unique_ptr<ConvexPolyhedron> b = make(i / 5);
+      const Pose pa = at(Vector3::Zero(), rng.rotation());
+      const Pose pb = at(rng.vector(1.5), rng.rotation());
+      const DistanceResult d = query.distance(*a, pa, *b, pb);
+      const DistanceResult s = query.signed_distance(*a, pa, *b, pb);
+      const DistanceResult c = query.collision(*a, pa, *b, pb);
+      unproven += !d.certified + !c.certified;
+      unproven_signed += !s.certified;
+      const Scalar size = size_of(*a, pa, *b, pb);
+      EXPECT_LE(s.lower_bound, s.distance + 1e-15 * size);
+      EXPECT_LE(d.lower_bound, d.distance + 1e-15 * size);
+      EXPECT_EQ(c.colliding, d.distance <= kDefaultTolerance * size);
+    }
+    EXPECT_EQ(unproven, 0);
+    EXPECT_LE(unproven_signed, 1);
+  }
+}
+
+}  // namespace
+}  // namespace swarmcollide::testing

@@ -1,0 +1,211 @@
+"""Curved shapes (Cylinder, Cone, Ellipsoid), defined by their support functions: closed forms,
+batches with poses, scenes, bad parameters, and the methods that refuse them by name."""
+
+import math
+
+import numpy as np
+import pytest
+
+import swarmcollide as sc
+
+IDENTITY = np.eye(3)
+CURVED_METHODS = ["dual", "exact"]
+
+
+def at(x, y=0.0, z=0.0, rotation=IDENTITY):
+    return (rotation, [x, y, z])
+
+
+def assert_encloses(result, expected, size, tolerance=1e-9):
+    slack = 1e-13 * size
+    assert result.certified
+    assert result.lower_bound <= expected + slack
+    assert result.distance >= expected - slack
+    assert result.distance == pytest.approx(expected, abs=tolerance * size + slack)
+
+
+def point_to_cylinder(p, r, h):
+    radial = math.hypot(p[0], p[1]) - r
+    axial = abs(p[2]) - h
+    if radial <= 0 and axial <= 0:
+        return max(radial, axial)
+    return math.hypot(max(radial, 0.0), max(axial, 0.0))
+
+
+def random_rotation(rng):
+    q, r = np.linalg.qr(rng.normal(size=(3, 3)))
+    q = q * np.sign(np.diag(r))
+    return q if np.linalg.det(q) > 0 else -q
+
+
+@pytest.mark.parametrize("method", CURVED_METHODS)
+def test_a_sphere_against_a_cylinder_is_the_point_distance_less_the_radius(method):
+    rng = np.random.default_rng(3)
+    for _ in range(10):
+        r, h, s = rng.uniform(0.2, 1.5), rng.uniform(0.2, 1.5), rng.uniform(0.05, 0.4)
+        turn = random_rotation(rng)
+        local = rng.uniform(-3, 3, 3)
+        expected = point_to_cylinder(local, r, h) - s
+        pose_ball = at(*(turn @ local))
+        size = np.linalg.norm(local) + 2 * max(math.hypot(r, h), s)
+        result = sc.signed_distance(sc.Cylinder(r, h), sc.Sphere(s), pose_a=(turn, [0, 0, 0]),
+                                    pose_b=pose_ball, method=method)
+        assert_encloses(result, expected, size)
+        np.testing.assert_allclose(result.point_b - result.point_a,
+                                   result.distance * result.direction, atol=1e-9 * size)
+
+
+@pytest.mark.parametrize("method", CURVED_METHODS)
+def test_ellipsoids_along_their_axes(method):
+    a, b = sc.Ellipsoid([1.0, 0.5, 0.7]), sc.Ellipsoid([0.6, 0.9, 0.4])
+    for gap in (0.5, 1e-9, -1e-9, -0.3):
+        pose = at(1.6 + gap)
+        assert_encloses(sc.signed_distance(a, b, pose_b=pose, method=method, tolerance=1e-12),
+                        gap, 4.2, tolerance=1e-12)
+        verdict = sc.collision(a, b, pose_b=pose, method=method, tolerance=1e-12)
+        assert verdict.certified and verdict.colliding == (gap < 0)
+        assert_encloses(sc.distance(b, a, pose_a=pose, method=method), max(gap, 0.0), 4.2)
+
+
+def test_a_cone_stands_on_its_base():
+    """The base at z = -half_length, the apex at +half_length (FCL's and coal's convention)."""
+    cone = sc.Cone(1.0, 2.0)
+    np.testing.assert_array_equal(cone.support([0, 0, 1]), [0, 0, 2])
+    np.testing.assert_array_equal(cone.support([0, 0, -1]), [0, 0, -2])
+    np.testing.assert_allclose(cone.centroid(), [0, 0, -1])
+    floor = sc.Box([5, 5, 0.5])
+    assert_encloses(sc.distance(cone, floor, pose_b=at(0, 0, -3)), 0.5, 9)
+
+
+@pytest.mark.parametrize("exponent", [-100, -30, 0, 30, 100])
+def test_answers_are_the_same_in_any_unit(exponent):
+    scale = 10.0**exponent
+    turn = random_rotation(np.random.default_rng(5))
+    cylinder = sc.Cylinder(0.5 * scale, 1.0 * scale)
+    cone = sc.Cone(0.7 * scale, 0.4 * scale)
+    egg = sc.Ellipsoid(np.array([0.3, 0.6, 0.9]) * scale)
+    one = sc.signed_distance(cylinder, cone, pose_b=(turn, np.array([0.9, 0.4, 0.2]) * scale))
+    two = sc.signed_distance(cylinder, egg, pose_b=(turn.T, np.array([-0.2, 0.3, 1.3]) * scale))
+    unit_one = sc.signed_distance(sc.Cylinder(0.5, 1.0), sc.Cone(0.7, 0.4),
+                                  pose_b=(turn, [0.9, 0.4, 0.2]))
+    unit_two = sc.signed_distance(sc.Cylinder(0.5, 1.0), sc.Ellipsoid([0.3, 0.6, 0.9]),
+                                  pose_b=(turn.T, [-0.2, 0.3, 1.3]))
+    for r, unit in ((one, unit_one), (two, unit_two)):
+        assert r.certified
+        assert r.distance / scale == pytest.approx(unit.distance, abs=1e-8)
+
+
+def test_batches_with_poses_answer_curved_shapes():
+    rng = np.random.default_rng(7)
+    n = 40
+    poses = np.tile(np.eye(4), (n, 1, 1))
+    for k in range(n):
+        poses[k, :3, :3] = random_rotation(rng)
+    poses[:, :3, 3] = rng.uniform(-2, 2, (n, 3))
+    cylinder, egg = sc.Cylinder(0.5, 0.8), sc.Ellipsoid([0.4, 0.3, 0.6])
+    d = sc.distance_many(cylinder, egg, poses_b=poses)
+    s = sc.signed_distance_many(cylinder, egg, poses_b=poses)
+    c = sc.collide_many(cylinder, egg, poses_b=poses)
+    assert d.certified.all() and s.certified.all() and c.certified.all()
+    for k in range(n):
+        one = sc.signed_distance(cylinder, egg, pose_b=poses[k])
+        assert s.distance[k] == pytest.approx(one.distance, abs=2e-9 * 4)
+        assert d.distance[k] == pytest.approx(max(one.distance, 0.0), abs=2e-9 * 4)
+        assert c.colliding[k] == sc.collide(cylinder, egg, pose_b=poses[k])
+    # Mixed lists of bodies, curved against polyhedra and rounded bodies.
+    rows = sc.distance_many([cylinder, sc.Cone(0.3, 0.3)], [sc.Box([1, 1, 1]), sc.Sphere(0.2)],
+                            poses_b=poses[:2])
+    assert rows.certified.all()
+
+
+def test_scenes_of_curved_shapes_agree_with_the_pair_queries():
+    rng = np.random.default_rng(9)
+    n = 16
+    makers = [lambda: sc.Cylinder(rng.uniform(0.2, 0.5), rng.uniform(0.2, 0.5)),
+              lambda: sc.Cone(rng.uniform(0.2, 0.5), rng.uniform(0.2, 0.5)),
+              lambda: sc.Ellipsoid(rng.uniform(0.2, 0.5, 3)),
+              lambda: sc.Box([0.3, 0.2, 0.4])]
+    bodies = [makers[i % 4]() for i in range(n)]
+    poses = np.tile(np.eye(4), (n, 1, 1))
+    for k in range(n):
+        poses[k, :3, :3] = random_rotation(rng)
+    poses[:, :3, 3] = rng.uniform(-1.5, 1.5, (n, 3))
+    for warm in (False, True):
+        scene = sc.Scene(warm_start=warm)
+        scene.add(bodies, poses=poses)
+        apart = np.full((n, n), np.inf)
+        touching = np.zeros((n, n), dtype=bool)
+        for i in range(n):
+            for j in range(i + 1, n):
+                apart[i, j] = sc.distance(bodies[i], bodies[j], pose_a=poses[i],
+                                          pose_b=poses[j]).distance
+                touching[i, j] = sc.collide(bodies[i], bodies[j], pose_a=poses[i],
+                                            pose_b=poses[j])
+        pairs = [[i, j] for i in range(n) for j in range(i + 1, n)]
+        colliding = scene.colliding_pairs()
+        assert colliding.certified.all()
+        assert len(colliding.pairs) >= 2
+        assert colliding.pairs.tolist() == [p for p in pairs if touching[tuple(p)]]
+        within = scene.pairs_within(0.2)
+        assert within.pairs.tolist() == [p for p in pairs if apart[tuple(p)] <= 0.2]
+        contacts = scene.contacts()
+        assert contacts.certified.all()
+        assert len(contacts.pairs) == len(colliding.pairs)
+        # Again after a small motion (warm scenes reuse what they proved).
+        scene.set_poses(list(range(n)), poses)
+        assert scene.colliding_pairs().pairs.tolist() == colliding.pairs.tolist()
+
+
+@pytest.mark.parametrize("method", ["ipso", "pso", "penalty", "fcl", "libccd"])
+def test_methods_that_read_points_refuse_curved_shapes(method):
+    with pytest.raises(ValueError, match=r"cylinder.*'dual', 'exact'"):
+        sc.collide(sc.Cylinder(1.0, 1.0), sc.Box([1, 1, 1]), pose_b=at(5), method=method)
+    with pytest.raises(ValueError, match=r"ellipsoid.*'dual', 'exact'"):
+        sc.collide_many(sc.Box([1, 1, 1]), sc.Ellipsoid([1, 2, 3]), method=method)
+
+
+def test_compound_bodies_and_scenes_with_other_methods_refuse_curved_shapes():
+    with pytest.raises(ValueError, match="cone"):
+        sc.CompoundBody([sc.Cone(1.0, 1.0), sc.Sphere(1.0)])
+    scene = sc.Scene(method="ipso")
+    with pytest.raises(ValueError, match="'dual', 'exact'"):
+        scene.add([sc.Ellipsoid([1, 1, 2])])
+
+
+@pytest.mark.parametrize("bad", [0.0, -1.0, math.nan, math.inf])
+def test_bad_parameters_are_refused_by_name(bad):
+    with pytest.raises(ValueError, match="radius"):
+        sc.Cylinder(bad, 1.0)
+    with pytest.raises(ValueError, match="half_length"):
+        sc.Cylinder(1.0, bad)
+    with pytest.raises(ValueError, match="radius"):
+        sc.Cone(bad, 1.0)
+    with pytest.raises(ValueError, match="half_length"):
+        sc.Cone(1.0, bad)
+    with pytest.raises(ValueError, match="radii"):
+        sc.Ellipsoid([1.0, bad, 1.0])
+
+
+def test_curved_shapes_describe_themselves():
+    cylinder, cone, egg = sc.Cylinder(0.5, 1.5), sc.Cone(1, 2), sc.Ellipsoid([1, 2, 3])
+    assert repr(cylinder) == "Cylinder(radius=0.5, half_length=1.5)"
+    assert repr(cone) == "Cone(radius=1, half_length=2)"
+    assert repr(egg) == "Ellipsoid(radii=[1, 2, 3])"
+    assert cylinder.radius == 0.5 and cylinder.half_length == 1.5
+    assert cone.radius == 1 and egg.radii.tolist() == [1, 2, 3]
+    for shape in (cylinder, cone, egg):
+        assert isinstance(shape, sc.ConvexPolyhedron) and shape.curved
+    assert not sc.Box([1, 1, 1]).curved and not sc.Sphere(1).curved
+    assert cylinder.aabb().min.tolist() == [-0.5, -0.5, -1.5]
+    assert egg.bounding_radius == pytest.approx(3)
+    with pytest.raises(ValueError, match="support"):
+        egg.support_index([1, 0, 0])
+    assert sc.ConvexPolyhedron(egg).curved
+    with pytest.raises(ValueError, match="radius: a ellipsoid"):
+        sc.ConvexPolyhedron(egg, radius=0.5)
+    for shape in (sc.Cylinder, sc.Cone, sc.Ellipsoid):
+        assert "'dual'" in shape.__doc__ and "'ipso'" in shape.__doc__
+    # No weights: the points a curved body is answered from are this query's support points.
+    result = sc.distance(cylinder, egg, pose_b=at(4))
+    assert result.weights_a.size == 0 and result.weights_b.size == 0
+    assert result.distance == pytest.approx(4 - 0.5 - 1, abs=1e-9 * 8)
