@@ -278,8 +278,8 @@ class Cone(ConvexPolyhedron):
     """
     
     A solid right circular cone along the z axis of its frame, centred on its axis' midpoint (FCL's
-    and coal's convention): its base, a disk of radius ``radius``, at ``z = -half_length``, its apex at
-    ``(0, 0, half_length)``; its centre of mass is at ``z = -half_length / 2``.
+    and coal's convention): its base, a disk of radius ``radius``, at ``z = -half_length``, its apex
+    at ``(0, 0, half_length)``; its centre of mass is at ``z = -half_length / 2``.
     
     A curved shape, defined by its support function: methods ``'dual'`` (the default) and ``'exact'`` answer it, exactly to their tolerance and certified, against any other body; the methods that read a body's points (``'ipso'``, ``'pso'``, ``'penalty'``, ``'fcl'``, ``'libccd'``) raise ValueError, and so does a CompoundBody with a curved part. Its ``vertices`` are a few points on its surface (an inner polytope with the shape's bounding box), not the body; results carry no weights (empty), and witnesses are points of the shape.
     

@@ -510,16 +510,18 @@ TEST(Curved, ScenesAnswerAsThePairQueries) {
 // and say so.
 TEST(Curved, RandomPairsOfEveryKindAreCertified) {
   Random rng(31);
-  const auto make = [&](int kind) -> std::unique_ptr<ConvexPolyhedron> {
+  // By value: a shape's ConvexPolyhedron keeps its support function (and has no virtual
+  // destructor to delete a derived shape through).
+  const auto make = [&](int kind) -> ConvexPolyhedron {
     const Scalar a = rng.uniform(0.1, 1.1);
     const Scalar b = rng.uniform(0.1, 1.1);
     const Scalar c = rng.uniform(0.1, 1.1);
     switch (kind % 5) {
-      case 0: return std::make_unique<Cylinder>(a, b);
-      case 1: return std::make_unique<Cone>(a, b);
-      case 2: return std::make_unique<Ellipsoid>(Vector3(a, b, c));
-      case 3: return std::make_unique<Box>(Vector3(a, b, c), kind % 2 ? 0.0 : 0.1);
-      default: return std::make_unique<Sphere>(a);
+      case 0: return Cylinder(a, b);
+      case 1: return Cone(a, b);
+      case 2: return Ellipsoid(Vector3(a, b, c));
+      case 3: return Box(Vector3(a, b, c), kind % 2 ? 0.0 : 0.1);
+      default: return Sphere(a);
     }
   };
   for (Method method : kCurvedMethods) {
@@ -528,16 +530,16 @@ TEST(Curved, RandomPairsOfEveryKindAreCertified) {
     int unproven = 0;
     int unproven_signed = 0;
     for (int i = 0; i < 3000; ++i) {
-      const std::unique_ptr<ConvexPolyhedron> a = make(i);
-      const std::unique_ptr<ConvexPolyhedron> b = make(i / 5);
+      const ConvexPolyhedron a = make(i);
+      const ConvexPolyhedron b = make(i / 5);
       const Pose pa = at(Vector3::Zero(), rng.rotation());
       const Pose pb = at(rng.vector(1.5), rng.rotation());
-      const DistanceResult d = query.distance(*a, pa, *b, pb);
-      const DistanceResult s = query.signed_distance(*a, pa, *b, pb);
-      const DistanceResult c = query.collision(*a, pa, *b, pb);
+      const DistanceResult d = query.distance(a, pa, b, pb);
+      const DistanceResult s = query.signed_distance(a, pa, b, pb);
+      const DistanceResult c = query.collision(a, pa, b, pb);
       unproven += !d.certified + !c.certified;
       unproven_signed += !s.certified;
-      const Scalar size = size_of(*a, pa, *b, pb);
+      const Scalar size = size_of(a, pa, b, pb);
       EXPECT_LE(s.lower_bound, s.distance + 1e-15 * size);
       EXPECT_LE(d.lower_bound, d.distance + 1e-15 * size);
       EXPECT_EQ(c.colliding, d.distance <= kDefaultTolerance * size);
