@@ -33,6 +33,7 @@ from ._core import (
     ConvexPolyhedron,
     DistanceResult,
     Hull,
+    Joint,
     ParticleCoefficients,
     PartNode,
     Query,
@@ -60,6 +61,7 @@ from .mesh import (
     mesh_hash,
 )
 from .poses import QUATERNION_ORDERS, pose_from_quaternion
+from .robot import LIMIT_MODES, Robot, RobotCheck
 from .queries import (
     DEFAULT_TOLERANCE,
     METHODS,
@@ -103,6 +105,8 @@ __all__ = [
     "Decomposition",
     "DistanceResult",
     "Hull",
+    "Joint",
+    "LIMIT_MODES",
     "MethodInfo",
     "Parameter",
     "Parameters",
@@ -113,6 +117,8 @@ __all__ = [
     "PosesLike",
     "QUATERNION_ORDERS",
     "Query",
+    "Robot",
+    "RobotCheck",
     "Scene",
     "SceneResult",
     "SceneStats",

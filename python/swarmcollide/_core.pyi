@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['Aabb', 'BatchResult', 'Box', 'Capsule', 'CompoundBody', 'CompoundResult', 'CompoundStats', 'ContactResult', 'ConvexPolyhedron', 'DistanceResult', 'Hull', 'PartNode', 'ParticleCoefficients', 'Query', 'Scene', 'SceneResult', 'SceneStats', 'Sphere', 'as_polyhedron', 'broadphases', 'constraint_violation', 'is_feasible', 'linear_decreasing_inertia', 'method_table', 'objective', 'pair_seed', 'project_onto_simplex', 'query_function', 'rank_adaptive_coefficients', 'separation']
+__all__: list[str] = ['Aabb', 'BatchResult', 'Box', 'Capsule', 'CompoundBody', 'CompoundResult', 'CompoundStats', 'ContactResult', 'ConvexPolyhedron', 'DistanceResult', 'Hull', 'Joint', 'PartNode', 'ParticleCoefficients', 'Query', 'RobotCheck', 'RobotDistances', 'RobotModel', 'Scene', 'SceneResult', 'SceneStats', 'Sphere', 'as_polyhedron', 'broadphases', 'constraint_violation', 'is_feasible', 'linear_decreasing_inertia', 'method_table', 'objective', 'pair_seed', 'project_onto_simplex', 'query_function', 'rank_adaptive_coefficients', 'separation']
 class Aabb:
     """
     An axis-aligned bounding box with corners ``min`` and ``max``.
@@ -491,6 +491,53 @@ class Hull:
     @property
     def vertex_indices(self) -> numpy.typing.NDArray[numpy.int32]:
         ...
+class Joint:
+    """
+    
+    A joint of a RobotModel: the child link's frame is ``parent * origin * motion(q - reference)``.
+    
+    Parameters
+    ----------
+    name : str
+    type : str
+        'revolute', 'continuous', 'prismatic' or 'fixed'.
+    parent, child : int
+        Link indices.
+    origin : pose
+        The joint frame in the parent link's frame (a (4, 4) rigid transform).
+    axis : (3,) array
+        In the joint frame; normalised by the model.
+    lower, upper : float
+        Limits (ignored for continuous and fixed joints).
+    reference : float
+        The value at which the child sits at ``origin`` (MJCF's ``ref``).
+    """
+    def __init__(self, name: str, type: str, parent: typing.SupportsInt | typing.SupportsIndex, child: typing.SupportsInt | typing.SupportsIndex, origin: typing.Any = None, axis: typing.Any = ..., lower: typing.SupportsFloat | typing.SupportsIndex = 0.0, upper: typing.SupportsFloat | typing.SupportsIndex = 0.0, reference: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> None:
+        ...
+    @property
+    def axis(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+        ...
+    @property
+    def child(self) -> int:
+        ...
+    @property
+    def lower(self) -> float:
+        ...
+    @property
+    def name(self) -> str:
+        ...
+    @property
+    def parent(self) -> int:
+        ...
+    @property
+    def reference(self) -> float:
+        ...
+    @property
+    def type(self) -> str:
+        ...
+    @property
+    def upper(self) -> float:
+        ...
 class PartNode:
     """
     
@@ -618,6 +665,115 @@ class Query:
         ...
     @property
     def tolerance(self) -> float:
+        ...
+class RobotCheck:
+    """
+    Per configuration: the verdict and the nearest pair.
+    """
+    @property
+    def certified(self) -> typing.Annotated[numpy.typing.NDArray[numpy.bool], "[m, 1]"]:
+        ...
+    @property
+    def colliding(self) -> typing.Annotated[numpy.typing.NDArray[numpy.bool], "[m, 1]"]:
+        ...
+    @property
+    def gradient(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
+        ...
+    @property
+    def lower_bound(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        ...
+    @property
+    def min_distance(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        ...
+    @property
+    def normal(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
+        ...
+    @property
+    def pair(self) -> typing.Annotated[numpy.typing.NDArray[numpy.int32], "[m, 1]"]:
+        ...
+    @property
+    def point_a(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
+        ...
+    @property
+    def point_b(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
+        ...
+class RobotDistances:
+    """
+    Signed distances of every checked pair, (m, pairs) each.
+    """
+    @property
+    def certified(self) -> typing.Annotated[numpy.typing.NDArray[numpy.bool], "[m, n]"]:
+        ...
+    @property
+    def colliding(self) -> typing.Annotated[numpy.typing.NDArray[numpy.bool], "[m, n]"]:
+        ...
+    @property
+    def distance(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
+        ...
+    @property
+    def lower_bound(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
+        ...
+class RobotModel:
+    """
+    
+    A robot as a plain table of links, joints and geometries: immutable, shared by every thread.
+    
+    Parameters
+    ----------
+    links : list of str
+        The link names; joints and geometries refer to links by index.
+    joints : list of Joint
+        Every link but one (the root) is the child of exactly one joint. The moving joints are the
+        degrees of freedom, in the order given.
+    geometries : list of (name, link, origin, body)
+        A ConvexPolyhedron fixed to link ``link`` at ``origin`` (a rigid transform), or to the world
+        for ``link == -1`` (an obstacle).
+    
+    Raises
+    ------
+    ValueError
+        Naming the joint, link or geometry at fault.
+    """
+    def __init__(self, links: collections.abc.Sequence[str], joints: collections.abc.Sequence[Joint], geometries: collections.abc.Sequence[tuple]) -> None:
+        ...
+    def adjacent_links(self, a: typing.SupportsInt | typing.SupportsIndex, b: typing.SupportsInt | typing.SupportsIndex) -> bool:
+        """
+        True when links ``a`` and ``b`` are one rigid group or joined by one moving joint.
+        """
+    def admit(self, q: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, n]"], limits: typing.Any = 'raise') -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
+        """
+        The configurations (m, dof) checked and brought within the limits ('raise', 'clamp' or 'wrap').
+        """
+    def check(self, pairs: typing.Annotated[numpy.typing.ArrayLike, numpy.int32, "[m, 2]"], q: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, n]"], query: Query, threads: typing.Any = None, gradient: bool = False) -> RobotCheck:
+        """
+        The nearest pair per admitted configuration (m, dof), with d min_distance / dq when ``gradient``.
+        """
+    def default_pairs(self) -> typing.Annotated[numpy.typing.NDArray[numpy.int32], "[m, 2]"]:
+        """
+        The geometry pairs checked by default, (pairs, 2): geometries of links that are not adjacent, and each obstacle against each link's geometry.
+        """
+    def distances(self, pairs: typing.Annotated[numpy.typing.ArrayLike, numpy.int32, "[m, 2]"], q: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, n]"], query: Query, threads: typing.Any = None) -> RobotDistances:
+        """
+        Signed distances of geometry pairs (pairs, 2) at admitted configurations (m, dof).
+        """
+    def forward_kinematics(self, q: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, n]"]) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        Every link's (4, 4) world transform at admitted configurations, (m, links, 4, 4).
+        """
+    @property
+    def dof(self) -> int:
+        ...
+    @property
+    def geometry_links(self) -> list[int]:
+        ...
+    @property
+    def joints(self) -> list[Joint]:
+        ...
+    @property
+    def link_names(self) -> list[str]:
+        ...
+    @property
+    def moving_joints(self) -> list[int]:
         ...
 class Scene:
     """

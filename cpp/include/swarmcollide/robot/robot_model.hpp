@@ -1,0 +1,89 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "swarmcollide/geometry/convex_polyhedron.hpp"
+#include "swarmcollide/geometry/pose.hpp"
+#include "swarmcollide/types.hpp"
+
+namespace swarmcollide {
+
+/// How a joint moves its child link: URDF's joint types (MJCF's hinge is revolute, or continuous
+/// when unlimited; its slide is prismatic; a body without joints is fixed to its parent).
+enum class JointType { revolute, continuous, prismatic, fixed };
+
+/// A link: a rigid frame of the kinematic tree.
+struct Link {
+  std::string name;
+};
+
+/// A joint from its parent link to its child link: the child's frame is
+/// `parent * origin * motion(q - reference)`, where the motion turns about `axis` (revolute,
+/// continuous) or slides along it (prismatic) through the joint frame's origin.
+struct Joint {
+  std::string name;
+  JointType type = JointType::fixed;
+  /// Link indices.
+  int parent = 0;
+  int child = 0;
+  /// The joint frame in the parent link's frame.
+  Pose origin;
+  /// The axis in the joint frame; normalised by the model (any nonzero length is accepted).
+  Vector3 axis = Vector3::UnitZ();
+  /// The joint's limits; -inf and inf when it has none (continuous joints).
+  Scalar lower = 0;
+  Scalar upper = 0;
+  /// The joint value at which the child sits at `origin` (MJCF's `ref`; 0 for URDF).
+  Scalar reference = 0;
+};
+
+/// A convex body fixed to a link (or to the world, for an obstacle: `link` = -1) at `origin`.
+struct Geometry {
+  std::string name;
+  int link = -1;
+  Pose origin;
+  ConvexPolyhedron body;
+};
+
+/// A robot as a plain table of links, joints and geometries: immutable once built, so one model
+/// is shared by every thread and every call (the per-call data lives in the calls, and no call
+/// leaves anything behind that could change the next answer, unlike a solver state carried from
+/// call to call).
+///
+/// The links form one tree: every link but one (the root, which sits at the identity) is the
+/// child of exactly one joint. The moving joints (all but the fixed ones) are the degrees of
+/// freedom, numbered in the order the joints are given.
+class RobotModel {
+ public:
+  /// Throws std::invalid_argument naming the joint, link or geometry at fault: a link index out
+  /// of range, a link with two parent joints, links that are not one tree (a cycle or two roots),
+  /// a zero or non-finite axis, limits with lower > upper or NaN on a limited joint, an invalid
+  /// origin (not a rigid motion), or duplicate names.
+  RobotModel(std::vector<Link> links, std::vector<Joint> joints, std::vector<Geometry> geometries);
+
+  const std::vector<Link>& links() const { return links_; }
+  const std::vector<Joint>& joints() const { return joints_; }
+  const std::vector<Geometry>& geometries() const { return geometries_; }
+  /// The number of degrees of freedom (moving joints).
+  int dof() const { return static_cast<int>(moving_.size()); }
+  /// The joint index of degree of freedom `i`.
+  const std::vector<int>& moving_joints() const { return moving_; }
+  /// The degree of freedom of joint `j`, -1 for a fixed joint.
+  int dof_of_joint(int j) const { return dof_of_joint_[static_cast<std::size_t>(j)]; }
+  /// The joint whose child is link `l`, -1 for the root.
+  int parent_joint(int l) const { return parent_joint_[static_cast<std::size_t>(l)]; }
+  /// The joints in an order where each joint's parent link is placed before it (root first).
+  const std::vector<int>& joint_order() const { return order_; }
+
+ private:
+  std::vector<Link> links_;
+  std::vector<Joint> joints_;
+  std::vector<Geometry> geometries_;
+  std::vector<int> moving_;
+  std::vector<int> dof_of_joint_;
+  std::vector<int> parent_joint_;
+  std::vector<int> order_;
+};
+
+}  // namespace swarmcollide
