@@ -75,10 +75,15 @@ lower, upper : float
     Limits (ignored for continuous and fixed joints).
 reference : float
     The value at which the child sits at ``origin`` (MJCF's ``ref``).
+mimic : int
+    The index of the joint this one mimics (-1: none); its value is then ``multiplier *
+    value(mimicked) + offset`` and it is no degree of freedom.
+multiplier, offset : float
 )doc")
       .def(py::init([](const std::string& name, const std::string& type, int parent, int child,
                        const py::object& origin, const py::object& axis, Scalar lower,
-                       Scalar upper, Scalar reference) {
+                       Scalar upper, Scalar reference, int mimic, Scalar multiplier,
+                       Scalar offset) {
              Joint joint;
              joint.name = name;
              joint.type = joint_type(type, name);
@@ -89,11 +94,15 @@ reference : float
              joint.lower = lower;
              joint.upper = upper;
              joint.reference = reference;
+             joint.mimic = mimic;
+             joint.multiplier = multiplier;
+             joint.offset = offset;
              return joint;
            }),
            py::arg("name"), py::arg("type"), py::arg("parent"), py::arg("child"),
            py::arg("origin") = py::none(), py::arg("axis") = Vector3::UnitZ(),
-           py::arg("lower") = 0.0, py::arg("upper") = 0.0, py::arg("reference") = 0.0)
+           py::arg("lower") = 0.0, py::arg("upper") = 0.0, py::arg("reference") = 0.0,
+           py::arg("mimic") = -1, py::arg("multiplier") = 1.0, py::arg("offset") = 0.0)
       .def_readonly("name", &Joint::name)
       .def_property_readonly("type",
                              [](const Joint& joint) {
@@ -106,7 +115,10 @@ reference : float
       .def_readonly("axis", &Joint::axis)
       .def_readonly("lower", &Joint::lower)
       .def_readonly("upper", &Joint::upper)
-      .def_readonly("reference", &Joint::reference);
+      .def_readonly("reference", &Joint::reference)
+      .def_readonly("mimic", &Joint::mimic)
+      .def_readonly("multiplier", &Joint::multiplier)
+      .def_readonly("offset", &Joint::offset);
 
   py::class_<RobotDistances>(m, "RobotDistances",
                              "Signed distances of every checked pair, (m, pairs) each.")
@@ -207,6 +219,22 @@ ValueError
             return transforms;
           },
           py::arg("q"), "Every link's (4, 4) world transform at admitted configurations, (m, links, 4, 4).")
+      .def(
+          "geometry_poses",
+          [](const RobotModel& model, const Configurations& q) {
+            py::array_t<Scalar> transforms({static_cast<py::ssize_t>(q.rows()),
+                                            static_cast<py::ssize_t>(model.geometries().size()),
+                                            py::ssize_t{4}, py::ssize_t{4}});
+            Scalar* out = transforms.mutable_data();
+            {
+              py::gil_scoped_release release;
+              geometry_poses(model, q, out);
+            }
+            return transforms;
+          },
+          py::arg("q"),
+          "Every geometry's (4, 4) world transform at admitted configurations, (m, geometries, "
+          "4, 4).")
       .def(
           "distances",
           [](const RobotModel& model, const PairTable& pairs, const Configurations& q,

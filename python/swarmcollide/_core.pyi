@@ -511,8 +511,12 @@ class Joint:
         Limits (ignored for continuous and fixed joints).
     reference : float
         The value at which the child sits at ``origin`` (MJCF's ``ref``).
+    mimic : int
+        The index of the joint this one mimics (-1: none); its value is then ``multiplier *
+        value(mimicked) + offset`` and it is no degree of freedom.
+    multiplier, offset : float
     """
-    def __init__(self, name: str, type: str, parent: typing.SupportsInt | typing.SupportsIndex, child: typing.SupportsInt | typing.SupportsIndex, origin: typing.Any = None, axis: typing.Any = ..., lower: typing.SupportsFloat | typing.SupportsIndex = 0.0, upper: typing.SupportsFloat | typing.SupportsIndex = 0.0, reference: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> None:
+    def __init__(self, name: str, type: str, parent: typing.SupportsInt | typing.SupportsIndex, child: typing.SupportsInt | typing.SupportsIndex, origin: typing.Any = None, axis: typing.Any = ..., lower: typing.SupportsFloat | typing.SupportsIndex = 0.0, upper: typing.SupportsFloat | typing.SupportsIndex = 0.0, reference: typing.SupportsFloat | typing.SupportsIndex = 0.0, mimic: typing.SupportsInt | typing.SupportsIndex = -1, multiplier: typing.SupportsFloat | typing.SupportsIndex = 1.0, offset: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> None:
         ...
     @property
     def axis(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
@@ -524,7 +528,16 @@ class Joint:
     def lower(self) -> float:
         ...
     @property
+    def mimic(self) -> int:
+        ...
+    @property
+    def multiplier(self) -> float:
+        ...
+    @property
     def name(self) -> str:
+        ...
+    @property
+    def offset(self) -> float:
         ...
     @property
     def parent(self) -> int:
@@ -759,6 +772,10 @@ class RobotModel:
     def forward_kinematics(self, q: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, n]"]) -> numpy.typing.NDArray[numpy.float64]:
         """
         Every link's (4, 4) world transform at admitted configurations, (m, links, 4, 4).
+        """
+    def geometry_poses(self, q: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, n]"]) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        Every geometry's (4, 4) world transform at admitted configurations, (m, geometries, 4, 4).
         """
     @property
     def dof(self) -> int:

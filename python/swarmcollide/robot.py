@@ -317,6 +317,14 @@ class Robot:
         transforms = self._model.forward_kinematics(table)
         return transforms[0] if single else transforms
 
+    def geometry_poses(self, q: npt.ArrayLike, *, limits: str = "raise") -> np.ndarray:
+        """Every geometry's world transform (its link's times its origin), in
+        ``geometry_names``' order: ``(geometries, 4, 4)`` or ``(m, geometries, 4, 4)``; the poses
+        the queries place the geometries at."""
+        table, single = self._configurations(q, limits)
+        transforms = self._model.geometry_poses(table)
+        return transforms[0] if single else transforms
+
     def distances(self, q: npt.ArrayLike, *, limits: str = "raise",
                   threads: Optional[int] = None, method: str = "dual",
                   tolerance: float = DEFAULT_TOLERANCE, seed: int = 0) -> np.ndarray:

@@ -31,25 +31,25 @@ def _yourdfpy():
 def resolve_mesh_path(filename: str, urdf_path: Path, package_dirs: Sequence[PathLike],
                       link: str) -> Path:
     """The file a URDF mesh ``filename`` names: ``package://name/rest`` in one of
-    ``package_dirs`` (a directory that is the package ``name``, or that holds it), ``file://``
-    and absolute paths as they are, relative paths from the URDF's directory.
+    ``package_dirs`` (a directory that is the package ``name``, or that holds it), then in the
+    URDF's folder or one of its parents (as ROS's workspaces and pybullet_data lay packages out);
+    ``file://`` and absolute paths as they are, relative paths from the URDF's directory.
 
     Raises ``ValueError`` naming ``link`` and the fix when no such file exists.
     """
     if filename.startswith("package://"):
         package, _, rest = filename[len("package://"):].partition("/")
-        candidates = []
-        for directory in package_dirs:
-            root = Path(directory)
-            candidates += [root / rest] if root.name == package else []
-            candidates.append(root / package / rest)
-        for candidate in candidates:
-            if candidate.is_file():
-                return candidate
+        roots = [Path(d) for d in package_dirs] + list(urdf_path.resolve().parents)
+        for root in roots:
+            for candidate in ([root / rest] if root.name == package else []) + [
+                    root / package / rest]:
+                if candidate.is_file():
+                    return candidate
         searched = ", ".join(str(Path(d)) for d in package_dirs) or "none given"
         raise ValueError(
             f"link '{link}': cannot resolve mesh '{filename}': package '{package}' not found in "
-            f"package_dirs ({searched}); pass package_dirs=[the directory holding '{package}']"
+            f"package_dirs ({searched}) nor in the URDF's folder or its parents; pass "
+            f"package_dirs=[the directory holding '{package}']"
         )
     path = Path(filename[len("file://"):] if filename.startswith("file://") else filename)
     if not path.is_absolute():
@@ -82,17 +82,20 @@ def load_urdf(path: PathLike, package_dirs: Optional[Sequence[PathLike]] = None,
     links = [link.name for link in robot.links]
     index = {name: i for i, name in enumerate(links)}
     joints = []
+    joint_index = {joint.name: j for j, joint in enumerate(robot.joints)}
     for joint in robot.joints:
         if joint.type not in _SUPPORTED:
             raise ValueError(
                 f"joint '{joint.name}': type '{joint.type}' is not supported; a robot's joints "
                 f"must be one of {', '.join(_SUPPORTED)}"
             )
-        if joint.mimic is not None:
-            raise ValueError(f"joint '{joint.name}': mimic joints are not supported yet")
         for end in (joint.parent, joint.child):
             if end not in index:
                 raise ValueError(f"joint '{joint.name}': link '{end}' is not in the URDF")
+        mimic = joint.mimic
+        if mimic is not None and mimic.joint not in joint_index:
+            raise ValueError(f"joint '{joint.name}' mimics '{mimic.joint}', which is not in the "
+                             "URDF")
         limit = joint.limit
         lower = limit.lower if limit is not None and limit.lower is not None else 0.0
         upper = limit.upper if limit is not None and limit.upper is not None else 0.0
@@ -100,7 +103,10 @@ def load_urdf(path: PathLike, package_dirs: Optional[Sequence[PathLike]] = None,
             joint.name, joint.type, index[joint.parent], index[joint.child],
             origin=np.eye(4) if joint.origin is None else joint.origin,
             axis=np.array([1.0, 0.0, 0.0]) if joint.axis is None else joint.axis,
-            lower=lower, upper=upper))
+            lower=lower, upper=upper,
+            mimic=-1 if mimic is None else joint_index[mimic.joint],
+            multiplier=1.0 if mimic is None or mimic.multiplier is None else mimic.multiplier,
+            offset=0.0 if mimic is None or mimic.offset is None else mimic.offset))
     geometries = []
     approximations: List[Approximation] = []
     for link in robot.links:

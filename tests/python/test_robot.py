@@ -34,6 +34,9 @@ URDF = """\
   <link name="slider">
     <collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision>
   </link>
+  <link name="finger">
+    <collision><origin xyz="0 0 0.1"/><geometry><box size="0.02 0.02 0.1"/></geometry></collision>
+  </link>
   <joint name="shoulder" type="revolute">
     <parent link="base"/><child link="upper"/><origin xyz="0 0 0.1"/><axis xyz="0 0 1"/>
     <limit lower="-2.5" upper="2.5" effort="1" velocity="1"/>
@@ -48,6 +51,11 @@ URDF = """\
   <joint name="slide" type="prismatic">
     <parent link="base"/><child link="slider"/><origin xyz="0.5 0 0.05"/><axis xyz="0.6 0.8 0"/>
     <limit lower="-0.2" upper="0.6" effort="1" velocity="1"/>
+  </joint>
+  <joint name="grip" type="prismatic">
+    <parent link="slider"/><child link="finger"/><axis xyz="0 1 0"/>
+    <limit lower="0" upper="0.1" effort="1" velocity="1"/>
+    <mimic joint="slide" multiplier="-0.5" offset="0.01"/>
   </joint>
 </robot>
 """
@@ -85,7 +93,7 @@ def test_urdf_forward_kinematics_is_yourdfpys(arm, urdf):
     assert arm.joint_names == tuple(reference.actuated_joint_names)
     q = random_configurations(arm, 20)
     transforms = arm.forward_kinematics(q)
-    assert transforms.shape == (20, 5, 4, 4)
+    assert transforms.shape == (20, 6, 4, 4)
     for row, values in zip(transforms, q):
         reference.update_cfg(values)
         for link, transform in zip(arm.link_names, row):
@@ -95,7 +103,7 @@ def test_urdf_forward_kinematics_is_yourdfpys(arm, urdf):
 
 
 def test_urdf_geometries_have_their_scales_origins_and_errors(arm):
-    assert arm.geometry_names == ("base", "upper", "fore", "tool/0", "tool/1", "slider")
+    assert arm.geometry_names == ("base", "upper", "fore", "tool/0", "tool/1", "slider", "finger")
     fore = arm._robot_geometries[2]
     # The box mesh is 0.06 x 0.08 x 0.2, scaled by 2 along z.
     np.testing.assert_allclose(np.ptp(fore[3].vertices, axis=0), [0.06, 0.08, 0.4])
@@ -104,11 +112,13 @@ def test_urdf_geometries_have_their_scales_origins_and_errors(arm):
 
 
 def test_adjacent_links_and_links_joined_by_fixed_joints_are_not_paired(arm):
-    # base-upper, upper-fore (and fore's fixed tool), base-slider are adjacent.
+    # base-upper, upper-fore (and fore's fixed tool), base-slider, slider-finger are adjacent.
     assert arm.pairs == (
-        ("base", "fore"), ("base", "tool/0"), ("base", "tool/1"), ("upper", "slider"),
-        ("fore", "slider"), ("tool/0", "slider"), ("tool/1", "slider"),
+        ("base", "fore"), ("base", "tool/0"), ("base", "tool/1"), ("base", "finger"),
+        ("upper", "slider"), ("upper", "finger"), ("fore", "slider"), ("fore", "finger"),
+        ("tool/0", "slider"), ("tool/0", "finger"), ("tool/1", "slider"), ("tool/1", "finger"),
     )
+    assert arm.dof == 3  # the mimic joint follows the slide
 
 
 def test_srdf_disables_its_pairs(urdf, tmp_path):
@@ -119,8 +129,11 @@ def test_srdf_disables_its_pairs(urdf, tmp_path):
           <disable_collisions link1="upper" link2="slider" reason="Never"/>
         </robot>"""))
     robot = sc.Robot.from_urdf(urdf, package_dirs=[tmp_path], srdf=srdf)
-    assert robot.pairs == (("base", "fore"), ("fore", "slider"), ("tool/0", "slider"),
-                           ("tool/1", "slider"))
+    assert robot.pairs == (
+        ("base", "fore"), ("base", "finger"), ("upper", "finger"), ("fore", "slider"),
+        ("fore", "finger"), ("tool/0", "slider"), ("tool/0", "finger"), ("tool/1", "slider"),
+        ("tool/1", "finger"),
+    )
     bad = tmp_path / "bad.srdf"
     bad.write_text('<robot><disable_collisions link1="tool" link2="hand"/></robot>')
     with pytest.raises(ValueError, match="'hand' is not a link"):
@@ -146,13 +159,16 @@ def test_check_and_distances_are_the_single_signed_distances(arm):
     distances = arm.distances(q)
     check = arm.check(q)
     assert distances.shape == (60, len(arm.pairs))
+    names = arm.geometry_names
     for i in range(0, 60, 7):
         posed = posed_bodies(arm, q[i])
+        poses = arm.geometry_poses(q[i])
+        for name, pose in zip(names, poses):
+            np.testing.assert_allclose(pose, posed[name][1], rtol=0, atol=1e-15)
         for p, (a, b) in enumerate(arm.pairs):
-            single = sc.signed_distance(posed[a][0], posed[b][0], pose_a=posed[a][1],
-                                        pose_b=posed[b][1])
-            # The poses here are composed in NumPy, in C++ there: they differ by rounding.
-            assert distances[i, p] == pytest.approx(single.distance, rel=0, abs=1e-12)
+            single = sc.signed_distance(posed[a][0], posed[b][0], pose_a=poses[names.index(a)],
+                                        pose_b=poses[names.index(b)])
+            assert distances[i, p] == single.distance
         nearest = int(np.argmin(distances[i]))
         assert check.pair[i] == nearest
         assert tuple(check.pair_names[i]) == arm.pairs[nearest]
@@ -306,8 +322,12 @@ def test_bad_configurations_name_what_is_wrong(arm):
 
 def test_bad_files_name_the_link_or_joint(tmp_path):
     urdf = write_urdf(tmp_path)
-    with pytest.raises(ValueError, match="link 'fore'.*package 'pkg' not found"):
-        sc.Robot.from_urdf(urdf)
+    # The package is found beside the URDF without package_dirs, a missing one is named.
+    assert sc.Robot.from_urdf(urdf).pairs == sc.Robot.from_urdf(urdf, [tmp_path]).pairs
+    missing = tmp_path / "missing.urdf"
+    missing.write_text(URDF.replace("package://pkg/", "package://nopkg/"))
+    with pytest.raises(ValueError, match="link 'fore'.*package 'nopkg' not found"):
+        sc.Robot.from_urdf(missing, package_dirs=[tmp_path])
     (tmp_path / "meshes" / "tool.obj").unlink()
     with pytest.raises(ValueError, match="link 'tool': mesh file 'meshes/tool.obj' not found"):
         sc.Robot.from_urdf(urdf, package_dirs=[tmp_path])

@@ -96,24 +96,46 @@ void link_poses(const RobotModel& model, const Scalar* q, std::vector<Pose>& lin
   for (int j : model.joint_order()) {
     const Joint& joint = model.joints()[j];
     const Pose placed = compose(links[joint.parent], joint.origin);
-    const int dof = model.dof_of_joint(j);
-    links[joint.child] = dof < 0 ? placed : compose(placed, motion(joint, q[dof]));
+    const int dof = model.driving_dof(j);
+    links[joint.child] =
+        dof < 0 ? placed : compose(placed, motion(joint, model.joint_value(j, q[dof])));
   }
 }
 
+namespace {
+
+// `pose` as a row-major homogeneous transform at `t`.
+void write_transform(const Pose& pose, Scalar* t) {
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) t[4 * r + c] = pose.rotation(r, c);
+    t[4 * r + 3] = pose.translation(r);
+  }
+  t[12] = t[13] = t[14] = 0;
+  t[15] = 1;
+}
+
+}  // namespace
+
 void forward_kinematics(const RobotModel& model, const Configurations& q, Scalar* transforms) {
   std::vector<Pose> links;
-  const std::size_t count = model.links().size();
   for (Eigen::Index i = 0; i < q.rows(); ++i) {
     link_poses(model, q.row(i).data(), links);
-    for (std::size_t l = 0; l < count; ++l) {
-      Scalar* t = transforms + (static_cast<std::size_t>(i) * count + l) * 16;
-      for (int r = 0; r < 3; ++r) {
-        for (int c = 0; c < 3; ++c) t[4 * r + c] = links[l].rotation(r, c);
-        t[4 * r + 3] = links[l].translation(r);
-      }
-      t[12] = t[13] = t[14] = 0;
-      t[15] = 1;
+    for (const Pose& pose : links) {
+      write_transform(pose, transforms);
+      transforms += 16;
+    }
+  }
+}
+
+void geometry_poses(const RobotModel& model, const Configurations& q, Scalar* transforms) {
+  std::vector<Pose> links;
+  for (Eigen::Index i = 0; i < q.rows(); ++i) {
+    link_poses(model, q.row(i).data(), links);
+    for (const Geometry& geometry : model.geometries()) {
+      write_transform(
+          geometry.link < 0 ? geometry.origin : compose(links[geometry.link], geometry.origin),
+          transforms);
+      transforms += 16;
     }
   }
 }

@@ -76,10 +76,24 @@ RobotModel::RobotModel(std::vector<Link> links, std::vector<Joint> joints,
                                   "'; each link has one parent joint");
     }
     parent = static_cast<int>(j);
-    if (joint.type != JointType::fixed) {
+    if (joint.type != JointType::fixed && joint.mimic < 0) {
       dof_of_joint_[j] = static_cast<int>(moving_.size());
       moving_.push_back(static_cast<int>(j));
     }
+  }
+  driving_dof_ = dof_of_joint_;
+  for (std::size_t j = 0; j < joints_.size(); ++j) {
+    const Joint& joint = joints_[j];
+    if (joint.mimic < 0) continue;
+    if (joint.type == JointType::fixed || joint.mimic >= static_cast<int>(joints_.size()) ||
+        dof_of_joint_[joint.mimic] < 0 || !std::isfinite(joint.multiplier) ||
+        !std::isfinite(joint.offset)) {
+      throw std::invalid_argument(
+          joint_label(joint) +
+          ": a mimic joint must move and mimic a moving joint that mimics none, with a finite "
+          "multiplier and offset");
+    }
+    driving_dof_[j] = dof_of_joint_[joint.mimic];
   }
   int root = -1;
   for (int l = 0; l < link_count; ++l) {

@@ -7,45 +7,13 @@ namespace swarmcollide {
 
 namespace {
 
-// Each entry of the world-pose table: a rotation row-major, then a translation.
-constexpr std::ptrdiff_t kPoseEntries = 12;
-
-Pose compose(const Pose& outer, const Pose& inner) {
-  Pose pose;
-  pose.rotation = outer.rotation * inner.rotation;
-  pose.translation = outer.rotation * inner.translation + outer.translation;
-  return pose;
-}
-
-// The world pose of every geometry at every configuration, `(m, geometries, 12)`: the table the
-// pairs' batches read their poses from in place.
-std::vector<Scalar> geometry_pose_table(const RobotModel& model, const Configurations& q) {
-  const std::vector<Geometry>& geometries = model.geometries();
-  std::vector<Scalar> table(static_cast<std::size_t>(q.rows()) * geometries.size() *
-                            kPoseEntries);
-  std::vector<Pose> links;
-  Scalar* entry = table.data();
-  for (Eigen::Index i = 0; i < q.rows(); ++i) {
-    link_poses(model, q.row(i).data(), links);
-    for (const Geometry& geometry : geometries) {
-      const Pose pose =
-          geometry.link < 0 ? geometry.origin : compose(links[geometry.link], geometry.origin);
-      for (int r = 0; r < 3; ++r) {
-        for (int c = 0; c < 3; ++c) entry[3 * r + c] = pose.rotation(r, c);
-        entry[9 + r] = pose.translation(r);
-      }
-      entry += kPoseEntries;
-    }
-  }
-  return table;
-}
-
-// Geometry g's poses in the table, one per configuration.
+// Geometry g's poses in the table of geometry_poses (row-major transforms), one per
+// configuration.
 PoseArray poses_of(const std::vector<Scalar>& table, std::size_t geometries, std::size_t g,
                    std::size_t count) {
-  const auto stride = static_cast<std::ptrdiff_t>(geometries) * kPoseEntries;
-  const Scalar* first = table.data() + static_cast<std::ptrdiff_t>(g) * kPoseEntries;
-  return PoseArray{first, first + 9, count, stride, 3, stride, 1};
+  const auto stride = static_cast<std::ptrdiff_t>(geometries) * 16;
+  const Scalar* first = table.data() + static_cast<std::ptrdiff_t>(g) * 16;
+  return PoseArray{first, first + 3, count, stride, 4, stride, 4};
 }
 
 // Every pair's signed distances over the configurations, one batch per pair.
@@ -61,8 +29,9 @@ std::vector<BatchResult> pair_answers(const RobotModel& model,
   const std::size_t count = static_cast<std::size_t>(q.rows());
   // A batch without poses would answer one row at the identity.
   if (count == 0) return std::vector<BatchResult>(pairs.size());
-  const std::vector<Scalar> table = geometry_pose_table(model, q);
   const std::size_t geometries = model.geometries().size();
+  std::vector<Scalar> table(count * geometries * 16);
+  geometry_poses(model, q, table.data());
   std::vector<BatchResult> answers;
   answers.reserve(pairs.size());
   for (const GeometryPair& pair : pairs) {
@@ -84,8 +53,10 @@ void add_jacobian(const RobotModel& model, const std::vector<Pose>& links, int l
     const int j = model.parent_joint(l);
     if (j < 0) break;
     const Joint& joint = model.joints()[j];
-    const int dof = model.dof_of_joint(j);
+    const int dof = model.driving_dof(j);
     if (dof >= 0) {
+      // A mimic joint turns `multiplier` times as fast as the joint it mimics.
+      const Scalar rate = joint.mimic < 0 ? 1 : joint.multiplier;
       // The child's frame is the joint frame after the motion: the axis and the turning point are
       // the child's.
       const Pose& frame = links[joint.child];
@@ -93,7 +64,7 @@ void add_jacobian(const RobotModel& model, const std::vector<Pose>& links, int l
       const Vector3 velocity = joint.type == JointType::prismatic
                                    ? axis
                                    : Vector3(axis.cross(point - frame.translation));
-      row[dof] += sign * normal.dot(velocity);
+      row[dof] += sign * rate * normal.dot(velocity);
     }
     l = joint.parent;
   }

@@ -37,4 +37,9 @@ void link_poses(const RobotModel& model, const Scalar* q, std::vector<Pose>& lin
 /// written row-major at `transforms + (i * links + l) * 16`.
 void forward_kinematics(const RobotModel& model, const Configurations& q, Scalar* transforms);
 
+/// The world transform of every geometry (its link's pose times its origin; an obstacle's
+/// origin) at admitted configurations: geometry g's at row i is written row-major at
+/// `transforms + (i * geometries + g) * 16`.
+void geometry_poses(const RobotModel& model, const Configurations& q, Scalar* transforms);
+
 }  // namespace swarmcollide

@@ -36,6 +36,11 @@ struct Joint {
   Scalar upper = 0;
   /// The joint value at which the child sits at `origin` (MJCF's `ref`; 0 for URDF).
   Scalar reference = 0;
+  /// The index of the joint this one mimics (URDF's `<mimic>`), -1 for none: its value is then
+  /// `multiplier * value(mimicked) + offset`, and it is no degree of freedom of its own.
+  int mimic = -1;
+  Scalar multiplier = 1;
+  Scalar offset = 0;
 };
 
 /// A convex body fixed to a link (or to the world, for an obstacle: `link` = -1) at `origin`.
@@ -59,7 +64,8 @@ class RobotModel {
   /// Throws std::invalid_argument naming the joint, link or geometry at fault: a link index out
   /// of range, a link with two parent joints, links that are not one tree (a cycle or two roots),
   /// a zero or non-finite axis, limits with lower > upper or NaN on a limited joint, an invalid
-  /// origin (not a rigid motion), or duplicate names.
+  /// origin (not a rigid motion), a mimic of a fixed, mimic or missing joint, a non-finite
+  /// multiplier or offset, or duplicate names.
   RobotModel(std::vector<Link> links, std::vector<Joint> joints, std::vector<Geometry> geometries);
 
   const std::vector<Link>& links() const { return links_; }
@@ -69,8 +75,15 @@ class RobotModel {
   int dof() const { return static_cast<int>(moving_.size()); }
   /// The joint index of degree of freedom `i`.
   const std::vector<int>& moving_joints() const { return moving_; }
-  /// The degree of freedom of joint `j`, -1 for a fixed joint.
+  /// The degree of freedom of joint `j`, -1 for a fixed or mimic joint.
   int dof_of_joint(int j) const { return dof_of_joint_[static_cast<std::size_t>(j)]; }
+  /// The degree of freedom that moves joint `j`: its own, its mimicked joint's, or -1 (fixed).
+  int driving_dof(int j) const { return driving_dof_[static_cast<std::size_t>(j)]; }
+  /// Joint `j`'s value when its driving degree of freedom has the value `value`.
+  Scalar joint_value(int j, Scalar value) const {
+    const Joint& joint = joints_[static_cast<std::size_t>(j)];
+    return joint.mimic < 0 ? value : joint.multiplier * value + joint.offset;
+  }
   /// The joint whose child is link `l`, -1 for the root.
   int parent_joint(int l) const { return parent_joint_[static_cast<std::size_t>(l)]; }
   /// The joints in an order where each joint's parent link is placed before it (root first).
@@ -82,6 +95,7 @@ class RobotModel {
   std::vector<Geometry> geometries_;
   std::vector<int> moving_;
   std::vector<int> dof_of_joint_;
+  std::vector<int> driving_dof_;
   std::vector<int> parent_joint_;
   std::vector<int> order_;
 };
