@@ -65,14 +65,14 @@ Pose motion(const Joint& joint, Scalar value) {
   return pose;
 }
 
+}  // namespace
+
 Pose compose(const Pose& outer, const Pose& inner) {
   Pose pose;
   pose.rotation = outer.rotation * inner.rotation;
   pose.translation = outer.rotation * inner.translation + outer.translation;
   return pose;
 }
-
-}  // namespace
 
 Configurations admit_configurations(const RobotModel& model, const Configurations& q,
                                     LimitMode mode) {

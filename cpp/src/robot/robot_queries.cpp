@@ -1,7 +1,18 @@
 #include "swarmcollide/robot/robot_queries.hpp"
 
+#include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <exception>
 #include <limits>
+#include <mutex>
+#include <stdexcept>
+#include <string>
+#include <system_error>
+#include <thread>
+#include <utility>
+
+#include "swarmcollide/queries/query.hpp"
 
 namespace swarmcollide {
 
@@ -90,10 +101,190 @@ RobotDistances robot_distances(const RobotModel& model, const std::vector<Geomet
   return result;
 }
 
+namespace {
+
+// Runs `answer(i)`, with `answer` each thread's own `make_answer()`, for every configuration i on
+// `threads` threads (0: one per hardware thread)
+// taking configurations in chunks from one counter; rethrows the error of the lowest failing
+// configuration, prefixed "q[i]: ". Each configuration is answered whole by one thread, so the
+// answers do not depend on the threads.
+template <typename MakeAnswer>
+void over_configurations(std::size_t count, int threads, const MakeAnswer& make_answer) {
+  if (threads < 0 || threads > kMaxThreads) {
+    throw std::invalid_argument("threads must be in [0, " + std::to_string(kMaxThreads) +
+                                "] (0: one per hardware thread), got " + std::to_string(threads));
+  }
+  const std::size_t wanted = threads > 0 ? static_cast<std::size_t>(threads)
+                                         : std::max(1u, std::thread::hardware_concurrency());
+  const std::size_t workers = std::min(wanted, std::max<std::size_t>(count, 1));
+  constexpr std::size_t kChunk = 8;
+  std::atomic<std::size_t> next{0};
+  std::atomic<bool> failed{false};
+  std::mutex mutex;
+  std::size_t failed_row = count;
+  std::exception_ptr error;
+  const auto work = [&] {
+    auto answer = make_answer();
+    for (;;) {
+      const std::size_t start = next.fetch_add(kChunk, std::memory_order_relaxed);
+      if (start >= count || failed.load(std::memory_order_relaxed)) return;
+      for (std::size_t i = start; i < std::min(count, start + kChunk); ++i) {
+        try {
+          answer(i);
+        } catch (...) {
+          const std::lock_guard<std::mutex> lock(mutex);
+          if (i < failed_row) {
+            failed_row = i;
+            error = std::current_exception();
+          }
+          failed.store(true, std::memory_order_relaxed);
+          return;
+        }
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (std::size_t t = 1; t < workers; ++t) {
+    try {
+      pool.emplace_back(work);
+    } catch (const std::system_error&) {
+      break;  // the threads running share the work
+    }
+  }
+  work();
+  for (std::thread& thread : pool) thread.join();
+  if (!error) return;
+  try {
+    std::rethrow_exception(error);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument("q[" + std::to_string(failed_row) + "]: " + e.what());
+  }
+}
+
+// A pair's lower bound from its geometries' bounding balls, and its index.
+struct BallBound {
+  Scalar lower;
+  int pair;
+};
+
+// One configuration of a check: the pairs in increasing order of the separation of their
+// geometries' bounding balls (a proven lower bound on their signed distance: the bodies lie in
+// the balls), answered until the next pair's balls are farther apart than the nearest pair found
+// is. The pairs skipped are then proven farther than the minimum and apart, so the answer is the
+// one of answering every pair.
+class ConfigurationCheck {
+ public:
+  ConfigurationCheck(const RobotModel& model, const std::vector<GeometryPair>& pairs,
+                     const Configurations& q, const QueryOptions& options, bool gradient,
+                     RobotCheck& check)
+      : model_(model), pairs_(pairs), q_(q), options_(options), gradient_(gradient),
+        check_(check) {}
+
+  void operator()(std::size_t row) {
+    const auto i = static_cast<Eigen::Index>(row);
+    link_poses(model_, q_.row(i).data(), links_);
+    place_geometries();
+    order_pairs();
+    QueryOptions options = options_;
+    options.seed = pair_seed(options_.seed, row);  // as signed_distance_many seeds row `row`
+    const Query query(options);
+    bool colliding = false;
+    bool certified = true;
+    Scalar least = std::numeric_limits<Scalar>::infinity();
+    Scalar lower = least;
+    int nearest = -1;
+    DistanceResult best;
+    for (const BallBound& bound : bounds_) {
+      if (bound.lower > least) break;
+      const GeometryPair& pair = pairs_[static_cast<std::size_t>(bound.pair)];
+      const Geometry& a = model_.geometries()[pair.a];
+      const Geometry& b = model_.geometries()[pair.b];
+      DistanceResult result = query.signed_distance(a.body, world_[pair.a], b.body, world_[pair.b]);
+      colliding = colliding || result.colliding;
+      certified = certified && result.certified;
+      lower = std::min(lower, result.lower_bound);
+      if (result.distance < least || (result.distance == least && bound.pair < nearest)) {
+        least = result.distance;
+        nearest = bound.pair;
+        best = std::move(result);
+      }
+    }
+    check_.colliding(i) = colliding;
+    check_.certified(i) = certified;
+    check_.min_distance(i) = least;
+    check_.lower_bound(i) = lower;
+    check_.pair(i) = nearest;
+    if (nearest < 0) return;
+    check_.point_a.row(i) = best.point_a.transpose();
+    check_.point_b.row(i) = best.point_b.transpose();
+    check_.normal.row(i) = best.direction.transpose();
+    if (!gradient_) return;
+    const GeometryPair& pair = pairs_[static_cast<std::size_t>(nearest)];
+    Scalar* out = check_.gradient.row(i).data();
+    // d = normal . (point_b - point_a): B's witness moving along the normal adds, A's subtracts.
+    add_jacobian(model_, links_, model_.geometries()[pair.b].link, best.point_b, best.direction,
+                 1, out);
+    add_jacobian(model_, links_, model_.geometries()[pair.a].link, best.point_a, best.direction,
+                 -1, out);
+  }
+
+ private:
+  void place_geometries() {
+    const std::vector<Geometry>& geometries = model_.geometries();
+    world_.resize(geometries.size());
+    centres_.resize(geometries.size());
+    for (std::size_t g = 0; g < geometries.size(); ++g) {
+      const Geometry& geometry = geometries[g];
+      world_[g] = geometry.link < 0 ? geometry.origin
+                                    : compose(links_[geometry.link], geometry.origin);
+      centres_[g] = world_[g].rotation * geometry.body.bounds().centre + world_[g].translation;
+    }
+  }
+
+  void order_pairs() {
+    bounds_.resize(pairs_.size());
+    for (std::size_t p = 0; p < pairs_.size(); ++p) {
+      const GeometryPair& pair = pairs_[p];
+      const BodyBounds& a = model_.geometries()[pair.a].body.bounds();
+      const BodyBounds& b = model_.geometries()[pair.b].body.bounds();
+      const Vector3& ca = centres_[pair.a];
+      const Vector3& cb = centres_[pair.b];
+      // Less a margin for the rounding of the placed centres and of this sum (a few units in the
+      // last place of the magnitudes involved), so that the bound stays below the true separation.
+      const Scalar margin =
+          1e-12 * (ca.lpNorm<Eigen::Infinity>() + cb.lpNorm<Eigen::Infinity>() + a.radius +
+                   b.radius);
+      bounds_[p] = {(ca - cb).norm() - a.radius - b.radius - margin, static_cast<int>(p)};
+    }
+    std::sort(bounds_.begin(), bounds_.end(), [](const BallBound& x, const BallBound& y) {
+      return x.lower < y.lower || (x.lower == y.lower && x.pair < y.pair);
+    });
+  }
+
+  const RobotModel& model_;
+  const std::vector<GeometryPair>& pairs_;
+  const Configurations& q_;
+  const QueryOptions& options_;
+  bool gradient_;
+  RobotCheck& check_;
+  // Per configuration, reused from one to the next by the thread that owns this.
+  std::vector<Pose> links_;
+  std::vector<Pose> world_;
+  std::vector<Vector3> centres_;
+  std::vector<BallBound> bounds_;
+};
+
+}  // namespace
+
 RobotCheck robot_check(const RobotModel& model, const std::vector<GeometryPair>& pairs,
                        const Configurations& q, const QueryOptions& options,
                        const BatchSettings& settings, bool gradient) {
-  const std::vector<BatchResult> answers = pair_answers(model, pairs, q, options, settings);
+  validate_pairs(model, pairs);
+  if (q.cols() != model.dof()) {
+    throw std::invalid_argument("q must have " + std::to_string(model.dof()) +
+                                " values per configuration, got " + std::to_string(q.cols()));
+  }
+  const Query validated(options);  // the options are checked once, before any configuration
   const Eigen::Index m = q.rows();
   RobotCheck check;
   check.colliding.setConstant(m, false);
@@ -104,37 +295,11 @@ RobotCheck robot_check(const RobotModel& model, const std::vector<GeometryPair>&
   check.point_a.setZero(m, 3);
   check.point_b.setZero(m, 3);
   check.normal.setZero(m, 3);
-  for (std::size_t p = 0; p < answers.size(); ++p) {
-    const BatchResult& answer = answers[p];
-    for (Eigen::Index i = 0; i < m; ++i) {
-      check.colliding(i) = check.colliding(i) || answer.colliding(i);
-      check.certified(i) = check.certified(i) && answer.certified(i);
-      check.lower_bound(i) = std::min(check.lower_bound(i), answer.lower_bound(i));
-      // Strictly less: the lowest pair index wins a tie, whatever the order rows were answered in.
-      if (answer.distance(i) < check.min_distance(i)) {
-        check.min_distance(i) = answer.distance(i);
-        check.pair(i) = static_cast<int>(p);
-        check.point_a.row(i) = answer.point_a.row(i);
-        check.point_b.row(i) = answer.point_b.row(i);
-        check.normal.row(i) = answer.direction.row(i);
-      }
-    }
-  }
-  if (!gradient) return check;
-  check.gradient.setZero(m, model.dof());
-  std::vector<Pose> links;
-  for (Eigen::Index i = 0; i < m; ++i) {
-    if (check.pair(i) < 0) continue;
-    link_poses(model, q.row(i).data(), links);
-    const GeometryPair& pair = pairs[static_cast<std::size_t>(check.pair(i))];
-    const Vector3 normal = check.normal.row(i).transpose();
-    Scalar* row = check.gradient.row(i).data();
-    // d = normal . (point_b - point_a): B's witness moving along the normal adds, A's subtracts.
-    add_jacobian(model, links, model.geometries()[pair.b].link, check.point_b.row(i).transpose(),
-                 normal, 1, row);
-    add_jacobian(model, links, model.geometries()[pair.a].link, check.point_a.row(i).transpose(),
-                 normal, -1, row);
-  }
+  if (gradient) check.gradient.setZero(m, model.dof());
+  // One checker per thread: its buffers are the thread's own; each writes only its rows.
+  over_configurations(static_cast<std::size_t>(m), settings.threads, [&] {
+    return ConfigurationCheck(model, pairs, q, validated.options(), gradient, check);
+  });
   return check;
 }
 

@@ -22,6 +22,9 @@ enum class LimitMode {
   wrap,
 };
 
+/// The pose `outer * inner`: `inner` given in the frame that `outer` places.
+Pose compose(const Pose& outer, const Pose& inner);
+
 /// The configurations as the kinematics reads them: checked once (one value per degree of
 /// freedom, every value finite) and brought within the joints' limits as `mode` says. Throws
 /// std::invalid_argument for a wrong number of columns (naming the model's dof) or a NaN or

@@ -34,9 +34,11 @@ struct RobotCheck {
   /// The least signed distance over the pairs (an upper bound, achieved by the witnesses); +inf
   /// when nothing is checked.
   VectorX min_distance;
-  /// The least lower bound over the pairs: `lower_bound <= true minimum <= min_distance`.
+  /// The least lower bound over the pairs answered (those skipped are proven farther):
+  /// `lower_bound <= true minimum <= min_distance`.
   VectorX lower_bound;
-  /// True when every pair's answer is certified, so the verdict and both bounds are proven.
+  /// True when every pair answered is certified (those skipped are proven farther than the
+  /// minimum by their balls), so the verdict and both bounds are proven.
   Eigen::Array<bool, Eigen::Dynamic, 1> certified;
   /// The index (into the pairs) of the pair realising `min_distance`, the lowest on ties; -1
   /// when nothing is checked.
@@ -62,8 +64,14 @@ RobotDistances robot_distances(const RobotModel& model, const std::vector<Geomet
                                const Configurations& q, const QueryOptions& options,
                                const BatchSettings& settings = {});
 
-/// robot_distances reduced per configuration to the nearest pair, with the gradient when
-/// `gradient` is true.
+/// Per configuration, the nearest pair: the pairs in increasing order of the separation of their
+/// geometries' bounding balls, each answered by `Query::signed_distance` (seeded for the
+/// configuration as robot_distances seeds its rows) until the next pair's balls are proven farther
+/// apart than the nearest pair found. The pairs skipped are proven farther than the minimum, so
+/// the answer is that of robot_distances' row reduced to its nearest pair (the lowest index on
+/// ties), and `colliding`, `lower_bound` and `certified` cover every pair. Each configuration is
+/// answered whole by one of `settings.threads` threads, so answers do not depend on them. With
+/// `gradient`, also d min_distance / dq.
 RobotCheck robot_check(const RobotModel& model, const std::vector<GeometryPair>& pairs,
                        const Configurations& q, const QueryOptions& options,
                        const BatchSettings& settings = {}, bool gradient = false);
