@@ -64,7 +64,7 @@ TEST(Robot, ForwardKinematicsIsThePlanarArmsClosedForm) {
 TEST(Robot, LimitsRaiseClampOrWrapNamingTheJoint) {
   const RobotModel arm = planar_arm();
   Configurations q(1, 3);
-  q << 2.5, 7, 0;
+  q << 4.5, 7, 0;
   try {
     admit_configurations(arm, q, LimitMode::raise);
     FAIL() << "accepted a shoulder angle outside its limits";
@@ -72,9 +72,11 @@ TEST(Robot, LimitsRaiseClampOrWrapNamingTheJoint) {
     EXPECT_NE(std::string(error.what()).find("q[0], joint 'shoulder'"), std::string::npos);
   }
   EXPECT_EQ(admit_configurations(arm, q, LimitMode::clamp)(0, 0), 2);
-  // 2.5 - 2 pi is within [-2, 2]; the continuous elbow is left as it is.
-  EXPECT_NEAR(admit_configurations(arm, q, LimitMode::wrap)(0, 0), 2.5 - 2 * M_PI, 1e-15);
+  // 4.5 - 2 pi is within [-2, 2]; the continuous elbow is left as it is.
+  EXPECT_NEAR(admit_configurations(arm, q, LimitMode::wrap)(0, 0), 4.5 - 2 * M_PI, 1e-15);
   EXPECT_EQ(admit_configurations(arm, q, LimitMode::wrap)(0, 1), 7);
+  q << 2.5, 0, 0;  // 2.5 - 2 pi is below -2: no turn brings it within
+  EXPECT_THROW(admit_configurations(arm, q, LimitMode::wrap), std::invalid_argument);
   q << 0, 0, 1.5;
   EXPECT_THROW(admit_configurations(arm, q, LimitMode::wrap), std::invalid_argument);
   q << 0, NAN, 0;
