@@ -48,7 +48,8 @@ def panda() -> sc.Robot:
 
 
 def coal_loop(robot: sc.Robot):
-    """The coal contender: hull shapes built once, then a Python loop over configurations x pairs."""
+    """The coal contender: hull shapes built once, then a Python loop over the configurations and
+    pairs."""
     import coal
     from scipy.spatial import ConvexHull
 

@@ -218,7 +218,8 @@ ValueError
             }
             return transforms;
           },
-          py::arg("q"), "Every link's (4, 4) world transform at admitted configurations, (m, links, 4, 4).")
+          py::arg("q"),
+          "Every link's (4, 4) world transform at admitted configurations, (m, links, 4, 4).")
       .def(
           "geometry_poses",
           [](const RobotModel& model, const Configurations& q) {

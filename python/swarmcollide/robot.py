@@ -43,9 +43,11 @@ class RobotCheck:
         The least signed distance over the checked pairs (negative: penetration depth), an upper
         bound achieved by the witness points; inf when no pair is checked.
     lower_bound : float array
-        The least lower bound over the pairs: ``lower_bound <= true minimum <= min_distance``.
+        A lower bound on the minimum: ``lower_bound <= true minimum <= min_distance``.
     certified : bool array
-        True when every pair's answer is certified, so the verdict and both bounds are proven.
+        True when every pair answered is certified (``check`` skips the pairs whose bounding
+        balls are proven farther apart than the nearest pair found), so the verdict and both
+        bounds are proven.
     pair : int array
         Index into ``Robot.pairs`` of the nearest pair (-1 when none is checked).
     pair_names : str array, (..., 2)
@@ -345,6 +347,12 @@ class Robot:
               gradient: bool = False, method: str = "dual",
               tolerance: float = DEFAULT_TOLERANCE, seed: int = 0) -> RobotCheck:
         """Whether each configuration collides, and its nearest pair with witness points.
+
+        Each configuration's pairs are answered (``signed_distance`` at the geometries' world
+        poses) in increasing order of the separation of their bounding balls, until the next
+        pair's balls are proven farther apart than the nearest pair found: the answer is that of
+        every pair (``distances``) reduced to its nearest, at a fraction of the cost. Each
+        configuration is answered whole by one C++ thread, without the GIL.
 
         Parameters
         ----------

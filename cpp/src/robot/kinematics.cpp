@@ -22,8 +22,9 @@ std::string where(std::size_t row, const Joint& joint) {
 }
 
 [[noreturn]] void outside(std::size_t row, const Joint& joint, Scalar value, const char* fix) {
-  throw std::invalid_argument(where(row, joint) + ": " + number(value) + " is outside its limits [" +
-                              number(joint.lower) + ", " + number(joint.upper) + "]; " + fix);
+  throw std::invalid_argument(where(row, joint) + ": " + number(value) +
+                              " is outside its limits [" + number(joint.lower) + ", " +
+                              number(joint.upper) + "]; " + fix);
 }
 
 // `value` within the joint's limits as `mode` says.
