@@ -61,7 +61,7 @@ from .mesh import (
     mesh_hash,
 )
 from .poses import QUATERNION_ORDERS, pose_from_quaternion
-from .robot import LIMIT_MODES, Robot, RobotCheck
+from .robot import LIMIT_MODES, PairProposal, Robot, RobotCheck
 from .queries import (
     DEFAULT_TOLERANCE,
     METHODS,
@@ -111,6 +111,7 @@ __all__ = [
     "Parameter",
     "Parameters",
     "ParticleCoefficients",
+    "PairProposal",
     "PartNode",
     "PolyhedronLike",
     "PoseLike",

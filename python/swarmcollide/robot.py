@@ -87,6 +87,24 @@ class RobotCheck:
                 f"[{distance.min():.6g}, {distance.max():.6g}])")
 
 
+@dataclass(frozen=True)
+class PairProposal:
+    """Pairs of links (or obstacles) that collided in every sampled configuration, or in none:
+    candidates for ``Robot.disable_pairs`` (as MoveIt's setup assistant proposes them), shown,
+    not applied. A pair that never collided in the samples may still collide elsewhere.
+
+    Attributes
+    ----------
+    always, never : tuple of (str, str)
+    samples : int
+        The configurations sampled (uniform within the limits; continuous joints in [-pi, pi]).
+    """
+
+    always: Tuple[Tuple[str, str], ...]
+    never: Tuple[Tuple[str, str], ...]
+    samples: int
+
+
 class Robot:
     """A robot: links, joints and convex collision geometries, and the pairs checked.
 
@@ -385,6 +403,44 @@ class Robot:
         if single:
             fields = {k: (v[0] if v is not None else None) for k, v in fields.items()}
         return RobotCheck(**fields)
+
+    def propose_disabled_pairs(self, samples: int = 1000, *, seed: int = 0,
+                               threads: Optional[int] = None) -> PairProposal:
+        """Sample configurations and propose the checked pairs that always or never collide.
+
+        Parameters
+        ----------
+        samples : int
+            Configurations, uniform within the joint limits (continuous joints in [-pi, pi]).
+        seed : int
+            Seeds the sampler (NumPy's default generator).
+        threads : int, optional
+            As for ``distances``.
+
+        Returns
+        -------
+        PairProposal
+            By link (or obstacle) name: a link pair collides in a sample when any pair of their
+            geometries does. Nothing is disabled: pass the pairs you accept to
+            ``disable_pairs``.
+        """
+        if isinstance(samples, bool) or not isinstance(samples, int) or samples < 1:
+            raise ValueError(f"samples must be a positive integer, got {samples!r}")
+        lower, upper = np.clip(self.limits, -np.pi, np.pi).T
+        q = np.random.default_rng(seed).uniform(lower, upper, size=(samples, self.dof))
+        colliding = self._model.distances(self._pair_table, self._model.admit(q, "raise"),
+                                          query(), threads).colliding
+        names = self.geometry_names
+        links = self._model.geometry_links
+        owners = [self._links[link] if link >= 0 else names[g] for g, link in enumerate(links)]
+        by_owner: Dict[Tuple[str, str], np.ndarray] = {}
+        for p, (a, b) in enumerate(self._pair_table):
+            key = (owners[a], owners[b])
+            by_owner[key] = by_owner.get(key, np.zeros(samples, bool)) | colliding[:, p]
+        return PairProposal(
+            always=tuple(k for k, hits in by_owner.items() if hits.all()),
+            never=tuple(k for k, hits in by_owner.items() if not hits.any()),
+            samples=samples)
 
     def __repr__(self) -> str:
         return (f"Robot({len(self._links)} links, dof {self.dof}, "

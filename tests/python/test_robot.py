@@ -321,6 +321,7 @@ def test_bad_configurations_name_what_is_wrong(arm):
     with pytest.raises(TypeError, match="real numbers"):
         arm.check(["a", "b", "c"])
     assert arm.distances(np.zeros((0, 3))).shape == (0, len(arm.pairs))
+    assert arm.check(np.zeros((0, 3))).min_distance.shape == (0,)
 
 
 def test_bad_files_name_the_link_or_joint(tmp_path):
@@ -369,3 +370,19 @@ def test_curved_bodies_lie_inside_their_shapes_within_the_error(shape, size):
     assert (hull_support <= true_support + 1e-15).all()
     assert (true_support - hull_support <= error).all()
     assert (true_support - hull_support).max() > 0.3 * error  # the bound is not loose
+
+
+def test_proposed_pairs_are_those_that_always_or_never_collided(arm):
+    # A stake through the base always meets it; the sampled rows say which pairs never meet.
+    arm.add_obstacle(sc.Box([0.05, 0.05, 0.05]), None, name="stake")
+    proposal = arm.propose_disabled_pairs(200, seed=1)
+    assert ("base", "stake") in proposal.always and ("slider", "stake") not in proposal.always
+    q = np.random.default_rng(1).uniform(*np.clip(arm.limits, -np.pi, np.pi).T, size=(200, 3))
+    hits = (arm.distances(q) <= 1e-9 * 2).any(axis=0)
+    owners = [tuple(name.split("/")[0] for name in pair) for pair in arm.pairs]
+    for owner in set(owners):
+        met = any(hit for hit, o in zip(hits, owners) if o == owner)
+        assert (owner in proposal.never) == (not met)
+    assert proposal.never and set(proposal.never).isdisjoint(proposal.always)
+    with pytest.raises(ValueError, match="samples must be a positive integer"):
+        arm.propose_disabled_pairs(0)
