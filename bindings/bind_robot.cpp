@@ -149,8 +149,8 @@ joints : list of Joint
     Every link but one (the root) is the child of exactly one joint. The moving joints are the
     degrees of freedom, in the order given.
 geometries : list of (name, link, origin, body)
-    A ConvexPolyhedron fixed to link ``link`` at ``origin`` (a rigid transform), or to the world
-    for ``link == -1`` (an obstacle).
+    A ConvexPolyhedron or CompoundBody fixed to link ``link`` at ``origin`` (a rigid transform),
+    or to the world for ``link == -1`` (an obstacle).
 
 Raises
 ------
@@ -167,10 +167,17 @@ ValueError
                  throw py::value_error("each geometry must be (name, link, origin, body)");
                }
                const auto name = row[0].cast<std::string>();
-               geometries.push_back(
-                   Geometry{name, row[1].cast<int>(),
-                            to_pose(row[2], ("geometry '" + name + "' origin").c_str()),
-                            BodyArgument(row[3], ("geometry '" + name + "'").c_str()).get()});
+               const Pose origin = to_pose(row[2], ("geometry '" + name + "' origin").c_str());
+               if (is_compound(row[3])) {
+                 const auto& parts = row[3].cast<const CompoundBody&>();
+                 geometries.push_back(
+                     Geometry{name, row[1].cast<int>(), origin, parts.envelope(), parts});
+               } else {
+                 geometries.push_back(
+                     Geometry{name, row[1].cast<int>(), origin,
+                              BodyArgument(row[3], ("geometry '" + name + "'").c_str()).get(),
+                              std::nullopt});
+               }
              }
              return std::make_shared<RobotModel>(std::move(links), std::move(joints),
                                                  std::move(geometries));

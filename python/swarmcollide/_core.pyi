@@ -739,8 +739,8 @@ class RobotModel:
         Every link but one (the root) is the child of exactly one joint. The moving joints are the
         degrees of freedom, in the order given.
     geometries : list of (name, link, origin, body)
-        A ConvexPolyhedron fixed to link ``link`` at ``origin`` (a rigid transform), or to the world
-        for ``link == -1`` (an obstacle).
+        A ConvexPolyhedron or CompoundBody fixed to link ``link`` at ``origin`` (a rigid transform),
+        or to the world for ``link == -1`` (an obstacle).
     
     Raises
     ------

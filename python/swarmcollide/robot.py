@@ -166,8 +166,10 @@ class Robot:
             NAME itself or holds it. Relative mesh paths are read from the URDF's directory.
         collision : {"hull", "mesh", "decompose"}
             ``"hull"``: each ``<collision>`` mesh is its convex hull (the body finds the hull of
-            the mesh's vertices, scaled). ``"mesh"`` and ``"decompose"`` (compound bodies) are
-            not yet available and raise ValueError.
+            the mesh's vertices, scaled). ``"mesh"``: a compound body of the mesh's convex pieces
+            (OBJ groups or connected components, each convex). ``"decompose"``: a compound body
+            of CoACD's decomposition (``CompoundBody.from_mesh``, cached on disk). A compound
+            geometry's signed distance is the least over its parts' (``signed_distance``).
         srdf : str or os.PathLike, optional
             An SRDF whose ``disable_collisions`` pairs are not checked.
 
@@ -181,7 +183,7 @@ class Robot:
         ValueError
             For a missing file, an unknown or unsupported joint type (naming the joint), a mesh
             file that is missing or a ``package://`` path that cannot be resolved (naming the
-            link), or an unavailable ``collision`` mode.
+            link), or an unknown ``collision`` mode.
         """
         from .robot_urdf import load_urdf
 
@@ -271,16 +273,13 @@ class Robot:
 
         Parameters
         ----------
-        body : ConvexPolyhedron or (n, 3) array_like
-            A convex body (a ``Box``, ``Sphere``, ...). Compound bodies are not yet available.
+        body : ConvexPolyhedron, CompoundBody or (n, 3) array_like
+            A convex body (a ``Box``, ``Sphere``, ...) or a compound one (a mesh's parts).
         pose : pose, optional
             Where it is: a ``(4, 4)`` rigid transform or ``(rotation, translation)``.
         name : str, optional
             Its name in ``pairs`` (default ``obstacle{k}``); must differ from every geometry's.
         """
-        if isinstance(body, _core.CompoundBody):
-            raise ValueError("compound bodies are not yet available as obstacles; give a convex "
-                             "body (ConvexPolyhedron, Box, Sphere, ...)")
         name = f"obstacle{len(self._obstacles)}" if name is None else name
         if not isinstance(name, str):
             raise TypeError(f"name must be a str, got {type(name).__name__}")

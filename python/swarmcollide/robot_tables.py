@@ -6,11 +6,14 @@ from dataclasses import dataclass, field
 from typing import Any, Callable, List, Tuple
 
 from . import _core
+from .mesh import CompoundBody
 from .robot_shapes import Approximation
 
 COLLISION_MODES = ("hull", "mesh", "decompose")
-"""How a mesh becomes a collision body: its convex hull; the mesh itself or a convex
-decomposition (compound bodies: not yet available to robots)."""
+"""How a mesh becomes a collision body: its convex hull (the planners' default); a compound body
+of the mesh's own convex pieces (each group of an OBJ file, or each connected component, which
+must be convex: ``CompoundBody.from_mesh(mesh, decompose=None)``); or a compound body of CoACD's
+convex decomposition (``CompoundBody.from_mesh(mesh)``, cached on disk)."""
 
 
 @dataclass
@@ -30,15 +33,15 @@ def geometry_names(link: str, count: int) -> List[str]:
 
 
 def collision_bodies(collision: str) -> Callable[[Any, str], Any]:
-    """The function that makes a body of a mesh's points under ``collision``.
+    """The function that makes a body of a mesh (a ``trimesh.Trimesh``) under ``collision``.
 
-    Raises ``ValueError`` for an unknown mode or one robots cannot use yet.
+    Raises ``ValueError`` for an unknown mode.
     """
     if collision == "hull":
-        return lambda points, name: _core.ConvexPolyhedron(points)
-    if collision in COLLISION_MODES:
-        raise ValueError(
-            f"collision={collision!r} (compound bodies) is not yet available to robots; "
-            "use collision='hull'"
-        )
+        return lambda mesh, name: _core.ConvexPolyhedron(mesh.vertices)
+    if collision == "mesh":
+        return lambda mesh, name: CompoundBody.from_mesh(mesh, decompose=None, cache=False,
+                                                         progress=False)
+    if collision == "decompose":
+        return lambda mesh, name: CompoundBody.from_mesh(mesh, progress=False)
     raise ValueError(f"collision must be one of {COLLISION_MODES}, got {collision!r}")

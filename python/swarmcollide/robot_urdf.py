@@ -135,6 +135,7 @@ def _body(geometry, name: str, link: str, urdf_path: Path, dirs, collision: str,
     if geometry.mesh is not None:
         mesh_path = resolve_mesh_path(geometry.mesh.filename, urdf_path, dirs, link)
         mesh = load_mesh(mesh_path)
-        scale = 1.0 if geometry.mesh.scale is None else np.asarray(geometry.mesh.scale, float)
-        return collision_bodies(collision)(np.asarray(mesh.vertices) * scale, name)
+        if geometry.mesh.scale is not None:
+            mesh.apply_scale(np.asarray(geometry.mesh.scale, float))
+        return collision_bodies(collision)(mesh, name)
     raise ValueError(f"link '{link}': a <collision> geometry has no box, sphere, cylinder or mesh")

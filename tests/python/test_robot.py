@@ -341,8 +341,8 @@ def test_bad_files_name_the_link_or_joint(tmp_path):
                                           'name="elbow" type="hinge"'), meshes=False)
     with pytest.raises(ValueError, match="joint 'elbow': type 'hinge' is not supported"):
         sc.Robot.from_urdf(path, package_dirs=[tmp_path])
-    with pytest.raises(ValueError, match="collision='mesh'.*not yet available"):
-        sc.Robot.from_urdf(urdf, package_dirs=[tmp_path], collision="mesh")
+    with pytest.raises(ValueError, match="collision must be one of"):
+        sc.Robot.from_urdf(urdf, package_dirs=[tmp_path], collision="hulls")
     with pytest.raises(ValueError, match="not found"):
         sc.Robot.from_urdf(tmp_path / "none.urdf")
 
@@ -386,3 +386,47 @@ def test_proposed_pairs_are_those_that_always_or_never_collided(arm):
     assert proposal.never and set(proposal.never).isdisjoint(proposal.always)
     with pytest.raises(ValueError, match="samples must be a positive integer"):
         arm.propose_disabled_pairs(0)
+
+
+def test_collision_mesh_makes_compound_bodies_of_the_meshes_convex_pieces(urdf, tmp_path):
+    # fore's mesh: two boxes 5 cm apart along z, two convex components.
+    pieces = [trimesh.creation.box((0.06, 0.08, 0.1)), trimesh.creation.box((0.06, 0.08, 0.1))]
+    pieces[1].apply_translation((0, 0, 0.15))
+    trimesh.util.concatenate(pieces).export(tmp_path / "pkg" / "meshes" / "fore.stl")
+    robot = sc.Robot.from_urdf(urdf, [tmp_path], collision="mesh")
+    fore = robot._robot_geometries[2][3]
+    assert isinstance(fore, sc.CompoundBody) and len(fore.parts) == 2
+    hull = sc.Robot.from_urdf(urdf, [tmp_path])
+    assert robot.pairs == hull.pairs
+    q = random_configurations(robot, 40, seed=6)
+    distances = robot.distances(q)
+    check = robot.check(q, threads=2)
+    names = robot.geometry_names
+    bodies = {g[0]: g[3] for g in robot._robot_geometries}
+    for i in range(0, 40, 9):
+        poses = robot.geometry_poses(q[i])
+        for p, (a, b) in enumerate(robot.pairs):
+            single = sc.signed_distance(bodies[a], bodies[b], pose_a=poses[names.index(a)],
+                                        pose_b=poses[names.index(b)])
+            assert distances[i, p] == single.distance
+    nearest = np.argmin(distances, axis=1)
+    np.testing.assert_array_equal(check.pair, nearest)
+    np.testing.assert_array_equal(check.min_distance, distances[np.arange(40), nearest])
+    assert check.certified.all()
+    # The hull holds both boxes: its distances are never larger, and smaller where the gap
+    # between the boxes is the nearest point.
+    hull_distances = hull.distances(q)
+    assert (hull_distances <= distances + 1e-12).all()
+    assert (hull_distances < distances - 1e-6).any()
+
+
+def test_collision_decompose_makes_coacds_parts(urdf, tmp_path, monkeypatch):
+    monkeypatch.setenv("SWARMCOLLIDE_CACHE_DIR", str(tmp_path / "cache"))
+    pieces = [trimesh.creation.box((0.06, 0.08, 0.1)), trimesh.creation.box((0.06, 0.08, 0.1))]
+    pieces[1].apply_translation((0, 0, 0.15))
+    trimesh.util.concatenate(pieces).export(tmp_path / "pkg" / "meshes" / "fore.stl")
+    robot = sc.Robot.from_urdf(urdf, [tmp_path], collision="decompose")
+    fore = robot._robot_geometries[2][3]
+    assert fore.decomposition.method == "coacd" and len(fore.parts) == 2
+    assert any((tmp_path / "cache").iterdir())
+    assert robot.check(random_configurations(robot, 10)).certified.all()

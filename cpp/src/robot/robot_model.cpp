@@ -124,6 +124,18 @@ RobotModel::RobotModel(std::vector<Link> links, std::vector<Joint> joints,
                                 links_[root].name + "'");
   }
   names.clear();
+  bool compound = false;
+  for (Geometry& geometry : geometries_) {
+    if (geometry.parts) {
+      geometry.body = geometry.parts->envelope();
+      compound = true;
+    }
+  }
+  if (compound) {
+    for (const Geometry& geometry : geometries_) {
+      compounds_.push_back(geometry.parts ? *geometry.parts : CompoundBody(geometry.body));
+    }
+  }
   for (const Geometry& geometry : geometries_) {
     check_unique(geometry.name, names, "geometry");
     if (geometry.link < -1 || geometry.link >= link_count) {

@@ -49,9 +49,13 @@ std::vector<BatchResult> pair_answers(const RobotModel& model,
     BatchPoses poses;
     poses.array_a = poses_of(table, geometries, static_cast<std::size_t>(pair.a), count);
     poses.array_b = poses_of(table, geometries, static_cast<std::size_t>(pair.b), count);
-    answers.push_back(signed_distance_many(model.geometries()[pair.a].body,
-                                           model.geometries()[pair.b].body, options, settings,
-                                           poses));
+    const Geometry& a = model.geometries()[pair.a];
+    const Geometry& b = model.geometries()[pair.b];
+    answers.push_back(
+        a.parts || b.parts
+            ? signed_distance_many(model.compound(pair.a), model.compound(pair.b), options,
+                                   settings, poses)
+            : signed_distance_many(a.body, b.body, options, settings, poses));
   }
   return answers;
 }
@@ -199,7 +203,11 @@ class ConfigurationCheck {
       const GeometryPair& pair = pairs_[static_cast<std::size_t>(bound.pair)];
       const Geometry& a = model_.geometries()[pair.a];
       const Geometry& b = model_.geometries()[pair.b];
-      DistanceResult result = query.signed_distance(a.body, world_[pair.a], b.body, world_[pair.b]);
+      DistanceResult result =
+          a.parts || b.parts
+              ? query.signed_distance(model_.compound(pair.a), world_[pair.a],
+                                      model_.compound(pair.b), world_[pair.b])
+              : query.signed_distance(a.body, world_[pair.a], b.body, world_[pair.b]);
       colliding = colliding || result.colliding;
       certified = certified && result.certified;
       lower = std::min(lower, result.lower_bound);

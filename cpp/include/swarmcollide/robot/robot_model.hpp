@@ -1,8 +1,10 @@
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "swarmcollide/geometry/compound_body.hpp"
 #include "swarmcollide/geometry/convex_polyhedron.hpp"
 #include "swarmcollide/geometry/pose.hpp"
 #include "swarmcollide/types.hpp"
@@ -43,12 +45,15 @@ struct Joint {
   Scalar offset = 0;
 };
 
-/// A convex body fixed to a link (or to the world, for an obstacle: `link` = -1) at `origin`.
+/// A body fixed to a link (or to the world, for an obstacle: `link` = -1) at `origin`: the convex
+/// `body`, or when `parts` is set the compound body `parts` (non-convex: a mesh's convex parts),
+/// whose envelope the model then puts in `body`.
 struct Geometry {
   std::string name;
   int link = -1;
   Pose origin;
   ConvexPolyhedron body;
+  std::optional<CompoundBody> parts;
 };
 
 /// A robot as a plain table of links, joints and geometries: immutable once built, so one model
@@ -88,6 +93,11 @@ class RobotModel {
   int parent_joint(int l) const { return parent_joint_[static_cast<std::size_t>(l)]; }
   /// The joints in an order where each joint's parent link is placed before it (root first).
   const std::vector<int>& joint_order() const { return order_; }
+  /// True when some pair needs the compound queries: a geometry has `parts`.
+  bool has_compound() const { return !compounds_.empty(); }
+  /// Geometry g as a compound body (its parts, or its convex body as one part), when
+  /// `has_compound()`.
+  const CompoundBody& compound(int g) const { return compounds_[static_cast<std::size_t>(g)]; }
 
  private:
   std::vector<Link> links_;
@@ -98,6 +108,7 @@ class RobotModel {
   std::vector<int> driving_dof_;
   std::vector<int> parent_joint_;
   std::vector<int> order_;
+  std::vector<CompoundBody> compounds_;
 };
 
 }  // namespace swarmcollide
