@@ -108,10 +108,10 @@ RobotDistances robot_distances(const RobotModel& model, const std::vector<Geomet
 namespace {
 
 // Runs `answer(i)`, with `answer` each thread's own `make_answer()`, for every configuration i on
-// `threads` threads (0: one per hardware thread)
-// taking configurations in chunks from one counter; rethrows the error of the lowest failing
-// configuration, prefixed "q[i]: ". Each configuration is answered whole by one thread, so the
-// answers do not depend on the threads.
+// `threads` threads (0: one per hardware thread) taking configurations in chunks, in increasing
+// order, from one counter: when a configuration fails every one before it has been taken, so the
+// error rethrown is the lowest failing configuration's, prefixed "q[i]: ". Each configuration is
+// answered whole by one thread, so the answers do not depend on the threads.
 template <typename MakeAnswer>
 void over_configurations(std::size_t count, int threads, const MakeAnswer& make_answer) {
   if (threads < 0 || threads > kMaxThreads) {
@@ -165,17 +165,20 @@ void over_configurations(std::size_t count, int threads, const MakeAnswer& make_
   }
 }
 
-// A pair's lower bound from its geometries' bounding balls, and its index.
+// A pair's lower bound from its geometries' bounding balls, a bound on its contact threshold
+// (the tolerance times the pair's size, which is at most the centres' distance plus twice the
+// larger radius), and its index.
 struct BallBound {
   Scalar lower;
+  Scalar contact;
   int pair;
 };
 
 // One configuration of a check: the pairs in increasing order of the separation of their
 // geometries' bounding balls (a proven lower bound on their signed distance: the bodies lie in
 // the balls), answered until the next pair's balls are farther apart than the nearest pair found
-// is. The pairs skipped are then proven farther than the minimum and apart, so the answer is the
-// one of answering every pair.
+// is, or than its contact threshold. The pairs skipped are then proven farther than the minimum
+// and apart, so the answer is the one of answering every pair.
 class ConfigurationCheck {
  public:
   ConfigurationCheck(const RobotModel& model, const std::vector<GeometryPair>& pairs,
@@ -199,7 +202,8 @@ class ConfigurationCheck {
     int nearest = -1;
     DistanceResult best;
     for (const BallBound& bound : bounds_) {
-      if (bound.lower > least) break;
+      // Once some pair is in contact, only the minimum can still change.
+      if (bound.lower > least && (colliding || bound.lower > bound.contact)) continue;
       const GeometryPair& pair = pairs_[static_cast<std::size_t>(bound.pair)];
       const Geometry& a = model_.geometries()[pair.a];
       const Geometry& b = model_.geometries()[pair.b];
@@ -262,7 +266,10 @@ class ConfigurationCheck {
       const Scalar margin =
           1e-12 * (ca.lpNorm<Eigen::Infinity>() + cb.lpNorm<Eigen::Infinity>() + a.radius +
                    b.radius);
-      bounds_[p] = {(ca - cb).norm() - a.radius - b.radius - margin, static_cast<int>(p)};
+      const Scalar apart = (ca - cb).norm();
+      // Twice the threshold: a margin for the rounding of both.
+      const Scalar contact = 2 * options_.tolerance * (apart + 2 * std::max(a.radius, b.radius));
+      bounds_[p] = {apart - a.radius - b.radius - margin, contact, static_cast<int>(p)};
     }
     std::sort(bounds_.begin(), bounds_.end(), [](const BallBound& x, const BallBound& y) {
       return x.lower < y.lower || (x.lower == y.lower && x.pair < y.pair);

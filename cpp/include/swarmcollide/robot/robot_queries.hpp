@@ -66,8 +66,9 @@ RobotDistances robot_distances(const RobotModel& model, const std::vector<Geomet
 
 /// Per configuration, the nearest pair: the pairs in increasing order of the separation of their
 /// geometries' bounding balls, each answered by `Query::signed_distance` (seeded for the
-/// configuration as robot_distances seeds its rows) until the next pair's balls are proven farther
-/// apart than the nearest pair found. The pairs skipped are proven farther than the minimum, so
+/// configuration as robot_distances seeds its rows), skipping the pairs whose balls are proven
+/// farther apart than the nearest pair found and than their contact threshold (the tolerance
+/// times the pair's size). The pairs skipped are proven farther than the minimum and apart, so
 /// the answer is that of robot_distances' row reduced to its nearest pair (the lowest index on
 /// ties), and `colliding`, `lower_bound` and `certified` cover every pair. Each configuration is
 /// answered whole by one of `settings.threads` threads, so answers do not depend on them. With
