@@ -1,4 +1,5 @@
-"""``Robot``: a kinematic model with convex collision geometry, checked over many configurations.
+"""``Robot``: a kinematic model with convex or compound collision geometry, checked over many
+configurations.
 
 The model (links, joints, geometries) is parsed in Python by well-kept libraries (yourdfpy for
 URDF, MuJoCo's compiler for MJCF: the ``[robot]`` extra) into the core's ``RobotModel``, a plain

@@ -430,3 +430,21 @@ def test_collision_decompose_makes_coacds_parts(urdf, tmp_path, monkeypatch):
     assert fore.decomposition.method == "coacd" and len(fore.parts) == 2
     assert any((tmp_path / "cache").iterdir())
     assert robot.check(random_configurations(robot, 10)).certified.all()
+
+
+def test_model_tables_are_checked_naming_the_joint():
+    with pytest.raises(ValueError, match="joint 'j': type 'planar' is not supported"):
+        sc.Joint("j", "planar", 0, 1)
+    with pytest.raises(ValueError, match="'a' and 'b' both have no parent joint"):
+        sc.Robot(["a", "b"], [], [])
+    with pytest.raises(ValueError, match="joint 'k'.*already the child of joint 'j'"):
+        sc.Robot(["a", "b"], [sc.Joint("j", "fixed", 0, 1), sc.Joint("k", "fixed", 0, 1)], [])
+    with pytest.raises(ValueError, match="cycle"):
+        sc.Robot(["a", "b"], [sc.Joint("j", "fixed", 0, 1), sc.Joint("k", "fixed", 1, 0)], [])
+    with pytest.raises(ValueError, match="joint 'j': the axis must be finite and nonzero"):
+        sc.Robot(["a", "b"], [sc.Joint("j", "revolute", 0, 1, axis=[0, 0, 0])], [])
+    with pytest.raises(ValueError, match="joint 'j': limits must satisfy lower <= upper"):
+        sc.Robot(["a", "b"], [sc.Joint("j", "prismatic", 0, 1, lower=1, upper=0)], [])
+    with pytest.raises(ValueError, match="joint 'm': a mimic joint must move and mimic"):
+        sc.Robot(["a", "b", "c"], [sc.Joint("j", "fixed", 0, 1),
+                                   sc.Joint("m", "revolute", 1, 2, mimic=0)], [])
