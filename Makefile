@@ -31,7 +31,7 @@ $(PY): | system-packages
 
 $(VENV)/.installed: $(PACKAGE_SOURCES) | system-packages $(PY)
 	$(PY) -m pip install --quiet $(BUILD_REQUIREMENTS)
-	$(PY) -m pip install --quiet --no-build-isolation ".[test,plot,mesh,dask]"
+	$(PY) -m pip install --quiet --no-build-isolation ".[test,plot,mesh,dask,robot]"
 	touch $@
 
 install: $(VENV)/.installed
@@ -49,7 +49,7 @@ BENCH_BUILD := build/bench
 BENCH_ARGS ?=
 
 $(VENV)/.bench-installed: $(VENV)/.installed
-	$(PY) -m pip install --quiet --no-build-isolation ".[test,plot,mesh,dask,bench]"
+	$(PY) -m pip install --quiet --no-build-isolation ".[test,plot,mesh,dask,robot,bench]"
 	touch $@
 
 # make bench-scene: only the scene section (C++ against FCL's manager, Python against python-fcl

@@ -11,6 +11,7 @@ void bind_problem(py::module_& m);
 void bind_solvers(py::module_& m);
 void bind_batch(py::module_& m, py::class_<Query>& query);
 void bind_scene(py::module_& m);
+void bind_robot(py::module_& m);
 }  // namespace swarmcollide::bindings
 
 PYBIND11_MODULE(_core, m) {
@@ -26,4 +27,5 @@ PYBIND11_MODULE(_core, m) {
   py::class_<swarmcollide::Query> query = bind_queries(m);
   bind_batch(m, query);
   bind_scene(m);
+  bind_robot(m);
 }

@@ -36,6 +36,7 @@ from ._core import (
     DistanceResult,
     Ellipsoid,
     Hull,
+    Joint,
     ParticleCoefficients,
     PartNode,
     Query,
@@ -63,6 +64,7 @@ from .mesh import (
     mesh_hash,
 )
 from .poses import QUATERNION_ORDERS, pose_from_quaternion
+from .robot import LIMIT_MODES, PairProposal, Robot, RobotCheck
 from .queries import (
     DEFAULT_TOLERANCE,
     METHODS,
@@ -109,16 +111,21 @@ __all__ = [
     "DistanceResult",
     "Ellipsoid",
     "Hull",
+    "Joint",
+    "LIMIT_MODES",
     "MethodInfo",
     "Parameter",
     "Parameters",
     "ParticleCoefficients",
+    "PairProposal",
     "PartNode",
     "PolyhedronLike",
     "PoseLike",
     "PosesLike",
     "QUATERNION_ORDERS",
     "Query",
+    "Robot",
+    "RobotCheck",
     "Scene",
     "SceneResult",
     "SceneStats",

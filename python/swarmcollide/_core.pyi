@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['Aabb', 'BatchResult', 'Box', 'Capsule', 'CompoundBody', 'CompoundResult', 'CompoundStats', 'Cone', 'ContactResult', 'ConvexPolyhedron', 'Cylinder', 'DistanceResult', 'Ellipsoid', 'Hull', 'PartNode', 'ParticleCoefficients', 'Query', 'Scene', 'SceneResult', 'SceneStats', 'Sphere', 'as_polyhedron', 'broadphases', 'constraint_violation', 'is_feasible', 'linear_decreasing_inertia', 'method_table', 'objective', 'pair_seed', 'project_onto_simplex', 'query_function', 'rank_adaptive_coefficients', 'separation']
+__all__: list[str] = ['Aabb', 'BatchResult', 'Box', 'Capsule', 'CompoundBody', 'CompoundResult', 'CompoundStats', 'ContactResult', 'ConvexPolyhedron', 'DistanceResult', 'Hull', 'Joint', 'PartNode', 'ParticleCoefficients', 'Query', 'RobotCheck', 'RobotDistances', 'RobotModel', 'Scene', 'SceneResult', 'SceneStats', 'Sphere', 'as_polyhedron', 'broadphases', 'constraint_violation', 'is_feasible', 'linear_decreasing_inertia', 'method_table', 'objective', 'pair_seed', 'project_onto_simplex', 'query_function', 'rank_adaptive_coefficients', 'separation']
 class Aabb:
     """
     An axis-aligned bounding box with corners ``min`` and ``max``.
@@ -274,44 +274,6 @@ class CompoundStats:
     @property
     def volume_tests(self) -> int:
         ...
-class Cone(ConvexPolyhedron):
-    """
-    
-    A solid right circular cone along the z axis of its frame, centred on its axis' midpoint (FCL's
-    and coal's convention): its base, a disk of radius ``radius``, at ``z = -half_length``, its apex
-    at ``(0, 0, half_length)``; its centre of mass is at ``z = -half_length / 2``.
-    
-    A curved shape, defined by its support function: methods ``'dual'`` (the default) and ``'exact'`` answer it, exactly to their tolerance and certified, against any other body; the methods that read a body's points (``'ipso'``, ``'pso'``, ``'penalty'``, ``'fcl'``, ``'libccd'``) raise ValueError, and so does a CompoundBody with a curved part. Its ``vertices`` are a few points on its surface (an inner polytope with the shape's bounding box), not the body; results carry no weights (empty), and witnesses are points of the shape.
-    
-    Parameters
-    ----------
-    radius : float
-        The radius of the base disk, finite and ``> 0``.
-    half_length : float
-        Half the cone's height, finite and ``> 0``.
-    
-    Examples
-    --------
-    >>> import swarmcollide as sc
-    >>> cone = sc.Cone(1.0, 1.0)
-    >>> identity = [[1, 0, 0], [0, 1, 0], [0, 0, 1]]
-    >>> round(sc.distance(cone, sc.Sphere(0.5), pose_b=(identity, [0, 0, 3])).distance, 9)
-    1.5
-    """
-    def __init__(self, radius: typing.SupportsFloat | typing.SupportsIndex, half_length: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
-    def __repr__(self) -> str:
-        ...
-    @property
-    def half_length(self) -> float:
-        """
-        Half the cone's height.
-        """
-    @property
-    def radius(self) -> float:
-        """
-        The radius of the base disk (a cone is not rounded: its rounding radius is 0).
-        """
 class ContactResult(SceneResult):
     """
     
@@ -397,17 +359,12 @@ class ConvexPolyhedron:
         """
     def support_index(self, direction: typing.Any) -> int:
         """
-        Index of the point farthest along ``direction`` (first on ties); ValueError for a curved shape, whose support points are not among its vertices.
+        Index of the point farthest along ``direction`` (first on ties).
         """
     @property
     def bounding_radius(self) -> float:
         """
         Half the diagonal of the points' bounding box plus the rounding radius: every point of the body lies within it of the box's centre.
-        """
-    @property
-    def curved(self) -> bool:
-        """
-        True for a curved shape (Cylinder, Cone, Ellipsoid), defined by its support function rather than by the hull of its vertices.
         """
     @property
     def radius(self) -> float:
@@ -418,47 +375,6 @@ class ConvexPolyhedron:
     def vertices(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
         """
         The ``(n, 3)`` points the body was built from (read-only).
-        """
-class Cylinder(ConvexPolyhedron):
-    """
-    
-    A solid circular cylinder along the z axis of its frame, centred on its origin: radius
-    ``radius``, from ``z = -half_length`` to ``z = half_length`` (FCL's and coal's convention; URDF's
-    ``<cylinder radius length>`` has ``length = 2 half_length``; MJCF's cylinder geom has size =
-    (radius, half_length)).
-    
-    A curved shape, defined by its support function: methods ``'dual'`` (the default) and ``'exact'`` answer it, exactly to their tolerance and certified, against any other body; the methods that read a body's points (``'ipso'``, ``'pso'``, ``'penalty'``, ``'fcl'``, ``'libccd'``) raise ValueError, and so does a CompoundBody with a curved part. Its ``vertices`` are a few points on its surface (an inner polytope with the shape's bounding box), not the body; results carry no weights (empty), and witnesses are points of the shape.
-    
-    Parameters
-    ----------
-    radius : float
-        The radius of the circular section, finite and ``> 0``.
-    half_length : float
-        Half the cylinder's length along z, finite and ``> 0``.
-    
-    Examples
-    --------
-    >>> import swarmcollide as sc
-    >>> can = sc.Cylinder(0.5, 1.0)
-    >>> identity = [[1, 0, 0], [0, 1, 0], [0, 0, 1]]
-    >>> round(sc.distance(can, sc.Sphere(0.25), pose_b=(identity, [2, 0, 0])).distance, 9)
-    1.25
-    >>> round(sc.signed_distance(can, can, pose_b=(identity, [0, 0, 1.5])).distance, 9)
-    -0.5
-    """
-    def __init__(self, radius: typing.SupportsFloat | typing.SupportsIndex, half_length: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
-    def __repr__(self) -> str:
-        ...
-    @property
-    def half_length(self) -> float:
-        """
-        Half the cylinder's length along z.
-        """
-    @property
-    def radius(self) -> float:
-        """
-        The radius of the circular section (a cylinder is not rounded: its rounding radius is 0).
         """
 class DistanceResult:
     """
@@ -549,36 +465,6 @@ class DistanceResult:
         """
         delta of model (2): nonnegative, summing to one (built when read).
         """
-class Ellipsoid(ConvexPolyhedron):
-    """
-    
-    A solid ellipsoid centred on the origin of its frame with semi-axes ``radii`` along x, y and z:
-    the points with ``(x/a)^2 + (y/b)^2 + (z/c)^2 <= 1`` (MJCF's ellipsoid geom, size = radii).
-    
-    A curved shape, defined by its support function: methods ``'dual'`` (the default) and ``'exact'`` answer it, exactly to their tolerance and certified, against any other body; the methods that read a body's points (``'ipso'``, ``'pso'``, ``'penalty'``, ``'fcl'``, ``'libccd'``) raise ValueError, and so does a CompoundBody with a curved part. Its ``vertices`` are a few points on its surface (an inner polytope with the shape's bounding box), not the body; results carry no weights (empty), and witnesses are points of the shape.
-    
-    Parameters
-    ----------
-    radii : array_like, shape (3,)
-        The semi-axes along x, y and z, each finite and ``> 0``.
-    
-    Examples
-    --------
-    >>> import swarmcollide as sc
-    >>> egg = sc.Ellipsoid([1, 2, 3])
-    >>> identity = [[1, 0, 0], [0, 1, 0], [0, 0, 1]]
-    >>> round(sc.distance(egg, sc.Sphere(1), pose_b=(identity, [0, 0, 5])).distance, 9)
-    1.0
-    """
-    def __init__(self, radii: typing.Any) -> None:
-        ...
-    def __repr__(self) -> str:
-        ...
-    @property
-    def radii(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
-        """
-        The semi-axes along x, y and z.
-        """
 class Hull:
     """
     
@@ -604,6 +490,66 @@ class Hull:
         ...
     @property
     def vertex_indices(self) -> numpy.typing.NDArray[numpy.int32]:
+        ...
+class Joint:
+    """
+    
+    A joint of a RobotModel: the child link's frame is ``parent * origin * motion(q - reference)``.
+    
+    Parameters
+    ----------
+    name : str
+    type : str
+        'revolute', 'continuous', 'prismatic' or 'fixed'.
+    parent, child : int
+        Link indices.
+    origin : pose
+        The joint frame in the parent link's frame (a (4, 4) rigid transform).
+    axis : (3,) array
+        In the joint frame; normalised by the model.
+    lower, upper : float
+        Limits (ignored for continuous and fixed joints).
+    reference : float
+        The value at which the child sits at ``origin`` (MJCF's ``ref``).
+    mimic : int
+        The index of the joint this one mimics (-1: none); its value is then ``multiplier *
+        value(mimicked) + offset`` and it is no degree of freedom.
+    multiplier, offset : float
+    """
+    def __init__(self, name: str, type: str, parent: typing.SupportsInt | typing.SupportsIndex, child: typing.SupportsInt | typing.SupportsIndex, origin: typing.Any = None, axis: typing.Any = ..., lower: typing.SupportsFloat | typing.SupportsIndex = 0.0, upper: typing.SupportsFloat | typing.SupportsIndex = 0.0, reference: typing.SupportsFloat | typing.SupportsIndex = 0.0, mimic: typing.SupportsInt | typing.SupportsIndex = -1, multiplier: typing.SupportsFloat | typing.SupportsIndex = 1.0, offset: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> None:
+        ...
+    @property
+    def axis(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+        ...
+    @property
+    def child(self) -> int:
+        ...
+    @property
+    def lower(self) -> float:
+        ...
+    @property
+    def mimic(self) -> int:
+        ...
+    @property
+    def multiplier(self) -> float:
+        ...
+    @property
+    def name(self) -> str:
+        ...
+    @property
+    def offset(self) -> float:
+        ...
+    @property
+    def parent(self) -> int:
+        ...
+    @property
+    def reference(self) -> float:
+        ...
+    @property
+    def type(self) -> str:
+        ...
+    @property
+    def upper(self) -> float:
         ...
 class PartNode:
     """
@@ -732,6 +678,119 @@ class Query:
         ...
     @property
     def tolerance(self) -> float:
+        ...
+class RobotCheck:
+    """
+    Per configuration: the verdict and the nearest pair.
+    """
+    @property
+    def certified(self) -> typing.Annotated[numpy.typing.NDArray[numpy.bool], "[m, 1]"]:
+        ...
+    @property
+    def colliding(self) -> typing.Annotated[numpy.typing.NDArray[numpy.bool], "[m, 1]"]:
+        ...
+    @property
+    def gradient(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
+        ...
+    @property
+    def lower_bound(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        ...
+    @property
+    def min_distance(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        ...
+    @property
+    def normal(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
+        ...
+    @property
+    def pair(self) -> typing.Annotated[numpy.typing.NDArray[numpy.int32], "[m, 1]"]:
+        ...
+    @property
+    def point_a(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
+        ...
+    @property
+    def point_b(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
+        ...
+class RobotDistances:
+    """
+    Signed distances of every checked pair, (m, pairs) each.
+    """
+    @property
+    def certified(self) -> typing.Annotated[numpy.typing.NDArray[numpy.bool], "[m, n]"]:
+        ...
+    @property
+    def colliding(self) -> typing.Annotated[numpy.typing.NDArray[numpy.bool], "[m, n]"]:
+        ...
+    @property
+    def distance(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
+        ...
+    @property
+    def lower_bound(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
+        ...
+class RobotModel:
+    """
+    
+    A robot as a plain table of links, joints and geometries: immutable, shared by every thread.
+    
+    Parameters
+    ----------
+    links : list of str
+        The link names; joints and geometries refer to links by index.
+    joints : list of Joint
+        Every link but one (the root) is the child of exactly one joint. The moving joints are the
+        degrees of freedom, in the order given.
+    geometries : list of (name, link, origin, body)
+        A ConvexPolyhedron or CompoundBody fixed to link ``link`` at ``origin`` (a rigid transform),
+        or to the world for ``link == -1`` (an obstacle).
+    
+    Raises
+    ------
+    ValueError
+        Naming the joint, link or geometry at fault.
+    """
+    def __init__(self, links: collections.abc.Sequence[str], joints: collections.abc.Sequence[Joint], geometries: collections.abc.Sequence[tuple]) -> None:
+        ...
+    def adjacent_links(self, a: typing.SupportsInt | typing.SupportsIndex, b: typing.SupportsInt | typing.SupportsIndex) -> bool:
+        """
+        True when links ``a`` and ``b`` are one rigid group or joined by one moving joint.
+        """
+    def admit(self, q: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, n]"], limits: typing.Any = 'raise') -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
+        """
+        The configurations (m, dof) checked and brought within the limits ('raise', 'clamp' or 'wrap').
+        """
+    def check(self, pairs: typing.Annotated[numpy.typing.ArrayLike, numpy.int32, "[m, 2]"], q: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, n]"], query: Query, threads: typing.Any = None, gradient: bool = False) -> RobotCheck:
+        """
+        The nearest pair per admitted configuration (m, dof), with d min_distance / dq when ``gradient``.
+        """
+    def default_pairs(self) -> typing.Annotated[numpy.typing.NDArray[numpy.int32], "[m, 2]"]:
+        """
+        The geometry pairs checked by default, (pairs, 2): geometries of links that are not adjacent, and each obstacle against each link's geometry.
+        """
+    def distances(self, pairs: typing.Annotated[numpy.typing.ArrayLike, numpy.int32, "[m, 2]"], q: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, n]"], query: Query, threads: typing.Any = None) -> RobotDistances:
+        """
+        Signed distances of geometry pairs (pairs, 2) at admitted configurations (m, dof).
+        """
+    def forward_kinematics(self, q: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, n]"]) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        Every link's (4, 4) world transform at admitted configurations, (m, links, 4, 4).
+        """
+    def geometry_poses(self, q: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, n]"]) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        Every geometry's (4, 4) world transform at admitted configurations, (m, geometries, 4, 4).
+        """
+    @property
+    def dof(self) -> int:
+        ...
+    @property
+    def geometry_links(self) -> list[int]:
+        ...
+    @property
+    def joints(self) -> list[Joint]:
+        ...
+    @property
+    def link_names(self) -> list[str]:
+        ...
+    @property
+    def moving_joints(self) -> list[int]:
         ...
 class Scene:
     """

@@ -11,6 +11,8 @@ import swarmcollide.mesh
 import swarmcollide.plot
 import swarmcollide.poses
 import swarmcollide.queries
+import swarmcollide.robot
+import swarmcollide.robot_shapes
 import swarmcollide.scene_demo
 
 MODULES = [
@@ -22,6 +24,8 @@ MODULES = [
     swarmcollide.plot,
     swarmcollide.poses,
     swarmcollide.scene_demo,
+    swarmcollide.robot,
+    swarmcollide.robot_shapes,
 ]
 
 

@@ -1,0 +1,272 @@
+#include <pybind11/eigen.h>
+#include <pybind11/stl.h>
+
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "conversions.hpp"
+#include "swarmcollide/queries/query.hpp"
+#include "swarmcollide/robot/kinematics.hpp"
+#include "swarmcollide/robot/pair_filter.hpp"
+#include "swarmcollide/robot/robot_model.hpp"
+#include "swarmcollide/robot/robot_queries.hpp"
+
+namespace swarmcollide::bindings {
+
+namespace {
+
+using PairTable = Eigen::Matrix<int, Eigen::Dynamic, 2, Eigen::RowMajor>;
+
+LimitMode limit_mode(const py::handle& value) {
+  const std::string name = to_name(value, "limits");
+  if (name == "raise") return LimitMode::raise;
+  if (name == "clamp") return LimitMode::clamp;
+  if (name == "wrap") return LimitMode::wrap;
+  throw py::value_error("limits must be 'raise', 'clamp' or 'wrap', got '" + name + "'");
+}
+
+JointType joint_type(const std::string& name, const std::string& joint) {
+  if (name == "revolute") return JointType::revolute;
+  if (name == "continuous") return JointType::continuous;
+  if (name == "prismatic") return JointType::prismatic;
+  if (name == "fixed") return JointType::fixed;
+  throw py::value_error("joint '" + joint + "': type '" + name +
+                        "' is not supported; use 'revolute', 'continuous', 'prismatic' or 'fixed'");
+}
+
+std::vector<GeometryPair> to_pairs(const PairTable& table) {
+  std::vector<GeometryPair> pairs(static_cast<std::size_t>(table.rows()));
+  for (Eigen::Index p = 0; p < table.rows(); ++p) pairs[p] = {table(p, 0), table(p, 1)};
+  return pairs;
+}
+
+PairTable to_table(const std::vector<GeometryPair>& pairs) {
+  PairTable table(static_cast<Eigen::Index>(pairs.size()), 2);
+  for (std::size_t p = 0; p < pairs.size(); ++p) table.row(p) << pairs[p].a, pairs[p].b;
+  return table;
+}
+
+BatchSettings settings_of(const py::object& threads) {
+  BatchSettings settings;
+  if (!threads.is_none()) settings.threads = thread_count(threads);
+  return settings;
+}
+
+}  // namespace
+
+void bind_robot(py::module_& m) {
+  py::class_<Joint>(m, "Joint", R"doc(
+A joint of a RobotModel: the child link's frame is ``parent * origin * motion(q - reference)``.
+
+Parameters
+----------
+name : str
+type : str
+    'revolute', 'continuous', 'prismatic' or 'fixed'.
+parent, child : int
+    Link indices.
+origin : pose
+    The joint frame in the parent link's frame (a (4, 4) rigid transform).
+axis : (3,) array
+    In the joint frame; normalised by the model.
+lower, upper : float
+    Limits (ignored for continuous and fixed joints).
+reference : float
+    The value at which the child sits at ``origin`` (MJCF's ``ref``).
+mimic : int
+    The index of the joint this one mimics (-1: none); its value is then ``multiplier *
+    value(mimicked) + offset`` and it is no degree of freedom.
+multiplier, offset : float
+)doc")
+      .def(py::init([](const std::string& name, const std::string& type, int parent, int child,
+                       const py::object& origin, const py::object& axis, Scalar lower,
+                       Scalar upper, Scalar reference, int mimic, Scalar multiplier,
+                       Scalar offset) {
+             Joint joint;
+             joint.name = name;
+             joint.type = joint_type(type, name);
+             joint.parent = parent;
+             joint.child = child;
+             joint.origin = to_pose(origin, ("joint '" + name + "' origin").c_str());
+             joint.axis = finite_vector3(axis, ("joint '" + name + "' axis").c_str());
+             joint.lower = lower;
+             joint.upper = upper;
+             joint.reference = reference;
+             joint.mimic = mimic;
+             joint.multiplier = multiplier;
+             joint.offset = offset;
+             return joint;
+           }),
+           py::arg("name"), py::arg("type"), py::arg("parent"), py::arg("child"),
+           py::arg("origin") = py::none(), py::arg("axis") = Vector3::UnitZ(),
+           py::arg("lower") = 0.0, py::arg("upper") = 0.0, py::arg("reference") = 0.0,
+           py::arg("mimic") = -1, py::arg("multiplier") = 1.0, py::arg("offset") = 0.0)
+      .def_readonly("name", &Joint::name)
+      .def_property_readonly("type",
+                             [](const Joint& joint) {
+                               static const char* names[] = {"revolute", "continuous", "prismatic",
+                                                             "fixed"};
+                               return std::string(names[static_cast<int>(joint.type)]);
+                             })
+      .def_readonly("parent", &Joint::parent)
+      .def_readonly("child", &Joint::child)
+      .def_readonly("axis", &Joint::axis)
+      .def_readonly("lower", &Joint::lower)
+      .def_readonly("upper", &Joint::upper)
+      .def_readonly("reference", &Joint::reference)
+      .def_readonly("mimic", &Joint::mimic)
+      .def_readonly("multiplier", &Joint::multiplier)
+      .def_readonly("offset", &Joint::offset);
+
+  py::class_<RobotDistances>(m, "RobotDistances",
+                             "Signed distances of every checked pair, (m, pairs) each.")
+      .def_readonly("distance", &RobotDistances::distance)
+      .def_readonly("lower_bound", &RobotDistances::lower_bound)
+      .def_readonly("colliding", &RobotDistances::colliding)
+      .def_readonly("certified", &RobotDistances::certified);
+
+  py::class_<RobotCheck>(m, "RobotCheck", "Per configuration: the verdict and the nearest pair.")
+      .def_readonly("colliding", &RobotCheck::colliding)
+      .def_readonly("min_distance", &RobotCheck::min_distance)
+      .def_readonly("lower_bound", &RobotCheck::lower_bound)
+      .def_readonly("certified", &RobotCheck::certified)
+      .def_readonly("pair", &RobotCheck::pair)
+      .def_readonly("point_a", &RobotCheck::point_a)
+      .def_readonly("point_b", &RobotCheck::point_b)
+      .def_readonly("normal", &RobotCheck::normal)
+      .def_readonly("gradient", &RobotCheck::gradient);
+
+  py::class_<RobotModel, std::shared_ptr<RobotModel>>(m, "RobotModel", R"doc(
+A robot as a plain table of links, joints and geometries: immutable, shared by every thread.
+
+Parameters
+----------
+links : list of str
+    The link names; joints and geometries refer to links by index.
+joints : list of Joint
+    Every link but one (the root) is the child of exactly one joint. The moving joints are the
+    degrees of freedom, in the order given.
+geometries : list of (name, link, origin, body)
+    A ConvexPolyhedron or CompoundBody fixed to link ``link`` at ``origin`` (a rigid transform),
+    or to the world for ``link == -1`` (an obstacle).
+
+Raises
+------
+ValueError
+    Naming the joint, link or geometry at fault.
+)doc")
+      .def(py::init([](const std::vector<std::string>& link_names, std::vector<Joint> joints,
+                       const std::vector<py::tuple>& geometry_rows) {
+             std::vector<Link> links;
+             for (const std::string& name : link_names) links.push_back({name});
+             std::vector<Geometry> geometries;
+             for (const py::tuple& row : geometry_rows) {
+               if (row.size() != 4) {
+                 throw py::value_error("each geometry must be (name, link, origin, body)");
+               }
+               const auto name = row[0].cast<std::string>();
+               const Pose origin = to_pose(row[2], ("geometry '" + name + "' origin").c_str());
+               if (is_compound(row[3])) {
+                 const auto& parts = row[3].cast<const CompoundBody&>();
+                 geometries.push_back(
+                     Geometry{name, row[1].cast<int>(), origin, parts.envelope(), parts});
+               } else {
+                 geometries.push_back(
+                     Geometry{name, row[1].cast<int>(), origin,
+                              BodyArgument(row[3], ("geometry '" + name + "'").c_str()).get(),
+                              std::nullopt});
+               }
+             }
+             return std::make_shared<RobotModel>(std::move(links), std::move(joints),
+                                                 std::move(geometries));
+           }),
+           py::arg("links"), py::arg("joints"), py::arg("geometries"))
+      .def_property_readonly("dof", &RobotModel::dof)
+      .def_property_readonly("joints", &RobotModel::joints)
+      .def_property_readonly("moving_joints", &RobotModel::moving_joints)
+      .def_property_readonly("link_names",
+                             [](const RobotModel& model) {
+                               std::vector<std::string> names;
+                               for (const Link& link : model.links()) names.push_back(link.name);
+                               return names;
+                             })
+      .def_property_readonly("geometry_links",
+                             [](const RobotModel& model) {
+                               std::vector<int> links;
+                               for (const Geometry& g : model.geometries()) links.push_back(g.link);
+                               return links;
+                             })
+      .def("adjacent_links", &adjacent_links, py::arg("a"), py::arg("b"),
+           "True when links ``a`` and ``b`` are one rigid group or joined by one moving joint.")
+      .def(
+          "default_pairs", [](const RobotModel& model) { return to_table(default_pairs(model)); },
+          "The geometry pairs checked by default, (pairs, 2): geometries of links that are not "
+          "adjacent, and each obstacle against each link's geometry.")
+      .def(
+          "admit",
+          [](const RobotModel& model, const Configurations& q, const py::object& limits) {
+            return admit_configurations(model, q, limit_mode(limits));
+          },
+          py::arg("q"), py::arg("limits") = "raise",
+          "The configurations (m, dof) checked and brought within the limits ('raise', 'clamp' "
+          "or 'wrap').")
+      .def(
+          "forward_kinematics",
+          [](const RobotModel& model, const Configurations& q) {
+            py::array_t<Scalar> transforms({static_cast<py::ssize_t>(q.rows()),
+                                            static_cast<py::ssize_t>(model.links().size()),
+                                            py::ssize_t{4}, py::ssize_t{4}});
+            Scalar* out = transforms.mutable_data();
+            {
+              py::gil_scoped_release release;
+              forward_kinematics(model, q, out);
+            }
+            return transforms;
+          },
+          py::arg("q"),
+          "Every link's (4, 4) world transform at admitted configurations, (m, links, 4, 4).")
+      .def(
+          "geometry_poses",
+          [](const RobotModel& model, const Configurations& q) {
+            py::array_t<Scalar> transforms({static_cast<py::ssize_t>(q.rows()),
+                                            static_cast<py::ssize_t>(model.geometries().size()),
+                                            py::ssize_t{4}, py::ssize_t{4}});
+            Scalar* out = transforms.mutable_data();
+            {
+              py::gil_scoped_release release;
+              geometry_poses(model, q, out);
+            }
+            return transforms;
+          },
+          py::arg("q"),
+          "Every geometry's (4, 4) world transform at admitted configurations, (m, geometries, "
+          "4, 4).")
+      .def(
+          "distances",
+          [](const RobotModel& model, const PairTable& pairs, const Configurations& q,
+             const Query& query, const py::object& threads) {
+            const BatchSettings settings = settings_of(threads);
+            const std::vector<GeometryPair> list = to_pairs(pairs);
+            py::gil_scoped_release release;
+            return robot_distances(model, list, q, query.options(), settings);
+          },
+          py::arg("pairs"), py::arg("q"), py::arg("query"), py::arg("threads") = py::none(),
+          "Signed distances of geometry pairs (pairs, 2) at admitted configurations (m, dof).")
+      .def(
+          "check",
+          [](const RobotModel& model, const PairTable& pairs, const Configurations& q,
+             const Query& query, const py::object& threads, bool gradient) {
+            const BatchSettings settings = settings_of(threads);
+            const std::vector<GeometryPair> list = to_pairs(pairs);
+            py::gil_scoped_release release;
+            return robot_check(model, list, q, query.options(), settings, gradient);
+          },
+          py::arg("pairs"), py::arg("q"), py::arg("query"), py::arg("threads") = py::none(),
+          py::arg("gradient") = false,
+          "The nearest pair per admitted configuration (m, dof), with d min_distance / dq when "
+          "``gradient``.");
+}
+
+}  // namespace swarmcollide::bindings

@@ -1,0 +1,48 @@
+#pragma once
+
+#include <vector>
+
+#include "swarmcollide/geometry/pose.hpp"
+#include "swarmcollide/robot/robot_model.hpp"
+#include "swarmcollide/types.hpp"
+
+namespace swarmcollide {
+
+/// Configurations one per row, `(m, dof)`, row-major so that NumPy arrays map onto them.
+using Configurations = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+/// What to do with a joint value outside its limits.
+enum class LimitMode {
+  /// Throw std::invalid_argument naming the configuration and the joint.
+  raise,
+  /// Replace it with the nearest limit.
+  clamp,
+  /// Add the multiple of 2 pi that brings a revolute joint's angle within its limits (the same
+  /// pose); throw when none does, or when the joint is prismatic.
+  wrap,
+};
+
+/// The pose `outer * inner`: `inner` given in the frame that `outer` places.
+Pose compose(const Pose& outer, const Pose& inner);
+
+/// The configurations as the kinematics reads them: checked once (one value per degree of
+/// freedom, every value finite) and brought within the joints' limits as `mode` says. Throws
+/// std::invalid_argument for a wrong number of columns (naming the model's dof) or a NaN or
+/// infinite value, naming the row and the joint ("q[3], joint 'elbow': ...").
+Configurations admit_configurations(const RobotModel& model, const Configurations& q,
+                                    LimitMode mode);
+
+/// The world pose of every link at the configuration `q` (`dof` values, already admitted), into
+/// `links` (one pose per link, in the model's order). The root is at the identity.
+void link_poses(const RobotModel& model, const Scalar* q, std::vector<Pose>& links);
+
+/// Forward kinematics over admitted configurations: link l's homogeneous transform at row i is
+/// written row-major at `transforms + (i * links + l) * 16`.
+void forward_kinematics(const RobotModel& model, const Configurations& q, Scalar* transforms);
+
+/// The world transform of every geometry (its link's pose times its origin; an obstacle's
+/// origin) at admitted configurations: geometry g's at row i is written row-major at
+/// `transforms + (i * geometries + g) * 16`.
+void geometry_poses(const RobotModel& model, const Configurations& q, Scalar* transforms);
+
+}  // namespace swarmcollide

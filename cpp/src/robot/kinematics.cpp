@@ -1,0 +1,144 @@
+#include "swarmcollide/robot/kinematics.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+#include <string>
+
+namespace swarmcollide {
+
+namespace {
+
+constexpr Scalar kTwoPi = 6.283185307179586476925286766559;
+
+std::string number(Scalar x) {
+  char text[40];
+  std::snprintf(text, sizeof text, "%.17g", x);
+  return text;
+}
+
+std::string where(std::size_t row, const Joint& joint) {
+  return "q[" + std::to_string(row) + "], joint '" + joint.name + "'";
+}
+
+[[noreturn]] void outside(std::size_t row, const Joint& joint, Scalar value, const char* fix) {
+  throw std::invalid_argument(where(row, joint) + ": " + number(value) +
+                              " is outside its limits [" + number(joint.lower) + ", " +
+                              number(joint.upper) + "]; " + fix);
+}
+
+// `value` within the joint's limits as `mode` says.
+Scalar admitted(Scalar value, const Joint& joint, LimitMode mode, std::size_t row) {
+  if (!std::isfinite(value)) {
+    throw std::invalid_argument(where(row, joint) + ": " + number(value) +
+                                " is not a finite number");
+  }
+  if (value >= joint.lower && value <= joint.upper) return value;
+  switch (mode) {
+    case LimitMode::raise:
+      outside(row, joint, value, "pass limits='clamp' or limits='wrap' to bring it within");
+    case LimitMode::clamp:
+      return value < joint.lower ? joint.lower : joint.upper;
+    case LimitMode::wrap:
+      break;
+  }
+  if (joint.type != JointType::revolute) {
+    outside(row, joint, value, "limits='wrap' applies to revolute joints only (this one slides)");
+  }
+  // The angle of the same pose nearest above the lower limit.
+  const Scalar wrapped = joint.lower + std::fmod(std::fmod(value - joint.lower, kTwoPi) + kTwoPi,
+                                                 kTwoPi);
+  if (wrapped <= joint.upper) return wrapped;
+  // Rounding can put an angle a hair above the lower limit's turn: the limit itself is the pose.
+  if (kTwoPi - (wrapped - joint.lower) <= 1e-12 * kTwoPi) return joint.lower;
+  outside(row, joint, value, "no turn by a multiple of 2 pi brings it within; use limits='clamp'");
+}
+
+// The child's pose relative to the joint frame at joint value `value`.
+Pose motion(const Joint& joint, Scalar value) {
+  Pose pose;
+  const Scalar amount = value - joint.reference;
+  if (joint.type == JointType::prismatic) {
+    pose.translation = amount * joint.axis;
+  } else {
+    pose.rotation = Eigen::AngleAxis<Scalar>(amount, joint.axis).toRotationMatrix();
+  }
+  return pose;
+}
+
+}  // namespace
+
+Pose compose(const Pose& outer, const Pose& inner) {
+  Pose pose;
+  pose.rotation = outer.rotation * inner.rotation;
+  pose.translation = outer.rotation * inner.translation + outer.translation;
+  return pose;
+}
+
+Configurations admit_configurations(const RobotModel& model, const Configurations& q,
+                                    LimitMode mode) {
+  if (q.cols() != model.dof()) {
+    throw std::invalid_argument("q must have " + std::to_string(model.dof()) +
+                                " values per configuration (one per moving joint), got " +
+                                std::to_string(q.cols()));
+  }
+  Configurations result(q.rows(), q.cols());
+  for (Eigen::Index i = 0; i < q.rows(); ++i) {
+    for (int d = 0; d < model.dof(); ++d) {
+      const Joint& joint = model.joints()[model.moving_joints()[d]];
+      result(i, d) = admitted(q(i, d), joint, mode, static_cast<std::size_t>(i));
+    }
+  }
+  return result;
+}
+
+void link_poses(const RobotModel& model, const Scalar* q, std::vector<Pose>& links) {
+  links.assign(model.links().size(), Pose{});
+  for (int j : model.joint_order()) {
+    const Joint& joint = model.joints()[j];
+    const Pose placed = compose(links[joint.parent], joint.origin);
+    const int dof = model.driving_dof(j);
+    links[joint.child] =
+        dof < 0 ? placed : compose(placed, motion(joint, model.joint_value(j, q[dof])));
+  }
+}
+
+namespace {
+
+// `pose` as a row-major homogeneous transform at `t`.
+void write_transform(const Pose& pose, Scalar* t) {
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) t[4 * r + c] = pose.rotation(r, c);
+    t[4 * r + 3] = pose.translation(r);
+  }
+  t[12] = t[13] = t[14] = 0;
+  t[15] = 1;
+}
+
+}  // namespace
+
+void forward_kinematics(const RobotModel& model, const Configurations& q, Scalar* transforms) {
+  std::vector<Pose> links;
+  for (Eigen::Index i = 0; i < q.rows(); ++i) {
+    link_poses(model, q.row(i).data(), links);
+    for (const Pose& pose : links) {
+      write_transform(pose, transforms);
+      transforms += 16;
+    }
+  }
+}
+
+void geometry_poses(const RobotModel& model, const Configurations& q, Scalar* transforms) {
+  std::vector<Pose> links;
+  for (Eigen::Index i = 0; i < q.rows(); ++i) {
+    link_poses(model, q.row(i).data(), links);
+    for (const Geometry& geometry : model.geometries()) {
+      write_transform(
+          geometry.link < 0 ? geometry.origin : compose(links[geometry.link], geometry.origin),
+          transforms);
+      transforms += 16;
+    }
+  }
+}
+
+}  // namespace swarmcollide

@@ -1,0 +1,150 @@
+#include "swarmcollide/robot/robot_model.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <unordered_set>
+#include <utility>
+
+namespace swarmcollide {
+
+namespace {
+
+std::string joint_label(const Joint& joint) { return "joint '" + joint.name + "'"; }
+
+void check_link(int link, int links, const Joint& joint, const char* role) {
+  if (link < 0 || link >= links) {
+    throw std::invalid_argument(joint_label(joint) + ": " + role + " link index " +
+                                std::to_string(link) + " is not in [0, " + std::to_string(links) +
+                                ")");
+  }
+}
+
+void check_joint(Joint& joint, int links) {
+  check_link(joint.parent, links, joint, "parent");
+  check_link(joint.child, links, joint, "child");
+  validate_pose(joint.origin, (joint_label(joint) + " origin").c_str());
+  if (joint.type == JointType::fixed) return;
+  const Scalar norm = joint.axis.norm();
+  if (!std::isfinite(norm) || norm == 0) {
+    throw std::invalid_argument(joint_label(joint) + ": the axis must be finite and nonzero");
+  }
+  joint.axis /= norm;
+  if (!std::isfinite(joint.reference)) {
+    throw std::invalid_argument(joint_label(joint) + ": the reference value must be finite");
+  }
+  if (joint.type == JointType::continuous) {
+    joint.lower = -INFINITY;
+    joint.upper = INFINITY;
+    return;
+  }
+  if (std::isnan(joint.lower) || std::isnan(joint.upper) || joint.lower > joint.upper) {
+    throw std::invalid_argument(joint_label(joint) + ": limits must satisfy lower <= upper, got [" +
+                                std::to_string(joint.lower) + ", " + std::to_string(joint.upper) +
+                                "]");
+  }
+}
+
+void check_unique(const std::string& name, std::unordered_set<std::string>& seen,
+                  const char* kind) {
+  if (!seen.insert(name).second) {
+    throw std::invalid_argument(std::string("two ") + kind + "s are named '" + name +
+                                "': names must be unique");
+  }
+}
+
+}  // namespace
+
+RobotModel::RobotModel(std::vector<Link> links, std::vector<Joint> joints,
+                       std::vector<Geometry> geometries)
+    : links_(std::move(links)), joints_(std::move(joints)), geometries_(std::move(geometries)) {
+  const int link_count = static_cast<int>(links_.size());
+  if (link_count == 0) throw std::invalid_argument("a robot needs at least one link");
+  std::unordered_set<std::string> names;
+  for (const Link& link : links_) check_unique(link.name, names, "link");
+  names.clear();
+  parent_joint_.assign(links_.size(), -1);
+  dof_of_joint_.assign(joints_.size(), -1);
+  for (std::size_t j = 0; j < joints_.size(); ++j) {
+    Joint& joint = joints_[j];
+    check_unique(joint.name, names, "joint");
+    check_joint(joint, link_count);
+    int& parent = parent_joint_[static_cast<std::size_t>(joint.child)];
+    if (parent >= 0) {
+      throw std::invalid_argument(joint_label(joint) + ": link '" + links_[joint.child].name +
+                                  "' is already the child of joint '" + joints_[parent].name +
+                                  "'; each link has one parent joint");
+    }
+    parent = static_cast<int>(j);
+    if (joint.type != JointType::fixed && joint.mimic < 0) {
+      dof_of_joint_[j] = static_cast<int>(moving_.size());
+      moving_.push_back(static_cast<int>(j));
+    }
+  }
+  driving_dof_ = dof_of_joint_;
+  for (std::size_t j = 0; j < joints_.size(); ++j) {
+    const Joint& joint = joints_[j];
+    if (joint.mimic < 0) continue;
+    if (joint.type == JointType::fixed || joint.mimic >= static_cast<int>(joints_.size()) ||
+        dof_of_joint_[joint.mimic] < 0 || !std::isfinite(joint.multiplier) ||
+        !std::isfinite(joint.offset)) {
+      throw std::invalid_argument(
+          joint_label(joint) +
+          ": a mimic joint must move and mimic a moving joint that mimics none, with a finite "
+          "multiplier and offset");
+    }
+    driving_dof_[j] = dof_of_joint_[joint.mimic];
+  }
+  int root = -1;
+  for (int l = 0; l < link_count; ++l) {
+    if (parent_joint_[l] >= 0) continue;
+    if (root >= 0) {
+      throw std::invalid_argument("links '" + links_[root].name + "' and '" + links_[l].name +
+                                  "' both have no parent joint: the links must form one tree");
+    }
+    root = l;
+  }
+  if (root < 0) throw std::invalid_argument("the joints form a cycle: no link is the root");
+  // Joints from the root outwards: a link's pose is known before its children's.
+  std::vector<std::vector<int>> children(links_.size());
+  for (std::size_t j = 0; j < joints_.size(); ++j) {
+    children[joints_[j].parent].push_back(static_cast<int>(j));
+  }
+  std::vector<int> frontier{root};
+  while (!frontier.empty()) {
+    const int link = frontier.back();
+    frontier.pop_back();
+    for (int j : children[link]) {
+      order_.push_back(j);
+      frontier.push_back(joints_[j].child);
+    }
+  }
+  if (order_.size() != joints_.size()) {
+    throw std::invalid_argument("the joints form a cycle: some links are not reached from '" +
+                                links_[root].name + "'");
+  }
+  names.clear();
+  bool compound = false;
+  for (Geometry& geometry : geometries_) {
+    if (geometry.parts) {
+      geometry.body = geometry.parts->envelope();
+      compound = true;
+    }
+  }
+  if (compound) {
+    for (const Geometry& geometry : geometries_) {
+      compounds_.push_back(geometry.parts ? *geometry.parts : CompoundBody(geometry.body));
+    }
+  }
+  for (const Geometry& geometry : geometries_) {
+    check_unique(geometry.name, names, "geometry");
+    if (geometry.link < -1 || geometry.link >= link_count) {
+      throw std::invalid_argument("geometry '" + geometry.name + "': link index " +
+                                  std::to_string(geometry.link) + " is not in [-1, " +
+                                  std::to_string(link_count) + ")");
+    }
+    validate_pose(geometry.origin, ("geometry '" + geometry.name + "' origin").c_str());
+  }
+}
+
+}  // namespace swarmcollide

@@ -1,0 +1,321 @@
+#include "swarmcollide/robot/robot_queries.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <exception>
+#include <limits>
+#include <mutex>
+#include <stdexcept>
+#include <string>
+#include <system_error>
+#include <thread>
+#include <utility>
+
+#include "swarmcollide/queries/query.hpp"
+
+namespace swarmcollide {
+
+namespace {
+
+// Geometry g's poses in the table of geometry_poses (row-major transforms), one per
+// configuration.
+PoseArray poses_of(const std::vector<Scalar>& table, std::size_t geometries, std::size_t g,
+                   std::size_t count) {
+  const auto stride = static_cast<std::ptrdiff_t>(geometries) * 16;
+  const Scalar* first = table.data() + static_cast<std::ptrdiff_t>(g) * 16;
+  return PoseArray{first, first + 3, count, stride, 4, stride, 4};
+}
+
+// Every pair's signed distances over the configurations, one batch per pair.
+std::vector<BatchResult> pair_answers(const RobotModel& model,
+                                      const std::vector<GeometryPair>& pairs,
+                                      const Configurations& q, const QueryOptions& options,
+                                      const BatchSettings& settings) {
+  validate_pairs(model, pairs);
+  if (q.cols() != model.dof()) {
+    throw std::invalid_argument("q must have " + std::to_string(model.dof()) +
+                                " values per configuration, got " + std::to_string(q.cols()));
+  }
+  const std::size_t count = static_cast<std::size_t>(q.rows());
+  // A batch without poses would answer one row at the identity.
+  if (count == 0) return std::vector<BatchResult>(pairs.size());
+  const std::size_t geometries = model.geometries().size();
+  std::vector<Scalar> table(count * geometries * 16);
+  geometry_poses(model, q, table.data());
+  std::vector<BatchResult> answers;
+  answers.reserve(pairs.size());
+  for (const GeometryPair& pair : pairs) {
+    BatchPoses poses;
+    poses.array_a = poses_of(table, geometries, static_cast<std::size_t>(pair.a), count);
+    poses.array_b = poses_of(table, geometries, static_cast<std::size_t>(pair.b), count);
+    const Geometry& a = model.geometries()[pair.a];
+    const Geometry& b = model.geometries()[pair.b];
+    answers.push_back(
+        a.parts || b.parts
+            ? signed_distance_many(model.compound(pair.a), model.compound(pair.b), options,
+                                   settings, poses)
+            : signed_distance_many(a.body, b.body, options, settings, poses));
+  }
+  return answers;
+}
+
+// The velocity of `point` fixed to `link` per unit speed of each degree of freedom, added into
+// `row` with `sign` along `normal`.
+void add_jacobian(const RobotModel& model, const std::vector<Pose>& links, int link,
+                  const Vector3& point, const Vector3& normal, Scalar sign, Scalar* row) {
+  for (int l = link; l >= 0;) {
+    const int j = model.parent_joint(l);
+    if (j < 0) break;
+    const Joint& joint = model.joints()[j];
+    const int dof = model.driving_dof(j);
+    if (dof >= 0) {
+      // A mimic joint turns `multiplier` times as fast as the joint it mimics.
+      const Scalar rate = joint.mimic < 0 ? 1 : joint.multiplier;
+      // The child's frame is the joint frame after the motion: the axis and the turning point are
+      // the child's.
+      const Pose& frame = links[joint.child];
+      const Vector3 axis = frame.rotation * joint.axis;
+      const Vector3 velocity = joint.type == JointType::prismatic
+                                   ? axis
+                                   : Vector3(axis.cross(point - frame.translation));
+      row[dof] += sign * rate * normal.dot(velocity);
+    }
+    l = joint.parent;
+  }
+}
+
+}  // namespace
+
+RobotDistances robot_distances(const RobotModel& model, const std::vector<GeometryPair>& pairs,
+                               const Configurations& q, const QueryOptions& options,
+                               const BatchSettings& settings) {
+  const std::vector<BatchResult> answers = pair_answers(model, pairs, q, options, settings);
+  const Eigen::Index m = q.rows();
+  const auto count = static_cast<Eigen::Index>(pairs.size());
+  RobotDistances result{RowTable<Scalar>(m, count), RowTable<Scalar>(m, count),
+                        RowTable<bool>(m, count), RowTable<bool>(m, count)};
+  for (Eigen::Index p = 0; p < count; ++p) {
+    const BatchResult& answer = answers[static_cast<std::size_t>(p)];
+    result.distance.col(p) = answer.distance.array();
+    result.lower_bound.col(p) = answer.lower_bound.array();
+    result.colliding.col(p) = answer.colliding;
+    result.certified.col(p) = answer.certified;
+  }
+  return result;
+}
+
+namespace {
+
+// Runs `answer(i)`, with `answer` each thread's own `make_answer()`, for every configuration i on
+// `threads` threads (0: one per hardware thread) taking configurations in chunks, in increasing
+// order, from one counter: when a configuration fails every one before it has been taken, so the
+// error rethrown is the lowest failing configuration's, prefixed "q[i]: ". Each configuration is
+// answered whole by one thread, so the answers do not depend on the threads.
+template <typename MakeAnswer>
+void over_configurations(std::size_t count, int threads, const MakeAnswer& make_answer) {
+  if (threads < 0 || threads > kMaxThreads) {
+    throw std::invalid_argument("threads must be in [0, " + std::to_string(kMaxThreads) +
+                                "] (0: one per hardware thread), got " + std::to_string(threads));
+  }
+  const std::size_t wanted = threads > 0 ? static_cast<std::size_t>(threads)
+                                         : std::max(1u, std::thread::hardware_concurrency());
+  const std::size_t workers = std::min(wanted, std::max<std::size_t>(count, 1));
+  constexpr std::size_t kChunk = 8;
+  std::atomic<std::size_t> next{0};
+  std::atomic<bool> failed{false};
+  std::mutex mutex;
+  std::size_t failed_row = count;
+  std::exception_ptr error;
+  const auto work = [&] {
+    auto answer = make_answer();
+    for (;;) {
+      const std::size_t start = next.fetch_add(kChunk, std::memory_order_relaxed);
+      if (start >= count || failed.load(std::memory_order_relaxed)) return;
+      for (std::size_t i = start; i < std::min(count, start + kChunk); ++i) {
+        try {
+          answer(i);
+        } catch (...) {
+          const std::lock_guard<std::mutex> lock(mutex);
+          if (i < failed_row) {
+            failed_row = i;
+            error = std::current_exception();
+          }
+          failed.store(true, std::memory_order_relaxed);
+          return;
+        }
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (std::size_t t = 1; t < workers; ++t) {
+    try {
+      pool.emplace_back(work);
+    } catch (const std::system_error&) {
+      break;  // the threads running share the work
+    }
+  }
+  work();
+  for (std::thread& thread : pool) thread.join();
+  if (!error) return;
+  try {
+    std::rethrow_exception(error);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument("q[" + std::to_string(failed_row) + "]: " + e.what());
+  }
+}
+
+// A pair's lower bound from its geometries' bounding balls, a bound on its contact threshold
+// (the tolerance times the pair's size, which is at most the centres' distance plus twice the
+// larger radius), and its index.
+struct BallBound {
+  Scalar lower;
+  Scalar contact;
+  int pair;
+};
+
+// One configuration of a check: the pairs in increasing order of the separation of their
+// geometries' bounding balls (a proven lower bound on their signed distance: the bodies lie in
+// the balls), answered until the next pair's balls are farther apart than the nearest pair found
+// is, or than its contact threshold. The pairs skipped are then proven farther than the minimum
+// and apart, so the answer is the one of answering every pair.
+class ConfigurationCheck {
+ public:
+  ConfigurationCheck(const RobotModel& model, const std::vector<GeometryPair>& pairs,
+                     const Configurations& q, const QueryOptions& options, bool gradient,
+                     RobotCheck& check)
+      : model_(model), pairs_(pairs), q_(q), options_(options), gradient_(gradient),
+        check_(check) {}
+
+  void operator()(std::size_t row) {
+    const auto i = static_cast<Eigen::Index>(row);
+    link_poses(model_, q_.row(i).data(), links_);
+    place_geometries();
+    order_pairs();
+    QueryOptions options = options_;
+    options.seed = pair_seed(options_.seed, row);  // as signed_distance_many seeds row `row`
+    const Query query(options);
+    bool colliding = false;
+    bool certified = true;
+    Scalar least = std::numeric_limits<Scalar>::infinity();
+    Scalar lower = least;
+    int nearest = -1;
+    DistanceResult best;
+    for (const BallBound& bound : bounds_) {
+      // Once some pair is in contact, only the minimum can still change.
+      if (bound.lower > least && (colliding || bound.lower > bound.contact)) continue;
+      const GeometryPair& pair = pairs_[static_cast<std::size_t>(bound.pair)];
+      const Geometry& a = model_.geometries()[pair.a];
+      const Geometry& b = model_.geometries()[pair.b];
+      DistanceResult result =
+          a.parts || b.parts
+              ? query.signed_distance(model_.compound(pair.a), world_[pair.a],
+                                      model_.compound(pair.b), world_[pair.b])
+              : query.signed_distance(a.body, world_[pair.a], b.body, world_[pair.b]);
+      colliding = colliding || result.colliding;
+      certified = certified && result.certified;
+      lower = std::min(lower, result.lower_bound);
+      if (result.distance < least || (result.distance == least && bound.pair < nearest)) {
+        least = result.distance;
+        nearest = bound.pair;
+        best = std::move(result);
+      }
+    }
+    check_.colliding(i) = colliding;
+    check_.certified(i) = certified;
+    check_.min_distance(i) = least;
+    check_.lower_bound(i) = lower;
+    check_.pair(i) = nearest;
+    if (nearest < 0) return;
+    check_.point_a.row(i) = best.point_a.transpose();
+    check_.point_b.row(i) = best.point_b.transpose();
+    check_.normal.row(i) = best.direction.transpose();
+    if (!gradient_) return;
+    const GeometryPair& pair = pairs_[static_cast<std::size_t>(nearest)];
+    Scalar* out = check_.gradient.row(i).data();
+    // d = normal . (point_b - point_a): B's witness moving along the normal adds, A's subtracts.
+    add_jacobian(model_, links_, model_.geometries()[pair.b].link, best.point_b, best.direction,
+                 1, out);
+    add_jacobian(model_, links_, model_.geometries()[pair.a].link, best.point_a, best.direction,
+                 -1, out);
+  }
+
+ private:
+  void place_geometries() {
+    const std::vector<Geometry>& geometries = model_.geometries();
+    world_.resize(geometries.size());
+    centres_.resize(geometries.size());
+    for (std::size_t g = 0; g < geometries.size(); ++g) {
+      const Geometry& geometry = geometries[g];
+      world_[g] = geometry.link < 0 ? geometry.origin
+                                    : compose(links_[geometry.link], geometry.origin);
+      centres_[g] = world_[g].rotation * geometry.body.bounds().centre + world_[g].translation;
+    }
+  }
+
+  void order_pairs() {
+    bounds_.resize(pairs_.size());
+    for (std::size_t p = 0; p < pairs_.size(); ++p) {
+      const GeometryPair& pair = pairs_[p];
+      const BodyBounds& a = model_.geometries()[pair.a].body.bounds();
+      const BodyBounds& b = model_.geometries()[pair.b].body.bounds();
+      const Vector3& ca = centres_[pair.a];
+      const Vector3& cb = centres_[pair.b];
+      // Less a margin for the rounding of the placed centres and of this sum (a few units in the
+      // last place of the magnitudes involved), so that the bound stays below the true separation.
+      const Scalar margin =
+          1e-12 * (ca.lpNorm<Eigen::Infinity>() + cb.lpNorm<Eigen::Infinity>() + a.radius +
+                   b.radius);
+      const Scalar apart = (ca - cb).norm();
+      // Twice the threshold: a margin for the rounding of both.
+      const Scalar contact = 2 * options_.tolerance * (apart + 2 * std::max(a.radius, b.radius));
+      bounds_[p] = {apart - a.radius - b.radius - margin, contact, static_cast<int>(p)};
+    }
+    std::sort(bounds_.begin(), bounds_.end(), [](const BallBound& x, const BallBound& y) {
+      return x.lower < y.lower || (x.lower == y.lower && x.pair < y.pair);
+    });
+  }
+
+  const RobotModel& model_;
+  const std::vector<GeometryPair>& pairs_;
+  const Configurations& q_;
+  const QueryOptions& options_;
+  bool gradient_;
+  RobotCheck& check_;
+  // Per configuration, reused from one to the next by the thread that owns this.
+  std::vector<Pose> links_;
+  std::vector<Pose> world_;
+  std::vector<Vector3> centres_;
+  std::vector<BallBound> bounds_;
+};
+
+}  // namespace
+
+RobotCheck robot_check(const RobotModel& model, const std::vector<GeometryPair>& pairs,
+                       const Configurations& q, const QueryOptions& options,
+                       const BatchSettings& settings, bool gradient) {
+  validate_pairs(model, pairs);
+  if (q.cols() != model.dof()) {
+    throw std::invalid_argument("q must have " + std::to_string(model.dof()) +
+                                " values per configuration, got " + std::to_string(q.cols()));
+  }
+  const Query validated(options);  // the options are checked once, before any configuration
+  const Eigen::Index m = q.rows();
+  RobotCheck check;
+  check.colliding.setConstant(m, false);
+  check.min_distance.setConstant(m, std::numeric_limits<Scalar>::infinity());
+  check.lower_bound.setConstant(m, std::numeric_limits<Scalar>::infinity());
+  check.certified.setConstant(m, true);
+  check.pair.setConstant(m, -1);
+  check.point_a.setZero(m, 3);
+  check.point_b.setZero(m, 3);
+  check.normal.setZero(m, 3);
+  if (gradient) check.gradient.setZero(m, model.dof());
+  // One checker per thread: its buffers are the thread's own; each writes only its rows.
+  over_configurations(static_cast<std::size_t>(m), settings.threads, [&] {
+    return ConfigurationCheck(model, pairs, q, validated.options(), gradient, check);
+  });
+  return check;
+}
+
+}  // namespace swarmcollide

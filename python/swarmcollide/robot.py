@@ -1,0 +1,467 @@
+"""``Robot``: a kinematic model with convex or compound collision geometry, checked over many
+configurations.
+
+The model (links, joints, geometries) is parsed in Python by well-kept libraries (yourdfpy for
+URDF, MuJoCo's compiler for MJCF: the ``[robot]`` extra) into the core's ``RobotModel``, a plain
+immutable table; forward kinematics and the queries over configurations x pairs run in C++
+threads without the GIL, and their answers do not depend on the number of threads.
+"""
+
+from __future__ import annotations
+
+import os
+import xml.etree.ElementTree as ElementTree
+from dataclasses import dataclass
+from typing import Any, Dict, FrozenSet, List, Optional, Sequence, Tuple, Union
+
+import numpy as np
+import numpy.typing as npt
+
+from . import _core
+from .queries import DEFAULT_TOLERANCE, PoseLike, query
+from .robot_shapes import Approximation
+from .robot_tables import ModelTables
+
+PathLike = Union[str, "os.PathLike[str]"]
+
+LIMIT_MODES = ("raise", "clamp", "wrap")
+"""What a configuration outside the joint limits does: raise ValueError naming the joint, clamp
+it to the nearest limit, or wrap a revolute joint's angle by a multiple of 2 pi."""
+
+
+@dataclass(frozen=True)
+class RobotCheck:
+    """Per configuration: whether any checked pair collides, and the nearest (or deepest) pair.
+
+    For a single configuration ``q`` of shape ``(dof,)`` each field is that configuration's
+    (a scalar, or a ``(3,)`` or ``(dof,)`` array); for ``(m, dof)`` each has a leading axis m.
+
+    Attributes
+    ----------
+    colliding : bool array
+        True when some pair is within the tolerance of contact.
+    min_distance : float array
+        The least signed distance over the checked pairs (negative: penetration depth), an upper
+        bound achieved by the witness points; inf when no pair is checked.
+    lower_bound : float array
+        A lower bound on the minimum: ``lower_bound <= true minimum <= min_distance``.
+    certified : bool array
+        True when every pair answered is certified (``check`` skips the pairs whose bounding
+        balls are proven farther apart than the nearest pair found), so the verdict and both
+        bounds are proven.
+    pair : int array
+        Index into ``Robot.pairs`` of the nearest pair (-1 when none is checked).
+    pair_names : str array, (..., 2)
+        Its two geometries' names (link names, or obstacle names).
+    point_a, point_b : float array, (..., 3)
+        Its witness points in the world, on the pair's first and second geometry.
+    normal : float array, (..., 3)
+        The unit normal from the first to the second: ``point_b - point_a = min_distance *
+        normal``.
+    gradient : float array (..., dof), or None
+        ``d min_distance / dq`` when asked (``check(q, gradient=True)``): from the witness points
+        and the link Jacobians. It is the derivative where the nearest pair and its nearest
+        features are unique; where they are not, it is one of the one-sided derivatives.
+    """
+
+    colliding: np.ndarray
+    min_distance: np.ndarray
+    lower_bound: np.ndarray
+    certified: np.ndarray
+    pair: np.ndarray
+    pair_names: np.ndarray
+    point_a: np.ndarray
+    point_b: np.ndarray
+    normal: np.ndarray
+    gradient: Optional[np.ndarray] = None
+
+    def __repr__(self) -> str:
+        colliding = np.atleast_1d(self.colliding)
+        certified = np.atleast_1d(self.certified)
+        distance = np.atleast_1d(self.min_distance)
+        if colliding.size == 1:
+            names = tuple(str(name) for name in np.atleast_2d(self.pair_names)[0])
+            return (f"RobotCheck(colliding={bool(colliding[0])}, min_distance={distance[0]:.6g}, "
+                    f"pair={names}, certified={bool(certified[0])})")
+        return (f"RobotCheck({colliding.size} configurations, {int(colliding.sum())} colliding, "
+                f"{int(certified.sum())} certified, min_distance in "
+                f"[{distance.min():.6g}, {distance.max():.6g}])")
+
+
+@dataclass(frozen=True)
+class PairProposal:
+    """Pairs of links (or obstacles) that collided in every sampled configuration, or in none:
+    candidates for ``Robot.disable_pairs`` (as MoveIt's setup assistant proposes them), shown,
+    not applied. A pair that never collided in the samples may still collide elsewhere.
+
+    Attributes
+    ----------
+    always, never : tuple of (str, str)
+    samples : int
+        The configurations sampled (uniform within the limits; continuous joints in [-pi, pi]).
+    """
+
+    always: Tuple[Tuple[str, str], ...]
+    never: Tuple[Tuple[str, str], ...]
+    samples: int
+
+
+class Robot:
+    """A robot: links, joints and convex collision geometries, and the pairs checked.
+
+    Build one with ``from_urdf`` or ``from_mjcf`` (or from tables: ``links``, ``joints`` as
+    ``Joint``, ``geometries`` as ``(name, link index, origin, body)``). The model is
+    immutable and shared across threads; ``add_obstacle`` and ``disable_pairs`` make a new model.
+
+    Attributes
+    ----------
+    approximations : tuple of Approximation
+        Curved geometries (cylinders, ellipsoids) that stand for their shapes by hulls inside
+        them, each with a proven bound on how far inside (``robot_shapes.curved_body``).
+
+    Examples
+    --------
+    >>> import numpy as np, swarmcollide as sc
+    >>> elbow = np.eye(4)
+    >>> elbow[0, 3] = 1.0                       # the elbow is 1 along the upper arm
+    >>> joints = [sc.Joint("shoulder", "revolute", 0, 1, lower=-3, upper=3),
+    ...           sc.Joint("elbow", "revolute", 1, 2, origin=elbow, lower=-3, upper=3)]
+    >>> box = sc.Box([0.1, 0.1, 0.1])
+    >>> geometries = [("base", 0, None, box), ("upper", 1, None, sc.Sphere(0.1)),
+    ...               ("fore", 2, elbow, box)]  # fore's box at its far end
+    >>> robot = sc.Robot(["base", "upper", "fore"], joints, geometries)
+    >>> robot.pairs
+    (('base', 'fore'),)
+    >>> robot.check([0.0, 3.0])
+    RobotCheck(colliding=True, min_distance=-0.0..., pair=('base', 'fore'), certified=True)
+    >>> robot.check([[0.0, 0.0], [0.0, 3.0]], threads=1).colliding
+    array([False,  True])
+    """
+
+    def __init__(self, links: Sequence[str], joints: Sequence[Any],
+                 geometries: Sequence[Tuple[str, int, PoseLike, Any]], *,
+                 approximations: Sequence[Approximation] = ()) -> None:
+        self._links = list(links)
+        self._joints = list(joints)
+        self._robot_geometries = list(geometries)
+        self._obstacles: List[Tuple[str, int, PoseLike, Any]] = []
+        self._disabled: FrozenSet[FrozenSet[str]] = frozenset()
+        self.approximations = tuple(approximations)
+        self._rebuild()
+
+    @classmethod
+    def _from_tables(cls, tables: ModelTables) -> "Robot":
+        return cls(tables.links, tables.joints, tables.geometries,
+                   approximations=tables.approximations)
+
+    @classmethod
+    def from_urdf(cls, path: PathLike, package_dirs: Optional[Sequence[PathLike]] = None,
+                  collision: str = "hull", *, srdf: Optional[PathLike] = None) -> "Robot":
+        """A robot from a URDF file, parsed by yourdfpy.
+
+        Parameters
+        ----------
+        path : str or os.PathLike
+        package_dirs : sequence of paths, optional
+            Where ``package://NAME/...`` mesh paths are looked up: each directory is the package
+            NAME itself or holds it. Relative mesh paths are read from the URDF's directory.
+        collision : {"hull", "mesh", "decompose"}
+            ``"hull"``: each ``<collision>`` mesh is its convex hull (the body finds the hull of
+            the mesh's vertices, scaled). ``"mesh"``: a compound body of the mesh's convex pieces
+            (OBJ groups or connected components, each convex). ``"decompose"``: a compound body
+            of CoACD's decomposition (``CompoundBody.from_mesh``, cached on disk). A compound
+            geometry's signed distance is the least over its parts' (``signed_distance``).
+        srdf : str or os.PathLike, optional
+            An SRDF whose ``disable_collisions`` pairs are not checked.
+
+        Boxes and spheres are exact; cylinders are hulls of points on their surface, listed in
+        ``approximations`` with their error, until curved shapes are in the core. Joints are
+        revolute, continuous, prismatic or fixed; the degrees of freedom are the moving joints in
+        the file's order (yourdfpy's ``actuated_joints``).
+
+        Raises
+        ------
+        ValueError
+            For a missing file, an unknown or unsupported joint type (naming the joint), a mesh
+            file that is missing or a ``package://`` path that cannot be resolved (naming the
+            link), or an unknown ``collision`` mode.
+        """
+        from .robot_urdf import load_urdf
+
+        robot = cls._from_tables(load_urdf(path, package_dirs, collision))
+        return robot.disable_pairs(read_srdf(srdf)) if srdf is not None else robot
+
+    @classmethod
+    def from_mjcf(cls, path: PathLike, *, skip_planes: bool = False,
+                  srdf: Optional[PathLike] = None) -> "Robot":
+        """A robot from an MJCF file, compiled by MuJoCo (``mujoco.MjModel.from_xml_path``).
+
+        Each body is a link (the world body is the root, ``"world"``); hinge joints are revolute
+        (continuous when unlimited), slide joints prismatic, and a body with several joints or an
+        off-origin hinge anchor gets a link per joint (named ``body/joint``). The collision geoms
+        (``contype`` or ``conaffinity`` nonzero) are the geometries: meshes (the hull of the
+        compiled mesh's vertices), boxes, spheres and capsules exactly, cylinders and ellipsoids as
+        hulls listed in ``approximations``. The degrees of freedom are MuJoCo's ``qpos``.
+
+        Parameters
+        ----------
+        path : str or os.PathLike
+        skip_planes : bool
+            Leave plane geoms (unbounded) out instead of raising ValueError.
+        srdf : str or os.PathLike, optional
+            An SRDF whose ``disable_collisions`` pairs are not checked.
+        """
+        from .robot_mjcf import load_mjcf
+
+        robot = cls._from_tables(load_mjcf(path, skip_planes))
+        return robot.disable_pairs(read_srdf(srdf)) if srdf is not None else robot
+
+    def _rebuild(self) -> None:
+        self._model = _core.RobotModel(self._links, self._joints,
+                                       self._robot_geometries + self._obstacles)
+        names = self.geometry_names
+        owners = [self._links[link] if link >= 0 else names[g]
+                  for g, link in enumerate(self._model.geometry_links)]
+        table = [
+            (a, b) for a, b in np.asarray(self._model.default_pairs()).reshape(-1, 2)
+            if frozenset((owners[a], owners[b])) not in self._disabled
+        ]
+        self._pair_table = np.asarray(table, dtype=np.int32).reshape(-1, 2)
+
+    @property
+    def model(self) -> _core.RobotModel:
+        """The core's model: immutable, shared by every call and thread."""
+        return self._model
+
+    @property
+    def dof(self) -> int:
+        """The number of degrees of freedom (moving joints)."""
+        return self._model.dof
+
+    @property
+    def link_names(self) -> Tuple[str, ...]:
+        return tuple(self._model.link_names)
+
+    @property
+    def joint_names(self) -> Tuple[str, ...]:
+        """The moving joints, in the order of the configuration's values."""
+        joints = self._model.joints
+        return tuple(joints[j].name for j in self._model.moving_joints)
+
+    @property
+    def limits(self) -> np.ndarray:
+        """``(dof, 2)`` lower and upper limits (-inf, inf for continuous joints)."""
+        joints = self._model.joints
+        return np.array([[joints[j].lower, joints[j].upper] for j in self._model.moving_joints],
+                        dtype=float).reshape(-1, 2)
+
+    @property
+    def geometry_names(self) -> Tuple[str, ...]:
+        return tuple(g[0] for g in self._robot_geometries + self._obstacles)
+
+    @property
+    def pairs(self) -> Tuple[Tuple[str, str], ...]:
+        """The checked pairs by geometry name (a link's name when it has one geometry), in the
+        order of ``distances``' columns: geometries of links that are not adjacent (parent and
+        child, or joined by fixed joints), less the disabled pairs, and every obstacle against
+        every link's geometry."""
+        names = self.geometry_names
+        return tuple((names[a], names[b]) for a, b in self._pair_table)
+
+    def add_obstacle(self, body: Any, pose: PoseLike = None, *,
+                     name: Optional[str] = None) -> "Robot":
+        """Add a body fixed in the world, checked against every link; returns the robot.
+
+        Parameters
+        ----------
+        body : ConvexPolyhedron, CompoundBody or (n, 3) array_like
+            A convex body (a ``Box``, ``Sphere``, ...) or a compound one (a mesh's parts).
+        pose : pose, optional
+            Where it is: a ``(4, 4)`` rigid transform or ``(rotation, translation)``.
+        name : str, optional
+            Its name in ``pairs`` (default ``obstacle{k}``); must differ from every geometry's.
+        """
+        name = f"obstacle{len(self._obstacles)}" if name is None else name
+        if not isinstance(name, str):
+            raise TypeError(f"name must be a str, got {type(name).__name__}")
+        if name in self.geometry_names or name in self._links:
+            raise ValueError(f"name '{name}' is taken by a link or geometry; choose another")
+        self._obstacles.append((name, -1, pose, body))
+        try:
+            self._rebuild()
+        except Exception:
+            self._obstacles.pop()
+            raise
+        return self
+
+    def disable_pairs(self, pairs: Sequence[Tuple[str, str]]) -> "Robot":
+        """Stop checking these pairs of link (or obstacle) names; returns the robot.
+
+        Raises ``ValueError`` for a name that is no link or obstacle of the robot.
+        """
+        known = set(self._links) | {o[0] for o in self._obstacles}
+        disabled = set(self._disabled)
+        for pair in pairs:
+            a, b = pair
+            for end in (a, b):
+                if end not in known:
+                    raise ValueError(f"disabled pair ({a!r}, {b!r}): '{end}' is not a link or "
+                                     "obstacle of the robot")
+            disabled.add(frozenset((a, b)))
+        self._disabled = frozenset(disabled)
+        self._rebuild()
+        return self
+
+    def _configurations(self, q: npt.ArrayLike, limits: str) -> Tuple[np.ndarray, bool]:
+        values = np.asarray(q)
+        if values.dtype.kind not in "fiu":
+            raise TypeError(f"q must hold real numbers, got an array of dtype {values.dtype}")
+        if values.ndim not in (1, 2):
+            raise ValueError(f"q must have shape (dof,) or (m, dof) with dof = {self.dof}, got "
+                             f"shape {values.shape}")
+        single = values.ndim == 1
+        table = np.ascontiguousarray(values.reshape(1, -1) if single else values, dtype=float)
+        if limits not in LIMIT_MODES:
+            raise ValueError(f"limits must be one of {LIMIT_MODES}, got {limits!r}")
+        return self._model.admit(table, limits), single
+
+    def forward_kinematics(self, q: npt.ArrayLike, *, limits: str = "raise") -> np.ndarray:
+        """Every link's world transform: ``(links, 4, 4)`` for q of shape ``(dof,)``, ``(m,
+        links, 4, 4)`` for ``(m, dof)``; the links in ``link_names``' order.
+
+        Raises ``ValueError`` naming the configuration and joint for a wrong length, a NaN, or a
+        value outside the limits under ``limits="raise"`` (``"clamp"``, ``"wrap"``: see
+        ``LIMIT_MODES``).
+        """
+        table, single = self._configurations(q, limits)
+        transforms = self._model.forward_kinematics(table)
+        return transforms[0] if single else transforms
+
+    def geometry_poses(self, q: npt.ArrayLike, *, limits: str = "raise") -> np.ndarray:
+        """Every geometry's world transform (its link's times its origin), in
+        ``geometry_names``' order: ``(geometries, 4, 4)`` or ``(m, geometries, 4, 4)``; the poses
+        the queries place the geometries at."""
+        table, single = self._configurations(q, limits)
+        transforms = self._model.geometry_poses(table)
+        return transforms[0] if single else transforms
+
+    def distances(self, q: npt.ArrayLike, *, limits: str = "raise",
+                  threads: Optional[int] = None, method: str = "dual",
+                  tolerance: float = DEFAULT_TOLERANCE, seed: int = 0) -> np.ndarray:
+        """The signed distance of every checked pair (``pairs``), ``(m, pairs)`` (``(pairs,)``
+        for a single configuration): upper bounds achieved by witness points, certified to
+        ``tolerance`` times each pair's size.
+
+        Each pair is ``signed_distance_many`` over the configurations with the geometries' world
+        poses read in place; ``threads`` (default: one per hardware thread) does not change the
+        answers.
+        """
+        table, single = self._configurations(q, limits)
+        answer = self._model.distances(self._pair_table, table,
+                                       query(method, tolerance=tolerance, seed=seed), threads)
+        return answer.distance[0] if single else answer.distance
+
+    def check(self, q: npt.ArrayLike, *, limits: str = "raise", threads: Optional[int] = None,
+              gradient: bool = False, method: str = "dual",
+              tolerance: float = DEFAULT_TOLERANCE, seed: int = 0) -> RobotCheck:
+        """Whether each configuration collides, and its nearest pair with witness points.
+
+        Each configuration's pairs are answered (``signed_distance`` at the geometries' world
+        poses) in increasing order of the separation of their bounding balls, until the next
+        pair's balls are proven farther apart than the nearest pair found: the answer is that of
+        every pair (``distances``) reduced to its nearest, at a fraction of the cost. Each
+        configuration is answered whole by one C++ thread, without the GIL.
+
+        Parameters
+        ----------
+        q : array_like, (dof,) or (m, dof)
+            Joint values in ``joint_names``' order.
+        limits : {"raise", "clamp", "wrap"}
+            What a value outside its joint's limits does (``LIMIT_MODES``).
+        threads : int, optional
+            C++ threads (default one per hardware thread); answers do not depend on it.
+        gradient : bool
+            Also ``d min_distance / dq`` (see ``RobotCheck.gradient``).
+        method, tolerance, seed
+            The pair queries' (see ``signed_distance``).
+
+        Returns
+        -------
+        RobotCheck
+        """
+        table, single = self._configurations(q, limits)
+        raw = self._model.check(self._pair_table, table,
+                                query(method, tolerance=tolerance, seed=seed), threads, gradient)
+        # The last row names no pair: index -1 (nothing checked) reads it.
+        named = np.array(list(self.pairs) + [("", "")], dtype=str).reshape(-1, 2)
+        names = named[np.asarray(raw.pair)]
+        fields: Dict[str, Any] = dict(
+            colliding=raw.colliding, min_distance=raw.min_distance, lower_bound=raw.lower_bound,
+            certified=raw.certified, pair=raw.pair, pair_names=names.reshape(-1, 2),
+            point_a=raw.point_a, point_b=raw.point_b, normal=raw.normal,
+            gradient=raw.gradient if gradient else None)
+        if single:
+            fields = {k: (v[0] if v is not None else None) for k, v in fields.items()}
+        return RobotCheck(**fields)
+
+    def propose_disabled_pairs(self, samples: int = 1000, *, seed: int = 0,
+                               threads: Optional[int] = None) -> PairProposal:
+        """Sample configurations and propose the checked pairs that always or never collide.
+
+        Parameters
+        ----------
+        samples : int
+            Configurations, uniform within the joint limits (continuous joints in [-pi, pi]).
+        seed : int
+            Seeds the sampler (NumPy's default generator).
+        threads : int, optional
+            As for ``distances``.
+
+        Returns
+        -------
+        PairProposal
+            By link (or obstacle) name: a link pair collides in a sample when any pair of their
+            geometries does. Nothing is disabled: pass the pairs you accept to
+            ``disable_pairs``.
+        """
+        if isinstance(samples, bool) or not isinstance(samples, int) or samples < 1:
+            raise ValueError(f"samples must be a positive integer, got {samples!r}")
+        lower, upper = np.clip(self.limits, -np.pi, np.pi).T
+        q = np.random.default_rng(seed).uniform(lower, upper, size=(samples, self.dof))
+        colliding = self._model.distances(self._pair_table, self._model.admit(q, "raise"),
+                                          query(), threads).colliding
+        names = self.geometry_names
+        links = self._model.geometry_links
+        owners = [self._links[link] if link >= 0 else names[g] for g, link in enumerate(links)]
+        by_owner: Dict[Tuple[str, str], np.ndarray] = {}
+        for p, (a, b) in enumerate(self._pair_table):
+            key = (owners[a], owners[b])
+            by_owner[key] = by_owner.get(key, np.zeros(samples, bool)) | colliding[:, p]
+        return PairProposal(
+            always=tuple(k for k, hits in by_owner.items() if hits.all()),
+            never=tuple(k for k, hits in by_owner.items() if not hits.any()),
+            samples=samples)
+
+    def __repr__(self) -> str:
+        return (f"Robot({len(self._links)} links, dof {self.dof}, "
+                f"{len(self._robot_geometries)} geometries, {len(self._obstacles)} obstacles, "
+                f"{len(self._pair_table)} pairs)")
+
+
+def read_srdf(path: PathLike) -> List[Tuple[str, str]]:
+    """The ``disable_collisions`` pairs ``(link1, link2)`` of an SRDF file.
+
+    Raises ``ValueError`` for a missing or malformed file, or an entry without both links.
+    """
+    try:
+        root = ElementTree.parse(os.fspath(path)).getroot()
+    except (OSError, ElementTree.ParseError) as error:
+        raise ValueError(f"cannot read SRDF file '{path}': {error}") from error
+    pairs = []
+    for element in root.iter("disable_collisions"):
+        a, b = element.get("link1"), element.get("link2")
+        if not a or not b:
+            raise ValueError(f"SRDF file '{path}': a disable_collisions entry needs link1 and "
+                             "link2")
+        pairs.append((a, b))
+    return pairs

@@ -1,0 +1,143 @@
+"""MJCF models compiled by MuJoCo (the ``[robot]`` extra), as the tables of a ``Robot``."""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+from typing import List, Union
+
+import numpy as np
+
+from . import _core
+from .robot_shapes import Approximation, curved_body
+from .robot_tables import ModelTables, geometry_names
+
+PathLike = Union[str, "os.PathLike[str]"]
+
+
+def _mujoco():
+    try:
+        import mujoco
+    except ImportError as error:  # pragma: no cover - the [robot] extra is installed in tests
+        raise ImportError("reading MJCF needs mujoco: pip install 'swarmcollide[robot]'") from error
+    return mujoco
+
+
+def _transform(position, quaternion=None) -> np.ndarray:
+    mujoco = _mujoco()
+    transform = np.eye(4)
+    if quaternion is not None:
+        rotation = np.zeros(9)
+        mujoco.mju_quat2Mat(rotation, np.asarray(quaternion, dtype=float))
+        transform[:3, :3] = rotation.reshape(3, 3)
+    transform[:3, 3] = position
+    return transform
+
+
+def load_mjcf(path: PathLike, skip_planes: bool = False) -> ModelTables:
+    """The bodies, joints and collision geoms of an MJCF file, compiled by MuJoCo.
+
+    See ``Robot.from_mjcf`` for the parameters.
+    """
+    mujoco = _mujoco()
+    if not Path(path).is_file():
+        raise ValueError(f"MJCF file '{path}' not found")
+    try:
+        model = mujoco.MjModel.from_xml_path(str(path))
+    except Exception as error:  # MuJoCo's compiler raises ValueError with its own message
+        raise ValueError(f"cannot compile MJCF file '{path}': {error}") from error
+    return tables_of(model, skip_planes)
+
+
+def body_name(model, body: int) -> str:
+    """A body's name, ``body{i}`` when it has none (the world body is ``world``)."""
+    return model.body(body).name or f"body{body}"
+
+
+def tables_of(model, skip_planes: bool = False) -> ModelTables:
+    """The tables of a compiled ``mujoco.MjModel``: one link per body, a joint per hinge or
+    slide, and a link between two joints of one body (its joints turn about their own anchors)."""
+    mujoco = _mujoco()
+    links = [body_name(model, b) for b in range(model.nbody)]
+    joints = []
+    body_link = list(range(model.nbody))
+    for b in range(1, model.nbody):
+        parent = body_link[model.body_parentid[b]]
+        offset = _transform(model.body_pos[b], model.body_quat[b])
+        first = model.body_jntadr[b]
+        count = model.body_jntnum[b]
+        for j in range(first, first + count):
+            name = model.joint(j).name or f"joint{j}"
+            kind = int(model.jnt_type[j])
+            hinge = kind == int(mujoco.mjtJoint.mjJNT_HINGE)
+            if not hinge and kind != int(mujoco.mjtJoint.mjJNT_SLIDE):
+                raise ValueError(
+                    f"joint '{name}' of body '{links[b]}': free and ball joints are not "
+                    "supported; a robot's joints must be hinges or slides"
+                )
+            anchor = np.asarray(model.jnt_pos[j], dtype=float)
+            last = j == first + count - 1
+            # A hinge turns the body about its anchor: the joint frame sits at the anchor, and the
+            # body's frame is back by the anchor from it (a link of its own unless it is the last
+            # joint's child and the anchor is the body's origin).
+            if last and not anchor.any():
+                child = b
+            else:
+                child = len(links)
+                links.append(f"{links[b]}/{name}")
+            limited = bool(model.jnt_limited[j])
+            lower, upper = (model.jnt_range[j] if limited else (-np.inf, np.inf))
+            joint_type = ("revolute" if limited else "continuous") if hinge else "prismatic"
+            joints.append(_core.Joint(
+                name, joint_type, parent, child, origin=offset @ _transform(anchor),
+                axis=np.asarray(model.jnt_axis[j], dtype=float), lower=float(lower),
+                upper=float(upper), reference=float(model.qpos0[model.jnt_qposadr[j]])))
+            offset = _transform(-anchor)
+            parent = child
+        if parent != b:
+            joints.append(_core.Joint(f"{links[b]}/fixed", "fixed", parent, b, origin=offset))
+    geometries = []
+    approximations: List[Approximation] = []
+    collision = [g for g in range(model.ngeom)
+                 if model.geom_contype[g] != 0 or model.geom_conaffinity[g] != 0]
+    for b in range(model.nbody):
+        own = [g for g in collision if model.geom_bodyid[g] == b]
+        for name, g in zip(geometry_names(links[b], len(own)), own):
+            name = model.geom(g).name or name
+            body = _geom_body(model, g, name, skip_planes, approximations)
+            if body is not None:
+                geometries.append(
+                    (name, b, _transform(model.geom_pos[g], model.geom_quat[g]), body))
+    return ModelTables(links, joints, geometries, approximations)
+
+
+def _geom_body(model, g: int, name: str, skip_planes: bool,
+               approximations: List[Approximation]):
+    mujoco = _mujoco()
+    kind = int(model.geom_type[g])
+    size = np.asarray(model.geom_size[g], dtype=float)
+    types = {int(getattr(mujoco.mjtGeom, f"mjGEOM_{t}")): t.lower()
+             for t in ("SPHERE", "CAPSULE", "BOX", "CYLINDER", "ELLIPSOID", "MESH", "PLANE")}
+    shape = types.get(kind, "")
+    if shape == "sphere":
+        return _core.Sphere(size[0])
+    if shape == "capsule":
+        return _core.Capsule(size[0], size[1])
+    if shape == "box":
+        return _core.Box(size)
+    if shape in ("cylinder", "ellipsoid"):
+        body, error = curved_body(shape, tuple(size[:2] if shape == "cylinder" else size))
+        approximations.append(Approximation(name, shape, error))
+        return body
+    if shape == "mesh":
+        mesh = model.geom_dataid[g]
+        start = model.mesh_vertadr[mesh]
+        return _core.ConvexPolyhedron(model.mesh_vert[start:start + model.mesh_vertnum[mesh]])
+    if shape == "plane" and skip_planes:
+        return None
+    raise ValueError(
+        f"geom '{name}': type '{shape or mujoco.mjtGeom(kind).name}' is not supported "
+        "(unbounded or not convex)"
+        + ("; pass skip_planes=True to leave planes out, or give the floor as a box"
+           if shape == "plane" else "")
+    )

@@ -1,0 +1,141 @@
+"""URDF models read by yourdfpy (the ``[robot]`` extra), as the tables of a ``Robot``."""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+from typing import List, Optional, Sequence, Union
+
+import numpy as np
+
+from . import _core
+from .mesh import load_mesh
+from .robot_tables import ModelTables, collision_bodies, geometry_names
+from .robot_shapes import Approximation, curved_body
+
+PathLike = Union[str, "os.PathLike[str]"]
+
+_SUPPORTED = ("revolute", "continuous", "prismatic", "fixed")
+
+
+def _yourdfpy():
+    try:
+        import yourdfpy
+    except ImportError as error:  # pragma: no cover - the [robot] extra is installed in tests
+        raise ImportError(
+            "reading URDF needs yourdfpy: pip install 'swarmcollide[robot]'"
+        ) from error
+    return yourdfpy
+
+
+def resolve_mesh_path(filename: str, urdf_path: Path, package_dirs: Sequence[PathLike],
+                      link: str) -> Path:
+    """The file a URDF mesh ``filename`` names: ``package://name/rest`` in one of
+    ``package_dirs`` (a directory that is the package ``name``, or that holds it), then in the
+    URDF's folder or one of its parents (as ROS's workspaces and pybullet_data lay packages out);
+    ``file://`` and absolute paths as they are, relative paths from the URDF's directory.
+
+    Raises ``ValueError`` naming ``link`` and the fix when no such file exists.
+    """
+    if filename.startswith("package://"):
+        package, _, rest = filename[len("package://"):].partition("/")
+        roots = [Path(d) for d in package_dirs] + list(urdf_path.resolve().parents)
+        for root in roots:
+            for candidate in ([root / rest] if root.name == package else []) + [
+                    root / package / rest]:
+                if candidate.is_file():
+                    return candidate
+        searched = ", ".join(str(Path(d)) for d in package_dirs) or "none given"
+        raise ValueError(
+            f"link '{link}': cannot resolve mesh '{filename}': package '{package}' not found in "
+            f"package_dirs ({searched}) nor in the URDF's folder or its parents; pass "
+            f"package_dirs=[the directory holding '{package}']"
+        )
+    path = Path(filename[len("file://"):] if filename.startswith("file://") else filename)
+    if not path.is_absolute():
+        path = urdf_path.parent / path
+    if not path.is_file():
+        raise ValueError(f"link '{link}': mesh file '{filename}' not found (looked at {path})")
+    return path
+
+
+def load_urdf(path: PathLike, package_dirs: Optional[Sequence[PathLike]] = None,
+              collision: str = "hull") -> ModelTables:
+    """The links, joints and collision geometries of a URDF file.
+
+    See ``Robot.from_urdf`` for the parameters.
+    """
+    yourdfpy = _yourdfpy()
+    urdf_path = Path(path)
+    if not urdf_path.is_file():
+        raise ValueError(f"URDF file '{path}' not found")
+    collision_bodies(collision)  # the mode is checked before anything is read
+    if isinstance(package_dirs, (str, os.PathLike)):
+        package_dirs = [package_dirs]
+    dirs = list(package_dirs or [])
+    try:
+        model = yourdfpy.URDF.load(str(urdf_path), build_scene_graph=False, load_meshes=False,
+                                   load_collision_meshes=False)
+    except Exception as error:  # yourdfpy and lxml raise many types for bad files
+        raise ValueError(f"cannot read URDF file '{path}': {error}") from error
+    robot = model.robot
+    links = [link.name for link in robot.links]
+    index = {name: i for i, name in enumerate(links)}
+    joints = []
+    joint_index = {joint.name: j for j, joint in enumerate(robot.joints)}
+    for joint in robot.joints:
+        if joint.type not in _SUPPORTED:
+            raise ValueError(
+                f"joint '{joint.name}': type '{joint.type}' is not supported; a robot's joints "
+                f"must be one of {', '.join(_SUPPORTED)}"
+            )
+        for end in (joint.parent, joint.child):
+            if end not in index:
+                raise ValueError(f"joint '{joint.name}': link '{end}' is not in the URDF")
+        mimic = joint.mimic
+        if mimic is not None and mimic.joint not in joint_index:
+            raise ValueError(f"joint '{joint.name}' mimics '{mimic.joint}', which is not in the "
+                             "URDF")
+        limit = joint.limit
+        lower = limit.lower if limit is not None and limit.lower is not None else 0.0
+        upper = limit.upper if limit is not None and limit.upper is not None else 0.0
+        joints.append(_core.Joint(
+            joint.name, joint.type, index[joint.parent], index[joint.child],
+            origin=np.eye(4) if joint.origin is None else joint.origin,
+            axis=np.array([1.0, 0.0, 0.0]) if joint.axis is None else joint.axis,
+            lower=lower, upper=upper,
+            mimic=-1 if mimic is None else joint_index[mimic.joint],
+            multiplier=1.0 if mimic is None or mimic.multiplier is None else mimic.multiplier,
+            offset=0.0 if mimic is None or mimic.offset is None else mimic.offset))
+    geometries = []
+    approximations: List[Approximation] = []
+    for link in robot.links:
+        names = geometry_names(link.name, len(link.collisions))
+        for name, element in zip(names, link.collisions):
+            origin = np.eye(4) if element.origin is None else element.origin
+            body = _body(element.geometry, name, link.name, urdf_path, dirs, collision,
+                         approximations)
+            geometries.append((name, index[link.name], origin, body))
+    return ModelTables(links, joints, geometries, approximations)
+
+
+def _body(geometry, name: str, link: str, urdf_path: Path, dirs, collision: str,
+          approximations: List[Approximation]):
+    if geometry is None:
+        raise ValueError(f"link '{link}': a <collision> element has no <geometry>")
+    if geometry.box is not None:
+        return _core.Box(np.asarray(geometry.box.size, dtype=float) / 2)
+    if geometry.sphere is not None:
+        return _core.Sphere(float(geometry.sphere.radius))
+    if geometry.cylinder is not None:
+        body, error = curved_body(
+            "cylinder", (geometry.cylinder.radius, geometry.cylinder.length / 2))
+        approximations.append(Approximation(name, "cylinder", error))
+        return body
+    if geometry.mesh is not None:
+        mesh_path = resolve_mesh_path(geometry.mesh.filename, urdf_path, dirs, link)
+        mesh = load_mesh(mesh_path)
+        if geometry.mesh.scale is not None:
+            mesh.apply_scale(np.asarray(geometry.mesh.scale, float))
+        return collision_bodies(collision)(mesh, name)
+    raise ValueError(f"link '{link}': a <collision> geometry has no box, sphere, cylinder or mesh")

@@ -1,0 +1,139 @@
+// Robots: forward kinematics against the closed form of a planar arm, the limit modes, the pair
+// filter, and queries over configurations equal to the single query on the posed bodies.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+#include "swarmcollide/geometry/shapes.hpp"
+#include "swarmcollide/queries/query.hpp"
+#include "swarmcollide/robot/kinematics.hpp"
+#include "swarmcollide/robot/pair_filter.hpp"
+#include "swarmcollide/robot/robot_model.hpp"
+#include "swarmcollide/robot/robot_queries.hpp"
+
+namespace swarmcollide::testing {
+namespace {
+
+Pose translation(Scalar x, Scalar y, Scalar z) {
+  Pose pose;
+  pose.translation = Vector3(x, y, z);
+  return pose;
+}
+
+// base -(revolute z)- upper -(revolute z, 1 along x)- fore -(fixed, 1 along x)- hand, each link
+// with a 0.1 box at its origin; a slider on the base carries a box too.
+RobotModel planar_arm() {
+  std::vector<Link> links{{"base"}, {"upper"}, {"fore"}, {"hand"}, {"slider"}};
+  std::vector<Joint> joints(4);
+  joints[0] = {"shoulder", JointType::revolute, 0, 1, Pose{}, Vector3::UnitZ(), -2, 2, 0};
+  joints[1] = {"elbow", JointType::continuous, 1, 2, translation(1, 0, 0), Vector3(0, 0, 2), 0, 0,
+               0};
+  joints[2] = {"wrist", JointType::fixed, 2, 3, translation(1, 0, 0), Vector3::UnitZ(), 0, 0, 0};
+  joints[3] = {"slide", JointType::prismatic, 0, 4, translation(0, -1, 0), Vector3::UnitX(), -1,
+               1, 0};
+  std::vector<Geometry> geometries;
+  const char* names[] = {"base", "upper", "fore", "hand", "slider"};
+  for (int l = 0; l < 5; ++l) {
+    geometries.push_back({names[l], l, Pose{}, Box(Vector3::Constant(0.1))});
+  }
+  return RobotModel(links, joints, geometries);
+}
+
+TEST(Robot, ForwardKinematicsIsThePlanarArmsClosedForm) {
+  const RobotModel arm = planar_arm();
+  ASSERT_EQ(arm.dof(), 3);
+  Configurations q(2, 3);
+  q << 0.3, -1.1, 0.25, -1.9, 2.5, -0.5;
+  std::vector<Scalar> transforms(2 * 5 * 16);
+  forward_kinematics(arm, q, transforms.data());
+  for (int i = 0; i < 2; ++i) {
+    const Scalar a = q(i, 0);
+    const Scalar b = a + q(i, 1);
+    const Scalar* hand = transforms.data() + (i * 5 + 3) * 16;
+    EXPECT_NEAR(hand[3], std::cos(a) + std::cos(b), 1e-15);
+    EXPECT_NEAR(hand[7], std::sin(a) + std::sin(b), 1e-15);
+    EXPECT_NEAR(hand[0], std::cos(b), 1e-15);
+    const Scalar* slider = transforms.data() + (i * 5 + 4) * 16;
+    EXPECT_EQ(slider[3], q(i, 2));
+    EXPECT_EQ(slider[7], -1);
+  }
+}
+
+TEST(Robot, LimitsRaiseClampOrWrapNamingTheJoint) {
+  const RobotModel arm = planar_arm();
+  Configurations q(1, 3);
+  q << 4.5, 7, 0;
+  try {
+    admit_configurations(arm, q, LimitMode::raise);
+    FAIL() << "accepted a shoulder angle outside its limits";
+  } catch (const std::invalid_argument& error) {
+    EXPECT_NE(std::string(error.what()).find("q[0], joint 'shoulder'"), std::string::npos);
+  }
+  EXPECT_EQ(admit_configurations(arm, q, LimitMode::clamp)(0, 0), 2);
+  // 4.5 - 2 pi is within [-2, 2]; the continuous elbow is left as it is.
+  EXPECT_NEAR(admit_configurations(arm, q, LimitMode::wrap)(0, 0), 4.5 - 2 * M_PI, 1e-15);
+  EXPECT_EQ(admit_configurations(arm, q, LimitMode::wrap)(0, 1), 7);
+  q << 2.5, 0, 0;  // 2.5 - 2 pi is below -2: no turn brings it within
+  EXPECT_THROW(admit_configurations(arm, q, LimitMode::wrap), std::invalid_argument);
+  q << 0, 0, 1.5;
+  EXPECT_THROW(admit_configurations(arm, q, LimitMode::wrap), std::invalid_argument);
+  q << 0, NAN, 0;
+  EXPECT_THROW(admit_configurations(arm, q, LimitMode::clamp), std::invalid_argument);
+  EXPECT_THROW(admit_configurations(arm, Configurations(1, 2), LimitMode::raise),
+               std::invalid_argument);
+}
+
+TEST(Robot, AdjacentLinksIncludeThoseJoinedByFixedJoints) {
+  const RobotModel arm = planar_arm();
+  EXPECT_TRUE(adjacent_links(arm, 0, 1));
+  EXPECT_TRUE(adjacent_links(arm, 1, 3));  // upper - elbow - fore = hand
+  EXPECT_TRUE(adjacent_links(arm, 0, 4));
+  EXPECT_FALSE(adjacent_links(arm, 0, 2));
+  EXPECT_FALSE(adjacent_links(arm, 1, 4));
+  std::vector<std::pair<int, int>> got;
+  for (const GeometryPair& p : default_pairs(arm)) got.emplace_back(p.a, p.b);
+  const std::vector<std::pair<int, int>> expected{{0, 2}, {0, 3}, {1, 4}, {2, 4}, {3, 4}};
+  EXPECT_EQ(got, expected);
+}
+
+TEST(Robot, ChecksEqualTheSingleQueriesOnThePosedBodiesWhateverTheThreads) {
+  const RobotModel arm = planar_arm();
+  const std::vector<GeometryPair> pairs = default_pairs(arm);
+  Configurations q(40, 3);
+  for (int i = 0; i < 40; ++i) q.row(i) << -1.9 + 0.1 * i, 3.1 - 0.15 * i, -0.9 + 0.045 * i;
+  BatchSettings one;
+  one.threads = 1;
+  BatchSettings two;
+  two.threads = 2;
+  const RobotCheck check = robot_check(arm, pairs, q, {}, one, true);
+  const RobotCheck check2 = robot_check(arm, pairs, q, {}, two, true);
+  const RobotDistances distances = robot_distances(arm, pairs, q, {}, two);
+  EXPECT_TRUE((check.min_distance.array() == check2.min_distance.array()).all());
+  EXPECT_TRUE((check.gradient.array() == check2.gradient.array()).all());
+  const Query query;
+  std::vector<Pose> links;
+  int colliding = 0;
+  for (int i = 0; i < 40; ++i) {
+    link_poses(arm, q.row(i).data(), links);
+    Scalar least = INFINITY;
+    for (std::size_t p = 0; p < pairs.size(); ++p) {
+      const Geometry& a = arm.geometries()[pairs[p].a];
+      const Geometry& b = arm.geometries()[pairs[p].b];
+      const DistanceResult single = query.signed_distance(a.body, links[a.link], b.body,
+                                                          links[b.link]);
+      EXPECT_EQ(distances.distance(i, p), single.distance);
+      least = std::min(least, single.distance);
+    }
+    EXPECT_EQ(check.min_distance(i), least);
+    EXPECT_TRUE(check.certified(i));
+    EXPECT_EQ(check.colliding(i), least <= 0);
+    colliding += check.colliding(i);
+  }
+  EXPECT_GT(colliding, 0);
+  EXPECT_LT(colliding, 40);
+}
+
+}  // namespace
+}  // namespace swarmcollide::testing

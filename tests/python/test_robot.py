@@ -1,0 +1,450 @@
+"""Robots: models from URDF and MJCF, forward kinematics against yourdfpy's and MuJoCo's, the
+pair filter, SRDF, obstacles, and queries over configurations against the single queries."""
+
+import textwrap
+
+import numpy as np
+import pytest
+
+import swarmcollide as sc
+from swarmcollide.robot_shapes import curved_body
+
+trimesh = pytest.importorskip("trimesh")
+yourdfpy = pytest.importorskip("yourdfpy")
+mujoco = pytest.importorskip("mujoco")
+
+URDF = """\
+<robot name="arm">
+  <link name="base">
+    <collision><origin xyz="0 0 0.05"/><geometry><box size="0.4 0.4 0.1"/></geometry></collision>
+  </link>
+  <link name="upper">
+    <collision><origin xyz="0 0 0.25" rpy="0 0 0.3"/>
+      <geometry><cylinder radius="0.05" length="0.4"/></geometry></collision>
+  </link>
+  <link name="fore">
+    <collision><origin xyz="0 0 0.2" rpy="0.1 0.2 0.3"/>
+      <geometry><mesh filename="package://pkg/meshes/fore.stl" scale="1 1 2"/></geometry>
+    </collision>
+  </link>
+  <link name="tool">
+    <collision><geometry><mesh filename="meshes/tool.obj"/></geometry></collision>
+    <collision><origin xyz="0 0 0.1"/><geometry><sphere radius="0.03"/></geometry></collision>
+  </link>
+  <link name="slider">
+    <collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision>
+  </link>
+  <link name="finger">
+    <collision><origin xyz="0 0 0.1"/><geometry><box size="0.02 0.02 0.1"/></geometry></collision>
+  </link>
+  <joint name="shoulder" type="revolute">
+    <parent link="base"/><child link="upper"/><origin xyz="0 0 0.1"/><axis xyz="0 0 1"/>
+    <limit lower="-2.5" upper="2.5" effort="1" velocity="1"/>
+  </joint>
+  <joint name="elbow" type="continuous">
+    <parent link="upper"/><child link="fore"/><origin xyz="0 0 0.5" rpy="0 0.2 0"/>
+    <axis xyz="0 1 0"/>
+  </joint>
+  <joint name="wrist" type="fixed">
+    <parent link="fore"/><child link="tool"/><origin xyz="0 0 0.4"/>
+  </joint>
+  <joint name="slide" type="prismatic">
+    <parent link="base"/><child link="slider"/><origin xyz="0.5 0 0.05"/><axis xyz="0.6 0.8 0"/>
+    <limit lower="-0.2" upper="0.6" effort="1" velocity="1"/>
+  </joint>
+  <joint name="grip" type="prismatic">
+    <parent link="slider"/><child link="finger"/><axis xyz="0 1 0"/>
+    <limit lower="0" upper="0.1" effort="1" velocity="1"/>
+    <mimic joint="slide" multiplier="-0.5" offset="0.01"/>
+  </joint>
+</robot>
+"""
+
+
+def write_urdf(tmp_path, text=URDF, meshes=True):
+    if meshes:
+        (tmp_path / "pkg" / "meshes").mkdir(parents=True)
+        trimesh.creation.box((0.06, 0.08, 0.2)).export(tmp_path / "pkg" / "meshes" / "fore.stl")
+        (tmp_path / "meshes").mkdir()
+        trimesh.creation.icosphere(1, radius=0.05).export(tmp_path / "meshes" / "tool.obj")
+    path = tmp_path / "arm.urdf"
+    path.write_text(text)
+    return path
+
+
+@pytest.fixture
+def urdf(tmp_path):
+    return write_urdf(tmp_path)
+
+
+@pytest.fixture
+def arm(urdf):
+    return sc.Robot.from_urdf(urdf, package_dirs=[urdf.parent])
+
+
+def random_configurations(robot, count, seed=0):
+    rng = np.random.default_rng(seed)
+    lower, upper = np.clip(robot.limits, -np.pi, np.pi).T
+    return rng.uniform(lower, upper, size=(count, robot.dof))
+
+
+def test_urdf_forward_kinematics_is_yourdfpys(arm, urdf):
+    reference = yourdfpy.URDF.load(str(urdf), load_meshes=False)
+    assert arm.joint_names == tuple(reference.actuated_joint_names)
+    q = random_configurations(arm, 20)
+    transforms = arm.forward_kinematics(q)
+    assert transforms.shape == (20, 6, 4, 4)
+    for row, values in zip(transforms, q):
+        reference.update_cfg(values)
+        for link, transform in zip(arm.link_names, row):
+            expected = reference.get_transform(link)
+            np.testing.assert_allclose(transform, expected, rtol=0, atol=1e-12 * 2)
+    np.testing.assert_array_equal(arm.forward_kinematics(q[3]), transforms[3])
+
+
+def test_urdf_geometries_have_their_scales_origins_and_errors(arm):
+    assert arm.geometry_names == ("base", "upper", "fore", "tool/0", "tool/1", "slider", "finger")
+    fore = arm._robot_geometries[2]
+    # The box mesh is 0.06 x 0.08 x 0.2, scaled by 2 along z.
+    np.testing.assert_allclose(np.ptp(fore[3].vertices, axis=0), [0.06, 0.08, 0.4])
+    assert [(a.geometry, a.shape) for a in arm.approximations] == [("upper", "cylinder")]
+    assert 0 < arm.approximations[0].error < 0.05 * (1 - np.cos(np.pi / 32)) * 1.0001
+
+
+def test_adjacent_links_and_links_joined_by_fixed_joints_are_not_paired(arm):
+    # base-upper, upper-fore (and fore's fixed tool), base-slider, slider-finger are adjacent.
+    assert arm.pairs == (
+        ("base", "fore"), ("base", "tool/0"), ("base", "tool/1"), ("base", "finger"),
+        ("upper", "slider"), ("upper", "finger"), ("fore", "slider"), ("fore", "finger"),
+        ("tool/0", "slider"), ("tool/0", "finger"), ("tool/1", "slider"), ("tool/1", "finger"),
+    )
+    assert arm.dof == 3  # the mimic joint follows the slide
+
+
+def test_srdf_disables_its_pairs(urdf, tmp_path):
+    srdf = tmp_path / "arm.srdf"
+    srdf.write_text(textwrap.dedent("""\
+        <robot name="arm">
+          <disable_collisions link1="tool" link2="base" reason="Never"/>
+          <disable_collisions link1="upper" link2="slider" reason="Never"/>
+        </robot>"""))
+    robot = sc.Robot.from_urdf(urdf, package_dirs=[tmp_path], srdf=srdf)
+    assert robot.pairs == (
+        ("base", "fore"), ("base", "finger"), ("upper", "finger"), ("fore", "slider"),
+        ("fore", "finger"), ("tool/0", "slider"), ("tool/0", "finger"), ("tool/1", "slider"),
+        ("tool/1", "finger"),
+    )
+    bad = tmp_path / "bad.srdf"
+    bad.write_text('<robot><disable_collisions link1="tool" link2="hand"/></robot>')
+    with pytest.raises(ValueError, match="'hand' is not a link"):
+        sc.Robot.from_urdf(urdf, package_dirs=[tmp_path], srdf=bad)
+
+
+def posed_bodies(robot, q):
+    """Every geometry's body and world pose at q, from the robot's FK and the tables."""
+    transforms = robot.forward_kinematics(q)
+    bodies = {}
+    for name, link, origin, body in robot._robot_geometries + robot._obstacles:
+        origin = np.eye(4) if origin is None else np.asarray(origin, float)
+        bodies[name] = (body, origin if link < 0 else transforms[link] @ origin)
+    return bodies
+
+
+def test_check_and_distances_are_the_single_signed_distances(arm):
+    table = np.eye(4)
+    table[:3, 3] = [0.6, 0.0, 0.7]
+    arm.add_obstacle(sc.Box([0.1, 0.1, 0.02]), table, name="table")
+    assert ("base", "table") in arm.pairs and ("slider", "table") in arm.pairs
+    q = random_configurations(arm, 60, seed=1)
+    distances = arm.distances(q)
+    check = arm.check(q)
+    assert distances.shape == (60, len(arm.pairs))
+    names = arm.geometry_names
+    for i in range(0, 60, 7):
+        posed = posed_bodies(arm, q[i])
+        poses = arm.geometry_poses(q[i])
+        for name, pose in zip(names, poses):
+            np.testing.assert_allclose(pose, posed[name][1], rtol=0, atol=1e-15)
+        for p, (a, b) in enumerate(arm.pairs):
+            single = sc.signed_distance(posed[a][0], posed[b][0], pose_a=poses[names.index(a)],
+                                        pose_b=poses[names.index(b)])
+            assert distances[i, p] == single.distance
+    # check skips the pairs whose bounding balls are farther than its nearest pair: its answer
+    # is every pair's row reduced (the lowest index on ties).
+    nearest = np.argmin(distances, axis=1)
+    np.testing.assert_array_equal(check.pair, nearest)
+    np.testing.assert_array_equal(check.min_distance, distances[np.arange(60), nearest])
+    for i in range(60):
+        assert tuple(check.pair_names[i]) == arm.pairs[nearest[i]]
+        np.testing.assert_allclose(check.point_b[i] - check.point_a[i],
+                                   check.min_distance[i] * check.normal[i], atol=1e-12)
+    assert check.certified.all()
+    # Bounds hold up to rounding (about 1e-14 of the pair's size, DistanceResult's contract).
+    assert (check.lower_bound <= check.min_distance + 1e-13).all()
+    np.testing.assert_array_equal(check.colliding, (distances <= 1e-9 * 2).any(axis=1))
+    assert 0 < check.colliding.sum() < 60
+
+
+def test_answers_do_not_depend_on_the_threads(arm):
+    q = random_configurations(arm, 50, seed=2)
+    one = arm.check(q, threads=1, gradient=True)
+    two = arm.check(q, threads=2, gradient=True)
+    for field in ("colliding", "min_distance", "lower_bound", "pair", "point_a", "point_b",
+                  "normal", "gradient"):
+        np.testing.assert_array_equal(getattr(one, field), getattr(two, field))
+    np.testing.assert_array_equal(arm.distances(q, threads=1), arm.distances(q, threads=2))
+
+
+def test_the_gradient_matches_finite_differences_where_the_nearest_pair_is_unique(arm):
+    q = random_configurations(arm, 40, seed=3)
+    check = arm.check(q, gradient=True)
+    step = 1e-6
+    compared = 0
+    for i in np.flatnonzero(check.min_distance > 0.02):
+        distances = arm.distances(q[i])
+        if np.sort(distances)[1] - distances.min() < 0.01:
+            continue  # two pairs nearly tie: the minimum may switch pair within a step
+        numeric = [(arm.check(q[i] + step * e).min_distance -
+                    arm.check(q[i] - step * e).min_distance) / (2 * step)
+                   for e in np.eye(arm.dof)]
+        np.testing.assert_allclose(check.gradient[i], numeric, atol=1e-5)
+        compared += 1
+    assert compared >= 5
+
+
+MJCF = """\
+<mujoco>
+  <compiler angle="radian"/>
+  <asset><mesh name="part" file="{mesh}" scale="1 2 1"/></asset>
+  <worldbody>
+    <geom name="floor" type="box" size="1 1 0.01" pos="0 0 -0.01"/>
+    <body name="base" pos="0 0 0.1" quat="0.9 0 0.1 0.2">
+      <joint name="turn" type="hinge" axis="0 0 1" range="-2 2" ref="0.3"/>
+      <geom type="cylinder" size="0.05 0.1"/>
+      <body name="arm" pos="0 0 0.3">
+        <joint name="lift" type="hinge" axis="0 1 0" pos="0 0 -0.05"/>
+        <joint name="roll" type="hinge" axis="1 0 0" pos="0.02 0 0" range="-1 1"/>
+        <geom type="capsule" size="0.03 0.15" pos="0 0 0.1"/>
+        <geom type="ellipsoid" size="0.03 0.04 0.05" pos="0 0 0.3"/>
+        <body name="hand" pos="0 0 0.4">
+          <joint name="push" type="slide" axis="0 0 1" range="-0.1 0.1"/>
+          <geom type="mesh" mesh="part"/>
+          <geom type="sphere" size="0.02" pos="0 0 0.1" contype="0" conaffinity="0"/>
+          <body name="finger" pos="0.05 0 0.05">
+            <geom type="box" size="0.01 0.01 0.04"/>
+          </body>
+        </body>
+      </body>
+    </body>
+  </worldbody>
+</mujoco>
+"""
+
+
+@pytest.fixture
+def mjcf(tmp_path):
+    trimesh.creation.box((0.05, 0.05, 0.1)).export(tmp_path / "part.stl")
+    path = tmp_path / "arm.xml"
+    path.write_text(MJCF.format(mesh=tmp_path / "part.stl"))
+    return path
+
+
+def test_mjcf_forward_kinematics_is_mujocos(mjcf):
+    robot = sc.Robot.from_mjcf(mjcf)
+    model = mujoco.MjModel.from_xml_path(str(mjcf))
+    data = mujoco.MjData(model)
+    assert robot.dof == model.nq == 4
+    assert robot.joint_names == ("turn", "lift", "roll", "push")
+    assert robot.link_names[:model.nbody] == ("world", "base", "arm", "hand", "finger")
+    q = random_configurations(robot, 20, seed=4)
+    transforms = robot.forward_kinematics(q)
+    for row, values in zip(transforms, q):
+        data.qpos[:] = values
+        mujoco.mj_kinematics(model, data)
+        for body in range(model.nbody):
+            np.testing.assert_allclose(row[body][:3, 3], data.xpos[body], rtol=0, atol=1e-12)
+            np.testing.assert_allclose(row[body][:3, :3], data.xmat[body].reshape(3, 3), rtol=0,
+                                       atol=1e-12)
+        # The geoms' world poses too; collision geoms only, in MuJoCo's order.
+        posed = posed_bodies(robot, values)
+        collision = [g for g in range(model.ngeom) if model.geom_contype[g] != 0]
+        assert len(collision) == len(robot.geometry_names) == model.ngeom - 1
+        for g, name in zip(collision, robot.geometry_names):
+            np.testing.assert_allclose(posed[name][1][:3, 3], data.geom_xpos[g], rtol=0,
+                                       atol=1e-12)
+            np.testing.assert_allclose(posed[name][1][:3, :3], data.geom_xmat[g].reshape(3, 3),
+                                       rtol=0, atol=1e-12)
+    assert {a.shape for a in robot.approximations} == {"cylinder", "ellipsoid"}
+    # The links between arm's two joints are looked through: arm is base's child, hand arm's;
+    # the finger is fixed to the hand.
+    assert robot.pairs == (("floor", "arm/0"), ("floor", "arm/1"), ("floor", "hand"),
+                           ("floor", "finger"), ("base", "hand"), ("base", "finger"))
+    assert robot.check(q).certified.all()
+
+
+def test_mjcf_planes_raise_unless_skipped(tmp_path):
+    path = tmp_path / "plane.xml"
+    path.write_text('<mujoco><worldbody><geom name="ground" type="plane" size="1 1 0.1"/>'
+                    '<body name="b"><joint type="slide" axis="0 0 1"/>'
+                    '<geom type="sphere" size="0.1"/></body></worldbody></mujoco>')
+    with pytest.raises(ValueError, match="geom 'ground'.*skip_planes=True"):
+        sc.Robot.from_mjcf(path)
+    robot = sc.Robot.from_mjcf(path, skip_planes=True)
+    assert robot.pairs == ()
+    path.write_text('<mujoco><worldbody><body name="b"><joint name="loose" type="ball"/>'
+                    '<geom type="sphere" size="0.1"/></body></worldbody></mujoco>')
+    with pytest.raises(ValueError, match="joint 'loose'"):
+        sc.Robot.from_mjcf(path)
+
+
+def test_configurations_outside_the_limits_raise_clamp_or_wrap(arm):
+    q = np.array([2.5 + 2 * np.pi - 0.5, 7.0, 0.1])
+    with pytest.raises(ValueError, match=r"q\[0\], joint 'shoulder'.*limits='clamp'"):
+        arm.check(q)
+    clamped = arm.forward_kinematics(q, limits="clamp")
+    np.testing.assert_array_equal(clamped, arm.forward_kinematics([2.5, 7.0, 0.1]))
+    wrapped = arm.forward_kinematics(q, limits="wrap")
+    np.testing.assert_allclose(wrapped, arm.forward_kinematics([2.0, 7.0, 0.1]), atol=1e-14)
+    with pytest.raises(ValueError, match="joint 'slide'.*revolute joints only"):
+        arm.check([0.0, 0.0, 0.7], limits="wrap")
+    with pytest.raises(ValueError, match="limits must be one of"):
+        arm.check([0.0, 0.0, 0.0], limits="bounce")
+
+
+def test_bad_configurations_name_what_is_wrong(arm):
+    with pytest.raises(ValueError, match="3 values per configuration.*got 2"):
+        arm.check([0.0, 0.0])
+    with pytest.raises(ValueError, match=r"q\[1\], joint 'elbow': nan"):
+        arm.distances([[0.0, 0.0, 0.0], [0.0, np.nan, 0.0]])
+    with pytest.raises(ValueError, match=r"shape \(dof,\) or \(m, dof\)"):
+        arm.check(np.zeros((2, 2, 3)))
+    with pytest.raises(TypeError, match="real numbers"):
+        arm.check(["a", "b", "c"])
+    assert arm.distances(np.zeros((0, 3))).shape == (0, len(arm.pairs))
+    assert arm.check(np.zeros((0, 3))).min_distance.shape == (0,)
+
+
+def test_bad_files_name_the_link_or_joint(tmp_path):
+    urdf = write_urdf(tmp_path)
+    # The package is found beside the URDF without package_dirs, a missing one is named.
+    assert sc.Robot.from_urdf(urdf).pairs == sc.Robot.from_urdf(urdf, [tmp_path]).pairs
+    missing = tmp_path / "missing.urdf"
+    missing.write_text(URDF.replace("package://pkg/", "package://nopkg/"))
+    with pytest.raises(ValueError, match="link 'fore'.*package 'nopkg' not found"):
+        sc.Robot.from_urdf(missing, package_dirs=[tmp_path])
+    (tmp_path / "meshes" / "tool.obj").unlink()
+    with pytest.raises(ValueError, match="link 'tool': mesh file 'meshes/tool.obj' not found"):
+        sc.Robot.from_urdf(urdf, package_dirs=[tmp_path])
+    other = tmp_path / "other"
+    other.mkdir()
+    path = write_urdf(other, URDF.replace('name="elbow" type="continuous"',
+                                          'name="elbow" type="hinge"'), meshes=False)
+    with pytest.raises(ValueError, match="joint 'elbow': type 'hinge' is not supported"):
+        sc.Robot.from_urdf(path, package_dirs=[tmp_path])
+    with pytest.raises(ValueError, match="collision must be one of"):
+        sc.Robot.from_urdf(urdf, package_dirs=[tmp_path], collision="hulls")
+    with pytest.raises(ValueError, match="not found"):
+        sc.Robot.from_urdf(tmp_path / "none.urdf")
+
+
+def test_obstacle_names_must_be_new(arm):
+    with pytest.raises(ValueError, match="'base' is taken"):
+        arm.add_obstacle(sc.Sphere(0.1), name="base")
+    arm.add_obstacle(sc.Sphere(0.1), np.eye(4))
+    assert arm.geometry_names[-1] == "obstacle0"
+
+
+@pytest.mark.parametrize("shape,size", [("cylinder", (0.3, 0.5)), ("ellipsoid", (0.2, 0.3, 0.5))])
+def test_curved_bodies_lie_inside_their_shapes_within_the_error(shape, size):
+    body, error = curved_body(shape, size)
+    rng = np.random.default_rng(5)
+    directions = rng.normal(size=(200, 3))
+    directions /= np.linalg.norm(directions, axis=1, keepdims=True)
+    if shape == "cylinder":
+        radius, half = size
+        planar = np.linalg.norm(directions[:, :2], axis=1)
+        true_support = radius * planar + half * np.abs(directions[:, 2])
+    else:
+        true_support = np.linalg.norm(directions * np.asarray(size), axis=1)
+    hull_support = (body.vertices @ directions.T).max(axis=0)
+    assert (hull_support <= true_support + 1e-15).all()
+    assert (true_support - hull_support <= error).all()
+    assert (true_support - hull_support).max() > 0.3 * error  # the bound is not loose
+
+
+def test_proposed_pairs_are_those_that_always_or_never_collided(arm):
+    # A stake through the base always meets it; the sampled rows say which pairs never meet.
+    arm.add_obstacle(sc.Box([0.05, 0.05, 0.05]), None, name="stake")
+    proposal = arm.propose_disabled_pairs(200, seed=1)
+    assert ("base", "stake") in proposal.always and ("slider", "stake") not in proposal.always
+    q = np.random.default_rng(1).uniform(*np.clip(arm.limits, -np.pi, np.pi).T, size=(200, 3))
+    hits = (arm.distances(q) <= 1e-9 * 2).any(axis=0)
+    owners = [tuple(name.split("/")[0] for name in pair) for pair in arm.pairs]
+    for owner in set(owners):
+        met = any(hit for hit, o in zip(hits, owners) if o == owner)
+        assert (owner in proposal.never) == (not met)
+    assert proposal.never and set(proposal.never).isdisjoint(proposal.always)
+    with pytest.raises(ValueError, match="samples must be a positive integer"):
+        arm.propose_disabled_pairs(0)
+
+
+def test_collision_mesh_makes_compound_bodies_of_the_meshes_convex_pieces(urdf, tmp_path):
+    # fore's mesh: two boxes 5 cm apart along z, two convex components.
+    pieces = [trimesh.creation.box((0.06, 0.08, 0.1)), trimesh.creation.box((0.06, 0.08, 0.1))]
+    pieces[1].apply_translation((0, 0, 0.15))
+    trimesh.util.concatenate(pieces).export(tmp_path / "pkg" / "meshes" / "fore.stl")
+    robot = sc.Robot.from_urdf(urdf, [tmp_path], collision="mesh")
+    fore = robot._robot_geometries[2][3]
+    assert isinstance(fore, sc.CompoundBody) and len(fore.parts) == 2
+    hull = sc.Robot.from_urdf(urdf, [tmp_path])
+    assert robot.pairs == hull.pairs
+    q = random_configurations(robot, 40, seed=6)
+    distances = robot.distances(q)
+    check = robot.check(q, threads=2)
+    names = robot.geometry_names
+    bodies = {g[0]: g[3] for g in robot._robot_geometries}
+    for i in range(0, 40, 9):
+        poses = robot.geometry_poses(q[i])
+        for p, (a, b) in enumerate(robot.pairs):
+            single = sc.signed_distance(bodies[a], bodies[b], pose_a=poses[names.index(a)],
+                                        pose_b=poses[names.index(b)])
+            assert distances[i, p] == single.distance
+    nearest = np.argmin(distances, axis=1)
+    np.testing.assert_array_equal(check.pair, nearest)
+    np.testing.assert_array_equal(check.min_distance, distances[np.arange(40), nearest])
+    assert check.certified.all()
+    # The hull holds both boxes: its distances are never larger, and smaller where the gap
+    # between the boxes is the nearest point.
+    hull_distances = hull.distances(q)
+    assert (hull_distances <= distances + 1e-12).all()
+    assert (hull_distances < distances - 1e-6).any()
+
+
+def test_collision_decompose_makes_coacds_parts(urdf, tmp_path, monkeypatch):
+    monkeypatch.setenv("SWARMCOLLIDE_CACHE_DIR", str(tmp_path / "cache"))
+    pieces = [trimesh.creation.box((0.06, 0.08, 0.1)), trimesh.creation.box((0.06, 0.08, 0.1))]
+    pieces[1].apply_translation((0, 0, 0.15))
+    trimesh.util.concatenate(pieces).export(tmp_path / "pkg" / "meshes" / "fore.stl")
+    robot = sc.Robot.from_urdf(urdf, [tmp_path], collision="decompose")
+    fore = robot._robot_geometries[2][3]
+    assert fore.decomposition.method == "coacd" and len(fore.parts) == 2
+    assert any((tmp_path / "cache").iterdir())
+    assert robot.check(random_configurations(robot, 10)).certified.all()
+
+
+def test_model_tables_are_checked_naming_the_joint():
+    with pytest.raises(ValueError, match="joint 'j': type 'planar' is not supported"):
+        sc.Joint("j", "planar", 0, 1)
+    with pytest.raises(ValueError, match="'a' and 'b' both have no parent joint"):
+        sc.Robot(["a", "b"], [], [])
+    with pytest.raises(ValueError, match="joint 'k'.*already the child of joint 'j'"):
+        sc.Robot(["a", "b"], [sc.Joint("j", "fixed", 0, 1), sc.Joint("k", "fixed", 0, 1)], [])
+    with pytest.raises(ValueError, match="cycle"):
+        sc.Robot(["a", "b"], [sc.Joint("j", "fixed", 0, 1), sc.Joint("k", "fixed", 1, 0)], [])
+    with pytest.raises(ValueError, match="joint 'j': the axis must be finite and nonzero"):
+        sc.Robot(["a", "b"], [sc.Joint("j", "revolute", 0, 1, axis=[0, 0, 0])], [])
+    with pytest.raises(ValueError, match="joint 'j': limits must satisfy lower <= upper"):
+        sc.Robot(["a", "b"], [sc.Joint("j", "prismatic", 0, 1, lower=1, upper=0)], [])
+    with pytest.raises(ValueError, match="joint 'm': a mimic joint must move and mimic"):
+        sc.Robot(["a", "b", "c"], [sc.Joint("j", "fixed", 0, 1),
+                                   sc.Joint("m", "revolute", 1, 2, mimic=0)], [])
