@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['Aabb', 'BatchResult', 'Box', 'Capsule', 'CompoundBody', 'CompoundResult', 'CompoundStats', 'ContactResult', 'ConvexPolyhedron', 'DistanceResult', 'Hull', 'Joint', 'PartNode', 'ParticleCoefficients', 'Query', 'RobotCheck', 'RobotDistances', 'RobotModel', 'Scene', 'SceneResult', 'SceneStats', 'Sphere', 'as_polyhedron', 'broadphases', 'constraint_violation', 'is_feasible', 'linear_decreasing_inertia', 'method_table', 'objective', 'pair_seed', 'project_onto_simplex', 'query_function', 'rank_adaptive_coefficients', 'separation']
+__all__: list[str] = ['Aabb', 'BatchResult', 'Box', 'Capsule', 'CompoundBody', 'CompoundResult', 'CompoundStats', 'Cone', 'ContactResult', 'ConvexPolyhedron', 'Cylinder', 'DistanceResult', 'Ellipsoid', 'Hull', 'Joint', 'PartNode', 'ParticleCoefficients', 'Query', 'RobotCheck', 'RobotDistances', 'RobotModel', 'Scene', 'SceneResult', 'SceneStats', 'Sphere', 'as_polyhedron', 'broadphases', 'constraint_violation', 'is_feasible', 'linear_decreasing_inertia', 'method_table', 'objective', 'pair_seed', 'project_onto_simplex', 'query_function', 'rank_adaptive_coefficients', 'separation']
 class Aabb:
     """
     An axis-aligned bounding box with corners ``min`` and ``max``.
@@ -274,6 +274,44 @@ class CompoundStats:
     @property
     def volume_tests(self) -> int:
         ...
+class Cone(ConvexPolyhedron):
+    """
+    
+    A solid right circular cone along the z axis of its frame, centred on its axis' midpoint (FCL's
+    and coal's convention): its base, a disk of radius ``radius``, at ``z = -half_length``, its apex
+    at ``(0, 0, half_length)``; its centre of mass is at ``z = -half_length / 2``.
+    
+    A curved shape, defined by its support function: methods ``'dual'`` (the default) and ``'exact'`` answer it, exactly to their tolerance and certified, against any other body; the methods that read a body's points (``'ipso'``, ``'pso'``, ``'penalty'``, ``'fcl'``, ``'libccd'``) raise ValueError, and so does a CompoundBody with a curved part. Its ``vertices`` are a few points on its surface (an inner polytope with the shape's bounding box), not the body; results carry no weights (empty), and witnesses are points of the shape.
+    
+    Parameters
+    ----------
+    radius : float
+        The radius of the base disk, finite and ``> 0``.
+    half_length : float
+        Half the cone's height, finite and ``> 0``.
+    
+    Examples
+    --------
+    >>> import swarmcollide as sc
+    >>> cone = sc.Cone(1.0, 1.0)
+    >>> identity = [[1, 0, 0], [0, 1, 0], [0, 0, 1]]
+    >>> round(sc.distance(cone, sc.Sphere(0.5), pose_b=(identity, [0, 0, 3])).distance, 9)
+    1.5
+    """
+    def __init__(self, radius: typing.SupportsFloat | typing.SupportsIndex, half_length: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    def __repr__(self) -> str:
+        ...
+    @property
+    def half_length(self) -> float:
+        """
+        Half the cone's height.
+        """
+    @property
+    def radius(self) -> float:
+        """
+        The radius of the base disk (a cone is not rounded: its rounding radius is 0).
+        """
 class ContactResult(SceneResult):
     """
     
@@ -359,12 +397,17 @@ class ConvexPolyhedron:
         """
     def support_index(self, direction: typing.Any) -> int:
         """
-        Index of the point farthest along ``direction`` (first on ties).
+        Index of the point farthest along ``direction`` (first on ties); ValueError for a curved shape, whose support points are not among its vertices.
         """
     @property
     def bounding_radius(self) -> float:
         """
         Half the diagonal of the points' bounding box plus the rounding radius: every point of the body lies within it of the box's centre.
+        """
+    @property
+    def curved(self) -> bool:
+        """
+        True for a curved shape (Cylinder, Cone, Ellipsoid), defined by its support function rather than by the hull of its vertices.
         """
     @property
     def radius(self) -> float:
@@ -375,6 +418,47 @@ class ConvexPolyhedron:
     def vertices(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
         """
         The ``(n, 3)`` points the body was built from (read-only).
+        """
+class Cylinder(ConvexPolyhedron):
+    """
+    
+    A solid circular cylinder along the z axis of its frame, centred on its origin: radius
+    ``radius``, from ``z = -half_length`` to ``z = half_length`` (FCL's and coal's convention; URDF's
+    ``<cylinder radius length>`` has ``length = 2 half_length``; MJCF's cylinder geom has size =
+    (radius, half_length)).
+    
+    A curved shape, defined by its support function: methods ``'dual'`` (the default) and ``'exact'`` answer it, exactly to their tolerance and certified, against any other body; the methods that read a body's points (``'ipso'``, ``'pso'``, ``'penalty'``, ``'fcl'``, ``'libccd'``) raise ValueError, and so does a CompoundBody with a curved part. Its ``vertices`` are a few points on its surface (an inner polytope with the shape's bounding box), not the body; results carry no weights (empty), and witnesses are points of the shape.
+    
+    Parameters
+    ----------
+    radius : float
+        The radius of the circular section, finite and ``> 0``.
+    half_length : float
+        Half the cylinder's length along z, finite and ``> 0``.
+    
+    Examples
+    --------
+    >>> import swarmcollide as sc
+    >>> can = sc.Cylinder(0.5, 1.0)
+    >>> identity = [[1, 0, 0], [0, 1, 0], [0, 0, 1]]
+    >>> round(sc.distance(can, sc.Sphere(0.25), pose_b=(identity, [2, 0, 0])).distance, 9)
+    1.25
+    >>> round(sc.signed_distance(can, can, pose_b=(identity, [0, 0, 1.5])).distance, 9)
+    -0.5
+    """
+    def __init__(self, radius: typing.SupportsFloat | typing.SupportsIndex, half_length: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    def __repr__(self) -> str:
+        ...
+    @property
+    def half_length(self) -> float:
+        """
+        Half the cylinder's length along z.
+        """
+    @property
+    def radius(self) -> float:
+        """
+        The radius of the circular section (a cylinder is not rounded: its rounding radius is 0).
         """
 class DistanceResult:
     """
@@ -464,6 +548,36 @@ class DistanceResult:
     def weights_b(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
         """
         delta of model (2): nonnegative, summing to one (built when read).
+        """
+class Ellipsoid(ConvexPolyhedron):
+    """
+    
+    A solid ellipsoid centred on the origin of its frame with semi-axes ``radii`` along x, y and z:
+    the points with ``(x/a)^2 + (y/b)^2 + (z/c)^2 <= 1`` (MJCF's ellipsoid geom, size = radii).
+    
+    A curved shape, defined by its support function: methods ``'dual'`` (the default) and ``'exact'`` answer it, exactly to their tolerance and certified, against any other body; the methods that read a body's points (``'ipso'``, ``'pso'``, ``'penalty'``, ``'fcl'``, ``'libccd'``) raise ValueError, and so does a CompoundBody with a curved part. Its ``vertices`` are a few points on its surface (an inner polytope with the shape's bounding box), not the body; results carry no weights (empty), and witnesses are points of the shape.
+    
+    Parameters
+    ----------
+    radii : array_like, shape (3,)
+        The semi-axes along x, y and z, each finite and ``> 0``.
+    
+    Examples
+    --------
+    >>> import swarmcollide as sc
+    >>> egg = sc.Ellipsoid([1, 2, 3])
+    >>> identity = [[1, 0, 0], [0, 1, 0], [0, 0, 1]]
+    >>> round(sc.distance(egg, sc.Sphere(1), pose_b=(identity, [0, 0, 5])).distance, 9)
+    1.0
+    """
+    def __init__(self, radii: typing.Any) -> None:
+        ...
+    def __repr__(self) -> str:
+        ...
+    @property
+    def radii(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+        """
+        The semi-axes along x, y and z.
         """
 class Hull:
     """
