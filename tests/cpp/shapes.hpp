@@ -2,10 +2,12 @@
 #pragma once
 
 #include <Eigen/QR>
+#include <algorithm>
 #include <initializer_list>
 
 #include "swarmcollide/detail/random.hpp"
 #include "swarmcollide/geometry/convex_polyhedron.hpp"
+#include "swarmcollide/geometry/pose.hpp"
 
 namespace swarmcollide::testing {
 
@@ -16,6 +18,20 @@ inline ConvexPolyhedron box(const Vector3& lo, const Vector3& hi) {
     v.row(k) << (k & 1 ? hi.x() : lo.x()), (k & 2 ? hi.y() : lo.y()), (k & 4 ? hi.z() : lo.z());
   }
   return ConvexPolyhedron(v);
+}
+
+/// The pose moving a body by `translation` after turning it by `rotation`.
+inline Pose at(const Vector3& translation, const Matrix3& rotation = Matrix3::Identity()) {
+  return {rotation, translation};
+}
+
+/// The pair's size as the queries measure it, less the frame's rounding to a ball: a bound from
+/// below on the tolerance's scale, so `tolerance * size` bounds the error allowed.
+inline Scalar size_of(const ConvexPolyhedron& a, const Pose& pose_a, const ConvexPolyhedron& b,
+                      const Pose& pose_b) {
+  const Vector3 ca = pose_a.rotation * a.bounds().centre + pose_a.translation;
+  const Vector3 cb = pose_b.rotation * b.bounds().centre + pose_b.translation;
+  return (cb - ca).norm() + 2 * std::max(a.bounds().radius, b.bounds().radius);
 }
 
 inline ConvexPolyhedron unit_cube() { return box(Vector3::Zero(), Vector3::Ones()); }

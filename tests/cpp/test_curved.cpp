@@ -31,18 +31,6 @@ Query query_of(Method method, Scalar tolerance = kDefaultTolerance) {
   return Query(options);
 }
 
-Pose at(const Vector3& translation, const Matrix3& rotation = Matrix3::Identity()) {
-  return {rotation, translation};
-}
-
-// The pair's size as the queries measure it: the tolerance's scale.
-Scalar size_of(const ConvexPolyhedron& a, const Pose& pose_a, const ConvexPolyhedron& b,
-               const Pose& pose_b) {
-  const Vector3 ca = pose_a.rotation * a.bounds().centre + pose_a.translation;
-  const Vector3 cb = pose_b.rotation * b.bounds().centre + pose_b.translation;
-  return (cb - ca).norm() + 2 * std::max(a.bounds().radius, b.bounds().radius);
-}
-
 // The bounds enclose `expected` (to rounding) and the distance is within the tolerance of it,
 // certified.
 void expect_answer(const DistanceResult& r, Scalar expected, Scalar size,

@@ -24,19 +24,6 @@ Query query_of(Method method, Scalar tolerance = kDefaultTolerance) {
   return Query(options);
 }
 
-Pose at(const Vector3& translation, const Matrix3& rotation = Matrix3::Identity()) {
-  return {rotation, translation};
-}
-
-// The pair's size as the queries measure it, less the frame's rounding to a ball: a bound from
-// below on the tolerance's scale, so `tolerance * size` bounds the error allowed.
-Scalar size_of(const ConvexPolyhedron& a, const Pose& pose_a, const ConvexPolyhedron& b,
-               const Pose& pose_b) {
-  const Vector3 ca = pose_a.rotation * a.bounds().centre + pose_a.translation;
-  const Vector3 cb = pose_b.rotation * b.bounds().centre + pose_b.translation;
-  return (cb - ca).norm() + 2 * std::max(a.bounds().radius, b.bounds().radius);
-}
-
 // Distance between the point p and the segment (q0, q1).
 Scalar point_to_segment(const Vector3& p, const Vector3& q0, const Vector3& q1) {
   const Vector3 d = q1 - q0;

@@ -7,21 +7,9 @@ import numpy as np
 import pytest
 
 import swarmcollide as sc
+from shape_checks import assert_encloses, at
 
-IDENTITY = np.eye(3)
 CURVED_METHODS = ["dual", "exact"]
-
-
-def at(x, y=0.0, z=0.0, rotation=IDENTITY):
-    return (rotation, [x, y, z])
-
-
-def assert_encloses(result, expected, size, tolerance=1e-9):
-    slack = 1e-13 * size
-    assert result.certified
-    assert result.lower_bound <= expected + slack
-    assert result.distance >= expected - slack
-    assert result.distance == pytest.approx(expected, abs=tolerance * size + slack)
 
 
 def point_to_cylinder(p, r, h):

@@ -7,22 +7,10 @@ import numpy as np
 import pytest
 
 import swarmcollide as sc
+from shape_checks import IDENTITY, assert_encloses, at
 
-IDENTITY = np.eye(3)
 SIGNED_METHODS = ["dual", "exact", "fcl", "libccd"]
 DISTANCE_METHODS = ["dual", "exact", "fcl", "ipso"]
-
-
-def at(x, y=0.0, z=0.0):
-    return (IDENTITY, [x, y, z])
-
-
-def assert_encloses(result, expected, size, tolerance=1e-9):
-    slack = 1e-13 * size
-    assert result.certified
-    assert result.lower_bound <= expected + slack
-    assert result.distance >= expected - slack
-    assert result.distance == pytest.approx(expected, abs=tolerance * size + slack)
 
 
 def point_to_box(p, half):
