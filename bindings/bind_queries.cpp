@@ -35,7 +35,7 @@ std::string repr(const DistanceResult& r) {
   return out.str();
 }
 
-py::array_t<Scalar> as_array(const std::vector<Scalar>& values) {
+py::array_t<Scalar> as_array(const History& values) {
   return py::array_t<Scalar>(static_cast<py::ssize_t>(values.size()), values.data());
 }
 
