@@ -27,7 +27,9 @@ constexpr Scalar kPi = 3.14159265358979323846;
 DualStart first_start(const FramedPair& pair, const DualStart* start) {
   if (start != nullptr) return *start;
   const Vector3 between = pair.b.offset() - pair.a.offset();
-  return {between.norm() > 0 ? Vector3(between.normalized()) : Vector3::UnitX(), -1, -1};
+  // One square root (normalized() would take the norm again).
+  const Scalar length = between.norm();
+  return {length > 0 ? Vector3(between / length) : Vector3::UnitX(), -1, -1};
 }
 
 // The search for the distance (or only a verdict): Wolfe's algorithm on the whole difference
