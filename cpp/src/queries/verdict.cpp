@@ -59,12 +59,8 @@ DistanceResult finish_result(const FramedPair& pair, Answer&& answer, Method req
   r.point_a = frame.point_to_world(answer.point_a);
   r.point_b = frame.point_to_world(answer.point_b);
   if (weights == Weights::given) {
-    // Weights over a body's points are over its given points when it was given only those.
-    const auto given = [](const FramedBody& body, ConvexWeights& w) {
-      return body.given_size() == body.size() ? std::move(w) : body.given_weights(std::move(w));
-    };
-    r.weights_a = given(pair.a, answer.weights_a);
-    r.weights_b = given(pair.b, answer.weights_b);
+    r.weights_a = pair.a.given_weights(std::move(answer.weights_a));
+    r.weights_b = pair.b.given_weights(std::move(answer.weights_b));
   }
   r.direction = answer.direction;
   r.iterations = answer.iterations;
