@@ -35,7 +35,7 @@ std::string repr(const DistanceResult& r) {
   return out.str();
 }
 
-py::array_t<Scalar> as_array(const std::vector<Scalar>& values) {
+py::array_t<Scalar> as_array(const History& values) {
   return py::array_t<Scalar>(static_cast<py::ssize_t>(values.size()), values.data());
 }
 
@@ -136,10 +136,23 @@ bool releases_gil(const QueryOptions& options, int points) {
   return points > kReleaseAbovePoints || !method_info(options.method).always_certified;
 }
 
-// `kind` between convex bodies or compound bodies, `escalate` for the verdicts.
+// `kind` between convex bodies or compound bodies, `escalate` for the verdicts. Without poses
+// (`placed` false: both were None) through the overloads without poses, which validate none.
 template <typename Body>
 auto answer_bodies(const Query& query, PairQuery kind, const Body& a, const Pose& pose_a,
-                   const Body& b, const Pose& pose_b, bool escalate) {
+                   const Body& b, const Pose& pose_b, bool escalate, bool placed) {
+  if (!placed) {
+    switch (kind) {
+      case PairQuery::distance:
+        return query.distance(a, b);
+      case PairQuery::signed_distance:
+        return query.signed_distance(a, b);
+      case PairQuery::collision:
+      case PairQuery::collide:
+        break;
+    }
+    return query.collision(a, b, escalate);
+  }
   switch (kind) {
     case PairQuery::distance:
       return query.distance(a, pose_a, b, pose_b);
@@ -173,12 +186,14 @@ py::object answer(const Query& query, PairQuery kind, const py::handle& a, const
                   const py::handle& pose_a, const py::handle& pose_b, bool escalate) {
   const Pose place_a = to_pose(pose_a, "pose_a");
   const Pose place_b = to_pose(pose_b, "pose_b");
+  const bool placed = !pose_a.is_none() || !pose_b.is_none();
   if (is_compound(a) || is_compound(b)) {
     const CompoundArgument body_a(a, "a");
     const CompoundArgument body_b(b, "b");
     CompoundResult result = [&] {
       py::gil_scoped_release release;
-      return answer_bodies(query, kind, body_a.get(), place_a, body_b.get(), place_b, escalate);
+      return answer_bodies(query, kind, body_a.get(), place_a, body_b.get(), place_b, escalate,
+                           placed);
     }();
     if (kind == PairQuery::collide) return py::bool_(result.colliding);
     return py::cast(std::move(result));
@@ -192,7 +207,8 @@ py::object answer(const Query& query, PairQuery kind, const py::handle& a, const
     polyhedron_b = &body_b.emplace(b, "b").get();
   }
   const auto solve = [&] {
-    return answer_bodies(query, kind, *polyhedron_a, place_a, *polyhedron_b, place_b, escalate);
+    return answer_bodies(query, kind, *polyhedron_a, place_a, *polyhedron_b, place_b, escalate,
+                         placed);
   };
   DistanceResult result;
   if (releases_gil(query.options(), polyhedron_a->size() + polyhedron_b->size())) {

@@ -78,6 +78,32 @@ TEST_P(SteadyState, ASolveAllocatesNoMoreThanCopyingItsResult) {
   EXPECT_LE(through_function, result_arrays) << GetParam().name;
 }
 
+// A distance or verdict the dual settles with Wolfe's start (nearly every pair) allocates nothing:
+// its answer's weights are sparse, and its history (one value) is held in place (History).
+TEST(DualSteadyState, ADistanceSettledByItsStartAllocatesNothing) {
+  for (const int n : {4, 8, 64}) {
+    VertexMatrix points(n, 3);
+    for (int i = 0; i < n; ++i) {
+      const double t = 2.399963 * i;
+      const double z = 1 - (2.0 * i + 1) / n;
+      const double r = std::sqrt(1 - z * z);
+      points.row(i) << r * std::cos(t), r * std::sin(t), z;
+    }
+    const ConvexPolyhedron a(points);
+    for (const double offset : {3.0, 2.01, 1.5}) {  // apart, near, overlapping
+      const ConvexPolyhedron b(points.rowwise() + Eigen::RowVector3d(offset, 0.1, -0.2));
+      const Query query{QueryOptions{}};
+      DistanceResult result = query.distance(a, b);
+      ASSERT_TRUE(result.certified);
+      ASSERT_EQ(result.history.size(), 1u);
+      EXPECT_EQ(allocations_during([&] { result = query.distance(a, b); }), 0)
+          << n << " points, offset " << offset;
+      EXPECT_EQ(allocations_during([&] { result = query.collision(a, b); }), 0)
+          << n << " points, offset " << offset;
+    }
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(Methods, SteadyState,
                          ::testing::Values(AllocationCase{Method::ipso, "ipso"},
                                            AllocationCase{Method::pso, "pso"},

@@ -4,6 +4,7 @@
 // simplexes.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <random>
@@ -128,6 +129,88 @@ TEST(NearestSimplexPoint, DegenerateSimplexesMatchTheFaceEnumeration) {
     }
     const Simplex s = simplex_of(points);
     SCOPED_TRACE(trial);
+    EXPECT_NEAR(checked_norm(s, m), oracle_norm(s, m), 1e-12);
+  }
+}
+
+// The origin exactly on a vertex, in an edge or in a face of a tetrahedron or triangle (points
+// on the grid of eighths, so that the origin's place is exact): the nearest point is the origin,
+// and the face answered is the smallest one that holds it, with its weights. A projection that
+// dropped a point it needs, or kept one with a weight that rounding made zero, fails here.
+TEST(NearestSimplexPoint, TheOriginOnAVertexEdgeOrFaceGivesThatFeature) {
+  std::mt19937_64 rng(11);
+  std::uniform_int_distribution<int> eighths(-16, 16);
+  const auto grid = [&]() -> Vector3 { return Vector3(eighths(rng), eighths(rng), eighths(rng)) / 8; };
+  int checked = 0;
+  for (int trial = 0; trial < 3000; ++trial) {
+    const int m = 3 + trial % 2;
+    const int feature = 1 + (trial / 2) % 3;  // points of the face through the origin
+    std::array<Vector3, 4> points;
+    for (Vector3& p : points) p = grid();
+    // The origin at the centroid-like point with weights 1/2 (edge) or 1/4, 1/4, 1/2 (face) of
+    // the feature's points: the feature's last point is placed to make it so, exactly.
+    Vector3 partial = Vector3::Zero();
+    const std::array<Scalar, 3> share = feature == 2   ? std::array<Scalar, 3>{0.5, 0.5, 0}
+                                        : feature == 3 ? std::array<Scalar, 3>{0.25, 0.25, 0.5}
+                                                       : std::array<Scalar, 3>{1, 0, 0};
+    for (int k = 0; k + 1 < feature; ++k) partial += share[k] * points[k];
+    points[feature - 1] = -partial / share[feature - 1];
+    // Rotate the order so that the feature's points are anywhere among the simplex's.
+    const int turn = (trial / 6) % m;
+    std::rotate(points.begin(), points.begin() + turn, points.begin() + m);
+    std::array<bool, 4> in_feature{};
+    for (int j = 0; j < feature; ++j) in_feature[(j - turn + m) % m] = true;
+    const Simplex given = simplex_of(points);
+    // Draws the enumeration does not place exactly on the origin (its own rounding, or a
+    // degenerate feature: the degenerate test's) are left out.
+    if (oracle_norm(given, m) != 0) continue;
+    Simplex s;
+    std::array<Scalar, 4> w{};
+    int size = 0;
+    nearest_simplex_point(given, m, s, w, size);
+    SCOPED_TRACE(::testing::Message() << "trial " << trial << ", feature of " << feature);
+    const Vector3 x = combination(s, w, size);
+    EXPECT_LT(x.norm(), 1e-14);
+    // The feature's points, and others only with weights of rounding (a coordinate of the
+    // origin that is zero computes as a tiny one of either sign).
+    for (int k = 0; k < size; ++k) {
+      EXPECT_GT(w[k], 0);
+      if (!in_feature[s[k].ia]) EXPECT_LT(w[k], 1e-14) << "point " << s[k].ia;
+    }
+    int held = 0;
+    for (int k = 0; k < size; ++k) held += in_feature[s[k].ia];
+    EXPECT_EQ(held, feature);
+    ++checked;
+  }
+  EXPECT_GT(checked, 1500);
+}
+
+// Triangles and tetrahedra that are nearly flat (a point within a sine of 1e-5 to 1e-11 of the
+// line or plane of the others: on both sides of the flatness threshold, kFlat = 1e-8) and the
+// origin near them: the nearest point is the enumeration's, whichever path the projection takes.
+TEST(NearestSimplexPoint, NearlyFlatSimplexesMatchTheFaceEnumeration) {
+  std::mt19937_64 rng(13);
+  std::uniform_real_distribution<Scalar> unit(-1, 1);
+  const auto random = [&]() -> Vector3 { return Vector3(unit(rng), unit(rng), unit(rng)); };
+  for (int trial = 0; trial < 4000; ++trial) {
+    const Scalar sine = std::pow(10.0, -5 - trial % 7);
+    const Vector3 a = random();
+    const Vector3 u = random();
+    const Vector3 v = random();
+    const Vector3 off = random().normalized();
+    std::array<Vector3, 4> points;
+    int m = 4;
+    if (trial % 2 == 0) {  // a nearly collinear triangle, or a tetrahedron over one
+      points = {a, a + u, a + 0.4 * u + sine * u.norm() * off, a + 0.7 * v};
+      m = 3 + (trial / 2) % 2;
+    } else {  // a nearly coplanar tetrahedron
+      points = {a, a + u, a + v, a + 0.3 * u + 0.5 * v + sine * u.norm() * off};
+    }
+    // The origin near the simplex: shift it by the nearest point of its face (a, b, c) or so.
+    const Vector3 shift = (points[0] + points[1] + points[2]) / 3 + 1e-3 * random();
+    for (Vector3& p : points) p -= shift;
+    const Simplex s = simplex_of(points);
+    SCOPED_TRACE(::testing::Message() << "trial " << trial << ", sine " << sine);
     EXPECT_NEAR(checked_norm(s, m), oracle_norm(s, m), 1e-12);
   }
 }

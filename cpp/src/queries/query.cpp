@@ -14,6 +14,8 @@ namespace swarmcollide {
 
 namespace {
 
+// The pose of a body given without one: valid by construction, so the overloads without poses
+// frame their pairs without validating it (frame_validated_pair).
 const Pose kIdentity{};
 
 }  // namespace
@@ -71,7 +73,10 @@ DistanceResult answer_pair(const QueryOptions& options, Goal goal, const FramedP
 Query::Query(QueryOptions options) : options_(std::move(options)) { options_.validate(); }
 
 DistanceResult Query::distance(const ConvexPolyhedron& a, const ConvexPolyhedron& b) const {
-  return distance(a, kIdentity, b, kIdentity);
+  require(options_.method, kDistance, "distance");
+  return detail::answer_pair(
+      options_, detail::Goal::distance,
+      detail::frame_validated_pair(a, kIdentity, b, kIdentity, options_.tolerance), false);
 }
 
 DistanceResult Query::distance(const ConvexPolyhedron& a, const Pose& pose_a,
@@ -83,7 +88,10 @@ DistanceResult Query::distance(const ConvexPolyhedron& a, const Pose& pose_a,
 
 DistanceResult Query::collision(const ConvexPolyhedron& a, const ConvexPolyhedron& b,
                                 bool escalate) const {
-  return collision(a, kIdentity, b, kIdentity, escalate);
+  require(options_.method, kCollide, "collide");
+  return detail::answer_pair(
+      options_, detail::Goal::verdict,
+      detail::frame_validated_pair(a, kIdentity, b, kIdentity, options_.tolerance), escalate);
 }
 
 DistanceResult Query::collision(const ConvexPolyhedron& a, const Pose& pose_a,
@@ -105,7 +113,10 @@ bool Query::collide(const ConvexPolyhedron& a, const Pose& pose_a, const ConvexP
 }
 
 DistanceResult Query::signed_distance(const ConvexPolyhedron& a, const ConvexPolyhedron& b) const {
-  return signed_distance(a, kIdentity, b, kIdentity);
+  require(options_.method, kSignedDistance, "signed_distance");
+  return detail::answer_pair(
+      options_, detail::Goal::signed_distance,
+      detail::frame_validated_pair(a, kIdentity, b, kIdentity, options_.tolerance), false);
 }
 
 DistanceResult Query::signed_distance(const ConvexPolyhedron& a, const Pose& pose_a,

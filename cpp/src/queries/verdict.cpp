@@ -9,44 +9,7 @@
 
 namespace swarmcollide::detail {
 
-namespace {
-
-// The tests below read bounds on the rounded bodies (rounded.hpp): the public functions, which
-// the solvers call with bounds on the cores, shift theirs first; finish_result its answer.
-
-bool apart_proven(const FramedPair& pair, Scalar lower) {
-  return lower - kFrameRounding > pair.tolerance;
-}
-
-bool close_proven(const FramedPair& pair, Scalar upper, bool intersection_proven) {
-  // A pair of size zero is one point twice (every point of both bodies is the frame's centre,
-  // exactly): the bodies share it, though no tolerance (zero times the size) can say so.
-  return intersection_proven || upper + kFrameRounding <= pair.tolerance || pair.frame.size == 0;
-}
-
-bool proven_verdict(const FramedPair& pair, Scalar lower, Scalar upper, bool intersection_proven) {
-  return apart_proven(pair, lower) || close_proven(pair, upper, intersection_proven);
-}
-
-bool proven_value(const FramedPair& pair, Scalar lower, Scalar upper) {
-  return upper - lower <= pair.tolerance + 2 * kFrameRounding;
-}
-
-bool reached(const FramedPair& pair, Goal goal, Scalar lower, Scalar upper,
-             bool intersection_proven) {
-  switch (goal) {
-    case Goal::verdict:
-      return proven_verdict(pair, lower, upper, intersection_proven);
-    case Goal::distance:
-      return proven_value(pair, std::max(lower, 0.0), upper) ||
-             close_proven(pair, upper, intersection_proven);
-    case Goal::signed_distance:
-      break;
-  }
-  return proven_value(pair, lower, upper);
-}
-
-}  // namespace
+using namespace verdict_detail;
 
 bool verdict_proven(const FramedPair& pair, Scalar lower, Scalar upper, bool intersection_proven) {
   return proven_verdict(pair, rounded_lower(pair, lower), rounded_upper(pair, upper),
@@ -74,16 +37,10 @@ bool apart_after_motion(Scalar lower, Scalar size, Scalar moved, Scalar threshol
   return distance - margin > contact;
 }
 
-bool goal_reached(const FramedPair& pair, Goal goal, Scalar lower, Scalar upper,
-                  bool intersection_proven) {
-  return reached(pair, goal, rounded_lower(pair, lower), rounded_upper(pair, upper),
-                 intersection_proven);
-}
-
 DistanceResult finish_result(const FramedPair& pair, Answer&& answer, Method requested, Goal goal,
                              Weights weights) {
   // From here on the answer is the rounded bodies' (the same for two polyhedra).
-  round_answer(pair, goal, answer);
+  if (rounded(pair)) round_answer(pair, goal, answer);
   // A distance is never negative, so zero bounds it below whatever the solver found; and in the
   // frame both bodies lie in the unit ball, so a translation by 2 separates them.
   answer.lower = std::max(answer.lower, goal == Goal::signed_distance ? -2.0 : 0.0);

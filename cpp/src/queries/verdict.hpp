@@ -1,8 +1,11 @@
 // The one place where bounds become verdicts; private to the library's sources.
 #pragma once
 
+#include <algorithm>
+
 #include "../geometry/framed_body.hpp"
 #include "../solvers/answer.hpp"
+#include "rounded.hpp"
 #include "swarmcollide/queries/distance_result.hpp"
 
 namespace swarmcollide::detail {
@@ -42,10 +45,54 @@ bool value_proven(const FramedPair& pair, const Answer& answer);
 bool apart_after_motion(Scalar lower, Scalar size, Scalar moved, Scalar threshold,
                         Scalar relative_tolerance);
 
+namespace verdict_detail {
+
+// The tests below read bounds on the rounded bodies (rounded.hpp): the public functions, which
+// the solvers call with bounds on the cores, shift theirs first; finish_result its answer.
+// Inline: the solvers' stop tests ask them several times per query.
+
+inline bool apart_proven(const FramedPair& pair, Scalar lower) {
+  return lower - kFrameRounding > pair.tolerance;
+}
+
+inline bool close_proven(const FramedPair& pair, Scalar upper, bool intersection_proven) {
+  // A pair of size zero is one point twice (every point of both bodies is the frame's centre,
+  // exactly): the bodies share it, though no tolerance (zero times the size) can say so.
+  return intersection_proven || upper + kFrameRounding <= pair.tolerance || pair.frame.size == 0;
+}
+
+inline bool proven_verdict(const FramedPair& pair, Scalar lower, Scalar upper,
+                           bool intersection_proven) {
+  return apart_proven(pair, lower) || close_proven(pair, upper, intersection_proven);
+}
+
+inline bool proven_value(const FramedPair& pair, Scalar lower, Scalar upper) {
+  return upper - lower <= pair.tolerance + 2 * kFrameRounding;
+}
+
+inline bool reached(const FramedPair& pair, Goal goal, Scalar lower, Scalar upper,
+                    bool intersection_proven) {
+  switch (goal) {
+    case Goal::verdict:
+      return proven_verdict(pair, lower, upper, intersection_proven);
+    case Goal::distance:
+      return proven_value(pair, std::max(lower, 0.0), upper) ||
+             close_proven(pair, upper, intersection_proven);
+    case Goal::signed_distance:
+      break;
+  }
+  return proven_value(pair, lower, upper);
+}
+
+}  // namespace verdict_detail
+
 /// True when a solver working towards `goal` may stop: the verdict is proven (goal `verdict`), or
 /// the value is (distances also when contact is proven: the distance is then within the
 /// tolerance of zero).
-bool goal_reached(const FramedPair& pair, Goal goal, Scalar lower, Scalar upper,
-                  bool intersection_proven);
+inline bool goal_reached(const FramedPair& pair, Goal goal, Scalar lower, Scalar upper,
+                         bool intersection_proven) {
+  return verdict_detail::reached(pair, goal, rounded_lower(pair, lower),
+                                 rounded_upper(pair, upper), intersection_proven);
+}
 
 }  // namespace swarmcollide::detail

@@ -3,9 +3,9 @@
 
 #include <limits>
 #include <optional>
-#include <vector>
 
 #include "swarmcollide/problem/convex_weights.hpp"
+#include "swarmcollide/queries/history.hpp"
 #include "swarmcollide/queries/options.hpp"
 #include "swarmcollide/types.hpp"
 
@@ -43,7 +43,7 @@ struct Answer {
   int iterations = 0;
   long evaluations = 0;
   /// Best upper bound after initialisation and after each iteration.
-  std::vector<Scalar> history;
+  History history;
   /// A proof that the bodies share a point: a simplex of their difference that encloses the
   /// origin by a margin above rounding, or exactly equal points.
   bool intersection_proven = false;

@@ -70,7 +70,7 @@ Witness DistanceFinish::nearest_between(const std::vector<int>& fa, const std::v
   return witness_of(pair_, wolfe_min_norm(oracle, start, 2, max_iterations_));
 }
 
-void DistanceFinish::from(const Vector3& n, int& hint_a, int& hint_b, BestBounds& bounds,
+bool DistanceFinish::from(const Vector3& n, int& hint_a, int& hint_b, BestBounds& bounds,
                           Goal goal) {
   Buffers& buf = buffers();
   std::vector<int>& fa = buf.feature_a;
@@ -82,23 +82,25 @@ void DistanceFinish::from(const Vector3& n, int& hint_a, int& hint_b, BestBounds
   for (int step = 0; step < kFinishSteps; ++step) {
     const Witness sub = nearest_between(fa, fb, start);
     bounds.offer_upper(sub);
-    if (bounds.reached(pair_, goal) || !(sub.distance > 0)) return;
+    if (bounds.reached(pair_, goal)) return true;
+    if (!(sub.distance > 0)) return false;
     const Vector3 next = (sub.point_b - sub.point_a) / sub.distance;
     start = next;
     int ia = hint_a;
     int ib = hint_b;
     ++evaluations_;
     bounds.offer_lower(next, separation(pair_.a, pair_.b, next, ia, ib));
-    if (bounds.reached(pair_, goal)) return;
+    if (bounds.reached(pair_, goal)) return true;
     feature(pair_.a, next, ia, buf.grown);
     const bool grew_a = merge(fa, buf.grown);
     feature(pair_.b, -next, ib, buf.grown);
     const bool grew_b = merge(fb, buf.grown);
-    if (!grew_a && !grew_b) return;  // rounding: nothing left to add
+    if (!grew_a && !grew_b) return false;  // rounding: nothing left to add
   }
+  return false;
 }
 
-void DistanceFinish::whole(const Vector3& start, int& hint_a, int& hint_b, BestBounds& bounds,
+bool DistanceFinish::whole(const Vector3& start, int& hint_a, int& hint_b, BestBounds& bounds,
                            Goal goal) {
   // The supports of large bodies climb from the previous ones, unless the direction turned by
   // more than about 25 degrees (as Wolfe's first steps do): the hull's climbing starts are then
@@ -162,10 +164,12 @@ void DistanceFinish::whole(const Vector3& start, int& hint_a, int& hint_b, BestB
   const MinNormPoint first = single_point(oracle(start));
   bounds.offer_lower(start, start.dot(first.x));
   bounds.offer_upper(vertex_witness(pair_, first.corral[0].ia, first.corral[0].ib));
-  if (bounds.reached(pair_, goal)) return;
+  if (bounds.reached(pair_, goal)) return true;
   // In the frame every point lies in the unit ball, so 2 bounds every difference.
   const MinNormPoint nearest = wolfe_min_norm_from(oracle, first, 2, max_iterations_, stop);
-  if (!offered) offer(nearest);
+  if (offered) return true;
+  offer(nearest);
+  return bounds.reached(pair_, goal);
 }
 
 }  // namespace swarmcollide::detail

@@ -19,8 +19,9 @@ class DistanceFinish {
   /// subproblem of the two supporting features; while the bounds still differ, the supports
   /// along the subproblem's direction lie outside the features (otherwise the subproblem's
   /// optimum would be separated by it), so the features grow by them and the subproblem is
-  /// solved again, a few times before the caller's search takes over. Offers every bound found.
-  void from(const Vector3& n, int& hint_a, int& hint_b, BestBounds& bounds, Goal goal);
+  /// solved again, a few times before the caller's search takes over. Offers every bound found;
+  /// returns whether the bounds settle `goal`.
+  bool from(const Vector3& n, int& hint_a, int& hint_b, BestBounds& bounds, Goal goal);
 
   /// Wolfe's algorithm on the whole Minkowski difference B - A from the unit direction `start`
   /// (GJK with Wolfe's corrals), its supports climbing from, and returned in, the hints: the
@@ -28,8 +29,8 @@ class DistanceFinish {
   /// the origin) when the bodies overlap, which no direction can show. Stops as soon as its bounds
   /// settle `goal`, so a verdict stops at the first separating direction or common point. Offers
   /// the separation along `start` and the supporting points' distance, then the witnesses and
-  /// the separation along them.
-  void whole(const Vector3& start, int& hint_a, int& hint_b, BestBounds& bounds, Goal goal);
+  /// the separation along them; returns whether the bounds settle `goal`.
+  bool whole(const Vector3& start, int& hint_a, int& hint_b, BestBounds& bounds, Goal goal);
 
   long evaluations() const { return evaluations_; }
 

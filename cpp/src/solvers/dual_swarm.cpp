@@ -27,7 +27,9 @@ constexpr Scalar kPi = 3.14159265358979323846;
 DualStart first_start(const FramedPair& pair, const DualStart* start) {
   if (start != nullptr) return *start;
   const Vector3 between = pair.b.offset() - pair.a.offset();
-  return {between.norm() > 0 ? Vector3(between.normalized()) : Vector3::UnitX(), -1, -1};
+  // One square root (normalized() would take the norm again).
+  const Scalar length = between.norm();
+  return {length > 0 ? Vector3(between / length) : Vector3::UnitX(), -1, -1};
 }
 
 // The search for the distance (or only a verdict): Wolfe's algorithm on the whole difference
@@ -50,14 +52,14 @@ class DualSearch {
     const DualStart first = first_start(pair_, start_);
     hint_a_ = first.support_a;
     hint_b_ = first.support_b;
-    finish_.whole(first.direction, hint_a_, hint_b_, bounds_, goal_);
+    bool done = finish_.whole(first.direction, hint_a_, hint_b_, bounds_, goal_);
     record();
-    if (!reached()) finish_.from(bounds_.normal(), hint_a_, hint_b_, bounds_, goal_);
+    if (!done) done = finish_.from(bounds_.normal(), hint_a_, hint_b_, bounds_, goal_);
     Scalar radius = kPi / 2;
     Vector3 round_centre = bounds_.normal();
-    for (int r = 0; r < options_.max_rounds && !reached(); ++r) {
-      round(round_centre, radius);
-      if (reached()) break;
+    for (int r = 0; r < options_.max_rounds && !done; ++r) {
+      done = round(round_centre, radius);
+      if (done) break;
       const Scalar moved =
           std::acos(std::clamp(round_centre.dot(bounds_.normal()), Scalar(-1), Scalar(1)));
       radius = std::min(radius, std::max(2 * moved, radius / 4));
@@ -94,7 +96,8 @@ class DualSearch {
     finish_.from(n, hint_a_, hint_b_, bounds_, goal_);
   }
 
-  void round(const Vector3& centre, Scalar radius) {
+  // Returns whether the bounds settle the goal.
+  bool round(const Vector3& centre, Scalar radius) {
     // Built at the first round: Wolfe's algorithm settles most pairs without one.
     if (!swarm_) swarm_.emplace(pair_, options_, seed_);
     swarm_->seed(centre, radius, hint_a_, hint_b_);
@@ -105,7 +108,9 @@ class DualSearch {
       ++iterations_;
       record();
     }
-    if (!reached()) improve(true);
+    if (reached()) return true;
+    improve(true);
+    return reached();
   }
 
   const FramedPair& pair_;
@@ -120,7 +125,7 @@ class DualSearch {
   int hint_a_ = -1;
   int hint_b_ = -1;
   int iterations_ = 0;
-  std::vector<Scalar> history_;
+  History history_;
 };
 
 // Where Wolfe's walk towards an intersection proof starts: `direction` turned 45 degrees about an

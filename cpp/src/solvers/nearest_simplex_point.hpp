@@ -74,16 +74,17 @@ inline void offer_segment(const Vector3& a, const Vector3& b, int ia, int ib, Ne
   best.norm2 = norm2;
 }
 
-// The triangle a, b, c (indices ia, ib, ic).
-inline void offer_triangle(const Vector3& a, const Vector3& b, const Vector3& c, int ia, int ib,
-                           int ic, Nearest& best) {
-  const Vector3 ab = b - a;
-  const Vector3 ac = c - a;
-  const Vector3 n = ab.cross(ac);
+// The triangle a, b, c (indices ia, ib, ic), whose edges `ab = b - a`, `ac = c - a` and normal
+// `n = ab x ac` a tetrahedron has already computed.
+inline void offer_triangle(const Vector3& a, const Vector3& b, const Vector3& c, const Vector3& ab,
+                           const Vector3& ac, const Vector3& n, int ia, int ib, int ic,
+                           Nearest& best) {
   const Scalar nn = n.squaredNorm();
-  // The barycentric coordinates times |n|^2, by Lagrange's identity.
-  const Scalar vb = -n.dot(a.cross(ac));
-  const Scalar vc = -n.dot(ab.cross(a));
+  // The barycentric coordinates times |n|^2, by Lagrange's identity: -n . (a x ac) and
+  // -n . (ab x a), as triple products through the one cross product n x a.
+  const Vector3 t = n.cross(a);
+  const Scalar vb = -ac.dot(t);
+  const Scalar vc = ab.dot(t);
   const Scalar va = nn - vb - vc;
   if (!(nn > kFlat * kFlat * ab.squaredNorm() * ac.squaredNorm())) {
     offer_segment(b, c, ib, ic, best);
@@ -119,25 +120,38 @@ inline void offer_triangle(const Vector3& a, const Vector3& b, const Vector3& c,
   if (!(vc > 0)) offer_segment(a, b, ia, ib, best);
 }
 
+// The triangle a, b, c (indices ia, ib, ic).
+inline void offer_triangle(const Vector3& a, const Vector3& b, const Vector3& c, int ia, int ib,
+                           int ic, Nearest& best) {
+  const Vector3 ab = b - a;
+  const Vector3 ac = c - a;
+  offer_triangle(a, b, c, ab, ac, ab.cross(ac), ia, ib, ic, best);
+}
+
 // The tetrahedron a, b, c, d (indices 0 to 3).
 inline void offer_tetrahedron(const Vector3& a, const Vector3& b, const Vector3& c,
                               const Vector3& d, Nearest& best) {
   const Vector3 e1 = b - a;
   const Vector3 e2 = c - a;
   const Vector3 e3 = d - a;
-  const Vector3 e23 = e2.cross(e3);
-  const Scalar volume = e1.dot(e23);
+  // The normals of the faces through a (edges from a, crossed in order): the cofactors of the
+  // origin's coordinates, and the normals the offers of those faces need.
+  const Vector3 n_acd = e2.cross(e3);
+  const Vector3 n_abd = e1.cross(e3);
+  const Vector3 n_abc = e1.cross(e2);
+  const Scalar volume = e1.dot(n_acd);
   // Flat: e1 nearly in the plane of e2 and e3, or those two nearly parallel.
-  const Scalar area2 = e23.squaredNorm();
+  const Scalar area2 = n_acd.squaredNorm();
   constexpr Scalar kFlat2 = kFlat * kFlat;
   if (!(volume * volume > kFlat2 * e1.squaredNorm() * area2 &&
         area2 > kFlat2 * e2.squaredNorm() * e3.squaredNorm())) {
     offer_triangle(b, c, d, 1, 2, 3, best);
-    offer_triangle(a, c, d, 0, 2, 3, best);
-    offer_triangle(a, b, d, 0, 1, 3, best);
-    return offer_triangle(a, b, c, 0, 1, 2, best);
+    offer_triangle(a, c, d, e2, e3, n_acd, 0, 2, 3, best);
+    offer_triangle(a, b, d, e1, e3, n_abd, 0, 1, 3, best);
+    return offer_triangle(a, b, c, e1, e2, n_abc, 0, 1, 2, best);
   }
-  // Cramer's rule; where the origin is inside, repeated once for its residual (iterative
+  // Cramer's rule (the triple products e1 . (r x e3) and e1 . (e2 x r) read as r . (e3 x e1) and
+  // r . (e1 x e2)); where the origin is inside, repeated once for its residual (iterative
   // refinement), the common point's distance from the origin: for a flat tetrahedron the first
   // solve's can be far above rounding.
   const Scalar inverse = 1 / volume;
@@ -147,14 +161,16 @@ inline void offer_tetrahedron(const Vector3& a, const Vector3& b, const Vector3&
     alpha[0] = 1 - alpha[1] - alpha[2] - alpha[3];
     return alpha[0] > 0 && alpha[1] > 0 && alpha[2] > 0 && alpha[3] > 0;
   };
+  bool inside = false;
   for (int pass = 0; pass < 2; ++pass) {
-    alpha[1] -= r.dot(e23) * inverse;
-    alpha[2] -= e1.dot(r.cross(e3)) * inverse;
-    alpha[3] -= e1.dot(e2.cross(r)) * inverse;
+    alpha[1] -= r.dot(n_acd) * inverse;
+    alpha[2] += r.dot(n_abd) * inverse;
+    alpha[3] -= r.dot(n_abc) * inverse;
     r = a + alpha[1] * e1 + alpha[2] * e2 + alpha[3] * e3;
-    if (!interior()) break;
+    inside = interior();
+    if (!inside) break;
   }
-  if (interior()) {
+  if (inside) {
     best.index = {0, 1, 2, 3};
     best.weight = alpha;
     best.size = 4;
@@ -162,9 +178,9 @@ inline void offer_tetrahedron(const Vector3& a, const Vector3& b, const Vector3&
     return;
   }
   if (!(alpha[0] > 0)) offer_triangle(b, c, d, 1, 2, 3, best);
-  if (!(alpha[1] > 0)) offer_triangle(a, c, d, 0, 2, 3, best);
-  if (!(alpha[2] > 0)) offer_triangle(a, b, d, 0, 1, 3, best);
-  if (!(alpha[3] > 0)) offer_triangle(a, b, c, 0, 1, 2, best);
+  if (!(alpha[1] > 0)) offer_triangle(a, c, d, e2, e3, n_acd, 0, 2, 3, best);
+  if (!(alpha[2] > 0)) offer_triangle(a, b, d, e1, e3, n_abd, 0, 1, 3, best);
+  if (!(alpha[3] > 0)) offer_triangle(a, b, c, e1, e2, n_abc, 0, 1, 2, best);
 }
 
 }  // namespace nearest_simplex_detail
@@ -173,8 +189,9 @@ template <class Point>
 void nearest_simplex_point(const std::array<Point, 4>& s, int m, std::array<Point, 4>& face,
                            std::array<Scalar, 4>& w, int& size) {
   using namespace nearest_simplex_detail;
-  Scalar reach = 0;
-  for (int k = 0; k < m; ++k) reach = std::max(reach, s[k].p.cwiseAbs().maxCoeff());
+  Vector3 largest = s[0].p.cwiseAbs();
+  for (int k = 1; k < m; ++k) largest = largest.cwiseMax(s[k].p.cwiseAbs());
+  const Scalar reach = largest.maxCoeff();
   std::array<Vector3, 4> scaled;
   std::array<const Vector3*, 4> p = {&s[0].p, &s[1].p, &s[2].p, &s[3].p};
   // The triangle's squared normal is of the fourth power of the coordinates, which overflows or
@@ -204,8 +221,10 @@ void nearest_simplex_point(const std::array<Point, 4>& s, int m, std::array<Poin
       offer_tetrahedron(*p[0], *p[1], *p[2], *p[3], f);
       break;
   }
-  for (int k = 0; k < f.size; ++k) face[k] = s[f.index[k]];
-  w = f.weight;
+  for (int k = 0; k < f.size; ++k) {
+    face[k] = s[f.index[k]];
+    w[k] = f.weight[k];
+  }
   size = f.size;
 }
 

@@ -94,7 +94,7 @@ Answer solve_penalty(const FramedPair& pair, const QueryOptions& query, Goal goa
   LBFGSpp::LBFGSSolver<Scalar, LBFGSpp::LineSearchNocedalWright> solver(param);
 
   Answer best;
-  std::vector<Scalar> history;
+  History history;
   Scalar best_lower = -std::numeric_limits<Scalar>::infinity();
   Vector3 best_direction = Vector3::Zero();
   int iterations = 0;

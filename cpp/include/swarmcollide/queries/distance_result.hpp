@@ -1,9 +1,9 @@
 #pragma once
 
 #include <optional>
-#include <vector>
 
 #include "swarmcollide/problem/convex_weights.hpp"
+#include "swarmcollide/queries/history.hpp"
 #include "swarmcollide/queries/options.hpp"
 #include "swarmcollide/types.hpp"
 
@@ -51,7 +51,7 @@ struct DistanceResult {
   /// Evaluations of the method's objective (the fitness (5)/(6), or support queries).
   long evaluations = 0;
   /// Best upper bound after initialisation and after each iteration (iterative methods only).
-  std::vector<Scalar> history;
+  History history;
   /// True when the bodies are within `tolerance` of each other (the query's tolerance times the
   /// pair's size): proven when `certified`; otherwise true unless a separation proves them apart
   /// (an unproven verdict errs on the side of contact).
