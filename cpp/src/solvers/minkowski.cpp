@@ -18,6 +18,18 @@ struct PlaneSide {
   Scalar determinant;
 };
 
+// A bound on the rounding of the determinant w . (u x v) computed from rounded differences: 64
+// roundoffs of its permanent, the sum of its terms' magnitudes.
+Scalar determinant_rounding(const Vector3& w, const Vector3& u, const Vector3& v) {
+  const Vector3 aw = w.cwiseAbs();
+  const Vector3 au = u.cwiseAbs();
+  const Vector3 av = v.cwiseAbs();
+  const Scalar permanent = aw.x() * (au.y() * av.z() + au.z() * av.y()) +
+                           aw.y() * (au.z() * av.x() + au.x() * av.z()) +
+                           aw.z() * (au.x() * av.y() + au.y() * av.x());
+  return 64 * kRoundoff * permanent;
+}
+
 PlaneSide side_of_origin(const Vector3& p, const Vector3& q, const Vector3& r) {
   const Vector3 u = q - p;
   const Vector3 v = r - p;
@@ -25,14 +37,7 @@ PlaneSide side_of_origin(const Vector3& p, const Vector3& q, const Vector3& r) {
   const Scalar length = normal.norm();
   if (!(length > 0)) return {0, false, normal, 0};
   const Scalar determinant = -p.dot(normal);
-  // The permanent of the determinant p . (u x v): the sum of its terms' magnitudes.
-  const Vector3 ap = p.cwiseAbs();
-  const Vector3 au = u.cwiseAbs();
-  const Vector3 av = v.cwiseAbs();
-  const Scalar permanent = ap.x() * (au.y() * av.z() + au.z() * av.y()) +
-                           ap.y() * (au.z() * av.x() + au.x() * av.z()) +
-                           ap.z() * (au.x() * av.y() + au.y() * av.x());
-  const Scalar rounding = 64 * kRoundoff * permanent;
+  const Scalar rounding = determinant_rounding(p, u, v);
   const Scalar distance = determinant / length;
   return {distance, std::abs(determinant) > rounding && std::abs(distance) > 4 * kFrameRounding,
           normal, determinant};
@@ -75,8 +80,16 @@ bool encloses_origin(const std::array<Vector3, 4>& points, std::array<Scalar, 4>
   for (const auto& face : kFaces) {
     const PlaneSide origin = side_of_origin(points[face[0]], points[face[1]], points[face[2]]);
     if (!origin.certain) return false;
-    const Scalar opposite = origin.normal.dot(points[face[3]] - points[face[0]]);
-    if (!(opposite != 0) || (origin.distance > 0) != (opposite > 0)) return false;
+    // The fourth point's side must be beyond doubt too: a flat tetrahedron has its fourth point
+    // in the face's plane, where rounding alone picks the side, and encloses nothing.
+    const Vector3 u = points[face[1]] - points[face[0]];
+    const Vector3 v = points[face[2]] - points[face[0]];
+    const Vector3 w = points[face[3]] - points[face[0]];
+    const Scalar opposite = origin.normal.dot(w);
+    if (!(std::abs(opposite) > determinant_rounding(w, u, v)) ||
+        (origin.distance > 0) != (opposite > 0)) {
+      return false;
+    }
     weights[face[3]] = origin.determinant / opposite;
   }
   return true;
