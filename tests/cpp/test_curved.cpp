@@ -712,6 +712,40 @@ TEST(Curved, CompoundBodiesWithCurvedPartsRefuseMethodsThatReadPoints) {
   }
 }
 
+// Overlapping pairs of shapes with flat facets (a cylinder's cap, a cone's base, a box's face) at
+// tolerance 1e-12: near the optimum, the support point only just rises above the nearest face of
+// the expanding polytope, beyond an edge whose other face is nearly coplanar and does not see it,
+// so the triangle on that edge cannot be proven oriented. Before the expansion took in the face
+// across such an edge, it stopped there with gaps of 4e-12 to 7e-11 of the frame: 91 of these 827
+// overlapping pairs unproven, 46 since. Those stay unproven, and say so (their bounds hold).
+TEST(Curved, DeepOverlapsOnFlatFacetsAreProvenAtTightTolerance) {
+  Random rng(59);
+  const Query query = query_of(Method::exact, 1e-12);
+  int overlapping = 0;
+  int unproven = 0;
+  for (int trial = 0; trial < 1000; ++trial) {
+    const auto make = [&rng](int kind) -> ConvexPolyhedron {
+      const Vector3 s(rng.uniform(0.1, 1.1), rng.uniform(0.1, 1.1), rng.uniform(0.1, 1.1));
+      switch (kind % 3) {
+        case 0: return Cylinder(s.x(), s.y());
+        case 1: return Cone(s.x(), s.y());
+        default: return Box(s);
+      }
+    };
+    const ConvexPolyhedron a = make(trial);
+    const ConvexPolyhedron b = make(trial / 3 + 1);
+    const Pose pa = at(Vector3::Zero(), rng.rotation());
+    const Pose pb = at(rng.vector(0.8), rng.rotation());
+    const DistanceResult s = query.signed_distance(a, pa, b, pb);
+    if (s.distance >= 0) continue;
+    ++overlapping;
+    unproven += !s.certified;
+    EXPECT_LE(s.lower_bound, s.distance);
+  }
+  EXPECT_GT(overlapping, 800);
+  EXPECT_LE(unproven, 50) << "of " << overlapping;
+}
+
 // A scene of curved shapes answers as the pair queries do, warm and cold.
 TEST(Curved, ScenesAnswerAsThePairQueries) {
   Random rng(29);
