@@ -104,6 +104,7 @@ bench: install $(VENV)/.bench-installed bench-scene bench-compound
 	$(PY) bench/dask_batch.py $(BENCH_ARGS) --json bench/results/dask_batch.json
 	$(PY) bench/contacts.py $(BENCH_ARGS) --json bench/results/contacts.json
 	$(PY) bench/contacts.py $(BENCH_ARGS) --scene pile --json bench/results/contacts_pile.json
+	$(PY) bench/curved_coal.py $(BENCH_ARGS) --json bench/results/curved_coal.json
 	$(PY) bench/report.py --results bench/results --plots bench/plots --out bench/RESULTS.md
 
 # The core, the C++ tests and the extension, built with ASan and UBSan (SWARMCOLLIDE_SANITIZE) in
@@ -145,12 +146,15 @@ FILES_CENSUS_ARGS ?=
 # The scene corpus: long seeded motions through every broadphase, every method's certified rows,
 # far bodies and bad arguments (tests/python/scene_cases.py).
 SCENE_CENSUS_ARGS ?= --count 200
+# The curved shapes against coal's primitives (needs the bench extra): every pair of shape kinds.
+CURVED_CENSUS_ARGS ?= --pairs 200
 
-census: install
+census: install $(VENV)/.bench-installed
 	$(PY) tests/fuzz/census.py --json build/fuzz/census.jsonl $(CENSUS_ARGS)
 	$(PY) tests/fuzz/census.py --corpus files --count 1000 --timeout 30 \
 	  --json build/fuzz/files.jsonl $(FILES_CENSUS_ARGS)
 	$(PY) tests/fuzz/census.py --corpus scene --json build/fuzz/scene.jsonl $(SCENE_CENSUS_ARGS)
+	$(PY) tests/fuzz/curved_census.py --json build/fuzz/curved.jsonl $(CURVED_CENSUS_ARGS)
 
 stubs: install
 	$(PY) -m pybind11_stubgen swarmcollide._core -o python --numpy-array-use-type-var

@@ -7,8 +7,9 @@ signed distance on every pair is checked against swarmcollide's certified bounds
 ``[lower_bound - 1e-6 size, distance + 1e-6 size]`` (coal stops at 1e-6), and the verdicts agree
 where the bounds leave no doubt. coal gets its best correct usage (requests and results made
 once, results cleared before each call, shapes and transforms built once); swarmcollide is called
-as a user would, ``sc.signed_distance(a, b, pose_a=..., pose_b=...)`` with 4x4 poses and the
-default method ``dual``. A contender's time is the median over rounds of its mean CPU time per
+as a user would, ``sc.signed_distance(a, b, pose_a=..., pose_b=...)`` with 4x4 poses, with the
+default method ``dual`` and with ``fcl`` (FCL's GJK on FCL's own primitives, checked by our
+certificate, penetration by our exact solver). A contender's time is the median over rounds of its mean CPU time per
 call (the thread's); the ratio is ours / coal's for the same pairs in the same run. ``--json``
 writes one row per pair kind and contender (bench/record.py's format).
 
@@ -115,16 +116,23 @@ def run(pairs: int, rounds: int) -> List[dict]:
                 result.clear()
                 coal.distance(c["ca"], c["ta"], c["cb"], c["tb"], request, result)
 
-        times = {"swarmcollide dual": [], "coal": []}
+        def ours_fcl():
+            for c in cases:
+                sc.signed_distance(c["a"], c["b"], pose_a=c["pa"], pose_b=c["pb"], method="fcl")
+
+        contenders = (("swarmcollide dual", ours), ("swarmcollide fcl", ours_fcl),
+                      ("coal", theirs))
+        times = {name: [] for name, _ in contenders}
         for _ in range(rounds):
-            for name, call in (("swarmcollide dual", ours), ("coal", theirs)):
+            for name, call in contenders:
                 start = time.thread_time()
                 call()
                 times[name].append((time.thread_time() - start) / len(cases))
         medians = {name: statistics.median(t) * 1e6 for name, t in times.items()}
         ratio = medians["swarmcollide dual"] / medians["coal"]
-        print(f"{pair[0]:>9} - {pair[1]:<9}: ours {medians['swarmcollide dual']:7.2f} us, coal "
-              f"{medians['coal']:7.2f} us, ratio {ratio:5.2f}; certified {checked['certified']}/"
+        print(f"{pair[0]:>9} - {pair[1]:<9}: ours {medians['swarmcollide dual']:7.2f} us, fcl "
+              f"{medians['swarmcollide fcl']:7.2f} us, coal {medians['coal']:7.2f} us, ratio "
+              f"{ratio:5.2f}; certified {checked['certified']}/"
               f"{checked['pairs']}, overlapping {checked['overlapping']}, coal outside our "
               f"bounds {checked['coal_outside']}")
         for name, microseconds in medians.items():
@@ -132,6 +140,34 @@ def run(pairs: int, rounds: int) -> List[dict]:
                          "microseconds": microseconds, "ratio_to_coal": microseconds /
                          medians["coal"], **checked})
     return rows
+
+
+def section(data: dict) -> str:
+    """bench/RESULTS.md's section: per pair of shape kinds, each contender's time per signed
+    distance and its ratio to coal's in the same run, and the answers' check."""
+    from markdown import fmt_time, machine_line, table
+
+    rows = data["rows"]
+    kinds = list(dict.fromkeys(r["shapes"] for r in rows))
+    names = list(dict.fromkeys(r["contender"] for r in rows))
+    by = {(r["shapes"], r["contender"]): r for r in rows}
+    lines = [f"Made by {machine_line(data)} {data.get('pairs', '?')} random posed pairs per "
+             f"pair of kinds (sizes in [0.2, 1], about half overlapping), {data.get('rounds', '?')} "
+             "rounds, the contenders interleaved within each round; times are the median over "
+             "rounds of the thread's CPU time per `signed_distance` call from Python (coal: "
+             "`coal.distance` on its own primitives, request and result made once). Before any "
+             "timing, coal's answer on every pair is checked against our certified bounds (to "
+             "coal's 1e-6).", ""]
+    header = ["shapes"] + [f"{n}" for n in names] + [f"{n} / coal" for n in names if n != "coal"]
+    header += ["certified", "coal outside our bounds"]
+    body = []
+    for k in kinds:
+        first = by[(k, names[0])]
+        body.append([k] + [fmt_time(by[(k, n)]["microseconds"]) for n in names]
+                    + [f"{by[(k, n)]['ratio_to_coal']:.2f}x" for n in names if n != "coal"]
+                    + [f"{first['certified']}/{first['pairs']}", str(first["coal_outside"])])
+    lines.append(table(header, body))
+    return "\n".join(lines)
 
 
 def main() -> int:
@@ -145,7 +181,7 @@ def main() -> int:
         args.pairs, args.rounds = 40, 3
     rows = run(args.pairs, args.rounds)
     if args.json:
-        record.write(args.json, "curved_coal", rows)
+        record.write(args.json, "curved_coal", rows, pairs=args.pairs, rounds=args.rounds)
     return 0
 
 

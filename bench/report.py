@@ -15,6 +15,7 @@ from typing import Callable, List, Optional, Tuple
 
 from coal_report import NARROWPHASE, PENETRATION, narrowphase_section, penetration_section
 from compound import compound_section
+from curved_coal import section as curved_coal_section
 from hull_points import section as hull_points_section
 from pose_batch import section as pose_batch_section
 from cpp_report import cpp_sections, every_workload_section
@@ -116,6 +117,8 @@ LATE_SECTIONS: List[Section] = [
      CONTACTS, contacts_section, ""),
     ("contacts_pile.json", "Resting contacts: the same meshes settled on a floor",
      CONTACTS_PILE, contacts_section, ""),
+    ("curved_coal.json", "Curved shapes against coal's primitives (bench/curved_coal.py)", "",
+     curved_coal_section, ""),
 ]
 
 

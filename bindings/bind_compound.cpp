@@ -1,5 +1,6 @@
 #include <pybind11/eigen.h>
 #include <pybind11/stl.h>
+#include <pybind11/typing.h>
 
 #include <sstream>
 #include <string>
@@ -7,6 +8,7 @@
 
 #include "conversions.hpp"
 #include "swarmcollide/geometry/compound_body.hpp"
+#include "swarmcollide/geometry/shapes.hpp"
 #include "swarmcollide/queries/compound_result.hpp"
 #include "swarmcollide/queries/methods.hpp"
 
@@ -35,6 +37,24 @@ std::vector<ConvexPolyhedron> to_parts(const py::handle& parts) {
     throw py::value_error("parts is empty: a compound body needs at least one convex part");
   }
   return result;
+}
+
+// A part as Python sees it: a curved part as its own shape (a new Cylinder, Cone or Ellipsoid of
+// its parameters: the same body, with its parameters and repr), any other as the ConvexPolyhedron
+// it is.
+py::object typed_part(const ConvexPolyhedron& part) {
+  const SupportFunction* curved = part.curved();
+  if (!curved) return py::cast(part);
+  const CurvedShapeParameters shape = curved->parameters();
+  switch (shape.kind) {
+    case CurvedShapeParameters::Kind::cylinder:
+      return py::cast(Cylinder(shape.radius, shape.half_length));
+    case CurvedShapeParameters::Kind::cone:
+      return py::cast(Cone(shape.radius, shape.half_length));
+    case CurvedShapeParameters::Kind::ellipsoid:
+      return py::cast(Ellipsoid(shape.radii));
+  }
+  return py::cast(part);
 }
 
 std::string repr(const CompoundBody& body) {
@@ -132,8 +152,15 @@ CompoundBody(3 parts, 24 points, bounds [0, 0, 0] to [2, 2, 1])
              return CompoundBody(to_parts(parts));
            }),
            py::arg("parts"))
-      .def_property_readonly("parts", &CompoundBody::parts,
-                             "The convex parts (copies that share the parts' hulls).")
+      .def_property_readonly(
+          "parts",
+          [](const CompoundBody& body) {
+            py::typing::List<ConvexPolyhedron> parts;
+            for (const ConvexPolyhedron& part : body.parts()) parts.append(typed_part(part));
+            return parts;
+          },
+          "The convex parts (copies that share the parts' hulls; a curved part as its own "
+          "Cylinder, Cone or Ellipsoid).")
       .def("__len__", &CompoundBody::size)
       .def_property_readonly("tree", &CompoundBody::tree,
                              "The bounding-volume tree: a list of PartNode, the root first.")

@@ -67,10 +67,11 @@ std::string ellipsoid_repr(const Ellipsoid& e) {
 #define SWARMCOLLIDE_CURVED_NOTE                                                                   \
   "A curved shape, defined by its support function: methods ``'dual'`` (the default) and "         \
   "``'exact'`` answer it, exactly to their tolerance and certified, against any other body; "      \
-  "the methods that read a body's points (``'ipso'``, ``'pso'``, ``'penalty'``, ``'fcl'``, "       \
-  "``'libccd'``) raise ValueError, and so does a CompoundBody with a curved part. Its "            \
-  "``vertices`` are a few points on its surface (an inner polytope with the shape's bounding "     \
-  "box), not the body; results carry no weights (empty), and witnesses are points of the shape."
+  "``'fcl'`` runs FCL's GJK on FCL's own primitive and ``'libccd'`` libccd on its support "        \
+  "function, both checked by the certificate as for polyhedra; the methods that read a body's "    \
+  "points (``'ipso'``, ``'pso'``, ``'penalty'``) raise ValueError. Its ``vertices`` are a few "    \
+  "points on its surface (an inner polytope with the shape's bounding box), not the body; "        \
+  "results carry no weights (empty), and witnesses are points of the shape."
 
 // Every query answers rounded bodies the same way; each shape's docstring says so.
 #define SWARMCOLLIDE_ROUNDED_NOTE                                                              \

@@ -193,7 +193,7 @@ class CompoundBody:
     @property
     def parts(self) -> list[ConvexPolyhedron]:
         """
-        The convex parts (copies that share the parts' hulls).
+        The convex parts (copies that share the parts' hulls; a curved part as its own Cylinder, Cone or Ellipsoid).
         """
     @property
     def point_count(self) -> int:
@@ -281,7 +281,7 @@ class Cone(ConvexPolyhedron):
     and coal's convention): its base, a disk of radius ``radius``, at ``z = -half_length``, its apex
     at ``(0, 0, half_length)``; its centre of mass is at ``z = -half_length / 2``.
     
-    A curved shape, defined by its support function: methods ``'dual'`` (the default) and ``'exact'`` answer it, exactly to their tolerance and certified, against any other body; the methods that read a body's points (``'ipso'``, ``'pso'``, ``'penalty'``, ``'fcl'``, ``'libccd'``) raise ValueError, and so does a CompoundBody with a curved part. Its ``vertices`` are a few points on its surface (an inner polytope with the shape's bounding box), not the body; results carry no weights (empty), and witnesses are points of the shape.
+    A curved shape, defined by its support function: methods ``'dual'`` (the default) and ``'exact'`` answer it, exactly to their tolerance and certified, against any other body; ``'fcl'`` runs FCL's GJK on FCL's own primitive and ``'libccd'`` libccd on its support function, both checked by the certificate as for polyhedra; the methods that read a body's points (``'ipso'``, ``'pso'``, ``'penalty'``) raise ValueError. Its ``vertices`` are a few points on its surface (an inner polytope with the shape's bounding box), not the body; results carry no weights (empty), and witnesses are points of the shape.
     
     Parameters
     ----------
@@ -427,7 +427,7 @@ class Cylinder(ConvexPolyhedron):
     ``<cylinder radius length>`` has ``length = 2 half_length``; MJCF's cylinder geom has size =
     (radius, half_length)).
     
-    A curved shape, defined by its support function: methods ``'dual'`` (the default) and ``'exact'`` answer it, exactly to their tolerance and certified, against any other body; the methods that read a body's points (``'ipso'``, ``'pso'``, ``'penalty'``, ``'fcl'``, ``'libccd'``) raise ValueError, and so does a CompoundBody with a curved part. Its ``vertices`` are a few points on its surface (an inner polytope with the shape's bounding box), not the body; results carry no weights (empty), and witnesses are points of the shape.
+    A curved shape, defined by its support function: methods ``'dual'`` (the default) and ``'exact'`` answer it, exactly to their tolerance and certified, against any other body; ``'fcl'`` runs FCL's GJK on FCL's own primitive and ``'libccd'`` libccd on its support function, both checked by the certificate as for polyhedra; the methods that read a body's points (``'ipso'``, ``'pso'``, ``'penalty'``) raise ValueError. Its ``vertices`` are a few points on its surface (an inner polytope with the shape's bounding box), not the body; results carry no weights (empty), and witnesses are points of the shape.
     
     Parameters
     ----------
@@ -555,7 +555,7 @@ class Ellipsoid(ConvexPolyhedron):
     A solid ellipsoid centred on the origin of its frame with semi-axes ``radii`` along x, y and z:
     the points with ``(x/a)^2 + (y/b)^2 + (z/c)^2 <= 1`` (MJCF's ellipsoid geom, size = radii).
     
-    A curved shape, defined by its support function: methods ``'dual'`` (the default) and ``'exact'`` answer it, exactly to their tolerance and certified, against any other body; the methods that read a body's points (``'ipso'``, ``'pso'``, ``'penalty'``, ``'fcl'``, ``'libccd'``) raise ValueError, and so does a CompoundBody with a curved part. Its ``vertices`` are a few points on its surface (an inner polytope with the shape's bounding box), not the body; results carry no weights (empty), and witnesses are points of the shape.
+    A curved shape, defined by its support function: methods ``'dual'`` (the default) and ``'exact'`` answer it, exactly to their tolerance and certified, against any other body; ``'fcl'`` runs FCL's GJK on FCL's own primitive and ``'libccd'`` libccd on its support function, both checked by the certificate as for polyhedra; the methods that read a body's points (``'ipso'``, ``'pso'``, ``'penalty'``) raise ValueError. Its ``vertices`` are a few points on its surface (an inner polytope with the shape's bounding box), not the body; results carry no weights (empty), and witnesses are points of the shape.
     
     Parameters
     ----------

@@ -18,7 +18,7 @@ from typing import Callable, Optional, Sequence
 
 import numpy as np
 
-from . import paper
+from . import _core, paper
 
 POSE_HELP = (
     "where the body is: 3 numbers (a translation x,y,z), 6 (a translation and then rotations "
@@ -118,11 +118,14 @@ def _add_decomposer_options(parser: argparse.ArgumentParser, default: str) -> No
 
 
 def _body(path: str, arguments: argparse.Namespace):
-    """A compound body from a mesh file, or from a parts file (.npz) as decompose writes."""
+    """A compound body from a mesh file, from a parts file (.npz) as decompose writes, or from a
+    shape file (.json: a record of swarmcollide.shape_json)."""
     from .mesh import CompoundBody
 
     if path.endswith(".npz"):
         return CompoundBody.load(path)
+    if path.endswith(".json"):
+        return CompoundBody(_shape_parts(path))
     return CompoundBody.from_mesh(
         path,
         decompose=None if arguments.decompose == "none" else arguments.decompose,
@@ -135,6 +138,25 @@ def _body(path: str, arguments: argparse.Namespace):
         cache=not arguments.no_cache,
         progress=not arguments.quiet,
     )
+
+
+def _shape_parts(path: str) -> list:
+    """The parts of the body a shape file (.json) describes: a compound's parts, or the one
+    shape; ValueError naming the file for one that is not a record."""
+    from .shape_json import body_from_json
+
+    try:
+        with open(path, encoding="utf-8") as handle:
+            record = json.load(handle)
+    except OSError as error:
+        raise ValueError(f"cannot read the shape file {path!r}: {error.strerror}") from None
+    except json.JSONDecodeError as error:
+        raise ValueError(f"shape file {path!r} is not JSON: {error}") from None
+    try:
+        body = body_from_json(record, name=path)
+    except TypeError as error:
+        raise ValueError(str(error)) from None
+    return list(body.parts) if isinstance(body, _core.CompoundBody) else [body]
 
 
 def _decomposition(body) -> Optional[dict]:
@@ -153,7 +175,7 @@ def _distance(arguments: argparse.Namespace) -> int:
 
     # Both files are checked before either is decomposed, which can take minutes.
     for path in (arguments.a, arguments.b):
-        if not path.endswith(".npz"):
+        if not path.endswith((".npz", ".json")):
             load_mesh(path)
     a = _body(arguments.a, arguments)
     b = _body(arguments.b, arguments)
@@ -182,6 +204,11 @@ def _distance(arguments: argparse.Namespace) -> int:
         "a": {"file": arguments.a, "parts": len(a), "decomposition": _decomposition(a)},
         "b": {"file": arguments.b, "parts": len(b), "decomposition": _decomposition(b)},
     }
+    for side, path, body in (("a", arguments.a, a), ("b", arguments.b, b)):
+        if path.endswith(".json"):  # shapes read from JSON are written back as JSON
+            from .shape_json import body_to_json
+
+            answer[side]["shape"] = body_to_json(body)
     if arguments.json:
         print(json.dumps(answer, indent=2))
         return 0
@@ -229,10 +256,13 @@ def _parser() -> argparse.ArgumentParser:
     measure = commands.add_parser(
         "distance", help="distance (or signed distance, or collision) between two mesh files",
         description="Distance between two bodies given as mesh files (OBJ, STL, PLY, GLB, OFF: "
-        "decomposed into convex parts) or parts files (.npz, from 'swarmcollide decompose'). "
+        "decomposed into convex parts), parts files (.npz, from 'swarmcollide decompose') or "
+        "shape files (.json: a record such as {\"shape\": \"cylinder\", \"radius\": 0.5, "
+        "\"half_length\": 1}, see swarmcollide.shape_json). "
         "Answers are certified for the convex parts; each body's decomposition error says how "
         "far the parts are from its mesh.")
-    measure.add_argument("a", help="the first body: a mesh file or a parts file (.npz)")
+    measure.add_argument("a", help="the first body: a mesh file, a parts file (.npz) or a shape "
+                         "file (.json)")
     measure.add_argument("b", help="the second body")
     measure.add_argument("--pose-a", type=_pose, default=None, metavar="POSE", help=POSE_HELP)
     measure.add_argument("--pose-b", type=_pose, default=None, metavar="POSE", help=POSE_HELP)
@@ -329,8 +359,6 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
         _check_core(parser, lambda: query(arguments.method, tolerance=arguments.tolerance)
                     .distance(point, point, arguments.pose_a, arguments.pose_b))
     if arguments.command == "scene":
-        from . import _core
-
         _check_core(parser, lambda: _core.Scene(threads=arguments.threads, seed=arguments.seed))
     if arguments.command == "decompose" and not arguments.output.endswith(".npz"):
         parser.error("-o/--output must name an .npz file")

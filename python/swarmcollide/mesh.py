@@ -513,7 +513,15 @@ class CompoundBody(_core.CompoundBody):
 
         The file holds ``points`` (every part's points, part after part), ``offsets`` (where
         each part starts in ``points``, and the total) and ``decomposition`` (JSON, or empty).
+        Points only: a body with a curved or rounded part is refused (ValueError), and
+        ``swarmcollide.shape_json.body_to_json`` writes it whole.
         """
+        for k, part in enumerate(self.parts):
+            if part.curved or part.radius > 0:
+                raise ValueError(
+                    f"parts[{k}] is {'a curved shape' if part.curved else 'rounded'}, which a "
+                    "parts file (points only) cannot hold; write the body with "
+                    "swarmcollide.shape_json.body_to_json instead")
         _write_parts(Path(path), [p.vertices for p in self.parts], self.decomposition)
 
     @classmethod

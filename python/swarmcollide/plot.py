@@ -73,13 +73,13 @@ def plot_scene(
         pose = scene.pose(body_id)
         sizes.append(2 * body.bounding_radius)
         for part in _parts_of(body):  # a compound body's parts, or the convex body itself
-            points = part.vertices @ pose[:3, :3].T + pose[:3, 3]
-            hull = part.hull()
-            if hull.dimension < 2:
+            surface, faces = _surface(part)
+            points = surface @ pose[:3, :3].T + pose[:3, 3]
+            if faces is None:
                 continue
-            polygons.extend(points[hull.faces])
+            polygons.extend(points[faces])
             colours.extend([(1.0, 0.55, 0.1, 0.35) if body_id in touching
-                            else (0.5, 0.5, 0.5, 0.12)] * len(hull.faces))
+                            else (0.5, 0.5, 0.5, 0.12)] * len(faces))
             corners.append(points)
     ax.add_collection3d(Poly3DCollection(polygons, facecolors=colours, edgecolors=(0, 0, 0, 0.15),
                                          linewidths=0.3))
@@ -118,6 +118,34 @@ def _parts_of(body) -> list:
     return [body if isinstance(body, _core.ConvexPolyhedron) else _core.as_polyhedron(body)]
 
 
+# Directions the surfaces of curved and rounded bodies are sampled along for drawing: a
+# Fibonacci sphere (evenly spread), about 4 degrees apart.
+_SAMPLES = 2000
+
+
+def _directions(count: int = _SAMPLES) -> np.ndarray:
+    k = np.arange(count) + 0.5
+    z = 1 - 2 * k / count
+    turn = np.pi * (1 + 5 ** 0.5) * k
+    ring = np.sqrt(1 - z * z)
+    return np.stack([ring * np.cos(turn), ring * np.sin(turn), z], axis=1)
+
+
+def _surface(part) -> tuple:
+    """Points to draw a part by, and its triangles as indices into them (None when the part is
+    a point or a segment, drawn as its points): a polyhedron's own vertices and hull; a curved
+    or rounded body's surface tessellated for drawing only, as the hull of its support points
+    (its core's plus the radius along the direction) over many directions."""
+    if not part.curved and part.radius == 0:
+        hull = part.hull()
+        return part.vertices, (hull.faces if hull.dimension >= 2 else None)
+    directions = _directions()
+    # A curved shape's ``radius`` is its own (a cylinder's, say); it is never rounded.
+    rounding = 0.0 if part.curved else part.radius
+    points = np.array([part.support(d) for d in directions]) + rounding * directions
+    return points, _core.ConvexPolyhedron(points).hull().faces
+
+
 def _pose_matrix(pose) -> np.ndarray:
     if pose is None:
         return np.eye(4)
@@ -136,15 +164,17 @@ def _draw_parts(ax, body, pose, colours, start: int, alpha: float) -> list:
     placed = []
     matrix = _pose_matrix(pose)
     for k, part in enumerate(_parts_of(body)):
-        points = part.vertices @ matrix[:3, :3].T + matrix[:3, 3]
+        surface, faces = _surface(part)
+        points = surface @ matrix[:3, :3].T + matrix[:3, 3]
         placed.append(points)
-        hull = part.hull()
         colour = colours((start + k) % colours.N)
-        if hull.dimension < 2:
+        if faces is None:
             ax.scatter(points[:, 0], points[:, 1], points[:, 2], color=colour, s=8)
             continue
-        ax.add_collection3d(Poly3DCollection(points[hull.faces], facecolors=[(*colour[:3], alpha)],
-                                             edgecolors=(0, 0, 0, 0.2), linewidths=0.3))
+        # Tessellated surfaces draw no edges: thousands of them would hide the body.
+        edges = (0, 0, 0, 0.2) if len(faces) < 500 else (0, 0, 0, 0)
+        ax.add_collection3d(Poly3DCollection(points[faces], facecolors=[(*colour[:3], alpha)],
+                                             edgecolors=edges, linewidths=0.3))
     return placed
 
 
@@ -251,15 +281,15 @@ def plot_pair(a, b, result=None, *, pose_a=None, pose_b=None, ax=None,
     placed += _draw_parts(ax, b, pose_b, colormaps["autumn"].resampled(8), 0, 0.3)
     for body, pose, part, cmap in ((a, pose_a, part_a, "winter"), (b, pose_b, part_b, "autumn")):
         matrix = _pose_matrix(pose)
-        chosen = _parts_of(body)[part]
-        points = chosen.vertices @ matrix[:3, :3].T + matrix[:3, 3]
-        hull = chosen.hull()
-        if hull.dimension >= 2:
+        surface, faces = _surface(_parts_of(body)[part])
+        points = surface @ matrix[:3, :3].T + matrix[:3, 3]
+        if faces is not None:
             from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
             ax.add_collection3d(Poly3DCollection(
-                points[hull.faces], facecolors=[(*colormaps[cmap](0.5)[:3], 0.8)],
-                edgecolors=(0, 0, 0, 0.5), linewidths=0.5))
+                points[faces], facecolors=[(*colormaps[cmap](0.5)[:3], 0.8)],
+                edgecolors=(0, 0, 0, 0.5) if len(faces) < 500 else (0, 0, 0, 0),
+                linewidths=0.5))
     p, q = np.asarray(result.point_a), np.asarray(result.point_b)
     if result.colliding:
         ax.scatter(*((p + q) / 2)[:, None], color="red", s=30, depthshade=False)

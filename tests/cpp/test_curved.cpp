@@ -11,9 +11,14 @@
 #include <string>
 #include <vector>
 
+#include <fcl/narrowphase/detail/convexity_based_algorithm/minkowski_diff.h>
+
+#include "geometry/framed_body.hpp"
 #include "shapes.hpp"
+#include "solvers/fcl_shape.hpp"
 #include "swarmcollide/geometry/compound_body.hpp"
 #include "swarmcollide/geometry/shapes.hpp"
+#include "swarmcollide/queries/batch.hpp"
 #include "swarmcollide/queries/methods.hpp"
 #include "swarmcollide/queries/query.hpp"
 #include "swarmcollide/scene/scene.hpp"
@@ -21,7 +26,9 @@
 namespace swarmcollide::testing {
 namespace {
 
-const std::vector<Method> kCurvedMethods = {Method::dual, Method::exact};
+// The methods that answer distances of curved shapes ("libccd" answers verdicts and signed
+// distances only, tested apart).
+const std::vector<Method> kCurvedMethods = {Method::dual, Method::exact, Method::fcl};
 constexpr Scalar kPi = 3.14159265358979323846;
 
 Query query_of(Method method, Scalar tolerance = kDefaultTolerance) {
@@ -432,7 +439,7 @@ TEST(Curved, RandomPosedPairsLieWithinTheirPolytopeBrackets) {
 TEST(Curved, MethodsThatReadPointsRefuseCurvedShapes) {
   const Cylinder cylinder(1, 1);
   const ConvexPolyhedron cube = unit_cube();
-  for (Method method : {Method::ipso, Method::pso, Method::penalty, Method::fcl, Method::libccd}) {
+  for (Method method : {Method::ipso, Method::pso, Method::penalty}) {
     SCOPED_TRACE(method_name(method));
     try {
       query_of(method).collide(cylinder, {}, cube, at(Vector3(3, 0, 0)));
@@ -440,10 +447,303 @@ TEST(Curved, MethodsThatReadPointsRefuseCurvedShapes) {
     } catch (const std::invalid_argument& e) {
       const std::string message = e.what();
       EXPECT_NE(message.find("cylinder"), std::string::npos) << message;
-      EXPECT_NE(message.find("'dual', 'exact'"), std::string::npos) << message;
+      EXPECT_NE(message.find("'dual', 'exact', 'fcl', 'libccd'"), std::string::npos) << message;
     }
   }
-  EXPECT_THROW(CompoundBody({Cone(1, 1)}), std::invalid_argument);
+}
+
+// FCL's primitives, as the method "fcl" builds them (in the frame's units), have our shapes'
+// conventions: FCL's support point along a direction is ours, to rounding (a cone upside down,
+// a cylinder of length h instead of 2h, would miss by the shape's size).
+TEST(Curved, FclPrimitivesAreOurShapes) {
+  Random rng(37);
+  for (int trial = 0; trial < 60; ++trial) {
+    const Scalar r = std::exp(rng.uniform(-2, 2));
+    const Scalar h = std::exp(rng.uniform(-2, 2));
+    const Vector3 radii(std::exp(rng.uniform(-2, 2)), std::exp(rng.uniform(-2, 2)),
+                        std::exp(rng.uniform(-2, 2)));
+    const Scalar scale = std::exp(rng.uniform(-100, 100));
+    const ConvexPolyhedron shapes[] = {Cylinder(r * scale, h * scale), Cone(r * scale, h * scale),
+                                       Ellipsoid(radii * scale)};
+    for (const ConvexPolyhedron& shape : shapes) {
+      SCOPED_TRACE(shape.curved()->name());
+      const detail::FramedPair pair =
+          detail::frame_pair(shape, at(rng.vector(scale), rng.rotation()), shape,
+                             at(rng.vector(scale)), kDefaultTolerance);
+      const fcl::ShapeBased& fcl_shape = detail::fcl_shape(pair.a);
+      const Scalar unit = std::ldexp(1.0, -pair.a.exponent());
+      for (int k = 0; k < 20; ++k) {
+        const Vector3 d = rng.unit();
+        const Vector3 theirs = fcl::detail::getSupport(&fcl_shape, d);
+        const Vector3 ours = shape.curved()->support(d) * unit;
+        EXPECT_NEAR((theirs - ours).norm(), 0, 1e-12 * shape.curved()->outer_radius() * unit)
+            << "direction " << d.transpose();
+      }
+    }
+  }
+}
+
+// The method "fcl" answers curved pairs through FCL's GJK on its primitives, checked by our own
+// support points along FCL's directions: on separated pairs FCL's answer is proven as it stands
+// (the answer names "fcl", not "exact") and agrees with "dual".
+TEST(Curved, FclAnswersSeparatedCurvedPairsItself) {
+  Random rng(41);
+  const Query fcl = query_of(Method::fcl);
+  const Query dual = query_of(Method::dual);
+  int by_fcl = 0;
+  int apart = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    const auto make = [&rng](int kind) -> ConvexPolyhedron {
+      const Scalar a = rng.uniform(0.2, 1);
+      const Scalar b = rng.uniform(0.2, 1);
+      switch (kind % 3) {
+        case 0: return Cylinder(a, b);
+        case 1: return Cone(a, b);
+        default: return Ellipsoid(Vector3(a, b, rng.uniform(0.2, 1)));
+      }
+    };
+    const ConvexPolyhedron a = make(trial);
+    const ConvexPolyhedron b = make(trial / 3);
+    const Pose pa = at(Vector3::Zero(), rng.rotation());
+    const Pose pb = at(rng.unit() * rng.uniform(2.5, 4), rng.rotation());
+    const DistanceResult ours = dual.distance(a, pa, b, pb);
+    const DistanceResult theirs = fcl.distance(a, pa, b, pb);
+    ASSERT_TRUE(ours.certified);
+    EXPECT_TRUE(theirs.certified);
+    const Scalar size = size_of(a, pa, b, pb);
+    EXPECT_NEAR(theirs.distance, ours.distance, 2 * kDefaultTolerance * size);
+    EXPECT_LE(theirs.lower_bound, ours.distance + 1e-15 * size);
+    EXPECT_LE(ours.lower_bound, theirs.distance + 1e-15 * size);
+    apart += ours.distance > 0;
+    by_fcl += theirs.method == Method::fcl;
+  }
+  EXPECT_EQ(apart, 300);
+  EXPECT_GE(by_fcl, 270) << "FCL's answers proven as they stand";
+}
+
+// The method "libccd" answers verdicts and signed distances of curved pairs through the shapes'
+// support functions, checked as for polyhedra, and agrees with "dual".
+TEST(Curved, LibccdAnswersCurvedVerdictsAndDepths) {
+  Random rng(43);
+  const Query libccd = query_of(Method::libccd);
+  const Query dual = query_of(Method::dual);
+  int colliding = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    const auto make = [&rng](int kind) -> ConvexPolyhedron {
+      const Scalar a = rng.uniform(0.2, 1);
+      const Scalar b = rng.uniform(0.2, 1);
+      switch (kind % 4) {
+        case 0: return Cylinder(a, b);
+        case 1: return Cone(a, b);
+        case 2: return Ellipsoid(Vector3(a, b, rng.uniform(0.2, 1)));
+        default: return Box(Vector3(a, b, a), 0.1);
+      }
+    };
+    const ConvexPolyhedron a = make(trial);
+    const ConvexPolyhedron b = make(trial / 4);
+    const Pose pa = at(Vector3::Zero(), rng.rotation());
+    const Pose pb = at(rng.vector(1.5), rng.rotation());
+    const Scalar size = size_of(a, pa, b, pb);
+    const DistanceResult ours = dual.signed_distance(a, pa, b, pb);
+    const DistanceResult theirs = libccd.signed_distance(a, pa, b, pb);
+    const DistanceResult verdict = libccd.collision(a, pa, b, pb);
+    ASSERT_TRUE(ours.certified);
+    EXPECT_TRUE(theirs.certified);
+    EXPECT_NEAR(theirs.distance, ours.distance, 2 * kDefaultTolerance * size);
+    EXPECT_TRUE(verdict.certified);
+    EXPECT_EQ(verdict.colliding, ours.distance <= kDefaultTolerance * size);
+    colliding += verdict.colliding;
+  }
+  EXPECT_GT(colliding, 50);
+  EXPECT_LT(colliding, 250);
+}
+
+// A plus of a cylinder (axis z) and a bar across it (along x), and a rod of a capsule and a cone
+// on it: compound bodies with curved parts, whose every answer is the best part pair's as Query
+// answers the parts one by one; batches and scenes agree with the pair queries.
+CompoundBody plus_shape() { return CompoundBody({Cylinder(0.3, 1), Box(Vector3(1, 0.15, 0.15))}); }
+CompoundBody rod() {
+  return CompoundBody({Capsule(0.1, 0.8), Cone(0.4, 0.3), Ellipsoid(Vector3(0.2, 0.5, 0.2))});
+}
+
+DistanceResult best_part_pair(const Query& query, const CompoundBody& a, const Pose& pose_a,
+                              const CompoundBody& b, const Pose& pose_b, bool signed_distance) {
+  DistanceResult best;
+  best.distance = std::numeric_limits<Scalar>::infinity();
+  for (const ConvexPolyhedron& pa : a.parts()) {
+    for (const ConvexPolyhedron& pb : b.parts()) {
+      const DistanceResult r = signed_distance ? query.signed_distance(pa, pose_a, pb, pose_b)
+                                               : query.distance(pa, pose_a, pb, pose_b);
+      EXPECT_TRUE(r.certified);
+      if (r.distance < best.distance) best = r;
+    }
+  }
+  return best;
+}
+
+TEST(Curved, CompoundBodiesWithCurvedPartsAnswerAsTheirBestPartPair) {
+  Random rng(47);
+  const CompoundBody plus = plus_shape();
+  const CompoundBody other = rod();
+  ASSERT_NE(plus.curved_part(), nullptr);
+  EXPECT_EQ(plus.curved_part(), &plus.parts()[0]);
+  EXPECT_EQ(CompoundBody(unit_cube()).curved_part(), nullptr);
+  // Every node's envelope and ball hold the curved parts below it: along any direction the
+  // envelope's support value reaches the part's.
+  for (const CompoundBody* body : {&plus, &other}) {
+    for (std::size_t node = 0; node < body->tree().size(); ++node) {
+      const ConvexPolyhedron& envelope = body->node_envelopes()[node];
+      EXPECT_EQ(envelope.curved(), nullptr);
+      for (const ConvexPolyhedron& part : body->parts()) {
+        if (!part.curved()) continue;
+        const PartNode& volume = body->tree()[node];
+        const bool below = (volume.box.min.array() <= part.aabb().min.array()).all() &&
+                           (part.aabb().max.array() <= volume.box.max.array()).all();
+        if (!below) continue;
+        EXPECT_LE(part.bounds().radius + (part.bounds().centre - volume.centre).norm(),
+                  volume.radius * (1 + 1e-12));
+        for (int k = 0; k < 50; ++k) {
+          const Vector3 d = rng.unit();
+          EXPECT_GE(d.dot(envelope.support(d)) + envelope.radius(),
+                    d.dot(part.support(d)) - 1e-15);
+        }
+      }
+    }
+  }
+  for (Method method : kCurvedMethods) {
+    SCOPED_TRACE(method_name(method));
+    const Query query = query_of(method);
+    int colliding = 0;
+    for (int trial = 0; trial < 30; ++trial) {
+      const Pose pa = at(Vector3::Zero(), rng.rotation());
+      const Pose pb = at(rng.vector(1.6), rng.rotation());
+      const Scalar size = size_of(plus.envelope(), pa, other.envelope(), pb);
+      const Scalar slack = 2 * kDefaultTolerance * size;
+      const CompoundResult d = query.distance(plus, pa, other, pb);
+      const DistanceResult d_oracle = best_part_pair(query, plus, pa, other, pb, false);
+      EXPECT_TRUE(d.certified) << trial;
+      EXPECT_NEAR(d.distance, d_oracle.distance, slack) << trial;
+      EXPECT_LE(d.lower_bound, d_oracle.distance + slack);
+      EXPECT_NEAR((d.point_b - d.point_a).norm(), d.distance, slack);
+      const CompoundResult s = query.signed_distance(plus, pa, other, pb);
+      const DistanceResult s_oracle = best_part_pair(query, plus, pa, other, pb, true);
+      EXPECT_TRUE(s.certified) << trial;
+      EXPECT_NEAR(s.distance, s_oracle.distance, slack) << trial;
+      const CompoundResult c = query.collision(plus, pa, other, pb);
+      EXPECT_TRUE(c.certified);
+      EXPECT_EQ(c.colliding, d_oracle.distance <= kDefaultTolerance * size) << trial;
+      colliding += c.colliding;
+    }
+    EXPECT_GT(colliding, 3);
+    EXPECT_LT(colliding, 27);
+  }
+}
+
+TEST(Curved, CompoundBodiesWithCurvedPartsInBatchesAndScenes) {
+  Random rng(53);
+  const CompoundBody plus = plus_shape();
+  const CompoundBody other = rod();
+  BatchPoses poses;
+  for (int row = 0; row < 40; ++row) {
+    poses.a.push_back(at(Vector3::Zero(), rng.rotation()));
+    poses.b.push_back(at(rng.vector(1.6), rng.rotation()));
+  }
+  const Query query = query_of(Method::dual);
+  const BatchResult distances = distance_many(plus, other, QueryOptions{}, {}, poses);
+  const BatchResult verdicts = collide_many(plus, other, QueryOptions{}, {}, poses);
+  for (int row = 0; row < 40; ++row) {
+    const CompoundResult one = query.distance(plus, poses.a[row], other, poses.b[row]);
+    EXPECT_TRUE(distances.certified(row));
+    EXPECT_NEAR(distances.distance(row), one.distance, 1e-8);
+    EXPECT_EQ(verdicts.colliding(row), one.colliding) << row;
+  }
+  // In a scene, with a cylinder, a plus and a rod: the colliding pairs are the pair queries'.
+  Scene scene{SceneOptions{}};
+  std::vector<Pose> placed;
+  for (int i = 0; i < 6; ++i) placed.push_back(at(rng.vector(1.2), rng.rotation()));
+  const std::vector<BodyId> compounds =
+      scene.add(std::vector<CompoundBody>{plus, other, plus, other}, {placed[0], placed[1],
+                                                                       placed[2], placed[3]});
+  const BodyId cylinder = scene.add(Cylinder(0.3, 0.4), placed[4]);
+  const BodyId ellipsoid = scene.add(Ellipsoid(Vector3(0.5, 0.2, 0.3)), placed[5]);
+  const std::vector<BodyId> ids = {compounds[0], compounds[1], compounds[2],
+                                   compounds[3], cylinder,     ellipsoid};
+  const std::vector<CompoundBody> bodies = {plus, other, plus, other,
+                                            CompoundBody(Cylinder(0.3, 0.4)),
+                                            CompoundBody(Ellipsoid(Vector3(0.5, 0.2, 0.3)))};
+  const SceneResult hits = scene.colliding_pairs();
+  std::vector<std::pair<BodyId, BodyId>> found;
+  for (Eigen::Index k = 0; k < hits.size(); ++k) {
+    EXPECT_TRUE(hits.certified(k));
+    found.emplace_back(static_cast<BodyId>(std::min(hits.pairs(k, 0), hits.pairs(k, 1))),
+                       static_cast<BodyId>(std::max(hits.pairs(k, 0), hits.pairs(k, 1))));
+  }
+  int colliding = 0;
+  for (std::size_t i = 0; i < ids.size(); ++i) {
+    for (std::size_t j = i + 1; j < ids.size(); ++j) {
+      const CompoundResult r = query.collision(bodies[i], placed[i], bodies[j], placed[j]);
+      ASSERT_TRUE(r.certified);
+      const bool listed = std::find(found.begin(), found.end(),
+                                    std::make_pair(std::min(ids[i], ids[j]),
+                                                   std::max(ids[i], ids[j]))) != found.end();
+      EXPECT_EQ(listed, r.colliding) << i << " " << j;
+      colliding += r.colliding;
+    }
+  }
+  EXPECT_GT(colliding, 0);
+}
+
+TEST(Curved, CompoundBodiesWithCurvedPartsRefuseMethodsThatReadPoints) {
+  const CompoundBody plus = plus_shape();
+  for (Method method : {Method::ipso, Method::pso, Method::penalty}) {
+    SCOPED_TRACE(method_name(method));
+    QueryOptions options;
+    options.method = method;
+    try {
+      Query(options).collision(plus, {}, plus, at(Vector3(5, 0, 0)));
+      ADD_FAILURE() << "no error";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("cylinder"), std::string::npos) << e.what();
+    }
+    SceneOptions scene_options;
+    scene_options.query.method = method;
+    Scene scene(scene_options);
+    EXPECT_THROW(scene.add(plus), std::invalid_argument);
+  }
+}
+
+// Overlapping pairs of shapes with flat facets (a cylinder's cap, a cone's base, a box's face) at
+// tolerance 1e-12: near the optimum, the support point only just rises above the nearest face of
+// the expanding polytope, beyond an edge whose other face is nearly coplanar and does not see it,
+// so the triangle on that edge cannot be proven oriented. Before the expansion took in the face
+// across such an edge, it stopped there with gaps of 4e-12 to 7e-11 of the frame: 91 of these 827
+// overlapping pairs unproven, 46 since. Those stay unproven, and say so (their bounds hold).
+TEST(Curved, DeepOverlapsOnFlatFacetsAreProvenAtTightTolerance) {
+  Random rng(59);
+  const Query query = query_of(Method::exact, 1e-12);
+  int overlapping = 0;
+  int unproven = 0;
+  for (int trial = 0; trial < 1000; ++trial) {
+    const auto make = [&rng](int kind) -> ConvexPolyhedron {
+      const Vector3 s(rng.uniform(0.1, 1.1), rng.uniform(0.1, 1.1), rng.uniform(0.1, 1.1));
+      switch (kind % 3) {
+        case 0: return Cylinder(s.x(), s.y());
+        case 1: return Cone(s.x(), s.y());
+        default: return Box(s);
+      }
+    };
+    const ConvexPolyhedron a = make(trial);
+    const ConvexPolyhedron b = make(trial / 3 + 1);
+    const Pose pa = at(Vector3::Zero(), rng.rotation());
+    const Pose pb = at(rng.vector(0.8), rng.rotation());
+    const DistanceResult s = query.signed_distance(a, pa, b, pb);
+    if (s.distance >= 0) continue;
+    ++overlapping;
+    unproven += !s.certified;
+    EXPECT_LE(s.lower_bound, s.distance);
+  }
+  EXPECT_GT(overlapping, 800);
+  EXPECT_LE(unproven, 50) << "of " << overlapping;
 }
 
 // A scene of curved shapes answers as the pair queries do, warm and cold.

@@ -9,7 +9,10 @@ import pytest
 import swarmcollide as sc
 from shape_checks import assert_encloses, at
 
-CURVED_METHODS = ["dual", "exact"]
+CURVED_METHODS = ["dual", "exact", "fcl"]
+# The methods that answer signed distances and verdicts of curved shapes ("libccd" has no
+# distance).
+SIGNED_METHODS = ["dual", "exact", "fcl", "libccd"]
 
 
 def point_to_cylinder(p, r, h):
@@ -26,7 +29,7 @@ def random_rotation(rng):
     return q if np.linalg.det(q) > 0 else -q
 
 
-@pytest.mark.parametrize("method", CURVED_METHODS)
+@pytest.mark.parametrize("method", SIGNED_METHODS)
 def test_a_sphere_against_a_cylinder_is_the_point_distance_less_the_radius(method):
     rng = np.random.default_rng(3)
     for _ in range(10):
@@ -144,20 +147,88 @@ def test_scenes_of_curved_shapes_agree_with_the_pair_queries():
         assert scene.colliding_pairs().pairs.tolist() == colliding.pairs.tolist()
 
 
-@pytest.mark.parametrize("method", ["ipso", "pso", "penalty", "fcl", "libccd"])
+@pytest.mark.parametrize("method", ["ipso", "pso", "penalty"])
 def test_methods_that_read_points_refuse_curved_shapes(method):
-    with pytest.raises(ValueError, match=r"cylinder.*'dual', 'exact'"):
+    with pytest.raises(ValueError, match=r"cylinder.*'dual', 'exact', 'fcl', 'libccd'"):
         sc.collide(sc.Cylinder(1.0, 1.0), sc.Box([1, 1, 1]), pose_b=at(5), method=method)
-    with pytest.raises(ValueError, match=r"ellipsoid.*'dual', 'exact'"):
+    with pytest.raises(ValueError, match=r"ellipsoid.*'dual', 'exact', 'fcl', 'libccd'"):
         sc.collide_many(sc.Box([1, 1, 1]), sc.Ellipsoid([1, 2, 3]), method=method)
 
 
 def test_compound_bodies_and_scenes_with_other_methods_refuse_curved_shapes():
-    with pytest.raises(ValueError, match="cone"):
-        sc.CompoundBody([sc.Cone(1.0, 1.0), sc.Sphere(1.0)])
+    body = sc.CompoundBody([sc.Cone(1.0, 1.0), sc.Sphere(1.0)])
+    with pytest.raises(ValueError, match=r"cone.*'dual', 'exact', 'fcl', 'libccd'"):
+        sc.distance(body, body, pose_b=at(5), method="ipso")
     scene = sc.Scene(method="ipso")
-    with pytest.raises(ValueError, match="'dual', 'exact'"):
+    with pytest.raises(ValueError, match="'dual', 'exact', 'fcl', 'libccd'"):
         scene.add([sc.Ellipsoid([1, 1, 2])])
+    with pytest.raises(ValueError, match="cone"):
+        scene.add([body])
+
+
+def plus_shape():
+    """A cylinder along z and a bar along x through it: a compound with a curved part."""
+    return sc.CompoundBody([sc.Cylinder(0.3, 1.0), sc.Box([1.0, 0.15, 0.15])])
+
+
+@pytest.mark.parametrize("method", CURVED_METHODS)
+def test_compound_bodies_with_curved_parts_answer_as_their_best_part_pair(method):
+    rng = np.random.default_rng(7)
+    a = plus_shape()
+    b = sc.CompoundBody([sc.Capsule(0.1, 0.8), sc.Cone(0.4, 0.3), sc.Ellipsoid([0.2, 0.5, 0.2])])
+    # Curved parts come back as their shapes.
+    assert repr(a.parts[0]) == "Cylinder(radius=0.3, half_length=1)"
+    assert repr(b.parts[2]) == "Ellipsoid(radii=[0.2, 0.5, 0.2])"
+    colliding = 0
+    for _ in range(12):
+        pose_a = (random_rotation(rng), [0, 0, 0])
+        pose_b = (random_rotation(rng), rng.uniform(-1.6, 1.6, 3))
+        size = np.linalg.norm(pose_b[1]) + 2 * max(a.bounding_radius, b.bounding_radius)
+        whole = sc.distance(a, b, pose_a=pose_a, pose_b=pose_b, method=method)
+        pairs = [sc.distance(p, q, pose_a=pose_a, pose_b=pose_b, method=method)
+                 for p in a.parts for q in b.parts]
+        best = min(pairs, key=lambda r: r.distance)
+        assert whole.certified
+        assert whole.distance == pytest.approx(best.distance, abs=2e-9 * size)
+        named = sc.distance(a.parts[whole.part_a], b.parts[whole.part_b], pose_a=pose_a,
+                            pose_b=pose_b, method=method)
+        assert named.distance == pytest.approx(whole.distance, abs=2e-9 * size)
+        verdict = sc.collision(a, b, pose_a=pose_a, pose_b=pose_b, method=method)
+        assert verdict.certified and verdict.colliding == (best.distance <= 1e-9 * size)
+        colliding += verdict.colliding
+    assert 0 < colliding < 12
+    moves = np.tile(np.eye(4), (3, 1, 1))
+    moves[:, 0, 3] = [1.5, 2.5, 3.5]
+    rows = sc.distance_many(a, b, poses_b=moves, method=method)
+    singles = [sc.distance(a, b, pose_b=at(x), method=method).distance for x in (1.5, 2.5, 3.5)]
+    np.testing.assert_allclose(rows.distance, singles, atol=1e-8)
+    assert rows.certified.all()
+
+
+def test_compound_bodies_with_curved_parts_in_a_scene():
+    scene = sc.Scene()
+    # Side by side, their boxes overlapping, their parts apart; a small cylinder on the first
+    # one's top, sunk 0.05 into it.
+    poses = np.tile(np.eye(4), (2, 1, 1))
+    poses[1, :3, 3] = [0.7, 0.7, 0]
+    ids = scene.add([plus_shape(), plus_shape()], poses)
+    lone = scene.add(sc.Cylinder(0.2, 0.2), at(0, 0, 1.15))
+    for _ in range(2):  # cold, then warm
+        hits = scene.colliding_pairs()
+        assert hits.certified.all()
+        assert sorted(map(sorted, hits.pairs.tolist())) == [sorted([ids[0], lone])]
+    near = scene.pairs_within(0.5)
+    assert near.certified.all() and len(near) == 3
+    small = sc.CompoundBody([sc.Cylinder(0.2, 0.2)])
+    assert sc.collide(plus_shape(), small, pose_b=at(0, 0, 1.15))
+    assert not sc.collide(plus_shape(), small, pose_b=at(0, 0, 1.25))
+
+
+def test_a_parts_file_refuses_curved_and_rounded_parts(tmp_path):
+    with pytest.raises(ValueError, match=r"parts\[0\] is a curved shape.*body_to_json"):
+        plus_shape().save(tmp_path / "plus.npz")
+    with pytest.raises(ValueError, match=r"parts\[1\] is rounded"):
+        sc.CompoundBody([sc.Box([1, 1, 1]), sc.Sphere(1)]).save(tmp_path / "ball.npz")
 
 
 @pytest.mark.parametrize("bad", [0.0, -1.0, math.nan, math.inf])

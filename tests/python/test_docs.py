@@ -14,6 +14,7 @@ import swarmcollide.queries
 import swarmcollide.robot
 import swarmcollide.robot_shapes
 import swarmcollide.scene_demo
+import swarmcollide.shape_json
 
 MODULES = [
     swarmcollide,
@@ -26,6 +27,7 @@ MODULES = [
     swarmcollide.scene_demo,
     swarmcollide.robot,
     swarmcollide.robot_shapes,
+    swarmcollide.shape_json,
 ]
 
 

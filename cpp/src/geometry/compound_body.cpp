@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <numeric>
 #include <stdexcept>
-#include <string>
 #include <utility>
+#include <vector>
 
 namespace swarmcollide {
 
@@ -14,35 +14,42 @@ std::vector<ConvexPolyhedron> nonempty(std::vector<ConvexPolyhedron> parts) {
   if (parts.empty()) {
     throw std::invalid_argument("parts is empty: a compound body needs at least one convex part");
   }
-  for (std::size_t i = 0; i < parts.size(); ++i) {
-    if (const SupportFunction* shape = parts[i].curved()) {
-      // The envelopes stack the parts' points, which are not a curved part's body.
-      throw std::invalid_argument("parts[" + std::to_string(i) + "] is a " + shape->name() +
-                                  ": compound bodies take polyhedra (rounded or not), not curved "
-                                  "shapes; query the curved part on its own");
-    }
-  }
   return parts;
 }
 
-// The convex hull of parts `order[begin, end)`: their points stacked (one part is its own
-// envelope, and shares its hull).
+// Points whose hull (grown by the part's rounding radius) holds the part: a polyhedron's own, a
+// curved part's box corners (its points are only a few points on its surface).
+VertexMatrix outer_points(const ConvexPolyhedron& part) {
+  if (!part.curved()) return part.vertices();
+  const Aabb& box = part.aabb();
+  VertexMatrix corners(8, 3);
+  for (int i = 0; i < 8; ++i) {
+    for (int k = 0; k < 3; ++k) corners(i, k) = (i >> k) & 1 ? box.max(k) : box.min(k);
+  }
+  return corners;
+}
+
+// The convex hull of parts `order[begin, end)`: their outer points stacked. A polyhedron alone is
+// its own envelope, and shares its hull; a curved part alone is enveloped by its box, so that
+// the envelopes, which the searches read as polyhedra, are polyhedra.
 ConvexPolyhedron envelope_of(const std::vector<ConvexPolyhedron>& parts,
                              const std::vector<int>& order, int begin, int end) {
-  if (end - begin == 1) return parts[order[begin]];
+  if (end - begin == 1 && !parts[order[begin]].curved()) return parts[order[begin]];
   Eigen::Index rows = 0;
   // The hull of rounded parts lies in the hull of their cores grown by their largest radius.
   Scalar radius = 0;
+  std::vector<VertexMatrix> outer;
+  outer.reserve(end - begin);
   for (int i = begin; i < end; ++i) {
-    rows += parts[order[i]].size();
+    outer.push_back(outer_points(parts[order[i]]));
+    rows += outer.back().rows();
     radius = std::max(radius, parts[order[i]].radius());
   }
   VertexMatrix points(rows, 3);
   Eigen::Index at = 0;
-  for (int i = begin; i < end; ++i) {
-    const ConvexPolyhedron& part = parts[order[i]];
-    points.middleRows(at, part.size()) = part.vertices();
-    at += part.size();
+  for (const VertexMatrix& part : outer) {
+    points.middleRows(at, part.rows()) = part;
+    at += part.rows();
   }
   return ConvexPolyhedron(std::move(points), radius);
 }
@@ -65,7 +72,7 @@ void build(const std::vector<ConvexPolyhedron>& parts, std::vector<int>& order, 
   Scalar radius = 0;
   for (int i = begin; i < end; ++i) {
     const ConvexPolyhedron& part = parts[order[i]];
-    const VertexMatrix& points = part.vertices();
+    const VertexMatrix points = outer_points(part);
     const Scalar reach = (points.rowwise() - node.centre.transpose()).rowwise().norm().maxCoeff();
     radius = std::max(radius, part.radius() > 0 ? (reach + part.radius()) * (1 + 1e-15) : reach);
   }
@@ -106,6 +113,9 @@ CompoundBody::CompoundBody(std::vector<ConvexPolyhedron> parts)
   // Placeholders, each replaced by its node's envelope as the tree is built.
   node_envelopes_.assign(tree_.size(), parts_.front());
   build(parts_, order, 0, size(), tree_, node_envelopes_, 0);
+  for (int i = 0; i < size() && curved_part_ < 0; ++i) {
+    if (parts_[i].curved()) curved_part_ = i;
+  }
 }
 
 CompoundBody::CompoundBody(ConvexPolyhedron part)

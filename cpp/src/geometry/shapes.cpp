@@ -87,6 +87,9 @@ class CylinderSupport final : public SupportFunction {
   Scalar outer_radius() const override { return std::hypot(r_, h_); }
   Vector3 centroid() const override { return Vector3::Zero(); }
   const char* name() const override { return "cylinder"; }
+  CurvedShapeParameters parameters() const override {
+    return {CurvedShapeParameters::Kind::cylinder, r_, h_};
+  }
 
  private:
   Scalar r_;
@@ -110,6 +113,9 @@ class ConeSupport final : public SupportFunction {
   Scalar outer_radius() const override { return std::hypot(r_, h_); }
   Vector3 centroid() const override { return {0, 0, -h_ / 2}; }
   const char* name() const override { return "cone"; }
+  CurvedShapeParameters parameters() const override {
+    return {CurvedShapeParameters::Kind::cone, r_, h_};
+  }
 
  private:
   Scalar r_;
@@ -131,6 +137,9 @@ class EllipsoidSupport final : public SupportFunction {
   Scalar outer_radius() const override { return radii_.maxCoeff(); }
   Vector3 centroid() const override { return Vector3::Zero(); }
   const char* name() const override { return "ellipsoid"; }
+  CurvedShapeParameters parameters() const override {
+    return {CurvedShapeParameters::Kind::ellipsoid, 0, 0, radii_};
+  }
 
  private:
   Vector3 radii_;

@@ -444,6 +444,8 @@ namespace detail {
 CompoundResult answer_compound(const QueryOptions& options, Goal goal, bool escalate,
                                const CompoundBody& a, const Pose& pose_a, const CompoundBody& b,
                                const Pose& pose_b) {
+  // The part pairs are answered by the method's solver itself, past answer_pair's check.
+  require_parts(options.method, a, b);
   return CompoundSearch(options, goal, escalate, a, pose_a, b, pose_b).run();
 }
 

@@ -34,6 +34,13 @@ inline void require_shapes(Method method, const ConvexPolyhedron& a, const Conve
   refuse_curved(method, a.curved() ? &a : &b);
 }
 
+/// The same for compound bodies with curved parts (CompoundBody::curved_part).
+inline void require_parts(Method method, const CompoundBody& a, const CompoundBody& b) {
+  const ConvexPolyhedron* curved = a.curved_part() ? a.curved_part() : b.curved_part();
+  if (!curved || method_info(method).capabilities & kCurvedShapes) return;
+  refuse_curved(method, curved);
+}
+
 /// What Query answers between the convex bodies of `pair` (framed, so with their poses checked)
 /// for `goal`, with options already validated and the method's capability already required:
 /// the method's answer, and for a verdict that it leaves unproven, with `escalate`, the exact

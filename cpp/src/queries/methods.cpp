@@ -152,8 +152,9 @@ const std::vector<MethodEntry>& entries() {
        detail::solve_exact},
       {{Method::fcl,
         "fcl",
-        "FCL's GJK, checked by the certificate; penetration by the library's exact solver",
-        kDistance | kCollide | kSignedDistance,
+        "FCL's GJK (on FCL's own cylinder, cone and ellipsoid for curved shapes), checked by the "
+        "certificate; penetration by the library's exact solver",
+        kDistance | kCollide | kSignedDistance | kCurvedShapes,
         true,
         {exact_iterations()}},
        detail::solve_fcl},
@@ -161,7 +162,7 @@ const std::vector<MethodEntry>& entries() {
         "libccd",
         "libccd's GJK intersection test and EPA penetration depth (capped), checked by the "
         "certificate; no distance",
-        kCollide | kSignedDistance,
+        kCollide | kSignedDistance | kCurvedShapes,
         true,
         {exact_iterations()}},
        detail::solve_libccd},
@@ -280,7 +281,7 @@ void refuse_curved(Method method, const ConvexPolyhedron* curved) {
       able += std::string(able.empty() ? "'" : ", '") + e.info.name + "'";
   }
   throw std::invalid_argument(std::string("method '") + method_name(method) +
-                              "' reads a body's points (vertices), and a " +
+                              "' reads a body's points (vertices) as the body, and a " +
                               curved->curved()->name() +
                               " is a curved shape defined by its support function: use method " +
                               able + ", which answer every pair of shapes");

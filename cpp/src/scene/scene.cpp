@@ -284,6 +284,9 @@ std::vector<BodyId> Scene::Impl::add(std::vector<ConvexPolyhedron> bodies,
   }
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     detail::require_shapes(s.options.query.method, bodies[i], bodies[i]);
+    if (!compounds.empty()) {
+      detail::require_parts(s.options.query.method, *compounds[i], *compounds[i]);
+    }
     const Scalar reach = own_reach(bodies[i]);
     if (!(reach <= kMaxSceneCoordinate / 2)) {
       refuse_placement("bodies[" + std::to_string(i) + "] reaches from its own origin to", reach);

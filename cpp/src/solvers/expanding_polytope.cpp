@@ -60,6 +60,36 @@ bool ExpandingPolytope::make_face(int v0, int v1, int v2, Face& face) const {
   return true;
 }
 
+int ExpandingPolytope::cone(int added) {
+  horizon_.clear();
+  for (int f : visible_) {
+    for (int k = 0; k < 3; ++k) {
+      if (seen_stamp_[faces_[f].adj[k]] != stamp_) horizon_.emplace_back(f, k);
+    }
+  }
+  if (horizon_.empty()) return kConeBroken;
+  // Vertices are marked with a stamp of their own per attempt (start_stamp_), so an attempt
+  // never reads an earlier one's marks.
+  ++vertex_stamp_;
+  // The cone from the new point: one triangle per horizon edge, all provably oriented, and the
+  // horizon one loop through distinct vertices (else the surface would not stay a 2-manifold).
+  added_.resize(horizon_.size());
+  for (std::size_t e = 0; e < horizon_.size(); ++e) {
+    const Face& f = faces_[horizon_[e].first];
+    const int k = horizon_[e].second;
+    const int from = f.v[k];
+    const int to = f.v[(k + 1) % 3];
+    if (!make_face(from, to, added, added_[e])) return f.adj[k];
+    if (start_stamp_[from] == vertex_stamp_) return kConeBroken;
+    start_stamp_[from] = vertex_stamp_;
+    start_face_[from] = static_cast<int>(e);
+  }
+  for (const Face& face : added_) {
+    if (start_stamp_[face.v[1]] != vertex_stamp_) return kConeBroken;
+  }
+  return kConeMade;
+}
+
 bool ExpandingPolytope::expand(int closest, int added) {
   const Vector3& w = vertices_[added].w;
   const auto sees = [&](int f) { return faces_[f].normal.dot(w) > faces_[f].top; };
@@ -71,7 +101,6 @@ bool ExpandingPolytope::expand(int closest, int added) {
     start_face_.resize(vertices_.size(), 0);
   }
   visible_.clear();
-  horizon_.clear();
   stack_.assign(1, closest);
   seen_stamp_[closest] = stamp_;
   // Every face enters the stack once, so the flood ends after at most faces_.size() pops.
@@ -81,31 +110,32 @@ bool ExpandingPolytope::expand(int closest, int added) {
     visible_.push_back(f);
     for (int k = 0; k < 3; ++k) {
       const int g = faces_[f].adj[k];
-      if (seen_stamp_[g] == stamp_) continue;
-      if (sees(g)) {
+      if (seen_stamp_[g] != stamp_ && sees(g)) {
         seen_stamp_[g] = stamp_;
         stack_.push_back(g);
-      } else {
-        horizon_.emplace_back(f, k);
       }
     }
   }
-  if (horizon_.empty()) return false;
-  // The cone from the new point: one triangle per horizon edge, all provably oriented, and the
-  // horizon one loop through distinct vertices (else the surface would not stay a 2-manifold).
-  added_.resize(horizon_.size());
-  for (std::size_t e = 0; e < horizon_.size(); ++e) {
-    const Face& f = faces_[horizon_[e].first];
-    const int k = horizon_[e].second;
-    const int from = f.v[k];
-    const int to = f.v[(k + 1) % 3];
-    if (!make_face(from, to, added, added_[e])) return false;
-    if (start_stamp_[from] == stamp_) return false;
-    start_stamp_[from] = stamp_;
-    start_face_[from] = static_cast<int>(e);
-  }
-  for (const Face& face : added_) {
-    if (start_stamp_[face.v[1]] != stamp_) return false;
+  // The faces replaced need not be exactly those that see the new point: the surface stays a
+  // proof (verify) whatever faces it replaces, as long as it stays closed and every new face is
+  // proven oriented. Where a point only just above the nearest face (the flat facets of curved
+  // bodies' differences, a cylinder's cap on a box's face) lies beyond an edge whose other face,
+  // nearly coplanar, does not see it, the triangle on that edge cannot be proven oriented; the
+  // face across it then joins the replaced ones, a few times at most. Such a face lies above the
+  // point, so the new faces may dip below it: they must stay beyond the nearest face (whose bound
+  // is the least), so that the bound never drops.
+  for (int widening = 0;; ++widening) {
+    const int across = cone(added);
+    if (across == kConeMade) {
+      if (widening == 0) break;
+      for (const Face& face : added_) {
+        if (face.low < faces_[closest].low) return false;
+      }
+      break;
+    }
+    if (across == kConeBroken || widening == kWidenings) return false;
+    seen_stamp_[across] = stamp_;
+    visible_.push_back(across);
   }
   const int base = static_cast<int>(faces_.size());
   for (std::size_t e = 0; e < added_.size(); ++e) {

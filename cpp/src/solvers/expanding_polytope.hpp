@@ -77,6 +77,15 @@ class ExpandingPolytope {
 
   bool make_face(int v0, int v1, int v2, Face& face) const;
   bool expand(int closest, int added);
+  // The new faces from vertex `added` to the horizon of the faces in `visible_` (those marked
+  // with stamp_ in seen_stamp_), into added_, horizon_ and start_face_: kConeMade; kConeBroken
+  // where the horizon is not one loop through distinct vertices; else the face across a horizon
+  // edge whose new triangle could not be proven oriented.
+  int cone(int added);
+  static constexpr int kConeMade = -1;
+  static constexpr int kConeBroken = -2;
+  // Faces that may join the visible ones in one expansion (see expand).
+  static constexpr int kWidenings = 16;
   bool verify(Scalar& depth_lower) const;
 
   std::vector<DifferencePoint> vertices_;
@@ -87,10 +96,11 @@ class ExpandingPolytope {
   std::vector<int> visible_;
   std::vector<std::pair<int, int>> horizon_;  // (face, edge) of visible faces on the horizon
   std::vector<int> seen_stamp_;
-  std::vector<int> start_stamp_;  // per vertex: stamp of the expansion whose horizon starts there
+  std::vector<int> start_stamp_;  // per vertex: vertex_stamp_ of the cone whose horizon starts there
   std::vector<int> start_face_;   // per vertex: the new face whose horizon edge starts there
   std::vector<Face> added_;
   int stamp_ = 0;
+  int vertex_stamp_ = 0;
 };
 
 }  // namespace swarmcollide::detail

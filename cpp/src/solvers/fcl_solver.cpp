@@ -1,15 +1,12 @@
 #include "fcl_solver.hpp"
 
-#include <fcl/geometry/shape/convex.h>
 #include <fcl/narrowphase/detail/convexity_based_algorithm/gjk.h>
 
 #include <array>
-#include <memory>
-#include <vector>
 
-#include "../geometry/normalise.hpp"
 #include "../queries/verdict.hpp"
 #include "exact_solver.hpp"
+#include "fcl_shape.hpp"
 #include "minkowski.hpp"
 #include "witness.hpp"
 
@@ -20,43 +17,16 @@ namespace {
 // GJK's stopping threshold in frame units (the bodies lie in the unit ball): relative precision
 // near double's; whatever GJK leaves unproven goes to the exact solver.
 constexpr Scalar kGjkTolerance = 1e-14;
-// A body's hull as an fcl::Convexd: local points around the body's box centre, divided by
-// 2^exponent, as FramedBody places them before its rotation. Built once per body and exponent.
-struct FclConvex {
-  std::shared_ptr<const fcl::Convexd> shape;
-};
-
-FclConvex make_convex(const FramedBody& framed) {
-  const Hull& hull = framed.hull();
-  auto vertices = std::make_shared<std::vector<fcl::Vector3d>>();
-  vertices->reserve(hull.vertex_indices.size());
-  for (int i : hull.vertex_indices) {
-    fcl::Vector3d p;
-    for (int k = 0; k < 3; ++k) {
-      p(k) = times_power_of_two(framed.local_points()(i, k), -framed.exponent());
-    }
-    vertices->push_back(p);
-  }
-  // No faces: GJK_indep's supports (fcl::detail::MinkowskiDiff) scan the vertices whatever the
-  // size, never walking the faces, which would only cost the constructor an adjacency build.
-  return {std::make_shared<const fcl::Convexd>(vertices, 0, std::make_shared<std::vector<int>>())};
-}
-
-// Kept with the body (ConvexPolyhedron::derived), found without a lock or a reference count.
-const FclConvex& convex_of(const FramedBody& body) {
-  return body.body().derived<FclConvex>([&body] { return make_convex(body); }, body.exponent());
-}
-
 // FCL's GJK on the pair; on return `gjk` holds its final simplex in A's shape frame.
-fcl::detail::GJK<Scalar>::Status run_gjk(const FramedPair& pair, const FclConvex& a,
-                                         const FclConvex& b, fcl::detail::GJK<Scalar>& gjk,
+fcl::detail::GJK<Scalar>::Status run_gjk(const FramedPair& pair, const fcl::ShapeBased& a,
+                                         const fcl::ShapeBased& b, fcl::detail::GJK<Scalar>& gjk,
                                          fcl::detail::MinkowskiDiff<Scalar>& difference) {
   // B's placement seen from A's shape frame, and directions from there into B's, from the
   // rotations themselves (no 4 x 4 transforms to build, invert and multiply).
   const Matrix3& rotation_a = pair.a.rotation();
   const Matrix3& rotation_b = pair.b.rotation();
-  difference.shapes[0] = a.shape.get();
-  difference.shapes[1] = b.shape.get();
+  difference.shapes[0] = &a;
+  difference.shapes[1] = &b;
   difference.toshape1.noalias() = rotation_b.transpose() * rotation_a;
   difference.toshape0.linear().noalias() = rotation_a.transpose() * rotation_b;
   difference.toshape0.translation().noalias() =
@@ -70,10 +40,10 @@ fcl::detail::GJK<Scalar>::Status run_gjk(const FramedPair& pair, const FclConvex
 // The support indices of `body` along `count` (at most 4) directions `local` in its own frame, into
 // `out`: on a small body one pass over its points for all the directions (the first highest
 // point each, as a scan finds it), on a large one a climb each from its hull's cube map of
-// starts (Hull::climb_starts).
+// starts (Hull::climb_starts), on a curved one its support function's point each.
 void local_supports(const FramedBody& body, const std::array<Vector3, 4>& local, int count,
                     std::array<int, 4>& out) {
-  if (body.size() > kHillClimbingThreshold) {
+  if (body.curved() || body.size() > kHillClimbingThreshold) {
     for (int k = 0; k < count; ++k) out[k] = body.local_support_index(local[k], -1);
     return;
   }
@@ -114,8 +84,8 @@ Answer along_centres(const FramedPair& pair) {
 Answer solve_fcl(const FramedPair& pair, const QueryOptions& options, Goal goal) {
   // FCL's GJK has no early exit for an intersection test: it runs to the distance. The centres'
   // line proves most separated pairs apart in two support scans (as libccd's test would stop).
-  const FclConvex& convex_a = convex_of(pair.a);
-  const FclConvex& convex_b = convex_of(pair.b);
+  const fcl::ShapeBased& shape_a = fcl_shape(pair.a);
+  const fcl::ShapeBased& shape_b = fcl_shape(pair.b);
   if (goal == Goal::verdict) {
     Answer screened = along_centres(pair);
     if (verdict_proven(pair, screened)) return screened;
@@ -124,7 +94,7 @@ Answer solve_fcl(const FramedPair& pair, const QueryOptions& options, Goal goal)
   const int max_iterations = options.exact.max_iterations;
   Gjk gjk(static_cast<unsigned int>(max_iterations), kGjkTolerance);
   fcl::detail::MinkowskiDiff<Scalar> difference;
-  const Gjk::Status status = run_gjk(pair, convex_a, convex_b, gjk, difference);
+  const Gjk::Status status = run_gjk(pair, shape_a, shape_b, gjk, difference);
   // FCL's simplex as the bodies' own points: the support indices along each simplex vertex's
   // direction, found in the bodies' own frames (local_supports); on large bodies a climb is a few
   // neighbour checks where a scan would cost as much as an iteration of FCL's GJK (whose supports

@@ -32,6 +32,10 @@ struct PartNode {
 /// queries between compound bodies visit only the part pairs that the volumes' certified lower
 /// bounds cannot rule out.
 ///
+/// A part may be a curved shape (Cylinder, Cone, Ellipsoid): the envelopes hold its box, and its
+/// part pairs are answered as Query answers a convex pair, by the methods that answer curved
+/// shapes (the others refuse the body).
+///
 /// Copies share the parts (and their hulls); the class is safe to read from many threads.
 class CompoundBody {
  public:
@@ -57,11 +61,17 @@ class CompoundBody {
   const BodyBounds& bounds() const { return envelope().bounds(); }
   /// Total number of points of the parts.
   int point_count() const;
+  /// The first curved part (ConvexPolyhedron::curved), null when every part is a polyhedron.
+  const ConvexPolyhedron* curved_part() const {
+    return curved_part_ < 0 ? nullptr : &parts_[curved_part_];
+  }
 
  private:
   std::vector<ConvexPolyhedron> parts_;
   std::vector<PartNode> tree_;
   std::vector<ConvexPolyhedron> node_envelopes_;
+  // The index of the first curved part, -1 for none.
+  int curved_part_ = -1;
 };
 
 }  // namespace swarmcollide

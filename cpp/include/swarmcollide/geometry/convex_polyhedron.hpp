@@ -51,8 +51,8 @@ struct BodyBounds {
 /// A curved shape (Cylinder, Cone, Ellipsoid) is a ConvexPolyhedron whose `curved()` support
 /// function defines it: its points are a few points on its surface (an inner polytope, whose box
 /// is the shape's), which the support-function solvers never read as the body; they ask `curved()`
-/// for support points. Methods that enumerate vertices (the paper's swarms, the penalty method,
-/// fcl, libccd) refuse curved shapes, and so do compound bodies.
+/// for support points ("fcl" hands FCL its own primitive). Methods that read the points as the
+/// body (the paper's swarms, the penalty method) refuse curved shapes.
 class ConvexPolyhedron {
  public:
   /// Throws std::invalid_argument if `points` is empty, has a NaN or infinite coordinate, or

@@ -4,6 +4,19 @@
 
 namespace swarmcollide {
 
+/// What a curved shape is, in its own frame (shapes.hpp gives each kind's conventions): for the
+/// adapters to libraries that have it as a primitive (FCL), and for drawing and saving it.
+struct CurvedShapeParameters {
+  enum class Kind { cylinder, cone, ellipsoid };
+  Kind kind = Kind::cylinder;
+  /// A cylinder's or a cone's base radius (0 for an ellipsoid).
+  Scalar radius = 0;
+  /// Half a cylinder's or a cone's length along z (0 for an ellipsoid).
+  Scalar half_length = 0;
+  /// An ellipsoid's semi-axes along x, y and z (zero for the others).
+  Vector3 radii = Vector3::Zero();
+};
+
 /// A curved convex shape given by its support function, in its own frame (centred on its box):
 /// the one thing the support-function solvers ("dual", "exact") ask of a shape. Cylinder, Cone
 /// and Ellipsoid (shapes.hpp) implement it; a ConvexPolyhedron built from one answers its
@@ -30,6 +43,8 @@ class SupportFunction {
   virtual Vector3 centroid() const = 0;
   /// The shape's name ("cylinder", ...), for messages.
   virtual const char* name() const = 0;
+  /// The shape's kind and dimensions.
+  virtual CurvedShapeParameters parameters() const = 0;
 };
 
 }  // namespace swarmcollide
