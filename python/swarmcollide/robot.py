@@ -19,7 +19,6 @@ import numpy.typing as npt
 
 from . import _core
 from .queries import DEFAULT_TOLERANCE, PoseLike, query
-from .robot_shapes import Approximation
 from .robot_tables import ModelTables
 
 PathLike = Union[str, "os.PathLike[str]"]
@@ -110,14 +109,13 @@ class Robot:
     """A robot: links, joints and convex collision geometries, and the pairs checked.
 
     Build one with ``from_urdf`` or ``from_mjcf`` (or from tables: ``links``, ``joints`` as
-    ``Joint``, ``geometries`` as ``(name, link index, origin, body)``). The model is
-    immutable and shared across threads; ``add_obstacle`` and ``disable_pairs`` make a new model.
-
-    Attributes
-    ----------
-    approximations : tuple of Approximation
-        Curved geometries (cylinders, ellipsoids) that stand for their shapes by hulls inside
-        them, each with a proven bound on how far inside (``robot_shapes.curved_body``).
+    ``Joint``, ``geometries`` as ``(name, link index, origin, body)``, the body a
+    ``ConvexPolyhedron``, a shape such as ``Box``, ``Sphere``, ``Capsule``, ``Cylinder`` or
+    ``Ellipsoid``, or a ``CompoundBody``). The model is immutable and shared across threads;
+    ``add_obstacle`` and ``disable_pairs`` make a new model. Curved shapes (``Cylinder``,
+    ``Ellipsoid``, ...) are exact and answered through their support functions, by the methods
+    ``"dual"`` (the default) and ``"exact"``; a method that reads a body's points refuses them
+    with ``ValueError`` naming the geometry.
 
     Examples
     --------
@@ -139,20 +137,17 @@ class Robot:
     """
 
     def __init__(self, links: Sequence[str], joints: Sequence[Any],
-                 geometries: Sequence[Tuple[str, int, PoseLike, Any]], *,
-                 approximations: Sequence[Approximation] = ()) -> None:
+                 geometries: Sequence[Tuple[str, int, PoseLike, Any]]) -> None:
         self._links = list(links)
         self._joints = list(joints)
         self._robot_geometries = list(geometries)
         self._obstacles: List[Tuple[str, int, PoseLike, Any]] = []
         self._disabled: FrozenSet[FrozenSet[str]] = frozenset()
-        self.approximations = tuple(approximations)
         self._rebuild()
 
     @classmethod
     def _from_tables(cls, tables: ModelTables) -> "Robot":
-        return cls(tables.links, tables.joints, tables.geometries,
-                   approximations=tables.approximations)
+        return cls(tables.links, tables.joints, tables.geometries)
 
     @classmethod
     def from_urdf(cls, path: PathLike, package_dirs: Optional[Sequence[PathLike]] = None,
@@ -174,9 +169,8 @@ class Robot:
         srdf : str or os.PathLike, optional
             An SRDF whose ``disable_collisions`` pairs are not checked.
 
-        Boxes and spheres are exact; cylinders are hulls of points on their surface, listed in
-        ``approximations`` with their error, until curved shapes are in the core. Joints are
-        revolute, continuous, prismatic or fixed; the degrees of freedom are the moving joints in
+        Boxes, spheres and cylinders are exact (``Box``, ``Sphere``, ``Cylinder`` at their
+        ``<origin>``). Joints are revolute, continuous, prismatic or fixed; the degrees of freedom are the moving joints in
         the file's order (yourdfpy's ``actuated_joints``).
 
         Raises
@@ -200,8 +194,9 @@ class Robot:
         (continuous when unlimited), slide joints prismatic, and a body with several joints or an
         off-origin hinge anchor gets a link per joint (named ``body/joint``). The collision geoms
         (``contype`` or ``conaffinity`` nonzero) are the geometries: meshes (the hull of the
-        compiled mesh's vertices), boxes, spheres and capsules exactly, cylinders and ellipsoids as
-        hulls listed in ``approximations``. The degrees of freedom are MuJoCo's ``qpos``.
+        compiled mesh's vertices), and boxes, spheres, capsules, cylinders and ellipsoids exactly
+        (``Box``, ``Sphere``, ``Capsule``, ``Cylinder``, ``Ellipsoid`` at the geom's pose). The
+        degrees of freedom are MuJoCo's ``qpos``.
 
         Parameters
         ----------

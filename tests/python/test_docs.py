@@ -12,7 +12,6 @@ import swarmcollide.plot
 import swarmcollide.poses
 import swarmcollide.queries
 import swarmcollide.robot
-import swarmcollide.robot_shapes
 import swarmcollide.scene_demo
 
 MODULES = [
@@ -25,7 +24,6 @@ MODULES = [
     swarmcollide.poses,
     swarmcollide.scene_demo,
     swarmcollide.robot,
-    swarmcollide.robot_shapes,
 ]
 
 

@@ -7,7 +7,6 @@ import numpy as np
 import pytest
 
 import swarmcollide as sc
-from swarmcollide.robot_shapes import curved_body
 
 trimesh = pytest.importorskip("trimesh")
 yourdfpy = pytest.importorskip("yourdfpy")
@@ -102,13 +101,13 @@ def test_urdf_forward_kinematics_is_yourdfpys(arm, urdf):
     np.testing.assert_array_equal(arm.forward_kinematics(q[3]), transforms[3])
 
 
-def test_urdf_geometries_have_their_scales_origins_and_errors(arm):
+def test_urdf_geometries_have_their_scales_and_shapes(arm):
     assert arm.geometry_names == ("base", "upper", "fore", "tool/0", "tool/1", "slider", "finger")
     fore = arm._robot_geometries[2]
     # The box mesh is 0.06 x 0.08 x 0.2, scaled by 2 along z.
     np.testing.assert_allclose(np.ptp(fore[3].vertices, axis=0), [0.06, 0.08, 0.4])
-    assert [(a.geometry, a.shape) for a in arm.approximations] == [("upper", "cylinder")]
-    assert 0 < arm.approximations[0].error < 0.05 * (1 - np.cos(np.pi / 32)) * 1.0001
+    upper = arm._robot_geometries[1][3]
+    assert isinstance(upper, sc.Cylinder) and (upper.radius, upper.half_length) == (0.05, 0.2)
 
 
 def test_adjacent_links_and_links_joined_by_fixed_joints_are_not_paired(arm):
@@ -274,7 +273,8 @@ def test_mjcf_forward_kinematics_is_mujocos(mjcf):
                                        atol=1e-12)
             np.testing.assert_allclose(posed[name][1][:3, :3], data.geom_xmat[g].reshape(3, 3),
                                        rtol=0, atol=1e-12)
-    assert {a.shape for a in robot.approximations} == {"cylinder", "ellipsoid"}
+    assert [type(g[3]).__name__ for g in robot._robot_geometries] == [
+        "Box", "Cylinder", "Capsule", "Ellipsoid", "ConvexPolyhedron", "Box"]
     # The links between arm's two joints are looked through: arm is base's child, hand arm's;
     # the finger is fixed to the hand.
     assert robot.pairs == (("floor", "arm/0"), ("floor", "arm/1"), ("floor", "hand"),
@@ -352,24 +352,6 @@ def test_obstacle_names_must_be_new(arm):
         arm.add_obstacle(sc.Sphere(0.1), name="base")
     arm.add_obstacle(sc.Sphere(0.1), np.eye(4))
     assert arm.geometry_names[-1] == "obstacle0"
-
-
-@pytest.mark.parametrize("shape,size", [("cylinder", (0.3, 0.5)), ("ellipsoid", (0.2, 0.3, 0.5))])
-def test_curved_bodies_lie_inside_their_shapes_within_the_error(shape, size):
-    body, error = curved_body(shape, size)
-    rng = np.random.default_rng(5)
-    directions = rng.normal(size=(200, 3))
-    directions /= np.linalg.norm(directions, axis=1, keepdims=True)
-    if shape == "cylinder":
-        radius, half = size
-        planar = np.linalg.norm(directions[:, :2], axis=1)
-        true_support = radius * planar + half * np.abs(directions[:, 2])
-    else:
-        true_support = np.linalg.norm(directions * np.asarray(size), axis=1)
-    hull_support = (body.vertices @ directions.T).max(axis=0)
-    assert (hull_support <= true_support + 1e-15).all()
-    assert (true_support - hull_support <= error).all()
-    assert (true_support - hull_support).max() > 0.3 * error  # the bound is not loose
 
 
 def test_proposed_pairs_are_those_that_always_or_never_collided(arm):

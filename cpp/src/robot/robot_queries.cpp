@@ -12,6 +12,7 @@
 #include <thread>
 #include <utility>
 
+#include "geometry_pairs.hpp"
 #include "swarmcollide/queries/query.hpp"
 
 namespace swarmcollide {
@@ -37,6 +38,7 @@ std::vector<BatchResult> pair_answers(const RobotModel& model,
     throw std::invalid_argument("q must have " + std::to_string(model.dof()) +
                                 " values per configuration, got " + std::to_string(q.cols()));
   }
+  detail::require_geometry_shapes(model, pairs, options.method);
   const std::size_t count = static_cast<std::size_t>(q.rows());
   // A batch without poses would answer one row at the identity.
   if (count == 0) return std::vector<BatchResult>(pairs.size());
@@ -49,13 +51,7 @@ std::vector<BatchResult> pair_answers(const RobotModel& model,
     BatchPoses poses;
     poses.array_a = poses_of(table, geometries, static_cast<std::size_t>(pair.a), count);
     poses.array_b = poses_of(table, geometries, static_cast<std::size_t>(pair.b), count);
-    const Geometry& a = model.geometries()[pair.a];
-    const Geometry& b = model.geometries()[pair.b];
-    answers.push_back(
-        a.parts || b.parts
-            ? signed_distance_many(model.compound(pair.a), model.compound(pair.b), options,
-                                   settings, poses)
-            : signed_distance_many(a.body, b.body, options, settings, poses));
+    answers.push_back(detail::signed_distances_of(model, pair, options, settings, poses));
   }
   return answers;
 }
@@ -205,13 +201,8 @@ class ConfigurationCheck {
       // Once some pair is in contact, only the minimum can still change.
       if (bound.lower > least && (colliding || bound.lower > bound.contact)) continue;
       const GeometryPair& pair = pairs_[static_cast<std::size_t>(bound.pair)];
-      const Geometry& a = model_.geometries()[pair.a];
-      const Geometry& b = model_.geometries()[pair.b];
       DistanceResult result =
-          a.parts || b.parts
-              ? query.signed_distance(model_.compound(pair.a), world_[pair.a],
-                                      model_.compound(pair.b), world_[pair.b])
-              : query.signed_distance(a.body, world_[pair.a], b.body, world_[pair.b]);
+          detail::signed_distance_of(query, model_, pair, world_[pair.a], world_[pair.b]);
       colliding = colliding || result.colliding;
       certified = certified && result.certified;
       lower = std::min(lower, result.lower_bound);
@@ -300,6 +291,7 @@ RobotCheck robot_check(const RobotModel& model, const std::vector<GeometryPair>&
                                 " values per configuration, got " + std::to_string(q.cols()));
   }
   const Query validated(options);  // the options are checked once, before any configuration
+  detail::require_geometry_shapes(model, pairs, options.method);
   const Eigen::Index m = q.rows();
   RobotCheck check;
   check.colliding.setConstant(m, false);
