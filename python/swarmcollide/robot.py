@@ -170,8 +170,8 @@ class Robot:
             An SRDF whose ``disable_collisions`` pairs are not checked.
 
         Boxes, spheres and cylinders are exact (``Box``, ``Sphere``, ``Cylinder`` at their
-        ``<origin>``). Joints are revolute, continuous, prismatic or fixed; the degrees of freedom are the moving joints in
-        the file's order (yourdfpy's ``actuated_joints``).
+        ``<origin>``). Joints are revolute, continuous, prismatic or fixed; the degrees of
+        freedom are the moving joints in the file's order (yourdfpy's ``actuated_joints``).
 
         Raises
         ------

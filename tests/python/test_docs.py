@@ -12,6 +12,7 @@ import swarmcollide.plot
 import swarmcollide.poses
 import swarmcollide.queries
 import swarmcollide.robot
+import swarmcollide.robot_plot
 import swarmcollide.scene_demo
 
 MODULES = [
@@ -24,6 +25,7 @@ MODULES = [
     swarmcollide.poses,
     swarmcollide.scene_demo,
     swarmcollide.robot,
+    swarmcollide.robot_plot,
 ]
 
 

@@ -105,7 +105,8 @@ def test_the_ball_against_curved_and_box_obstacles(urdf_robot):
     post_expected = np.abs(xs - 1.0) - 0.3 - 0.1  # radial, the ball within the post's height
     block_expected = (xs + 2.0) - 0.1 - 0.1
     egg_expected = 2.0 - 0.3 - 0.5 - 0.1  # the ellipsoid's lowest point is above x = 0 only
-    np.testing.assert_allclose(distances[:, columns[("ball", "post")]], post_expected, atol=TOLERANCE)
+    np.testing.assert_allclose(distances[:, columns[("ball", "post")]], post_expected,
+                               atol=TOLERANCE)
     np.testing.assert_allclose(distances[:, columns[("ball", "block")]], block_expected,
                                atol=TOLERANCE)
     assert distances[2, columns[("ball", "egg")]] == pytest.approx(egg_expected, abs=TOLERANCE)
