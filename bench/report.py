@@ -17,6 +17,7 @@ from coal_report import NARROWPHASE, PENETRATION, narrowphase_section, penetrati
 from compound import compound_section
 from hull_points import section as hull_points_section
 from pose_batch import section as pose_batch_section
+from robot import section as robot_section
 from cpp_report import cpp_sections, every_workload_section
 from record import load
 from scene_report import CONTACTS, CONTACTS_PILE, contacts_section, scene_section
@@ -116,6 +117,8 @@ LATE_SECTIONS: List[Section] = [
      CONTACTS, contacts_section, ""),
     ("contacts_pile.json", "Resting contacts: the same meshes settled on a floor",
      CONTACTS_PILE, contacts_section, ""),
+    ("robot.json", "Robots against Pinocchio + coal and MuJoCo (bench/robot.py)", "",
+     robot_section, ""),
 ]
 
 
