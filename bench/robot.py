@@ -239,8 +239,10 @@ class MuJoCo:
 
 def disagreements(robot: sc.Robot, pinocchio: Pinocchio, q: np.ndarray, theirs: np.ndarray,
                   exact, limit: int = 5) -> List[dict]:
-    """Where coal's verdict differs from the exact method's: the configuration, the pairs coal
-    calls colliding and the exact answer's certified bounds on the minimum."""
+    """Where coal's verdict differs from the exact method's: the configuration, the exact
+    answer's certified bounds on the minimum, and the pairs coal calls colliding when the
+    configuration is asked again on its own (``computeCollisions`` on fresh results), with their
+    exact signed distances."""
     rows = []
     pin_q = pinocchio.configurations(q)
     for i in np.flatnonzero(theirs != exact.colliding)[:limit]:
@@ -253,9 +255,10 @@ def disagreements(robot: sc.Robot, pinocchio: Pinocchio, q: np.ndarray, theirs: 
             "exact_lower_bound": float(exact.lower_bound[i]),
             "exact_certified": bool(exact.certified[i]),
             "exact_pair": [str(n) for n in exact.pair_names[i]],
-            "coal_colliding_pairs": [list(robot.pairs[p]) for p in np.flatnonzero(verdicts)],
-            "exact_distance_of_coal_pairs": [float(distances[p])
-                                             for p in np.flatnonzero(verdicts)],
+            "coal_colliding_pairs_asked_alone": [list(robot.pairs[p])
+                                                 for p in np.flatnonzero(verdicts)],
+            "exact_distance_of_those_pairs": [float(distances[p])
+                                              for p in np.flatnonzero(verdicts)],
         })
     return rows
 
@@ -360,9 +363,9 @@ def section(data: dict) -> str:
                     f"{'colliding' if d['exact_colliding'] else 'apart'} (minimum "
                     f"{d['exact_min_distance']:.3g}, lower bound {d['exact_lower_bound']:.3g}, "
                     f"{'certified' if d['exact_certified'] else 'not certified'}, pair "
-                    f"{' - '.join(d['exact_pair'])}); coal's colliding pairs "
-                    f"{d['coal_colliding_pairs']} are at exact distances "
-                    f"{[round(x, 6) for x in d['exact_distance_of_coal_pairs']]}")
+                    f"{' - '.join(d['exact_pair'])}); asked this configuration alone, coal "
+                    f"finds {d['coal_colliding_pairs_asked_alone']} colliding, at exact "
+                    f"distances {[round(x, 6) for x in d['exact_distance_of_those_pairs']]}")
     return "\n".join(lines)
 
 

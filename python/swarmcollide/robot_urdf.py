@@ -127,7 +127,10 @@ def _body(geometry, name: str, link: str, urdf_path: Path, dirs, collision: str)
         return _core.Cylinder(float(geometry.cylinder.radius), float(geometry.cylinder.length) / 2)
     if geometry.mesh is not None:
         mesh_path = resolve_mesh_path(geometry.mesh.filename, urdf_path, dirs, link)
-        mesh = load_mesh(mesh_path)
+        try:
+            mesh = load_mesh(mesh_path)
+        except ValueError as error:  # a file that is not a mesh: say whose it is
+            raise ValueError(f"link '{link}': {error}") from error
         if geometry.mesh.scale is not None:
             mesh.apply_scale(np.asarray(geometry.mesh.scale, float))
         return collision_bodies(collision)(mesh, name)

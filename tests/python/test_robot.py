@@ -295,6 +295,11 @@ def test_mjcf_planes_raise_unless_skipped(tmp_path):
                     '<geom type="sphere" size="0.1"/></body></worldbody></mujoco>')
     with pytest.raises(ValueError, match="joint 'loose'"):
         sc.Robot.from_mjcf(path)
+    path.write_text('<mujoco><asset><mesh name="m" file="gone.stl"/></asset><worldbody>'
+                    '<body name="b"><joint type="slide"/><geom type="mesh" mesh="m"/></body>'
+                    '</worldbody></mujoco>')
+    with pytest.raises(ValueError, match="cannot compile MJCF file .*'gone.stl'"):
+        sc.Robot.from_mjcf(path)
 
 
 def test_configurations_outside_the_limits_raise_clamp_or_wrap(arm):
@@ -316,6 +321,8 @@ def test_bad_configurations_name_what_is_wrong(arm):
         arm.check([0.0, 0.0])
     with pytest.raises(ValueError, match=r"q\[1\], joint 'elbow': nan"):
         arm.distances([[0.0, 0.0, 0.0], [0.0, np.nan, 0.0]])
+    with pytest.raises(ValueError, match=r"q\[0\], joint 'slide': -inf is not a finite"):
+        arm.check([0.0, 0.0, -np.inf], limits="clamp")
     with pytest.raises(ValueError, match=r"shape \(dof,\) or \(m, dof\)"):
         arm.check(np.zeros((2, 2, 3)))
     with pytest.raises(TypeError, match="real numbers"):
@@ -341,6 +348,13 @@ def test_bad_files_name_the_link_or_joint(tmp_path):
                                           'name="elbow" type="hinge"'), meshes=False)
     with pytest.raises(ValueError, match="joint 'elbow': type 'hinge' is not supported"):
         sc.Robot.from_urdf(path, package_dirs=[tmp_path])
+    (tmp_path / "meshes" / "tool.obj").write_text("not a mesh")
+    with pytest.raises(ValueError, match="link 'tool': mesh file .*tool.obj"):
+        sc.Robot.from_urdf(urdf, package_dirs=[tmp_path])
+    dangling = write_urdf(tmp_path / "other", URDF.replace('<child link="finger"/>',
+                                                          '<child link="thumb"/>'), meshes=False)
+    with pytest.raises(ValueError, match="joint 'grip': link 'thumb' is not in the URDF"):
+        sc.Robot.from_urdf(dangling, package_dirs=[tmp_path])
     with pytest.raises(ValueError, match="collision must be one of"):
         sc.Robot.from_urdf(urdf, package_dirs=[tmp_path], collision="hulls")
     with pytest.raises(ValueError, match="not found"):
