@@ -49,7 +49,9 @@ class RobotCheck:
         balls are proven farther apart than the nearest pair found), so the verdict and both
         bounds are proven.
     pair : int array
-        Index into ``Robot.pairs`` of the nearest pair (-1 when none is checked).
+        Index into ``Robot.pairs`` of the nearest pair (-1 when none is checked); for a check of
+        the verdict alone (``check(q, nearest=False)``), of the pair found in contact (-1 when
+        none is), and ``min_distance`` and ``lower_bound`` are NaN.
     pair_names : str array, (..., 2)
         Its two geometries' names (link names, or obstacle names).
     point_a, point_b : float array, (..., 3)
@@ -78,13 +80,17 @@ class RobotCheck:
         colliding = np.atleast_1d(self.colliding)
         certified = np.atleast_1d(self.certified)
         distance = np.atleast_1d(self.min_distance)
+        # A check of the verdict alone (nearest=False) has no distances to show.
+        verdict_only = bool(np.isnan(distance).all())
         if colliding.size == 1:
             names = tuple(str(name) for name in np.atleast_2d(self.pair_names)[0])
-            return (f"RobotCheck(colliding={bool(colliding[0])}, min_distance={distance[0]:.6g}, "
+            shown = "" if verdict_only else f"min_distance={distance[0]:.6g}, "
+            return (f"RobotCheck(colliding={bool(colliding[0])}, {shown}"
                     f"pair={names}, certified={bool(certified[0])})")
+        shown = "" if verdict_only else (
+            f", min_distance in [{distance.min():.6g}, {distance.max():.6g}]")
         return (f"RobotCheck({colliding.size} configurations, {int(colliding.sum())} colliding, "
-                f"{int(certified.sum())} certified, min_distance in "
-                f"[{distance.min():.6g}, {distance.max():.6g}])")
+                f"{int(certified.sum())} certified{shown})")
 
 
 @dataclass(frozen=True)
@@ -357,7 +363,7 @@ class Robot:
         return answer.distance[0] if single else answer.distance
 
     def check(self, q: npt.ArrayLike, *, limits: str = "raise", threads: Optional[int] = None,
-              gradient: bool = False, method: str = "dual",
+              nearest: bool = True, gradient: bool = False, method: str = "dual",
               tolerance: float = DEFAULT_TOLERANCE, seed: int = 0) -> RobotCheck:
         """Whether each configuration collides, and its nearest pair with witness points.
 
@@ -367,6 +373,13 @@ class Robot:
         every pair (``distances``) reduced to its nearest, at a fraction of the cost. Each
         configuration is answered whole by one C++ thread, without the GIL.
 
+        With ``nearest=False`` only the verdict is computed, as a planner's validity check needs
+        it: the pairs whose bounding balls are not proven apart are answered by ``collide``
+        (which stops at the first separating plane it proves), nearest balls first, until one is
+        proven in contact. ``pair`` is then that pair (-1 when none collides), ``certified`` says
+        whether the verdict is proven, ``min_distance`` and ``lower_bound`` are NaN and the
+        witnesses zero.
+
         Parameters
         ----------
         q : array_like, (dof,) or (m, dof)
@@ -375,8 +388,10 @@ class Robot:
             What a value outside its joint's limits does (``LIMIT_MODES``).
         threads : int, optional
             C++ threads (default one per hardware thread); answers do not depend on it.
+        nearest : bool
+            Find the nearest pair and its distance (default), or only the verdict.
         gradient : bool
-            Also ``d min_distance / dq`` (see ``RobotCheck.gradient``).
+            Also ``d min_distance / dq`` (see ``RobotCheck.gradient``); needs ``nearest``.
         method, tolerance, seed
             The pair queries' (see ``signed_distance``).
 
@@ -384,9 +399,13 @@ class Robot:
         -------
         RobotCheck
         """
+        if gradient and not nearest:
+            raise ValueError("gradient needs the nearest pair: pass nearest=True with "
+                             "gradient=True")
         table, single = self._configurations(q, limits)
         raw = self._model.check(self._pair_table, table,
-                                query(method, tolerance=tolerance, seed=seed), threads, gradient)
+                                query(method, tolerance=tolerance, seed=seed), threads, gradient,
+                                nearest)
         # The last row names no pair: index -1 (nothing checked) reads it.
         named = np.array(list(self.pairs) + [("", "")], dtype=str).reshape(-1, 2)
         names = named[np.asarray(raw.pair)]

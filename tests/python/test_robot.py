@@ -184,6 +184,31 @@ def test_check_and_distances_are_the_single_signed_distances(arm):
     assert 0 < check.colliding.sum() < 60
 
 
+def test_the_verdict_alone_agrees_with_the_nearest_pair(arm):
+    table = np.eye(4)
+    table[:3, 3] = [0.6, 0.0, 0.7]
+    arm.add_obstacle(sc.Box([0.1, 0.1, 0.02]), table, name="table")
+    q = random_configurations(arm, 200, seed=4)
+    full = arm.check(q)
+    verdict = arm.check(q, nearest=False)
+    assert full.certified.all() and verdict.certified.all()
+    np.testing.assert_array_equal(verdict.colliding, full.colliding)
+    assert 0 < verdict.colliding.sum() < 200
+    # The pair named collides (its own row of distances says so); none is named when free.
+    distances = arm.distances(q)
+    rows = np.flatnonzero(verdict.colliding)
+    assert (verdict.pair[rows] >= 0).all()
+    assert (distances[rows, verdict.pair[rows]] <= 1e-9 * 2).all()
+    assert (verdict.pair[~verdict.colliding] == -1).all()
+    assert np.isnan(verdict.min_distance).all() and np.isnan(verdict.lower_bound).all()
+    # Answers do not depend on the threads.
+    two = arm.check(q, nearest=False, threads=2)
+    np.testing.assert_array_equal(two.pair, verdict.pair)
+    np.testing.assert_array_equal(two.colliding, verdict.colliding)
+    with pytest.raises(ValueError, match="nearest=True"):
+        arm.check(q, nearest=False, gradient=True)
+
+
 def test_answers_do_not_depend_on_the_threads(arm):
     q = random_configurations(arm, 50, seed=2)
     one = arm.check(q, threads=1, gradient=True)

@@ -58,24 +58,27 @@ void require_geometry_shapes(const RobotModel& model, const std::vector<Geometry
   }
 }
 
-DistanceResult signed_distance_of(const Query& query, const RobotModel& model,
-                                  const GeometryPair& pair, const Pose& pose_a,
-                                  const Pose& pose_b) {
+namespace {
+
+// `ask(a, pose_a, b, pose_b)` (a Query goal) on `pair`: whole, or part by part for a compound
+// geometry against a curved one, reduced by keep_nearest.
+template <typename Ask>
+DistanceResult pair_answer(const RobotModel& model, const GeometryPair& pair, const Pose& pose_a,
+                           const Pose& pose_b, const Ask& ask) {
   const Geometry& a = model.geometries()[pair.a];
   const Geometry& b = model.geometries()[pair.b];
   const int side = parts_side(model, pair);
   if (side < 0) {
     if (a.parts || b.parts) {
-      return query.signed_distance(model.compound(pair.a), pose_a, model.compound(pair.b),
-                                   pose_b);
+      return ask(model.compound(pair.a), pose_a, model.compound(pair.b), pose_b);
     }
-    return query.signed_distance(a.body, pose_a, b.body, pose_b);
+    return ask(a.body, pose_a, b.body, pose_b);
   }
   const std::vector<ConvexPolyhedron>& parts = (side == 0 ? a : b).parts->parts();
   DistanceResult nearest;
   for (std::size_t k = 0; k < parts.size(); ++k) {
-    DistanceResult part = side == 0 ? query.signed_distance(parts[k], pose_a, b.body, pose_b)
-                                    : query.signed_distance(a.body, pose_a, parts[k], pose_b);
+    DistanceResult part = side == 0 ? ask(parts[k], pose_a, b.body, pose_b)
+                                    : ask(a.body, pose_a, parts[k], pose_b);
     if (k == 0) {
       nearest = std::move(part);
     } else {
@@ -83,6 +86,25 @@ DistanceResult signed_distance_of(const Query& query, const RobotModel& model,
     }
   }
   return nearest;
+}
+
+}  // namespace
+
+DistanceResult signed_distance_of(const Query& query, const RobotModel& model,
+                                  const GeometryPair& pair, const Pose& pose_a,
+                                  const Pose& pose_b) {
+  return pair_answer(model, pair, pose_a, pose_b,
+                     [&](const auto& a, const Pose& pa, const auto& b, const Pose& pb) {
+                       return query.signed_distance(a, pa, b, pb);
+                     });
+}
+
+DistanceResult collision_of(const Query& query, const RobotModel& model, const GeometryPair& pair,
+                            const Pose& pose_a, const Pose& pose_b) {
+  return pair_answer(model, pair, pose_a, pose_b,
+                     [&](const auto& a, const Pose& pa, const auto& b, const Pose& pb) {
+                       return query.collision(a, pa, b, pb);
+                     });
 }
 
 BatchResult signed_distances_of(const RobotModel& model, const GeometryPair& pair,

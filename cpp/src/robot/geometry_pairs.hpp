@@ -30,6 +30,11 @@ DistanceResult signed_distance_of(const Query& query, const RobotModel& model,
                                   const GeometryPair& pair, const Pose& pose_a,
                                   const Pose& pose_b);
 
+/// The collision verdict of `pair` at `pose_a` and `pose_b` (Query::collision), whole or part by
+/// part as signed_distance_of answers it (colliding when any part is).
+DistanceResult collision_of(const Query& query, const RobotModel& model, const GeometryPair& pair,
+                            const Pose& pose_a, const Pose& pose_b);
+
 /// The signed distances of `pair` over the configurations whose geometry poses `poses` holds, as
 /// signed_distance_many answers them (row i seeded by pair_seed(options.seed, i)): row i is
 /// signed_distance_of at those poses with the options seeded for row i. For a compound geometry

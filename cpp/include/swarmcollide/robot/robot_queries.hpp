@@ -74,9 +74,15 @@ RobotDistances robot_distances(const RobotModel& model, const std::vector<Geomet
 /// the answer is that of robot_distances' row reduced to its nearest pair (the lowest index on
 /// ties), and `colliding`, `lower_bound` and `certified` cover every pair. Each configuration is
 /// answered whole by one of `settings.threads` threads, so answers do not depend on them. With
-/// `gradient`, also d min_distance / dq. Throws as robot_distances does.
+/// `gradient`, also d min_distance / dq. Without `nearest`, the verdict alone (a planner's
+/// check): the pairs whose balls are within their contact threshold, nearest balls first, each
+/// answered by `Query::collision` until one is proven in contact; `pair` is that pair (or the first
+/// found colliding unproven, or -1), `certified` says whether the verdict is proven, and
+/// `min_distance` and `lower_bound` are NaN, the witnesses zero. Throws as robot_distances does,
+/// and for `gradient` without `nearest`.
 RobotCheck robot_check(const RobotModel& model, const std::vector<GeometryPair>& pairs,
                        const Configurations& q, const QueryOptions& options,
-                       const BatchSettings& settings = {}, bool gradient = false);
+                       const BatchSettings& settings = {}, bool gradient = false,
+                       bool nearest = true);
 
 }  // namespace swarmcollide
