@@ -18,6 +18,7 @@ from compound import compound_section
 from curved_coal import section as curved_coal_section
 from hull_points import section as hull_points_section
 from pose_batch import section as pose_batch_section
+from robot import section as robot_section
 from cpp_report import cpp_sections, every_workload_section
 from record import load
 from scene_report import CONTACTS, CONTACTS_PILE, contacts_section, scene_section
@@ -119,6 +120,8 @@ LATE_SECTIONS: List[Section] = [
      CONTACTS_PILE, contacts_section, ""),
     ("curved_coal.json", "Curved shapes against coal's primitives (bench/curved_coal.py)", "",
      curved_coal_section, ""),
+    ("robot.json", "Robots against Pinocchio + coal and MuJoCo (bench/robot.py)", "",
+     robot_section, ""),
 ]
 
 

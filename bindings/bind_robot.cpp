@@ -257,16 +257,16 @@ ValueError
       .def(
           "check",
           [](const RobotModel& model, const PairTable& pairs, const Configurations& q,
-             const Query& query, const py::object& threads, bool gradient) {
+             const Query& query, const py::object& threads, bool gradient, bool nearest) {
             const BatchSettings settings = settings_of(threads);
             const std::vector<GeometryPair> list = to_pairs(pairs);
             py::gil_scoped_release release;
-            return robot_check(model, list, q, query.options(), settings, gradient);
+            return robot_check(model, list, q, query.options(), settings, gradient, nearest);
           },
           py::arg("pairs"), py::arg("q"), py::arg("query"), py::arg("threads") = py::none(),
-          py::arg("gradient") = false,
+          py::arg("gradient") = false, py::arg("nearest") = true,
           "The nearest pair per admitted configuration (m, dof), with d min_distance / dq when "
-          "``gradient``.");
+          "``gradient``; without ``nearest``, the verdict alone.");
 }
 
 }  // namespace swarmcollide::bindings

@@ -1,7 +1,8 @@
 """Command line: ``swarmcollide distance a.obj b.stl`` measures the distance between two mesh
 files (decomposed into convex parts); ``swarmcollide decompose mesh.obj -o parts.npz`` writes a
 mesh's convex parts; ``swarmcollide paper`` reproduces the paper's Section IV; ``swarmcollide
-scene`` runs a scene of moving bodies and prints each frame.
+scene`` runs a scene of moving bodies and prints each frame; ``swarmcollide robot MODEL`` checks
+a robot (URDF or MJCF) at random configurations.
 
 Exit status: 0 on success, 1 when an input cannot be used (a missing or unreadable file, a mesh
 that is not a 3-D solid, a query the method cannot answer), 2 for wrong arguments (an unknown
@@ -18,7 +19,7 @@ from typing import Callable, Optional, Sequence
 
 import numpy as np
 
-from . import _core, paper
+from . import _core, paper, robot_cli
 
 POSE_HELP = (
     "where the body is: 3 numbers (a translation x,y,z), 6 (a translation and then rotations "
@@ -310,6 +311,7 @@ def _parser() -> argparse.ArgumentParser:
     scene.add_argument(
         "--plot", metavar="FILE", help="save a picture of the last frame there (needs matplotlib)"
     )
+    robot_cli.add_parser(commands, _integer, _SEED)
     return parser
 
 
@@ -350,8 +352,10 @@ def _check_core(parser: argparse.ArgumentParser, check: Callable[[], object]) ->
 def main(argv: Optional[Sequence[str]] = None) -> int:
     parser = _parser()
     arguments = parser.parse_args(argv)
-    if arguments.command in ("distance", "scene"):
+    if arguments.command in ("distance", "scene", "robot"):
         _check_picture(parser, arguments.plot)
+    if arguments.command == "robot":
+        robot_cli.check_arguments(parser, arguments)
     if arguments.command == "distance":
         from .queries import query
 
@@ -376,6 +380,8 @@ def _run(arguments: argparse.Namespace) -> int:
         return _distance(arguments)
     if arguments.command == "decompose":
         return _decompose(arguments)
+    if arguments.command == "robot":
+        return robot_cli.run(arguments)
     if arguments.command == "paper":
         print(paper.reproduce(seed=arguments.seed, repeats=arguments.repeats))
         return 0

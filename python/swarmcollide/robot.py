@@ -19,7 +19,6 @@ import numpy.typing as npt
 
 from . import _core
 from .queries import DEFAULT_TOLERANCE, PoseLike, query
-from .robot_shapes import Approximation
 from .robot_tables import ModelTables
 
 PathLike = Union[str, "os.PathLike[str]"]
@@ -50,7 +49,9 @@ class RobotCheck:
         balls are proven farther apart than the nearest pair found), so the verdict and both
         bounds are proven.
     pair : int array
-        Index into ``Robot.pairs`` of the nearest pair (-1 when none is checked).
+        Index into ``Robot.pairs`` of the nearest pair (-1 when none is checked); for a check of
+        the verdict alone (``check(q, nearest=False)``), of the pair found in contact (-1 when
+        none is), and ``min_distance`` and ``lower_bound`` are NaN.
     pair_names : str array, (..., 2)
         Its two geometries' names (link names, or obstacle names).
     point_a, point_b : float array, (..., 3)
@@ -79,13 +80,17 @@ class RobotCheck:
         colliding = np.atleast_1d(self.colliding)
         certified = np.atleast_1d(self.certified)
         distance = np.atleast_1d(self.min_distance)
+        # A check of the verdict alone (nearest=False) has no distances to show.
+        verdict_only = bool(np.isnan(distance).all())
         if colliding.size == 1:
             names = tuple(str(name) for name in np.atleast_2d(self.pair_names)[0])
-            return (f"RobotCheck(colliding={bool(colliding[0])}, min_distance={distance[0]:.6g}, "
+            shown = "" if verdict_only else f"min_distance={distance[0]:.6g}, "
+            return (f"RobotCheck(colliding={bool(colliding[0])}, {shown}"
                     f"pair={names}, certified={bool(certified[0])})")
+        shown = "" if verdict_only else (
+            f", min_distance in [{distance.min():.6g}, {distance.max():.6g}]")
         return (f"RobotCheck({colliding.size} configurations, {int(colliding.sum())} colliding, "
-                f"{int(certified.sum())} certified, min_distance in "
-                f"[{distance.min():.6g}, {distance.max():.6g}])")
+                f"{int(certified.sum())} certified{shown})")
 
 
 @dataclass(frozen=True)
@@ -110,14 +115,13 @@ class Robot:
     """A robot: links, joints and convex collision geometries, and the pairs checked.
 
     Build one with ``from_urdf`` or ``from_mjcf`` (or from tables: ``links``, ``joints`` as
-    ``Joint``, ``geometries`` as ``(name, link index, origin, body)``). The model is
-    immutable and shared across threads; ``add_obstacle`` and ``disable_pairs`` make a new model.
-
-    Attributes
-    ----------
-    approximations : tuple of Approximation
-        Curved geometries (cylinders, ellipsoids) that stand for their shapes by hulls inside
-        them, each with a proven bound on how far inside (``robot_shapes.curved_body``).
+    ``Joint``, ``geometries`` as ``(name, link index, origin, body)``, the body a
+    ``ConvexPolyhedron``, a shape such as ``Box``, ``Sphere``, ``Capsule``, ``Cylinder`` or
+    ``Ellipsoid``, or a ``CompoundBody``). The model is immutable and shared across threads;
+    ``add_obstacle`` and ``disable_pairs`` make a new model. Curved shapes (``Cylinder``,
+    ``Ellipsoid``, ...) are exact and answered through their support functions, by the methods
+    ``"dual"`` (the default) and ``"exact"``; a method that reads a body's points refuses them
+    with ``ValueError`` naming the geometry.
 
     Examples
     --------
@@ -139,20 +143,17 @@ class Robot:
     """
 
     def __init__(self, links: Sequence[str], joints: Sequence[Any],
-                 geometries: Sequence[Tuple[str, int, PoseLike, Any]], *,
-                 approximations: Sequence[Approximation] = ()) -> None:
+                 geometries: Sequence[Tuple[str, int, PoseLike, Any]]) -> None:
         self._links = list(links)
         self._joints = list(joints)
         self._robot_geometries = list(geometries)
         self._obstacles: List[Tuple[str, int, PoseLike, Any]] = []
         self._disabled: FrozenSet[FrozenSet[str]] = frozenset()
-        self.approximations = tuple(approximations)
         self._rebuild()
 
     @classmethod
     def _from_tables(cls, tables: ModelTables) -> "Robot":
-        return cls(tables.links, tables.joints, tables.geometries,
-                   approximations=tables.approximations)
+        return cls(tables.links, tables.joints, tables.geometries)
 
     @classmethod
     def from_urdf(cls, path: PathLike, package_dirs: Optional[Sequence[PathLike]] = None,
@@ -174,10 +175,9 @@ class Robot:
         srdf : str or os.PathLike, optional
             An SRDF whose ``disable_collisions`` pairs are not checked.
 
-        Boxes and spheres are exact; cylinders are hulls of points on their surface, listed in
-        ``approximations`` with their error, until curved shapes are in the core. Joints are
-        revolute, continuous, prismatic or fixed; the degrees of freedom are the moving joints in
-        the file's order (yourdfpy's ``actuated_joints``).
+        Boxes, spheres and cylinders are exact (``Box``, ``Sphere``, ``Cylinder`` at their
+        ``<origin>``). Joints are revolute, continuous, prismatic or fixed; the degrees of
+        freedom are the moving joints in the file's order (yourdfpy's ``actuated_joints``).
 
         Raises
         ------
@@ -200,8 +200,9 @@ class Robot:
         (continuous when unlimited), slide joints prismatic, and a body with several joints or an
         off-origin hinge anchor gets a link per joint (named ``body/joint``). The collision geoms
         (``contype`` or ``conaffinity`` nonzero) are the geometries: meshes (the hull of the
-        compiled mesh's vertices), boxes, spheres and capsules exactly, cylinders and ellipsoids as
-        hulls listed in ``approximations``. The degrees of freedom are MuJoCo's ``qpos``.
+        compiled mesh's vertices), and boxes, spheres, capsules, cylinders and ellipsoids exactly
+        (``Box``, ``Sphere``, ``Capsule``, ``Cylinder``, ``Ellipsoid`` at the geom's pose). The
+        degrees of freedom are MuJoCo's ``qpos``.
 
         Parameters
         ----------
@@ -362,7 +363,7 @@ class Robot:
         return answer.distance[0] if single else answer.distance
 
     def check(self, q: npt.ArrayLike, *, limits: str = "raise", threads: Optional[int] = None,
-              gradient: bool = False, method: str = "dual",
+              nearest: bool = True, gradient: bool = False, method: str = "dual",
               tolerance: float = DEFAULT_TOLERANCE, seed: int = 0) -> RobotCheck:
         """Whether each configuration collides, and its nearest pair with witness points.
 
@@ -372,6 +373,13 @@ class Robot:
         every pair (``distances``) reduced to its nearest, at a fraction of the cost. Each
         configuration is answered whole by one C++ thread, without the GIL.
 
+        With ``nearest=False`` only the verdict is computed, as a planner's validity check needs
+        it: the pairs whose bounding balls are not proven apart are answered by ``collide``
+        (which stops at the first separating plane it proves), nearest balls first, until one is
+        proven in contact. ``pair`` is then that pair (-1 when none collides), ``certified`` says
+        whether the verdict is proven, ``min_distance`` and ``lower_bound`` are NaN and the
+        witnesses zero.
+
         Parameters
         ----------
         q : array_like, (dof,) or (m, dof)
@@ -380,8 +388,10 @@ class Robot:
             What a value outside its joint's limits does (``LIMIT_MODES``).
         threads : int, optional
             C++ threads (default one per hardware thread); answers do not depend on it.
+        nearest : bool
+            Find the nearest pair and its distance (default), or only the verdict.
         gradient : bool
-            Also ``d min_distance / dq`` (see ``RobotCheck.gradient``).
+            Also ``d min_distance / dq`` (see ``RobotCheck.gradient``); needs ``nearest``.
         method, tolerance, seed
             The pair queries' (see ``signed_distance``).
 
@@ -389,9 +399,13 @@ class Robot:
         -------
         RobotCheck
         """
+        if gradient and not nearest:
+            raise ValueError("gradient needs the nearest pair: pass nearest=True with "
+                             "gradient=True")
         table, single = self._configurations(q, limits)
         raw = self._model.check(self._pair_table, table,
-                                query(method, tolerance=tolerance, seed=seed), threads, gradient)
+                                query(method, tolerance=tolerance, seed=seed), threads, gradient,
+                                nearest)
         # The last row names no pair: index -1 (nothing checked) reads it.
         named = np.array(list(self.pairs) + [("", "")], dtype=str).reshape(-1, 2)
         names = named[np.asarray(raw.pair)]

@@ -4,12 +4,11 @@ from __future__ import annotations
 
 import os
 from pathlib import Path
-from typing import List, Union
+from typing import Union
 
 import numpy as np
 
 from . import _core
-from .robot_shapes import Approximation, curved_body
 from .robot_tables import ModelTables, geometry_names
 
 PathLike = Union[str, "os.PathLike[str]"]
@@ -97,22 +96,20 @@ def tables_of(model, skip_planes: bool = False) -> ModelTables:
         if parent != b:
             joints.append(_core.Joint(f"{links[b]}/fixed", "fixed", parent, b, origin=offset))
     geometries = []
-    approximations: List[Approximation] = []
     collision = [g for g in range(model.ngeom)
                  if model.geom_contype[g] != 0 or model.geom_conaffinity[g] != 0]
     for b in range(model.nbody):
         own = [g for g in collision if model.geom_bodyid[g] == b]
         for name, g in zip(geometry_names(links[b], len(own)), own):
             name = model.geom(g).name or name
-            body = _geom_body(model, g, name, skip_planes, approximations)
+            body = _geom_body(model, g, name, skip_planes)
             if body is not None:
                 geometries.append(
                     (name, b, _transform(model.geom_pos[g], model.geom_quat[g]), body))
-    return ModelTables(links, joints, geometries, approximations)
+    return ModelTables(links, joints, geometries)
 
 
-def _geom_body(model, g: int, name: str, skip_planes: bool,
-               approximations: List[Approximation]):
+def _geom_body(model, g: int, name: str, skip_planes: bool):
     mujoco = _mujoco()
     kind = int(model.geom_type[g])
     size = np.asarray(model.geom_size[g], dtype=float)
@@ -125,10 +122,10 @@ def _geom_body(model, g: int, name: str, skip_planes: bool,
         return _core.Capsule(size[0], size[1])
     if shape == "box":
         return _core.Box(size)
-    if shape in ("cylinder", "ellipsoid"):
-        body, error = curved_body(shape, tuple(size[:2] if shape == "cylinder" else size))
-        approximations.append(Approximation(name, shape, error))
-        return body
+    if shape == "cylinder":
+        return _core.Cylinder(size[0], size[1])
+    if shape == "ellipsoid":
+        return _core.Ellipsoid(size)
     if shape == "mesh":
         mesh = model.geom_dataid[g]
         start = model.mesh_vertadr[mesh]

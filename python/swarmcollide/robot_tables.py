@@ -2,12 +2,11 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Any, Callable, List, Tuple
 
 from . import _core
 from .mesh import CompoundBody
-from .robot_shapes import Approximation
 
 COLLISION_MODES = ("hull", "mesh", "decompose")
 """How a mesh becomes a collision body: its convex hull (the planners' default); a compound body
@@ -19,12 +18,11 @@ convex decomposition (``CompoundBody.from_mesh(mesh)``, cached on disk)."""
 @dataclass
 class ModelTables:
     """Links (names), joints (``_core.Joint``) and geometries (``(name, link, origin, body)``,
-    link -1 for the world) of a model, with the curved shapes approximated on the way."""
+    link -1 for the world) of a model."""
 
     links: List[str]
     joints: List[Any]
     geometries: List[Tuple[str, int, Any, Any]]
-    approximations: List[Approximation] = field(default_factory=list)
 
 
 def geometry_names(link: str, count: int) -> List[str]:

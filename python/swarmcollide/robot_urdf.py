@@ -4,14 +4,13 @@ from __future__ import annotations
 
 import os
 from pathlib import Path
-from typing import List, Optional, Sequence, Union
+from typing import Optional, Sequence, Union
 
 import numpy as np
 
 from . import _core
 from .mesh import load_mesh
 from .robot_tables import ModelTables, collision_bodies, geometry_names
-from .robot_shapes import Approximation, curved_body
 
 PathLike = Union[str, "os.PathLike[str]"]
 
@@ -108,19 +107,16 @@ def load_urdf(path: PathLike, package_dirs: Optional[Sequence[PathLike]] = None,
             multiplier=1.0 if mimic is None or mimic.multiplier is None else mimic.multiplier,
             offset=0.0 if mimic is None or mimic.offset is None else mimic.offset))
     geometries = []
-    approximations: List[Approximation] = []
     for link in robot.links:
         names = geometry_names(link.name, len(link.collisions))
         for name, element in zip(names, link.collisions):
             origin = np.eye(4) if element.origin is None else element.origin
-            body = _body(element.geometry, name, link.name, urdf_path, dirs, collision,
-                         approximations)
+            body = _body(element.geometry, name, link.name, urdf_path, dirs, collision)
             geometries.append((name, index[link.name], origin, body))
-    return ModelTables(links, joints, geometries, approximations)
+    return ModelTables(links, joints, geometries)
 
 
-def _body(geometry, name: str, link: str, urdf_path: Path, dirs, collision: str,
-          approximations: List[Approximation]):
+def _body(geometry, name: str, link: str, urdf_path: Path, dirs, collision: str):
     if geometry is None:
         raise ValueError(f"link '{link}': a <collision> element has no <geometry>")
     if geometry.box is not None:
@@ -128,13 +124,13 @@ def _body(geometry, name: str, link: str, urdf_path: Path, dirs, collision: str,
     if geometry.sphere is not None:
         return _core.Sphere(float(geometry.sphere.radius))
     if geometry.cylinder is not None:
-        body, error = curved_body(
-            "cylinder", (geometry.cylinder.radius, geometry.cylinder.length / 2))
-        approximations.append(Approximation(name, "cylinder", error))
-        return body
+        return _core.Cylinder(float(geometry.cylinder.radius), float(geometry.cylinder.length) / 2)
     if geometry.mesh is not None:
         mesh_path = resolve_mesh_path(geometry.mesh.filename, urdf_path, dirs, link)
-        mesh = load_mesh(mesh_path)
+        try:
+            mesh = load_mesh(mesh_path)
+        except ValueError as error:  # a file that is not a mesh: say whose it is
+            raise ValueError(f"link '{link}': {error}") from error
         if geometry.mesh.scale is not None:
             mesh.apply_scale(np.asarray(geometry.mesh.scale, float))
         return collision_bodies(collision)(mesh, name)

@@ -3,9 +3,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
+#include <optional>
 #include <stdexcept>
 #include <vector>
 
+#include "shapes.hpp"
 #include "swarmcollide/geometry/shapes.hpp"
 #include "swarmcollide/queries/query.hpp"
 #include "swarmcollide/robot/kinematics.hpp"
@@ -133,6 +136,73 @@ TEST(Robot, ChecksEqualTheSingleQueriesOnThePosedBodiesWhateverTheThreads) {
   }
   EXPECT_GT(colliding, 0);
   EXPECT_LT(colliding, 40);
+}
+
+// On a slide along x, a link with a sphere (radius 0.1) and a compound of two boxes 0.1 across
+// (at y = 0.3 and 0.7), all at height 0; an obstacle cylinder (radius 0.2, z in [-0.5, 0.5]) at
+// the origin.
+RobotModel slide_past_a_cylinder() {
+  std::vector<Link> links{{"world"}, {"rail"}};
+  std::vector<Joint> joints(1);
+  joints[0] = {"x", JointType::prismatic, 0, 1, Pose{}, Vector3::UnitX(), -3, 3, 0};
+  std::vector<ConvexPolyhedron> parts{box(Vector3(-0.05, 0.25, -0.05), Vector3(0.05, 0.35, 0.05)),
+                                      box(Vector3(-0.05, 0.65, -0.05), Vector3(0.05, 0.75, 0.05))};
+  std::vector<Geometry> geometries;
+  geometries.push_back({"ball", 1, Pose{}, Sphere(0.1), std::nullopt});
+  geometries.push_back({"boxes", 1, Pose{}, parts.front(), CompoundBody(parts)});
+  geometries.push_back({"post", -1, Pose{}, Cylinder(0.2, 0.5), std::nullopt});
+  return RobotModel(links, joints, geometries);
+}
+
+TEST(Robot, CurvedGeometriesHaveTheirClosedFormDistances) {
+  const RobotModel model = slide_past_a_cylinder();
+  const std::vector<GeometryPair> pairs = default_pairs(model);
+  ASSERT_EQ(pairs.size(), 2u);  // ball - post, boxes - post (a compound against a cylinder)
+  Configurations q(4, 1);
+  q << -1.0, -0.25, 0.02, 0.6;
+  BatchSettings two;
+  two.threads = 2;
+  const RobotDistances distances = robot_distances(model, pairs, q, {}, two);
+  const RobotCheck check = robot_check(model, pairs, q, {}, two, true);
+  for (int i = 0; i < 4; ++i) {
+    const Scalar x = q(i, 0);
+    const Scalar ball = std::abs(x) - 0.3;
+    // The nearer box (y in [0.25, 0.35]) faces the cylinder's side while |x| <= 0.05, and its
+    // corner edge is nearest otherwise.
+    const Scalar off = std::max(std::abs(x) - 0.05, Scalar{0});
+    const Scalar boxes = std::hypot(off, 0.25) - 0.2;
+    EXPECT_NEAR(distances.distance(i, 0), ball, 1e-9) << "row " << i;
+    EXPECT_NEAR(distances.distance(i, 1), boxes, 1e-9) << "row " << i;
+    EXPECT_TRUE(distances.certified(i, 0) && distances.certified(i, 1));
+    EXPECT_EQ(check.min_distance(i), std::min(distances.distance(i, 0), distances.distance(i, 1)));
+    EXPECT_TRUE(check.certified(i));
+    EXPECT_EQ(check.colliding(i), ball <= 0 || boxes <= 0);
+  }
+  // At x = 0.6 the ball is nearest, moving away at unit speed.
+  EXPECT_EQ(check.pair(3), 0);
+  EXPECT_NEAR(check.gradient(3, 0), 1, 1e-9);
+}
+
+TEST(Robot, MethodsThatReadPointsRefuseCurvedGeometriesNamingThem) {
+  const RobotModel model = slide_past_a_cylinder();
+  QueryOptions fcl;
+  fcl.method = Method::fcl;
+  Configurations q(1, 1);
+  q << 1.0;
+  for (const auto& call : {std::function<void()>([&] {
+                             robot_check(model, default_pairs(model), q, fcl);
+                           }),
+                           std::function<void()>([&] {
+                             robot_distances(model, default_pairs(model), q, fcl);
+                           })}) {
+    try {
+      call();
+      FAIL() << "the fcl method answered a cylinder";
+    } catch (const std::invalid_argument& error) {
+      EXPECT_NE(std::string(error.what()).find("geometry 'post' is a cylinder"), std::string::npos)
+          << error.what();
+    }
+  }
 }
 
 }  // namespace

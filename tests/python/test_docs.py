@@ -12,7 +12,7 @@ import swarmcollide.plot
 import swarmcollide.poses
 import swarmcollide.queries
 import swarmcollide.robot
-import swarmcollide.robot_shapes
+import swarmcollide.robot_plot
 import swarmcollide.scene_demo
 import swarmcollide.shape_json
 
@@ -26,7 +26,7 @@ MODULES = [
     swarmcollide.poses,
     swarmcollide.scene_demo,
     swarmcollide.robot,
-    swarmcollide.robot_shapes,
+    swarmcollide.robot_plot,
     swarmcollide.shape_json,
 ]
 

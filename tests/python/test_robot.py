@@ -7,7 +7,6 @@ import numpy as np
 import pytest
 
 import swarmcollide as sc
-from swarmcollide.robot_shapes import curved_body
 
 trimesh = pytest.importorskip("trimesh")
 yourdfpy = pytest.importorskip("yourdfpy")
@@ -102,13 +101,13 @@ def test_urdf_forward_kinematics_is_yourdfpys(arm, urdf):
     np.testing.assert_array_equal(arm.forward_kinematics(q[3]), transforms[3])
 
 
-def test_urdf_geometries_have_their_scales_origins_and_errors(arm):
+def test_urdf_geometries_have_their_scales_and_shapes(arm):
     assert arm.geometry_names == ("base", "upper", "fore", "tool/0", "tool/1", "slider", "finger")
     fore = arm._robot_geometries[2]
     # The box mesh is 0.06 x 0.08 x 0.2, scaled by 2 along z.
     np.testing.assert_allclose(np.ptp(fore[3].vertices, axis=0), [0.06, 0.08, 0.4])
-    assert [(a.geometry, a.shape) for a in arm.approximations] == [("upper", "cylinder")]
-    assert 0 < arm.approximations[0].error < 0.05 * (1 - np.cos(np.pi / 32)) * 1.0001
+    upper = arm._robot_geometries[1][3]
+    assert isinstance(upper, sc.Cylinder) and (upper.radius, upper.half_length) == (0.05, 0.2)
 
 
 def test_adjacent_links_and_links_joined_by_fixed_joints_are_not_paired(arm):
@@ -183,6 +182,31 @@ def test_check_and_distances_are_the_single_signed_distances(arm):
     assert (check.lower_bound <= check.min_distance + 1e-13).all()
     np.testing.assert_array_equal(check.colliding, (distances <= 1e-9 * 2).any(axis=1))
     assert 0 < check.colliding.sum() < 60
+
+
+def test_the_verdict_alone_agrees_with_the_nearest_pair(arm):
+    table = np.eye(4)
+    table[:3, 3] = [0.6, 0.0, 0.7]
+    arm.add_obstacle(sc.Box([0.1, 0.1, 0.02]), table, name="table")
+    q = random_configurations(arm, 200, seed=4)
+    full = arm.check(q)
+    verdict = arm.check(q, nearest=False)
+    assert full.certified.all() and verdict.certified.all()
+    np.testing.assert_array_equal(verdict.colliding, full.colliding)
+    assert 0 < verdict.colliding.sum() < 200
+    # The pair named collides (its own row of distances says so); none is named when free.
+    distances = arm.distances(q)
+    rows = np.flatnonzero(verdict.colliding)
+    assert (verdict.pair[rows] >= 0).all()
+    assert (distances[rows, verdict.pair[rows]] <= 1e-9 * 2).all()
+    assert (verdict.pair[~verdict.colliding] == -1).all()
+    assert np.isnan(verdict.min_distance).all() and np.isnan(verdict.lower_bound).all()
+    # Answers do not depend on the threads.
+    two = arm.check(q, nearest=False, threads=2)
+    np.testing.assert_array_equal(two.pair, verdict.pair)
+    np.testing.assert_array_equal(two.colliding, verdict.colliding)
+    with pytest.raises(ValueError, match="nearest=True"):
+        arm.check(q, nearest=False, gradient=True)
 
 
 def test_answers_do_not_depend_on_the_threads(arm):
@@ -274,7 +298,8 @@ def test_mjcf_forward_kinematics_is_mujocos(mjcf):
                                        atol=1e-12)
             np.testing.assert_allclose(posed[name][1][:3, :3], data.geom_xmat[g].reshape(3, 3),
                                        rtol=0, atol=1e-12)
-    assert {a.shape for a in robot.approximations} == {"cylinder", "ellipsoid"}
+    assert [type(g[3]).__name__ for g in robot._robot_geometries] == [
+        "Box", "Cylinder", "Capsule", "Ellipsoid", "ConvexPolyhedron", "Box"]
     # The links between arm's two joints are looked through: arm is base's child, hand arm's;
     # the finger is fixed to the hand.
     assert robot.pairs == (("floor", "arm/0"), ("floor", "arm/1"), ("floor", "hand"),
@@ -294,6 +319,11 @@ def test_mjcf_planes_raise_unless_skipped(tmp_path):
     path.write_text('<mujoco><worldbody><body name="b"><joint name="loose" type="ball"/>'
                     '<geom type="sphere" size="0.1"/></body></worldbody></mujoco>')
     with pytest.raises(ValueError, match="joint 'loose'"):
+        sc.Robot.from_mjcf(path)
+    path.write_text('<mujoco><asset><mesh name="m" file="gone.stl"/></asset><worldbody>'
+                    '<body name="b"><joint type="slide"/><geom type="mesh" mesh="m"/></body>'
+                    '</worldbody></mujoco>')
+    with pytest.raises(ValueError, match="cannot compile MJCF file .*'gone.stl'"):
         sc.Robot.from_mjcf(path)
 
 
@@ -316,6 +346,8 @@ def test_bad_configurations_name_what_is_wrong(arm):
         arm.check([0.0, 0.0])
     with pytest.raises(ValueError, match=r"q\[1\], joint 'elbow': nan"):
         arm.distances([[0.0, 0.0, 0.0], [0.0, np.nan, 0.0]])
+    with pytest.raises(ValueError, match=r"q\[0\], joint 'slide': -inf is not a finite"):
+        arm.check([0.0, 0.0, -np.inf], limits="clamp")
     with pytest.raises(ValueError, match=r"shape \(dof,\) or \(m, dof\)"):
         arm.check(np.zeros((2, 2, 3)))
     with pytest.raises(TypeError, match="real numbers"):
@@ -341,6 +373,13 @@ def test_bad_files_name_the_link_or_joint(tmp_path):
                                           'name="elbow" type="hinge"'), meshes=False)
     with pytest.raises(ValueError, match="joint 'elbow': type 'hinge' is not supported"):
         sc.Robot.from_urdf(path, package_dirs=[tmp_path])
+    (tmp_path / "meshes" / "tool.obj").write_text("not a mesh")
+    with pytest.raises(ValueError, match="link 'tool': mesh file .*tool.obj"):
+        sc.Robot.from_urdf(urdf, package_dirs=[tmp_path])
+    dangling = write_urdf(tmp_path / "other", URDF.replace('<child link="finger"/>',
+                                                          '<child link="thumb"/>'), meshes=False)
+    with pytest.raises(ValueError, match="joint 'grip': link 'thumb' is not in the URDF"):
+        sc.Robot.from_urdf(dangling, package_dirs=[tmp_path])
     with pytest.raises(ValueError, match="collision must be one of"):
         sc.Robot.from_urdf(urdf, package_dirs=[tmp_path], collision="hulls")
     with pytest.raises(ValueError, match="not found"):
@@ -352,24 +391,6 @@ def test_obstacle_names_must_be_new(arm):
         arm.add_obstacle(sc.Sphere(0.1), name="base")
     arm.add_obstacle(sc.Sphere(0.1), np.eye(4))
     assert arm.geometry_names[-1] == "obstacle0"
-
-
-@pytest.mark.parametrize("shape,size", [("cylinder", (0.3, 0.5)), ("ellipsoid", (0.2, 0.3, 0.5))])
-def test_curved_bodies_lie_inside_their_shapes_within_the_error(shape, size):
-    body, error = curved_body(shape, size)
-    rng = np.random.default_rng(5)
-    directions = rng.normal(size=(200, 3))
-    directions /= np.linalg.norm(directions, axis=1, keepdims=True)
-    if shape == "cylinder":
-        radius, half = size
-        planar = np.linalg.norm(directions[:, :2], axis=1)
-        true_support = radius * planar + half * np.abs(directions[:, 2])
-    else:
-        true_support = np.linalg.norm(directions * np.asarray(size), axis=1)
-    hull_support = (body.vertices @ directions.T).max(axis=0)
-    assert (hull_support <= true_support + 1e-15).all()
-    assert (true_support - hull_support <= error).all()
-    assert (true_support - hull_support).max() > 0.3 * error  # the bound is not loose
 
 
 def test_proposed_pairs_are_those_that_always_or_never_collided(arm):

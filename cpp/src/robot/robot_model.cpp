@@ -133,7 +133,13 @@ RobotModel::RobotModel(std::vector<Link> links, std::vector<Joint> joints,
   }
   if (compound) {
     for (const Geometry& geometry : geometries_) {
-      compounds_.push_back(geometry.parts ? *geometry.parts : CompoundBody(geometry.body));
+      if (geometry.parts) {
+        compounds_.emplace_back(*geometry.parts);
+      } else if (geometry.body.curved()) {
+        compounds_.emplace_back();
+      } else {
+        compounds_.emplace_back(CompoundBody(geometry.body));
+      }
     }
   }
   for (const Geometry& geometry : geometries_) {

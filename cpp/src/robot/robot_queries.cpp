@@ -12,6 +12,7 @@
 #include <thread>
 #include <utility>
 
+#include "geometry_pairs.hpp"
 #include "swarmcollide/queries/query.hpp"
 
 namespace swarmcollide {
@@ -37,6 +38,7 @@ std::vector<BatchResult> pair_answers(const RobotModel& model,
     throw std::invalid_argument("q must have " + std::to_string(model.dof()) +
                                 " values per configuration, got " + std::to_string(q.cols()));
   }
+  detail::require_geometry_shapes(model, pairs, options.method);
   const std::size_t count = static_cast<std::size_t>(q.rows());
   // A batch without poses would answer one row at the identity.
   if (count == 0) return std::vector<BatchResult>(pairs.size());
@@ -49,13 +51,7 @@ std::vector<BatchResult> pair_answers(const RobotModel& model,
     BatchPoses poses;
     poses.array_a = poses_of(table, geometries, static_cast<std::size_t>(pair.a), count);
     poses.array_b = poses_of(table, geometries, static_cast<std::size_t>(pair.b), count);
-    const Geometry& a = model.geometries()[pair.a];
-    const Geometry& b = model.geometries()[pair.b];
-    answers.push_back(
-        a.parts || b.parts
-            ? signed_distance_many(model.compound(pair.a), model.compound(pair.b), options,
-                                   settings, poses)
-            : signed_distance_many(a.body, b.body, options, settings, poses));
+    answers.push_back(detail::signed_distances_of(model, pair, options, settings, poses));
   }
   return answers;
 }
@@ -182,10 +178,10 @@ struct BallBound {
 class ConfigurationCheck {
  public:
   ConfigurationCheck(const RobotModel& model, const std::vector<GeometryPair>& pairs,
-                     const Configurations& q, const QueryOptions& options, bool gradient,
-                     RobotCheck& check)
-      : model_(model), pairs_(pairs), q_(q), options_(options), gradient_(gradient),
-        check_(check) {}
+                     const Configurations& q, const QueryOptions& options, bool nearest,
+                     bool gradient, RobotCheck& check)
+      : model_(model), pairs_(pairs), q_(q), options_(options), nearest_(nearest),
+        gradient_(gradient), check_(check) {}
 
   void operator()(std::size_t row) {
     const auto i = static_cast<Eigen::Index>(row);
@@ -195,6 +191,7 @@ class ConfigurationCheck {
     QueryOptions options = options_;
     options.seed = pair_seed(options_.seed, row);  // as signed_distance_many seeds row `row`
     const Query query(options);
+    if (!nearest_) return verdict(query, i);
     bool colliding = false;
     bool certified = true;
     Scalar least = std::numeric_limits<Scalar>::infinity();
@@ -205,13 +202,8 @@ class ConfigurationCheck {
       // Once some pair is in contact, only the minimum can still change.
       if (bound.lower > least && (colliding || bound.lower > bound.contact)) continue;
       const GeometryPair& pair = pairs_[static_cast<std::size_t>(bound.pair)];
-      const Geometry& a = model_.geometries()[pair.a];
-      const Geometry& b = model_.geometries()[pair.b];
       DistanceResult result =
-          a.parts || b.parts
-              ? query.signed_distance(model_.compound(pair.a), world_[pair.a],
-                                      model_.compound(pair.b), world_[pair.b])
-              : query.signed_distance(a.body, world_[pair.a], b.body, world_[pair.b]);
+          detail::signed_distance_of(query, model_, pair, world_[pair.a], world_[pair.b]);
       colliding = colliding || result.colliding;
       certified = certified && result.certified;
       lower = std::min(lower, result.lower_bound);
@@ -241,6 +233,36 @@ class ConfigurationCheck {
   }
 
  private:
+  // The verdict alone: the pairs whose balls are not proven apart, nearest balls first, each
+  // answered by Query::collision (which stops at the first separating plane it proves) until one
+  // is proven in contact. The verdict is proven when that pair's is, or when no pair collides and
+  // every pair answered is certified.
+  void verdict(const Query& query, Eigen::Index i) {
+    bool colliding = false;
+    bool certified = true;
+    int first = -1;
+    for (const BallBound& bound : bounds_) {
+      if (bound.lower > bound.contact) continue;  // proven apart by their balls
+      const GeometryPair& pair = pairs_[static_cast<std::size_t>(bound.pair)];
+      const DistanceResult result =
+          detail::collision_of(query, model_, pair, world_[pair.a], world_[pair.b]);
+      if (result.colliding && result.certified) {
+        colliding = true;
+        certified = true;
+        first = bound.pair;
+        break;
+      }
+      colliding = colliding || result.colliding;
+      certified = certified && result.certified;
+      if (result.colliding && first < 0) first = bound.pair;
+    }
+    check_.colliding(i) = colliding;
+    check_.certified(i) = certified;
+    check_.pair(i) = first;
+    check_.min_distance(i) = std::numeric_limits<Scalar>::quiet_NaN();
+    check_.lower_bound(i) = std::numeric_limits<Scalar>::quiet_NaN();
+  }
+
   void place_geometries() {
     const std::vector<Geometry>& geometries = model_.geometries();
     world_.resize(geometries.size());
@@ -280,6 +302,7 @@ class ConfigurationCheck {
   const std::vector<GeometryPair>& pairs_;
   const Configurations& q_;
   const QueryOptions& options_;
+  bool nearest_;
   bool gradient_;
   RobotCheck& check_;
   // Per configuration, reused from one to the next by the thread that owns this.
@@ -293,13 +316,17 @@ class ConfigurationCheck {
 
 RobotCheck robot_check(const RobotModel& model, const std::vector<GeometryPair>& pairs,
                        const Configurations& q, const QueryOptions& options,
-                       const BatchSettings& settings, bool gradient) {
+                       const BatchSettings& settings, bool gradient, bool nearest) {
+  if (gradient && !nearest) {
+    throw std::invalid_argument("gradient needs the nearest pair: pass nearest=True with it");
+  }
   validate_pairs(model, pairs);
   if (q.cols() != model.dof()) {
     throw std::invalid_argument("q must have " + std::to_string(model.dof()) +
                                 " values per configuration, got " + std::to_string(q.cols()));
   }
   const Query validated(options);  // the options are checked once, before any configuration
+  detail::require_geometry_shapes(model, pairs, options.method);
   const Eigen::Index m = q.rows();
   RobotCheck check;
   check.colliding.setConstant(m, false);
@@ -313,7 +340,7 @@ RobotCheck robot_check(const RobotModel& model, const std::vector<GeometryPair>&
   if (gradient) check.gradient.setZero(m, model.dof());
   // One checker per thread: its buffers are the thread's own; each writes only its rows.
   over_configurations(static_cast<std::size_t>(m), settings.threads, [&] {
-    return ConfigurationCheck(model, pairs, q, validated.options(), gradient, check);
+    return ConfigurationCheck(model, pairs, q, validated.options(), nearest, gradient, check);
   });
   return check;
 }

@@ -96,8 +96,9 @@ class RobotModel {
   /// True when some pair needs the compound queries: a geometry has `parts`.
   bool has_compound() const { return !compounds_.empty(); }
   /// Geometry g as a compound body (its parts, or its convex body as one part), when
-  /// `has_compound()`.
-  const CompoundBody& compound(int g) const { return compounds_[static_cast<std::size_t>(g)]; }
+  /// `has_compound()` and g is no curved shape (compound bodies take polyhedra only: a pair of a
+  /// compound geometry and a curved one is answered part by part).
+  const CompoundBody& compound(int g) const { return *compounds_[static_cast<std::size_t>(g)]; }
 
  private:
   std::vector<Link> links_;
@@ -108,7 +109,7 @@ class RobotModel {
   std::vector<int> driving_dof_;
   std::vector<int> parent_joint_;
   std::vector<int> order_;
-  std::vector<CompoundBody> compounds_;
+  std::vector<std::optional<CompoundBody>> compounds_;
 };
 
 }  // namespace swarmcollide

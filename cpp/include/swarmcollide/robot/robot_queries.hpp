@@ -58,8 +58,10 @@ struct RobotCheck {
 /// The signed distance of every pair at every configuration (`q` admitted, see
 /// admit_configurations): for each pair, `signed_distance_many` over the configurations, with the
 /// geometries' world poses read in place from one table (no body is copied), so answers do not
-/// depend on the number of threads. Throws std::invalid_argument for invalid options, threads or
-/// pairs.
+/// depend on the number of threads. A compound geometry against a curved one is answered part by
+/// part (the least over the parts; compound bodies take no curved parts). Throws
+/// std::invalid_argument for invalid options, threads or pairs, or, naming the geometry, for a
+/// pair with a curved geometry that `options.method` cannot answer.
 RobotDistances robot_distances(const RobotModel& model, const std::vector<GeometryPair>& pairs,
                                const Configurations& q, const QueryOptions& options,
                                const BatchSettings& settings = {});
@@ -72,9 +74,15 @@ RobotDistances robot_distances(const RobotModel& model, const std::vector<Geomet
 /// the answer is that of robot_distances' row reduced to its nearest pair (the lowest index on
 /// ties), and `colliding`, `lower_bound` and `certified` cover every pair. Each configuration is
 /// answered whole by one of `settings.threads` threads, so answers do not depend on them. With
-/// `gradient`, also d min_distance / dq.
+/// `gradient`, also d min_distance / dq. Without `nearest`, the verdict alone (a planner's
+/// check): the pairs whose balls are within their contact threshold, nearest balls first, each
+/// answered by `Query::collision` until one is proven in contact; `pair` is that pair (or the first
+/// found colliding unproven, or -1), `certified` says whether the verdict is proven, and
+/// `min_distance` and `lower_bound` are NaN, the witnesses zero. Throws as robot_distances does,
+/// and for `gradient` without `nearest`.
 RobotCheck robot_check(const RobotModel& model, const std::vector<GeometryPair>& pairs,
                        const Configurations& q, const QueryOptions& options,
-                       const BatchSettings& settings = {}, bool gradient = false);
+                       const BatchSettings& settings = {}, bool gradient = false,
+                       bool nearest = true);
 
 }  // namespace swarmcollide
