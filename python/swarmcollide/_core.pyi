@@ -871,9 +871,9 @@ class RobotModel:
         """
         The configurations (m, dof) checked and brought within the limits ('raise', 'clamp' or 'wrap').
         """
-    def check(self, pairs: typing.Annotated[numpy.typing.ArrayLike, numpy.int32, "[m, 2]"], q: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, n]"], query: Query, threads: typing.Any = None, gradient: bool = False) -> RobotCheck:
+    def check(self, pairs: typing.Annotated[numpy.typing.ArrayLike, numpy.int32, "[m, 2]"], q: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, n]"], query: Query, threads: typing.Any = None, gradient: bool = False, nearest: bool = True) -> RobotCheck:
         """
-        The nearest pair per admitted configuration (m, dof), with d min_distance / dq when ``gradient``.
+        The nearest pair per admitted configuration (m, dof), with d min_distance / dq when ``gradient``; without ``nearest``, the verdict alone.
         """
     def default_pairs(self) -> typing.Annotated[numpy.typing.NDArray[numpy.int32], "[m, 2]"]:
         """
