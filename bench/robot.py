@@ -7,6 +7,8 @@ contender gets the same bodies at the same poses and the same pairs:
 
 - ``check 1 thread`` / ``check 2 threads``: ``robot.check(q, threads=...)`` (the verdict and the
   minimum signed distance with its pair and witnesses, certified);
+- ``verdict 1 thread``: ``robot.check(q, threads=1, nearest=False)`` (the verdict alone, certified,
+  as computeCollisions and mj_collision answer it);
 - ``pinocchio computeCollisions``: ``pin.computeCollisionsInParallel(1, pool, q)`` (Pinocchio's
   C++ loop over the configurations on one thread; a verdict per configuration), with a
   ``GeometryModel`` of ``coal.Convex`` hulls of our hulls' points placed as our geometries are;
@@ -276,6 +278,7 @@ def run_model(name: str, count: int, rounds: int) -> dict:
     contenders: Dict[str, Callable[[], np.ndarray]] = {
         "check 1 thread": lambda: robot.check(q, threads=1),
         "check 2 threads": lambda: robot.check(q, threads=2),
+        "verdict 1 thread": lambda: robot.check(q, threads=1, nearest=False),
         "pinocchio computeCollisions": lambda: pinocchio.collisions(pin_q),
         "pinocchio computeDistances": lambda: pinocchio.distances(pin_q),
         "mujoco mj_collision": lambda: mujoco.collisions(qpos),
@@ -295,6 +298,7 @@ def run_model(name: str, count: int, rounds: int) -> dict:
     verdicts = {
         "check 1 thread": ours.colliding,
         "check 2 threads": answers["check 2 threads"].colliding,
+        "verdict 1 thread": answers["verdict 1 thread"].colliding,
         "pinocchio computeCollisions": answers["pinocchio computeCollisions"],
         "pinocchio computeDistances": answers["pinocchio computeDistances"] <= 0,
         "mujoco mj_collision": answers["mujoco mj_collision"],
@@ -323,6 +327,11 @@ def run_model(name: str, count: int, rounds: int) -> dict:
         "max_min_distance_difference_coal_exact": float(
             np.abs(coal_least - exact.min_distance).max()),
         "two_threads_speedup": round(base / statistics.median(times["check 2 threads"]), 2),
+        "verdict_over_compute_collisions": round(
+            statistics.median(times["pinocchio computeCollisions"])
+            / statistics.median(times["verdict 1 thread"]), 2),
+        "check_over_compute_distances": round(
+            statistics.median(times["pinocchio computeDistances"]) / base, 2),
         "coal_disagreements": disagreements(robot, pinocchio, q,
                                             answers["pinocchio computeCollisions"], exact),
         "coal_distance_disagreements": disagreements(robot, pinocchio, q, coal_least <= 0,
@@ -351,6 +360,10 @@ def section(data: dict) -> str:
             f"- {model['model']} ({model['urdf']}, dof {model['dof']}, {model['pairs']} pairs, "
             f"{model['configurations']} configurations, {model['colliding']} colliding): "
             f"{model['certified']} certified; 2 threads / 1: {model['two_threads_speedup']}x; "
+            f"verdict 1 thread over computeCollisions (speed): "
+            f"{model.get('verdict_over_compute_collisions', float('nan'))}x (target 5x); check "
+            f"1 thread over computeDistances: "
+            f"{model.get('check_over_compute_distances', float('nan'))}x (target 5x); "
             f"exact reference {model['exact_us_per_configuration']:.1f} us; largest minimum "
             f"distance difference to exact: check "
             f"{model['max_min_distance_difference_check_exact']:.2g}, coal "

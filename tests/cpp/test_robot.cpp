@@ -8,8 +8,10 @@
 #include <stdexcept>
 #include <vector>
 
+#include "robot/box_screen.hpp"
 #include "shapes.hpp"
 #include "swarmcollide/geometry/shapes.hpp"
+#include "swarmcollide/queries/methods.hpp"
 #include "swarmcollide/queries/query.hpp"
 #include "swarmcollide/robot/kinematics.hpp"
 #include "swarmcollide/robot/pair_filter.hpp"
@@ -203,6 +205,45 @@ TEST(Robot, MethodsThatReadPointsRefuseCurvedGeometriesNamingThem) {
           << error.what();
     }
   }
+}
+
+// The verdict-only check's box screen: boxes it calls apart are farther apart than the gap by the
+// exact distance of their corners' hulls, and it calls most clearly separated boxes apart.
+TEST(BoxScreen, BoxesCalledApartAreFartherThanTheGap) {
+  Random rng(17);
+  QueryOptions options;
+  options.method = Method::exact;
+  const Query exact(options);
+  int apart = 0;
+  int clearly = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    const Vector3 ha(rng.uniform(0.01, 1), rng.uniform(0.01, 1), rng.uniform(0.01, 1));
+    const Vector3 hb(rng.uniform(0.01, 1), rng.uniform(0.01, 1), rng.uniform(0.01, 1));
+    const Vector3 ca = rng.vector(0.5);
+    const Vector3 cb = rng.vector(0.5);
+    const Aabb a{ca - ha, ca + ha};
+    const Aabb b{cb - hb, cb + hb};
+    const Pose pa = at(rng.vector(1), rng.rotation());
+    const Pose pb = at(rng.vector(1), rng.rotation());
+    const Scalar gap = trial % 2 ? 0.0 : 0.05;
+    VertexMatrix corners_a(8, 3);
+    VertexMatrix corners_b(8, 3);
+    for (int k = 0; k < 8; ++k) {
+      const Vector3 sign(k & 1 ? 1 : -1, k & 2 ? 1 : -1, k & 4 ? 1 : -1);
+      corners_a.row(k) = (ca + sign.cwiseProduct(ha)).transpose();
+      corners_b.row(k) = (cb + sign.cwiseProduct(hb)).transpose();
+    }
+    const DistanceResult d =
+        exact.distance(ConvexPolyhedron(corners_a), pa, ConvexPolyhedron(corners_b), pb);
+    if (detail::boxes_apart(a, pa, b, pb, gap)) {
+      ++apart;
+      EXPECT_GT(d.lower_bound, gap) << trial;
+    }
+    clearly += d.lower_bound > gap + 0.3;
+  }
+  // Boxes 0.3 beyond the gap are separated along one of the 15 axes by most of that.
+  EXPECT_GT(apart, clearly);
+  EXPECT_GT(apart, 100);
 }
 
 }  // namespace

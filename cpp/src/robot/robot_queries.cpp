@@ -12,6 +12,7 @@
 #include <thread>
 #include <utility>
 
+#include "box_screen.hpp"
 #include "geometry_pairs.hpp"
 #include "swarmcollide/queries/query.hpp"
 
@@ -244,6 +245,12 @@ class ConfigurationCheck {
     for (const BallBound& bound : bounds_) {
       if (bound.lower > bound.contact) continue;  // proven apart by their balls
       const GeometryPair& pair = pairs_[static_cast<std::size_t>(bound.pair)];
+      // Elongated links' balls overlap where their boxes do not: a few dozen products each.
+      if (detail::boxes_apart(model_.geometries()[pair.a].body.bounds().box, world_[pair.a],
+                              model_.geometries()[pair.b].body.bounds().box, world_[pair.b],
+                              bound.contact)) {
+        continue;
+      }
       const DistanceResult result =
           detail::collision_of(query, model_, pair, world_[pair.a], world_[pair.b]);
       if (result.colliding && result.certified) {
