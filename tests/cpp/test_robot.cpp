@@ -187,19 +187,21 @@ TEST(Robot, CurvedGeometriesHaveTheirClosedFormDistances) {
 
 TEST(Robot, MethodsThatReadPointsRefuseCurvedGeometriesNamingThem) {
   const RobotModel model = slide_past_a_cylinder();
-  QueryOptions fcl;
-  fcl.method = Method::fcl;
+  // The paper's swarm reads a body's points (fcl and libccd answer curved shapes as FCL's
+  // primitives or through their support functions).
+  QueryOptions swarm;
+  swarm.method = Method::ipso;
   Configurations q(1, 1);
   q << 1.0;
   for (const auto& call : {std::function<void()>([&] {
-                             robot_check(model, default_pairs(model), q, fcl);
+                             robot_check(model, default_pairs(model), q, swarm);
                            }),
                            std::function<void()>([&] {
-                             robot_distances(model, default_pairs(model), q, fcl);
+                             robot_distances(model, default_pairs(model), q, swarm);
                            })}) {
     try {
       call();
-      FAIL() << "the fcl method answered a cylinder";
+      FAIL() << "the ipso method answered a cylinder";
     } catch (const std::invalid_argument& error) {
       EXPECT_NE(std::string(error.what()).find("geometry 'post' is a cylinder"), std::string::npos)
           << error.what();
@@ -207,9 +209,9 @@ TEST(Robot, MethodsThatReadPointsRefuseCurvedGeometriesNamingThem) {
   }
 }
 
-// The verdict-only check's box screen: boxes it calls apart are farther apart than the gap by the
-// exact distance of their corners' hulls, and it calls most clearly separated boxes apart.
-TEST(BoxScreen, BoxesCalledApartAreFartherThanTheGap) {
+// The robot checks' box screen: its separation of two placed boxes is a lower bound on the exact
+// distance of their corners' hulls, and it finds most clearly separated boxes apart.
+TEST(BoxScreen, TheBoxesSeparationIsALowerBoundOnTheirDistance) {
   Random rng(17);
   QueryOptions options;
   options.method = Method::exact;
@@ -225,7 +227,6 @@ TEST(BoxScreen, BoxesCalledApartAreFartherThanTheGap) {
     const Aabb b{cb - hb, cb + hb};
     const Pose pa = at(rng.vector(1), rng.rotation());
     const Pose pb = at(rng.vector(1), rng.rotation());
-    const Scalar gap = trial % 2 ? 0.0 : 0.05;
     VertexMatrix corners_a(8, 3);
     VertexMatrix corners_b(8, 3);
     for (int k = 0; k < 8; ++k) {
@@ -235,13 +236,16 @@ TEST(BoxScreen, BoxesCalledApartAreFartherThanTheGap) {
     }
     const DistanceResult d =
         exact.distance(ConvexPolyhedron(corners_a), pa, ConvexPolyhedron(corners_b), pb);
-    if (detail::boxes_apart(a, pa, b, pb, gap)) {
+    const Scalar separation = detail::box_separation(a, pa, b, pb);
+    if (separation > 0) {
       ++apart;
-      EXPECT_GT(d.lower_bound, gap) << trial;
+      // The exact distance is proven within 1e-15 of the pair's size: below it, above the bound.
+      EXPECT_LE(separation, d.distance) << trial;
+      EXPECT_LE(separation, d.lower_bound + 1e-13) << trial;
     }
-    clearly += d.lower_bound > gap + 0.3;
+    clearly += d.lower_bound > 0.3;
   }
-  // Boxes 0.3 beyond the gap are separated along one of the 15 axes by most of that.
+  // Boxes 0.3 apart are separated along one of the 15 axes.
   EXPECT_GT(apart, clearly);
   EXPECT_GT(apart, 100);
 }

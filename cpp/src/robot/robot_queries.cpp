@@ -203,6 +203,9 @@ class ConfigurationCheck {
       // Once some pair is in contact, only the minimum can still change.
       if (bound.lower > least && (colliding || bound.lower > bound.contact)) continue;
       const GeometryPair& pair = pairs_[static_cast<std::size_t>(bound.pair)];
+      // The boxes' separation, a tighter proven bound than the balls' for elongated links.
+      const Scalar boxes = box_separation(pair);
+      if (boxes > least && (colliding || boxes > bound.contact)) continue;
       DistanceResult result =
           detail::signed_distance_of(query, model_, pair, world_[pair.a], world_[pair.b]);
       colliding = colliding || result.colliding;
@@ -246,11 +249,7 @@ class ConfigurationCheck {
       if (bound.lower > bound.contact) continue;  // proven apart by their balls
       const GeometryPair& pair = pairs_[static_cast<std::size_t>(bound.pair)];
       // Elongated links' balls overlap where their boxes do not: a few dozen products each.
-      if (detail::boxes_apart(model_.geometries()[pair.a].body.bounds().box, world_[pair.a],
-                              model_.geometries()[pair.b].body.bounds().box, world_[pair.b],
-                              bound.contact)) {
-        continue;
-      }
+      if (box_separation(pair) > bound.contact) continue;
       const DistanceResult result =
           detail::collision_of(query, model_, pair, world_[pair.a], world_[pair.b]);
       if (result.colliding && result.certified) {
@@ -268,6 +267,12 @@ class ConfigurationCheck {
     check_.pair(i) = first;
     check_.min_distance(i) = std::numeric_limits<Scalar>::quiet_NaN();
     check_.lower_bound(i) = std::numeric_limits<Scalar>::quiet_NaN();
+  }
+
+  // The separation of the pair's geometries' placed boxes (detail::box_separation).
+  Scalar box_separation(const GeometryPair& pair) const {
+    return detail::box_separation(model_.geometries()[pair.a].body.bounds().box, world_[pair.a],
+                                  model_.geometries()[pair.b].body.bounds().box, world_[pair.b]);
   }
 
   void place_geometries() {
