@@ -8,6 +8,7 @@ import swarmcollide
 import swarmcollide._core
 import swarmcollide.dask
 import swarmcollide.mesh
+import swarmcollide.motion
 import swarmcollide.plot
 import swarmcollide.poses
 import swarmcollide.queries
@@ -26,6 +27,7 @@ MODULES = [
     swarmcollide.scene_demo,
     swarmcollide.robot,
     swarmcollide.robot_shapes,
+    swarmcollide.motion,
 ]
 
 
