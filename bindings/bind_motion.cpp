@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "conversions.hpp"
-#include "queries.hpp"
+#include "swarmcollide/queries/methods.hpp"
 #include "swarmcollide/motion/time_of_impact.hpp"
 
 namespace py = pybind11;
@@ -54,16 +54,20 @@ std::string repr(const TimeOfImpactResult& r) {
 }
 
 // True when `given` is one pose as a (rotation, translation) pair (a body that stays there),
-// rather than a pair of poses (start, end).
-bool is_one_pose(const py::handle& given) {
-  if (!py::isinstance<py::sequence>(given) || py::isinstance<py::str>(given)) return false;
-  const py::sequence parts = py::reinterpret_borrow<py::sequence>(given);
-  if (parts.size() != 2) return false;
+// rather than a pair of poses (start, end): its first item is a (3, 3) rotation.
+bool is_one_pose(const py::sequence& given) {
+  const py::object first = given[0];
+  if (py::isinstance<py::array>(first)) {
+    const py::array array = py::reinterpret_borrow<py::array>(first);
+    return array.ndim() == 2 && array.shape(0) == 3 && array.shape(1) == 3;
+  }
+  if (!py::isinstance<py::sequence>(first) || py::isinstance<py::str>(first)) {
+    // A SciPy Rotation and its translation; two Rotations are a start and an end.
+    return py::hasattr(first, "as_matrix") && !py::hasattr(given[1], "as_matrix");
+  }
   try {
-    const py::array first = py::module_::import("numpy").attr("asarray")(parts[0]);
-    const py::array second = py::module_::import("numpy").attr("asarray")(parts[1]);
-    return first.ndim() == 2 && first.shape(0) == 3 && first.shape(1) == 3 &&
-           second.ndim() == 1;
+    const py::array array = py::module_::import("numpy").attr("asarray")(first);
+    return array.ndim() == 2 && array.shape(0) == 3 && array.shape(1) == 3;
   } catch (py::error_already_set&) {
     return false;  // ragged: the start and end poses' own checks say what is wrong
   }
@@ -74,8 +78,8 @@ bool is_one_pose(const py::handle& given) {
 RigidMotion to_motion(const py::handle& given, const char* name) {
   const std::string arg(name);
   if (given.is_none()) return RigidMotion(Pose{}, Pose{}, name);
-  if (py::isinstance<py::sequence>(given) && !is_one_pose(given) &&
-      py::len(given) == 2 && !py::isinstance<py::array>(given)) {
+  if ((py::isinstance<py::tuple>(given) || py::isinstance<py::list>(given)) &&
+      py::len(given) == 2 && !is_one_pose(py::reinterpret_borrow<py::sequence>(given))) {
     const py::sequence ends = py::reinterpret_borrow<py::sequence>(given);
     return RigidMotion(to_pose(ends[0], (arg + " start").c_str()),
                        to_pose(ends[1], (arg + " end").c_str()), name);
@@ -120,10 +124,16 @@ std::size_t motion_rows(const py::handle& given) {
   }
 }
 
+// Types are checked here, values by TimeOfImpactOptions::validate.
 TimeOfImpactOptions motion_options(const py::handle& method, const py::handle& tolerance,
                                    Scalar time_tolerance, int max_iterations) {
   TimeOfImpactOptions options;
-  options.query = make_options(method, tolerance, py::int_(0), py::kwargs());
+  options.query.method = method_from_name(to_name(method, "method"));
+  if (PyBool_Check(tolerance.ptr()) || PyComplex_Check(tolerance.ptr()) ||
+      !PyNumber_Check(tolerance.ptr())) {
+    throw py::type_error("tolerance must be a real number, got " + type_name(tolerance));
+  }
+  options.query.tolerance = tolerance.cast<double>();
   options.time_tolerance = time_tolerance;
   options.max_iterations = max_iterations;
   try {

@@ -203,3 +203,24 @@ def test_bad_input_names_the_argument():
         sc.time_of_impact(sc.Cylinder(1, 1), cube, method="fcl")
     with pytest.raises(ValueError, match="poses_a"):
         sc.time_of_impact_many(cube, cube, poses_a=np.eye(4))
+
+
+def test_motions_take_every_pose_form():
+    cube = sc.Box([0.5] * 3)
+    start, end = transform(np.eye(3), [-5, 0, 0]), transform(np.eye(3), [5, 0, 0])
+    expected = sc.time_of_impact(cube, cube, pose_a=(start, end))
+    forms = [
+        (start[:3], end[:3]),
+        ((np.eye(3), [-5, 0, 0]), (np.eye(3), [5, 0, 0])),
+        ((Rotation.identity(), [-5, 0, 0]), (Rotation.identity(), [5, 0, 0])),
+    ]
+    for form in forms:
+        r = sc.time_of_impact(cube, cube, pose_a=form)
+        assert (r.touches, r.t_lower, r.t_upper) == (expected.touches, expected.t_lower,
+                                                    expected.t_upper)
+    # A single pose keeps the body there; two Rotations turn it about its origin.
+    assert not sc.time_of_impact(cube, cube, pose_a=(np.eye(3), [3, 0, 0])).touches
+    half_turn = (Rotation.identity(), Rotation.from_euler("z", 90, degrees=True))
+    bar = sc.Box([2, 0.1, 0.1])
+    r = sc.time_of_impact(bar, cube, pose_a=half_turn, pose_b=(np.eye(3), [0, 1.5, 0]))
+    assert r.touches and r.certified

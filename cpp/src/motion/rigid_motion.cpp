@@ -32,12 +32,22 @@ Scalar spectral_norm_bound(const Matrix3& r) {
   return std::sqrt(largest) * (1 + 16 * kUnit);
 }
 
+// validate_pose naming the pose `name` `which` ("pose_a start"); the name is built only for the
+// message: a batch checks a motion per row.
+void validate_end(const Pose& pose, const char* name, const char* which) {
+  try {
+    validate_pose(pose, which);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(std::string(name) + " " + e.what());
+  }
+}
+
 }  // namespace
 
 RigidMotion::RigidMotion(const Pose& start, const Pose& end, const char* name)
     : start_(start), end_(end) {
-  validate_pose(start, (std::string(name) + " start").c_str());
-  validate_pose(end, (std::string(name) + " end").c_str());
+  validate_end(start, name, "start");
+  validate_end(end, name, "end");
   // R0^T R1 as a unit quaternion (Eigen's branch on the largest diagonal term is accurate near
   // half turns), taken with w >= 0 so that its angle is the shorter way round, in [0, pi].
   Eigen::Quaternion<Scalar> turn(Matrix3(start.rotation.transpose() * end.rotation));

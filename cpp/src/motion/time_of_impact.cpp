@@ -69,11 +69,11 @@ class Advancement {
         origin_(motion_a.start().translation),
         motion_a_(relative_to(motion_a, origin_)),
         motion_b_(relative_to(motion_b, origin_)),
-        bound_(motion_a_, detail::motion_reach(a), motion_b_, detail::motion_reach(b)),
+        reach_a_(detail::motion_reach(a)),
+        reach_b_(detail::motion_reach(b)),
+        bound_(motion_a_, reach_a_, motion_b_, reach_b_),
         options_(options),
         query_(precise(options.query)) {
-    const Scalar reach_a = detail::motion_reach(a);
-    const Scalar reach_b = detail::motion_reach(b);
     // The moved ends are rounded: the motions above are within a roundoff of their translations'
     // sizes of the given ones (the same shift at both ends, so at every time in between).
     const auto shift_error = [](const RigidMotion& m) {
@@ -88,7 +88,7 @@ class Advancement {
         motion_a_.start_rotation_norm() * a.bounds().centre.norm() +
         motion_b_.start_rotation_norm() * b.bounds().centre.norm();
     const Scalar largest_size = centres + 2 * std::max(a.bounds().radius, b.bounds().radius);
-    margin_ = (motion_a_.pose_error(reach_a) + motion_b_.pose_error(reach_b) +
+    margin_ = (motion_a_.pose_error(reach_a_) + motion_b_.pose_error(reach_b_) +
                shift_error(motion_a_) + shift_error(motion_b_) + 256 * kUnit * largest_size) *
               (1 + 16 * kUnit);
     size_ = 2 * (a.bounds().radius + b.bounds().radius);
@@ -240,6 +240,8 @@ class Advancement {
   Vector3 origin_;
   RigidMotion motion_a_;
   RigidMotion motion_b_;
+  Scalar reach_a_;
+  Scalar reach_b_;
   detail::MotionBound bound_;
   const TimeOfImpactOptions& options_;
   Query query_;
