@@ -205,7 +205,8 @@ def run(motions: int, rounds: int, turning: bool) -> dict:
     for touching in (True, False):
         chosen = [m["ours_us"] / m["fcl_us"] for m in fair if m["touches"] == touching]
         if chosen:
-            summary["ratio_median_" + ("touching" if touching else "free")] = statistics.median(chosen)
+            key = "ratio_median_" + ("touching" if touching else "free")
+            summary[key] = statistics.median(chosen)
     return {"summary": summary, "disagreements": disagreements, "per_motion": per_motion}
 
 
@@ -241,8 +242,9 @@ def report(outcome: dict) -> None:
           f"{s['ours_right']}, FCL {s['fcl_right']}; ours uncertified {s['ours_uncertified']}")
     print(f"per motion where FCL is right, ours / FCL: median {s['ratio_median']:.2f} "
           f"(quartiles {s['ratio_quartiles'][0]:.2f}-{s['ratio_quartiles'][1]:.2f}, geometric mean "
-          f"{s['ratio_geometric_mean']:.2f}; touching {s.get('ratio_median_touching', float('nan')):.2f},"
-          f" free {s.get('ratio_median_free', float('nan')):.2f}); over all motions "
+          f"{s['ratio_geometric_mean']:.2f}; touching "
+          f"{s.get('ratio_median_touching', float('nan')):.2f}, free "
+          f"{s.get('ratio_median_free', float('nan')):.2f}); over all motions "
           f"{s['ratio_median_all_motions']:.2f}; ours {s['ours_us_median']:.1f} us, FCL "
           f"{s['fcl_us_median']:.1f} us; our iterations median {s['ours_iterations_median']}, max "
           f"{s['ours_iterations_max']}")

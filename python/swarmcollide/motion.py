@@ -125,8 +125,9 @@ def time_of_impact_many(
         The bodies row by row, as ``distance_many`` takes them; a single body serves every row.
     poses_a, poses_b : (starts, ends) or None
         Each row's motion: ``starts`` and ``ends`` are pose arrays as ``distance_many``'s
-        ``poses_a`` (``(m, 4, 4)``, ``(m, 3, 4)`` or ``(rotations, translations)``), or single
-        poses that serve every row; None keeps the bodies still at the identity.
+        ``poses_a`` (``(m, 4, 4)``, ``(m, 3, 4)`` or ``(rotations, translations)``), both of m
+        rows, or both single poses (one motion for every row); None keeps the bodies still at
+        the identity.
     threads : int, optional
         Worker threads (at most 1024); None uses one per hardware thread. Answers do not depend
         on it.

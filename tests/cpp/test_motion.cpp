@@ -42,7 +42,8 @@ TEST(RigidMotion, InterpolatesTranslationAndTurnsAboutAFixedAxis) {
   EXPECT_TRUE(motion.at(1).rotation.isApprox(turn_z(1.2), 1e-15));
   // A half turn, and a turn about a tilted axis from a turned start: the end is reached.
   const Matrix3 start = Eigen::AngleAxis<Scalar>(0.7, Vector3(1, 2, 3).normalized()).matrix();
-  const Matrix3 end = start * Eigen::AngleAxis<Scalar>(M_PI, Vector3(0, 1, 1).normalized()).matrix();
+  const Matrix3 end =
+      start * Eigen::AngleAxis<Scalar>(M_PI, Vector3(0, 1, 1).normalized()).matrix();
   const RigidMotion half_turn(at(Vector3::Zero(), start), at(Vector3::Zero(), end));
   EXPECT_NEAR(half_turn.angle(), M_PI, 1e-12);
   EXPECT_LT((half_turn.at(1).rotation - end).norm(), 1e-14);
@@ -151,8 +152,8 @@ TEST(TimeOfImpact, TellsGrazingMissesFromGrazingContacts) {
 
 TEST(TimeOfImpact, AnswersBodiesStartingInContactAndBodiesThatDoNotMove) {
   const Box cube(Vector3::Constant(0.5));
-  const TimeOfImpactResult start =
-      time_of_impact(cube, slide(Vector3::Zero(), Vector3(5, 0, 0)), cube, still(Vector3(0.9, 0, 0)));
+  const TimeOfImpactResult start = time_of_impact(cube, slide(Vector3::Zero(), Vector3(5, 0, 0)),
+                                                  cube, still(Vector3(0.9, 0, 0)));
   EXPECT_TRUE(start.touches && start.certified);
   EXPECT_EQ(start.t_lower, 0);
   EXPECT_EQ(start.t_upper, 0);
@@ -175,7 +176,8 @@ TEST(TimeOfImpact, CurvedAndRoundedBodiesAndCompoundBodies) {
   EXPECT_LE(r.t_lower, 0.35 + 1e-12);
   EXPECT_GE(r.t_upper, 0.35 - 1e-6);
 
-  const CompoundBody pair({Box(Vector3::Constant(0.5)), testing::moved(Box(Vector3::Constant(0.5)), Vector3(3, 0, 0))});
+  const CompoundBody pair(
+      {Box(Vector3::Constant(0.5)), testing::moved(Box(Vector3::Constant(0.5)), Vector3(3, 0, 0))});
   const CompoundBody ball_body(ball);
   // The ball passes between the two cubes (gap 2 wide at x in [0.5, 2.5]), then hits the second.
   const TimeOfImpactResult between = time_of_impact(

@@ -224,3 +224,21 @@ def test_motions_take_every_pose_form():
     bar = sc.Box([2, 0.1, 0.1])
     r = sc.time_of_impact(bar, cube, pose_a=half_turn, pose_b=(np.eye(3), [0, 1.5, 0]))
     assert r.touches and r.certified
+
+
+@pytest.mark.parametrize("offset", [1e6, 1e12])
+def test_answers_do_not_depend_on_where_the_motion_happens(offset):
+    """Translations are taken relative to A's start, so their rounding is relative to the
+    motion's extent, not to its distance from the origin."""
+    cube, plate = sc.Box([0.5] * 3), sc.Box([5e-4, 5, 5])
+
+    def answer(shift):
+        start = transform(np.eye(3), [-10 + shift, shift, 0])
+        end = transform(np.eye(3), [10 + shift, shift, 0])
+        return sc.time_of_impact(cube, plate, pose_a=(start, end),
+                                 pose_b=transform(np.eye(3), [shift, shift, 0]))
+
+    here, there = answer(0.0), answer(offset)
+    assert there.certified and there.touches
+    assert (there.t_lower, there.t_upper, there.iterations) == (here.t_lower, here.t_upper,
+                                                                here.iterations)
