@@ -61,7 +61,8 @@ def time_of_impact(
         time.
     tolerance : float
         Contact threshold (> 0), relative to the motion's size, the sum of the two bodies'
-        bounding-ball diameters: bodies within ``tolerance x size`` of each other touch.
+        bounding-ball diameters (between 2/3 and 2 times the pair's size where they touch):
+        bodies within ``tolerance x size`` of each other touch.
     time_tolerance : float
         Largest width (> 0) of the bracket ``[t_lower, t_upper]`` of a first contact.
     max_iterations : int

@@ -146,9 +146,9 @@ class Advancement {
 
  private:
   // The queries ask for a quarter of the motion's tolerance: near contact (where the pair's
-  // size is at most `size_`) their bounds are then within a quarter of the threshold of each
-  // other, so a time not proven in contact is proven apart by three quarters of it, which lets
-  // bisection prove every interval short enough (motion.md).
+  // size is at most 1.5 `size_`) their bounds are then within 3/8 of the threshold of each
+  // other, so a time not proven in contact is proven apart by 5/8 of it (less the margin), which
+  // lets bisection prove every interval short enough (motions.md).
   static QueryOptions precise(QueryOptions options) {
     options.tolerance /= 4;
     return options;

@@ -24,7 +24,8 @@ struct TimeOfImpactOptions {
   /// distances ("dual", "exact", "fcl"); `query.tolerance` (relative, > 0) is the contact
   /// threshold: the bodies touch when they are within `tolerance x size` of each other, where
   /// `size` is the sum of the two bodies' bounding-ball diameters (BodyBounds::radius), constant
-  /// over the motion and at least the pair's size at any pose where they touch.
+  /// over the motion, and between 2/3 and 2 times the pair's size (the queries' measure) at any
+  /// pose where they touch.
   QueryOptions query;
   /// Largest width of the bracket [t_lower, t_upper] of a first contact, > 0.
   Scalar time_tolerance = kDefaultTimeTolerance;
