@@ -242,3 +242,19 @@ def test_answers_do_not_depend_on_where_the_motion_happens(offset):
     assert there.certified and there.touches
     assert (there.t_lower, there.t_upper, there.iterations) == (here.t_lower, here.t_upper,
                                                                 here.iterations)
+
+
+def test_batches_take_compound_bodies_and_point_stacks():
+    cube = sc.Box([0.5] * 3)
+    pair = sc.CompoundBody([cube, sc.ConvexPolyhedron(cube.vertices + [3, 0, 0])])
+    starts, ends = np.tile(np.eye(4), (3, 1, 1)), np.tile(np.eye(4), (3, 1, 1))
+    starts[:, 0, 3], ends[:, 0, 3] = 8, [1.5, 5, 4.2]
+    r = sc.time_of_impact_many(sc.Sphere(0.5), pair, poses_a=(starts, ends), threads=2)
+    # Only the first reaches the second cube's face (x = 3.5): its surface stops at 3.7 and 4.5
+    # in the others.
+    assert r.touches.tolist() == [True, False, False] and r.certified.all()
+    assert r.t_upper[0] == pytest.approx(4 / 6.5, abs=1e-6)
+    points = np.random.default_rng(0).normal(size=(4, 8, 3))
+    with pytest.raises(ValueError, match="Bs has 3 entries"):
+        sc.time_of_impact_many(points, list(points[:3]))
+    assert sc.time_of_impact_many(points, points).touches.all()
