@@ -12,6 +12,7 @@ void bind_solvers(py::module_& m);
 void bind_batch(py::module_& m, py::class_<Query>& query);
 void bind_scene(py::module_& m);
 void bind_robot(py::module_& m);
+void bind_motion(py::module_& m);
 }  // namespace swarmcollide::bindings
 
 PYBIND11_MODULE(_core, m) {
@@ -28,4 +29,5 @@ PYBIND11_MODULE(_core, m) {
   bind_batch(m, query);
   bind_scene(m);
   bind_robot(m);
+  bind_motion(m);
 }

@@ -63,6 +63,15 @@ from .mesh import (
     measure_deviation,
     mesh_hash,
 )
+from .motion import (
+    DEFAULT_TIME_TOLERANCE,
+    MotionLike,
+    MotionsLike,
+    TimeOfImpactBatch,
+    TimeOfImpactResult,
+    time_of_impact,
+    time_of_impact_many,
+)
 from .poses import QUATERNION_ORDERS, pose_from_quaternion
 from .robot import LIMIT_MODES, PairProposal, Robot, RobotCheck
 from .queries import (
@@ -152,4 +161,11 @@ __all__ = [
     "separation",
     "signed_distance",
     "signed_distance_many",
+    "DEFAULT_TIME_TOLERANCE",
+    "MotionLike",
+    "MotionsLike",
+    "TimeOfImpactBatch",
+    "TimeOfImpactResult",
+    "time_of_impact",
+    "time_of_impact_many",
 ]

@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['Aabb', 'BatchResult', 'Box', 'Capsule', 'CompoundBody', 'CompoundResult', 'CompoundStats', 'Cone', 'ContactResult', 'ConvexPolyhedron', 'Cylinder', 'DistanceResult', 'Ellipsoid', 'Hull', 'Joint', 'PartNode', 'ParticleCoefficients', 'Query', 'RobotCheck', 'RobotDistances', 'RobotModel', 'Scene', 'SceneResult', 'SceneStats', 'Sphere', 'as_polyhedron', 'broadphases', 'constraint_violation', 'is_feasible', 'linear_decreasing_inertia', 'method_table', 'objective', 'pair_seed', 'project_onto_simplex', 'query_function', 'rank_adaptive_coefficients', 'separation']
+__all__: list[str] = ['Aabb', 'BatchResult', 'Box', 'Capsule', 'CompoundBody', 'CompoundResult', 'CompoundStats', 'Cone', 'ContactResult', 'ConvexPolyhedron', 'Cylinder', 'DistanceResult', 'Ellipsoid', 'Hull', 'Joint', 'PartNode', 'ParticleCoefficients', 'Query', 'RobotCheck', 'RobotDistances', 'RobotModel', 'Scene', 'SceneResult', 'SceneStats', 'Sphere', 'TimeOfImpactBatch', 'TimeOfImpactResult', 'as_polyhedron', 'broadphases', 'constraint_violation', 'is_feasible', 'linear_decreasing_inertia', 'method_table', 'objective', 'pair_seed', 'project_onto_simplex', 'query_function', 'rank_adaptive_coefficients', 'separation', 'time_of_impact', 'time_of_impact_many']
 class Aabb:
     """
     An axis-aligned bounding box with corners ``min`` and ``max``.
@@ -1191,6 +1191,123 @@ class Sphere(ConvexPolyhedron):
         ...
     def __repr__(self) -> str:
         ...
+class TimeOfImpactBatch:
+    """
+    
+    The answers of ``time_of_impact_many``: NumPy arrays with one entry per row (built when read),
+    and each row's ``TimeOfImpactResult`` by indexing.
+    """
+    def __getitem__(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> TimeOfImpactResult:
+        ...
+    def __len__(self) -> int:
+        ...
+    def __repr__(self) -> str:
+        ...
+    @property
+    def certified(self) -> numpy.typing.NDArray[numpy.bool]:
+        ...
+    @property
+    def distance(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    @property
+    def iterations(self) -> numpy.typing.NDArray[numpy.int32]:
+        ...
+    @property
+    def normal(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    @property
+    def point_a(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    @property
+    def point_b(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    @property
+    def pose_a(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    @property
+    def pose_b(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    @property
+    def t_lower(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    @property
+    def t_upper(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    @property
+    def touches(self) -> numpy.typing.NDArray[numpy.bool]:
+        ...
+class TimeOfImpactResult:
+    """
+    
+    The first contact of two moving bodies (``time_of_impact``).
+    
+    When ``certified``: ``touches`` is False only when the bodies are proven never to overlap during
+    the motion; when True, they are proven apart before ``t_lower`` and within ``tolerance x size``
+    of each other at ``t_upper``, with ``t_upper - t_lower <= time_tolerance``. Uncertified answers
+    err on the side of contact: ``t_lower`` is still proven, ``touches`` is True.
+    """
+    def __repr__(self) -> str:
+        ...
+    @property
+    def certified(self) -> bool:
+        """
+        True when the answer is proven.
+        """
+    @property
+    def distance(self) -> float:
+        """
+        Signed distance at ``t_upper`` (NaN for a free motion).
+        """
+    @property
+    def iterations(self) -> int:
+        """
+        Distance queries run.
+        """
+    @property
+    def normal(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+        """
+        Unit contact normal from A to B at ``t_upper`` (zero for a free motion).
+        """
+    @property
+    def point_a(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+        """
+        Witness point on A at t_upper.
+        """
+    @property
+    def point_b(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+        """
+        Witness point on B at t_upper.
+        """
+    @property
+    def pose_a(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[4, 4]"]:
+        """
+        A's pose at ``t_upper``, a (4, 4) transform.
+        """
+    @property
+    def pose_b(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[4, 4]"]:
+        """
+        B's pose at ``t_upper``, a (4, 4) transform.
+        """
+    @property
+    def status(self) -> str:
+        """
+        'converged', 'max_iterations' or 'unresolved'.
+        """
+    @property
+    def t_lower(self) -> float:
+        """
+        The bodies are proven apart before this time (1 for a free motion).
+        """
+    @property
+    def t_upper(self) -> float:
+        """
+        The bodies are proven in contact at this time (1 for a free motion).
+        """
+    @property
+    def touches(self) -> bool:
+        """
+        True when the bodies come within the tolerance of each other.
+        """
 def as_polyhedron(body: typing.Any, name: typing.Any = 'body') -> ConvexPolyhedron:
     """
     Return ``body`` as a ConvexPolyhedron, building one from ``(n, 3)`` points if needed.
@@ -1261,4 +1378,12 @@ def separation(a: typing.Any, b: typing.Any, direction: typing.Any) -> float:
     >>> b = sc.ConvexPolyhedron([[3, 0, 0], [4, 0, 0], [3, 1, 0], [3, 0, 1]])
     >>> sc.separation(a, b, [1, 0, 0])
     2.0
+    """
+def time_of_impact(a: typing.Any, b: typing.Any, *, pose_a: typing.Any = None, pose_b: typing.Any = None, method: typing.Any = 'dual', tolerance: typing.Any = 1e-09, time_tolerance: typing.SupportsFloat | typing.SupportsIndex = 1e-06, max_iterations: typing.SupportsInt | typing.SupportsIndex = 100000) -> TimeOfImpactResult:
+    """
+    The first contact of A and B moving from their start to their end poses (see swarmcollide.time_of_impact).
+    """
+def time_of_impact_many(As: typing.Any, Bs: typing.Any, *, poses_a: typing.Any = None, poses_b: typing.Any = None, method: typing.Any = 'dual', tolerance: typing.Any = 1e-09, time_tolerance: typing.SupportsFloat | typing.SupportsIndex = 1e-06, max_iterations: typing.SupportsInt | typing.SupportsIndex = 100000, threads: typing.Any = None) -> TimeOfImpactBatch:
+    """
+    time_of_impact for every row (see swarmcollide.time_of_impact_many).
     """

@@ -8,6 +8,7 @@ import swarmcollide
 import swarmcollide._core
 import swarmcollide.dask
 import swarmcollide.mesh
+import swarmcollide.motion
 import swarmcollide.plot
 import swarmcollide.poses
 import swarmcollide.queries
@@ -28,6 +29,7 @@ MODULES = [
     swarmcollide.robot,
     swarmcollide.robot_plot,
     swarmcollide.shape_json,
+    swarmcollide.motion,
 ]
 
 

@@ -1,0 +1,56 @@
+// How fast two moving bodies can close the gap between them; private to the library's sources.
+#pragma once
+
+#include "swarmcollide/geometry/compound_body.hpp"
+#include "swarmcollide/geometry/convex_polyhedron.hpp"
+#include "swarmcollide/motion/rigid_motion.hpp"
+#include "swarmcollide/types.hpp"
+
+namespace swarmcollide::detail {
+
+/// A bound on `|x|` over every point x of the body's core in its own frame (the points' hull, or
+/// the curved shape), rounded up. A rounded body's ball turns into itself, so the rounded body
+/// moves no farther than its core: the rounding radius is not part of the reach.
+Scalar motion_reach(const ConvexPolyhedron& body);
+/// The largest reach of the parts.
+Scalar motion_reach(const CompoundBody& body);
+
+/// Bounds on how fast the distance between A moving by `motion_a` and B moving by `motion_b`
+/// can shrink, per unit of time, for bodies of reach `reach_a` and `reach_b`.
+///
+/// A point x of A (|x| <= reach_a) is at R0 Q(t) x + T(t), Q(t) = exp(t [w]) a rotation. Over a
+/// time h it moves by at most |T1 - T0| h from the translation and, since Q(t + h) - Q(t) =
+/// Q(t) (exp(h [w]) - I) and a chord is shorter than its arc, by at most |R0| |w| h |x| from the
+/// rotation. The distance is unchanged by a common translation, so only the relative translation
+/// counts: it shrinks by at most `full * h`. Along a fixed unit direction n, the separation
+/// `min_B n.y - max_A n.x` changes by the translation's component along n and by the rotation's
+/// rate, n . R0 (w x Q x) = (R0^T n) . (w x Q x) <= |(R0^T n) x w| |x| (Q w = w), which vanishes
+/// for a turn about n: `forward_along(n)` bounds how fast it shrinks forwards in time,
+/// `backward_along(n)` backwards.
+class MotionBound {
+ public:
+  MotionBound(const RigidMotion& motion_a, Scalar reach_a, const RigidMotion& motion_b,
+              Scalar reach_b);
+
+  /// A bound on how fast the distance can shrink, forwards or backwards in time.
+  Scalar full() const { return full_; }
+  /// A bound on how fast the separation along unit `n` (from A towards B) can shrink going
+  /// forwards in time, and going backwards.
+  Scalar forward_along(const Vector3& n) const { return along(n, 1); }
+  Scalar backward_along(const Vector3& n) const { return along(n, -1); }
+
+ private:
+  Scalar along(const Vector3& n, Scalar sense) const;
+
+  const RigidMotion* motion_a_;
+  const RigidMotion* motion_b_;
+  Scalar reach_a_;
+  Scalar reach_b_;
+  // The relative translation per unit time, A's less B's.
+  Vector3 closing_;
+  // The rounding of the directional rates' terms, absolute.
+  Scalar slack_;
+  Scalar full_;
+};
+
+}  // namespace swarmcollide::detail

@@ -1,0 +1,89 @@
+#include "swarmcollide/motion/rigid_motion.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace swarmcollide {
+
+namespace {
+
+// The unit roundoff of double precision.
+constexpr Scalar kUnit = 0x1p-53;
+
+// Rotation entries' rounding, in roundoffs, of `at(t)` against the exact R0 exp(t [w]) (w the
+// stored rotation vector, taken as exact), as a bound on the spectral norm of the difference:
+// - the axis k = w / |w| is unit to 3 roundoffs; phi = t |w| is within 3 roundoffs of t |w|
+//   relative (|phi| <= pi), so its sine and cosine (glibc: within 1 ulp) are within 4 pi + 2
+//   roundoffs of the exact ones;
+// - each entry of I + sin(phi) K + (1 - cos(phi)) K^2 (K = [k]x, |k_i k_j| <= 1, 1 - cos = 2
+//   sin^2(phi / 2)) is then within about 40 roundoffs of the exact exponential's, so the matrix
+//   is within 3 * 40 = 120 in spectral norm (at most 3 times its largest entry);
+// - the product with R0 (|R0| <= 1 + 1e-9) adds at most 3.01 * 3 roundoffs per entry times 3.
+// 256 covers the sum with room to spare.
+constexpr Scalar kRotationRoundoffs = 256;
+
+// A bound on the spectral norm of r: the square root of the largest absolute row sum of r^T r
+// (which bounds its largest eigenvalue), rounded up.
+Scalar spectral_norm_bound(const Matrix3& r) {
+  const Matrix3 gram = r.transpose() * r;
+  Scalar largest = 0;
+  for (int i = 0; i < 3; ++i) largest = std::fmax(largest, gram.row(i).cwiseAbs().sum());
+  return std::sqrt(largest) * (1 + 16 * kUnit);
+}
+
+// validate_pose naming the pose `name` `which` ("pose_a start"); the name is built only for the
+// message: a batch checks a motion per row.
+void validate_end(const Pose& pose, const char* name, const char* which) {
+  try {
+    validate_pose(pose, which);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(std::string(name) + " " + e.what());
+  }
+}
+
+}  // namespace
+
+RigidMotion::RigidMotion(const Pose& start, const Pose& end, const char* name)
+    : start_(start), end_(end) {
+  validate_end(start, name, "start");
+  validate_end(end, name, "end");
+  // R0^T R1 as a unit quaternion (Eigen's branch on the largest diagonal term is accurate near
+  // half turns), taken with w >= 0 so that its angle is the shorter way round, in [0, pi].
+  Eigen::Quaternion<Scalar> turn(Matrix3(start.rotation.transpose() * end.rotation));
+  turn.normalize();
+  if (turn.w() < 0) turn.coeffs() = -turn.coeffs();
+  const Scalar sine_half = turn.vec().norm();
+  angle_ = 2 * std::atan2(sine_half, turn.w());
+  axis_ = sine_half > 0 ? Vector3(turn.vec() / sine_half) : Vector3::Zero();
+  rotation_vector_ = axis_ * angle_;
+  start_norm_ = spectral_norm_bound(start.rotation);
+}
+
+Pose RigidMotion::at(Scalar t) const {
+  Pose pose;
+  pose.translation = start_.translation + t * (end_.translation - start_.translation);
+  if (angle_ == 0) {
+    pose.rotation = start_.rotation;
+    return pose;
+  }
+  const Scalar phi = t * angle_;
+  const Scalar half_sine = std::sin(phi / 2);
+  Matrix3 cross;
+  cross << 0, -axis_(2), axis_(1), axis_(2), 0, -axis_(0), -axis_(1), axis_(0), 0;
+  const Matrix3 turn =
+      Matrix3::Identity() + std::sin(phi) * cross + (2 * half_sine * half_sine) * (cross * cross);
+  pose.rotation = start_.rotation * turn;
+  return pose;
+}
+
+Scalar RigidMotion::pose_error(Scalar reach) const {
+  // The translation: T1 - T0, its product with t and the sum with T0 round each coordinate by at
+  // most a roundoff of a number below |T0| + |T1|: 3 in all, 4 with the norms' own rounding.
+  const Scalar translation =
+      4 * kUnit * (start_.translation.norm() + end_.translation.norm());
+  const Scalar rotation = angle_ == 0 ? 0 : kRotationRoundoffs * kUnit * start_norm_ * reach;
+  return (translation + rotation) * (1 + 8 * kUnit);
+}
+
+}  // namespace swarmcollide

@@ -1,0 +1,388 @@
+#include "swarmcollide/motion/time_of_impact.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <exception>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <system_error>
+#include <thread>
+#include <type_traits>
+#include <vector>
+
+#include "motion_bound.hpp"
+#include "swarmcollide/queries/methods.hpp"
+#include "swarmcollide/queries/query.hpp"
+
+namespace swarmcollide {
+
+namespace {
+
+constexpr Scalar kUnit = 0x1p-53;
+constexpr Scalar kInfinity = std::numeric_limits<Scalar>::infinity();
+
+// A pose moved by `shift`.
+Pose shifted(const Pose& pose, const Vector3& shift) {
+  Pose moved = pose;
+  moved.translation += shift;
+  return moved;
+}
+
+// The motion with both ends' translations less `origin`: distances depend only on where the
+// bodies are relative to each other, and A's start translation as the origin keeps the
+// translations' rounding relative to the distances the motion spans, not to how far from the
+// world's origin it happens.
+RigidMotion relative_to(const RigidMotion& motion, const Vector3& origin) {
+  return RigidMotion(shifted(motion.start(), -origin), shifted(motion.end(), -origin));
+}
+
+// What a distance query at one time proves.
+struct Sample {
+  Scalar t;
+  // Proven within the tolerance at t (contact).
+  bool contact;
+  // The times after t, and before it, over which the bodies are proven apart.
+  Scalar forward;
+  Scalar backward;
+};
+
+// `t + span` rounded down, so that the time it names is no later than the exact sum.
+Scalar advanced(Scalar t, Scalar span) {
+  Scalar next = t + span * (1 - 4 * kUnit);
+  // Up to t + 3 span the difference with t is exact only when next <= 2 t (Sterbenz); larger
+  // steps lose at most a roundoff of next <= t + span, which the 4 taken off above cover.
+  if (next <= 2 * t) {
+    while (next > t && next - t > span) next = std::nextafter(next, t);
+  }
+  return next;
+}
+
+// Conservative advancement on one pair: `Body` is ConvexPolyhedron or CompoundBody.
+template <typename Body>
+class Advancement {
+ public:
+  Advancement(const Body& a, const RigidMotion& motion_a, const Body& b,
+              const RigidMotion& motion_b, const TimeOfImpactOptions& options)
+      : a_(a),
+        b_(b),
+        origin_(motion_a.start().translation),
+        motion_a_(relative_to(motion_a, origin_)),
+        motion_b_(relative_to(motion_b, origin_)),
+        reach_a_(detail::motion_reach(a)),
+        reach_b_(detail::motion_reach(b)),
+        bound_(motion_a_, reach_a_, motion_b_, reach_b_),
+        options_(options),
+        query_(precise(options.query)) {
+    // The moved ends are rounded: the motions above are within a roundoff of their translations'
+    // sizes of the given ones (the same shift at both ends, so at every time in between).
+    const auto shift_error = [](const RigidMotion& m) {
+      return 2 * kUnit * (m.start().translation.norm() + m.end().translation.norm());
+    };
+    // The largest size any pair query in this motion can see: where the bodies' box centres can
+    // be from each other, plus the larger ball; the queries' own rounding is within
+    // kFrameRounding (128 roundoffs) of their frame's unit, which is at most that size.
+    const Scalar centres =
+        std::max((motion_a_.start().translation - motion_b_.start().translation).norm(),
+                 (motion_a_.end().translation - motion_b_.end().translation).norm()) +
+        motion_a_.start_rotation_norm() * a.bounds().centre.norm() +
+        motion_b_.start_rotation_norm() * b.bounds().centre.norm();
+    const Scalar largest_size = centres + 2 * std::max(a.bounds().radius, b.bounds().radius);
+    margin_ = (motion_a_.pose_error(reach_a_) + motion_b_.pose_error(reach_b_) +
+               shift_error(motion_a_) + shift_error(motion_b_) + 256 * kUnit * largest_size) *
+              (1 + 16 * kUnit);
+    size_ = 2 * (a.bounds().radius + b.bounds().radius);
+    contact_threshold_ = options.query.tolerance * size_;
+  }
+
+  TimeOfImpactResult run() {
+    Sample low = sample(0);
+    if (low.contact) return contact(0, 0);
+    // Sampled times after `low`, nearest last: each one still to be reached.
+    std::vector<Sample> ahead;
+    const Scalar width = options_.time_tolerance;
+    while (true) {
+      if (!ahead.empty()) {
+        const Sample& next = ahead.back();
+        if (low.forward + next.backward >= next.t - low.t) {
+          // Proven apart from both ends: every time between them is at most the one's forward
+          // reach after it or the other's backward reach before it.
+          low = next;
+          ahead.pop_back();
+          if (low.contact) return contact(low.t, low.t);
+          continue;
+        }
+        if (next.contact && next.t - low.t <= width) return contact(low.t, next.t);
+      } else if (low.forward > 1 - low.t) {
+        return free();
+      }
+      if (iterations_ >= options_.max_iterations) {
+        return unproven(low, ahead, MotionStatus::max_iterations);
+      }
+      const Scalar limit = ahead.empty() ? 1 : ahead.back().t;
+      if (low.forward >= width) {
+        // Advance: the bodies are apart over [low.t, low.t + forward).
+        const Scalar t = advanced(low.t, low.forward);
+        if (t > low.t && t < limit) {
+          const Sample reached = sample(t);
+          if (reached.contact) return contact(t, t);
+          low = reached;
+          continue;
+        }
+      }
+      if (ahead.empty()) {
+        // Steps are below the time tolerance: look one tolerance ahead.
+        ahead.push_back(sample(std::min<Scalar>(1, low.t + width)));
+        continue;
+      }
+      // Neither end proves the interval: split it.
+      const Scalar middle = low.t + (limit - low.t) / 2;
+      if (!(middle > low.t && middle < limit)) {
+        return unproven(low, ahead, MotionStatus::unresolved);
+      }
+      ahead.push_back(sample(middle));
+    }
+  }
+
+ private:
+  // The queries ask for a quarter of the motion's tolerance: near contact (where the pair's
+  // size is at most 1.5 `size_`) their bounds are then within 3/8 of the threshold of each
+  // other, so a time not proven in contact is proven apart by 5/8 of it (less the margin), which
+  // lets bisection prove every interval short enough (motions.md).
+  static QueryOptions precise(QueryOptions options) {
+    options.tolerance /= 4;
+    return options;
+  }
+
+  Sample sample(Scalar t) {
+    ++iterations_;
+    const Pose pose_a = motion_a_.at(t);
+    const Pose pose_b = motion_b_.at(t);
+    const auto result = query_.distance(a_, pose_a, b_, pose_b);
+    Sample s{t, result.distance + margin_ <= contact_threshold_, 0, 0};
+    const Scalar apart = result.lower_bound - margin_;
+    if (s.contact || !(apart > 0)) return s;
+    Scalar forward_rate = bound_.full();
+    Scalar backward_rate = forward_rate;
+    const Scalar length = result.direction.norm();
+    if (std::is_same<Body, ConvexPolyhedron>::value && length > 0.5) {
+      // The lower bound is the separation along `direction` (a compound body's is not: its
+      // parts may lie anywhere along it).
+      const Vector3 n = result.direction / length;
+      forward_rate = std::min(forward_rate, bound_.forward_along(n));
+      backward_rate = std::min(backward_rate, bound_.backward_along(n));
+    }
+    s.forward = reach_over(apart, forward_rate);
+    s.backward = reach_over(apart, backward_rate);
+    return s;
+  }
+
+  // The time a gap `apart` lasts at most `rate` of closing, rounded down.
+  static Scalar reach_over(Scalar apart, Scalar rate) {
+    if (rate == 0) return kInfinity;
+    return apart / rate * (1 - 4 * kUnit);
+  }
+
+  TimeOfImpactResult free() {
+    TimeOfImpactResult r;
+    r.touches = false;
+    r.t_lower = r.t_upper = 1;
+    r.pose_a = shifted(motion_a_.at(1), origin_);
+    r.pose_b = shifted(motion_b_.at(1), origin_);
+    r.distance = std::numeric_limits<Scalar>::quiet_NaN();
+    r.certified = true;
+    r.iterations = iterations_;
+    r.status = MotionStatus::converged;
+    return r;
+  }
+
+  TimeOfImpactResult contact(Scalar lower, Scalar upper) {
+    TimeOfImpactResult r = touching(upper);
+    r.t_lower = lower;
+    r.certified = true;
+    r.status = MotionStatus::converged;
+    return r;
+  }
+
+  TimeOfImpactResult unproven(const Sample& low, const std::vector<Sample>& ahead,
+                              MotionStatus status) {
+    Scalar upper = 1;
+    for (const Sample& s : ahead) {
+      if (s.contact) upper = std::min(upper, s.t);
+    }
+    TimeOfImpactResult r = touching(upper);
+    r.t_lower = low.t;
+    r.certified = false;
+    r.status = status;
+    return r;
+  }
+
+  // The poses, witnesses and normal at `t`.
+  TimeOfImpactResult touching(Scalar t) {
+    TimeOfImpactResult r;
+    r.touches = true;
+    r.t_upper = t;
+    const Pose pose_a = motion_a_.at(t);
+    const Pose pose_b = motion_b_.at(t);
+    const auto contact = query_.signed_distance(a_, pose_a, b_, pose_b);
+    r.pose_a = shifted(pose_a, origin_);
+    r.pose_b = shifted(pose_b, origin_);
+    r.distance = contact.distance;
+    r.point_a = contact.point_a + origin_;
+    r.point_b = contact.point_b + origin_;
+    r.normal = contact.direction;
+    r.iterations = iterations_;
+    return r;
+  }
+
+  const Body& a_;
+  const Body& b_;
+  Vector3 origin_;
+  RigidMotion motion_a_;
+  RigidMotion motion_b_;
+  Scalar reach_a_;
+  Scalar reach_b_;
+  detail::MotionBound bound_;
+  const TimeOfImpactOptions& options_;
+  Query query_;
+  Scalar margin_ = 0;
+  Scalar size_ = 0;
+  Scalar contact_threshold_ = 0;
+  int iterations_ = 0;
+};
+
+template <typename Body>
+TimeOfImpactResult solve(const Body& a, const RigidMotion& motion_a, const Body& b,
+                         const RigidMotion& motion_b, const TimeOfImpactOptions& options) {
+  options.validate();
+  return Advancement<Body>(a, motion_a, b, motion_b, options).run();
+}
+
+template <typename Body>
+std::vector<TimeOfImpactResult> solve_many(const BatchBodies<Body>& as,
+                                           const std::vector<RigidMotion>& motions_a,
+                                           const BatchBodies<Body>& bs,
+                                           const std::vector<RigidMotion>& motions_b,
+                                           const TimeOfImpactOptions& options, int threads) {
+  options.validate();
+  std::size_t rows = 1;
+  const auto count = [&rows](std::size_t n, bool single) {
+    if (!single && n != 1) rows = std::max(rows, n);
+  };
+  count(as.size(), as.single());
+  count(bs.size(), bs.single());
+  count(motions_a.size(), false);
+  count(motions_b.size(), false);
+  const auto check = [rows](std::size_t n, bool single, const char* name) {
+    if (!single && n != 1 && n != rows) {
+      throw std::invalid_argument(std::string(name) + " has " + std::to_string(n) +
+                                  " entries where the other arguments have " +
+                                  std::to_string(rows) + "; give one per row, or one for all");
+    }
+  };
+  check(as.size(), as.single(), "As");
+  check(bs.size(), bs.single(), "Bs");
+  check(motions_a.size(), false, "motions_a");
+  check(motions_b.size(), false, "motions_b");
+  if (motions_a.empty() || motions_b.empty() || as.size() == 0 || bs.size() == 0) return {};
+  if (threads < 0 || threads > kMaxThreads) {
+    throw std::invalid_argument("threads must be in [0, " + std::to_string(kMaxThreads) + "]");
+  }
+  const auto pick = [](std::size_t n, std::size_t row) { return n == 1 ? 0 : row; };
+  std::vector<TimeOfImpactResult> results(rows);
+  std::vector<std::exception_ptr> errors(rows);
+  const auto work = [&](std::size_t first, std::size_t step) {
+    for (std::size_t row = first; row < rows; row += step) {
+      try {
+        results[row] = Advancement<Body>(as[pick(as.size(), row)],
+                                         motions_a[pick(motions_a.size(), row)],
+                                         bs[pick(bs.size(), row)],
+                                         motions_b[pick(motions_b.size(), row)], options)
+                           .run();
+      } catch (...) {
+        errors[row] = std::current_exception();
+      }
+    }
+  };
+  std::size_t workers = threads > 0 ? static_cast<std::size_t>(threads)
+                                    : std::max(1u, std::thread::hardware_concurrency());
+  workers = std::min(workers, rows);
+  std::vector<std::thread> pool;
+  for (std::size_t k = 1; k < workers; ++k) {
+    try {
+      pool.emplace_back(work, k, workers);
+    } catch (const std::system_error&) {
+      // A thread that cannot start leaves its rows to the calling thread.
+      work(k, workers);
+    }
+  }
+  work(0, workers);
+  for (std::thread& thread : pool) thread.join();
+  for (std::size_t row = 0; row < rows; ++row) {
+    if (!errors[row]) continue;
+    try {
+      std::rethrow_exception(errors[row]);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument("row " + std::to_string(row) + ": " + e.what());
+    }
+  }
+  return results;
+}
+
+}  // namespace
+
+void TimeOfImpactOptions::validate() const {
+  query.validate();
+  const unsigned needed = kDistance | kSignedDistance;
+  if ((method_info(query.method).capabilities & needed) != needed) {
+    throw std::invalid_argument(std::string("time_of_impact needs a method with distances and "
+                                            "signed distances; method '") +
+                                method_name(query.method) + "' has not both: use 'dual', "
+                                "'exact' or 'fcl'");
+  }
+  if (!(query.tolerance > 0)) {
+    throw std::invalid_argument(
+        "tolerance must be positive for a motion: the poses between its ends are rounded, so "
+        "contact can only be proven to within a tolerance (got 0)");
+  }
+  if (!(time_tolerance > 0) || !std::isfinite(time_tolerance)) {
+    throw std::invalid_argument("time_tolerance must be a positive, finite fraction of the "
+                                "motion's duration (got " + std::to_string(time_tolerance) + ")");
+  }
+  if (max_iterations < 1) {
+    throw std::invalid_argument("max_iterations must be at least 1 (got " +
+                                std::to_string(max_iterations) + ")");
+  }
+}
+
+TimeOfImpactResult time_of_impact(const ConvexPolyhedron& a, const RigidMotion& motion_a,
+                                  const ConvexPolyhedron& b, const RigidMotion& motion_b,
+                                  const TimeOfImpactOptions& options) {
+  return solve(a, motion_a, b, motion_b, options);
+}
+
+TimeOfImpactResult time_of_impact(const CompoundBody& a, const RigidMotion& motion_a,
+                                  const CompoundBody& b, const RigidMotion& motion_b,
+                                  const TimeOfImpactOptions& options) {
+  return solve(a, motion_a, b, motion_b, options);
+}
+
+std::vector<TimeOfImpactResult> time_of_impact_many(const BatchBodies<ConvexPolyhedron>& as,
+                                                    const std::vector<RigidMotion>& motions_a,
+                                                    const BatchBodies<ConvexPolyhedron>& bs,
+                                                    const std::vector<RigidMotion>& motions_b,
+                                                    const TimeOfImpactOptions& options,
+                                                    int threads) {
+  return solve_many(as, motions_a, bs, motions_b, options, threads);
+}
+
+std::vector<TimeOfImpactResult> time_of_impact_many(const BatchBodies<CompoundBody>& as,
+                                                    const std::vector<RigidMotion>& motions_a,
+                                                    const BatchBodies<CompoundBody>& bs,
+                                                    const std::vector<RigidMotion>& motions_b,
+                                                    const TimeOfImpactOptions& options,
+                                                    int threads) {
+  return solve_many(as, motions_a, bs, motions_b, options, threads);
+}
+
+}  // namespace swarmcollide

@@ -1,0 +1,260 @@
+"""time_of_impact against a dense-sampling oracle on the exact signed distance, and cases with
+known first contacts."""
+
+import numpy as np
+import pytest
+from scipy.optimize import brentq
+from scipy.spatial.transform import Rotation, Slerp
+
+import swarmcollide as sc
+
+TOLERANCE = 1e-9
+
+
+def transform(rotation, translation):
+    m = np.eye(4)
+    m[:3, :3] = rotation
+    m[:3, 3] = translation
+    return m
+
+
+def motion_poses(start, end, times):
+    """The motion's poses at ``times``, as the documentation defines it: translation linear,
+    rotation R0 exp(t log(R0^T R1)) (SciPy's Slerp turns the same way, the shorter one)."""
+    turn = Slerp([0, 1], Rotation.from_matrix([start[:3, :3], end[:3, :3]]))(times).as_matrix()
+    poses = np.tile(np.eye(4), (len(times), 1, 1))
+    poses[:, :3, :3] = turn
+    poses[:, :3, 3] = start[:3, 3] + np.outer(times, end[:3, 3] - start[:3, 3])
+    return poses
+
+
+def motion_size(a, b):
+    """The motion's size: the sum of the bodies' bounding-ball diameters."""
+    return 2 * (a.bounding_radius + b.bounding_radius)
+
+
+def random_pose(rng, spread):
+    return transform(Rotation.random(random_state=rng).as_matrix(), rng.uniform(-spread, spread, 3))
+
+
+def check_against_oracle(a, b, motion_a, motion_b, result, samples=400, tolerance=TOLERANCE):
+    """No overlap the samples see is missed, none happens before ``t_lower``, and the bodies are
+    within the tolerance at ``t_upper`` (both on the exact signed distance)."""
+    times = np.linspace(0, 1, samples)
+    if result.touches:
+        times = np.union1d(times, [result.t_lower, result.t_upper])
+    oracle = sc.signed_distance_many(
+        a, b, method="exact", tolerance=1e-12,
+        poses_a=motion_poses(*motion_a, times), poses_b=motion_poses(*motion_b, times))
+    size = motion_size(a, b)
+    # Overlap beyond the oracle's own precision and the poses' rounding.
+    overlapping = oracle.distance < -1e-11 * size
+    assert result.certified
+    if not result.touches:
+        assert not overlapping.any(), times[overlapping][:3]
+        return False
+    assert not overlapping[times < result.t_lower].any()
+    at_upper = sc.signed_distance(
+        a, b, method="exact", tolerance=1e-12,
+        pose_a=motion_poses(*motion_a, [result.t_upper])[0],
+        pose_b=motion_poses(*motion_b, [result.t_upper])[0])
+    assert at_upper.lower_bound <= tolerance * size * (1 + 1e-6) + 1e-11 * size
+    assert result.t_upper - result.t_lower <= sc.DEFAULT_TIME_TOLERANCE
+    return True
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_random_motions_agree_with_dense_sampling(seed):
+    rng = np.random.default_rng(seed)
+    touching = 0
+    for _ in range(40):
+        a = sc.ConvexPolyhedron(rng.normal(size=(8, 3)))
+        b = sc.ConvexPolyhedron(rng.normal(size=(8, 3)) * rng.uniform(0.3, 1.5))
+        motion_a = (random_pose(rng, 4), random_pose(rng, 4))
+        motion_b = (random_pose(rng, 1), random_pose(rng, 1))
+        r = sc.time_of_impact(a, b, pose_a=motion_a, pose_b=motion_b)
+        touching += check_against_oracle(a, b, motion_a, motion_b, r)
+    # The motions are a mix of both answers.
+    assert 5 <= touching <= 35
+
+
+@pytest.mark.parametrize(
+    "body",
+    [
+        sc.Sphere(0.6),
+        sc.Capsule(0.3, 0.5),
+        sc.Box([0.4, 0.3, 0.5], radius=0.05),
+        sc.Cylinder(0.4, 0.6),
+        sc.Cone(0.5, 0.6),
+        sc.Ellipsoid([0.6, 0.3, 0.4]),
+        sc.ConvexPolyhedron(np.random.default_rng(1).normal(size=(12, 3)) * 0.4, radius=0.1),
+    ],
+    ids=lambda body: type(body).__name__,
+)
+def test_every_shape_agrees_with_dense_sampling(body):
+    rng = np.random.default_rng(5)
+    other = sc.Box([0.3, 0.6, 0.2])
+    for _ in range(12):
+        motion_a = (random_pose(rng, 3), random_pose(rng, 3))
+        motion_b = (random_pose(rng, 0.5), random_pose(rng, 0.5))
+        r = sc.time_of_impact(body, other, pose_a=motion_a, pose_b=motion_b)
+        check_against_oracle(body, other, motion_a, motion_b, r)
+
+
+def test_compound_bodies_find_the_first_part_hit():
+    cube = sc.Box([0.5] * 3)
+    pair = sc.CompoundBody([cube, sc.ConvexPolyhedron(cube.vertices + [3, 0, 0])])
+    start, end = transform(np.eye(3), [1.5, -5, 0]), transform(np.eye(3), [1.5, 5, 0])
+    assert not sc.time_of_impact(sc.Sphere(0.5), pair, pose_a=(start, end)).touches
+    start, end = transform(np.eye(3), [8, 0, 0]), transform(np.eye(3), [1.5, 0, 0])
+    r = sc.time_of_impact(sc.Sphere(0.5), pair, pose_a=(start, end))
+    # The ball's centre reaches x = 4 (the second cube's face at 3.5) after 4 of 6.5.
+    assert r.touches and r.certified
+    assert r.t_lower <= 4 / 6.5 + 1e-12 and r.t_upper >= 4 / 6.5 - 1e-6
+
+
+@pytest.mark.parametrize("scale", [1e-100, 1e-6, 1.0, 1e6, 1e100])
+def test_a_cube_through_a_thin_plate_at_every_scale(scale):
+    cube, plate = sc.Box([0.5 * scale] * 3), sc.Box([5e-4 * scale, 5 * scale, 5 * scale])
+    start, end = transform(np.eye(3), [-10 * scale, 0, 0]), transform(np.eye(3), [10 * scale, 0, 0])
+    r = sc.time_of_impact(cube, plate, pose_a=(start, end))
+    first = 9.4995 / 20
+    assert r.touches and r.certified
+    assert r.t_lower <= first * (1 + 1e-12)
+    assert r.t_upper >= first - TOLERANCE * motion_size(cube, plate) / (20 * scale) - 1e-12
+    # Neither end touches: a discrete check misses it.
+    assert not sc.collide(cube, plate, pose_a=start) and not sc.collide(cube, plate, pose_a=end)
+
+
+@pytest.mark.parametrize("gap", [1e-9, -1e-9])
+def test_grazing_motions_miss_or_touch_by_a_billionth(gap):
+    cube = sc.Box([0.5] * 3)
+    y = 1 + gap * motion_size(cube, cube)
+    start, end = transform(np.eye(3), [-5, y, 0]), transform(np.eye(3), [5, y, 0])
+    r = sc.time_of_impact(cube, cube, pose_a=(start, end), tolerance=1e-12)
+    assert r.certified
+    assert r.touches == (gap < 0)
+
+
+def test_a_bar_turning_through_a_gap():
+    post, bar = sc.Box([0.05] * 3), sc.Box([1.4, 0.1, 0.1])
+    turn = transform(Rotation.from_euler("z", 0.9 * np.pi).as_matrix(), [0, 0, 0])
+    at_post = transform(np.eye(3), [0, 1.5, 0])
+    # The short bar passes under the post; a long one hits it on the way.
+    assert not sc.time_of_impact(bar, post, pose_a=(np.eye(4), turn), pose_b=at_post).touches
+    long_bar = sc.Box([2, 0.1, 0.1])
+    r = sc.time_of_impact(long_bar, post, pose_a=(np.eye(4), turn), pose_b=at_post)
+    # The bar's leading face (0.1 from its axis) meets the post's corner (0.05, 1.45) at the
+    # angle where -0.05 sin(phi) + 1.45 cos(phi) = 0.1.
+    phi = brentq(lambda p: -0.05 * np.sin(p) + 1.45 * np.cos(p) - 0.1, 0, np.pi / 2)
+    first = phi / (0.9 * np.pi)
+    assert r.touches and r.certified
+    assert r.t_lower <= first + 1e-12 and r.t_upper >= first - 1e-6
+
+
+def test_start_in_contact_and_no_motion():
+    cube = sc.Box([0.5] * 3)
+    start, end = transform(np.eye(3), [0.9, 0, 0]), transform(np.eye(3), [5, 0, 0])
+    r = sc.time_of_impact(cube, cube, pose_a=(start, end))
+    assert (r.touches, r.certified, r.t_lower, r.t_upper) == (True, True, 0.0, 0.0)
+    still = transform(np.eye(3), [3, 0, 0])
+    r = sc.time_of_impact(cube, cube, pose_a=still)
+    assert (r.touches, r.certified, r.iterations) == (False, True, 1)
+    assert "touches=False" in repr(r) and "certified=True" in repr(r)
+
+
+def test_results_are_deterministic_and_batches_match_single_calls():
+    rng = np.random.default_rng(9)
+    cube = sc.Box([0.5] * 3)
+    starts = np.stack([random_pose(rng, 3) for _ in range(30)])
+    ends = np.stack([random_pose(rng, 3) for _ in range(30)])
+    one = sc.time_of_impact_many(cube, cube, poses_a=(starts, ends), threads=1)
+    two = sc.time_of_impact_many(cube, cube, poses_a=(starts, ends), threads=2)
+    assert len(one) == 30 and "rows=30" in repr(one)
+    for name in ("touches", "t_lower", "t_upper", "iterations", "certified"):
+        np.testing.assert_array_equal(getattr(one, name), getattr(two, name))
+    for i in range(30):
+        single = sc.time_of_impact(cube, cube, pose_a=(starts[i], ends[i]))
+        again = sc.time_of_impact(cube, cube, pose_a=(starts[i], ends[i]))
+        assert (single.t_lower, single.t_upper) == (again.t_lower, again.t_upper)
+        assert (single.touches, single.t_lower, single.t_upper) == (
+            one.touches[i], one.t_lower[i], one.t_upper[i])
+    assert one.pose_a.shape == (30, 4, 4) and one.normal.shape == (30, 3)
+    assert one[-1].t_upper == one.t_upper[-1]
+
+
+def test_bad_input_names_the_argument():
+    cube = sc.Box([0.5] * 3)
+    scaled = np.eye(4) * 1.01
+    scaled[3, 3] = 1
+    with pytest.raises(ValueError, match="pose_a end"):
+        sc.time_of_impact(cube, cube, pose_a=(np.eye(4), scaled))
+    nan = np.eye(4)
+    nan[0, 3] = np.nan
+    with pytest.raises(ValueError, match="pose_b start"):
+        sc.time_of_impact(cube, cube, pose_b=(nan, np.eye(4)))
+    with pytest.raises(ValueError, match="time_tolerance"):
+        sc.time_of_impact(cube, cube, time_tolerance=0)
+    with pytest.raises(ValueError, match="tolerance"):
+        sc.time_of_impact(cube, cube, tolerance=0)
+    with pytest.raises(ValueError, match="'dual'"):
+        sc.time_of_impact(cube, cube, method="ipso")
+    with pytest.raises(ValueError, match="dual"):
+        sc.time_of_impact(sc.Cylinder(1, 1), cube, method="fcl")
+    with pytest.raises(ValueError, match="poses_a"):
+        sc.time_of_impact_many(cube, cube, poses_a=np.eye(4))
+
+
+def test_motions_take_every_pose_form():
+    cube = sc.Box([0.5] * 3)
+    start, end = transform(np.eye(3), [-5, 0, 0]), transform(np.eye(3), [5, 0, 0])
+    expected = sc.time_of_impact(cube, cube, pose_a=(start, end))
+    forms = [
+        (start[:3], end[:3]),
+        ((np.eye(3), [-5, 0, 0]), (np.eye(3), [5, 0, 0])),
+        ((Rotation.identity(), [-5, 0, 0]), (Rotation.identity(), [5, 0, 0])),
+    ]
+    for form in forms:
+        r = sc.time_of_impact(cube, cube, pose_a=form)
+        assert (r.touches, r.t_lower, r.t_upper) == (expected.touches, expected.t_lower,
+                                                    expected.t_upper)
+    # A single pose keeps the body there; two Rotations turn it about its origin.
+    assert not sc.time_of_impact(cube, cube, pose_a=(np.eye(3), [3, 0, 0])).touches
+    half_turn = (Rotation.identity(), Rotation.from_euler("z", 90, degrees=True))
+    bar = sc.Box([2, 0.1, 0.1])
+    r = sc.time_of_impact(bar, cube, pose_a=half_turn, pose_b=(np.eye(3), [0, 1.5, 0]))
+    assert r.touches and r.certified
+
+
+@pytest.mark.parametrize("offset", [1e6, 1e12])
+def test_answers_do_not_depend_on_where_the_motion_happens(offset):
+    """Translations are taken relative to A's start, so their rounding is relative to the
+    motion's extent, not to its distance from the origin."""
+    cube, plate = sc.Box([0.5] * 3), sc.Box([5e-4, 5, 5])
+
+    def answer(shift):
+        start = transform(np.eye(3), [-10 + shift, shift, 0])
+        end = transform(np.eye(3), [10 + shift, shift, 0])
+        return sc.time_of_impact(cube, plate, pose_a=(start, end),
+                                 pose_b=transform(np.eye(3), [shift, shift, 0]))
+
+    here, there = answer(0.0), answer(offset)
+    assert there.certified and there.touches
+    assert (there.t_lower, there.t_upper, there.iterations) == (here.t_lower, here.t_upper,
+                                                                here.iterations)
+
+
+def test_batches_take_compound_bodies_and_point_stacks():
+    cube = sc.Box([0.5] * 3)
+    pair = sc.CompoundBody([cube, sc.ConvexPolyhedron(cube.vertices + [3, 0, 0])])
+    starts, ends = np.tile(np.eye(4), (3, 1, 1)), np.tile(np.eye(4), (3, 1, 1))
+    starts[:, 0, 3], ends[:, 0, 3] = 8, [1.5, 5, 4.2]
+    r = sc.time_of_impact_many(sc.Sphere(0.5), pair, poses_a=(starts, ends), threads=2)
+    # Only the first reaches the second cube's face (x = 3.5): its surface stops at 3.7 and 4.5
+    # in the others.
+    assert r.touches.tolist() == [True, False, False] and r.certified.all()
+    assert r.t_upper[0] == pytest.approx(4 / 6.5, abs=1e-6)
+    points = np.random.default_rng(0).normal(size=(4, 8, 3))
+    with pytest.raises(ValueError, match="Bs has 3 entries"):
+        sc.time_of_impact_many(points, list(points[:3]))
+    assert sc.time_of_impact_many(points, points).touches.all()
