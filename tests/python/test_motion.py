@@ -199,8 +199,17 @@ def test_bad_input_names_the_argument():
         sc.time_of_impact(cube, cube, tolerance=0)
     with pytest.raises(ValueError, match="'dual'"):
         sc.time_of_impact(cube, cube, method="ipso")
-    with pytest.raises(ValueError, match="dual"):
-        sc.time_of_impact(sc.Cylinder(1, 1), cube, method="fcl")
+    # fcl answers curved shapes too (as FCL's own primitives), so every method with signed
+    # distances takes every shape.
+    rise = (np.eye(4), np.array([[1.0, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 5], [0, 0, 0, 1]]))
+    above = np.eye(4)
+    above[2, 3] = 3.0
+    answers = [sc.time_of_impact(sc.Cylinder(1, 1), cube, pose_a=(above, above), pose_b=rise,
+                                 method=method) for method in ("fcl", "dual")]
+    assert all(a.touches and a.certified for a in answers)
+    assert abs(answers[0].t_upper - answers[1].t_upper) <= 1e-5
+    # The cube's top (0.5 up) meets the cylinder's base (2 up) at t = 1.5 / 5.
+    assert all(a.t_lower <= 0.3 + 1e-9 and a.t_upper >= 0.3 - 1e-5 for a in answers)
     with pytest.raises(ValueError, match="poses_a"):
         sc.time_of_impact_many(cube, cube, poses_a=np.eye(4))
 
