@@ -4,11 +4,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <random>
 #include <stdexcept>
 #include <vector>
 
+#include "compound_oracle.hpp"
 #include "shapes.hpp"
 #include "swarmcollide/queries/batch.hpp"
 #include "swarmcollide/queries/methods.hpp"
@@ -18,6 +18,7 @@
 namespace swarmcollide {
 namespace {
 
+using swarmcollide::testing::best_part_pair;
 using swarmcollide::testing::box;
 
 Matrix3 random_rotation(std::mt19937_64& rng) {
@@ -43,21 +44,6 @@ CompoundBody random_row(std::mt19937_64& rng, int n) {
     parts.emplace_back(points);
   }
   return CompoundBody(parts);
-}
-
-// The smallest answer over every part pair.
-DistanceResult brute_force(const Query& query, const CompoundBody& a, const Pose& pose_a,
-                           const CompoundBody& b, const Pose& pose_b, bool signed_distance) {
-  DistanceResult best;
-  best.distance = std::numeric_limits<Scalar>::infinity();
-  for (const ConvexPolyhedron& pa : a.parts()) {
-    for (const ConvexPolyhedron& pb : b.parts()) {
-      const DistanceResult r = signed_distance ? query.signed_distance(pa, pose_a, pb, pose_b)
-                                               : query.distance(pa, pose_a, pb, pose_b);
-      if (r.distance < best.distance) best = r;
-    }
-  }
-  return best;
 }
 
 TEST(CompoundBody, TreeHoldsEveryPartInEachNodesVolumes) {
@@ -120,7 +106,7 @@ TEST(CompoundQuery, DistancesMatchEveryPartPairAtRandomPoses) {
       const Pose pose_a{random_rotation(rng), Vector3(offset(rng), offset(rng), offset(rng))};
       const Pose pose_b{random_rotation(rng), Vector3(offset(rng), offset(rng), offset(rng))};
       const CompoundResult r = query.distance(a, pose_a, b, pose_b);
-      const DistanceResult oracle = brute_force(query, a, pose_a, b, pose_b, false);
+      const DistanceResult oracle = best_part_pair(query, a, pose_a, b, pose_b, false);
       const Scalar tolerance = 1e-8 * (1 + oracle.distance);
       EXPECT_NEAR(r.distance, oracle.distance, tolerance) << name << " trial " << trial;
       EXPECT_LE(r.lower_bound, oracle.distance + tolerance);
@@ -150,7 +136,7 @@ TEST(CompoundQuery, SignedDistanceIsTheDeepestPartPair) {
     const Pose pose_a{random_rotation(rng), Vector3::Zero()};
     const Pose pose_b{random_rotation(rng), Vector3(0.3 * trial, 0.2, 0)};
     const CompoundResult r = query.signed_distance(a, pose_a, b, pose_b);
-    const DistanceResult oracle = brute_force(query, a, pose_a, b, pose_b, true);
+    const DistanceResult oracle = best_part_pair(query, a, pose_a, b, pose_b, true);
     EXPECT_NEAR(r.distance, oracle.distance, 1e-8) << trial;
     EXPECT_TRUE(r.certified) << trial;
     EXPECT_EQ(r.colliding, oracle.distance <= 1e-8) << trial;
