@@ -16,6 +16,9 @@ struct PlaneSide {
   /// The plane's normal (q - p) x (r - p), and the origin's side as -p . normal.
   Vector3 normal;
   Scalar determinant;
+  /// The edges q - p and r - p it was computed from.
+  Vector3 u;
+  Vector3 v;
 };
 
 // A bound on the rounding of the determinant w . (u x v) computed from rounded differences: 64
@@ -35,12 +38,12 @@ PlaneSide side_of_origin(const Vector3& p, const Vector3& q, const Vector3& r) {
   const Vector3 v = r - p;
   const Vector3 normal = u.cross(v);
   const Scalar length = normal.norm();
-  if (!(length > 0)) return {0, false, normal, 0};
+  if (!(length > 0)) return {0, false, normal, 0, u, v};
   const Scalar determinant = -p.dot(normal);
   const Scalar rounding = determinant_rounding(p, u, v);
   const Scalar distance = determinant / length;
   return {distance, std::abs(determinant) > rounding && std::abs(distance) > 4 * kFrameRounding,
-          normal, determinant};
+          normal, determinant, u, v};
 }
 
 }  // namespace
@@ -82,11 +85,9 @@ bool encloses_origin(const std::array<Vector3, 4>& points, std::array<Scalar, 4>
     if (!origin.certain) return false;
     // The fourth point's side must be beyond doubt too: a flat tetrahedron has its fourth point
     // in the face's plane, where rounding alone picks the side, and encloses nothing.
-    const Vector3 u = points[face[1]] - points[face[0]];
-    const Vector3 v = points[face[2]] - points[face[0]];
     const Vector3 w = points[face[3]] - points[face[0]];
     const Scalar opposite = origin.normal.dot(w);
-    if (!(std::abs(opposite) > determinant_rounding(w, u, v)) ||
+    if (!(std::abs(opposite) > determinant_rounding(w, origin.u, origin.v)) ||
         (origin.distance > 0) != (opposite > 0)) {
       return false;
     }
