@@ -152,6 +152,36 @@ def test_a_bar_turning_through_a_gap():
     assert r.t_lower <= first + 1e-12 and r.t_upper >= first - 1e-6
 
 
+@pytest.mark.parametrize("scale", [1e-200, 1e-150, 1.0, 1e150, 1e200])
+def test_a_turning_bar_hits_the_post_at_every_scale(scale):
+    """The bar's reach about its origin bounds how fast its turn moves it: at 1e-200 its
+    vertices' squared norms underflowed to zero, so the turn was taken for no motion and the
+    contact missed; at 1e200 they overflowed and nothing was proven."""
+    post, bar = sc.Box([0.05 * scale] * 3), sc.Box([2 * scale, 0.1 * scale, 0.1 * scale])
+    turn = transform(Rotation.from_euler("z", 0.9 * np.pi).as_matrix(), [0, 0, 0])
+    r = sc.time_of_impact(bar, post, pose_a=(np.eye(4), turn),
+                          pose_b=transform(np.eye(3), [0, 1.5 * scale, 0]))
+    phi = brentq(lambda p: -0.05 * np.sin(p) + 1.45 * np.cos(p) - 0.1, 0, np.pi / 2)
+    first = phi / (0.9 * np.pi)
+    assert r.touches and r.certified
+    assert r.t_lower <= first + 1e-12 and r.t_upper >= first - 1e-6
+
+
+@pytest.mark.parametrize("far", [1e10, 1e160, 1e300])
+def test_bodies_far_apart_are_proven_free(far):
+    """Margins on the translations' sizes are taken without squaring them: squares beyond 1e308
+    made them infinite and every motion past 1e154 unresolved."""
+    cube = sc.Box([0.5] * 3)
+    start, end = transform(np.eye(3), [far, 0, 0]), transform(np.eye(3), [far, far, 0])
+    for motion in ((start, start), (start, end)):
+        r = sc.time_of_impact(cube, cube, pose_a=motion)
+        assert (r.touches, r.certified, r.iterations) == (False, True, 1)
+    beyond = transform(np.eye(3), [-1.7e308, 0, 0]), transform(np.eye(3), [1.7e308, 0, 0])
+    if far == 1e300:
+        with pytest.raises(ValueError, match="double range"):
+            sc.time_of_impact(cube, cube, pose_a=beyond)
+
+
 def test_start_in_contact_and_no_motion():
     cube = sc.Box([0.5] * 3)
     start, end = transform(np.eye(3), [0.9, 0, 0]), transform(np.eye(3), [5, 0, 0])

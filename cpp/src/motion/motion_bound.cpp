@@ -2,12 +2,30 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace swarmcollide::detail {
 
 namespace {
 
 constexpr Scalar kUnit = 0x1p-53;
+
+// The largest |x| over the rows of `points`. The squares are summed directly, which is exact to a
+// few roundoffs while they stay in the normal range; where the largest square overflows or falls
+// below 2^-960 (bodies beyond about 1e154 or below 1e-144 in size, where squares lose digits or
+// vanish), every row's norm is taken scaled.
+Scalar largest_row_norm(const VertexMatrix& points) {
+  Scalar largest_square = 0;
+  for (int i = 0; i < points.rows(); ++i) {
+    largest_square = std::max(largest_square, points.row(i).squaredNorm());
+  }
+  if (largest_square >= 0x1p-960 && largest_square <= std::numeric_limits<Scalar>::max()) {
+    return std::sqrt(largest_square);
+  }
+  Scalar largest = 0;
+  for (int i = 0; i < points.rows(); ++i) largest = std::max(largest, points.row(i).stableNorm());
+  return largest;
+}
 
 }  // namespace
 
@@ -16,9 +34,9 @@ Scalar motion_reach(const ConvexPolyhedron& body) {
   if (const SupportFunction* shape = body.curved()) {
     // The shape's points lie within its outer radius of its centre, which is the body's box
     // centre in its own frame.
-    reach = body.bounds().centre.norm() + shape->outer_radius();
+    reach = body.bounds().centre.stableNorm() + shape->outer_radius();
   } else {
-    for (int i = 0; i < body.size(); ++i) reach = std::max(reach, body.vertices().row(i).norm());
+    reach = largest_row_norm(body.vertices());
   }
   return reach * (1 + 8 * kUnit);
 }
@@ -39,8 +57,8 @@ MotionBound::MotionBound(const RigidMotion& motion_a, Scalar reach_a, const Rigi
   const Scalar turn_b = motion_b.angle() * motion_b.start_rotation_norm() * reach_b;
   // Each difference above and each product is within a few roundoffs of its inputs; 16
   // roundoffs of their sizes (and of the angles' own rounding) cover them.
-  slack_ = 16 * kUnit * (shift_a.norm() + shift_b.norm() + turn_a + turn_b);
-  full_ = (closing_.norm() + turn_a + turn_b) * (1 + 16 * kUnit) + slack_;
+  slack_ = 16 * kUnit * (shift_a.stableNorm() + shift_b.stableNorm() + turn_a + turn_b);
+  full_ = (closing_.stableNorm() + turn_a + turn_b) * (1 + 16 * kUnit) + slack_;
 }
 
 Scalar MotionBound::along(const Vector3& n, Scalar sense) const {

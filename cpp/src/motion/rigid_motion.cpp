@@ -81,7 +81,7 @@ Scalar RigidMotion::pose_error(Scalar reach) const {
   // The translation: T1 - T0, its product with t and the sum with T0 round each coordinate by at
   // most a roundoff of a number below |T0| + |T1|: 3 in all, 4 with the norms' own rounding.
   const Scalar translation =
-      4 * kUnit * (start_.translation.norm() + end_.translation.norm());
+      4 * kUnit * (start_.translation.stableNorm() + end_.translation.stableNorm());
   const Scalar rotation = angle_ == 0 ? 0 : kRotationRoundoffs * kUnit * start_norm_ * reach;
   return (translation + rotation) * (1 + 8 * kUnit);
 }

@@ -34,7 +34,14 @@ Pose shifted(const Pose& pose, const Vector3& shift) {
 // translations' rounding relative to the distances the motion spans, not to how far from the
 // world's origin it happens.
 RigidMotion relative_to(const RigidMotion& motion, const Vector3& origin) {
-  return RigidMotion(shifted(motion.start(), -origin), shifted(motion.end(), -origin));
+  const Pose start = shifted(motion.start(), -origin);
+  const Pose end = shifted(motion.end(), -origin);
+  if (!start.translation.allFinite() || !end.translation.allFinite()) {
+    throw std::invalid_argument(
+        "the motions' translations differ by more than the double range (about 1.8e308): "
+        "express the poses in a frame nearer the bodies");
+  }
+  return RigidMotion(start, end);
 }
 
 // What a distance query at one time proves.
@@ -77,16 +84,16 @@ class Advancement {
     // The moved ends are rounded: the motions above are within a roundoff of their translations'
     // sizes of the given ones (the same shift at both ends, so at every time in between).
     const auto shift_error = [](const RigidMotion& m) {
-      return 2 * kUnit * (m.start().translation.norm() + m.end().translation.norm());
+      return 2 * kUnit * (m.start().translation.stableNorm() + m.end().translation.stableNorm());
     };
     // The largest size any pair query in this motion can see: where the bodies' box centres can
     // be from each other, plus the larger ball; the queries' own rounding is within
     // kFrameRounding (128 roundoffs) of their frame's unit, which is at most that size.
     const Scalar centres =
-        std::max((motion_a_.start().translation - motion_b_.start().translation).norm(),
-                 (motion_a_.end().translation - motion_b_.end().translation).norm()) +
-        motion_a_.start_rotation_norm() * a.bounds().centre.norm() +
-        motion_b_.start_rotation_norm() * b.bounds().centre.norm();
+        std::max((motion_a_.start().translation - motion_b_.start().translation).stableNorm(),
+                 (motion_a_.end().translation - motion_b_.end().translation).stableNorm()) +
+        motion_a_.start_rotation_norm() * a.bounds().centre.stableNorm() +
+        motion_b_.start_rotation_norm() * b.bounds().centre.stableNorm();
     const Scalar largest_size = centres + 2 * std::max(a.bounds().radius, b.bounds().radius);
     margin_ = (motion_a_.pose_error(reach_a_) + motion_b_.pose_error(reach_b_) +
                shift_error(motion_a_) + shift_error(motion_b_) + 256 * kUnit * largest_size) *
