@@ -368,4 +368,13 @@ std::string to_name(const py::handle& value, const char* name) {
   return value.cast<std::string>();
 }
 
+MotionKind to_motion_kind(const py::handle& motion) {
+  const std::string name = to_name(motion, "motion");
+  try {
+    return motion_kind_from_name(name);
+  } catch (const std::invalid_argument& e) {
+    throw py::value_error(e.what());
+  }
+}
+
 }  // namespace swarmcollide::bindings
