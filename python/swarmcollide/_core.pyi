@@ -1070,7 +1070,7 @@ class Scene:
         --------
         >>> import numpy as np, swarmcollide as sc
         >>> scene = sc.Scene(method="exact")
-        >>> cube, plate = scene.add(sc.Box([0.5, 0.5, 0.5])), scene.add(sc.Box([5e-4, 5, 5]))
+        >>> cube, plate = scene.add([sc.Box([0.5, 0.5, 0.5]), sc.Box([5e-4, 5, 5])])
         >>> start, end = np.eye(4), np.eye(4)
         >>> start[0, 3], end[0, 3] = -10, 10
         >>> scene.set_poses(cube, start)
