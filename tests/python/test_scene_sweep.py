@@ -190,3 +190,19 @@ def test_bad_input_moves_nothing_and_says_why():
         sc.Scene(method="ipso").sweep([], None)
     np.testing.assert_array_equal(scene.pose(ball), np.eye(4))
     assert scene.sweep(ball, end).pairs.tolist() == [[ball, other]]
+
+
+@pytest.mark.parametrize("motion", ["linear", "screw"])
+def test_a_turning_bar_hits_a_post_outside_both_end_boxes(motion):
+    """The bar's boxes at its start and end (0.9 pi about z) stop at y = 0.72; the post at y = 1.5
+    is hit half-way round: a swept box from the ends alone would miss the pair."""
+    scene = sc.Scene()
+    bar = add_one(scene, sc.Box([2, 0.1, 0.1]))
+    post = add_one(scene, sc.Box([0.05] * 3), transform(np.eye(3), [0, 1.5, 0]))
+    end = transform(Rotation.from_euler("z", 0.9 * np.pi).as_matrix(), [0, 0, 0])
+    r = scene.sweep(bar, end, motion=motion)
+    expected = sc.time_of_impact(sc.Box([2, 0.1, 0.1]), sc.Box([0.05] * 3),
+                                 pose_a=(np.eye(4), end), pose_b=scene.pose(post), motion=motion)
+    assert expected.touches
+    assert r.pairs.tolist() == [[bar, post]] and r.certified.all()
+    assert r.t_upper[0] == pytest.approx(expected.t_upper, abs=1e-6)
