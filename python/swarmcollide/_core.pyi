@@ -1077,7 +1077,7 @@ class Scene:
         >>> r = scene.sweep(cube, end)               # through the plate in one step
         >>> r.pairs.tolist(), r.certified.tolist(), (r.t_upper * 20 - 10).round(6).tolist()
         ([[0, 1]], [True], [-0.5005])
-        >>> scene.pose(cube)[0, 3]
+        >>> float(scene.pose(cube)[0, 3])
         10.0
         """
     @property
