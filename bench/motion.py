@@ -2,7 +2,8 @@
 through python-fcl (``fcl.continuousCollide`` with ``CCDM_LINEAR`` motions, which interpolate
 as ours do: the origin on the segment, a constant angular velocity about a fixed axis, and
 ``CCDC_CONSERVATIVE_ADVANCEMENT`` on ``fcl.Convex`` hulls; FCL's BVH meshes missed a cube
-crossing a thin plate in a probe, so they are not used).
+crossing a thin plate in a probe, so they are not used). Screw motions (``--kinds screw``) go to
+ours as ``motion="screw"`` and to FCL as ``CCDM_SCREW``: both G(t) = G0 exp(t log(G0^-1 G1)).
 
 Random motions of random hulls (8 points): A moves between two random poses (translations in a
 cube of side 8, any rotation), B between two poses near the origin. Both answer each motion; a
@@ -15,7 +16,8 @@ thread's CPU time per call, the contenders interleaved motion by motion; the rat
 is taken per motion, over the motions where FCL is right. ``--json`` writes bench/record.py's
 format.
 
-    python bench/motion.py [--motions 300] [--rounds 5] [--json bench/results/motion.json]
+    python bench/motion.py [--motions 300] [--rounds 5] [--kinds turning translating screw]
+        [--json bench/results/motion.json]
 """
 
 from __future__ import annotations
@@ -27,6 +29,7 @@ import time
 from typing import List
 
 import numpy as np
+from scipy.linalg import logm
 from scipy.spatial import ConvexHull
 from scipy.spatial.transform import Rotation, Slerp
 
@@ -64,7 +67,24 @@ def random_pose(rng: np.random.Generator, spread: float) -> np.ndarray:
     return pose
 
 
-def poses_at(start: np.ndarray, end: np.ndarray, times: np.ndarray) -> np.ndarray:
+def poses_at(start: np.ndarray, end: np.ndarray, times: np.ndarray,
+             screw: bool = False) -> np.ndarray:
+    if screw:
+        # start @ expm(t xi) in closed form (Murray, Li and Sastry, (2.36)), xi = logm(G0^-1 G1).
+        twist = np.real(logm(np.linalg.solve(start, end)))
+        w, v = np.array([twist[2, 1], twist[0, 2], twist[1, 0]]), twist[:3, 3]
+        times = np.atleast_1d(np.asarray(times, dtype=float))
+        turns = Rotation.from_rotvec(np.outer(times, w)).as_matrix()
+        angle = np.linalg.norm(w)
+        if angle == 0:
+            moved = np.outer(times, v)
+        else:
+            across = np.cross(w, v) / angle**2
+            moved = across - turns @ across + np.outer(times, w * (w @ v) / angle**2)
+        poses = np.tile(np.eye(4), (len(times), 1, 1))
+        poses[:, :3, :3] = start[:3, :3] @ turns
+        poses[:, :3, 3] = start[:3, 3] + moved @ start[:3, :3].T
+        return poses
     turn = Slerp([0, 1], Rotation.from_matrix([start[:3, :3], end[:3, :3]]))(times).as_matrix()
     poses = np.tile(np.eye(4), (len(times), 1, 1))
     poses[:, :3, :3] = turn
@@ -84,8 +104,8 @@ class Oracle:
         times = np.asarray(times, dtype=float)
         return sc.signed_distance_many(
             c["a"], c["b"], method="exact", tolerance=1e-12,
-            poses_a=poses_at(c["a0"], c["a1"], times),
-            poses_b=poses_at(c["b0"], c["b1"], times)).distance
+            poses_a=poses_at(c["a0"], c["a1"], times, c["screw"]),
+            poses_b=poses_at(c["b0"], c["b1"], times, c["screw"])).distance
 
     def first_overlap(self, extra=()) -> float:
         times = np.union1d(np.linspace(0, 1, SAMPLES), np.clip(list(extra), 0, 1))
@@ -105,31 +125,35 @@ class Oracle:
         return "false" if np.isnan(first) else "early"
 
 
-def make_cases(count: int, rng: np.random.Generator, turning: bool) -> List[dict]:
-    """Random motions; without ``turning`` each body keeps its start rotation."""
+def make_cases(count: int, rng: np.random.Generator, kind: str) -> List[dict]:
+    """Random motions; "translating" ones keep each body's start rotation."""
     cases = []
     for _ in range(count):
         pa, pb = rng.normal(size=(8, 3)) * 0.5, rng.normal(size=(8, 3)) * 0.5
         case = {"pa": pa, "pb": pb, "a": sc.ConvexPolyhedron(pa), "b": sc.ConvexPolyhedron(pb),
                 "a0": random_pose(rng, 4), "a1": random_pose(rng, 4),
-                "b0": random_pose(rng, 0.5), "b1": random_pose(rng, 0.5)}
-        if not turning:
+                "b0": random_pose(rng, 0.5), "b1": random_pose(rng, 0.5),
+                "screw": kind == "screw"}
+        if kind == "translating":
             case["a1"][:3, :3] = case["a0"][:3, :3]
             case["b1"][:3, :3] = case["b0"][:3, :3]
         cases.append(case)
     return cases
 
 
-def run(motions: int, rounds: int, turning: bool) -> dict:
-    """Turning motions go to FCL as ``CCDM_LINEAR``, translations as ``CCDM_TRANS``."""
+KINDS = {"turning": "CCDM_LINEAR", "translating": "CCDM_TRANS", "screw": "CCDM_SCREW"}
+
+
+def run(motions: int, rounds: int, kind: str) -> dict:
+    """Turning motions go to FCL as ``CCDM_LINEAR``, translations as ``CCDM_TRANS``, screws as
+    ``CCDM_SCREW`` (and to ours as ``motion="screw"``)."""
     import fcl
 
     rng = np.random.default_rng(28)
-    cases = make_cases(motions, rng, turning)
+    cases = make_cases(motions, rng, kind)
     request = fcl.ContinuousCollisionRequest(
         num_max_iterations=1000, toc_err=TIME_TOLERANCE,
-        ccd_motion_type=fcl.CCDMotionType.CCDM_LINEAR if turning
-        else fcl.CCDMotionType.CCDM_TRANS,
+        ccd_motion_type=getattr(fcl.CCDMotionType, KINDS[kind]),
         ccd_solver_type=fcl.CCDSolverType.CCDC_CONSERVATIVE_ADVANCEMENT)
     per_motion = []
     disagreements = []
@@ -143,7 +167,8 @@ def run(motions: int, rounds: int, turning: bool) -> dict:
 
         def ours():
             return sc.time_of_impact(c["a"], c["b"], pose_a=(c["a0"], c["a1"]),
-                                     pose_b=(c["b0"], c["b1"]))
+                                     pose_b=(c["b0"], c["b1"]),
+                                     motion="screw" if c["screw"] else "linear")
 
         def theirs():
             result = fcl.ContinuousCollisionResult()
@@ -215,16 +240,17 @@ def main() -> int:
     parser.add_argument("--motions", type=int, default=300)
     parser.add_argument("--rounds", type=int, default=5)
     parser.add_argument("--quick", action="store_true", help="60 motions, 3 rounds")
+    parser.add_argument("--kinds", nargs="+", choices=list(KINDS), default=list(KINDS))
     parser.add_argument("--json", help="write the results here")
     args = parser.parse_args()
     if args.quick:
         args.motions, args.rounds = 60, 3
     load = os.getloadavg()
     rows, disagreements, per_motion = [], {}, {}
-    for turning in (True, False):
-        kind = "turning (FCL CCDM_LINEAR)" if turning else "translating (FCL CCDM_TRANS)"
+    for name in args.kinds:
+        kind = f"{name} (FCL {KINDS[name]})"
         print(kind)
-        outcome = run(args.motions, args.rounds, turning)
+        outcome = run(args.motions, args.rounds, name)
         report(outcome)
         rows.append({"motions_kind": kind, **outcome["summary"]})
         disagreements[kind] = outcome["disagreements"]

@@ -75,24 +75,25 @@ bool is_one_pose(const py::sequence& given) {
 
 // A motion argument: None (still at the identity), one pose (still there), or a pair
 // (start, end) of poses.
-RigidMotion to_motion(const py::handle& given, const char* name) {
+RigidMotion to_motion(const py::handle& given, const char* name, MotionKind kind) {
   const std::string arg(name);
-  if (given.is_none()) return RigidMotion(Pose{}, Pose{}, name);
+  if (given.is_none()) return RigidMotion(Pose{}, Pose{}, kind, name);
   if ((py::isinstance<py::tuple>(given) || py::isinstance<py::list>(given)) &&
       py::len(given) == 2 && !is_one_pose(py::reinterpret_borrow<py::sequence>(given))) {
     const py::sequence ends = py::reinterpret_borrow<py::sequence>(given);
     return RigidMotion(to_pose(ends[0], (arg + " start").c_str()),
-                       to_pose(ends[1], (arg + " end").c_str()), name);
+                       to_pose(ends[1], (arg + " end").c_str()), kind, name);
   }
   const Pose pose = to_pose(given, name);
-  return RigidMotion(pose, pose, name);
+  return RigidMotion(pose, pose, kind, name);
 }
 
 // Motions of a batch: None (all still at the identity), or a pair (starts, ends) of pose arrays
 // (see to_poses) of `count` rows, or of one row for all.
-std::vector<RigidMotion> to_motions(const py::handle& given, std::size_t count, const char* name) {
+std::vector<RigidMotion> to_motions(const py::handle& given, std::size_t count, const char* name,
+                                    MotionKind kind) {
   const std::string arg(name);
-  if (given.is_none()) return {RigidMotion()};
+  if (given.is_none()) return {RigidMotion(Pose{}, Pose{}, kind, name)};
   if (!py::isinstance<py::sequence>(given) || py::len(given) != 2 ||
       py::isinstance<py::array>(given)) {
     throw py::value_error(arg + " must be a pair (starts, ends) of pose arrays, each an (m, 4, 4) "
@@ -104,7 +105,8 @@ std::vector<RigidMotion> to_motions(const py::handle& given, std::size_t count, 
   std::vector<RigidMotion> motions;
   motions.reserve(count);
   for (std::size_t i = 0; i < count; ++i) {
-    motions.emplace_back(starts[i], finals[i], (arg + "[" + std::to_string(i) + "]").c_str());
+    motions.emplace_back(starts[i], finals[i], kind,
+                         (arg + "[" + std::to_string(i) + "]").c_str());
   }
   return motions;
 }
@@ -347,11 +349,13 @@ and each row's ``TimeOfImpactResult`` by indexing.
       "time_of_impact",
       [](const py::object& a, const py::object& b, const py::object& pose_a,
          const py::object& pose_b, const py::object& method, const py::object& tolerance,
-         const py::object& time_tolerance, const py::object& max_iterations) {
+         const py::object& time_tolerance, const py::object& max_iterations,
+         const py::object& motion) {
         const TimeOfImpactOptions options =
             motion_options(method, tolerance, time_tolerance, max_iterations);
-        const RigidMotion motion_a = to_motion(pose_a, "pose_a");
-        const RigidMotion motion_b = to_motion(pose_b, "pose_b");
+        const MotionKind kind = to_motion_kind(motion);
+        const RigidMotion motion_a = to_motion(pose_a, "pose_a", kind);
+        const RigidMotion motion_b = to_motion(pose_b, "pose_b", kind);
         if (is_compound(a) || is_compound(b)) {
           const CompoundArgument body_a(a, "a");
           const CompoundArgument body_b(b, "b");
@@ -366,7 +370,7 @@ and each row's ``TimeOfImpactResult`` by indexing.
       py::arg("a"), py::arg("b"), py::kw_only(), py::arg("pose_a") = py::none(),
       py::arg("pose_b") = py::none(), py::arg("method") = "dual",
       py::arg("tolerance") = kDefaultTolerance, py::arg("time_tolerance") = kDefaultTimeTolerance,
-      py::arg("max_iterations") = kDefaultMotionIterations,
+      py::arg("max_iterations") = kDefaultMotionIterations, py::arg("motion") = "linear",
       "The first contact of A and B moving from their start to their end poses (see "
       "swarmcollide.time_of_impact).");
 
@@ -375,14 +379,15 @@ and each row's ``TimeOfImpactResult`` by indexing.
       [](const py::object& as, const py::object& bs, const py::object& poses_a,
          const py::object& poses_b, const py::object& method, const py::object& tolerance,
          const py::object& time_tolerance, const py::object& max_iterations,
-         const py::object& threads) {
+         const py::object& threads, const py::object& motion) {
         const TimeOfImpactOptions options =
             motion_options(method, tolerance, time_tolerance, max_iterations);
         const int thread_number = threads.is_none() ? 0 : thread_count(threads);
+        const MotionKind kind = to_motion_kind(motion);
         const std::vector<RigidMotion> motions_a =
-            to_motions(poses_a, motion_rows(poses_a), "poses_a");
+            to_motions(poses_a, motion_rows(poses_a), "poses_a", kind);
         const std::vector<RigidMotion> motions_b =
-            to_motions(poses_b, motion_rows(poses_b), "poses_b");
+            to_motions(poses_b, motion_rows(poses_b), "poses_b", kind);
         TimeOfImpactBatch batch;
         if (holds_compound(as) || holds_compound(bs) || is_compound(as) || is_compound(bs)) {
           const Side<CompoundBody, CompoundArgument> side_a(as, "As");
@@ -403,6 +408,7 @@ and each row's ``TimeOfImpactResult`` by indexing.
       py::arg("poses_b") = py::none(), py::arg("method") = "dual",
       py::arg("tolerance") = kDefaultTolerance, py::arg("time_tolerance") = kDefaultTimeTolerance,
       py::arg("max_iterations") = kDefaultMotionIterations, py::arg("threads") = py::none(),
+      py::arg("motion") = "linear",
       "time_of_impact for every row (see swarmcollide.time_of_impact_many).");
 }
 

@@ -157,6 +157,34 @@ std::string result_repr(const char* type, const SceneResult& r) {
   return out.str();
 }
 
+// Poses as an (m, 4, 4) array of transforms.
+py::array_t<Scalar> transforms(const std::vector<Pose>& poses) {
+  py::array_t<Scalar> out({static_cast<py::ssize_t>(poses.size()), py::ssize_t{4}, py::ssize_t{4}});
+  auto view = out.mutable_unchecked<3>();
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    const auto k = static_cast<py::ssize_t>(i);
+    for (int r = 0; r < 4; ++r) {
+      for (int c = 0; c < 4; ++c) {
+        view(k, r, c) = r == 3 ? (c == 3 ? 1.0 : 0.0)
+                               : (c == 3 ? poses[i].translation(r) : poses[i].rotation(r, c));
+      }
+    }
+  }
+  return out;
+}
+
+std::string sweep_repr(const SweepResult& r) {
+  std::ostringstream out;
+  out.precision(6);
+  const Eigen::Index m = r.size();
+  out << "SweepResult(" << m << (m == 1 ? " pair" : " pairs");
+  if (m > 0) {
+    out << ", " << r.certified.count() << " certified, first contact at t in [" << r.t_lower.minCoeff()
+        << ", " << r.t_upper.minCoeff() << "]";
+  }
+  return out.str() + ")";
+}
+
 std::string stats_repr(const SceneStats& s) {
   std::ostringstream out;
   out << "SceneStats(candidates=" << s.candidates << ", screened=" << s.screened
@@ -279,6 +307,43 @@ offsets : numpy.ndarray of int64, shape (m,)
         return result_repr("ContactResult", r) + ", " + std::to_string(r.points.rows()) +
                " contact points)";
       });
+
+  py::class_<SweepResult>(m, "SweepResult", R"doc(
+The pairs that touch during ``Scene.sweep``, one row per pair in increasing id order, as NumPy
+arrays: row k is ``time_of_impact`` of bodies ``(A, B) = pairs[k]`` over the sweep's motions
+(time 0 at the poses before the sweep, 1 at the given ones).
+
+Attributes
+----------
+pairs : numpy.ndarray of int64, shape (m, 2)
+    Ids of A and B, the smaller first.
+t_lower, t_upper : numpy.ndarray, shape (m,)
+    The first contact's bracket: the pair is proven apart before ``t_lower`` and within
+    ``tolerance x size`` at ``t_upper`` (``t_upper - t_lower <= time_tolerance``).
+pose_a, pose_b : numpy.ndarray, shape (m, 4, 4)
+    The bodies' poses at ``t_upper``.
+distance : numpy.ndarray, shape (m,)
+    Signed distance at ``t_upper`` (its upper bound).
+point_a, point_b, normal : numpy.ndarray, shape (m, 3)
+    Witness points on A and B and the unit contact normal from A to B at ``t_upper``.
+certified : numpy.ndarray of bool, shape (m,)
+    The bracket is proven; uncertified rows err on the side of contact.
+iterations : numpy.ndarray of int, shape (m,)
+    Distance queries each pair ran.
+)doc")
+      .def_readonly("pairs", &SweepResult::pairs)
+      .def_readonly("t_lower", &SweepResult::t_lower)
+      .def_readonly("t_upper", &SweepResult::t_upper)
+      .def_property_readonly("pose_a", [](const SweepResult& r) { return transforms(r.pose_a); })
+      .def_property_readonly("pose_b", [](const SweepResult& r) { return transforms(r.pose_b); })
+      .def_readonly("distance", &SweepResult::distance)
+      .def_readonly("point_a", &SweepResult::point_a)
+      .def_readonly("point_b", &SweepResult::point_b)
+      .def_readonly("normal", &SweepResult::normal)
+      .def_readonly("certified", &SweepResult::certified)
+      .def_readonly("iterations", &SweepResult::iterations)
+      .def("__len__", &SweepResult::size)
+      .def("__repr__", &sweep_repr);
 
   py::class_<SceneStats>(m, "SceneStats", R"doc(
 What the last Scene query did with its candidate pairs.
@@ -406,6 +471,76 @@ Bodies A and B are paired when ``A.group & B.mask`` and ``B.group & A.mask`` are
           py::arg("ids"), py::arg("poses"),
           "Move bodies (one id or an array of ids) to ``poses`` (as for ``add``); their hulls are "
           "never recomputed.")
+      .def(
+          "sweep",
+          [](Scene& scene, const py::handle& ids, const py::handle& poses, const py::handle& motion,
+             const py::handle& time_tolerance, const py::handle& max_iterations) {
+            const std::vector<BodyId> which = to_ids(ids, "ids");
+            SweepOptions options;
+            options.motion = to_motion_kind(motion);
+            options.time_tolerance = to_real(time_tolerance, "time_tolerance");
+            options.max_iterations = to_count(max_iterations, "max_iterations", 1);
+            std::vector<Pose> placed;
+            if (!which.empty() ||
+                !(poses.is_none() ||
+                  py::module_::import("numpy").attr("size")(poses).cast<py::ssize_t>() == 0)) {
+              placed = to_poses(poses, which.size(), "poses");
+              if (placed.empty()) {
+                throw py::value_error("poses must hold one pose per id (got None for " +
+                                      std::to_string(which.size()) + " ids)");
+              }
+            }
+            py::gil_scoped_release release;
+            return scene.sweep(which, placed, options);
+          },
+          py::arg("ids"), py::arg("poses"), py::kw_only(), py::arg("motion") = "linear",
+          py::arg("time_tolerance") = kDefaultTimeTolerance,
+          py::arg("max_iterations") = kDefaultMotionIterations, R"doc(
+Move bodies from their poses to ``poses``, reporting every pair that touches on the way.
+
+Parameters
+----------
+ids : int or array_like of int
+    The bodies that move; the others stay still.
+poses : array_like
+    Their end poses, as ``set_poses`` takes them.
+motion : str
+    ``"linear"`` (default): each origin moves on the straight segment while the body turns at a
+    constant rate about a fixed axis through it; ``"screw"``: the pose follows
+    ``G(t) = G0 exp(t xi)``, xi the twist of ``G0^-1 G1`` (see ``time_of_impact``).
+time_tolerance : float
+    Largest width (> 0) of a first contact's bracket, as a fraction of the motion.
+max_iterations : int
+    Distance queries at most per pair; past them the pair is reported uncertified.
+
+Returns
+-------
+SweepResult
+    Every pair with at least one moving body that comes within the tolerance of each other
+    during the motion, with its first contact bracketed (``time_of_impact`` on the pair, seeded
+    as the scene seeds its queries). Candidates are the pairs the scene's filters and exclusions
+    allow whose swept boxes (proven to hold each body over its whole motion) overlap. Pairs of
+    two still bodies are not reported: ``colliding_pairs`` answers them.
+
+The bodies are left at ``poses`` whatever is found (``set_poses`` puts them back at the poses a
+row gives). Raises ValueError, moving nothing, for an unknown or repeated id, a pose that is not
+rigid or holds a NaN, lengths that differ, a non-positive ``time_tolerance`` or a method without
+signed distances.
+
+Examples
+--------
+>>> import numpy as np, swarmcollide as sc
+>>> scene = sc.Scene(method="exact")
+>>> cube, plate = scene.add([sc.Box([0.5, 0.5, 0.5]), sc.Box([5e-4, 5, 5])])
+>>> start, end = np.eye(4), np.eye(4)
+>>> start[0, 3], end[0, 3] = -10, 10
+>>> scene.set_poses(cube, start)
+>>> r = scene.sweep(cube, end)               # through the plate in one step
+>>> r.pairs.tolist(), r.certified.tolist(), (r.t_upper * 20 - 10).round(6).tolist()
+([[0, 1]], [True], [-0.5005])
+>>> float(scene.pose(cube)[0, 3])
+10.0
+)doc")
       .def(
           "remove", [](Scene& scene, const py::handle& ids) { scene.remove(to_ids(ids, "ids")); },
           py::arg("ids"), "Remove bodies, with every cached proof and exclusion concerning them.")

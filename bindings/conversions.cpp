@@ -402,4 +402,13 @@ int to_count(const py::handle& value, const char* name, int least) {
   return count.cast<int>();
 }
 
+MotionKind to_motion_kind(const py::handle& motion) {
+  const std::string name = to_name(motion, "motion");
+  try {
+    return motion_kind_from_name(name);
+  } catch (const std::invalid_argument& e) {
+    throw py::value_error(e.what());
+  }
+}
+
 }  // namespace swarmcollide::bindings

@@ -9,6 +9,7 @@
 #include "swarmcollide/geometry/compound_body.hpp"
 #include "swarmcollide/geometry/convex_polyhedron.hpp"
 #include "swarmcollide/geometry/pose.hpp"
+#include "swarmcollide/motion/rigid_motion.hpp"
 #include "swarmcollide/types.hpp"
 
 namespace swarmcollide::bindings {
@@ -76,6 +77,10 @@ int thread_count(const py::handle& threads);
 /// A name argument (a method, a broadphase): TypeError naming `name` for anything but a str
 /// (bytes included, which pybind11 would otherwise take for a std::string).
 std::string to_name(const py::handle& value, const char* name);
+
+/// A `motion` argument ("linear" or "screw"); TypeError for anything but a str, ValueError for
+/// another name.
+MotionKind to_motion_kind(const py::handle& motion);
 
 /// `body`'s points when it is a mesh from another library (an object with a `vertices`
 /// attribute, such as trimesh's Trimesh, that is not an array or a sequence); else `body`.

@@ -71,6 +71,8 @@ from .motion import (
     TimeOfImpactResult,
     time_of_impact,
     time_of_impact_many,
+    MotionKind,
+    SweepResult,
 )
 from .poses import QUATERNION_ORDERS, pose_from_quaternion
 from .robot import LIMIT_MODES, PairProposal, Robot, RobotCheck
@@ -168,4 +170,6 @@ __all__ = [
     "TimeOfImpactResult",
     "time_of_impact",
     "time_of_impact_many",
+    "MotionKind",
+    "SweepResult",
 ]

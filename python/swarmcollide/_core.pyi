@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['Aabb', 'BatchResult', 'Box', 'Capsule', 'CompoundBody', 'CompoundResult', 'CompoundStats', 'Cone', 'ContactResult', 'ConvexPolyhedron', 'Cylinder', 'DistanceResult', 'Ellipsoid', 'Hull', 'Joint', 'PartNode', 'ParticleCoefficients', 'Query', 'RobotCheck', 'RobotDistances', 'RobotModel', 'Scene', 'SceneResult', 'SceneStats', 'Sphere', 'TimeOfImpactBatch', 'TimeOfImpactResult', 'as_polyhedron', 'broadphases', 'constraint_violation', 'is_feasible', 'linear_decreasing_inertia', 'method_table', 'objective', 'pair_seed', 'project_onto_simplex', 'query_function', 'rank_adaptive_coefficients', 'separation', 'time_of_impact', 'time_of_impact_many']
+__all__: list[str] = ['Aabb', 'BatchResult', 'Box', 'Capsule', 'CompoundBody', 'CompoundResult', 'CompoundStats', 'Cone', 'ContactResult', 'ConvexPolyhedron', 'Cylinder', 'DistanceResult', 'Ellipsoid', 'Hull', 'Joint', 'PartNode', 'ParticleCoefficients', 'Query', 'RobotCheck', 'RobotDistances', 'RobotModel', 'Scene', 'SceneResult', 'SceneStats', 'Sphere', 'SweepResult', 'TimeOfImpactBatch', 'TimeOfImpactResult', 'as_polyhedron', 'broadphases', 'constraint_violation', 'is_feasible', 'linear_decreasing_inertia', 'method_table', 'objective', 'pair_seed', 'project_onto_simplex', 'query_function', 'rank_adaptive_coefficients', 'separation', 'time_of_impact', 'time_of_impact_many']
 class Aabb:
     """
     An axis-aligned bounding box with corners ``min`` and ``max``.
@@ -1033,6 +1033,53 @@ class Scene:
         """
         Move bodies (one id or an array of ids) to ``poses`` (as for ``add``); their hulls are never recomputed.
         """
+    def sweep(self, ids: typing.Any, poses: typing.Any, *, motion: typing.Any = 'linear', time_tolerance: typing.Any = 1e-06, max_iterations: typing.Any = 100000) -> SweepResult:
+        """
+        Move bodies from their poses to ``poses``, reporting every pair that touches on the way.
+        
+        Parameters
+        ----------
+        ids : int or array_like of int
+            The bodies that move; the others stay still.
+        poses : array_like
+            Their end poses, as ``set_poses`` takes them.
+        motion : str
+            ``"linear"`` (default): each origin moves on the straight segment while the body turns at a
+            constant rate about a fixed axis through it; ``"screw"``: the pose follows
+            ``G(t) = G0 exp(t xi)``, xi the twist of ``G0^-1 G1`` (see ``time_of_impact``).
+        time_tolerance : float
+            Largest width (> 0) of a first contact's bracket, as a fraction of the motion.
+        max_iterations : int
+            Distance queries at most per pair; past them the pair is reported uncertified.
+        
+        Returns
+        -------
+        SweepResult
+            Every pair with at least one moving body that comes within the tolerance of each other
+            during the motion, with its first contact bracketed (``time_of_impact`` on the pair, seeded
+            as the scene seeds its queries). Candidates are the pairs the scene's filters and exclusions
+            allow whose swept boxes (proven to hold each body over its whole motion) overlap. Pairs of
+            two still bodies are not reported: ``colliding_pairs`` answers them.
+        
+        The bodies are left at ``poses`` whatever is found (``set_poses`` puts them back at the poses a
+        row gives). Raises ValueError, moving nothing, for an unknown or repeated id, a pose that is not
+        rigid or holds a NaN, lengths that differ, a non-positive ``time_tolerance`` or a method without
+        signed distances.
+        
+        Examples
+        --------
+        >>> import numpy as np, swarmcollide as sc
+        >>> scene = sc.Scene(method="exact")
+        >>> cube, plate = scene.add([sc.Box([0.5, 0.5, 0.5]), sc.Box([5e-4, 5, 5])])
+        >>> start, end = np.eye(4), np.eye(4)
+        >>> start[0, 3], end[0, 3] = -10, 10
+        >>> scene.set_poses(cube, start)
+        >>> r = scene.sweep(cube, end)               # through the plate in one step
+        >>> r.pairs.tolist(), r.certified.tolist(), (r.t_upper * 20 - 10).round(6).tolist()
+        ([[0, 1]], [True], [-0.5005])
+        >>> float(scene.pose(cube)[0, 3])
+        10.0
+        """
     @property
     def broadphase(self) -> str:
         ...
@@ -1190,6 +1237,68 @@ class Sphere(ConvexPolyhedron):
     def __init__(self, radius: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     def __repr__(self) -> str:
+        ...
+class SweepResult:
+    """
+    
+    The pairs that touch during ``Scene.sweep``, one row per pair in increasing id order, as NumPy
+    arrays: row k is ``time_of_impact`` of bodies ``(A, B) = pairs[k]`` over the sweep's motions
+    (time 0 at the poses before the sweep, 1 at the given ones).
+    
+    Attributes
+    ----------
+    pairs : numpy.ndarray of int64, shape (m, 2)
+        Ids of A and B, the smaller first.
+    t_lower, t_upper : numpy.ndarray, shape (m,)
+        The first contact's bracket: the pair is proven apart before ``t_lower`` and within
+        ``tolerance x size`` at ``t_upper`` (``t_upper - t_lower <= time_tolerance``).
+    pose_a, pose_b : numpy.ndarray, shape (m, 4, 4)
+        The bodies' poses at ``t_upper``.
+    distance : numpy.ndarray, shape (m,)
+        Signed distance at ``t_upper`` (its upper bound).
+    point_a, point_b, normal : numpy.ndarray, shape (m, 3)
+        Witness points on A and B and the unit contact normal from A to B at ``t_upper``.
+    certified : numpy.ndarray of bool, shape (m,)
+        The bracket is proven; uncertified rows err on the side of contact.
+    iterations : numpy.ndarray of int, shape (m,)
+        Distance queries each pair ran.
+    """
+    def __len__(self) -> int:
+        ...
+    def __repr__(self) -> str:
+        ...
+    @property
+    def certified(self) -> typing.Annotated[numpy.typing.NDArray[numpy.bool], "[m, 1]"]:
+        ...
+    @property
+    def distance(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        ...
+    @property
+    def iterations(self) -> typing.Annotated[numpy.typing.NDArray[numpy.int32], "[m, 1]"]:
+        ...
+    @property
+    def normal(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
+        ...
+    @property
+    def pairs(self) -> typing.Annotated[numpy.typing.NDArray[numpy.int64], "[m, 2]"]:
+        ...
+    @property
+    def point_a(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
+        ...
+    @property
+    def point_b(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
+        ...
+    @property
+    def pose_a(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    @property
+    def pose_b(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    @property
+    def t_lower(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        ...
+    @property
+    def t_upper(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
         ...
 class TimeOfImpactBatch:
     """
@@ -1379,11 +1488,11 @@ def separation(a: typing.Any, b: typing.Any, direction: typing.Any) -> float:
     >>> sc.separation(a, b, [1, 0, 0])
     2.0
     """
-def time_of_impact(a: typing.Any, b: typing.Any, *, pose_a: typing.Any = None, pose_b: typing.Any = None, method: typing.Any = 'dual', tolerance: typing.Any = 1e-09, time_tolerance: typing.Any = 1e-06, max_iterations: typing.Any = 100000) -> TimeOfImpactResult:
+def time_of_impact(a: typing.Any, b: typing.Any, *, pose_a: typing.Any = None, pose_b: typing.Any = None, method: typing.Any = 'dual', tolerance: typing.Any = 1e-09, time_tolerance: typing.Any = 1e-06, max_iterations: typing.Any = 100000, motion: typing.Any = 'linear') -> TimeOfImpactResult:
     """
     The first contact of A and B moving from their start to their end poses (see swarmcollide.time_of_impact).
     """
-def time_of_impact_many(As: typing.Any, Bs: typing.Any, *, poses_a: typing.Any = None, poses_b: typing.Any = None, method: typing.Any = 'dual', tolerance: typing.Any = 1e-09, time_tolerance: typing.Any = 1e-06, max_iterations: typing.Any = 100000, threads: typing.Any = None) -> TimeOfImpactBatch:
+def time_of_impact_many(As: typing.Any, Bs: typing.Any, *, poses_a: typing.Any = None, poses_b: typing.Any = None, method: typing.Any = 'dual', tolerance: typing.Any = 1e-09, time_tolerance: typing.Any = 1e-06, max_iterations: typing.Any = 100000, threads: typing.Any = None, motion: typing.Any = 'linear') -> TimeOfImpactBatch:
     """
     time_of_impact for every row (see swarmcollide.time_of_impact_many).
     """

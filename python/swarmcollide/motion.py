@@ -2,20 +2,23 @@
 
 A motion takes a body from a start pose (time 0) to an end pose (time 1): its origin moves on the
 straight segment and it turns at a constant angular velocity about a fixed axis through its
-origin, ``R(t) = R0 exp(t log(R0^T R1))`` (the shorter way round). The answer comes from
+origin, ``R(t) = R0 exp(t log(R0^T R1))`` (the shorter way round). With ``motion="screw"`` the
+pose follows ``G(t) = G0 exp(t xi)`` instead, xi the twist (matrix logarithm) of ``G0^-1 G1``:
+the same rotation, about a fixed axis that the body slides along. The answer comes from
 conservative advancement on the certified distance lower bounds, so a contact between the
 sampled times cannot be missed.
 """
 
 from __future__ import annotations
 
-from typing import Any, Optional, Tuple, Union
+from typing import Any, Literal, Optional, Tuple, Union
 
 from . import _core
 from .queries import DEFAULT_TOLERANCE, BodiesLike, PolyhedronLike, PoseLike, PosesLike
 
 TimeOfImpactResult = _core.TimeOfImpactResult
 TimeOfImpactBatch = _core.TimeOfImpactBatch
+SweepResult = _core.SweepResult
 
 DEFAULT_TIME_TOLERANCE = 1e-6
 """The default ``time_tolerance``: the largest width of a first contact's bracket, as a fraction
@@ -24,6 +27,10 @@ of the motion's duration."""
 DEFAULT_MOTION_ITERATIONS = 100000
 """The default ``max_iterations``: distance queries one motion may run before it answers
 uncertified."""
+
+MotionKind = Literal["linear", "screw"]
+"""How a body moves between its poses: ``"linear"`` (its origin on the straight segment, turning
+about it) or ``"screw"`` (``G(t) = G0 exp(t log(G0^-1 G1))``)."""
 
 MotionLike = Union[None, Tuple[PoseLike, PoseLike], Any]
 """None (the body stays at the identity), a pair ``(start, end)`` of poses (each anything
@@ -44,6 +51,7 @@ def time_of_impact(
     tolerance: float = DEFAULT_TOLERANCE,
     time_tolerance: float = DEFAULT_TIME_TOLERANCE,
     max_iterations: int = DEFAULT_MOTION_ITERATIONS,
+    motion: MotionKind = "linear",
 ) -> _core.TimeOfImpactResult:
     """The first time A and B touch while they move from their start to their end poses.
 
@@ -68,6 +76,13 @@ def time_of_impact(
     max_iterations : int
         Distance queries at most; past them the answer is uncertified (and errs on the side of
         contact).
+    motion : {"linear", "screw"}
+        ``"linear"`` (default): the origin moves on the straight segment, ``T(t) = T0 + t (T1 -
+        T0)``, while the body turns at a constant rate about a fixed axis through it, ``R(t) =
+        R0 exp(t [w])``, ``w`` the rotation vector of ``R0^T R1`` (angle in [0, pi]).
+        ``"screw"``: the 4x4 pose follows ``G(t) = G0 exp(t xi)``, ``xi`` the principal matrix
+        logarithm of ``G0^-1 G1`` (the same ``w``, with a translation part ``v`` in the body's
+        start frame): a constant turn about a fixed axis with a constant slide along it.
 
     Returns
     -------
@@ -103,6 +118,7 @@ def time_of_impact(
         tolerance=tolerance,
         time_tolerance=time_tolerance,
         max_iterations=max_iterations,
+        motion=motion,
     )
 
 
@@ -117,6 +133,7 @@ def time_of_impact_many(
     time_tolerance: float = DEFAULT_TIME_TOLERANCE,
     max_iterations: int = DEFAULT_MOTION_ITERATIONS,
     threads: Optional[int] = None,
+    motion: MotionKind = "linear",
 ) -> _core.TimeOfImpactBatch:
     """``time_of_impact`` for every row, in C++ threads without the GIL.
 
@@ -132,7 +149,7 @@ def time_of_impact_many(
     threads : int, optional
         Worker threads (at most 1024); None uses one per hardware thread. Answers do not depend
         on it.
-    method, tolerance, time_tolerance, max_iterations
+    method, tolerance, time_tolerance, max_iterations, motion
         As for ``time_of_impact``.
 
     Returns
@@ -162,4 +179,5 @@ def time_of_impact_many(
         time_tolerance=time_tolerance,
         max_iterations=max_iterations,
         threads=threads,
+        motion=motion,
     )

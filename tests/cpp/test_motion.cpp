@@ -49,6 +49,42 @@ TEST(RigidMotion, InterpolatesTranslationAndTurnsAboutAFixedAxis) {
   EXPECT_LT((half_turn.at(1).rotation - end).norm(), 1e-14);
 }
 
+TEST(RigidMotion, ScrewTurnsAboutAFixedAxisWhileSlidingAlongIt) {
+  // A screw about the vertical line through (1, 0, 0): a turn by 1.2 and a slide of 0.5 up. The
+  // origin stays 1 from the axis, on a helix.
+  const Vector3 axis_point(1, 0, 0);
+  const auto screw_at = [&](Scalar t) {
+    Pose pose;
+    pose.rotation = turn_z(1.2 * t);
+    pose.translation = axis_point - pose.rotation * axis_point + Vector3(0, 0, 0.5 * t);
+    return pose;
+  };
+  const RigidMotion motion(Pose{}, screw_at(1), MotionKind::screw);
+  EXPECT_EQ(motion.kind(), MotionKind::screw);
+  EXPECT_TRUE(motion.twist_translation().isApprox(Vector3(0, -1.2, 0.5), 1e-14));
+  for (const Scalar t : {0.0, 0.25, 0.5, 0.9, 1.0}) {
+    const Pose pose = motion.at(t);
+    const Pose exact = screw_at(t);
+    EXPECT_LT((pose.translation - exact.translation).norm(), 1e-15) << t;
+    EXPECT_LT((pose.rotation - exact.rotation).norm(), 1e-15) << t;
+  }
+  // The same ends moved linearly: the origin on the chord, not the helix.
+  const RigidMotion linear(Pose{}, screw_at(1));
+  EXPECT_EQ(linear.kind(), MotionKind::linear);
+  EXPECT_TRUE(linear.at(0.5).translation.isApprox(screw_at(1).translation / 2, 1e-15));
+  EXPECT_GT((linear.at(0.5).translation - screw_at(0.5).translation).norm(), 0.1);
+  // From a turned and moved start, a half turn: the end is reached.
+  const Matrix3 start = Eigen::AngleAxis<Scalar>(0.7, Vector3(1, 2, 3).normalized()).matrix();
+  const Matrix3 end =
+      start * Eigen::AngleAxis<Scalar>(M_PI, Vector3(0, 1, 1).normalized()).matrix();
+  const RigidMotion half_turn(at(Vector3(1, -2, 3), start), at(Vector3(-4, 5, 2), end),
+                              MotionKind::screw);
+  EXPECT_LT((half_turn.at(1).translation - Vector3(-4, 5, 2)).norm(), 1e-13);
+  EXPECT_LT((half_turn.at(1).rotation - end).norm(), 1e-14);
+  EXPECT_EQ(motion_kind_from_name("screw"), MotionKind::screw);
+  EXPECT_THROW(motion_kind_from_name("helix"), std::invalid_argument);
+}
+
 TEST(RigidMotion, RefusesPosesThatAreNotRigidOrFinite) {
   Pose scaled;
   scaled.rotation *= 1.01;

@@ -37,15 +37,17 @@ def random_pose(rng, spread):
     return transform(Rotation.random(random_state=rng).as_matrix(), rng.uniform(-spread, spread, 3))
 
 
-def check_against_oracle(a, b, motion_a, motion_b, result, samples=400, tolerance=TOLERANCE):
+def check_against_oracle(a, b, motion_a, motion_b, result, samples=400, tolerance=TOLERANCE,
+                         path=motion_poses):
     """No overlap the samples see is missed, none happens before ``t_lower``, and the bodies are
-    within the tolerance at ``t_upper`` (both on the exact signed distance)."""
+    within the tolerance at ``t_upper`` (both on the exact signed distance); ``path(start, end,
+    times)`` gives the motion's poses."""
     times = np.linspace(0, 1, samples)
     if result.touches:
         times = np.union1d(times, [result.t_lower, result.t_upper])
     oracle = sc.signed_distance_many(
         a, b, method="exact", tolerance=1e-12,
-        poses_a=motion_poses(*motion_a, times), poses_b=motion_poses(*motion_b, times))
+        poses_a=path(*motion_a, times), poses_b=path(*motion_b, times))
     size = motion_size(a, b)
     # Overlap beyond the oracle's own precision and the poses' rounding.
     overlapping = oracle.distance < -1e-11 * size
@@ -56,8 +58,8 @@ def check_against_oracle(a, b, motion_a, motion_b, result, samples=400, toleranc
     assert not overlapping[times < result.t_lower].any()
     at_upper = sc.signed_distance(
         a, b, method="exact", tolerance=1e-12,
-        pose_a=motion_poses(*motion_a, [result.t_upper])[0],
-        pose_b=motion_poses(*motion_b, [result.t_upper])[0])
+        pose_a=path(*motion_a, [result.t_upper])[0],
+        pose_b=path(*motion_b, [result.t_upper])[0])
     assert at_upper.lower_bound <= tolerance * size * (1 + 1e-6) + 1e-11 * size
     assert result.t_upper - result.t_lower <= sc.DEFAULT_TIME_TOLERANCE
     return True

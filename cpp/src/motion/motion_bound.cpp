@@ -50,25 +50,51 @@ Scalar motion_reach(const CompoundBody& body) {
 MotionBound::MotionBound(const RigidMotion& motion_a, Scalar reach_a, const RigidMotion& motion_b,
                          Scalar reach_b)
     : motion_a_(&motion_a), motion_b_(&motion_b), reach_a_(reach_a), reach_b_(reach_b) {
-  const Vector3 shift_a = motion_a.end().translation - motion_a.start().translation;
-  const Vector3 shift_b = motion_b.end().translation - motion_b.start().translation;
+  const Vector3 shift_a = translation_along_axis(motion_a, across_a_);
+  const Vector3 shift_b = translation_along_axis(motion_b, across_b_);
   closing_ = shift_a - shift_b;
   const Scalar turn_a = motion_a.angle() * motion_a.start_rotation_norm() * reach_a;
   const Scalar turn_b = motion_b.angle() * motion_b.start_rotation_norm() * reach_b;
+  const Scalar across_a = across_a_ * motion_a.start_rotation_norm();
+  const Scalar across_b = across_b_ * motion_b.start_rotation_norm();
   // Each difference above and each product is within a few roundoffs of its inputs; 16
-  // roundoffs of their sizes (and of the angles' own rounding) cover them.
-  slack_ = 16 * kUnit * (shift_a.stableNorm() + shift_b.stableNorm() + turn_a + turn_b);
-  full_ = (closing_.stableNorm() + turn_a + turn_b) * (1 + 16 * kUnit) + slack_;
+  // roundoffs of their sizes (and of the angles' own rounding) cover them. A screw's split of v
+  // is within a few roundoffs of |v|, which its share below covers.
+  slack_ = 16 * kUnit *
+           (shift_a.stableNorm() + shift_b.stableNorm() + turn_a + turn_b + 2 * across_a +
+            2 * across_b);
+  full_ = (closing_.stableNorm() + across_a + across_b + turn_a + turn_b) * (1 + 16 * kUnit) +
+          slack_;
+}
+
+Vector3 MotionBound::translation_along_axis(const RigidMotion& motion, Scalar& across) {
+  if (motion.kind() == MotionKind::linear) {
+    across = 0;
+    return motion.end().translation - motion.start().translation;
+  }
+  const Vector3& v = motion.twist_translation();
+  if (motion.angle() == 0) {
+    // No axis: the screw is a translation by R0 v.
+    across = 0;
+    return motion.start().rotation * v;
+  }
+  const Vector3 axis = motion.rotation_vector() / motion.angle();
+  const Vector3 along = axis.dot(v) * axis;
+  across = (v - along).stableNorm();
+  return motion.start().rotation * along;
 }
 
 Scalar MotionBound::along(const Vector3& n, Scalar sense) const {
   const Scalar translation = std::max<Scalar>(0, sense * n.dot(closing_));
-  const auto turn = [&n](const RigidMotion& motion, Scalar reach) {
+  const auto turn = [&n](const RigidMotion& motion, Scalar reach, Scalar across) {
     if (motion.angle() == 0) return Scalar{0};
     const Vector3 local = motion.start().rotation.transpose() * n;
-    return local.cross(motion.rotation_vector()).norm() * reach;
+    const Scalar rotation = local.cross(motion.rotation_vector()).norm() * reach;
+    if (across == 0) return rotation;
+    return rotation + local.cross(motion.rotation_vector()).norm() / motion.angle() * across;
   };
-  const Scalar rate = translation + turn(*motion_a_, reach_a_) + turn(*motion_b_, reach_b_);
+  const Scalar rate = translation + turn(*motion_a_, reach_a_, across_a_) +
+                      turn(*motion_b_, reach_b_, across_b_);
   return rate * (1 + 16 * kUnit) + slack_;
 }
 

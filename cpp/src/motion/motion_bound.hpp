@@ -27,6 +27,17 @@ Scalar motion_reach(const CompoundBody& body);
 /// rate, n . R0 (w x Q x) = (R0^T n) . (w x Q x) <= |(R0^T n) x w| |x| (Q w = w), which vanishes
 /// for a turn about n: `forward_along(n)` bounds how fast it shrinks forwards in time,
 /// `backward_along(n)` backwards.
+///
+/// A screw motion G(t) = G0 exp(t xi), xi = (w, v), moves a point x of the body at
+/// R(t) (v + w x x), R(t) = R0 Q(t). Split v = v_par + v_perp along and across the unit axis k
+/// of w. Q(t) turns about k, so R(t) v_par = R0 v_par is a constant world velocity, which
+/// replaces T1 - T0 in the relative translation (a common one still cancels); the rest, R(t)
+/// v_perp, turns with the body and is at most |R0| |v_perp| long. So the distance shrinks by
+/// at most |s_a - s_b| + sum |R0| (|v_perp| + |w| reach) per unit time (s = R0 v_par). Along n,
+/// with m = R0^T n: n . R(t) v_perp = (Q^T m) . v_perp <= |(Q^T m)_perp| |v_perp| = |m x k|
+/// |v_perp| (Q^T keeps m's component along k, hence the length of the rest), and the rotation's
+/// term is bounded as for a linear motion, |(Q^T m) x w| |x| = |m x w| |x|. Both vanish for a
+/// screw about n itself, whose translation along n is then all of n . s.
 class MotionBound {
  public:
   MotionBound(const RigidMotion& motion_a, Scalar reach_a, const RigidMotion& motion_b,
@@ -41,13 +52,20 @@ class MotionBound {
 
  private:
   Scalar along(const Vector3& n, Scalar sense) const;
+  // The motion's constant world translation per unit time: T1 - T0 for a linear motion, R0
+  // v_par for a screw; `across` is set to the screw's |v_perp| (0 for a linear motion).
+  static Vector3 translation_along_axis(const RigidMotion& motion, Scalar& across);
 
   const RigidMotion* motion_a_;
   const RigidMotion* motion_b_;
   Scalar reach_a_;
   Scalar reach_b_;
-  // The relative translation per unit time, A's less B's.
+  // The relative translation per unit time, A's less B's (for screw motions, of the parts along
+  // their axes).
   Vector3 closing_;
+  // Per body, the screw translation across its axis, |v_perp| (zero for linear motions).
+  Scalar across_a_ = 0;
+  Scalar across_b_ = 0;
   // The rounding of the directional rates' terms, absolute.
   Scalar slack_;
   Scalar full_;

@@ -44,8 +44,22 @@ void validate_end(const Pose& pose, const char* name, const char* which) {
 
 }  // namespace
 
+const std::vector<std::string>& motion_kind_names() {
+  static const std::vector<std::string> names{"linear", "screw"};
+  return names;
+}
+
+MotionKind motion_kind_from_name(const std::string& name) {
+  if (name == "linear") return MotionKind::linear;
+  if (name == "screw") return MotionKind::screw;
+  throw std::invalid_argument("motion must be 'linear' or 'screw', got '" + name + "'");
+}
+
 RigidMotion::RigidMotion(const Pose& start, const Pose& end, const char* name)
-    : start_(start), end_(end) {
+    : RigidMotion(start, end, MotionKind::linear, name) {}
+
+RigidMotion::RigidMotion(const Pose& start, const Pose& end, MotionKind kind, const char* name)
+    : start_(start), end_(end), kind_(kind) {
   validate_end(start, name, "start");
   validate_end(end, name, "end");
   // R0^T R1 as a unit quaternion (Eigen's branch on the largest diagonal term is accurate near
@@ -58,16 +72,41 @@ RigidMotion::RigidMotion(const Pose& start, const Pose& end, const char* name)
   axis_ = sine_half > 0 ? Vector3(turn.vec() / sine_half) : Vector3::Zero();
   rotation_vector_ = axis_ * angle_;
   start_norm_ = spectral_norm_bound(start.rotation);
+  if (kind_ == MotionKind::screw) {
+    // v = V(w)^-1 p for p = R0^T (T1 - T0), with V(w)^-1 = I - [w]/2 + g K^2 (K = [k]x, k the
+    // unit axis) and g = 1 - (angle / 2) cot(angle / 2), which is in [0, 1] for angles in
+    // [0, pi] and computed to within a few roundoffs absolute (the subtraction from 1 loses
+    // digits of g near 0, not of the product g K^2 p, whose size is at most |p|).
+    const Vector3 p = start.rotation.transpose() * (end.translation - start.translation);
+    const Scalar half = angle_ / 2;
+    const Scalar g = angle_ == 0 ? 0 : 1 - half / std::tan(half);
+    twist_translation_ = p - rotation_vector_.cross(p) / 2 + g * axis_.cross(axis_.cross(p));
+  }
 }
 
 Pose RigidMotion::at(Scalar t) const {
   Pose pose;
-  pose.translation = start_.translation + t * (end_.translation - start_.translation);
+  const Scalar phi = t * angle_;
+  if (kind_ == MotionKind::screw) {
+    // T(t) = T0 + R0 V(phi k) t v, V(phi k) = I + a K + b K^2 with a = (1 - cos phi) / phi =
+    // 2 sin^2(phi / 2) / phi and b = 1 - sin(phi) / phi, both in [0, 1) for phi in [0, pi].
+    const Vector3 tv = t * twist_translation_;
+    Vector3 y = tv;
+    if (phi != 0) {
+      const Scalar half_sine = std::sin(phi / 2);
+      const Scalar a = 2 * half_sine * half_sine / phi;
+      const Scalar b = 1 - std::sin(phi) / phi;
+      const Vector3 across = axis_.cross(tv);
+      y += a * across + b * axis_.cross(across);
+    }
+    pose.translation = start_.translation + start_.rotation * y;
+  } else {
+    pose.translation = start_.translation + t * (end_.translation - start_.translation);
+  }
   if (angle_ == 0) {
     pose.rotation = start_.rotation;
     return pose;
   }
-  const Scalar phi = t * angle_;
   const Scalar half_sine = std::sin(phi / 2);
   Matrix3 cross;
   cross << 0, -axis_(2), axis_(1), axis_(2), 0, -axis_(0), -axis_(1), axis_(0), 0;
@@ -80,8 +119,15 @@ Pose RigidMotion::at(Scalar t) const {
 Scalar RigidMotion::pose_error(Scalar reach) const {
   // The translation: T1 - T0, its product with t and the sum with T0 round each coordinate by at
   // most a roundoff of a number below |T0| + |T1|: 3 in all, 4 with the norms' own rounding.
-  const Scalar translation =
+  Scalar translation =
       4 * kUnit * (start_.translation.stableNorm() + end_.translation.stableNorm());
+  if (kind_ == MotionKind::screw) {
+    // y = t v + a K t v + b K^2 t v: t v within a roundoff of |v|, a and b within 8 roundoffs
+    // absolute (a sine's ulp, a square, a division; b's subtraction from 1), each cross product
+    // within 3 relative, so y is within 32 roundoffs of |v| (|y| <= |v|: V is a contraction);
+    // R0 y adds 3 roundoffs of |R0| |y| per coordinate, and the sum with T0 one of |T0| + |R0 y|.
+    translation += 64 * kUnit * start_norm_ * twist_translation_.stableNorm();
+  }
   const Scalar rotation = angle_ == 0 ? 0 : kRotationRoundoffs * kUnit * start_norm_ * reach;
   return (translation + rotation) * (1 + 8 * kUnit);
 }

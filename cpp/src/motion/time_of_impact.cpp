@@ -42,7 +42,16 @@ RigidMotion relative_to(const RigidMotion& motion, const Vector3& origin) {
         "the motions' translations differ by more than the double range (about 1.8e308): "
         "express the poses in a frame nearer the bodies");
   }
-  return RigidMotion(start, end);
+  return RigidMotion(start, end, motion.kind());
+}
+
+// How far the motion's origin may get from its start: the chord for a linear motion, the
+// path's length |R0| |v| for a screw (its origin moves at R(t) v).
+Scalar origin_travel(const RigidMotion& motion) {
+  if (motion.kind() == MotionKind::linear) {
+    return (motion.end().translation - motion.start().translation).stableNorm();
+  }
+  return motion.start_rotation_norm() * motion.twist_translation().stableNorm() * (1 + 8 * kUnit);
 }
 
 // What a distance query at one time proves.
@@ -83,16 +92,28 @@ class Advancement {
         options_(options),
         query_(precise(options.query)) {
     // The moved ends are rounded: the motions above are within a roundoff of their translations'
-    // sizes of the given ones (the same shift at both ends, so at every time in between).
+    // sizes of the given ones (the same shift at both ends, so at every time in between). A
+    // screw's twist is computed again from the moved ends: its translation part v = V(w)^-1 p
+    // changes by V(w)^-1 of p's rounding (|V(w)^-1| <= pi / 2 for angles up to pi), plus that
+    // of computing it twice (a few roundoffs of |p| each), and the path by at most as much
+    // (|V(t w) t| <= 1): 16 roundoffs cover it.
     const auto shift_error = [](const RigidMotion& m) {
-      return 2 * kUnit * (m.start().translation.stableNorm() + m.end().translation.stableNorm());
+      const Scalar roundoffs = m.kind() == MotionKind::screw ? 16 : 2;
+      return roundoffs * kUnit *
+             (m.start().translation.stableNorm() + m.end().translation.stableNorm());
     };
     // The largest size any pair query in this motion can see: where the bodies' box centres can
     // be from each other, plus the larger ball; the queries' own rounding is within
-    // kFrameRounding (128 roundoffs) of their frame's unit, which is at most that size.
-    const Scalar centres =
-        std::max((motion_a_.start().translation - motion_b_.start().translation).stableNorm(),
-                 (motion_a_.end().translation - motion_b_.end().translation).stableNorm()) +
+    // kFrameRounding (128 roundoffs) of their frame's unit, which is at most that size. Linear
+    // motions' origins are farthest apart at an end (their distance is convex in time); screws'
+    // are at most their paths' lengths farther apart than at the start.
+    const Scalar ends_apart =
+        motion_a_.kind() == MotionKind::linear && motion_b_.kind() == MotionKind::linear
+            ? std::max((motion_a_.start().translation - motion_b_.start().translation).stableNorm(),
+                       (motion_a_.end().translation - motion_b_.end().translation).stableNorm())
+            : (motion_a_.start().translation - motion_b_.start().translation).stableNorm() +
+                  origin_travel(motion_a_) + origin_travel(motion_b_);
+    const Scalar centres = ends_apart +
         motion_a_.start_rotation_norm() * a.bounds().centre.stableNorm() +
         motion_b_.start_rotation_norm() * b.bounds().centre.stableNorm();
     const Scalar largest_size = centres + 2 * std::max(a.bounds().radius, b.bounds().radius);

@@ -370,16 +370,17 @@ void Scene::set_poses(const std::vector<BodyId>& ids, const std::vector<Pose>& p
                        poses[i].translation.cwiseAbs().maxCoeff());
     }
   }
-  for (std::size_t i = 0; i < ids.size(); ++i) {
-    SceneBody& b = *targets[i];
-    const Scalar step = displacement(b.body, b.reach, b.pose, poses[i]);
-    b.travelled += step;
-    b.pose = poses[i];
-    // A body moved twice is boxed once, its steps since the last boxing summed.
-    b.step = b.moved ? b.step + step : step;
-    if (!b.moved) s.moved.push_back(&b);
-    b.moved = true;
-  }
+  for (std::size_t i = 0; i < ids.size(); ++i) s.move_to(*targets[i], poses[i]);
+}
+
+void Scene::Impl::move_to(SceneBody& b, const Pose& pose) {
+  const Scalar step = displacement(b.body, b.reach, b.pose, pose);
+  b.travelled += step;
+  b.pose = pose;
+  // A body moved twice is boxed once, its steps since the last boxing summed.
+  b.step = b.moved ? b.step + step : step;
+  if (!b.moved) moved.push_back(&b);
+  b.moved = true;
 }
 
 void Scene::remove(const std::vector<BodyId>& ids) {

@@ -89,6 +89,9 @@ struct Scene::Impl {
   std::vector<BodyId> add(std::vector<ConvexPolyhedron> bodies,
                           std::vector<std::shared_ptr<const CompoundBody>> compounds,
                           const std::vector<Pose>& poses, const BodyFilter& filter);
+  // Puts `b` at `pose` (checked by the caller), adding its step to its odometer and listing it
+  // among the moved bodies.
+  void move_to(detail::SceneBody& b, const Pose& pose);
   // Brings the padded boxes up to date for queries at `threshold`, and the broadphase's boxes
   // where the padded ones left them.
   void fit_boxes(Scalar threshold);

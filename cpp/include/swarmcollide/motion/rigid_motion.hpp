@@ -1,16 +1,40 @@
 #pragma once
 
+#include <string>
+#include <vector>
+
 #include "swarmcollide/geometry/pose.hpp"
 #include "swarmcollide/types.hpp"
 
 namespace swarmcollide {
 
-/// A body's motion from a start pose (time 0) to an end pose (time 1): the translation moves
-/// linearly, `T(t) = T0 + t (T1 - T0)`, and the rotation turns at a constant angular velocity
+/// How a body moves between its start and end poses (see RigidMotion).
+enum class MotionKind {
+  /// The origin moves on the straight segment while the body turns about it: the default.
+  linear,
+  /// A screw motion: G(t) = G0 exp(t xi), xi the twist of G0^-1 G1, a constant rotation about a
+  /// fixed axis with a constant translation along it.
+  screw,
+};
+
+/// Every motion kind's name ("linear", "screw"), in the enum's order.
+const std::vector<std::string>& motion_kind_names();
+/// The kind called `name`; throws std::invalid_argument listing the valid names.
+MotionKind motion_kind_from_name(const std::string& name);
+
+/// A body's motion from a start pose (time 0) to an end pose (time 1).
+///
+/// `MotionKind::linear` (the default): the translation moves linearly, `T(t) = T0 + t (T1 - T0)`, and the rotation turns at a constant angular velocity
 /// about a fixed axis, `R(t) = R0 exp(t [w])` with `w` the rotation vector of `R0^T R1` (angle
 /// in [0, pi], the shorter way round). `w` is in the body's start frame (right of R0); in the
 /// world the axis is `R0 w`, through the body's origin, whose path is the straight segment. So
 /// a body's origin moves on a line while the body turns about it (not a screw motion).
+///
+/// `MotionKind::screw`: the pose, as a 4x4 transform, is G(t) = G0 exp(t xi), where the twist
+/// xi = (w, v) is the logarithm of G0^-1 G1 (w as above, v its translation part, both in the
+/// body's start frame): R(t) is the same as above and T(t) = T0 + R0 V(t w) t v, with V the
+/// exponential's left Jacobian. A point x of the body moves at R(t) (v + w x x): the body turns
+/// about a fixed axis (parallel to R0 w) while sliding along it, the motion of a screw.
 ///
 /// Built from two poses, checked once: both must be rigid (validate_pose) and finite. `w` is
 /// computed in double precision, so R(1) is the given end rotation to within a few roundoffs
@@ -22,9 +46,15 @@ class RigidMotion {
   /// Throws std::invalid_argument naming `name` ("pose_a", ...) and which end when a pose has a
   /// NaN or infinite entry or is not a rigid motion.
   RigidMotion(const Pose& start, const Pose& end, const char* name = "motion");
+  /// The same, of the given kind.
+  RigidMotion(const Pose& start, const Pose& end, MotionKind kind, const char* name = "motion");
 
   const Pose& start() const { return start_; }
   const Pose& end() const { return end_; }
+  MotionKind kind() const { return kind_; }
+  /// For a screw motion, v: the translation part of the twist (in the body's start frame, per
+  /// unit time), so that a point x of the body moves at R(t) (v + w x x); zero for a linear one.
+  const Vector3& twist_translation() const { return twist_translation_; }
   /// The rotation vector `w` (radians, in the body's start frame): R(t) = R0 exp(t [w]).
   const Vector3& rotation_vector() const { return rotation_vector_; }
   /// |w|, in [0, pi]: the angle turned from time 0 to 1.
@@ -43,10 +73,12 @@ class RigidMotion {
  private:
   Pose start_;
   Pose end_;
+  MotionKind kind_ = MotionKind::linear;
   Vector3 rotation_vector_;
   Scalar angle_;
   // The unit axis w / |w| (zero when the motion does not turn).
   Vector3 axis_;
+  Vector3 twist_translation_ = Vector3::Zero();
   Scalar start_norm_;
 };
 

@@ -9,6 +9,7 @@
 #include "swarmcollide/geometry/pose.hpp"
 #include "swarmcollide/scene/scene_options.hpp"
 #include "swarmcollide/scene/scene_result.hpp"
+#include "swarmcollide/scene/sweep_result.hpp"
 
 namespace swarmcollide {
 
@@ -99,6 +100,19 @@ class Scene {
   /// against each other: a box resting on a face gives its four corners. Throws
   /// std::invalid_argument for max_points < 1 or a method that measures no penetration.
   ContactResult contacts(int max_points = 4);
+
+  /// Moves the bodies `ids` from their poses to `poses` (the others stay still), and returns
+  /// every pair that touches during the motion, of which at least one body moves, with its
+  /// first contact bracketed as `time_of_impact` brackets it (each pair seeded as the scene's
+  /// queries seed it; pairs of two still bodies are `colliding_pairs`' to answer). Candidates
+  /// are the pairs, filtered as the scene's queries filter them, whose swept boxes overlap: boxes
+  /// proven to hold each moving body over its whole motion, padded for the contact threshold.
+  /// The pairs are answered on the scene's threads; the answers do not depend on their number.
+  /// Then the bodies are left at `poses`, as set_poses leaves them, whatever was found. Throws
+  /// std::invalid_argument, moving nothing, for an unknown or repeated id, lengths that differ,
+  /// an invalid pose or options, or a method without signed distances.
+  SweepResult sweep(const std::vector<BodyId>& ids, const std::vector<Pose>& poses,
+                    const SweepOptions& options = {});
 
   /// What the last query did.
   const SceneStats& stats() const;
