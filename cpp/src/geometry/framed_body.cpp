@@ -72,16 +72,6 @@ FramedBody::FramedBody(const ConvexPolyhedron& body, const Pose& pose, bool rota
   scale_low_ = power_of_two(-exponent_ - half);
   const Vector3 from_centre = world_centre - frame.centre;
   for (int k = 0; k < 3; ++k) offset_(k) = times_power_of_two(from_centre(k), -exponent_);
-  // A placed point is p_i = fl(R q_i + o), q_i = 2^-e x_i, and the scan compares g_i =
-  // fl(fl(R^T d) . x_i). With the reach r >= |o| + |q_i| (the frame holds the body, so r <= 1
-  // up to rounding): |p_i - (R q_i + o)| <= 5.2u |q_i| + 1.8u r (a 3-term product per
-  // coordinate, then the sum); fl(R^T d) is within 5.2u |d| of R^T d, which moves d . R q_i by
-  // 5.2u |q_i|; and 2^-e g_i is within 3.1u |q_i| of 2^-e fl(R^T d) . x_i. So every d . p_i is
-  // 2^-e g_i + d . o to within 15.3u r, and the scan's point is within 30.6u r of the highest;
-  // the computed heights add what separation_margin covers. 64u r, with r rounded up, doubles it.
-  const Scalar reach =
-      offset_.norm() + times_power_of_two(body.bounds().radius, -exponent_) * (1 + 16 * kRoundoff);
-  scan_shortfall_ = 64 * kRoundoff * reach * (1 + 16 * kRoundoff);
   if (const SupportFunction* shape = body.curved()) {
     curved_ = shape;
     found_ = std::make_shared<VertexMatrix>(body.centred_vertices());
@@ -118,8 +108,23 @@ FramedBody::FramedBody(const VertexMatrix& points, const Hull& hull)
       offset_(Vector3::Zero()),
       exponent_(0),
       scale_high_(1),
-      scale_low_(1),
-      scan_shortfall_(0) {}
+      scale_low_(1) {}
+
+// A placed point is p_i = fl(R q_i + o), q_i = 2^-e x_i, and the scan compares g_i =
+// fl(fl(R^T d) . x_i). With the reach r >= |o| + |q_i| (the frame holds the body, so r <= 1
+// up to rounding): |p_i - (R q_i + o)| <= 5.2u |q_i| + 1.8u r (a 3-term product per
+// coordinate, then the sum); fl(R^T d) is within 5.2u |d| of R^T d, which moves d . R q_i by
+// 5.2u |q_i|; and 2^-e g_i is within 3.1u |q_i| of 2^-e fl(R^T d) . x_i. So every d . p_i is
+// 2^-e g_i + d . o to within 15.3u r, and the scan's point is within 30.6u r of the highest;
+// the computed heights add what separation_margin covers. 64u r, with r rounded up, doubles it.
+// Computed when asked (the penetration solver's margins), not when a body is framed: most queries
+// never ask.
+Scalar FramedBody::scan_shortfall() const {
+  if (in_frame_) return 0;
+  const Scalar radius = times_power_of_two(body_->bounds().radius, -exponent_);
+  const Scalar reach = offset_.norm() + radius * (1 + 16 * kRoundoff);
+  return 64 * kRoundoff * reach * (1 + 16 * kRoundoff);
+}
 
 void FramedBody::points(VertexMatrix& out) const {
   out.resize(size(), 3);

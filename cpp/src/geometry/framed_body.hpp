@@ -149,7 +149,7 @@ class FramedBody {
   /// direction `|d| <= 1 + 8u`: zero for points given in the frame (the scan compares those
   /// heights themselves); for a placed body, whose scan compares heights in its own frame, a
   /// multiple of the roundoff and of the reach `|offset| + 2^-e radius` (see framed_body.cpp).
-  Scalar scan_shortfall() const { return scan_shortfall_; }
+  Scalar scan_shortfall() const;
   Vector3 support(const Vector3& d) const { return vertex(support_index(d)); }
   /// Every point in the frame, one per row, into `out` (resized), for solvers that read each
   /// point many times.
@@ -191,7 +191,6 @@ class FramedBody {
   // 2^-exponent as two factors, each representable even for the most extreme exponents.
   Scalar scale_high_;
   Scalar scale_low_;
-  Scalar scan_shortfall_;
   // A curved body's support function, its support points so far in its own frame (centred on its
   // box; `vertices_` points here), and their support error.
   const SupportFunction* curved_ = nullptr;

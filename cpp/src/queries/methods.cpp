@@ -172,7 +172,12 @@ const std::vector<MethodEntry>& entries() {
 }
 
 const MethodEntry& entry(Method method) {
-  for (const MethodEntry& e : entries()) {
+  // The table lists the methods in the enum's order, so every query finds its method's entry at
+  // its index, without a search.
+  const std::vector<MethodEntry>& table = entries();
+  const auto index = static_cast<std::size_t>(method);
+  if (index < table.size() && table[index].info.method == method) return table[index];
+  for (const MethodEntry& e : table) {
     if (e.info.method == method) return e;
   }
   throw std::invalid_argument("unknown method");

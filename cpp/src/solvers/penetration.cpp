@@ -81,9 +81,10 @@ Scalar coordinate_bound(const FramedBody& body) {
 
 // A point of `body` highest along `n` as a scan of its points finds it (FramedBody::
 // support_index, whose shortfall margin() covers): for large placed bodies by the branch and
-// bound of their support tree (built once per body), seeded by a climb from `hint`.
-int scanned_support(const FramedBody& body, const Vector3& n, int hint) {
-  if (body.curved() || body.size() <= kHillClimbingThreshold || body.scan_shortfall() == 0) {
+// bound of their support tree (built once per body), seeded by a climb from `hint`. `shortfall`
+// is the body's scan_shortfall(), which the solver keeps.
+int scanned_support(const FramedBody& body, Scalar shortfall, const Vector3& n, int hint) {
+  if (body.curved() || body.size() <= kHillClimbingThreshold || shortfall == 0) {
     return body.support_index(n);
   }
   const VertexMatrix& points = body.local_points();
@@ -102,7 +103,9 @@ class Solver {
         tolerance_(tolerance),
         max_iterations_(std::max(1, max_iterations)),
         ws_(thread_workspace()),
-        coordinate_(coordinate) {}
+        coordinate_(coordinate),
+        shortfall_a_(a.scan_shortfall()),
+        shortfall_b_(b.scan_shortfall()) {}
 
   PenetrationBounds solve(const Vector3& hint, const MinNormPoint* nearest) {
     offer_flat_normals();
@@ -138,7 +141,7 @@ class Solver {
 
  private:
   Scalar margin() const {
-    return separation_margin(coordinate_) + a_.scan_shortfall() + b_.scan_shortfall();
+    return separation_margin(coordinate_) + shortfall_a_ + shortfall_b_;
   }
   Scalar reach() const { return 2 * std::sqrt(Scalar(3)) * coordinate_; }
   Scalar lower() const { return separation_ - margin(); }
@@ -194,8 +197,8 @@ class Solver {
   void finish() {
     if (!(estimate_ > -kInfinity)) offer(Vector3::UnitX());
     normal_ = candidate_;
-    top_a_ = scanned_support(a_, candidate_, climb_a_);
-    top_b_ = scanned_support(b_, -candidate_, climb_b_);
+    top_a_ = scanned_support(a_, shortfall_a_, candidate_, climb_a_);
+    top_b_ = scanned_support(b_, shortfall_b_, -candidate_, climb_b_);
     separation_ = b_.height(top_b_, candidate_) - a_.height(top_a_, candidate_);
   }
 
@@ -323,11 +326,11 @@ class Solver {
     const FramedBody* b = &b_;
     std::optional<FramedBody> placed_a;
     std::optional<FramedBody> placed_b;
-    if (a_.scan_shortfall() > 0) {
+    if (shortfall_a_ > 0) {
       a_.points(ws_.points_a);
       a = &placed_a.emplace(ws_.points_a, a_.hull());
     }
-    if (b_.scan_shortfall() > 0) {
+    if (shortfall_b_ > 0) {
       b_.points(ws_.points_b);
       b = &placed_b.emplace(ws_.points_b, b_.hull());
     }
@@ -443,7 +446,7 @@ class Solver {
     r.normal = normal_;
     r.separation = separation_;
     r.margin = margin();
-    r.scan_shortfall = a_.scan_shortfall() + b_.scan_shortfall();
+    r.scan_shortfall = shortfall_a_ + shortfall_b_;
     r.lower = lower();
     r.upper = upper();
     r.proof = proven_upper_ <= r.upper ? proof_ : PenetrationProof::nearest_point;
@@ -460,6 +463,10 @@ class Solver {
   int max_iterations_;
   Workspace& ws_;
   Scalar coordinate_;
+  // The bodies' scan shortfalls, which margin() adds at every step (FramedBody computes them
+  // when asked).
+  Scalar shortfall_a_;
+  Scalar shortfall_b_;
   // Climb starts shared by the directions offered.
   int climb_a_ = -1;
   int climb_b_ = -1;

@@ -1,0 +1,90 @@
+"""Instructions per query, ours against coal's GJK and EPA, counted by callgrind.
+
+Runs ``swarmcollide-callgrind-query`` (bench/callgrind_query.cpp, built with the coal benches)
+once under ``valgrind --tool=callgrind --collect-atstart=no``; the binary turns collection on
+around each contender's timed loop and dumps the counts under a label, and this script reads the
+dumps and prints instructions per query and ours / coal. Instruction counts do not depend on the
+machine's load, so they compare contenders on a shared machine where wall-clock cannot.
+
+    .venv/bin/python bench/callgrind_query.py --binary build/bench/bench/swarmcollide-callgrind-query
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import re
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+
+def counts(binary: str, arguments: list[str]) -> dict[tuple[str, str, str, str], float]:
+    """Instructions per query of each (n, proximity, query, contender) the binary dumped."""
+    with tempfile.TemporaryDirectory() as directory:
+        out = Path(directory) / "callgrind.out"
+        subprocess.run(
+            [
+                "valgrind",
+                "--tool=callgrind",
+                "--collect-atstart=no",
+                f"--callgrind-out-file={out}",
+                binary,
+                *arguments,
+            ],
+            check=True,
+            stdout=sys.stderr,
+            stderr=subprocess.DEVNULL,
+        )
+        found = {}
+        for dump in Path(directory).glob("callgrind.out*"):
+            text = dump.read_text()
+            label = re.search(r"^desc: Trigger: Client Request: (.*)$", text, re.MULTILINE)
+            total = re.search(r"^(?:summary|totals): (\d+)", text, re.MULTILINE)
+            if label is None or total is None:
+                continue
+            n, proximity, query, contender, calls = label.group(1).split()
+            found[(n, proximity, query, contender)] = int(total.group(1)) / int(calls)
+        return found
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--binary", default="build/bench/bench/swarmcollide-callgrind-query")
+    parser.add_argument("--sizes", default="4,8,16,64")
+    parser.add_argument("--pairs", type=int, default=20)
+    parser.add_argument("--repeats", type=int, default=5)
+    parser.add_argument("--json", help="write the counts here")
+    args = parser.parse_args()
+    found = counts(
+        args.binary,
+        ["--sizes", args.sizes, "--pairs", str(args.pairs), "--repeats", str(args.repeats)],
+    )
+    rows = []
+    print(f"{'n':>4} {'proximity':9} {'query':16} {'ours':>8} {'batch':>8} {'coal':>8} "
+          f"{'ours/coal':>9} {'batch/coal':>10}")
+    keys = sorted({key[:3] for key in found}, key=lambda k: (int(k[0][2:]), k[1], k[2]))
+    for n, proximity, query in keys:
+        ours = found.get((n, proximity, query, "ours"))
+        batch = found.get((n, proximity, query, "ours_batch"))
+        coal = found.get((n, proximity, query, "coal"))
+        row = {"vertices": int(n[2:]), "proximity": proximity, "query": query, "ours": ours,
+               "ours_batch_row": batch, "coal": coal}
+        rows.append(row)
+
+        def show(value: float | None) -> str:
+            return f"{value:8.0f}" if value is not None else f"{'-':>8}"
+
+        def ratio(value: float | None) -> str:
+            return f"{value / coal:.2f}" if value is not None and coal else "-"
+
+        print(f"{n[2:]:>4} {proximity:9} {query:16} {show(ours)} {show(batch)} {show(coal)} "
+              f"{ratio(ours):>9} {ratio(batch):>10}")
+    if args.json:
+        Path(args.json).write_text(json.dumps({"pairs": args.pairs, "repeats": args.repeats,
+                                               "instructions_per_query": rows}, indent=1) + "\n")
+
+
+if __name__ == "__main__":
+    main()
