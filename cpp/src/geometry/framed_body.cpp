@@ -37,7 +37,7 @@ Vector3 world_centre(const ConvexPolyhedron& body, const Pose& pose, bool turned
 // for unit directions: SupportFunction's bound on the outer radius, which bounds.radius holds.
 Scalar curved_support_error(const ConvexPolyhedron& body, int exponent) {
   if (!body.curved()) return 0;
-  return SupportFunction::kSupportErrorRoundoffs * kRoundoff *
+  return body.curved()->support_error_roundoffs() * kRoundoff *
          times_power_of_two(body.bounds().radius, -exponent) * (1 + 16 * kRoundoff);
 }
 
@@ -84,8 +84,8 @@ FramedBody::FramedBody(const ConvexPolyhedron& body, const Pose& pose, bool rota
   scan_shortfall_ = 64 * kRoundoff * reach * (1 + 16 * kRoundoff);
   if (const SupportFunction* shape = body.curved()) {
     curved_ = shape;
-    found_ = std::make_shared<VertexMatrix>(body.centred_vertices());
-    vertices_ = found_.get();
+    found_ = std::make_shared<SupportCache>(body.centred_vertices());
+    vertices_ = &found_->points();
     hull_ = nullptr;
     given_ = nullptr;
     support_error_ = curved_support_error(body, exponent_);
@@ -93,18 +93,8 @@ FramedBody::FramedBody(const ConvexPolyhedron& body, const Pose& pose, bool rota
 }
 
 int FramedBody::curved_support(const Vector3& local) const {
-  const Vector3 point = curved_->support(local) - body_->bounds().centre;
-  VertexMatrix& found = *found_;
-  const Eigen::Index count = found.rows();
-  // Searches ask for the same point again and again as they converge: it keeps its index.
-  for (Eigen::Index i = count - 1; i >= 0; --i) {
-    if (found(i, 0) == point.x() && found(i, 1) == point.y() && found(i, 2) == point.z()) {
-      return static_cast<int>(i);
-    }
-  }
-  found.conservativeResize(count + 1, Eigen::NoChange);
-  found.row(count) = point.transpose();
-  return static_cast<int>(count);
+  // Support points are in the shape's frame, which is centred on the body's box.
+  return found_->add(curved_->support(local));
 }
 
 FramedBody::FramedBody(const VertexMatrix& points, const Hull& hull)

@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "support.hpp"
+#include "support_cache.hpp"
 #include "swarmcollide/geometry/convex_polyhedron.hpp"
 #include "swarmcollide/geometry/pose.hpp"
 #include "swarmcollide/problem/convex_weights.hpp"
@@ -88,11 +89,13 @@ class FramedBody {
   Scalar support_error() const { return support_error_; }
   /// The body framed; only for a body framed from a ConvexPolyhedron.
   const ConvexPolyhedron& body() const { return *body_; }
-  /// Number of points (the hull points of a ConvexPolyhedron).
-  int size() const { return static_cast<int>(vertices_->rows()); }
+  /// Number of points (the hull points of a ConvexPolyhedron; a curved body's support points so
+  /// far).
+  int size() const { return curved_ ? found_->count() : static_cast<int>(vertices_->rows()); }
   /// The hull, with indices among the points.
   const Hull& hull() const { return hull_ ? *hull_ : body_->hull(); }
-  /// The points in the body's own frame, centred on its box and not yet scaled.
+  /// The points in the body's own frame, centred on its box and not yet scaled (a curved body's
+  /// first `size()` rows; the rows past them are unused).
   const VertexMatrix& local_points() const { return *vertices_; }
   /// Number of points the body was given (the `k` of model (2)).
   int given_size() const { return given_ ? body_->size() : size(); }
@@ -193,9 +196,9 @@ class FramedBody {
   Scalar scale_low_;
   Scalar scan_shortfall_;
   // A curved body's support function, its support points so far in its own frame (centred on its
-  // box; `vertices_` points here), and their support error.
+  // box; `vertices_` points to their rows), and their support error.
   const SupportFunction* curved_ = nullptr;
-  std::shared_ptr<VertexMatrix> found_;
+  std::shared_ptr<SupportCache> found_;
   Scalar support_error_ = 0;
 };
 
