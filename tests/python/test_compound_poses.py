@@ -109,13 +109,16 @@ def test_json_keeps_the_poses_and_save_writes_placed_points(tmp_path):
 
 def test_plots_draw_parts_where_their_poses_put_them():
     pytest.importorskip("matplotlib")
-    import matplotlib
+    from swarmcollide.plot import _surface, plot_body
 
-    matplotlib.use("Agg")
     _, _, body = posed_body(np.random.default_rng(4))
-    figure = sc.plot_body(body)
-    axes = figure.axes[0]
-    assert axes.get_zlim()[1] >= 2.0  # the lying cylinder at z = 2 is drawn
+    points, _ = _surface(body.parts[1])
+    # The lying cylinder's surface: along y, radius 0.1 about the line z = 2.
+    assert (np.hypot(points[:, 0], points[:, 2] - 2) <= 0.1 + 1e-12).all()
+    np.testing.assert_allclose(points.min(axis=0), [-0.1, -1, 1.9], atol=0.01)
+    np.testing.assert_allclose(points.max(axis=0), [0.1, 1, 2.1], atol=0.01)
+    figure = plot_body(body)
+    assert len(figure.axes[0].collections) == 5
 
 
 @pytest.mark.parametrize("method", ["dual", "exact", "libccd"])
