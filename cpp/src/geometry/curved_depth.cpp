@@ -23,6 +23,7 @@ ClosedFormDepth points_inside(const FramedBody& curved, const FramedBody& inner)
                           : 0;
   Scalar depth = std::numeric_limits<Scalar>::infinity();
   Vector3 outward = Vector3::Zero();
+  Vector3 deepest_point = Vector3::Zero();
   Scalar farthest = 0;
   for (int i = 0; i < inner.size(); ++i) {
     const Vector3 from_offset = inner.vertex(i) - curved.offset();
@@ -35,6 +36,7 @@ ClosedFormDepth points_inside(const FramedBody& curved, const FramedBody& inner)
     if (d < depth) {
       depth = d;
       outward = curved.rotated() ? Vector3(r * away) : away;
+      deepest_point = inner.vertex(i);
     }
     if (!(depth > 0)) return least;  // a point outside (or on) the shape: no proof
   }
@@ -45,6 +47,8 @@ ClosedFormDepth points_inside(const FramedBody& curved, const FramedBody& inner)
   least.depth = framed * (1 - skew) - 2 * skew * farthest - 2 * curved.scan_shortfall() -
                 kFrameRounding;
   least.normal = outward.normalized();
+  // Inside the ball about the point that the bound proves the shape holds.
+  least.surface = deepest_point + least.depth * least.normal;
   return least;
 }
 
@@ -53,7 +57,8 @@ ClosedFormDepth points_inside(const FramedBody& curved, const FramedBody& inner)
 ClosedFormDepth closed_form_depth(const FramedBody& a, const FramedBody& b) {
   // B's points inside A: B leaves along A's outward direction; A's inside B: A leaves along B's,
   // so B moves the other way.
-  const ClosedFormDepth b_in_a = points_inside(a, b);
+  ClosedFormDepth b_in_a = points_inside(a, b);
+  b_in_a.curved_a = true;
   ClosedFormDepth a_in_b = points_inside(b, a);
   a_in_b.normal = -a_in_b.normal;
   return b_in_a.depth >= a_in_b.depth ? b_in_a : a_in_b;

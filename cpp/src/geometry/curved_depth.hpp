@@ -15,6 +15,12 @@ struct ClosedFormDepth {
   Scalar depth = -std::numeric_limits<Scalar>::infinity();
   /// Unit direction from A to B (zero when `depth` is -infinity).
   Vector3 normal = Vector3::Zero();
+  /// A point of the curved body `depth` from the least deep point of the other, along its
+  /// outward direction (the nearest surface point where the closed form is exact), in the frame:
+  /// the witness on the curved body.
+  Vector3 surface = Vector3::Zero();
+  /// True when the curved body is A.
+  bool curved_a = false;
 };
 
 /// The depth that a curved body's closed form (SupportFunction::depth_of) proves for a

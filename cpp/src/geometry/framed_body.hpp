@@ -83,6 +83,10 @@ class FramedBody {
 
   /// True for a curved body: its points are the support points found so far in this query.
   bool curved() const { return curved_ != nullptr; }
+  /// Adds `frame_point`, a point of this curved body given in the frame, to its support points:
+  /// the nearest surface point a closed-form depth names (curved_depth.hpp), which the witnesses
+  /// then find on the supporting feature. Only for a curved body.
+  void add_point(const Vector3& frame_point) const;
   /// A bound on how far the support value along a unit frame direction may exceed the height of
   /// a curved body's support point for it (in frame units), beyond `scan_shortfall()`; 0 for a
   /// polyhedron. rounded.hpp takes it off every lower bound of a pair (FramedPair::support_error).

@@ -280,6 +280,7 @@ class Solver {
     const ClosedFormDepth closed = closed_form_depth(a_, b_);
     if (!(closed.depth > 0)) return false;
     set_upper(-closed.depth, PenetrationProof::closed_form);
+    (closed.curved_a ? a_ : b_).add_point(closed.surface);
     offer(closed.normal);
     finish();
     return done();
