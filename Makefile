@@ -105,6 +105,7 @@ bench: install $(VENV)/.bench-installed bench-scene bench-compound
 	$(PY) bench/contacts.py $(BENCH_ARGS) --json bench/results/contacts.json
 	$(PY) bench/contacts.py $(BENCH_ARGS) --scene pile --json bench/results/contacts_pile.json
 	$(PY) bench/curved_coal.py $(BENCH_ARGS) --json bench/results/curved_coal.json
+	$(PY) bench/curved_scene.py $(BENCH_ARGS) --json bench/results/curved_scene.json
 	$(PY) bench/robot.py $(BENCH_ARGS) --json bench/results/robot.json
 	$(PY) bench/report.py --results bench/results --plots bench/plots --out bench/RESULTS.md
 

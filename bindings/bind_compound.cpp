@@ -40,12 +40,13 @@ std::vector<ConvexPolyhedron> to_parts(const py::handle& parts) {
 }
 
 // A part as Python sees it: a curved part as its own shape (a new Cylinder, Cone or Ellipsoid of
-// its parameters: the same body, with its parameters and repr), any other as the ConvexPolyhedron
-// it is.
+// its parameters: the same body, with its parameters and repr), any other, and a curved shape
+// placed by a pose, as the ConvexPolyhedron it is.
 py::object typed_part(const ConvexPolyhedron& part) {
   const SupportFunction* curved = part.curved();
   if (!curved) return py::cast(part);
   const CurvedShapeParameters shape = curved->parameters();
+  if (shape.placed) return py::cast(part);
   switch (shape.kind) {
     case CurvedShapeParameters::Kind::cylinder:
       return py::cast(Cylinder(shape.radius, shape.half_length));
@@ -55,6 +56,22 @@ py::object typed_part(const ConvexPolyhedron& part) {
       return py::cast(Ellipsoid(shape.radii));
   }
   return py::cast(part);
+}
+
+// The parts' poses as a (count, 4, 4) array of homogeneous transforms.
+py::array_t<Scalar> pose_matrices(const CompoundBody& body) {
+  const std::vector<Pose> poses = body.part_poses();
+  py::array_t<Scalar> out({static_cast<py::ssize_t>(poses.size()), py::ssize_t{4}, py::ssize_t{4}});
+  auto m = out.mutable_unchecked<3>();
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    for (int r = 0; r < 4; ++r) {
+      for (int c = 0; c < 4; ++c) {
+        m(i, r, c) = r < 3 ? (c < 3 ? poses[i].rotation(r, c) : poses[i].translation(r))
+                           : (c == 3 ? 1 : 0);
+      }
+    }
+  }
+  return out;
 }
 
 std::string repr(const CompoundBody& body) {
@@ -134,6 +151,11 @@ Parameters
 ----------
 parts : sequence of ConvexPolyhedron or array_like of shape (n, 3)
     At least one convex part (or the points whose hull it is).
+poses : array_like of shape (len(parts), 4, 4), optional
+    Where each part sits in the body's frame (as ``Scene`` takes poses: also ``(n, 3, 4)`` or a
+    pair ``(rotations, translations)``): part ``i``'s points ``x`` are at ``R_i x + t_i``. None
+    (default): every part is given in the body's frame. A curved part (Cylinder, Cone, Ellipsoid)
+    keeps its exact support function under its pose; a polyhedron's points are moved.
 
 Examples
 --------
@@ -146,12 +168,28 @@ CompoundBody(3 parts, 24 points, bounds [0, 0, 0] to [2, 2, 1])
 >>> r = sc.distance(ell, [[x + 1.6, y + 1.5, z] for x, y, z in cube])
 >>> round(r.distance, 9), r.part_a, r.certified  # the corner of the L is empty
 (0.5, 1, True)
+>>> import numpy as np
+>>> lying = np.array([[1, 0, 0, 0], [0, 0, -1, 0], [0, 1, 0, 2], [0, 0, 0, 1]])  # axis along y
+>>> bar = sc.CompoundBody([sc.Box([1, 1, 0.1]), sc.Cylinder(0.1, 1)], poses=[np.eye(4), lying])
+>>> r = sc.distance(bar, sc.Sphere(0.5), pose_b=(np.eye(3), [0, 0, 3]))
+>>> round(r.distance, 9), r.part_a, r.certified  # the cylinder's side: 3 - 2 - 0.1 - 0.5
+(0.4, 1, True)
 )doc")
-      .def(py::init([](const py::object& parts) {
-             if (py::isinstance<CompoundBody>(parts)) return parts.cast<CompoundBody>();
-             return CompoundBody(to_parts(parts));
+      .def(py::init([](const py::object& parts, const py::object& poses) {
+             if (py::isinstance<CompoundBody>(parts)) {
+               if (!poses.is_none()) {
+                 throw py::type_error(
+                     "poses must be None when parts is a CompoundBody (whose parts have their "
+                     "poses already); pass its given_parts with the poses instead");
+               }
+               return parts.cast<CompoundBody>();
+             }
+             std::vector<ConvexPolyhedron> given = to_parts(parts);
+             if (poses.is_none()) return CompoundBody(std::move(given));
+             const std::vector<Pose> placed = to_poses(poses, given.size(), "poses");
+             return CompoundBody(std::move(given), placed);
            }),
-           py::arg("parts"))
+           py::arg("parts"), py::kw_only(), py::arg("poses") = py::none())
       .def_property_readonly(
           "parts",
           [](const CompoundBody& body) {
@@ -159,8 +197,20 @@ CompoundBody(3 parts, 24 points, bounds [0, 0, 0] to [2, 2, 1])
             for (const ConvexPolyhedron& part : body.parts()) parts.append(typed_part(part));
             return parts;
           },
-          "The convex parts (copies that share the parts' hulls; a curved part as its own "
-          "Cylinder, Cone or Ellipsoid).")
+          "The convex parts in the body's frame, placed by their poses (copies that share the "
+          "parts' hulls; a curved part as its own Cylinder, Cone or Ellipsoid, or, placed by a "
+          "pose, as a ConvexPolyhedron with its support function).")
+      .def_property_readonly(
+          "given_parts",
+          [](const CompoundBody& body) {
+            py::typing::List<ConvexPolyhedron> parts;
+            for (const ConvexPolyhedron& part : body.given_parts()) parts.append(typed_part(part));
+            return parts;
+          },
+          "The parts as given, each in its own frame (``parts`` for a body built without poses).")
+      .def_property_readonly("part_poses", &pose_matrices,
+                             "Where each part sits in the body's frame: a (len(parts), 4, 4) "
+                             "array of homogeneous transforms (identities without poses).")
       .def("__len__", &CompoundBody::size)
       .def_property_readonly("tree", &CompoundBody::tree,
                              "The bounding-volume tree: a list of PartNode, the root first.")

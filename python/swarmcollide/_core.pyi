@@ -152,6 +152,11 @@ class CompoundBody:
     ----------
     parts : sequence of ConvexPolyhedron or array_like of shape (n, 3)
         At least one convex part (or the points whose hull it is).
+    poses : array_like of shape (len(parts), 4, 4), optional
+        Where each part sits in the body's frame (as ``Scene`` takes poses: also ``(n, 3, 4)`` or a
+        pair ``(rotations, translations)``): part ``i``'s points ``x`` are at ``R_i x + t_i``. None
+        (default): every part is given in the body's frame. A curved part (Cylinder, Cone, Ellipsoid)
+        keeps its exact support function under its pose; a polyhedron's points are moved.
     
     Examples
     --------
@@ -164,8 +169,14 @@ class CompoundBody:
     >>> r = sc.distance(ell, [[x + 1.6, y + 1.5, z] for x, y, z in cube])
     >>> round(r.distance, 9), r.part_a, r.certified  # the corner of the L is empty
     (0.5, 1, True)
+    >>> import numpy as np
+    >>> lying = np.array([[1, 0, 0, 0], [0, 0, -1, 0], [0, 1, 0, 2], [0, 0, 0, 1]])  # axis along y
+    >>> bar = sc.CompoundBody([sc.Box([1, 1, 0.1]), sc.Cylinder(0.1, 1)], poses=[np.eye(4), lying])
+    >>> r = sc.distance(bar, sc.Sphere(0.5), pose_b=(np.eye(3), [0, 0, 3]))
+    >>> round(r.distance, 9), r.part_a, r.certified  # the cylinder's side: 3 - 2 - 0.1 - 0.5
+    (0.4, 1, True)
     """
-    def __init__(self, parts: typing.Any) -> None:
+    def __init__(self, parts: typing.Any, *, poses: typing.Any = None) -> None:
         ...
     def __len__(self) -> int:
         ...
@@ -186,14 +197,24 @@ class CompoundBody:
         The convex hull of every part's points (a ConvexPolyhedron holding the body).
         """
     @property
+    def given_parts(self) -> list[ConvexPolyhedron]:
+        """
+        The parts as given, each in its own frame (``parts`` for a body built without poses).
+        """
+    @property
     def node_envelopes(self) -> list[ConvexPolyhedron]:
         """
         The convex hull of the parts below each node of ``tree``.
         """
     @property
+    def part_poses(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        Where each part sits in the body's frame: a (len(parts), 4, 4) array of homogeneous transforms (identities without poses).
+        """
+    @property
     def parts(self) -> list[ConvexPolyhedron]:
         """
-        The convex parts (copies that share the parts' hulls; a curved part as its own Cylinder, Cone or Ellipsoid).
+        The convex parts in the body's frame, placed by their poses (copies that share the parts' hulls; a curved part as its own Cylinder, Cone or Ellipsoid, or, placed by a pose, as a ConvexPolyhedron with its support function).
         """
     @property
     def point_count(self) -> int:

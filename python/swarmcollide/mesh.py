@@ -373,6 +373,8 @@ class CompoundBody(_core.CompoundBody):
     parts : sequence of ConvexPolyhedron or array_like of shape (n, 3)
         At least one convex part.
     decomposition : Decomposition, optional
+    poses : array_like of shape (len(parts), 4, 4), optional
+        Where each part sits in the body's frame (see the core's ``CompoundBody``).
 
     Examples
     --------
@@ -385,8 +387,9 @@ class CompoundBody(_core.CompoundBody):
     True
     """
 
-    def __init__(self, parts, decomposition: Optional[Decomposition] = None) -> None:
-        super().__init__(parts)
+    def __init__(self, parts, decomposition: Optional[Decomposition] = None, *,
+                 poses=None) -> None:
+        super().__init__(parts, poses=poses)
         self.decomposition = decomposition
 
     @classmethod
@@ -513,8 +516,10 @@ class CompoundBody(_core.CompoundBody):
 
         The file holds ``points`` (every part's points, part after part), ``offsets`` (where
         each part starts in ``points``, and the total) and ``decomposition`` (JSON, or empty).
-        Points only: a body with a curved or rounded part is refused (ValueError), and
-        ``swarmcollide.shape_json.body_to_json`` writes it whole.
+        Points only: a part with a pose is written placed (its points in the body's frame, the
+        same part; ``load`` gives it without a pose); a body with a curved or rounded part is
+        refused (ValueError), and ``swarmcollide.shape_json.body_to_json`` writes it whole,
+        poses included.
         """
         for k, part in enumerate(self.parts):
             if part.curved or part.radius > 0:

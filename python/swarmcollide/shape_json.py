@@ -11,9 +11,11 @@ constructors name them::
     {"shape": "cone", "radius": 0.5, "half_length": 1.0}
     {"shape": "ellipsoid", "radii": [1, 2, 3]}
     {"shape": "polyhedron", "points": [[0, 0, 0], [1, 0, 0], ...], "radius": 0.0}
-    {"shape": "compound", "parts": [record, ...]}
+    {"shape": "compound", "parts": [record, ...], "poses": [4x4 transform, ...]}
 
-Each shape sits in its own frame with the conventions of its class (axis z, centred). Numbers
+Each shape sits in its own frame with the conventions of its class (axis z, centred); a compound's
+optional ``"poses"`` place its parts in its frame (one homogeneous transform, a list of 4 rows of
+4 numbers, per part; written only when some part has a pose other than the identity). Numbers
 are written with Python's ``repr`` of floats, so a body read back is the same body.
 """
 
@@ -33,7 +35,8 @@ def body_to_json(body) -> Dict[str, Any]:
     CompoundBody.
 
     Spheres, capsules and boxes inside a compound body are its parts' points and radius
-    (``"polyhedron"``), the same bodies; curved parts keep their shape.
+    (``"polyhedron"``), the same bodies; curved parts keep their shape, and parts with poses
+    are written as given, with the compound's ``"poses"``.
 
     Examples
     --------
@@ -45,7 +48,11 @@ def body_to_json(body) -> Dict[str, Any]:
     Ellipsoid(radii=[1, 2, 3])
     """
     if isinstance(body, _core.CompoundBody):
-        return {"shape": "compound", "parts": [body_to_json(part) for part in body.parts]}
+        record = {"shape": "compound", "parts": [body_to_json(p) for p in body.given_parts]}
+        poses = np.asarray(body.part_poses)
+        if not np.array_equal(poses, np.broadcast_to(np.eye(4), poses.shape)):
+            record["poses"] = poses.tolist()
+        return record
     if isinstance(body, _core.Sphere):
         return {"shape": "sphere", "radius": float(body.radius)}
     if isinstance(body, _core.Capsule):
@@ -128,7 +135,19 @@ def _compound(record: dict, name: str):
         if isinstance(body, _core.CompoundBody):
             raise ValueError(f"{name}['parts'][{k}] is a compound; list its parts instead")
         bodies.append(body)
-    return CompoundBody(bodies)
+    poses = record.get("poses")
+    if poses is not None:
+        if not isinstance(poses, list) or len(poses) != len(bodies):
+            raise ValueError(f"{name}['poses'] must be a list of {len(bodies)} transforms (4 rows "
+                             f"of 4 numbers), one per part")
+        for k, pose in enumerate(poses):
+            if (not isinstance(pose, list) or len(pose) != 4 or any(
+                    not isinstance(row, list) or len(row) != 4
+                    or any(isinstance(v, bool) or not isinstance(v, (int, float)) for v in row)
+                    for row in pose)):
+                raise ValueError(f"{name}['poses'][{k}] must be a transform: 4 rows of 4 "
+                                 f"numbers, got {pose!r}")
+    return CompoundBody(bodies, poses=poses)
 
 
 def _points(record: dict, name: str):
@@ -155,5 +174,5 @@ _READERS: Dict[str, Tuple[Callable[[dict, str], Any], List[str], List[str]]] = {
              ["radius", "half_length"], []),
     "ellipsoid": (lambda r, n: _core.Ellipsoid(_triple(r, "radii", n)), ["radii"], []),
     "polyhedron": (_points, ["points"], ["radius"]),
-    "compound": (_compound, ["parts"], []),
+    "compound": (_compound, ["parts"], ["poses"]),
 }

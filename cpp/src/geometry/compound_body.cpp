@@ -3,8 +3,11 @@
 #include <algorithm>
 #include <numeric>
 #include <stdexcept>
+#include <string>
 #include <utility>
 #include <vector>
+
+#include "swarmcollide/geometry/placed_shape.hpp"
 
 namespace swarmcollide {
 
@@ -15,6 +18,24 @@ std::vector<ConvexPolyhedron> nonempty(std::vector<ConvexPolyhedron> parts) {
     throw std::invalid_argument("parts is empty: a compound body needs at least one convex part");
   }
   return parts;
+}
+
+// The parts placed by their poses.
+std::vector<ConvexPolyhedron> placed_parts(const std::vector<ConvexPolyhedron>& parts,
+                                           const std::vector<Pose>& poses) {
+  if (poses.size() != parts.size()) {
+    throw std::invalid_argument("poses has " + std::to_string(poses.size()) +
+                                " poses for " + std::to_string(parts.size()) +
+                                " parts: give one pose per part (the identity for a part in the "
+                                "body's frame)");
+  }
+  std::vector<ConvexPolyhedron> result;
+  result.reserve(parts.size());
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    validate_pose(poses[i], "poses", i);
+    result.push_back(placed(parts[i], poses[i]));
+  }
+  return result;
 }
 
 // Points whose hull (grown by the part's rounding radius) holds the part: a polyhedron's own, a
@@ -118,8 +139,18 @@ CompoundBody::CompoundBody(std::vector<ConvexPolyhedron> parts)
   }
 }
 
+CompoundBody::CompoundBody(std::vector<ConvexPolyhedron> parts, const std::vector<Pose>& poses)
+    : CompoundBody(placed_parts(nonempty(parts), poses)) {
+  given_parts_ = std::move(parts);
+  poses_ = poses;
+}
+
 CompoundBody::CompoundBody(ConvexPolyhedron part)
     : CompoundBody(std::vector<ConvexPolyhedron>{std::move(part)}) {}
+
+std::vector<Pose> CompoundBody::part_poses() const {
+  return poses_.empty() ? std::vector<Pose>(parts_.size()) : poses_;
+}
 
 int CompoundBody::point_count() const {
   int count = 0;

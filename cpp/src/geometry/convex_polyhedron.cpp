@@ -157,6 +157,17 @@ ConvexPolyhedron::ConvexPolyhedron(VertexMatrix points, Scalar radius,
   }
 }
 
+ConvexPolyhedron::ConvexPolyhedron(const VertexMatrix& centred,
+                                   std::shared_ptr<const SupportFunction> shape, const Aabb& box)
+    : ConvexPolyhedron(centred.rowwise() + (box.min / 2 + box.max / 2).transpose(), 0,
+                       std::move(shape)) {
+  bounds_.box = box;
+  bounds_.centre = box.min / 2 + box.max / 2;
+  // The given points, not the rounded differences of the placed ones: the solvers read these as
+  // points of the shape, which they are.
+  centred_ = centred;
+}
+
 int ConvexPolyhedron::support_index(const Vector3& direction) const {
   const HullPoints& read = hull_points();
   if (read.every_point) return detail::scan_support(centred_, direction);

@@ -37,7 +37,7 @@ Vector3 world_centre(const ConvexPolyhedron& body, const Pose& pose, bool turned
 // for unit directions: SupportFunction's bound on the outer radius, which bounds.radius holds.
 Scalar curved_support_error(const ConvexPolyhedron& body, int exponent) {
   if (!body.curved()) return 0;
-  return SupportFunction::kSupportErrorRoundoffs * kRoundoff *
+  return body.curved()->support_error_roundoffs() * kRoundoff *
          times_power_of_two(body.bounds().radius, -exponent) * (1 + 16 * kRoundoff);
 }
 
@@ -74,8 +74,8 @@ FramedBody::FramedBody(const ConvexPolyhedron& body, const Pose& pose, bool rota
   for (int k = 0; k < 3; ++k) offset_(k) = times_power_of_two(from_centre(k), -exponent_);
   if (const SupportFunction* shape = body.curved()) {
     curved_ = shape;
-    found_ = std::make_shared<VertexMatrix>(body.centred_vertices());
-    vertices_ = found_.get();
+    found_ = std::make_shared<SupportCache>(body.centred_vertices());
+    vertices_ = &found_->points();
     hull_ = nullptr;
     given_ = nullptr;
     support_error_ = curved_support_error(body, exponent_);
@@ -83,18 +83,15 @@ FramedBody::FramedBody(const ConvexPolyhedron& body, const Pose& pose, bool rota
 }
 
 int FramedBody::curved_support(const Vector3& local) const {
-  const Vector3 point = curved_->support(local) - body_->bounds().centre;
-  VertexMatrix& found = *found_;
-  const Eigen::Index count = found.rows();
-  // Searches ask for the same point again and again as they converge: it keeps its index.
-  for (Eigen::Index i = count - 1; i >= 0; --i) {
-    if (found(i, 0) == point.x() && found(i, 1) == point.y() && found(i, 2) == point.z()) {
-      return static_cast<int>(i);
-    }
-  }
-  found.conservativeResize(count + 1, Eigen::NoChange);
-  found.row(count) = point.transpose();
-  return static_cast<int>(count);
+  // Support points are in the shape's frame, which is centred on the body's box.
+  return found_->add(curved_->support(local));
+}
+
+void FramedBody::add_point(const Vector3& frame_point) const {
+  const Vector3 turned = local_direction(frame_point - offset_);
+  Vector3 local;
+  for (int k = 0; k < 3; ++k) local(k) = times_power_of_two(turned(k), exponent_);
+  found_->add(local);
 }
 
 FramedBody::FramedBody(const VertexMatrix& points, const Hull& hull)

@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "support.hpp"
+#include "support_cache.hpp"
 #include "swarmcollide/geometry/convex_polyhedron.hpp"
 #include "swarmcollide/geometry/pose.hpp"
 #include "swarmcollide/problem/convex_weights.hpp"
@@ -82,17 +83,23 @@ class FramedBody {
 
   /// True for a curved body: its points are the support points found so far in this query.
   bool curved() const { return curved_ != nullptr; }
+  /// Adds `frame_point`, a point of this curved body given in the frame, to its support points:
+  /// the nearest surface point a closed-form depth names (curved_depth.hpp), which the witnesses
+  /// then find on the supporting feature. Only for a curved body.
+  void add_point(const Vector3& frame_point) const;
   /// A bound on how far the support value along a unit frame direction may exceed the height of
   /// a curved body's support point for it (in frame units), beyond `scan_shortfall()`; 0 for a
   /// polyhedron. rounded.hpp takes it off every lower bound of a pair (FramedPair::support_error).
   Scalar support_error() const { return support_error_; }
   /// The body framed; only for a body framed from a ConvexPolyhedron.
   const ConvexPolyhedron& body() const { return *body_; }
-  /// Number of points (the hull points of a ConvexPolyhedron).
-  int size() const { return static_cast<int>(vertices_->rows()); }
+  /// Number of points (the hull points of a ConvexPolyhedron; a curved body's support points so
+  /// far).
+  int size() const { return curved_ ? found_->count() : static_cast<int>(vertices_->rows()); }
   /// The hull, with indices among the points.
   const Hull& hull() const { return hull_ ? *hull_ : body_->hull(); }
-  /// The points in the body's own frame, centred on its box and not yet scaled.
+  /// The points in the body's own frame, centred on its box and not yet scaled (a curved body's
+  /// first `size()` rows; the rows past them are unused).
   const VertexMatrix& local_points() const { return *vertices_; }
   /// Number of points the body was given (the `k` of model (2)).
   int given_size() const { return given_ ? body_->size() : size(); }
@@ -192,9 +199,9 @@ class FramedBody {
   Scalar scale_high_;
   Scalar scale_low_;
   // A curved body's support function, its support points so far in its own frame (centred on its
-  // box; `vertices_` points here), and their support error.
+  // box; `vertices_` points to their rows), and their support error.
   const SupportFunction* curved_ = nullptr;
-  std::shared_ptr<VertexMatrix> found_;
+  std::shared_ptr<SupportCache> found_;
   Scalar support_error_ = 0;
 };
 

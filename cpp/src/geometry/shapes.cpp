@@ -46,6 +46,7 @@ VertexMatrix corners(const Vector3& half_extents) {
 // centre), as witnesses and the expanding polytope's corners must. It costs 8u of the support
 // value, within SupportFunction::kSupportErrorRoundoffs.
 constexpr Scalar kInward = 1 - 0x1p-50;
+constexpr Scalar kRoundoff = 0x1p-53;
 
 // `d` scaled by a power of two (exactly) so that its largest component is in [0.5, 1): support
 // points do not depend on the length of the direction, and nothing below under- or overflows.
@@ -71,6 +72,24 @@ Eigen::Matrix<Scalar, 2, 1> unit_in_plane(Scalar x, Scalar y) {
   return {sx / length, sy / length};
 }
 
+CurvedShapeParameters shape_parameters(CurvedShapeParameters::Kind kind, Scalar radius,
+                                       Scalar half_length, const Vector3& radii = Vector3::Zero()) {
+  CurvedShapeParameters parameters;
+  parameters.kind = kind;
+  parameters.radius = radius;
+  parameters.half_length = half_length;
+  parameters.radii = radii;
+  return parameters;
+}
+
+// The unit vector along (x, y, 0), or the x axis for a point on the z axis (every direction in
+// the plane is as near there).
+Vector3 radial(Scalar x, Scalar y) {
+  const auto in_plane = unit_in_plane(x, y);
+  if (in_plane.x() == 0 && in_plane.y() == 0) return Vector3::UnitX();
+  return {in_plane.x(), in_plane.y(), 0};
+}
+
 // A cylinder's support: the rim point of the cap the direction points to. The height of the
 // computed point falls short of the support value `r |d_xy| + h |d_z|` by the rounding of the
 // unit vector in the plane (4u, first order in its length) and kInward's 8u, with the product's
@@ -86,9 +105,22 @@ class CylinderSupport final : public SupportFunction {
   }
   Scalar outer_radius() const override { return std::hypot(r_, h_); }
   Vector3 centroid() const override { return Vector3::Zero(); }
+  // The nearer of the side (r - |p_xy|) and the caps (h - |p_z|), each within a few roundoffs
+  // of the magnitudes: 8u of them is taken off.
+  Scalar depth_of(const Vector3& p, Vector3& outward) const override {
+    const Scalar side = r_ - std::hypot(p.x(), p.y());
+    const Scalar cap = h_ - std::abs(p.z());
+    const Scalar rounding = 8 * kRoundoff * (r_ + h_ + p.cwiseAbs().sum());
+    if (side <= cap) {
+      outward = radial(p.x(), p.y());
+      return side - rounding;
+    }
+    outward = {0, 0, p.z() < 0 ? -1.0 : 1.0};
+    return cap - rounding;
+  }
   const char* name() const override { return "cylinder"; }
   CurvedShapeParameters parameters() const override {
-    return {CurvedShapeParameters::Kind::cylinder, r_, h_};
+    return shape_parameters(CurvedShapeParameters::Kind::cylinder, r_, h_);
   }
 
  private:
@@ -112,9 +144,26 @@ class ConeSupport final : public SupportFunction {
   }
   Scalar outer_radius() const override { return std::hypot(r_, h_); }
   Vector3 centroid() const override { return {0, 0, -h_ / 2}; }
+  // The nearer of the base plane (p_z + h) and the side: the solid is the base's half-space
+  // and the infinite solid cone, whose side is nearest along the tangent plane through the
+  // point's generator, at (r (h - p_z) - 2h |p_xy|) / |(r, 2h)|. 16u of the magnitudes covers the
+  // rounding.
+  Scalar depth_of(const Vector3& p, Vector3& outward) const override {
+    const Scalar slant = std::hypot(r_, 2 * h_);
+    const Scalar base = p.z() + h_;
+    const Scalar side = (r_ * (h_ - p.z()) - 2 * h_ * std::hypot(p.x(), p.y())) / slant;
+    const Scalar rounding = 16 * kRoundoff * (r_ + h_ + p.cwiseAbs().sum());
+    if (base <= side) {
+      outward = -Vector3::UnitZ();
+      return base - rounding;
+    }
+    const Vector3 across = radial(p.x(), p.y());
+    outward = Vector3(2 * h_ * across.x(), 2 * h_ * across.y(), r_) / slant;
+    return side - rounding;
+  }
   const char* name() const override { return "cone"; }
   CurvedShapeParameters parameters() const override {
-    return {CurvedShapeParameters::Kind::cone, r_, h_};
+    return shape_parameters(CurvedShapeParameters::Kind::cone, r_, h_);
   }
 
  private:
@@ -136,9 +185,21 @@ class EllipsoidSupport final : public SupportFunction {
   }
   Scalar outer_radius() const override { return radii_.maxCoeff(); }
   Vector3 centroid() const override { return Vector3::Zero(); }
+  // The ball of radius `min radius (1 - |p / radii|)` about p lies inside (|(p + v) / radii| <=
+  // |p / radii| + |v| / min radius): exact at the centre and everywhere on a sphere. The
+  // outward direction is the gradient of |x / radii|^2 (the shortest axis at the centre).
+  Scalar depth_of(const Vector3& p, Vector3& outward) const override {
+    const Vector3 scaled = p.cwiseQuotient(radii_);
+    Eigen::Index shortest = 0;
+    const Scalar least = radii_.minCoeff(&shortest);
+    const Vector3 gradient = scaled.cwiseQuotient(radii_);
+    const Scalar length = gradient.norm();
+    outward = length > 0 ? Vector3(gradient / length) : Vector3(Vector3::Unit(shortest));
+    return least * (1 - scaled.norm()) - 16 * kRoundoff * radii_.maxCoeff() * (1 + scaled.norm());
+  }
   const char* name() const override { return "ellipsoid"; }
   CurvedShapeParameters parameters() const override {
-    return {CurvedShapeParameters::Kind::ellipsoid, 0, 0, radii_};
+    return shape_parameters(CurvedShapeParameters::Kind::ellipsoid, 0, 0, radii_);
   }
 
  private:

@@ -60,7 +60,7 @@ void update_box(SceneBody& b) {
       high(k) = axis.dot(shape->support(axis) + centre) + t(k);
       low(k) = axis.dot(shape->support(-axis) + centre) + t(k);
     }
-    shortfall = SupportFunction::kSupportErrorRoundoffs * kEpsilon * shape->outer_radius();
+    shortfall = shape->support_error_roundoffs() * kEpsilon * shape->outer_radius();
   } else if (b.body.size() <= kHillClimbingThreshold) {
     low = r * points.row(0).transpose() + t;
     high = low;

@@ -79,9 +79,16 @@ Answer along_centres(const FramedPair& pair) {
   return answer;
 }
 
+// True for a curved shape placed by a pose (a compound body's part, placed_shape.hpp): FCL's
+// primitives sit at their own origins.
+bool placed_curved(const FramedBody& body) {
+  return body.curved() && body.body().curved()->parameters().placed;
+}
+
 }  // namespace
 
 Answer solve_fcl(const FramedPair& pair, const QueryOptions& options, Goal goal) {
+  if (placed_curved(pair.a) || placed_curved(pair.b)) return solve_exact(pair, options, goal);
   // FCL's GJK has no early exit for an intersection test: it runs to the distance. The centres'
   // line proves most separated pairs apart in two support scans (as libccd's test would stop).
   const fcl::ShapeBased& shape_a = fcl_shape(pair.a);

@@ -7,6 +7,7 @@
 #include <optional>
 #include <vector>
 
+#include "../geometry/curved_depth.hpp"
 #include "../geometry/support_tree.hpp"
 #include "candidate_axes.hpp"
 #include "expanding_polytope.hpp"
@@ -109,6 +110,7 @@ class Solver {
 
   PenetrationBounds solve(const Vector3& hint, const MinNormPoint* nearest) {
     offer_flat_normals();
+    if ((a_.curved() || b_.curved()) && use_closed_form()) return result();
     // An intersection proof's tetrahedron starts the polytope at once, whose faces' normals are
     // the directions to measure: the hint is tried only if they leave a gap. Otherwise Wolfe's
     // nearest point (the caller's, or found here from the hint) bounds the distance, and its
@@ -272,6 +274,19 @@ class Solver {
     }
     if (e.verified) set_upper(-e.depth_lower, PenetrationProof::polytope);
     return e.verified;
+  }
+
+  // A curved shape's closed form proves the depth of the other body's points in it, which the
+  // polytope cannot where a circle of directions is deepest (curved_depth.hpp); the direction of
+  // the nearest surface is measured as any other. True when that settles the answer.
+  bool use_closed_form() {
+    const ClosedFormDepth closed = closed_form_depth(a_, b_);
+    if (!(closed.depth > 0)) return false;
+    set_upper(-closed.depth, PenetrationProof::closed_form);
+    (closed.curved_a ? a_ : b_).add_point(closed.surface);
+    offer(closed.normal);
+    finish();
+    return done();
   }
 
   // Curved bodies have no candidate axes to fall back on. Where Wolfe's corral stops short of a

@@ -19,6 +19,8 @@ enum class PenetrationProof {
   polytope,
   /// The enumeration of every facet normal of `A - B` (the candidate axes).
   candidate_axes,
+  /// A curved shape's closed form holding the other body's points (curved_depth.hpp).
+  closed_form,
 };
 
 /// Proven bounds on the signed distance `sd` of two convex hulls of point sets, with the best

@@ -4,6 +4,7 @@
 
 #include "swarmcollide/geometry/aabb.hpp"
 #include "swarmcollide/geometry/convex_polyhedron.hpp"
+#include "swarmcollide/geometry/pose.hpp"
 #include "swarmcollide/types.hpp"
 
 namespace swarmcollide {
@@ -34,18 +35,29 @@ struct PartNode {
 ///
 /// A part may be a curved shape (Cylinder, Cone, Ellipsoid): the envelopes hold its box, and its
 /// part pairs are answered as Query answers a convex pair, by the methods that answer curved
-/// shapes (the others refuse the body).
+/// shapes (the others refuse the body). Each part may have a pose in the body's frame: the body
+/// keeps the part placed by it (placed_shape.hpp), which the queries read as any part.
 ///
 /// Copies share the parts (and their hulls); the class is safe to read from many threads.
 class CompoundBody {
  public:
   /// Throws std::invalid_argument if `parts` is empty.
   explicit CompoundBody(std::vector<ConvexPolyhedron> parts);
+  /// Parts each placed by its pose in the body's frame: part i's points `x` are at
+  /// `poses[i].rotation * x + poses[i].translation`. Throws std::invalid_argument if `parts` is
+  /// empty, if there is not one pose per part, or for an invalid pose (see validate_pose).
+  CompoundBody(std::vector<ConvexPolyhedron> parts, const std::vector<Pose>& poses);
   /// A body of one part.
   explicit CompoundBody(ConvexPolyhedron part);
 
-  /// The convex parts, in the order given.
+  /// The convex parts in the body's frame (placed by their poses), in the order given.
   const std::vector<ConvexPolyhedron>& parts() const { return parts_; }
+  /// The parts as given, each in its own frame (`parts()` for a body built without poses).
+  const std::vector<ConvexPolyhedron>& given_parts() const {
+    return given_parts_.empty() ? parts_ : given_parts_;
+  }
+  /// Where each part sits in the body's frame (identity poses for a body built without poses).
+  std::vector<Pose> part_poses() const;
   /// Number of parts.
   int size() const { return static_cast<int>(parts_.size()); }
   /// The bounding-volume tree over the parts: node 0 is the root, each inner node has two
@@ -68,6 +80,9 @@ class CompoundBody {
 
  private:
   std::vector<ConvexPolyhedron> parts_;
+  // The parts as given and their poses, kept only for a body built with poses.
+  std::vector<ConvexPolyhedron> given_parts_;
+  std::vector<Pose> poses_;
   std::vector<PartNode> tree_;
   std::vector<ConvexPolyhedron> node_envelopes_;
   // The index of the first curved part, -1 for none.

@@ -79,6 +79,8 @@ class ConvexPolyhedron {
   /// The support function of a curved shape (shapes.hpp), null for a polyhedron: the body is
   /// then that shape (rounded by `radius()`), not the hull of its points.
   const SupportFunction* curved() const { return curved_.get(); }
+  /// The same support function, shared: for a body made from this one (placed_shape.hpp).
+  const std::shared_ptr<const SupportFunction>& curved_shared() const { return curved_; }
 
   /// Index of a point that maximises `direction . x` (the first of the hull points on ties),
   /// comparing `centred_vertices()` of the hull points.
@@ -131,6 +133,11 @@ class ConvexPolyhedron {
   /// radius (plus `radius`).
   ConvexPolyhedron(VertexMatrix points, Scalar radius,
                    std::shared_ptr<const SupportFunction> shape);
+  /// A curved shape whose points' box is not the shape's (a shape placed by a pose,
+  /// placed_shape.hpp): `box` holds the shape, and its centre (`min / 2 + max / 2`) is the origin
+  /// of `shape`'s frame, in which `centred` gives points of the shape (`centred_vertices()`).
+  ConvexPolyhedron(const VertexMatrix& centred, std::shared_ptr<const SupportFunction> shape,
+                   const Aabb& box);
 
  private:
   // The data kept for (type, key), null when there is none yet.

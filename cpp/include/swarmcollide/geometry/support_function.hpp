@@ -1,5 +1,6 @@
 #pragma once
 
+#include "swarmcollide/geometry/pose.hpp"
 #include "swarmcollide/types.hpp"
 
 namespace swarmcollide {
@@ -15,6 +16,12 @@ struct CurvedShapeParameters {
   Scalar half_length = 0;
   /// An ellipsoid's semi-axes along x, y and z (zero for the others).
   Vector3 radii = Vector3::Zero();
+  /// Where the shape sits in its body's frame (a compound body's part placed by a pose,
+  /// placed_shape.hpp): its points `x` are at `pose.rotation * x + pose.translation`; the
+  /// identity for a shape in its own frame.
+  Pose pose;
+  /// True when `pose` is not the identity.
+  bool placed = false;
 };
 
 /// A curved convex shape given by its support function, in its own frame (centred on its box):
@@ -25,14 +32,17 @@ struct CurvedShapeParameters {
 /// The contract every implementation keeps, which the certificates rest on: `support(d)` is a
 /// point of the shape (inside or on it, rounding included: the computed point is pulled towards
 /// the centre by a few roundoffs), and `d . support(d)` falls below the shape's support value
-/// `max_x d . x` by at most `kSupportErrorRoundoffs` roundoffs (2^-53) of `outer_radius() |d|`.
+/// `max_x d . x` by at most `support_error_roundoffs()` roundoffs (2^-53) of `outer_radius() |d|`.
 class SupportFunction {
  public:
   /// Roundoffs of `outer_radius() |d|` by which `d . support(d)` may fall short of the support
-  /// value.
+  /// value, for the shapes of shapes.hpp.
   static constexpr double kSupportErrorRoundoffs = 32;
 
   virtual ~SupportFunction() = default;
+  /// Roundoffs of `outer_radius() |d|` by which this shape's `d . support(d)` may fall short of
+  /// its support value: `kSupportErrorRoundoffs`, more for a shape placed by a pose.
+  virtual Scalar support_error_roundoffs() const { return kSupportErrorRoundoffs; }
   /// A point of the shape farthest along `direction` (to within the bound above), in the shape's
   /// own frame. A direction along which a whole face or segment is farthest gets its centre (a
   /// cylinder's cap along +-z gets the cap's centre); the zero direction gets the origin.
@@ -41,6 +51,12 @@ class SupportFunction {
   virtual Scalar outer_radius() const = 0;
   /// The centre of mass of the solid.
   virtual Vector3 centroid() const = 0;
+  /// A lower bound on how deep `point` (in the shape's own frame) lies inside the shape: the
+  /// radius of a ball about it that the shape holds (rounding included; <= 0 outside or near
+  /// the surface), and in `outward` a unit direction towards the nearest part of the surface.
+  /// From the shape's closed form, for the depth proofs that a direction search cannot give
+  /// (a point on a cylinder's axis is deepest along a whole circle of directions).
+  virtual Scalar depth_of(const Vector3& point, Vector3& outward) const = 0;
   /// The shape's name ("cylinder", ...), for messages.
   virtual const char* name() const = 0;
   /// The shape's kind and dimensions.

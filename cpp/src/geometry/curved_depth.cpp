@@ -1,0 +1,67 @@
+#include "curved_depth.hpp"
+
+#include <algorithm>
+
+#include "normalise.hpp"
+
+namespace swarmcollide::detail {
+
+namespace {
+
+// The depth `inner`'s points reach inside the curved body `curved`, with the outward direction of
+// the least deep one, in the frame.
+ClosedFormDepth points_inside(const FramedBody& curved, const FramedBody& inner) {
+  ClosedFormDepth least;
+  if (!curved.curved() || inner.curved() || inner.size() > kClosedFormPoints) return least;
+  const SupportFunction& shape = *curved.body().curved();
+  // The frame places the body as R x 2^-e + offset with R a valid pose's rotation (orthogonal to
+  // 1e-9): turning back by R^T is off by its skew e (3 max |R^T R - I| bounds it), and R may
+  // shrink a ball's radius by as much.
+  const Matrix3& r = curved.rotation();
+  const Scalar skew = curved.rotated()
+                          ? 3 * (r.transpose() * r - Matrix3::Identity()).cwiseAbs().maxCoeff()
+                          : 0;
+  Scalar depth = std::numeric_limits<Scalar>::infinity();
+  Vector3 outward = Vector3::Zero();
+  Vector3 deepest_point = Vector3::Zero();
+  Scalar farthest = 0;
+  for (int i = 0; i < inner.size(); ++i) {
+    const Vector3 from_offset = inner.vertex(i) - curved.offset();
+    farthest = std::max(farthest, from_offset.norm());
+    const Vector3 turned = curved.local_direction(from_offset);
+    Vector3 local;
+    for (int k = 0; k < 3; ++k) local(k) = times_power_of_two(turned(k), curved.exponent());
+    Vector3 away;
+    const Scalar d = shape.depth_of(local, away);
+    if (d < depth) {
+      depth = d;
+      outward = curved.rotated() ? Vector3(r * away) : away;
+      deepest_point = inner.vertex(i);
+    }
+    if (!(depth > 0)) return least;  // a point outside (or on) the shape: no proof
+  }
+  const Scalar framed = times_power_of_two(depth, -curved.exponent());
+  if (!(framed > 0)) return least;
+  // The placement's rounding (scan_shortfall covers the frame's placing of the points, and as
+  // much again the turn back) and the frame's own.
+  least.depth = framed * (1 - skew) - 2 * skew * farthest - 2 * curved.scan_shortfall() -
+                kFrameRounding;
+  least.normal = outward.normalized();
+  // Inside the ball about the point that the bound proves the shape holds.
+  least.surface = deepest_point + least.depth * least.normal;
+  return least;
+}
+
+}  // namespace
+
+ClosedFormDepth closed_form_depth(const FramedBody& a, const FramedBody& b) {
+  // B's points inside A: B leaves along A's outward direction; A's inside B: A leaves along B's,
+  // so B moves the other way.
+  ClosedFormDepth b_in_a = points_inside(a, b);
+  b_in_a.curved_a = true;
+  ClosedFormDepth a_in_b = points_inside(b, a);
+  a_in_b.normal = -a_in_b.normal;
+  return b_in_a.depth >= a_in_b.depth ? b_in_a : a_in_b;
+}
+
+}  // namespace swarmcollide::detail

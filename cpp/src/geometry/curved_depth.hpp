@@ -1,0 +1,40 @@
+// Depth proofs from the closed forms of curved shapes; private to the library's sources.
+#pragma once
+
+#include <limits>
+
+#include "framed_body.hpp"
+#include "swarmcollide/types.hpp"
+
+namespace swarmcollide::detail {
+
+/// A proven lower bound on the penetration depth of a framed pair's cores, and the direction
+/// from A to B that the bound's nearest surface suggests.
+struct ClosedFormDepth {
+  /// In frame units; -infinity when no closed form applies.
+  Scalar depth = -std::numeric_limits<Scalar>::infinity();
+  /// Unit direction from A to B (zero when `depth` is -infinity).
+  Vector3 normal = Vector3::Zero();
+  /// A point of the curved body `depth` from the least deep point of the other, along its
+  /// outward direction (the nearest surface point where the closed form is exact), in the frame:
+  /// the witness on the curved body.
+  Vector3 surface = Vector3::Zero();
+  /// True when the curved body is A.
+  bool curved_a = false;
+};
+
+/// The depth that a curved body's closed form (SupportFunction::depth_of) proves for a
+/// polyhedron whose points (at most `kClosedFormPoints`) all lie inside it, either way round.
+/// The points of a curved shape at depth at least `d` form a convex set, so it holds the
+/// polyhedron B once it holds B's points, and then `h_A(n) >= h_B(n) + d` for every direction n:
+/// the depth `min_n h_A(n) + h_B(-n)` is at least `d` plus B's width along n. The expanding
+/// polytope cannot prove this where a whole circle of directions is deepest (a point on a
+/// cylinder's or a cone's axis, at an ellipsoid's centre with two equal radii): its faces would
+/// have to be tens of thousands.
+ClosedFormDepth closed_form_depth(const FramedBody& a, const FramedBody& b);
+
+/// The most points a polyhedron may have for closed_form_depth to read them (points and
+/// segments, the cores of spheres and capsules, boxes).
+inline constexpr int kClosedFormPoints = 64;
+
+}  // namespace swarmcollide::detail
