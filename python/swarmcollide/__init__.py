@@ -73,7 +73,7 @@ from .motion import (
     time_of_impact_many,
 )
 from .poses import QUATERNION_ORDERS, pose_from_quaternion
-from .robot import LIMIT_MODES, PairProposal, Robot, RobotCheck
+from .robot import LIMIT_MODES, PairProposal, Robot, RobotCheck, RobotMotion
 from .queries import (
     DEFAULT_TOLERANCE,
     METHODS,
@@ -135,6 +135,7 @@ __all__ = [
     "Query",
     "Robot",
     "RobotCheck",
+    "RobotMotion",
     "Scene",
     "SceneResult",
     "SceneStats",

@@ -1,0 +1,363 @@
+#include "swarmcollide/robot/robot_motion.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include "box_screen.hpp"
+#include "configuration_threads.hpp"
+#include "geometry_pairs.hpp"
+#include "link_motion_bound.hpp"
+#include "swarmcollide/queries/query.hpp"
+
+namespace swarmcollide {
+
+namespace {
+
+constexpr Scalar kUnit = 0x1p-53;
+constexpr Scalar kInfinity = std::numeric_limits<Scalar>::infinity();
+
+// `t + span` rounded down, so that the time it names is no later than the exact sum (as
+// time_of_impact advances).
+Scalar advanced(Scalar t, Scalar span) {
+  Scalar next = t + span * (1 - 4 * kUnit);
+  // Up to t + 3 span the difference with t is exact only when next <= 2 t (Sterbenz); larger
+  // steps lose at most a roundoff of next <= t + span, which the 4 taken off above cover.
+  if (next <= 2 * t) {
+    while (next > t && next - t > span) next = std::nextafter(next, t);
+  }
+  return next;
+}
+
+// The time a gap `apart` lasts at most `speed` of closing, rounded down (0 for no gap).
+Scalar reach_over(Scalar apart, Scalar speed) {
+  if (!(apart > 0)) return 0;
+  if (speed == 0) return kInfinity;
+  return apart / speed * (1 - 4 * kUnit);
+}
+
+// What one pair's distance at one time proves.
+struct Sample {
+  Scalar t;
+  // Proven within the tolerance of contact at t.
+  bool contact;
+  // The time after t, and before it, over which the pair is proven apart.
+  Scalar forward;
+  Scalar backward;
+};
+
+// How one pair's advancement up to a horizon ended.
+struct PairRun {
+  enum Outcome { free, contact, unproven } outcome = free;
+  // Proven apart before this time.
+  Scalar lower = 0;
+  // Proven in contact at this time (contact), or the earliest time found in contact (unproven;
+  // +inf when none was).
+  Scalar upper = kInfinity;
+  MotionStatus status = MotionStatus::converged;
+};
+
+// A pair's speed and margin over the motion, and its screened reach from t = 0.
+struct PairPlan {
+  int pair;
+  Scalar speed;
+  Scalar margin;
+  Scalar first_contact;
+};
+
+// One motion of a robot: the pairs advanced one by one, each up to the earliest contact found so
+// far (a pair in contact later cannot change the answer; one in contact earlier lowers it).
+class MotionCheck {
+ public:
+  MotionCheck(const RobotModel& model, const std::vector<GeometryPair>& pairs,
+              const Configurations& q0, const Configurations& q1,
+              const TimeOfImpactOptions& options, RobotMotionCheck& check)
+      : model_(model), pairs_(pairs), q0_(q0), q1_(q1), options_(options), check_(check),
+        bound_(model), q_(model.dof()) {}
+
+  void operator()(std::size_t row) {
+    const auto i = static_cast<Eigen::Index>(row);
+    start_ = q0_.row(q0_.rows() == 1 ? 0 : i);
+    end_ = q1_.row(q1_.rows() == 1 ? 0 : i);
+    delta_ = end_ - start_;
+    bound_.set_motion(start_.data(), end_.data());
+    QueryOptions query = options_.query;
+    query.seed = pair_seed(options_.query.seed, row);
+    // A quarter of the motion's tolerance, as time_of_impact asks it: near contact the queries'
+    // bounds are then within 3/8 of the threshold of each other, so a time not proven in contact
+    // is proven apart by 5/8 of it less the margin, and bisection ends (motions.md).
+    query.tolerance /= 4;
+    const Query solver(query);
+    query_ = &solver;
+    iterations_ = 0;
+    plan();
+    Scalar horizon = 1;
+    Scalar lower = 1;
+    int best = -1;
+    int unproven = -1;
+    MotionStatus status = MotionStatus::converged;
+    for (const PairPlan& plan : plans_) {
+      if (plan.first_contact > horizon) continue;  // proven apart before the horizon
+      if (iterations_ >= options_.max_iterations) {
+        // Left unanswered: only its screened reach from t = 0 is proven.
+        lower = std::min(lower, std::max<Scalar>(0, plan.first_contact));
+        if (unproven < 0) unproven = plan.pair;
+        status = MotionStatus::max_iterations;
+        continue;
+      }
+      const PairRun run = advance(plan, horizon);
+      if (run.outcome == PairRun::free) continue;
+      lower = std::min(lower, run.lower);
+      if (run.outcome == PairRun::unproven) {
+        if (unproven < 0) unproven = plan.pair;
+        if (status == MotionStatus::converged) status = run.status;
+      }
+      // Ties keep the pair taken first; a contact at the motion's end is a contact too.
+      if (run.upper < horizon || (best < 0 && run.upper == horizon)) {
+        horizon = run.upper;
+        best = plan.pair;
+      }
+    }
+    const bool certified = status == MotionStatus::converged;
+    check_.certified(i) = certified;
+    check_.status[row] = status;
+    check_.iterations(i) = iterations_;
+    check_.t_lower(i) = std::min(lower, horizon);
+    if (best < 0 && certified) {
+      check_.touches(i) = false;
+      check_.t_upper(i) = 1;
+      check_.configuration.row(i) = end_;
+      return;
+    }
+    const int named = best >= 0 ? best : unproven;
+    check_.touches(i) = true;
+    check_.t_upper(i) = horizon;
+    check_.pair(i) = named;
+    configuration_at(horizon);
+    check_.configuration.row(i) = q_;
+    place(pairs_[static_cast<std::size_t>(named)]);
+    const GeometryPair& pair = pairs_[static_cast<std::size_t>(named)];
+    const DistanceResult contact =
+        detail::signed_distance_of(*query_, model_, pair, pose_a_, pose_b_);
+    check_.distance(i) = contact.distance;
+    check_.point_a.row(i) = contact.point_a.transpose();
+    check_.point_b.row(i) = contact.point_b.transpose();
+    check_.normal.row(i) = contact.direction.transpose();
+  }
+
+ private:
+  // Every pair's speed and margin, and the pairs in increasing order of their first possible
+  // contact from their screens at t = 0, less those proven apart over the whole motion from the
+  // screens at both ends.
+  void plan() {
+    plans_.clear();
+    configuration_at(0);
+    for (std::size_t p = 0; p < pairs_.size(); ++p) {
+      const GeometryPair& pair = pairs_[p];
+      const Scalar speed = bound_.pair_speed(pair);
+      const Scalar margin = bound_.pair_margin(pair);
+      place(pair);
+      plans_.push_back({static_cast<int>(p), speed, margin, reach_over(screen(pair) - margin, speed)});
+    }
+    configuration_at(1);
+    // Apart over the whole motion when the reaches from both ends meet.
+    plans_.erase(std::remove_if(plans_.begin(), plans_.end(),
+                                [this](const PairPlan& plan) {
+                                  place(pairs_[static_cast<std::size_t>(plan.pair)]);
+                                  const Scalar from_end = reach_over(
+                                      screen(pairs_[static_cast<std::size_t>(plan.pair)]) -
+                                          plan.margin,
+                                      plan.speed);
+                                  return plan.first_contact + from_end > 1;
+                                }),
+                 plans_.end());
+    std::sort(plans_.begin(), plans_.end(), [](const PairPlan& x, const PairPlan& y) {
+      return x.first_contact < y.first_contact ||
+             (x.first_contact == y.first_contact && x.pair < y.pair);
+    });
+  }
+
+  // Conservative advancement of one pair over [0, horizon] (time_of_impact's, with the horizon
+  // in place of the motion's end).
+  PairRun advance(const PairPlan& plan, Scalar horizon) {
+    const GeometryPair& pair = pairs_[static_cast<std::size_t>(plan.pair)];
+    const Scalar width = options_.time_tolerance;
+    Sample low = sample(pair, plan, 0, horizon);
+    if (low.contact) return {PairRun::contact, 0, 0};
+    // Sampled times after `low`, nearest last: each one still to be reached.
+    std::vector<Sample>& ahead = ahead_;
+    ahead.clear();
+    while (true) {
+      if (!ahead.empty()) {
+        const Sample& next = ahead.back();
+        if (low.forward + next.backward >= next.t - low.t) {
+          // Proven apart from both ends.
+          low = next;
+          ahead.pop_back();
+          if (low.contact) return {PairRun::contact, low.t, low.t};
+          continue;
+        }
+        if (next.contact && next.t - low.t <= width) return {PairRun::contact, low.t, next.t};
+      } else if (low.forward > horizon - low.t) {
+        return {PairRun::free, horizon, kInfinity};
+      }
+      if (iterations_ >= options_.max_iterations) {
+        return unproven(low, MotionStatus::max_iterations);
+      }
+      const Scalar limit = ahead.empty() ? horizon : ahead.back().t;
+      if (low.forward >= width) {
+        const Scalar t = advanced(low.t, low.forward);
+        if (t > low.t && t < limit) {
+          const Sample reached = sample(pair, plan, t, horizon);
+          if (reached.contact) return {PairRun::contact, t, t};
+          low = reached;
+          continue;
+        }
+      }
+      if (ahead.empty()) {
+        if (low.t == horizon) {
+          // Apart before the horizon, unproven at it: enough below the earliest contact found.
+          if (horizon < 1) return {PairRun::free, horizon, kInfinity};
+          return unproven(low, MotionStatus::unresolved);
+        }
+        // Steps are below the time tolerance: look one tolerance ahead.
+        ahead.push_back(sample(pair, plan, std::min(horizon, low.t + width), horizon));
+        continue;
+      }
+      // Neither end proves the interval: split it.
+      const Scalar middle = low.t + (limit - low.t) / 2;
+      if (!(middle > low.t && middle < limit)) return unproven(low, MotionStatus::unresolved);
+      ahead.push_back(sample(pair, plan, middle, horizon));
+    }
+  }
+
+  PairRun unproven(const Sample& low, MotionStatus status) const {
+    PairRun run{PairRun::unproven, low.t, kInfinity, status};
+    for (const Sample& s : ahead_) {
+      if (s.contact) run.upper = std::min(run.upper, s.t);
+    }
+    return run;
+  }
+
+  // The pair at time t: its screens when they alone prove it apart up to the horizon, its
+  // certified signed distance otherwise.
+  Sample sample(const GeometryPair& pair, const PairPlan& plan, Scalar t, Scalar horizon) {
+    configuration_at(t);
+    place(pair);
+    const Scalar screened = reach_over(screen(pair) - plan.margin, plan.speed);
+    if (screened > horizon - t) return {t, false, screened, screened};
+    ++iterations_;
+    const DistanceResult result =
+        detail::signed_distance_of(*query_, model_, pair, pose_a_, pose_b_);
+    const BodyBounds& a = model_.geometries()[pair.a].body.bounds();
+    const BodyBounds& b = model_.geometries()[pair.b].body.bounds();
+    // The motion's size for this pair: the sum of the two bounding balls' diameters.
+    const Scalar threshold = options_.query.tolerance * 2 * (a.radius + b.radius);
+    Sample s{t, result.distance + plan.margin <= threshold, 0, 0};
+    const Scalar apart = result.lower_bound - plan.margin;
+    if (s.contact || !(apart > 0)) return s;
+    s.forward = s.backward = reach_over(apart, plan.speed);
+    return s;
+  }
+
+  // A proven lower bound on the pair's distance at the placed poses from its geometries'
+  // bounding balls and boxes (as robot_check screens), -inf when neither separates them.
+  Scalar screen(const GeometryPair& pair) const {
+    const BodyBounds& a = model_.geometries()[pair.a].body.bounds();
+    const BodyBounds& b = model_.geometries()[pair.b].body.bounds();
+    const Vector3 ca = pose_a_.rotation * a.centre + pose_a_.translation;
+    const Vector3 cb = pose_b_.rotation * b.centre + pose_b_.translation;
+    const Scalar margin = 1e-12 * (ca.lpNorm<Eigen::Infinity>() + cb.lpNorm<Eigen::Infinity>() +
+                                   a.radius + b.radius);
+    const Scalar balls = (ca - cb).norm() - a.radius - b.radius - margin;
+    return std::max(balls, detail::box_separation(a.box, pose_a_, b.box, pose_b_));
+  }
+
+  // q(t) into q_ and every link's pose at it into links_.
+  void configuration_at(Scalar t) {
+    if (t == 1) {
+      q_ = end_;
+    } else {
+      q_ = start_ + t * delta_;
+    }
+    link_poses(model_, q_.data(), links_);
+  }
+
+  void place(const GeometryPair& pair) {
+    pose_a_ = placed(pair.a);
+    pose_b_ = placed(pair.b);
+  }
+
+  Pose placed(int g) const {
+    const Geometry& geometry = model_.geometries()[static_cast<std::size_t>(g)];
+    return geometry.link < 0 ? geometry.origin : compose(links_[geometry.link], geometry.origin);
+  }
+
+  const RobotModel& model_;
+  const std::vector<GeometryPair>& pairs_;
+  const Configurations& q0_;
+  const Configurations& q1_;
+  const TimeOfImpactOptions& options_;
+  RobotMotionCheck& check_;
+  // Per motion, reused from one to the next by the thread that owns this.
+  detail::LinkMotionBound bound_;
+  const Query* query_ = nullptr;
+  int iterations_ = 0;
+  Eigen::Matrix<Scalar, 1, Eigen::Dynamic> start_;
+  Eigen::Matrix<Scalar, 1, Eigen::Dynamic> end_;
+  Eigen::Matrix<Scalar, 1, Eigen::Dynamic> delta_;
+  Eigen::Matrix<Scalar, 1, Eigen::Dynamic> q_;
+  std::vector<Pose> links_;
+  Pose pose_a_;
+  Pose pose_b_;
+  std::vector<PairPlan> plans_;
+  std::vector<Sample> ahead_;
+};
+
+void require_dof(const RobotModel& model, const Configurations& q, const char* name) {
+  if (q.cols() != model.dof()) {
+    throw std::invalid_argument(std::string(name) + " must have " + std::to_string(model.dof()) +
+                                " values per configuration, got " + std::to_string(q.cols()));
+  }
+}
+
+}  // namespace
+
+RobotMotionCheck robot_check_motion(const RobotModel& model, const std::vector<GeometryPair>& pairs,
+                                    const Configurations& q0, const Configurations& q1,
+                                    const TimeOfImpactOptions& options,
+                                    const BatchSettings& settings) {
+  options.validate();
+  validate_pairs(model, pairs);
+  require_dof(model, q0, "q0");
+  require_dof(model, q1, "q1");
+  if (q0.rows() != q1.rows() && q0.rows() != 1 && q1.rows() != 1) {
+    throw std::invalid_argument("q0 has " + std::to_string(q0.rows()) + " rows and q1 " +
+                                std::to_string(q1.rows()) +
+                                ": give one motion per row of each, or one row for all");
+  }
+  detail::require_geometry_shapes(model, pairs, options.query.method);
+  const Eigen::Index m = q0.rows() == 0 || q1.rows() == 0 ? 0 : std::max(q0.rows(), q1.rows());
+  RobotMotionCheck check;
+  check.touches.setConstant(m, false);
+  check.t_lower.setConstant(m, 1);
+  check.t_upper.setConstant(m, 1);
+  check.configuration.setZero(m, model.dof());
+  check.pair.setConstant(m, -1);
+  check.distance.setConstant(m, std::numeric_limits<Scalar>::quiet_NaN());
+  check.point_a.setZero(m, 3);
+  check.point_b.setZero(m, 3);
+  check.normal.setZero(m, 3);
+  check.certified.setConstant(m, true);
+  check.iterations.setZero(m);
+  check.status.assign(static_cast<std::size_t>(m), MotionStatus::converged);
+  // One checker per thread: its buffers are the thread's own; each writes only its rows.
+  detail::over_configurations(
+      static_cast<std::size_t>(m), settings.threads,
+      [&] { return MotionCheck(model, pairs, q0, q1, options, check); }, "motion");
+  return check;
+}
+
+}  // namespace swarmcollide
