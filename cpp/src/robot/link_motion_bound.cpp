@@ -153,6 +153,9 @@ void LinkMotionBound::set_motion(const Scalar* q0, const Scalar* q1) {
                       kRoundUp;
     }
     motion.rounding *= kRoundUp;
+    motion.total = 0;
+    for (Scalar speed : motion.speed) motion.total += speed;
+    motion.total *= kRoundUp;
   }
 }
 
@@ -186,6 +189,55 @@ Scalar LinkMotionBound::pair_speed(const GeometryPair& pair) const {
     speed += 1.01 * chain_sigma_[j] * change_[j] * (a.extent + b.extent);
   }
   return speed * kRoundUp;
+}
+
+LinkMotionBound::LocalSpeed LinkMotionBound::local_speed(const GeometryPair& pair,
+                                                         const std::vector<Pose>& links,
+                                                         const Pose& pose_a,
+                                                         const Pose& pose_b) const {
+  const int la = model_.geometries()[pair.a].link;
+  const int lb = model_.geometries()[pair.b].link;
+  const std::size_t shared = shared_joints(chains_, la, lb);
+  LocalSpeed local{0, 0};
+  const auto add = [&](int g, int link, const Pose& pose) {
+    if (link < 0) return;
+    const std::vector<int>& chain = chains_[static_cast<std::size_t>(link)];
+    const GeometryMotion& motion = geometries_[static_cast<std::size_t>(g)];
+    const BodyBounds& bounds = model_.geometries()[static_cast<std::size_t>(g)].body.bounds();
+    const Vector3 centre = pose.rotation * bounds.centre + pose.translation;
+    // The rounding of the placed frames (as pair_margin's), and the ball's radius.
+    const Scalar slack = 64 * kUnit * static_cast<Scalar>(chain.size() + 1) * motion.extent;
+    Scalar changes = 0;
+    for (std::size_t k = shared; k < chain.size(); ++k) {
+      const int j = chain[k];
+      if (model_.driving_dof(j) < 0) continue;
+      const Joint& joint = model_.joints()[j];
+      // A slide moves the points by its change; a turn by its change times their distance from
+      // its axis (the child's frame turns about the axis through its origin). The frames are
+      // rigid to within sigma: distances in them and in the world differ by at most that factor.
+      const Scalar rigid = 1 + 4 * chain_sigma_[j];
+      Scalar reach = 1;
+      if (joint.type != JointType::prismatic) {
+        const Pose& frame = links[static_cast<std::size_t>(joint.child)];
+        const Vector3 axis = (frame.rotation * joint.axis).normalized();
+        reach = off_axis(centre - frame.translation, axis) + bounds.radius + slack;
+      }
+      local.at += change_[j] * reach * rigid;
+      changes += change_[j];
+    }
+    local.growth += changes * motion.total;
+  };
+  add(pair.a, la, pose_a);
+  add(pair.b, lb, pose_b);
+  for (std::size_t k = 0; k < shared; ++k) {
+    const int j = chains_[static_cast<std::size_t>(la)][k];
+    if (model_.joints()[j].type == JointType::prismatic) continue;
+    local.at += 1.01 * chain_sigma_[j] * change_[j] *
+                (geometries_[pair.a].extent + geometries_[pair.b].extent);
+  }
+  local.at *= kRoundUp;
+  local.growth *= kRoundUp;
+  return local;
 }
 
 Scalar LinkMotionBound::pair_margin(const GeometryPair& pair) const {

@@ -36,6 +36,14 @@ namespace swarmcollide::detail {
 /// difference turned by d, and a shared turn costs that, with |x| <= Z_a + Z_b (the points'
 /// distances from the world's origin); a shared slide costs nothing.
 ///
+/// Near a configuration the motion passes through, the distances from the axes are known rather
+/// than bounded: `local_speed` takes d_i, the distance from axis_i (placed there) to the
+/// geometry's bounding ball, plus its radius. A turn of J_i keeps every point's distance from
+/// axis_i, and the joints above J_i move both rigidly, so that distance changes only through the
+/// joints below J_i, at most at the geometry's whole speed bound v (the sum over its chain). At a
+/// time s from there, r_i(s) <= d_i + |s| v, so the pair closes at most at `at + |s| growth`,
+/// with at = sum_i |dq_i| d_i and growth = (sum_i |dq_i|) v, over the same joints as above.
+///
 /// The margin covers the rounding: of q(t) (a few roundoffs of the joint values, times the speed
 /// coefficients), of the forward kinematics (64 roundoffs of Z per joint on the chain) and of the
 /// queries' frames (256 roundoffs of Z_a + Z_b).
@@ -50,6 +58,16 @@ class LinkMotionBound {
 
   /// A bound on how fast `pair`'s distance can shrink, per unit of time, forwards or backwards.
   Scalar pair_speed(const GeometryPair& pair) const;
+  /// The closing speed of `pair` around a configuration whose link poses are `links`, with its
+  /// geometries at `pose_a` and `pose_b`: over a time h either way from it, the pair's distance
+  /// shrinks by at most `at h + growth h^2 / 2`.
+  struct LocalSpeed {
+    Scalar at;
+    Scalar growth;
+  };
+  LocalSpeed local_speed(const GeometryPair& pair, const std::vector<Pose>& links,
+                         const Pose& pose_a, const Pose& pose_b) const;
+
   /// A bound on how far the computed poses of `pair` at any time of the motion can be from the
   /// exact ones, measured as the change of their distance.
   Scalar pair_margin(const GeometryPair& pair) const;
@@ -63,6 +81,8 @@ class LinkMotionBound {
     Scalar extent = 0;
     // The displacement of the points from the rounding of q(t).
     Scalar rounding = 0;
+    // The sum of `speed`.
+    Scalar total = 0;
   };
 
   const RobotModel& model_;

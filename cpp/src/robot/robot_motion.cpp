@@ -38,6 +38,16 @@ Scalar reach_over(Scalar apart, Scalar speed) {
   return apart / speed * (1 - 4 * kUnit);
 }
 
+// The time a gap `apart` lasts when it closes at most at `at + s growth` at a time s from now:
+// the root of at h + growth h^2 / 2 = apart, rounded down.
+Scalar local_reach(Scalar apart, const detail::LinkMotionBound::LocalSpeed& speed) {
+  if (!(apart > 0)) return 0;
+  const Scalar root = std::sqrt(speed.at * speed.at + 2 * speed.growth * apart);
+  const Scalar denominator = speed.at + root;
+  if (denominator == 0) return kInfinity;
+  return 2 * apart / denominator * (1 - 8 * kUnit);
+}
+
 // What one pair's distance at one time proves.
 struct Sample {
   Scalar t;
@@ -57,6 +67,13 @@ struct PairRun {
   // +inf when none was).
   Scalar upper = kInfinity;
   MotionStatus status = MotionStatus::converged;
+};
+
+// A pair left unproven: proven apart before `lower` only.
+struct Unproven {
+  int pair;
+  Scalar lower;
+  MotionStatus status;
 };
 
 // A pair's speed and margin over the motion, and its screened reach from t = 0.
@@ -96,29 +113,34 @@ class MotionCheck {
     Scalar horizon = 1;
     Scalar lower = 1;
     int best = -1;
-    int unproven = -1;
-    MotionStatus status = MotionStatus::converged;
+    unproven_.clear();
     for (const PairPlan& plan : plans_) {
       if (plan.first_contact > horizon) continue;  // proven apart before the horizon
       if (iterations_ >= options_.max_iterations) {
         // Left unanswered: only its screened reach from t = 0 is proven.
-        lower = std::min(lower, std::max<Scalar>(0, plan.first_contact));
-        if (unproven < 0) unproven = plan.pair;
-        status = MotionStatus::max_iterations;
+        lower = std::min(lower, plan.first_contact);
+        unproven_.push_back({plan.pair, plan.first_contact, MotionStatus::max_iterations});
         continue;
       }
       const PairRun run = advance(plan, horizon);
       if (run.outcome == PairRun::free) continue;
       lower = std::min(lower, run.lower);
-      if (run.outcome == PairRun::unproven) {
-        if (unproven < 0) unproven = plan.pair;
-        if (status == MotionStatus::converged) status = run.status;
-      }
+      if (run.outcome == PairRun::unproven) unproven_.push_back({plan.pair, run.lower, run.status});
       // Ties keep the pair taken first; a contact at the motion's end is a contact too.
       if (run.upper < horizon || (best < 0 && run.upper == horizon)) {
         horizon = run.upper;
         best = plan.pair;
       }
+    }
+    // A pair left unproven matters only where it is not proven apart: before the contact found,
+    // or anywhere when none was.
+    int unproven = -1;
+    MotionStatus status = MotionStatus::converged;
+    for (const Unproven& pair : unproven_) {
+      if (best >= 0 && pair.lower >= horizon) continue;
+      unproven = pair.pair;
+      status = pair.status;
+      break;
     }
     const bool certified = status == MotionStatus::converged;
     check_.certified(i) = certified;
@@ -154,25 +176,25 @@ class MotionCheck {
   void plan() {
     plans_.clear();
     configuration_at(0);
+    place_all(start_world_);
+    configuration_at(1);
+    place_all(end_world_);
     for (std::size_t p = 0; p < pairs_.size(); ++p) {
       const GeometryPair& pair = pairs_[p];
       const Scalar speed = bound_.pair_speed(pair);
       const Scalar margin = bound_.pair_margin(pair);
-      place(pair);
-      plans_.push_back({static_cast<int>(p), speed, margin, reach_over(screen(pair) - margin, speed)});
+      // The boxes are asked only when the balls do not prove the pair apart over the motion.
+      const Scalar from_start = reach_over(
+          screen(pair, start_world_[pair.a], start_world_[pair.b], margin + speed) - margin,
+          speed);
+      const Scalar from_end = reach_over(
+          screen(pair, end_world_[pair.a], end_world_[pair.b],
+                 margin + speed * (1 - from_start)) - margin,
+          speed);
+      // Apart over the whole motion when the reaches from both ends meet.
+      if (from_start + from_end > 1) continue;
+      plans_.push_back({static_cast<int>(p), speed, margin, from_start});
     }
-    configuration_at(1);
-    // Apart over the whole motion when the reaches from both ends meet.
-    plans_.erase(std::remove_if(plans_.begin(), plans_.end(),
-                                [this](const PairPlan& plan) {
-                                  place(pairs_[static_cast<std::size_t>(plan.pair)]);
-                                  const Scalar from_end = reach_over(
-                                      screen(pairs_[static_cast<std::size_t>(plan.pair)]) -
-                                          plan.margin,
-                                      plan.speed);
-                                  return plan.first_contact + from_end > 1;
-                                }),
-                 plans_.end());
     std::sort(plans_.begin(), plans_.end(), [](const PairPlan& x, const PairPlan& y) {
       return x.first_contact < y.first_contact ||
              (x.first_contact == y.first_contact && x.pair < y.pair);
@@ -246,8 +268,12 @@ class MotionCheck {
   Sample sample(const GeometryPair& pair, const PairPlan& plan, Scalar t, Scalar horizon) {
     configuration_at(t);
     place(pair);
-    const Scalar screened = reach_over(screen(pair) - plan.margin, plan.speed);
+    const Scalar screened = reach_over(
+        screen(pair, pose_a_, pose_b_, plan.margin + plan.speed * (horizon - t)) - plan.margin,
+        plan.speed);
     if (screened > horizon - t) return {t, false, screened, screened};
+    const detail::LinkMotionBound::LocalSpeed local =
+        bound_.local_speed(pair, links_, pose_a_, pose_b_);
     ++iterations_;
     const DistanceResult result =
         detail::signed_distance_of(*query_, model_, pair, pose_a_, pose_b_);
@@ -258,21 +284,30 @@ class MotionCheck {
     Sample s{t, result.distance + plan.margin <= threshold, 0, 0};
     const Scalar apart = result.lower_bound - plan.margin;
     if (s.contact || !(apart > 0)) return s;
-    s.forward = s.backward = reach_over(apart, plan.speed);
+    s.forward = s.backward = std::max(reach_over(apart, plan.speed), local_reach(apart, local));
     return s;
   }
 
-  // A proven lower bound on the pair's distance at the placed poses from its geometries'
-  // bounding balls and boxes (as robot_check screens), -inf when neither separates them.
-  Scalar screen(const GeometryPair& pair) const {
+  // A proven lower bound on the pair's distance at `pose_a` and `pose_b` from its geometries'
+  // bounding balls, and from their boxes too (as robot_check screens) unless the balls' alone
+  // reaches `enough`; -inf when neither separates them.
+  Scalar screen(const GeometryPair& pair, const Pose& pose_a, const Pose& pose_b,
+                Scalar enough) const {
     const BodyBounds& a = model_.geometries()[pair.a].body.bounds();
     const BodyBounds& b = model_.geometries()[pair.b].body.bounds();
-    const Vector3 ca = pose_a_.rotation * a.centre + pose_a_.translation;
-    const Vector3 cb = pose_b_.rotation * b.centre + pose_b_.translation;
+    const Vector3 ca = pose_a.rotation * a.centre + pose_a.translation;
+    const Vector3 cb = pose_b.rotation * b.centre + pose_b.translation;
     const Scalar margin = 1e-12 * (ca.lpNorm<Eigen::Infinity>() + cb.lpNorm<Eigen::Infinity>() +
                                    a.radius + b.radius);
     const Scalar balls = (ca - cb).norm() - a.radius - b.radius - margin;
-    return std::max(balls, detail::box_separation(a.box, pose_a_, b.box, pose_b_));
+    if (balls > enough) return balls;
+    return std::max(balls, detail::box_separation(a.box, pose_a, b.box, pose_b));
+  }
+
+  // Every geometry's pose at the configuration of links_.
+  void place_all(std::vector<Pose>& world) const {
+    world.resize(model_.geometries().size());
+    for (std::size_t g = 0; g < world.size(); ++g) world[g] = placed(static_cast<int>(g));
   }
 
   // q(t) into q_ and every link's pose at it into links_.
@@ -310,10 +345,13 @@ class MotionCheck {
   Eigen::Matrix<Scalar, 1, Eigen::Dynamic> delta_;
   Eigen::Matrix<Scalar, 1, Eigen::Dynamic> q_;
   std::vector<Pose> links_;
+  std::vector<Pose> start_world_;
+  std::vector<Pose> end_world_;
   Pose pose_a_;
   Pose pose_b_;
   std::vector<PairPlan> plans_;
   std::vector<Sample> ahead_;
+  std::vector<Unproven> unproven_;
 };
 
 void require_dof(const RobotModel& model, const Configurations& q, const char* name) {
