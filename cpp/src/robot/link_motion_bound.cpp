@@ -240,6 +240,50 @@ LinkMotionBound::LocalSpeed LinkMotionBound::local_speed(const GeometryPair& pai
   return local;
 }
 
+LinkMotionBound::DirectionalSpeed LinkMotionBound::directional_speed(
+    const GeometryPair& pair, const Vector3& direction, const std::vector<Pose>& links,
+    const Pose& pose_a, const Pose& pose_b) const {
+  DirectionalSpeed speed{0, 0, 0};
+  const auto add = [&](int g, const Pose& pose) {
+    const int link = model_.geometries()[static_cast<std::size_t>(g)].link;
+    if (link < 0) return;
+    const std::vector<int>& chain = chains_[static_cast<std::size_t>(link)];
+    const GeometryMotion& motion = geometries_[static_cast<std::size_t>(g)];
+    const BodyBounds& bounds = model_.geometries()[static_cast<std::size_t>(g)].body.bounds();
+    const Vector3 centre = pose.rotation * bounds.centre + pose.translation;
+    const Scalar slack = 64 * kUnit * static_cast<Scalar>(chain.size() + 1) * motion.extent;
+    // The angular speed of the frames above the joint (the turns taken so far, root first).
+    Scalar turning = 0;
+    for (const int j : chain) {
+      if (model_.driving_dof(j) < 0) continue;
+      const Joint& joint = model_.joints()[j];
+      const Pose& frame = links[static_cast<std::size_t>(joint.child)];
+      const Vector3 axis = (frame.rotation * joint.axis).normalized();
+      const Scalar rigid = (1 + 4 * chain_sigma_[j]) * kRoundUp;
+      const Scalar change = change_[j] * rigid;
+      if (joint.type == JointType::prismatic) {
+        speed.linear += change * (std::abs(direction.dot(axis)) + 8 * kUnit);
+        speed.quadratic += change * turning;
+        continue;
+      }
+      const Scalar across = direction.cross(axis).norm() + 8 * kUnit;
+      const Scalar reach = off_axis(centre - frame.translation, axis) + bounds.radius + slack;
+      speed.linear += change * across * reach;
+      speed.quadratic += change * (across * motion.total + reach * turning);
+      speed.cubic += change * turning * motion.total;
+      turning += change;
+    }
+  };
+  add(pair.a, pose_a);
+  add(pair.b, pose_b);
+  // The rate at a time s away is at most linear + quadratic s + cubic s^2: its integral over h
+  // is the bound.
+  speed.linear *= kRoundUp;
+  speed.quadratic *= kRoundUp;
+  speed.cubic *= kRoundUp;
+  return speed;
+}
+
 Scalar LinkMotionBound::pair_margin(const GeometryPair& pair) const {
   const auto chain_length = [this](int link) {
     return link < 0 ? Scalar{0} : static_cast<Scalar>(chains_[static_cast<std::size_t>(link)].size());

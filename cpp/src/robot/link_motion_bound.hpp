@@ -44,6 +44,14 @@ namespace swarmcollide::detail {
 /// time s from there, r_i(s) <= d_i + |s| v, so the pair closes at most at `at + |s| growth`,
 /// with at = sum_i |dq_i| d_i and growth = (sum_i |dq_i|) v, over the same joints as above.
 ///
+/// Along a fixed unit direction n (a query's separating direction, along which its lower bound is
+/// the separation of the two bodies), a turn of J_i moves a point p at the rate |n . (a_i x (p -
+/// o_i))| <= |n x a_i| dist(p, axis_i), and a slide at |n . a_i|: a turn about n, or a slide
+/// across it, does not change the separation. The axis a_i turns at most at the rates of the
+/// turns above J_i (Omega_i), so at a time s from the configuration |n x a_i(s)| <= c_i + |s|
+/// Omega_i, and the separation shrinks at most at `sum_i |dq_i| (c_i + |s| Omega_i) (d_i + |s|
+/// v)` over every joint of both chains (a shared turn moves both bodies, but not along n alike).
+///
 /// The margin covers the rounding: of q(t) (a few roundoffs of the joint values, times the speed
 /// coefficients), of the forward kinematics (64 roundoffs of Z per joint on the chain) and of the
 /// queries' frames (256 roundoffs of Z_a + Z_b).
@@ -67,6 +75,18 @@ class LinkMotionBound {
   };
   LocalSpeed local_speed(const GeometryPair& pair, const std::vector<Pose>& links,
                          const Pose& pose_a, const Pose& pose_b) const;
+
+  /// How fast the separation of `pair` along the unit `direction` can shrink around the
+  /// configuration of `links`: over a time h either way, by at most `linear h + quadratic h^2 / 2
+  /// + cubic h^3 / 3`.
+  struct DirectionalSpeed {
+    Scalar linear;
+    Scalar quadratic;
+    Scalar cubic;
+  };
+  DirectionalSpeed directional_speed(const GeometryPair& pair, const Vector3& direction,
+                                     const std::vector<Pose>& links, const Pose& pose_a,
+                                     const Pose& pose_b) const;
 
   /// A bound on how far the computed poses of `pair` at any time of the motion can be from the
   /// exact ones, measured as the change of their distance.

@@ -48,6 +48,27 @@ Scalar local_reach(Scalar apart, const detail::LinkMotionBound::LocalSpeed& spee
   return 2 * apart / denominator * (1 - 8 * kUnit);
 }
 
+// The time a gap `apart` lasts when it closes by at most linear h + quadratic h^2/2 + cubic
+// h^3/3 in a time h: the root, by bisection (the closing is increasing in h), rounded down.
+Scalar directional_reach(Scalar apart, const detail::LinkMotionBound::DirectionalSpeed& speed) {
+  if (!(apart > 0)) return 0;
+  const auto closing = [&speed](Scalar h) {
+    return h * (speed.linear + h * (speed.quadratic / 2 + h * speed.cubic / 3));
+  };
+  // Each term alone reaching the gap bounds the root above.
+  Scalar high = kInfinity;
+  if (speed.linear > 0) high = std::min(high, apart / speed.linear);
+  if (speed.quadratic > 0) high = std::min(high, std::sqrt(2 * apart / speed.quadratic));
+  if (speed.cubic > 0) high = std::min(high, std::cbrt(3 * apart / speed.cubic));
+  if (high == kInfinity) return kInfinity;
+  Scalar low = 0;
+  for (int i = 0; i < 30; ++i) {
+    const Scalar middle = (low + high) / 2;
+    (closing(middle) <= apart ? low : high) = middle;
+  }
+  return low * (1 - 8 * kUnit);
+}
+
 // What one pair's distance at one time proves.
 struct Sample {
   Scalar t;
@@ -82,6 +103,10 @@ struct PairPlan {
   Scalar speed;
   Scalar margin;
   Scalar first_contact;
+  // The screens' reach back from t = 1.
+  Scalar from_end;
+  // Neither geometry is compound: the queries' lower bound is a separation along a direction.
+  bool convex;
 };
 
 // One motion of a robot: the pairs advanced one by one, each up to the earliest contact found so
@@ -176,29 +201,43 @@ class MotionCheck {
   void plan() {
     plans_.clear();
     configuration_at(0);
+    start_links_ = links_;
     place_all(start_world_);
     configuration_at(1);
+    end_links_ = links_;
     place_all(end_world_);
     for (std::size_t p = 0; p < pairs_.size(); ++p) {
       const GeometryPair& pair = pairs_[p];
       const Scalar speed = bound_.pair_speed(pair);
       const Scalar margin = bound_.pair_margin(pair);
       // The boxes are asked only when the balls do not prove the pair apart over the motion.
-      const Scalar from_start = reach_over(
-          screen(pair, start_world_[pair.a], start_world_[pair.b], margin + speed) - margin,
-          speed);
-      const Scalar from_end = reach_over(
-          screen(pair, end_world_[pair.a], end_world_[pair.b],
-                 margin + speed * (1 - from_start)) - margin,
-          speed);
+      const Scalar from_start =
+          screened_reach(pair, start_links_, start_world_, speed, margin, margin + speed);
+      if (from_start > 1) continue;
+      const Scalar from_end = screened_reach(pair, end_links_, end_world_, speed, margin,
+                                             margin + speed * (1 - from_start));
       // Apart over the whole motion when the reaches from both ends meet.
       if (from_start + from_end > 1) continue;
-      plans_.push_back({static_cast<int>(p), speed, margin, from_start});
+      const bool convex =
+          !model_.geometries()[pair.a].parts && !model_.geometries()[pair.b].parts;
+      plans_.push_back({static_cast<int>(p), speed, margin, from_start, from_end, convex});
     }
     std::sort(plans_.begin(), plans_.end(), [](const PairPlan& x, const PairPlan& y) {
       return x.first_contact < y.first_contact ||
              (x.first_contact == y.first_contact && x.pair < y.pair);
     });
+  }
+
+  // The time either way from the configuration of `links` (its geometries placed at `world`) over
+  // which the pair's screens prove it apart: by the whole motion's speed bound, or the local one.
+  Scalar screened_reach(const GeometryPair& pair, const std::vector<Pose>& links,
+                        const std::vector<Pose>& world, Scalar speed, Scalar margin,
+                        Scalar enough) const {
+    const Scalar apart = screen(pair, world[pair.a], world[pair.b], enough) - margin;
+    if (!(apart > 0)) return 0;
+    return std::max(reach_over(apart, speed),
+                    local_reach(apart, bound_.local_speed(pair, links, world[pair.a],
+                                                          world[pair.b])));
   }
 
   // Conservative advancement of one pair over [0, horizon] (time_of_impact's, with the horizon
@@ -222,7 +261,9 @@ class MotionCheck {
           continue;
         }
         if (next.contact && next.t - low.t <= width) return {PairRun::contact, low.t, next.t};
-      } else if (low.forward > horizon - low.t) {
+      } else if (low.forward > horizon - low.t ||
+                 (horizon == 1 && low.forward + plan.from_end > 1 - low.t)) {
+        // Proven apart up to the horizon, or to where the screens at the end prove it apart.
         return {PairRun::free, horizon, kInfinity};
       }
       if (iterations_ >= options_.max_iterations) {
@@ -285,6 +326,14 @@ class MotionCheck {
     const Scalar apart = result.lower_bound - plan.margin;
     if (s.contact || !(apart > 0)) return s;
     s.forward = s.backward = std::max(reach_over(apart, plan.speed), local_reach(apart, local));
+    const Scalar length = result.direction.norm();
+    if (plan.convex && length > 0.5) {
+      // The lower bound is the separation along `direction` (a compound geometry's is not).
+      const Scalar along = directional_reach(
+          apart, bound_.directional_speed(pair, result.direction / length, links_, pose_a_,
+                                          pose_b_));
+      s.forward = s.backward = std::max(s.forward, along);
+    }
     return s;
   }
 
@@ -345,6 +394,8 @@ class MotionCheck {
   Eigen::Matrix<Scalar, 1, Eigen::Dynamic> delta_;
   Eigen::Matrix<Scalar, 1, Eigen::Dynamic> q_;
   std::vector<Pose> links_;
+  std::vector<Pose> start_links_;
+  std::vector<Pose> end_links_;
   std::vector<Pose> start_world_;
   std::vector<Pose> end_world_;
   Pose pose_a_;
