@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "box_screen.hpp"
 #include "configuration_threads.hpp"
@@ -133,6 +135,7 @@ class MotionCheck {
     query.tolerance /= 4;
     const Query solver(query);
     query_ = &solver;
+    exact_.reset();
     iterations_ = 0;
     plan();
     Scalar horizon = 1;
@@ -316,8 +319,19 @@ class MotionCheck {
     const detail::LinkMotionBound::LocalSpeed local =
         bound_.local_speed(pair, links_, pose_a_, pose_b_);
     ++iterations_;
-    const DistanceResult result =
-        detail::signed_distance_of(*query_, model_, pair, pose_a_, pose_b_);
+    DistanceResult result = detail::signed_distance_of(*query_, model_, pair, pose_a_, pose_b_);
+    if (!result.certified && query_->options().method != Method::exact) {
+      // Near contact a method can leave a pair unproven where the exact one proves it: ask it
+      // too rather than bisect down to times that cannot be split.
+      ++iterations_;
+      if (!exact_) {
+        QueryOptions options = query_->options();
+        options.method = Method::exact;
+        exact_.emplace(options);
+      }
+      DistanceResult exact = detail::signed_distance_of(*exact_, model_, pair, pose_a_, pose_b_);
+      if (exact.certified) result = std::move(exact);
+    }
     const BodyBounds& a = model_.geometries()[pair.a].body.bounds();
     const BodyBounds& b = model_.geometries()[pair.b].body.bounds();
     // The motion's size for this pair: the sum of the two bounding balls' diameters.
@@ -388,6 +402,8 @@ class MotionCheck {
   // Per motion, reused from one to the next by the thread that owns this.
   detail::LinkMotionBound bound_;
   const Query* query_ = nullptr;
+  // The exact method, seeded as `query_`, made when a query first stays unproven.
+  std::optional<Query> exact_;
   int iterations_ = 0;
   Eigen::Matrix<Scalar, 1, Eigen::Dynamic> start_;
   Eigen::Matrix<Scalar, 1, Eigen::Dynamic> end_;
