@@ -107,6 +107,7 @@ bench: install $(VENV)/.bench-installed bench-scene bench-compound
 	$(PY) bench/curved_coal.py $(BENCH_ARGS) --json bench/results/curved_coal.json
 	$(PY) bench/curved_scene.py $(BENCH_ARGS) --json bench/results/curved_scene.json
 	$(PY) bench/robot.py $(BENCH_ARGS) --json bench/results/robot.json
+	$(PY) bench/robot_motion.py $(BENCH_ARGS) --json bench/results/robot_motion.json
 	$(PY) bench/report.py --results bench/results --plots bench/plots --out bench/RESULTS.md
 
 # The core, the C++ tests and the extension, built with ASan and UBSan (SWARMCOLLIDE_SANITIZE) in

@@ -19,6 +19,7 @@ from curved_coal import section as curved_coal_section
 from hull_points import section as hull_points_section
 from pose_batch import section as pose_batch_section
 from robot import section as robot_section
+from robot_motion import section as robot_motion_section
 from cpp_report import cpp_sections, every_workload_section
 from record import load
 from scene_report import CONTACTS, CONTACTS_PILE, contacts_section, scene_section
@@ -122,6 +123,8 @@ LATE_SECTIONS: List[Section] = [
      curved_coal_section, ""),
     ("robot.json", "Robots against Pinocchio + coal and MuJoCo (bench/robot.py)", "",
      robot_section, ""),
+    ("robot_motion.json", "Robot motions against discrete checks at OMPL's resolution "
+     "(bench/robot_motion.py)", "", robot_motion_section, ""),
 ]
 
 

@@ -11,6 +11,7 @@
 #include "swarmcollide/robot/kinematics.hpp"
 #include "swarmcollide/robot/pair_filter.hpp"
 #include "swarmcollide/robot/robot_model.hpp"
+#include "swarmcollide/robot/robot_motion.hpp"
 #include "swarmcollide/robot/robot_queries.hpp"
 
 namespace swarmcollide::bindings {
@@ -52,6 +53,17 @@ BatchSettings settings_of(const py::object& threads) {
   BatchSettings settings;
   if (!threads.is_none()) settings.threads = thread_count(threads);
   return settings;
+}
+
+std::vector<std::string> status_names(const std::vector<MotionStatus>& statuses) {
+  std::vector<std::string> names;
+  names.reserve(statuses.size());
+  for (MotionStatus status : statuses) {
+    names.emplace_back(status == MotionStatus::converged        ? "converged"
+                       : status == MotionStatus::max_iterations ? "max_iterations"
+                                                                : "unresolved");
+  }
+  return names;
 }
 
 }  // namespace
@@ -137,6 +149,24 @@ multiplier, offset : float
       .def_readonly("point_b", &RobotCheck::point_b)
       .def_readonly("normal", &RobotCheck::normal)
       .def_readonly("gradient", &RobotCheck::gradient);
+
+  py::class_<RobotMotionCheck>(m, "RobotMotionCheck",
+                               "Per motion: free, or the first contact bracketed (see "
+                               "Robot.check_motion).")
+      .def_readonly("touches", &RobotMotionCheck::touches)
+      .def_readonly("t_lower", &RobotMotionCheck::t_lower)
+      .def_readonly("t_upper", &RobotMotionCheck::t_upper)
+      .def_readonly("configuration", &RobotMotionCheck::configuration)
+      .def_readonly("pair", &RobotMotionCheck::pair)
+      .def_readonly("distance", &RobotMotionCheck::distance)
+      .def_readonly("point_a", &RobotMotionCheck::point_a)
+      .def_readonly("point_b", &RobotMotionCheck::point_b)
+      .def_readonly("normal", &RobotMotionCheck::normal)
+      .def_readonly("certified", &RobotMotionCheck::certified)
+      .def_readonly("iterations", &RobotMotionCheck::iterations)
+      .def_property_readonly(
+          "status", [](const RobotMotionCheck& check) { return status_names(check.status); },
+          "Per motion: 'converged', 'max_iterations' or 'unresolved'.");
 
   py::class_<RobotModel, std::shared_ptr<RobotModel>>(m, "RobotModel", R"doc(
 A robot as a plain table of links, joints and geometries: immutable, shared by every thread.
@@ -266,7 +296,26 @@ ValueError
           py::arg("pairs"), py::arg("q"), py::arg("query"), py::arg("threads") = py::none(),
           py::arg("gradient") = false, py::arg("nearest") = true,
           "The nearest pair per admitted configuration (m, dof), with d min_distance / dq when "
-          "``gradient``; without ``nearest``, the verdict alone.");
+          "``gradient``; without ``nearest``, the verdict alone.")
+      .def(
+          "check_motion",
+          [](const RobotModel& model, const PairTable& pairs, const Configurations& q0,
+             const Configurations& q1, const Query& query, Scalar time_tolerance,
+             int max_iterations, const py::object& threads) {
+            const BatchSettings settings = settings_of(threads);
+            const std::vector<GeometryPair> list = to_pairs(pairs);
+            TimeOfImpactOptions options;
+            options.query = query.options();
+            options.time_tolerance = time_tolerance;
+            options.max_iterations = max_iterations;
+            py::gil_scoped_release release;
+            return robot_check_motion(model, list, q0, q1, options, settings);
+          },
+          py::arg("pairs"), py::arg("q0"), py::arg("q1"), py::arg("query"),
+          py::arg("time_tolerance") = kDefaultTimeTolerance,
+          py::arg("max_iterations") = kDefaultMotionIterations, py::arg("threads") = py::none(),
+          "The first contact of each straight joint-space motion from admitted q0 to q1 rows "
+          "(m, dof; one row of either serves every motion), or a proof that there is none.");
 }
 
 }  // namespace swarmcollide::bindings

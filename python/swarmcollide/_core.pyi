@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['Aabb', 'BatchResult', 'Box', 'Capsule', 'CompoundBody', 'CompoundResult', 'CompoundStats', 'Cone', 'ContactResult', 'ConvexPolyhedron', 'Cylinder', 'DistanceResult', 'Ellipsoid', 'Hull', 'Joint', 'PartNode', 'ParticleCoefficients', 'Query', 'RobotCheck', 'RobotDistances', 'RobotModel', 'Scene', 'SceneResult', 'SceneStats', 'Sphere', 'SweepResult', 'TimeOfImpactBatch', 'TimeOfImpactResult', 'as_polyhedron', 'broadphases', 'constraint_violation', 'is_feasible', 'linear_decreasing_inertia', 'method_table', 'objective', 'pair_seed', 'project_onto_simplex', 'query_function', 'rank_adaptive_coefficients', 'separation', 'time_of_impact', 'time_of_impact_many']
+__all__: list[str] = ['Aabb', 'BatchResult', 'Box', 'Capsule', 'CompoundBody', 'CompoundResult', 'CompoundStats', 'Cone', 'ContactResult', 'ConvexPolyhedron', 'Cylinder', 'DistanceResult', 'Ellipsoid', 'Hull', 'Joint', 'PartNode', 'ParticleCoefficients', 'Query', 'RobotCheck', 'RobotDistances', 'RobotModel', 'RobotMotionCheck', 'Scene', 'SceneResult', 'SceneStats', 'Sphere', 'SweepResult', 'TimeOfImpactBatch', 'TimeOfImpactResult', 'as_polyhedron', 'broadphases', 'constraint_violation', 'is_feasible', 'linear_decreasing_inertia', 'method_table', 'objective', 'pair_seed', 'project_onto_simplex', 'query_function', 'rank_adaptive_coefficients', 'separation', 'time_of_impact', 'time_of_impact_many']
 class Aabb:
     """
     An axis-aligned bounding box with corners ``min`` and ``max``.
@@ -896,6 +896,10 @@ class RobotModel:
         """
         The nearest pair per admitted configuration (m, dof), with d min_distance / dq when ``gradient``; without ``nearest``, the verdict alone.
         """
+    def check_motion(self, pairs: typing.Annotated[numpy.typing.ArrayLike, numpy.int32, "[m, 2]"], q0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, n]"], q1: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, n]"], query: Query, time_tolerance: typing.SupportsFloat | typing.SupportsIndex = 1e-06, max_iterations: typing.SupportsInt | typing.SupportsIndex = 100000, threads: typing.Any = None) -> RobotMotionCheck:
+        """
+        The first contact of each straight joint-space motion from admitted q0 to q1 rows (m, dof; one row of either serves every motion), or a proof that there is none.
+        """
     def default_pairs(self) -> typing.Annotated[numpy.typing.NDArray[numpy.int32], "[m, 2]"]:
         """
         The geometry pairs checked by default, (pairs, 2): geometries of links that are not adjacent, and each obstacle against each link's geometry.
@@ -926,6 +930,48 @@ class RobotModel:
         ...
     @property
     def moving_joints(self) -> list[int]:
+        ...
+class RobotMotionCheck:
+    """
+    Per motion: free, or the first contact bracketed (see Robot.check_motion).
+    """
+    @property
+    def certified(self) -> typing.Annotated[numpy.typing.NDArray[numpy.bool], "[m, 1]"]:
+        ...
+    @property
+    def configuration(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
+        ...
+    @property
+    def distance(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        ...
+    @property
+    def iterations(self) -> typing.Annotated[numpy.typing.NDArray[numpy.int32], "[m, 1]"]:
+        ...
+    @property
+    def normal(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
+        ...
+    @property
+    def pair(self) -> typing.Annotated[numpy.typing.NDArray[numpy.int32], "[m, 1]"]:
+        ...
+    @property
+    def point_a(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
+        ...
+    @property
+    def point_b(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
+        ...
+    @property
+    def status(self) -> list[str]:
+        """
+        Per motion: 'converged', 'max_iterations' or 'unresolved'.
+        """
+    @property
+    def t_lower(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        ...
+    @property
+    def t_upper(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        ...
+    @property
+    def touches(self) -> typing.Annotated[numpy.typing.NDArray[numpy.bool], "[m, 1]"]:
         ...
 class Scene:
     """

@@ -18,6 +18,7 @@ import numpy as np
 import numpy.typing as npt
 
 from . import _core
+from .motion import DEFAULT_MOTION_ITERATIONS, DEFAULT_TIME_TOLERANCE
 from .queries import DEFAULT_TOLERANCE, PoseLike, query
 from .robot_tables import ModelTables
 
@@ -91,6 +92,72 @@ class RobotCheck:
             f", min_distance in [{distance.min():.6g}, {distance.max():.6g}]")
         return (f"RobotCheck({colliding.size} configurations, {int(colliding.sum())} colliding, "
                 f"{int(certified.sum())} certified{shown})")
+
+
+@dataclass(frozen=True)
+class RobotMotion:
+    """Per straight joint-space motion q(t) = q0 + t (q1 - q0), t in [0, 1]: proven free, or its
+    first contact bracketed (``Robot.check_motion``).
+
+    For a single motion (``q0`` and ``q1`` of shape ``(dof,)``) each field is that motion's; for
+    m motions each has a leading axis m.
+
+    Attributes
+    ----------
+    touches : bool array
+        False only when no checked pair is in contact at any time of the motion (when
+        ``certified``). Uncertified answers are True (they err on the side of contact).
+    t_lower : float array
+        No pair is in contact before this time (proven, certified or not); 1 for a free motion.
+    t_upper : float array
+        When certified and touching, the pair ``pair`` is proven within ``tolerance x size`` of
+        contact at this time, and ``t_upper - t_lower <= time_tolerance``; 1 for a free motion.
+        Uncertified: the earliest time found in contact, or 1.
+    q : float array (..., dof)
+        The configuration at ``t_upper`` (``q1`` for a free motion).
+    pair : int array
+        Index into ``Robot.pairs`` of the pair in contact at ``t_upper`` (uncertified without a
+        contact found: the pair left unproven); -1 for a free motion.
+    pair_names : str array (..., 2)
+        That pair's names (empty strings for -1).
+    distance : float array
+        The pair's signed distance at ``q`` (an upper bound; NaN for a free motion).
+    point_a, point_b, normal : float arrays (..., 3)
+        Its witness points in the world and the unit normal from its first geometry to its
+        second (zeros for a free motion).
+    certified : bool array
+    iterations : int array
+        Distance queries run (the bounding-ball and box screens not counted).
+    status : str or tuple of str
+        ``"converged"``, ``"max_iterations"`` (the cap ran out) or ``"unresolved"`` (a query
+        stayed unproven where the times could no longer be split).
+    """
+
+    touches: np.ndarray
+    t_lower: np.ndarray
+    t_upper: np.ndarray
+    q: np.ndarray
+    pair: np.ndarray
+    pair_names: np.ndarray
+    distance: np.ndarray
+    point_a: np.ndarray
+    point_b: np.ndarray
+    normal: np.ndarray
+    certified: np.ndarray
+    iterations: np.ndarray
+    status: Union[str, Tuple[str, ...]]
+
+    def __repr__(self) -> str:
+        touches = np.atleast_1d(self.touches)
+        certified = np.atleast_1d(self.certified)
+        if touches.size == 1 and np.ndim(self.touches) == 0:
+            if not touches[0]:
+                return f"RobotMotion(touches=False, certified={bool(certified[0])})"
+            names = tuple(str(name) for name in np.atleast_2d(self.pair_names)[0])
+            return (f"RobotMotion(touches=True, t in [{float(self.t_lower):.6g}, "
+                    f"{float(self.t_upper):.6g}], pair={names}, certified={bool(certified[0])})")
+        return (f"RobotMotion({touches.size} motions, {int(touches.sum())} touching, "
+                f"{int(certified.sum())} certified)")
 
 
 @dataclass(frozen=True)
@@ -313,18 +380,27 @@ class Robot:
         self._rebuild()
         return self
 
-    def _configurations(self, q: npt.ArrayLike, limits: str) -> Tuple[np.ndarray, bool]:
+    def _configurations(self, q: npt.ArrayLike, limits: str,
+                        name: str = "q") -> Tuple[np.ndarray, bool]:
         values = np.asarray(q)
         if values.dtype.kind not in "fiu":
-            raise TypeError(f"q must hold real numbers, got an array of dtype {values.dtype}")
+            raise TypeError(f"{name} must hold real numbers, got an array of dtype "
+                            f"{values.dtype}")
         if values.ndim not in (1, 2):
-            raise ValueError(f"q must have shape (dof,) or (m, dof) with dof = {self.dof}, got "
-                             f"shape {values.shape}")
+            raise ValueError(f"{name} must have shape (dof,) or (m, dof) with dof = {self.dof}, "
+                             f"got shape {values.shape}")
         single = values.ndim == 1
         table = np.ascontiguousarray(values.reshape(1, -1) if single else values, dtype=float)
         if limits not in LIMIT_MODES:
             raise ValueError(f"limits must be one of {LIMIT_MODES}, got {limits!r}")
-        return self._model.admit(table, limits), single
+        try:
+            return self._model.admit(table, limits), single
+        except ValueError as error:
+            # The core names the configurations q ("q[3], joint 'elbow': ..."); say which.
+            message = str(error)
+            if name == "q" or not message.startswith("q"):
+                raise
+            raise ValueError(name + message[1:]) from None
 
     def forward_kinematics(self, q: npt.ArrayLike, *, limits: str = "raise") -> np.ndarray:
         """Every link's world transform: ``(links, 4, 4)`` for q of shape ``(dof,)``, ``(m,
@@ -417,6 +493,89 @@ class Robot:
         if single:
             fields = {k: (v[0] if v is not None else None) for k, v in fields.items()}
         return RobotCheck(**fields)
+
+    def check_motion(self, q0: npt.ArrayLike, q1: npt.ArrayLike, *, limits: str = "raise",
+                     threads: Optional[int] = None,
+                     time_tolerance: float = DEFAULT_TIME_TOLERANCE,
+                     max_iterations: int = DEFAULT_MOTION_ITERATIONS, method: str = "dual",
+                     tolerance: float = DEFAULT_TOLERANCE, seed: int = 0) -> RobotMotion:
+        """Whether the robot touches anything while its joints move along the straight segment
+        q(t) = q0 + t (q1 - q0), t in [0, 1] (a planner's edge), and if so when first.
+
+        Never sampled at a resolution: each pair is advanced conservatively on its certified
+        distance lower bounds, with a bound on how fast its links can move that follows from
+        the joint displacements (Schwarzer, Saha and Latombe): a point of a link moves by at most
+        sum |dq_j| r_j over the joints j of its chain, r_j bounding the distance from joint j's
+        axis to the link's points (1 for a prismatic joint); a pair leaves out the joints its two
+        links share. Near a contact the remaining time is bisected. The answer is a proof that
+        no pair touches, or the first contact within ``[t_lower, t_upper]`` (see
+        ``RobotMotion``). Each motion is answered whole by one C++ thread, without the GIL.
+
+        Parameters
+        ----------
+        q0, q1 : array_like, (dof,) or (m, dof)
+            The motions' ends in ``joint_names``' order; a single configuration of either serves
+            every motion.
+        limits : {"raise", "clamp"}
+            What an end outside its joints' limits does: raise ``ValueError`` naming ``q0`` or
+            ``q1``, the row and the joint, or move it to the nearest limit (the motion is then
+            the segment between the clamped ends). Between ends within the limits the whole
+            segment is (the limits are a box). ``"wrap"`` is refused: turning an end by 2 pi is
+            the same pose but another motion.
+        threads : int, optional
+            C++ threads (default one per hardware thread); answers do not depend on it.
+        time_tolerance : float
+            The largest width of a first contact's bracket, as a fraction of the motion (> 0).
+        max_iterations : int
+            Distance queries per motion at most; past it the motion is answered uncertified.
+        method, tolerance, seed
+            The pair queries' (``method`` must answer distances: ``"dual"``, ``"exact"``,
+            ``"fcl"``); pairs within ``tolerance`` times their size (the sum of their bounding
+            balls' diameters) are in contact; ``tolerance`` must be positive.
+
+        Returns
+        -------
+        RobotMotion
+
+        Examples
+        --------
+        >>> import numpy as np, swarmcollide as sc
+        >>> arm = sc.Robot(["base", "arm"], [sc.Joint("turn", "revolute", 0, 1, lower=-3,
+        ...                                           upper=3)],
+        ...                [("bar", 1, np.array([[1, 0, 0, 0.5], [0, 1, 0, 0], [0, 0, 1, 0],
+        ...                                      [0, 0, 0, 1.0]]), sc.Box([0.5, 0.02, 0.02]))])
+        >>> pole = np.eye(4)
+        >>> pole[:3, 3] = [0.0, 0.6, 0.0]
+        >>> arm = arm.add_obstacle(sc.Cylinder(0.01, 1.0), pole, name="pole")
+        >>> bool(arm.check([-1.0]).colliding), bool(arm.check([2.5]).colliding)
+        (False, False)
+        >>> hit = arm.check_motion([-1.0], [2.5])
+        >>> hit
+        RobotMotion(touches=True, t in [0.7..., 0.7...], pair=('bar', 'pole'), certified=True)
+        >>> arm.check_motion([-1.0], [0.5]).touches
+        False
+        """
+        if limits == "wrap":
+            raise ValueError("limits='wrap' is refused for motions: turning an end by 2 pi is "
+                             "the same pose but another motion; use 'raise' or 'clamp'")
+        if isinstance(max_iterations, bool) or not isinstance(max_iterations, (int, np.integer)):
+            raise TypeError(f"max_iterations must be an int, got {max_iterations!r}")
+        start, single_start = self._configurations(q0, limits, "q0")
+        end, single_end = self._configurations(q1, limits, "q1")
+        raw = self._model.check_motion(self._pair_table, start, end,
+                                       query(method, tolerance=tolerance, seed=seed),
+                                       float(time_tolerance), int(max_iterations), threads)
+        named = np.array(list(self.pairs) + [("", "")], dtype=str).reshape(-1, 2)
+        fields: Dict[str, Any] = dict(
+            touches=raw.touches, t_lower=raw.t_lower, t_upper=raw.t_upper, q=raw.configuration,
+            pair=raw.pair, pair_names=named[np.asarray(raw.pair)].reshape(-1, 2),
+            distance=raw.distance, point_a=raw.point_a, point_b=raw.point_b, normal=raw.normal,
+            certified=raw.certified, iterations=raw.iterations, status=tuple(raw.status))
+        if single_start and single_end:
+            fields = {k: v[0] for k, v in fields.items()}
+            fields["touches"] = bool(fields["touches"])
+            fields["certified"] = bool(fields["certified"])
+        return RobotMotion(**fields)
 
     def propose_disabled_pairs(self, samples: int = 1000, *, seed: int = 0,
                                threads: Optional[int] = None) -> PairProposal:

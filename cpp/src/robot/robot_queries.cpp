@@ -1,18 +1,14 @@
 #include "swarmcollide/robot/robot_queries.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
-#include <exception>
 #include <limits>
-#include <mutex>
 #include <stdexcept>
 #include <string>
-#include <system_error>
-#include <thread>
 #include <utility>
 
 #include "box_screen.hpp"
+#include "configuration_threads.hpp"
 #include "geometry_pairs.hpp"
 #include "swarmcollide/queries/query.hpp"
 
@@ -103,64 +99,6 @@ RobotDistances robot_distances(const RobotModel& model, const std::vector<Geomet
 }
 
 namespace {
-
-// Runs `answer(i)`, with `answer` each thread's own `make_answer()`, for every configuration i on
-// `threads` threads (0: one per hardware thread) taking configurations in chunks, in increasing
-// order, from one counter: when a configuration fails every one before it has been taken, so the
-// error rethrown is the lowest failing configuration's, prefixed "q[i]: ". Each configuration is
-// answered whole by one thread, so the answers do not depend on the threads.
-template <typename MakeAnswer>
-void over_configurations(std::size_t count, int threads, const MakeAnswer& make_answer) {
-  if (threads < 0 || threads > kMaxThreads) {
-    throw std::invalid_argument("threads must be in [0, " + std::to_string(kMaxThreads) +
-                                "] (0: one per hardware thread), got " + std::to_string(threads));
-  }
-  const std::size_t wanted = threads > 0 ? static_cast<std::size_t>(threads)
-                                         : std::max(1u, std::thread::hardware_concurrency());
-  const std::size_t workers = std::min(wanted, std::max<std::size_t>(count, 1));
-  constexpr std::size_t kChunk = 8;
-  std::atomic<std::size_t> next{0};
-  std::atomic<bool> failed{false};
-  std::mutex mutex;
-  std::size_t failed_row = count;
-  std::exception_ptr error;
-  const auto work = [&] {
-    auto answer = make_answer();
-    for (;;) {
-      const std::size_t start = next.fetch_add(kChunk, std::memory_order_relaxed);
-      if (start >= count || failed.load(std::memory_order_relaxed)) return;
-      for (std::size_t i = start; i < std::min(count, start + kChunk); ++i) {
-        try {
-          answer(i);
-        } catch (...) {
-          const std::lock_guard<std::mutex> lock(mutex);
-          if (i < failed_row) {
-            failed_row = i;
-            error = std::current_exception();
-          }
-          failed.store(true, std::memory_order_relaxed);
-          return;
-        }
-      }
-    }
-  };
-  std::vector<std::thread> pool;
-  for (std::size_t t = 1; t < workers; ++t) {
-    try {
-      pool.emplace_back(work);
-    } catch (const std::system_error&) {
-      break;  // the threads running share the work
-    }
-  }
-  work();
-  for (std::thread& thread : pool) thread.join();
-  if (!error) return;
-  try {
-    std::rethrow_exception(error);
-  } catch (const std::invalid_argument& e) {
-    throw std::invalid_argument("q[" + std::to_string(failed_row) + "]: " + e.what());
-  }
-}
 
 // A pair's lower bound from its geometries' bounding balls, a bound on its contact threshold
 // (the tolerance times the pair's size, which is at most the centres' distance plus twice the
@@ -351,7 +289,7 @@ RobotCheck robot_check(const RobotModel& model, const std::vector<GeometryPair>&
   check.normal.setZero(m, 3);
   if (gradient) check.gradient.setZero(m, model.dof());
   // One checker per thread: its buffers are the thread's own; each writes only its rows.
-  over_configurations(static_cast<std::size_t>(m), settings.threads, [&] {
+  detail::over_configurations(static_cast<std::size_t>(m), settings.threads, [&] {
     return ConfigurationCheck(model, pairs, q, validated.options(), nearest, gradient, check);
   });
   return check;

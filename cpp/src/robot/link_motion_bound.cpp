@@ -1,0 +1,301 @@
+#include "link_motion_bound.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace swarmcollide::detail {
+
+namespace {
+
+constexpr Scalar kUnit = 0x1p-53;
+// Every bound below is a short sum of products of rounded numbers: 16 roundoffs of it cover them.
+constexpr Scalar kRoundUp = 1 + 16 * kUnit;
+
+// A bound on the spectral norm of R^T R - I: its largest absolute row sum (the matrix is
+// symmetric), rounded up.
+Scalar rigid_deviation(const Matrix3& rotation) {
+  const Matrix3 gram = rotation.transpose() * rotation - Matrix3::Identity();
+  return gram.cwiseAbs().rowwise().sum().maxCoeff() * kRoundUp + 8 * kUnit;
+}
+
+// A bound on the spectral norm of a rotation R with R^T R - I of norm at most `deviation`.
+Scalar rotation_norm(Scalar deviation) { return std::sqrt(1 + deviation) * kRoundUp; }
+
+// The distance of `p` from the line through the origin along the unit `axis`.
+Scalar off_axis(const Vector3& p, const Vector3& axis) { return (p - p.dot(axis) * axis).norm(); }
+
+// Raises `about_origin` and `about_axis` to bounds on the distance of the core points of `body`,
+// placed by `origin`, from the origin and from the line along `axis`. A rounded body's ball turns
+// into itself, so it moves no farther than its core: its radius is left out.
+void core_reach(const ConvexPolyhedron& body, const Pose& origin, const Vector3& axis,
+                Scalar& about_origin, Scalar& about_axis) {
+  if (const SupportFunction* shape = body.curved()) {
+    // The shape lies within its outer radius of its centre, the body's box centre.
+    const Vector3 centre = origin.rotation * body.bounds().centre + origin.translation;
+    const Scalar radius = shape->outer_radius() * rotation_norm(rigid_deviation(origin.rotation));
+    about_origin = std::max(about_origin, centre.norm() + radius);
+    about_axis = std::max(about_axis, off_axis(centre, axis) + radius);
+    return;
+  }
+  for (int i = 0; i < body.size(); ++i) {
+    const Vector3 p = origin.rotation * body.vertices().row(i).transpose() + origin.translation;
+    about_origin = std::max(about_origin, p.norm());
+    about_axis = std::max(about_axis, off_axis(p, axis));
+  }
+}
+
+}  // namespace
+
+LinkMotionBound::LinkMotionBound(const RobotModel& model) : model_(model) {
+  const std::vector<Joint>& joints = model.joints();
+  origin_sigma_.resize(joints.size());
+  chain_sigma_.resize(joints.size());
+  for (std::size_t j = 0; j < joints.size(); ++j) {
+    origin_sigma_[j] = rigid_deviation(joints[j].origin.rotation);
+  }
+  chains_.resize(model.links().size());
+  for (std::size_t l = 0; l < chains_.size(); ++l) {
+    for (int link = static_cast<int>(l); model.parent_joint(link) >= 0;) {
+      const int j = model.parent_joint(link);
+      chains_[l].push_back(j);
+      link = joints[j].parent;
+    }
+    std::reverse(chains_[l].begin(), chains_[l].end());
+  }
+  // The product of the origins from the root to each joint (the turns between them are exact
+  // rotations): its Gram matrix is within prod (1 + sigma_k) - 1 of the identity.
+  for (int j : model.joint_order()) {
+    const int above = model.parent_joint(joints[j].parent);
+    const Scalar before = above < 0 ? 0 : chain_sigma_[above];
+    chain_sigma_[j] = ((1 + before) * (1 + origin_sigma_[j]) - 1) * kRoundUp;
+  }
+  const std::vector<Geometry>& geometries = model.geometries();
+  origin_reach_.assign(geometries.size(), 0);
+  axis_reach_.assign(geometries.size(), 0);
+  for (std::size_t g = 0; g < geometries.size(); ++g) {
+    const Geometry& geometry = geometries[g];
+    const int parent = geometry.link < 0 ? -1 : model.parent_joint(geometry.link);
+    const Vector3 axis = parent < 0 ? Vector3::UnitZ() : joints[parent].axis.normalized();
+    if (geometry.parts) {
+      for (const ConvexPolyhedron& part : geometry.parts->parts()) {
+        core_reach(part, geometry.origin, axis, origin_reach_[g], axis_reach_[g]);
+      }
+    } else {
+      core_reach(geometry.body, geometry.origin, axis, origin_reach_[g], axis_reach_[g]);
+    }
+    origin_reach_[g] *= kRoundUp;
+    axis_reach_[g] *= kRoundUp;
+  }
+  change_.resize(joints.size());
+  slide_.resize(joints.size());
+  value_error_.resize(joints.size());
+  geometries_.resize(geometries.size());
+}
+
+void LinkMotionBound::set_motion(const Scalar* q0, const Scalar* q1) {
+  const std::vector<Joint>& joints = model_.joints();
+  for (std::size_t j = 0; j < joints.size(); ++j) {
+    const Joint& joint = joints[j];
+    const int dof = model_.driving_dof(static_cast<int>(j));
+    change_[j] = slide_[j] = value_error_[j] = 0;
+    if (dof < 0) continue;
+    const Scalar rate = std::abs(joint.mimic < 0 ? 1 : joint.multiplier);
+    const Scalar v0 = model_.joint_value(static_cast<int>(j), q0[dof]);
+    const Scalar v1 = model_.joint_value(static_cast<int>(j), q1[dof]);
+    change_[j] = rate * std::abs(q1[dof] - q0[dof]) * kRoundUp;
+    // q(t) = q0 + t (q1 - q0), the mimic's multiple and offset, and the motion's `value -
+    // reference` are each a few roundoffs of these magnitudes away from the exact values.
+    value_error_[j] = 8 * kUnit *
+                      (rate * 2 * (std::abs(q0[dof]) + std::abs(q1[dof])) + std::abs(v0) +
+                       std::abs(v1) + std::abs(joint.reference) + std::abs(joint.offset));
+    if (joint.type == JointType::prismatic) {
+      slide_[j] = std::max(std::abs(v0 - joint.reference), std::abs(v1 - joint.reference)) *
+                      kRoundUp +
+                  value_error_[j];
+    }
+  }
+  const std::vector<Geometry>& geometries = model_.geometries();
+  for (std::size_t g = 0; g < geometries.size(); ++g) {
+    GeometryMotion& motion = geometries_[g];
+    const int link = geometries[g].link;
+    motion.speed.clear();
+    motion.rounding = 0;
+    if (link < 0) {
+      motion.extent = origin_reach_[g];
+      continue;
+    }
+    const std::vector<int>& chain = chains_[static_cast<std::size_t>(link)];
+    const std::size_t n = chain.size();
+    motion.speed.assign(n, 0);
+    // z: the points' distance from the frame of chain[k]'s child; turn: from chain[k]'s axis.
+    Scalar z = origin_reach_[g];
+    Scalar turn = axis_reach_[g];
+    for (std::size_t k = n; k-- > 0;) {
+      if (k + 1 < n) {
+        const Joint& next = joints[chain[k + 1]];
+        const Scalar inner = rotation_norm(origin_sigma_[chain[k + 1]]) * (slide_[chain[k + 1]] + z);
+        z = (next.origin.translation.norm() + inner) * kRoundUp;
+        turn = (off_axis(next.origin.translation, joints[chain[k]].axis.normalized()) + inner) *
+               kRoundUp;
+      }
+      const int j = chain[k];
+      if (model_.driving_dof(j) < 0) continue;
+      const Scalar reach = joints[j].type == JointType::prismatic ? 1 : turn;
+      const Scalar coefficient = rotation_norm(chain_sigma_[j]) * reach * kRoundUp;
+      motion.speed[k] = coefficient * change_[j];
+      motion.rounding += coefficient * value_error_[j];
+    }
+    motion.extent = z;
+    if (n > 0) {
+      const Joint& first = joints[chain[0]];
+      motion.extent = (first.origin.translation.norm() +
+                       rotation_norm(origin_sigma_[chain[0]]) * (slide_[chain[0]] + z)) *
+                      kRoundUp;
+    }
+    motion.rounding *= kRoundUp;
+    motion.total = 0;
+    for (Scalar speed : motion.speed) motion.total += speed;
+    motion.total *= kRoundUp;
+  }
+}
+
+namespace {
+
+// The number of joints the chains of links `a` and `b` share (-1: an obstacle, no chain).
+std::size_t shared_joints(const std::vector<std::vector<int>>& chains, int a, int b) {
+  if (a < 0 || b < 0) return 0;
+  const std::vector<int>& x = chains[static_cast<std::size_t>(a)];
+  const std::vector<int>& y = chains[static_cast<std::size_t>(b)];
+  std::size_t k = 0;
+  while (k < x.size() && k < y.size() && x[k] == y[k]) ++k;
+  return k;
+}
+
+}  // namespace
+
+Scalar LinkMotionBound::pair_speed(const GeometryPair& pair) const {
+  const int la = model_.geometries()[pair.a].link;
+  const int lb = model_.geometries()[pair.b].link;
+  const std::size_t shared = shared_joints(chains_, la, lb);
+  const GeometryMotion& a = geometries_[pair.a];
+  const GeometryMotion& b = geometries_[pair.b];
+  Scalar speed = 0;
+  for (std::size_t k = shared; k < a.speed.size(); ++k) speed += a.speed[k];
+  for (std::size_t k = shared; k < b.speed.size(); ++k) speed += b.speed[k];
+  for (std::size_t k = 0; k < shared; ++k) {
+    // A shared turn leaves distances unchanged but for the origins' deviation from rigid.
+    const int j = chains_[static_cast<std::size_t>(la)][k];
+    if (model_.joints()[j].type == JointType::prismatic) continue;
+    speed += 1.01 * chain_sigma_[j] * change_[j] * (a.extent + b.extent);
+  }
+  return speed * kRoundUp;
+}
+
+LinkMotionBound::LocalSpeed LinkMotionBound::local_speed(const GeometryPair& pair,
+                                                         const std::vector<Pose>& links,
+                                                         const Pose& pose_a,
+                                                         const Pose& pose_b) const {
+  const int la = model_.geometries()[pair.a].link;
+  const int lb = model_.geometries()[pair.b].link;
+  const std::size_t shared = shared_joints(chains_, la, lb);
+  LocalSpeed local{0, 0};
+  const auto add = [&](int g, int link, const Pose& pose) {
+    if (link < 0) return;
+    const std::vector<int>& chain = chains_[static_cast<std::size_t>(link)];
+    const GeometryMotion& motion = geometries_[static_cast<std::size_t>(g)];
+    const BodyBounds& bounds = model_.geometries()[static_cast<std::size_t>(g)].body.bounds();
+    const Vector3 centre = pose.rotation * bounds.centre + pose.translation;
+    // The rounding of the placed frames (as pair_margin's), and the ball's radius.
+    const Scalar slack = 64 * kUnit * static_cast<Scalar>(chain.size() + 1) * motion.extent;
+    Scalar changes = 0;
+    for (std::size_t k = shared; k < chain.size(); ++k) {
+      const int j = chain[k];
+      if (model_.driving_dof(j) < 0) continue;
+      const Joint& joint = model_.joints()[j];
+      // A slide moves the points by its change; a turn by its change times their distance from
+      // its axis (the child's frame turns about the axis through its origin). The frames are
+      // rigid to within sigma: distances in them and in the world differ by at most that factor.
+      const Scalar rigid = 1 + 4 * chain_sigma_[j];
+      Scalar reach = 1;
+      if (joint.type != JointType::prismatic) {
+        const Pose& frame = links[static_cast<std::size_t>(joint.child)];
+        const Vector3 axis = (frame.rotation * joint.axis).normalized();
+        reach = off_axis(centre - frame.translation, axis) + bounds.radius + slack;
+      }
+      local.at += change_[j] * reach * rigid;
+      changes += change_[j];
+    }
+    local.growth += changes * motion.total;
+  };
+  add(pair.a, la, pose_a);
+  add(pair.b, lb, pose_b);
+  for (std::size_t k = 0; k < shared; ++k) {
+    const int j = chains_[static_cast<std::size_t>(la)][k];
+    if (model_.joints()[j].type == JointType::prismatic) continue;
+    local.at += 1.01 * chain_sigma_[j] * change_[j] *
+                (geometries_[pair.a].extent + geometries_[pair.b].extent);
+  }
+  local.at *= kRoundUp;
+  local.growth *= kRoundUp;
+  return local;
+}
+
+LinkMotionBound::DirectionalSpeed LinkMotionBound::directional_speed(
+    const GeometryPair& pair, const Vector3& direction, const std::vector<Pose>& links,
+    const Pose& pose_a, const Pose& pose_b) const {
+  DirectionalSpeed speed{0, 0, 0};
+  const auto add = [&](int g, const Pose& pose) {
+    const int link = model_.geometries()[static_cast<std::size_t>(g)].link;
+    if (link < 0) return;
+    const std::vector<int>& chain = chains_[static_cast<std::size_t>(link)];
+    const GeometryMotion& motion = geometries_[static_cast<std::size_t>(g)];
+    const BodyBounds& bounds = model_.geometries()[static_cast<std::size_t>(g)].body.bounds();
+    const Vector3 centre = pose.rotation * bounds.centre + pose.translation;
+    const Scalar slack = 64 * kUnit * static_cast<Scalar>(chain.size() + 1) * motion.extent;
+    // The angular speed of the frames above the joint (the turns taken so far, root first).
+    Scalar turning = 0;
+    for (const int j : chain) {
+      if (model_.driving_dof(j) < 0) continue;
+      const Joint& joint = model_.joints()[j];
+      const Pose& frame = links[static_cast<std::size_t>(joint.child)];
+      const Vector3 axis = (frame.rotation * joint.axis).normalized();
+      const Scalar rigid = (1 + 4 * chain_sigma_[j]) * kRoundUp;
+      const Scalar change = change_[j] * rigid;
+      if (joint.type == JointType::prismatic) {
+        speed.linear += change * (std::abs(direction.dot(axis)) + 8 * kUnit);
+        speed.quadratic += change * turning;
+        continue;
+      }
+      const Scalar across = direction.cross(axis).norm() + 8 * kUnit;
+      const Scalar reach = off_axis(centre - frame.translation, axis) + bounds.radius + slack;
+      speed.linear += change * across * reach;
+      speed.quadratic += change * (across * motion.total + reach * turning);
+      speed.cubic += change * turning * motion.total;
+      turning += change;
+    }
+  };
+  add(pair.a, pose_a);
+  add(pair.b, pose_b);
+  // The rate at a time s away is at most linear + quadratic s + cubic s^2: its integral over h
+  // is the bound.
+  speed.linear *= kRoundUp;
+  speed.quadratic *= kRoundUp;
+  speed.cubic *= kRoundUp;
+  return speed;
+}
+
+Scalar LinkMotionBound::pair_margin(const GeometryPair& pair) const {
+  const auto chain_length = [this](int link) {
+    return link < 0 ? Scalar{0} : static_cast<Scalar>(chains_[static_cast<std::size_t>(link)].size());
+  };
+  const GeometryMotion& a = geometries_[pair.a];
+  const GeometryMotion& b = geometries_[pair.b];
+  const Scalar na = chain_length(model_.geometries()[pair.a].link);
+  const Scalar nb = chain_length(model_.geometries()[pair.b].link);
+  return (a.rounding + b.rounding +
+          kUnit * (64 * (na + 1) * a.extent + 64 * (nb + 1) * b.extent +
+                   256 * (a.extent + b.extent))) *
+         kRoundUp;
+}
+
+}  // namespace swarmcollide::detail

@@ -1,0 +1,125 @@
+// How far the geometries of a robot can move along a straight segment in joint space (Schwarzer,
+// Saha and Latombe's motion bounds); private to the library's sources.
+#pragma once
+
+#include <vector>
+
+#include "swarmcollide/robot/pair_filter.hpp"
+#include "swarmcollide/robot/robot_model.hpp"
+#include "swarmcollide/types.hpp"
+
+namespace swarmcollide::detail {
+
+/// Bounds on how fast the distance between two geometries of a robot can shrink while the joints
+/// move from `q0` to `q1` along the straight segment q(t) = q0 + t (q1 - q0), t in [0, 1].
+///
+/// Link L's frame is `F_n = O_1 M_1 ... O_n M_n` over the joints J_1 ... J_n from the root to L
+/// (O_i the joint origin, M_i its motion: a turn about the unit axis a_i through the origin of
+/// the child's frame, or a slide along it). Changing one joint value by d moves a point p of L:
+/// a turn of J_i by d moves it by at most |F_i| |d| dist(p, axis_i) (a chord is shorter than its
+/// arc), a slide by |F_i| |d|. Between two configurations on the segment the joints can be changed
+/// one at a time, every intermediate configuration having each joint value within its range over
+/// the segment, so p moves by at most sum_i |F_i| |d_i| r_i(L), where r_i(L) bounds the distance
+/// from axis_i to L's points at every such configuration: in J_i's child frame the points are
+/// `O_{i+1} M_{i+1} (...)`, so r_i <= |perp_i(O_{i+1}.t)| + |O_{i+1}.R| (s_{i+1} + z_{i+1}), with
+/// z_k bounding the points' distance from F_k's origin (z_{k-1} <= |O_k.t| + |O_k.R| (s_k + z_k),
+/// z_n the geometry's reach about L's origin) and s_k the largest slide of J_k over the segment
+/// (0 for a turn). For i = n the exact distance of the geometry's points to the axis is used.
+/// |d_i| = rate_i |q1 - q0| h over a time h (rate: a mimic joint's multiplier).
+///
+/// A pair may leave out the joints both chains share (the joints above their links' common
+/// ancestor, a common prefix of the two chains in a tree): changing a shared joint applies the
+/// same map `F_i -> F_i Rot(a_i, d)` (or a common translation, for a slide) to both geometries,
+/// which leaves every distance between their points unchanged when F_i is a rotation. The joint
+/// origins are rigid only to validate_pose's tolerance, so F_i^T F_i = I + S with |S| <= sigma_i:
+/// then |F_i x| - |x| changes by at most sigma_i |d| |x| / sqrt(1 - sigma_i) for |x| a point
+/// difference turned by d, and a shared turn costs that, with |x| <= Z_a + Z_b (the points'
+/// distances from the world's origin); a shared slide costs nothing.
+///
+/// Near a configuration the motion passes through, the distances from the axes are known rather
+/// than bounded: `local_speed` takes d_i, the distance from axis_i (placed there) to the
+/// geometry's bounding ball, plus its radius. A turn of J_i keeps every point's distance from
+/// axis_i, and the joints above J_i move both rigidly, so that distance changes only through the
+/// joints below J_i, at most at the geometry's whole speed bound v (the sum over its chain). At a
+/// time s from there, r_i(s) <= d_i + |s| v, so the pair closes at most at `at + |s| growth`,
+/// with at = sum_i |dq_i| d_i and growth = (sum_i |dq_i|) v, over the same joints as above.
+///
+/// Along a fixed unit direction n (a query's separating direction, along which its lower bound is
+/// the separation of the two bodies), a turn of J_i moves a point p at the rate |n . (a_i x (p -
+/// o_i))| <= |n x a_i| dist(p, axis_i), and a slide at |n . a_i|: a turn about n, or a slide
+/// across it, does not change the separation. The axis a_i turns at most at the rates of the
+/// turns above J_i (Omega_i), so at a time s from the configuration |n x a_i(s)| <= c_i + |s|
+/// Omega_i, and the separation shrinks at most at `sum_i |dq_i| (c_i + |s| Omega_i) (d_i + |s|
+/// v)` over every joint of both chains (a shared turn moves both bodies, but not along n alike).
+///
+/// The margin covers the rounding: of q(t) (a few roundoffs of the joint values, times the speed
+/// coefficients), of the forward kinematics (64 roundoffs of Z per joint on the chain) and of the
+/// queries' frames (256 roundoffs of Z_a + Z_b).
+class LinkMotionBound {
+ public:
+  /// The model's part of the bounds (chains, the joint origins' deviation from rigid, every
+  /// geometry's reach); the model must outlive this.
+  explicit LinkMotionBound(const RobotModel& model);
+
+  /// Sets the motion: `q0` and `q1` hold one admitted value per degree of freedom.
+  void set_motion(const Scalar* q0, const Scalar* q1);
+
+  /// A bound on how fast `pair`'s distance can shrink, per unit of time, forwards or backwards.
+  Scalar pair_speed(const GeometryPair& pair) const;
+  /// The closing speed of `pair` around a configuration whose link poses are `links`, with its
+  /// geometries at `pose_a` and `pose_b`: over a time h either way from it, the pair's distance
+  /// shrinks by at most `at h + growth h^2 / 2`.
+  struct LocalSpeed {
+    Scalar at;
+    Scalar growth;
+  };
+  LocalSpeed local_speed(const GeometryPair& pair, const std::vector<Pose>& links,
+                         const Pose& pose_a, const Pose& pose_b) const;
+
+  /// How fast the separation of `pair` along the unit `direction` can shrink around the
+  /// configuration of `links`: over a time h either way, by at most `linear h + quadratic h^2 / 2
+  /// + cubic h^3 / 3`.
+  struct DirectionalSpeed {
+    Scalar linear;
+    Scalar quadratic;
+    Scalar cubic;
+  };
+  DirectionalSpeed directional_speed(const GeometryPair& pair, const Vector3& direction,
+                                     const std::vector<Pose>& links, const Pose& pose_a,
+                                     const Pose& pose_b) const;
+
+  /// A bound on how far the computed poses of `pair` at any time of the motion can be from the
+  /// exact ones, measured as the change of their distance.
+  Scalar pair_margin(const GeometryPair& pair) const;
+
+ private:
+  struct GeometryMotion {
+    // Per joint of the link's chain (root first): the speed of the geometry's points due to it,
+    // per unit of time.
+    std::vector<Scalar> speed;
+    // A bound on the points' distance from the world's origin.
+    Scalar extent = 0;
+    // The displacement of the points from the rounding of q(t).
+    Scalar rounding = 0;
+    // The sum of `speed`.
+    Scalar total = 0;
+  };
+
+  const RobotModel& model_;
+  // Per link, its chain of joints from the root down (fixed joints included).
+  std::vector<std::vector<int>> chains_;
+  // Per joint, sigma of its origin, and of the product of the origins from the root to it.
+  std::vector<Scalar> origin_sigma_;
+  std::vector<Scalar> chain_sigma_;
+  // Per geometry, its core points' reach about its link's origin and about its link's parent
+  // joint's axis.
+  std::vector<Scalar> origin_reach_;
+  std::vector<Scalar> axis_reach_;
+  // Per motion: each joint's change (absolute), its largest slide, the rounding of its value.
+  std::vector<Scalar> change_;
+  std::vector<Scalar> slide_;
+  std::vector<Scalar> value_error_;
+  std::vector<GeometryMotion> geometries_;
+};
+
+}  // namespace swarmcollide::detail

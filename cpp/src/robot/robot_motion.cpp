@@ -1,0 +1,468 @@
+#include "swarmcollide/robot/robot_motion.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+#include "box_screen.hpp"
+#include "configuration_threads.hpp"
+#include "geometry_pairs.hpp"
+#include "link_motion_bound.hpp"
+#include "swarmcollide/queries/query.hpp"
+
+namespace swarmcollide {
+
+namespace {
+
+constexpr Scalar kUnit = 0x1p-53;
+constexpr Scalar kInfinity = std::numeric_limits<Scalar>::infinity();
+
+// `t + span` rounded down, so that the time it names is no later than the exact sum (as
+// time_of_impact advances).
+Scalar advanced(Scalar t, Scalar span) {
+  Scalar next = t + span * (1 - 4 * kUnit);
+  // Up to t + 3 span the difference with t is exact only when next <= 2 t (Sterbenz); larger
+  // steps lose at most a roundoff of next <= t + span, which the 4 taken off above cover.
+  if (next <= 2 * t) {
+    while (next > t && next - t > span) next = std::nextafter(next, t);
+  }
+  return next;
+}
+
+// The time a gap `apart` lasts at most `speed` of closing, rounded down (0 for no gap).
+Scalar reach_over(Scalar apart, Scalar speed) {
+  if (!(apart > 0)) return 0;
+  if (speed == 0) return kInfinity;
+  return apart / speed * (1 - 4 * kUnit);
+}
+
+// The time a gap `apart` lasts when it closes at most at `at + s growth` at a time s from now:
+// the root of at h + growth h^2 / 2 = apart, rounded down.
+Scalar local_reach(Scalar apart, const detail::LinkMotionBound::LocalSpeed& speed) {
+  if (!(apart > 0)) return 0;
+  const Scalar root = std::sqrt(speed.at * speed.at + 2 * speed.growth * apart);
+  const Scalar denominator = speed.at + root;
+  if (denominator == 0) return kInfinity;
+  return 2 * apart / denominator * (1 - 8 * kUnit);
+}
+
+// The time a gap `apart` lasts when it closes by at most linear h + quadratic h^2/2 + cubic
+// h^3/3 in a time h: the root, by bisection (the closing is increasing in h), rounded down.
+Scalar directional_reach(Scalar apart, const detail::LinkMotionBound::DirectionalSpeed& speed) {
+  if (!(apart > 0)) return 0;
+  const auto closing = [&speed](Scalar h) {
+    return h * (speed.linear + h * (speed.quadratic / 2 + h * speed.cubic / 3));
+  };
+  // Each term alone reaching the gap bounds the root above.
+  Scalar high = kInfinity;
+  if (speed.linear > 0) high = std::min(high, apart / speed.linear);
+  if (speed.quadratic > 0) high = std::min(high, std::sqrt(2 * apart / speed.quadratic));
+  if (speed.cubic > 0) high = std::min(high, std::cbrt(3 * apart / speed.cubic));
+  if (high == kInfinity) return kInfinity;
+  Scalar low = 0;
+  for (int i = 0; i < 30; ++i) {
+    const Scalar middle = (low + high) / 2;
+    (closing(middle) <= apart ? low : high) = middle;
+  }
+  return low * (1 - 8 * kUnit);
+}
+
+// What one pair's distance at one time proves.
+struct Sample {
+  Scalar t;
+  // Proven within the tolerance of contact at t.
+  bool contact;
+  // The time after t, and before it, over which the pair is proven apart.
+  Scalar forward;
+  Scalar backward;
+};
+
+// How one pair's advancement up to a horizon ended.
+struct PairRun {
+  enum Outcome { free, contact, unproven } outcome = free;
+  // Proven apart before this time.
+  Scalar lower = 0;
+  // Proven in contact at this time (contact), or the earliest time found in contact (unproven;
+  // +inf when none was).
+  Scalar upper = kInfinity;
+  MotionStatus status = MotionStatus::converged;
+};
+
+// A pair left unproven: proven apart before `lower` only.
+struct Unproven {
+  int pair;
+  Scalar lower;
+  MotionStatus status;
+};
+
+// A pair's speed and margin over the motion, and its screened reach from t = 0.
+struct PairPlan {
+  int pair;
+  Scalar speed;
+  Scalar margin;
+  Scalar first_contact;
+  // The screens' reach back from t = 1.
+  Scalar from_end;
+  // Neither geometry is compound: the queries' lower bound is a separation along a direction.
+  bool convex;
+};
+
+// One motion of a robot: the pairs advanced one by one, each up to the earliest contact found so
+// far (a pair in contact later cannot change the answer; one in contact earlier lowers it).
+class MotionCheck {
+ public:
+  MotionCheck(const RobotModel& model, const std::vector<GeometryPair>& pairs,
+              const Configurations& q0, const Configurations& q1,
+              const TimeOfImpactOptions& options, RobotMotionCheck& check)
+      : model_(model), pairs_(pairs), q0_(q0), q1_(q1), options_(options), check_(check),
+        bound_(model), q_(model.dof()) {}
+
+  void operator()(std::size_t row) {
+    const auto i = static_cast<Eigen::Index>(row);
+    start_ = q0_.row(q0_.rows() == 1 ? 0 : i);
+    end_ = q1_.row(q1_.rows() == 1 ? 0 : i);
+    delta_ = end_ - start_;
+    bound_.set_motion(start_.data(), end_.data());
+    QueryOptions query = options_.query;
+    query.seed = pair_seed(options_.query.seed, row);
+    // A quarter of the motion's tolerance, as time_of_impact asks it: near contact the queries'
+    // bounds are then within 3/8 of the threshold of each other, so a time not proven in contact
+    // is proven apart by 5/8 of it less the margin, and bisection ends (motions.md).
+    query.tolerance /= 4;
+    const Query solver(query);
+    query_ = &solver;
+    exact_.reset();
+    iterations_ = 0;
+    plan();
+    Scalar horizon = 1;
+    Scalar lower = 1;
+    int best = -1;
+    unproven_.clear();
+    for (const PairPlan& plan : plans_) {
+      if (plan.first_contact > horizon) continue;  // proven apart before the horizon
+      if (iterations_ >= options_.max_iterations) {
+        // Left unanswered: only its screened reach from t = 0 is proven.
+        lower = std::min(lower, plan.first_contact);
+        unproven_.push_back({plan.pair, plan.first_contact, MotionStatus::max_iterations});
+        continue;
+      }
+      const PairRun run = advance(plan, horizon);
+      if (run.outcome == PairRun::free) continue;
+      lower = std::min(lower, run.lower);
+      if (run.outcome == PairRun::unproven) unproven_.push_back({plan.pair, run.lower, run.status});
+      // Ties keep the pair taken first; a contact at the motion's end is a contact too.
+      if (run.upper < horizon || (best < 0 && run.upper == horizon)) {
+        horizon = run.upper;
+        best = plan.pair;
+      }
+    }
+    // A pair left unproven matters only where it is not proven apart: before the contact found,
+    // or anywhere when none was.
+    int unproven = -1;
+    MotionStatus status = MotionStatus::converged;
+    for (const Unproven& pair : unproven_) {
+      if (best >= 0 && pair.lower >= horizon) continue;
+      unproven = pair.pair;
+      status = pair.status;
+      break;
+    }
+    const bool certified = status == MotionStatus::converged;
+    check_.certified(i) = certified;
+    check_.status[row] = status;
+    check_.iterations(i) = iterations_;
+    check_.t_lower(i) = std::min(lower, horizon);
+    if (best < 0 && certified) {
+      check_.touches(i) = false;
+      check_.t_upper(i) = 1;
+      check_.configuration.row(i) = end_;
+      return;
+    }
+    const int named = best >= 0 ? best : unproven;
+    check_.touches(i) = true;
+    check_.t_upper(i) = horizon;
+    check_.pair(i) = named;
+    configuration_at(horizon);
+    check_.configuration.row(i) = q_;
+    place(pairs_[static_cast<std::size_t>(named)]);
+    const GeometryPair& pair = pairs_[static_cast<std::size_t>(named)];
+    const DistanceResult contact =
+        detail::signed_distance_of(*query_, model_, pair, pose_a_, pose_b_);
+    check_.distance(i) = contact.distance;
+    check_.point_a.row(i) = contact.point_a.transpose();
+    check_.point_b.row(i) = contact.point_b.transpose();
+    check_.normal.row(i) = contact.direction.transpose();
+  }
+
+ private:
+  // Every pair's speed and margin, and the pairs in increasing order of their first possible
+  // contact from their screens at t = 0, less those proven apart over the whole motion from the
+  // screens at both ends.
+  void plan() {
+    plans_.clear();
+    configuration_at(0);
+    start_links_ = links_;
+    place_all(start_world_);
+    configuration_at(1);
+    end_links_ = links_;
+    place_all(end_world_);
+    for (std::size_t p = 0; p < pairs_.size(); ++p) {
+      const GeometryPair& pair = pairs_[p];
+      const Scalar speed = bound_.pair_speed(pair);
+      const Scalar margin = bound_.pair_margin(pair);
+      // The boxes are asked only when the balls do not prove the pair apart over the motion.
+      const Scalar from_start =
+          screened_reach(pair, start_links_, start_world_, speed, margin, margin + speed);
+      if (from_start > 1) continue;
+      const Scalar from_end = screened_reach(pair, end_links_, end_world_, speed, margin,
+                                             margin + speed * (1 - from_start));
+      // Apart over the whole motion when the reaches from both ends meet.
+      if (from_start + from_end > 1) continue;
+      const bool convex =
+          !model_.geometries()[pair.a].parts && !model_.geometries()[pair.b].parts;
+      plans_.push_back({static_cast<int>(p), speed, margin, from_start, from_end, convex});
+    }
+    std::sort(plans_.begin(), plans_.end(), [](const PairPlan& x, const PairPlan& y) {
+      return x.first_contact < y.first_contact ||
+             (x.first_contact == y.first_contact && x.pair < y.pair);
+    });
+  }
+
+  // The time either way from the configuration of `links` (its geometries placed at `world`) over
+  // which the pair's screens prove it apart: by the whole motion's speed bound, or the local one.
+  Scalar screened_reach(const GeometryPair& pair, const std::vector<Pose>& links,
+                        const std::vector<Pose>& world, Scalar speed, Scalar margin,
+                        Scalar enough) const {
+    const Scalar apart = screen(pair, world[pair.a], world[pair.b], enough) - margin;
+    if (!(apart > 0)) return 0;
+    return std::max(reach_over(apart, speed),
+                    local_reach(apart, bound_.local_speed(pair, links, world[pair.a],
+                                                          world[pair.b])));
+  }
+
+  // Conservative advancement of one pair over [0, horizon] (time_of_impact's, with the horizon
+  // in place of the motion's end).
+  PairRun advance(const PairPlan& plan, Scalar horizon) {
+    const GeometryPair& pair = pairs_[static_cast<std::size_t>(plan.pair)];
+    const Scalar width = options_.time_tolerance;
+    Sample low = sample(pair, plan, 0, horizon);
+    if (low.contact) return {PairRun::contact, 0, 0};
+    // Sampled times after `low`, nearest last: each one still to be reached.
+    std::vector<Sample>& ahead = ahead_;
+    ahead.clear();
+    while (true) {
+      if (!ahead.empty()) {
+        const Sample& next = ahead.back();
+        if (low.forward + next.backward >= next.t - low.t) {
+          // Proven apart from both ends.
+          low = next;
+          ahead.pop_back();
+          if (low.contact) return {PairRun::contact, low.t, low.t};
+          continue;
+        }
+        if (next.contact && next.t - low.t <= width) return {PairRun::contact, low.t, next.t};
+      } else if (low.forward > horizon - low.t ||
+                 (horizon == 1 && low.forward + plan.from_end > 1 - low.t)) {
+        // Proven apart up to the horizon, or to where the screens at the end prove it apart.
+        return {PairRun::free, horizon, kInfinity};
+      }
+      if (iterations_ >= options_.max_iterations) {
+        return unproven(low, MotionStatus::max_iterations);
+      }
+      const Scalar limit = ahead.empty() ? horizon : ahead.back().t;
+      if (low.forward >= width) {
+        const Scalar t = advanced(low.t, low.forward);
+        if (t > low.t && t < limit) {
+          const Sample reached = sample(pair, plan, t, horizon);
+          if (reached.contact) return {PairRun::contact, t, t};
+          low = reached;
+          continue;
+        }
+      }
+      if (ahead.empty()) {
+        if (low.t == horizon) {
+          // Apart before the horizon, unproven at it: enough below the earliest contact found.
+          if (horizon < 1) return {PairRun::free, horizon, kInfinity};
+          return unproven(low, MotionStatus::unresolved);
+        }
+        // Steps are below the time tolerance: look one tolerance ahead.
+        ahead.push_back(sample(pair, plan, std::min(horizon, low.t + width), horizon));
+        continue;
+      }
+      // Neither end proves the interval: split it.
+      const Scalar middle = low.t + (limit - low.t) / 2;
+      if (!(middle > low.t && middle < limit)) return unproven(low, MotionStatus::unresolved);
+      ahead.push_back(sample(pair, plan, middle, horizon));
+    }
+  }
+
+  PairRun unproven(const Sample& low, MotionStatus status) const {
+    PairRun run{PairRun::unproven, low.t, kInfinity, status};
+    for (const Sample& s : ahead_) {
+      if (s.contact) run.upper = std::min(run.upper, s.t);
+    }
+    return run;
+  }
+
+  // The pair at time t: its screens when they alone prove it apart up to the horizon, its
+  // certified signed distance otherwise.
+  Sample sample(const GeometryPair& pair, const PairPlan& plan, Scalar t, Scalar horizon) {
+    configuration_at(t);
+    place(pair);
+    const Scalar screened = reach_over(
+        screen(pair, pose_a_, pose_b_, plan.margin + plan.speed * (horizon - t)) - plan.margin,
+        plan.speed);
+    if (screened > horizon - t) return {t, false, screened, screened};
+    const detail::LinkMotionBound::LocalSpeed local =
+        bound_.local_speed(pair, links_, pose_a_, pose_b_);
+    ++iterations_;
+    DistanceResult result = detail::signed_distance_of(*query_, model_, pair, pose_a_, pose_b_);
+    if (!result.certified && query_->options().method != Method::exact) {
+      // Near contact a method can leave a pair unproven where the exact one proves it: ask it
+      // too rather than bisect down to times that cannot be split.
+      ++iterations_;
+      if (!exact_) {
+        QueryOptions options = query_->options();
+        options.method = Method::exact;
+        exact_.emplace(options);
+      }
+      DistanceResult exact = detail::signed_distance_of(*exact_, model_, pair, pose_a_, pose_b_);
+      if (exact.certified) result = std::move(exact);
+    }
+    const BodyBounds& a = model_.geometries()[pair.a].body.bounds();
+    const BodyBounds& b = model_.geometries()[pair.b].body.bounds();
+    // The motion's size for this pair: the sum of the two bounding balls' diameters.
+    const Scalar threshold = options_.query.tolerance * 2 * (a.radius + b.radius);
+    Sample s{t, result.distance + plan.margin <= threshold, 0, 0};
+    const Scalar apart = result.lower_bound - plan.margin;
+    if (s.contact || !(apart > 0)) return s;
+    s.forward = s.backward = std::max(reach_over(apart, plan.speed), local_reach(apart, local));
+    const Scalar length = result.direction.norm();
+    if (plan.convex && length > 0.5) {
+      // The lower bound is the separation along `direction` (a compound geometry's is not).
+      const Scalar along = directional_reach(
+          apart, bound_.directional_speed(pair, result.direction / length, links_, pose_a_,
+                                          pose_b_));
+      s.forward = s.backward = std::max(s.forward, along);
+    }
+    return s;
+  }
+
+  // A proven lower bound on the pair's distance at `pose_a` and `pose_b` from its geometries'
+  // bounding balls, and from their boxes too (as robot_check screens) unless the balls' alone
+  // reaches `enough`; -inf when neither separates them.
+  Scalar screen(const GeometryPair& pair, const Pose& pose_a, const Pose& pose_b,
+                Scalar enough) const {
+    const BodyBounds& a = model_.geometries()[pair.a].body.bounds();
+    const BodyBounds& b = model_.geometries()[pair.b].body.bounds();
+    const Vector3 ca = pose_a.rotation * a.centre + pose_a.translation;
+    const Vector3 cb = pose_b.rotation * b.centre + pose_b.translation;
+    const Scalar margin = 1e-12 * (ca.lpNorm<Eigen::Infinity>() + cb.lpNorm<Eigen::Infinity>() +
+                                   a.radius + b.radius);
+    const Scalar balls = (ca - cb).norm() - a.radius - b.radius - margin;
+    if (balls > enough) return balls;
+    return std::max(balls, detail::box_separation(a.box, pose_a, b.box, pose_b));
+  }
+
+  // Every geometry's pose at the configuration of links_.
+  void place_all(std::vector<Pose>& world) const {
+    world.resize(model_.geometries().size());
+    for (std::size_t g = 0; g < world.size(); ++g) world[g] = placed(static_cast<int>(g));
+  }
+
+  // q(t) into q_ and every link's pose at it into links_.
+  void configuration_at(Scalar t) {
+    if (t == 1) {
+      q_ = end_;
+    } else {
+      q_ = start_ + t * delta_;
+    }
+    link_poses(model_, q_.data(), links_);
+  }
+
+  void place(const GeometryPair& pair) {
+    pose_a_ = placed(pair.a);
+    pose_b_ = placed(pair.b);
+  }
+
+  Pose placed(int g) const {
+    const Geometry& geometry = model_.geometries()[static_cast<std::size_t>(g)];
+    return geometry.link < 0 ? geometry.origin : compose(links_[geometry.link], geometry.origin);
+  }
+
+  const RobotModel& model_;
+  const std::vector<GeometryPair>& pairs_;
+  const Configurations& q0_;
+  const Configurations& q1_;
+  const TimeOfImpactOptions& options_;
+  RobotMotionCheck& check_;
+  // Per motion, reused from one to the next by the thread that owns this.
+  detail::LinkMotionBound bound_;
+  const Query* query_ = nullptr;
+  // The exact method, seeded as `query_`, made when a query first stays unproven.
+  std::optional<Query> exact_;
+  int iterations_ = 0;
+  Eigen::Matrix<Scalar, 1, Eigen::Dynamic> start_;
+  Eigen::Matrix<Scalar, 1, Eigen::Dynamic> end_;
+  Eigen::Matrix<Scalar, 1, Eigen::Dynamic> delta_;
+  Eigen::Matrix<Scalar, 1, Eigen::Dynamic> q_;
+  std::vector<Pose> links_;
+  std::vector<Pose> start_links_;
+  std::vector<Pose> end_links_;
+  std::vector<Pose> start_world_;
+  std::vector<Pose> end_world_;
+  Pose pose_a_;
+  Pose pose_b_;
+  std::vector<PairPlan> plans_;
+  std::vector<Sample> ahead_;
+  std::vector<Unproven> unproven_;
+};
+
+void require_dof(const RobotModel& model, const Configurations& q, const char* name) {
+  if (q.cols() != model.dof()) {
+    throw std::invalid_argument(std::string(name) + " must have " + std::to_string(model.dof()) +
+                                " values per configuration, got " + std::to_string(q.cols()));
+  }
+}
+
+}  // namespace
+
+RobotMotionCheck robot_check_motion(const RobotModel& model, const std::vector<GeometryPair>& pairs,
+                                    const Configurations& q0, const Configurations& q1,
+                                    const TimeOfImpactOptions& options,
+                                    const BatchSettings& settings) {
+  options.validate();
+  validate_pairs(model, pairs);
+  require_dof(model, q0, "q0");
+  require_dof(model, q1, "q1");
+  if (q0.rows() != q1.rows() && q0.rows() != 1 && q1.rows() != 1) {
+    throw std::invalid_argument("q0 has " + std::to_string(q0.rows()) + " rows and q1 " +
+                                std::to_string(q1.rows()) +
+                                ": give one motion per row of each, or one row for all");
+  }
+  detail::require_geometry_shapes(model, pairs, options.query.method);
+  const Eigen::Index m = q0.rows() == 0 || q1.rows() == 0 ? 0 : std::max(q0.rows(), q1.rows());
+  RobotMotionCheck check;
+  check.touches.setConstant(m, false);
+  check.t_lower.setConstant(m, 1);
+  check.t_upper.setConstant(m, 1);
+  check.configuration.setZero(m, model.dof());
+  check.pair.setConstant(m, -1);
+  check.distance.setConstant(m, std::numeric_limits<Scalar>::quiet_NaN());
+  check.point_a.setZero(m, 3);
+  check.point_b.setZero(m, 3);
+  check.normal.setZero(m, 3);
+  check.certified.setConstant(m, true);
+  check.iterations.setZero(m);
+  check.status.assign(static_cast<std::size_t>(m), MotionStatus::converged);
+  // One checker per thread: its buffers are the thread's own; each writes only its rows.
+  detail::over_configurations(
+      static_cast<std::size_t>(m), settings.threads,
+      [&] { return MotionCheck(model, pairs, q0, q1, options, check); }, "motion");
+  return check;
+}
+
+}  // namespace swarmcollide

@@ -1,0 +1,305 @@
+// Robot motions: the link motion bound (every point of a geometry moves no farther than its
+// pair's speed bound allows, and a self pair's distance changes no faster than its bound, which
+// leaves out the joints both chains share), and robot_check_motion's bracket on a bar turning
+// into a post, against the closed form.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "robot/link_motion_bound.hpp"
+#include "swarmcollide/geometry/shapes.hpp"
+#include "swarmcollide/queries/query.hpp"
+#include "swarmcollide/robot/kinematics.hpp"
+#include "swarmcollide/robot/robot_model.hpp"
+#include "swarmcollide/robot/robot_motion.hpp"
+
+namespace swarmcollide::testing {
+namespace {
+
+Pose placed(const Vector3& translation, const Vector3& rotation_vector = Vector3::Zero()) {
+  Pose pose;
+  pose.translation = translation;
+  if (rotation_vector.norm() > 0) {
+    pose.rotation =
+        Eigen::AngleAxis<Scalar>(rotation_vector.norm(), rotation_vector.normalized())
+            .toRotationMatrix();
+  }
+  return pose;
+}
+
+// A spatial arm with tilted joint origins and axes: a turn, a shoulder, a slide, a fixed
+// wrist, a mimic finger on the shoulder's link, and a box obstacle.
+RobotModel spatial_arm() {
+  std::vector<Link> links{{"base"}, {"l1"}, {"l2"}, {"l3"}, {"l4"}, {"l5"}};
+  std::vector<Joint> joints(5);
+  joints[0] = {"turn", JointType::revolute, 0, 1, placed({0, 0, 0.1}, {0.1, 0, 0}),
+               Vector3(0, 0.2, 1), -2.5, 2.5, 0};
+  joints[1] = {"shoulder", JointType::continuous, 1, 2, placed({0.05, 0, 0.3}, {0, 0.3, 0.2}),
+               Vector3(0.1, 1, 0), 0, 0, 0.4};
+  joints[2] = {"slide", JointType::prismatic, 2, 3, placed({0.4, 0.02, 0}, {0.2, 0, 0}),
+               Vector3(1, 0.1, 0), -0.1, 0.3, 0.05};
+  joints[3] = {"wrist", JointType::fixed, 3, 4, placed({0.1, 0, 0.03}, {0, 0, 0.5}),
+               Vector3::UnitZ(), 0, 0, 0};
+  joints[4] = {"finger", JointType::revolute, 2, 5, placed({0.2, 0, 0.05}), Vector3::UnitZ(),
+               -5, 5, 0};
+  joints[4].mimic = 0;
+  joints[4].multiplier = -1.5;
+  joints[4].offset = 0.2;
+  std::vector<Geometry> geometries{
+      {"base", 0, placed({0, 0, 0.05}), Box(Vector3(0.08, 0.08, 0.05)), std::nullopt},
+      {"column", 1, placed({0.01, 0, 0.15}, {0.1, 0.1, 0}), Box(Vector3(0.04, 0.04, 0.1)),
+       std::nullopt},
+      {"upper", 2, placed({0.22, 0, 0}), Box(Vector3(0.22, 0.03, 0.03)), std::nullopt},
+      {"carriage", 3, placed({0.02, 0.01, 0}), Box(Vector3(0.05, 0.05, 0.05), 0.01), std::nullopt},
+      {"hand", 4, placed({0.08, 0, 0}, {0.3, 0, 0}), Box(Vector3(0.08, 0.04, 0.01)), std::nullopt},
+      {"finger", 5, placed({0.1, 0, 0}), Box(Vector3(0.1, 0.01, 0.01)), std::nullopt},
+      {"table", -1, placed({0, 0, -0.02}), Box(Vector3(0.6, 0.6, 0.01)), std::nullopt},
+  };
+  return RobotModel(links, joints, geometries);
+}
+
+// Geometry g's pose at the configuration q.
+Pose geometry_pose(const RobotModel& model, const Eigen::RowVectorXd& q, int g) {
+  std::vector<Pose> links;
+  link_poses(model, q.data(), links);
+  const Geometry& geometry = model.geometries()[g];
+  return compose(links[geometry.link], geometry.origin);
+}
+
+Eigen::RowVectorXd random_configuration(std::mt19937_64& rng) {
+  std::uniform_real_distribution<Scalar> unit(0, 1);
+  const Scalar lower[] = {-2.5, -M_PI, -0.1};
+  const Scalar upper[] = {2.5, M_PI, 0.3};
+  Eigen::RowVectorXd q(3);
+  for (int d = 0; d < 3; ++d) q(d) = lower[d] + (upper[d] - lower[d]) * unit(rng);
+  return q;
+}
+
+TEST(RobotMotion, EveryPointMovesNoFartherThanItsGeometrysBound) {
+  const RobotModel arm = spatial_arm();
+  ASSERT_EQ(arm.dof(), 3);  // the wrist is fixed, the finger mimics the turn
+  detail::LinkMotionBound bound(arm);
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<Scalar> unit(0, 1);
+  const int table = 6;
+  Scalar tightest = 0;
+  for (int motion = 0; motion < 200; ++motion) {
+    const Eigen::RowVectorXd q0 = random_configuration(rng);
+    // Short and long motions: the bound is linear in the joints' changes.
+    const Eigen::RowVectorXd q1 =
+        q0 + (random_configuration(rng) - q0) * (motion % 2 == 0 ? 1.0 : 0.01);
+    bound.set_motion(q0.data(), q1.data());
+    for (int sample = 0; sample < 10; ++sample) {
+      Scalar s = unit(rng);
+      Scalar t = unit(rng);
+      if (s > t) std::swap(s, t);
+      const Eigen::RowVectorXd qs = q0 + s * (q1 - q0);
+      const Eigen::RowVectorXd qt = q0 + t * (q1 - q0);
+      for (int g = 0; g < table; ++g) {
+        // Against the still table, the pair's bound is the geometry's own.
+        const Scalar allowed = bound.pair_speed({g, table}) * (t - s);
+        const Pose from = geometry_pose(arm, qs, g);
+        const Pose to = geometry_pose(arm, qt, g);
+        const VertexMatrix& vertices = arm.geometries()[g].body.vertices();
+        for (int v = 0; v < vertices.rows(); ++v) {
+          const Vector3 x = vertices.row(v).transpose();
+          const Scalar moved =
+              ((to.rotation * x + to.translation) - (from.rotation * x + from.translation)).norm();
+          ASSERT_LE(moved, allowed * (1 + 1e-12) + 1e-15)
+              << "geometry " << g << ", motion " << motion;
+          if (allowed > 0) tightest = std::max(tightest, moved / allowed);
+        }
+      }
+    }
+  }
+  // The bound is not vacuous: some point moves by more than a third of it.
+  EXPECT_GT(tightest, 0.33);
+}
+
+TEST(RobotMotion, PointsMoveNoFartherThanTheLocalBoundAroundAConfiguration) {
+  const RobotModel arm = spatial_arm();
+  detail::LinkMotionBound bound(arm);
+  std::mt19937_64 rng(9);
+  std::uniform_real_distribution<Scalar> unit(0, 1);
+  const int table = 6;
+  Scalar tightest = 0;
+  for (int motion = 0; motion < 200; ++motion) {
+    const Eigen::RowVectorXd q0 = random_configuration(rng);
+    const Eigen::RowVectorXd q1 = random_configuration(rng);
+    bound.set_motion(q0.data(), q1.data());
+    const Scalar s = unit(rng);
+    const Eigen::RowVectorXd qs = q0 + s * (q1 - q0);
+    std::vector<Pose> links;
+    link_poses(arm, qs.data(), links);
+    for (int sample = 0; sample < 10; ++sample) {
+      // Either way from s, far and near.
+      const Scalar t = sample % 2 == 0 ? unit(rng) : s + (unit(rng) - 0.5) * 0.02;
+      const Scalar h = std::abs(t - s);
+      const Eigen::RowVectorXd qt = q0 + t * (q1 - q0);
+      for (int g = 0; g < table; ++g) {
+        const Pose from = geometry_pose(arm, qs, g);
+        const Pose to = geometry_pose(arm, qt, g);
+        const auto local = bound.local_speed({g, table}, links, from, arm.geometries()[table].origin);
+        const Scalar allowed = local.at * h + local.growth * h * h / 2;
+        const VertexMatrix& vertices = arm.geometries()[g].body.vertices();
+        for (int v = 0; v < vertices.rows(); ++v) {
+          const Vector3 x = vertices.row(v).transpose();
+          const Scalar moved =
+              ((to.rotation * x + to.translation) - (from.rotation * x + from.translation)).norm();
+          ASSERT_LE(moved, allowed * (1 + 1e-12) + 1e-15) << "geometry " << g;
+          if (allowed > 0 && h < 0.02) tightest = std::max(tightest, moved / allowed);
+        }
+      }
+    }
+  }
+  // Over short times the local bound is close: some point moves by more than half of it.
+  EXPECT_GT(tightest, 0.5);
+}
+
+TEST(RobotMotion, PointsMoveAlongADirectionNoFartherThanTheDirectionalBound) {
+  const RobotModel arm = spatial_arm();
+  detail::LinkMotionBound bound(arm);
+  std::mt19937_64 rng(13);
+  std::uniform_real_distribution<Scalar> unit(0, 1);
+  std::normal_distribution<Scalar> normal;
+  const int table = 6;
+  Scalar tightest = 0;
+  for (int motion = 0; motion < 200; ++motion) {
+    const Eigen::RowVectorXd q0 = random_configuration(rng);
+    const Eigen::RowVectorXd q1 = random_configuration(rng);
+    bound.set_motion(q0.data(), q1.data());
+    const Scalar s = unit(rng);
+    const Eigen::RowVectorXd qs = q0 + s * (q1 - q0);
+    std::vector<Pose> links;
+    link_poses(arm, qs.data(), links);
+    // Vertical (the table's normal: the turn about z moves nothing along it) and random.
+    const Vector3 n = motion % 2 == 0 ? Vector3::UnitZ()
+                                      : Vector3(normal(rng), normal(rng), normal(rng)).normalized();
+    for (int sample = 0; sample < 10; ++sample) {
+      const Scalar t = sample % 2 == 0 ? unit(rng) : s + (unit(rng) - 0.5) * 0.02;
+      const Scalar h = std::abs(t - s);
+      const Eigen::RowVectorXd qt = q0 + t * (q1 - q0);
+      for (int g = 0; g < table; ++g) {
+        const Pose from = geometry_pose(arm, qs, g);
+        const Pose to = geometry_pose(arm, qt, g);
+        const auto speed = bound.directional_speed({g, table}, n, links, from,
+                                                   arm.geometries()[table].origin);
+        const Scalar allowed =
+            h * (speed.linear + h * (speed.quadratic / 2 + h * speed.cubic / 3));
+        const VertexMatrix& vertices = arm.geometries()[g].body.vertices();
+        for (int v = 0; v < vertices.rows(); ++v) {
+          const Vector3 x = vertices.row(v).transpose();
+          const Scalar moved =
+              std::abs(n.dot((to.rotation * x + to.translation) - (from.rotation * x + from.translation)));
+          ASSERT_LE(moved, allowed * (1 + 1e-12) + 1e-15) << "geometry " << g;
+          if (allowed > 0 && h < 0.02) tightest = std::max(tightest, moved / allowed);
+        }
+      }
+    }
+  }
+  EXPECT_GT(tightest, 0.3);
+}
+
+TEST(RobotMotion, SelfPairDistancesChangeNoFasterThanTheirBound) {
+  const RobotModel arm = spatial_arm();
+  detail::LinkMotionBound bound(arm);
+  QueryOptions options;
+  options.method = Method::exact;
+  options.tolerance = 1e-12;
+  const Query query(options);
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<Scalar> unit(0, 1);
+  // Pairs whose chains share joints: upper and finger share the turn and the shoulder's link's
+  // chain; carriage and finger share the turn and the shoulder; column and hand the turn.
+  const GeometryPair pairs[] = {{2, 5}, {3, 5}, {1, 4}, {0, 4}};
+  for (int motion = 0; motion < 100; ++motion) {
+    const Eigen::RowVectorXd q0 = random_configuration(rng);
+    const Eigen::RowVectorXd q1 = random_configuration(rng);
+    bound.set_motion(q0.data(), q1.data());
+    for (const GeometryPair& pair : pairs) {
+      Scalar s = unit(rng);
+      Scalar t = unit(rng);
+      if (s > t) std::swap(s, t);
+      const auto distance = [&](Scalar time) {
+        const Eigen::RowVectorXd q = q0 + time * (q1 - q0);
+        return query.signed_distance(arm.geometries()[pair.a].body,
+                                     geometry_pose(arm, q, pair.a),
+                                     arm.geometries()[pair.b].body,
+                                     geometry_pose(arm, q, pair.b));
+      };
+      const DistanceResult at_s = distance(s);
+      const DistanceResult at_t = distance(t);
+      ASSERT_TRUE(at_s.certified && at_t.certified);
+      // Both answers are within their bounds' width of the true distances.
+      const Scalar slack = (at_s.distance - at_s.lower_bound) + (at_t.distance - at_t.lower_bound);
+      EXPECT_LE(std::abs(at_t.distance - at_s.distance),
+                bound.pair_speed(pair) * (t - s) + slack + 1e-15)
+          << "pair " << pair.a << "-" << pair.b << ", motion " << motion;
+    }
+  }
+}
+
+TEST(RobotMotion, ARoundedBallTurningAboutItsCentreDoesNotMove) {
+  std::vector<Link> links{{"base"}, {"ball"}};
+  std::vector<Joint> joints{{"turn", JointType::revolute, 0, 1, Pose{}, Vector3::UnitZ(), -3, 3,
+                             0}};
+  std::vector<Geometry> geometries{{"ball", 1, Pose{}, Sphere(0.5), std::nullopt},
+                                   {"bar", 1, placed({0.5, 0, 0}), Box(Vector3(0.5, 0.1, 0.1)),
+                                    std::nullopt},
+                                   {"wall", -1, placed({3, 0, 0}), Box(Vector3::Constant(1)),
+                                    std::nullopt}};
+  const RobotModel model(links, joints, geometries);
+  detail::LinkMotionBound bound(model);
+  const Scalar q0 = -1;
+  const Scalar q1 = 1;
+  bound.set_motion(&q0, &q1);
+  EXPECT_EQ(bound.pair_speed({0, 2}), 0);
+  // The bar's far edges are sqrt(1 + 0.01) off the axis: times the 2 radians turned.
+  EXPECT_NEAR(bound.pair_speed({1, 2}), 2 * std::sqrt(1.01), 1e-12);
+}
+
+TEST(RobotMotion, ABarTurningIntoAPostIsBracketedAtTheClosedForm) {
+  std::vector<Link> links{{"base"}, {"arm"}};
+  std::vector<Joint> joints{{"turn", JointType::revolute, 0, 1, Pose{}, Vector3::UnitZ(), -3, 3,
+                             0}};
+  // A bar from the axis to x = 1, 0.02 thick; a post 0.02 wide at (0, 0.6).
+  std::vector<Geometry> geometries{
+      {"bar", 1, placed({0.5, 0, 0}), Box(Vector3(0.5, 0.01, 0.01)), std::nullopt},
+      {"post", -1, placed({0, 0.6, 0}), Box(Vector3(0.01, 0.01, 1)), std::nullopt}};
+  const RobotModel model(links, joints, geometries);
+  Configurations q0(2, 1);
+  Configurations q1(2, 1);
+  q0 << 0, 0;
+  q1 << 2, 1;
+  TimeOfImpactOptions options;
+  options.time_tolerance = 1e-9;
+  for (int threads : {1, 2}) {
+    const RobotMotionCheck check =
+        robot_check_motion(model, {{0, 1}}, q0, q1, options, BatchSettings{threads});
+    ASSERT_TRUE(check.certified(0) && check.certified(1));
+    // The bar's leading face (y = 0.01 in its frame) meets the post's corner (0.01, 0.59).
+    const Scalar corner = std::atan2(0.59, 0.01);
+    const Scalar reach = std::sqrt(0.59 * 0.59 + 0.01 * 0.01);
+    const Scalar contact = (corner - std::asin(0.01 / reach)) / 2;
+    EXPECT_TRUE(check.touches(0));
+    EXPECT_LE(check.t_lower(0), contact);
+    // Within the tolerance of contact, a few 1e-9 of the motion early at most: the bar's corner
+    // closes at 2 x 0.59 per unit time, the contact threshold is tolerance x (sum of the balls'
+    // diameters, below 4).
+    const Scalar early = options.query.tolerance * 4 / (2 * 0.58);
+    EXPECT_GE(check.t_upper(0), contact - early);
+    EXPECT_LE(check.t_upper(0) - check.t_lower(0), 1e-9);
+    EXPECT_EQ(check.pair(0), 0);
+    EXPECT_NEAR(check.configuration(0, 0), 2 * check.t_upper(0), 1e-15);
+    // Turning to 1 rad stops short of the post.
+    EXPECT_FALSE(check.touches(1));
+    EXPECT_EQ(check.pair(1), -1);
+    EXPECT_EQ(check.status[1], MotionStatus::converged);
+  }
+}
+
+}  // namespace
+}  // namespace swarmcollide::testing

@@ -1,0 +1,213 @@
+"""Robot.check_motion: a link sweeping through a thin pole between two free configurations, free
+motions proven free, agreement with a dense-sampling oracle on the exact signed distances of a
+small arm's random motions, batches equal to single calls, thread counts, bad input."""
+
+import numpy as np
+import pytest
+
+import swarmcollide as sc
+
+TOLERANCE = 1e-9
+TIME_TOLERANCE = 1e-6
+
+
+def transform(translation, rotation=None):
+    m = np.eye(4)
+    if rotation is not None:
+        m[:3, :3] = rotation
+    m[:3, 3] = translation
+    return m
+
+
+def sweeping_bar(pole_radius=1e-3):
+    """A bar 1 long and 2e-3 thick turning about z at the origin, and a thin pole standing at
+    (0, 0.6) in its way."""
+    joints = [sc.Joint("turn", "revolute", 0, 1, lower=-3, upper=3)]
+    bar = ("bar", 1, transform([0.5, 0, 0]), sc.Box([0.5, 1e-3, 1e-3]))
+    robot = sc.Robot(["base", "arm"], joints, [bar])
+    return robot.add_obstacle(sc.Cylinder(pole_radius, 1.0), transform([0, 0.6, 0]), name="pole")
+
+
+def small_arm():
+    """Four degrees of freedom: a turn about z, a shoulder about y, a slide along the upper arm,
+    and a wrist turning about x that a mimic joint (a finger) follows; a table, a thin pole and a
+    ball as obstacles. Its self pairs share the first joints (the pair bound leaves them out)."""
+    joints = [
+        sc.Joint("turn", "revolute", 0, 1, origin=transform([0, 0, 0.1]), lower=-2.5, upper=2.5),
+        sc.Joint("shoulder", "revolute", 1, 2, origin=transform([0, 0, 0.3]), axis=[0, 1, 0],
+                 lower=-1.5, upper=2.0),
+        sc.Joint("slide", "prismatic", 2, 3, origin=transform([0.45, 0, 0]), axis=[1, 0, 0],
+                 lower=-0.1, upper=0.2),
+        sc.Joint("wrist", "continuous", 3, 4, origin=transform([0.1, 0, 0]), axis=[1, 0, 0]),
+        sc.Joint("finger", "revolute", 2, 5, origin=transform([0.2, 0, 0.05]), axis=[0, 0, 1],
+                 lower=-5, upper=5, mimic=1, multiplier=-1.5, offset=0.2),
+    ]
+    geometries = [
+        ("base", 0, transform([0, 0, 0.05]), sc.Box([0.08, 0.08, 0.05])),
+        ("column", 1, transform([0, 0, 0.15]), sc.Capsule(0.04, 0.1)),
+        ("upper", 2, transform([0.22, 0, 0]), sc.Box([0.22, 0.03, 0.03])),
+        ("carriage", 3, None, sc.Sphere(0.05)),
+        ("hand", 4, transform([0.08, 0, 0]), sc.Box([0.08, 0.04, 0.01])),
+        ("finger", 5, transform([0.1, 0, 0]), sc.Cylinder(0.01, 0.1)),
+    ]
+    robot = sc.Robot(["base", "l1", "l2", "l3", "l4", "l5"], joints, geometries)
+    robot.add_obstacle(sc.Box([0.6, 0.6, 0.01]), transform([0, 0, -0.02]), name="table")
+    robot.add_obstacle(sc.Cylinder(0.004, 0.5), transform([0.35, 0.25, 0.3]), name="pole")
+    return robot.add_obstacle(sc.Sphere(0.06), transform([-0.3, -0.3, 0.45]), name="ball")
+
+
+def along(q0, q1, times):
+    return q0 + np.outer(times, q1 - q0)
+
+
+def pair_sizes(robot):
+    """Per pair, the sum of its geometries' bounding-ball diameters (the motion's size)."""
+    radii = {name: body.bounding_radius for name, _, _, body in
+             robot._robot_geometries + robot._obstacles}
+    return np.array([2 * (radii[a] + radii[b]) for a, b in robot.pairs])
+
+
+def check_against_oracle(robot, q0, q1, result, samples=600):
+    """Every overlap the exact signed distances see on `samples` times is reported, none happens
+    before t_lower, the pair named is within the tolerance at t_upper, and the bracket is within
+    the time tolerance. Returns whether the motion touches."""
+    assert result.certified and result.status == "converged"
+    times = np.linspace(0, 1, samples)
+    if result.touches:
+        # Denser just before the bracket, where a contact missed would hide.
+        times = np.union1d(times, np.linspace(0, result.t_lower, samples, endpoint=False))
+    distances = robot.distances(along(q0, q1, times), method="exact", tolerance=1e-12)
+    overlapping = (distances < -1e-11).any(axis=1)
+    if not result.touches:
+        assert not overlapping.any(), times[overlapping][:3]
+        np.testing.assert_array_equal(result.q, q1)
+        assert result.pair == -1 and np.isnan(result.distance)
+        return False
+    assert not overlapping[times < result.t_lower].any(), times[overlapping][:3]
+    assert 0 <= result.t_lower <= result.t_upper <= 1
+    assert result.t_upper - result.t_lower <= TIME_TOLERANCE
+    np.testing.assert_allclose(result.q, q0 + result.t_upper * (q1 - q0), rtol=0, atol=1e-15)
+    at_upper = robot.distances(result.q, method="exact", tolerance=1e-12)
+    assert at_upper[result.pair] <= TOLERANCE * pair_sizes(robot)[result.pair]
+    assert tuple(result.pair_names) == robot.pairs[result.pair]
+    assert result.distance <= TOLERANCE * pair_sizes(robot)[result.pair]
+    return True
+
+
+def test_a_link_sweeps_through_a_thin_pole_between_two_free_configurations():
+    robot = sweeping_bar()
+    q0, q1 = np.array([-1.0]), np.array([2.5])
+    assert not robot.check(q0).colliding and not robot.check(q1).colliding
+    result = robot.check_motion(q0, q1, tolerance=TOLERANCE, time_tolerance=TIME_TOLERANCE)
+    assert result.touches and result.certified
+    assert tuple(result.pair_names) == ("bar", "pole")
+    # The bar's near side (1e-3 thick) meets the pole (radius 1e-3) at (0, 0.6): the turn is then
+    # pi/2 less asin(2e-3 / 0.6) from the x axis.
+    contact = np.pi / 2 - np.arcsin(2e-3 / 0.6)
+    t_contact = (contact + 1.0) / 3.5
+    assert result.t_lower <= t_contact <= result.t_upper + 1e-9
+    assert check_against_oracle(robot, q0, q1, result)
+    # The pole is thinner than OMPL's default resolution steps (1% of the limits' extent, 6 rad
+    # x 0.01 x 0.6 = 3.6 cm at the pole): a discrete check between the ends sees nothing.
+    states = int(np.ceil(3.5 / (0.01 * 6))) + 1
+    assert not robot.check(along(q0, q1, np.linspace(0, 1, states)), nearest=False).colliding.any()
+
+
+def test_a_free_motion_is_proven_free():
+    robot = sweeping_bar()
+    result = robot.check_motion([-1.0], [1.2])
+    assert not result.touches and result.certified and result.status == "converged"
+    assert result.t_lower == result.t_upper == 1
+    check_against_oracle(robot, np.array([-1.0]), np.array([1.2]), result)
+    # Far from the pole the screens alone prove it.
+    assert robot.check_motion([-2.0], [-1.0]).iterations == 0
+
+
+def test_a_motion_starting_in_contact_is_bracketed_at_zero():
+    robot = sweeping_bar()
+    result = robot.check_motion([np.pi / 2], [2.0])
+    assert result.touches and result.certified and result.t_lower == result.t_upper == 0
+
+
+@pytest.mark.parametrize("seed", [0, 1])
+def test_random_motions_of_a_small_arm_agree_with_dense_sampling(seed):
+    robot = small_arm()
+    rng = np.random.default_rng(seed)
+    lower, upper = np.clip(robot.limits, -np.pi, np.pi).T
+    count = 40
+    q0 = rng.uniform(lower, upper, size=(count, robot.dof))
+    # Edges of a planner: the second end a step of up to a third of the ranges away.
+    q1 = np.clip(q0 + rng.uniform(-1, 1, size=q0.shape) * (upper - lower) / 3, lower, upper)
+    results = robot.check_motion(q0, q1, threads=2)
+    touching = 0
+    for i in range(count):
+        row = robot.check_motion(q0[i], q1[i], threads=1)
+        touching += check_against_oracle(robot, q0[i], q1[i], row)
+        assert row.touches == results.touches[i] and row.t_upper == results.t_upper[i]
+    # Both kinds of motion are exercised.
+    assert 5 <= touching <= count - 5
+
+
+def test_batches_equal_single_calls_and_threads_do_not_change_answers():
+    robot = small_arm()
+    rng = np.random.default_rng(7)
+    lower, upper = np.clip(robot.limits, -np.pi, np.pi).T
+    q0 = rng.uniform(lower, upper, size=(30, robot.dof))
+    q1 = rng.uniform(lower, upper, size=(30, robot.dof))
+    one = robot.check_motion(q0, q1, threads=1)
+    two = robot.check_motion(q0, q1, threads=2)
+    for field in ("touches", "t_lower", "t_upper", "q", "pair", "point_a", "point_b", "normal",
+                  "certified", "iterations"):
+        np.testing.assert_array_equal(getattr(one, field), getattr(two, field))
+    np.testing.assert_array_equal(one.distance, two.distance)
+    assert one.status == two.status
+    for i in (0, 13, 29):
+        row = robot.check_motion(q0[i], q1[i])
+        assert (row.touches, row.t_lower, row.t_upper, row.pair, row.iterations) == (
+            one.touches[i], one.t_lower[i], one.t_upper[i], one.pair[i], one.iterations[i])
+        np.testing.assert_array_equal(row.q, one.q[i])
+    # One start serves every motion.
+    fan = robot.check_motion(q0[0], q1[:5])
+    for i in range(5):
+        assert fan.t_upper[i] == robot.check_motion(q0[0], q1[i]).t_upper
+
+
+def test_the_iteration_cap_answers_uncertified_with_a_proven_lower_time():
+    robot = sweeping_bar()
+    capped = robot.check_motion([-1.0], [2.5], max_iterations=2)
+    assert capped.touches and not capped.certified and capped.status == "max_iterations"
+    exact = robot.check_motion([-1.0], [2.5])
+    assert capped.t_lower <= exact.t_upper
+    assert capped.iterations <= 2
+
+
+def test_bad_input_names_the_argument():
+    robot = small_arm()
+    q = np.zeros(robot.dof)
+    with pytest.raises(ValueError, match="q0 must have 4 values"):
+        robot.check_motion(np.zeros(3), q)
+    with pytest.raises(ValueError, match="q1 must have shape"):
+        robot.check_motion(q, np.zeros((2, 2, 4)))
+    with pytest.raises(ValueError, match="q0 has 2 rows and q1 3"):
+        robot.check_motion(np.zeros((2, 4)), np.zeros((3, 4)))
+    with pytest.raises(ValueError, match=r"q1\[1\], joint 'slide': nan is not a finite number"):
+        robot.check_motion(q, [q, [0, 0, np.nan, 0]])
+    with pytest.raises(ValueError, match=r"q0\[0\], joint 'shoulder': -2 is outside its limits"):
+        robot.check_motion([0, -2, 0, 0], q)
+    clamped = robot.check_motion([0, -2, 0, 0], q, limits="clamp")
+    assert clamped.certified
+    with pytest.raises(ValueError, match="limits='wrap' is refused for motions"):
+        robot.check_motion(q, q, limits="wrap")
+    with pytest.raises(TypeError, match="q0 must hold real numbers"):
+        robot.check_motion(["a"] * 4, q)
+    for bad in (0.0, -1e-3, np.nan, np.inf):
+        with pytest.raises(ValueError, match="time_tolerance must be a positive"):
+            robot.check_motion(q, q, time_tolerance=bad)
+    with pytest.raises(ValueError, match="tolerance must be positive"):
+        robot.check_motion(q, q, tolerance=0.0)
+    with pytest.raises(ValueError, match="max_iterations must be at least 1"):
+        robot.check_motion(q, q, max_iterations=0)
+    with pytest.raises(TypeError, match="max_iterations must be an int"):
+        robot.check_motion(q, q, max_iterations=1.5)
+    with pytest.raises(ValueError, match="threads"):
+        robot.check_motion(q, q, threads=-1)
