@@ -119,7 +119,8 @@ bench: install $(VENV)/.bench-installed bench-scene bench-compound
 SAN_BUILD := build/sanitize
 SAN_SITE := $(SAN_BUILD)/site
 SAN_PYTESTS ?= tests/python/test_trust.py tests/python/test_contract.py tests/python/test_batch.py \
-  tests/python/test_geometry.py tests/python/test_dual.py tests/python/test_problem.py
+  tests/python/test_geometry.py tests/python/test_dual.py tests/python/test_problem.py \
+  tests/python/test_motion.py tests/python/test_robot.py tests/python/test_curved_shapes.py
 SAN_RUNTIMES = $$(gcc -print-file-name=libasan.so) $$(gcc -print-file-name=libubsan.so)
 
 test-sanitize: install

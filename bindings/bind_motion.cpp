@@ -128,16 +128,13 @@ std::size_t motion_rows(const py::handle& given) {
 
 // Types are checked here, values by TimeOfImpactOptions::validate.
 TimeOfImpactOptions motion_options(const py::handle& method, const py::handle& tolerance,
-                                   Scalar time_tolerance, int max_iterations) {
+                                   const py::handle& time_tolerance,
+                                   const py::handle& max_iterations) {
   TimeOfImpactOptions options;
   options.query.method = method_from_name(to_name(method, "method"));
-  if (PyBool_Check(tolerance.ptr()) || PyComplex_Check(tolerance.ptr()) ||
-      !PyNumber_Check(tolerance.ptr())) {
-    throw py::type_error("tolerance must be a real number, got " + type_name(tolerance));
-  }
-  options.query.tolerance = tolerance.cast<double>();
-  options.time_tolerance = time_tolerance;
-  options.max_iterations = max_iterations;
+  options.query.tolerance = to_real(tolerance, "tolerance");
+  options.time_tolerance = to_real(time_tolerance, "time_tolerance");
+  options.max_iterations = to_count(max_iterations, "max_iterations", 1);
   try {
     options.validate();
   } catch (const std::invalid_argument& e) {
@@ -352,7 +349,8 @@ and each row's ``TimeOfImpactResult`` by indexing.
       "time_of_impact",
       [](const py::object& a, const py::object& b, const py::object& pose_a,
          const py::object& pose_b, const py::object& method, const py::object& tolerance,
-         Scalar time_tolerance, int max_iterations, const py::object& motion) {
+         const py::object& time_tolerance, const py::object& max_iterations,
+         const py::object& motion) {
         const TimeOfImpactOptions options =
             motion_options(method, tolerance, time_tolerance, max_iterations);
         const MotionKind kind = to_motion_kind(motion);
@@ -380,8 +378,8 @@ and each row's ``TimeOfImpactResult`` by indexing.
       "time_of_impact_many",
       [](const py::object& as, const py::object& bs, const py::object& poses_a,
          const py::object& poses_b, const py::object& method, const py::object& tolerance,
-         Scalar time_tolerance, int max_iterations, const py::object& threads,
-         const py::object& motion) {
+         const py::object& time_tolerance, const py::object& max_iterations,
+         const py::object& threads, const py::object& motion) {
         const TimeOfImpactOptions options =
             motion_options(method, tolerance, time_tolerance, max_iterations);
         const int thread_number = threads.is_none() ? 0 : thread_count(threads);

@@ -484,11 +484,13 @@ QueryOptions make_options(const py::handle& method, const py::handle& tolerance,
   options.tolerance = tolerance.cast<double>();
   if (!is_integer(seed)) throw py::type_error("seed must be an integer, got " + type_name(seed));
   const py::int_ seed_value = py::reinterpret_steal<py::int_>(PyNumber_Index(seed.ptr()));
-  if (seed_value < py::int_(0) ||
-      seed_value >= py::int_(py::module_::import("builtins").attr("pow")(2, 64))) {
+  // CPython refuses negative and too large values alike (OverflowError), with no 2**64 to build.
+  const unsigned long long seed_bits = PyLong_AsUnsignedLongLong(seed_value.ptr());
+  if (seed_bits == static_cast<unsigned long long>(-1) && PyErr_Occurred()) {
+    PyErr_Clear();
     throw py::value_error("seed must lie in [0, 2**64), got " + std::string(py::str(seed_value)));
   }
-  options.seed = seed_value.cast<std::uint64_t>();
+  options.seed = seed_bits;
   for (const auto& [key, value] : parameters) {
     const std::string name = key.cast<std::string>();
     if (value.is_none()) continue;

@@ -115,12 +115,6 @@ std::vector<ConvexPolyhedron> to_bodies(const py::handle& given) {
   return result;
 }
 
-// True for a NumPy array of one or more dimensions, which Python's number protocols would turn
-// into a scalar or refuse with NumPy's own message.
-bool is_array(const py::handle& value) {
-  return py::isinstance<py::array>(value) && value.cast<py::array>().ndim() > 0;
-}
-
 std::uint32_t to_bits(const py::handle& value, const char* name) {
   if (is_array(value)) {
     throw py::type_error(std::string(name) +
@@ -138,37 +132,6 @@ std::uint32_t to_bits(const py::handle& value, const char* name) {
                           std::string(py::str(bits)));
   }
   return bits.cast<std::uint32_t>();
-}
-
-// A real number (Python's or NumPy's), as `name`.
-Scalar to_real(const py::handle& value, const char* name) {
-  if (PyBool_Check(value.ptr()) || py::isinstance<py::str>(value) ||
-      py::isinstance<py::bytes>(value) || is_array(value) || !PyNumber_Check(value.ptr())) {
-    throw py::type_error(std::string(name) + " must be a real number, got " + type_name(value));
-  }
-  PyObject* real = PyNumber_Float(value.ptr());
-  if (real == nullptr) {
-    PyErr_Clear();
-    throw py::type_error(std::string(name) + " must be a real number, got " + type_name(value));
-  }
-  return py::reinterpret_steal<py::float_>(real).cast<Scalar>();
-}
-
-// An integer (Python's or NumPy's) of at least `least`, as `name`.
-int to_count(const py::handle& value, const char* name, int least) {
-  if (PyBool_Check(value.ptr()) || is_array(value) || !PyIndex_Check(value.ptr())) {
-    throw py::type_error(std::string(name) + " must be an integer, got " + type_name(value));
-  }
-  const py::int_ count = py::reinterpret_steal<py::int_>(PyNumber_Index(value.ptr()));
-  if (count < py::int_(least)) {
-    throw py::value_error(std::string(name) + " must be at least " + std::to_string(least) +
-                          ", got " + std::string(py::str(count)));
-  }
-  if (count > py::int_(std::numeric_limits<int>::max())) {
-    throw py::value_error(std::string(name) + " must be at most 2**31 - 1, got " +
-                          std::string(py::str(count)));
-  }
-  return count.cast<int>();
 }
 
 py::array_t<Scalar> homogeneous(const Pose& pose) {
@@ -511,12 +474,12 @@ Bodies A and B are paired when ``A.group & B.mask`` and ``B.group & A.mask`` are
       .def(
           "sweep",
           [](Scene& scene, const py::handle& ids, const py::handle& poses, const py::handle& motion,
-             Scalar time_tolerance, int max_iterations) {
+             const py::handle& time_tolerance, const py::handle& max_iterations) {
             const std::vector<BodyId> which = to_ids(ids, "ids");
             SweepOptions options;
             options.motion = to_motion_kind(motion);
-            options.time_tolerance = time_tolerance;
-            options.max_iterations = max_iterations;
+            options.time_tolerance = to_real(time_tolerance, "time_tolerance");
+            options.max_iterations = to_count(max_iterations, "max_iterations", 1);
             std::vector<Pose> placed;
             if (!which.empty() ||
                 !(poses.is_none() ||

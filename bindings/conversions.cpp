@@ -1,6 +1,7 @@
 #include "conversions.hpp"
 
 #include <initializer_list>
+#include <limits>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -366,6 +367,39 @@ std::string to_name(const py::handle& value, const char* name) {
     throw py::type_error(std::string(name) + " must be a string, got " + type_name(value));
   }
   return value.cast<std::string>();
+}
+
+bool is_array(const py::handle& value) {
+  return py::isinstance<py::array>(value) && value.cast<py::array>().ndim() > 0;
+}
+
+Scalar to_real(const py::handle& value, const char* name) {
+  if (PyBool_Check(value.ptr()) || py::isinstance<py::str>(value) ||
+      py::isinstance<py::bytes>(value) || is_array(value) || !PyNumber_Check(value.ptr())) {
+    throw py::type_error(std::string(name) + " must be a real number, got " + type_name(value));
+  }
+  PyObject* real = PyNumber_Float(value.ptr());
+  if (real == nullptr) {
+    PyErr_Clear();
+    throw py::type_error(std::string(name) + " must be a real number, got " + type_name(value));
+  }
+  return py::reinterpret_steal<py::float_>(real).cast<Scalar>();
+}
+
+int to_count(const py::handle& value, const char* name, int least) {
+  if (PyBool_Check(value.ptr()) || is_array(value) || !PyIndex_Check(value.ptr())) {
+    throw py::type_error(std::string(name) + " must be an integer, got " + type_name(value));
+  }
+  const py::int_ count = py::reinterpret_steal<py::int_>(PyNumber_Index(value.ptr()));
+  if (count < py::int_(least)) {
+    throw py::value_error(std::string(name) + " must be at least " + std::to_string(least) +
+                          ", got " + std::string(py::str(count)));
+  }
+  if (count > py::int_(std::numeric_limits<int>::max())) {
+    throw py::value_error(std::string(name) + " must be at most 2**31 - 1, got " +
+                          std::string(py::str(count)));
+  }
+  return count.cast<int>();
 }
 
 MotionKind to_motion_kind(const py::handle& motion) {

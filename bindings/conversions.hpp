@@ -86,6 +86,18 @@ MotionKind to_motion_kind(const py::handle& motion);
 /// attribute, such as trimesh's Trimesh, that is not an array or a sequence); else `body`.
 py::object points_of(const py::handle& body);
 
+/// True for a NumPy array of one or more dimensions, which Python's number protocols would turn
+/// into a scalar or refuse with NumPy's own message.
+bool is_array(const py::handle& value);
+
+/// A real number (Python's or NumPy's) as `name`: TypeError for text, arrays, bools and other
+/// types. Its value is checked where it is used.
+Scalar to_real(const py::handle& value, const char* name);
+
+/// An integer (Python's or NumPy's) in [least, 2**31 - 1] as `name`: TypeError for another type
+/// (bool included), ValueError naming the range for a value outside it however large.
+int to_count(const py::handle& value, const char* name, int least);
+
 /// The name of the type of `object`, for messages.
 std::string type_name(const py::handle& object);
 

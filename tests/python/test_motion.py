@@ -231,6 +231,12 @@ def test_bad_input_names_the_argument():
         sc.time_of_impact(cube, cube, tolerance=0)
     with pytest.raises(ValueError, match="'dual'"):
         sc.time_of_impact(cube, cube, method="ipso")
+    with pytest.raises(ValueError, match=r"max_iterations must be at most 2\*\*31 - 1"):
+        sc.time_of_impact(cube, cube, max_iterations=2**40)
+    with pytest.raises(TypeError, match="max_iterations must be an integer, got float"):
+        sc.time_of_impact_many(cube, cube, max_iterations=1.5)
+    with pytest.raises(TypeError, match="time_tolerance must be a real number, got str"):
+        sc.time_of_impact(cube, cube, time_tolerance="1e-6")
     # fcl answers curved shapes too (as FCL's own primitives), so every method with signed
     # distances takes every shape.
     rise = (np.eye(4), np.array([[1.0, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 5], [0, 0, 0, 1]]))

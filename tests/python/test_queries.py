@@ -113,6 +113,7 @@ def test_module_functions_are_the_cached_querys_answers():
         ({"tolerance": -1e-3}, ValueError, r"tolerance must be a number in \[0, 1\]"),
         ({"tolerance": math.nan}, ValueError, "tolerance must be a number"),
         ({"tolerance": 2.0}, ValueError, "tolerance must be a number"),
+        ({"tolerance": 1e300}, ValueError, r"\(relative to the pair's size\), got 1e\+300$"),
         ({"tolerance": "1e-9"}, TypeError, "tolerance must be a real number, got str"),
         ({"tolerance": True}, TypeError, "tolerance must be a real number, got bool"),
         ({"swarm_size": 1}, ValueError, r"swarm_size must be an integer in \[2, 10000\], got 1"),

@@ -1,22 +1,15 @@
 #include "swarmcollide/geometry/pose.hpp"
 
+#include "../detail/number_text.hpp"
+
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <stdexcept>
 #include <string>
 
 namespace swarmcollide {
 
 namespace {
-
-// A number as printf's %g writes it with `digits` significant digits: std::to_string's fixed six
-// decimals print a deviation of 3e-9 as 0.000000.
-std::string general(Scalar x, int digits) {
-  char text[40];
-  std::snprintf(text, sizeof text, "%.*g", digits, x);
-  return text;
-}
 
 // |R^T R - I| (largest entry) and det R: how far a rotation is from a proper rotation.
 struct Deviation {
@@ -61,7 +54,7 @@ std::string problem(const Pose& pose) {
   const Deviation d = deviation(pose.rotation);
   return " is not a rigid motion: its rotation must satisfy R^T R = I and det R = 1 to within "
          "1e-9 (got |R^T R - I| = " +
-         general(d.orthogonality, 3) + ", det R = " + general(d.determinant, 12) +
+         detail::number_text(d.orthogonality, 3) + ", det R = " + detail::number_text(d.determinant, 12) +
          "); scaling and reflection are not poses, scale the points instead";
 }
 

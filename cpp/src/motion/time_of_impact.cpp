@@ -11,6 +11,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "../detail/number_text.hpp"
 #include "motion_bound.hpp"
 #include "swarmcollide/queries/methods.hpp"
 #include "swarmcollide/queries/query.hpp"
@@ -375,7 +376,7 @@ void TimeOfImpactOptions::validate() const {
   }
   if (!(time_tolerance > 0) || !std::isfinite(time_tolerance)) {
     throw std::invalid_argument("time_tolerance must be a positive, finite fraction of the "
-                                "motion's duration (got " + std::to_string(time_tolerance) + ")");
+                                "motion's duration (got " + detail::number_text(time_tolerance) + ")");
   }
   if (max_iterations < 1) {
     throw std::invalid_argument("max_iterations must be at least 1 (got " +

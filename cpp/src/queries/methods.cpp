@@ -13,6 +13,7 @@
 #include "../solvers/libccd_solver.hpp"
 #include "../solvers/penalty_method.hpp"
 #include "../solvers/primal_swarm.hpp"
+#include "../detail/number_text.hpp"
 #include "dispatch.hpp"
 
 namespace swarmcollide {
@@ -259,7 +260,7 @@ void QueryOptions::validate() const {
   if (!(tolerance >= 0 && tolerance <= 1)) {
     throw std::invalid_argument(
         "tolerance must be a number in [0, 1] (relative to the pair's size), got " +
-        std::to_string(tolerance));
+        detail::number_text(tolerance));
   }
   const MethodInfo& info = method_info(method);
   for (const ParameterInfo& p : info.parameters) check_value(p, p.get(*this));

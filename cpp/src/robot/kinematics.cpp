@@ -1,9 +1,10 @@
 #include "swarmcollide/robot/kinematics.hpp"
 
 #include <cmath>
-#include <cstdio>
 #include <stdexcept>
 #include <string>
+
+#include "../detail/number_text.hpp"
 
 namespace swarmcollide {
 
@@ -11,11 +12,8 @@ namespace {
 
 constexpr Scalar kTwoPi = 6.283185307179586476925286766559;
 
-std::string number(Scalar x) {
-  char text[40];
-  std::snprintf(text, sizeof text, "%.17g", x);
-  return text;
-}
+// Joint values to the last digit: a limit missed by a roundoff must show.
+std::string number(Scalar x) { return detail::number_text(x, 17); }
 
 std::string where(std::size_t row, const Joint& joint) {
   return "q[" + std::to_string(row) + "], joint '" + joint.name + "'";

@@ -5,6 +5,8 @@
 
 #include "swarmcollide/queries/batch.hpp"
 
+#include "../detail/number_text.hpp"
+
 namespace swarmcollide {
 
 namespace {
@@ -66,7 +68,7 @@ void SceneOptions::validate() const {
     throw std::invalid_argument(
         "a scene's tolerance must be at most 0.1 (its broadphase pads every box by the contact "
         "threshold), got " +
-        std::to_string(query.tolerance));
+        detail::number_text(query.tolerance));
   }
   if (threads < 0 || threads > kMaxThreads) {
     throw std::invalid_argument("threads must be in [0, " + std::to_string(kMaxThreads) +
