@@ -184,6 +184,10 @@ def test_bad_input_moves_nothing_and_says_why():
         scene.sweep(ball, end, time_tolerance=0)
     with pytest.raises(ValueError, match="'linear' or 'screw'"):
         scene.sweep(ball, end, motion="helix")
+    with pytest.raises(TypeError, match="max_iterations must be an integer"):
+        scene.sweep(ball, end, max_iterations=1.5)
+    with pytest.raises(TypeError, match="time_tolerance must be a real number"):
+        scene.sweep(ball, end, time_tolerance="small")
     with pytest.raises(TypeError, match="ids"):
         scene.sweep("ball", end)
     with pytest.raises(ValueError, match="signed distances"):
