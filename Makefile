@@ -122,7 +122,8 @@ SAN_BUILD := build/sanitize
 SAN_SITE := $(SAN_BUILD)/site
 SAN_PYTESTS ?= tests/python/test_trust.py tests/python/test_contract.py tests/python/test_batch.py \
   tests/python/test_geometry.py tests/python/test_dual.py tests/python/test_problem.py \
-  tests/python/test_motion.py tests/python/test_robot.py tests/python/test_curved_shapes.py
+  tests/python/test_motion.py tests/python/test_robot.py tests/python/test_curved_shapes.py \
+  tests/python/test_robot_motion.py tests/python/test_scene_sweep.py tests/python/test_compound_poses.py
 SAN_RUNTIMES = $$(gcc -print-file-name=libasan.so) $$(gcc -print-file-name=libubsan.so)
 
 test-sanitize: install

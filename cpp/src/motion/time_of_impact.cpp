@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "../detail/number_text.hpp"
+#include "advancement_steps.hpp"
 #include "motion_bound.hpp"
 #include "swarmcollide/queries/methods.hpp"
 #include "swarmcollide/queries/query.hpp"
@@ -21,7 +22,6 @@ namespace swarmcollide {
 namespace {
 
 constexpr Scalar kUnit = 0x1p-53;
-constexpr Scalar kInfinity = std::numeric_limits<Scalar>::infinity();
 
 // A pose moved by `shift`.
 Pose shifted(const Pose& pose, const Vector3& shift) {
@@ -63,17 +63,6 @@ struct Sample {
   Scalar forward;
   Scalar backward;
 };
-
-// `t + span` rounded down, so that the time it names is no later than the exact sum.
-Scalar advanced(Scalar t, Scalar span) {
-  Scalar next = t + span * (1 - 4 * kUnit);
-  // Up to t + 3 span the difference with t is exact only when next <= 2 t (Sterbenz); larger
-  // steps lose at most a roundoff of next <= t + span, which the 4 taken off above cover.
-  if (next <= 2 * t) {
-    while (next > t && next - t > span) next = std::nextafter(next, t);
-  }
-  return next;
-}
 
 // Conservative advancement on one pair: `Body` is ConvexPolyhedron or CompoundBody.
 template <typename Body>
@@ -151,7 +140,7 @@ class Advancement {
       const Scalar limit = ahead.empty() ? 1 : ahead.back().t;
       if (low.forward >= width) {
         // Advance: the bodies are apart over [low.t, low.t + forward).
-        const Scalar t = advanced(low.t, low.forward);
+        const Scalar t = detail::advanced(low.t, low.forward);
         if (t > low.t && t < limit) {
           const Sample reached = sample(t);
           if (reached.contact) return contact(t, t);
@@ -201,15 +190,9 @@ class Advancement {
       forward_rate = std::min(forward_rate, bound_.forward_along(n));
       backward_rate = std::min(backward_rate, bound_.backward_along(n));
     }
-    s.forward = reach_over(apart, forward_rate);
-    s.backward = reach_over(apart, backward_rate);
+    s.forward = detail::reach_over(apart, forward_rate);
+    s.backward = detail::reach_over(apart, backward_rate);
     return s;
-  }
-
-  // The time a gap `apart` lasts at most `rate` of closing, rounded down.
-  static Scalar reach_over(Scalar apart, Scalar rate) {
-    if (rate == 0) return kInfinity;
-    return apart / rate * (1 - 4 * kUnit);
   }
 
   TimeOfImpactResult free() {

@@ -8,6 +8,7 @@
 #include <string>
 #include <utility>
 
+#include "../motion/advancement_steps.hpp"
 #include "box_screen.hpp"
 #include "configuration_threads.hpp"
 #include "geometry_pairs.hpp"
@@ -20,25 +21,6 @@ namespace {
 
 constexpr Scalar kUnit = 0x1p-53;
 constexpr Scalar kInfinity = std::numeric_limits<Scalar>::infinity();
-
-// `t + span` rounded down, so that the time it names is no later than the exact sum (as
-// time_of_impact advances).
-Scalar advanced(Scalar t, Scalar span) {
-  Scalar next = t + span * (1 - 4 * kUnit);
-  // Up to t + 3 span the difference with t is exact only when next <= 2 t (Sterbenz); larger
-  // steps lose at most a roundoff of next <= t + span, which the 4 taken off above cover.
-  if (next <= 2 * t) {
-    while (next > t && next - t > span) next = std::nextafter(next, t);
-  }
-  return next;
-}
-
-// The time a gap `apart` lasts at most `speed` of closing, rounded down (0 for no gap).
-Scalar reach_over(Scalar apart, Scalar speed) {
-  if (!(apart > 0)) return 0;
-  if (speed == 0) return kInfinity;
-  return apart / speed * (1 - 4 * kUnit);
-}
 
 // The time a gap `apart` lasts when it closes at most at `at + s growth` at a time s from now:
 // the root of at h + growth h^2 / 2 = apart, rounded down.
@@ -238,7 +220,7 @@ class MotionCheck {
                         Scalar enough) const {
     const Scalar apart = screen(pair, world[pair.a], world[pair.b], enough) - margin;
     if (!(apart > 0)) return 0;
-    return std::max(reach_over(apart, speed),
+    return std::max(detail::reach_over(apart, speed),
                     local_reach(apart, bound_.local_speed(pair, links, world[pair.a],
                                                           world[pair.b])));
   }
@@ -274,7 +256,7 @@ class MotionCheck {
       }
       const Scalar limit = ahead.empty() ? horizon : ahead.back().t;
       if (low.forward >= width) {
-        const Scalar t = advanced(low.t, low.forward);
+        const Scalar t = detail::advanced(low.t, low.forward);
         if (t > low.t && t < limit) {
           const Sample reached = sample(pair, plan, t, horizon);
           if (reached.contact) return {PairRun::contact, t, t};
@@ -312,7 +294,7 @@ class MotionCheck {
   Sample sample(const GeometryPair& pair, const PairPlan& plan, Scalar t, Scalar horizon) {
     configuration_at(t);
     place(pair);
-    const Scalar screened = reach_over(
+    const Scalar screened = detail::reach_over(
         screen(pair, pose_a_, pose_b_, plan.margin + plan.speed * (horizon - t)) - plan.margin,
         plan.speed);
     if (screened > horizon - t) return {t, false, screened, screened};
@@ -339,7 +321,8 @@ class MotionCheck {
     Sample s{t, result.distance + plan.margin <= threshold, 0, 0};
     const Scalar apart = result.lower_bound - plan.margin;
     if (s.contact || !(apart > 0)) return s;
-    s.forward = s.backward = std::max(reach_over(apart, plan.speed), local_reach(apart, local));
+    s.forward = s.backward =
+        std::max(detail::reach_over(apart, plan.speed), local_reach(apart, local));
     const Scalar length = result.direction.norm();
     if (plan.convex && length > 0.5) {
       // The lower bound is the separation along `direction` (a compound geometry's is not).
