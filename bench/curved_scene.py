@@ -17,6 +17,7 @@ import time
 import numpy as np
 
 import record
+from markdown import table
 import swarmcollide as sc
 
 
@@ -34,6 +35,21 @@ def poses_for(rng: np.random.Generator, count: int, spread: float) -> np.ndarray
     poses[:, :3, :3] = q
     poses[:, :3, 3] = rng.uniform(-spread, spread, (count, 3))
     return poses
+
+
+def section(data: dict) -> str:
+    """The RESULTS.md section of a recorded run."""
+    machine = data["machine"]
+    lines = [f"`{data['command']}`, load average {machine['load_average_start']} -> "
+             f"{machine['load_average_end']}, {machine['date']}. {data['bodies']} bodies of each "
+             f"kind moved over {data['frames']} frames, the two scenes interleaved frame by frame; "
+             "each time is the median over frames of `colliding_pairs`' thread CPU time divided by "
+             "the scene's candidate pairs. Issue 26 asks the first row to be at most the second.",
+             ""]
+    rows = [[row["scene"], f"{row['nanoseconds_per_candidate']:.0f} ns",
+             f"{row['ratio_to_hulls']:.2f}x"] for row in data["rows"]]
+    lines.append(table(["scene", "per candidate pair", "against the hulls"], rows))
+    return "\n".join(lines)
 
 
 def main() -> int:

@@ -16,6 +16,7 @@ from typing import Callable, List, Optional, Tuple
 from coal_report import NARROWPHASE, PENETRATION, narrowphase_section, penetration_section
 from compound import compound_section
 from curved_coal import section as curved_coal_section
+from curved_scene import section as curved_scene_section
 from hull_points import section as hull_points_section
 from pose_batch import section as pose_batch_section
 from robot import section as robot_section
@@ -121,6 +122,8 @@ LATE_SECTIONS: List[Section] = [
      CONTACTS_PILE, contacts_section, ""),
     ("curved_coal.json", "Curved shapes against coal's primitives (bench/curved_coal.py)", "",
      curved_coal_section, ""),
+    ("curved_scene.json", "Scenes of spheres and capsules against 8-vertex hulls "
+     "(bench/curved_scene.py)", "", curved_scene_section, ""),
     ("robot.json", "Robots against Pinocchio + coal and MuJoCo (bench/robot.py)", "",
      robot_section, ""),
     ("robot_motion.json", "Robot motions against discrete checks at OMPL's resolution "
