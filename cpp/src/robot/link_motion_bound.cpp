@@ -173,6 +173,15 @@ std::size_t shared_joints(const std::vector<std::vector<int>>& chains, int a, in
 
 }  // namespace
 
+void LinkMotionBound::add_shared_turns(Scalar& speed, int link, std::size_t shared,
+                                       Scalar extents) const {
+  for (std::size_t k = 0; k < shared; ++k) {
+    const int j = chains_[static_cast<std::size_t>(link)][k];
+    if (model_.joints()[j].type == JointType::prismatic) continue;
+    speed += 1.01 * chain_sigma_[j] * change_[j] * extents;
+  }
+}
+
 Scalar LinkMotionBound::pair_speed(const GeometryPair& pair) const {
   const int la = model_.geometries()[pair.a].link;
   const int lb = model_.geometries()[pair.b].link;
@@ -182,12 +191,7 @@ Scalar LinkMotionBound::pair_speed(const GeometryPair& pair) const {
   Scalar speed = 0;
   for (std::size_t k = shared; k < a.speed.size(); ++k) speed += a.speed[k];
   for (std::size_t k = shared; k < b.speed.size(); ++k) speed += b.speed[k];
-  for (std::size_t k = 0; k < shared; ++k) {
-    // A shared turn leaves distances unchanged but for the origins' deviation from rigid.
-    const int j = chains_[static_cast<std::size_t>(la)][k];
-    if (model_.joints()[j].type == JointType::prismatic) continue;
-    speed += 1.01 * chain_sigma_[j] * change_[j] * (a.extent + b.extent);
-  }
+  add_shared_turns(speed, la, shared, a.extent + b.extent);
   return speed * kRoundUp;
 }
 
@@ -229,12 +233,7 @@ LinkMotionBound::LocalSpeed LinkMotionBound::local_speed(const GeometryPair& pai
   };
   add(pair.a, la, pose_a);
   add(pair.b, lb, pose_b);
-  for (std::size_t k = 0; k < shared; ++k) {
-    const int j = chains_[static_cast<std::size_t>(la)][k];
-    if (model_.joints()[j].type == JointType::prismatic) continue;
-    local.at += 1.01 * chain_sigma_[j] * change_[j] *
-                (geometries_[pair.a].extent + geometries_[pair.b].extent);
-  }
+  add_shared_turns(local.at, la, shared, geometries_[pair.a].extent + geometries_[pair.b].extent);
   local.at *= kRoundUp;
   local.growth *= kRoundUp;
   return local;

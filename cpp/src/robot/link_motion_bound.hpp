@@ -105,6 +105,11 @@ class LinkMotionBound {
     Scalar total = 0;
   };
 
+  // Adds to `speed` what the first `shared` joints of link `link`'s chain (those both links of a
+  // pair share) cost a pair whose points lie within `extents` of the world's origin: a shared
+  // turn leaves distances unchanged but for the origins' deviation from rigid.
+  void add_shared_turns(Scalar& speed, int link, std::size_t shared, Scalar extents) const;
+
   const RobotModel& model_;
   // Per link, its chain of joints from the root down (fixed joints included).
   std::vector<std::vector<int>> chains_;

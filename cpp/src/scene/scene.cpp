@@ -351,9 +351,8 @@ BodyId Scene::add(ConvexPolyhedron body, const Pose& pose, const BodyFilter& fil
   return add(std::move(one), {pose}, filter).front();
 }
 
-void Scene::set_poses(const std::vector<BodyId>& ids, const std::vector<Pose>& poses) {
-  Impl& s = *impl_;
-  const std::lock_guard<std::mutex> lock(s.mutex);
+std::vector<SceneBody*> Scene::Impl::bodies_to_move(const std::vector<BodyId>& ids,
+                                                    const std::vector<Pose>& poses) {
   if (ids.size() != poses.size()) {
     throw std::invalid_argument("ids and poses must have the same length, got " +
                                 std::to_string(ids.size()) + " and " +
@@ -362,7 +361,7 @@ void Scene::set_poses(const std::vector<BodyId>& ids, const std::vector<Pose>& p
   std::vector<SceneBody*> targets;
   targets.reserve(ids.size());
   for (std::size_t i = 0; i < ids.size(); ++i) {
-    targets.push_back(&s.find(ids[i]));
+    targets.push_back(&find(ids[i]));
     validate_pose(poses[i], "poses", i);
     if (!within_range(poses[i])) {
       refuse_placement("poses[" + std::to_string(i) + "] moves body " + std::to_string(ids[i]) +
@@ -370,6 +369,13 @@ void Scene::set_poses(const std::vector<BodyId>& ids, const std::vector<Pose>& p
                        poses[i].translation.cwiseAbs().maxCoeff());
     }
   }
+  return targets;
+}
+
+void Scene::set_poses(const std::vector<BodyId>& ids, const std::vector<Pose>& poses) {
+  Impl& s = *impl_;
+  const std::lock_guard<std::mutex> lock(s.mutex);
+  const std::vector<SceneBody*> targets = s.bodies_to_move(ids, poses);
   for (std::size_t i = 0; i < ids.size(); ++i) s.move_to(*targets[i], poses[i]);
 }
 

@@ -115,11 +115,7 @@ SweepResult Scene::sweep(const std::vector<BodyId>& ids, const std::vector<Pose>
                          const SweepOptions& sweep_options) {
   Impl& s = *impl_;
   const std::lock_guard<std::mutex> lock(s.mutex);
-  if (ids.size() != poses.size()) {
-    throw std::invalid_argument("ids and poses must have the same length, got " +
-                                std::to_string(ids.size()) + " and " +
-                                std::to_string(poses.size()));
-  }
+  const std::vector<SceneBody*> targets = s.bodies_to_move(ids, poses);
   TimeOfImpactOptions options;
   options.query = s.options.query;
   options.time_tolerance = sweep_options.time_tolerance;
@@ -131,23 +127,14 @@ SweepResult Scene::sweep(const std::vector<BodyId>& ids, const std::vector<Pose>
   }
   // Every body's motion: the listed ones' to their new poses, the others' still.
   std::unordered_map<BodyId, std::size_t> moving;
-  std::vector<SceneBody*> targets;
   std::vector<RigidMotion> motions;
   for (std::size_t i = 0; i < ids.size(); ++i) {
-    SceneBody& b = s.find(ids[i]);
     if (!moving.emplace(ids[i], i).second) {
       throw std::invalid_argument("ids lists body " + std::to_string(ids[i]) +
                                   " twice; give each body one end pose");
     }
-    validate_pose(poses[i], "poses", i);
-    if (!detail::within_range(poses[i])) {
-      detail::refuse_placement("poses[" + std::to_string(i) + "] moves body " +
-                                   std::to_string(ids[i]) + " along an axis by",
-                               poses[i].translation.cwiseAbs().maxCoeff());
-    }
     const std::string name = "poses[" + std::to_string(i) + "]";
-    motions.emplace_back(b.pose, poses[i], sweep_options.motion, name.c_str());
-    targets.push_back(&b);
+    motions.emplace_back(targets[i]->pose, poses[i], sweep_options.motion, name.c_str());
   }
   // The still bodies' boxes, and the broadphase's, brought up to date.
   s.fit_boxes(s.padded_for);
