@@ -281,3 +281,32 @@ def test_the_result_repr_shows_the_answer(tetra_a, separate_b):
     assert text.startswith("DistanceResult(method='dual', distance=1, lower_bound=1")
     assert "certified=True" in text and "status='converged'" in text
     assert "escalated_from" not in text
+
+
+@pytest.mark.parametrize("method", ["dual", "exact"])
+@pytest.mark.parametrize("contact", ["face", "vertex"])
+def test_touching_polytopes_get_the_contact_normal(method, contact):
+    """Touching pairs settle their signed distance from Wolfe's nearest point (its triangle's
+    normal) without the expanding polytope; the normal must still be the contact's, not the
+    direction between witnesses a few roundoffs apart. A unit cube on another's top face, and one
+    standing on a vertex there, under random poses of the pair."""
+    from scipy.spatial.transform import Rotation
+
+    cube = sc.ConvexPolyhedron(CUBE)  # [0, 1]^3
+    stand = np.eye(4)
+    if contact == "face":
+        stand[:3, 3] = [0.3, 1.0, 0.2]
+    else:
+        # Turned about its vertex (0, 0, 0) until its diagonal points up: that vertex, alone
+        # lowest, stands on the middle of the top face.
+        turn, _ = Rotation.align_vectors([[0.0, 1.0, 0.0]], [np.ones(3) / np.sqrt(3)])
+        stand[:3, :3] = turn.as_matrix()
+        stand[:3, 3] = [0.5, 1.0, 0.5]
+    rng = np.random.default_rng(11)
+    for _ in range(20):
+        world = np.eye(4)
+        world[:3, :3] = Rotation.random(random_state=rng).as_matrix()
+        world[:3, 3] = rng.normal(size=3)
+        r = sc.signed_distance(cube, cube, pose_a=world, pose_b=world @ stand, method=method)
+        assert r.certified and abs(r.distance) <= 1e-9 * 2
+        np.testing.assert_allclose(r.direction, world[:3, :3] @ [0.0, 1.0, 0.0], atol=1e-9)

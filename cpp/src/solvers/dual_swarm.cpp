@@ -148,8 +148,8 @@ Vector3 tilted(const Vector3& direction) {
 // direction (or the centres') leaves the bodies possibly in contact, Wolfe's algorithm on B - A
 // runs from it, tilted. A corral around the origin proves the
 // overlap, which no separating direction can, and its tetrahedron starts the penetration solver's
-// expanding polytope; a nearest point that settles the pair as a distance is the answer as well.
-// Otherwise (touching pairs, mostly) nothing: the search runs as for any distance, and its
+// expanding polytope; a nearest point whose separation settles the value (apart or touching
+// pairs) is the answer as well. Otherwise nothing: the search runs as for any distance, and its
 // direction, the contact normal, is the penetration solver's hint.
 std::optional<Answer> overlap_first(const FramedPair& pair, const QueryOptions& options,
                                     const DualStart* start) {
@@ -174,7 +174,8 @@ std::optional<Answer> overlap_first(const FramedPair& pair, const QueryOptions& 
   } else {
     answer = answer_from_corral(pair, corral, common);
     ++evaluations;
-    if (!(answer.lower > kFrameRounding && value_proven(pair, answer))) return std::nullopt;
+    const bool apart = answer.lower > kFrameRounding && value_proven(pair, answer);
+    if (!apart && !settles_signed_distance(pair, corral, answer)) return std::nullopt;
   }
   answer.iterations += corral.iterations;
   answer.evaluations += evaluations;
@@ -208,6 +209,12 @@ Answer solve_dual_from(const FramedPair& pair, const QueryOptions& options, Goal
     exact.history = std::move(answer.history);
     return exact;
   }
+  // Touching polytopes, mostly: the best separation bounds the signed distance below as well (no
+  // direction separates overlapping bodies by more than minus their depth), so once it is within
+  // the tolerance of the witnesses' distance the value is settled, and its direction is a
+  // contact normal along which the gap is the signed distance to the tolerance (curved surfaces
+  // excepted: settles_signed_distance).
+  if (!pair.a.curved() && !pair.b.curved() && value_proven(pair, answer)) return answer;
   Answer overlap =
       exact_penetration(pair, options.exact.max_iterations, answer.direction, answer.upper);
   overlap.iterations += answer.iterations;

@@ -91,6 +91,29 @@ Answer exact_distance(const FramedPair& pair, int max_iterations, const MinNormP
   return nearest_points(pair, max_iterations, start, corral.corral[0].ia, corral.corral[0].ib);
 }
 
+bool settles_signed_distance(const FramedPair& pair, const MinNormPoint& corral, Answer& answer) {
+  if (pair.a.curved() || pair.b.curved()) return false;
+  if (value_proven(pair, answer)) return true;
+  if (corral.size != 3) return false;
+  const Vector3& p0 = corral.corral[0].p;
+  Vector3 normal = (corral.corral[1].p - p0).cross(corral.corral[2].p - p0);
+  const Scalar length = normal.norm();
+  if (!(length > 0)) return false;
+  // Towards the triangle from the origin first: B - A lies beyond the plane on that side.
+  normal /= normal.dot(p0) < 0 ? -length : length;
+  for (const Vector3& n : {normal, Vector3(-normal)}) {
+    int hint_a = corral.corral[0].ia;
+    int hint_b = corral.corral[0].ib;
+    const Scalar s = separation(pair.a, pair.b, n, hint_a, hint_b);
+    if (value_proven(pair, s, answer.upper)) {
+      answer.lower = s;
+      answer.direction = n;
+      return true;
+    }
+  }
+  return false;
+}
+
 Answer exact_penetration(const FramedPair& pair, int max_iterations, const Vector3& hint,
                          Scalar distance_upper, const MinNormPoint* nearest) {
   PenetrationBounds bounds =
@@ -115,8 +138,9 @@ Answer exact_signed_distance(const FramedPair& pair, int max_iterations, const V
   const MinNormPoint nearest =
       nearest_corral(pair, max_iterations, start_direction(pair, hint), -1, -1, evaluations);
   Answer apart = corral_answer(pair, nearest, evaluations);
-  // A positive separation proves the bodies apart, and their distance is the signed distance.
-  if (apart.lower > kFrameRounding) return apart;
+  // A positive separation proves the bodies apart, and their distance is the signed distance;
+  // a touching pair's may be settled without the expanding polytope.
+  if (apart.lower > kFrameRounding || settles_signed_distance(pair, nearest, apart)) return apart;
   const Vector3 start = hint.norm() > 0 ? hint : apart.direction;
   // Wolfe's corral is not computed again; around the origin it starts the expanding polytope.
   Answer overlap = exact_penetration(pair, max_iterations, start, apart.upper, &nearest);

@@ -18,6 +18,19 @@ Answer exact_distance(const FramedPair& pair, int max_iterations, const Vector3&
 /// with the bodies' support indices, positive weights summing to one).
 Answer exact_distance(const FramedPair& pair, int max_iterations, const MinNormPoint& corral);
 
+/// Whether `answer`, the answer of Wolfe's nearest point `corral` (no tetrahedron around the
+/// origin), settles a signed distance, the bounds within the tolerance. Where its witnesses are
+/// a few roundoffs apart (touching bodies) their direction is rounding noise and the separation
+/// along it far short; the normal of the corral's triangle is then the contact normal (the
+/// origin's nearest point lies on the triangle, whose plane supports B - A there), measured
+/// with either sign. The separation along any direction bounds the signed distance below,
+/// overlapping or not; the one that settles it becomes `answer`'s lower bound and direction,
+/// and the expanding polytope is not needed. Polytopes only: where a surface is curved the
+/// separation changes only to second order in the normal's angle, so a settled value leaves the
+/// normal a square root of the tolerance off, which the expanding polytope (and its closed forms
+/// on axes of symmetry) does not.
+bool settles_signed_distance(const FramedPair& pair, const MinNormPoint& corral, Answer& answer);
+
 /// The certified penetration depth of touching or overlapping bodies, from the direction `hint`
 /// (which may be zero); `distance_upper`, any upper bound on their distance, also bounds the
 /// signed distance. `nearest`, when not null, is the corral of Wolfe's algorithm on B - A run to
