@@ -193,6 +193,11 @@ Examples
       .def_property_readonly("radius", &ConvexPolyhedron::radius,
                              "The rounding radius (0 for a plain polyhedron).")
       .def_property_readonly(
+          "rounding_radius", &ConvexPolyhedron::radius,
+          "The rounding radius of every kind of body: a ConvexPolyhedron's or Box's ``radius``, a "
+          "Sphere's or Capsule's radius, 0 for a Cylinder, Cone or Ellipsoid, whose ``radius`` "
+          "(where they have one) is their own dimension. Code that handles any body reads this.")
+      .def_property_readonly(
           "bounding_radius", [](const ConvexPolyhedron& body) { return body.bounds().radius; },
           "Half the diagonal of the points' bounding box plus the rounding radius: every point of "
           "the body lies within it of the box's centre.")

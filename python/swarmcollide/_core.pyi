@@ -436,6 +436,11 @@ class ConvexPolyhedron:
         The rounding radius (0 for a plain polyhedron).
         """
     @property
+    def rounding_radius(self) -> float:
+        """
+        The rounding radius of every kind of body: a ConvexPolyhedron's or Box's ``radius``, a Sphere's or Capsule's radius, 0 for a Cylinder, Cone or Ellipsoid, whose ``radius`` (where they have one) is their own dimension. Code that handles any body reads this.
+        """
+    @property
     def vertices(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
         """
         The ``(n, 3)`` points the body was built from (read-only).

@@ -522,7 +522,7 @@ class CompoundBody(_core.CompoundBody):
         poses included.
         """
         for k, part in enumerate(self.parts):
-            if part.curved or part.radius > 0:
+            if part.curved or part.rounding_radius > 0:
                 raise ValueError(
                     f"parts[{k}] is {'a curved shape' if part.curved else 'rounded'}, which a "
                     "parts file (points only) cannot hold; write the body with "

@@ -136,13 +136,11 @@ def _surface(part) -> tuple:
     a point or a segment, drawn as its points): a polyhedron's own vertices and hull; a curved
     or rounded body's surface tessellated for drawing only, as the hull of its support points
     (its core's plus the radius along the direction) over many directions."""
-    if not part.curved and part.radius == 0:
+    if not part.curved and part.rounding_radius == 0:
         hull = part.hull()
         return part.vertices, (hull.faces if hull.dimension >= 2 else None)
     directions = _directions()
-    # A curved shape's ``radius`` is its own (a cylinder's, say); it is never rounded.
-    rounding = 0.0 if part.curved else part.radius
-    points = np.array([part.support(d) for d in directions]) + rounding * directions
+    points = np.array([part.support(d) for d in directions]) + part.rounding_radius * directions
     return points, _core.ConvexPolyhedron(points).hull().faces
 
 

@@ -28,10 +28,10 @@ def drawn_body(body):
     ``SURFACE_DIRECTIONS`` directions, a compound body part by part."""
     if isinstance(body, _core.CompoundBody):
         return _core.CompoundBody([drawn_body(part) for part in body.parts])
-    if not body.curved and body.radius == 0:
+    if not body.curved and body.rounding_radius == 0:
         return body
     directions = _directions(SURFACE_DIRECTIONS)
-    points = np.array([body.support(d) for d in directions]) + body.radius * directions
+    points = np.array([body.support(d) for d in directions]) + body.rounding_radius * directions
     return _core.ConvexPolyhedron(points)
 
 

@@ -268,3 +268,18 @@ def test_curved_shapes_describe_themselves():
     result = sc.distance(cylinder, egg, pose_b=at(4))
     assert result.weights_a.size == 0 and result.weights_b.size == 0
     assert result.distance == pytest.approx(4 - 0.5 - 1, abs=1e-9 * 8)
+
+
+@pytest.mark.parametrize("body, rounding, reach", [
+    (sc.Cylinder(0.5, 1.0), 0.0, 0.5), (sc.Cone(0.5, 1.0), 0.0, 0.5),
+    (sc.Ellipsoid([0.3, 0.2, 0.1]), 0.0, 0.3), (sc.Sphere(0.3), 0.3, 0.3),
+    (sc.Capsule(0.2, 0.5), 0.2, 0.2), (sc.Box([1, 1, 1], radius=0.1), 0.1, 1.1)])
+def test_every_body_names_its_rounding_radius_and_is_drawn_its_own_size(body, rounding, reach):
+    """``radius`` is a Cylinder's or Cone's own dimension; ``rounding_radius`` is the rounding of
+    every kind of body, which pictures add to the support points (a robot's cylinder was once
+    drawn fattened by its radius)."""
+    from swarmcollide.robot_plot import drawn_body
+
+    assert body.rounding_radius == rounding
+    drawn = drawn_body(body)
+    assert np.asarray(drawn.vertices)[:, 0].max() == pytest.approx(reach, rel=1e-2)
