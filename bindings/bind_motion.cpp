@@ -368,7 +368,7 @@ and each row's ``TimeOfImpactResult`` by indexing.
         return time_of_impact(body_a.get(), motion_a, body_b.get(), motion_b, options);
       },
       py::arg("a"), py::arg("b"), py::kw_only(), py::arg("pose_a") = py::none(),
-      py::arg("pose_b") = py::none(), py::arg("method") = "dual",
+      py::arg("pose_b") = py::none(), py::arg("method") = "exact",
       py::arg("tolerance") = kDefaultTolerance, py::arg("time_tolerance") = kDefaultTimeTolerance,
       py::arg("max_iterations") = kDefaultMotionIterations, py::arg("motion") = "linear",
       "The first contact of A and B moving from their start to their end poses (see "
@@ -405,7 +405,7 @@ and each row's ``TimeOfImpactResult`` by indexing.
         return batch;
       },
       py::arg("As"), py::arg("Bs"), py::kw_only(), py::arg("poses_a") = py::none(),
-      py::arg("poses_b") = py::none(), py::arg("method") = "dual",
+      py::arg("poses_b") = py::none(), py::arg("method") = "exact",
       py::arg("tolerance") = kDefaultTolerance, py::arg("time_tolerance") = kDefaultTimeTolerance,
       py::arg("max_iterations") = kDefaultMotionIterations, py::arg("threads") = py::none(),
       py::arg("motion") = "linear",

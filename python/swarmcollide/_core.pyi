@@ -1560,11 +1560,11 @@ def separation(a: typing.Any, b: typing.Any, direction: typing.Any) -> float:
     >>> sc.separation(a, b, [1, 0, 0])
     2.0
     """
-def time_of_impact(a: typing.Any, b: typing.Any, *, pose_a: typing.Any = None, pose_b: typing.Any = None, method: typing.Any = 'dual', tolerance: typing.Any = 1e-09, time_tolerance: typing.Any = 1e-06, max_iterations: typing.Any = 100000, motion: typing.Any = 'linear') -> TimeOfImpactResult:
+def time_of_impact(a: typing.Any, b: typing.Any, *, pose_a: typing.Any = None, pose_b: typing.Any = None, method: typing.Any = 'exact', tolerance: typing.Any = 1e-09, time_tolerance: typing.Any = 1e-06, max_iterations: typing.Any = 100000, motion: typing.Any = 'linear') -> TimeOfImpactResult:
     """
     The first contact of A and B moving from their start to their end poses (see swarmcollide.time_of_impact).
     """
-def time_of_impact_many(As: typing.Any, Bs: typing.Any, *, poses_a: typing.Any = None, poses_b: typing.Any = None, method: typing.Any = 'dual', tolerance: typing.Any = 1e-09, time_tolerance: typing.Any = 1e-06, max_iterations: typing.Any = 100000, threads: typing.Any = None, motion: typing.Any = 'linear') -> TimeOfImpactBatch:
+def time_of_impact_many(As: typing.Any, Bs: typing.Any, *, poses_a: typing.Any = None, poses_b: typing.Any = None, method: typing.Any = 'exact', tolerance: typing.Any = 1e-09, time_tolerance: typing.Any = 1e-06, max_iterations: typing.Any = 100000, threads: typing.Any = None, motion: typing.Any = 'linear') -> TimeOfImpactBatch:
     """
     time_of_impact for every row (see swarmcollide.time_of_impact_many).
     """

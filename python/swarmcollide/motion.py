@@ -47,7 +47,7 @@ def time_of_impact(
     *,
     pose_a: MotionLike = None,
     pose_b: MotionLike = None,
-    method: str = "dual",
+    method: str = "exact",
     tolerance: float = DEFAULT_TOLERANCE,
     time_tolerance: float = DEFAULT_TIME_TOLERANCE,
     max_iterations: int = DEFAULT_MOTION_ITERATIONS,
@@ -65,8 +65,10 @@ def time_of_impact(
         ``(rotation, translation)``, a SciPy ``Rotation``, ...). A single pose, or None for the
         identity, keeps the body still.
     method : str
-        ``"dual"`` (default), ``"exact"`` or ``"fcl"``: the distance queries run at each sampled
-        time.
+        ``"exact"`` (default), ``"dual"`` or ``"fcl"``: the distance queries run at each sampled
+        time. Advancement needs proven lower bounds, not values certified far from contact, which
+        "dual" pays its swarm rounds for; with "exact", a time whose query leaves a curved pair
+        unproven is asked again of "dual".
     tolerance : float
         Contact threshold (> 0), relative to the motion's size, the sum of the two bodies'
         bounding-ball diameters (between 2/3 and 2 times the pair's size where they touch):
@@ -128,7 +130,7 @@ def time_of_impact_many(
     *,
     poses_a: MotionsLike = None,
     poses_b: MotionsLike = None,
-    method: str = "dual",
+    method: str = "exact",
     tolerance: float = DEFAULT_TOLERANCE,
     time_tolerance: float = DEFAULT_TIME_TOLERANCE,
     max_iterations: int = DEFAULT_MOTION_ITERATIONS,

@@ -168,6 +168,32 @@ def test_a_turning_bar_hits_the_post_at_every_scale(scale):
     assert r.touches and r.certified
     assert r.t_lower <= first + 1e-12 and r.t_upper >= first - 1e-6
 
+def test_curved_pairs_the_exact_queries_leave_unproven_are_asked_of_dual():
+    """An ellipsoid leaving a cylinder from a micrometre away: "exact" alone proves no positive
+    lower bound there (0, uncertified), so the advancement could not step; the motion's exact
+    queries ask "dual" again at such times, and the motion is proven free."""
+    rng = np.random.default_rng(3)
+    egg, can = sc.Ellipsoid([0.3, 0.2, 0.1]), sc.Cylinder(0.2, 0.4)
+    stalled = 0
+    for _ in range(5):
+        away = rng.normal(size=3)
+        away /= np.linalg.norm(away)
+        still, start = np.eye(4), np.eye(4)
+        still[:3, :3] = Rotation.random(random_state=rng).as_matrix()
+        start[:3, :3] = Rotation.random(random_state=rng).as_matrix()
+        start[:3, 3] = brentq(lambda s: sc.distance(egg, can, pose_a=np.block(
+            [[start[:3, :3], s * away[:, None]], [np.zeros((1, 3)), 1]]), pose_b=still).distance
+            - 1e-6, 0, 3, xtol=1e-14) * away
+        alone = sc.distance(egg, can, pose_a=start, pose_b=still, method="exact",
+                            tolerance=2.5e-10)
+        stalled += not alone.certified and alone.lower_bound == 0
+        end = start.copy()
+        end[:3, 3] += away
+        r = sc.time_of_impact(egg, can, pose_a=(start, end), pose_b=still, method="exact")
+        assert not r.touches and r.certified and r.status == "converged"
+    assert stalled > 0  # the case this test is for
+
+
 
 @pytest.mark.parametrize("far", [1e10, 1e160, 1e300])
 def test_bodies_far_apart_are_proven_free(far):

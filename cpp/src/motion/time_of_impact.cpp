@@ -4,6 +4,7 @@
 #include <cmath>
 #include <exception>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <system_error>
@@ -80,6 +81,11 @@ class Advancement {
         bound_(motion_a_, reach_a_, motion_b_, reach_b_),
         options_(options),
         query_(precise(options.query)) {
+    if (options.query.method == Method::exact && (curved(a) || curved(b))) {
+      QueryOptions dual = precise(options.query);
+      dual.method = Method::dual;
+      curved_query_.emplace(dual);
+    }
     // The moved ends are rounded: the motions above are within a roundoff of their translations'
     // sizes of the given ones (the same shift at both ends, so at every time in between). A
     // screw's twist is computed again from the moved ends: its translation part v = V(w)^-1 p
@@ -172,11 +178,24 @@ class Advancement {
     return options;
   }
 
+  static bool curved(const ConvexPolyhedron& body) { return body.curved() != nullptr; }
+  static bool curved(const CompoundBody& body) { return body.curved_part() != nullptr; }
+
+  // The query's answer at the poses, asked again of "dual" where "exact" left a curved pair
+  // unproven (TimeOfImpactOptions::query).
+  template <typename Ask>
+  auto answer(const Ask& ask) const {
+    auto result = ask(query_);
+    if (curved_query_ && !result.certified) result = ask(*curved_query_);
+    return result;
+  }
+
   Sample sample(Scalar t) {
     ++iterations_;
     const Pose pose_a = motion_a_.at(t);
     const Pose pose_b = motion_b_.at(t);
-    const auto result = query_.distance(a_, pose_a, b_, pose_b);
+    const auto result =
+        answer([&](const Query& q) { return q.distance(a_, pose_a, b_, pose_b); });
     Sample s{t, result.distance + margin_ <= contact_threshold_, 0, 0};
     const Scalar apart = result.lower_bound - margin_;
     if (s.contact || !(apart > 0)) return s;
@@ -236,7 +255,8 @@ class Advancement {
     r.t_upper = t;
     const Pose pose_a = motion_a_.at(t);
     const Pose pose_b = motion_b_.at(t);
-    const auto contact = query_.signed_distance(a_, pose_a, b_, pose_b);
+    const auto contact =
+        answer([&](const Query& q) { return q.signed_distance(a_, pose_a, b_, pose_b); });
     r.pose_a = shifted(pose_a, origin_);
     r.pose_b = shifted(pose_b, origin_);
     r.distance = contact.distance;
@@ -257,6 +277,8 @@ class Advancement {
   detail::MotionBound bound_;
   const TimeOfImpactOptions& options_;
   Query query_;
+  // "dual" at the same tolerance, for curved pairs that "exact" leaves unproven.
+  std::optional<Query> curved_query_;
   Scalar margin_ = 0;
   Scalar size_ = 0;
   Scalar contact_threshold_ = 0;

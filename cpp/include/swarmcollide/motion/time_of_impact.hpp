@@ -17,16 +17,29 @@ inline constexpr Scalar kDefaultTimeTolerance = 1e-6;
 /// Default cap on the distance queries one time of impact may run.
 inline constexpr int kDefaultMotionIterations = 100000;
 
+/// The queries' defaults with the exact method, which motions use: conservative advancement
+/// needs a proven lower bound at each sampled time, not a certified value far from contact, and
+/// where rounding leaves Wolfe's bounds a little further apart than the tolerance "dual" spends
+/// its swarm rounds (thousands of times a query's cost) on closing a gap that no step needs.
+inline QueryOptions exact_queries() {
+  QueryOptions options;
+  options.method = Method::exact;
+  return options;
+}
+
 /// How `time_of_impact` works: the distance queries' method and tolerance, the bracket's width
 /// and the iteration cap.
 struct TimeOfImpactOptions {
   /// The queries at each sampled time: `query.method` must answer distances and signed
-  /// distances ("dual", "exact", "fcl"); `query.tolerance` (relative, > 0) is the contact
+  /// distances ("exact", the default, "dual", "fcl"). With "exact", a sampled time whose query
+  /// leaves a pair with a curved body unproven (its value not within the tolerance; Wolfe's
+  /// algorithm can stall on smooth surfaces) is asked again of "dual", which proves those.
+  /// `query.tolerance` (relative, > 0) is the contact
   /// threshold: the bodies touch when they are within `tolerance x size` of each other, where
   /// `size` is the sum of the two bodies' bounding-ball diameters (BodyBounds::radius), constant
   /// over the motion, and between 2/3 and 2 times the pair's size (the queries' measure) at any
   /// pose where they touch.
-  QueryOptions query;
+  QueryOptions query = exact_queries();
   /// Largest width of the bracket [t_lower, t_upper] of a first contact, > 0.
   Scalar time_tolerance = kDefaultTimeTolerance;
   /// Distance queries at most; past it the answer is returned uncertified.
