@@ -195,6 +195,21 @@ def test_curved_pairs_the_exact_queries_leave_unproven_are_asked_of_dual():
 
 
 
+def test_a_body_turning_about_its_own_long_axis_steps_by_its_width():
+    """A bar 10 long and 0.02 wide spinning about its own axis while it slides into a post: the
+    turn moves its points by their distance from the axis, not from its origin, so the
+    advancement steps as for a slide (121 queries when the bound took the bar's half length)."""
+    bar, post = sc.Box([0.01, 0.01, 5.0]), sc.Box([0.5, 0.5, 0.5])
+    start, end = np.eye(4), np.eye(4)
+    start[:3, 3] = [-2, 0, 0]
+    spin = end.copy()
+    spin[:3, :3] = Rotation.from_rotvec([0, 0, 3.0]).as_matrix()
+    slide = sc.time_of_impact(bar, post, pose_a=(start, end))
+    turn = sc.time_of_impact(bar, post, pose_a=(start, spin))
+    assert slide.touches and turn.touches and slide.certified and turn.certified
+    assert turn.iterations <= 4 * slide.iterations + 4
+
+
 @pytest.mark.parametrize("far", [1e10, 1e160, 1e300])
 def test_bodies_far_apart_are_proven_free(far):
     """Margins on the translations' sizes are taken without squaring them: squares beyond 1e308

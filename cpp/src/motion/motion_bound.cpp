@@ -47,6 +47,33 @@ Scalar motion_reach(const CompoundBody& body) {
   return reach;
 }
 
+Scalar motion_reach_across(const ConvexPolyhedron& body, const Vector3& axis) {
+  const Scalar length = axis.stableNorm();
+  if (!(length > 0)) return motion_reach(body);
+  const Vector3 unit = axis / length;
+  Scalar across = 0;
+  if (const SupportFunction* shape = body.curved()) {
+    across = unit.cross(body.bounds().centre).stableNorm() + shape->outer_radius();
+  } else {
+    VertexMatrix crossed(body.vertices().rows(), 3);
+    for (int i = 0; i < crossed.rows(); ++i) {
+      crossed.row(i) = unit.cross(Vector3(body.vertices().row(i))).transpose();
+    }
+    across = largest_row_norm(crossed);
+  }
+  // |unit x x| is within a few roundoffs of |x| (the unit vector's length included) of the
+  // distance from the axis: 16 roundoffs of the reach cover them, as 8 cover the reach's own.
+  return std::min(motion_reach(body), across * (1 + 8 * kUnit) + 16 * kUnit * motion_reach(body));
+}
+
+Scalar motion_reach_across(const CompoundBody& body, const Vector3& axis) {
+  Scalar reach = 0;
+  for (const ConvexPolyhedron& part : body.parts()) {
+    reach = std::max(reach, motion_reach_across(part, axis));
+  }
+  return reach;
+}
+
 MotionBound::MotionBound(const RigidMotion& motion_a, Scalar reach_a, const RigidMotion& motion_b,
                          Scalar reach_b)
     : motion_a_(&motion_a), motion_b_(&motion_b), reach_a_(reach_a), reach_b_(reach_b) {

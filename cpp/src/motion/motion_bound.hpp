@@ -15,17 +15,28 @@ Scalar motion_reach(const ConvexPolyhedron& body);
 /// The largest reach of the parts.
 Scalar motion_reach(const CompoundBody& body);
 
+/// A bound on the distance of every point of the body's core (in its own frame) from the line
+/// through its origin along `axis` (any length; the zero vector: `motion_reach`): a turn about
+/// that axis moves a point by its angle times this distance at most, which is less than the
+/// reach for every body not flat across the axis.
+Scalar motion_reach_across(const ConvexPolyhedron& body, const Vector3& axis);
+/// The largest of the parts'.
+Scalar motion_reach_across(const CompoundBody& body, const Vector3& axis);
+
 /// Bounds on how fast the distance between A moving by `motion_a` and B moving by `motion_b`
-/// can shrink, per unit of time, for bodies of reach `reach_a` and `reach_b`.
+/// can shrink, per unit of time, for bodies whose points lie within `reach_a` and `reach_b` of
+/// the axes their motions turn about (motion_reach_across; a screw's axis is its rotation's).
 ///
-/// A point x of A (|x| <= reach_a) is at R0 Q(t) x + T(t), Q(t) = exp(t [w]) a rotation. Over a
-/// time h it moves by at most |T1 - T0| h from the translation and, since Q(t + h) - Q(t) =
-/// Q(t) (exp(h [w]) - I) and a chord is shorter than its arc, by at most |R0| |w| h |x| from the
-/// rotation. The distance is unchanged by a common translation, so only the relative translation
+/// A point x of A is at R0 Q(t) x + T(t), Q(t) = exp(t [w]) a rotation. Over a time h it moves
+/// by at most |T1 - T0| h from the translation and, since Q(t + h) - Q(t) = Q(t) (exp(h [w]) - I)
+/// and a chord is shorter than its arc, by at most |R0| |w| h |x_perp| from the rotation, x_perp
+/// the part of x across w (its distance from the axis), at most `reach_a`
+/// (motion_reach_across of A about w). The distance is unchanged by a common translation, so only the relative translation
 /// counts: it shrinks by at most `full * h`. Along a fixed unit direction n, the separation
 /// `min_B n.y - max_A n.x` changes by the translation's component along n and by the rotation's
-/// rate, n . R0 (w x Q x) = (R0^T n) . (w x Q x) <= |(R0^T n) x w| |x| (Q w = w), which vanishes
-/// for a turn about n: `forward_along(n)` bounds how fast it shrinks forwards in time,
+/// rate, n . R0 (w x Q x) = (R0^T n) . (w x Q x) = (Q x) . ((R0^T n) x w) <= |(R0^T n) x w|
+/// |x_perp| (the vector (R0^T n) x w is across w, and Q, a turn about w, keeps the length of
+/// the part of x across it), which vanishes for a turn about n: `forward_along(n)` bounds how fast it shrinks forwards in time,
 /// `backward_along(n)` backwards.
 ///
 /// A screw motion G(t) = G0 exp(t xi), xi = (w, v), moves a point x of the body at

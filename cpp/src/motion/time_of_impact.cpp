@@ -78,7 +78,8 @@ class Advancement {
         motion_b_(relative_to(motion_b, origin_)),
         reach_a_(detail::motion_reach(a)),
         reach_b_(detail::motion_reach(b)),
-        bound_(motion_a_, reach_a_, motion_b_, reach_b_),
+        bound_(motion_a_, detail::motion_reach_across(a, motion_a_.rotation_vector()), motion_b_,
+               detail::motion_reach_across(b, motion_b_.rotation_vector())),
         options_(options),
         query_(precise(options.query)) {
     if (options.query.method == Method::exact && (curved(a) || curved(b))) {

@@ -95,8 +95,8 @@ struct TimeOfImpactResult {
 /// The first time of contact of A moving by `motion_a` and B moving by `motion_b` over the time
 /// [0, 1], by conservative advancement on the queries' certified lower bounds (motion.md):
 /// from a time proven at least L apart, no point of either body can close the gap faster than
-/// the motions' speed bound v (translation plus angular speed times the body's reach about its
-/// origin, or that speed along the separating direction), so the next L / v of time is free.
+/// the motions' speed bound v (translation plus angular speed times the body's reach across
+/// its axis of rotation, or that speed along the separating direction), so the next L / v of time is free.
 /// Where steps fall below the time tolerance, the time ahead is bisected, each half proven free
 /// from both ends or found in contact. Throws std::invalid_argument for invalid options, a
 /// method that cannot answer a body, or bodies beyond the double range.
