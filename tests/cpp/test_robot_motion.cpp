@@ -261,6 +261,28 @@ TEST(RobotMotion, ARoundedBallTurningAboutItsCentreDoesNotMove) {
   EXPECT_NEAR(bound.pair_speed({1, 2}), 2 * std::sqrt(1.01), 1e-12);
 }
 
+TEST(RobotMotion, TheKinematicsOfAPairsChainsEqualTheWholeKinematicsThere) {
+  // robot_check_motion places a pair from the joints above its two links alone.
+  const RobotModel arm = spatial_arm();
+  std::mt19937_64 rng(5);
+  for (int trial = 0; trial < 50; ++trial) {
+    const Eigen::RowVectorXd q = random_configuration(rng);
+    std::vector<Pose> whole;
+    link_poses(arm, q.data(), whole);
+    // The finger's chain (turn, finger) and the carriage's (turn, shoulder, slide), in order.
+    const std::vector<int> joints{0, 1, 2, 4};
+    std::vector<Pose> some(arm.links().size());
+    link_poses(arm, q.data(), joints, some);
+    for (int link : {0, 1, 2, 3, 5}) {
+      EXPECT_EQ(some[link].rotation, whole[link].rotation) << link;
+      EXPECT_EQ(some[link].translation, whole[link].translation) << link;
+    }
+    // The wrist's link (below the fixed joint 3, not asked) is left as it was.
+    EXPECT_EQ(some[4].rotation, Matrix3::Identity());
+    EXPECT_EQ(some[4].translation, Vector3::Zero());
+  }
+}
+
 TEST(RobotMotion, ABarTurningIntoAPostIsBracketedAtTheClosedForm) {
   std::vector<Link> links{{"base"}, {"arm"}};
   std::vector<Joint> joints{{"turn", JointType::revolute, 0, 1, Pose{}, Vector3::UnitZ(), -3, 3,

@@ -172,6 +172,25 @@ def test_batches_equal_single_calls_and_threads_do_not_change_answers():
         assert fan.t_upper[i] == robot.check_motion(q0[0], q1[i]).t_upper
 
 
+def test_the_exact_method_is_the_default_and_agrees_with_the_dual_one():
+    robot = small_arm()
+    rng = np.random.default_rng(3)
+    lower, upper = np.clip(robot.limits, -np.pi, np.pi).T
+    q0 = rng.uniform(lower, upper, size=(20, robot.dof))
+    q1 = rng.uniform(lower, upper, size=(20, robot.dof))
+    default = robot.check_motion(q0, q1)
+    exact = robot.check_motion(q0, q1, method="exact")
+    dual = robot.check_motion(q0, q1, method="dual")
+    for field in ("touches", "t_lower", "t_upper", "pair", "iterations"):
+        np.testing.assert_array_equal(getattr(default, field), getattr(exact, field))
+    assert default.certified.all() and dual.certified.all()
+    np.testing.assert_array_equal(default.touches, dual.touches)
+    # Both brackets are proven: each lies within the other's time tolerance.
+    touching = default.touches
+    assert (default.t_lower[touching] <= dual.t_upper[touching]).all()
+    assert (dual.t_lower[touching] <= default.t_upper[touching]).all()
+
+
 def test_the_iteration_cap_answers_uncertified_with_a_proven_lower_time():
     robot = sweeping_bar()
     capped = robot.check_motion([-1.0], [2.5], max_iterations=2)

@@ -92,7 +92,12 @@ Configurations admit_configurations(const RobotModel& model, const Configuration
 
 void link_poses(const RobotModel& model, const Scalar* q, std::vector<Pose>& links) {
   links.assign(model.links().size(), Pose{});
-  for (int j : model.joint_order()) {
+  link_poses(model, q, model.joint_order(), links);
+}
+
+void link_poses(const RobotModel& model, const Scalar* q, const std::vector<int>& joints,
+                std::vector<Pose>& links) {
+  for (int j : joints) {
     const Joint& joint = model.joints()[j];
     const Pose placed = compose(links[joint.parent], joint.origin);
     const int dof = model.driving_dof(j);

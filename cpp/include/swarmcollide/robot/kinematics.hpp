@@ -36,6 +36,13 @@ Configurations admit_configurations(const RobotModel& model, const Configuration
 /// `links` (one pose per link, in the model's order). The root is at the identity.
 void link_poses(const RobotModel& model, const Scalar* q, std::vector<Pose>& links);
 
+/// The world poses of the child links of `joints` alone at the configuration `q`, into `links`
+/// (one pose per link, the roots at the identity; the others are left as they are): `joints`
+/// is a part of the model's joint order that holds, with each joint, the joints above it (a
+/// robot motion's pair needs only the chains of its two links).
+void link_poses(const RobotModel& model, const Scalar* q, const std::vector<int>& joints,
+                std::vector<Pose>& links);
+
 /// Forward kinematics over admitted configurations: link l's homogeneous transform at row i is
 /// written row-major at `transforms + (i * links + l) * 16`.
 void forward_kinematics(const RobotModel& model, const Configurations& q, Scalar* transforms);
