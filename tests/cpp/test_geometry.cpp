@@ -227,6 +227,45 @@ TEST(SupportTree, FindsThePointAScanFinds) {
   }
 }
 
+// The column scan (two heights at a time) answers the row scan's index, bit for bit: for every
+// count up to its capacity (odd counts are padded), on random clouds, on grids whose heights tie
+// (the first maximiser wins), on heights of both signs of zero, and on directions that make
+// heights infinite or NaN (the row scan keeps its first point against a NaN).
+TEST(PointColumns, ScanFindsTheRowScansIndex) {
+  std::mt19937_64 rng(11);
+  std::normal_distribution<double> normal;
+  const double inf = std::numeric_limits<double>::infinity();
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  int checked = 0;
+  for (int count = 1; count <= detail::PointColumns::kCapacity; ++count) {
+    for (int shape = 0; shape < 4; ++shape) {
+      VertexMatrix points(count, 3);
+      for (int i = 0; i < count; ++i) {
+        Vector3 p(normal(rng), normal(rng), normal(rng));
+        if (shape == 1) p = Vector3(i % 2, (i / 2) % 2, 0);  // ties along z and across
+        if (shape == 2) p = Vector3(i % 3 == 0 ? 0.0 : -0.0, 0.0, i % 2 ? 1e308 : -1e308);
+        if (shape == 3) p *= 1e300;  // products overflow to infinities, sums to NaN
+        points.row(i) = p.transpose();
+      }
+      detail::PointColumns columns;
+      columns.assign(points);
+      ASSERT_TRUE(columns.held());
+      for (int trial = 0; trial < 40; ++trial) {
+        Vector3 d(normal(rng), normal(rng), normal(rng));
+        if (trial % 5 == 0) d = Vector3::Unit(trial % 3);
+        if (trial % 5 == 1) d = -Vector3::Unit(trial % 3);
+        if (trial == 2) d = Vector3(nan, 1, 0);
+        if (trial == 3) d = Vector3(inf, -inf, 1);
+        if (trial == 4) d = Vector3(1e10, 1e10, 1e10);
+        EXPECT_EQ(columns.scan(d), detail::scan_support(points, d))
+            << "count " << count << " shape " << shape << " trial " << trial;
+        ++checked;
+      }
+    }
+  }
+  EXPECT_EQ(checked, detail::PointColumns::kCapacity * 4 * 40);
+}
+
 TEST(Hull, CubeHasEightVerticesAndTwelveOutwardTriangles) {
   VertexMatrix points(9, 3);
   points << unit_cube(), 0.5, 0.5, 0.5;

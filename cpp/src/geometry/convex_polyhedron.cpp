@@ -25,6 +25,9 @@ struct HullCache {
   std::mutex hull_mutex;
   Hull hull;
   HullPoints hull_points;
+  // The centred points by coordinate, for a body of at most kHillClimbingThreshold points (made
+  // with the body: its scans are every query's inner loop).
+  PointColumns columns;
   // Derived data: a list that only grows, newest first, read without a lock (every fcl query
   // asks for its shapes, and a mutex there made threads on one body wait on each other). Entries
   // are never changed once published, and live as long as the cache.
@@ -140,6 +143,8 @@ ConvexPolyhedron::ConvexPolyhedron(VertexMatrix points, Scalar radius)
   check_radius(radius_);
   bounds_ = bounds_of(vertices_, radius_);
   centred_ = vertices_.rowwise() - bounds_.centre.transpose();
+  static_assert(kHillClimbingThreshold <= detail::PointColumns::kCapacity);
+  if (centred_.rows() <= kHillClimbingThreshold) hull_cache_->columns.assign(centred_);
 }
 
 ConvexPolyhedron::ConvexPolyhedron(VertexMatrix points, Scalar radius,
@@ -166,11 +171,12 @@ ConvexPolyhedron::ConvexPolyhedron(const VertexMatrix& centred,
   // The given points, not the rounded differences of the placed ones: the solvers read these as
   // points of the shape, which they are.
   centred_ = centred;
+  if (centred_.rows() <= kHillClimbingThreshold) hull_cache_->columns.assign(centred_);
 }
 
 int ConvexPolyhedron::support_index(const Vector3& direction) const {
   const HullPoints& read = hull_points();
-  if (read.every_point) return detail::scan_support(centred_, direction);
+  if (read.every_point) return hull_cache_->columns.scan(direction);
   return read.indices[detail::scan_support(read.centred, direction)];
 }
 
@@ -236,6 +242,10 @@ const Hull& ConvexPolyhedron::hull() const {
     }
   }
   return hull_cache_->hull;
+}
+
+const detail::PointColumns* ConvexPolyhedron::centred_columns() const {
+  return hull_cache_->columns.held() ? &hull_cache_->columns : nullptr;
 }
 
 const HullPoints& ConvexPolyhedron::hull_points() const {

@@ -80,6 +80,7 @@ FramedBody::FramedBody(const ConvexPolyhedron& body, const Pose& pose, bool rota
     given_ = nullptr;
     support_error_ = curved_support_error(body, exponent_);
   }
+  if (!curved_ && vertices_ == &body.centred_vertices()) columns_ = body.centred_columns();
 }
 
 int FramedBody::curved_support(const Vector3& local) const {

@@ -124,11 +124,13 @@ class FramedBody {
   /// own frame (see ConvexPolyhedron::support_index).
   int support_index(const Vector3& d) const {
     if (curved_) return curved_support(local_direction(d));
+    if (columns_) return columns_->scan(local_direction(d));
     return scan_support(*vertices_, local_direction(d));
   }
   /// The same for a direction already in the body's own frame.
   int local_support_index(const Vector3& local) const {
     if (curved_) return curved_support(local);
+    if (columns_) return columns_->scan(local);
     return scan_support(*vertices_, local);
   }
   /// The same, climbing the hull from `start` on large bodies (as `support_index(d, start)`).
@@ -203,6 +205,10 @@ class FramedBody {
   const SupportFunction* curved_ = nullptr;
   std::shared_ptr<SupportCache> found_;
   Scalar support_error_ = 0;
+  // A small polyhedron's points (`vertices_`) by coordinate (ConvexPolyhedron::centred_columns),
+  // for support_index's scans; null for larger bodies (climbed), curved bodies and points given in
+  // the frame.
+  const PointColumns* columns_ = nullptr;
 };
 
 /// Two bodies in their common frame, with the query's tolerance in frame units.

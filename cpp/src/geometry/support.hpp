@@ -3,8 +3,13 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #include "swarmcollide/geometry/hull.hpp"
 #include "swarmcollide/types.hpp"
@@ -38,6 +43,79 @@ inline int scan_support(const VertexMatrix& points, const Vector3& d) {
   return first_highest(static_cast<int>(points.rows()),
                        [&](int i) { return point_height(points, i, d); });
 }
+
+/// The points of a small body by coordinate, for scans that compute two heights at once: the x
+/// of every point, then the y, then the z, each column padded to an even length by repeating its
+/// last entry. The scans' answers are scan_support's, bit for bit.
+class PointColumns {
+ public:
+  /// The most points held: the bodies scanned whole (kHillClimbingThreshold points).
+  static constexpr int kCapacity = 32;
+
+  PointColumns() = default;
+  /// Holds `points` (at most kCapacity rows, at least one).
+  void assign(const VertexMatrix& points) {
+    count_ = static_cast<int>(points.rows());
+    padded_ = count_ + count_ % 2;
+    const Scalar* row = points.data();
+    for (int i = 0; i < count_; ++i, row += 3) {
+      for (int k = 0; k < 3; ++k) columns_[k * kCapacity + i] = row[k];
+    }
+    if (padded_ > count_) {
+      for (int k = 0; k < 3; ++k) columns_[k * kCapacity + count_] = row[k - 3];
+    }
+  }
+  /// True once points are held.
+  bool held() const { return count_ > 0; }
+
+  /// scan_support of the points held: the first index maximising `d . x`, each height rounded as
+  /// point_height rounds it, `(x d_x + y d_y) + z d_z`.
+  int scan(const Vector3& d) const {
+    const Scalar* x = columns_.data();
+    const Scalar* y = x + kCapacity;
+    const Scalar* z = y + kCapacity;
+#if defined(__SSE2__)
+    // Two heights per step, each lane rounded as the scalar sum is; the highest is found as the
+    // first height equal to the greatest, which is the first maximiser when no height is NaN (a
+    // NaN, from infinite products, takes the scalar comparisons on the same heights).
+    alignas(16) Scalar heights[kCapacity];
+    const __m128d dx = _mm_set1_pd(d.x());
+    const __m128d dy = _mm_set1_pd(d.y());
+    const __m128d dz = _mm_set1_pd(d.z());
+    const auto height = [&](int i) {
+      return _mm_add_pd(_mm_add_pd(_mm_mul_pd(_mm_loadu_pd(x + i), dx),
+                                   _mm_mul_pd(_mm_loadu_pd(y + i), dy)),
+                        _mm_mul_pd(_mm_loadu_pd(z + i), dz));
+    };
+    __m128d h = height(0);
+    _mm_store_pd(heights, h);
+    __m128d top = h;
+    __m128d unordered = _mm_cmpunord_pd(h, h);
+    for (int i = 2; i < padded_; i += 2) {
+      h = height(i);
+      _mm_store_pd(heights + i, h);
+      top = _mm_max_pd(top, h);
+      unordered = _mm_or_pd(unordered, _mm_cmpunord_pd(h, h));
+    }
+    if (_mm_movemask_pd(unordered) != 0) {
+      return first_highest(count_, [&heights](int i) { return heights[i]; });
+    }
+    top = _mm_max_pd(top, _mm_unpackhi_pd(top, top));
+    top = _mm_unpacklo_pd(top, top);
+    for (int i = 0;; i += 2) {
+      const int equal = _mm_movemask_pd(_mm_cmpeq_pd(_mm_load_pd(heights + i), top));
+      if (equal != 0) return i + (equal & 1 ? 0 : 1);
+    }
+#else
+    return first_highest(count_, [&](int i) { return x[i] * d.x() + y[i] * d.y() + z[i] * d.z(); });
+#endif
+  }
+
+ private:
+  int count_ = 0;
+  int padded_ = 0;
+  std::array<Scalar, 3 * kCapacity> columns_;
+};
 
 /// Cells along each edge of a face of the cube map of climb starts (Hull::climb_starts): six faces
 /// of kClimbStartCells^2 cells, each about 11 degrees wide.

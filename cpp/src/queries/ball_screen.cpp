@@ -261,10 +261,16 @@ std::optional<ScreenVerdict> apart_along(const Vector3& axis, const ConvexPolyhe
   const Vector3 down_b = -(pose_b.rotation.transpose() * axis);
   const VertexMatrix& points_a = a.centred_vertices();
   const VertexMatrix& points_b = b.centred_vertices();
-  const int top_a = scan_support(points_a, up_a);
-  const int bottom_b = scan_support(points_b, down_b);
+  const PointColumns* columns_a = a.centred_columns();
+  const PointColumns* columns_b = b.centred_columns();
+  const int top_a = columns_a ? columns_a->scan(up_a) : scan_support(points_a, up_a);
+  const int bottom_b = columns_b ? columns_b->scan(down_b) : scan_support(points_b, down_b);
   const Scalar separation = axis.dot(between) - point_height(points_b, bottom_b, down_b) -
                             point_height(points_a, top_a, up_a);
+  // The bound below takes nonnegative margins and radii off the separation, so it cannot exceed
+  // a nonnegative tolerance unless the separation is positive: the overlapping pairs of a batch
+  // fail every axis, and skip the margin here.
+  if (!(separation > 0)) return std::nullopt;
   // The rounding, against the exact separation of the placed bodies along the computed axis: the
   // centres' coordinates are within 7 u of |c| + |t| (1-norms), which moves axis . between by
   // that and 4 u of |between|; a rotated axis is within 5.3 u of R^T axis (|axis| = 1 to 5 u),

@@ -14,6 +14,7 @@ namespace swarmcollide {
 
 namespace detail {
 struct HullCache;
+class PointColumns;
 }
 
 /// Number of points above which `support_index(direction, start)` climbs the hull instead of
@@ -75,6 +76,10 @@ class ConvexPolyhedron {
   /// numbers, scaled, for a body scaled by a power of two or translated exactly, so such bodies
   /// break ties alike and get the same answers.
   const VertexMatrix& centred_vertices() const { return centred_; }
+  /// `centred_vertices()` by coordinate, made with the body when it has at most
+  /// `kHillClimbingThreshold` points (null otherwise): the library's scans read them two at a
+  /// time, with the same answers as a scan of the rows.
+  const detail::PointColumns* centred_columns() const;
 
   /// The support function of a curved shape (shapes.hpp), null for a polyhedron: the body is
   /// then that shape (rounded by `radius()`), not the hull of its points.
