@@ -19,7 +19,8 @@ struct DifferencePoint {
 
 /// What the expansion proved and found.
 struct ExpansionResult {
-  /// The final surface passed `verify`: `depth_lower` is proven (sd <= -depth_lower).
+  /// The final surface, or one before a step that lowered the bound, passed `verify`:
+  /// `depth_lower` is proven (sd <= -depth_lower), the best of theirs.
   bool verified = false;
   /// Proven `depth >= depth_lower >= 0` when `verified` (the origin is then in `A - B`).
   Scalar depth_lower = 0;
@@ -34,6 +35,8 @@ struct ExpansionResult {
   /// The corners of the face whose normal is `best_normal`: where the expansion converged, the
   /// origin's foot on it combines them into witnesses.
   std::array<DifferencePoint, 3> best_face;
+  /// That face's `distance` (the least of `best_normal . w` over its corners).
+  Scalar best_face_distance = -std::numeric_limits<Scalar>::infinity();
   /// The gap between the least support met, `-best_separation`, and the nearest face's plane
   /// fell to the requested one.
   bool converged = false;
@@ -52,7 +55,9 @@ struct ExpansionResult {
 /// its rounding bound when it was made (and a triangle never changes), so the radial projection
 /// from the origin covers the sphere with a positive degree, every ray from the origin meets a
 /// triangle, and the triangles' vertices being points of `A - B`, the ball of radius `min`
-/// (triangle plane distance) lies in `A - B`.
+/// (triangle plane distance) lies in `A - B`. A step whose new triangles dip below the nearest
+/// one (see expand) verifies the surface before it the same way, and the better of the two
+/// bounds is the answer.
 class ExpandingPolytope {
  public:
   /// Expands from the tetrahedron `start` until the least support met along a triangle's normal
@@ -101,6 +106,9 @@ class ExpandingPolytope {
   std::vector<Face> added_;
   int stamp_ = 0;
   int vertex_stamp_ = 0;
+  // The best depth bound of a surface verified before a step that dipped below it (see expand);
+  // negative when none was.
+  Scalar kept_depth_ = -1;
 };
 
 }  // namespace swarmcollide::detail
