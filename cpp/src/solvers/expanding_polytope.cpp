@@ -33,6 +33,36 @@ constexpr auto kNearestFirst = std::greater<HeapEntry>();
 
 }  // namespace
 
+bool ExpandingPolytope::flatten(int f) {
+  Face& face = faces_[f];
+  const Scalar largest = std::max({norms_[face.v[0]], norms_[face.v[1]], norms_[face.v[2]]});
+  if (!(face.top - face.distance > 64 * kRoundoff * largest)) return false;
+  const Vector3& p = vertices_[face.v[0]].w;
+  const Vector3& q = vertices_[face.v[1]].w;
+  const Vector3& r = vertices_[face.v[2]].w;
+  const Scalar pq = (q - p).squaredNorm();
+  const Scalar qr = (r - q).squaredNorm();
+  const Scalar rp = (p - r).squaredNorm();
+  // (q - p) x (r - p) = (r - q) x (p - q) = (p - r) x (q - r): the same orientation; make_face
+  // took the first.
+  if (qr >= pq && qr >= rp) return false;
+  Vector3 n = rp >= pq ? Vector3((r - q).cross(p - q)) : Vector3((p - r).cross(q - r));
+  const Scalar length = n.norm();
+  if (!(length > 0)) return false;
+  n /= length;
+  const Scalar hp = n.dot(p);
+  const Scalar hq = n.dot(q);
+  const Scalar hr = n.dot(r);
+  const Scalar distance = std::min({hp, hq, hr});
+  const Scalar top = std::max({hp, hq, hr});
+  if (!(top - distance < face.top - face.distance)) return false;
+  face.normal = n;
+  face.distance = distance;
+  face.top = top;
+  face.low = distance - 16 * kRoundoff * largest;  // as make_face bounds it
+  return true;
+}
+
 bool ExpandingPolytope::make_face(int v0, int v1, int v2, Face& face) const {
   const Vector3& p = vertices_[v0].w;
   const Vector3& q = vertices_[v1].w;
@@ -241,8 +271,9 @@ ExpansionResult ExpandingPolytope::run(const FramedBody& a, const FramedBody& b,
   const bool climb_b = !b.curved() && b.size() > kHillClimbingThreshold;
 
   for (int iteration = 0; iteration < max_iterations; ++iteration) {
-    // Stale entries (faces removed since) are dropped; every face enters the heap once.
-    while (!faces_[heap_.front().second].alive) {
+    // Stale entries (faces removed since, or flattened since: see flatten) are dropped.
+    while (!faces_[heap_.front().second].alive ||
+           heap_.front().first != faces_[heap_.front().second].distance) {
       std::pop_heap(heap_.begin(), heap_.end(), kNearestFirst);
       heap_.pop_back();
     }
@@ -290,10 +321,17 @@ ExpansionResult ExpandingPolytope::run(const FramedBody& a, const FramedBody& b,
       result.converged = true;
       break;
     }
-    // A support point already on the surface cannot move it (rounding has the last word).
+    // A support point already on the surface, or one not above the nearest face, cannot move
+    // it (rounding has the last word), unless the face's normal was the rounding's: then the
+    // face is measured again along a better one, and the support asked along that.
     const bool known = std::any_of(vertices_.begin(), vertices_.end(),
                                    [&](const auto& v) { return v.ia == ia && v.ib == ib; });
-    if (known) break;
+    if (known || !(h > face.top)) {
+      if (!flatten(closest)) break;
+      heap_.emplace_back(faces_[closest].distance, closest);
+      std::push_heap(heap_.begin(), heap_.end(), kNearestFirst);
+      continue;
+    }
     vertices_.push_back({w, ia, ib});
     norms_.push_back(w.norm());
     if (!expand(closest, static_cast<int>(vertices_.size()) - 1)) {

@@ -81,6 +81,17 @@ class ExpandingPolytope {
   };
 
   bool make_face(int v0, int v1, int v2, Face& face) const;
+  // make_face's normal is the cross product of the edges from the first corner, whose rounding
+  // is about u |e1| |e2| whatever the area: on a sliver (next to the flat facets of curved
+  // bodies, most) it tilts, the corners' heights along it spread far beyond rounding, the face
+  // looks lower than it is, and a support point at its height cannot expand it: the expansion
+  // stopped there, short of tight tolerances (10 of 11 cylinder and cone pairs that stayed
+  // unproven at 1e-12). Where the corners spread more than rounding would, this takes the normal
+  // from the edges at the corner opposite the longest one (the least product, the most accurate
+  // normal) if the corners lie flatter along it, and the face's heights and bound with it
+  // (`low` is a bound along any unit vector); true when it did. The face's orientation, proven
+  // from its corners alone, does not change.
+  bool flatten(int f);
   bool expand(int closest, int added);
   // The new faces from vertex `added` to the horizon of the faces in `visible_` (those marked
   // with stamp_ in seen_stamp_), into added_, horizon_ and start_face_: kConeMade; kConeBroken
