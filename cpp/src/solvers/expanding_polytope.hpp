@@ -85,7 +85,7 @@ class ExpandingPolytope {
   // is about u |e1| |e2| whatever the area: on a sliver (next to the flat facets of curved
   // bodies, most) it tilts, the corners' heights along it spread far beyond rounding, the face
   // looks lower than it is, and a support point at its height cannot expand it: the expansion
-  // stopped there, short of tight tolerances (10 of 11 cylinder and cone pairs that stayed
+  // stopped there, short of tight tolerances (8 of 11 cylinder, cone and box pairs that stayed
   // unproven at 1e-12). Where the corners spread more than rounding would, this takes the normal
   // from the edges at the corner opposite the longest one (the least product, the most accurate
   // normal) if the corners lie flatter along it, and the face's heights and bound with it
