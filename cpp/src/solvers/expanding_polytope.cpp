@@ -155,9 +155,9 @@ bool ExpandingPolytope::expand(int closest, int added) {
   // face across it then joins the replaced ones, a few times at most. Such a face lies above the
   // point, so the new faces may dip below the nearest face, and the bound with them. Stopping
   // there left most of the 20 cylinder and cone pairs in 750 that stayed unproven at a
-  // tolerance of 1e-12 (cap-rim contacts, a few 1e-12 short): the surface as it is is verified instead, its bound kept (a verified
-  // surface proves it whatever comes after), and the expansion goes on, the next steps lifting
-  // the dipping faces as any others.
+  // tolerance of 1e-12 (cap-rim contacts, a few 1e-12 short): the surface as it is is verified
+  // instead, its bound kept (a verified surface proves it whatever comes after), and the
+  // expansion goes on, the next steps lifting the dipping faces as any others.
   for (int widening = 0;; ++widening) {
     const int across = cone(added);
     if (across == kConeMade) {
