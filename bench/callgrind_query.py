@@ -7,6 +7,10 @@ dumps and prints instructions per query and ours / coal. Instruction counts do n
 machine's load, so they compare contenders on a shared machine where wall-clock cannot.
 
     .venv/bin/python bench/callgrind_query.py --binary build/bench/bench/swarmcollide-callgrind-query
+
+With ``--curved`` it runs ``swarmcollide-callgrind-curved`` (bench/callgrind_curved.cpp) instead:
+signed distances of curved shapes (bench/curved_coal.py's pairs of kinds) against coal's
+primitives, apart and overlapping, one row per pair of kinds.
 """
 
 from __future__ import annotations
@@ -21,7 +25,8 @@ from pathlib import Path
 
 
 def counts(binary: str, arguments: list[str]) -> dict[tuple[str, str, str, str], float]:
-    """Instructions per query of each (n, proximity, query, contender) the binary dumped."""
+    """Instructions per query of each (workload, proximity, query, contender) the binary dumped
+    (the workload is "n=N" for polytopes, "pair=KINDS" for curved shapes)."""
     with tempfile.TemporaryDirectory() as directory:
         out = Path(directory) / "callgrind.out"
         subprocess.run(
@@ -51,25 +56,33 @@ def counts(binary: str, arguments: list[str]) -> dict[tuple[str, str, str, str],
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--binary", default="build/bench/bench/swarmcollide-callgrind-query")
+    parser.add_argument("--binary", help="the driver (default: the polytope or curved one)")
+    parser.add_argument("--curved", action="store_true",
+                        help="curved shapes against coal's primitives (callgrind_curved.cpp)")
     parser.add_argument("--sizes", default="4,8,16,64")
     parser.add_argument("--pairs", type=int, default=20)
     parser.add_argument("--repeats", type=int, default=5)
     parser.add_argument("--json", help="write the counts here")
     args = parser.parse_args()
-    found = counts(
-        args.binary,
-        ["--sizes", args.sizes, "--pairs", str(args.pairs), "--repeats", str(args.repeats)],
-    )
+    driver = "swarmcollide-callgrind-curved" if args.curved else "swarmcollide-callgrind-query"
+    binary = args.binary or f"build/bench/bench/{driver}"
+    sizes = [] if args.curved else ["--sizes", args.sizes]
+    found = counts(binary, [*sizes, "--pairs", str(args.pairs), "--repeats", str(args.repeats)])
     rows = []
-    print(f"{'n':>4} {'proximity':9} {'query':16} {'ours':>8} {'batch':>8} {'coal':>8} "
+    print(f"{'workload':>20} {'proximity':9} {'query':16} {'ours':>8} {'batch':>8} {'coal':>8} "
           f"{'ours/coal':>9} {'batch/coal':>10}")
-    keys = sorted({key[:3] for key in found}, key=lambda k: (int(k[0][2:]), k[1], k[2]))
-    for n, proximity, query in keys:
-        ours = found.get((n, proximity, query, "ours"))
-        batch = found.get((n, proximity, query, "ours_batch"))
-        coal = found.get((n, proximity, query, "coal"))
-        row = {"vertices": int(n[2:]), "proximity": proximity, "query": query, "ours": ours,
+    def order(key: tuple[str, str, str]) -> tuple:
+        name, value = key[0].split("=")
+        return (int(value) if name == "n" else 0, value, key[1], key[2])
+
+    keys = sorted({key[:3] for key in found}, key=order)
+    for workload, proximity, query in keys:
+        ours = found.get((workload, proximity, query, "ours"))
+        batch = found.get((workload, proximity, query, "ours_batch"))
+        coal = found.get((workload, proximity, query, "coal"))
+        name, value = workload.split("=")
+        shape = {"vertices": int(value)} if name == "n" else {"shapes": value}
+        row = {**shape, "proximity": proximity, "query": query, "ours": ours,
                "ours_batch_row": batch, "coal": coal}
         rows.append(row)
 
@@ -79,7 +92,7 @@ def main() -> None:
         def ratio(value: float | None) -> str:
             return f"{value / coal:.2f}" if value is not None and coal else "-"
 
-        print(f"{n[2:]:>4} {proximity:9} {query:16} {show(ours)} {show(batch)} {show(coal)} "
+        print(f"{workload.split('=')[1]:>20} {proximity:9} {query:16} {show(ours)} {show(batch)} {show(coal)} "
               f"{ratio(ours):>9} {ratio(batch):>10}")
     if args.json:
         Path(args.json).write_text(json.dumps({"pairs": args.pairs, "repeats": args.repeats,

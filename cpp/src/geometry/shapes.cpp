@@ -56,6 +56,10 @@ Vector3 unit_scaled(const Vector3& d) {
   const Scalar largest = d.cwiseAbs().maxCoeff();
   if (!(largest > 0) || !std::isfinite(largest)) return Vector3::Zero();
   const int exponent = detail::exponent_above(largest);
+  // One factor for the three components wherever 2^-exponent is a normal double (all but the most
+  // extreme lengths): the very products times_power_of_two forms, without its tests per component
+  // (a support call's directions come here once or twice, and searches make thousands of calls).
+  if (exponent >= -1000 && exponent <= 1000) return d * detail::power_of_two(-exponent);
   Vector3 scaled;
   for (int k = 0; k < 3; ++k) scaled(k) = detail::times_power_of_two(d(k), -exponent);
   return scaled;

@@ -19,7 +19,8 @@ struct DifferencePoint {
 
 /// What the expansion proved and found.
 struct ExpansionResult {
-  /// The final surface passed `verify`: `depth_lower` is proven (sd <= -depth_lower).
+  /// The final surface, or one before a step that lowered the bound, passed `verify`:
+  /// `depth_lower` is proven (sd <= -depth_lower), the best of theirs.
   bool verified = false;
   /// Proven `depth >= depth_lower >= 0` when `verified` (the origin is then in `A - B`).
   Scalar depth_lower = 0;
@@ -34,6 +35,8 @@ struct ExpansionResult {
   /// The corners of the face whose normal is `best_normal`: where the expansion converged, the
   /// origin's foot on it combines them into witnesses.
   std::array<DifferencePoint, 3> best_face;
+  /// That face's `distance` (the least of `best_normal . w` over its corners).
+  Scalar best_face_distance = -std::numeric_limits<Scalar>::infinity();
   /// The gap between the least support met, `-best_separation`, and the nearest face's plane
   /// fell to the requested one.
   bool converged = false;
@@ -52,7 +55,9 @@ struct ExpansionResult {
 /// its rounding bound when it was made (and a triangle never changes), so the radial projection
 /// from the origin covers the sphere with a positive degree, every ray from the origin meets a
 /// triangle, and the triangles' vertices being points of `A - B`, the ball of radius `min`
-/// (triangle plane distance) lies in `A - B`.
+/// (triangle plane distance) lies in `A - B`. A step whose new triangles dip below the nearest
+/// one (see expand) verifies the surface before it the same way, and the better of the two
+/// bounds is the answer.
 class ExpandingPolytope {
  public:
   /// Expands from the tetrahedron `start` until the least support met along a triangle's normal
@@ -76,6 +81,17 @@ class ExpandingPolytope {
   };
 
   bool make_face(int v0, int v1, int v2, Face& face) const;
+  // make_face's normal is the cross product of the edges from the first corner, whose rounding
+  // is about u |e1| |e2| whatever the area: on a sliver (next to the flat facets of curved
+  // bodies, most) it tilts, the corners' heights along it spread far beyond rounding, the face
+  // looks lower than it is, and a support point at its height cannot expand it: the expansion
+  // stopped there, short of tight tolerances (8 of 11 cylinder, cone and box pairs that stayed
+  // unproven at 1e-12). Where the corners spread more than rounding would, this takes the normal
+  // from the edges at the corner opposite the longest one (the least product, the most accurate
+  // normal) if the corners lie flatter along it, and the face's heights and bound with it
+  // (`low` is a bound along any unit vector); true when it did. The face's orientation, proven
+  // from its corners alone, does not change.
+  bool flatten(int f);
   bool expand(int closest, int added);
   // The new faces from vertex `added` to the horizon of the faces in `visible_` (those marked
   // with stamp_ in seen_stamp_), into added_, horizon_ and start_face_: kConeMade; kConeBroken
@@ -101,6 +117,9 @@ class ExpandingPolytope {
   std::vector<Face> added_;
   int stamp_ = 0;
   int vertex_stamp_ = 0;
+  // The best depth bound of a surface verified before a step that dipped below it (see expand);
+  // negative when none was.
+  Scalar kept_depth_ = -1;
 };
 
 }  // namespace swarmcollide::detail
