@@ -195,6 +195,27 @@ def test_curved_pairs_the_exact_queries_leave_unproven_are_asked_of_dual():
 
 
 
+def test_a_turning_motion_that_exact_alone_leaves_unresolved_is_proven():
+    """Random turning motion 21 of bench/motion.py's seed (8-point hulls, A between two random
+    poses in a cube of side 8, B near the origin): near its first contact the exact queries
+    left times unproven that bisection could not split ('unresolved'); the motion's exact
+    queries ask "dual" again there, and the contact is bracketed and certified."""
+
+    def pose(rng, spread):
+        p = np.eye(4)
+        p[:3, :3] = Rotation.random(random_state=rng).as_matrix()
+        p[:3, 3] = rng.uniform(-spread, spread, 3)
+        return p
+
+    rng = np.random.default_rng(28)
+    for _ in range(22):
+        pa, pb = rng.normal(size=(8, 3)) * 0.5, rng.normal(size=(8, 3)) * 0.5
+        a0, a1, b0, b1 = pose(rng, 4), pose(rng, 4), pose(rng, 0.5), pose(rng, 0.5)
+    r = sc.time_of_impact(pa, pb, pose_a=(a0, a1), pose_b=(b0, b1))
+    assert r.touches and r.certified and r.status == "converged"
+    assert r.t_upper - r.t_lower <= 1e-6 and r.t_upper == pytest.approx(0.68924, abs=1e-5)
+
+
 def test_a_body_turning_about_its_own_long_axis_steps_by_its_width():
     """A bar 10 long and 0.02 wide spinning about its own axis while it slides into a post: the
     turn moves its points by their distance from the axis, not from its origin, so the

@@ -82,10 +82,10 @@ class Advancement {
                detail::motion_reach_across(b, motion_b_.rotation_vector())),
         options_(options),
         query_(precise(options.query)) {
-    if (options.query.method == Method::exact && (curved(a) || curved(b))) {
+    if (options.query.method == Method::exact) {
       QueryOptions dual = precise(options.query);
       dual.method = Method::dual;
-      curved_query_.emplace(dual);
+      second_query_.emplace(dual);
     }
     // The moved ends are rounded: the motions above are within a roundoff of their translations'
     // sizes of the given ones (the same shift at both ends, so at every time in between). A
@@ -179,15 +179,18 @@ class Advancement {
     return options;
   }
 
-  static bool curved(const ConvexPolyhedron& body) { return body.curved() != nullptr; }
-  static bool curved(const CompoundBody& body) { return body.curved_part() != nullptr; }
-
-  // The query's answer at the poses, asked again of "dual" where "exact" left a curved pair
-  // unproven (TimeOfImpactOptions::query).
+  // The query's answer at the poses, asked again of "dual" where "exact" left it unproven and
+  // not proven farther apart than the contact threshold (TimeOfImpactOptions::query): farther,
+  // an unproven value still steps as far as a proven one would, and near contact the bisection
+  // needs the value proven.
   template <typename Ask>
   auto answer(const Ask& ask) const {
     auto result = ask(query_);
-    if (curved_query_ && !result.certified) result = ask(*curved_query_);
+    if (second_query_ && !result.certified &&
+        !(result.lower_bound - margin_ > contact_threshold_)) {
+      auto second = ask(*second_query_);
+      if (second.certified) result = std::move(second);
+    }
     return result;
   }
 
@@ -278,8 +281,8 @@ class Advancement {
   detail::MotionBound bound_;
   const TimeOfImpactOptions& options_;
   Query query_;
-  // "dual" at the same tolerance, for curved pairs that "exact" leaves unproven.
-  std::optional<Query> curved_query_;
+  // "dual" at the same tolerance, for times that "exact" leaves unproven near contact.
+  std::optional<Query> second_query_;
   Scalar margin_ = 0;
   Scalar size_ = 0;
   Scalar contact_threshold_ = 0;

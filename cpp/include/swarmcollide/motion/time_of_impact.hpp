@@ -20,7 +20,8 @@ inline constexpr int kDefaultMotionIterations = 100000;
 /// The queries' defaults with the exact method, which motions use: conservative advancement
 /// needs a proven lower bound at each sampled time, not a certified value far from contact, and
 /// where rounding leaves Wolfe's bounds a little further apart than the tolerance "dual" spends
-/// its swarm rounds (thousands of times a query's cost) on closing a gap that no step needs.
+/// its swarm rounds (thousands of times a query's cost) on closing a gap that no step needs;
+/// near contact, where the bisection needs it, "dual" is asked too.
 inline QueryOptions exact_queries() {
   QueryOptions options;
   options.method = Method::exact;
@@ -32,8 +33,9 @@ inline QueryOptions exact_queries() {
 struct TimeOfImpactOptions {
   /// The queries at each sampled time: `query.method` must answer distances and signed
   /// distances ("exact", the default, "dual", "fcl"). With "exact", a sampled time whose query
-  /// leaves a pair with a curved body unproven (its value not within the tolerance; Wolfe's
-  /// algorithm can stall on smooth surfaces) is asked again of "dual", which proves those.
+  /// leaves the value unproven (Wolfe's algorithm can stall on smooth surfaces, or by rounding
+  /// near contact) without proving the bodies farther apart than the contact threshold is asked
+  /// again of "dual", whose swarm proves those.
   /// `query.tolerance` (relative, > 0) is the contact
   /// threshold: the bodies touch when they are within `tolerance x size` of each other, where
   /// `size` is the sum of the two bodies' bounding-ball diameters (BodyBounds::radius), constant
