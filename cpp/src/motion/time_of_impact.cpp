@@ -180,13 +180,14 @@ class Advancement {
   }
 
   // The query's answer at the poses, asked again of "dual" where "exact" left it unproven and
-  // not proven farther apart than the contact threshold (TimeOfImpactOptions::query): farther,
-  // an unproven value still steps as far as a proven one would, and near contact the bisection
-  // needs the value proven.
+  // it decides nothing (TimeOfImpactOptions::query): neither proven in contact nor proven
+  // farther apart than the contact threshold. Farther, an unproven value still steps as far as a
+  // proven one would; in between, the bisection needs the value proven.
   template <typename Ask>
   auto answer(const Ask& ask) const {
     auto result = ask(query_);
     if (second_query_ && !result.certified &&
+        !(result.distance + margin_ <= contact_threshold_) &&
         !(result.lower_bound - margin_ > contact_threshold_)) {
       auto second = ask(*second_query_);
       if (second.certified) result = std::move(second);

@@ -34,8 +34,8 @@ struct TimeOfImpactOptions {
   /// The queries at each sampled time: `query.method` must answer distances and signed
   /// distances ("exact", the default, "dual", "fcl"). With "exact", a sampled time whose query
   /// leaves the value unproven (Wolfe's algorithm can stall on smooth surfaces, or by rounding
-  /// near contact) without proving the bodies farther apart than the contact threshold is asked
-  /// again of "dual", whose swarm proves those.
+  /// near contact) and proves neither contact nor the bodies farther apart than the contact
+  /// threshold is asked again of "dual", whose swarm proves those.
   /// `query.tolerance` (relative, > 0) is the contact
   /// threshold: the bodies touch when they are within `tolerance x size` of each other, where
   /// `size` is the sum of the two bodies' bounding-ball diameters (BodyBounds::radius), constant
@@ -98,7 +98,8 @@ struct TimeOfImpactResult {
 /// [0, 1], by conservative advancement on the queries' certified lower bounds (motion.md):
 /// from a time proven at least L apart, no point of either body can close the gap faster than
 /// the motions' speed bound v (translation plus angular speed times the body's reach across
-/// its axis of rotation, or that speed along the separating direction), so the next L / v of time is free.
+/// its axis of rotation, or that speed along the separating direction), so the next L / v of
+/// time is free.
 /// Where steps fall below the time tolerance, the time ahead is bisected, each half proven free
 /// from both ends or found in contact. Throws std::invalid_argument for invalid options, a
 /// method that cannot answer a body, or bodies beyond the double range.
