@@ -68,8 +68,8 @@ def time_of_impact(
         ``"exact"`` (default), ``"dual"`` or ``"fcl"``: the distance queries run at each sampled
         time. Advancement needs proven lower bounds, not values certified far from contact, which
         "dual" pays its swarm rounds for; with "exact", a time whose query leaves the value
-        unproven without proving the bodies farther apart than the threshold is asked again of
-        "dual".
+        unproven and proves neither contact nor the bodies farther apart than the threshold is
+        asked again of "dual".
     tolerance : float
         Contact threshold (> 0), relative to the motion's size, the sum of the two bodies'
         bounding-ball diameters (between 2/3 and 2 times the pair's size where they touch):
