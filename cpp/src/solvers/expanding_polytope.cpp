@@ -28,6 +28,21 @@ bool positively_oriented(const Vector3& p, const Vector3& q, const Vector3& r, S
   return bound >= std::numeric_limits<Scalar>::min() && p.dot(q.cross(r)) > bound;
 }
 
+// The triangle (p, q, r) along `n`: false when `n` has no length; else `n` becomes its unit
+// vector and `lowest`, `highest` the corners' least and greatest heights along it.
+bool heights_along(Vector3& n, const Vector3& p, const Vector3& q, const Vector3& r,
+                   Scalar& lowest, Scalar& highest) {
+  const Scalar length = n.norm();
+  if (!(length > 0)) return false;
+  n /= length;
+  const Scalar hp = n.dot(p);
+  const Scalar hq = n.dot(q);
+  const Scalar hr = n.dot(r);
+  lowest = std::min({hp, hq, hr});
+  highest = std::max({hp, hq, hr});
+  return true;
+}
+
 using HeapEntry = std::pair<Scalar, int>;
 constexpr auto kNearestFirst = std::greater<HeapEntry>();
 
@@ -47,14 +62,9 @@ bool ExpandingPolytope::flatten(int f) {
   // took the first.
   if (qr >= pq && qr >= rp) return false;
   Vector3 n = rp >= pq ? Vector3((r - q).cross(p - q)) : Vector3((p - r).cross(q - r));
-  const Scalar length = n.norm();
-  if (!(length > 0)) return false;
-  n /= length;
-  const Scalar hp = n.dot(p);
-  const Scalar hq = n.dot(q);
-  const Scalar hr = n.dot(r);
-  const Scalar distance = std::min({hp, hq, hr});
-  const Scalar top = std::max({hp, hq, hr});
+  Scalar distance = 0;
+  Scalar top = 0;
+  if (!heights_along(n, p, q, r, distance, top)) return false;
   if (!(top - distance < face.top - face.distance)) return false;
   face.normal = n;
   face.distance = distance;
@@ -72,16 +82,13 @@ bool ExpandingPolytope::make_face(int v0, int v1, int v2, Face& face) const {
   const Scalar norm_r = norms_[v2];
   if (!positively_oriented(p, q, r, norm_p, norm_q, norm_r)) return false;
   Vector3 n = (q - p).cross(r - p);
-  const Scalar length = n.norm();
-  if (!(length > 0)) return false;
-  n /= length;
-  const Scalar hp = n.dot(p);
-  const Scalar hq = n.dot(q);
-  const Scalar hr = n.dot(r);
+  Scalar distance = 0;
+  Scalar top = 0;
+  if (!heights_along(n, p, q, r, distance, top)) return false;
   face.v = {v0, v1, v2};
   face.normal = n;
-  face.distance = std::min({hp, hq, hr});
-  face.top = std::max({hp, hq, hr});
+  face.distance = distance;
+  face.top = top;
   // Any unit vector n bounds the distance of every point of the triangle from below by
   // min_k n . v_k; 16 roundoffs of the largest |v_k| cover the dot products and the rounded
   // vertices (and 8 more on the result, in verify, the rounding of |n|).
