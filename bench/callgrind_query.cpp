@@ -11,7 +11,8 @@
 // signed_distance; distance_many and collide_many over lists of the bodies with pose lists, one
 // thread), coal's GJKSolver (distance, a collision verdict stopping at the first separating
 // plane, and the signed distance by GJK + EPA), its support hint cleared before each call as in
-// narrowphase_coal.cpp.
+// narrowphase_coal.cpp; and the fcl method's distance beside the FCL call it wraps
+// (`fcl::distance` with FCL's own GJK, GST_INDEP, on prebuilt fcl::Convexd, request reused).
 #include <coal/collision_data.h>
 #include <coal/narrowphase/narrowphase.h>
 #include <coal/shape/convex.h>
@@ -39,8 +40,11 @@ struct Workload {
   std::vector<sc::ConvexPolyhedron> b;
   std::vector<std::shared_ptr<coal::Convex<coal::Triangle>>> coal_a;
   std::vector<std::shared_ptr<coal::Convex<coal::Triangle>>> coal_b;
+  std::vector<std::shared_ptr<fcl::Convexd>> fcl_a;
+  std::vector<std::shared_ptr<fcl::Convexd>> fcl_b;
   sc::Pose pose;
   coal::Transform3s coal_pose;
+  fcl::Transform3d fcl_pose;
 };
 
 Workload workload(int n, double target, int proximity_index, int pairs) {
@@ -51,11 +55,16 @@ Workload workload(int n, double target, int proximity_index, int pairs) {
     w.b.emplace_back(std::move(b));
     w.coal_a.push_back(to_coal(w.a.back()));
     w.coal_b.push_back(to_coal(w.b.back()));
+    w.fcl_a.push_back(to_fcl(w.a.back(), sc::Vector3::Zero()));
+    w.fcl_b.push_back(to_fcl(w.b.back(), sc::Vector3::Zero()));
   }
   Normals normals(random_pair_seed(n, proximity_index, pairs));
   w.pose.rotation = normals.rotation();
   w.pose.translation = normals.unit();
   w.coal_pose = coal::Transform3s(w.pose.rotation, w.pose.translation);
+  w.fcl_pose = fcl::Transform3d::Identity();
+  w.fcl_pose.linear() = w.pose.rotation;
+  w.fcl_pose.translation() = w.pose.translation;
   return w;
 }
 
@@ -116,6 +125,11 @@ int main(int argc, char** argv) {
       const Workload w = workload(n, proximity.target, proximity.index, pairs);
       const sc::Query query;  // the default method, dual, at the default tolerance
       const sc::QueryOptions options;
+      sc::QueryOptions fcl_options;
+      fcl_options.method = sc::Method::fcl;
+      const sc::Query fcl_query(fcl_options);
+      // FCL's own GJK (the one the fcl method runs) with its request and result reused.
+      const fcl::DistanceRequestd fcl_request(true, false, 0, 0, 1e-10, fcl::GST_INDEP);
       sc::BatchSettings one_thread;
       one_thread.threads = 1;
       sc::BatchPoses poses;
@@ -143,6 +157,25 @@ int main(int argc, char** argv) {
              return sum;
            }},
           {"distance", "coal", [&] { return coal_call(coal_distance, false); }},
+          {"distance", "ours_fcl",
+           [&] {
+             double sum = 0;
+             for (std::size_t i = 0; i < w.a.size(); ++i)
+               sum += fcl_query.distance(w.a[i], w.pose, w.b[i], w.pose).distance;
+             return sum;
+           }},
+          {"distance", "fcl",
+           [&] {
+             double sum = 0;
+             fcl::DistanceResultd result;
+             for (std::size_t i = 0; i < w.a.size(); ++i) {
+               result.clear();
+               fcl::distance(w.fcl_a[i].get(), w.fcl_pose, w.fcl_b[i].get(), w.fcl_pose,
+                             fcl_request, result);
+               sum += result.min_distance;
+             }
+             return sum;
+           }},
           {"distance", "ours_batch",
            [&] {
              return sc::distance_many(w.a, w.b, options, one_thread, poses).distance.sum();

@@ -3,8 +3,9 @@
 Runs ``swarmcollide-callgrind-query`` (bench/callgrind_query.cpp, built with the coal benches)
 once under ``valgrind --tool=callgrind --collect-atstart=no``; the binary turns collection on
 around each contender's timed loop and dumps the counts under a label, and this script reads the
-dumps and prints instructions per query and ours / coal. Instruction counts do not depend on the
-machine's load, so they compare contenders on a shared machine where wall-clock cannot.
+dumps and prints instructions per query and ours / coal (and the fcl method's distance over the
+raw FCL call it wraps). Instruction counts do not depend on the machine's load, so they compare
+contenders on a shared machine where wall-clock cannot.
 
     .venv/bin/python bench/callgrind_query.py --binary build/bench/bench/swarmcollide-callgrind-query
 
@@ -94,7 +95,23 @@ def main() -> None:
 
         print(f"{workload.split('=')[1]:>20} {proximity:9} {query:16} {show(ours)} {show(batch)} {show(coal)} "
               f"{ratio(ours):>9} {ratio(batch):>10}")
+    fcl_rows = []
+    for workload, proximity, query in keys:
+        method = found.get((workload, proximity, query, "ours_fcl"))
+        direct = found.get((workload, proximity, query, "fcl"))
+        if method is None or direct is None:
+            continue
+        fcl_rows.append({"vertices": int(workload.split("=")[1]), "proximity": proximity,
+                         "query": query, "fcl_method": method, "fcl_direct": direct})
+    if fcl_rows:
+        print(f"\n{'vertices':>8} {'proximity':9} {'query':9} {'fcl method':>10} {'FCL':>8} "
+              f"{'method/FCL':>10}")
+        for row in fcl_rows:
+            print(f"{row['vertices']:>8} {row['proximity']:9} {row['query']:9} "
+                  f"{row['fcl_method']:10.0f} {row['fcl_direct']:8.0f} "
+                  f"{row['fcl_method'] / row['fcl_direct']:10.2f}")
     if args.json:
+        rows += fcl_rows
         Path(args.json).write_text(json.dumps({"pairs": args.pairs, "repeats": args.repeats,
                                                "instructions_per_query": rows}, indent=1) + "\n")
 
