@@ -49,6 +49,17 @@ Scalar motion_reach_across(const CompoundBody& body, const Vector3& axis);
 /// |v_perp| (Q^T keeps m's component along k, hence the length of the rest), and the rotation's
 /// term is bounded as for a linear motion, |(Q^T m) x w| |x| = |m x w| |x|. Both vanish for a
 /// screw about n itself, whose translation along n is then all of n . s.
+///
+/// Second order (`reaches_along`): the rate above takes the largest speed of any point across the
+/// axis, yet at time t the rotation moves the body's points along n at (Q x) . u, u = m x w,
+/// whose largest value over the core is its support value h(Q(t)^T u), often far below |u|
+/// reach, and at a grazing pass near zero. That rate changes as the body turns: Q(s)^T u turns
+/// about w at |w| (u is across w), by at most |w| |u| |s - t| over the time from t, and a support
+/// value changes by at most the distance of the core from the axis times the change of a
+/// direction across it. So over a time h from t the separation shrinks by at most a h + k h^2 / 2,
+/// a the rate at t (the translation's component along n, the supports of both bodies, a screw's
+/// term across its axis; negative where the bodies draw apart) and k the sum of |w| |u| reach
+/// over the bodies.
 class MotionBound {
  public:
   MotionBound(const RigidMotion& motion_a, Scalar reach_a, const RigidMotion& motion_b,
@@ -61,7 +72,32 @@ class MotionBound {
   Scalar forward_along(const Vector3& n) const { return along(n, 1); }
   Scalar backward_along(const Vector3& n) const { return along(n, -1); }
 
+  /// How long a gap `apart` along unit `n` (from A towards B) at time `t` lasts at least, going
+  /// forwards and going backwards, where `a` and `b` are the convex bodies the motions move: the
+  /// larger of the first-order reach (`apart` over forward_along or backward_along) and the
+  /// second-order one (see above), rounded down; infinite where the gap cannot close.
+  struct Reaches {
+    Scalar forward;
+    Scalar backward;
+  };
+  Reaches reaches_along(const ConvexPolyhedron& a, const ConvexPolyhedron& b, Scalar t,
+                        const Vector3& n, Scalar apart) const;
+
  private:
+  // How fast, at time t, the turn of `motion` moves the body's core along unit `towards` going
+  // forwards and going backwards in time (its support values along the turning direction and
+  // its opposite), and how fast those rates can grow per unit of time from t; rounded up.
+  // `reach` is the body's motion_reach_across about the motion's axis.
+  struct TurnRates {
+    Scalar forward = 0;
+    Scalar backward = 0;
+    Scalar growth = 0;
+  };
+  static TurnRates turn_rates(const RigidMotion& motion, const ConvexPolyhedron& body,
+                              Scalar reach, Scalar t, const Vector3& towards);
+  // The first time at which a gap `apart` closing at `rate` (negative: opening), growing by
+  // `growth` per unit of time, can be gone; rounded down.
+  static Scalar second_order_reach(Scalar rate, Scalar growth, Scalar apart);
   Scalar along(const Vector3& n, Scalar sense) const;
   // The motion's constant world translation per unit time: T1 - T0 for a linear motion, R0
   // v_par for a screw; `across` is set to the screw's |v_perp| (0 for a linear motion).

@@ -103,17 +103,18 @@ Pose RigidMotion::at(Scalar t) const {
   } else {
     pose.translation = start_.translation + t * (end_.translation - start_.translation);
   }
-  if (angle_ == 0) {
-    pose.rotation = start_.rotation;
-    return pose;
-  }
+  pose.rotation = angle_ == 0 ? start_.rotation : Matrix3(start_.rotation * turn_at(t));
+  return pose;
+}
+
+Matrix3 RigidMotion::turn_at(Scalar t) const {
+  if (angle_ == 0) return Matrix3::Identity();
+  const Scalar phi = t * angle_;
   const Scalar half_sine = std::sin(phi / 2);
   Matrix3 cross;
   cross << 0, -axis_(2), axis_(1), axis_(2), 0, -axis_(0), -axis_(1), axis_(0), 0;
-  const Matrix3 turn =
-      Matrix3::Identity() + std::sin(phi) * cross + (2 * half_sine * half_sine) * (cross * cross);
-  pose.rotation = start_.rotation * turn;
-  return pose;
+  return Matrix3::Identity() + std::sin(phi) * cross +
+         (2 * half_sine * half_sine) * (cross * cross);
 }
 
 Scalar RigidMotion::pose_error(Scalar reach) const {

@@ -204,19 +204,20 @@ class Advancement {
     Sample s{t, result.distance + margin_ <= contact_threshold_, 0, 0};
     const Scalar apart = result.lower_bound - margin_;
     if (s.contact || !(apart > 0)) return s;
-    Scalar forward_rate = bound_.full();
-    Scalar backward_rate = forward_rate;
+    s.forward = s.backward = detail::reach_over(apart, bound_.full());
     const Scalar length = result.direction.norm();
-    if (std::is_same<Body, ConvexPolyhedron>::value && length > 0.5) {
-      // The lower bound is the separation along `direction` (a compound body's is not: its
-      // parts may lie anywhere along it).
-      const Vector3 n = result.direction / length;
-      forward_rate = std::min(forward_rate, bound_.forward_along(n));
-      backward_rate = std::min(backward_rate, bound_.backward_along(n));
-    }
-    s.forward = detail::reach_over(apart, forward_rate);
-    s.backward = detail::reach_over(apart, backward_rate);
+    if (length > 0.5) reach_along(t, result.direction / length, apart, s);
     return s;
+  }
+
+  // The lower bound of a convex pair is the separation along `direction`, so its reaches along it
+  // hold (a compound body's is not: its parts may lie anywhere along it).
+  void reach_along(Scalar t, const Vector3& n, Scalar apart, Sample& s) const {
+    if constexpr (std::is_same<Body, ConvexPolyhedron>::value) {
+      const detail::MotionBound::Reaches reaches = bound_.reaches_along(a_, b_, t, n, apart);
+      s.forward = std::max(s.forward, reaches.forward);
+      s.backward = std::max(s.backward, reaches.backward);
+    }
   }
 
   TimeOfImpactResult free() {

@@ -62,6 +62,10 @@ class RigidMotion {
   /// The pose at time t in [0, 1], computed in double precision: RigidMotion's bounds
   /// (`pose_error`) say how far it may be from the exact one.
   Pose at(Scalar t) const;
+  /// The turn from the start rotation at time t, exp(t [w]) (so `at(t).rotation` is R0 times
+  /// it), computed in double precision: each of its entries is within about 40 roundoffs of the
+  /// exact exponential's (see rigid_motion.cpp).
+  Matrix3 turn_at(Scalar t) const;
   /// A bound on the distance between where `at(t)` puts a point `x` of the body and where the
   /// exact motion puts it at t, for any t in [0, 1], for `|x| <= reach`: the rounding of the
   /// rotation's and the translation's evaluation (see rigid_motion.cpp).
