@@ -303,6 +303,19 @@ TEST(Poses, OnlyFiniteProperRotationsAreRigidMotions) {
   Pose infinite{Matrix3::Identity(), Vector3::Zero()};
   infinite.rotation(1, 0) = std::numeric_limits<Scalar>::infinity();
   EXPECT_NE(error(infinite).find("NaN or infinite"), std::string::npos);
+  // Every entry of the identity and of a rotation, in turn NaN or infinite (validation tests
+  // only the translation's finiteness itself; the rotation's falls to the rigidity test).
+  for (const Matrix3& rotation : {Matrix3(Matrix3::Identity()), Matrix3(rng.rotation())}) {
+    for (int k = 0; k < 9; ++k) {
+      for (const Scalar bad : {std::numeric_limits<Scalar>::quiet_NaN(),
+                               std::numeric_limits<Scalar>::infinity(),
+                               -std::numeric_limits<Scalar>::infinity()}) {
+        Pose broken{rotation, rng.vector()};
+        broken.rotation.data()[k] = bad;
+        EXPECT_NE(error(broken).find("NaN or infinite"), std::string::npos) << k << " " << bad;
+      }
+    }
+  }
 }
 
 // The exact support is the largest height computed in the frame, whatever the body's own

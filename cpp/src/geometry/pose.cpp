@@ -42,10 +42,18 @@ bool rigid(const Deviation& d) {
          std::abs(d.determinant - 1) <= kRotationTolerance;
 }
 
+bool finite_translation(const Pose& pose) {
+  const Vector3& t = pose.translation;
+  return (t.x() - t.x()) + (t.y() - t.y()) + (t.z() - t.z()) == 0;
+}
+
 // True when the pose is valid. No message is built here: batches and scenes check thousands of
-// poses a call, nearly all of them valid.
+// poses a call, nearly all of them valid. The rotation's entries need no test of their own: the
+// identity is finite, and every entry is a factor of a product in the determinant, so one that is
+// infinite or NaN makes it infinite or NaN, which rigid() rejects.
 bool valid(const Pose& pose) {
-  return finite(pose) && (pose.has_identity_rotation() || rigid(deviation(pose.rotation)));
+  return finite_translation(pose) &&
+         (pose.has_identity_rotation() || rigid(deviation(pose.rotation)));
 }
 
 // What is wrong with an invalid pose, after its name.

@@ -39,11 +39,11 @@ Scalar length(const Vector3& v) {
   return largest > 0 ? largest * (v / largest).norm() : 0;
 }
 
-struct InnerRadius {
-  Scalar radius;
-};
-
-struct FaceNormals {
+// The outer and inner radii and the face normals, kept together: one lookup among the body's
+// derived data for a batch row whose body changed, not three.
+struct ScreenData {
+  Scalar outer;
+  Scalar inner;
   std::vector<Vector3> normals;
 };
 
@@ -144,13 +144,16 @@ Scalar world_tolerance(const ConvexPolyhedron& a, const ConvexPolyhedron& b, Sca
 
 BodyBalls body_balls(const ConvexPolyhedron& body, bool with_inner) {
   BodyBalls balls;
-  balls.outer =
-      body.derived<OuterRadius>([&body] { return OuterRadius{outer_radius(body)}; }).radius;
   if (with_inner) {
-    balls.inner =
-        body.derived<InnerRadius>([&body] { return InnerRadius{inner_radius(body)}; }).radius;
-    balls.face_normals =
-        &body.derived<FaceNormals>([&body] { return FaceNormals{face_normals(body)}; }).normals;
+    const ScreenData& data = body.derived<ScreenData>([&body] {
+      return ScreenData{outer_radius(body), inner_radius(body), face_normals(body)};
+    });
+    balls.outer = data.outer;
+    balls.inner = data.inner;
+    balls.face_normals = &data.normals;
+  } else {
+    balls.outer =
+        body.derived<OuterRadius>([&body] { return OuterRadius{outer_radius(body)}; }).radius;
   }
   // A rounded body's balls grow by its radius; its inner ball is the radius alone when its core
   // is one point or a segment, whose box centre is on it (the point, the segment's midpoint).

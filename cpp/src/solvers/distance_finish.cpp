@@ -101,7 +101,7 @@ bool DistanceFinish::from(const Vector3& n, int& hint_a, int& hint_b, BestBounds
 }
 
 bool DistanceFinish::whole(const Vector3& start, int& hint_a, int& hint_b, BestBounds& bounds,
-                           Goal goal) {
+                           Goal goal, bool enclosure) {
   // The supports of large bodies climb from the previous ones, unless the direction turned by
   // more than about 25 degrees (as Wolfe's first steps do): the hull's climbing starts are then
   // nearer. Small bodies are scanned, whatever the hints.
@@ -120,10 +120,13 @@ bool DistanceFinish::whole(const Vector3& start, int& hint_a, int& hint_b, BestB
     }
     return minkowski_support(pair_.a, pair_.b, d, hint_a, hint_b);
   };
-  // A corral's witnesses. A distance needs no intersection proof where they prove contact; a
-  // verdict's is kept, as a scene keeps the tetrahedron of one for the pair's next frame.
+  // A corral's witnesses. A distance needs no intersection proof where they prove contact, nor
+  // does a verdict asked without `enclosure` (a fifth of an overlapping verdict's cost): the
+  // witnesses within the tolerance prove the same verdict. Rounded or curved pairs keep it: there
+  // the witnesses' distance is not yet the rounded bodies' bound that close_proven reads.
+  const bool keep = goal != Goal::distance && (enclosure || pair_.adjusted);
   const auto witness = [&](const MinNormPoint& corral) {
-    return goal == Goal::distance ? contact_witness_of(pair_, corral) : witness_of(pair_, corral);
+    return keep ? witness_of(pair_, corral) : contact_witness_of(pair_, corral);
   };
   // The bounds of a corral: its witnesses (an upper bound) and the separation along them (a lower
   // bound, its supports climbing from the hints).

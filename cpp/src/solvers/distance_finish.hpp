@@ -29,8 +29,12 @@ class DistanceFinish {
   /// the origin) when the bodies overlap, which no direction can show. Stops as soon as its bounds
   /// settle `goal`, so a verdict stops at the first separating direction or common point. Offers
   /// the separation along `start` and the supporting points' distance, then the witnesses and
-  /// the separation along them; returns whether the bounds settle `goal`.
-  bool whole(const Vector3& start, int& hint_a, int& hint_b, BestBounds& bounds, Goal goal);
+  /// the separation along them; returns whether the bounds settle `goal`. A distance, and a
+  /// verdict without `enclosure`, skip the intersection proof where the witnesses already prove
+  /// contact (contact_witness_of); a verdict with it keeps the enclosing tetrahedron for whoever
+  /// reads `intersection_proven` (a scene caches it, a compound screen reads it).
+  bool whole(const Vector3& start, int& hint_a, int& hint_b, BestBounds& bounds, Goal goal,
+             bool enclosure = true);
 
   long evaluations() const { return evaluations_; }
 

@@ -52,7 +52,8 @@ class DualSearch {
     const DualStart first = first_start(pair_, start_);
     hint_a_ = first.support_a;
     hint_b_ = first.support_b;
-    bool done = finish_.whole(first.direction, hint_a_, hint_b_, bounds_, goal_);
+    bool done = finish_.whole(first.direction, hint_a_, hint_b_, bounds_, goal_,
+                              start_ != nullptr && start_->enclosure);
     record();
     if (!done) done = finish_.from(bounds_.normal(), hint_a_, hint_b_, bounds_, goal_);
     Scalar radius = kPi / 2;

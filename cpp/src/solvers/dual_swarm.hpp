@@ -22,7 +22,8 @@ namespace swarmcollide::detail {
 /// algorithm, give weights and a direction (a new lower bound). For signed distances of
 /// overlapping bodies the exact penetration solver proves the depth from the best direction.
 /// A warmed-up distance solve allocates only its answer's arrays (its buffers are thread-local).
-/// Deterministic for a given seed.
+/// Deterministic for a given seed. A verdict whose witnesses prove contact carries no
+/// intersection proof (see DualStart::enclosure).
 Answer solve_dual(const FramedPair& pair, const QueryOptions& options, Goal goal);
 
 /// Where a dual search starts: a unit direction from A to B (frame coordinates) and the support
@@ -31,6 +32,11 @@ struct DualStart {
   Vector3 direction = Vector3::UnitX();
   int support_a = -1;
   int support_b = -1;
+  /// Whether a verdict proven by a common point keeps the tetrahedron that encloses the origin
+  /// (`intersection_proven`) where witnesses within the tolerance prove contact already: a scene
+  /// caches it for the pair's next frame, a compound screen reads it. `solve_dual` without a
+  /// start keeps none (the query layer's verdicts read only the bounds).
+  bool enclosure = true;
 };
 
 /// `solve_dual` started from `start` (its direction and support points) instead of the direction
