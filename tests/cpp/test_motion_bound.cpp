@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "motion/advancement_steps.hpp"
 #include "motion/motion_bound.hpp"
@@ -120,16 +121,29 @@ TEST(MotionBound, APointTurningTowardsAFaceMeetsItNoSoonerThanTheReach) {
   };
   const RigidMotion turn(turned(-0.5), turned(0.5));
   const Vector3 n = -Vector3::UnitX();
+  // The same path as a screw about the z axis of a point at the body's origin, 1 from the axis:
+  // the turn about the origin moves it not at all, the screw's translation across the axis all.
+  VertexMatrix origin(1, 3);
+  origin << 0, 0, 0;
+  const ConvexPolyhedron centre(origin);
+  const auto screwed = [](Scalar angle) {
+    const Matrix3 rotation = Eigen::AngleAxis<Scalar>(angle, Vector3::UnitZ()).matrix();
+    return at(rotation * Vector3::UnitX(), rotation);
+  };
+  const RigidMotion screw(screwed(-0.5), screwed(0.5), MotionKind::screw);
   for (const Scalar gap : {1e-2, 1e-4, 1e-8}) {
     const Pose where = at(Vector3(1 - gap, 0, 0));
     const RigidMotion still(where, where);
-    const detail::MotionBound bound = bound_of(point, turn, wall, still);
-    const Scalar apart = separation(point, turn, wall, still, n, 0.5);
     const Scalar meets = std::acos(1 - gap);
-    const detail::MotionBound::Reaches reaches = bound.reaches_along(point, wall, 0.5, n, apart);
-    for (const Scalar reach : {reaches.forward, reaches.backward}) {
-      EXPECT_LE(reach, meets) << gap;
-      EXPECT_GT(reach, 0.95 * meets) << gap;
+    for (const auto& [body, motion] : {std::pair(&point, &turn), std::pair(&centre, &screw)}) {
+      const detail::MotionBound bound = bound_of(*body, *motion, wall, still);
+      const Scalar apart = separation(*body, *motion, wall, still, n, 0.5);
+      const detail::MotionBound::Reaches reaches =
+          bound.reaches_along(*body, wall, 0.5, n, apart);
+      for (const Scalar reach : {reaches.forward, reaches.backward}) {
+        EXPECT_LE(reach, meets) << gap;
+        EXPECT_GT(reach, 0.95 * meets) << gap;
+      }
     }
   }
 }

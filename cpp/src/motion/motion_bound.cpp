@@ -119,8 +119,10 @@ MotionBound::TurnRates MotionBound::turn_rates(const RigidMotion& motion,
   TurnRates rates;
   if (motion.angle() == 0) return rates;
   // A point x of the core moves along `towards` at (Q(t) x) . u = x . (Q(t)^T u), u = m x w.
-  const Vector3 u = (motion.start().rotation.transpose() * towards).cross(motion.rotation_vector());
-  const Vector3 turning = motion.turn_at(t).transpose() * u;
+  const Vector3 m = motion.start().rotation.transpose() * towards;
+  const Vector3 u = m.cross(motion.rotation_vector());
+  const Matrix3 turn = motion.turn_at(t);
+  const Vector3 turning = turn.transpose() * u;
   // The support point's height falls short of the support value by a few roundoffs of |x| |d|
   // (a curved shape's by its own bound), |x| at most the box centre's length plus the bounds'
   // radius; the computed direction is within some 300 roundoffs of |w| |R0| of the exact one
@@ -138,6 +140,20 @@ MotionBound::TurnRates MotionBound::turn_rates(const RigidMotion& motion,
   rates.forward = rate(turning);
   rates.backward = rate(-turning);
   rates.growth = motion.angle() * u.norm() * reach * (1 + 16 * kUnit);
+  if (motion.kind() == MotionKind::screw) {
+    // The screw's translation across its axis, R0 Q(t) v_perp, moves the whole body along
+    // `towards` at (Q(t)^T m) . v_perp, which changes at most at |w x Q^T m| |v_perp| = |u|
+    // |v_perp| (v_perp is across w); Q(t)^T m is within some 300 roundoffs of |R0| of the exact.
+    const Vector3 axis = motion.rotation_vector() / motion.angle();
+    const Vector3& v = motion.twist_translation();
+    const Vector3 across = v - axis.dot(v) * axis;
+    const Scalar slide = (turn.transpose() * m).dot(across);
+    const Scalar slide_slack =
+        kUnit * across.norm() * (512 * motion.start_rotation_norm() + 4 * std::abs(slide));
+    rates.forward += slide + slide_slack;
+    rates.backward += slide_slack - slide;
+    rates.growth += u.norm() * across.norm() * (1 + 16 * kUnit);
+  }
   return rates;
 }
 
@@ -161,20 +177,12 @@ MotionBound::Reaches MotionBound::reaches_along(const ConvexPolyhedron& a,
                                                 const Vector3& n, Scalar apart) const {
   const TurnRates turn_a = turn_rates(*motion_a_, a, reach_a_, t, n);
   const TurnRates turn_b = turn_rates(*motion_b_, b, reach_b_, t, -n);
-  // A screw's translation across its axis turns with the body: its first-order term stays.
-  const auto across = [&n](const RigidMotion& motion, Scalar length) {
-    if (length == 0 || motion.angle() == 0) return Scalar{0};
-    const Vector3 local = motion.start().rotation.transpose() * n;
-    return local.cross(motion.rotation_vector()).norm() / motion.angle() * length;
-  };
-  const Scalar screws = across(*motion_a_, across_a_) + across(*motion_b_, across_b_);
   const Scalar growth = (turn_a.growth + turn_b.growth) * (1 + 4 * kUnit);
   const auto reach = [&](Scalar sense, Scalar rate_a, Scalar rate_b) {
     const Scalar translation = sense * n.dot(closing_);
-    const Scalar rate = translation + screws + rate_a + rate_b +
-                        16 * kUnit *
-                            (std::abs(translation) + screws + std::abs(rate_a) + std::abs(rate_b)) +
-                        slack_;
+    const Scalar rate =
+        translation + rate_a + rate_b +
+        16 * kUnit * (std::abs(translation) + std::abs(rate_a) + std::abs(rate_b)) + slack_;
     return std::max(reach_over(apart, along(n, sense)), second_order_reach(rate, growth, apart));
   };
   return {reach(1, turn_a.forward, turn_b.forward), reach(-1, turn_a.backward, turn_b.backward)};

@@ -57,9 +57,10 @@ Scalar motion_reach_across(const CompoundBody& body, const Vector3& axis);
 /// about w at |w| (u is across w), by at most |w| |u| |s - t| over the time from t, and a support
 /// value changes by at most the distance of the core from the axis times the change of a
 /// direction across it. So over a time h from t the separation shrinks by at most a h + k h^2 / 2,
-/// a the rate at t (the translation's component along n, the supports of both bodies, a screw's
-/// term across its axis; negative where the bodies draw apart) and k the sum of |w| |u| reach
-/// over the bodies.
+/// a the rate at t (the translation's component along n and the supports of both bodies;
+/// negative where the bodies draw apart) and k the sum of |w| |u| reach over the bodies. A screw
+/// adds its translation across the axis at t, (Q(t)^T m) . v_perp, to a, and |u| |v_perp|, how
+/// fast that turning velocity can change along n, to k.
 class MotionBound {
  public:
   MotionBound(const RigidMotion& motion_a, Scalar reach_a, const RigidMotion& motion_b,
@@ -84,9 +85,10 @@ class MotionBound {
                         const Vector3& n, Scalar apart) const;
 
  private:
-  // How fast, at time t, the turn of `motion` moves the body's core along unit `towards` going
-  // forwards and going backwards in time (its support values along the turning direction and
-  // its opposite), and how fast those rates can grow per unit of time from t; rounded up.
+  // How fast, at time t, the turn of `motion` (with a screw's translation across its axis, which
+  // turns with the body) moves the body's core along unit `towards` going forwards and going
+  // backwards in time (its support values along the turning direction and its opposite), and how
+  // fast those rates can grow per unit of time from t; rounded up.
   // `reach` is the body's motion_reach_across about the motion's axis.
   struct TurnRates {
     Scalar forward = 0;
