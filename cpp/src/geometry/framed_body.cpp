@@ -74,7 +74,7 @@ FramedBody::FramedBody(const ConvexPolyhedron& body, const Pose& pose, bool rota
   for (int k = 0; k < 3; ++k) offset_(k) = times_power_of_two(from_centre(k), -exponent_);
   if (const SupportFunction* shape = body.curved()) {
     curved_ = shape;
-    found_ = std::make_shared<SupportCache>(body.centred_vertices());
+    found_ = SharedSupportCache(body.centred_vertices());
     vertices_ = &found_->points();
     hull_ = nullptr;
     given_ = nullptr;

@@ -1,0 +1,50 @@
+#include "support_cache.hpp"
+
+#include <memory>
+#include <vector>
+
+namespace swarmcollide::detail {
+
+namespace {
+
+// The caches a thread has given back, for its next curved queries. A thread holds a few at a
+// time (two per framed pair); more than kKept unused ones are freed.
+constexpr std::size_t kKept = 16;
+
+struct Pool {
+  std::vector<std::unique_ptr<SupportCache>> unused;
+  // False once the thread's pool is destroyed (at thread exit): a cache given back after that is
+  // freed.
+  bool alive = true;
+  ~Pool() { alive = false; }
+};
+
+Pool& pool() {
+  thread_local Pool p;
+  return p;
+}
+
+}  // namespace
+
+SharedSupportCache::SharedSupportCache(const VertexMatrix& initial) {
+  Pool& p = pool();
+  if (p.alive && !p.unused.empty()) {
+    cache_ = p.unused.back().release();
+    p.unused.pop_back();
+    cache_->reset(initial);
+  } else {
+    cache_ = new SupportCache(initial);
+  }
+  hold();
+}
+
+void SharedSupportCache::release(SupportCache* cache) {
+  Pool& p = pool();
+  if (p.alive && p.unused.size() < kKept) {
+    p.unused.emplace_back(cache);
+  } else {
+    delete cache;
+  }
+}
+
+}  // namespace swarmcollide::detail
