@@ -1,5 +1,6 @@
 #include "support_cache.hpp"
 
+#include <algorithm>
 #include <memory>
 #include <vector>
 
@@ -26,14 +27,27 @@ Pool& pool() {
 
 }  // namespace
 
-SharedSupportCache::SharedSupportCache(const VertexMatrix& initial) {
+void SupportCache::reset(const SupportCache& start) {
+  if (slots_.size() == start.slots_.size()) {
+    // The table and the first rows copied in place.
+    slots_ = start.slots_;
+    count_ = start.count_;
+    points_.topRows(count_) = start.points_.topRows(count_);
+    return;
+  }
+  std::fill(slots_.begin(), slots_.end(), -1);
+  count_ = 0;
+  for (int i = 0; i < start.count_; ++i) add(start.points_.row(i).transpose());
+}
+
+SharedSupportCache::SharedSupportCache(const SupportCache& start) {
   Pool& p = pool();
   if (p.alive && !p.unused.empty()) {
     cache_ = p.unused.back().release();
     p.unused.pop_back();
-    cache_->reset(initial);
+    cache_->reset(start);
   } else {
-    cache_ = new SupportCache(initial);
+    cache_ = new SupportCache(start);
   }
   hold();
 }

@@ -23,17 +23,14 @@ class SupportCache {
       : points_(capacity_for(initial.rows()), 3), slots_(2 * points_.rows(), -1) {
     for (Eigen::Index i = 0; i < initial.rows(); ++i) add(initial.row(i).transpose());
   }
-  /// Starts again with `initial`'s rows, keeping the storage: the points are numbered as a new
-  /// cache numbers them (the order found), whatever the capacity, so a reused cache answers as a
-  /// new one.
-  void reset(const VertexMatrix& initial) {
-    if (points_.rows() < capacity_for(initial.rows())) {
-      points_.resize(capacity_for(initial.rows()), 3);
-    }
-    slots_.assign(2 * points_.rows(), -1);
-    count_ = 0;
-    for (Eigen::Index i = 0; i < initial.rows(); ++i) add(initial.row(i).transpose());
-  }
+  /// A copy of `other`'s points and table (not of its users).
+  SupportCache(const SupportCache& other)
+      : points_(other.points_), slots_(other.slots_), count_(other.count_) {}
+  SupportCache& operator=(const SupportCache&) = delete;
+  /// Starts again as `start`, a cache holding a body's own points only, keeping this one's
+  /// storage (a cache that grew keeps its size): the points are numbered as `start` numbers
+  /// them, so a reused cache answers as a new one.
+  void reset(const SupportCache& start);
 
   /// The number of `point` (exact equality of coordinates, -0 = +0), added when it is new.
   int add(const Vector3& point) {
@@ -102,8 +99,8 @@ class SupportCache {
 class SharedSupportCache {
  public:
   SharedSupportCache() = default;
-  /// A cache started with `initial`'s rows (SupportCache::reset).
-  explicit SharedSupportCache(const VertexMatrix& initial);
+  /// A cache started as `start` (SupportCache::reset).
+  explicit SharedSupportCache(const SupportCache& start);
   SharedSupportCache(const SharedSupportCache& other) : cache_(other.cache_) { hold(); }
   SharedSupportCache& operator=(const SharedSupportCache& other) {
     if (cache_ != other.cache_) {
