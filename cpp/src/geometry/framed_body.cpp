@@ -74,7 +74,10 @@ FramedBody::FramedBody(const ConvexPolyhedron& body, const Pose& pose, bool rota
   for (int k = 0; k < 3; ++k) offset_(k) = times_power_of_two(from_centre(k), -exponent_);
   if (const SupportFunction* shape = body.curved()) {
     curved_ = shape;
-    found_ = std::make_shared<SupportCache>(body.centred_vertices());
+    // The cache of the body's own points is made once per body and copied: hashing them again
+    // was most of what framing a curved body cost.
+    found_ = SharedSupportCache(
+        body.derived<SupportCache>([&body] { return SupportCache(body.centred_vertices()); }));
     vertices_ = &found_->points();
     hull_ = nullptr;
     given_ = nullptr;

@@ -203,7 +203,7 @@ class FramedBody {
   // A curved body's support function, its support points so far in its own frame (centred on its
   // box; `vertices_` points to their rows), and their support error.
   const SupportFunction* curved_ = nullptr;
-  std::shared_ptr<SupportCache> found_;
+  SharedSupportCache found_;
   Scalar support_error_ = 0;
   // A small polyhedron's points (`vertices_`) by coordinate (ConvexPolyhedron::centred_columns),
   // for support_index's scans; null for larger bodies (climbed), curved bodies and points given in

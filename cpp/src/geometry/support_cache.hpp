@@ -1,6 +1,7 @@
 // The support points a curved body has answered in one query; private to the library's sources.
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <cstring>
 #include <vector>
@@ -22,6 +23,14 @@ class SupportCache {
       : points_(capacity_for(initial.rows()), 3), slots_(2 * points_.rows(), -1) {
     for (Eigen::Index i = 0; i < initial.rows(); ++i) add(initial.row(i).transpose());
   }
+  /// A copy of `other`'s points and table (not of its users).
+  SupportCache(const SupportCache& other)
+      : points_(other.points_), slots_(other.slots_), count_(other.count_) {}
+  SupportCache& operator=(const SupportCache&) = delete;
+  /// Starts again as `start`, a cache holding a body's own points only, keeping this one's
+  /// storage (a cache that grew keeps its size): the points are numbered as `start` numbers
+  /// them, so a reused cache answers as a new one.
+  void reset(const SupportCache& start);
 
   /// The number of `point` (exact equality of coordinates, -0 = +0), added when it is new.
   int add(const Vector3& point) {
@@ -78,6 +87,59 @@ class SupportCache {
   VertexMatrix points_;
   std::vector<int> slots_;
   int count_ = 0;
+  // The handles (SharedSupportCache) that share this cache.
+  std::atomic<int> users_{0};
+  friend class SharedSupportCache;
+};
+
+/// A SupportCache shared by the copies of a FramedBody (a copy of a framed pair sees the points
+/// the original found, and adds to them), taken from a pool of the thread's and given back when
+/// the last copy goes: a curved query then allocates nothing once its thread has answered one
+/// (the allocations of a new cache were a fifth of a sphere-cylinder query).
+class SharedSupportCache {
+ public:
+  SharedSupportCache() = default;
+  /// A cache started as `start` (SupportCache::reset).
+  explicit SharedSupportCache(const SupportCache& start);
+  SharedSupportCache(const SharedSupportCache& other) : cache_(other.cache_) { hold(); }
+  SharedSupportCache& operator=(const SharedSupportCache& other) {
+    if (cache_ != other.cache_) {
+      drop();
+      cache_ = other.cache_;
+      hold();
+    }
+    return *this;
+  }
+  SharedSupportCache(SharedSupportCache&& other) noexcept : cache_(other.cache_) {
+    other.cache_ = nullptr;
+  }
+  SharedSupportCache& operator=(SharedSupportCache&& other) noexcept {
+    if (this != &other) {
+      drop();
+      cache_ = other.cache_;
+      other.cache_ = nullptr;
+    }
+    return *this;
+  }
+  ~SharedSupportCache() { drop(); }
+
+  SupportCache& operator*() const { return *cache_; }
+  SupportCache* operator->() const { return cache_; }
+
+ private:
+  void hold() {
+    if (cache_ != nullptr) cache_->users_.fetch_add(1, std::memory_order_relaxed);
+  }
+  void drop() {
+    if (cache_ != nullptr && cache_->users_.fetch_sub(1, std::memory_order_acq_rel) == 1) {
+      release(cache_);
+    }
+    cache_ = nullptr;
+  }
+  // Gives an unused cache back to this thread's pool (or frees it).
+  static void release(SupportCache* cache);
+
+  SupportCache* cache_ = nullptr;
 };
 
 }  // namespace swarmcollide::detail

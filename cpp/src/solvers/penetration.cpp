@@ -154,6 +154,21 @@ class Solver {
     return std::min(proven_upper_, nearest_length_ + 16 * kRoundoff * reach());
   }
 
+  // The gap at which the expanding polytope stops. Its bound and the finish's separation along
+  // its best normal (within margin() of a proven one) must end within the tolerance. Where a
+  // support climbs (a large polytope), the finish's scan may find a higher point than the climb
+  // did, so half the tolerance is left for that. Where every support is a scan or a curved
+  // shape's support function, the finish measures along the polytope's best normal the very
+  // points the polytope found (up to the rounding of the two ways of summing the heights), so
+  // the polytope may close to the tolerance less twice the margin: a curved pair's polytope,
+  // which gains a few digits per handful of steps, stops a step or two earlier.
+  Scalar polytope_gap() const {
+    const bool scanned_a = a_.curved() || a_.size() <= kHillClimbingThreshold;
+    const bool scanned_b = b_.curved() || b_.size() <= kHillClimbingThreshold;
+    if (!(a_.curved() || b_.curved()) || !scanned_a || !scanned_b) return tolerance_ / 2;
+    return std::max(tolerance_ / 2, tolerance_ - 2 * margin() - 64 * kRoundoff * reach());
+  }
+
   // Flat bodies touch along their plane and two segments along their common normal, which the
   // polytope cannot find when A - B has no interior; trying these costs a few climbs.
   void offer_flat_normals() {
@@ -261,7 +276,7 @@ class Solver {
     for (int k = 0; k < 4; ++k) {
       start_tetrahedron[k] = {-m.corral[k].p, m.corral[k].ia, m.corral[k].ib};
     }
-    const Scalar stop_gap = std::max(tolerance_ / 2, floor() / 4);
+    const Scalar stop_gap = std::max(polytope_gap(), floor() / 4);
     const ExpansionResult e =
         ws_.polytope.run(a_, b_, start_tetrahedron, stop_gap, max_iterations_);
     iterations_ += e.iterations;
