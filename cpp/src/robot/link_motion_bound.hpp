@@ -27,6 +27,14 @@ namespace swarmcollide::detail {
 /// (0 for a turn). For i = n the exact distance of the geometry's points to the axis is used.
 /// |d_i| = rate_i |q1 - q0| h over a time h (rate: a mimic joint's multiplier).
 ///
+/// The distance from axis_i to L's points changes only through the joints below J_i (those
+/// above move the axis and the points alike, J_i's turn keeps it), by at most B_i = sum_{k > i}
+/// of their speeds over the whole motion, so it is also measured: with d_i(q0) and d_i(q1) the
+/// distances from the placed axis to the corners of the geometry's box at the two ends, every
+/// configuration in the box of the joint ranges is within x of q0's and B_i - x of q1's (some x
+/// in [0, B_i]), and r_i <= (d_i(q0) + d_i(q1) + B_i) / 2, taken from the bottom of the chain
+/// up (B_i needs the speeds below) where it is smaller than the chain's bound.
+///
 /// A pair may leave out the joints both chains share (the joints above their links' common
 /// ancestor, a common prefix of the two chains in a tree): changing a shared joint applies the
 /// same map `F_i -> F_i Rot(a_i, d)` (or a common translation, for a slide) to both geometries,
@@ -63,6 +71,9 @@ class LinkMotionBound {
 
   /// Sets the motion: `q0` and `q1` hold one admitted value per degree of freedom.
   void set_motion(const Scalar* q0, const Scalar* q1);
+  /// The same, given the link poses at `q0` and `q1` (link_poses).
+  void set_motion(const Scalar* q0, const Scalar* q1, const std::vector<Pose>& start_links,
+                  const std::vector<Pose>& end_links);
 
   /// A bound on how fast `pair`'s distance can shrink, per unit of time, forwards or backwards.
   Scalar pair_speed(const GeometryPair& pair) const;
@@ -125,6 +136,13 @@ class LinkMotionBound {
   std::vector<Scalar> slide_;
   std::vector<Scalar> value_error_;
   std::vector<GeometryMotion> geometries_;
+  // Scratch: the link poses at the ends, the chain's bounds on one geometry's distances from
+  // the axes, its box's corners placed at the ends.
+  std::vector<Pose> start_links_;
+  std::vector<Pose> end_links_;
+  std::vector<Scalar> turns_;
+  Vector3 start_corners_[8];
+  Vector3 end_corners_[8];
 };
 
 }  // namespace swarmcollide::detail

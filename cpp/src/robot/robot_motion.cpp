@@ -128,7 +128,11 @@ class MotionCheck {
     start_ = q0_.row(q0_.rows() == 1 ? 0 : i);
     end_ = q1_.row(q1_.rows() == 1 ? 0 : i);
     delta_ = end_ - start_;
-    bound_.set_motion(start_.data(), end_.data());
+    configuration_at(0);
+    start_links_ = links_;
+    configuration_at(1);
+    end_links_ = links_;
+    bound_.set_motion(start_.data(), end_.data(), start_links_, end_links_);
     QueryOptions query = options_.query;
     query.seed = pair_seed(options_.query.seed, row);
     // A quarter of the motion's tolerance, as time_of_impact asks it: near contact the queries'
@@ -205,12 +209,8 @@ class MotionCheck {
   // screens at both ends.
   void plan() {
     plans_.clear();
-    configuration_at(0);
-    start_links_ = links_;
-    place_all(start_world_);
-    configuration_at(1);
-    end_links_ = links_;
-    place_all(end_world_);
+    place_all(start_links_, start_world_);
+    place_all(end_links_, end_world_);
     for (std::size_t p = 0; p < pairs_.size(); ++p) {
       const GeometryPair& pair = pairs_[p];
       const Scalar speed = bound_.pair_speed(pair);
@@ -398,10 +398,10 @@ class MotionCheck {
     return std::max(balls, detail::box_separation(a.box, pose_a, b.box, pose_b));
   }
 
-  // Every geometry's pose at the configuration of links_.
-  void place_all(std::vector<Pose>& world) const {
+  // Every geometry's pose at the configuration of `links`.
+  void place_all(const std::vector<Pose>& links, std::vector<Pose>& world) const {
     world.resize(model_.geometries().size());
-    for (std::size_t g = 0; g < world.size(); ++g) world[g] = placed(static_cast<int>(g));
+    for (std::size_t g = 0; g < world.size(); ++g) world[g] = placed(links, static_cast<int>(g));
   }
 
   // q(t) into q_, and the poses at it of every link, or of the children of `joints` alone, into
@@ -425,9 +425,11 @@ class MotionCheck {
     pose_b_ = placed(pair.b);
   }
 
-  Pose placed(int g) const {
+  Pose placed(int g) const { return placed(links_, g); }
+
+  Pose placed(const std::vector<Pose>& links, int g) const {
     const Geometry& geometry = model_.geometries()[static_cast<std::size_t>(g)];
-    return geometry.link < 0 ? geometry.origin : compose(links_[geometry.link], geometry.origin);
+    return geometry.link < 0 ? geometry.origin : compose(links[geometry.link], geometry.origin);
   }
 
   const RobotModel& model_;
