@@ -252,13 +252,24 @@ class MotionCheck {
   PairRun advance(const PairPlan& plan, Scalar horizon) {
     const GeometryPair& pair = pairs_[static_cast<std::size_t>(plan.pair)];
     const Scalar width = options_.time_tolerance;
-    Sample low = sample(pair, plan, 0, horizon);
-    if (low.contact) return {PairRun::contact, 0, 0};
     // Sampled times after `low`, nearest last: each one still to be reached.
     std::vector<Sample>& ahead = ahead_;
     ahead.clear();
     // The reach of the sample `low` replaced (none before the first step).
     Scalar before = kInfinity;
+    Sample low;
+    if (plan.first_contact > 0) {
+      // The plan's screens prove the pair apart up to `first_contact`: the advancement starts
+      // there rather than with a query at t = 0, and as from a reach that grew (from none), with
+      // the speculative sample past it. (Queries per edge of bench/robot_motion.py's 1000 edges:
+      // 76.1 with a query at t = 0; 56.1 from the screens' reach; 47.2 with the speculative
+      // sample; 58.0 with a first sample midway between the two ends' screened reaches.)
+      low = {0, false, plan.first_contact, 0};
+      before = 0;
+    } else {
+      low = sample(pair, plan, 0, horizon);
+      if (low.contact) return {PairRun::contact, 0, 0};
+    }
     while (true) {
       if (!ahead.empty()) {
         const Sample& next = ahead.back();
@@ -333,8 +344,7 @@ class MotionCheck {
   Sample sample(const GeometryPair& pair, const PairPlan& plan, Scalar t, Scalar horizon) {
     configuration_at(t, &pair_joints_[static_cast<std::size_t>(plan.pair)]);
     place(pair);
-    // At t = 0 the plan's screens reach no farther than `first_contact`, which is within the
-    // horizon (else the pair is not advanced).
+    // t = 0 is sampled only where the plan's screens proved nothing there.
     if (t > 0) {
       const Scalar screened = detail::reach_over(
           screen(pair, pose_a_, pose_b_, plan.margin + plan.speed * (horizon - t)) - plan.margin,
