@@ -215,12 +215,19 @@ class MotionCheck {
       const GeometryPair& pair = pairs_[p];
       const Scalar speed = bound_.pair_speed(pair);
       const Scalar margin = bound_.pair_margin(pair);
-      // The boxes are asked only when the balls do not prove the pair apart over the motion.
+      // The balls at both ends first, then each end's local speed bound and its boxes, until
+      // the reaches from the two ends meet.
+      const Scalar balls_start = ball_separation(pair, start_world_[pair.a], start_world_[pair.b]);
+      const Scalar balls_end = ball_separation(pair, end_world_[pair.a], end_world_[pair.b]);
+      if (detail::reach_over(balls_start - margin, speed) +
+              detail::reach_over(balls_end - margin, speed) > 1) {
+        continue;
+      }
       const Scalar from_start =
-          screened_reach(pair, start_links_, start_world_, speed, margin, margin + speed);
+          screened_reach(pair, start_links_, start_world_, speed, margin, balls_start, 1);
       if (from_start > 1) continue;
       const Scalar from_end = screened_reach(pair, end_links_, end_world_, speed, margin,
-                                             margin + speed * (1 - from_start));
+                                             balls_end, 1 - from_start);
       // Apart over the whole motion when the reaches from both ends meet.
       if (from_start + from_end > 1) continue;
       const Geometry& a = model_.geometries()[pair.a];
@@ -236,15 +243,27 @@ class MotionCheck {
   }
 
   // The time either way from the configuration of `links` (its geometries placed at `world`) over
-  // which the pair's screens prove it apart: by the whole motion's speed bound, or the local one.
+  // which the pair's screens prove it apart: by the whole motion's speed bound, or the local one;
+  // from the balls' separation `balls`, then from the boxes' too unless the balls' alone reach
+  // past `needed`.
   Scalar screened_reach(const GeometryPair& pair, const std::vector<Pose>& links,
                         const std::vector<Pose>& world, Scalar speed, Scalar margin,
-                        Scalar enough) const {
-    const Scalar apart = screen(pair, world[pair.a], world[pair.b], enough) - margin;
-    if (!(apart > 0)) return 0;
-    return std::max(detail::reach_over(apart, speed),
-                    local_reach(apart, bound_.local_speed(pair, links, world[pair.a],
-                                                          world[pair.b])));
+                        Scalar balls, Scalar needed) const {
+    const Pose& pose_a = world[pair.a];
+    const Pose& pose_b = world[pair.b];
+    Scalar apart = balls - margin;
+    Scalar reach = detail::reach_over(apart, speed);
+    if (reach > needed) return reach;
+    const detail::LinkMotionBound::LocalSpeed local =
+        bound_.local_speed(pair, links, pose_a, pose_b);
+    reach = std::max(reach, local_reach(apart, local));
+    if (reach > needed) return reach;
+    const BodyBounds& a = model_.geometries()[pair.a].body.bounds();
+    const BodyBounds& b = model_.geometries()[pair.b].body.bounds();
+    const Scalar boxes = detail::box_separation(a.box, pose_a, b.box, pose_b) - margin;
+    if (!(boxes > apart)) return reach;
+    apart = boxes;
+    return std::max(detail::reach_over(apart, speed), local_reach(apart, local));
   }
 
   // Conservative advancement of one pair over [0, horizon] (time_of_impact's, with the horizon
@@ -393,18 +412,25 @@ class MotionCheck {
   }
 
   // A proven lower bound on the pair's distance at `pose_a` and `pose_b` from its geometries'
-  // bounding balls, and from their boxes too (as robot_check screens) unless the balls' alone
-  // reaches `enough`; -inf when neither separates them.
-  Scalar screen(const GeometryPair& pair, const Pose& pose_a, const Pose& pose_b,
-                Scalar enough) const {
+  // bounding balls (as robot_check screens).
+  Scalar ball_separation(const GeometryPair& pair, const Pose& pose_a, const Pose& pose_b) const {
     const BodyBounds& a = model_.geometries()[pair.a].body.bounds();
     const BodyBounds& b = model_.geometries()[pair.b].body.bounds();
     const Vector3 ca = pose_a.rotation * a.centre + pose_a.translation;
     const Vector3 cb = pose_b.rotation * b.centre + pose_b.translation;
     const Scalar margin = 1e-12 * (ca.lpNorm<Eigen::Infinity>() + cb.lpNorm<Eigen::Infinity>() +
                                    a.radius + b.radius);
-    const Scalar balls = (ca - cb).norm() - a.radius - b.radius - margin;
+    return (ca - cb).norm() - a.radius - b.radius - margin;
+  }
+
+  // The same from the balls, and from their boxes too unless the balls' alone reaches `enough`;
+  // -inf when neither separates them.
+  Scalar screen(const GeometryPair& pair, const Pose& pose_a, const Pose& pose_b,
+                Scalar enough) const {
+    const Scalar balls = ball_separation(pair, pose_a, pose_b);
     if (balls > enough) return balls;
+    const BodyBounds& a = model_.geometries()[pair.a].body.bounds();
+    const BodyBounds& b = model_.geometries()[pair.b].body.bounds();
     return std::max(balls, detail::box_separation(a.box, pose_a, b.box, pose_b));
   }
 
