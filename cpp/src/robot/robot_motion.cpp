@@ -143,6 +143,7 @@ class MotionCheck {
     query_ = &solver;
     second_.reset();
     iterations_ = 0;
+    best_answer_.reset();
     plan();
     Scalar horizon = 1;
     Scalar lower = 1;
@@ -164,6 +165,10 @@ class MotionCheck {
       if (run.upper < horizon || (best < 0 && run.upper == horizon)) {
         horizon = run.upper;
         best = plan.pair;
+        best_answer_.reset();
+        for (auto& [t, answer] : contact_answers_) {
+          if (t == horizon) best_answer_ = std::move(answer);
+        }
       }
     }
     // A pair left unproven matters only where it is not proven apart: before the contact found,
@@ -191,12 +196,18 @@ class MotionCheck {
     check_.touches(i) = true;
     check_.t_upper(i) = horizon;
     check_.pair(i) = named;
-    configuration_at(horizon);
+    if (best < 0 || !best_answer_) {
+      // The pair's answer at the horizon, unless its sample there kept it.
+      configuration_at(horizon);
+      place(pairs_[static_cast<std::size_t>(named)]);
+      best_answer_ = detail::signed_distance_of(*query_, model_,
+                                                pairs_[static_cast<std::size_t>(named)], pose_a_,
+                                                pose_b_);
+    } else {
+      q_ = horizon == 1 ? end_ : start_ + horizon * delta_;
+    }
     check_.configuration.row(i) = q_;
-    place(pairs_[static_cast<std::size_t>(named)]);
-    const GeometryPair& pair = pairs_[static_cast<std::size_t>(named)];
-    const DistanceResult contact =
-        detail::signed_distance_of(*query_, model_, pair, pose_a_, pose_b_);
+    const DistanceResult& contact = *best_answer_;
     check_.distance(i) = contact.distance;
     check_.point_a.row(i) = contact.point_a.transpose();
     check_.point_b.row(i) = contact.point_b.transpose();
@@ -274,6 +285,7 @@ class MotionCheck {
     // Sampled times after `low`, nearest last: each one still to be reached.
     std::vector<Sample>& ahead = ahead_;
     ahead.clear();
+    contact_answers_.clear();
     // The reach of the sample `low` replaced (none before the first step).
     Scalar before = kInfinity;
     Sample low;
@@ -396,6 +408,11 @@ class MotionCheck {
     // The motion's size for this pair: the sum of the two bounding balls' diameters.
     const Scalar threshold = options_.query.tolerance * 2 * (a.radius + b.radius);
     Sample s{t, result.distance + plan.margin <= threshold, 0, 0};
+    if (s.contact) {
+      // Kept for the motion's answer, should this be the earliest contact.
+      contact_answers_.emplace_back(t, std::move(result));
+      return s;
+    }
     const Scalar apart = result.lower_bound - plan.margin;
     if (s.contact || !(apart > 0)) return s;
     s.forward = s.backward =
@@ -497,6 +514,10 @@ class MotionCheck {
   std::vector<PairPlan> plans_;
   std::vector<Sample> ahead_;
   std::vector<Unproven> unproven_;
+  // The answers of the contact samples of the pair being advanced, with their times, and the
+  // answer at the earliest contact found so far.
+  std::vector<std::pair<Scalar, DistanceResult>> contact_answers_;
+  std::optional<DistanceResult> best_answer_;
 };
 
 void require_dof(const RobotModel& model, const Configurations& q, const char* name) {
