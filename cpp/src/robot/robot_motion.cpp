@@ -143,7 +143,6 @@ class MotionCheck {
     query_ = &solver;
     second_.reset();
     iterations_ = 0;
-    best_answer_.reset();
     plan();
     Scalar horizon = 1;
     Scalar lower = 1;
@@ -165,10 +164,6 @@ class MotionCheck {
       if (run.upper < horizon || (best < 0 && run.upper == horizon)) {
         horizon = run.upper;
         best = plan.pair;
-        best_answer_.reset();
-        for (auto& [t, answer] : contact_answers_) {
-          if (t == horizon) best_answer_ = std::move(answer);
-        }
       }
     }
     // A pair left unproven matters only where it is not proven apart: before the contact found,
@@ -196,18 +191,13 @@ class MotionCheck {
     check_.touches(i) = true;
     check_.t_upper(i) = horizon;
     check_.pair(i) = named;
-    if (best < 0 || !best_answer_) {
-      // The pair's answer at the horizon, unless its sample there kept it.
-      configuration_at(horizon);
-      place(pairs_[static_cast<std::size_t>(named)]);
-      best_answer_ = detail::signed_distance_of(*query_, model_,
-                                                pairs_[static_cast<std::size_t>(named)], pose_a_,
-                                                pose_b_);
-    } else {
-      q_ = horizon == 1 ? end_ : start_ + horizon * delta_;
-    }
+    configuration_at(horizon);
     check_.configuration.row(i) = q_;
-    const DistanceResult& contact = *best_answer_;
+    place(pairs_[static_cast<std::size_t>(named)]);
+    const GeometryPair& pair = pairs_[static_cast<std::size_t>(named)];
+    // The samples asked distances; the answer gives the signed distance there.
+    const DistanceResult contact =
+        detail::signed_distance_of(*query_, model_, pair, pose_a_, pose_b_);
     check_.distance(i) = contact.distance;
     check_.point_a.row(i) = contact.point_a.transpose();
     check_.point_b.row(i) = contact.point_b.transpose();
@@ -285,7 +275,6 @@ class MotionCheck {
     // Sampled times after `low`, nearest last: each one still to be reached.
     std::vector<Sample>& ahead = ahead_;
     ahead.clear();
-    contact_answers_.clear();
     // The reach of the sample `low` replaced (none before the first step).
     Scalar before = kInfinity;
     Sample low;
@@ -392,34 +381,43 @@ class MotionCheck {
     const detail::LinkMotionBound::LocalSpeed local =
         bound_.local_speed(pair, links_, pose_a_, pose_b_);
     ++iterations_;
-    DistanceResult result = detail::signed_distance_of(*query_, model_, pair, pose_a_, pose_b_);
-    const bool exact_first = query_->options().method == Method::exact;
-    if (!result.certified && (!exact_first || plan.curved)) {
-      // Near contact a method can leave a pair unproven where another proves it (the exact
-      // method a polytope pair, the dual one a curved pair): ask it too rather than bisect down
-      // to times that cannot be split. After the exact method, the dual one is asked of curved
-      // pairs alone: on polytopes it proved nothing the exact one had left (1000 Panda edges of
-      // bench/robot_motion.py, the same verdicts and pairs) at some 50 times an exact query's
-      // cost.
-      ++iterations_;
-      if (!second_) {
-        QueryOptions options = query_->options();
-        options.method = options.method == Method::exact ? Method::dual : Method::exact;
-        second_.emplace(options);
-      }
-      DistanceResult second = detail::signed_distance_of(*second_, model_, pair, pose_a_, pose_b_);
-      if (second.certified) result = std::move(second);
-    }
+    // A distance, as time_of_impact asks: its lower bound is all the advancement needs, and a
+    // pair in contact is not measured further (its penetration depth).
+    DistanceResult result = detail::distance_of(*query_, model_, pair, pose_a_, pose_b_);
     const BodyBounds& a = model_.geometries()[pair.a].body.bounds();
     const BodyBounds& b = model_.geometries()[pair.b].body.bounds();
     // The motion's size for this pair: the sum of the two bounding balls' diameters.
     const Scalar threshold = options_.query.tolerance * 2 * (a.radius + b.radius);
-    Sample s{t, result.distance + plan.margin <= threshold, 0, 0};
-    if (s.contact) {
-      // Kept for the motion's answer, should this be the earliest contact.
-      contact_answers_.emplace_back(t, std::move(result));
-      return s;
+    if (!result.certified) {
+      // Near contact a method can leave a pair unproven where another proves it: ask it too
+      // rather than bisect down to times that cannot be split. After any method but exact, the
+      // exact one. After the exact method, only where the answer decides nothing (neither
+      // proven in contact nor proven farther apart than the threshold: an unproven lower bound
+      // still steps as a proven one would, as in time_of_impact): for a polytope pair its signed
+      // distance, whose penetration step proves the contacts its distance left unproven (3 of
+      // bench/robot_motion.py's 1000 edges uncertified without it, 0 with it, some 40 queries
+      // asked again; the dual method certifies them too at some 2.4 times the motion's whole
+      // cost), for a curved pair the dual method's distance.
+      const bool exact_first = query_->options().method == Method::exact;
+      const bool undecided = !(result.distance + plan.margin <= threshold) &&
+                             !(result.lower_bound - plan.margin > threshold);
+      if (!exact_first || undecided) {
+        ++iterations_;
+        DistanceResult second;
+        if (exact_first && !plan.curved) {
+          second = detail::signed_distance_of(*query_, model_, pair, pose_a_, pose_b_);
+        } else {
+          if (!second_) {
+            QueryOptions options = query_->options();
+            options.method = exact_first ? Method::dual : Method::exact;
+            second_.emplace(options);
+          }
+          second = detail::distance_of(*second_, model_, pair, pose_a_, pose_b_);
+        }
+        if (second.certified) result = std::move(second);
+      }
     }
+    Sample s{t, result.distance + plan.margin <= threshold, 0, 0};
     const Scalar apart = result.lower_bound - plan.margin;
     if (s.contact || !(apart > 0)) return s;
     s.forward = s.backward =
@@ -521,10 +519,6 @@ class MotionCheck {
   std::vector<PairPlan> plans_;
   std::vector<Sample> ahead_;
   std::vector<Unproven> unproven_;
-  // The answers of the contact samples of the pair being advanced, with their times, and the
-  // answer at the earliest contact found so far.
-  std::vector<std::pair<Scalar, DistanceResult>> contact_answers_;
-  std::optional<DistanceResult> best_answer_;
 };
 
 void require_dof(const RobotModel& model, const Configurations& q, const char* name) {
