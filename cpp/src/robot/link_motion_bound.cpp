@@ -269,8 +269,11 @@ LinkMotionBound::LocalSpeed LinkMotionBound::local_speed(const GeometryPair& pai
     const Vector3 centre = pose.rotation * bounds.centre + pose.translation;
     // The rounding of the placed frames (as pair_margin's), and the ball's radius.
     const Scalar slack = 64 * kUnit * static_cast<Scalar>(chain.size() + 1) * motion.extent;
-    Scalar changes = 0;
     for (std::size_t k = shared; k < chain.size(); ++k) {
+      // The speed of the joints below joint k: they alone change the distance from its axis.
+      Scalar below = 0;
+      for (std::size_t m = k + 1; m < chain.size(); ++m) below += motion.speed[m];
+      below *= kRoundUp;
       const int j = chain[k];
       if (model_.driving_dof(j) < 0) continue;
       const Joint& joint = model_.joints()[j];
@@ -285,9 +288,8 @@ LinkMotionBound::LocalSpeed LinkMotionBound::local_speed(const GeometryPair& pai
         reach = off_axis(centre - frame.translation, axis) + bounds.radius + slack;
       }
       local.at += change_[j] * reach * rigid;
-      changes += change_[j];
+      local.growth += change_[j] * rigid * below;
     }
-    local.growth += changes * motion.total;
   };
   add(pair.a, la, pose_a);
   add(pair.b, lb, pose_b);

@@ -48,9 +48,9 @@ namespace swarmcollide::detail {
 /// than bounded: `local_speed` takes d_i, the distance from axis_i (placed there) to the
 /// geometry's bounding ball, plus its radius. A turn of J_i keeps every point's distance from
 /// axis_i, and the joints above J_i move both rigidly, so that distance changes only through the
-/// joints below J_i, at most at the geometry's whole speed bound v (the sum over its chain). At a
-/// time s from there, r_i(s) <= d_i + |s| v, so the pair closes at most at `at + |s| growth`,
-/// with at = sum_i |dq_i| d_i and growth = (sum_i |dq_i|) v, over the same joints as above.
+/// joints below J_i, at most at their speed bound v_i (the sum over the chain below J_i). At a
+/// time s from there, r_i(s) <= d_i + |s| v_i, so the pair closes at most at `at + |s| growth`,
+/// with at = sum_i |dq_i| d_i and growth = sum_i |dq_i| v_i, over the same joints as above.
 ///
 /// Along a fixed unit direction n (a query's separating direction, along which its lower bound is
 /// the separation of the two bodies), a turn of J_i moves a point p at the rate |n . (a_i x (p -
