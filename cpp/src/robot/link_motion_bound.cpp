@@ -313,8 +313,13 @@ LinkMotionBound::DirectionalSpeed LinkMotionBound::directional_speed(
     const Scalar slack = 64 * kUnit * static_cast<Scalar>(chain.size() + 1) * motion.extent;
     // The angular speed of the frames above the joint (the turns taken so far, root first).
     Scalar turning = 0;
-    for (const int j : chain) {
+    for (std::size_t k = 0; k < chain.size(); ++k) {
+      const int j = chain[k];
       if (model_.driving_dof(j) < 0) continue;
+      // The speed of the joints below: they alone change the points' distance from the axis.
+      Scalar below = 0;
+      for (std::size_t m = k + 1; m < chain.size(); ++m) below += motion.speed[m];
+      below *= kRoundUp;
       const Joint& joint = model_.joints()[j];
       const Pose& frame = links[static_cast<std::size_t>(joint.child)];
       const Vector3 axis = (frame.rotation * joint.axis).normalized();
@@ -328,8 +333,8 @@ LinkMotionBound::DirectionalSpeed LinkMotionBound::directional_speed(
       const Scalar across = direction.cross(axis).norm() + 8 * kUnit;
       const Scalar reach = off_axis(centre - frame.translation, axis) + bounds.radius + slack;
       speed.linear += change * across * reach;
-      speed.quadratic += change * (across * motion.total + reach * turning);
-      speed.cubic += change * turning * motion.total;
+      speed.quadratic += change * (across * below + reach * turning);
+      speed.cubic += change * turning * below;
       turning += change;
     }
   };

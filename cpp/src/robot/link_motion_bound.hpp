@@ -58,7 +58,7 @@ namespace swarmcollide::detail {
 /// across it, does not change the separation. The axis a_i turns at most at the rates of the
 /// turns above J_i (Omega_i), so at a time s from the configuration |n x a_i(s)| <= c_i + |s|
 /// Omega_i, and the separation shrinks at most at `sum_i |dq_i| (c_i + |s| Omega_i) (d_i + |s|
-/// v)` over every joint of both chains (a shared turn moves both bodies, but not along n alike).
+/// v_i)` over every joint of both chains (a shared turn moves both bodies, but not along n alike).
 ///
 /// The margin covers the rounding: of q(t) (a few roundoffs of the joint values, times the speed
 /// coefficients), of the forward kinematics (64 roundoffs of Z per joint on the chain) and of the
