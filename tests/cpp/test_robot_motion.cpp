@@ -261,6 +261,30 @@ TEST(RobotMotion, ARoundedBallTurningAboutItsCentreDoesNotMove) {
   EXPECT_NEAR(bound.pair_speed({1, 2}), 2 * std::sqrt(1.01), 1e-12);
 }
 
+TEST(RobotMotion, ALinkFoldedOntoAnAxisIsBoundedByItsMeasuredDistanceFromIt) {
+  // A box at the end of an arm 1 long folded back onto the base's axis: the chain bounds the
+  // box's distance from that axis by the arm's length, the box's corners at the two ends of a
+  // turn of the base alone by its half diagonal across the axis.
+  std::vector<Link> links{{"base"}, {"arm"}, {"forearm"}};
+  std::vector<Joint> joints{
+      {"turn", JointType::revolute, 0, 1, Pose{}, Vector3::UnitZ(), -3, 3, 0},
+      {"elbow", JointType::revolute, 1, 2, placed({1, 0, 0}), Vector3::UnitZ(), -3, 3, 0}};
+  std::vector<Geometry> geometries{
+      {"box", 2, placed({-1, 0, 0}), Box(Vector3::Constant(0.1)), std::nullopt},
+      {"wall", -1, placed({3, 0, 0}), Box(Vector3::Constant(1)), std::nullopt}};
+  const RobotModel model(links, joints, geometries);
+  detail::LinkMotionBound bound(model);
+  const Scalar q0[] = {0, 0};
+  const Scalar q1[] = {1, 0};
+  bound.set_motion(q0, q1);
+  EXPECT_NEAR(bound.pair_speed({0, 1}), std::sqrt(0.02), 1e-12);
+  // The chain's bound, 1 + hypot(1.1, 0.1), still holds when the elbow turns too.
+  const Scalar q2[] = {1, 0.5};
+  bound.set_motion(q0, q2);
+  const Scalar elbow = 0.5 * std::hypot(1.1, 0.1);
+  EXPECT_LT(bound.pair_speed({0, 1}), 1 + 2 * elbow);
+}
+
 TEST(RobotMotion, TheKinematicsOfAPairsChainsEqualTheWholeKinematicsThere) {
   // robot_check_motion places a pair from the joints above its two links alone.
   const RobotModel arm = spatial_arm();

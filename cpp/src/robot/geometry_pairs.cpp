@@ -99,6 +99,14 @@ DistanceResult signed_distance_of(const Query& query, const RobotModel& model,
                      });
 }
 
+DistanceResult distance_of(const Query& query, const RobotModel& model, const GeometryPair& pair,
+                           const Pose& pose_a, const Pose& pose_b) {
+  return pair_answer(model, pair, pose_a, pose_b,
+                     [&](const auto& a, const Pose& pa, const auto& b, const Pose& pb) {
+                       return query.distance(a, pa, b, pb);
+                     });
+}
+
 DistanceResult collision_of(const Query& query, const RobotModel& model, const GeometryPair& pair,
                             const Pose& pose_a, const Pose& pose_b) {
   return pair_answer(model, pair, pose_a, pose_b,

@@ -30,6 +30,11 @@ DistanceResult signed_distance_of(const Query& query, const RobotModel& model,
                                   const GeometryPair& pair, const Pose& pose_a,
                                   const Pose& pose_b);
 
+/// The distance of `pair` (Query::distance), whole or part by part as signed_distance_of
+/// answers it.
+DistanceResult distance_of(const Query& query, const RobotModel& model, const GeometryPair& pair,
+                           const Pose& pose_a, const Pose& pose_b);
+
 /// The collision verdict of `pair` at `pose_a` and `pose_b` (Query::collision), whole or part by
 /// part as signed_distance_of answers it (colliding when any part is).
 DistanceResult collision_of(const Query& query, const RobotModel& model, const GeometryPair& pair,

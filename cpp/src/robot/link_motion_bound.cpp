@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "swarmcollide/robot/kinematics.hpp"
+
 namespace swarmcollide::detail {
 
 namespace {
@@ -93,6 +95,14 @@ LinkMotionBound::LinkMotionBound(const RobotModel& model) : model_(model) {
 }
 
 void LinkMotionBound::set_motion(const Scalar* q0, const Scalar* q1) {
+  link_poses(model_, q0, start_links_);
+  link_poses(model_, q1, end_links_);
+  set_motion(q0, q1, start_links_, end_links_);
+}
+
+void LinkMotionBound::set_motion(const Scalar* q0, const Scalar* q1,
+                                 const std::vector<Pose>& start_links,
+                                 const std::vector<Pose>& end_links) {
   const std::vector<Joint>& joints = model_.joints();
   for (std::size_t j = 0; j < joints.size(); ++j) {
     const Joint& joint = joints[j];
@@ -130,6 +140,8 @@ void LinkMotionBound::set_motion(const Scalar* q0, const Scalar* q1) {
     // z: the points' distance from the frame of chain[k]'s child; turn: from chain[k]'s axis.
     Scalar z = origin_reach_[g];
     Scalar turn = axis_reach_[g];
+    // Per joint, the bound on the points' distance from its axis from the chain.
+    turns_.assign(n, 0);
     for (std::size_t k = n; k-- > 0;) {
       if (k + 1 < n) {
         const Joint& next = joints[chain[k + 1]];
@@ -138,12 +150,11 @@ void LinkMotionBound::set_motion(const Scalar* q0, const Scalar* q1) {
         turn = (off_axis(next.origin.translation, joints[chain[k]].axis.normalized()) + inner) *
                kRoundUp;
       }
+      turns_[k] = turn;
       const int j = chain[k];
       if (model_.driving_dof(j) < 0) continue;
       const Scalar reach = joints[j].type == JointType::prismatic ? 1 : turn;
-      const Scalar coefficient = rotation_norm(chain_sigma_[j]) * reach * kRoundUp;
-      motion.speed[k] = coefficient * change_[j];
-      motion.rounding += coefficient * value_error_[j];
+      motion.rounding += rotation_norm(chain_sigma_[j]) * reach * kRoundUp * value_error_[j];
     }
     motion.extent = z;
     if (n > 0) {
@@ -153,6 +164,53 @@ void LinkMotionBound::set_motion(const Scalar* q0, const Scalar* q1) {
                       kRoundUp;
     }
     motion.rounding *= kRoundUp;
+    // The box's corners placed at both ends, and the rounding of their distances from the axes:
+    // the frames' (as pair_margin's), the corners' placing and off_axis's few products.
+    const Geometry& geometry = geometries[g];
+    const Aabb& box = geometry.body.bounds().box;
+    const Pose at_start = compose(start_links[static_cast<std::size_t>(link)], geometry.origin);
+    const Pose at_end = compose(end_links[static_cast<std::size_t>(link)], geometry.origin);
+    for (int c = 0; c < 8; ++c) {
+      const Vector3 corner((c & 1) ? box.max.x() : box.min.x(), (c & 2) ? box.max.y() : box.min.y(),
+                           (c & 4) ? box.max.z() : box.min.z());
+      start_corners_[c] = at_start.rotation * corner + at_start.translation;
+      end_corners_[c] = at_end.rotation * corner + at_end.translation;
+    }
+    const Scalar slack =
+        64 * kUnit * static_cast<Scalar>(n + 2) * (motion.extent + 2 * geometry.body.bounds().radius);
+    // From the bottom of the chain up: `below` bounds how far the joints below chain[k] move the
+    // points over the whole motion, in chain[k]'s child frame.
+    Scalar below = 0;
+    for (std::size_t k = n; k-- > 0;) {
+      const int j = chain[k];
+      if (model_.driving_dof(j) < 0) continue;
+      Scalar reach = 1;
+      if (joints[j].type != JointType::prismatic) {
+        // The points' distance from the axis (at most the box corners' d0 at the start and d1
+        // at the end) changes only through the joints below, by at most `below` (the header).
+        // The frames are rigid to within sigma: distances in them and in the world differ by
+        // at most that factor, as in local_speed.
+        const Joint& joint = joints[j];
+        const auto farthest = [&](const std::vector<Pose>& links, const Vector3* corners) {
+          const Pose& frame = links[static_cast<std::size_t>(joint.child)];
+          const Vector3 axis = (frame.rotation * joint.axis).normalized();
+          Scalar most = 0;
+          for (int c = 0; c < 8; ++c) {
+            most = std::max(most, off_axis(corners[c] - frame.translation, axis));
+          }
+          return most;
+        };
+        const Scalar measured =
+            ((farthest(start_links, start_corners_) + farthest(end_links, end_corners_) + below) /
+                 2 * (1 + 4 * chain_sigma_[j]) +
+             slack) *
+            kRoundUp;
+        reach = std::min(turns_[k], measured);
+      }
+      const Scalar coefficient = rotation_norm(chain_sigma_[j]) * reach * kRoundUp;
+      motion.speed[k] = coefficient * change_[j];
+      below = (below + motion.speed[k]) * kRoundUp;
+    }
     motion.total = 0;
     for (Scalar speed : motion.speed) motion.total += speed;
     motion.total *= kRoundUp;
@@ -211,8 +269,11 @@ LinkMotionBound::LocalSpeed LinkMotionBound::local_speed(const GeometryPair& pai
     const Vector3 centre = pose.rotation * bounds.centre + pose.translation;
     // The rounding of the placed frames (as pair_margin's), and the ball's radius.
     const Scalar slack = 64 * kUnit * static_cast<Scalar>(chain.size() + 1) * motion.extent;
-    Scalar changes = 0;
     for (std::size_t k = shared; k < chain.size(); ++k) {
+      // The speed of the joints below joint k: they alone change the distance from its axis.
+      Scalar below = 0;
+      for (std::size_t m = k + 1; m < chain.size(); ++m) below += motion.speed[m];
+      below *= kRoundUp;
       const int j = chain[k];
       if (model_.driving_dof(j) < 0) continue;
       const Joint& joint = model_.joints()[j];
@@ -227,9 +288,8 @@ LinkMotionBound::LocalSpeed LinkMotionBound::local_speed(const GeometryPair& pai
         reach = off_axis(centre - frame.translation, axis) + bounds.radius + slack;
       }
       local.at += change_[j] * reach * rigid;
-      changes += change_[j];
+      local.growth += change_[j] * rigid * below;
     }
-    local.growth += changes * motion.total;
   };
   add(pair.a, la, pose_a);
   add(pair.b, lb, pose_b);
@@ -253,8 +313,13 @@ LinkMotionBound::DirectionalSpeed LinkMotionBound::directional_speed(
     const Scalar slack = 64 * kUnit * static_cast<Scalar>(chain.size() + 1) * motion.extent;
     // The angular speed of the frames above the joint (the turns taken so far, root first).
     Scalar turning = 0;
-    for (const int j : chain) {
+    for (std::size_t k = 0; k < chain.size(); ++k) {
+      const int j = chain[k];
       if (model_.driving_dof(j) < 0) continue;
+      // The speed of the joints below: they alone change the points' distance from the axis.
+      Scalar below = 0;
+      for (std::size_t m = k + 1; m < chain.size(); ++m) below += motion.speed[m];
+      below *= kRoundUp;
       const Joint& joint = model_.joints()[j];
       const Pose& frame = links[static_cast<std::size_t>(joint.child)];
       const Vector3 axis = (frame.rotation * joint.axis).normalized();
@@ -268,8 +333,8 @@ LinkMotionBound::DirectionalSpeed LinkMotionBound::directional_speed(
       const Scalar across = direction.cross(axis).norm() + 8 * kUnit;
       const Scalar reach = off_axis(centre - frame.translation, axis) + bounds.radius + slack;
       speed.linear += change * across * reach;
-      speed.quadratic += change * (across * motion.total + reach * turning);
-      speed.cubic += change * turning * motion.total;
+      speed.quadratic += change * (across * below + reach * turning);
+      speed.cubic += change * turning * below;
       turning += change;
     }
   };

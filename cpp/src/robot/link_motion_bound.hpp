@@ -27,6 +27,14 @@ namespace swarmcollide::detail {
 /// (0 for a turn). For i = n the exact distance of the geometry's points to the axis is used.
 /// |d_i| = rate_i |q1 - q0| h over a time h (rate: a mimic joint's multiplier).
 ///
+/// The distance from axis_i to L's points changes only through the joints below J_i (those
+/// above move the axis and the points alike, J_i's turn keeps it), by at most B_i = sum_{k > i}
+/// of their speeds over the whole motion, so it is also measured: with d_i(q0) and d_i(q1) the
+/// distances from the placed axis to the corners of the geometry's box at the two ends, every
+/// configuration in the box of the joint ranges is within x of q0's and B_i - x of q1's (some x
+/// in [0, B_i]), and r_i <= (d_i(q0) + d_i(q1) + B_i) / 2, taken from the bottom of the chain
+/// up (B_i needs the speeds below) where it is smaller than the chain's bound.
+///
 /// A pair may leave out the joints both chains share (the joints above their links' common
 /// ancestor, a common prefix of the two chains in a tree): changing a shared joint applies the
 /// same map `F_i -> F_i Rot(a_i, d)` (or a common translation, for a slide) to both geometries,
@@ -40,9 +48,9 @@ namespace swarmcollide::detail {
 /// than bounded: `local_speed` takes d_i, the distance from axis_i (placed there) to the
 /// geometry's bounding ball, plus its radius. A turn of J_i keeps every point's distance from
 /// axis_i, and the joints above J_i move both rigidly, so that distance changes only through the
-/// joints below J_i, at most at the geometry's whole speed bound v (the sum over its chain). At a
-/// time s from there, r_i(s) <= d_i + |s| v, so the pair closes at most at `at + |s| growth`,
-/// with at = sum_i |dq_i| d_i and growth = (sum_i |dq_i|) v, over the same joints as above.
+/// joints below J_i, at most at their speed bound v_i (the sum over the chain below J_i). At a
+/// time s from there, r_i(s) <= d_i + |s| v_i, so the pair closes at most at `at + |s| growth`,
+/// with at = sum_i |dq_i| d_i and growth = sum_i |dq_i| v_i, over the same joints as above.
 ///
 /// Along a fixed unit direction n (a query's separating direction, along which its lower bound is
 /// the separation of the two bodies), a turn of J_i moves a point p at the rate |n . (a_i x (p -
@@ -50,7 +58,7 @@ namespace swarmcollide::detail {
 /// across it, does not change the separation. The axis a_i turns at most at the rates of the
 /// turns above J_i (Omega_i), so at a time s from the configuration |n x a_i(s)| <= c_i + |s|
 /// Omega_i, and the separation shrinks at most at `sum_i |dq_i| (c_i + |s| Omega_i) (d_i + |s|
-/// v)` over every joint of both chains (a shared turn moves both bodies, but not along n alike).
+/// v_i)` over every joint of both chains (a shared turn moves both bodies, but not along n alike).
 ///
 /// The margin covers the rounding: of q(t) (a few roundoffs of the joint values, times the speed
 /// coefficients), of the forward kinematics (64 roundoffs of Z per joint on the chain) and of the
@@ -63,6 +71,9 @@ class LinkMotionBound {
 
   /// Sets the motion: `q0` and `q1` hold one admitted value per degree of freedom.
   void set_motion(const Scalar* q0, const Scalar* q1);
+  /// The same, given the link poses at `q0` and `q1` (link_poses).
+  void set_motion(const Scalar* q0, const Scalar* q1, const std::vector<Pose>& start_links,
+                  const std::vector<Pose>& end_links);
 
   /// A bound on how fast `pair`'s distance can shrink, per unit of time, forwards or backwards.
   Scalar pair_speed(const GeometryPair& pair) const;
@@ -125,6 +136,13 @@ class LinkMotionBound {
   std::vector<Scalar> slide_;
   std::vector<Scalar> value_error_;
   std::vector<GeometryMotion> geometries_;
+  // Scratch: the link poses at the ends, the chain's bounds on one geometry's distances from
+  // the axes, its box's corners placed at the ends.
+  std::vector<Pose> start_links_;
+  std::vector<Pose> end_links_;
+  std::vector<Scalar> turns_;
+  Vector3 start_corners_[8];
+  Vector3 end_corners_[8];
 };
 
 }  // namespace swarmcollide::detail

@@ -128,7 +128,11 @@ class MotionCheck {
     start_ = q0_.row(q0_.rows() == 1 ? 0 : i);
     end_ = q1_.row(q1_.rows() == 1 ? 0 : i);
     delta_ = end_ - start_;
-    bound_.set_motion(start_.data(), end_.data());
+    configuration_at(0);
+    start_links_ = links_;
+    configuration_at(1);
+    end_links_ = links_;
+    bound_.set_motion(start_.data(), end_.data(), start_links_, end_links_);
     QueryOptions query = options_.query;
     query.seed = pair_seed(options_.query.seed, row);
     // A quarter of the motion's tolerance, as time_of_impact asks it: near contact the queries'
@@ -191,6 +195,7 @@ class MotionCheck {
     check_.configuration.row(i) = q_;
     place(pairs_[static_cast<std::size_t>(named)]);
     const GeometryPair& pair = pairs_[static_cast<std::size_t>(named)];
+    // The samples asked distances; the answer gives the signed distance there.
     const DistanceResult contact =
         detail::signed_distance_of(*query_, model_, pair, pose_a_, pose_b_);
     check_.distance(i) = contact.distance;
@@ -205,22 +210,25 @@ class MotionCheck {
   // screens at both ends.
   void plan() {
     plans_.clear();
-    configuration_at(0);
-    start_links_ = links_;
-    place_all(start_world_);
-    configuration_at(1);
-    end_links_ = links_;
-    place_all(end_world_);
+    place_all(start_links_, start_world_);
+    place_all(end_links_, end_world_);
     for (std::size_t p = 0; p < pairs_.size(); ++p) {
       const GeometryPair& pair = pairs_[p];
       const Scalar speed = bound_.pair_speed(pair);
       const Scalar margin = bound_.pair_margin(pair);
-      // The boxes are asked only when the balls do not prove the pair apart over the motion.
+      // The balls at both ends first, then each end's local speed bound and its boxes, until
+      // the reaches from the two ends meet.
+      const Scalar balls_start = ball_separation(pair, start_world_[pair.a], start_world_[pair.b]);
+      const Scalar balls_end = ball_separation(pair, end_world_[pair.a], end_world_[pair.b]);
+      if (detail::reach_over(balls_start - margin, speed) +
+              detail::reach_over(balls_end - margin, speed) > 1) {
+        continue;
+      }
       const Scalar from_start =
-          screened_reach(pair, start_links_, start_world_, speed, margin, margin + speed);
+          screened_reach(pair, start_links_, start_world_, speed, margin, balls_start, 1);
       if (from_start > 1) continue;
       const Scalar from_end = screened_reach(pair, end_links_, end_world_, speed, margin,
-                                             margin + speed * (1 - from_start));
+                                             balls_end, 1 - from_start);
       // Apart over the whole motion when the reaches from both ends meet.
       if (from_start + from_end > 1) continue;
       const Geometry& a = model_.geometries()[pair.a];
@@ -236,15 +244,27 @@ class MotionCheck {
   }
 
   // The time either way from the configuration of `links` (its geometries placed at `world`) over
-  // which the pair's screens prove it apart: by the whole motion's speed bound, or the local one.
+  // which the pair's screens prove it apart: by the whole motion's speed bound, or the local one;
+  // from the balls' separation `balls`, then from the boxes' too unless the balls' alone reach
+  // past `needed`.
   Scalar screened_reach(const GeometryPair& pair, const std::vector<Pose>& links,
                         const std::vector<Pose>& world, Scalar speed, Scalar margin,
-                        Scalar enough) const {
-    const Scalar apart = screen(pair, world[pair.a], world[pair.b], enough) - margin;
-    if (!(apart > 0)) return 0;
-    return std::max(detail::reach_over(apart, speed),
-                    local_reach(apart, bound_.local_speed(pair, links, world[pair.a],
-                                                          world[pair.b])));
+                        Scalar balls, Scalar needed) const {
+    const Pose& pose_a = world[pair.a];
+    const Pose& pose_b = world[pair.b];
+    Scalar apart = balls - margin;
+    Scalar reach = detail::reach_over(apart, speed);
+    if (reach > needed) return reach;
+    const detail::LinkMotionBound::LocalSpeed local =
+        bound_.local_speed(pair, links, pose_a, pose_b);
+    reach = std::max(reach, local_reach(apart, local));
+    if (reach > needed) return reach;
+    const BodyBounds& a = model_.geometries()[pair.a].body.bounds();
+    const BodyBounds& b = model_.geometries()[pair.b].body.bounds();
+    const Scalar boxes = detail::box_separation(a.box, pose_a, b.box, pose_b) - margin;
+    if (!(boxes > apart)) return reach;
+    apart = boxes;
+    return std::max(detail::reach_over(apart, speed), local_reach(apart, local));
   }
 
   // Conservative advancement of one pair over [0, horizon] (time_of_impact's, with the horizon
@@ -252,13 +272,24 @@ class MotionCheck {
   PairRun advance(const PairPlan& plan, Scalar horizon) {
     const GeometryPair& pair = pairs_[static_cast<std::size_t>(plan.pair)];
     const Scalar width = options_.time_tolerance;
-    Sample low = sample(pair, plan, 0, horizon);
-    if (low.contact) return {PairRun::contact, 0, 0};
     // Sampled times after `low`, nearest last: each one still to be reached.
     std::vector<Sample>& ahead = ahead_;
     ahead.clear();
     // The reach of the sample `low` replaced (none before the first step).
     Scalar before = kInfinity;
+    Sample low;
+    if (plan.first_contact > 0) {
+      // The plan's screens prove the pair apart up to `first_contact`: the advancement starts
+      // there rather than with a query at t = 0, and as from a reach that grew (from none), with
+      // the speculative sample past it. (Queries per edge of bench/robot_motion.py's 1000 edges:
+      // 76.1 with a query at t = 0; 56.1 from the screens' reach; 47.2 with the speculative
+      // sample; 58.0 with a first sample midway between the two ends' screened reaches.)
+      low = {0, false, plan.first_contact, 0};
+      before = 0;
+    } else {
+      low = sample(pair, plan, 0, horizon);
+      if (low.contact) return {PairRun::contact, 0, 0};
+    }
     while (true) {
       if (!ahead.empty()) {
         const Sample& next = ahead.back();
@@ -283,13 +314,20 @@ class MotionCheck {
       if (low.forward >= width) {
         const Scalar t = detail::advanced(low.t, low.forward);
         if (t > low.t && t < limit) {
-          if (ahead.empty() && low.forward >= before) {
-            // The reach grows: the pair moves apart, and a sample 0.8 of the reach past `t`
-            // likely reaches back to it, proving 1.8 reaches for one query. When it does not,
-            // the step to `t` follows, and the sample still proves part of what is left after
-            // it. (Queries per edge of bench/robot_motion.py's 1000: 0.4 of the reach 90.0, 0.6
-            // 88.4, 0.8 87.9, 1 89.8, 1.5 92.3.)
-            const Scalar far = detail::advanced(t, 0.8 * low.forward);
+          if (ahead.empty() && before < kInfinity) {
+            // A sample past `t` whose reach back meets it proves more than one at `t` for the
+            // same query. Near a configuration the reach changes roughly linearly in time: when
+            // it went from `before` to `forward` over the last step (ratio rho = forward /
+            // before, at most 1), the reach at a time f forward past `t` is about (1 - (1 + f)
+            // (1 - rho)) forward, which is f forward for f = rho / (2 - rho); 0.8 of that is
+            // sampled. A pair moving apart (rho = 1) is sampled 0.8 of the reach past `t`. When
+            // the sample does not reach back, the step to `t` follows, and the sample still
+            // proves part of what is left after it. (Queries per edge of bench/robot_motion.py's
+            // 1000: moving apart only, 0.4 of the reach 90.0, 0.6 88.4, 0.8 87.9, 1 89.8, 1.5
+            // 92.3, as of robotmotion31; later, with the closing pairs too, 47.2 -> 42.5 at 0.8
+            // of f, 42.7 at 0.6, 44.8 at 1.)
+            const Scalar rho = std::min<Scalar>(1, low.forward / before);
+            const Scalar far = detail::advanced(t, 0.8 * rho / (2 - rho) * low.forward);
             if (far > t && far < limit) {
               before = low.forward;
               ahead.push_back(sample(pair, plan, far, horizon));
@@ -333,8 +371,7 @@ class MotionCheck {
   Sample sample(const GeometryPair& pair, const PairPlan& plan, Scalar t, Scalar horizon) {
     configuration_at(t, &pair_joints_[static_cast<std::size_t>(plan.pair)]);
     place(pair);
-    // At t = 0 the plan's screens reach no farther than `first_contact`, which is within the
-    // horizon (else the pair is not advanced).
+    // t = 0 is sampled only where the plan's screens proved nothing there.
     if (t > 0) {
       const Scalar screened = detail::reach_over(
           screen(pair, pose_a_, pose_b_, plan.margin + plan.speed * (horizon - t)) - plan.margin,
@@ -344,28 +381,42 @@ class MotionCheck {
     const detail::LinkMotionBound::LocalSpeed local =
         bound_.local_speed(pair, links_, pose_a_, pose_b_);
     ++iterations_;
-    DistanceResult result = detail::signed_distance_of(*query_, model_, pair, pose_a_, pose_b_);
-    const bool exact_first = query_->options().method == Method::exact;
-    if (!result.certified && (!exact_first || plan.curved)) {
-      // Near contact a method can leave a pair unproven where another proves it (the exact
-      // method a polytope pair, the dual one a curved pair): ask it too rather than bisect down
-      // to times that cannot be split. After the exact method, the dual one is asked of curved
-      // pairs alone: on polytopes it proved nothing the exact one had left (1000 Panda edges of
-      // bench/robot_motion.py, the same verdicts and pairs) at some 50 times an exact query's
-      // cost.
-      ++iterations_;
-      if (!second_) {
-        QueryOptions options = query_->options();
-        options.method = options.method == Method::exact ? Method::dual : Method::exact;
-        second_.emplace(options);
-      }
-      DistanceResult second = detail::signed_distance_of(*second_, model_, pair, pose_a_, pose_b_);
-      if (second.certified) result = std::move(second);
-    }
+    // A distance, as time_of_impact asks: its lower bound is all the advancement needs, and a
+    // pair in contact is not measured further (its penetration depth).
+    DistanceResult result = detail::distance_of(*query_, model_, pair, pose_a_, pose_b_);
     const BodyBounds& a = model_.geometries()[pair.a].body.bounds();
     const BodyBounds& b = model_.geometries()[pair.b].body.bounds();
     // The motion's size for this pair: the sum of the two bounding balls' diameters.
     const Scalar threshold = options_.query.tolerance * 2 * (a.radius + b.radius);
+    if (!result.certified) {
+      // Near contact a method can leave a pair unproven where another proves it: ask it too
+      // rather than bisect down to times that cannot be split. After any method but exact, the
+      // exact one. After the exact method, only where the answer decides nothing (neither
+      // proven in contact nor proven farther apart than the threshold: an unproven lower bound
+      // still steps as a proven one would, as in time_of_impact): for a polytope pair its signed
+      // distance, whose penetration step proves the contacts its distance left unproven (3 of
+      // bench/robot_motion.py's 1000 edges uncertified without it, 0 with it, some 40 queries
+      // asked again; the dual method certifies them too at some 2.4 times the motion's whole
+      // cost), for a curved pair the dual method's distance.
+      const bool exact_first = query_->options().method == Method::exact;
+      const bool undecided = !(result.distance + plan.margin <= threshold) &&
+                             !(result.lower_bound - plan.margin > threshold);
+      if (!exact_first || undecided) {
+        ++iterations_;
+        DistanceResult second;
+        if (exact_first && !plan.curved) {
+          second = detail::signed_distance_of(*query_, model_, pair, pose_a_, pose_b_);
+        } else {
+          if (!second_) {
+            QueryOptions options = query_->options();
+            options.method = exact_first ? Method::dual : Method::exact;
+            second_.emplace(options);
+          }
+          second = detail::distance_of(*second_, model_, pair, pose_a_, pose_b_);
+        }
+        if (second.certified) result = std::move(second);
+      }
+    }
     Sample s{t, result.distance + plan.margin <= threshold, 0, 0};
     const Scalar apart = result.lower_bound - plan.margin;
     if (s.contact || !(apart > 0)) return s;
@@ -383,25 +434,32 @@ class MotionCheck {
   }
 
   // A proven lower bound on the pair's distance at `pose_a` and `pose_b` from its geometries'
-  // bounding balls, and from their boxes too (as robot_check screens) unless the balls' alone
-  // reaches `enough`; -inf when neither separates them.
-  Scalar screen(const GeometryPair& pair, const Pose& pose_a, const Pose& pose_b,
-                Scalar enough) const {
+  // bounding balls (as robot_check screens).
+  Scalar ball_separation(const GeometryPair& pair, const Pose& pose_a, const Pose& pose_b) const {
     const BodyBounds& a = model_.geometries()[pair.a].body.bounds();
     const BodyBounds& b = model_.geometries()[pair.b].body.bounds();
     const Vector3 ca = pose_a.rotation * a.centre + pose_a.translation;
     const Vector3 cb = pose_b.rotation * b.centre + pose_b.translation;
     const Scalar margin = 1e-12 * (ca.lpNorm<Eigen::Infinity>() + cb.lpNorm<Eigen::Infinity>() +
                                    a.radius + b.radius);
-    const Scalar balls = (ca - cb).norm() - a.radius - b.radius - margin;
+    return (ca - cb).norm() - a.radius - b.radius - margin;
+  }
+
+  // The same from the balls, and from their boxes too unless the balls' alone reaches `enough`;
+  // -inf when neither separates them.
+  Scalar screen(const GeometryPair& pair, const Pose& pose_a, const Pose& pose_b,
+                Scalar enough) const {
+    const Scalar balls = ball_separation(pair, pose_a, pose_b);
     if (balls > enough) return balls;
+    const BodyBounds& a = model_.geometries()[pair.a].body.bounds();
+    const BodyBounds& b = model_.geometries()[pair.b].body.bounds();
     return std::max(balls, detail::box_separation(a.box, pose_a, b.box, pose_b));
   }
 
-  // Every geometry's pose at the configuration of links_.
-  void place_all(std::vector<Pose>& world) const {
+  // Every geometry's pose at the configuration of `links`.
+  void place_all(const std::vector<Pose>& links, std::vector<Pose>& world) const {
     world.resize(model_.geometries().size());
-    for (std::size_t g = 0; g < world.size(); ++g) world[g] = placed(static_cast<int>(g));
+    for (std::size_t g = 0; g < world.size(); ++g) world[g] = placed(links, static_cast<int>(g));
   }
 
   // q(t) into q_, and the poses at it of every link, or of the children of `joints` alone, into
@@ -425,9 +483,11 @@ class MotionCheck {
     pose_b_ = placed(pair.b);
   }
 
-  Pose placed(int g) const {
+  Pose placed(int g) const { return placed(links_, g); }
+
+  Pose placed(const std::vector<Pose>& links, int g) const {
     const Geometry& geometry = model_.geometries()[static_cast<std::size_t>(g)];
-    return geometry.link < 0 ? geometry.origin : compose(links_[geometry.link], geometry.origin);
+    return geometry.link < 0 ? geometry.origin : compose(links[geometry.link], geometry.origin);
   }
 
   const RobotModel& model_;
