@@ -8,14 +8,6 @@ namespace swarmcollide::detail {
 
 namespace {
 
-// A bound on the rounding of `core - (r_a + r_b)` computed in the frame: each radius is exact in
-// the frame (a power-of-two scaling) but for underflow, half the smallest subnormal each; their
-// sum rounds by u of itself, the difference by u of its size. Twice that, and two subnormals.
-Scalar subtraction_rounding(const FramedPair& pair, Scalar core) {
-  const Scalar radii = pair.radius_a + pair.radius_b;
-  return 4 * kRoundoff * (std::abs(core) + radii) + 4 * std::numeric_limits<Scalar>::denorm_min();
-}
-
 // The rounding error of the sum `sum` computed as `a + b` (Knuth's TwoSum: exact).
 Scalar sum_error(Scalar a, Scalar b, Scalar sum) {
   const Scalar b_part = sum - a;
@@ -36,10 +28,6 @@ Scalar shifted_by_radii(const FramedPair& pair, Scalar core, Scalar outward) {
   const Scalar radii = pair.radius_a + pair.radius_b;
   const Scalar value = core - radii;
   if (!std::isfinite(core)) return value;
-  if (outward < 0 && pair.support_error > 0) {
-    return std::nextafter(value - subtraction_rounding(pair, core) - pair.support_error,
-                          -std::numeric_limits<Scalar>::infinity());
-  }
   const bool exact = sum_error(pair.radius_a, pair.radius_b, radii) == 0 &&
                      sum_error(core, -radii, value) == 0 && !underflowed(pair.radius_a) &&
                      !underflowed(pair.radius_b);

@@ -16,27 +16,37 @@ namespace swarmcollide::detail {
 /// support points may fall short: FramedPair::support_error).
 inline bool rounded(const FramedPair& pair) { return pair.adjusted; }
 
-/// The double next below the positive finite `x` (std::nextafter(x, 0)).
-inline Scalar next_towards_zero(Scalar x) {
+/// The double next below `x` (std::nextafter(x, -infinity)), from its bits where `x` is finite:
+/// the stop tests of curved pairs take it at every step, where libm's call was most of their cost.
+inline Scalar next_down(Scalar x) {
+  constexpr Scalar kLargest = std::numeric_limits<Scalar>::max();
+  if (!(std::abs(x) <= kLargest)) {
+    return std::nextafter(x, -std::numeric_limits<Scalar>::infinity());
+  }
+  if (x == 0) return -std::numeric_limits<Scalar>::denorm_min();
   std::uint64_t bits;
   std::memcpy(&bits, &x, sizeof bits);
-  --bits;
-  std::memcpy(&x, &bits, sizeof bits);
-  return x;
-}
-/// The double next above the positive `x` below the largest (std::nextafter(x, infinity)).
-inline Scalar next_away_from_zero(Scalar x) {
-  std::uint64_t bits;
-  std::memcpy(&bits, &x, sizeof bits);
-  ++bits;
+  // Sign and magnitude: a positive number's magnitude steps down, a negative one's up.
+  if (x > 0) {
+    --bits;
+  } else {
+    ++bits;
+  }
   std::memcpy(&x, &bits, sizeof bits);
   return x;
 }
 
+/// A bound on the rounding of `core - (r_a + r_b)` computed in the frame: each radius is exact in
+/// the frame (a power-of-two scaling) but for underflow, half the smallest subnormal each; their
+/// sum rounds by u of itself, the difference by u of its size. Twice that, and two subnormals.
+inline Scalar subtraction_rounding(const FramedPair& pair, Scalar core) {
+  const Scalar radii = pair.radius_a + pair.radius_b;
+  return 4 * kRoundoff * (std::abs(core) + radii) + 4 * std::numeric_limits<Scalar>::denorm_min();
+}
+
 /// `core - r_a - r_b` moved `outward` (-1 down, +1 up) by a bound on its rounding, for a rounded
-/// pair: what rounded_lower and rounded_upper return when a radius is not zero. A lower bound
-/// (outward -1) also loses `pair.support_error`: the separations of curved bodies are measured at
-/// support points that may fall that short of the support function.
+/// pair: what rounded_lower (but for a curved pair's finite bound, which it lowers itself) and
+/// rounded_upper return when a radius is not zero.
 Scalar shifted_by_radii(const FramedPair& pair, Scalar core, Scalar outward);
 
 /// A lower bound on the signed distance of the rounded bodies from `core_lower`, one on their
@@ -48,17 +58,12 @@ Scalar shifted_by_radii(const FramedPair& pair, Scalar core, Scalar outward);
 /// polyhedra.
 inline Scalar rounded_lower(const FramedPair& pair, Scalar core_lower) {
   if (!rounded(pair)) return core_lower;
-  // Two bodies without radii, one curved at least (curved-curved and curved-polyhedron pairs,
-  // whose stop tests come here at every step): shifted_by_radii's arithmetic inline, its
-  // subtraction of r_a + r_b = 0 left out (it is exact), and the next double down taken from the
-  // bits instead of libm's nextafter. The same double, a fifth of the instructions.
-  if (pair.radius_a == 0 && pair.radius_b == 0 && pair.support_error > 0) {
-    constexpr Scalar kLargest = std::numeric_limits<Scalar>::max();
-    const Scalar value = core_lower - (4 * kRoundoff * std::abs(core_lower) +
-                                       4 * std::numeric_limits<Scalar>::denorm_min()) -
-                         pair.support_error;
-    if (value > 0 && value <= kLargest) return next_towards_zero(value);
-    if (value < 0 && value > -kLargest) return -next_away_from_zero(-value);
+  // A curved pair's also loses `pair.support_error`: its separations are measured at support
+  // points that may fall that short of the support function. Here rather than in
+  // shifted_by_radii: its stop tests come here at every step.
+  if (pair.support_error > 0 && std::isfinite(core_lower)) {
+    const Scalar value = core_lower - (pair.radius_a + pair.radius_b);
+    return next_down(value - subtraction_rounding(pair, core_lower) - pair.support_error);
   }
   return shifted_by_radii(pair, core_lower, -1);
 }

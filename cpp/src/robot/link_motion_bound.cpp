@@ -129,6 +129,7 @@ void LinkMotionBound::set_motion(const Scalar* q0, const Scalar* q1,
     GeometryMotion& motion = geometries_[g];
     const int link = geometries[g].link;
     motion.speed.clear();
+    motion.speed_below.clear();
     motion.rounding = 0;
     if (link < 0) {
       motion.extent = origin_reach_[g];
@@ -214,6 +215,11 @@ void LinkMotionBound::set_motion(const Scalar* q0, const Scalar* q1,
     motion.total = 0;
     for (Scalar speed : motion.speed) motion.total += speed;
     motion.total *= kRoundUp;
+    motion.speed_below.assign(n, 0);
+    for (std::size_t k = 0; k < n; ++k) {
+      for (std::size_t m = k + 1; m < n; ++m) motion.speed_below[k] += motion.speed[m];
+      motion.speed_below[k] *= kRoundUp;
+    }
   }
 }
 
@@ -270,10 +276,6 @@ LinkMotionBound::LocalSpeed LinkMotionBound::local_speed(const GeometryPair& pai
     // The rounding of the placed frames (as pair_margin's), and the ball's radius.
     const Scalar slack = 64 * kUnit * static_cast<Scalar>(chain.size() + 1) * motion.extent;
     for (std::size_t k = shared; k < chain.size(); ++k) {
-      // The speed of the joints below joint k: they alone change the distance from its axis.
-      Scalar below = 0;
-      for (std::size_t m = k + 1; m < chain.size(); ++m) below += motion.speed[m];
-      below *= kRoundUp;
       const int j = chain[k];
       if (model_.driving_dof(j) < 0) continue;
       const Joint& joint = model_.joints()[j];
@@ -288,7 +290,7 @@ LinkMotionBound::LocalSpeed LinkMotionBound::local_speed(const GeometryPair& pai
         reach = off_axis(centre - frame.translation, axis) + bounds.radius + slack;
       }
       local.at += change_[j] * reach * rigid;
-      local.growth += change_[j] * rigid * below;
+      local.growth += change_[j] * rigid * motion.speed_below[k];
     }
   };
   add(pair.a, la, pose_a);
@@ -316,10 +318,8 @@ LinkMotionBound::DirectionalSpeed LinkMotionBound::directional_speed(
     for (std::size_t k = 0; k < chain.size(); ++k) {
       const int j = chain[k];
       if (model_.driving_dof(j) < 0) continue;
-      // The speed of the joints below: they alone change the points' distance from the axis.
-      Scalar below = 0;
-      for (std::size_t m = k + 1; m < chain.size(); ++m) below += motion.speed[m];
-      below *= kRoundUp;
+      // The joints below alone change the points' distance from the axis.
+      const Scalar below = motion.speed_below[k];
       const Joint& joint = model_.joints()[j];
       const Pose& frame = links[static_cast<std::size_t>(joint.child)];
       const Vector3 axis = (frame.rotation * joint.axis).normalized();

@@ -114,6 +114,9 @@ class LinkMotionBound {
     Scalar rounding = 0;
     // The sum of `speed`.
     Scalar total = 0;
+    // Per joint of the chain, the sum of the speeds of the joints below it (they alone change
+    // the points' distance from its axis), rounded up.
+    std::vector<Scalar> speed_below;
   };
 
   // Adds to `speed` what the first `shared` joints of link `link`'s chain (those both links of a
