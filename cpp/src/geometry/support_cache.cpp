@@ -14,15 +14,27 @@ constexpr std::size_t kKept = 16;
 
 struct Pool {
   std::vector<std::unique_ptr<SupportCache>> unused;
-  // False once the thread's pool is destroyed (at thread exit): a cache given back after that is
-  // freed.
-  bool alive = true;
-  ~Pool() { alive = false; }
 };
 
-Pool& pool() {
-  thread_local Pool p;
-  return p;
+// The thread's pool while it lives, null before its first use and after its destruction at
+// thread exit: a pointer has no destructor, so a cache given back by another thread-local's
+// destructor after the pool's reads null here (and is freed) rather than a destroyed object.
+thread_local Pool* current = nullptr;
+
+struct PoolOwner {
+  Pool pool;
+  PoolOwner() { current = &pool; }
+  ~PoolOwner() { current = nullptr; }
+};
+
+// The thread's pool, made on first use; null once it is destroyed.
+Pool* pool() {
+  thread_local bool made = false;
+  if (!made) {
+    made = true;
+    thread_local PoolOwner owner;
+  }
+  return current;
 }
 
 }  // namespace
@@ -41,10 +53,10 @@ void SupportCache::reset(const SupportCache& start) {
 }
 
 SharedSupportCache::SharedSupportCache(const SupportCache& start) {
-  Pool& p = pool();
-  if (p.alive && !p.unused.empty()) {
-    cache_ = p.unused.back().release();
-    p.unused.pop_back();
+  Pool* p = pool();
+  if (p && !p->unused.empty()) {
+    cache_ = p->unused.back().release();
+    p->unused.pop_back();
     cache_->reset(start);
   } else {
     cache_ = new SupportCache(start);
@@ -53,9 +65,9 @@ SharedSupportCache::SharedSupportCache(const SupportCache& start) {
 }
 
 void SharedSupportCache::release(SupportCache* cache) {
-  Pool& p = pool();
-  if (p.alive && p.unused.size() < kKept) {
-    p.unused.emplace_back(cache);
+  Pool* p = pool();
+  if (p && p->unused.size() < kKept) {
+    p->unused.emplace_back(cache);
   } else {
     delete cache;
   }
