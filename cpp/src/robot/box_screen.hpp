@@ -18,9 +18,12 @@ namespace swarmcollide::detail {
 /// by the axis' length (the separating axis test). A placed box's projection on an axis L is exact
 /// for any linear map (the rotation need not be orthonormal): centre (R^T L).c + L.t, half-width
 /// sum_i h_i |R_i . L|. The margin, 1e-12 of the magnitudes involved, is far above the rounding
-/// of these few products, sums and the division.
-inline Scalar box_separation(const Aabb& a, const Pose& pose_a, const Aabb& b,
-                             const Pose& pose_b) {
+/// of these few products, sums and the division. When the 6 box axes' separation alone already
+/// satisfies `enough`, it is returned without the 9 cross products (two thirds of the work): a
+/// caller that asks only whether the boxes are that far apart gets the same answer.
+template <typename Enough>
+Scalar box_separation(const Aabb& a, const Pose& pose_a, const Aabb& b, const Pose& pose_b,
+                      const Enough& enough) {
   const Vector3 half_a = (a.max - a.min) / 2;
   const Vector3 half_b = (b.max - b.min) / 2;
   const Vector3 centre_a = pose_a.rotation * ((a.max + a.min) / 2) + pose_a.translation;
@@ -43,10 +46,17 @@ inline Scalar box_separation(const Aabb& a, const Pose& pose_a, const Aabb& b,
     offer(ra.col(i));
     offer(rb.col(i));
   }
+  if (enough(best)) return best;
   for (int i = 0; i < 3; ++i) {
     for (int j = 0; j < 3; ++j) offer(ra.col(i).cross(rb.col(j)));
   }
   return best;
+}
+
+/// The same over all 15 axes.
+inline Scalar box_separation(const Aabb& a, const Pose& pose_a, const Aabb& b,
+                             const Pose& pose_b) {
+  return box_separation(a, pose_a, b, pose_b, [](Scalar) { return false; });
 }
 
 }  // namespace swarmcollide::detail
