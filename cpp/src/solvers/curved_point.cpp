@@ -120,6 +120,44 @@ Nearest cone_nearest(const Vector3& p, Scalar r, Scalar h) {
   return n;
 }
 
+// An ellipsoid of semi-axes `radii`: the nearest point q of a point p outside has p - q along the
+// surface's normal there, q_i = a_i^2 p_i / (a_i^2 + t) for the t > 0 at which q is on the
+// surface, sum (a_i p_i / (a_i^2 + t))^2 = 1 (the function falls and is convex in t, so Newton's
+// steps from below the root rise to it). The normal there is along p_i / (a_i^2 + t), and the
+// support point along it is q: the witness is that one support point.
+Nearest ellipsoid_nearest(const Vector3& p, const Vector3& a) {
+  Nearest n;
+  const Vector3 ap = a.cwiseProduct(p);
+  const Vector3 aa = a.cwiseProduct(a);
+  if (!(ap.cwiseQuotient(aa).squaredNorm() > 1)) {
+    n.inside = true;  // or on the surface, or not finite: the penetration solver decides
+    return n;
+  }
+  // The sum is at least |a p|^2 / (max a^2 + t)^2, so the root is at least |a p| - max a^2:
+  // the start, from which far points need a few steps rather than dozens.
+  Scalar t = std::max(Scalar(0), ap.norm() - aa.maxCoeff());
+  for (int step = 0; step < 64; ++step) {
+    Scalar value = -1;
+    Scalar slope = 0;
+    for (int k = 0; k < 3; ++k) {
+      const Scalar over = ap(k) / (aa(k) + t);
+      value += over * over;
+      slope -= 2 * over * over / (aa(k) + t);
+    }
+    if (!(value > 0) || !(slope < 0)) break;
+    const Scalar next = t - value / slope;
+    if (!(next > t)) break;
+    t = next;
+  }
+  Vector3 normal;
+  for (int k = 0; k < 3; ++k) normal(k) = p(k) / (aa(k) + t);
+  const Scalar length = normal.norm();
+  if (!(length > 0) || !std::isfinite(length)) return n;
+  n.normal = normal / length;
+  n.first = n.normal;
+  return n;
+}
+
 }  // namespace
 
 std::optional<Answer> point_against_curved(const FramedPair& pair, Goal goal,
@@ -130,21 +168,32 @@ std::optional<Answer> point_against_curved(const FramedPair& pair, Goal goal,
   const FramedBody& point = curved_a ? pair.b : pair.a;
   const CurvedShapeParameters parameters = shape.body().curved()->parameters();
   if (parameters.placed) return std::nullopt;
-  // The point in the shape's own frame (centred on its box: the shape's origin for these).
+  // The point in the shape's own frame (centred on its box: the shape's origin for these), and
+  // the shape, in units of its extent's power of two, so that no square in the closed forms
+  // under- or overflows.
+  const bool ellipsoid = parameters.kind == CurvedShapeParameters::Kind::ellipsoid;
+  const int unit = exponent_above(ellipsoid ? parameters.radii.maxCoeff()
+                                            : std::max(parameters.radius, parameters.half_length));
   const Vector3 p = point.vertex(0);
   const Vector3 turned = shape.local_direction(p - shape.offset());
   Vector3 local;
-  for (int k = 0; k < 3; ++k) local(k) = times_power_of_two(turned(k), shape.exponent());
+  for (int k = 0; k < 3; ++k) local(k) = times_power_of_two(turned(k), shape.exponent() - unit);
+  const Scalar r = times_power_of_two(parameters.radius, -unit);
+  const Scalar h = times_power_of_two(parameters.half_length, -unit);
   Nearest nearest;
   switch (parameters.kind) {
     case CurvedShapeParameters::Kind::cylinder:
-      nearest = cylinder_nearest(local, parameters.radius, parameters.half_length);
+      nearest = cylinder_nearest(local, r, h);
       break;
     case CurvedShapeParameters::Kind::cone:
-      nearest = cone_nearest(local, parameters.radius, parameters.half_length);
+      nearest = cone_nearest(local, r, h);
       break;
-    default:
-      return std::nullopt;
+    case CurvedShapeParameters::Kind::ellipsoid: {
+      Vector3 radii;
+      for (int k = 0; k < 3; ++k) radii(k) = times_power_of_two(parameters.radii(k), -unit);
+      nearest = ellipsoid_nearest(local, radii);
+      break;
+    }
   }
   if (nearest.inside) {
     if (goal != Goal::signed_distance) return std::nullopt;
