@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "../queries/verdict.hpp"
+#include "curved_point.hpp"
 #include "best_bounds.hpp"
 #include "direction_swarm.hpp"
 #include "distance_finish.hpp"
@@ -185,6 +186,12 @@ std::optional<Answer> overlap_first(const FramedPair& pair, const QueryOptions& 
 
 Answer solve_dual_from(const FramedPair& pair, const QueryOptions& options, Goal goal,
                        const DualStart* start) {
+  if (point_and_curved(pair)) {
+    if (std::optional<Answer> closed =
+            point_against_curved(pair, goal, options.exact.max_iterations)) {
+      return *closed;
+    }
+  }
   if (goal == Goal::signed_distance) {
     if (std::optional<Answer> settled = overlap_first(pair, options, start)) return *settled;
   }

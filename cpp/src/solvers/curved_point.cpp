@@ -1,0 +1,247 @@
+#include "curved_point.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "../geometry/normalise.hpp"
+#include "../queries/verdict.hpp"
+#include "exact_solver.hpp"
+#include "minkowski.hpp"
+#include "witness.hpp"
+
+namespace swarmcollide::detail {
+
+namespace {
+
+// What the closed form chooses, in the shape's own frame: the outward normal at the nearest
+// surface point, and that point as `weight` of the support point along `first` and `1 - weight`
+// of the one along `second` (both points of the shape, with kInward's pull).
+struct Nearest {
+  bool inside = false;
+  Vector3 normal = Vector3::Zero();
+  Vector3 first = Vector3::Zero();
+  Vector3 second = Vector3::Zero();
+  Scalar weight = 1;
+};
+
+// The unit vector along (x, y) in the plane, or the x axis on the z axis (every azimuth is as
+// near there).
+void azimuth(Scalar x, Scalar y, Scalar& ux, Scalar& uy, Scalar& rho) {
+  rho = std::hypot(x, y);
+  if (rho > 0) {
+    ux = x / rho;
+    uy = y / rho;
+  } else {
+    ux = 1;
+    uy = 0;
+  }
+}
+
+// The unit vector from `q` to `p`, or zero when they coincide (a point on the surface: no
+// normal, and the search answers).
+Vector3 away_from(const Vector3& p, const Vector3& q) {
+  const Vector3 between = p - q;
+  const Scalar length = between.norm();
+  return length > 0 ? Vector3(between / length) : Vector3::Zero();
+}
+
+// A cylinder of radius r from z = -h to h: beside its side, the point at the same height on the
+// generator (between the two rim points of the point's azimuth); above or below a cap, the point
+// straight above on it (between the rim points along and against the azimuth); past a rim, the
+// rim point.
+Nearest cylinder_nearest(const Vector3& p, Scalar r, Scalar h) {
+  Nearest n;
+  Scalar ux, uy, rho;
+  azimuth(p.x(), p.y(), ux, uy, rho);
+  const bool side = rho > r;
+  const bool beyond_cap = std::abs(p.z()) > h;
+  const Scalar s = p.z() < 0 ? -1 : 1;
+  if (!side && !beyond_cap) {
+    n.inside = true;
+    return n;
+  }
+  if (side && !beyond_cap) {
+    n.normal = {ux, uy, 0};
+    n.first = {ux, uy, 1};
+    n.second = {ux, uy, -1};
+    n.weight = std::clamp((p.z() + h) / (2 * h), Scalar(0), Scalar(1));
+  } else if (!side) {
+    n.normal = {0, 0, s};
+    n.first = {ux, uy, s};
+    n.second = {-ux, -uy, s};
+    n.weight = std::clamp((1 + rho / r) / 2, Scalar(0), Scalar(1));
+  } else {
+    n.normal = away_from(p, Vector3(r * ux, r * uy, s * h));
+    n.first = {ux, uy, s};
+  }
+  return n;
+}
+
+// A cone of base radius r at z = -h, apex at (0, 0, h), in the half-plane of the point's azimuth
+// (rho, z): the triangle (0, -h), (r, -h), (0, h). Below the base disk, the point straight under
+// on it; else the nearest point of the slant (rim to apex): inside it, along the slant's normal;
+// at its ends, the rim point or the apex.
+Nearest cone_nearest(const Vector3& p, Scalar r, Scalar h) {
+  Nearest n;
+  Scalar ux, uy, rho;
+  azimuth(p.x(), p.y(), ux, uy, rho);
+  const Scalar z = p.z();
+  const Vector3 rim_direction(ux, uy, -1);
+  const Vector3 apex_direction(0, 0, 1);
+  if (z < -h && rho <= r) {
+    n.normal = {0, 0, -1};
+    n.first = rim_direction;
+    n.second = {-ux, -uy, -1};
+    n.weight = std::clamp((1 + rho / r) / 2, Scalar(0), Scalar(1));
+    return n;
+  }
+  // Inside: above the base and below the slant's line, 2h rho < r (h - z).
+  if (z > -h && 2 * h * rho < r * (h - z)) {
+    n.inside = true;
+    return n;
+  }
+  // The slant from the rim (r, -h) along (-r, 2h) to the apex.
+  const Scalar along = -r * (rho - r) + 2 * h * (z + h);
+  const Scalar length_squared = r * r + 4 * h * h;
+  if (along <= 0) {
+    n.normal = away_from(p, Vector3(r * ux, r * uy, -h));
+    n.first = rim_direction;
+  } else if (along >= length_squared) {
+    n.normal = away_from(p, Vector3(0, 0, h));
+    n.first = apex_direction;
+  } else {
+    const Scalar slant = std::sqrt(length_squared);
+    n.normal = Vector3(2 * h * ux, 2 * h * uy, r) / slant;
+    n.first = rim_direction;
+    n.second = apex_direction;
+    n.weight = 1 - along / length_squared;
+  }
+  return n;
+}
+
+// An ellipsoid of semi-axes `radii`: the nearest point q of a point p outside has p - q along the
+// surface's normal there, q_i = a_i^2 p_i / (a_i^2 + t) for the t > 0 at which q is on the
+// surface, sum (a_i p_i / (a_i^2 + t))^2 = 1 (the function falls and is convex in t, so Newton's
+// steps from below the root rise to it). The normal there is along p_i / (a_i^2 + t), and the
+// support point along it is q: the witness is that one support point.
+Nearest ellipsoid_nearest(const Vector3& p, const Vector3& a) {
+  Nearest n;
+  const Vector3 ap = a.cwiseProduct(p);
+  const Vector3 aa = a.cwiseProduct(a);
+  if (!(ap.cwiseQuotient(aa).squaredNorm() > 1)) {
+    n.inside = true;  // or on the surface, or not finite: the penetration solver decides
+    return n;
+  }
+  // The sum is at least |a p|^2 / (max a^2 + t)^2, so the root is at least |a p| - max a^2:
+  // the start, from which far points need a few steps rather than dozens.
+  Scalar t = std::max(Scalar(0), ap.norm() - aa.maxCoeff());
+  for (int step = 0; step < 64; ++step) {
+    Scalar value = -1;
+    Scalar slope = 0;
+    for (int k = 0; k < 3; ++k) {
+      const Scalar over = ap(k) / (aa(k) + t);
+      value += over * over;
+      slope -= 2 * over * over / (aa(k) + t);
+    }
+    if (!(value > 0) || !(slope < 0)) break;
+    const Scalar next = t - value / slope;
+    if (!(next > t)) break;
+    t = next;
+  }
+  Vector3 normal;
+  for (int k = 0; k < 3; ++k) normal(k) = p(k) / (aa(k) + t);
+  const Scalar length = normal.norm();
+  if (!(length > 0) || !std::isfinite(length)) return n;
+  n.normal = normal / length;
+  n.first = n.normal;
+  return n;
+}
+
+}  // namespace
+
+std::optional<Answer> point_against_curved(const FramedPair& pair, Goal goal,
+                                           int max_iterations) {
+  if (!point_and_curved(pair)) return std::nullopt;
+  const bool curved_a = pair.a.curved();
+  const FramedBody& shape = curved_a ? pair.a : pair.b;
+  const FramedBody& point = curved_a ? pair.b : pair.a;
+  const CurvedShapeParameters parameters = shape.body().curved()->parameters();
+  if (parameters.placed) return std::nullopt;
+  // The point in the shape's own frame (centred on its box: the shape's origin for these), and
+  // the shape, in units of its extent's power of two, so that no square in the closed forms
+  // under- or overflows.
+  const bool ellipsoid = parameters.kind == CurvedShapeParameters::Kind::ellipsoid;
+  const int unit = exponent_above(ellipsoid ? parameters.radii.maxCoeff()
+                                            : std::max(parameters.radius, parameters.half_length));
+  const Vector3 p = point.vertex(0);
+  const Vector3 turned = shape.local_direction(p - shape.offset());
+  Vector3 local;
+  for (int k = 0; k < 3; ++k) local(k) = times_power_of_two(turned(k), shape.exponent() - unit);
+  const Scalar r = times_power_of_two(parameters.radius, -unit);
+  const Scalar h = times_power_of_two(parameters.half_length, -unit);
+  Nearest nearest;
+  switch (parameters.kind) {
+    case CurvedShapeParameters::Kind::cylinder:
+      nearest = cylinder_nearest(local, r, h);
+      break;
+    case CurvedShapeParameters::Kind::cone:
+      nearest = cone_nearest(local, r, h);
+      break;
+    case CurvedShapeParameters::Kind::ellipsoid: {
+      Vector3 radii;
+      for (int k = 0; k < 3; ++k) radii(k) = times_power_of_two(parameters.radii(k), -unit);
+      nearest = ellipsoid_nearest(local, radii);
+      break;
+    }
+  }
+  if (nearest.inside) {
+    if (goal != Goal::signed_distance) return std::nullopt;
+    // The closed-form depth of the point in the shape proves the overlap and bounds its depth;
+    // the separation along the nearest surface's normal bounds it the other way.
+    Answer overlap = exact_penetration(pair, max_iterations, pair.b.offset() - pair.a.offset(),
+                                       std::numeric_limits<Scalar>::infinity());
+    overlap.intersection_proven = overlap.upper + kFrameRounding < 0;
+    return overlap;
+  }
+  if (!(nearest.normal.squaredNorm() > 0)) return std::nullopt;
+  // The witness on the shape: the combination of its support points.
+  const int first = shape.local_support_index(nearest.first);
+  Witness w;
+  std::array<int, Witness::kCapacity>& on_shape = curved_a ? w.ia : w.ib;
+  std::array<int, Witness::kCapacity>& on_point = curved_a ? w.ib : w.ia;
+  on_shape[0] = first;
+  on_point[0] = 0;
+  w.weights[0] = 1;
+  w.size = 1;
+  Vector3 witness = shape.vertex(first);
+  if (nearest.weight < 1) {
+    const int second = shape.local_support_index(nearest.second);
+    if (second != first) {
+      on_shape[1] = second;
+      on_point[1] = 0;
+      w.weights[0] = nearest.weight;
+      w.weights[1] = 1 - nearest.weight;
+      w.size = 2;
+      witness = nearest.weight * witness + (1 - nearest.weight) * shape.vertex(second);
+    }
+  }
+  w.point_a = curved_a ? witness : p;
+  w.point_b = curved_a ? p : witness;
+  w.distance = (w.point_b - w.point_a).norm();
+  // The normal in the frame, from A to B.
+  Vector3 normal = shape.rotated() ? Vector3(shape.rotation() * nearest.normal) : nearest.normal;
+  normal.normalize();
+  if (!curved_a) normal = -normal;
+  // Measured before the weights are made: a support point it adds is counted among the shape's.
+  const Scalar lower = separation(pair.a, pair.b, normal);
+  Answer answer = answer_from_witness(pair, w);
+  answer.lower = lower;
+  answer.direction = normal;
+  answer.iterations = 1;
+  answer.evaluations = w.size + 1;
+  if (!goal_reached(pair, goal, answer.lower, answer.upper, false)) return std::nullopt;
+  return answer;
+}
+
+}  // namespace swarmcollide::detail
