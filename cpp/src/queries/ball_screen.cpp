@@ -193,12 +193,15 @@ std::optional<ScreenVerdict> apart(Scalar lower, const Vector3& direction,
   return verdict;
 }
 
-// Where the centres of the bodies' boxes land, as both screens read them.
+// Where the centres of the bodies' boxes land, as both screens read them, and the first terms of
+// their margins' sums, |c_a|_1 + |t_a|_1 + |c_b|_1 + |t_b|_1 (c a box centre, t a translation),
+// added in that order as the margins add them (a margin's sum then goes on from it).
 struct Centres {
   Vector3 a;
   Vector3 b;
   Vector3 between;
   Scalar length;
+  Scalar reach;
 };
 
 Centres centres_of(const ConvexPolyhedron& a, const Pose& pose_a, const ConvexPolyhedron& b,
@@ -208,6 +211,8 @@ Centres centres_of(const ConvexPolyhedron& a, const Pose& pose_a, const ConvexPo
   c.b = pose_b.rotation * b.bounds().centre + pose_b.translation;
   c.between = c.b - c.a;
   c.length = length(c.between);
+  c.reach = a.bounds().centre.lpNorm<1>() + pose_a.translation.lpNorm<1>() +
+            b.bounds().centre.lpNorm<1>() + pose_b.translation.lpNorm<1>();
   return c;
 }
 
@@ -224,10 +229,7 @@ std::optional<ScreenVerdict> by_balls(const ConvexPolyhedron& a, const Pose& pos
   // all is more than twice that (the 1-norms bound the lengths and do not underflow; the last
   // term covers products that do).
   const Scalar margin =
-      16 * kRoundoff *
-          (a.bounds().centre.lpNorm<1>() + pose_a.translation.lpNorm<1>() +
-           b.bounds().centre.lpNorm<1>() + pose_b.translation.lpNorm<1>() + centres + outer) +
-      16 * kUnderflow;
+      16 * kRoundoff * (at.reach + centres + outer) + 16 * kUnderflow;
   if (!std::isfinite(margin)) return std::nullopt;
   const Scalar lower = centres - outer - margin;
   if (lower > world_tolerance(a, b, centres, relative_tolerance)) {
@@ -282,11 +284,7 @@ std::optional<ScreenVerdict> apart_along(const Vector3& axis, const ConvexPolyhe
   // the last two sums add 2 u of their terms. 32 u of it all is more than twice that (the last
   // term covers products that underflow).
   const Scalar margin =
-      32 * kRoundoff *
-          (a.bounds().centre.lpNorm<1>() + pose_a.translation.lpNorm<1>() +
-           b.bounds().centre.lpNorm<1>() + pose_b.translation.lpNorm<1>() + centres +
-           balls_a.outer + balls_b.outer) +
-      16 * kUnderflow;
+      32 * kRoundoff * (at.reach + centres + balls_a.outer + balls_b.outer) + 16 * kUnderflow;
   // Dividing by |axis| <= 1 + 5 u turns the separation along the axis into a distance; a rounded
   // body's radius is then taken off (rounded up), and the difference's rounding (down).
   const Scalar radii = (a.radius() + b.radius()) * (1 + 4 * kRoundoff);

@@ -15,6 +15,7 @@
 #include "../geometry/framed_body.hpp"
 #include "ball_screen.hpp"
 #include "dispatch.hpp"
+#include "row_answer.hpp"
 #include "swarmcollide/detail/random.hpp"
 #include "swarmcollide/queries/query.hpp"
 
@@ -47,10 +48,14 @@ class RowWriter {
         part_a_(batch.part_a.data()),
         part_b_(batch.part_b.data()) {}
 
-  // A convex pair's answer (its parts are 0).
-  void write(std::size_t row, const DistanceResult& r) const { write(row, r, 0, 0); }
   void write(std::size_t row, const CompoundResult& r) const {
     write(row, static_cast<const DistanceResult&>(r), r.part_a, r.part_b);
+  }
+  // A convex pair's answer by a solver.
+  void write(std::size_t row, const detail::RowAnswer& r) const {
+    const detail::FinishedValues& v = r.values;
+    write(row, v.distance, v.lower_bound, v.point_a, v.point_b, v.direction, v.colliding,
+          v.certified, v.iterations, r.escalated, 0, 0);
   }
   // A verdict proven without a solver: certified, no iterations.
   void write(std::size_t row, const detail::ScreenVerdict& v) const {
@@ -284,7 +289,8 @@ class RowChunks {
 // ahead). A thread's own copy of the sides (see RowWriter).
 class PosesAhead {
  public:
-  PosesAhead(const SidePoses& a, const SidePoses& b) : a_(a), b_(b) {}
+  PosesAhead(const SidePoses& a, const SidePoses& b)
+      : a_(a), b_(b), posed_a_(!a.empty()), posed_b_(!b.empty()) {}
 
   // Starts on the rows [start, end).
   void start(std::size_t start, std::size_t end) {
@@ -302,20 +308,45 @@ class PosesAhead {
  private:
   static constexpr std::size_t kAhead = 4;
 
+  // A side without poses keeps the identity its slots start with.
   void read(std::size_t row) {
-    a_ahead_[row % kAhead] = a_.at(row);
-    b_ahead_[row % kAhead] = b_.at(row);
+    if (posed_a_) a_ahead_[row % kAhead] = a_.at(row);
+    if (posed_b_) b_ahead_[row % kAhead] = b_.at(row);
   }
 
   SidePoses a_;
   SidePoses b_;
+  bool posed_a_;
+  bool posed_b_;
   std::size_t end_ = 0;
   Pose a_ahead_[kAhead];
   Pose b_ahead_[kAhead];
 };
 
+// The options of a row: the validated options shared by the rows, seeded for the row
+// (pair_seed) only when a solver is to read them. A row that the screens settle reads no seed,
+// and the seed's hash was a few percent of such a row's cost.
+class RowOptions {
+ public:
+  RowOptions(QueryOptions& options, std::uint64_t seed, std::uint64_t index)
+      : options_(options), seed_(seed), index_(index) {}
+  /// The options for what reads no seed (the method, the tolerance): their seed is another
+  /// row's.
+  const QueryOptions& unseeded() const { return options_; }
+  /// The options seeded for this row, for a solver.
+  const QueryOptions& seeded() const {
+    options_.seed = pair_seed(seed_, index_);
+    return options_;
+  }
+
+ private:
+  QueryOptions& options_;
+  std::uint64_t seed_;
+  std::uint64_t index_;
+};
+
 // Runs `answer(i, options_i, pose_a_i, pose_b_i)`, which writes row i of the batch, for every
-// pair, where options_i are the validated options seeded for pair i and `answer` is the thread's
+// pair, where options_i are the validated options to be seeded for pair i (RowOptions) and `answer` is the thread's
 // own `make_answer(RowWriter(batch))` (with the thread's state), on a pool of threads that take
 // pairs in chunks (RowChunks), in increasing order: when a pair fails, every pair before it has
 // been taken, so the error of the lowest failing index is found whatever the threads. Everything
@@ -356,8 +387,7 @@ BatchResult run_batch(Kind kind, std::size_t count, const QueryOptions& options,
           const Pose& pose_b = ahead.b(i);
           if (posed_a) validate_pose(pose_a, "poses_a", index);
           if (posed_b) validate_pose(pose_b, "poses_b", index);
-          pair_options.seed = pair_seed(seed, index);
-          answer(i, pair_options, pose_a, pose_b);
+          answer(i, RowOptions(pair_options, seed, index), pose_a, pose_b);
           ahead.done(i);
         } catch (...) {
           failure.offer(i);
@@ -405,12 +435,15 @@ class BallsCache {
 // needs neither a frame nor a solver.
 class ConvexRows {
  public:
-  ConvexRows(Kind kind, const RowWriter& rows, bool escalate, bool with_inner)
-      : kind_(kind), rows_(rows), escalate_(escalate), balls_a_(with_inner),
+  // `solve` is the solver of the batch's method (solver_for), looked up once.
+  ConvexRows(Kind kind, const RowWriter& rows, bool escalate, bool with_inner,
+             detail::Solver solve)
+      : kind_(kind), rows_(rows), escalate_(escalate), solve_(solve), balls_a_(with_inner),
         balls_b_(with_inner) {}
 
-  void answer(std::size_t row, const QueryOptions& options, const ConvexPolyhedron& a,
+  void answer(std::size_t row, const RowOptions& row_options, const ConvexPolyhedron& a,
               const Pose& pose_a, const ConvexPolyhedron& b, const Pose& pose_b) {
+    const QueryOptions& options = row_options.unseeded();
     // Before the screens, which would settle a curved pair for a method that cannot answer it.
     detail::require_shapes(options.method, a, b);
     if (kind_ == Kind::collide) {
@@ -422,14 +455,15 @@ class ConvexRows {
     }
     const detail::FramedPair pair =
         detail::frame_validated_pair(a, pose_a, b, pose_b, options.tolerance);
-    rows_.write(row, detail::answer_pair(options, asked(kind_).goal, pair, escalate_,
-                                         detail::Weights::none));
+    rows_.write(row, detail::answer_row(row_options.seeded(), solve_, asked(kind_).goal, pair,
+                                        escalate_));
   }
 
  private:
   Kind kind_;
   RowWriter rows_;
   bool escalate_;
+  detail::Solver solve_;
   BallsCache balls_a_;
   BallsCache balls_b_;
 };
@@ -440,10 +474,11 @@ BatchResult convex_batch(Kind kind, const BatchBodies<ConvexPolyhedron>& as,
   return run_batch(kind, row_count(as, bs, poses), options, settings, poses,
                    [&](const RowWriter& writer) {
                      // Each thread keeps the balls of the bodies it last met.
-                     return [rows = ConvexRows(kind, writer, settings.escalate, true),
+                     return [rows = ConvexRows(kind, writer, settings.escalate, true,
+                                               detail::solver_for(options.method)),
                              a = BodyRows<ConvexPolyhedron>(as),
                              b = BodyRows<ConvexPolyhedron>(bs)](
-                                std::size_t i, const QueryOptions& pair_options,
+                                std::size_t i, const RowOptions& pair_options,
                                 const Pose& pose_a, const Pose& pose_b) mutable {
                        rows.answer(i, pair_options, a[i], pose_a, b[i], pose_b);
                      };
@@ -457,9 +492,10 @@ BatchResult compound_batch(Kind kind, const BatchBodies<CompoundBody>& as,
                    [&](const RowWriter& writer) {
                      return [writer, goal = asked(kind).goal, escalate = settings.escalate,
                              a = BodyRows<CompoundBody>(as), b = BodyRows<CompoundBody>(bs)](
-                                std::size_t i, const QueryOptions& pair_options,
+                                std::size_t i, const RowOptions& pair_options,
                                 const Pose& pose_a, const Pose& pose_b) {
-                       writer.write(i, detail::answer_compound(pair_options, goal, escalate, a[i],
+                       writer.write(i, detail::answer_compound(pair_options.seeded(), goal,
+                                                               escalate, a[i],
                                                                pose_a, b[i], pose_b));
                      };
                    });
@@ -482,13 +518,16 @@ BatchResult stack_batch(Kind kind, const VertexStack& as, const VertexStack& bs,
   check_same_length(as.count, bs.count);
   return run_batch(kind, as.count, options, settings, poses, [&](const RowWriter& writer) {
     return [writer, kind, as, bs, first_index = settings.first_index,
-            escalate = settings.escalate](std::size_t i, const QueryOptions& pair_options,
-                                          const Pose& pose_a, const Pose& pose_b) {
+            escalate = settings.escalate,
+            solve = detail::solver_for(options.method)](
+               std::size_t i, const RowOptions& pair_options, const Pose& pose_a,
+               const Pose& pose_b) {
       const ConvexPolyhedron a = body(as, i, first_index);
       const ConvexPolyhedron b = body(bs, i, first_index);
       // Every row's bodies are new (and may reuse the last row's addresses): no ball is kept, and
       // no hull is built for an inner ball.
-      ConvexRows(kind, writer, escalate, false).answer(i, pair_options, a, pose_a, b, pose_b);
+      ConvexRows(kind, writer, escalate, false, solve)
+          .answer(i, pair_options, a, pose_a, b, pose_b);
     };
   });
 }

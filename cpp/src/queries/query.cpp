@@ -7,6 +7,7 @@
 
 #include "../geometry/framed_body.hpp"
 #include "dispatch.hpp"
+#include "row_answer.hpp"
 #include "swarmcollide/queries/methods.hpp"
 #include "verdict.hpp"
 
@@ -66,6 +67,25 @@ DistanceResult answer_pair(const QueryOptions& options, Goal goal, const FramedP
   DistanceResult decided = answer(exact, goal, pair, weights);
   if (options.method != Method::exact) decided.escalated_from = options.method;
   return decided;
+}
+
+RowAnswer answer_row(const QueryOptions& options, Solver solve, Goal goal, const FramedPair& pair,
+                     bool escalate) {
+  Answer found = solve(pair, options, goal);
+  RowAnswer row;
+  row.escalated = found.answered_by.has_value() && *found.answered_by != options.method;
+  row.values = finish_values(pair, found, goal);
+  if (goal != Goal::verdict || row.values.certified || !escalate) return row;
+  // As answer_pair escalates.
+  QueryOptions exact;
+  exact.method = Method::exact;
+  exact.tolerance = options.tolerance;
+  exact.exact.max_iterations = std::max(options.exact.max_iterations, exact.exact.max_iterations);
+  Answer decided = solver_for(Method::exact)(pair, exact, goal);
+  row.escalated = options.method != Method::exact ||
+                  (decided.answered_by.has_value() && *decided.answered_by != Method::exact);
+  row.values = finish_values(pair, decided, goal);
+  return row;
 }
 
 }  // namespace detail

@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "rounded.hpp"
+#include "row_answer.hpp"
 
 namespace swarmcollide::detail {
 
@@ -37,8 +38,7 @@ bool apart_after_motion(Scalar lower, Scalar size, Scalar moved, Scalar threshol
   return distance - margin > contact;
 }
 
-DistanceResult finish_result(const FramedPair& pair, Answer&& answer, Method requested, Goal goal,
-                             Weights weights) {
+FinishedValues finish_values(const FramedPair& pair, Answer& answer, Goal goal) {
   // From here on the answer is the rounded bodies' (the same for two polyhedra).
   if (rounded(pair)) round_answer(pair, goal, answer);
   // A distance is never negative, so zero bounds it below whatever the solver found; and in the
@@ -47,7 +47,7 @@ DistanceResult finish_result(const FramedPair& pair, Answer&& answer, Method req
   const bool apart = apart_proven(pair, answer.lower);
   const bool close = close_proven(pair, answer.upper, answer.intersection_proven);
   const bool exact = proven_value(pair, answer.lower, answer.upper);
-  DistanceResult r;
+  FinishedValues r;
   const Frame& frame = pair.frame;
   r.distance = frame.length_to_world(answer.upper);
   r.lower_bound = frame.length_to_world(answer.lower);
@@ -58,15 +58,8 @@ DistanceResult finish_result(const FramedPair& pair, Answer&& answer, Method req
   }
   r.point_a = frame.point_to_world(answer.point_a);
   r.point_b = frame.point_to_world(answer.point_b);
-  if (weights == Weights::given) {
-    r.weights_a = pair.a.given_weights(std::move(answer.weights_a));
-    r.weights_b = pair.b.given_weights(std::move(answer.weights_b));
-  }
   r.direction = answer.direction;
   r.iterations = answer.iterations;
-  r.evaluations = answer.evaluations;
-  r.history = std::move(answer.history);
-  for (Scalar& h : r.history) h = frame.length_to_world(h);
   // Unproven, the verdict errs on the side of contact: bodies not shown apart may touch.
   r.colliding = !apart;
   // A distance or a signed distance is certified only when its bounds also enclose it to the
@@ -74,8 +67,30 @@ DistanceResult finish_result(const FramedPair& pair, Answer&& answer, Method req
   r.certified = (apart || close) &&
                 reached(pair, goal, answer.lower, answer.upper, answer.intersection_proven);
   // For a signed distance, contact alone does not settle the depth.
-  const bool settled = exact || (close && goal != Goal::signed_distance);
-  r.status = settled ? SolverStatus::converged : SolverStatus::max_iterations;
+  r.settled = exact || (close && goal != Goal::signed_distance);
+  return r;
+}
+
+DistanceResult finish_result(const FramedPair& pair, Answer&& answer, Method requested, Goal goal,
+                             Weights weights) {
+  const FinishedValues values = finish_values(pair, answer, goal);
+  DistanceResult r;
+  r.distance = values.distance;
+  r.lower_bound = values.lower_bound;
+  r.point_a = values.point_a;
+  r.point_b = values.point_b;
+  if (weights == Weights::given) {
+    r.weights_a = pair.a.given_weights(std::move(answer.weights_a));
+    r.weights_b = pair.b.given_weights(std::move(answer.weights_b));
+  }
+  r.direction = values.direction;
+  r.iterations = values.iterations;
+  r.evaluations = answer.evaluations;
+  r.history = std::move(answer.history);
+  for (Scalar& h : r.history) h = pair.frame.length_to_world(h);
+  r.colliding = values.colliding;
+  r.certified = values.certified;
+  r.status = values.settled ? SolverStatus::converged : SolverStatus::max_iterations;
   r.method = answer.answered_by.value_or(requested);
   if (r.method != requested) r.escalated_from = requested;
   return r;
