@@ -12,6 +12,12 @@ contenders on a shared machine where wall-clock cannot.
 With ``--curved`` it runs ``swarmcollide-callgrind-curved`` (bench/callgrind_curved.cpp) instead:
 signed distances of curved shapes (bench/curved_coal.py's pairs of kinds) against coal's
 primitives, apart and overlapping, one row per pair of kinds.
+
+With ``--profile "n=8 overlap distance"`` it also prints where one row's instructions go: each
+function's inclusive instructions per query for ours (``callgrind_annotate --inclusive=yes`` on
+that row's dump, the library's functions and Eigen's left out), the largest first.
+
+    .venv/bin/python bench/callgrind_query.py --sizes 8 --profile "n=8 overlap distance"
 """
 
 from __future__ import annotations
@@ -25,9 +31,32 @@ import tempfile
 from pathlib import Path
 
 
-def counts(binary: str, arguments: list[str]) -> dict[tuple[str, str, str, str], float]:
+def profile(dump: Path, calls: int, top: int) -> list[tuple[float, str]]:
+    """The `top` largest inclusive costs per query in one callgrind dump, by function (the
+    program's own, not the C and C++ libraries' or Eigen's). A binary with debug information
+    splits a function's cost by the file each inlined line came from: the parts are summed."""
+    text = subprocess.run(["callgrind_annotate", "--inclusive=yes", "--threshold=100", str(dump)],
+                          check=True, capture_output=True, text=True).stdout
+    totals: dict[str, int] = {}
+    for line in text.splitlines():
+        match = re.match(r"^\s*([\d,]+) \(\s*[\d.]+%\)\s+(?:[^\s:]*:(?!:))?(.*?) \[", line)
+        if match is None:
+            continue
+        name = match.group(2).replace("(anonymous namespace)::", "")
+        name = re.sub(r"\(.*", "", name).replace("swarmcollide::detail::", "")
+        name = re.sub(r"^void ", "", name)
+        if name.startswith(("std::", "Eigen::", "main", "(below main)", "0x", "__")) or not name:
+            continue
+        totals[name] = totals.get(name, 0) + int(match.group(1).replace(",", ""))
+    ranked = sorted(totals.items(), key=lambda item: -item[1])
+    return [(cost / calls, name) for name, cost in ranked[:top]]
+
+
+def counts(binary: str, arguments: list[str], profiled: str | None = None,
+           top: int = 25) -> dict[tuple[str, str, str, str], float]:
     """Instructions per query of each (workload, proximity, query, contender) the binary dumped
-    (the workload is "n=N" for polytopes, "pair=KINDS" for curved shapes)."""
+    (the workload is "n=N" for polytopes, "pair=KINDS" for curved shapes); with `profiled`
+    ("WORKLOAD PROXIMITY QUERY"), that row's largest functions for ours are printed too."""
     with tempfile.TemporaryDirectory() as directory:
         out = Path(directory) / "callgrind.out"
         subprocess.run(
@@ -52,6 +81,12 @@ def counts(binary: str, arguments: list[str]) -> dict[tuple[str, str, str, str],
                 continue
             n, proximity, query, contender, calls = label.group(1).split()
             found[(n, proximity, query, contender)] = int(total.group(1)) / int(calls)
+            if profiled is not None and contender == "ours" and \
+                    profiled.split() == [n, proximity, query]:
+                print(f"{profiled}, ours: inclusive instructions per query")
+                for cost, name in profile(dump, int(calls), top):
+                    print(f"{cost:10.0f}  {name}")
+                print()
         return found
 
 
@@ -64,11 +99,16 @@ def main() -> None:
     parser.add_argument("--pairs", type=int, default=20)
     parser.add_argument("--repeats", type=int, default=5)
     parser.add_argument("--json", help="write the counts here")
+    parser.add_argument("--profile", metavar="ROW",
+                        help='also print where ours spends one row\'s instructions, by function '
+                             '(e.g. "n=8 overlap distance")')
+    parser.add_argument("--top", type=int, default=25, help="functions --profile prints")
     args = parser.parse_args()
     driver = "swarmcollide-callgrind-curved" if args.curved else "swarmcollide-callgrind-query"
     binary = args.binary or f"build/bench/bench/{driver}"
     sizes = [] if args.curved else ["--sizes", args.sizes]
-    found = counts(binary, [*sizes, "--pairs", str(args.pairs), "--repeats", str(args.repeats)])
+    found = counts(binary, [*sizes, "--pairs", str(args.pairs), "--repeats", str(args.repeats)],
+                   args.profile, args.top)
     rows = []
     print(f"{'workload':>20} {'proximity':9} {'query':16} {'ours':>8} {'batch':>8} {'coal':>8} "
           f"{'ours/coal':>9} {'batch/coal':>10}")
