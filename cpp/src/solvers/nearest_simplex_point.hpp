@@ -37,12 +37,10 @@ constexpr Scalar kFlat = 1e-8;
 
 // The nearest point found so far: a face of the simplex (`size` of its points, by index,
 // increasing) with weights on them, and the squared norm of their combination. Candidates are
-// offered to it in place: returning faces by value costs more than the arithmetic here. Only the
-// first `size` indices and weights are ever read, so they start unset (zeroing them costs a tenth
-// of a segment's offer).
+// offered to it in place: returning faces by value costs more than the arithmetic here.
 struct Nearest {
-  std::array<int, 4> index;
-  std::array<Scalar, 4> weight;
+  std::array<int, 4> index{};
+  std::array<Scalar, 4> weight{};
   int size = 0;
   Scalar norm2 = std::numeric_limits<Scalar>::infinity();
 };
