@@ -1,6 +1,5 @@
 #include "support_cache.hpp"
 
-#include <algorithm>
 #include <memory>
 #include <vector>
 
@@ -40,16 +39,12 @@ Pool* pool() {
 }  // namespace
 
 void SupportCache::reset(const SupportCache& start) {
-  if (slots_.size() == start.slots_.size()) {
-    // The table and the first rows copied in place.
-    slots_ = start.slots_;
-    count_ = start.count_;
-    points_.topRows(count_) = start.points_.topRows(count_);
-    return;
-  }
-  std::fill(slots_.begin(), slots_.end(), -1);
-  count_ = 0;
-  for (int i = 0; i < start.count_; ++i) add(start.points_.row(i).transpose());
+  // The table copied (a vector keeps its capacity, so a grown table is not reallocated), and the
+  // first rows; the rows stay at least half the table's size.
+  slots_ = start.slots_;
+  count_ = start.count_;
+  if (points_.rows() < start.points_.rows()) points_.resize(start.points_.rows(), Eigen::NoChange);
+  points_.topRows(count_) = start.points_.topRows(count_);
 }
 
 SharedSupportCache::SharedSupportCache(const SupportCache& start) {

@@ -28,8 +28,9 @@ class SupportCache {
       : points_(other.points_), slots_(other.slots_), count_(other.count_) {}
   SupportCache& operator=(const SupportCache&) = delete;
   /// Starts again as `start`, a cache holding a body's own points only, keeping this one's
-  /// storage (a cache that grew keeps its size): the points are numbered as `start` numbers
-  /// them, so a reused cache answers as a new one.
+  /// storage (a cache that grew keeps its rows and its table's capacity, but takes `start`'s
+  /// table, so that it costs a copy of `start`, not a rehash): the points are numbered as
+  /// `start` numbers them, so a reused cache answers as a new one.
   void reset(const SupportCache& start);
 
   /// The number of `point` (exact equality of coordinates, -0 = +0), added when it is new.
@@ -37,7 +38,7 @@ class SupportCache {
     const Vector3 p = point + Vector3::Zero();  // -0 + 0 = +0, so both zeros hash alike
     std::size_t slot = find(p);
     if (slots_[slot] >= 0) return slots_[slot];
-    if (count_ == points_.rows()) {
+    if (2 * static_cast<std::size_t>(count_) == slots_.size()) {
       grow();
       slot = find(p);
     }
@@ -77,10 +78,12 @@ class SupportCache {
     }
     return slot;
   }
-  // Doubles the rows and the table (kept at most half full), rehashing the points.
+  // Doubles the table (kept at most half full), rehashing the points, and the rows when they are
+  // full. There are always at least half as many rows as slots (reset keeps a grown cache's rows
+  // but takes the start's smaller table), so a full table comes first.
   void grow() {
-    points_.conservativeResize(2 * points_.rows(), Eigen::NoChange);
-    slots_.assign(2 * points_.rows(), -1);
+    if (count_ == points_.rows()) points_.conservativeResize(2 * points_.rows(), Eigen::NoChange);
+    slots_.assign(2 * slots_.size(), -1);
     for (int i = 0; i < count_; ++i) slots_[find(points_.row(i).transpose())] = i;
   }
 
