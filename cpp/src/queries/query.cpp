@@ -47,6 +47,17 @@ DistanceResult answer(const QueryOptions& options, detail::Goal goal,
                                options.method, goal, weights);
 }
 
+// The options an unproven verdict is escalated with: the exact method, at the query's tolerance
+// and with its own iteration cap -- a budget too small for the method asked for (max_iterations
+// of 1, say) must not leave the verdict unproven again.
+QueryOptions escalation(const QueryOptions& options) {
+  QueryOptions exact;
+  exact.method = Method::exact;
+  exact.tolerance = options.tolerance;
+  exact.exact.max_iterations = std::max(options.exact.max_iterations, exact.exact.max_iterations);
+  return exact;
+}
+
 }  // namespace
 
 namespace detail {
@@ -58,13 +69,7 @@ DistanceResult answer_pair(const QueryOptions& options, Goal goal, const FramedP
   }
   DistanceResult result = answer(options, goal, pair, weights);
   if (goal != Goal::verdict || result.certified || !escalate) return result;
-  // The exact method decides with its own iteration cap: a budget too small for the method
-  // asked for (max_iterations of 1, say) must not leave the verdict unproven again.
-  QueryOptions exact;
-  exact.method = Method::exact;
-  exact.tolerance = options.tolerance;
-  exact.exact.max_iterations = std::max(options.exact.max_iterations, exact.exact.max_iterations);
-  DistanceResult decided = answer(exact, goal, pair, weights);
+  DistanceResult decided = answer(escalation(options), goal, pair, weights);
   if (options.method != Method::exact) decided.escalated_from = options.method;
   return decided;
 }
@@ -76,12 +81,7 @@ RowAnswer answer_row(const QueryOptions& options, Solver solve, Goal goal, const
   row.escalated = found.answered_by.has_value() && *found.answered_by != options.method;
   row.values = finish_values(pair, found, goal);
   if (goal != Goal::verdict || row.values.certified || !escalate) return row;
-  // As answer_pair escalates.
-  QueryOptions exact;
-  exact.method = Method::exact;
-  exact.tolerance = options.tolerance;
-  exact.exact.max_iterations = std::max(options.exact.max_iterations, exact.exact.max_iterations);
-  Answer decided = solver_for(Method::exact)(pair, exact, goal);
+  Answer decided = solver_for(Method::exact)(pair, escalation(options), goal);
   row.escalated = options.method != Method::exact ||
                   (decided.answered_by.has_value() && *decided.answered_by != Method::exact);
   row.values = finish_values(pair, decided, goal);

@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "../queries/verdict.hpp"
-#include "curved_point.hpp"
 #include "best_bounds.hpp"
+#include "curved_point.hpp"
 #include "direction_swarm.hpp"
 #include "distance_finish.hpp"
 #include "exact_solver.hpp"
