@@ -391,8 +391,9 @@ class MotionCheck {
     return run;
   }
 
-  // The pair at time t: its screens when they alone prove it apart up to the horizon, its
-  // certified signed distance otherwise.
+  // The pair at time t: its screens when they alone prove it apart up to the horizon; else the
+  // separation along its last query's direction while that proves enough (kRemeasured); else a
+  // distance query.
   Sample sample(const GeometryPair& pair, const PairPlan& plan, Scalar t, Scalar horizon) {
     configuration_at(t, &pair_joints_[static_cast<std::size_t>(plan.pair)]);
     place(pair);
@@ -417,7 +418,7 @@ class MotionCheck {
     if (separating_) {
       // The separation along the last query's direction is a lower bound on the distance as a
       // query's is (the same support climbs), at a tenth of a query's cost; it is stepped from
-      // while it keeps most of what that query proved (see kRemeasured).
+      // while it keeps a quarter of what that query proved (kRemeasured).
       const Scalar apart = separation_along(pair, *separating_) - plan.margin;
       if (apart > threshold && apart >= kRemeasured * separating_->apart) {
         return apart_sample(pair, plan, t, apart, separating_->direction, local);
