@@ -346,10 +346,11 @@ class RowOptions {
 };
 
 // Runs `answer(i, options_i, pose_a_i, pose_b_i)`, which writes row i of the batch, for every
-// pair, where options_i are the validated options to be seeded for pair i (RowOptions) and `answer` is the thread's
-// own `make_answer(RowWriter(batch))` (with the thread's state), on a pool of threads that take
-// pairs in chunks (RowChunks), in increasing order: when a pair fails, every pair before it has
-// been taken, so the error of the lowest failing index is found whatever the threads. Everything
+// pair, where options_i are the validated options to be seeded for pair i (RowOptions) and
+// `answer` is the thread's own `make_answer(RowWriter(batch))` (with the thread's state), on a
+// pool of threads that take pairs in chunks (RowChunks), in increasing order: when a pair fails,
+// every pair before it has been taken, so the error of the lowest failing index is found
+// whatever the threads. Everything
 // the rows share (the options, the method's capability, the pose counts) is checked here, once;
 // each row's poses once, by the thread that answers it. A thread's rows read only its own copies
 // of what they share (see RowWriter) and the chunks' counter.

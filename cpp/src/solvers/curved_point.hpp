@@ -10,9 +10,9 @@
 namespace swarmcollide::detail {
 
 /// The answer for `goal` of a pair whose one body is a single point (the core of a sphere) and
-/// whose other is a cylinder, a cone or an ellipsoid in its own frame, or nothing (any other pair, a point on
-/// the surface, a point inside for goals other than the signed distance, or bounds that leave
-/// the goal unmet): the caller's search then answers it.
+/// whose other is a cylinder, a cone or an ellipsoid in its own frame, or nothing (any other
+/// pair, a point on the surface, a point inside for goals other than the signed distance, or
+/// bounds that leave the goal unmet): the caller's search then answers it.
 ///
 /// The closed form only chooses: the outward normal of the nearest surface point, and that point
 /// as a combination of at most two of the shape's support points (rim points, the apex; an
