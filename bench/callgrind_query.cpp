@@ -148,22 +148,16 @@ int main(int argc, char** argv) {
         }
         return sum;
       };
+      const auto our_distances = [&w](const sc::Query& asked) {
+        double sum = 0;
+        for (std::size_t i = 0; i < w.a.size(); ++i)
+          sum += asked.distance(w.a[i], w.pose, w.b[i], w.pose).distance;
+        return sum;
+      };
       const std::vector<Contender> contenders{
-          {"distance", "ours",
-           [&] {
-             double sum = 0;
-             for (std::size_t i = 0; i < w.a.size(); ++i)
-               sum += query.distance(w.a[i], w.pose, w.b[i], w.pose).distance;
-             return sum;
-           }},
+          {"distance", "ours", [&] { return our_distances(query); }},
           {"distance", "coal", [&] { return coal_call(coal_distance, false); }},
-          {"distance", "ours_fcl",
-           [&] {
-             double sum = 0;
-             for (std::size_t i = 0; i < w.a.size(); ++i)
-               sum += fcl_query.distance(w.a[i], w.pose, w.b[i], w.pose).distance;
-             return sum;
-           }},
+          {"distance", "ours_fcl", [&] { return our_distances(fcl_query); }},
           {"distance", "fcl",
            [&] {
              double sum = 0;
