@@ -101,7 +101,7 @@ bool DistanceFinish::from(const Vector3& n, int& hint_a, int& hint_b, BestBounds
 }
 
 bool DistanceFinish::whole(const Vector3& start, int& hint_a, int& hint_b, BestBounds& bounds,
-                           Goal goal, bool enclosure) {
+                           Goal goal, bool enclosure, const OraclePoint* first_point) {
   // The supports of large bodies climb from the previous ones, unless the direction turned by
   // more than about 25 degrees (as Wolfe's first steps do): the hull's climbing starts are then
   // nearer. Small bodies are scanned, whatever the hints.
@@ -164,7 +164,12 @@ bool DistanceFinish::whole(const Vector3& start, int& hint_a, int& hint_b, BestB
   };
   // The first oracle point is the supporting pair along `start`, whose separation and distance
   // often settle a verdict at once.
-  const MinNormPoint first = single_point(oracle(start));
+  if (first_point != nullptr) {
+    ++evaluations_;
+    hint_a = first_point->ia;
+    hint_b = first_point->ib;
+  }
+  const MinNormPoint first = single_point(first_point != nullptr ? *first_point : oracle(start));
   bounds.offer_lower(start, start.dot(first.x));
   bounds.offer_upper(vertex_witness(pair_, first.corral[0].ia, first.corral[0].ib));
   if (bounds.reached(pair_, goal)) return true;

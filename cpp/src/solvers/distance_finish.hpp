@@ -3,6 +3,7 @@
 
 #include "../geometry/framed_body.hpp"
 #include "best_bounds.hpp"
+#include "wolfe_min_norm.hpp"
 
 namespace swarmcollide::detail {
 
@@ -32,9 +33,11 @@ class DistanceFinish {
   /// the separation along them; returns whether the bounds settle `goal`. A distance, and a
   /// verdict without `enclosure`, skip the intersection proof where the witnesses already prove
   /// contact (contact_witness_of); a verdict with it keeps the enclosing tetrahedron for whoever
-  /// reads `intersection_proven` (a scene caches it, a compound screen reads it).
+  /// reads `intersection_proven` (a scene caches it, a compound screen reads it). `first`, when
+  /// given, is the oracle's point along `start` from the same hints, already asked by the caller
+  /// (counted here as the oracle call it replaces).
   bool whole(const Vector3& start, int& hint_a, int& hint_b, BestBounds& bounds, Goal goal,
-             bool enclosure = true);
+             bool enclosure = true, const OraclePoint* first = nullptr);
 
   long evaluations() const { return evaluations_; }
 
