@@ -171,8 +171,12 @@ bool DistanceFinish::whole(const Vector3& start, int& hint_a, int& hint_b, BestB
   }
   const MinNormPoint first = single_point(first_point != nullptr ? *first_point : oracle(start));
   bounds.offer_lower(start, start.dot(first.x));
-  bounds.offer_upper(vertex_witness(pair_, first.corral[0].ia, first.corral[0].ib));
-  if (bounds.reached(pair_, goal)) return true;
+  // A verdict often settles there (apart along the start, or the pair's points within the
+  // tolerance); a distance seldom does, and Wolfe's corrals, from this point, give its witnesses.
+  if (goal != Goal::distance) {
+    bounds.offer_upper(vertex_witness(pair_, first.corral[0].ia, first.corral[0].ib));
+    if (bounds.reached(pair_, goal)) return true;
+  }
   // In the frame every point lies in the unit ball, so 2 bounds every difference.
   const MinNormPoint nearest = wolfe_min_norm_from(oracle, first, 2, max_iterations_, stop);
   if (offered) return true;
