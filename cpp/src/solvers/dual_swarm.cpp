@@ -178,14 +178,14 @@ std::optional<Answer> overlap_first(const FramedPair& pair, const QueryOptions& 
   };
   const MinNormPoint corral =
       wolfe_min_norm(oracle, tilted(direction), 2, options.exact.max_iterations);
-  const Witness common = witness_of(pair, corral);
   Answer answer;
-  if (common.encloses_origin) {
-    answer = exact_penetration(pair, options.exact.max_iterations, direction, common.distance,
-                               &corral);
+  if (corral_encloses_origin(corral)) {
+    // The bodies share a point: 0 bounds the signed distance above (the corral's witnesses, a
+    // rounding apart, are not needed).
+    answer = exact_penetration(pair, options.exact.max_iterations, direction, 0, &corral);
     answer.intersection_proven = true;
   } else {
-    answer = answer_from_corral(pair, corral, common);
+    answer = answer_from_corral(pair, corral, combined_witness(pair, corral));
     ++evaluations;
     const bool apart = answer.lower > kFrameRounding && value_proven(pair, answer);
     if (!apart && !settles_signed_distance(pair, corral, answer)) return std::nullopt;

@@ -16,9 +16,6 @@ static_assert(Witness::kCapacity == ConvexWeights::kSparseCapacity);
 
 }  // namespace
 
-namespace {
-
-// The witness of `corral`, without the enclosure test.
 Witness combined_witness(const FramedPair& pair, const MinNormPoint& corral) {
   Witness w;
   w.size = corral.size;
@@ -47,8 +44,6 @@ bool corral_encloses_origin(const MinNormPoint& corral) {
   return corral.size == 4 && encloses_origin({corral.corral[0].p, corral.corral[1].p,
                                               corral.corral[2].p, corral.corral[3].p});
 }
-
-}  // namespace
 
 Witness witness_of(const FramedPair& pair, const MinNormPoint& corral) {
   Witness w = combined_witness(pair, corral);

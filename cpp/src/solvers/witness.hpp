@@ -31,6 +31,12 @@ struct Witness {
 /// the enclosure test when the corral is a tetrahedron.
 Witness witness_of(const FramedPair& pair, const MinNormPoint& corral);
 
+/// The enclosure test alone: the corral is a tetrahedron around the origin, beyond rounding.
+bool corral_encloses_origin(const MinNormPoint& corral);
+
+/// The witness alone, without the enclosure test (`encloses_origin` false).
+Witness combined_witness(const FramedPair& pair, const MinNormPoint& corral);
+
 /// The same, with the enclosure test only where the witnesses do not already prove contact (their
 /// distance within the pair's tolerance beyond rounding, `close_proven`): for a distance, which
 /// either proof settles, and which reports no intersection proof, the test is a fifth of what an
