@@ -68,7 +68,9 @@ TEST(Robot, ForwardKinematicsIsThePlanarArmsClosedForm) {
 }
 
 // Turns about a coordinate axis (either sign) take link_poses' fast path: it must give the poses
-// of the general one (the parent's pose, the origin, then Eigen's angle-axis matrix) bit for bit.
+// of the plain products (the parent's pose, the origin, then Eigen's angle-axis matrix) bit for
+// bit, after general origins, origins turned about a coordinate axis (URDF's single rpy angles)
+// and identities alike.
 TEST(Robot, TurnsAboutCoordinateAxesComposeAsTheAngleAxisMatrixDoes) {
   const Vector3 axes[] = {Vector3::UnitZ(), -Vector3::UnitZ(), Vector3::UnitX(),
                           -Vector3::UnitX(), Vector3::UnitY(), -Vector3::UnitY(),
@@ -79,9 +81,22 @@ TEST(Robot, TurnsAboutCoordinateAxesComposeAsTheAngleAxisMatrixDoes) {
   std::vector<Geometry> geometries;
   for (int l = 0; l <= n; ++l) links.push_back({"l" + std::to_string(l)});
   for (int j = 0; j < n; ++j) {
+    // A general origin, or a roll, pitch or yaw alone as URDF's rpy gives it (1 on the axis, exact
+    // zeros off it), or none.
     Pose origin;
-    origin.rotation = Eigen::AngleAxis<Scalar>(0.4 + j, Vector3(1, 2, 3 - j).normalized())
-                          .toRotationMatrix();
+    if (j % 3 == 0) {
+      origin.rotation = Eigen::AngleAxis<Scalar>(0.4 + j, Vector3(1, 2, 3 - j).normalized())
+                            .toRotationMatrix();
+    } else if (j != 5) {
+      const int k = j % 3;
+      const Scalar angle = 1.57079632679 * (j - 3);
+      origin.rotation.setZero();
+      origin.rotation(k, k) = 1;
+      origin.rotation((k + 1) % 3, (k + 1) % 3) = origin.rotation((k + 2) % 3, (k + 2) % 3) =
+          std::cos(angle);
+      origin.rotation((k + 2) % 3, (k + 1) % 3) = std::sin(angle);
+      origin.rotation((k + 1) % 3, (k + 2) % 3) = -std::sin(angle);
+    }
     origin.translation = Vector3(0.1 * j, -0.2, 0.3);
     joints.push_back({"j" + std::to_string(j), JointType::revolute, j, j + 1, origin, axes[j], -4,
                       4, 0.1 * j});
@@ -97,7 +112,13 @@ TEST(Robot, TurnsAboutCoordinateAxesComposeAsTheAngleAxisMatrixDoes) {
     Pose turn;
     turn.rotation =
         Eigen::AngleAxis<Scalar>(q[j] - joint.reference, joint.axis).toRotationMatrix();
-    expected = compose(compose(expected, joint.origin), turn);
+    const auto product = [](const Pose& outer, const Pose& inner) {
+      Pose pose;
+      pose.rotation = outer.rotation * inner.rotation;
+      pose.translation = outer.rotation * inner.translation + outer.translation;
+      return pose;
+    };
+    expected = product(product(expected, joint.origin), turn);
     const Pose& pose = got[static_cast<std::size_t>(j + 1)];
     for (int r = 0; r < 3; ++r) {
       EXPECT_EQ(pose.translation(r), expected.translation(r)) << "joint " << j;
