@@ -239,6 +239,13 @@ void LinkMotionBound::set_motion(const Scalar* q0, const Scalar* q1,
       for (std::size_t m = k + 1; m < n; ++m) motion.speed_below[k] += motion.speed[m];
       motion.speed_below[k] *= kRoundUp;
     }
+    motion.terms.clear();
+    for (std::size_t k = 0; k < n; ++k) {
+      const int j = chain[k];
+      if (model_.driving_dof(j) < 0) continue;
+      motion.terms.push_back({k, joints[j].type != JointType::prismatic, change_[j],
+                              1 + 4 * chain_sigma_[j], motion.speed_below[k]});
+    }
   }
 }
 
@@ -334,19 +341,14 @@ LinkMotionBound::LocalSpeed LinkMotionBound::local_speed(const GeometryPair& pai
   LocalSpeed local{0, 0};
   const auto add = [&](int g, int link, const PlacedChain& placed) {
     if (link < 0) return;
-    const std::vector<int>& chain = chains_[static_cast<std::size_t>(link)];
-    const GeometryMotion& motion = geometries_[static_cast<std::size_t>(g)];
-    for (std::size_t k = shared; k < chain.size(); ++k) {
-      const int j = chain[k];
-      if (model_.driving_dof(j) < 0) continue;
-      const Joint& joint = model_.joints()[j];
+    for (const GeometryMotion::Term& term : geometries_[static_cast<std::size_t>(g)].terms) {
+      if (term.k < shared) continue;
       // A slide moves the points by its change; a turn by its change times their distance from
       // its axis (the child's frame turns about the axis through its origin). The frames are
       // rigid to within sigma: distances in them and in the world differ by at most that factor.
-      const Scalar rigid = 1 + 4 * chain_sigma_[j];
-      const Scalar reach = joint.type != JointType::prismatic ? placed.reach[k] : 1;
-      local.at += change_[j] * reach * rigid;
-      local.growth += change_[j] * rigid * motion.speed_below[k];
+      const Scalar reach = term.turn ? placed.reach[term.k] : 1;
+      local.at += term.change * reach * term.rigid;
+      local.growth += term.change * term.rigid * term.below;
     }
   };
   add(pair.a, la, placed_a);
@@ -372,28 +374,21 @@ LinkMotionBound::DirectionalSpeed LinkMotionBound::directional_speed(
     const PlacedChain& placed_b) const {
   DirectionalSpeed speed{0, 0, 0};
   const auto add = [&](int g, const PlacedChain& placed) {
-    const int link = model_.geometries()[static_cast<std::size_t>(g)].link;
-    if (link < 0) return;
-    const std::vector<int>& chain = chains_[static_cast<std::size_t>(link)];
-    const GeometryMotion& motion = geometries_[static_cast<std::size_t>(g)];
+    if (model_.geometries()[static_cast<std::size_t>(g)].link < 0) return;
     // The angular speed of the frames above the joint (the turns taken so far, root first).
     Scalar turning = 0;
-    for (std::size_t k = 0; k < chain.size(); ++k) {
-      const int j = chain[k];
-      if (model_.driving_dof(j) < 0) continue;
+    for (const GeometryMotion::Term& term : geometries_[static_cast<std::size_t>(g)].terms) {
       // The joints below alone change the points' distance from the axis.
-      const Scalar below = motion.speed_below[k];
-      const Joint& joint = model_.joints()[j];
-      const Vector3& axis = placed.axis[k];
-      const Scalar rigid = (1 + 4 * chain_sigma_[j]) * kRoundUp;
-      const Scalar change = change_[j] * rigid;
-      if (joint.type == JointType::prismatic) {
+      const Scalar below = term.below;
+      const Vector3& axis = placed.axis[term.k];
+      const Scalar change = term.change * (term.rigid * kRoundUp);
+      if (!term.turn) {
         speed.linear += change * (std::abs(direction.dot(axis)) + 8 * kUnit);
         speed.quadratic += change * turning;
         continue;
       }
       const Scalar across = direction.cross(axis).norm() + 8 * kUnit;
-      const Scalar reach = placed.reach[k];
+      const Scalar reach = placed.reach[term.k];
       speed.linear += change * across * reach;
       speed.quadratic += change * (across * below + reach * turning);
       speed.cubic += change * turning * below;

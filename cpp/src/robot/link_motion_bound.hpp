@@ -136,6 +136,17 @@ class LinkMotionBound {
     // Per joint of the chain, the sum of the speeds of the joints below it (they alone change
     // the points' distance from its axis), rounded up.
     std::vector<Scalar> speed_below;
+    // The chain's moving joints as the local and directional speeds read them, root first: the
+    // index in the chain, whether it turns, its change, 1 + 4 sigma of the chain to it, and
+    // `speed_below` there.
+    struct Term {
+      std::size_t k;
+      bool turn;
+      Scalar change;
+      Scalar rigid;
+      Scalar below;
+    };
+    std::vector<Term> terms;
   };
 
   // Adds to `speed` what the first `shared` joints of link `link`'s chain (those both links of a
