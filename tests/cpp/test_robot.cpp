@@ -6,6 +6,7 @@
 #include <functional>
 #include <optional>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "robot/box_screen.hpp"
@@ -63,6 +64,68 @@ TEST(Robot, ForwardKinematicsIsThePlanarArmsClosedForm) {
     const Scalar* slider = transforms.data() + (i * 5 + 4) * 16;
     EXPECT_EQ(slider[3], q(i, 2));
     EXPECT_EQ(slider[7], -1);
+  }
+}
+
+// Turns about a coordinate axis (either sign) take link_poses' fast path: it must give the poses
+// of the plain products (the parent's pose, the origin, then Eigen's angle-axis matrix) bit for
+// bit, after general origins, origins turned about a coordinate axis (URDF's single rpy angles)
+// and identities alike.
+TEST(Robot, TurnsAboutCoordinateAxesComposeAsTheAngleAxisMatrixDoes) {
+  const Vector3 axes[] = {Vector3::UnitZ(), -Vector3::UnitZ(), Vector3::UnitX(),
+                          -Vector3::UnitX(), Vector3::UnitY(), -Vector3::UnitY(),
+                          Vector3(0.6, 0, 0.8)};
+  const int n = 7;
+  std::vector<Link> links;
+  std::vector<Joint> joints;
+  std::vector<Geometry> geometries;
+  for (int l = 0; l <= n; ++l) links.push_back({"l" + std::to_string(l)});
+  for (int j = 0; j < n; ++j) {
+    // A general origin, or a roll, pitch or yaw alone as URDF's rpy gives it (1 on the axis, exact
+    // zeros off it), or none.
+    Pose origin;
+    if (j % 3 == 0) {
+      origin.rotation = Eigen::AngleAxis<Scalar>(0.4 + j, Vector3(1, 2, 3 - j).normalized())
+                            .toRotationMatrix();
+    } else if (j != 5) {
+      const int k = j % 3;
+      const Scalar angle = 1.57079632679 * (j - 3);
+      origin.rotation.setZero();
+      origin.rotation(k, k) = 1;
+      origin.rotation((k + 1) % 3, (k + 1) % 3) = origin.rotation((k + 2) % 3, (k + 2) % 3) =
+          std::cos(angle);
+      origin.rotation((k + 2) % 3, (k + 1) % 3) = std::sin(angle);
+      origin.rotation((k + 1) % 3, (k + 2) % 3) = -std::sin(angle);
+    }
+    origin.translation = Vector3(0.1 * j, -0.2, 0.3);
+    joints.push_back({"j" + std::to_string(j), JointType::revolute, j, j + 1, origin, axes[j], -4,
+                      4, 0.1 * j});
+  }
+  geometries.push_back({"g", n, Pose{}, Box(Vector3::Constant(0.1))});
+  const RobotModel model(links, joints, geometries);
+  const Scalar q[] = {0.3, -1.1, 2.5, -3.9, 1e-9, 3.14159, -0.7};
+  std::vector<Pose> got;
+  link_poses(model, q, got);
+  Pose expected;
+  for (int j = 0; j < n; ++j) {
+    const Joint& joint = model.joints()[static_cast<std::size_t>(j)];
+    Pose turn;
+    turn.rotation =
+        Eigen::AngleAxis<Scalar>(q[j] - joint.reference, joint.axis).toRotationMatrix();
+    const auto product = [](const Pose& outer, const Pose& inner) {
+      Pose pose;
+      pose.rotation = outer.rotation * inner.rotation;
+      pose.translation = outer.rotation * inner.translation + outer.translation;
+      return pose;
+    };
+    expected = product(product(expected, joint.origin), turn);
+    const Pose& pose = got[static_cast<std::size_t>(j + 1)];
+    for (int r = 0; r < 3; ++r) {
+      EXPECT_EQ(pose.translation(r), expected.translation(r)) << "joint " << j;
+      for (int c = 0; c < 3; ++c) {
+        EXPECT_EQ(pose.rotation(r, c), expected.rotation(r, c)) << "joint " << j;
+      }
+    }
   }
 }
 

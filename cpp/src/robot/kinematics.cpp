@@ -64,6 +64,36 @@ Pose motion(const Joint& joint, Scalar value) {
   return pose;
 }
 
+// k when `axis` is the unit vector e_k or -e_k exactly, else -1.
+int coordinate_axis(const Vector3& axis) {
+  for (int k = 0; k < 3; ++k) {
+    const int i = (k + 1) % 3;
+    const int j = (k + 2) % 3;
+    if (axis[i] == 0 && axis[j] == 0 && std::abs(axis[k]) == 1) return k;
+  }
+  return -1;
+}
+
+// compose(placed, motion(joint, value)) for a turn by `amount` about sign e_k, bitwise: Eigen's
+// AngleAxis matrix about sign e_k has c on the other two diagonal entries, (1 - c) + c on the
+// k-th, +-s off the diagonal in the plane of the turn and exact zeros elsewhere, so each entry of
+// the product is one or two nonzero products summed (a sum with exact zeros added, which is
+// exact), and the translation is the placed one (a product with zeros added to it).
+void turned_about_coordinate_axis(const Pose& placed, int k, Scalar sign, Scalar amount,
+                                  Pose& pose) {
+  const Scalar s = std::sin(amount) * sign;
+  const Scalar c = std::cos(amount);
+  const Scalar diagonal = (1 - c) + c;
+  const int i = (k + 1) % 3;
+  const int j = (k + 2) % 3;
+  const Matrix3& r = placed.rotation;
+  // The turn's matrix: M(i, i) = M(j, j) = c, M(j, i) = s, M(i, j) = -s, M(k, k) = diagonal.
+  pose.rotation.col(i) = r.col(i) * c + r.col(j) * s;
+  pose.rotation.col(j) = r.col(i) * -s + r.col(j) * c;
+  pose.rotation.col(k) = r.col(k) * diagonal;
+  pose.translation = placed.translation;
+}
+
 }  // namespace
 
 Pose compose(const Pose& outer, const Pose& inner) {
@@ -101,8 +131,18 @@ void link_poses(const RobotModel& model, const Scalar* q, const std::vector<int>
     const Joint& joint = model.joints()[j];
     const Pose placed = compose(links[joint.parent], joint.origin);
     const int dof = model.driving_dof(j);
-    links[joint.child] =
-        dof < 0 ? placed : compose(placed, motion(joint, model.joint_value(j, q[dof])));
+    if (dof < 0) {
+      links[joint.child] = placed;
+      continue;
+    }
+    const Scalar value = model.joint_value(j, q[dof]);
+    const int k = joint.type == JointType::prismatic ? -1 : coordinate_axis(joint.axis);
+    if (k < 0) {
+      links[joint.child] = compose(placed, motion(joint, value));
+    } else {
+      turned_about_coordinate_axis(placed, k, joint.axis[k], value - joint.reference,
+                                   links[joint.child]);
+    }
   }
 }
 

@@ -88,6 +88,22 @@ LinkMotionBound::LinkMotionBound(const RobotModel& model) : model_(model) {
     origin_reach_[g] *= kRoundUp;
     axis_reach_[g] *= kRoundUp;
   }
+  // The model's constants of set_motion's chain bounds, per joint.
+  origin_norm_.assign(joints.size(), 0);
+  chain_norm_.assign(joints.size(), 0);
+  origin_length_.assign(joints.size(), 0);
+  origin_off_axis_.assign(joints.size(), 0);
+  for (std::size_t j = 0; j < joints.size(); ++j) {
+    origin_norm_[j] = rotation_norm(origin_sigma_[j]);
+    chain_norm_[j] = rotation_norm(chain_sigma_[j]);
+    origin_length_[j] = joints[j].origin.translation.norm();
+    const int above = model.parent_joint(joints[j].parent);
+    if (above >= 0) {
+      origin_off_axis_[j] = off_axis(joints[j].origin.translation, joints[above].axis.normalized());
+    }
+  }
+  start_axes_.assign(joints.size(), Vector3::Zero());
+  end_axes_.assign(joints.size(), Vector3::Zero());
   change_.resize(joints.size());
   slide_.resize(joints.size());
   value_error_.resize(joints.size());
@@ -122,6 +138,11 @@ void LinkMotionBound::set_motion(const Scalar* q0, const Scalar* q1,
       slide_[j] = std::max(std::abs(v0 - joint.reference), std::abs(v1 - joint.reference)) *
                       kRoundUp +
                   value_error_[j];
+    } else {
+      start_axes_[j] = (start_links[static_cast<std::size_t>(joint.child)].rotation * joint.axis)
+                           .normalized();
+      end_axes_[j] =
+          (end_links[static_cast<std::size_t>(joint.child)].rotation * joint.axis).normalized();
     }
   }
   const std::vector<Geometry>& geometries = model_.geometries();
@@ -145,24 +166,21 @@ void LinkMotionBound::set_motion(const Scalar* q0, const Scalar* q1,
     turns_.assign(n, 0);
     for (std::size_t k = n; k-- > 0;) {
       if (k + 1 < n) {
-        const Joint& next = joints[chain[k + 1]];
-        const Scalar inner = rotation_norm(origin_sigma_[chain[k + 1]]) * (slide_[chain[k + 1]] + z);
-        z = (next.origin.translation.norm() + inner) * kRoundUp;
-        turn = (off_axis(next.origin.translation, joints[chain[k]].axis.normalized()) + inner) *
-               kRoundUp;
+        const int after = chain[k + 1];
+        const Scalar inner = origin_norm_[after] * (slide_[after] + z);
+        z = (origin_length_[after] + inner) * kRoundUp;
+        turn = (origin_off_axis_[after] + inner) * kRoundUp;
       }
       turns_[k] = turn;
       const int j = chain[k];
       if (model_.driving_dof(j) < 0) continue;
       const Scalar reach = joints[j].type == JointType::prismatic ? 1 : turn;
-      motion.rounding += rotation_norm(chain_sigma_[j]) * reach * kRoundUp * value_error_[j];
+      motion.rounding += chain_norm_[j] * reach * kRoundUp * value_error_[j];
     }
     motion.extent = z;
     if (n > 0) {
-      const Joint& first = joints[chain[0]];
-      motion.extent = (first.origin.translation.norm() +
-                       rotation_norm(origin_sigma_[chain[0]]) * (slide_[chain[0]] + z)) *
-                      kRoundUp;
+      motion.extent =
+          (origin_length_[chain[0]] + origin_norm_[chain[0]] * (slide_[chain[0]] + z)) * kRoundUp;
     }
     motion.rounding *= kRoundUp;
     // The box's corners placed at both ends, and the rounding of their distances from the axes:
@@ -192,9 +210,9 @@ void LinkMotionBound::set_motion(const Scalar* q0, const Scalar* q1,
         // The frames are rigid to within sigma: distances in them and in the world differ by
         // at most that factor, as in local_speed.
         const Joint& joint = joints[j];
-        const auto farthest = [&](const std::vector<Pose>& links, const Vector3* corners) {
+        const auto farthest = [&](const std::vector<Pose>& links, const Vector3* corners,
+                                  const Vector3& axis) {
           const Pose& frame = links[static_cast<std::size_t>(joint.child)];
-          const Vector3 axis = (frame.rotation * joint.axis).normalized();
           Scalar most = 0;
           for (int c = 0; c < 8; ++c) {
             most = std::max(most, off_axis(corners[c] - frame.translation, axis));
@@ -202,13 +220,14 @@ void LinkMotionBound::set_motion(const Scalar* q0, const Scalar* q1,
           return most;
         };
         const Scalar measured =
-            ((farthest(start_links, start_corners_) + farthest(end_links, end_corners_) + below) /
+            ((farthest(start_links, start_corners_, start_axes_[j]) +
+              farthest(end_links, end_corners_, end_axes_[j]) + below) /
                  2 * (1 + 4 * chain_sigma_[j]) +
              slack) *
             kRoundUp;
         reach = std::min(turns_[k], measured);
       }
-      const Scalar coefficient = rotation_norm(chain_sigma_[j]) * reach * kRoundUp;
+      const Scalar coefficient = chain_norm_[j] * reach * kRoundUp;
       motion.speed[k] = coefficient * change_[j];
       below = (below + motion.speed[k]) * kRoundUp;
     }
@@ -219,6 +238,13 @@ void LinkMotionBound::set_motion(const Scalar* q0, const Scalar* q1,
     for (std::size_t k = 0; k < n; ++k) {
       for (std::size_t m = k + 1; m < n; ++m) motion.speed_below[k] += motion.speed[m];
       motion.speed_below[k] *= kRoundUp;
+    }
+    motion.terms.clear();
+    for (std::size_t k = 0; k < n; ++k) {
+      const int j = chain[k];
+      if (model_.driving_dof(j) < 0) continue;
+      motion.terms.push_back({k, joints[j].type != JointType::prismatic, change_[j],
+                              1 + 4 * chain_sigma_[j], motion.speed_below[k]});
     }
   }
 }
@@ -259,42 +285,74 @@ Scalar LinkMotionBound::pair_speed(const GeometryPair& pair) const {
   return speed * kRoundUp;
 }
 
+void LinkMotionBound::place_chain(int g, const std::vector<Pose>& links, const Pose& pose,
+                                  PlacedChain& placed) const {
+  const int link = model_.geometries()[static_cast<std::size_t>(g)].link;
+  if (link < 0) {
+    placed.axis.clear();
+    placed.reach.clear();
+    return;
+  }
+  const std::vector<int>& chain = chains_[static_cast<std::size_t>(link)];
+  const GeometryMotion& motion = geometries_[static_cast<std::size_t>(g)];
+  const BodyBounds& bounds = model_.geometries()[static_cast<std::size_t>(g)].body.bounds();
+  const Vector3 centre = pose.rotation * bounds.centre + pose.translation;
+  // The rounding of the placed frames (as pair_margin's), and the ball's radius.
+  const Scalar slack = 64 * kUnit * static_cast<Scalar>(chain.size() + 1) * motion.extent;
+  // Sized once (a chain's length changes from geometry to geometry, rarely from call to call).
+  if (placed.axis.size() != chain.size()) {
+    placed.axis.assign(chain.size(), Vector3::Zero());
+    placed.reach.assign(chain.size(), 0);
+  }
+  for (std::size_t k = 0; k < chain.size(); ++k) {
+    const int j = chain[k];
+    if (model_.driving_dof(j) < 0) {
+      placed.axis[k].setZero();
+      placed.reach[k] = 0;
+      continue;
+    }
+    const Joint& joint = model_.joints()[j];
+    const Pose& frame = links[static_cast<std::size_t>(joint.child)];
+    const Vector3 axis = (frame.rotation * joint.axis).normalized();
+    placed.axis[k] = axis;
+    placed.reach[k] = joint.type == JointType::prismatic
+                          ? 0
+                          : off_axis(centre - frame.translation, axis) + bounds.radius + slack;
+  }
+}
+
 LinkMotionBound::LocalSpeed LinkMotionBound::local_speed(const GeometryPair& pair,
                                                          const std::vector<Pose>& links,
                                                          const Pose& pose_a,
                                                          const Pose& pose_b) const {
+  PlacedChain a;
+  PlacedChain b;
+  place_chain(pair.a, links, pose_a, a);
+  place_chain(pair.b, links, pose_b, b);
+  return local_speed(pair, a, b);
+}
+
+LinkMotionBound::LocalSpeed LinkMotionBound::local_speed(const GeometryPair& pair,
+                                                         const PlacedChain& placed_a,
+                                                         const PlacedChain& placed_b) const {
   const int la = model_.geometries()[pair.a].link;
   const int lb = model_.geometries()[pair.b].link;
   const std::size_t shared = shared_joints(chains_, la, lb);
   LocalSpeed local{0, 0};
-  const auto add = [&](int g, int link, const Pose& pose) {
+  const auto add = [&](int g, int link, const PlacedChain& placed) {
     if (link < 0) return;
-    const std::vector<int>& chain = chains_[static_cast<std::size_t>(link)];
-    const GeometryMotion& motion = geometries_[static_cast<std::size_t>(g)];
-    const BodyBounds& bounds = model_.geometries()[static_cast<std::size_t>(g)].body.bounds();
-    const Vector3 centre = pose.rotation * bounds.centre + pose.translation;
-    // The rounding of the placed frames (as pair_margin's), and the ball's radius.
-    const Scalar slack = 64 * kUnit * static_cast<Scalar>(chain.size() + 1) * motion.extent;
-    for (std::size_t k = shared; k < chain.size(); ++k) {
-      const int j = chain[k];
-      if (model_.driving_dof(j) < 0) continue;
-      const Joint& joint = model_.joints()[j];
+    for (const GeometryMotion::Term& term : geometries_[static_cast<std::size_t>(g)].terms) {
+      if (term.k < shared) continue;
       // A slide moves the points by its change; a turn by its change times their distance from
       // its axis (the child's frame turns about the axis through its origin). The frames are
       // rigid to within sigma: distances in them and in the world differ by at most that factor.
-      const Scalar rigid = 1 + 4 * chain_sigma_[j];
-      Scalar reach = 1;
-      if (joint.type != JointType::prismatic) {
-        const Pose& frame = links[static_cast<std::size_t>(joint.child)];
-        const Vector3 axis = (frame.rotation * joint.axis).normalized();
-        reach = off_axis(centre - frame.translation, axis) + bounds.radius + slack;
-      }
-      local.at += change_[j] * reach * rigid;
-      local.growth += change_[j] * rigid * motion.speed_below[k];
+      const Scalar reach = term.turn ? placed.reach[term.k] : 1;
+      local.at += term.change * reach * term.rigid;
+      local.growth += term.change * term.rigid * term.below;
     }
   };
-  add(pair.a, la, pose_a);
-  add(pair.b, lb, pose_b);
+  add(pair.a, la, placed_a);
+  add(pair.b, lb, placed_b);
   add_shared_turns(local.at, la, shared, geometries_[pair.a].extent + geometries_[pair.b].extent);
   local.at *= kRoundUp;
   local.growth *= kRoundUp;
@@ -304,42 +362,41 @@ LinkMotionBound::LocalSpeed LinkMotionBound::local_speed(const GeometryPair& pai
 LinkMotionBound::DirectionalSpeed LinkMotionBound::directional_speed(
     const GeometryPair& pair, const Vector3& direction, const std::vector<Pose>& links,
     const Pose& pose_a, const Pose& pose_b) const {
+  PlacedChain a;
+  PlacedChain b;
+  place_chain(pair.a, links, pose_a, a);
+  place_chain(pair.b, links, pose_b, b);
+  return directional_speed(pair, direction, a, b);
+}
+
+LinkMotionBound::DirectionalSpeed LinkMotionBound::directional_speed(
+    const GeometryPair& pair, const Vector3& direction, const PlacedChain& placed_a,
+    const PlacedChain& placed_b) const {
   DirectionalSpeed speed{0, 0, 0};
-  const auto add = [&](int g, const Pose& pose) {
-    const int link = model_.geometries()[static_cast<std::size_t>(g)].link;
-    if (link < 0) return;
-    const std::vector<int>& chain = chains_[static_cast<std::size_t>(link)];
-    const GeometryMotion& motion = geometries_[static_cast<std::size_t>(g)];
-    const BodyBounds& bounds = model_.geometries()[static_cast<std::size_t>(g)].body.bounds();
-    const Vector3 centre = pose.rotation * bounds.centre + pose.translation;
-    const Scalar slack = 64 * kUnit * static_cast<Scalar>(chain.size() + 1) * motion.extent;
+  const auto add = [&](int g, const PlacedChain& placed) {
+    if (model_.geometries()[static_cast<std::size_t>(g)].link < 0) return;
     // The angular speed of the frames above the joint (the turns taken so far, root first).
     Scalar turning = 0;
-    for (std::size_t k = 0; k < chain.size(); ++k) {
-      const int j = chain[k];
-      if (model_.driving_dof(j) < 0) continue;
+    for (const GeometryMotion::Term& term : geometries_[static_cast<std::size_t>(g)].terms) {
       // The joints below alone change the points' distance from the axis.
-      const Scalar below = motion.speed_below[k];
-      const Joint& joint = model_.joints()[j];
-      const Pose& frame = links[static_cast<std::size_t>(joint.child)];
-      const Vector3 axis = (frame.rotation * joint.axis).normalized();
-      const Scalar rigid = (1 + 4 * chain_sigma_[j]) * kRoundUp;
-      const Scalar change = change_[j] * rigid;
-      if (joint.type == JointType::prismatic) {
+      const Scalar below = term.below;
+      const Vector3& axis = placed.axis[term.k];
+      const Scalar change = term.change * (term.rigid * kRoundUp);
+      if (!term.turn) {
         speed.linear += change * (std::abs(direction.dot(axis)) + 8 * kUnit);
         speed.quadratic += change * turning;
         continue;
       }
       const Scalar across = direction.cross(axis).norm() + 8 * kUnit;
-      const Scalar reach = off_axis(centre - frame.translation, axis) + bounds.radius + slack;
+      const Scalar reach = placed.reach[term.k];
       speed.linear += change * across * reach;
       speed.quadratic += change * (across * below + reach * turning);
       speed.cubic += change * turning * below;
       turning += change;
     }
   };
-  add(pair.a, pose_a);
-  add(pair.b, pose_b);
+  add(pair.a, placed_a);
+  add(pair.b, placed_b);
   // The rate at a time s away is at most linear + quadratic s + cubic s^2: its integral over h
   // is the bound.
   speed.linear *= kRoundUp;

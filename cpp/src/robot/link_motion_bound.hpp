@@ -99,6 +99,25 @@ class LinkMotionBound {
                                      const std::vector<Pose>& links, const Pose& pose_a,
                                      const Pose& pose_b) const;
 
+  /// One geometry's chain placed at a configuration: per joint of its link's chain (root first),
+  /// the joint's axis in the world and the reach of the geometry's bounding ball about it (its
+  /// centre's distance from the axis plus its radius and the frames' rounding), what
+  /// `local_speed` and `directional_speed` take from the configuration. Computed once, it serves
+  /// every pair of the geometry there (zero for fixed joints; empty for an obstacle).
+  struct PlacedChain {
+    std::vector<Vector3> axis;
+    std::vector<Scalar> reach;
+  };
+  /// Geometry `g`'s chain at the configuration of `links`, the geometry at `pose`, into `placed`.
+  void place_chain(int g, const std::vector<Pose>& links, const Pose& pose,
+                   PlacedChain& placed) const;
+  /// local_speed from the two geometries' placed chains (the same bound, bit for bit).
+  LocalSpeed local_speed(const GeometryPair& pair, const PlacedChain& a,
+                         const PlacedChain& b) const;
+  /// directional_speed from the two geometries' placed chains (the same bound, bit for bit).
+  DirectionalSpeed directional_speed(const GeometryPair& pair, const Vector3& direction,
+                                     const PlacedChain& a, const PlacedChain& b) const;
+
   /// A bound on how far the computed poses of `pair` at any time of the motion can be from the
   /// exact ones, measured as the change of their distance.
   Scalar pair_margin(const GeometryPair& pair) const;
@@ -117,6 +136,17 @@ class LinkMotionBound {
     // Per joint of the chain, the sum of the speeds of the joints below it (they alone change
     // the points' distance from its axis), rounded up.
     std::vector<Scalar> speed_below;
+    // The chain's moving joints as the local and directional speeds read them, root first: the
+    // index in the chain, whether it turns, its change, 1 + 4 sigma of the chain to it, and
+    // `speed_below` there.
+    struct Term {
+      std::size_t k;
+      bool turn;
+      Scalar change;
+      Scalar rigid;
+      Scalar below;
+    };
+    std::vector<Term> terms;
   };
 
   // Adds to `speed` what the first `shared` joints of link `link`'s chain (those both links of a
@@ -130,6 +160,13 @@ class LinkMotionBound {
   // Per joint, sigma of its origin, and of the product of the origins from the root to it.
   std::vector<Scalar> origin_sigma_;
   std::vector<Scalar> chain_sigma_;
+  // Per joint: bounds on the spectral norms of its origin and of the product of the origins from
+  // the root to it, its origin's length, and its origin's distance from the axis of the joint
+  // above it (0 at the root).
+  std::vector<Scalar> origin_norm_;
+  std::vector<Scalar> chain_norm_;
+  std::vector<Scalar> origin_length_;
+  std::vector<Scalar> origin_off_axis_;
   // Per geometry, its core points' reach about its link's origin and about its link's parent
   // joint's axis.
   std::vector<Scalar> origin_reach_;
@@ -138,6 +175,9 @@ class LinkMotionBound {
   std::vector<Scalar> change_;
   std::vector<Scalar> slide_;
   std::vector<Scalar> value_error_;
+  // Per motion: each turning joint's axis in the world at the two ends.
+  std::vector<Vector3> start_axes_;
+  std::vector<Vector3> end_axes_;
   std::vector<GeometryMotion> geometries_;
   // Scratch: the link poses at the ends, the chain's bounds on one geometry's distances from
   // the axes, its box's corners placed at the ends.

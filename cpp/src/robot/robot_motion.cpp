@@ -231,6 +231,8 @@ class MotionCheck {
     plans_.clear();
     place_all(start_links_, start_world_);
     place_all(end_links_, end_world_);
+    for (std::vector<char>& placed : chain_placed_) placed.assign(start_world_.size(), 0);
+    for (auto& chains : end_chains_) chains.resize(start_world_.size());
     for (std::size_t p = 0; p < pairs_.size(); ++p) {
       const GeometryPair& pair = pairs_[p];
       const Scalar speed = bound_.pair_speed(pair);
@@ -243,11 +245,9 @@ class MotionCheck {
               detail::reach_over(balls_end - margin, speed) > 1) {
         continue;
       }
-      const Scalar from_start =
-          screened_reach(pair, start_links_, start_world_, speed, margin, balls_start, 1);
+      const Scalar from_start = screened_reach(pair, 0, speed, margin, balls_start, 1);
       if (from_start > 1) continue;
-      const Scalar from_end = screened_reach(pair, end_links_, end_world_, speed, margin,
-                                             balls_end, 1 - from_start);
+      const Scalar from_end = screened_reach(pair, 1, speed, margin, balls_end, 1 - from_start);
       // Apart over the whole motion when the reaches from both ends meet.
       if (from_start + from_end > 1) continue;
       const Geometry& a = model_.geometries()[pair.a];
@@ -262,20 +262,19 @@ class MotionCheck {
     });
   }
 
-  // The time either way from the configuration of `links` (its geometries placed at `world`) over
-  // which the pair's screens prove it apart: by the whole motion's speed bound, or the local one;
-  // from the balls' separation `balls`, then from the boxes' too unless the balls' alone reach
-  // past `needed`.
-  Scalar screened_reach(const GeometryPair& pair, const std::vector<Pose>& links,
-                        const std::vector<Pose>& world, Scalar speed, Scalar margin,
-                        Scalar balls, Scalar needed) const {
+  // The time either way from the motion's start (`end` 0) or end (1) over which the pair's screens
+  // prove it apart: by the whole motion's speed bound, or the local one; from the balls'
+  // separation `balls`, then from the boxes' too unless the balls' alone reach past `needed`.
+  Scalar screened_reach(const GeometryPair& pair, int end, Scalar speed, Scalar margin,
+                        Scalar balls, Scalar needed) {
+    const std::vector<Pose>& world = end == 0 ? start_world_ : end_world_;
     const Pose& pose_a = world[pair.a];
     const Pose& pose_b = world[pair.b];
     Scalar apart = balls - margin;
     Scalar reach = detail::reach_over(apart, speed);
     if (reach > needed) return reach;
     const detail::LinkMotionBound::LocalSpeed local =
-        bound_.local_speed(pair, links, pose_a, pose_b);
+        bound_.local_speed(pair, end_chain(end, pair.a), end_chain(end, pair.b));
     reach = std::max(reach, local_reach(apart, local));
     if (reach > needed) return reach;
     const BodyBounds& a = model_.geometries()[pair.a].body.bounds();
@@ -289,6 +288,19 @@ class MotionCheck {
         margin;
     if (!(boxes > apart)) return reach;
     return reach_from(boxes);
+  }
+
+  // Geometry g's chain placed at the motion's start (`end` 0) or end (1), placed once per motion
+  // for all the pairs of the geometry.
+  const detail::LinkMotionBound::PlacedChain& end_chain(int end, int g) {
+    const auto i = static_cast<std::size_t>(g);
+    detail::LinkMotionBound::PlacedChain& chain = end_chains_[end][i];
+    if (!chain_placed_[end][i]) {
+      bound_.place_chain(g, end == 0 ? start_links_ : end_links_,
+                         (end == 0 ? start_world_ : end_world_)[i], chain);
+      chain_placed_[end][i] = 1;
+    }
+    return chain;
   }
 
   // Conservative advancement of one pair over [0, horizon] (time_of_impact's, with the horizon
@@ -409,8 +421,10 @@ class MotionCheck {
           plan.speed);
       if (screened > horizon - t) return {t, false, screened, screened};
     }
+    bound_.place_chain(pair.a, links_, pose_a_, chain_a_);
+    bound_.place_chain(pair.b, links_, pose_b_, chain_b_);
     const detail::LinkMotionBound::LocalSpeed local =
-        bound_.local_speed(pair, links_, pose_a_, pose_b_);
+        bound_.local_speed(pair, chain_a_, chain_b_);
     const BodyBounds& a = model_.geometries()[pair.a].body.bounds();
     const BodyBounds& b = model_.geometries()[pair.b].body.bounds();
     // The motion's size for this pair: the sum of the two bounding balls' diameters.
@@ -481,7 +495,7 @@ class MotionCheck {
         std::max(detail::reach_over(apart, plan.speed), local_reach(apart, local));
     if (direction.squaredNorm() > 0) {
       const Scalar along = directional_reach(
-          apart, bound_.directional_speed(pair, direction, links_, pose_a_, pose_b_));
+          apart, bound_.directional_speed(pair, direction, chain_a_, chain_b_));
       s.forward = s.backward = std::max(s.forward, along);
     }
     return s;
@@ -580,6 +594,12 @@ class MotionCheck {
   std::vector<Pose> end_world_;
   Pose pose_a_;
   Pose pose_b_;
+  // The sampled pair's chains at its poses.
+  detail::LinkMotionBound::PlacedChain chain_a_;
+  detail::LinkMotionBound::PlacedChain chain_b_;
+  // Per geometry, its chain at the motion's start and end, and whether it is placed yet.
+  std::vector<detail::LinkMotionBound::PlacedChain> end_chains_[2];
+  std::vector<char> chain_placed_[2];
   std::vector<PairPlan> plans_;
   std::vector<Sample> ahead_;
   std::vector<Unproven> unproven_;
