@@ -1,8 +1,6 @@
 #include "distance_finish.hpp"
 
 #include <algorithm>
-#include <array>
-#include <cmath>
 #include <vector>
 
 #include "../queries/verdict.hpp"
@@ -49,101 +47,6 @@ bool merge(std::vector<int>& into, const std::vector<int>& more) {
 bool smooth(const FramedBody& body) {
   return body.curved() &&
          body.body().curved()->parameters().kind == CurvedShapeParameters::Kind::ellipsoid;
-}
-
-// A direction from A to B and the point of B - A least along it (its supporting pair).
-struct Sample {
-  Vector3 m;
-  Vector3 q;
-};
-
-// The secant direction of up to three samples (the oldest first): the support map of B - A,
-// modelled as affine over the samples' affine hull (the points `sum l_i q_i` for the directions
-// `sum l_i m_i`, `sum l_i = 1`), and the direction where the model's point lies along it
-// (`p = s m`, the optimality of the nearest point): for a fixed `s`, the weights of the nearest
-// point of the affine hull of `q_i - s m_i` to the origin, then `s = |p|` again, a few times.
-// On a smooth difference Wolfe's algorithm halves the angle to the optimal direction per step
-// (the new support point lands between the corral's, a bisection); this secant step converges
-// superlinearly. False when the samples are degenerate.
-bool secant_direction(const std::array<Sample, 3>& samples, int count, Scalar s, Vector3& m) {
-  std::array<Scalar, 3> l{};
-  for (int round = 0; round < 3; ++round) {
-    std::array<Vector3, 3> r;
-    for (int i = 0; i < count; ++i) r[i] = samples[i].q - s * samples[i].m;
-    const Vector3 e1 = r[1] - r[0];
-    const Scalar a = e1.squaredNorm();
-    if (!(a > 0)) return false;
-    if (count == 3) {
-      const Vector3 e2 = r[2] - r[0];
-      const Scalar b = e1.dot(e2);
-      const Scalar c = e2.squaredNorm();
-      const Scalar det = a * c - b * b;
-      if (!(det > 1e-12 * a * c)) return false;
-      const Scalar f1 = -r[0].dot(e1);
-      const Scalar f2 = -r[0].dot(e2);
-      l[1] = (c * f1 - b * f2) / det;
-      l[2] = (a * f2 - b * f1) / det;
-      l[0] = 1 - l[1] - l[2];
-    } else {
-      l[1] = -r[0].dot(e1) / a;
-      l[0] = 1 - l[1];
-    }
-    Vector3 p = Vector3::Zero();
-    for (int i = 0; i < count; ++i) p += l[i] * samples[i].q;
-    s = p.norm();
-  }
-  Vector3 sum = Vector3::Zero();
-  for (int i = 0; i < count; ++i) sum += l[i] * samples[i].m;
-  const Scalar length = sum.norm();
-  if (!(length > 0) || !std::isfinite(length)) return false;
-  m = sum / length;
-  return true;
-}
-
-// The samples of a search that asks along secant directions, and its last question.
-struct Secant {
-  std::array<Sample, 3> samples;
-  int count = 0;
-  /// The last oracle point is the support along `asked` (unit), a secant direction.
-  bool asked_secant = false;
-  Vector3 asked = Vector3::Zero();
-
-  void remember(const Vector3& m, const Vector3& q) {
-    if (count == 3) {
-      samples[0] = samples[1];
-      samples[1] = samples[2];
-      --count;
-    }
-    samples[count++] = {m, q};
-  }
-};
-
-// Wolfe's oracle point for the corral's point `d` on a pair that asks along secant directions
-// (DistanceFinish::whole): the support along the secant direction when it is nearer than the
-// corral along `d` (the corral's point then moves nearer), else the support along `d`; the
-// separation along the secant direction is offered either way. Apart from the search's loop, so
-// that the other pairs' oracle stays the support call alone.
-[[gnu::noinline]] OraclePoint secant_support(const FramedPair& pair, const Vector3& d,
-                                             Secant& secant, int& hint_a, int& hint_b,
-                                             BestBounds& bounds, long& evaluations) {
-  const Scalar dd = d.squaredNorm();
-  const Scalar norm = std::sqrt(dd);
-  Vector3 m;
-  if (secant.count >= 2 && secant_direction(secant.samples, secant.count, norm, m)) {
-    ++evaluations;
-    const OraclePoint q = minkowski_support(pair.a, pair.b, m, hint_a, hint_b);
-    secant.remember(m, q.p);
-    bounds.offer_lower(m, m.dot(q.p));
-    if (d.dot(q.p) < dd - 1e-13 * norm) {
-      secant.asked_secant = true;
-      secant.asked = m;
-      return q;
-    }
-  }
-  ++evaluations;
-  const OraclePoint q = minkowski_support(pair.a, pair.b, d, hint_a, hint_b);
-  if (norm > 0) secant.remember(d / norm, q.p);
-  return q;
 }
 
 }  // namespace
@@ -205,13 +108,20 @@ bool DistanceFinish::from(const Vector3& n, int& hint_a, int& hint_b, BestBounds
 
 bool DistanceFinish::whole(const Vector3& start, int& hint_a, int& hint_b, BestBounds& bounds,
                            Goal goal, bool enclosure) {
+  // Two ellipsoids (smooth, strictly convex) ask along secant directions (secant_search.cpp). The
+  // edges and flat faces of cylinders, cones and boxes make the support map far from affine:
+  // secant steps there cost more support calls than they save (cylinder-cylinder apart 29,380 ->
+  // 43,068 instructions per query), and a polytope's Wolfe walk ends in a few exact steps.
+  if (pair_.a.curved() && pair_.b.curved() && smooth(pair_.a) && smooth(pair_.b)) {
+    return whole_secant(start, hint_a, hint_b, bounds, goal, enclosure);
+  }
   // The supports of large bodies climb from the previous ones, unless the direction turned by
   // more than about 25 degrees (as Wolfe's first steps do): the hull's climbing starts are then
   // nearer. Small bodies are scanned, whatever the hints.
   const bool climbs =
       pair_.a.size() > kHillClimbingThreshold || pair_.b.size() > kHillClimbingThreshold;
   Vector3 previous = start;
-  const auto support = [&](const Vector3& d) {
+  const auto oracle = [&](const Vector3& d) {
     ++evaluations_;
     if (climbs) {
       const Scalar along = d.dot(previous);
@@ -222,22 +132,6 @@ bool DistanceFinish::whole(const Vector3& start, int& hint_a, int& hint_b, BestB
       previous = d;
     }
     return minkowski_support(pair_.a, pair_.b, d, hint_a, hint_b);
-  };
-  // Two ellipsoids (smooth, strictly convex: their support map is smooth) ask first along the
-  // secant direction of the last three samples (secant_direction); its support point is Wolfe's
-  // next one when it is nearer than the corral along the corral's point (so it joins the corral
-  // and the corral's point moves nearer), else the support along the corral's point is asked as
-  // usual. Either way the separation along the direction asked bounds the distance below. Other
-  // pairs ask along the corral's point: a polytope's supports are finitely many points, where
-  // Wolfe's algorithm ends in a few exact steps, and the edges and flat faces of cylinders, cones
-  // and boxes make the support map far from affine (secant steps there cost more support calls
-  // than they save: cylinder-cylinder apart 29,380 -> 43,068 instructions per query).
-  const bool secant = pair_.a.curved() && pair_.b.curved() && smooth(pair_.a) && smooth(pair_.b);
-  Secant samples;
-  const auto oracle = [&](const Vector3& d) {
-    samples.asked_secant = false;
-    if (secant) return secant_support(pair_, d, samples, hint_a, hint_b, bounds, evaluations_);
-    return support(d);
   };
   // A corral's witnesses. A distance needs no intersection proof where they prove contact, nor
   // does a verdict asked without `enclosure` (a fifth of an overlapping verdict's cost): the
@@ -271,9 +165,7 @@ bool DistanceFinish::whole(const Vector3& start, int& hint_a, int& hint_b, BestB
   Scalar inverse_norm = 0;
   const auto stop = [&](const MinNormPoint& current, Scalar norm, const OraclePoint* q) {
     if (q == nullptr) inverse_norm = 1 / norm;
-    const Scalar lower = q == nullptr ? bounds.lower()
-                         : samples.asked_secant ? samples.asked.dot(q->p)
-                                        : current.x.dot(q->p) * inverse_norm;
+    const Scalar lower = q != nullptr ? current.x.dot(q->p) * inverse_norm : bounds.lower();
     const Scalar best_lower = std::max(lower, bounds.lower());
     // Every goal needs the bounds within the tolerance (and rounding) of each other, or a
     // separation above the tolerance: a cheap test first, as most iterations meet neither.
@@ -289,8 +181,7 @@ bool DistanceFinish::whole(const Vector3& start, int& hint_a, int& hint_b, BestB
     }
     if (!goal_reached(pair_, goal, best_lower, norm, false)) return false;
     bounds.offer_upper(witness(current));
-    if (q != nullptr) bounds.offer_lower(
-        samples.asked_secant ? samples.asked : Vector3(current.x * inverse_norm), lower);
+    if (q != nullptr) bounds.offer_lower(current.x * inverse_norm, lower);
     offered = bounds.reached(pair_, goal);
     return offered;
   };
