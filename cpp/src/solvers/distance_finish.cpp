@@ -43,6 +43,12 @@ bool merge(std::vector<int>& into, const std::vector<int>& more) {
   return grew;
 }
 
+// True for an ellipsoid (a curved body whose support map is smooth).
+bool smooth(const FramedBody& body) {
+  return body.curved() &&
+         body.body().curved()->parameters().kind == CurvedShapeParameters::Kind::ellipsoid;
+}
+
 }  // namespace
 
 DistanceFinish::DistanceFinish(const FramedPair& pair, Scalar slack, int max_iterations)
@@ -102,6 +108,14 @@ bool DistanceFinish::from(const Vector3& n, int& hint_a, int& hint_b, BestBounds
 
 bool DistanceFinish::whole(const Vector3& start, int& hint_a, int& hint_b, BestBounds& bounds,
                            Goal goal, bool enclosure, const OraclePoint* first_point) {
+  // Two ellipsoids (smooth, strictly convex) ask along secant directions (secant_search.cpp). The
+  // edges and flat faces of cylinders, cones and boxes make the support map far from affine:
+  // secant steps there cost more support calls than they save (cylinder-cylinder apart 29,380 ->
+  // 43,068 instructions per query), and a polytope's Wolfe walk ends in a few exact steps.
+  // Its first point is asked again there (`first_point` only saves a scan of a polytope).
+  if (pair_.a.curved() && pair_.b.curved() && smooth(pair_.a) && smooth(pair_.b)) {
+    return whole_secant(start, hint_a, hint_b, bounds, goal, enclosure);
+  }
   // The supports of large bodies climb from the previous ones, unless the direction turned by
   // more than about 25 degrees (as Wolfe's first steps do): the hull's climbing starts are then
   // nearer. Small bodies are scanned, whatever the hints.
@@ -145,6 +159,8 @@ bool DistanceFinish::whole(const Vector3& start, int& hint_a, int& hint_b, BestB
   // bounds are proven, the upper one from the corral's witnesses, and the search stops if they
   // meet it too (rounding aside, they do).
   bool offered = false;
+  const bool distance_without_radii =
+      goal == Goal::distance && pair_.radius_a == 0 && pair_.radius_b == 0;
   // 1 / |x| of the corral being tested, taken at its first test, before its oracle call: the
   // division then runs beside the support scans instead of after them.
   Scalar inverse_norm = 0;
@@ -155,7 +171,15 @@ bool DistanceFinish::whole(const Vector3& start, int& hint_a, int& hint_b, BestB
     // Every goal needs the bounds within the tolerance (and rounding) of each other, or a
     // separation above the tolerance: a cheap test first, as most iterations meet neither.
     const Scalar slack = pair_.tolerance + 2 * kFrameRounding;
-    if (norm - std::max(best_lower, Scalar(0)) > slack && !(best_lower > pair_.tolerance)) return false;
+    const bool wide = norm - std::max(best_lower, Scalar(0)) > slack;
+    if (wide && !(best_lower > pair_.tolerance)) return false;
+    // A distance of bodies without radii needs the bounds within the tolerance, or contact: a
+    // pair proven apart but not yet to the tolerance (most steps of a search apart) fails both
+    // whatever the rounding of its lower bound (rounded_lower only lowers it).
+    if (wide && distance_without_radii && !(norm + kFrameRounding <= pair_.tolerance) &&
+        pair_.frame.size != 0) {
+      return false;
+    }
     if (!goal_reached(pair_, goal, best_lower, norm, false)) return false;
     bounds.offer_upper(witness(current));
     if (q != nullptr) bounds.offer_lower(current.x * inverse_norm, lower);

@@ -42,6 +42,9 @@ class DistanceFinish {
   long evaluations() const { return evaluations_; }
 
  private:
+  // whole() for two ellipsoids: Wolfe's steps along secant directions (secant_search.cpp).
+  bool whole_secant(const Vector3& start, int& hint_a, int& hint_b, BestBounds& bounds,
+                    Goal goal, bool enclosure);
   void feature(const FramedBody& body, const Vector3& n, int& hint, std::vector<int>& found);
   Witness nearest_between(const std::vector<int>& fa, const std::vector<int>& fb,
                           const Vector3& start);

@@ -276,6 +276,13 @@ ExpansionResult ExpandingPolytope::run(const FramedBody& a, const FramedBody& b,
   // Climbs start from a corner on large polytopes only: a curved body's support ignores starts.
   const bool climb_a = !a.curved() && a.size() > kHillClimbingThreshold;
   const bool climb_b = !b.curved() && b.size() > kHillClimbingThreshold;
+  // The largest indices of A's and of B's points among the vertices.
+  int most_ia = -1;
+  int most_ib = -1;
+  for (const DifferencePoint& v : vertices_) {
+    most_ia = std::max(most_ia, v.ia);
+    most_ib = std::max(most_ib, v.ib);
+  }
 
   for (int iteration = 0; iteration < max_iterations; ++iteration) {
     // Stale entries (faces removed since, or flattened since: see flatten) are dropped.
@@ -331,9 +338,14 @@ ExpansionResult ExpandingPolytope::run(const FramedBody& a, const FramedBody& b,
     // A support point already on the surface, or one not above the nearest face, cannot move
     // it (rounding has the last word), unless the face's normal was the rounding's: then the
     // face is measured again along a better one, and the support asked along that.
-    const bool known = std::any_of(vertices_.begin(), vertices_.end(),
-                                   [&](const auto& v) { return v.ia == ia && v.ib == ib; });
-    if (known || !(h > face.top)) {
+    // A curved body's new support point is appended to its points, its index above every
+    // vertex's: the scan for a vertex with both indices is only needed when neither is new.
+    const bool known = !(h > face.top) || (ia <= most_ia && ib <= most_ib &&
+                                           std::any_of(vertices_.begin(), vertices_.end(),
+                                                       [&](const auto& v) {
+                                                         return v.ia == ia && v.ib == ib;
+                                                       }));
+    if (known) {
       if (!flatten(closest)) break;
       heap_.emplace_back(faces_[closest].distance, closest);
       std::push_heap(heap_.begin(), heap_.end(), kNearestFirst);
@@ -346,6 +358,8 @@ ExpansionResult ExpandingPolytope::run(const FramedBody& a, const FramedBody& b,
       norms_.pop_back();
       break;
     }
+    most_ia = std::max(most_ia, ia);
+    most_ib = std::max(most_ib, ib);
   }
   result.verified = verify(result.depth_lower);
   if (kept_depth_ >= 0) {
