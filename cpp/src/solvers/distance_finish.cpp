@@ -166,7 +166,8 @@ bool DistanceFinish::whole(const Vector3& start, int& hint_a, int& hint_b, BestB
   // often settle a verdict at once.
   const MinNormPoint first = single_point(oracle(start));
   bounds.offer_lower(start, start.dot(first.x));
-  bounds.offer_upper(vertex_witness(pair_, first.corral[0].ia, first.corral[0].ib));
+  // The pair's distance is |first.x|, as vertex_witness computes it from the same points.
+  bounds.offer_upper_vertex(first.corral[0].ia, first.corral[0].ib, first.x.norm());
   if (bounds.reached(pair_, goal)) return true;
   // In the frame every point lies in the unit ball, so 2 bounds every difference.
   const MinNormPoint nearest = wolfe_min_norm_from(oracle, first, 2, max_iterations_, stop);
