@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "normalise.hpp"
+#include "pose_check.hpp"
 
 namespace swarmcollide::detail {
 
@@ -61,11 +62,14 @@ FramedBody::FramedBody(const ConvexPolyhedron& body, const Pose& pose, bool rota
       rotation_(pose.rotation),
       rotated_(rotated),
       exponent_(frame.exponent) {
-  const HullPoints& read = body.hull_points();
-  if (!read.every_point) {
-    vertices_ = &read.centred;
-    hull_ = &read.hull;
-    given_ = &read;
+  // Small bodies are scanned whole: their hull points are every point (hull_points).
+  if (body.size() > kHillClimbingThreshold) {
+    const HullPoints& read = body.hull_points();
+    if (!read.every_point) {
+      vertices_ = &read.centred;
+      hull_ = &read.hull;
+      given_ = &read;
+    }
   }
   const int half = -exponent_ / 2;
   scale_high_ = power_of_two(half);
@@ -162,18 +166,13 @@ ConvexWeights FramedBody::given_weights(ConvexWeights weights) const {
   return ConvexWeights(std::move(dense));
 }
 
-FramedPair frame_pair(const ConvexPolyhedron& a, const Pose& pose_a, const ConvexPolyhedron& b,
-                      const Pose& pose_b, Scalar relative_tolerance) {
-  validate_pose(pose_a, "pose_a");
-  validate_pose(pose_b, "pose_b");
-  return frame_validated_pair(a, pose_a, b, pose_b, relative_tolerance);
-}
+namespace {
 
-FramedPair frame_validated_pair(const ConvexPolyhedron& a, const Pose& pose_a,
-                                const ConvexPolyhedron& b, const Pose& pose_b,
-                                Scalar relative_tolerance) {
-  const bool turned_a = !pose_a.has_identity_rotation();
-  const bool turned_b = !pose_b.has_identity_rotation();
+// frame_validated_pair with the poses' rotations known to be the identity or not (`turned_a`,
+// `turned_b`).
+FramedPair frame_turned_pair(const ConvexPolyhedron& a, const Pose& pose_a, bool turned_a,
+                             const ConvexPolyhedron& b, const Pose& pose_b, bool turned_b,
+                             Scalar relative_tolerance) {
   const Vector3 centre_a = world_centre(a, pose_a, turned_a, "a");
   const Vector3 centre_b = world_centre(b, pose_b, turned_b, "b");
   Frame frame;
@@ -205,6 +204,25 @@ FramedPair frame_validated_pair(const ConvexPolyhedron& a, const Pose& pose_a,
           radius_b,
           support_error,
           radius_a > 0 || radius_b > 0 || support_error > 0};
+}
+
+}  // namespace
+
+FramedPair frame_pair(const ConvexPolyhedron& a, const Pose& pose_a, const ConvexPolyhedron& b,
+                      const Pose& pose_b, Scalar relative_tolerance) {
+  // The identity tests framing needs, made once for the validation too.
+  const bool turned_a = !pose_a.has_identity_rotation();
+  const bool turned_b = !pose_b.has_identity_rotation();
+  if (!valid_pose(pose_a, turned_a)) validate_pose(pose_a, "pose_a");
+  if (!valid_pose(pose_b, turned_b)) validate_pose(pose_b, "pose_b");
+  return frame_turned_pair(a, pose_a, turned_a, b, pose_b, turned_b, relative_tolerance);
+}
+
+FramedPair frame_validated_pair(const ConvexPolyhedron& a, const Pose& pose_a,
+                                const ConvexPolyhedron& b, const Pose& pose_b,
+                                Scalar relative_tolerance) {
+  return frame_turned_pair(a, pose_a, !pose_a.has_identity_rotation(), b, pose_b,
+                           !pose_b.has_identity_rotation(), relative_tolerance);
 }
 
 }  // namespace swarmcollide::detail

@@ -1,6 +1,7 @@
 #include "swarmcollide/geometry/pose.hpp"
 
 #include "../detail/number_text.hpp"
+#include "pose_check.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -55,6 +56,18 @@ bool valid(const Pose& pose) {
   return finite_translation(pose) &&
          (pose.has_identity_rotation() || rigid(deviation(pose.rotation)));
 }
+
+}  // namespace
+
+namespace detail {
+
+bool valid_pose(const Pose& pose, bool turned) {
+  return finite_translation(pose) && (!turned || rigid(deviation(pose.rotation)));
+}
+
+}  // namespace detail
+
+namespace {
 
 // What is wrong with an invalid pose, after its name.
 std::string problem(const Pose& pose) {

@@ -1,6 +1,8 @@
 // The solver behind each method; private to the library's sources.
 #pragma once
 
+#include <cstddef>
+
 #include "../geometry/framed_body.hpp"
 #include "../solvers/answer.hpp"
 #include "swarmcollide/geometry/compound_body.hpp"
@@ -15,12 +17,42 @@ namespace swarmcollide::detail {
 /// A method's solver: answers `goal` for a framed pair (the options are validated).
 using Solver = Answer (*)(const FramedPair& pair, const QueryOptions& options, Goal goal);
 
-/// The solver of `method`, from the method table (methods.cpp).
-Solver solver_for(Method method);
+/// The number of methods (the enum's values).
+inline constexpr std::size_t kMethodCount = static_cast<std::size_t>(Method::libccd) + 1;
+
+/// What a query needs of its method: its `Capability` flags and its solver.
+struct MethodDispatch {
+  unsigned capabilities;
+  Solver solve;
+};
+
+/// Every method's, in the enum's order (methods.cpp, whose method table reads them).
+extern const MethodDispatch kMethodDispatch[kMethodCount];
+
+/// Throws std::invalid_argument for a value outside the Method enum.
+[[noreturn]] void refuse_method(Method method);
+
+/// The dispatch entry of `method`.
+inline const MethodDispatch& method_dispatch(Method method) {
+  const auto index = static_cast<std::size_t>(method);
+  if (index >= kMethodCount) refuse_method(method);
+  return kMethodDispatch[index];
+}
+
+/// The solver of `method`.
+inline Solver solver_for(Method method) { return method_dispatch(method).solve; }
+
+/// Throws std::invalid_argument naming the methods that can answer `query` (which has
+/// `capability`), which `method` cannot.
+[[noreturn]] void refuse_capability(Method method, Capability capability, const char* query);
 
 /// Throws std::invalid_argument when `method` cannot answer `query` (which has `capability`),
-/// naming the methods that can.
-void require(Method method, Capability capability, const char* query);
+/// naming the methods that can. Inline: every query asks it.
+inline void require(Method method, Capability capability, const char* query) {
+  if (!(method_dispatch(method).capabilities & capability)) {
+    refuse_capability(method, capability, query);
+  }
+}
 
 /// Throws std::invalid_argument naming the methods that answer curved shapes, for a method that
 /// cannot (`curved` is the curved body).

@@ -96,13 +96,38 @@ struct MethodEntry {
   detail::Solver solve;
 };
 
+}  // namespace
+
+namespace detail {
+
+// Constant-initialised (function addresses and flags only), so a query's lookups need no guard of
+// a function-local static; the method table below reads its capabilities and solvers from here.
+const MethodDispatch kMethodDispatch[kMethodCount] = {
+    {kDistance | kCollide | kSignedDistance | kCurvedShapes, solve_dual},
+    {kDistance | kCollide, solve_primal_swarm},
+    {kDistance | kCollide, solve_primal_swarm},
+    {kDistance | kCollide, solve_penalty},
+    {kDistance | kCollide | kSignedDistance | kCurvedShapes, solve_exact},
+    {kDistance | kCollide | kSignedDistance | kCurvedShapes, solve_fcl},
+    {kCollide | kSignedDistance | kCurvedShapes, solve_libccd},
+};
+
+}  // namespace detail
+
+namespace {
+
+// The dispatch entry of `method` (listed in the enum's order).
+const detail::MethodDispatch& dispatch_of(Method method) {
+  return detail::kMethodDispatch[static_cast<std::size_t>(method)];
+}
+
 const std::vector<MethodEntry>& entries() {
   static const std::vector<MethodEntry> table = {
       {{Method::dual,
         "dual",
         "the paper's rank-adaptive swarm (8)-(11) over separating directions, with an exact "
         "finish: certified",
-        kDistance | kCollide | kSignedDistance | kCurvedShapes,
+        dispatch_of(Method::dual).capabilities,
         true,
         {parameter<&QueryOptions::dual, &DualOptions::swarm_size>(
              "swarm_size", Kind::integer, 2, 10000, "N_p, the number of particles of a round"),
@@ -119,18 +144,18 @@ const std::vector<MethodEntry>& entries() {
          parameter<&QueryOptions::dual, &DualOptions::max_rounds>(
              "max_rounds", Kind::integer, 1, 10000,
              "the largest number of swarm rounds (re-seeded around the best direction)")}},
-       detail::solve_dual},
+       dispatch_of(Method::dual).solve},
       {{Method::ipso, "ipso",
         "the paper's improved PSO on model (2): rank-adaptive inertia and acceleration (8)-(9)",
-        kDistance | kCollide, false, primal_swarm_parameters(false)},
-       detail::solve_primal_swarm},
+        dispatch_of(Method::ipso).capabilities, false, primal_swarm_parameters(false)},
+       dispatch_of(Method::ipso).solve},
       {{Method::pso, "pso", "the standard PSO on model (2) with linearly decreasing inertia (7)",
-        kDistance | kCollide, false, primal_swarm_parameters(true)},
-       detail::solve_primal_swarm},
+        dispatch_of(Method::pso).capabilities, false, primal_swarm_parameters(true)},
+       dispatch_of(Method::pso).solve},
       {{Method::penalty,
         "penalty",
         "the paper's penalty-function baseline: exterior quadratic penalty minimised by L-BFGS",
-        kDistance | kCollide,
+        dispatch_of(Method::penalty).capabilities,
         false,
         {positive(parameter<&QueryOptions::penalty, &PenaltyOptions::initial_weight>(
              "initial_weight", Kind::real, 0, 1e12, "mu_0, the first penalty weight")),
@@ -142,31 +167,31 @@ const std::vector<MethodEntry>& entries() {
          parameter<&QueryOptions::penalty, &PenaltyOptions::inner_iterations>(
              "inner_iterations", Kind::integer, 1, kMaxIterations,
              "the L-BFGS iteration cap of each subproblem")}},
-       detail::solve_penalty},
+       dispatch_of(Method::penalty).solve},
       {{Method::exact,
         "exact",
         "the library's own exact solvers: Wolfe's nearest points and a certified penetration "
         "depth",
-        kDistance | kCollide | kSignedDistance | kCurvedShapes,
+        dispatch_of(Method::exact).capabilities,
         true,
         {exact_iterations()}},
-       detail::solve_exact},
+       dispatch_of(Method::exact).solve},
       {{Method::fcl,
         "fcl",
         "FCL's GJK (on FCL's own cylinder, cone and ellipsoid for curved shapes), checked by the "
         "certificate; penetration by the library's exact solver",
-        kDistance | kCollide | kSignedDistance | kCurvedShapes,
+        dispatch_of(Method::fcl).capabilities,
         true,
         {exact_iterations()}},
-       detail::solve_fcl},
+       dispatch_of(Method::fcl).solve},
       {{Method::libccd,
         "libccd",
         "libccd's GJK intersection test and EPA penetration depth (capped), checked by the "
         "certificate; no distance",
-        kCollide | kSignedDistance | kCurvedShapes,
+        dispatch_of(Method::libccd).capabilities,
         true,
         {exact_iterations()}},
-       detail::solve_libccd},
+       dispatch_of(Method::libccd).solve},
   };
   return table;
 }
@@ -278,7 +303,8 @@ void QueryOptions::validate() const {
 
 namespace detail {
 
-Solver solver_for(Method method) { return entry(method).solve; }
+
+void refuse_method(Method) { throw std::invalid_argument("unknown method"); }
 
 void refuse_curved(Method method, const ConvexPolyhedron* curved) {
   std::string able;

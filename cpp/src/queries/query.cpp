@@ -23,8 +23,7 @@ const Pose kIdentity{};
 
 namespace detail {
 
-void require(Method method, Capability capability, const char* query) {
-  if (method_info(method).capabilities & capability) return;
+void refuse_capability(Method method, Capability capability, const char* query) {
   std::string able;
   for (const MethodInfo& info : method_table()) {
     if (info.capabilities & capability)

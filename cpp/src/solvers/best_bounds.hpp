@@ -21,12 +21,28 @@ class BestBounds {
   void offer_upper(const Witness& w) {
     if (w.distance < upper_.distance || (w.encloses_origin && !upper_.encloses_origin)) {
       upper_ = w;
+      points_pending_ = false;
     }
+  }
+  /// The witness of the single pair of points (x_ia, y_ib), `distance` apart (as vertex_witness
+  /// computes it): its points are placed only if it is still the best when the answer is made
+  /// (a search's first pair rarely is).
+  void offer_upper_vertex(int ia, int ib, Scalar distance) {
+    if (!(distance < upper_.distance)) return;
+    upper_.ia = {ia, 0, 0, 0};
+    upper_.ib = {ib, 0, 0, 0};
+    upper_.weights = {1, 0, 0, 0};
+    upper_.size = 1;
+    upper_.distance = distance;
+    upper_.encloses_origin = false;
+    points_pending_ = true;
   }
 
   Scalar lower() const { return lower_; }
   /// The direction of the best lower bound (meaningful once one was offered).
   const Vector3& normal() const { return normal_; }
+  /// The best upper bound (its points unset while an offered vertex pair's are pending: read its
+  /// distance, or the answer).
   const Witness& upper() const { return upper_; }
 
   bool reached(const FramedPair& pair, Goal goal) const {
@@ -39,6 +55,10 @@ class BestBounds {
 
   Answer answer(const FramedPair& pair) const {
     Answer a = answer_from_witness(pair, upper_);
+    if (points_pending_) {
+      a.point_a = pair.a.vertex(upper_.ia[0]);
+      a.point_b = pair.b.vertex(upper_.ib[0]);
+    }
     a.lower = lower_;
     a.direction = normal_;
     return a;
@@ -48,6 +68,8 @@ class BestBounds {
   Scalar lower_ = -std::numeric_limits<Scalar>::infinity();
   Vector3 normal_ = Vector3::UnitX();
   Witness upper_;
+  // upper_ is an offered vertex pair whose points are not yet placed.
+  bool points_pending_ = false;
 };
 
 }  // namespace swarmcollide::detail

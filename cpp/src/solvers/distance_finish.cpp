@@ -197,8 +197,9 @@ bool DistanceFinish::whole(const Vector3& start, int& hint_a, int& hint_b, BestB
   bounds.offer_lower(start, start.dot(first.x));
   // A verdict often settles there (apart along the start, or the pair's points within the
   // tolerance); a distance seldom does, and Wolfe's corrals, from this point, give its witnesses.
+  // The pair's distance is |first.x|, as vertex_witness computes it from the same points.
   if (goal != Goal::distance) {
-    bounds.offer_upper(vertex_witness(pair_, first.corral[0].ia, first.corral[0].ib));
+    bounds.offer_upper_vertex(first.corral[0].ia, first.corral[0].ib, first.x.norm());
     if (bounds.reached(pair_, goal)) return true;
   }
   // In the frame every point lies in the unit ball, so 2 bounds every difference.

@@ -24,9 +24,12 @@ namespace swarmcollide::detail {
 /// long thin simplexes. For degenerate simplexes (duplicate, collinear or coplanar points, to
 /// within a sine of 1e-8) all faces are tried: the answer is always a convex combination of the
 /// points, and the nearest one whenever the coordinates are decided above rounding.
+/// `bounded`: the caller knows every coordinate is at most 2^100 in magnitude (points of a frame,
+/// framed_body.hpp), so only the last point's are read to rule out the scaling below whenever
+/// one of them is at least 2^-100; the answer is the same bit for bit.
 template <class Point>
 void nearest_simplex_point(const std::array<Point, 4>& s, int m, std::array<Point, 4>& face,
-                           std::array<Scalar, 4>& w, int& size);
+                           std::array<Scalar, 4>& w, int& size, bool bounded = false);
 
 namespace nearest_simplex_detail {
 
@@ -187,11 +190,8 @@ inline void offer_tetrahedron(const Vector3& a, const Vector3& b, const Vector3&
 
 template <class Point>
 void nearest_simplex_point(const std::array<Point, 4>& s, int m, std::array<Point, 4>& face,
-                           std::array<Scalar, 4>& w, int& size) {
+                           std::array<Scalar, 4>& w, int& size, bool bounded) {
   using namespace nearest_simplex_detail;
-  Vector3 largest = s[0].p.cwiseAbs();
-  for (int k = 1; k < m; ++k) largest = largest.cwiseMax(s[k].p.cwiseAbs());
-  const Scalar reach = largest.maxCoeff();
   std::array<Vector3, 4> scaled;
   std::array<const Vector3*, 4> p = {&s[0].p, &s[1].p, &s[2].p, &s[3].p};
   // The triangle's squared normal is of the fourth power of the coordinates, which overflows or
@@ -199,6 +199,17 @@ void nearest_simplex_point(const std::array<Point, 4>& s, int m, std::array<Poin
   // (exactly), which leaves the weights as they are.
   constexpr Scalar kSmallest = 0x1p-100;
   constexpr Scalar kLargest = 0x1p100;
+  // The largest coordinate (`reach`) is then in [2^-100, 2^100]: no scaling.
+  const Vector3& last = s[m - 1].p;
+  const bool in_range = bounded && (std::abs(last.x()) >= kSmallest ||
+                                    std::abs(last.y()) >= kSmallest ||
+                                    std::abs(last.z()) >= kSmallest);
+  Scalar reach = 1;
+  if (!in_range) {
+    Vector3 largest = s[0].p.cwiseAbs();
+    for (int k = 1; k < m; ++k) largest = largest.cwiseMax(s[k].p.cwiseAbs());
+    reach = largest.maxCoeff();
+  }
   if ((reach < kSmallest && reach > 0) || (reach > kLargest && std::isfinite(reach))) {
     const Scalar factor = std::ldexp(Scalar(1), -std::ilogb(reach));
     for (int k = 0; k < m; ++k) {

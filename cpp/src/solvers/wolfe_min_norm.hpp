@@ -43,7 +43,8 @@ inline Vector3 combination(const std::array<OraclePoint, 4>& s, const std::array
 /// (first brought to the nearest point of their hull). Each new oracle point joins the corral,
 /// and the nearest point of their hull, in closed form (`nearest_simplex_point`, as GJK projects
 /// where Wolfe's minor cycles would step towards it), gives the next corral: the smallest face
-/// holding it, with positive weights. `scale` bounds the norms of the points and sets the
+/// holding it, with positive weights. `scale` bounds the norms of the points (within a small
+/// factor; a scale up to 2^90 promises coordinates below 2^100) and sets the
 /// stopping test: the gap `|x| - (x/|x|) . oracle(x)` at most 1e-14 `scale`, or no further
 /// decrease in `|x|` (rounding), or `max_iterations`, or `stop(current, norm, q)` true for the
 /// current corral, whose point has norm `norm` (nonzero), first with `q` null, then with its
@@ -59,6 +60,9 @@ MinNormPoint wolfe_min_norm_from(const Oracle& oracle, const MinNormPoint& start
   std::array<MinNormPoint, 2> corrals{start, start};
   int current = 0;
   const Scalar gap_tolerance = 1e-14 * scale;
+  // Points of norm about `scale` (a few frame units for every caller) have coordinates far below
+  // 2^100: the projection need not look for overflow (nearest_simplex_point).
+  const bool bounded = scale <= 0x1p90;
   // A start of several points is first brought to the nearest point of its hull (where it may
   // already be, up to rounding).
   bool settle = start.size > 1;
@@ -86,7 +90,7 @@ MinNormPoint wolfe_min_norm_from(const Oracle& oracle, const MinNormPoint& start
       now.corral[m] = q;
       ++m;
     }
-    nearest_simplex_point(now.corral, m, next.corral, next.weights, next.size);
+    nearest_simplex_point(now.corral, m, next.corral, next.weights, next.size, bounded);
     next.x = combination(next.corral, next.weights, next.size);
     const Scalar before = now.x.squaredNorm();
     const Scalar after = next.x.squaredNorm();
