@@ -8,6 +8,7 @@
 #include "../queries/verdict.hpp"
 #include "distance_finish.hpp"
 #include "minkowski.hpp"
+#include "whole_search.hpp"
 
 namespace swarmcollide::detail {
 
@@ -123,75 +124,16 @@ bool DistanceFinish::whole_secant(const Vector3& start, int& hint_a, int& hint_b
     samples.asked_secant = false;
     return secant_support(pair_, d, samples, hint_a, hint_b, bounds, evaluations_);
   };
-  // A corral's witnesses. A distance needs no intersection proof where they prove contact, nor
-  // does a verdict asked without `enclosure` (a fifth of an overlapping verdict's cost): the
-  // witnesses within the tolerance prove the same verdict. Rounded or curved pairs keep it: there
-  // the witnesses' distance is not yet the rounded bodies' bound that close_proven reads.
-  const bool keep = goal != Goal::distance && (enclosure || pair_.adjusted);
-  const auto witness = [&](const MinNormPoint& corral) {
-    return keep ? witness_of(pair_, corral) : contact_witness_of(pair_, corral);
+  // An oracle point bounds the distance by its separation along the direction it was asked for:
+  // the secant direction m (`m . q`), or the corral's point `x` (`(x/|x|) . q`).
+  const auto measured = [&samples](const MinNormPoint& current, const OraclePoint& q,
+                                   Scalar inverse_norm) {
+    return samples.asked_secant
+               ? Separation{samples.asked.dot(q.p), samples.asked}
+               : Separation{current.x.dot(q.p) * inverse_norm, current.x * inverse_norm};
   };
-  // The bounds of a corral: its witnesses (an upper bound) and the separation along them (a lower
-  // bound, its supports climbing from the hints).
-  const auto offer = [&](const MinNormPoint& corral) {
-    const Witness w = witness(corral);
-    bounds.offer_upper(w);
-    if (!(w.distance > 0)) return;
-    const Vector3 n = (w.point_b - w.point_a) / w.distance;
-    int ia = hint_a;
-    int ib = hint_b;
-    ++evaluations_;
-    bounds.offer_lower(n, separation(pair_.a, pair_.b, n, ia, ib));
-  };
-  // The corral bounds the distance above by `|x|`, and each iteration's oracle point below by
-  // `(x/|x|) . q` (its supports along `x` are those along `x/|x|`), or by `m . q` when it is the
-  // support along the secant direction m: once these meet the goal, the
-  // bounds are proven, the upper one from the corral's witnesses, and the search stops if they
-  // meet it too (rounding aside, they do).
-  bool offered = false;
-  const bool distance_without_radii =
-      goal == Goal::distance && pair_.radius_a == 0 && pair_.radius_b == 0;
-  // 1 / |x| of the corral being tested, taken at its first test, before its oracle call: the
-  // division then runs beside the support scans instead of after them.
-  Scalar inverse_norm = 0;
-  const auto stop = [&](const MinNormPoint& current, Scalar norm, const OraclePoint* q) {
-    if (q == nullptr) inverse_norm = 1 / norm;
-    const Scalar lower = q == nullptr             ? bounds.lower()
-                         : samples.asked_secant ? samples.asked.dot(q->p)
-                                                : current.x.dot(q->p) * inverse_norm;
-    const Scalar best_lower = std::max(lower, bounds.lower());
-    // Every goal needs the bounds within the tolerance (and rounding) of each other, or a
-    // separation above the tolerance: a cheap test first, as most iterations meet neither.
-    const Scalar slack = pair_.tolerance + 2 * kFrameRounding;
-    const bool wide = norm - std::max(best_lower, Scalar(0)) > slack;
-    if (wide && !(best_lower > pair_.tolerance)) return false;
-    // A distance of bodies without radii needs the bounds within the tolerance, or contact: a
-    // pair proven apart but not yet to the tolerance (most steps of a search apart) fails both
-    // whatever the rounding of its lower bound (rounded_lower only lowers it).
-    if (wide && distance_without_radii && !(norm + kFrameRounding <= pair_.tolerance) &&
-        pair_.frame.size != 0) {
-      return false;
-    }
-    if (!goal_reached(pair_, goal, best_lower, norm, false)) return false;
-    bounds.offer_upper(witness(current));
-    if (q != nullptr) {
-      bounds.offer_lower(samples.asked_secant ? samples.asked : Vector3(current.x * inverse_norm),
-                         lower);
-    }
-    offered = bounds.reached(pair_, goal);
-    return offered;
-  };
-  // The first oracle point is the supporting pair along `start`, whose separation and distance
-  // often settle a verdict at once.
-  const MinNormPoint first = single_point(oracle(start));
-  bounds.offer_lower(start, start.dot(first.x));
-  bounds.offer_upper(vertex_witness(pair_, first.corral[0].ia, first.corral[0].ib));
-  if (bounds.reached(pair_, goal)) return true;
-  // In the frame every point lies in the unit ball, so 2 bounds every difference.
-  const MinNormPoint nearest = wolfe_min_norm_from(oracle, first, 2, max_iterations_, stop);
-  if (offered) return true;
-  offer(nearest);
-  return bounds.reached(pair_, goal);
+  return whole_search(pair_, start, nullptr, hint_a, hint_b, bounds, goal, enclosure,
+                      max_iterations_, evaluations_, oracle, measured);
 }
 
 }  // namespace swarmcollide::detail

@@ -1,0 +1,108 @@
+// Wolfe's search on the whole Minkowski difference with its bounds and stop test, shared by
+// DistanceFinish::whole and its secant variant (secant_search.cpp); private to the library.
+#pragma once
+
+#include <algorithm>
+
+#include "../queries/verdict.hpp"
+#include "best_bounds.hpp"
+#include "minkowski.hpp"
+#include "witness.hpp"
+#include "wolfe_min_norm.hpp"
+
+namespace swarmcollide::detail {
+
+/// An oracle point's separation along the unit direction it bounds the distance by.
+struct Separation {
+  Scalar value;
+  Vector3 direction;
+};
+
+/// Wolfe's algorithm on B - A from the oracle's point along the unit direction `start` (or
+/// `first`, that point already asked from the same hints), offering its bounds to `bounds` and
+/// stopping as soon as they settle `goal` (DistanceFinish::whole says what it offers).
+/// `oracle(d)` is the support point of B - A for the corral's point `d`, its supports from and into
+/// `hint_a`/`hint_b`; `along(current, q, inverse_norm)` is the Separation of the point `q` it
+/// returned for the corral `current` (whose point's norm is 1 / inverse_norm). `evaluations`
+/// counts the oracle calls made here (the oracle counts its own).
+template <class Oracle, class Along>
+bool whole_search(const FramedPair& pair, const Vector3& start, const OraclePoint* first_point,
+                  int& hint_a, int& hint_b, BestBounds& bounds, Goal goal, bool enclosure,
+                  int max_iterations, long& evaluations, const Oracle& oracle,
+                  const Along& along) {
+  // A corral's witnesses. A distance needs no intersection proof where they prove contact, nor
+  // does a verdict asked without `enclosure` (a fifth of an overlapping verdict's cost): the
+  // witnesses within the tolerance prove the same verdict. Rounded or curved pairs keep it: there
+  // the witnesses' distance is not yet the rounded bodies' bound that close_proven reads.
+  const bool keep = goal != Goal::distance && (enclosure || pair.adjusted);
+  const auto witness = [&](const MinNormPoint& corral) {
+    return keep ? witness_of(pair, corral) : contact_witness_of(pair, corral);
+  };
+  // The bounds of a corral: its witnesses (an upper bound) and the separation along them (a lower
+  // bound, its supports climbing from the hints).
+  const auto offer = [&](const MinNormPoint& corral) {
+    const Witness w = witness(corral);
+    bounds.offer_upper(w);
+    if (!(w.distance > 0)) return;
+    const Vector3 n = (w.point_b - w.point_a) / w.distance;
+    int ia = hint_a;
+    int ib = hint_b;
+    ++evaluations;
+    bounds.offer_lower(n, separation(pair.a, pair.b, n, ia, ib));
+  };
+  // The corral bounds the distance above by `|x|`, and each iteration's oracle point below by its
+  // separation along the direction it was asked for (`along`): once these meet the goal, the
+  // bounds are proven, the upper one from the corral's witnesses, and the search stops if they
+  // meet it too (rounding aside, they do).
+  bool offered = false;
+  const bool distance_without_radii =
+      goal == Goal::distance && pair.radius_a == 0 && pair.radius_b == 0;
+  // 1 / |x| of the corral being tested, taken at its first test, before its oracle call: the
+  // division then runs beside the support scans instead of after them.
+  Scalar inverse_norm = 0;
+  const auto stop = [&](const MinNormPoint& current, Scalar norm, const OraclePoint* q) {
+    if (q == nullptr) inverse_norm = 1 / norm;
+    const Scalar lower = q != nullptr ? along(current, *q, inverse_norm).value : bounds.lower();
+    const Scalar best_lower = std::max(lower, bounds.lower());
+    // Every goal needs the bounds within the tolerance (and rounding) of each other, or a
+    // separation above the tolerance: a cheap test first, as most iterations meet neither.
+    const Scalar slack = pair.tolerance + 2 * kFrameRounding;
+    const bool wide = norm - std::max(best_lower, Scalar(0)) > slack;
+    if (wide && !(best_lower > pair.tolerance)) return false;
+    // A distance of bodies without radii needs the bounds within the tolerance, or contact: a
+    // pair proven apart but not yet to the tolerance (most steps of a search apart) fails both
+    // whatever the rounding of its lower bound (rounded_lower only lowers it).
+    if (wide && distance_without_radii && !(norm + kFrameRounding <= pair.tolerance) &&
+        pair.frame.size != 0) {
+      return false;
+    }
+    if (!goal_reached(pair, goal, best_lower, norm, false)) return false;
+    bounds.offer_upper(witness(current));
+    if (q != nullptr) bounds.offer_lower(along(current, *q, inverse_norm).direction, lower);
+    offered = bounds.reached(pair, goal);
+    return offered;
+  };
+  // The first oracle point is the supporting pair along `start`, whose separation and distance
+  // often settle a verdict at once.
+  if (first_point != nullptr) {
+    ++evaluations;
+    hint_a = first_point->ia;
+    hint_b = first_point->ib;
+  }
+  const MinNormPoint first = single_point(first_point != nullptr ? *first_point : oracle(start));
+  bounds.offer_lower(start, start.dot(first.x));
+  // A verdict often settles there (apart along the start, or the pair's points within the
+  // tolerance); a distance seldom does, and Wolfe's corrals, from this point, give its witnesses.
+  // The pair's distance is |first.x|, as vertex_witness computes it from the same points.
+  if (goal != Goal::distance) {
+    bounds.offer_upper_vertex(first.corral[0].ia, first.corral[0].ib, first.x.norm());
+    if (bounds.reached(pair, goal)) return true;
+  }
+  // In the frame every point lies in the unit ball, so 2 bounds every difference.
+  const MinNormPoint nearest = wolfe_min_norm_from(oracle, first, 2, max_iterations, stop);
+  if (offered) return true;
+  offer(nearest);
+  return bounds.reached(pair, goal);
+}
+
+}  // namespace swarmcollide::detail
