@@ -26,7 +26,7 @@ struct MethodDispatch {
   Solver solve;
 };
 
-/// Every method's, in the enum's order (methods.cpp, whose method table reads them).
+/// Every method's, in the enum's order (methods.cpp, whose method table reads the capabilities).
 extern const MethodDispatch kMethodDispatch[kMethodCount];
 
 /// Throws std::invalid_argument for a value outside the Method enum.

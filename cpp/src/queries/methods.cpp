@@ -91,17 +91,12 @@ ParameterInfo exact_iterations() {
       "iteration cap of every loop the method runs");
 }
 
-struct MethodEntry {
-  MethodInfo info;
-  detail::Solver solve;
-};
-
 }  // namespace
 
 namespace detail {
 
 // Constant-initialised (function addresses and flags only), so a query's lookups need no guard of
-// a function-local static; the method table below reads its capabilities and solvers from here.
+// a function-local static; the method table below reads its capabilities from here.
 const MethodDispatch kMethodDispatch[kMethodCount] = {
     {kDistance | kCollide | kSignedDistance | kCurvedShapes, solve_dual},
     {kDistance | kCollide, solve_primal_swarm},
@@ -121,97 +116,90 @@ const detail::MethodDispatch& dispatch_of(Method method) {
   return detail::kMethodDispatch[static_cast<std::size_t>(method)];
 }
 
-const std::vector<MethodEntry>& entries() {
-  static const std::vector<MethodEntry> table = {
-      {{Method::dual,
-        "dual",
-        "the paper's rank-adaptive swarm (8)-(11) over separating directions, with an exact "
-        "finish: certified",
-        dispatch_of(Method::dual).capabilities,
-        true,
-        {parameter<&QueryOptions::dual, &DualOptions::swarm_size>(
-             "swarm_size", Kind::integer, 2, 10000, "N_p, the number of particles of a round"),
-         parameter<&QueryOptions::dual, &DualOptions::max_iterations>(
-             "max_iterations", Kind::integer, 0, kMaxIterations,
-             "the iteration budget of one round"),
-         parameter<&QueryOptions::dual, &DualOptions::w_min>("w_min", Kind::real, 0, 10,
-                                                             "smallest inertia weight of (8)"),
-         parameter<&QueryOptions::dual, &DualOptions::w_max>("w_max", Kind::real, 0, 10,
-                                                             "largest inertia weight of (8)"),
-         parameter<&QueryOptions::dual, &DualOptions::feature_tolerance>(
-             "feature_tolerance", Kind::real, 0, 1,
-             "slack, relative to the pair's size, of the supporting features of the finish"),
-         parameter<&QueryOptions::dual, &DualOptions::max_rounds>(
-             "max_rounds", Kind::integer, 1, 10000,
-             "the largest number of swarm rounds (re-seeded around the best direction)")}},
-       dispatch_of(Method::dual).solve},
-      {{Method::ipso, "ipso",
-        "the paper's improved PSO on model (2): rank-adaptive inertia and acceleration (8)-(9)",
-        dispatch_of(Method::ipso).capabilities, false, primal_swarm_parameters(false)},
-       dispatch_of(Method::ipso).solve},
-      {{Method::pso, "pso", "the standard PSO on model (2) with linearly decreasing inertia (7)",
-        dispatch_of(Method::pso).capabilities, false, primal_swarm_parameters(true)},
-       dispatch_of(Method::pso).solve},
-      {{Method::penalty,
-        "penalty",
-        "the paper's penalty-function baseline: exterior quadratic penalty minimised by L-BFGS",
-        dispatch_of(Method::penalty).capabilities,
-        false,
-        {positive(parameter<&QueryOptions::penalty, &PenaltyOptions::initial_weight>(
-             "initial_weight", Kind::real, 0, 1e12, "mu_0, the first penalty weight")),
-         positive(parameter<&QueryOptions::penalty, &PenaltyOptions::growth_factor>(
-             "growth_factor", Kind::real, 1, 1e6,
-             "growth of the penalty weight between subproblems")),
-         parameter<&QueryOptions::penalty, &PenaltyOptions::outer_iterations>(
-             "outer_iterations", Kind::integer, 1, 100, "the number of subproblems"),
-         parameter<&QueryOptions::penalty, &PenaltyOptions::inner_iterations>(
-             "inner_iterations", Kind::integer, 1, kMaxIterations,
-             "the L-BFGS iteration cap of each subproblem")}},
-       dispatch_of(Method::penalty).solve},
-      {{Method::exact,
-        "exact",
-        "the library's own exact solvers: Wolfe's nearest points and a certified penetration "
-        "depth",
-        dispatch_of(Method::exact).capabilities,
-        true,
-        {exact_iterations()}},
-       dispatch_of(Method::exact).solve},
-      {{Method::fcl,
-        "fcl",
-        "FCL's GJK (on FCL's own cylinder, cone and ellipsoid for curved shapes), checked by the "
-        "certificate; penetration by the library's exact solver",
-        dispatch_of(Method::fcl).capabilities,
-        true,
-        {exact_iterations()}},
-       dispatch_of(Method::fcl).solve},
-      {{Method::libccd,
-        "libccd",
-        "libccd's GJK intersection test and EPA penetration depth (capped), checked by the "
-        "certificate; no distance",
-        dispatch_of(Method::libccd).capabilities,
-        true,
-        {exact_iterations()}},
-       dispatch_of(Method::libccd).solve},
+const std::vector<MethodInfo>& entries() {
+  static const std::vector<MethodInfo> table = {
+      {Method::dual,
+       "dual",
+       "the paper's rank-adaptive swarm (8)-(11) over separating directions, with an exact "
+       "finish: certified",
+       dispatch_of(Method::dual).capabilities,
+       true,
+       {parameter<&QueryOptions::dual, &DualOptions::swarm_size>(
+            "swarm_size", Kind::integer, 2, 10000, "N_p, the number of particles of a round"),
+        parameter<&QueryOptions::dual, &DualOptions::max_iterations>(
+            "max_iterations", Kind::integer, 0, kMaxIterations,
+            "the iteration budget of one round"),
+        parameter<&QueryOptions::dual, &DualOptions::w_min>("w_min", Kind::real, 0, 10,
+                                                            "smallest inertia weight of (8)"),
+        parameter<&QueryOptions::dual, &DualOptions::w_max>("w_max", Kind::real, 0, 10,
+                                                            "largest inertia weight of (8)"),
+        parameter<&QueryOptions::dual, &DualOptions::feature_tolerance>(
+            "feature_tolerance", Kind::real, 0, 1,
+            "slack, relative to the pair's size, of the supporting features of the finish"),
+        parameter<&QueryOptions::dual, &DualOptions::max_rounds>(
+            "max_rounds", Kind::integer, 1, 10000,
+            "the largest number of swarm rounds (re-seeded around the best direction)")}},
+      {Method::ipso, "ipso",
+       "the paper's improved PSO on model (2): rank-adaptive inertia and acceleration (8)-(9)",
+       dispatch_of(Method::ipso).capabilities, false, primal_swarm_parameters(false)},
+      {Method::pso, "pso", "the standard PSO on model (2) with linearly decreasing inertia (7)",
+       dispatch_of(Method::pso).capabilities, false, primal_swarm_parameters(true)},
+      {Method::penalty,
+       "penalty",
+       "the paper's penalty-function baseline: exterior quadratic penalty minimised by L-BFGS",
+       dispatch_of(Method::penalty).capabilities,
+       false,
+       {positive(parameter<&QueryOptions::penalty, &PenaltyOptions::initial_weight>(
+            "initial_weight", Kind::real, 0, 1e12, "mu_0, the first penalty weight")),
+        positive(parameter<&QueryOptions::penalty, &PenaltyOptions::growth_factor>(
+            "growth_factor", Kind::real, 1, 1e6,
+            "growth of the penalty weight between subproblems")),
+        parameter<&QueryOptions::penalty, &PenaltyOptions::outer_iterations>(
+            "outer_iterations", Kind::integer, 1, 100, "the number of subproblems"),
+        parameter<&QueryOptions::penalty, &PenaltyOptions::inner_iterations>(
+            "inner_iterations", Kind::integer, 1, kMaxIterations,
+            "the L-BFGS iteration cap of each subproblem")}},
+      {Method::exact,
+       "exact",
+       "the library's own exact solvers: Wolfe's nearest points and a certified penetration "
+       "depth",
+       dispatch_of(Method::exact).capabilities,
+       true,
+       {exact_iterations()}},
+      {Method::fcl,
+       "fcl",
+       "FCL's GJK (on FCL's own cylinder, cone and ellipsoid for curved shapes), checked by the "
+       "certificate; penetration by the library's exact solver",
+       dispatch_of(Method::fcl).capabilities,
+       true,
+       {exact_iterations()}},
+      {Method::libccd,
+       "libccd",
+       "libccd's GJK intersection test and EPA penetration depth (capped), checked by the "
+       "certificate; no distance",
+       dispatch_of(Method::libccd).capabilities,
+       true,
+       {exact_iterations()}},
   };
   return table;
 }
 
-const MethodEntry& entry(Method method) {
+const MethodInfo& entry(Method method) {
   // The table lists the methods in the enum's order, so every query finds its method's entry at
   // its index, without a search.
-  const std::vector<MethodEntry>& table = entries();
+  const std::vector<MethodInfo>& table = entries();
   const auto index = static_cast<std::size_t>(method);
-  if (index < table.size() && table[index].info.method == method) return table[index];
-  for (const MethodEntry& e : table) {
-    if (e.info.method == method) return e;
+  if (index < table.size() && table[index].method == method) return table[index];
+  for (const MethodInfo& e : table) {
+    if (e.method == method) return e;
   }
   throw std::invalid_argument("unknown method");
 }
 
 std::string names() {
   std::string list;
-  for (const MethodEntry& e : entries())
-    list += std::string(list.empty() ? "'" : ", '") + e.info.name + "'";
+  for (const MethodInfo& e : entries())
+    list += std::string(list.empty() ? "'" : ", '") + e.name + "'";
   return list;
 }
 
@@ -250,22 +238,15 @@ void check_value(const ParameterInfo& p, double value) {
 
 }  // namespace
 
-const std::vector<MethodInfo>& method_table() {
-  static const std::vector<MethodInfo> table = [] {
-    std::vector<MethodInfo> infos;
-    for (const MethodEntry& e : entries()) infos.push_back(e.info);
-    return infos;
-  }();
-  return table;
-}
+const std::vector<MethodInfo>& method_table() { return entries(); }
 
-const MethodInfo& method_info(Method method) { return entry(method).info; }
+const MethodInfo& method_info(Method method) { return entry(method); }
 
-const char* method_name(Method method) { return entry(method).info.name; }
+const char* method_name(Method method) { return entry(method).name; }
 
 Method method_from_name(const std::string& name) {
-  for (const MethodEntry& e : entries()) {
-    if (name == e.info.name) return e.info.method;
+  for (const MethodInfo& e : entries()) {
+    if (name == e.name) return e.method;
   }
   throw std::invalid_argument("unknown method '" + name + "'; choose one of " + names());
 }
@@ -303,14 +284,13 @@ void QueryOptions::validate() const {
 
 namespace detail {
 
-
 void refuse_method(Method) { throw std::invalid_argument("unknown method"); }
 
 void refuse_curved(Method method, const ConvexPolyhedron* curved) {
   std::string able;
-  for (const MethodEntry& e : entries()) {
-    if (e.info.capabilities & kCurvedShapes)
-      able += std::string(able.empty() ? "'" : ", '") + e.info.name + "'";
+  for (const MethodInfo& e : entries()) {
+    if (e.capabilities & kCurvedShapes)
+      able += std::string(able.empty() ? "'" : ", '") + e.name + "'";
   }
   throw std::invalid_argument(std::string("method '") + method_name(method) +
                               "' reads a body's points (vertices) as the body, and a " +

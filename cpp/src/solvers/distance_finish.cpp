@@ -114,7 +114,7 @@ bool DistanceFinish::whole(const Vector3& start, int& hint_a, int& hint_b, BestB
   // secant steps there cost more support calls than they save (cylinder-cylinder apart 29,380 ->
   // 43,068 instructions per query), and a polytope's Wolfe walk ends in a few exact steps.
   // Its first point is asked again there (`first_point` only saves a scan of a polytope).
-  if (pair_.a.curved() && pair_.b.curved() && smooth(pair_.a) && smooth(pair_.b)) {
+  if (smooth(pair_.a) && smooth(pair_.b)) {
     return whole_secant(start, hint_a, hint_b, bounds, goal, enclosure);
   }
   // The supports of large bodies climb from the previous ones, unless the direction turned by
