@@ -8,10 +8,12 @@
 #include <memory>
 #include <optional>
 #include <sstream>
+#include <utility>
 #include <string>
 #include <vector>
 
 #include "conversions.hpp"
+#include "fast_calls.hpp"
 #include "swarmcollide/queries/methods.hpp"
 #include "swarmcollide/motion/time_of_impact.hpp"
 
@@ -141,6 +143,109 @@ TimeOfImpactOptions motion_options(const py::handle& method, const py::handle& t
     throw py::value_error(e.what());
   }
   return options;
+}
+
+// time_of_impact's Python definition (swarmcollide.motion): the C++ function below hands it every
+// call it does not answer itself.
+PyObject* motion_python_path = nullptr;
+
+// The keyword arguments of a call to time_of_impact, as written in it (null where not given).
+struct MotionCall {
+  PyObject* pose_a = Py_None;
+  PyObject* pose_b = Py_None;
+  PyObject* method = nullptr;
+  PyObject* tolerance = nullptr;
+  PyObject* time_tolerance = nullptr;
+  PyObject* max_iterations = nullptr;
+  PyObject* motion = nullptr;
+};
+
+// Reads a call's keywords into `call` by identity with their interned names (a keyword written in
+// a call is interned too); false for any other keyword, which the Python path then refuses.
+bool read_motion_keywords(PyObject* const* values, PyObject* names, MotionCall& call) {
+  if (names == nullptr) return true;
+  static PyObject* const pose_a = PyUnicode_InternFromString("pose_a");
+  static PyObject* const pose_b = PyUnicode_InternFromString("pose_b");
+  static PyObject* const method = PyUnicode_InternFromString("method");
+  static PyObject* const tolerance = PyUnicode_InternFromString("tolerance");
+  static PyObject* const time_tolerance = PyUnicode_InternFromString("time_tolerance");
+  static PyObject* const max_iterations = PyUnicode_InternFromString("max_iterations");
+  static PyObject* const motion = PyUnicode_InternFromString("motion");
+  const std::pair<PyObject*, PyObject**> fields[] = {
+      {pose_a, &call.pose_a},       {pose_b, &call.pose_b},
+      {method, &call.method},       {tolerance, &call.tolerance},
+      {time_tolerance, &call.time_tolerance}, {max_iterations, &call.max_iterations},
+      {motion, &call.motion}};
+  for (Py_ssize_t i = 0; i < PyTuple_GET_SIZE(names); ++i) {
+    PyObject* const name = PyTuple_GET_ITEM(names, i);
+    bool known = false;
+    for (const auto& [field, value] : fields) {
+      if (name == field) {
+        *value = values[i];
+        known = true;
+      }
+    }
+    if (!known) return false;
+  }
+  return true;
+}
+
+// The options of a call, converted and checked as time_of_impact's pybind11 definition does; the
+// defaults' once.
+TimeOfImpactOptions call_options(const MotionCall& call) {
+  static PyObject* const exact = PyUnicode_InternFromString("exact");
+  static PyObject* const tolerance = PyFloat_FromDouble(kDefaultTolerance);
+  static PyObject* const time_tolerance = PyFloat_FromDouble(kDefaultTimeTolerance);
+  static PyObject* const max_iterations = PyLong_FromLong(kDefaultMotionIterations);
+  static const TimeOfImpactOptions defaults =
+      motion_options(exact, tolerance, time_tolerance, max_iterations);
+  if (!call.method && !call.tolerance && !call.time_tolerance && !call.max_iterations) {
+    return defaults;
+  }
+  return motion_options(call.method ? call.method : exact,
+                        call.tolerance ? call.tolerance : tolerance,
+                        call.time_tolerance ? call.time_tolerance : time_tolerance,
+                        call.max_iterations ? call.max_iterations : max_iterations);
+}
+
+// time_of_impact in C++: `time_of_impact(a, b, *, pose_a, pose_b, method, tolerance,
+// time_tolerance, max_iterations, motion)` between two ConvexPolyhedron answered here, with the
+// pybind11 definition's conversions, about a microsecond sooner than through pybind11's argument
+// matching; other bodies, other keywords and calls that raise go to the Python definition, which
+// answers them or raises as it always has.
+PyObject* time_of_impact_function(PyObject*, PyObject* const* arguments, Py_ssize_t count,
+                                  PyObject* names) {
+  MotionCall call;
+  if (count == 2 && read_motion_keywords(arguments + 2, names, call)) {
+    const ConvexPolyhedron* a = exact_instance<ConvexPolyhedron>(arguments[0]);
+    const ConvexPolyhedron* b = a ? exact_instance<ConvexPolyhedron>(arguments[1]) : nullptr;
+    if (b != nullptr) {
+      try {
+        const TimeOfImpactOptions options = call_options(call);
+        const MotionKind kind = call.motion ? to_motion_kind(call.motion) : MotionKind::linear;
+        const RigidMotion motion_a = to_motion(call.pose_a, "pose_a", kind);
+        const RigidMotion motion_b = to_motion(call.pose_b, "pose_b", kind);
+        TimeOfImpactResult result;
+        {
+          py::gil_scoped_release release;
+          result = time_of_impact(*a, motion_a, *b, motion_b, options);
+        }
+        return py::cast(std::move(result)).release().ptr();
+      } catch (...) {
+        // The Python path raises it again, with the message it has always given.
+      }
+    }
+  }
+  return PyObject_Vectorcall(motion_python_path, arguments, static_cast<std::size_t>(count),
+                             names);
+}
+
+// `python_path`, swarmcollide.motion's time_of_impact, as time_of_impact_function.
+py::object make_motion_function(const py::function& python_path,
+                                const std::string& text_signature) {
+  Py_XDECREF(motion_python_path);
+  motion_python_path = python_path.inc_ref().ptr();
+  return fast_function(&time_of_impact_function, python_path, text_signature);
 }
 
 // The bodies of one side of a batch, converted where they are not bodies already.
@@ -373,6 +478,14 @@ and each row's ``TimeOfImpactResult`` by indexing.
       py::arg("max_iterations") = kDefaultMotionIterations, py::arg("motion") = "linear",
       "The first contact of A and B moving from their start to their end poses (see "
       "swarmcollide.time_of_impact).");
+
+  m.def("motion_function", &make_motion_function, py::arg("python_path"),
+        py::arg("text_signature"), R"doc(
+``python_path``, swarmcollide.motion's ``time_of_impact``, as a C++ function with its name,
+module, documentation and ``text_signature`` (without annotations): it answers calls between two
+ConvexPolyhedron itself, with the conversions of ``_core.time_of_impact``, and hands every other
+call (compound bodies, points, calls that raise) to ``python_path``.
+)doc");
 
   m.def(
       "time_of_impact_many",

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "conversions.hpp"
+#include "fast_calls.hpp"
 #include "queries.hpp"
 #include "swarmcollide/queries/methods.hpp"
 
@@ -163,20 +164,6 @@ auto answer_bodies(const Query& query, PairQuery kind, const Body& a, const Pose
       break;
   }
   return query.collision(a, pose_a, b, pose_b, escalate);
-}
-
-// The C++ object of `object` when its Python type is exactly T's bound class (the usual argument:
-// a ConvexPolyhedron, a Query), read from the instance with the type's record found once: a cast
-// looks the record up by the C++ type's name on every call. Null for anything else (a subclass,
-// another type), which the callers then convert as pybind11 does, or for an instance whose
-// __init__ has not run (the cast then says so).
-template <typename T>
-const T* exact_instance(PyObject* object) {
-  static PyTypeObject* const type = reinterpret_cast<PyTypeObject*>(py::type::of<T>().ptr());
-  static py::detail::type_info* const record = py::detail::get_type_info(typeid(T));
-  if (Py_TYPE(object) != type) return nullptr;
-  auto* instance = reinterpret_cast<py::detail::instance*>(object);
-  return static_cast<const T*>(instance->get_value_and_holder(record, false).value_ptr());
 }
 
 // `kind` between `a` and `b` as Python sees it: a bool for collide, else a DistanceResult (a
@@ -358,8 +345,7 @@ PyObject* query_function(PyObject*, PyObject* const* arguments, Py_ssize_t count
 py::object make_query_function(const py::function& python_path,
                                const std::string& text_signature) {
   const auto name = python_path.attr("__name__").cast<std::string>();
-  // METH_FASTCALL | METH_KEYWORDS's calling convention (named so from Python 3.13 only).
-  PyObject* (*entry)(PyObject*, PyObject* const*, Py_ssize_t, PyObject*) = nullptr;
+  FastCall entry = nullptr;
   PairQuery kind = PairQuery::distance;
   if (name == "distance") {
     entry = &query_function<PairQuery::distance>;
@@ -379,18 +365,7 @@ py::object make_query_function(const py::function& python_path,
   PyObject*& held = python_paths[static_cast<int>(kind)];
   Py_XDECREF(held);
   held = python_path.inc_ref().ptr();
-  // A function's name and documentation must outlive it, and the module keeps its functions:
-  // they are made once per import and never freed.
-  const std::string docstring = py::str(python_path.attr("__doc__"));
-  const auto* const documentation = new std::string(name + text_signature + "\n--\n\n" + docstring);
-  const auto* const function_name = new std::string(name);
-  auto* const definition = new PyMethodDef{
-      function_name->c_str(), reinterpret_cast<PyCFunction>(reinterpret_cast<void (*)()>(entry)),
-      METH_FASTCALL | METH_KEYWORDS, documentation->c_str()};
-  const py::object module = python_path.attr("__module__");
-  PyObject* const function = PyCFunction_NewEx(definition, nullptr, module.ptr());
-  if (function == nullptr) throw py::error_already_set();
-  return py::reinterpret_steal<py::object>(function);
+  return fast_function(entry, python_path, text_signature);
 }
 
 // Query's pybind11 methods, by PairQuery: the C++ methods below (query_method) hand them every

@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['Aabb', 'BatchResult', 'Box', 'Capsule', 'CompoundBody', 'CompoundResult', 'CompoundStats', 'Cone', 'ContactResult', 'ConvexPolyhedron', 'Cylinder', 'DistanceResult', 'Ellipsoid', 'Hull', 'Joint', 'PartNode', 'ParticleCoefficients', 'Query', 'RobotCheck', 'RobotDistances', 'RobotModel', 'RobotMotionCheck', 'Scene', 'SceneResult', 'SceneStats', 'Sphere', 'SweepResult', 'TimeOfImpactBatch', 'TimeOfImpactResult', 'as_polyhedron', 'broadphases', 'constraint_violation', 'is_feasible', 'linear_decreasing_inertia', 'method_table', 'objective', 'pair_seed', 'project_onto_simplex', 'query_function', 'rank_adaptive_coefficients', 'separation', 'time_of_impact', 'time_of_impact_many']
+__all__: list[str] = ['Aabb', 'BatchResult', 'Box', 'Capsule', 'CompoundBody', 'CompoundResult', 'CompoundStats', 'Cone', 'ContactResult', 'ConvexPolyhedron', 'Cylinder', 'DistanceResult', 'Ellipsoid', 'Hull', 'Joint', 'PartNode', 'ParticleCoefficients', 'Query', 'RobotCheck', 'RobotDistances', 'RobotModel', 'RobotMotionCheck', 'Scene', 'SceneResult', 'SceneStats', 'Sphere', 'SweepResult', 'TimeOfImpactBatch', 'TimeOfImpactResult', 'as_polyhedron', 'broadphases', 'constraint_violation', 'is_feasible', 'linear_decreasing_inertia', 'method_table', 'motion_function', 'objective', 'pair_seed', 'project_onto_simplex', 'query_function', 'rank_adaptive_coefficients', 'separation', 'time_of_impact', 'time_of_impact_many']
 class Aabb:
     """
     An axis-aligned bounding box with corners ``min`` and ``max``.
@@ -1514,6 +1514,13 @@ def linear_decreasing_inertia(iteration: typing.SupportsInt | typing.SupportsInd
 def method_table() -> list:
     """
     Every method as a dictionary: name, summary, queries, always_certified, parameters.
+    """
+def motion_function(python_path: collections.abc.Callable, text_signature: str) -> typing.Any:
+    """
+    ``python_path``, swarmcollide.motion's ``time_of_impact``, as a C++ function with its name,
+    module, documentation and ``text_signature`` (without annotations): it answers calls between two
+    ConvexPolyhedron itself, with the conversions of ``_core.time_of_impact``, and hands every other
+    call (compound bodies, points, calls that raise) to ``python_path``.
     """
 def objective(a: typing.Any, b: typing.Any, weights_a: typing.Any, weights_b: typing.Any) -> float:
     """

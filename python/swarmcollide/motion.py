@@ -14,7 +14,14 @@ from __future__ import annotations
 from typing import Any, Literal, Optional, Tuple, Union
 
 from . import _core
-from .queries import DEFAULT_TOLERANCE, BodiesLike, PolyhedronLike, PoseLike, PosesLike
+from .queries import (
+    DEFAULT_TOLERANCE,
+    BodiesLike,
+    PolyhedronLike,
+    PoseLike,
+    PosesLike,
+    _answered_in_cpp,
+)
 
 TimeOfImpactResult = _core.TimeOfImpactResult
 TimeOfImpactBatch = _core.TimeOfImpactBatch
@@ -41,6 +48,7 @@ MotionsLike = Union[None, Tuple[PosesLike, PosesLike]]
 anything ``distance_many``'s ``poses_a`` takes), of m rows or of one row for all."""
 
 
+@_answered_in_cpp(_core.motion_function)
 def time_of_impact(
     a: PolyhedronLike,
     b: PolyhedronLike,

@@ -188,19 +188,26 @@ do not answer themselves (solver parameters, unusual types, errors), and the tes
 both give the same answers."""
 
 
-def _answered_in_cpp(python_path: QueryFunction) -> QueryFunction:
-    """``python_path`` as a C++ function with its name, documentation and signature (less the
-    annotations, which only the Python definition keeps for type checkers)."""
-    PYTHON_PATHS[python_path.__name__] = python_path
-    signature = inspect.signature(python_path)
-    plain = signature.replace(
-        parameters=[p.replace(annotation=p.empty) for p in signature.parameters.values()],
-        return_annotation=signature.empty,
-    )
-    return cast(QueryFunction, _core.query_function(python_path, str(plain)))
+def _answered_in_cpp(
+    make: Callable[[Callable[..., Any], str], Any] = _core.query_function,
+) -> Callable[[QueryFunction], QueryFunction]:
+    """A decorator: the function as the C++ function ``make`` builds from it (``query_function``,
+    or ``motion_function`` for ``time_of_impact``), with its name, documentation and signature
+    (less the annotations, which only the Python definition keeps for type checkers)."""
+
+    def answered(python_path: QueryFunction) -> QueryFunction:
+        PYTHON_PATHS[python_path.__name__] = python_path
+        signature = inspect.signature(python_path)
+        plain = signature.replace(
+            parameters=[p.replace(annotation=p.empty) for p in signature.parameters.values()],
+            return_annotation=signature.empty,
+        )
+        return cast(QueryFunction, make(python_path, str(plain)))
+
+    return answered
 
 
-@_answered_in_cpp
+@_answered_in_cpp()
 def distance(
     a: PolyhedronLike,
     b: PolyhedronLike,
@@ -266,7 +273,7 @@ def distance(
     )
 
 
-@_answered_in_cpp
+@_answered_in_cpp()
 def signed_distance(
     a: PolyhedronLike,
     b: PolyhedronLike,
@@ -305,7 +312,7 @@ def signed_distance(
     )
 
 
-@_answered_in_cpp
+@_answered_in_cpp()
 def collide(
     a: PolyhedronLike,
     b: PolyhedronLike,
@@ -336,7 +343,7 @@ def collide(
     )
 
 
-@_answered_in_cpp
+@_answered_in_cpp()
 def collision(
     a: PolyhedronLike,
     b: PolyhedronLike,

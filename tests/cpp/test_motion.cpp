@@ -85,6 +85,29 @@ TEST(RigidMotion, ScrewTurnsAboutAFixedAxisWhileSlidingAlongIt) {
   EXPECT_THROW(motion_kind_from_name("helix"), std::invalid_argument);
 }
 
+TEST(RigidMotion, ShiftedIsTheMotionOfTheShiftedPosesBitForBit) {
+  const Matrix3 start = Eigen::AngleAxis<Scalar>(0.7, Vector3(1, 2, 3).normalized()).matrix();
+  const Matrix3 end = start * Eigen::AngleAxis<Scalar>(2.1, Vector3(0, 1, 1).normalized()).matrix();
+  const Vector3 shift(-1.25, 3.5e3, 1e-7);
+  for (const MotionKind kind : {MotionKind::linear, MotionKind::screw}) {
+    const Pose from = at(Vector3(1, -2, 3), start);
+    const Pose to = at(Vector3(-4, 5, 2), end);
+    const RigidMotion moved = RigidMotion(from, to, kind).shifted(shift);
+    const RigidMotion built(at(from.translation + shift, start), at(to.translation + shift, end),
+                            kind);
+    EXPECT_EQ(moved.kind(), kind);
+    EXPECT_EQ(moved.start().translation, built.start().translation);
+    EXPECT_EQ(moved.end().translation, built.end().translation);
+    EXPECT_EQ(moved.rotation_vector(), built.rotation_vector());
+    EXPECT_EQ(moved.twist_translation(), built.twist_translation());
+    EXPECT_EQ(moved.start_rotation_norm(), built.start_rotation_norm());
+    for (const Scalar t : {0.0, 0.3, 1.0}) {
+      EXPECT_EQ(moved.at(t).translation, built.at(t).translation) << t;
+      EXPECT_EQ(moved.at(t).rotation, built.at(t).rotation) << t;
+    }
+  }
+}
+
 TEST(RigidMotion, RefusesPosesThatAreNotRigidOrFinite) {
   Pose scaled;
   scaled.rotation *= 1.01;

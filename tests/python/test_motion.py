@@ -1,6 +1,8 @@
 """time_of_impact against a dense-sampling oracle on the exact signed distance, and cases with
 known first contacts."""
 
+import inspect
+
 import numpy as np
 import pytest
 from scipy.optimize import brentq
@@ -367,3 +369,60 @@ def test_batches_take_compound_bodies_and_point_stacks():
     with pytest.raises(ValueError, match="Bs has 3 entries"):
         sc.time_of_impact_many(points, list(points[:3]))
     assert sc.time_of_impact_many(points, points).touches.all()
+
+
+def toi_fields(result):
+    # repr: a free motion's distance is NaN, which equals nothing.
+    return (result.touches, result.t_lower, result.t_upper, repr(result.distance), result.certified,
+            result.iterations, result.status, repr(result), result.point_a.tolist(),
+            result.point_b.tolist(), result.normal.tolist(), result.pose_a.tolist(),
+            result.pose_b.tolist())
+
+
+def toi_outcome(function, *arguments, **keywords):
+    """What a call gives: ("answer", its fields) or (the error's type, its message)."""
+    try:
+        return "answer", toi_fields(function(*arguments, **keywords))
+    except Exception as error:  # noqa: BLE001 - the comparison is the test
+        return type(error), str(error)
+
+
+def test_the_cpp_and_python_paths_of_time_of_impact_agree():
+    """time_of_impact answers calls between two ConvexPolyhedron in C++ (_core.motion_function)
+    and hands every other call to its Python definition: both give the same answers and errors."""
+    from swarmcollide import queries
+
+    python = queries.PYTHON_PATHS["time_of_impact"]
+    assert sc.time_of_impact is not python and sc.time_of_impact.__doc__ == python.__doc__
+    assert [(p.name, p.kind, p.default) for p in
+            inspect.signature(sc.time_of_impact).parameters.values()] == [
+        (p.name, p.kind, p.default) for p in inspect.signature(python).parameters.values()]
+    cube = sc.ConvexPolyhedron(np.array([[x, y, z] for x in (0, 1) for y in (0, 1)
+                                         for z in (0, 1)], dtype=float))
+    start, end = transform(np.eye(3), [-5, 0, 0]), transform(np.eye(3), [5, 0.5, 0])
+    turned = transform(Rotation.from_euler("z", 40, degrees=True).as_matrix(), [4, 0, 0])
+    nan = np.eye(4)
+    nan[0, 3] = np.nan
+    calls = [
+        ((cube, cube), {}),
+        ((cube, cube), {"pose_a": (start, end)}),
+        ((cube, cube), {"pose_a": (start, turned), "pose_b": transform(np.eye(3), [1, 2, 0])}),
+        ((cube, cube), {"pose_a": (start, turned), "motion": "screw", "method": "dual"}),
+        ((cube, cube), {"pose_a": (start, end), "tolerance": 1e-6, "time_tolerance": 1e-3}),
+        ((cube, cube), {"pose_a": (start, end), "max_iterations": 1}),
+        ((cube, cube), {"pose_a": (start[:3], end[:3]), "method": "fcl"}),
+        ((cube, cube), {"pose_b": (np.eye(3), [3, 0, 0])}),
+        ((cube, sc.Box([0.5] * 3)), {"pose_a": (start, end)}),  # a shape: the Python path
+        ((cube, cube), {"pose_a": (start, nan)}),
+        ((cube, cube), {"pose_a": (start, end), "time_tolerance": 0}),
+        ((cube, cube), {"method": "ipso"}),
+        ((cube, cube), {"motion": "spiral"}),
+        ((cube, cube), {"max_iterations": 1.5}),
+        ((cube, cube), {"unknown": 1}),
+        ((cube,), {}),
+        ((cube, "cube"), {}),
+    ]
+    for arguments, keywords in calls:
+        fast = toi_outcome(sc.time_of_impact, *arguments, **keywords)
+        slow = toi_outcome(python, *arguments, **keywords)
+        assert fast == slow, (keywords, fast, slow)

@@ -72,16 +72,27 @@ RigidMotion::RigidMotion(const Pose& start, const Pose& end, MotionKind kind, co
   axis_ = sine_half > 0 ? Vector3(turn.vec() / sine_half) : Vector3::Zero();
   rotation_vector_ = axis_ * angle_;
   start_norm_ = spectral_norm_bound(start.rotation);
-  if (kind_ == MotionKind::screw) {
-    // v = V(w)^-1 p for p = R0^T (T1 - T0), with V(w)^-1 = I - [w]/2 + g K^2 (K = [k]x, k the
-    // unit axis) and g = 1 - (angle / 2) cot(angle / 2), which is in [0, 1] for angles in
-    // [0, pi] and computed to within a few roundoffs absolute (the subtraction from 1 loses
-    // digits of g near 0, not of the product g K^2 p, whose size is at most |p|).
-    const Vector3 p = start.rotation.transpose() * (end.translation - start.translation);
-    const Scalar half = angle_ / 2;
-    const Scalar g = angle_ == 0 ? 0 : 1 - half / std::tan(half);
-    twist_translation_ = p - rotation_vector_.cross(p) / 2 + g * axis_.cross(axis_.cross(p));
-  }
+  if (kind_ == MotionKind::screw) twist_translation_ = screw_translation();
+}
+
+Vector3 RigidMotion::screw_translation() const {
+  // v = V(w)^-1 p for p = R0^T (T1 - T0), with V(w)^-1 = I - [w]/2 + g K^2 (K = [k]x, k the
+  // unit axis) and g = 1 - (angle / 2) cot(angle / 2), which is in [0, 1] for angles in
+  // [0, pi] and computed to within a few roundoffs absolute (the subtraction from 1 loses
+  // digits of g near 0, not of the product g K^2 p, whose size is at most |p|).
+  const Vector3 p = start_.rotation.transpose() * (end_.translation - start_.translation);
+  const Scalar half = angle_ / 2;
+  const Scalar g = angle_ == 0 ? 0 : 1 - half / std::tan(half);
+  return p - rotation_vector_.cross(p) / 2 + g * axis_.cross(axis_.cross(p));
+}
+
+RigidMotion RigidMotion::shifted(const Vector3& shift) const {
+  // The turn depends on the rotations alone; a screw's translation part on the translations too.
+  RigidMotion moved = *this;
+  moved.start_.translation += shift;
+  moved.end_.translation += shift;
+  if (kind_ == MotionKind::screw) moved.twist_translation_ = moved.screw_translation();
+  return moved;
 }
 
 Pose RigidMotion::at(Scalar t) const {

@@ -36,14 +36,13 @@ Pose shifted(const Pose& pose, const Vector3& shift) {
 // translations' rounding relative to the distances the motion spans, not to how far from the
 // world's origin it happens.
 RigidMotion relative_to(const RigidMotion& motion, const Vector3& origin) {
-  const Pose start = shifted(motion.start(), -origin);
-  const Pose end = shifted(motion.end(), -origin);
-  if (!start.translation.allFinite() || !end.translation.allFinite()) {
+  RigidMotion moved = motion.shifted(-origin);
+  if (!moved.start().translation.allFinite() || !moved.end().translation.allFinite()) {
     throw std::invalid_argument(
         "the motions' translations differ by more than the double range (about 1.8e308): "
         "express the poses in a frame nearer the bodies");
   }
-  return RigidMotion(start, end, motion.kind());
+  return moved;
 }
 
 // How far the motion's origin may get from its start: the chord for a linear motion, the
@@ -82,11 +81,6 @@ class Advancement {
                detail::motion_reach_across(b, motion_b_.rotation_vector())),
         options_(options),
         query_(precise(options.query)) {
-    if (options.query.method == Method::exact) {
-      QueryOptions dual = precise(options.query);
-      dual.method = Method::dual;
-      second_query_.emplace(dual);
-    }
     // The moved ends are rounded: the motions above are within a roundoff of their translations'
     // sizes of the given ones (the same shift at both ends, so at every time in between). A
     // screw's twist is computed again from the moved ends: its translation part v = V(w)^-1 p
@@ -184,11 +178,17 @@ class Advancement {
   // farther apart than the contact threshold. Farther, an unproven value still steps as far as a
   // proven one would; in between, the bisection needs the value proven.
   template <typename Ask>
-  auto answer(const Ask& ask) const {
+  auto answer(const Ask& ask) {
     auto result = ask(query_);
-    if (second_query_ && !result.certified &&
+    if (options_.query.method == Method::exact && !result.certified &&
         !(result.distance + margin_ <= contact_threshold_) &&
         !(result.lower_bound - margin_ > contact_threshold_)) {
+      // Made when first needed: most motions never ask it, and a Query checks its options.
+      if (!second_query_) {
+        QueryOptions dual = precise(options_.query);
+        dual.method = Method::dual;
+        second_query_.emplace(dual);
+      }
       auto second = ask(*second_query_);
       if (second.certified) result = std::move(second);
     }

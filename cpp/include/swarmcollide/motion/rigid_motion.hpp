@@ -49,6 +49,9 @@ class RigidMotion {
   /// The same, of the given kind.
   RigidMotion(const Pose& start, const Pose& end, MotionKind kind, const char* name = "motion");
 
+  /// The same motion with both ends' translations moved by `shift` (not validated: the caller
+  /// checks that they stay finite). Its rotation is this one's, bit for bit, not computed again.
+  RigidMotion shifted(const Vector3& shift) const;
   const Pose& start() const { return start_; }
   const Pose& end() const { return end_; }
   MotionKind kind() const { return kind_; }
@@ -84,6 +87,9 @@ class RigidMotion {
   Vector3 axis_;
   Vector3 twist_translation_ = Vector3::Zero();
   Scalar start_norm_;
+
+  // v = V(w)^-1 R0^T (T1 - T0), the twist's translation part, for a screw motion.
+  Vector3 screw_translation() const;
 };
 
 }  // namespace swarmcollide
