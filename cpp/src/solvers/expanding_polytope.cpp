@@ -46,6 +46,20 @@ bool heights_along(Vector3& n, const Vector3& p, const Vector3& q, const Vector3
 using HeapEntry = std::pair<Scalar, int>;
 constexpr auto kNearestFirst = std::greater<HeapEntry>();
 
+// Puts `entry` in place of the heap's first (nearest) one: one pass down the heap where popping
+// the first and pushing `entry` would make two.
+void replace_nearest(std::vector<HeapEntry>& heap, const HeapEntry& entry) {
+  const std::size_t size = heap.size();
+  std::size_t i = 0;
+  for (std::size_t child = 1; child < size; child = 2 * i + 1) {
+    if (child + 1 < size && heap[child + 1] < heap[child]) ++child;
+    if (!(heap[child] < entry)) break;
+    heap[i] = heap[child];
+    i = child;
+  }
+  heap[i] = entry;
+}
+
 }  // namespace
 
 bool ExpandingPolytope::flatten(int f) {
@@ -205,8 +219,15 @@ bool ExpandingPolytope::expand(int closest, int added) {
   }
   for (int f : visible_) faces_[f].alive = false;
   for (std::size_t e = 0; e < horizon_.size(); ++e) {
-    heap_.emplace_back(faces_[base + e].distance, face_count_++);
-    std::push_heap(heap_.begin(), heap_.end(), kNearestFirst);
+    const HeapEntry entry(faces_[base + e].distance, face_count_++);
+    // The nearest face's entry leads the heap (run drops stale ones before it picks `closest`),
+    // and the face is replaced: the first new face takes its place.
+    if (e == 0 && heap_.front().second == closest) {
+      replace_nearest(heap_, entry);
+    } else {
+      heap_.push_back(entry);
+      std::push_heap(heap_.begin(), heap_.end(), kNearestFirst);
+    }
   }
   return true;
 }
