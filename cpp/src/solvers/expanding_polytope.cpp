@@ -276,6 +276,10 @@ ExpansionResult ExpandingPolytope::run(const FramedBody& a, const FramedBody& b,
   }
   // With vertex 3 behind the triangle (0, 1, 2), these four face away from the opposite corner.
   constexpr int kTetrahedron[4][3] = {{0, 1, 2}, {0, 3, 1}, {0, 2, 3}, {1, 3, 2}};
+  // The face across each edge k (v[k] -> v[k + 1]) of these, and which of its edges that is (the
+  // one running v[k + 1] -> v[k]); verify checks them as every face's.
+  constexpr int kAcross[4][3] = {{1, 3, 2}, {2, 3, 0}, {0, 3, 1}, {1, 2, 0}};
+  constexpr int kAcrossEdge[4][3] = {{2, 2, 0}, {2, 0, 0}, {2, 1, 0}, {1, 1, 1}};
   if (faces_.size() < 4) faces_.resize(64);
   face_count_ = 4;
   for (int f = 0; f < 4; ++f) {
@@ -285,16 +289,8 @@ ExpansionResult ExpandingPolytope::run(const FramedBody& a, const FramedBody& b,
   }
   for (int f = 0; f < 4; ++f) {
     for (int k = 0; k < 3; ++k) {
-      const int from = faces_[f].v[k];
-      const int to = faces_[f].v[(k + 1) % 3];
-      for (int g = 0; g < 4; ++g) {
-        for (int e = 0; e < 3; ++e) {
-          if (faces_[g].v[e] == to && faces_[g].v[(e + 1) % 3] == from) {
-            faces_[f].adj[k] = g;
-            faces_[f].adj_edge[k] = e;
-          }
-        }
-      }
+      faces_[f].adj[k] = kAcross[f][k];
+      faces_[f].adj_edge[k] = kAcrossEdge[f][k];
     }
     heap_.emplace_back(faces_[f].distance, f);
   }
