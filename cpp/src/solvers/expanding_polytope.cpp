@@ -46,6 +46,20 @@ bool heights_along(Vector3& n, const Vector3& p, const Vector3& q, const Vector3
 using HeapEntry = std::pair<Scalar, int>;
 constexpr auto kNearestFirst = std::greater<HeapEntry>();
 
+// Puts `entry` in place of the heap's first (nearest) one: one pass down the heap where popping
+// the first and pushing `entry` would make two.
+void replace_nearest(std::vector<HeapEntry>& heap, const HeapEntry& entry) {
+  const std::size_t size = heap.size();
+  std::size_t i = 0;
+  for (std::size_t child = 1; child < size; child = 2 * i + 1) {
+    if (child + 1 < size && heap[child + 1] < heap[child]) ++child;
+    if (!(heap[child] < entry)) break;
+    heap[i] = heap[child];
+    i = child;
+  }
+  heap[i] = entry;
+}
+
 }  // namespace
 
 bool ExpandingPolytope::flatten(int f) {
@@ -110,19 +124,22 @@ int ExpandingPolytope::cone(int added) {
   ++vertex_stamp_;
   // The cone from the new point: one triangle per horizon edge, all provably oriented, and the
   // horizon one loop through distinct vertices (else the surface would not stay a 2-manifold).
-  added_.resize(horizon_.size());
+  // Made in place after the surface's faces: a cone that is not kept is overwritten or ignored.
+  const std::size_t needed = static_cast<std::size_t>(face_count_) + horizon_.size();
+  if (faces_.size() < needed) faces_.resize(2 * needed);
+  Face* made = faces_.data() + face_count_;
   for (std::size_t e = 0; e < horizon_.size(); ++e) {
     const Face& f = faces_[horizon_[e].first];
     const int k = horizon_[e].second;
     const int from = f.v[k];
     const int to = f.v[(k + 1) % 3];
-    if (!make_face(from, to, added, added_[e])) return f.adj[k];
+    if (!make_face(from, to, added, made[e])) return f.adj[k];
     if (start_stamp_[from] == vertex_stamp_) return kConeBroken;
     start_stamp_[from] = vertex_stamp_;
     start_face_[from] = static_cast<int>(e);
   }
-  for (const Face& face : added_) {
-    if (start_stamp_[face.v[1]] != vertex_stamp_) return kConeBroken;
+  for (std::size_t e = 0; e < horizon_.size(); ++e) {
+    if (start_stamp_[made[e].v[1]] != vertex_stamp_) return kConeBroken;
   }
   return kConeMade;
 }
@@ -133,7 +150,8 @@ bool ExpandingPolytope::expand(int closest, int added) {
   if (!sees(closest)) return false;
   ++stamp_;
   // Grown ahead (each step adds a few faces and a vertex), so not resized at every step.
-  if (seen_stamp_.size() < faces_.size()) seen_stamp_.resize(2 * faces_.size(), 0);
+  const std::size_t count = static_cast<std::size_t>(face_count_);
+  if (seen_stamp_.size() < count) seen_stamp_.resize(2 * count, 0);
   if (start_stamp_.size() < vertices_.size()) {
     start_stamp_.resize(2 * vertices_.size(), 0);
     start_face_.resize(2 * vertices_.size(), 0);
@@ -141,7 +159,7 @@ bool ExpandingPolytope::expand(int closest, int added) {
   visible_.clear();
   stack_.assign(1, closest);
   seen_stamp_[closest] = stamp_;
-  // Every face enters the stack once, so the flood ends after at most faces_.size() pops.
+  // Every face enters the stack once, so the flood ends after at most face_count_ pops.
   while (!stack_.empty()) {
     const int f = stack_.back();
     stack_.pop_back();
@@ -170,7 +188,8 @@ bool ExpandingPolytope::expand(int closest, int added) {
     if (across == kConeMade) {
       if (widening == 0) break;
       const Scalar nearest_low = faces_[closest].low;
-      const bool dips = std::any_of(added_.begin(), added_.end(),
+      const Face* made = faces_.data() + face_count_;
+      const bool dips = std::any_of(made, made + horizon_.size(),
                                     [&](const Face& face) { return face.low < nearest_low; });
       Scalar before = 0;
       if (dips) {
@@ -183,11 +202,11 @@ bool ExpandingPolytope::expand(int closest, int added) {
     seen_stamp_[across] = stamp_;
     visible_.push_back(across);
   }
-  const int base = static_cast<int>(faces_.size());
-  for (std::size_t e = 0; e < added_.size(); ++e) {
+  const int base = face_count_;
+  for (std::size_t e = 0; e < horizon_.size(); ++e) {
     const Face& f = faces_[horizon_[e].first];
     const int k = horizon_[e].second;
-    Face& face = added_[e];
+    Face& face = faces_[base + e];
     face.adj[0] = f.adj[k];
     face.adj_edge[0] = f.adj_edge[k];
     faces_[f.adj[k]].adj[f.adj_edge[k]] = base + static_cast<int>(e);
@@ -195,14 +214,20 @@ bool ExpandingPolytope::expand(int closest, int added) {
     const int next = start_face_[face.v[1]];
     face.adj[1] = base + next;
     face.adj_edge[1] = 2;
-    added_[next].adj[2] = base + static_cast<int>(e);
-    added_[next].adj_edge[2] = 1;
+    faces_[base + next].adj[2] = base + static_cast<int>(e);
+    faces_[base + next].adj_edge[2] = 1;
   }
   for (int f : visible_) faces_[f].alive = false;
-  for (const Face& face : added_) {
-    heap_.emplace_back(face.distance, static_cast<int>(faces_.size()));
-    std::push_heap(heap_.begin(), heap_.end(), kNearestFirst);
-    faces_.push_back(face);
+  for (std::size_t e = 0; e < horizon_.size(); ++e) {
+    const HeapEntry entry(faces_[base + e].distance, face_count_++);
+    // The nearest face's entry leads the heap (run drops stale ones before it picks `closest`),
+    // and the face is replaced: the first new face takes its place.
+    if (e == 0 && heap_.front().second == closest) {
+      replace_nearest(heap_, entry);
+    } else {
+      heap_.push_back(entry);
+      std::push_heap(heap_.begin(), heap_.end(), kNearestFirst);
+    }
   }
   return true;
 }
@@ -210,7 +235,7 @@ bool ExpandingPolytope::expand(int closest, int added) {
 bool ExpandingPolytope::verify(Scalar& depth_lower) const {
   Scalar nearest = 1e300;
   bool any = false;
-  const int count = static_cast<int>(faces_.size());
+  const int count = face_count_;
   for (int i = 0; i < count; ++i) {
     const Face& f = faces_[i];
     if (!f.alive) continue;
@@ -240,7 +265,7 @@ ExpansionResult ExpandingPolytope::run(const FramedBody& a, const FramedBody& b,
   vertices_.assign(start.begin(), start.end());
   norms_.clear();
   for (const DifferencePoint& v : vertices_) norms_.push_back(v.w.norm());
-  faces_.clear();
+  face_count_ = 0;
   heap_.clear();
   {
     const Vector3& p = vertices_[0].w;
@@ -251,7 +276,12 @@ ExpansionResult ExpandingPolytope::run(const FramedBody& a, const FramedBody& b,
   }
   // With vertex 3 behind the triangle (0, 1, 2), these four face away from the opposite corner.
   constexpr int kTetrahedron[4][3] = {{0, 1, 2}, {0, 3, 1}, {0, 2, 3}, {1, 3, 2}};
-  faces_.resize(4);
+  // The face across each edge k (v[k] -> v[k + 1]) of these, and which of its edges that is (the
+  // one running v[k + 1] -> v[k]); verify checks them as every face's.
+  constexpr int kAcross[4][3] = {{1, 3, 2}, {2, 3, 0}, {0, 3, 1}, {1, 2, 0}};
+  constexpr int kAcrossEdge[4][3] = {{2, 2, 0}, {2, 0, 0}, {2, 1, 0}, {1, 1, 1}};
+  if (faces_.size() < 4) faces_.resize(64);
+  face_count_ = 4;
   for (int f = 0; f < 4; ++f) {
     if (!make_face(kTetrahedron[f][0], kTetrahedron[f][1], kTetrahedron[f][2], faces_[f])) {
       return result;
@@ -259,16 +289,8 @@ ExpansionResult ExpandingPolytope::run(const FramedBody& a, const FramedBody& b,
   }
   for (int f = 0; f < 4; ++f) {
     for (int k = 0; k < 3; ++k) {
-      const int from = faces_[f].v[k];
-      const int to = faces_[f].v[(k + 1) % 3];
-      for (int g = 0; g < 4; ++g) {
-        for (int e = 0; e < 3; ++e) {
-          if (faces_[g].v[e] == to && faces_[g].v[(e + 1) % 3] == from) {
-            faces_[f].adj[k] = g;
-            faces_[f].adj_edge[k] = e;
-          }
-        }
-      }
+      faces_[f].adj[k] = kAcross[f][k];
+      faces_[f].adj_edge[k] = kAcrossEdge[f][k];
     }
     heap_.emplace_back(faces_[f].distance, f);
   }

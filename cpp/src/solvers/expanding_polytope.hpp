@@ -94,9 +94,10 @@ class ExpandingPolytope {
   bool flatten(int f);
   bool expand(int closest, int added);
   // The new faces from vertex `added` to the horizon of the faces in `visible_` (those marked
-  // with stamp_ in seen_stamp_), into added_, horizon_ and start_face_: kConeMade; kConeBroken
-  // where the horizon is not one loop through distinct vertices; else the face across a horizon
-  // edge whose new triangle could not be proven oriented.
+  // with stamp_ in seen_stamp_), made in faces_ after the first face_count_, with horizon_ and
+  // start_face_: kConeMade; kConeBroken where the horizon is not one loop through distinct
+  // vertices; else the face across a horizon edge whose new triangle could not be proven
+  // oriented.
   int cone(int added);
   static constexpr int kConeMade = -1;
   static constexpr int kConeBroken = -2;
@@ -106,7 +107,10 @@ class ExpandingPolytope {
 
   std::vector<DifferencePoint> vertices_;
   std::vector<Scalar> norms_;  // |w| of each vertex, for the rounding bounds
+  // The surface's faces, replaced ones included, are the first face_count_; the rest is room for
+  // the next cone, made in place.
   std::vector<Face> faces_;
+  int face_count_ = 0;
   std::vector<std::pair<Scalar, int>> heap_;  // (distance, face), a min-heap with stale entries
   std::vector<int> stack_;
   std::vector<int> visible_;
@@ -114,7 +118,6 @@ class ExpandingPolytope {
   std::vector<int> seen_stamp_;
   std::vector<int> start_stamp_;  // per vertex: vertex_stamp_ of the cone whose horizon starts there
   std::vector<int> start_face_;   // per vertex: the new face whose horizon edge starts there
-  std::vector<Face> added_;
   int stamp_ = 0;
   int vertex_stamp_ = 0;
   // The best depth bound of a surface verified before a step that dipped below it (see expand);
