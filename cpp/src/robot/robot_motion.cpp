@@ -35,13 +35,17 @@ Scalar local_reach(Scalar apart, const detail::LinkMotionBound::LocalSpeed& spee
   return 2 * apart / denominator * (1 - 8 * kUnit);
 }
 
-// The time a gap `apart` lasts when it closes by at most linear h + quadratic h^2/2 + cubic
-// h^3/3 in a time h: the root, by bisection (the closing is increasing in h), rounded down.
+// The closing linear h + quadratic h^2/2 + cubic h^3/3 in a time h >= 0, as computed: with
+// every coefficient nonnegative each rounded operation is nondecreasing in its operands, so the
+// computed closing is nondecreasing in h too.
+Scalar closing(Scalar h, const detail::LinkMotionBound::DirectionalSpeed& speed) {
+  return h * (speed.linear + h * (speed.quadratic / 2 + h * speed.cubic / 3));
+}
+
+// The time a gap `apart` lasts when it closes by at most `closing` in a time h: the root, by
+// bisection (the closing is increasing in h), rounded down.
 Scalar directional_reach(Scalar apart, const detail::LinkMotionBound::DirectionalSpeed& speed) {
   if (!(apart > 0)) return 0;
-  const auto closing = [&speed](Scalar h) {
-    return h * (speed.linear + h * (speed.quadratic / 2 + h * speed.cubic / 3));
-  };
   // Each term alone reaching the gap bounds the root above.
   Scalar high = kInfinity;
   if (speed.linear > 0) high = std::min(high, apart / speed.linear);
@@ -51,7 +55,7 @@ Scalar directional_reach(Scalar apart, const detail::LinkMotionBound::Directiona
   Scalar low = 0;
   for (int i = 0; i < 30; ++i) {
     const Scalar middle = (low + high) / 2;
-    (closing(middle) <= apart ? low : high) = middle;
+    (closing(middle, speed) <= apart ? low : high) = middle;
   }
   return low * (1 - 8 * kUnit);
 }
@@ -494,9 +498,14 @@ class MotionCheck {
     s.forward = s.backward =
         std::max(detail::reach_over(apart, plan.speed), local_reach(apart, local));
     if (direction.squaredNorm() > 0) {
-      const Scalar along = directional_reach(
-          apart, bound_.directional_speed(pair, direction, chain_a_, chain_b_));
-      s.forward = s.backward = std::max(s.forward, along);
+      const detail::LinkMotionBound::DirectionalSpeed speed =
+          bound_.directional_speed(pair, direction, chain_a_, chain_b_);
+      // The bisection's time keeps closing <= apart, so where the closing over the reach
+      // already taken exceeds the gap it stays below that reach (the computed closing is
+      // nondecreasing in h): the root is sought only where it can lengthen the step.
+      if (!(closing(s.forward, speed) > apart)) {
+        s.forward = s.backward = std::max(s.forward, directional_reach(apart, speed));
+      }
     }
     return s;
   }
