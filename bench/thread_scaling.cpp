@@ -9,7 +9,7 @@
 // over rounds of wall(1) / wall(2), the CPU time over the wall time of the 2-thread runs, the CPU
 // time of a unit of work on 2 threads over that on 1 (1.00: each thread runs as fast beside the
 // other as alone), the time the hypervisor stole (/proc/stat) per 2-thread run, and the minor page
-// faults of a 1-thread and of a 2-thread run.
+// faults and the wall time of a 1-thread and of a 2-thread run.
 //
 //   swarmcollide-thread-scaling [ROWS] [ROUNDS] [FILTER]
 //
@@ -225,7 +225,7 @@ std::string filter;
 void compare(const char* name, const Work& work, bool pooled, int rounds) {
   if (std::string(name).find(filter) == std::string::npos) return;
   work(0, 1);  // warm
-  std::vector<double> gains, busy, slowdown, steal, faults_one, faults_two;
+  std::vector<double> gains, busy, slowdown, steal, faults_one, faults_two, walls_one, walls_two;
   for (int r = 0; r < rounds; ++r) {
     Timing one{}, two{};
     if (r % 2 == 0) {
@@ -239,14 +239,17 @@ void compare(const char* name, const Work& work, bool pooled, int rounds) {
     busy.push_back(two.cpu / two.wall);
     slowdown.push_back(two.cpu / one.cpu);
     steal.push_back(two.steal / two.wall);
+    walls_one.push_back(one.wall * 1e6);
+    walls_two.push_back(two.wall * 1e6);
     faults_one.push_back(one.faults);
     faults_two.push_back(two.faults);
   }
   std::printf("%-34s 2/1 %.2fx (min %.2f max %.2f)  cpu/wall(2) %.2f  cpu(2)/cpu(1) %.2f  "
-              "steal/wall(2) %.2f  faults %.0f / %.0f\n",
+              "steal/wall(2) %.2f  faults %.0f / %.0f  wall %.0f / %.0f us\n",
               name, median(gains), *std::min_element(gains.begin(), gains.end()),
               *std::max_element(gains.begin(), gains.end()), median(busy), median(slowdown),
-              median(steal), median(faults_one), median(faults_two));
+              median(steal), median(faults_one), median(faults_two), median(walls_one),
+              median(walls_two));
   std::fflush(stdout);
 }
 
