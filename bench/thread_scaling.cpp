@@ -1,0 +1,306 @@
+// Can this machine answer twice as many rows on 2 threads as on 1, and do our batches? Pure loops
+// (a dependent integer chain, independent floating-point chains, a pass over an L2-sized and a
+// memory-sized array) and the batches over poses (one 8-vertex body against another at m poses,
+// as bench/pose_batch.py asks them from Python) each run on 1 thread and on 2, the order
+// alternating between rounds. A loop's 2 threads each do half its work; a batch runs either as one
+// call with `threads=2` ("pool") or as two calls with `threads=1` on two std::threads, each on
+// half the poses into its own result ("halves"): when the halves scale and the pool does not, the
+// pool's own sharing is to blame; when neither does, the machine is. Prints, per case, the median
+// over rounds of wall(1) / wall(2), the CPU time over the wall time of the 2-thread runs, the CPU
+// time of a unit of work on 2 threads over that on 1 (1.00: each thread runs as fast beside the
+// other as alone), the time the hypervisor stole (/proc/stat) per 2-thread run, and the minor page
+// faults and the wall time of a 1-thread and of a 2-thread run.
+//
+//   swarmcollide-thread-scaling [ROWS] [ROUNDS] [FILTER]
+//
+// FILTER, when given, keeps the cases whose names contain it. On a shared machine run it as
+// `chrt -f 1 swarmcollide-thread-scaling ...` (a real-time priority, for a minute): there the
+// threads run as on a quiet machine, where under the default scheduler a thread started for a
+// batch of a few milliseconds waits behind other sessions' work and two threads scale by 1.0x.
+//
+// With `count KIND STATE ROWS` (KIND collide, distance or signed_distance; STATE apart or
+// overlapping) it answers that batch once on one thread to warm it, then once more with
+// callgrind's collection on: run under `valgrind --tool=callgrind --collect-atstart=no`, the
+// instructions of the second call over ROWS are the instructions per row.
+#include <sys/resource.h>
+#include <time.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <functional>
+#include <memory>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <valgrind/callgrind.h>
+
+#include "normals.hpp"
+#include "swarmcollide/queries/batch.hpp"
+
+namespace sc = swarmcollide;
+
+namespace {
+
+double now() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+
+double process_cpu() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+// The steal time of every CPU so far, in seconds (the 8th field of /proc/stat's "cpu" line).
+double stolen() {
+  std::ifstream stat("/proc/stat");
+  std::string cpu;
+  long long fields[8] = {};
+  stat >> cpu;
+  for (long long& f : fields) stat >> f;
+  return static_cast<double>(fields[7]) / static_cast<double>(sysconf(_SC_CLK_TCK));
+}
+
+double median(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  return values[values.size() / 2];
+}
+
+// Work split into `parts`: `run(part, parts)` does part `part` of it.
+using Work = std::function<void(int part, int parts)>;
+
+struct Timing {
+  double wall;
+  double cpu;
+  double steal;
+  double faults;
+};
+
+// The process's minor page faults so far.
+double faults() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return static_cast<double>(usage.ru_minflt);
+}
+
+// `work` on `threads` std::threads (the calling thread one of them), or as one call when `pooled`
+// (the work starts its own threads).
+Timing timed(const Work& work, int threads, bool pooled) {
+  const double steal = stolen();
+  const double faulted = faults();
+  const double cpu = process_cpu();
+  const double wall = now();
+  if (pooled) {
+    work(0, threads);
+  } else {
+    std::vector<std::thread> pool;
+    for (int t = 1; t < threads; ++t) pool.emplace_back(work, t, threads);
+    work(0, threads);
+    for (auto& thread : pool) thread.join();
+  }
+  const double elapsed = now() - wall;
+  const double used = process_cpu() - cpu;
+  return {elapsed, used, stolen() - steal, faults() - faulted};
+}
+
+volatile std::uint64_t sink_int;
+volatile double sink_double;
+
+// Integer multiplications, each waiting for the last: latency-bound, no memory.
+Work chain(std::uint64_t steps) {
+  return [steps](int, int parts) {
+    std::uint64_t x = 1;
+    for (std::uint64_t i = 0; i < steps / static_cast<std::uint64_t>(parts); ++i) {
+      x = x * 6364136223846793005ULL + 1442695040888963407ULL;
+    }
+    sink_int = x;
+  };
+}
+
+// Eight independent multiply-add chains: throughput-bound on the floating-point units.
+Work fma8(std::uint64_t steps) {
+  return [steps](int, int parts) {
+    double x[8] = {1, 2, 3, 4, 5, 6, 7, 8};
+    for (std::uint64_t i = 0; i < steps / static_cast<std::uint64_t>(parts); ++i) {
+      for (double& v : x) v = v * 0.999999 + 1e-7;
+    }
+    double s = 0;
+    for (double v : x) s += v;
+    sink_double = s;
+  };
+}
+
+// Passes over a thread's own array of `bytes`: L2 (256 KiB) or memory (64 MiB).
+Work sweep(std::size_t bytes, std::uint64_t total_bytes) {
+  auto arrays = std::make_shared<std::vector<std::vector<std::uint64_t>>>(
+      2, std::vector<std::uint64_t>(bytes / 8, 1));
+  return [arrays, bytes, total_bytes](int part, int parts) {
+    const std::vector<std::uint64_t>& a = (*arrays)[static_cast<std::size_t>(part)];
+    std::uint64_t s = 0;
+    const std::uint64_t passes = total_bytes / bytes / static_cast<std::uint64_t>(parts);
+    for (std::uint64_t p = 0; p < passes; ++p) {
+      for (std::uint64_t v : a) s += v;
+    }
+    sink_int = s;
+  };
+}
+
+struct PoseRows {
+  std::vector<double> rotations;
+  std::vector<double> translations;
+  std::size_t count;
+
+  sc::PoseArray part(std::size_t first, std::size_t rows) const {
+    sc::PoseArray array;
+    array.rotations = rotations.data() + 9 * first;
+    array.translations = translations.data() + 3 * first;
+    array.count = rows;
+    return array;
+  }
+};
+
+PoseRows poses(std::size_t count, double length, std::uint64_t seed) {
+  Normals normals(seed);
+  PoseRows rows{std::vector<double>(9 * count), std::vector<double>(3 * count), count};
+  for (std::size_t i = 0; i < count; ++i) {
+    const sc::Matrix3 r = normals.rotation();
+    const sc::Vector3 t = normals.unit() * length;
+    for (int j = 0; j < 3; ++j) {
+      for (int k = 0; k < 3; ++k) rows.rotations[9 * i + 3 * j + k] = r(j, k);
+      rows.translations[3 * i + j] = t(j);
+    }
+  }
+  return rows;
+}
+
+sc::ConvexPolyhedron sphere_body(int n, std::uint64_t seed) {
+  Normals normals(seed);
+  sc::VertexMatrix points(n, 3);
+  for (int i = 0; i < n; ++i) points.row(i) = normals.unit().transpose();
+  return sc::ConvexPolyhedron(points);
+}
+
+using Batch = sc::BatchResult (*)(const sc::BatchBodies<sc::ConvexPolyhedron>&,
+                                  const sc::BatchBodies<sc::ConvexPolyhedron>&,
+                                  const sc::QueryOptions&, const sc::BatchSettings&,
+                                  const sc::BatchPoses&);
+
+// One call with `threads` threads over every row.
+Work pool(Batch batch, const sc::ConvexPolyhedron& a, const sc::ConvexPolyhedron& b,
+          const PoseRows& rows) {
+  return [batch, &a, &b, &rows](int, int parts) {
+    sc::BatchSettings settings;
+    settings.threads = parts;
+    sc::BatchPoses at;
+    at.array_b = rows.part(0, rows.count);
+    const sc::BatchResult result = batch(a, b, sc::QueryOptions{}, settings, at);
+    sink_double = result.distance[0];
+  };
+}
+
+// Part `part` of the rows by a call with one thread, into its own result.
+Work halves(Batch batch, const sc::ConvexPolyhedron& a, const sc::ConvexPolyhedron& b,
+            const PoseRows& rows) {
+  return [batch, &a, &b, &rows](int part, int parts) {
+    const std::size_t share = rows.count / static_cast<std::size_t>(parts);
+    sc::BatchSettings settings;
+    settings.threads = 1;
+    settings.first_index = share * static_cast<std::size_t>(part);
+    sc::BatchPoses at;
+    at.array_b = rows.part(settings.first_index, share);
+    const sc::BatchResult result = batch(a, b, sc::QueryOptions{}, settings, at);
+    sink_double = result.distance[0];
+  };
+}
+
+std::string filter;
+
+void compare(const char* name, const Work& work, bool pooled, int rounds) {
+  if (std::string(name).find(filter) == std::string::npos) return;
+  work(0, 1);  // warm
+  std::vector<double> gains, busy, slowdown, steal, faults_one, faults_two, walls_one, walls_two;
+  for (int r = 0; r < rounds; ++r) {
+    Timing one{}, two{};
+    if (r % 2 == 0) {
+      one = timed(work, 1, pooled);
+      two = timed(work, 2, pooled);
+    } else {
+      two = timed(work, 2, pooled);
+      one = timed(work, 1, pooled);
+    }
+    gains.push_back(one.wall / two.wall);
+    busy.push_back(two.cpu / two.wall);
+    slowdown.push_back(two.cpu / one.cpu);
+    steal.push_back(two.steal / two.wall);
+    walls_one.push_back(one.wall * 1e6);
+    walls_two.push_back(two.wall * 1e6);
+    faults_one.push_back(one.faults);
+    faults_two.push_back(two.faults);
+  }
+  std::printf("%-34s 2/1 %.2fx (min %.2f max %.2f)  cpu/wall(2) %.2f  cpu(2)/cpu(1) %.2f  "
+              "steal/wall(2) %.2f  faults %.0f / %.0f  wall %.0f / %.0f us\n",
+              name, median(gains), *std::min_element(gains.begin(), gains.end()),
+              *std::max_element(gains.begin(), gains.end()), median(busy), median(slowdown),
+              median(steal), median(faults_one), median(faults_two), median(walls_one),
+              median(walls_two));
+  std::fflush(stdout);
+}
+
+int count_instructions(const std::string& kind, const std::string& state, std::size_t count) {
+  const sc::ConvexPolyhedron a = sphere_body(8, 1);
+  const sc::ConvexPolyhedron b = sphere_body(8, 2);
+  const PoseRows rows = poses(count, state == "apart" ? 3.0 : 1.8, 3);
+  const Batch batch = kind == "collide"    ? Batch{&sc::collide_many}
+                      : kind == "distance" ? Batch{&sc::distance_many}
+                                           : Batch{&sc::signed_distance_many};
+  const Work work = pool(batch, a, b, rows);
+  work(0, 1);
+  CALLGRIND_TOGGLE_COLLECT;
+  work(0, 1);
+  CALLGRIND_TOGGLE_COLLECT;
+  std::printf("%s %s %zu rows: checksum %.17g\n", kind.c_str(), state.c_str(), count,
+              sink_double);
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc == 5 && std::string(argv[1]) == "count") {
+    return count_instructions(argv[2], argv[3], std::strtoul(argv[4], nullptr, 10));
+  }
+  const std::size_t count = argc > 1 ? std::strtoul(argv[1], nullptr, 10) : 20000;
+  const int rounds = argc > 2 ? std::atoi(argv[2]) : 11;
+  if (argc > 3) filter = argv[3];
+  std::ifstream load("/proc/loadavg");
+  std::string line;
+  std::getline(load, line);
+  std::printf("rows %zu, rounds %d, load %s\n", count, rounds, line.c_str());
+  compare("integer chain", chain(200'000'000), false, rounds);
+  compare("8 fma chains", fma8(50'000'000), false, rounds);
+  compare("sweep 256 KiB (L2)", sweep(256 << 10, std::uint64_t{8} << 30), false, rounds);
+  compare("sweep 64 MiB (memory)", sweep(64 << 20, std::uint64_t{4} << 30), false, rounds);
+  const sc::ConvexPolyhedron a = sphere_body(8, 1);
+  const sc::ConvexPolyhedron b = sphere_body(8, 2);
+  for (const auto& [state, length] : {std::pair<const char*, double>{"apart", 3.0},
+                                      std::pair<const char*, double>{"overlapping", 1.8}}) {
+    const PoseRows rows = poses(count, length, 3);
+    for (const auto& [kind, batch] :
+         {std::pair<const char*, Batch>{"collide", &sc::collide_many},
+          std::pair<const char*, Batch>{"distance", &sc::distance_many}}) {
+      const std::string label = std::string(kind) + " 8v " + state;
+      compare((label + " pool").c_str(), pool(batch, a, b, rows), true, rounds);
+      compare((label + " halves").c_str(), halves(batch, a, b, rows), false, rounds);
+    }
+  }
+  std::getline(std::ifstream("/proc/loadavg"), line);
+  std::printf("load after %s\n", line.c_str());
+  return 0;
+}
