@@ -35,6 +35,7 @@ from scipy.spatial.transform import Rotation, Slerp
 
 import record
 import swarmcollide as sc
+from markdown import table
 
 TIME_TOLERANCE = 1e-6
 SAMPLES = 400
@@ -284,6 +285,30 @@ def report(outcome: dict) -> None:
         if d["ours"]["verdict"] != "right" or d["fcl"]["verdict"] not in ("right", "early",
                                                                           "false"):
             print("disagreement:", d)
+
+
+def section(data: dict) -> str:
+    """The RESULTS.md section of a recorded run: per kind of motion, ours over FCL's where FCL
+    answers right (issue 28's target: at most 1), and how often each answers right."""
+    machine = data["machine"]
+    lines = [f"`{data['command']}`, load average {machine['load_average_start']} -> "
+             f"{machine['load_average_end']}, {machine['date']}. Random motions of 8-point hulls "
+             "against a dense-sampling oracle on the exact signed distance; each motion's time is "
+             "the median over interleaved rounds of the thread's CPU time per call from Python "
+             "(FCL: `fcl.continuousCollide` with conservative advancement, request made once).",
+             ""]
+    rows = []
+    for row in data["rows"]:
+        rows.append([row["motions_kind"], str(row["motions"]), str(row["touching_by_oracle"]),
+                     f"{row['ours_right']} / {row['fcl_right']}",
+                     f"{row['ours_us_median']:.1f} µs", f"{row['fcl_us_median']:.1f} µs",
+                     f"**{row['ratio_median']:.2f}x**",
+                     f"{row.get('ratio_median_touching', float('nan')):.2f}x",
+                     f"{row.get('ratio_median_free', float('nan')):.2f}x"])
+    lines.append(table(["motions", "count", "touching", "right (ours / FCL)", "ours (median)",
+                        "FCL (median)", "ours / FCL where FCL is right", "touching", "free"],
+                       rows))
+    return "\n".join(lines)
 
 
 if __name__ == "__main__":

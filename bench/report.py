@@ -20,6 +20,7 @@ from curved_scene import section as curved_scene_section
 from hull_points import section as hull_points_section
 from pose_batch import section as pose_batch_section
 from robot import section as robot_section
+from motion import section as motion_section
 from robot_motion import section as robot_motion_section
 from cpp_report import cpp_sections, every_workload_section
 from record import load
@@ -128,6 +129,8 @@ LATE_SECTIONS: List[Section] = [
      robot_section, ""),
     ("robot_motion.json", "Robot motions against discrete checks at OMPL's resolution "
      "(bench/robot_motion.py)", "", robot_motion_section, ""),
+    ("motion.json", "Motions against FCL's conservative advancement (bench/motion.py)", "",
+     motion_section, ""),
 ]
 
 
