@@ -1,4 +1,5 @@
 #include "conversions.hpp"
+#include "fast_calls.hpp"
 
 #include <initializer_list>
 #include <limits>
@@ -117,6 +118,7 @@ VertexMatrix to_vertex_matrix(const py::handle& points, const char* name) {
 }
 
 BodyArgument::BodyArgument(const py::handle& body, const char* name) {
+  if ((body_ = body_instance(body.ptr()))) return;
   if (py::isinstance<ConvexPolyhedron>(body)) {
     body_ = &body.cast<const ConvexPolyhedron&>();
     return;
@@ -130,11 +132,10 @@ BodyArgument::BodyArgument(const py::handle& body, const char* name) {
 }
 
 bool is_compound(const py::handle& body) {
-  // The common argument, an exact ConvexPolyhedron, is told apart by its type alone: the generic
-  // isinstance goes through the metaclass's __instancecheck__, a cost the size of a small query.
-  static PyTypeObject* const convex =
-      reinterpret_cast<PyTypeObject*>(py::type::of<ConvexPolyhedron>().ptr());
-  if (Py_TYPE(body.ptr()) == convex) return false;
+  // The common arguments, a ConvexPolyhedron or a shape, are told apart by their type alone: the
+  // generic isinstance goes through the metaclass's __instancecheck__, a cost the size of a small
+  // query.
+  if (body_instance(body.ptr())) return false;
   return py::isinstance<CompoundBody>(body);
 }
 

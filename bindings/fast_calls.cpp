@@ -1,6 +1,18 @@
 #include "fast_calls.hpp"
 
+#include "swarmcollide/geometry/shapes.hpp"
+
 namespace swarmcollide::bindings {
+
+const ConvexPolyhedron* body_instance(PyObject* object) {
+  if (const auto* body = exact_instance<ConvexPolyhedron>(object)) return body;
+  if (const auto* body = exact_instance<Box>(object)) return body;
+  if (const auto* body = exact_instance<Sphere>(object)) return body;
+  if (const auto* body = exact_instance<Capsule>(object)) return body;
+  if (const auto* body = exact_instance<Cylinder>(object)) return body;
+  if (const auto* body = exact_instance<Cone>(object)) return body;
+  return exact_instance<Ellipsoid>(object);
+}
 
 py::object fast_function(FastCall entry, const py::function& python_path,
                          const std::string& text_signature) {

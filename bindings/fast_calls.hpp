@@ -6,6 +6,8 @@
 
 #include <string>
 
+#include "swarmcollide/geometry/convex_polyhedron.hpp"
+
 namespace swarmcollide::bindings {
 
 namespace py = pybind11;
@@ -23,6 +25,12 @@ const T* exact_instance(PyObject* object) {
   auto* instance = reinterpret_cast<py::detail::instance*>(object);
   return static_cast<const T*>(instance->get_value_and_holder(record, false).value_ptr());
 }
+
+/// The body of `object` when its Python type is exactly ConvexPolyhedron or one of the shapes bound
+/// as its subclasses (Sphere, Capsule, Box, Cylinder, Cone, Ellipsoid); null for anything else,
+/// including a subclass written in Python, which the callers convert as pybind11 does. The generic
+/// isinstance and cast cost about a microsecond per curved argument, more than many queries.
+const ConvexPolyhedron* body_instance(PyObject* object);
 
 /// METH_FASTCALL | METH_KEYWORDS's calling convention (named so from Python 3.13 only).
 using FastCall = PyObject* (*)(PyObject*, PyObject* const*, Py_ssize_t, PyObject*);

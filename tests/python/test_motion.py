@@ -412,7 +412,8 @@ def test_the_cpp_and_python_paths_of_time_of_impact_agree():
         ((cube, cube), {"pose_a": (start, end), "max_iterations": 1}),
         ((cube, cube), {"pose_a": (start[:3], end[:3]), "method": "fcl"}),
         ((cube, cube), {"pose_b": (np.eye(3), [3, 0, 0])}),
-        ((cube, sc.Box([0.5] * 3)), {"pose_a": (start, end)}),  # a shape: the Python path
+        ((cube, sc.Box([0.5] * 3)), {"pose_a": (start, end)}),
+        ((sc.Cylinder(0.5, 1.0), sc.Sphere(0.5)), {"pose_a": (start, turned)}),
         ((cube, cube), {"pose_a": (start, nan)}),
         ((cube, cube), {"pose_a": (start, end), "time_tolerance": 0}),
         ((cube, cube), {"method": "ipso"}),

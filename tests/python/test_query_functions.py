@@ -24,6 +24,10 @@ def moved(x, y, z):
     return pose
 
 
+class Mine(sc.ConvexPolyhedron):
+    """A user's subclass, which only the Python definitions convert."""
+
+
 def bodies():
     rng = np.random.default_rng(5)
     cloud = rng.normal(size=(60, 3))  # more points than a small query keeps the GIL for
@@ -34,6 +38,10 @@ def bodies():
         "lists": (CUBE.tolist(), (TETRA + 3).tolist()),
         "large": (sc.ConvexPolyhedron(cloud), sc.ConvexPolyhedron(cloud + [5, 0, 0])),
         "compound": (sc.CompoundBody([CUBE, CUBE + [2, 0, 0]]), sc.ConvexPolyhedron(TETRA + 4)),
+        "shapes": (sc.Cylinder(0.5, 1.0), sc.Capsule(0.25, 0.5)),  # bound subclasses: C++ too
+        "box and ellipsoid": (sc.Box([0.5, 0.25, 1.0]), sc.Ellipsoid([0.5, 0.75, 0.25])),
+        "cone and sphere": (sc.Cone(0.5, 0.5), sc.Sphere(0.375)),
+        "polyhedron subclass": (Mine(CUBE), sc.ConvexPolyhedron(TETRA + 1.5)),  # Python's path
     }
 
 
