@@ -7,11 +7,11 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
-#include <system_error>
 #include <thread>
 #include <type_traits>
 #include <vector>
 
+#include "../detail/kept_threads.hpp"
 #include "../detail/number_text.hpp"
 #include "advancement_steps.hpp"
 #include "motion_bound.hpp"
@@ -347,17 +347,7 @@ std::vector<TimeOfImpactResult> solve_many(const BatchBodies<Body>& as,
   std::size_t workers = threads > 0 ? static_cast<std::size_t>(threads)
                                     : std::max(1u, std::thread::hardware_concurrency());
   workers = std::min(workers, rows);
-  std::vector<std::thread> pool;
-  for (std::size_t k = 1; k < workers; ++k) {
-    try {
-      pool.emplace_back(work, k, workers);
-    } catch (const std::system_error&) {
-      // A thread that cannot start leaves its rows to the calling thread.
-      work(k, workers);
-    }
-  }
-  work(0, workers);
-  for (std::thread& thread : pool) thread.join();
+  detail::run_copies(workers, [&](std::size_t k) { work(k, workers); });
   for (std::size_t row = 0; row < rows; ++row) {
     if (!errors[row]) continue;
     try {

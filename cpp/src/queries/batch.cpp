@@ -8,10 +8,10 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
-#include <system_error>
 #include <thread>
 #include <utility>
 
+#include "../detail/kept_threads.hpp"
 #include "../geometry/framed_body.hpp"
 #include "ball_screen.hpp"
 #include "dispatch.hpp"
@@ -398,16 +398,8 @@ BatchResult run_batch(Kind kind, std::size_t count, const QueryOptions& options,
       }
     }
   };
-  std::vector<std::thread> pool;
-  for (std::size_t t = 1; t < workers; ++t) {
-    try {
-      pool.emplace_back(work);
-    } catch (const std::system_error&) {
-      break;  // the process cannot start more threads; the ones running share the work
-    }
-  }
-  work();
-  for (auto& thread : pool) thread.join();
+  // Each thread takes rows until none is left: a copy that starts late finds fewer or none.
+  detail::run_copies(workers, [&](std::size_t) { work(); });
   if (failure.any()) failure.rethrow(settings.first_index);
   return batch;
 }

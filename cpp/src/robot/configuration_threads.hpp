@@ -8,10 +8,9 @@
 #include <mutex>
 #include <stdexcept>
 #include <string>
-#include <system_error>
 #include <thread>
-#include <vector>
 
+#include "../detail/kept_threads.hpp"
 #include "swarmcollide/queries/batch.hpp"
 
 namespace swarmcollide::detail {
@@ -57,16 +56,7 @@ void over_configurations(std::size_t count, int threads, const MakeAnswer& make_
       }
     }
   };
-  std::vector<std::thread> pool;
-  for (std::size_t t = 1; t < workers; ++t) {
-    try {
-      pool.emplace_back(work);
-    } catch (const std::system_error&) {
-      break;  // the threads running share the work
-    }
-  }
-  work();
-  for (std::thread& thread : pool) thread.join();
+  run_copies(workers, [&](std::size_t) { work(); });
   if (!error) return;
   try {
     std::rethrow_exception(error);

@@ -20,7 +20,7 @@
 #include "scene_body.hpp"
 #include "swarmcollide/queries/methods.hpp"
 #include "swarmcollide/scene/scene.hpp"
-#include "thread_pool.hpp"
+#include "../detail/thread_pool.hpp"
 
 namespace swarmcollide {
 

@@ -1,4 +1,5 @@
-// A pool of worker threads kept for a scene's lifetime; private to the library's sources.
+// A pool of worker threads kept between jobs (a scene's, or the batches' through kept_threads);
+// private to the library's sources.
 #pragma once
 
 #include <condition_variable>
@@ -11,8 +12,8 @@
 
 namespace swarmcollide::detail {
 
-/// Threads that wait for work between a scene's queries, so that a frame of a few milliseconds
-/// does not pay for starting them. `for_each_chunk` runs on the calling thread too.
+/// Threads that wait for work between jobs, so that a job of a few milliseconds (a scene's frame,
+/// a batch) does not pay for starting them. `for_each_chunk` runs on the calling thread too.
 class ThreadPool {
  public:
   /// `threads` threads in all, the caller included; fewer when the process cannot start them.
