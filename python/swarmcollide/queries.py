@@ -403,7 +403,8 @@ def distance_many(
         set the number of rows (one without poses). ``(m, n, 3)`` arrays are built into bodies
         row by row on the threads.
     threads : int, optional
-        Worker threads (at most 1024); None uses one per hardware thread.
+        Worker threads (at most 1024); None uses one per hardware thread. They are kept
+        between calls, so a short batch does not pay for starting them.
     first_index : int
         The global index of the first pair, for seeds and error messages.
     poses_a, poses_b : array_like, optional
