@@ -95,11 +95,11 @@ int FramedBody::curved_support(const Vector3& local) const {
   return found_->add(curved_->support(local));
 }
 
-void FramedBody::add_point(const Vector3& frame_point) const {
+int FramedBody::add_point(const Vector3& frame_point) const {
   const Vector3 turned = local_direction(frame_point - offset_);
   Vector3 local;
   for (int k = 0; k < 3; ++k) local(k) = times_power_of_two(turned(k), exponent_);
-  found_->add(local);
+  return found_->add(local);
 }
 
 FramedBody::FramedBody(const VertexMatrix& points, const Hull& hull)

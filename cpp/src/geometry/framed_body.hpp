@@ -85,8 +85,9 @@ class FramedBody {
   bool curved() const { return curved_ != nullptr; }
   /// Adds `frame_point`, a point of this curved body given in the frame, to its support points:
   /// the nearest surface point a closed-form depth names (curved_depth.hpp), which the witnesses
-  /// then find on the supporting feature. Only for a curved body.
-  void add_point(const Vector3& frame_point) const;
+  /// then find on the supporting feature, or a rolling ball's witness (rolling_ball.hpp). Only for
+  /// a curved body. Returns its number.
+  int add_point(const Vector3& frame_point) const;
   /// A bound on how far the support value along a unit frame direction may exceed the height of
   /// a curved body's support point for it (in frame units), beyond `scan_shortfall()`; 0 for a
   /// polyhedron. rounded.hpp takes it off every lower bound of a pair (FramedPair::support_error).

@@ -188,6 +188,22 @@ class EllipsoidSupport final : public SupportFunction {
     return radii_.cwiseProduct(stretched / length) * kInward;
   }
   Scalar outer_radius() const override { return radii_.maxCoeff(); }
+  // rho = min radius^2 / max radius, the least radius of curvature, rolls inside. With M =
+  // R^-2 and f(x) = x^T M x, a surface point p (f(p) = 1) has the outward normal v = M p / |M p|,
+  // and a point y = p + rho (w - v) on the sphere of radius rho about p - rho v (|w| = 1) has
+  //   f(y) = 1 + 2 rho |M p| v.(w - v) + rho^2 (w - v)^T M (w - v)
+  //       <= 1 - rho |w - v|^2 (|M p| - rho / min radius^2)      (v.(w - v) = -|w - v|^2 / 2)
+  // <= 1, as |M p| >= p^T M p / |p| >= 1 / max radius = rho / min radius^2; the ball is convex,
+  // so inside too. The support point along d is the surface point of normal d / |d|, and a ball
+  // of a smaller radius tangent there inside this one. rho is rounded down (its two roundings are
+  // within 2.1u). The computed support point: d is scaled exactly, each component of R d and of
+  // the unit vector along it rounds (u, then 3.5u with the norm's 2.5u), then R's product and
+  // kInward's (u, u, and the pull 8u): within 15.5u of each component of the exact point, so
+  // within 16u max radius of it, inside kSupportErrorRoundoffs = 32u of outer_radius().
+  Scalar rolling_radius() const override {
+    const Scalar least = radii_.minCoeff();
+    return least * least / radii_.maxCoeff() * (1 - 4 * kRoundoff);
+  }
   Vector3 centroid() const override { return Vector3::Zero(); }
   // The ball of radius `min radius (1 - |p / radii|)` about p lies inside (|(p + v) / radii| <=
   // |p / radii| + |v| / min radius): exact at the centre and everywhere on a sphere. The

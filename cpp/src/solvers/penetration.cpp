@@ -13,6 +13,7 @@
 #include "expanding_polytope.hpp"
 #include "minkowski.hpp"
 #include "nearest_simplex_point.hpp"
+#include "rolling_ball.hpp"
 #include "wolfe_min_norm.hpp"
 
 namespace swarmcollide::detail {
@@ -111,6 +112,7 @@ class Solver {
   PenetrationBounds solve(const Vector3& hint, const MinNormPoint* nearest) {
     offer_flat_normals();
     if ((a_.curved() || b_.curved()) && use_closed_form()) return result();
+    if ((a_.curved() || b_.curved()) && use_rolling_ball(hint)) return result();
     // An intersection proof's tetrahedron starts the polytope at once, whose faces' normals are
     // the directions to measure: the hint is tried only if they leave a gap. Otherwise Wolfe's
     // nearest point (the caller's, or found here from the hint) bounds the distance, and its
@@ -304,6 +306,24 @@ class Solver {
     return done();
   }
 
+  // Balls rolling inside curved bodies prove the depth from Wolfe's nearest point of the
+  // difference of their centres (rolling_ball.hpp), a search that ends where the expanding
+  // polytope would need dozens of steps; the separation along its direction is measured as any
+  // other. True when that settles the answer.
+  bool use_rolling_ball(const Vector3& hint) {
+    if (!rolls(a_) && !rolls(b_)) return false;
+    const Vector3 start =
+        hint.allFinite() && hint.norm() > 0 ? hint : Vector3(b_.offset() - a_.offset());
+    const RollingBallDepth& rolling =
+        rolling_.emplace(rolling_ball_depth(a_, b_, start, polytope_gap(), max_iterations_));
+    iterations_ += rolling.iterations;
+    if (!rolling.proven) return false;
+    set_upper(-rolling.depth_lower, PenetrationProof::rolling_ball);
+    offer(rolling.normal);
+    finish();
+    return done();
+  }
+
   // Curved bodies have no candidate axes to fall back on. Where Wolfe's corral stops short of a
   // tetrahedron around the origin (touching bodies, or coaxial ones whose supports along the
   // axis line up through it), points of B - A along the axes of the best direction's frame and
@@ -384,6 +404,10 @@ class Solver {
     const Scalar target = std::max(tolerance_, 4 * margin());
     Scalar slack = 1024 * margin() + 2 * std::min(gap, Scalar(1e-9));
     if (normal_ == face_normal_ && witnesses_from_face(slack, target, r)) return;
+    if (rolling_ && rolling_->proven && normal_ == rolling_->normal &&
+        witnesses_from_rolling_ball(*rolling_, target, r)) {
+      return;
+    }
     for (int widening = 0; widening < kWitnessWidenings; ++widening, slack *= 16) {
       witnesses_within(slack, r);
       if (r.witness_residual <= target) return;
@@ -437,6 +461,24 @@ class Solver {
     r.weights_b = ConvexWeights(b_.size(), ib, weights, size);
     r.witness_residual = residual;
     r.feature_slack = slack;
+    return true;
+  }
+
+  // The rolling balls' witnesses (rolling_ball.hpp), each within the search's gap of its
+  // supporting plane, and `-depth_lower * normal` apart; false, leaving `r` alone, when they are
+  // off `separation * normal` by more than `target`.
+  bool witnesses_from_rolling_ball(const RollingBallDepth& rolling, Scalar target,
+                                   PenetrationBounds& r) const {
+    const Vector3& n = normal_;
+    const Scalar residual = (rolling.point_b - rolling.point_a - separation_ * n).norm();
+    if (!(residual <= target)) return false;
+    r.point_a = rolling.point_a;
+    r.point_b = rolling.point_b;
+    r.weights_a = ConvexWeights(a_.size(), rolling.index_a, rolling.weight_a, rolling.size_a);
+    r.weights_b = ConvexWeights(b_.size(), rolling.index_b, rolling.weight_b, rolling.size_b);
+    r.witness_residual = residual;
+    r.feature_slack = std::max(a_.height(top_a_, n) - n.dot(r.point_a),
+                               n.dot(r.point_b) - b_.height(top_b_, n));
     return true;
   }
 
@@ -512,6 +554,8 @@ class Solver {
   int iterations_ = 0;
   // Wolfe's last corral on B - A (none yet: size 0).
   MinNormPoint last_corral_;
+  // The rolling balls' proof and witnesses, once use_rolling_ball looked for one.
+  std::optional<RollingBallDepth> rolling_;
   // The expanding polytope's face along its best normal, `face_normal_` (NaN until it has one).
   std::array<DifferencePoint, 3> face_;
   Vector3 face_normal_ = Vector3::Constant(std::numeric_limits<Scalar>::quiet_NaN());

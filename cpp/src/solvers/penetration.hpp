@@ -21,6 +21,8 @@ enum class PenetrationProof {
   candidate_axes,
   /// A curved shape's closed form holding the other body's points (curved_depth.hpp).
   closed_form,
+  /// Balls that roll inside curved bodies, around a nearest point (rolling_ball.hpp).
+  rolling_ball,
 };
 
 /// Proven bounds on the signed distance `sd` of two convex hulls of point sets, with the best

@@ -57,6 +57,13 @@ class SupportFunction {
   /// From the shape's closed form, for the depth proofs that a direction search cannot give
   /// (a point on a cylinder's axis is deepest along a whole circle of directions).
   virtual Scalar depth_of(const Vector3& point, Vector3& outward) const = 0;
+  /// A radius r of a ball that rolls inside the shape: for every nonzero direction d, the ball of
+  /// radius r about `s - r d / |d|` lies in the shape, s the exact support point along d, and the
+  /// computed `support(d)` lies within `support_error_roundoffs()` roundoffs of `outer_radius()`
+  /// of s (so the ball of radius r less that about `support(d) - r d / |d|` lies in the shape).
+  /// Strictly convex smooth shapes have one (an ellipsoid's least radius of curvature); 0, the
+  /// default, promises nothing. The depth proofs of curved pairs read it (rolling_ball.hpp).
+  virtual Scalar rolling_radius() const { return 0; }
   /// The shape's name ("cylinder", ...), for messages.
   virtual const char* name() const = 0;
   /// The shape's kind and dimensions.

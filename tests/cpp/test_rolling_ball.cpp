@@ -1,0 +1,138 @@
+// Depths proven by balls that roll inside curved bodies (SupportFunction::rolling_radius,
+// solvers/rolling_ball.hpp): the ball an ellipsoid promises lies inside it (and a slightly larger
+// one does not), and the penetration solver's bounds from it bracket the depth.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "geometry/framed_body.hpp"
+#include "shapes.hpp"
+#include "solvers/minkowski.hpp"
+#include "solvers/penetration.hpp"
+#include "swarmcollide/geometry/shapes.hpp"
+#include "swarmcollide/solvers/exact_options.hpp"
+
+namespace swarmcollide::testing {
+namespace {
+
+constexpr Scalar kU = 0x1p-53;
+
+// The largest |y / radii|^2 over `count` points y on the sphere of radius `radius` about
+// `centre`, and the points on its axes.
+Scalar largest_on_sphere(const Vector3& radii, const Vector3& centre, Scalar radius, Random& rng,
+                         int count) {
+  Scalar largest = 0;
+  const auto f = [&](const Vector3& w) {
+    largest = std::max(largest, (centre + radius * w).cwiseQuotient(radii).squaredNorm());
+  };
+  for (int k = 0; k < 3; ++k) {
+    f(Vector3::Unit(k));
+    f(-Vector3::Unit(k));
+  }
+  for (int i = 0; i < count; ++i) f(rng.unit());
+  return largest;
+}
+
+TEST(RollingBall, TheEllipsoidsBallLiesInsideItAndALargerOneDoesNot) {
+  Random rng(37);
+  for (const Vector3& radii : {Vector3(0.3, 0.8, 0.5), Vector3(1, 1, 1), Vector3(0.2, 1, 0.9),
+                               Vector3(1e-3, 1, 0.5), Vector3(3e5, 2e5, 1e5)}) {
+    SCOPED_TRACE(::testing::Message() << radii.transpose());
+    const Ellipsoid ellipsoid(radii);
+    const SupportFunction& shape = *ellipsoid.curved();
+    const Scalar rho = shape.rolling_radius();
+    EXPECT_NEAR(rho, radii.minCoeff() * radii.minCoeff() / radii.maxCoeff(), 1e-12 * rho);
+    // The promise: the ball of radius rho less the support point's rounding about
+    // support(d) - rho d/|d| lies in the ellipsoid (to the rounding of this check).
+    const Scalar error = shape.support_error_roundoffs() * kU * shape.outer_radius();
+    Scalar worst = 0;
+    for (int trial = 0; trial < 300; ++trial) {
+      const Vector3 d = rng.unit() * std::pow(10.0, rng.uniform(-3, 3));
+      const Vector3 centre = shape.support(d) - rho * d.normalized();
+      worst = std::max(worst, largest_on_sphere(radii, centre, rho - error, rng, 200));
+    }
+    EXPECT_LE(worst, 1 + 1e-14);
+    // Tight: along the longest axis the surface is curved by 1 / rho across the shortest, and a
+    // ball 1% larger, tangent there, pokes out (unless every radius of curvature is equal).
+    if (radii.maxCoeff() > radii.minCoeff()) {
+      Eigen::Index longest = 0;
+      radii.maxCoeff(&longest);
+      const Vector3 d = Vector3::Unit(longest);
+      const Scalar larger = 1.01 * rho;
+      const Vector3 centre = shape.support(d) - larger * d;
+      EXPECT_GT(largest_on_sphere(radii, centre, larger, rng, 20000), 1 + 1e-11);
+    }
+  }
+}
+
+// Overlapping pairs with an ellipsoid, drawn as bench/curved_coal.py draws them: the shallow ones
+// (most) are proven by the rolling balls, and their bounds bracket the depth that a dense search
+// of directions finds (sd >= the separation along any direction); the witnesses lie in the bodies
+// and along the normal.
+TEST(RollingBall, ShallowOverlapsAreProvenAndBracketTheDepth) {
+  Random rng(26);
+  int rolled = 0;
+  int pairs = 0;
+  for (int trial = 0; trial < 400 && pairs < 120; ++trial) {
+    const auto radii = [&] {
+      return Vector3(rng.uniform(0.2, 1), rng.uniform(0.2, 1), rng.uniform(0.2, 1));
+    };
+    const Vector3 radii_a = radii();
+    const Vector3 radii_b = radii();
+    const Ellipsoid a(radii_a);
+    const Box box(radii_b);
+    const Ellipsoid ellipsoid_b(radii_b);
+    const Cylinder cylinder(radii_b.x(), radii_b.y());
+    const ConvexPolyhedron& b =
+        trial % 3 == 0 ? static_cast<const ConvexPolyhedron&>(ellipsoid_b)
+                       : trial % 3 == 1 ? static_cast<const ConvexPolyhedron&>(box)
+                                        : static_cast<const ConvexPolyhedron&>(cylinder);
+    const Pose pa = at(rng.vector(0.2), rng.rotation());
+    const Pose pb = at(rng.vector(0.8), rng.rotation());
+    const Scalar tolerance = 1e-9;
+    const detail::FramedPair pair = detail::frame_pair(a, pa, b, pb, tolerance);
+    const detail::PenetrationBounds r =
+        detail::penetration(pair.a, pair.b, pair.b.offset() - pair.a.offset(), nullptr,
+                            pair.tolerance, ExactOptions().max_iterations);
+    if (!(r.upper < 0)) continue;  // apart or touching
+    ++pairs;
+    SCOPED_TRACE(::testing::Message() << "trial " << trial << " proof "
+                                      << static_cast<int>(r.proof));
+    EXPECT_TRUE(r.proven);
+    EXPECT_LE(r.upper - r.lower, pair.tolerance);
+    if (r.proof != detail::PenetrationProof::rolling_ball) continue;
+    ++rolled;
+    // The best separation a search of directions around the normal finds is a lower bound on
+    // sd, so at most the proven upper bound (a ball claimed too large would put it below).
+    Vector3 best = r.normal;
+    Scalar best_separation = detail::exact_separation(pair.a, pair.b, best);
+    for (Scalar spread = 0.1; spread > 1e-7; spread /= 2) {
+      for (int k = 0; k < 40; ++k) {
+        const Vector3 n = (best + spread * rng.unit()).normalized();
+        const Scalar s = detail::exact_separation(pair.a, pair.b, n);
+        if (s > best_separation) {
+          best_separation = s;
+          best = n;
+        }
+      }
+    }
+    // (The computed separations may exceed the true ones by the support points' shortfall.)
+    EXPECT_LE(best_separation, r.upper + 1e-13);
+    // The witnesses: in the bodies (the ellipsoid's in the frame's placement of it), and
+    // `upper * normal` apart to the gap.
+    EXPECT_LE((r.point_b - r.point_a - r.upper * r.normal).norm(), r.upper - r.lower + 1e-14);
+    const Vector3 local_a =
+        pair.a.rotation().transpose() * (r.point_a - pair.a.offset()) *
+        std::ldexp(1.0, pair.a.exponent());
+    EXPECT_LE(local_a.cwiseQuotient(radii_a).norm(), 1 + 1e-12);
+  }
+  EXPECT_GT(pairs, 60);
+  // Many are the rolling balls' (the rest: deeper than the balls, or a box's points that the
+  // ellipsoid's closed form proves inside it).
+  EXPECT_GT(rolled, pairs / 4);
+}
+
+}  // namespace
+}  // namespace swarmcollide::testing
