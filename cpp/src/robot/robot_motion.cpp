@@ -134,6 +134,7 @@ class MotionCheck {
       for (const int j : model.joint_order()) {
         if (needed[static_cast<std::size_t>(j)]) joints.push_back(j);
       }
+      common_links_.push_back(bound_.common_link(pair));
     }
   }
 
@@ -219,13 +220,16 @@ class MotionCheck {
   }
 
  private:
-  // The pair being advanced: its last query's unit separating direction, the support points the
-  // last measurement along it found (-1: none yet), and what that query proved apart.
+  // The pair being advanced: its last query's unit separating direction (turned with the frame
+  // its links' chains part at, when they share joints), the support points the last measurement
+  // along it found (-1: none yet), and what that query proved apart; the direction in that
+  // frame's coordinates.
   struct Separating {
     Vector3 direction;
     int ia;
     int ib;
     Scalar apart;
+    Vector3 in_common;
   };
 
   // Every pair's speed and margin, and the pairs in increasing order of their first possible
@@ -433,10 +437,18 @@ class MotionCheck {
     const BodyBounds& b = model_.geometries()[pair.b].body.bounds();
     // The motion's size for this pair: the sum of the two bounding balls' diameters.
     const Scalar threshold = options_.query.tolerance * 2 * (a.radius + b.radius);
+    const int common = common_links_[static_cast<std::size_t>(plan.pair)];
     if (separating_) {
       // The separation along the last query's direction is a lower bound on the distance as a
       // query's is (the same support climbs), at a tenth of a query's cost; it is stepped from
-      // while it keeps a quarter of what that query proved (kRemeasured).
+      // while it keeps a quarter of what that query proved (kRemeasured). Any direction gives a
+      // lower bound: one fixed in the frame where the links' chains part turns with both links
+      // as the joints they share move, and keeps their separation (directional_speed).
+      if (common >= 0) {
+        separating_->direction =
+            (links_[static_cast<std::size_t>(common)].rotation * separating_->in_common)
+                .normalized();
+      }
       const Scalar apart = separation_along(pair, *separating_) - plan.margin;
       if (apart > threshold && apart >= kRemeasured * separating_->apart) {
         return apart_sample(pair, plan, t, apart, separating_->direction, local);
@@ -484,7 +496,11 @@ class MotionCheck {
       separating_.reset();
       return apart_sample(pair, plan, t, apart, Vector3::Zero(), local);
     }
-    separating_ = Separating{result.direction / length, -1, -1, apart};
+    separating_ = Separating{result.direction / length, -1, -1, apart, Vector3::Zero()};
+    if (common >= 0) {
+      separating_->in_common =
+          links_[static_cast<std::size_t>(common)].rotation.transpose() * separating_->direction;
+    }
     return apart_sample(pair, plan, t, apart, separating_->direction, local);
   }
 
@@ -500,11 +516,13 @@ class MotionCheck {
     if (direction.squaredNorm() > 0) {
       const detail::LinkMotionBound::DirectionalSpeed speed =
           bound_.directional_speed(pair, direction, chain_a_, chain_b_);
-      // The bisection's time keeps closing <= apart, so where the closing over the reach
+      // What is left of the gap in the frame the pair is measured in (rounded down).
+      const Scalar gap = speed.loss > 0 ? apart * (1 - speed.loss) * (1 - 4 * kUnit) : apart;
+      // The bisection's time keeps closing <= gap, so where the closing over the reach
       // already taken exceeds the gap it stays below that reach (the computed closing is
       // nondecreasing in h): the root is sought only where it can lengthen the step.
-      if (!(closing(s.forward, speed) > apart)) {
-        s.forward = s.backward = std::max(s.forward, directional_reach(apart, speed));
+      if (!(closing(s.forward, speed) > gap)) {
+        s.forward = s.backward = std::max(s.forward, directional_reach(gap, speed));
       }
     }
     return s;
@@ -594,8 +612,10 @@ class MotionCheck {
   Eigen::Matrix<Scalar, 1, Eigen::Dynamic> end_;
   Eigen::Matrix<Scalar, 1, Eigen::Dynamic> delta_;
   Eigen::Matrix<Scalar, 1, Eigen::Dynamic> q_;
-  // Per pair, the joints that place its links (in the model's order).
+  // Per pair, the joints that place its links (in the model's order), and the link where its
+  // links' chains part (-1: the world).
   std::vector<std::vector<int>> pair_joints_;
+  std::vector<int> common_links_;
   std::vector<Pose> links_;
   std::vector<Pose> start_links_;
   std::vector<Pose> end_links_;
