@@ -347,9 +347,9 @@ class MotionCheck {
           continue;
         }
         if (next.contact && next.t - low.t <= width) return {PairRun::contact, low.t, next.t};
-      } else if (low.forward > horizon - low.t ||
-                 (horizon == 1 && low.forward + plan.from_end > 1 - low.t)) {
-        // Proven apart up to the horizon, or to where the screens at the end prove it apart.
+      } else if (low.forward > horizon - low.t || low.forward + plan.from_end > 1 - low.t) {
+        // Proven apart up to the horizon, or to where the screens at the end prove it apart
+        // (over [1 - from_end, 1], which holds a horizon below 1 as well).
         return {PairRun::free, horizon, kInfinity};
       }
       if (iterations_ >= options_.max_iterations) {
@@ -421,13 +421,21 @@ class MotionCheck {
     // direction, the separation along it is measured rather than the boxes': at about the same
     // cost, it bounds the distance much closer.
     if (t > 0) {
-      const Scalar enough = plan.margin + plan.speed * (horizon - t);
+      // What the screens must prove: apart up to the horizon, or, from before where the
+      // screens at the motion's end prove it apart, up to there (advance's test; a sample
+      // after it is asked as before, for one ahead of `low` proves only its own reach).
+      const bool before_end = t < 1 - plan.from_end;
+      const Scalar needed =
+          before_end ? std::min(horizon - t, 1 - plan.from_end - t) : horizon - t;
+      const Scalar enough = plan.margin + plan.speed * needed;
       const Scalar balls = ball_separation(pair, pose_a_, pose_b_);
       const Scalar screened = detail::reach_over(
           (balls > enough || separating_ ? balls : screen_boxes(pair, pose_a_, pose_b_, balls)) -
               plan.margin,
           plan.speed);
-      if (screened > horizon - t) return {t, false, screened, screened};
+      if (screened > horizon - t || (before_end && screened + plan.from_end > 1 - t)) {
+        return {t, false, screened, screened};
+      }
     }
     bound_.place_chain(pair.a, links_, pose_a_, chain_a_);
     bound_.place_chain(pair.b, links_, pose_b_, chain_b_);
