@@ -64,8 +64,10 @@ Scalar directional_reach(Scalar apart, const detail::LinkMotionBound::Directiona
 // this fraction of what the query proved; below it the pair's nearest features have moved on,
 // and a query finds its new direction. (bench/robot_motion_profile.py's 200 edges, callgrind
 // inside robot_check_motion: 264.3M instructions and 42.2 queries per edge with none measured
-// again; 246.0M and 28.3 at 0.5; 245.2M and 25.9 at 0.25.)
-constexpr Scalar kRemeasured = 0.25;
+// again; 246.0M and 28.3 at 0.5; 245.2M and 25.9 at 0.25. After the self pairs' directional
+// bound in their common frame and the end screens' reach: 178.4M and 17.4 at 0.25 with the
+// speculative sample at 0.8; with it at 0.6, 174.9M and 16.2 at 0.15, 176.3M and 15.9 at 0.1.)
+constexpr Scalar kRemeasured = 0.15;
 
 // What one pair's distance at one time proves.
 struct Sample {
@@ -364,15 +366,18 @@ class MotionCheck {
             // same query. Near a configuration the reach changes roughly linearly in time: when
             // it went from `before` to `forward` over the last step (ratio rho = forward /
             // before, at most 1), the reach at a time f forward past `t` is about (1 - (1 + f)
-            // (1 - rho)) forward, which is f forward for f = rho / (2 - rho); 0.8 of that is
-            // sampled. A pair moving apart (rho = 1) is sampled 0.8 of the reach past `t`. When
+            // (1 - rho)) forward, which is f forward for f = rho / (2 - rho); 0.6 of that is
+            // sampled. A pair moving apart (rho = 1) is sampled 0.6 of the reach past `t`. When
             // the sample does not reach back, the step to `t` follows, and the sample still
             // proves part of what is left after it. (Queries per edge of bench/robot_motion.py's
             // 1000: moving apart only, 0.4 of the reach 90.0, 0.6 88.4, 0.8 87.9, 1 89.8, 1.5
             // 92.3, as of robotmotion31; later, with the closing pairs too, 47.2 -> 42.5 at 0.8
-            // of f, 42.7 at 0.6, 44.8 at 1.)
+            // of f, 42.7 at 0.6, 44.8 at 1; after the self pairs' directional bound in their
+            // common frame and the end screens' reach, 16.48 at 0.8 of f, 16.01 at 0.6, 17.28
+            // at 1, and with kRemeasured 0.15, 15.91 at 0.8, 15.37 at 0.6, 15.54 at 0.5, 15.95
+            // at 0.4: samples of either kind per edge 56.9, 54.0, 53.9, 54.7.)
             const Scalar rho = std::min<Scalar>(1, low.forward / before);
-            const Scalar far = detail::advanced(t, 0.8 * rho / (2 - rho) * low.forward);
+            const Scalar far = detail::advanced(t, 0.6 * rho / (2 - rho) * low.forward);
             if (far > t && far < limit) {
               before = low.forward;
               ahead.push_back(sample(pair, plan, far, horizon));
