@@ -1,6 +1,7 @@
 // Robot motions: the link motion bound (every point of a geometry moves no farther than its
 // pair's speed bound allows, and a self pair's distance changes no faster than its bound, which
-// leaves out the joints both chains share), and robot_check_motion's bracket on a bar turning
+// leaves out the joints both chains share, as does its directional bound in the frame where the
+// chains part), and robot_check_motion's bracket on a bar turning
 // into a post, against the closed form.
 #include <gtest/gtest.h>
 
@@ -78,6 +79,29 @@ Eigen::RowVectorXd random_configuration(std::mt19937_64& rng) {
   return q;
 }
 
+// A random motion of the arm, set on `bound`, and a random time s of it with its configuration
+// and link poses.
+struct TimeOfMotion {
+  Eigen::RowVectorXd q0;
+  Eigen::RowVectorXd q1;
+  Scalar s;
+  Eigen::RowVectorXd qs;
+  std::vector<Pose> links;
+};
+
+TimeOfMotion random_time(const RobotModel& model, detail::LinkMotionBound& bound,
+                         std::mt19937_64& rng) {
+  std::uniform_real_distribution<Scalar> unit(0, 1);
+  TimeOfMotion at;
+  at.q0 = random_configuration(rng);
+  at.q1 = random_configuration(rng);
+  bound.set_motion(at.q0.data(), at.q1.data());
+  at.s = unit(rng);
+  at.qs = at.q0 + at.s * (at.q1 - at.q0);
+  link_poses(model, at.qs.data(), at.links);
+  return at;
+}
+
 TEST(RobotMotion, EveryPointMovesNoFartherThanItsGeometrysBound) {
   const RobotModel arm = spatial_arm();
   ASSERT_EQ(arm.dof(), 3);  // the wrist is fixed, the finger mimics the turn
@@ -127,22 +151,17 @@ TEST(RobotMotion, PointsMoveNoFartherThanTheLocalBoundAroundAConfiguration) {
   const int table = 6;
   Scalar tightest = 0;
   for (int motion = 0; motion < 200; ++motion) {
-    const Eigen::RowVectorXd q0 = random_configuration(rng);
-    const Eigen::RowVectorXd q1 = random_configuration(rng);
-    bound.set_motion(q0.data(), q1.data());
-    const Scalar s = unit(rng);
-    const Eigen::RowVectorXd qs = q0 + s * (q1 - q0);
-    std::vector<Pose> links;
-    link_poses(arm, qs.data(), links);
+    const TimeOfMotion at = random_time(arm, bound, rng);
     for (int sample = 0; sample < 10; ++sample) {
       // Either way from s, far and near.
-      const Scalar t = sample % 2 == 0 ? unit(rng) : s + (unit(rng) - 0.5) * 0.02;
-      const Scalar h = std::abs(t - s);
-      const Eigen::RowVectorXd qt = q0 + t * (q1 - q0);
+      const Scalar t = sample % 2 == 0 ? unit(rng) : at.s + (unit(rng) - 0.5) * 0.02;
+      const Scalar h = std::abs(t - at.s);
+      const Eigen::RowVectorXd qt = at.q0 + t * (at.q1 - at.q0);
       for (int g = 0; g < table; ++g) {
-        const Pose from = geometry_pose(arm, qs, g);
+        const Pose from = geometry_pose(arm, at.qs, g);
         const Pose to = geometry_pose(arm, qt, g);
-        const auto local = bound.local_speed({g, table}, links, from, arm.geometries()[table].origin);
+        const auto local =
+            bound.local_speed({g, table}, at.links, from, arm.geometries()[table].origin);
         const Scalar allowed = local.at * h + local.growth * h * h / 2;
         const VertexMatrix& vertices = arm.geometries()[g].body.vertices();
         for (int v = 0; v < vertices.rows(); ++v) {
@@ -168,24 +187,18 @@ TEST(RobotMotion, PointsMoveAlongADirectionNoFartherThanTheDirectionalBound) {
   const int table = 6;
   Scalar tightest = 0;
   for (int motion = 0; motion < 200; ++motion) {
-    const Eigen::RowVectorXd q0 = random_configuration(rng);
-    const Eigen::RowVectorXd q1 = random_configuration(rng);
-    bound.set_motion(q0.data(), q1.data());
-    const Scalar s = unit(rng);
-    const Eigen::RowVectorXd qs = q0 + s * (q1 - q0);
-    std::vector<Pose> links;
-    link_poses(arm, qs.data(), links);
+    const TimeOfMotion at = random_time(arm, bound, rng);
     // Vertical (the table's normal: the turn about z moves nothing along it) and random.
     const Vector3 n = motion % 2 == 0 ? Vector3::UnitZ()
                                       : Vector3(normal(rng), normal(rng), normal(rng)).normalized();
     for (int sample = 0; sample < 10; ++sample) {
-      const Scalar t = sample % 2 == 0 ? unit(rng) : s + (unit(rng) - 0.5) * 0.02;
-      const Scalar h = std::abs(t - s);
-      const Eigen::RowVectorXd qt = q0 + t * (q1 - q0);
+      const Scalar t = sample % 2 == 0 ? unit(rng) : at.s + (unit(rng) - 0.5) * 0.02;
+      const Scalar h = std::abs(t - at.s);
+      const Eigen::RowVectorXd qt = at.q0 + t * (at.q1 - at.q0);
       for (int g = 0; g < table; ++g) {
-        const Pose from = geometry_pose(arm, qs, g);
+        const Pose from = geometry_pose(arm, at.qs, g);
         const Pose to = geometry_pose(arm, qt, g);
-        const auto speed = bound.directional_speed({g, table}, n, links, from,
+        const auto speed = bound.directional_speed({g, table}, n, at.links, from,
                                                    arm.geometries()[table].origin);
         const Scalar allowed =
             h * (speed.linear + h * (speed.quadratic / 2 + h * speed.cubic / 3));
@@ -197,6 +210,68 @@ TEST(RobotMotion, PointsMoveAlongADirectionNoFartherThanTheDirectionalBound) {
           ASSERT_LE(moved, allowed * (1 + 1e-12) + 1e-15) << "geometry " << g;
           if (allowed > 0 && h < 0.02) tightest = std::max(tightest, moved / allowed);
         }
+      }
+    }
+  }
+  EXPECT_GT(tightest, 0.3);
+}
+
+TEST(RobotMotion, SelfPairsMoveAlongADirectionTurningWithTheirCommonFrameWithinTheBound) {
+  const RobotModel arm = spatial_arm();
+  detail::LinkMotionBound bound(arm);
+  std::mt19937_64 rng(17);
+  std::uniform_real_distribution<Scalar> unit(0, 1);
+  std::normal_distribution<Scalar> normal;
+  // Pairs whose chains share joints, with the links where they part: upper and finger part at
+  // the shoulder's link, carriage and finger too, column and hand at the turn's link; base and
+  // hand share none (the world's frame).
+  const GeometryPair pairs[] = {{2, 5}, {3, 5}, {1, 4}, {0, 4}};
+  const int commons[] = {2, 2, 1, -1};
+  for (int p = 0; p < 4; ++p) EXPECT_EQ(bound.common_link(pairs[p]), commons[p]);
+  Scalar tightest = 0;
+  for (int motion = 0; motion < 200; ++motion) {
+    const TimeOfMotion at = random_time(arm, bound, rng);
+    const Vector3 n = Vector3(normal(rng), normal(rng), normal(rng)).normalized();
+    for (int p = 0; p < 4; ++p) {
+      const GeometryPair& pair = pairs[p];
+      const Pose common_s = commons[p] < 0 ? Pose{} : at.links[commons[p]];
+      const auto speed = bound.directional_speed(
+          pair, n, at.links, geometry_pose(arm, at.qs, pair.a), geometry_pose(arm, at.qs, pair.b));
+      EXPECT_EQ(speed.loss > 0, commons[p] >= 0);
+      EXPECT_LT(speed.loss, 1e-12);
+      // The direction in the common frame's coordinates.
+      const Vector3 m = common_s.rotation.transpose() * n;
+      for (int sample = 0; sample < 10; ++sample) {
+        const Scalar t = sample % 2 == 0 ? unit(rng) : at.s + (unit(rng) - 0.5) * 0.02;
+        const Scalar h = std::abs(t - at.s);
+        const Eigen::RowVectorXd qt = at.q0 + t * (at.q1 - at.q0);
+        std::vector<Pose> links_t;
+        link_poses(arm, qt.data(), links_t);
+        const Pose common_t = commons[p] < 0 ? Pose{} : links_t[commons[p]];
+        const Scalar allowed =
+            h * (speed.linear + h * (speed.quadratic / 2 + h * speed.cubic / 3));
+        // Each body's points move along m, in the common frame, by at most its share: the
+        // farthest moving point of each, together, within the bound.
+        Scalar moved = 0;
+        for (const int g : {pair.a, pair.b}) {
+          const Pose from = geometry_pose(arm, at.qs, g);
+          const Pose to = geometry_pose(arm, qt, g);
+          const VertexMatrix& vertices = arm.geometries()[g].body.vertices();
+          Scalar most = 0;
+          for (int v = 0; v < vertices.rows(); ++v) {
+            const Vector3 x = vertices.row(v).transpose();
+            const Vector3 in_s =
+                common_s.rotation.transpose() * (from.rotation * x + from.translation -
+                                                 common_s.translation);
+            const Vector3 in_t =
+                common_t.rotation.transpose() * (to.rotation * x + to.translation -
+                                                 common_t.translation);
+            most = std::max(most, std::abs(m.dot(in_t - in_s)));
+          }
+          moved += most;
+        }
+        ASSERT_LE(moved, allowed * (1 + 1e-12) + 1e-15) << "pair " << p << ", motion " << motion;
+        if (allowed > 0 && h < 0.02) tightest = std::max(tightest, moved / allowed);
       }
     }
   }

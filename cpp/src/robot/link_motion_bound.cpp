@@ -372,22 +372,31 @@ LinkMotionBound::DirectionalSpeed LinkMotionBound::directional_speed(
 LinkMotionBound::DirectionalSpeed LinkMotionBound::directional_speed(
     const GeometryPair& pair, const Vector3& direction, const PlacedChain& placed_a,
     const PlacedChain& placed_b) const {
-  DirectionalSpeed speed{0, 0, 0};
+  const int la = model_.geometries()[pair.a].link;
+  const int lb = model_.geometries()[pair.b].link;
+  // The joints above the frame C the pair is measured in, and C's deviation from rigid (the
+  // header): none and 0 in the world's frame.
+  const std::size_t shared = shared_joints(chains_, la, lb);
+  const Scalar sigma =
+      shared == 0 ? 0 : chain_sigma_[chains_[static_cast<std::size_t>(la)][shared - 1]];
+  const Scalar in_common = (1 + 4 * sigma) * kRoundUp;
+  DirectionalSpeed speed{0, 0, 0, 2 * sigma};
   const auto add = [&](int g, const PlacedChain& placed) {
     if (model_.geometries()[static_cast<std::size_t>(g)].link < 0) return;
-    // The angular speed of the frames above the joint (the turns taken so far, root first).
+    // The angular speed of the frames above the joint in C (the turns taken so far below C).
     Scalar turning = 0;
     for (const GeometryMotion::Term& term : geometries_[static_cast<std::size_t>(g)].terms) {
+      if (term.k < shared) continue;
       // The joints below alone change the points' distance from the axis.
       const Scalar below = term.below;
       const Vector3& axis = placed.axis[term.k];
-      const Scalar change = term.change * (term.rigid * kRoundUp);
+      const Scalar change = term.change * (term.rigid * in_common);
       if (!term.turn) {
-        speed.linear += change * (std::abs(direction.dot(axis)) + 8 * kUnit);
+        speed.linear += change * (std::abs(direction.dot(axis)) + 8 * kUnit + 4.01 * sigma);
         speed.quadratic += change * turning;
         continue;
       }
-      const Scalar across = direction.cross(axis).norm() + 8 * kUnit;
+      const Scalar across = direction.cross(axis).norm() + 8 * kUnit + 4.01 * sigma;
       const Scalar reach = placed.reach[term.k];
       speed.linear += change * across * reach;
       speed.quadratic += change * (across * below + reach * turning);
@@ -403,6 +412,14 @@ LinkMotionBound::DirectionalSpeed LinkMotionBound::directional_speed(
   speed.quadratic *= kRoundUp;
   speed.cubic *= kRoundUp;
   return speed;
+}
+
+int LinkMotionBound::common_link(const GeometryPair& pair) const {
+  const int la = model_.geometries()[pair.a].link;
+  const std::size_t shared =
+      shared_joints(chains_, la, model_.geometries()[pair.b].link);
+  if (shared == 0) return -1;
+  return model_.joints()[chains_[static_cast<std::size_t>(la)][shared - 1]].child;
 }
 
 Scalar LinkMotionBound::pair_margin(const GeometryPair& pair) const {

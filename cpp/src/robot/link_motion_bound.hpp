@@ -58,7 +58,25 @@ namespace swarmcollide::detail {
 /// across it, does not change the separation. The axis a_i turns at most at the rates of the
 /// turns above J_i (Omega_i), so at a time s from the configuration |n x a_i(s)| <= c_i + |s|
 /// Omega_i, and the separation shrinks at most at `sum_i |dq_i| (c_i + |s| Omega_i) (d_i + |s|
-/// v_i)` over every joint of both chains (a shared turn moves both bodies, but not along n alike).
+/// v_i)` over every joint of both chains.
+///
+/// A pair whose chains share joints is measured in the frame C of the link where they part (the
+/// child of the last shared joint) rather than the world's: the shared joints move C alone, so in
+/// C's coordinates the two bodies move by the other joints only, and the separation along a
+/// direction fixed in C (one that turns with C in the world) shrinks by their terms alone, the
+/// turns' Omega summed from the first joint below C. C's frame is rigid only to within sigma_C
+/// (its chain's), R^T R = I + S with |S| <= sigma_C at every configuration (the turns are exact
+/// rotations): with x the points in C's coordinates, p = R x + T, a world separation `apart`
+/// along the unit n is a separation apart / |R^T n| >= apart / sqrt(1 + sigma_C) along the unit m
+/// = R^T n / |R^T n| in C's coordinates, and a separation g along m there is a distance at least
+/// |R (x_b - x_a)| >= sqrt(1 - sigma_C) g in the world at any configuration. So the distance
+/// stays at least `apart (1 - sigma_C) - closing`, where `closing` is the bound above in C's
+/// coordinates. Those coordinates differ from the world's measurements of the axes, the
+/// direction and the distances (the placed chains, taken in the world) by the factor R: a
+/// direction or an axis made unit turns by at most 2 |E| / (1 - |E|) with R = Q (I + E) (Q
+/// orthogonal, |E| <= sigma_C), so |m x a_i| exceeds the world's |n x a_i| by at most 4.01
+/// sigma_C, and lengths differ by at most the factor 1 + sigma_C, covered by 1 + 4 sigma_C on
+/// every term. `loss` is the fraction 2 sigma_C of the gap lost (0 in the world's frame).
 ///
 /// The margin covers the rounding: of q(t) (a few roundoffs of the joint values, times the speed
 /// coefficients), of the forward kinematics (64 roundoffs of Z per joint on the chain) and of the
@@ -88,12 +106,15 @@ class LinkMotionBound {
                          const Pose& pose_a, const Pose& pose_b) const;
 
   /// How fast the separation of `pair` along the unit `direction` can shrink around the
-  /// configuration of `links`: over a time h either way, by at most `linear h + quadratic h^2 / 2
-  /// + cubic h^3 / 3`.
+  /// configuration of `links`: over a time h either way, a separation `apart` there leaves the
+  /// pair at least `apart (1 - loss) - (linear h + quadratic h^2 / 2 + cubic h^3 / 3)` apart (for
+  /// a pair whose chains share joints, along the direction turned with the frame where they part;
+  /// `common_link`).
   struct DirectionalSpeed {
     Scalar linear;
     Scalar quadratic;
     Scalar cubic;
+    Scalar loss;
   };
   DirectionalSpeed directional_speed(const GeometryPair& pair, const Vector3& direction,
                                      const std::vector<Pose>& links, const Pose& pose_a,
@@ -117,6 +138,10 @@ class LinkMotionBound {
   /// directional_speed from the two geometries' placed chains (the same bound, bit for bit).
   DirectionalSpeed directional_speed(const GeometryPair& pair, const Vector3& direction,
                                      const PlacedChain& a, const PlacedChain& b) const;
+
+  /// The link whose frame `directional_speed` measures `pair` in: the child of the last joint
+  /// the two chains share (-1: none, the world's frame).
+  int common_link(const GeometryPair& pair) const;
 
   /// A bound on how far the computed poses of `pair` at any time of the motion can be from the
   /// exact ones, measured as the change of their distance.

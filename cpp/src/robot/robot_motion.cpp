@@ -64,8 +64,10 @@ Scalar directional_reach(Scalar apart, const detail::LinkMotionBound::Directiona
 // this fraction of what the query proved; below it the pair's nearest features have moved on,
 // and a query finds its new direction. (bench/robot_motion_profile.py's 200 edges, callgrind
 // inside robot_check_motion: 264.3M instructions and 42.2 queries per edge with none measured
-// again; 246.0M and 28.3 at 0.5; 245.2M and 25.9 at 0.25.)
-constexpr Scalar kRemeasured = 0.25;
+// again; 246.0M and 28.3 at 0.5; 245.2M and 25.9 at 0.25. After the self pairs' directional
+// bound in their common frame and the end screens' reach: 178.4M and 17.4 at 0.25 with the
+// speculative sample at 0.8; with it at 0.6, 174.9M and 16.2 at 0.15, 176.3M and 15.9 at 0.1.)
+constexpr Scalar kRemeasured = 0.15;
 
 // What one pair's distance at one time proves.
 struct Sample {
@@ -134,6 +136,7 @@ class MotionCheck {
       for (const int j : model.joint_order()) {
         if (needed[static_cast<std::size_t>(j)]) joints.push_back(j);
       }
+      common_links_.push_back(bound_.common_link(pair));
     }
   }
 
@@ -219,13 +222,16 @@ class MotionCheck {
   }
 
  private:
-  // The pair being advanced: its last query's unit separating direction, the support points the
-  // last measurement along it found (-1: none yet), and what that query proved apart.
+  // The pair being advanced: its last query's unit separating direction (turned with the frame
+  // its links' chains part at, when they share joints), the support points the last measurement
+  // along it found (-1: none yet), and what that query proved apart; the direction in that
+  // frame's coordinates.
   struct Separating {
     Vector3 direction;
     int ia;
     int ib;
     Scalar apart;
+    Vector3 in_common;
   };
 
   // Every pair's speed and margin, and the pairs in increasing order of their first possible
@@ -343,9 +349,9 @@ class MotionCheck {
           continue;
         }
         if (next.contact && next.t - low.t <= width) return {PairRun::contact, low.t, next.t};
-      } else if (low.forward > horizon - low.t ||
-                 (horizon == 1 && low.forward + plan.from_end > 1 - low.t)) {
-        // Proven apart up to the horizon, or to where the screens at the end prove it apart.
+      } else if (low.forward > horizon - low.t || low.forward + plan.from_end > 1 - low.t) {
+        // Proven apart up to the horizon, or to where the screens at the end prove it apart
+        // (over [1 - from_end, 1], which holds a horizon below 1 as well).
         return {PairRun::free, horizon, kInfinity};
       }
       if (iterations_ >= options_.max_iterations) {
@@ -360,15 +366,18 @@ class MotionCheck {
             // same query. Near a configuration the reach changes roughly linearly in time: when
             // it went from `before` to `forward` over the last step (ratio rho = forward /
             // before, at most 1), the reach at a time f forward past `t` is about (1 - (1 + f)
-            // (1 - rho)) forward, which is f forward for f = rho / (2 - rho); 0.8 of that is
-            // sampled. A pair moving apart (rho = 1) is sampled 0.8 of the reach past `t`. When
+            // (1 - rho)) forward, which is f forward for f = rho / (2 - rho); 0.6 of that is
+            // sampled. A pair moving apart (rho = 1) is sampled 0.6 of the reach past `t`. When
             // the sample does not reach back, the step to `t` follows, and the sample still
             // proves part of what is left after it. (Queries per edge of bench/robot_motion.py's
             // 1000: moving apart only, 0.4 of the reach 90.0, 0.6 88.4, 0.8 87.9, 1 89.8, 1.5
             // 92.3, as of robotmotion31; later, with the closing pairs too, 47.2 -> 42.5 at 0.8
-            // of f, 42.7 at 0.6, 44.8 at 1.)
+            // of f, 42.7 at 0.6, 44.8 at 1; after the self pairs' directional bound in their
+            // common frame and the end screens' reach, 16.48 at 0.8 of f, 16.01 at 0.6, 17.28
+            // at 1, and with kRemeasured 0.15, 15.91 at 0.8, 15.37 at 0.6, 15.54 at 0.5, 15.95
+            // at 0.4: samples of either kind per edge 56.9, 54.0, 53.9, 54.7.)
             const Scalar rho = std::min<Scalar>(1, low.forward / before);
-            const Scalar far = detail::advanced(t, 0.8 * rho / (2 - rho) * low.forward);
+            const Scalar far = detail::advanced(t, 0.6 * rho / (2 - rho) * low.forward);
             if (far > t && far < limit) {
               before = low.forward;
               ahead.push_back(sample(pair, plan, far, horizon));
@@ -417,13 +426,21 @@ class MotionCheck {
     // direction, the separation along it is measured rather than the boxes': at about the same
     // cost, it bounds the distance much closer.
     if (t > 0) {
-      const Scalar enough = plan.margin + plan.speed * (horizon - t);
+      // What the screens must prove: apart up to the horizon, or, from before where the
+      // screens at the motion's end prove it apart, up to there (advance's test; a sample
+      // after it is asked as before, for one ahead of `low` proves only its own reach).
+      const bool before_end = t < 1 - plan.from_end;
+      const Scalar needed =
+          before_end ? std::min(horizon - t, 1 - plan.from_end - t) : horizon - t;
+      const Scalar enough = plan.margin + plan.speed * needed;
       const Scalar balls = ball_separation(pair, pose_a_, pose_b_);
       const Scalar screened = detail::reach_over(
           (balls > enough || separating_ ? balls : screen_boxes(pair, pose_a_, pose_b_, balls)) -
               plan.margin,
           plan.speed);
-      if (screened > horizon - t) return {t, false, screened, screened};
+      if (screened > horizon - t || (before_end && screened + plan.from_end > 1 - t)) {
+        return {t, false, screened, screened};
+      }
     }
     bound_.place_chain(pair.a, links_, pose_a_, chain_a_);
     bound_.place_chain(pair.b, links_, pose_b_, chain_b_);
@@ -433,10 +450,18 @@ class MotionCheck {
     const BodyBounds& b = model_.geometries()[pair.b].body.bounds();
     // The motion's size for this pair: the sum of the two bounding balls' diameters.
     const Scalar threshold = options_.query.tolerance * 2 * (a.radius + b.radius);
+    const int common = common_links_[static_cast<std::size_t>(plan.pair)];
     if (separating_) {
       // The separation along the last query's direction is a lower bound on the distance as a
       // query's is (the same support climbs), at a tenth of a query's cost; it is stepped from
-      // while it keeps a quarter of what that query proved (kRemeasured).
+      // while it keeps a quarter of what that query proved (kRemeasured). Any direction gives a
+      // lower bound: one fixed in the frame where the links' chains part turns with both links
+      // as the joints they share move, and keeps their separation (directional_speed).
+      if (common >= 0) {
+        separating_->direction =
+            (links_[static_cast<std::size_t>(common)].rotation * separating_->in_common)
+                .normalized();
+      }
       const Scalar apart = separation_along(pair, *separating_) - plan.margin;
       if (apart > threshold && apart >= kRemeasured * separating_->apart) {
         return apart_sample(pair, plan, t, apart, separating_->direction, local);
@@ -484,7 +509,11 @@ class MotionCheck {
       separating_.reset();
       return apart_sample(pair, plan, t, apart, Vector3::Zero(), local);
     }
-    separating_ = Separating{result.direction / length, -1, -1, apart};
+    separating_ = Separating{result.direction / length, -1, -1, apart, Vector3::Zero()};
+    if (common >= 0) {
+      separating_->in_common =
+          links_[static_cast<std::size_t>(common)].rotation.transpose() * separating_->direction;
+    }
     return apart_sample(pair, plan, t, apart, separating_->direction, local);
   }
 
@@ -500,11 +529,13 @@ class MotionCheck {
     if (direction.squaredNorm() > 0) {
       const detail::LinkMotionBound::DirectionalSpeed speed =
           bound_.directional_speed(pair, direction, chain_a_, chain_b_);
-      // The bisection's time keeps closing <= apart, so where the closing over the reach
+      // What is left of the gap in the frame the pair is measured in (rounded down).
+      const Scalar gap = speed.loss > 0 ? apart * (1 - speed.loss) * (1 - 4 * kUnit) : apart;
+      // The bisection's time keeps closing <= gap, so where the closing over the reach
       // already taken exceeds the gap it stays below that reach (the computed closing is
       // nondecreasing in h): the root is sought only where it can lengthen the step.
-      if (!(closing(s.forward, speed) > apart)) {
-        s.forward = s.backward = std::max(s.forward, directional_reach(apart, speed));
+      if (!(closing(s.forward, speed) > gap)) {
+        s.forward = s.backward = std::max(s.forward, directional_reach(gap, speed));
       }
     }
     return s;
@@ -594,8 +625,10 @@ class MotionCheck {
   Eigen::Matrix<Scalar, 1, Eigen::Dynamic> end_;
   Eigen::Matrix<Scalar, 1, Eigen::Dynamic> delta_;
   Eigen::Matrix<Scalar, 1, Eigen::Dynamic> q_;
-  // Per pair, the joints that place its links (in the model's order).
+  // Per pair, the joints that place its links (in the model's order), and the link where its
+  // links' chains part (-1: the world).
   std::vector<std::vector<int>> pair_joints_;
+  std::vector<int> common_links_;
   std::vector<Pose> links_;
   std::vector<Pose> start_links_;
   std::vector<Pose> end_links_;
