@@ -454,7 +454,7 @@ class MotionCheck {
     if (separating_) {
       // The separation along the last query's direction is a lower bound on the distance as a
       // query's is (the same support climbs), at a tenth of a query's cost; it is stepped from
-      // while it keeps a quarter of what that query proved (kRemeasured). Any direction gives a
+      // while it keeps 0.15 of what that query proved (kRemeasured). Any direction gives a
       // lower bound: one fixed in the frame where the links' chains part turns with both links
       // as the joints they share move, and keeps their separation (directional_speed).
       if (common >= 0) {
