@@ -210,9 +210,9 @@ TimeOfImpactOptions call_options(const MotionCall& call) {
 
 // time_of_impact in C++: `time_of_impact(a, b, *, pose_a, pose_b, method, tolerance,
 // time_tolerance, max_iterations, motion)` between two ConvexPolyhedron or shapes answered here,
-// with the pybind11 definition's conversions, about a microsecond sooner than through pybind11's argument
-// matching; other bodies, other keywords and calls that raise go to the Python definition, which
-// answers them or raises as it always has.
+// with the pybind11 definition's conversions, about a microsecond sooner than through pybind11's
+// argument matching; other bodies, other keywords and calls that raise go to the Python
+// definition, which answers them or raises as it always has.
 PyObject* time_of_impact_function(PyObject*, PyObject* const* arguments, Py_ssize_t count,
                                   PyObject* names) {
   MotionCall call;

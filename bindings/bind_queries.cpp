@@ -186,8 +186,7 @@ py::object answer(const Query& query, PairQuery kind, const py::handle& a, const
     return py::cast(std::move(result));
   }
   const ConvexPolyhedron* polyhedron_a = body_instance(a.ptr());
-  const ConvexPolyhedron* polyhedron_b =
-      polyhedron_a ? body_instance(b.ptr()) : nullptr;
+  const ConvexPolyhedron* polyhedron_b = polyhedron_a ? body_instance(b.ptr()) : nullptr;
   std::optional<BodyArgument> body_a, body_b;
   if (!polyhedron_b) {
     polyhedron_a = &body_a.emplace(a, "a").get();

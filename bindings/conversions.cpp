@@ -1,5 +1,4 @@
 #include "conversions.hpp"
-#include "fast_calls.hpp"
 
 #include <initializer_list>
 #include <limits>
@@ -7,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "fast_calls.hpp"
 #include "swarmcollide/queries/batch.hpp"
 
 namespace swarmcollide::bindings {

@@ -362,6 +362,12 @@ class RowOptions {
   std::uint64_t index_;
 };
 
+// How long the calling thread answers rows alone before it wakes the batch's other threads: a
+// batch it finishes sooner does not wait for them. Waking a sleeping thread and waiting for it
+// cost 20-25 us per call on this project's 2-core VM (256 rows of collide_many on 8-vertex bodies
+// apart: 17 us on 1 thread, 40 us on 2; swarmcollide-thread-scaling under chrt -f 1).
+constexpr std::chrono::microseconds kAlone{30};
+
 // Runs `answer(i, options_i, pose_a_i, pose_b_i)`, which writes row i of the batch, for every
 // pair, where options_i are the validated options to be seeded for pair i (RowOptions) and
 // `answer` is the thread's own `make_answer(RowWriter(batch))` (with the thread's state), on a
@@ -371,12 +377,6 @@ class RowOptions {
 // the rows share (the options, the method's capability, the pose counts) is checked here, once;
 // each row's poses once, by the thread that answers it. A thread's rows read only its own copies
 // of what they share (see RowWriter) and the chunks' counter.
-// How long the calling thread answers rows alone before it wakes the batch's other threads: a
-// batch it finishes sooner does not wait for them. Waking a sleeping thread and waiting for it
-// cost 20-25 us per call on this project's 2-core VM (256 rows of collide_many on 8-vertex bodies
-// apart: 17 us on 1 thread, 40 us on 2; swarmcollide-thread-scaling under chrt -f 1).
-constexpr std::chrono::microseconds kAlone{30};
-
 template <typename MakeAnswer>
 BatchResult run_batch(Kind kind, std::size_t count, const QueryOptions& options,
                       const BatchSettings& settings, const BatchPoses& poses,
