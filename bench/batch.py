@@ -145,7 +145,7 @@ def main() -> int:
     if arguments.poses:
         import pose_batch
 
-        data = pose_batch.run(rows=2_000 if quick else 20_000, rounds=3 if quick else 7)
+        data = pose_batch.run(rows=2_000 if quick else 20_000, rounds=3 if quick else 15)
         written = record.write(arguments.json, "pose_batch", data.pop("rows"), quick=quick,
                                load_start=data["load_before"], **data)
         print(json.dumps(written, indent=1))

@@ -7,7 +7,10 @@ Bodies are the hulls of 8 and 260 points on the unit sphere; B's centre is 3 fro
 1.8 (overlapping), along random directions, under random rotations. The contenders take turns
 within each round; a time is the median over rounds of the time per row. The fcl and coal
 transforms are built before the timing (a planner's poses arrive as arrays, so this flatters them
-slightly). The load average is recorded before and after. Run by bench/batch.py ``--poses``.
+slightly). A ratio is the median over rounds of that round's ratio, so that a slow moment of the
+shared machine enters both of its times or neither (a 2-thread call of collide_many lasts 1-2 ms,
+and the medians of separate times gave gains from 1.1x to 2.9x in runs minutes apart). The load
+average is recorded before and after. Run by bench/batch.py ``--poses``.
 """
 
 from __future__ import annotations
@@ -113,6 +116,7 @@ def run(rows: int, rounds: int) -> Dict[str, object]:
             # other work (or a serial part) leaves a thread waiting.
             busy = {name: statistics.median(c / w for c, w in zip(cpu[name], times[name]))
                     for name in cases if "2 threads" in name}
+            by_round = [{name: times[name][i] * 1e6 for name in cases} for i in range(rounds)]
             colliding = int(sc.collide_many(a, b, poses_b=(rotations, translations))
                             .colliding.sum())
             records.append({"vertices": len(a), "pairs": state, "rows": rows,
@@ -121,7 +125,8 @@ def run(rows: int, rounds: int) -> Dict[str, object]:
                             # The process's CPU time: less sensitive to a loaded machine.
                             "cpu_microseconds_per_row": {k: v * 1e6
                                                          for k, v in cpu_per_row.items()},
-                            "cpu_over_wall": busy})
+                            "cpu_over_wall": busy,
+                            "rounds_microseconds_per_row": by_round})
     return {"rows": records, "rounds": rounds, "load_before": load_before,
             "load_after": os.getloadavg()}
 
@@ -132,14 +137,20 @@ TARGETS = (("collide_many 1 thread", ("python-fcl collide loop", "coal collide l
 
 def ratios(record: dict, clock: str = "microseconds_per_row") -> Dict[str, float]:
     """The issue's ratios for one workload: ours over each loop, and 2 threads' gain over 1, by
-    wall time (``clock="cpu_microseconds_per_row"``: by CPU time; the gain is then meaningless)."""
-    t = record[clock]
+    wall time (``clock="cpu_microseconds_per_row"``: by CPU time; the gain is then meaningless).
+    Wall-time ratios are medians over rounds of each round's ratio where the rounds were kept."""
+    rounds = record.get("rounds_microseconds_per_row") if clock == "microseconds_per_row" else None
+    samples = rounds or [record[clock]]
+
+    def ratio(top: str, bottom: str) -> float:
+        return statistics.median(t[top] / t[bottom] for t in samples)
+
     out = {}
     for ours, loops, _ in TARGETS:
         for loop in loops:
-            out[f"{ours} / {loop}"] = t[ours] / t[loop]
+            out[f"{ours} / {loop}"] = ratio(ours, loop)
     for kind in ("collide_many", "distance_many"):
-        out[f"{kind} 2 threads gain"] = t[f"{kind} 1 thread"] / t[f"{kind} 2 threads"]
+        out[f"{kind} 2 threads gain"] = ratio(f"{kind} 1 thread", f"{kind} 2 threads")
     return out
 
 
