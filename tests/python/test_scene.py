@@ -1,6 +1,9 @@
 """Scenes against a brute-force oracle, poses against transformed vertices, contact manifolds."""
 
+import gc
 import itertools
+import os
+import signal
 
 import numpy as np
 import pytest
@@ -165,6 +168,33 @@ def test_without_warm_starts_answers_do_not_depend_on_history_or_threads():
     assert a.pairs.tolist() == b.pairs.tolist()
     for field in ("distance", "lower_bound", "point_a", "point_b", "normal"):
         np.testing.assert_array_equal(getattr(a, field), getattr(b, field))
+
+
+def test_a_scene_kept_across_a_fork_answers_and_is_freed_in_the_child():
+    # The child has none of the parent's pool threads: freeing the scene there must not wait for
+    # them (it did, forever), and its frames must still be answered, by threads of its own.
+    rng = np.random.default_rng(9)
+    bodies = [random_body(rng) for _ in range(60)]
+    poses = np.stack([transform(random_rotation(rng), rng.uniform(0, 2, 3)) for _ in range(60)])
+    scene = sc.Scene(threads=2)
+    scene.add(bodies, poses)
+    expected = scene.colliding_pairs().pairs.tolist()  # the pool's threads have run
+    assert expected
+    child = os.fork()
+    if child == 0:  # pragma: no cover - the child's verdict is its exit status
+        status = 1
+        try:
+            signal.alarm(20)
+            same = scene.colliding_pairs().pairs.tolist() == expected
+            del scene
+            gc.collect()
+            status = 0 if same else 2
+        finally:
+            os._exit(status)
+    _, status = os.waitpid(child, 0)
+    assert os.WIFEXITED(status), f"the child was killed by signal {os.WTERMSIG(status)}"
+    assert os.WEXITSTATUS(status) == 0
+    assert scene.colliding_pairs().pairs.tolist() == expected
 
 
 def test_warm_frames_settle_most_pairs_from_the_cache():

@@ -1,49 +1,98 @@
 #include "thread_pool.hpp"
 
+#include <pthread.h>
+
 #include <algorithm>
+#include <atomic>
+#include <condition_variable>
+#include <exception>
 #include <limits>
+#include <mutex>
 #include <system_error>
+#include <thread>
+#include <vector>
 
 namespace swarmcollide::detail {
 
-ThreadPool::ThreadPool(int threads) {
+namespace {
+
+// Forks of this process and its ancestors since the first pool, counted in each child before
+// fork returns there: a pool that counted fewer at its start was inherited from a parent.
+std::atomic<std::size_t> forks{0};
+
+void count_fork() { forks.fetch_add(1, std::memory_order_relaxed); }
+
+std::size_t forks_so_far() {
+  static std::once_flag registered;
+  std::call_once(registered, [] { pthread_atfork(nullptr, nullptr, &count_fork); });
+  return forks.load(std::memory_order_relaxed);
+}
+
+}  // namespace
+
+struct ThreadPool::Crew {
+  explicit Crew(int threads);
+  ~Crew();
+  void for_each_chunk(std::size_t count, std::size_t chunk,
+                      const std::function<void(std::size_t, std::size_t)>& work);
+  void run_chunks();
+  void worker_loop();
+
+  std::vector<std::thread> workers;
+  std::mutex mutex;
+  std::condition_variable wake;
+  std::condition_variable done;
+  // The job in progress, read by the workers under `mutex` when `generation` changes.
+  const std::function<void(std::size_t, std::size_t)>* work = nullptr;
+  std::size_t count = 0;
+  std::size_t chunk = 1;
+  std::size_t next = 0;
+  std::size_t busy = 0;
+  std::size_t generation = 0;
+  bool stopping = false;
+  std::size_t failed_chunk = 0;
+  std::exception_ptr failure;
+  Crew* abandoned_before = nullptr;  // the crews forked children left behind, in a list
+};
+
+ThreadPool::Crew::Crew(int threads) {
   for (int t = 1; t < threads; ++t) {
     try {
-      workers_.emplace_back([this] { worker_loop(); });
+      workers.emplace_back([this] { worker_loop(); });
     } catch (const std::system_error&) {
       break;  // the process cannot start more threads; those running share the work
     }
   }
 }
 
-ThreadPool::~ThreadPool() {
+ThreadPool::Crew::~Crew() {
   {
-    const std::lock_guard<std::mutex> lock(mutex_);
-    stopping_ = true;
+    const std::lock_guard<std::mutex> lock(mutex);
+    stopping = true;
   }
-  wake_.notify_all();
-  for (auto& worker : workers_) worker.join();
+  wake.notify_all();
+  for (auto& worker : workers) worker.join();
 }
 
 // Takes chunks until none is left. The lock is held only to take a chunk: the chunks are large
 // enough (dozens of pairs) that it is rarely contended.
-void ThreadPool::run_chunks() {
-  std::unique_lock<std::mutex> lock(mutex_);
-  // A worker that wakes late may find the job finished (and `work_` reset): then no chunk is
+void ThreadPool::Crew::run_chunks() {
+  std::unique_lock<std::mutex> lock(mutex);
+  // A worker that wakes late may find the job finished (and `work` reset): then no chunk is
   // left and it goes back to sleep.
-  while (next_ < count_) {
-    const std::size_t begin = next_;
-    const std::size_t end = std::min(count_, begin + chunk_);
-    const auto* work = work_;
-    next_ = end;
+  while (next < count) {
+    const std::size_t begin = next;
+    const std::size_t end = std::min(count, begin + chunk);
+    const auto* job = work;
+    next = end;
     lock.unlock();
     try {
-      (*work)(begin, end);
+      (*job)(begin, end);
     } catch (...) {
       lock.lock();
-      if (!failure_ || begin < failed_chunk_) {
-        failure_ = std::current_exception();
-        failed_chunk_ = begin;
+      if (!failure || begin < failed_chunk) {
+        failure = std::current_exception();
+        failed_chunk = begin;
       }
       continue;
     }
@@ -51,49 +100,82 @@ void ThreadPool::run_chunks() {
   }
 }
 
-void ThreadPool::worker_loop() {
+void ThreadPool::Crew::worker_loop() {
   std::size_t seen = 0;
-  std::unique_lock<std::mutex> lock(mutex_);
+  std::unique_lock<std::mutex> lock(mutex);
   for (;;) {
-    wake_.wait(lock, [&] { return stopping_ || generation_ != seen; });
-    if (stopping_) return;
-    seen = generation_;
-    ++busy_;
+    wake.wait(lock, [&] { return stopping || generation != seen; });
+    if (stopping) return;
+    seen = generation;
+    ++busy;
     lock.unlock();
     run_chunks();
     lock.lock();
-    if (--busy_ == 0) done_.notify_all();
+    if (--busy == 0) done.notify_all();
   }
+}
+
+void ThreadPool::Crew::for_each_chunk(std::size_t items, std::size_t chunk_size,
+                                      const std::function<void(std::size_t, std::size_t)>& job) {
+  if (items == 0) return;
+  chunk_size = std::max<std::size_t>(chunk_size, 1);
+  // Small jobs and single-threaded pools run inline: waking a worker costs microseconds.
+  if (workers.empty() || items <= chunk_size) {
+    job(0, items);
+    return;
+  }
+  {
+    const std::lock_guard<std::mutex> lock(mutex);
+    work = &job;
+    count = items;
+    chunk = chunk_size;
+    next = 0;
+    failure = nullptr;
+    failed_chunk = std::numeric_limits<std::size_t>::max();
+    ++generation;
+  }
+  wake.notify_all();
+  run_chunks();
+  std::unique_lock<std::mutex> lock(mutex);
+  // Every chunk has been taken; wait for those still running on workers.
+  done.wait(lock, [&] { return busy == 0 && next >= count; });
+  work = nullptr;
+  count = 0;
+  next = 0;
+  if (failure) std::rethrow_exception(failure);
+}
+
+ThreadPool::ThreadPool(int threads)
+    : threads_(threads), forks_at_start_(forks_so_far()), crew_(std::make_unique<Crew>(threads)) {}
+
+ThreadPool::~ThreadPool() {
+  // In a forked child the parent's workers do not exist: joining them would wait forever.
+  if (forks_so_far() != forks_at_start_) abandon_crew();
+}
+
+int ThreadPool::size() const { return static_cast<int>(crew_->workers.size()) + 1; }
+
+void ThreadPool::abandon_crew() {
+  static std::atomic<Crew*> abandoned{nullptr};
+  Crew* const left = crew_.release();
+  left->abandoned_before = abandoned.load(std::memory_order_relaxed);
+  while (!abandoned.compare_exchange_weak(left->abandoned_before, left)) {
+  }
+}
+
+ThreadPool::Crew& ThreadPool::crew() {
+  const std::size_t now = forks_so_far();
+  if (now != forks_at_start_) {
+    abandon_crew();
+    crew_ = std::make_unique<Crew>(threads_);
+    forks_at_start_ = now;
+  }
+  return *crew_;
 }
 
 void ThreadPool::for_each_chunk(std::size_t count, std::size_t chunk,
                                 const std::function<void(std::size_t, std::size_t)>& work) {
-  if (count == 0) return;
-  chunk = std::max<std::size_t>(chunk, 1);
-  // Small jobs and single-threaded pools run inline: waking a worker costs microseconds.
-  if (workers_.empty() || count <= chunk) {
-    work(0, count);
-    return;
-  }
-  {
-    const std::lock_guard<std::mutex> lock(mutex_);
-    work_ = &work;
-    count_ = count;
-    chunk_ = chunk;
-    next_ = 0;
-    failure_ = nullptr;
-    failed_chunk_ = std::numeric_limits<std::size_t>::max();
-    ++generation_;
-  }
-  wake_.notify_all();
-  run_chunks();
-  std::unique_lock<std::mutex> lock(mutex_);
-  // Every chunk has been taken; wait for those still running on workers.
-  done_.wait(lock, [&] { return busy_ == 0 && next_ >= count_; });
-  work_ = nullptr;
-  count_ = 0;
-  next_ = 0;
-  if (failure_) std::rethrow_exception(failure_);
+  crew().for_each_chunk(count, chunk, work);
 }
 
 }  // namespace swarmcollide::detail

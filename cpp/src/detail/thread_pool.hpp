@@ -2,18 +2,19 @@
 // private to the library's sources.
 #pragma once
 
-#include <condition_variable>
 #include <cstddef>
-#include <exception>
 #include <functional>
-#include <mutex>
-#include <thread>
-#include <vector>
+#include <memory>
 
 namespace swarmcollide::detail {
 
 /// Threads that wait for work between jobs, so that a job of a few milliseconds (a scene's frame,
 /// a batch) does not pay for starting them. `for_each_chunk` runs on the calling thread too.
+///
+/// A pool inherited by a forked child (a scene kept across `os.fork` or multiprocessing) has no
+/// workers there, and its lock may have been held by one of them at the fork: the child leaves
+/// them behind, never joined, and starts its own on its first job; destroying the pool there
+/// returns at once.
 class ThreadPool {
  public:
   /// `threads` threads in all, the caller included; fewer when the process cannot start them.
@@ -23,7 +24,7 @@ class ThreadPool {
   ThreadPool& operator=(const ThreadPool&) = delete;
 
   /// Threads that share the work, the caller included.
-  int size() const { return static_cast<int>(workers_.size()) + 1; }
+  int size() const;
 
   /// Calls `work(begin, end)` for consecutive chunks of [0, count) of at most `chunk` items, on
   /// every thread; returns when all are done. When calls throw, the others' chunks still run
@@ -32,23 +33,16 @@ class ThreadPool {
                       const std::function<void(std::size_t, std::size_t)>& work);
 
  private:
-  void run_chunks();
-  void worker_loop();
+  struct Crew;  // the workers and the job they share
 
-  std::vector<std::thread> workers_;
-  std::mutex mutex_;
-  std::condition_variable wake_;
-  std::condition_variable done_;
-  // The job in progress, read by the workers under `mutex_` when `generation_` changes.
-  const std::function<void(std::size_t, std::size_t)>* work_ = nullptr;
-  std::size_t count_ = 0;
-  std::size_t chunk_ = 1;
-  std::size_t next_ = 0;
-  std::size_t busy_ = 0;
-  std::size_t generation_ = 0;
-  bool stopping_ = false;
-  std::size_t failed_chunk_ = 0;
-  std::exception_ptr failure_;
+  /// This process's crew: the one started here, or a new one in a forked child.
+  Crew& crew();
+  /// Leaves the crew of the parent behind (reachable, for leak checkers).
+  void abandon_crew();
+
+  int threads_;
+  std::size_t forks_at_start_;  // the process's forks counted when `crew_` started
+  std::unique_ptr<Crew> crew_;
 };
 
 }  // namespace swarmcollide::detail

@@ -1,0 +1,69 @@
+// The pool of a scene or of the kept batch threads: every item once, on the caller and the
+// workers, and a pool inherited by a forked child works there and can be destroyed there (its
+// workers do not exist in the child, so joining them would never return).
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include "detail/thread_pool.hpp"
+
+namespace swarmcollide::testing {
+namespace {
+
+using detail::ThreadPool;
+
+// Whether `pool` calls each of `count` items once, in chunks of `chunk`.
+bool every_item_once(ThreadPool& pool, std::size_t count, std::size_t chunk) {
+  std::vector<std::atomic<int>> runs(count);
+  pool.for_each_chunk(count, chunk, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t k = begin; k < end; ++k) runs[k].fetch_add(1);
+  });
+  for (const auto& run : runs) {
+    if (run.load() != 1) return false;
+  }
+  return true;
+}
+
+TEST(ThreadPool, EveryItemOnceInChunks) {
+  ThreadPool pool(2);
+  for (const std::size_t count : {1, 7, 64, 1000}) {
+    EXPECT_TRUE(every_item_once(pool, count, 3)) << count << " items";
+  }
+}
+
+// Runs `child_work` in a forked child with 10 s to finish: a hang becomes SIGALRM, a failure.
+void expect_in_child(const std::function<bool()>& child_work) {
+  const pid_t child = fork();
+  ASSERT_NE(child, -1);
+  if (child == 0) {
+    alarm(10);
+    _exit(child_work() ? 0 : 1);
+  }
+  int status = 0;
+  ASSERT_EQ(waitpid(child, &status, 0), child);
+  ASSERT_TRUE(WIFEXITED(status)) << "the child was killed by signal " << WTERMSIG(status);
+  EXPECT_EQ(WEXITSTATUS(status), 0);
+}
+
+TEST(ThreadPool, AnInheritedPoolAnswersAndIsDestroyedInAForkedChild) {
+  auto pool = std::make_unique<ThreadPool>(2);
+  ASSERT_TRUE(every_item_once(*pool, 200, 4));  // the workers have run before the fork
+  expect_in_child([&] {
+    const bool right = every_item_once(*pool, 200, 4) && every_item_once(*pool, 50, 1);
+    pool.reset();
+    return right;
+  });
+  expect_in_child([&] {
+    pool.reset();  // destroyed before any job in the child
+    return true;
+  });
+  EXPECT_TRUE(every_item_once(*pool, 200, 4));  // the parent's pool is untouched
+}
+
+}  // namespace
+}  // namespace swarmcollide::testing
