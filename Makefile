@@ -143,7 +143,7 @@ test-sanitize: install
 	ASAN_OPTIONS=detect_leaks=0 UBSAN_OPTIONS=print_stacktrace=1 PYTHONMALLOC=malloc \
 	  SWARMCOLLIDE_SANITIZED=1 \
 	  LD_PRELOAD="$(SAN_RUNTIMES)" PYTHONPATH=$(SAN_SITE) \
-	  $(PY) -m pytest -p no:cacheprovider $(SAN_PYTESTS) || status=1; \
+	  $(PY) -m pytest -p no:cacheprovider -n $(JOBS) $(SAN_PYTESTS) || status=1; \
 	exit $$status
 
 CENSUS_ARGS ?=
@@ -164,8 +164,9 @@ census: install $(VENV)/.bench-installed
 stubs: install
 	$(PY) -m pybind11_stubgen swarmcollide._core -o python --numpy-array-use-type-var
 
+# The suites run on $(JOBS) worker processes (pytest-xdist): a serial run left a core idle.
 test-python: install
-	$(PY) -m pytest
+	$(PY) -m pytest -n $(JOBS)
 
 clean:
 	rm -rf build $(VENV)
