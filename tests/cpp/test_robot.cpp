@@ -313,5 +313,24 @@ TEST(BoxScreen, TheBoxesSeparationIsALowerBoundOnTheirDistance) {
   EXPECT_GT(apart, 100);
 }
 
+// Boxes turned from each other by 1e-17 to 1e-13 rad (columns parallel to a few ulps), the one's
+// centre inside the other: no axis separates them. The near-parallel columns' cross products are
+// rounding alone, along which the triple products the screen reads are off by some u (the slack
+// in box_separation); without it, 2,492 of 200,000 such pairs were called 0.26 apart.
+TEST(BoxScreen, NearlyParallelBoxesThatOverlapAreNotCalledApart) {
+  Random rng(23);
+  for (int trial = 0; trial < 20000; ++trial) {
+    const Matrix3 r = rng.rotation();
+    const Scalar angle = std::pow(10.0, rng.uniform(-17, -13));
+    const Matrix3 turned = r * Eigen::AngleAxis<Scalar>(angle, rng.unit()).toRotationMatrix();
+    const Vector3 ha(rng.uniform(0.01, 1), rng.uniform(0.01, 1), rng.uniform(0.01, 1));
+    const Vector3 hb(rng.uniform(0.01, 1), rng.uniform(0.01, 1), rng.uniform(0.01, 1));
+    const Pose pa = at(rng.vector(1), r);
+    const Vector3 inside = rng.vector(1).cwiseProduct(ha);
+    const Pose pb = at(r * inside + pa.translation, turned);
+    EXPECT_FALSE(detail::box_separation(Aabb{-ha, ha}, pa, Aabb{-hb, hb}, pb) > 0) << trial;
+  }
+}
+
 }  // namespace
 }  // namespace swarmcollide::testing

@@ -94,12 +94,19 @@ void turned_about_coordinate_axis(const Pose& placed, int k, Scalar sign, Scalar
   pose.translation = placed.translation;
 }
 
+// compose(outer, inner) into `pose` (not aliasing either): the forward kinematics' step, made
+// in place rather than through a call and a returned copy per joint.
+inline void composed(const Pose& outer, const Pose& inner, Pose& pose) {
+  pose.rotation.noalias() = outer.rotation * inner.rotation;
+  pose.translation.noalias() = outer.rotation * inner.translation;
+  pose.translation += outer.translation;
+}
+
 }  // namespace
 
 Pose compose(const Pose& outer, const Pose& inner) {
   Pose pose;
-  pose.rotation = outer.rotation * inner.rotation;
-  pose.translation = outer.rotation * inner.translation + outer.translation;
+  composed(outer, inner, pose);
   return pose;
 }
 
@@ -129,12 +136,13 @@ void link_poses(const RobotModel& model, const Scalar* q, const std::vector<int>
                 std::vector<Pose>& links) {
   for (int j : joints) {
     const Joint& joint = model.joints()[j];
-    const Pose placed = compose(links[joint.parent], joint.origin);
     const int dof = model.driving_dof(j);
     if (dof < 0) {
-      links[joint.child] = placed;
+      composed(links[joint.parent], joint.origin, links[joint.child]);
       continue;
     }
+    Pose placed;
+    composed(links[joint.parent], joint.origin, placed);
     const Scalar value = model.joint_value(j, q[dof]);
     const int k = joint.type == JointType::prismatic ? -1 : coordinate_axis(joint.axis);
     if (k < 0) {

@@ -286,7 +286,7 @@ Scalar LinkMotionBound::pair_speed(const GeometryPair& pair) const {
 }
 
 void LinkMotionBound::place_chain(int g, const std::vector<Pose>& links, const Pose& pose,
-                                  PlacedChain& placed) const {
+                                  PlacedChain& placed, std::size_t first) const {
   const int link = model_.geometries()[static_cast<std::size_t>(g)].link;
   if (link < 0) {
     placed.axis.clear();
@@ -304,7 +304,7 @@ void LinkMotionBound::place_chain(int g, const std::vector<Pose>& links, const P
     placed.axis.assign(chain.size(), Vector3::Zero());
     placed.reach.assign(chain.size(), 0);
   }
-  for (std::size_t k = 0; k < chain.size(); ++k) {
+  for (std::size_t k = first; k < chain.size(); ++k) {
     const int j = chain[k];
     if (model_.driving_dof(j) < 0) {
       placed.axis[k].setZero();
@@ -412,6 +412,10 @@ LinkMotionBound::DirectionalSpeed LinkMotionBound::directional_speed(
   speed.quadratic *= kRoundUp;
   speed.cubic *= kRoundUp;
   return speed;
+}
+
+std::size_t LinkMotionBound::shared_count(const GeometryPair& pair) const {
+  return shared_joints(chains_, model_.geometries()[pair.a].link, model_.geometries()[pair.b].link);
 }
 
 int LinkMotionBound::common_link(const GeometryPair& pair) const {

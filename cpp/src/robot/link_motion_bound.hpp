@@ -129,15 +129,21 @@ class LinkMotionBound {
     std::vector<Vector3> axis;
     std::vector<Scalar> reach;
   };
-  /// Geometry `g`'s chain at the configuration of `links`, the geometry at `pose`, into `placed`.
-  void place_chain(int g, const std::vector<Pose>& links, const Pose& pose,
-                   PlacedChain& placed) const;
+  /// Geometry `g`'s chain at the configuration of `links`, the geometry at `pose`, into `placed`;
+  /// the joints before `first` in the chain are left as they were (a pair's shared joints, which
+  /// neither speed of the pair reads: `shared_count`).
+  void place_chain(int g, const std::vector<Pose>& links, const Pose& pose, PlacedChain& placed,
+                   std::size_t first = 0) const;
   /// local_speed from the two geometries' placed chains (the same bound, bit for bit).
   LocalSpeed local_speed(const GeometryPair& pair, const PlacedChain& a,
                          const PlacedChain& b) const;
   /// directional_speed from the two geometries' placed chains (the same bound, bit for bit).
   DirectionalSpeed directional_speed(const GeometryPair& pair, const Vector3& direction,
                                      const PlacedChain& a, const PlacedChain& b) const;
+
+  /// The number of joints at the head of `pair`'s two chains that both share (0 with an
+  /// obstacle): local_speed and directional_speed read the placed chains from there on.
+  std::size_t shared_count(const GeometryPair& pair) const;
 
   /// The link whose frame `directional_speed` measures `pair` in: the child of the last joint
   /// the two chains share (-1: none, the world's frame).

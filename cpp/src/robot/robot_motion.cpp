@@ -137,6 +137,7 @@ class MotionCheck {
         if (needed[static_cast<std::size_t>(j)]) joints.push_back(j);
       }
       common_links_.push_back(bound_.common_link(pair));
+      shared_.push_back(bound_.shared_count(pair));
     }
   }
 
@@ -239,8 +240,8 @@ class MotionCheck {
   // screens at both ends.
   void plan() {
     plans_.clear();
-    place_all(start_links_, start_world_);
-    place_all(end_links_, end_world_);
+    place_all(start_links_, start_world_, start_centres_);
+    place_all(end_links_, end_world_, end_centres_);
     for (std::vector<char>& placed : chain_placed_) placed.assign(start_world_.size(), 0);
     for (auto& chains : end_chains_) chains.resize(start_world_.size());
     for (std::size_t p = 0; p < pairs_.size(); ++p) {
@@ -249,8 +250,9 @@ class MotionCheck {
       const Scalar margin = bound_.pair_margin(pair);
       // The balls at both ends first, then each end's local speed bound and its boxes, until
       // the reaches from the two ends meet.
-      const Scalar balls_start = ball_separation(pair, start_world_[pair.a], start_world_[pair.b]);
-      const Scalar balls_end = ball_separation(pair, end_world_[pair.a], end_world_[pair.b]);
+      const Scalar balls_start =
+          ball_separation(pair, start_centres_[pair.a], start_centres_[pair.b]);
+      const Scalar balls_end = ball_separation(pair, end_centres_[pair.a], end_centres_[pair.b]);
       if (detail::reach_over(balls_start - margin, speed) +
               detail::reach_over(balls_end - margin, speed) > 1) {
         continue;
@@ -442,8 +444,10 @@ class MotionCheck {
         return {t, false, screened, screened};
       }
     }
-    bound_.place_chain(pair.a, links_, pose_a_, chain_a_);
-    bound_.place_chain(pair.b, links_, pose_b_, chain_b_);
+    // The joints both chains share are not read by the pair's speeds: not placed.
+    const std::size_t shared = shared_[static_cast<std::size_t>(plan.pair)];
+    bound_.place_chain(pair.a, links_, pose_a_, chain_a_, shared);
+    bound_.place_chain(pair.b, links_, pose_b_, chain_b_, shared);
     const detail::LinkMotionBound::LocalSpeed local =
         bound_.local_speed(pair, chain_a_, chain_b_);
     const BodyBounds& a = model_.geometries()[pair.a].body.bounds();
@@ -555,10 +559,13 @@ class MotionCheck {
   // A proven lower bound on the pair's distance at `pose_a` and `pose_b` from its geometries'
   // bounding balls (as robot_check screens).
   Scalar ball_separation(const GeometryPair& pair, const Pose& pose_a, const Pose& pose_b) const {
+    return ball_separation(pair, centre(pair.a, pose_a), centre(pair.b, pose_b));
+  }
+
+  // The same from the balls' centres placed, `ca` and `cb`.
+  Scalar ball_separation(const GeometryPair& pair, const Vector3& ca, const Vector3& cb) const {
     const BodyBounds& a = model_.geometries()[pair.a].body.bounds();
     const BodyBounds& b = model_.geometries()[pair.b].body.bounds();
-    const Vector3 ca = pose_a.rotation * a.centre + pose_a.translation;
-    const Vector3 cb = pose_b.rotation * b.centre + pose_b.translation;
     const Scalar margin = 1e-12 * (ca.lpNorm<Eigen::Infinity>() + cb.lpNorm<Eigen::Infinity>() +
                                    a.radius + b.radius);
     return (ca - cb).norm() - a.radius - b.radius - margin;
@@ -573,10 +580,22 @@ class MotionCheck {
     return std::max(balls, detail::box_separation(a.box, pose_a, b.box, pose_b));
   }
 
-  // Every geometry's pose at the configuration of `links`.
-  void place_all(const std::vector<Pose>& links, std::vector<Pose>& world) const {
+  // Geometry g's bounding ball's centre with the geometry at `pose`.
+  Vector3 centre(int g, const Pose& pose) const {
+    return pose.rotation * model_.geometries()[static_cast<std::size_t>(g)].body.bounds().centre +
+           pose.translation;
+  }
+
+  // Every geometry's pose at the configuration of `links`, and its bounding ball's centre there
+  // (placed once for all its pairs).
+  void place_all(const std::vector<Pose>& links, std::vector<Pose>& world,
+                 std::vector<Vector3>& centres) const {
     world.resize(model_.geometries().size());
-    for (std::size_t g = 0; g < world.size(); ++g) world[g] = placed(links, static_cast<int>(g));
+    centres.resize(world.size());
+    for (std::size_t g = 0; g < world.size(); ++g) {
+      world[g] = placed(links, static_cast<int>(g));
+      centres[g] = centre(static_cast<int>(g), world[g]);
+    }
   }
 
   // q(t) into q_, and the poses at it of every link, or of the children of `joints` alone, into
@@ -629,11 +648,15 @@ class MotionCheck {
   // links' chains part (-1: the world).
   std::vector<std::vector<int>> pair_joints_;
   std::vector<int> common_links_;
+  // Per pair, the number of joints its two chains share.
+  std::vector<std::size_t> shared_;
   std::vector<Pose> links_;
   std::vector<Pose> start_links_;
   std::vector<Pose> end_links_;
   std::vector<Pose> start_world_;
   std::vector<Pose> end_world_;
+  std::vector<Vector3> start_centres_;
+  std::vector<Vector3> end_centres_;
   Pose pose_a_;
   Pose pose_b_;
   // The sampled pair's chains at its poses.
