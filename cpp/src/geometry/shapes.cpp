@@ -178,11 +178,21 @@ class ConeSupport final : public SupportFunction {
 // An ellipsoid's support `R^2 d / |R d|` (R = diag(radii)), as `R u` with u the unit vector along
 // `R d`: u is within 4u of it, which moves the height `|R d| cos` by second order in the angle
 // and first order in |u|; with R's products and kInward, under 16u of `|R d| <= max radius |d|`.
+//
+// R d is brought into [0.5, 1) again before its norm, against under- and overflow, except for
+// radii within [2^-200, 2^200] (tame_), where it needs none: d's largest component is in [0.5, 1),
+// so R d's is within [2^-201, 2^200] and the squares in [2^-402, 2^400], normal. A power of two
+// then changes nothing: each square, their sum (a square below half an ulp of the largest
+// vanishes either way), the square root and each quotient scale by it exactly, and the quotients
+// are the same numbers. (Only a component of R d below 2^-822 would differ: scaled down by up to
+// 2^-201 it would round as a subnormal; a direction with a component 2^-622 of its largest.)
 class EllipsoidSupport final : public SupportFunction {
  public:
-  explicit EllipsoidSupport(const Vector3& radii) : radii_(radii) {}
+  explicit EllipsoidSupport(const Vector3& radii)
+      : radii_(radii), tame_(radii.minCoeff() >= 0x1p-200 && radii.maxCoeff() <= 0x1p200) {}
   Vector3 support(const Vector3& direction) const override {
-    const Vector3 stretched = unit_scaled(unit_scaled(direction).cwiseProduct(radii_));
+    const Vector3 raw = unit_scaled(direction).cwiseProduct(radii_);
+    const Vector3 stretched = tame_ ? raw : unit_scaled(raw);
     const Scalar length = stretched.norm();
     if (!(length > 0)) return Vector3::Zero();
     return radii_.cwiseProduct(stretched / length) * kInward;
@@ -224,6 +234,7 @@ class EllipsoidSupport final : public SupportFunction {
 
  private:
   Vector3 radii_;
+  bool tame_;
 };
 
 // Points on a shape's surface whose box is the shape's: its inner polytope.
