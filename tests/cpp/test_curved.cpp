@@ -232,6 +232,28 @@ TEST(Curved, CoaxialAndSideBySideCylinders) {
   }
 }
 
+// Long cylinders lying side by side along x, staggered so that the direction between their
+// centres does not separate them: the signed distance's Wolfe walk runs, finds a separating
+// direction, and the distance search goes on from its corral (overlap_first). The mantles are
+// 0.3 apart, at tolerances down to 1e-12.
+TEST(Curved, StaggeredPairsApartAlongNoCentreDirection) {
+  const Cylinder a(0.1, 2);
+  const Cone b(0.1, 2);
+  Matrix3 lying;
+  lying << 0, 0, 1, 0, 1, 0, -1, 0, 0;  // z onto x
+  const Pose pa = at(Vector3::Zero(), lying);
+  for (Scalar tolerance : {1e-9, 1e-12}) {
+    SCOPED_TRACE(tolerance);
+    const Query query = query_of(Method::dual, tolerance);
+    const Pose cylinder = at(Vector3(3.8, 0.5, 0), lying);
+    expect_answer(query.signed_distance(a, pa, a, cylinder), 0.3, size_of(a, pa, a, cylinder),
+                  tolerance);
+    // The cone's base (x = 1.8) faces the cylinder's end: its rim is 0.3 from the mantle.
+    const Pose cone = at(Vector3(3.8, 0.5, 0), lying);
+    expect_answer(query.signed_distance(a, pa, b, cone), 0.3, size_of(a, pa, b, cone), tolerance);
+  }
+}
+
 // An ellipsoid against a box face: the distance is the face's offset less the support value of
 // the (turned) ellipsoid along the face normal.
 TEST(Curved, EllipsoidAgainstABoxFace) {

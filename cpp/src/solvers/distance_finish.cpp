@@ -145,4 +145,13 @@ bool DistanceFinish::whole(const Vector3& start, int& hint_a, int& hint_b, BestB
                       max_iterations_, evaluations_, oracle, measured);
 }
 
+bool DistanceFinish::whole_from_corral(const Vector3& start, const MinNormPoint& corral,
+                                       int& hint_a, int& hint_b, BestBounds& bounds, Goal goal,
+                                       bool enclosure) {
+  if (smooth(pair_.a) && smooth(pair_.b)) {
+    return whole_secant(start, hint_a, hint_b, bounds, goal, enclosure);
+  }
+  return walk_from_corral(start, corral, hint_a, hint_b, bounds, goal, enclosure);
+}
+
 }  // namespace swarmcollide::detail

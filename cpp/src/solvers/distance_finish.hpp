@@ -38,6 +38,12 @@ class DistanceFinish {
   /// (counted here as the oracle call it replaces).
   bool whole(const Vector3& start, int& hint_a, int& hint_b, BestBounds& bounds, Goal goal,
              bool enclosure = true, const OraclePoint* first = nullptr);
+  /// whole() going on from `corral`, where a Wolfe walk on the same pair stopped (overlap_first on
+  /// curved pairs): its last point is the oracle's along the unit direction `start`, asked
+  /// already, and its nearest point is not yet found (x infinite). Two ellipsoids start again
+  /// along `start` (their secant steps need their own samples).
+  bool whole_from_corral(const Vector3& start, const MinNormPoint& corral, int& hint_a,
+                         int& hint_b, BestBounds& bounds, Goal goal, bool enclosure);
 
   long evaluations() const { return evaluations_; }
 
@@ -45,6 +51,9 @@ class DistanceFinish {
   // whole() for two ellipsoids: Wolfe's steps along secant directions (secant_search.cpp).
   bool whole_secant(const Vector3& start, int& hint_a, int& hint_b, BestBounds& bounds,
                     Goal goal, bool enclosure);
+  // whole()'s search from a corral, in a file of its own (corral_search.cpp).
+  bool walk_from_corral(const Vector3& start, const MinNormPoint& corral, int& hint_a,
+                        int& hint_b, BestBounds& bounds, Goal goal, bool enclosure);
   void feature(const FramedBody& body, const Vector3& n, int& hint, std::vector<int>& found);
   Witness nearest_between(const std::vector<int>& fa, const std::vector<int>& fb,
                           const Vector3& start);

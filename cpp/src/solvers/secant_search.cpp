@@ -132,7 +132,8 @@ bool DistanceFinish::whole_secant(const Vector3& start, int& hint_a, int& hint_b
                ? Separation{samples.asked.dot(q.p), samples.asked}
                : Separation{current.x.dot(q.p) * inverse_norm, current.x * inverse_norm};
   };
-  return whole_search(pair_, start, nullptr, hint_a, hint_b, bounds, goal, enclosure,
+  const OraclePoint* asked_here = nullptr;  // the first point is asked along `start`
+  return whole_search(pair_, start, asked_here, hint_a, hint_b, bounds, goal, enclosure,
                       max_iterations_, evaluations_, oracle, measured);
 }
 

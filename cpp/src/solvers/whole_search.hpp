@@ -3,6 +3,7 @@
 #pragma once
 
 #include <algorithm>
+#include <type_traits>
 
 #include "../queries/verdict.hpp"
 #include "best_bounds.hpp"
@@ -18,15 +19,42 @@ struct Separation {
   Vector3 direction;
 };
 
+/// The corral the search starts from: the oracle's point along `start`, asked here unless given
+/// (`given`, from the same hints, counted as the call it replaces).
+template <class Oracle>
+MinNormPoint first_corral(const OraclePoint* given, const Vector3& start, const Oracle& oracle,
+                          int& hint_a, int& hint_b, long& evaluations) {
+  if (given != nullptr) {
+    ++evaluations;
+    hint_a = given->ia;
+    hint_b = given->ib;
+  }
+  return single_point(given != nullptr ? *given : oracle(start));
+}
+
+/// A corral a Wolfe walk left (DistanceFinish::whole_from_corral): its last point is the oracle's
+/// along `start`, asked already.
+template <class Oracle>
+MinNormPoint first_corral(const MinNormPoint* given, const Vector3&, const Oracle&, int& hint_a,
+                          int& hint_b, long& evaluations) {
+  const OraclePoint& newest = given->corral[given->size - 1];
+  ++evaluations;
+  hint_a = newest.ia;
+  hint_b = newest.ib;
+  return *given;
+}
+
 /// Wolfe's algorithm on B - A from the oracle's point along the unit direction `start` (or
-/// `first`, that point already asked from the same hints), offering its bounds to `bounds` and
-/// stopping as soon as they settle `goal` (DistanceFinish::whole says what it offers).
+/// `first`: that point already asked from the same hints, or a corral whose last point it is),
+/// offering its bounds to `bounds` and stopping as soon as they settle `goal`
+/// (DistanceFinish::whole says what it offers). Each kind of start is its own instance, so that
+/// the single point's compiles as it would alone.
 /// `oracle(d)` is the support point of B - A for the corral's point `d`, its supports from and into
 /// `hint_a`/`hint_b`; `along(current, q, inverse_norm)` is the Separation of the point `q` it
 /// returned for the corral `current` (whose point's norm is 1 / inverse_norm). `evaluations`
 /// counts the oracle calls made here (the oracle counts its own).
-template <class Oracle, class Along>
-bool whole_search(const FramedPair& pair, const Vector3& start, const OraclePoint* first_point,
+template <class First, class Oracle, class Along>
+bool whole_search(const FramedPair& pair, const Vector3& start, const First* first_point,
                   int& hint_a, int& hint_b, BestBounds& bounds, Goal goal, bool enclosure,
                   int max_iterations, long& evaluations, const Oracle& oracle,
                   const Along& along) {
@@ -84,18 +112,17 @@ bool whole_search(const FramedPair& pair, const Vector3& start, const OraclePoin
   };
   // The first oracle point is the supporting pair along `start`, whose separation and distance
   // often settle a verdict at once.
-  if (first_point != nullptr) {
-    ++evaluations;
-    hint_a = first_point->ia;
-    hint_b = first_point->ib;
-  }
-  const MinNormPoint first = single_point(first_point != nullptr ? *first_point : oracle(start));
-  bounds.offer_lower(start, start.dot(first.x));
+  const MinNormPoint first =
+      first_corral(first_point, start, oracle, hint_a, hint_b, evaluations);
+  // The point along `start`: a single point's is its corral's, x.
+  const OraclePoint& newest = first.corral[first.size - 1];
+  const Vector3& along_start = std::is_same_v<First, OraclePoint> ? first.x : newest.p;
+  bounds.offer_lower(start, start.dot(along_start));
   // A verdict often settles there (apart along the start, or the pair's points within the
   // tolerance); a distance seldom does, and Wolfe's corrals, from this point, give its witnesses.
-  // The pair's distance is |first.x|, as vertex_witness computes it from the same points.
+  // The pair's distance is |along_start|, as vertex_witness computes it from the same points.
   if (goal != Goal::distance) {
-    bounds.offer_upper_vertex(first.corral[0].ia, first.corral[0].ib, first.x.norm());
+    bounds.offer_upper_vertex(newest.ia, newest.ib, along_start.norm());
     if (bounds.reached(pair, goal)) return true;
   }
   // In the frame every point lies in the unit ball, so 2 bounds every difference.
