@@ -420,8 +420,7 @@ std::size_t LinkMotionBound::shared_count(const GeometryPair& pair) const {
 
 int LinkMotionBound::common_link(const GeometryPair& pair) const {
   const int la = model_.geometries()[pair.a].link;
-  const std::size_t shared =
-      shared_joints(chains_, la, model_.geometries()[pair.b].link);
+  const std::size_t shared = shared_count(pair);
   if (shared == 0) return -1;
   return model_.joints()[chains_[static_cast<std::size_t>(la)][shared - 1]].child;
 }

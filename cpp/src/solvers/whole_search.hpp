@@ -3,7 +3,6 @@
 #pragma once
 
 #include <algorithm>
-#include <type_traits>
 
 #include "../queries/verdict.hpp"
 #include "best_bounds.hpp"
@@ -114,15 +113,13 @@ bool whole_search(const FramedPair& pair, const Vector3& start, const First* fir
   // often settle a verdict at once.
   const MinNormPoint first =
       first_corral(first_point, start, oracle, hint_a, hint_b, evaluations);
-  // The point along `start`: a single point's is its corral's, x.
-  const OraclePoint& newest = first.corral[first.size - 1];
-  const Vector3& along_start = std::is_same_v<First, OraclePoint> ? first.x : newest.p;
-  bounds.offer_lower(start, start.dot(along_start));
+  const OraclePoint& newest = first.corral[first.size - 1];  // the point along `start`
+  bounds.offer_lower(start, start.dot(newest.p));
   // A verdict often settles there (apart along the start, or the pair's points within the
   // tolerance); a distance seldom does, and Wolfe's corrals, from this point, give its witnesses.
-  // The pair's distance is |along_start|, as vertex_witness computes it from the same points.
+  // The pair's distance is |newest.p|, as vertex_witness computes it from the same points.
   if (goal != Goal::distance) {
-    bounds.offer_upper_vertex(newest.ia, newest.ib, along_start.norm());
+    bounds.offer_upper_vertex(newest.ia, newest.ib, newest.p.norm());
     if (bounds.reached(pair, goal)) return true;
   }
   // In the frame every point lies in the unit ball, so 2 bounds every difference.
