@@ -92,19 +92,22 @@ Answer exact_distance(const FramedPair& pair, int max_iterations, const MinNormP
   return nearest_points(pair, max_iterations, start, corral.corral[0].ia, corral.corral[0].ib);
 }
 
-bool settles_signed_distance(const FramedPair& pair, const MinNormPoint& corral, Answer& answer) {
-  if (pair.a.curved() || pair.b.curved()) return false;
-  if (value_proven(pair, answer)) return true;
-  if (corral.size != 3) return false;
-  const Vector3& p0 = corral.corral[0].p;
-  Vector3 normal = (corral.corral[1].p - p0).cross(corral.corral[2].p - p0);
+namespace {
+
+// True when the plane through p0, p1 and p2 (points of B - A) proves `answer`'s value: the
+// separation along its normal, either way, within the tolerance of `answer.upper`. The normal
+// of three points of norm about 1 is as accurate as they are, where the direction of a nearest
+// point a hair from the origin is not.
+bool plane_settles(const FramedPair& pair, const OraclePoint& p0, const Vector3& p1,
+                   const Vector3& p2, Answer& answer) {
+  Vector3 normal = (p1 - p0.p).cross(p2 - p0.p);
   const Scalar length = normal.norm();
   if (!(length > 0)) return false;
   // Towards the triangle from the origin first: B - A lies beyond the plane on that side.
-  normal /= normal.dot(p0) < 0 ? -length : length;
+  normal /= normal.dot(p0.p) < 0 ? -length : length;
   for (const Vector3& n : {normal, Vector3(-normal)}) {
-    int hint_a = corral.corral[0].ia;
-    int hint_b = corral.corral[0].ib;
+    int hint_a = p0.ia;
+    int hint_b = p0.ib;
     const Scalar s = separation(pair.a, pair.b, n, hint_a, hint_b);
     if (value_proven(pair, s, answer.upper)) {
       answer.lower = s;
@@ -113,6 +116,41 @@ bool settles_signed_distance(const FramedPair& pair, const MinNormPoint& corral,
     }
   }
   return false;
+}
+
+}  // namespace
+
+bool settles_signed_distance(const FramedPair& pair, const MinNormPoint& corral, Answer& answer) {
+  if (pair.a.curved() || pair.b.curved()) return false;
+  if (value_proven(pair, answer)) return true;
+  const std::array<OraclePoint, MinNormPoint::kCapacity>& p = corral.corral;
+  if (corral.size == 3) return plane_settles(pair, p[0], p[1].p, p[2].p, answer);
+  if (corral.size != 2) return false;
+  // The nearest point lies inside a segment of B - A: an edge of it (bodies touching edge to
+  // edge along parallel edges), or a chord of a face (face to face). Its direction is off by the
+  // rounding of the points over its norm, 1e-5 radians for points of norm 1 a hair apart, and
+  // the separation along it loses that angle times the segment's length. With its part along
+  // the segment taken off it points into the segment's normal plane to the rounding of unit
+  // quantities, and the angle left within that plane costs nothing inside the normal cone of an
+  // edge. Out of it, or for a chord, the lowest point along it lies off the segment's line, on
+  // the face the segment borders or crosses: that plane's normal proves the value.
+  const Vector3 edge = p[1].p - p[0].p;
+  const Scalar squared = edge.squaredNorm();
+  if (!(squared > 0)) return false;
+  const Vector3 across = corral.x - (corral.x.dot(edge) / squared) * edge;
+  const Scalar norm = across.norm();
+  if (!(norm > 0)) return false;
+  const Vector3 n = across / norm;
+  int hint_a = p[0].ia;
+  int hint_b = p[0].ib;
+  const Vector3 lowest = minkowski_support(pair.a, pair.b, n, hint_a, hint_b).p;
+  const Scalar s = n.dot(lowest);  // the separation along n
+  if (value_proven(pair, s, answer.upper)) {
+    answer.lower = s;
+    answer.direction = n;
+    return true;
+  }
+  return plane_settles(pair, p[0], p[1].p, lowest, answer);
 }
 
 Answer exact_penetration(const FramedPair& pair, int max_iterations, const Vector3& hint,
