@@ -98,11 +98,21 @@ Vector3 radial(Scalar x, Scalar y) {
 // computed point falls short of the support value `r |d_xy| + h |d_z|` by the rounding of the
 // unit vector in the plane (4u, first order in its length) and kInward's 8u, with the product's
 // u: 13u of `r |d|`.
+//
+// The direction is not scaled (unit_scaled): the point reads only the sign of d_z and
+// unit_in_plane's quotients by the larger of |d_x| and |d_y|, which are the same numbers for
+// d and for d times a power of two (each quotient is rounded once from the same exact value):
+// nothing under- or overflows, and the point is unit_scaled's without its exponent and product
+// per call (searches make thousands). Only where unit_scaled's product itself rounded (a
+// component below 2^-1021 beside one of at least 1) may a quotient differ, by its one rounding
+// fewer. A non-finite direction still answers the centre.
 class CylinderSupport final : public SupportFunction {
  public:
   CylinderSupport(Scalar radius, Scalar half_length) : r_(radius), h_(half_length) {}
-  Vector3 support(const Vector3& direction) const override {
-    const Vector3 d = unit_scaled(direction);
+  Vector3 support(const Vector3& d) const override {
+    // NaN exactly when a component is infinite or NaN.
+    const Scalar finite = (d.x() - d.x()) + (d.y() - d.y()) + (d.z() - d.z());
+    if (finite != 0) return Vector3::Zero();
     const auto in_plane = unit_in_plane(d.x(), d.y());
     const Scalar z = d.z() > 0 ? h_ : d.z() < 0 ? -h_ : 0;
     return {r_ * in_plane.x() * kInward, r_ * in_plane.y() * kInward, z};

@@ -1,5 +1,7 @@
 #include "support_cache.hpp"
 
+#include <algorithm>
+#include <cstddef>
 #include <memory>
 #include <vector>
 
@@ -44,7 +46,9 @@ void SupportCache::reset(const SupportCache& start) {
   slots_ = start.slots_;
   count_ = start.count_;
   if (points_.rows() < start.points_.rows()) points_.resize(start.points_.rows(), Eigen::NoChange);
-  points_.topRows(count_) = start.points_.topRows(count_);
+  // Row-major: the first rows are the first 3 count_ coordinates, one memmove (Eigen's block
+  // assignment went entry by entry).
+  std::copy_n(start.points_.data(), 3 * static_cast<std::size_t>(count_), points_.data());
 }
 
 SharedSupportCache::SharedSupportCache(const SupportCache& start) {

@@ -285,7 +285,11 @@ Answer solve_dual_from(const FramedPair& pair, const QueryOptions& options, Goal
       answer.lower = s;
       return answer;
     }
-    Answer exact = exact_distance(pair, options.exact.max_iterations, between);
+    // Curved pairs (two ellipsoids, whose search's lower bounds come from secant directions)
+    // need only the value along the witnesses; polytopes keep the exact distance.
+    Answer exact = pair.a.curved() || pair.b.curved()
+                       ? settled_distance(pair, options.exact.max_iterations, between)
+                       : exact_distance(pair, options.exact.max_iterations, between);
     exact.iterations += answer.iterations;
     exact.evaluations += answer.evaluations;
     exact.history = std::move(answer.history);

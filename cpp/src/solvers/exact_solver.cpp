@@ -92,6 +92,31 @@ Answer exact_distance(const FramedPair& pair, int max_iterations, const MinNormP
   return nearest_points(pair, max_iterations, start, corral.corral[0].ia, corral.corral[0].ib);
 }
 
+Answer settled_distance(const FramedPair& pair, int max_iterations, const Vector3& start) {
+  long evaluations = 0;
+  int hint_a = -1;
+  int hint_b = -1;
+  const auto oracle = [&](const Vector3& d) {
+    ++evaluations;
+    return minkowski_support(pair.a, pair.b, d, hint_a, hint_b);
+  };
+  // The separation of the corral's new point along its point's direction x / |x| within the
+  // tolerance of |x|: the witnesses' direction is x's up to rounding, so the separation along it
+  // (answer_from_corral's scan) will likely prove the value too.
+  const auto settled = [&pair](const MinNormPoint& now, Scalar norm, const OraclePoint* q) {
+    return q != nullptr && value_proven(pair, now.x.dot(q->p) / norm, norm);
+  };
+  const MinNormPoint nearest =
+      wolfe_min_norm(oracle, start_direction(pair, start), 2, max_iterations, settled);
+  // The separation along the witnesses is one more oracle call.
+  Answer answer = corral_answer(pair, nearest, evaluations + 1);
+  if (value_proven(pair, answer)) return answer;
+  Answer exact = exact_distance(pair, max_iterations, start);
+  exact.iterations += answer.iterations;
+  exact.evaluations += answer.evaluations;
+  return exact;
+}
+
 namespace {
 
 // True when the plane through p0, p1 and p2 (points of B - A) proves `answer`'s value: the
