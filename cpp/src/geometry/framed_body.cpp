@@ -44,14 +44,6 @@ Scalar curved_support_error(const ConvexPolyhedron& body, int exponent) {
 
 }  // namespace
 
-Scalar Frame::length_to_world(Scalar length) const { return times_power_of_two(length, exponent); }
-
-Vector3 Frame::point_to_world(const Vector3& p) const {
-  Vector3 world;
-  for (int k = 0; k < 3; ++k) world(k) = centre(k) + times_power_of_two(p(k), exponent);
-  return world;
-}
-
 FramedBody::FramedBody(const ConvexPolyhedron& body, const Pose& pose, bool rotated,
                        const Vector3& world_centre, const Frame& frame)
     : body_(&body),
@@ -166,10 +158,6 @@ ConvexWeights FramedBody::given_weights(ConvexWeights weights) const {
   return ConvexWeights(std::move(dense));
 }
 
-namespace {
-
-// frame_validated_pair with the poses' rotations known to be the identity or not (`turned_a`,
-// `turned_b`).
 FramedPair frame_turned_pair(const ConvexPolyhedron& a, const Pose& pose_a, bool turned_a,
                              const ConvexPolyhedron& b, const Pose& pose_b, bool turned_b,
                              Scalar relative_tolerance) {
@@ -205,8 +193,6 @@ FramedPair frame_turned_pair(const ConvexPolyhedron& a, const Pose& pose_a, bool
           support_error,
           radius_a > 0 || radius_b > 0 || support_error > 0};
 }
-
-}  // namespace
 
 FramedPair frame_pair(const ConvexPolyhedron& a, const Pose& pose_a, const ConvexPolyhedron& b,
                       const Pose& pose_b, Scalar relative_tolerance) {
