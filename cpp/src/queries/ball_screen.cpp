@@ -144,6 +144,7 @@ Scalar world_tolerance(const ConvexPolyhedron& a, const ConvexPolyhedron& b, Sca
 
 BodyBalls body_balls(const ConvexPolyhedron& body, bool with_inner) {
   BodyBalls balls;
+  balls.columns = body.centred_columns();
   if (with_inner) {
     const ScreenData& data = body.derived<ScreenData>([&body] {
       return ScreenData{outer_radius(body), inner_radius(body), face_normals(body)};
@@ -266,8 +267,8 @@ std::optional<ScreenVerdict> apart_along(const Vector3& axis, const ConvexPolyhe
   const Vector3 down_b = -(pose_b.rotation.transpose() * axis);
   const VertexMatrix& points_a = a.centred_vertices();
   const VertexMatrix& points_b = b.centred_vertices();
-  const PointColumns* columns_a = a.centred_columns();
-  const PointColumns* columns_b = b.centred_columns();
+  const PointColumns* columns_a = balls_a.columns;
+  const PointColumns* columns_b = balls_b.columns;
   const int top_a = columns_a ? columns_a->scan(up_a) : scan_support(points_a, up_a);
   const int bottom_b = columns_b ? columns_b->scan(down_b) : scan_support(points_b, down_b);
   const Scalar separation = axis.dot(between) - point_height(points_b, bottom_b, down_b) -

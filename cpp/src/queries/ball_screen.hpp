@@ -20,6 +20,10 @@ struct BodyBalls {
   /// The unit outward normals of the hull's triangles in the body's frame, found with the inner
   /// ball (else null): the axes apart_across_faces tries.
   const std::vector<Vector3>* face_normals = nullptr;
+  /// The body's ConvexPolyhedron::centred_columns, looked up with the balls: a row's screens scan
+  /// the bodies up to six times, and a lookup out of line for each scan cost collide_many 48
+  /// instructions per row (8 vertices, overlapping: swarmcollide-thread-scaling count).
+  const PointColumns* columns = nullptr;
 };
 
 /// `body`'s balls, computed on first use and kept with its derived data. The inner ball and the

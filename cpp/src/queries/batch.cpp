@@ -14,6 +14,7 @@
 
 #include "../detail/kept_threads.hpp"
 #include "../geometry/framed_body.hpp"
+#include "../geometry/pose_check.hpp"
 #include "ball_screen.hpp"
 #include "dispatch.hpp"
 #include "row_answer.hpp"
@@ -340,6 +341,15 @@ class PosesAhead {
   Pose b_ahead_[kAhead];
 };
 
+// The poses of a row, validated, with their rotations' identity tests (`turned`: not the
+// identity).
+struct RowPoses {
+  const Pose& a;
+  bool turned_a;
+  const Pose& b;
+  bool turned_b;
+};
+
 // The options of a row: the validated options shared by the rows, seeded for the row
 // (pair_seed) only when a solver is to read them. A row that the screens settle reads no seed,
 // and the seed's hash was a few percent of such a row's cost.
@@ -368,7 +378,7 @@ class RowOptions {
 // apart: 17 us on 1 thread, 40 us on 2; swarmcollide-thread-scaling under chrt -f 1).
 constexpr std::chrono::microseconds kAlone{30};
 
-// Runs `answer(i, options_i, pose_a_i, pose_b_i)`, which writes row i of the batch, for every
+// Runs `answer(i, options_i, poses_i)` (RowPoses), which writes row i of the batch, for every
 // pair, where options_i are the validated options to be seeded for pair i (RowOptions) and
 // `answer` is the thread's own `make_answer(RowWriter(batch))` (with the thread's state), on a
 // pool of threads that take pairs in chunks (RowChunks), in increasing order: when a pair fails,
@@ -410,11 +420,20 @@ BatchResult run_batch(Kind kind, std::size_t count, const QueryOptions& options,
           // Each pose is validated once, by the thread that answers its row (a check in one
           // thread before the rows would not be spread over the threads).
           const std::uint64_t index = first_index + i;
+          // Their identity tests serve the validation and the framing alike; a side without
+          // poses is the identity without one.
           const Pose& pose_a = ahead.a(i);
           const Pose& pose_b = ahead.b(i);
-          if (posed_a) validate_pose(pose_a, "poses_a", index);
-          if (posed_b) validate_pose(pose_b, "poses_b", index);
-          answer(i, RowOptions(pair_options, seed, index), pose_a, pose_b);
+          const bool turned_a = posed_a && !pose_a.has_identity_rotation();
+          const bool turned_b = posed_b && !pose_b.has_identity_rotation();
+          if (posed_a && !detail::valid_pose(pose_a, turned_a)) {
+            validate_pose(pose_a, "poses_a", index);
+          }
+          if (posed_b && !detail::valid_pose(pose_b, turned_b)) {
+            validate_pose(pose_b, "poses_b", index);
+          }
+          answer(i, RowOptions(pair_options, seed, index), RowPoses{pose_a, turned_a, pose_b,
+                                                                    turned_b});
           ahead.done(i);
         } catch (...) {
           failure.offer(i);
@@ -463,7 +482,9 @@ class ConvexRows {
         balls_b_(with_inner) {}
 
   void answer(std::size_t row, const RowOptions& row_options, const ConvexPolyhedron& a,
-              const Pose& pose_a, const ConvexPolyhedron& b, const Pose& pose_b) {
+              const ConvexPolyhedron& b, const RowPoses& poses) {
+    const Pose& pose_a = poses.a;
+    const Pose& pose_b = poses.b;
     const QueryOptions& options = row_options.unseeded();
     // Before the screens, which would settle a curved pair for a method that cannot answer it.
     detail::require_shapes(options.method, a, b);
@@ -474,8 +495,8 @@ class ConvexRows {
           detail::collision_by_screens(a, pose_a, balls_a, b, pose_b, balls_b, options.tolerance);
       if (settled) return rows_.write(row, *settled);
     }
-    const detail::FramedPair pair =
-        detail::frame_validated_pair(a, pose_a, b, pose_b, options.tolerance);
+    const detail::FramedPair pair = detail::frame_turned_pair(
+        a, pose_a, poses.turned_a, b, pose_b, poses.turned_b, options.tolerance);
     rows_.write(row, detail::answer_row(row_options.seeded(), solve_, asked(kind_).goal, pair,
                                         escalate_));
   }
@@ -500,8 +521,8 @@ BatchResult convex_batch(Kind kind, const BatchBodies<ConvexPolyhedron>& as,
                              a = BodyRows<ConvexPolyhedron>(as),
                              b = BodyRows<ConvexPolyhedron>(bs)](
                                 std::size_t i, const RowOptions& pair_options,
-                                const Pose& pose_a, const Pose& pose_b) mutable {
-                       rows.answer(i, pair_options, a[i], pose_a, b[i], pose_b);
+                                const RowPoses& poses) mutable {
+                       rows.answer(i, pair_options, a[i], b[i], poses);
                      };
                    });
 }
@@ -514,10 +535,10 @@ BatchResult compound_batch(Kind kind, const BatchBodies<CompoundBody>& as,
                      return [writer, goal = asked(kind).goal, escalate = settings.escalate,
                              a = BodyRows<CompoundBody>(as), b = BodyRows<CompoundBody>(bs)](
                                 std::size_t i, const RowOptions& pair_options,
-                                const Pose& pose_a, const Pose& pose_b) {
+                                const RowPoses& poses) {
                        writer.write(i, detail::answer_compound(pair_options.seeded(), goal,
                                                                escalate, a[i],
-                                                               pose_a, b[i], pose_b));
+                                                               poses.a, b[i], poses.b));
                      };
                    });
 }
@@ -541,14 +562,13 @@ BatchResult stack_batch(Kind kind, const VertexStack& as, const VertexStack& bs,
     return [writer, kind, as, bs, first_index = settings.first_index,
             escalate = settings.escalate,
             solve = detail::solver_for(options.method)](
-               std::size_t i, const RowOptions& pair_options, const Pose& pose_a,
-               const Pose& pose_b) {
+               std::size_t i, const RowOptions& pair_options, const RowPoses& poses) {
       const ConvexPolyhedron a = body(as, i, first_index);
       const ConvexPolyhedron b = body(bs, i, first_index);
       // Every row's bodies are new (and may reuse the last row's addresses): no ball is kept, and
       // no hull is built for an inner ball.
       ConvexRows(kind, writer, escalate, false, solve)
-          .answer(i, pair_options, a, pose_a, b, pose_b);
+          .answer(i, pair_options, a, b, poses);
     };
   });
 }

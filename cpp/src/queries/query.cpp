@@ -76,9 +76,9 @@ DistanceResult answer_pair(const QueryOptions& options, Goal goal, const FramedP
 RowAnswer answer_row(const QueryOptions& options, Solver solve, Goal goal, const FramedPair& pair,
                      bool escalate) {
   Answer found = solve(pair, options, goal);
-  RowAnswer row;
-  row.escalated = found.answered_by.has_value() && *found.answered_by != options.method;
-  row.values = finish_values(pair, found, goal);
+  // The values made in place in the row (assigned, they were made aside and copied in).
+  RowAnswer row{finish_values(pair, found, goal),
+                found.answered_by.has_value() && *found.answered_by != options.method};
   if (goal != Goal::verdict || row.values.certified || !escalate) return row;
   Answer decided = solver_for(Method::exact)(pair, escalation(options), goal);
   row.escalated = options.method != Method::exact ||

@@ -249,22 +249,23 @@ Answer solve_dual_from(const FramedPair& pair, const QueryOptions& options, Goal
       return *closed;
     }
   }
+  // A distance or a verdict is the search's answer, returned as it is made: a named answer
+  // returned among others is moved out, which cost every batch row of distance_many 57
+  // instructions (swarmcollide-thread-scaling count, 8 vertices).
+  if (goal != Goal::signed_distance) return DualSearch(pair, options, goal, start).run();
   std::optional<OraclePoint> along_start;
   const SearchStart* walked = nullptr;
-  if (goal == Goal::signed_distance) {
-    if (std::optional<Answer> settled = overlap_first(pair, options, start, along_start, walked)) {
-      return *settled;
-    }
+  if (std::optional<Answer> settled = overlap_first(pair, options, start, along_start, walked)) {
+    return *settled;
   }
-  const Goal search = goal == Goal::signed_distance ? Goal::distance : goal;
-  Answer answer =
-      DualSearch(pair, options, search, start, along_start ? &*along_start : nullptr, walked).run();
+  Answer answer = DualSearch(pair, options, Goal::distance, start,
+                             along_start ? &*along_start : nullptr, walked)
+                      .run();
   if (walked != nullptr) {
     // The search counted the start's newest oracle point; the walk that found it is added.
     answer.evaluations += walked->evaluations - 1;
     answer.iterations += walked->iterations;
   }
-  if (goal != Goal::signed_distance) return answer;
   // A separating direction settles a signed distance as a distance, whose contact normal is the
   // witnesses' direction (`point_b - point_a = distance * direction`): the swarm's best direction
   // may be a tolerance's worth of angle away from it. When the separation along the witnesses
