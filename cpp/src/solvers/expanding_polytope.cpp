@@ -5,8 +5,6 @@
 #include <functional>
 #include <limits>
 
-#include "minkowski.hpp"
-
 namespace swarmcollide::detail {
 
 namespace {
@@ -298,6 +296,24 @@ ExpansionResult ExpandingPolytope::run(const FramedBody& a, const FramedBody& b,
   // Climbs start from a corner on large polytopes only: a curved body's support ignores starts.
   const bool climb_a = !a.curved() && a.size() > kHillClimbingThreshold;
   const bool climb_b = !b.curved() && b.size() > kHillClimbingThreshold;
+  // Their corners' heights read the corners' points kept in the frame (points_a_, points_b_):
+  // for a placed body height(i, n) is vertex(i).dot(n), the same value from the same point,
+  // placed once per vertex instead of twice per corner at every step. Points given in the frame
+  // have their own heights, and no scan shortfall: a positive one tells a placed body.
+  const bool keep_a = climb_a && a.scan_shortfall() > 0;
+  const bool keep_b = climb_b && b.scan_shortfall() > 0;
+  points_a_.clear();
+  points_b_.clear();
+  for (const DifferencePoint& v : vertices_) {
+    if (keep_a) points_a_.push_back(a.vertex(v.ia));
+    if (keep_b) points_b_.push_back(b.vertex(v.ib));
+  }
+  const auto height_a = [&](int v, const Vector3& n) {
+    return keep_a ? points_a_[v].dot(n) : a.height(vertices_[v].ia, n);
+  };
+  const auto height_b = [&](int v, const Vector3& n) {
+    return keep_b ? points_b_[v].dot(n) : b.height(vertices_[v].ib, n);
+  };
   // The largest indices of A's and of B's points among the vertices.
   int most_ia = -1;
   int most_ib = -1;
@@ -332,17 +348,33 @@ ExpansionResult ExpandingPolytope::run(const FramedBody& a, const FramedBody& b,
     // is usually a few steps from it. Small bodies are scanned, from no start.
     int start_a = vertices_[face.v[0]].ia;
     int start_b = vertices_[face.v[0]].ib;
-    for (int k = 1; k < 3; ++k) {
-      const DifferencePoint& corner = vertices_[face.v[k]];
-      if (climb_a && a.height(corner.ia, n) > a.height(start_a, n)) start_a = corner.ia;
-      if (climb_b && b.height(corner.ib, n) < b.height(start_b, n)) {
-        start_b = corner.ib;
+    if (climb_a) {
+      Scalar top = height_a(face.v[0], n);
+      for (int k = 1; k < 3; ++k) {
+        const Scalar h = height_a(face.v[k], n);
+        if (h > top) {
+          top = h;
+          start_a = vertices_[face.v[k]].ia;
+        }
       }
     }
-    // The support of A - B along n is minus the point of B - A least along n.
-    int ia = start_a;
-    int ib = start_b;
-    const Vector3 w = -minkowski_support(a, b, n, ia, ib).p;
+    if (climb_b) {
+      Scalar bottom = height_b(face.v[0], n);
+      for (int k = 1; k < 3; ++k) {
+        const Scalar h = height_b(face.v[k], n);
+        if (h < bottom) {
+          bottom = h;
+          start_b = vertices_[face.v[k]].ib;
+        }
+      }
+    }
+    // The support of A - B along n is minus the point of B - A least along n (minkowski_support's
+    // arithmetic, its two points kept).
+    const int ia = a.support_index(n, start_a);
+    const int ib = b.support_index(-n, start_b);
+    const Vector3 x = a.vertex(ia);
+    const Vector3 y = b.vertex(ib);
+    const Vector3 w = -(y - x);
     const Scalar h = n.dot(w);
     result.iterations = iteration + 1;
     if (-h > result.best_separation) {
@@ -375,9 +407,13 @@ ExpansionResult ExpandingPolytope::run(const FramedBody& a, const FramedBody& b,
     }
     vertices_.push_back({w, ia, ib});
     norms_.push_back(w.norm());
+    if (keep_a) points_a_.push_back(x);
+    if (keep_b) points_b_.push_back(y);
     if (!expand(closest, static_cast<int>(vertices_.size()) - 1)) {
       vertices_.pop_back();
       norms_.pop_back();
+      if (keep_a) points_a_.pop_back();
+      if (keep_b) points_b_.pop_back();
       break;
     }
     most_ia = std::max(most_ia, ia);

@@ -107,6 +107,12 @@ class ExpandingPolytope {
 
   std::vector<DifferencePoint> vertices_;
   std::vector<Scalar> norms_;  // |w| of each vertex, for the rounding bounds
+  // Each vertex's points of A and of B in the frame (x_ia and y_ib), kept where a climbed body's
+  // heights pick the climbs' starts (see run): placing a corner's point again at every step cost
+  // more than the step's bookkeeping. Empty for a body that is not climbed or whose points were
+  // given in the frame (its heights read them as given).
+  std::vector<Vector3> points_a_;
+  std::vector<Vector3> points_b_;
   // The surface's faces, replaced ones included, are the first face_count_; the rest is room for
   // the next cone, made in place.
   std::vector<Face> faces_;
