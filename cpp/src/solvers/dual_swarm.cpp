@@ -286,11 +286,7 @@ Answer solve_dual_from(const FramedPair& pair, const QueryOptions& options, Goal
       answer.lower = s;
       return answer;
     }
-    // Curved pairs (two ellipsoids, whose search's lower bounds come from secant directions)
-    // need only the value along the witnesses; polytopes keep the exact distance.
-    Answer exact = pair.a.curved() || pair.b.curved()
-                       ? settled_distance(pair, options.exact.max_iterations, between)
-                       : exact_distance(pair, options.exact.max_iterations, between);
+    Answer exact = settled_distance(pair, options.exact.max_iterations, between);
     exact.iterations += answer.iterations;
     exact.evaluations += answer.evaluations;
     exact.history = std::move(answer.history);

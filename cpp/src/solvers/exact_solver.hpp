@@ -24,7 +24,7 @@ Answer exact_distance(const FramedPair& pair, int max_iterations, const MinNormP
 /// the tolerance, instead of running on to its 1e-14 gap and its restarts, which curved bodies
 /// reach only linearly (two ellipsoids apart: ~32,000 instructions). The answer is the corral's
 /// (witnesses above, the separation along them below); exact_distance from `start` where that
-/// does not prove the value.
+/// does not prove the value, and for two polytopes (which reach that gap in a few steps).
 Answer settled_distance(const FramedPair& pair, int max_iterations, const Vector3& start);
 
 /// Whether `answer`, the answer of Wolfe's nearest point `corral` (no tetrahedron around the
