@@ -815,6 +815,25 @@ TEST(Batch, LargeBatchesAnswerAlikeOnAnyThreads) {
   }
 }
 
+// Each thread starts on a range of its own (the rows split evenly, on cache lines): a thread whose
+// range comes later meets its failing row first, and the rows before it in the earlier ranges are
+// still answered, so that the error is still the lowest failing row's.
+TEST(Batch, AFailureInALaterRangeDoesNotHideAnEarlierOne) {
+  Random rng(13);
+  const ConvexPolyhedron a = rng.body(8);
+  BatchPoses poses;
+  poses.b = random_poses(30000, rng, 2.5);
+  // With 2 threads the second range begins at row 14976, with 3 at 9984 and 19968: row 20000 is
+  // among the first rows of the last range, row 14000 near the end of an earlier one.
+  for (std::size_t bad : {20000u, 14000u}) {
+    poses.b[bad].rotation(2, 0) = std::numeric_limits<double>::quiet_NaN();
+  }
+  for (int threads : {1, 2, 3}) {
+    const std::string message = error_of([&] { collide_many(a, a, {}, {threads}, poses); });
+    EXPECT_EQ(message.rfind("poses_b[14000] has a NaN", 0), 0u) << threads << ": " << message;
+  }
+}
+
 TEST(Batch, PairSeedsDiffer) {
   EXPECT_NE(pair_seed(0, 0), pair_seed(0, 1));
   EXPECT_NE(pair_seed(0, 1), pair_seed(1, 0));

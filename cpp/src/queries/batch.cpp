@@ -11,6 +11,7 @@
 #include <string>
 #include <thread>
 #include <utility>
+#include <vector>
 
 #include "../detail/kept_threads.hpp"
 #include "../geometry/framed_body.hpp"
@@ -234,13 +235,21 @@ Asked asked(Kind kind) {
   return {detail::Goal::signed_distance, kSignedDistance, "signed_distance"};
 }
 
-// The rows of a batch, handed to its threads in chunks in increasing order. A chunk is a share of
-// the rows left (guided self-scheduling): large while many rows are left, so that threads work far
-// apart (on rows the ball screens settle, chunks of 64 rows interleaved between two threads cost
-// 1.7x the CPU time of one thread, the threads writing into the same cache lines and pages and
-// taking chunks from one counter, and 2 threads answered no faster than 1), and small at the end,
-// so that threads finish together when rows differ in cost. A large chunk is a whole number of 64
-// rows, so that it begins a cache line of every array of the result (see BatchResult).
+// The rows of a batch, split into one range of consecutive rows per thread, each range handed out
+// in chunks in increasing order: a thread takes chunks from its own range (its home), then from
+// the others'. The split is the same in every call of the same size, so that a thread writes the
+// same rows of a result block that is reused (see BatchResult) call after call: when a shared
+// counter handed every row to whichever thread came first, the rows changed threads between calls,
+// and the cache lines of the result and of the poses moved from core to core with them. At times
+// (this VM's two cores are not always placed alike) that cost a 2-thread call of rows the ball
+// screens settle 14-18% more CPU time than a 1-thread call (collide_many, 20,000 rows, 8 or 260
+// vertices), and 2 threads answered 1.6-1.7x as many rows as 1. A chunk is a share of the rows
+// left in its range (guided self-scheduling): large while many rows are left, so that threads
+// work far apart (on rows the ball screens settle, chunks of 64 rows interleaved between two
+// threads cost 1.7x the CPU time of one thread, the threads writing into the same cache lines and
+// pages), and small at the end, so that threads finish together when rows differ in cost. A range
+// and a large chunk begin at a whole number of 64 rows, a cache line of every array of the result
+// (see BatchResult).
 class RowChunks {
  public:
   struct Chunk {
@@ -248,55 +257,93 @@ class RowChunks {
     std::size_t end = 0;
   };
 
-  RowChunks(std::size_t count, std::size_t workers) : count_(count), shares_(4 * workers) {}
+  RowChunks(std::size_t count, std::size_t workers) : ranges_(workers) {
+    for (std::size_t k = 0; k < workers; ++k) {
+      ranges_[k].next.store(first_row(count, workers, k), std::memory_order_relaxed);
+      ranges_[k].end = first_row(count, workers, k + 1);
+    }
+  }
 
-  // The next chunk into `chunk`; false when every row is taken or a row failed.
-  bool take(Chunk& chunk) {
-    std::size_t start = next_.load(std::memory_order_relaxed);
-    std::size_t end = 0;
-    do {
-      if (start >= count_ || stopped_.load(std::memory_order_relaxed)) return false;
-      end = start + size(count_ - start);
-    } while (!next_.compare_exchange_weak(start, end, std::memory_order_relaxed));
-    chunk = {start, end};
-    return true;
+  // The next chunk into `chunk`, from the range `home` first, then from the others in turn;
+  // false when every row is taken or when those left come after a failed row.
+  bool take(std::size_t home, Chunk& chunk) {
+    for (std::size_t k = 0; k < ranges_.size(); ++k) {
+      if (take_from(ranges_[(home + k) % ranges_.size()], chunk)) return true;
+    }
+    return false;
   }
 
   // The next chunk of at most a cache line's rows, for a thread answering alone (see
-  // run_batch): the chunks after it still begin cache lines.
+  // run_batch), from the first range not yet taken: the chunks after it still begin cache lines.
   bool take_line(Chunk& chunk) {
-    const std::size_t start = next_.load(std::memory_order_relaxed);
-    if (start >= count_ || stopped_.load(std::memory_order_relaxed)) return false;
-    chunk = {start, std::min(count_, start + kLine)};
-    next_.store(chunk.end, std::memory_order_relaxed);
+    const std::size_t failed = failed_.load(std::memory_order_relaxed);
+    for (Range& range : ranges_) {
+      const std::size_t start = range.next.load(std::memory_order_relaxed);
+      if (start >= range.end) continue;
+      if (start >= failed) return false;
+      chunk = {start, std::min(range.end, start + kLine)};
+      range.next.store(chunk.end, std::memory_order_relaxed);
+      return true;
+    }
+    return false;
+  }
+
+  // True when every row is taken, but for those after a failed row.
+  bool finished() const {
+    const std::size_t failed = failed_.load(std::memory_order_relaxed);
+    for (const Range& range : ranges_) {
+      if (range.next.load(std::memory_order_relaxed) < std::min(range.end, failed)) return false;
+    }
     return true;
   }
 
-  // True when every row is taken or a row failed.
-  bool finished() const {
-    return next_.load(std::memory_order_relaxed) >= count_ ||
-           stopped_.load(std::memory_order_relaxed);
+  // Row `row` failed: no chunk that begins after it is taken any more. Those before it still
+  // are, so that every row before the first failing one is answered whatever the threads.
+  void failed_at(std::size_t row) {
+    std::size_t failed = failed_.load(std::memory_order_relaxed);
+    while (row < failed &&
+           !failed_.compare_exchange_weak(failed, row, std::memory_order_relaxed)) {
+    }
   }
-
-  // No chunk is taken after this (those taken are finished).
-  void stop() { stopped_.store(true, std::memory_order_relaxed); }
 
  private:
   static constexpr std::size_t kLine = 64;  // rows: a cache line of the result's bools
   static constexpr std::size_t kSmallest = 8;
+  static constexpr std::size_t kShares = 4;
 
-  std::size_t size(std::size_t left) const {
-    const std::size_t share = left / shares_;
+  // A range's counter, written by its threads at every chunk: on a cache line of its own.
+  struct alignas(64) Range {
+    std::atomic<std::size_t> next{0};
+    std::size_t end = 0;
+  };
+
+  // Where range k of `workers` begins: k / workers of the rows, rounded down to a cache line.
+  static std::size_t first_row(std::size_t count, std::size_t workers, std::size_t k) {
+    if (k >= workers) return count;
+    return count / workers * k / kLine * kLine;
+  }
+
+  bool take_from(Range& range, Chunk& chunk) {
+    std::size_t start = range.next.load(std::memory_order_relaxed);
+    std::size_t end = 0;
+    do {
+      if (start >= range.end || start >= failed_.load(std::memory_order_relaxed)) return false;
+      end = start + size(range.end - start);
+    } while (!range.next.compare_exchange_weak(start, end, std::memory_order_relaxed));
+    chunk = {start, end};
+    return true;
+  }
+
+  static std::size_t size(std::size_t left) {
+    const std::size_t share = left / kShares;
     const std::size_t rows = share >= kLine ? (share + kLine - 1) / kLine * kLine
                                             : std::max(share, kSmallest);
     return std::min(rows, left);
   }
 
-  std::size_t count_;
-  std::size_t shares_;
-  // Written by every thread at every chunk: on a cache line of its own.
-  alignas(64) std::atomic<std::size_t> next_{0};
-  std::atomic<bool> stopped_{false};
+  std::vector<Range> ranges_;
+  // The lowest failed row (none: the largest size_t).
+  std::atomic<std::size_t> failed_{std::numeric_limits<std::size_t>::max()};
 };
 
 // The poses of a thread's rows, read from their lists or arrays a few rows before the row is
@@ -381,12 +428,13 @@ constexpr std::chrono::microseconds kAlone{30};
 // Runs `answer(i, options_i, poses_i)` (RowPoses), which writes row i of the batch, for every
 // pair, where options_i are the validated options to be seeded for pair i (RowOptions) and
 // `answer` is the thread's own `make_answer(RowWriter(batch))` (with the thread's state), on a
-// pool of threads that take pairs in chunks (RowChunks), in increasing order: when a pair fails,
-// every pair before it has been taken, so the error of the lowest failing index is found
-// whatever the threads. Everything
-// the rows share (the options, the method's capability, the pose counts) is checked here, once;
-// each row's poses once, by the thread that answers it. A thread's rows read only its own copies
-// of what they share (see RowWriter) and the chunks' counter.
+// pool of threads that take pairs in chunks (RowChunks), the calling thread from the first range
+// and the others from the next ones. When a pair fails, the chunks that begin after it are no
+// longer taken and those before it still are, so the error of the lowest failing index is found
+// whatever the threads. Everything the rows share (the options, the method's capability, the
+// pose counts) is checked here, once; each row's poses once, by the thread that answers it. A
+// thread's rows read only its own copies of what they share (see RowWriter) and the chunks'
+// counters.
 template <typename MakeAnswer>
 BatchResult run_batch(Kind kind, std::size_t count, const QueryOptions& options,
                       const BatchSettings& settings, const BatchPoses& poses,
@@ -401,9 +449,16 @@ BatchResult run_batch(Kind kind, std::size_t count, const QueryOptions& options,
   BatchResult batch(count);
   RowChunks chunks(count, workers);
   FirstFailure failure;
+  // The calling thread's home is the first range, the other threads' the next ones in the order
+  // they start.
+  const std::thread::id caller = std::this_thread::get_id();
+  std::atomic<std::size_t> homes{1};
   // `alone`: the calling thread answers a cache line of rows at a time until kAlone has passed
   // (or the rows are done), before any other thread is woken.
   const auto work = [&](bool alone) {
+    const std::size_t home = std::this_thread::get_id() == caller
+                                 ? 0
+                                 : homes.fetch_add(1, std::memory_order_relaxed) % workers;
     PosesAhead ahead(poses_a, poses_b);
     const bool posed_a = !poses_a.empty();
     const bool posed_b = !poses_b.empty();
@@ -413,7 +468,7 @@ BatchResult run_batch(Kind kind, std::size_t count, const QueryOptions& options,
     pair_options.dual.record_history = false;  // a batch reports no history
     auto answer = make_answer(RowWriter(batch));
     const auto until = std::chrono::steady_clock::now() + kAlone;
-    for (RowChunks::Chunk chunk; alone ? chunks.take_line(chunk) : chunks.take(chunk);) {
+    for (RowChunks::Chunk chunk; alone ? chunks.take_line(chunk) : chunks.take(home, chunk);) {
       ahead.start(chunk.start, chunk.end);
       for (std::size_t i = chunk.start; i < chunk.end; ++i) {
         try {
@@ -437,7 +492,7 @@ BatchResult run_batch(Kind kind, std::size_t count, const QueryOptions& options,
           ahead.done(i);
         } catch (...) {
           failure.offer(i);
-          chunks.stop();
+          chunks.failed_at(i);
           break;
         }
       }
