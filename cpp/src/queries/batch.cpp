@@ -424,6 +424,10 @@ class RowOptions {
 // cost 20-25 us per call on this project's 2-core VM (256 rows of collide_many on 8-vertex bodies
 // apart: 17 us on 1 thread, 40 us on 2; swarmcollide-thread-scaling under chrt -f 1).
 constexpr std::chrono::microseconds kAlone{30};
+// A batch of more rows outlasts kAlone even on the cheapest rows (those the ball screens settle,
+// 0.03 us or more): its calling thread wakes the other threads at once, which would otherwise
+// start kAlone later for nothing.
+constexpr std::size_t kAloneRows = 1024;
 
 // Runs `answer(i, options_i, poses_i)` (RowPoses), which writes row i of the batch, for every
 // pair, where options_i are the validated options to be seeded for pair i (RowOptions) and
@@ -499,7 +503,7 @@ BatchResult run_batch(Kind kind, std::size_t count, const QueryOptions& options,
       if (alone && std::chrono::steady_clock::now() >= until) break;
     }
   };
-  if (workers > 1) work(true);
+  if (workers > 1 && count <= kAloneRows) work(true);
   // Each thread takes rows until none is left: a copy that starts late finds fewer or none.
   if (!chunks.finished()) detail::run_copies(workers, [&](std::size_t) { work(false); });
   if (failure.any()) failure.rethrow(settings.first_index);
