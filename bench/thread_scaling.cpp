@@ -1,8 +1,9 @@
 // Can this machine answer twice as many rows on 2 threads as on 1, and do our batches? Pure loops
 // (a dependent integer chain, independent floating-point chains, a pass over an L2-sized and a
-// memory-sized array) and the batches over poses (one 8-vertex body against another at m poses,
-// as bench/pose_batch.py asks them from Python) each run on 1 thread and on 2, the order
-// alternating between rounds. A loop's 2 threads each do half its work; a batch runs either as one
+// memory-sized array, the memory traffic of cheap batch rows with their threads' rows changing
+// between runs or not: row_pattern) and the batches over poses (one 8-vertex body against another
+// at m poses, as bench/pose_batch.py asks them from Python) each run on 1 thread and on 2, the
+// order alternating between rounds. A loop's 2 threads each do half its work; a batch runs either as one
 // call with `threads=2` ("pool") or as two calls with `threads=1` on two std::threads, each on
 // half the poses into its own result ("halves"): when the halves scale and the pool does not, the
 // pool's own sharing is to blame; when neither does, the machine is. Prints, per case, the median
@@ -27,6 +28,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cstdint>
 #include <cstdio>
@@ -149,6 +151,73 @@ Work sweep(std::size_t bytes, std::uint64_t total_bytes) {
       for (std::uint64_t v : a) s += v;
     }
     sink_int = s;
+  };
+}
+
+// The memory traffic of batch rows that the ball screens settle, without the library: each row
+// reads 12 doubles (a pose) and does a few dozen dependent multiply-adds, then writes 103 bytes
+// into 11 arrays (a BatchResult's row), both blocks kept between runs as a reused result is.
+// `shared`: the threads take guided chunks from one counter (so a row's thread changes from run
+// to run, as the batches' rows did before they were split into a range per thread); otherwise
+// part p answers the p-th range of the rows in every run. When the shared counter costs more CPU
+// than the ranges, moving cache lines between the cores is expensive in the machine's current
+// state (at times it cost 18% here, at others nothing).
+Work row_pattern(std::size_t count, bool shared) {
+  struct State {
+    std::vector<double> poses;
+    std::vector<double> doubles;  // distance, lower bound, three 3-vectors
+    std::vector<int> ints;        // iterations, part_a, part_b
+    std::vector<unsigned char> flags;
+    std::atomic<std::size_t> next{0};
+    std::atomic<int> finished{0};
+  };
+  auto state = std::make_shared<State>();
+  state->poses.assign(12 * count, 0.5);
+  state->doubles.assign(11 * count, 0);
+  state->ints.assign(3 * count, 0);
+  state->flags.assign(3 * count, 0);
+  return [state, count, shared](int part, int parts) {
+    State& s = *state;
+    const auto answer = [&s, count](std::size_t begin, std::size_t end) {
+      for (std::size_t i = begin; i < end; ++i) {
+        const double* pose = &s.poses[12 * i];
+        double x = pose[0] + pose[9];
+        double y = pose[4] + pose[10];
+        double z = pose[8] + pose[11];
+        for (int k = 0; k < 15; ++k) {
+          x = x * 0.999 + y * 1e-3;
+          y = y * 0.998 + z * 1e-3;
+          z = z * 0.997 + x * 1e-3;
+        }
+        s.doubles[i] = x;
+        s.doubles[count + i] = y;
+        for (int k = 0; k < 9; ++k) s.doubles[(2 + k / 3) * count + 3 * i + k % 3] = z + k;
+        for (int k = 0; k < 3; ++k) s.ints[k * count + i] = k;
+        for (int k = 0; k < 3; ++k) s.flags[k * count + i] = x > 0;
+      }
+    };
+    if (!shared) {
+      const auto p = static_cast<std::size_t>(part);
+      const auto n = static_cast<std::size_t>(parts);
+      return answer(count * p / n, count * (p + 1) / n);
+    }
+    for (std::size_t start = s.next.load();;) {
+      if (start >= count) break;
+      const std::size_t left = count - start;
+      const std::size_t share = left / (4 * static_cast<std::size_t>(parts));
+      const std::size_t rows =
+          share >= 64 ? (share + 63) / 64 * 64 : std::max<std::size_t>(share, 8);
+      const std::size_t end = start + std::min(rows, left);
+      if (!s.next.compare_exchange_weak(start, end)) continue;
+      answer(start, end);
+      start = s.next.load();
+    }
+    // The last part to finish resets the counter for the next run (which starts after every
+    // part of this one has been joined).
+    if (s.finished.fetch_add(1) + 1 == parts) {
+      s.next.store(0);
+      s.finished.store(0);
+    }
   };
 }
 
@@ -287,6 +356,8 @@ int main(int argc, char** argv) {
   compare("8 fma chains", fma8(50'000'000), false, rounds);
   compare("sweep 256 KiB (L2)", sweep(256 << 10, std::uint64_t{8} << 30), false, rounds);
   compare("sweep 64 MiB (memory)", sweep(64 << 20, std::uint64_t{4} << 30), false, rounds);
+  compare("row pattern, shared counter", row_pattern(count, true), false, rounds);
+  compare("row pattern, a range per thread", row_pattern(count, false), false, rounds);
   const sc::ConvexPolyhedron a = sphere_body(8, 1);
   const sc::ConvexPolyhedron b = sphere_body(8, 2);
   for (const auto& [state, length] : {std::pair<const char*, double>{"apart", 3.0},
