@@ -202,17 +202,19 @@ class FramedBody {
   bool in_frame_;
   Matrix3 rotation_;
   bool rotated_;
+  // The exact type of a curved body's support function when it is one of shapes.hpp's
+  // (curved_supports.hpp), whose support curved_support calls without the virtual call. Beside
+  // rotated_, in its padding: a member of its own made every polytope query 4 instructions
+  // longer (its store, the larger pair).
+  CurvedKind curved_kind_ = CurvedKind::other;
   Vector3 offset_;
   int exponent_;
   // 2^-exponent as two factors, each representable even for the most extreme exponents.
   Scalar scale_high_;
   Scalar scale_low_;
   // A curved body's support function, its support points so far in its own frame (centred on its
-  // box; `vertices_` points to their rows), and their support error. `curved_kind_` names the
-  // support function's exact type when it is one of shapes.hpp's (curved_supports.hpp), whose
-  // support curved_support calls without the virtual call.
+  // box; `vertices_` points to their rows), and their support error.
   const SupportFunction* curved_ = nullptr;
-  CurvedKind curved_kind_ = CurvedKind::other;
   SharedSupportCache found_;
   Scalar support_error_ = 0;
   // A small polyhedron's points (`vertices_`) by coordinate (ConvexPolyhedron::centred_columns),
