@@ -173,6 +173,41 @@ TEST(Curved, SupportPointsAreInsideAndHighest) {
   }
 }
 
+// A framed curved body calls shapes.hpp's support functions by their exact type
+// (FramedBody::curved_support, curved_supports.hpp), not through the virtual call: its support
+// points are the virtual call's, bit for bit, for every kind (a kind mapped to another shape's
+// function, or a copy of one that drifted, differs here). Enough directions that the body's cache
+// of points grows its table (SupportCache::add_growing), after which a direction asked again
+// answers the point's first number.
+TEST(Curved, FramedSupportsAreTheShapesOwn) {
+  Random rng(23);
+  const ConvexPolyhedron shapes[] = {Cylinder(0.7, 0.4), Cone(0.5, 0.9),
+                                     Ellipsoid(Vector3(0.3, 0.8, 0.5))};
+  for (const ConvexPolyhedron& shape : shapes) {
+    SCOPED_TRACE(shape.curved()->name());
+    const detail::FramedPair pair = detail::frame_pair(shape, at(rng.vector(1), rng.rotation()),
+                                                       shape, at(rng.vector(1)), 1e-9);
+    const detail::FramedBody& body = pair.a;
+    std::vector<Vector3> directions;
+    std::vector<int> numbers;
+    for (int k = 0; k < 300; ++k) {
+      const Vector3 d = k % 5 == 0 ? Vector3(0, 0, k % 2 ? 1.0 : -1.0) : rng.unit();
+      const int i = body.support_index(d);
+      // The cache keeps a zero coordinate as +0.
+      const Vector3 expected =
+          shape.curved()->support(body.local_direction(d)) + Vector3::Zero();
+      const Vector3 found = body.local_points().row(i).transpose();
+      EXPECT_EQ(found, expected) << "direction " << d.transpose();
+      directions.push_back(d);
+      numbers.push_back(i);
+    }
+    EXPECT_GT(body.size(), 128);  // the table (128 slots at first) grew
+    for (std::size_t k = 0; k < directions.size(); ++k) {
+      EXPECT_EQ(body.support_index(directions[k]), numbers[k]);
+    }
+  }
+}
+
 TEST(Curved, SpheresAgainstCylindersAndConesMatchThePointDistance) {
   Random rng(13);
   for (int trial = 0; trial < 30; ++trial) {

@@ -4,9 +4,11 @@
 #include <array>
 #include <cmath>
 #include <stdexcept>
+#include <typeinfo>
 #include <utility>
 #include <vector>
 
+#include "curved_supports.hpp"
 #include "normalise.hpp"
 #include "pose_check.hpp"
 
@@ -45,6 +47,16 @@ Scalar curved_support_error(const ConvexPolyhedron& body, int exponent) {
          times_power_of_two(body.bounds().radius, -exponent) * (1 + 16 * kRoundoff);
 }
 
+// The exact type of `shape` among curved_supports.hpp's (a typeid comparison per kind, once per
+// framed body).
+CurvedKind curved_kind(const SupportFunction& shape) {
+  const std::type_info& type = typeid(shape);
+  if (type == typeid(CylinderSupport)) return CurvedKind::cylinder;
+  if (type == typeid(EllipsoidSupport)) return CurvedKind::ellipsoid;
+  if (type == typeid(ConeSupport)) return CurvedKind::cone;
+  return CurvedKind::other;
+}
+
 }  // namespace
 
 FramedBody::FramedBody(const ConvexPolyhedron& body, const Pose& pose, bool rotated,
@@ -73,6 +85,7 @@ FramedBody::FramedBody(const ConvexPolyhedron& body, const Pose& pose, bool rota
   for (int k = 0; k < 3; ++k) offset_(k) = times_power_of_two(from_centre(k), -exponent_);
   if (const SupportFunction* shape = body.curved()) {
     curved_ = shape;
+    curved_kind_ = curved_kind(*shape);
     // The cache of the body's own points is made once per body and copied: hashing them again
     // was most of what framing a curved body cost.
     found_ = SharedSupportCache(
@@ -86,8 +99,20 @@ FramedBody::FramedBody(const ConvexPolyhedron& body, const Pose& pose, bool rota
 }
 
 int FramedBody::curved_support(const Vector3& local) const {
-  // Support points are in the shape's frame, which is centred on the body's box.
-  return found_->add(curved_->support(local));
+  // Support points are in the shape's frame, which is centred on the body's box. The shapes of
+  // shapes.hpp are called by their exact (final) type: the same function, inlined here.
+  switch (curved_kind_) {
+    case CurvedKind::cylinder:
+      return found_->add(
+          static_cast<const CylinderSupport*>(curved_)->CylinderSupport::support(local));
+    case CurvedKind::ellipsoid:
+      return found_->add(
+          static_cast<const EllipsoidSupport*>(curved_)->EllipsoidSupport::support(local));
+    case CurvedKind::cone:
+      return found_->add(static_cast<const ConeSupport*>(curved_)->ConeSupport::support(local));
+    default:
+      return found_->add(curved_->support(local));
+  }
 }
 
 int FramedBody::add_point(const Vector3& frame_point) const {

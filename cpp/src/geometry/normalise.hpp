@@ -9,6 +9,10 @@
 
 namespace swarmcollide::detail {
 
+/// The unit roundoff of double precision: every basic operation is exact to a factor `1 + d`,
+/// `|d| <= kRoundoff`. The rounding bounds of the exact paths are multiples of it.
+inline constexpr Scalar kRoundoff = 0x1p-53;
+
 /// 2^exponent for exponents of normal doubles, [-1022, 1023], built from its bits: std::ldexp
 /// is a library call, and every query frames its pair with several of these.
 inline Scalar power_of_two(int exponent) {

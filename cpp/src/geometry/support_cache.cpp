@@ -40,6 +40,15 @@ Pool* pool() {
 
 }  // namespace
 
+int SupportCache::add_growing(const Vector3& p) {
+  if (count_ == points_.rows()) points_.conservativeResize(2 * points_.rows(), Eigen::NoChange);
+  slots_.assign(2 * slots_.size(), -1);
+  for (int i = 0; i < count_; ++i) slots_[find(points_.row(i).transpose())] = i;
+  slots_[find(p)] = count_;
+  points_.row(count_) = p.transpose();
+  return count_++;
+}
+
 void SupportCache::reset(const SupportCache& start) {
   // The table copied (a vector keeps its capacity, so a grown table is not reallocated), and the
   // first rows; the rows stay at least half the table's size.

@@ -36,12 +36,11 @@ class SupportCache {
   /// The number of `point` (exact equality of coordinates, -0 = +0), added when it is new.
   int add(const Vector3& point) {
     const Vector3 p = point + Vector3::Zero();  // -0 + 0 = +0, so both zeros hash alike
-    std::size_t slot = find(p);
+    const std::size_t slot = find(p);
     if (slots_[slot] >= 0) return slots_[slot];
-    if (2 * static_cast<std::size_t>(count_) == slots_.size()) {
-      grow();
-      slot = find(p);
-    }
+    // A full table grows out of line: inlined, the growth made every call save and restore the
+    // registers it uses (a cylinder pair apart: 3.7% of its query's instructions).
+    if (2 * static_cast<std::size_t>(count_) == slots_.size()) return add_growing(p);
     slots_[slot] = count_;
     points_.row(count_) = p.transpose();
     return count_++;
@@ -78,14 +77,11 @@ class SupportCache {
     }
     return slot;
   }
-  // Doubles the table (kept at most half full), rehashing the points, and the rows when they are
-  // full. There are always at least half as many rows as slots (reset keeps a grown cache's rows
-  // but takes the start's smaller table), so a full table comes first.
-  void grow() {
-    if (count_ == points_.rows()) points_.conservativeResize(2 * points_.rows(), Eigen::NoChange);
-    slots_.assign(2 * slots_.size(), -1);
-    for (int i = 0; i < count_; ++i) slots_[find(points_.row(i).transpose())] = i;
-  }
+  // Adds the new point `p` (with -0 as +0) to a full table: doubles the table (kept at most half
+  // full), rehashing the points, and the rows when they are full (support_cache.cpp). There are
+  // always at least half as many rows as slots (reset keeps a grown cache's rows but takes the
+  // start's smaller table), so a full table comes first.
+  int add_growing(const Vector3& p);
 
   VertexMatrix points_;
   std::vector<int> slots_;
