@@ -56,7 +56,8 @@ def counts(binary: str, arguments: list[str], profiled: str | None = None,
            top: int = 25) -> dict[tuple[str, str, str, str], float]:
     """Instructions per query of each (workload, proximity, query, contender) the binary dumped
     (the workload is "n=N" for polytopes, "pair=KINDS" for curved shapes); with `profiled`
-    ("WORKLOAD PROXIMITY QUERY"), that row's largest functions for ours are printed too."""
+    ("WORKLOAD PROXIMITY QUERY [CONTENDER]", the contender ours unless named: ours_fcl, coal,
+    ...), that row's largest functions for that contender are printed too."""
     with tempfile.TemporaryDirectory() as directory:
         out = Path(directory) / "callgrind.out"
         subprocess.run(
@@ -81,9 +82,9 @@ def counts(binary: str, arguments: list[str], profiled: str | None = None,
                 continue
             n, proximity, query, contender, calls = label.group(1).split()
             found[(n, proximity, query, contender)] = int(total.group(1)) / int(calls)
-            if profiled is not None and contender == "ours" and \
-                    profiled.split() == [n, proximity, query]:
-                print(f"{profiled}, ours: inclusive instructions per query")
+            if profiled is not None and (profiled.split() + ["ours"])[:4] == \
+                    [n, proximity, query, contender]:
+                print(f"{profiled}, {contender}: inclusive instructions per query")
                 for cost, name in profile(dump, int(calls), top):
                     print(f"{cost:10.0f}  {name}")
                 print()
@@ -101,7 +102,8 @@ def main() -> None:
     parser.add_argument("--json", help="write the counts here")
     parser.add_argument("--profile", metavar="ROW",
                         help='also print where ours spends one row\'s instructions, by function '
-                             '(e.g. "n=8 overlap distance")')
+                             '(e.g. "n=8 overlap distance"; a fourth word names another '
+                             'contender: "n=4 overlap distance ours_fcl")')
     parser.add_argument("--top", type=int, default=25, help="functions --profile prints")
     args = parser.parse_args()
     driver = "swarmcollide-callgrind-curved" if args.curved else "swarmcollide-callgrind-query"
