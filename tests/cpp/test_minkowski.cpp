@@ -53,6 +53,52 @@ TEST(EnclosesOrigin, AFlatTetrahedronEnclosesNothingOffItsPlane) {
   }
 }
 
+// The test without weights decides the enclosure from the four faces' sides of the origin alone
+// (their sum is the fourth point's side): on tetrahedra nearly flat, or with the origin nearly on a
+// face, an enclosure it reports must hold in extended precision, by more than the points'
+// rounding, and wherever the test with weights (which also checks each fourth point's side)
+// finds one, it must too.
+TEST(EnclosesOrigin, WithoutWeightsItProvesWhatExtendedPrecisionConfirms) {
+  using Extended = long double;
+  constexpr int kFaces[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
+  Random rng(24);
+  int enclosed = 0;
+  for (int trial = 0; trial < 30000; ++trial) {
+    std::array<Vector3, 4> points;
+    for (Vector3& p : points) p = rng.vector(1);
+    const Scalar closeness = std::pow(10.0, -rng.uniform(2, 15));
+    if (trial % 3 == 1) {
+      // Nearly flat: every point within `closeness` of a plane through the origin's neighbourhood.
+      const Vector3 normal = rng.vector(1).normalized();
+      const Scalar offset = rng.uniform(-0.1, 0.1);
+      for (Vector3& p : points) p -= (p.dot(normal) - offset - rng.uniform(-1, 1) * closeness) * normal;
+    } else if (trial % 3 == 2) {
+      // The origin within `closeness` of a face's plane.
+      const Vector3 normal = (points[2] - points[1]).cross(points[3] - points[1]).normalized();
+      const Vector3 shift = (points[1].dot(normal) + rng.uniform(-1, 1) * closeness) * normal;
+      for (Vector3& p : points) p -= shift;
+    }
+    std::array<Scalar, 4> weights{};
+    const bool with_weights = encloses_origin(points, weights);
+    const bool without = encloses_origin(points);
+    if (with_weights) EXPECT_TRUE(without) << trial;
+    if (!without) continue;
+    ++enclosed;
+    int sign = 0;
+    for (const auto& face : kFaces) {
+      Eigen::Matrix<Extended, 3, 1> p = points[face[0]].cast<Extended>();
+      const Eigen::Matrix<Extended, 3, 1> normal =
+          (points[face[1]].cast<Extended>() - p).cross(points[face[2]].cast<Extended>() - p);
+      const Extended side = -p.dot(normal) / normal.norm();
+      const int face_sign = side > 0 ? 1 : -1;
+      if (sign == 0) sign = face_sign;
+      EXPECT_EQ(face_sign, sign) << trial;
+      EXPECT_GT(std::abs(side), 2 * detail::kFrameRounding) << trial;
+    }
+  }
+  EXPECT_GT(enclosed, 1000);
+}
+
 // The pair whose exact signed distance the flat tetrahedron left unproven: a ball's centre 0.019
 // inside a cone's slanted side (the expanding polytope could not start from it).
 TEST(EnclosesOrigin, ABallInsideAConesSideGetsAProvenSignedDistance) {

@@ -76,10 +76,14 @@ void supporting_feature(const FramedBody& body, const Vector3& n, int top, Scala
   for (int i : found) visited[i] = 0;
 }
 
+// The tetrahedron's faces, each with the vertex opposite it, all oriented alike: a face's
+// normal (q - p) x (r - p) points away from its opposite vertex for one orientation of the
+// tetrahedron and towards it for the other, the same for every face.
+constexpr int kFaces[4][4] = {{1, 2, 3, 0}, {0, 3, 2, 1}, {0, 1, 3, 2}, {0, 2, 1, 3}};
+
 bool encloses_origin(const std::array<Vector3, 4>& points, std::array<Scalar, 4>& weights) {
   // The origin is inside when it is on the inner side of each face, the side of the fourth point;
   // its barycentric coordinate for that point is the ratio of their two sides.
-  constexpr int kFaces[4][4] = {{1, 2, 3, 0}, {0, 3, 2, 1}, {0, 1, 3, 2}, {0, 2, 1, 3}};
   for (const auto& face : kFaces) {
     const PlaneSide origin = side_of_origin(points[face[0]], points[face[1]], points[face[2]]);
     if (!origin.certain) return false;
@@ -97,8 +101,25 @@ bool encloses_origin(const std::array<Vector3, 4>& points, std::array<Scalar, 4>
 }
 
 bool encloses_origin(const std::array<Vector3, 4>& points) {
-  std::array<Scalar, 4> weights;
-  return encloses_origin(points, weights);
+  // Without the weights the fourth points' sides need not be computed. With the faces oriented
+  // alike, the origin's four determinants (of the tetrahedra it makes with each face) sum, in
+  // exact arithmetic, to the fourth point's determinant, the same for every face (six times the
+  // signed volume). Where all four are of one sign beyond their rounding, so is that sum: the
+  // tetrahedron is not flat, and each barycentric coordinate of the origin, a determinant over
+  // the sum, is positive. The origin is then strictly inside, and by more than the points'
+  // rounding (each face's `certain`).
+  bool inner_side = false;
+  for (int f = 0; f < 4; ++f) {
+    const int* face = kFaces[f];
+    const PlaneSide origin = side_of_origin(points[face[0]], points[face[1]], points[face[2]]);
+    if (!origin.certain) return false;
+    if (f == 0) {
+      inner_side = origin.distance > 0;
+    } else if ((origin.distance > 0) != inner_side) {
+      return false;
+    }
+  }
+  return true;
 }
 
 }  // namespace swarmcollide::detail
