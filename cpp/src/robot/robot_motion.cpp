@@ -250,6 +250,8 @@ class MotionCheck {
     place_all(end_links_, end_world_, end_centres_);
     for (std::vector<char>& placed : chain_placed_) placed.assign(start_world_.size(), 0);
     for (auto& chains : end_chains_) chains.resize(start_world_.size());
+    for (std::vector<char>& placed : box_placed_) placed.assign(start_world_.size(), 0);
+    for (auto& boxes : end_boxes_) boxes.resize(start_world_.size());
     for (std::size_t p = 0; p < pairs_.size(); ++p) {
       const GeometryPair& pair = pairs_[p];
       const Scalar speed = bound_.pair_speed(pair);
@@ -286,9 +288,6 @@ class MotionCheck {
   // separation `balls`, then from the boxes' too unless the balls' alone reach past `needed`.
   Scalar screened_reach(const GeometryPair& pair, int end, Scalar speed, Scalar margin,
                         Scalar balls, Scalar needed) {
-    const std::vector<Pose>& world = end == 0 ? start_world_ : end_world_;
-    const Pose& pose_a = world[pair.a];
-    const Pose& pose_b = world[pair.b];
     Scalar apart = balls - margin;
     Scalar reach = detail::reach_over(apart, speed);
     if (reach > needed) return reach;
@@ -296,13 +295,11 @@ class MotionCheck {
         bound_.local_speed(pair, end_chain(end, pair.a), end_chain(end, pair.b));
     reach = std::max(reach, local_reach(apart, local));
     if (reach > needed) return reach;
-    const BodyBounds& a = model_.geometries()[pair.a].body.bounds();
-    const BodyBounds& b = model_.geometries()[pair.b].body.bounds();
     const auto reach_from = [&](Scalar boxes) {
       return std::max(detail::reach_over(boxes, speed), local_reach(boxes, local));
     };
     const Scalar boxes =
-        detail::box_separation(a.box, pose_a, b.box, pose_b,
+        detail::box_separation(end_box(end, pair.a), end_box(end, pair.b),
                                [&](Scalar s) { return reach_from(s - margin) > needed; }) -
         margin;
     if (!(boxes > apart)) return reach;
@@ -320,6 +317,18 @@ class MotionCheck {
       chain_placed_[end][i] = 1;
     }
     return chain;
+  }
+
+  // Geometry g's box placed at the motion's start (`end` 0) or end (1), placed once per motion
+  // for all the pairs of the geometry.
+  const detail::PlacedBox& end_box(int end, int g) {
+    const auto i = static_cast<std::size_t>(g);
+    if (!box_placed_[end][i]) {
+      end_boxes_[end][i] = detail::PlacedBox(model_.geometries()[i].body.bounds().box,
+                                             (end == 0 ? start_world_ : end_world_)[i]);
+      box_placed_[end][i] = 1;
+    }
+    return end_boxes_[end][i];
   }
 
   // Conservative advancement of one pair over [0, horizon] (time_of_impact's, with the horizon
@@ -685,6 +694,9 @@ class MotionCheck {
   // Per geometry, its chain at the motion's start and end, and whether it is placed yet.
   std::vector<detail::LinkMotionBound::PlacedChain> end_chains_[2];
   std::vector<char> chain_placed_[2];
+  // Per geometry, its box at the motion's start and end, and whether it is placed yet.
+  std::vector<detail::PlacedBox> end_boxes_[2];
+  std::vector<char> box_placed_[2];
   std::vector<PairPlan> plans_;
   std::vector<Sample> ahead_;
   std::vector<Unproven> unproven_;
