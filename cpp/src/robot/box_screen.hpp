@@ -25,6 +25,10 @@ struct PlacedBox {
     for (int m = 0; m < 3; ++m) {
       cofactors.col(m) = rotation.col((m + 1) % 3).cross(rotation.col((m + 2) % 3));
     }
+    for (int i = 0; i < 3; ++i) {
+      column_norm1(i) = rotation.col(i).lpNorm<1>();
+      column_norm(i) = rotation.col(i).norm();
+    }
     centre_norm = centre.lpNorm<1>();
     half_sum = half.sum();
     frobenius2 = gram.trace();
@@ -36,6 +40,9 @@ struct PlacedBox {
   Matrix3 rotation;
   Matrix3 gram;
   Matrix3 cofactors;
+  // The columns' 1-norms and lengths (the box axes').
+  Vector3 column_norm1;
+  Vector3 column_norm;
   Scalar centre_norm;
   Scalar half_sum;
   Scalar frobenius2;
@@ -77,12 +84,11 @@ Scalar box_separation(const PlacedBox& a, const PlacedBox& b, const Enough& enou
   const Matrix3& ra = a.rotation;
   const Matrix3& rb = b.rotation;
   Scalar best = -std::numeric_limits<Scalar>::infinity();
-  // The axis `axis` with `along` = between . axis and the two half-widths, less `slack`.
-  const auto offer = [&](const Vector3& axis, Scalar along, Scalar reach_a, Scalar reach_b,
-                         Scalar slack) {
-    const Scalar gap =
-        std::abs(along) - reach_a - reach_b - 1e-12 * magnitude * axis.lpNorm<1>() - slack;
-    const Scalar length = axis.norm();
+  // An axis of 1-norm `norm1` and length `length`, with `along` = between . axis and the two
+  // half-widths, less `slack`.
+  const auto offer = [&](Scalar norm1, Scalar length, Scalar along, Scalar reach_a,
+                         Scalar reach_b, Scalar slack) {
+    const Scalar gap = std::abs(along) - reach_a - reach_b - 1e-12 * magnitude * norm1 - slack;
     if (gap > 0 && length > 0) best = std::max(best, gap / length * (1 - 1e-12));
   };
   // Entry (k, i): column k of the first dotted with column i of the second.
@@ -90,10 +96,11 @@ Scalar box_separation(const PlacedBox& a, const PlacedBox& b, const Enough& enou
   const Matrix3& gram_b = b.gram;
   const Matrix3 across = ra.transpose() * rb;
   for (int i = 0; i < 3; ++i) {
-    offer(ra.col(i), between.dot(ra.col(i)), half_a.dot(gram_a.col(i).cwiseAbs()),
-          half_b.dot(across.row(i).transpose().cwiseAbs()), 0);
-    offer(rb.col(i), between.dot(rb.col(i)), half_a.dot(across.col(i).cwiseAbs()),
-          half_b.dot(gram_b.col(i).cwiseAbs()), 0);
+    offer(a.column_norm1(i), a.column_norm(i), between.dot(ra.col(i)),
+          half_a.dot(gram_a.col(i).cwiseAbs()), half_b.dot(across.row(i).transpose().cwiseAbs()),
+          0);
+    offer(b.column_norm1(i), b.column_norm(i), between.dot(rb.col(i)),
+          half_a.dot(across.col(i).cwiseAbs()), half_b.dot(gram_b.col(i).cwiseAbs()), 0);
   }
   if (enough(best)) return best;
   // d(m, j) = X_m . B_j, e(m, i) = Y_m . A_i.
@@ -111,7 +118,7 @@ Scalar box_separation(const PlacedBox& a, const PlacedBox& b, const Enough& enou
       const int j1 = (j + 1) % 3;
       const int j2 = (j + 2) % 3;
       const Vector3 axis = ra.col(i).cross(rb.col(j));
-      offer(axis, between.dot(axis),
+      offer(axis.lpNorm<1>(), axis.norm(), between.dot(axis),
             half_a(i1) * std::abs(d(i2, j)) + half_a(i2) * std::abs(d(i1, j)),
             half_b(j1) * std::abs(e(j2, i)) + half_b(j2) * std::abs(e(j1, i)), slack);
     }
