@@ -1,8 +1,8 @@
 // Robot motions: the link motion bound (every point of a geometry moves no farther than its
 // pair's speed bound allows, and a self pair's distance changes no faster than its bound, which
 // leaves out the joints both chains share, as does its directional bound in the frame where the
-// chains part), and robot_check_motion's bracket on a bar turning
-// into a post, against the closed form.
+// chains part), and robot_check_motion's bracket on a bar turning into a post, against the
+// closed form, also as a self pair carried by a turn both links share.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -382,6 +382,24 @@ TEST(RobotMotion, TheKinematicsOfAPairsChainsEqualTheWholeKinematicsThere) {
   }
 }
 
+// Motion 0 of `check`, a bar from the axis to x = 1, 0.02 thick, turning 2 rad into a post 0.02
+// wide at (0, 0.6), bracketed at the closed-form contact.
+void expect_bar_contact_bracketed(const RobotMotionCheck& check,
+                                  const TimeOfImpactOptions& options) {
+  // The bar's leading face (y = 0.01 in its frame) meets the post's corner (0.01, 0.59).
+  const Scalar corner = std::atan2(0.59, 0.01);
+  const Scalar reach = std::sqrt(0.59 * 0.59 + 0.01 * 0.01);
+  const Scalar contact = (corner - std::asin(0.01 / reach)) / 2;
+  EXPECT_TRUE(check.touches(0));
+  EXPECT_LE(check.t_lower(0), contact);
+  // Within the tolerance of contact, a few 1e-9 of the motion early at most: the bar's corner
+  // closes at 2 x 0.59 per unit time, the contact threshold is tolerance x (sum of the balls'
+  // diameters, below 4).
+  const Scalar early = options.query.tolerance * 4 / (2 * 0.58);
+  EXPECT_GE(check.t_upper(0), contact - early);
+  EXPECT_LE(check.t_upper(0) - check.t_lower(0), options.time_tolerance);
+}
+
 TEST(RobotMotion, ABarTurningIntoAPostIsBracketedAtTheClosedForm) {
   std::vector<Link> links{{"base"}, {"arm"}};
   std::vector<Joint> joints{{"turn", JointType::revolute, 0, 1, Pose{}, Vector3::UnitZ(), -3, 3,
@@ -401,18 +419,7 @@ TEST(RobotMotion, ABarTurningIntoAPostIsBracketedAtTheClosedForm) {
     const RobotMotionCheck check =
         robot_check_motion(model, {{0, 1}}, q0, q1, options, BatchSettings{threads});
     ASSERT_TRUE(check.certified(0) && check.certified(1));
-    // The bar's leading face (y = 0.01 in its frame) meets the post's corner (0.01, 0.59).
-    const Scalar corner = std::atan2(0.59, 0.01);
-    const Scalar reach = std::sqrt(0.59 * 0.59 + 0.01 * 0.01);
-    const Scalar contact = (corner - std::asin(0.01 / reach)) / 2;
-    EXPECT_TRUE(check.touches(0));
-    EXPECT_LE(check.t_lower(0), contact);
-    // Within the tolerance of contact, a few 1e-9 of the motion early at most: the bar's corner
-    // closes at 2 x 0.59 per unit time, the contact threshold is tolerance x (sum of the balls'
-    // diameters, below 4).
-    const Scalar early = options.query.tolerance * 4 / (2 * 0.58);
-    EXPECT_GE(check.t_upper(0), contact - early);
-    EXPECT_LE(check.t_upper(0) - check.t_lower(0), 1e-9);
+    expect_bar_contact_bracketed(check, options);
     EXPECT_EQ(check.pair(0), 0);
     EXPECT_NEAR(check.configuration(0, 0), 2 * check.t_upper(0), 1e-15);
     // Turning to 1 rad stops short of the post.
@@ -420,6 +427,34 @@ TEST(RobotMotion, ABarTurningIntoAPostIsBracketedAtTheClosedForm) {
     EXPECT_EQ(check.pair(1), -1);
     EXPECT_EQ(check.status[1], MotionStatus::converged);
   }
+}
+
+TEST(RobotMotion, ASelfPairIsBracketedInTheFrameWhereItsChainsPart) {
+  // The bar-and-post motion above, carried by a tilted turn far from the world's origin that
+  // both geometries share: check_motion places the pair in the carrier's frame (the turn is not
+  // evaluated there) and must answer for the world, where the carrier sweeps 3 rad meanwhile.
+  std::vector<Link> links{{"base"}, {"carrier"}, {"arm"}};
+  std::vector<Joint> joints{
+      {"turn", JointType::revolute, 0, 1, placed({3, -2, 5}, {0.4, 0.2, 0.1}),
+       Vector3(0.2, 0.1, 1).normalized(), -4, 4, 0},
+      {"elbow", JointType::revolute, 1, 2, Pose{}, Vector3::UnitZ(), -3, 3, 0}};
+  std::vector<Geometry> geometries{
+      {"bar", 2, placed({0.5, 0, 0}), Box(Vector3(0.5, 0.01, 0.01)), std::nullopt},
+      {"post", 1, placed({0, 0.6, 0}), Box(Vector3(0.01, 0.01, 1)), std::nullopt}};
+  const RobotModel model(links, joints, geometries);
+  Configurations q0(2, 2);
+  Configurations q1(2, 2);
+  q0 << 0, 0, -1, 0;
+  q1 << 3, 2, 2, 1;
+  TimeOfImpactOptions options;
+  options.time_tolerance = 1e-9;
+  const RobotMotionCheck check = robot_check_motion(model, {{0, 1}}, q0, q1, options, {});
+  ASSERT_TRUE(check.certified(0) && check.certified(1));
+  expect_bar_contact_bracketed(check, options);
+  // The world's signed distance at t_upper, asked whole, is within the tolerance of contact.
+  EXPECT_LE(check.distance(0), options.query.tolerance * 4);
+  EXPECT_GE(check.distance(0), -options.query.tolerance * 4);
+  EXPECT_FALSE(check.touches(1));
 }
 
 }  // namespace

@@ -12,8 +12,45 @@
 
 namespace swarmcollide::detail {
 
+/// A box placed by a pose with what the test takes from it alone (its centre and half-widths,
+/// its Gram matrix R^T R, cofactor columns R_{m+1} x R_{m+2} and their norms), made once for
+/// every pair it is screened in: the same expressions as made per pair, so the same values.
+struct PlacedBox {
+  PlacedBox() = default;
+  PlacedBox(const Aabb& box, const Pose& pose)
+      : half((box.max - box.min) / 2),
+        centre(pose.rotation * ((box.max + box.min) / 2) + pose.translation),
+        rotation(pose.rotation),
+        gram(pose.rotation.transpose() * pose.rotation) {
+    for (int m = 0; m < 3; ++m) {
+      cofactors.col(m) = rotation.col((m + 1) % 3).cross(rotation.col((m + 2) % 3));
+    }
+    for (int i = 0; i < 3; ++i) {
+      column_norm1(i) = rotation.col(i).lpNorm<1>();
+      column_norm(i) = rotation.col(i).norm();
+    }
+    centre_norm = centre.lpNorm<1>();
+    half_sum = half.sum();
+    frobenius2 = gram.trace();
+    frobenius = std::sqrt(frobenius2);
+  }
+
+  Vector3 half;
+  Vector3 centre;
+  Matrix3 rotation;
+  Matrix3 gram;
+  Matrix3 cofactors;
+  // The columns' 1-norms and lengths (the box axes').
+  Vector3 column_norm1;
+  Vector3 column_norm;
+  Scalar centre_norm;
+  Scalar half_sum;
+  Scalar frobenius2;
+  Scalar frobenius;
+};
+
 /// A proven lower bound on the distance between the boxes `a` and `b`, given in their bodies' own
-/// frames and placed by `pose_a` and `pose_b` (-inf when no axis separates them): the largest
+/// frames and placed by their poses (-inf when no axis separates them): the largest
 /// separation of their projections, over the 3 + 3 box axes and their 9 cross products, divided
 /// by the axis' length (the separating axis test). A placed box's projection on an axis L is exact
 /// for any linear map (the rotation need not be orthonormal): centre (R^T L).c + L.t, half-width
@@ -39,51 +76,41 @@ namespace swarmcollide::detail {
 /// + F_a F_b^2 |h_b|_1, and 1e-13 of that is taken (the traces' and the sums' rounding are far
 /// inside the factor 12).
 template <typename Enough>
-Scalar box_separation(const Aabb& a, const Pose& pose_a, const Aabb& b, const Pose& pose_b,
-                      const Enough& enough) {
-  const Vector3 half_a = (a.max - a.min) / 2;
-  const Vector3 half_b = (b.max - b.min) / 2;
-  const Vector3 centre_a = pose_a.rotation * ((a.max + a.min) / 2) + pose_a.translation;
-  const Vector3 centre_b = pose_b.rotation * ((b.max + b.min) / 2) + pose_b.translation;
-  const Vector3 between = centre_b - centre_a;
-  const Scalar magnitude =
-      centre_a.lpNorm<1>() + centre_b.lpNorm<1>() + half_a.sum() + half_b.sum();
-  const Matrix3& ra = pose_a.rotation;
-  const Matrix3& rb = pose_b.rotation;
+Scalar box_separation(const PlacedBox& a, const PlacedBox& b, const Enough& enough) {
+  const Vector3& half_a = a.half;
+  const Vector3& half_b = b.half;
+  const Vector3 between = b.centre - a.centre;
+  const Scalar magnitude = a.centre_norm + b.centre_norm + a.half_sum + b.half_sum;
+  const Matrix3& ra = a.rotation;
+  const Matrix3& rb = b.rotation;
   Scalar best = -std::numeric_limits<Scalar>::infinity();
-  // The axis `axis` with `along` = between . axis and the two half-widths, less `slack`.
-  const auto offer = [&](const Vector3& axis, Scalar along, Scalar reach_a, Scalar reach_b,
-                         Scalar slack) {
-    const Scalar gap =
-        std::abs(along) - reach_a - reach_b - 1e-12 * magnitude * axis.lpNorm<1>() - slack;
-    const Scalar length = axis.norm();
+  // An axis of 1-norm `norm1` and length `length`, with `along` = between . axis and the two
+  // half-widths, less `slack`.
+  const auto offer = [&](Scalar norm1, Scalar length, Scalar along, Scalar reach_a,
+                         Scalar reach_b, Scalar slack) {
+    const Scalar gap = std::abs(along) - reach_a - reach_b - 1e-12 * magnitude * norm1 - slack;
     if (gap > 0 && length > 0) best = std::max(best, gap / length * (1 - 1e-12));
   };
   // Entry (k, i): column k of the first dotted with column i of the second.
-  const Matrix3 gram_a = ra.transpose() * ra;
-  const Matrix3 gram_b = rb.transpose() * rb;
+  const Matrix3& gram_a = a.gram;
+  const Matrix3& gram_b = b.gram;
   const Matrix3 across = ra.transpose() * rb;
   for (int i = 0; i < 3; ++i) {
-    offer(ra.col(i), between.dot(ra.col(i)), half_a.dot(gram_a.col(i).cwiseAbs()),
-          half_b.dot(across.row(i).transpose().cwiseAbs()), 0);
-    offer(rb.col(i), between.dot(rb.col(i)), half_a.dot(across.col(i).cwiseAbs()),
-          half_b.dot(gram_b.col(i).cwiseAbs()), 0);
+    offer(a.column_norm1(i), a.column_norm(i), between.dot(ra.col(i)),
+          half_a.dot(gram_a.col(i).cwiseAbs()), half_b.dot(across.row(i).transpose().cwiseAbs()),
+          0);
+    offer(b.column_norm1(i), b.column_norm(i), between.dot(rb.col(i)),
+          half_a.dot(across.col(i).cwiseAbs()), half_b.dot(gram_b.col(i).cwiseAbs()), 0);
   }
   if (enough(best)) return best;
-  Matrix3 xa;
-  Matrix3 yb;
-  for (int m = 0; m < 3; ++m) {
-    xa.col(m) = ra.col((m + 1) % 3).cross(ra.col((m + 2) % 3));
-    yb.col(m) = rb.col((m + 1) % 3).cross(rb.col((m + 2) % 3));
-  }
   // d(m, j) = X_m . B_j, e(m, i) = Y_m . A_i.
-  const Matrix3 d = xa.transpose() * rb;
-  const Matrix3 e = yb.transpose() * ra;
-  const Scalar fa2 = gram_a.trace();
-  const Scalar fb2 = gram_b.trace();
-  const Scalar fa = std::sqrt(fa2);
-  const Scalar fb = std::sqrt(fb2);
-  const Scalar slack = 1e-13 * (fa2 * fb * half_a.sum() + fa * fb2 * half_b.sum());
+  const Matrix3 d = a.cofactors.transpose() * rb;
+  const Matrix3 e = b.cofactors.transpose() * ra;
+  const Scalar fa2 = a.frobenius2;
+  const Scalar fb2 = b.frobenius2;
+  const Scalar fa = a.frobenius;
+  const Scalar fb = b.frobenius;
+  const Scalar slack = 1e-13 * (fa2 * fb * a.half_sum + fa * fb2 * b.half_sum);
   for (int i = 0; i < 3; ++i) {
     const int i1 = (i + 1) % 3;
     const int i2 = (i + 2) % 3;
@@ -91,12 +118,19 @@ Scalar box_separation(const Aabb& a, const Pose& pose_a, const Aabb& b, const Po
       const int j1 = (j + 1) % 3;
       const int j2 = (j + 2) % 3;
       const Vector3 axis = ra.col(i).cross(rb.col(j));
-      offer(axis, between.dot(axis),
+      offer(axis.lpNorm<1>(), axis.norm(), between.dot(axis),
             half_a(i1) * std::abs(d(i2, j)) + half_a(i2) * std::abs(d(i1, j)),
             half_b(j1) * std::abs(e(j2, i)) + half_b(j2) * std::abs(e(j1, i)), slack);
     }
   }
   return best;
+}
+
+/// The same from the boxes and their poses.
+template <typename Enough>
+Scalar box_separation(const Aabb& a, const Pose& pose_a, const Aabb& b, const Pose& pose_b,
+                      const Enough& enough) {
+  return box_separation(PlacedBox(a, pose_a), PlacedBox(b, pose_b), enough);
 }
 
 /// The same over all 15 axes.

@@ -149,6 +149,10 @@ class LinkMotionBound {
   /// the two chains share (-1: none, the world's frame).
   int common_link(const GeometryPair& pair) const;
 
+  /// sigma_C of the frame `common_link` names (0 for the world's): a bound on the norm of R^T R
+  /// - I for its rotation R at any configuration.
+  Scalar common_sigma(const GeometryPair& pair) const;
+
   /// A bound on how far the computed poses of `pair` at any time of the motion can be from the
   /// exact ones, measured as the change of their distance.
   Scalar pair_margin(const GeometryPair& pair) const;

@@ -11,6 +11,8 @@
 #include "../geometry/framed_body.hpp"
 #include "../motion/advancement_steps.hpp"
 #include "../queries/rounded.hpp"
+#include "../queries/verdict.hpp"
+#include "../solvers/exact_solver.hpp"
 #include "../solvers/minkowski.hpp"
 #include "box_screen.hpp"
 #include "configuration_threads.hpp"
@@ -109,6 +111,9 @@ struct PairPlan {
   bool convex;
   // A geometry is a curved shape (the exact method can leave it unproven near contact).
   bool curved;
+  // What a distance in the samples' frame is at most in the world's, as a factor (1 in the
+  // world's frame; MotionCheck::sample).
+  Scalar stretch;
 };
 
 // One motion of a robot: the pairs advanced one by one, each up to the earliest contact found so
@@ -120,24 +125,29 @@ class MotionCheck {
               const TimeOfImpactOptions& options, RobotMotionCheck& check)
       : model_(model), pairs_(pairs), q0_(q0), q1_(q1), options_(options), check_(check),
         bound_(model), q_(model.dof()) {
-    // Per pair, the joints that place its two links, in the model's order.
+    // Per pair, the joints that place its two links below the link where their chains part,
+    // in the model's order: a joint on both chains (bits 1 and 2) is one they share.
     std::vector<char> needed;
     for (const GeometryPair& pair : pairs) {
       needed.assign(model.joints().size(), 0);
       for (const int g : {pair.a, pair.b}) {
+        const char bit = g == pair.a ? 1 : 2;
         for (int link = model.geometries()[static_cast<std::size_t>(g)].link;
              link >= 0 && model.parent_joint(link) >= 0;) {
           const int j = model.parent_joint(link);
-          needed[static_cast<std::size_t>(j)] = 1;
+          needed[static_cast<std::size_t>(j)] |= bit;
           link = model.joints()[static_cast<std::size_t>(j)].parent;
         }
       }
       std::vector<int>& joints = pair_joints_.emplace_back();
       for (const int j : model.joint_order()) {
-        if (needed[static_cast<std::size_t>(j)]) joints.push_back(j);
+        if (needed[static_cast<std::size_t>(j)] == 1 || needed[static_cast<std::size_t>(j)] == 2) {
+          joints.push_back(j);
+        }
       }
       common_links_.push_back(bound_.common_link(pair));
       shared_.push_back(bound_.shared_count(pair));
+      stretch_.push_back(1 + 2 * bound_.common_sigma(pair));
     }
   }
 
@@ -223,16 +233,14 @@ class MotionCheck {
   }
 
  private:
-  // The pair being advanced: its last query's unit separating direction (turned with the frame
-  // its links' chains part at, when they share joints), the support points the last measurement
-  // along it found (-1: none yet), and what that query proved apart; the direction in that
-  // frame's coordinates.
+  // The pair being advanced: its last query's unit separating direction (in the coordinates of
+  // the frame its links' chains part at, as the samples are placed), the support points the
+  // last measurement along it found (-1: none yet), and what that query proved apart.
   struct Separating {
     Vector3 direction;
     int ia;
     int ib;
     Scalar apart;
-    Vector3 in_common;
   };
 
   // Every pair's speed and margin, and the pairs in increasing order of their first possible
@@ -244,6 +252,8 @@ class MotionCheck {
     place_all(end_links_, end_world_, end_centres_);
     for (std::vector<char>& placed : chain_placed_) placed.assign(start_world_.size(), 0);
     for (auto& chains : end_chains_) chains.resize(start_world_.size());
+    for (std::vector<char>& placed : box_placed_) placed.assign(start_world_.size(), 0);
+    for (auto& boxes : end_boxes_) boxes.resize(start_world_.size());
     for (std::size_t p = 0; p < pairs_.size(); ++p) {
       const GeometryPair& pair = pairs_[p];
       const Scalar speed = bound_.pair_speed(pair);
@@ -266,7 +276,8 @@ class MotionCheck {
       const Geometry& b = model_.geometries()[pair.b];
       const bool convex = !a.parts && !b.parts;
       const bool curved = (!a.parts && a.body.curved()) || (!b.parts && b.body.curved());
-      plans_.push_back({static_cast<int>(p), speed, margin, from_start, from_end, convex, curved});
+      plans_.push_back(
+          {static_cast<int>(p), speed, margin, from_start, from_end, convex, curved, stretch_[p]});
     }
     std::sort(plans_.begin(), plans_.end(), [](const PairPlan& x, const PairPlan& y) {
       return x.first_contact < y.first_contact ||
@@ -279,9 +290,6 @@ class MotionCheck {
   // separation `balls`, then from the boxes' too unless the balls' alone reach past `needed`.
   Scalar screened_reach(const GeometryPair& pair, int end, Scalar speed, Scalar margin,
                         Scalar balls, Scalar needed) {
-    const std::vector<Pose>& world = end == 0 ? start_world_ : end_world_;
-    const Pose& pose_a = world[pair.a];
-    const Pose& pose_b = world[pair.b];
     Scalar apart = balls - margin;
     Scalar reach = detail::reach_over(apart, speed);
     if (reach > needed) return reach;
@@ -289,13 +297,11 @@ class MotionCheck {
         bound_.local_speed(pair, end_chain(end, pair.a), end_chain(end, pair.b));
     reach = std::max(reach, local_reach(apart, local));
     if (reach > needed) return reach;
-    const BodyBounds& a = model_.geometries()[pair.a].body.bounds();
-    const BodyBounds& b = model_.geometries()[pair.b].body.bounds();
     const auto reach_from = [&](Scalar boxes) {
       return std::max(detail::reach_over(boxes, speed), local_reach(boxes, local));
     };
     const Scalar boxes =
-        detail::box_separation(a.box, pose_a, b.box, pose_b,
+        detail::box_separation(end_box(end, pair.a), end_box(end, pair.b),
                                [&](Scalar s) { return reach_from(s - margin) > needed; }) -
         margin;
     if (!(boxes > apart)) return reach;
@@ -313,6 +319,18 @@ class MotionCheck {
       chain_placed_[end][i] = 1;
     }
     return chain;
+  }
+
+  // Geometry g's box placed at the motion's start (`end` 0) or end (1), placed once per motion
+  // for all the pairs of the geometry.
+  const detail::PlacedBox& end_box(int end, int g) {
+    const auto i = static_cast<std::size_t>(g);
+    if (!box_placed_[end][i]) {
+      end_boxes_[end][i] = detail::PlacedBox(model_.geometries()[i].body.bounds().box,
+                                             (end == 0 ? start_world_ : end_world_)[i]);
+      box_placed_[end][i] = 1;
+    }
+    return end_boxes_[end][i];
   }
 
   // Conservative advancement of one pair over [0, horizon] (time_of_impact's, with the horizon
@@ -421,8 +439,28 @@ class MotionCheck {
   // The pair at time t: its screens when they alone prove it apart up to the horizon; else the
   // separation along its last query's direction while that proves enough (kRemeasured); else a
   // distance query.
+  //
+  // The pair is placed in the frame of the link C where its links' chains part (the world's
+  // when they share no joint), from the joints below C alone: C's frame is the identity, so the
+  // joints they share are not evaluated. Every statement a sample makes is one about that
+  // frame's coordinates, and carries over to the world's: there the points are p = R x + T with
+  // x their coordinates in C and R^T R = I + S, |S| <= sigma_C (C's chain's deviation from
+  // rigid; link_motion_bound.hpp), so a distance d in C is a distance between sqrt(1 - sigma_C)
+  // d and sqrt(1 + sigma_C) d in the world. Apart in C (d > 0) is apart in the world, and the
+  // speeds bound how fast C's distances shrink as they bound the world's: the shared joints move
+  // nothing in C (as they move nothing relative in the world, which pair_speed and local_speed
+  // pay the frames' deviation for), and the joints below C move the points in C by what their
+  // terms bound, each frame from C down rigid within the chain's sigma to it (the factors 1 +
+  // 4 sigma_j), the placed chains measured in C. The directional bound is the one in C's
+  // coordinates (a separation measured there needs no loss; taking it anyway only shortens the
+  // step). Within the tolerance of contact in C is within it in the world once stretched by
+  // 1 + 2 sigma_C (`stretch`, above sqrt(1 + sigma_C) by 1.5 sigma_C >= 12 roundoffs, which
+  // covers the product's rounding). The margin covers the rounding of the frames below C as of
+  // the whole chains (C's coordinates are smaller than the world's: the chains' reach z at C is
+  // at most the extent).
   Sample sample(const GeometryPair& pair, const PairPlan& plan, Scalar t, Scalar horizon) {
-    configuration_at(t, &pair_joints_[static_cast<std::size_t>(plan.pair)]);
+    const std::size_t p = static_cast<std::size_t>(plan.pair);
+    configuration_at(t, &pair_joints_[p], common_links_[p]);
     place(pair);
     // t = 0 is sampled only where the plan's screens proved nothing there. Once a query gave a
     // direction, the separation along it is measured rather than the boxes': at about the same
@@ -454,27 +492,45 @@ class MotionCheck {
     const BodyBounds& b = model_.geometries()[pair.b].body.bounds();
     // The motion's size for this pair: the sum of the two bounding balls' diameters.
     const Scalar threshold = options_.query.tolerance * 2 * (a.radius + b.radius);
-    const int common = common_links_[static_cast<std::size_t>(plan.pair)];
     if (separating_) {
       // The separation along the last query's direction is a lower bound on the distance as a
       // query's is (the same support climbs), at a tenth of a query's cost; it is stepped from
       // while it keeps 0.15 of what that query proved (kRemeasured). Any direction gives a
-      // lower bound: one fixed in the frame where the links' chains part turns with both links
-      // as the joints they share move, and keeps their separation (directional_speed).
-      if (common >= 0) {
-        separating_->direction =
-            (links_[static_cast<std::size_t>(common)].rotation * separating_->in_common)
-                .normalized();
-      }
-      const Scalar apart = separation_along(pair, *separating_) - plan.margin;
+      // lower bound: one fixed in the frame where the links' chains part (the samples' frame)
+      // turns with both links as the joints they share move, and keeps their separation
+      // (directional_speed).
+      const detail::FramedPair framed = frame(pair);
+      const Scalar apart = separation_along(framed, *separating_) - plan.margin;
       if (apart > threshold && apart >= kRemeasured * separating_->apart) {
         return apart_sample(pair, plan, t, apart, separating_->direction, local);
+      }
+      if (query_->options().method == Method::exact && plan.convex && !plan.curved) {
+        // Query::distance's answer for two polytopes with the exact method (its solver's on
+        // the same framed pair: bit for bit), without framing the pair again. (Started from
+        // the last query's direction instead of the centres' difference, Wolfe's steps were
+        // as many: callgrind on bench/robot_motion_profile.py's 200 edges, exact_distance
+        // 27.98M -> 27.84M instructions.)
+        ++iterations_;
+        return answered(pair, plan, t, local, threshold,
+                        detail::finish_result(
+                            framed,
+                            detail::exact_distance(framed, query_->options().exact.max_iterations,
+                                                   Vector3::Zero()),
+                            Method::exact, detail::Goal::distance, detail::Weights::none));
       }
     }
     ++iterations_;
     // A distance, as time_of_impact asks: its lower bound is all the advancement needs, and a
     // pair in contact is not measured further (its penetration depth).
-    DistanceResult result = detail::distance_of(*query_, model_, pair, pose_a_, pose_b_);
+    return answered(pair, plan, t, local, threshold,
+                    detail::distance_of(*query_, model_, pair, pose_a_, pose_b_));
+  }
+
+  // A sample from the query's `result` at t (the pair placed there, `local` its local speed):
+  // the answer asked again where it is unproven, then contact, or the time it proves apart.
+  Sample answered(const GeometryPair& pair, const PairPlan& plan, Scalar t,
+                  const detail::LinkMotionBound::LocalSpeed& local, Scalar threshold,
+                  DistanceResult result) {
     if (!result.certified) {
       // Near contact a method can leave a pair unproven where another proves it: ask it too
       // rather than bisect down to times that cannot be split. After any method but exact, the
@@ -486,7 +542,7 @@ class MotionCheck {
       // asked again; the dual method certifies them too at some 2.4 times the motion's whole
       // cost), for a curved pair the dual method's distance.
       const bool exact_first = query_->options().method == Method::exact;
-      const bool undecided = !(result.distance + plan.margin <= threshold) &&
+      const bool undecided = !((result.distance + plan.margin) * plan.stretch <= threshold) &&
                              !(result.lower_bound - plan.margin > threshold);
       if (!exact_first || undecided) {
         ++iterations_;
@@ -504,7 +560,7 @@ class MotionCheck {
         if (second.certified) result = std::move(second);
       }
     }
-    if (result.distance + plan.margin <= threshold) return {t, true, 0, 0};
+    if ((result.distance + plan.margin) * plan.stretch <= threshold) return {t, true, 0, 0};
     const Scalar apart = result.lower_bound - plan.margin;
     if (!(apart > 0)) return {t, false, 0, 0};
     // The lower bound is the separation along `direction` (a compound geometry's is not).
@@ -513,11 +569,7 @@ class MotionCheck {
       separating_.reset();
       return apart_sample(pair, plan, t, apart, Vector3::Zero(), local);
     }
-    separating_ = Separating{result.direction / length, -1, -1, apart, Vector3::Zero()};
-    if (common >= 0) {
-      separating_->in_common =
-          links_[static_cast<std::size_t>(common)].rotation.transpose() * separating_->direction;
-    }
+    separating_ = Separating{result.direction / length, -1, -1, apart};
     return apart_sample(pair, plan, t, apart, separating_->direction, local);
   }
 
@@ -548,12 +600,17 @@ class MotionCheck {
   // The pair's separation at its current poses along the last query's direction (in world
   // units, as a query's lower bound: the rounded bodies' if they have radii), the supports'
   // climbs starting where the last ones ended.
-  Scalar separation_along(const GeometryPair& pair, Separating& last) const {
-    const detail::FramedPair framed = detail::frame_validated_pair(
-        model_.geometries()[pair.a].body, pose_a_, model_.geometries()[pair.b].body, pose_b_,
-        query_->options().tolerance);
+  Scalar separation_along(const detail::FramedPair& framed, Separating& last) const {
     return framed.frame.length_to_world(detail::rounded_lower(
         framed, detail::separation(framed.a, framed.b, last.direction, last.ia, last.ib)));
+  }
+
+  // The pair at its current poses framed as its queries frame it (the poses the kinematics made
+  // need no validation).
+  detail::FramedPair frame(const GeometryPair& pair) const {
+    return detail::frame_validated_pair(model_.geometries()[pair.a].body, pose_a_,
+                                        model_.geometries()[pair.b].body, pose_b_,
+                                        query_->options().tolerance);
   }
 
   // A proven lower bound on the pair's distance at `pose_a` and `pose_b` from its geometries'
@@ -598,9 +655,9 @@ class MotionCheck {
     }
   }
 
-  // q(t) into q_, and the poses at it of every link, or of the children of `joints` alone, into
-  // links_.
-  void configuration_at(Scalar t, const std::vector<int>* joints = nullptr) {
+  // q(t) into q_, and the poses at it of every link, or of the children of `joints` alone into
+  // links_, in the frame of link `frame` (its pose the identity; -1: the world's).
+  void configuration_at(Scalar t, const std::vector<int>* joints = nullptr, int frame = -1) {
     if (t == 1) {
       q_ = end_;
     } else {
@@ -608,6 +665,7 @@ class MotionCheck {
     }
     if (joints) {
       links_.resize(model_.links().size());
+      if (frame >= 0) links_[static_cast<std::size_t>(frame)] = Pose{};
       link_poses(model_, q_.data(), *joints, links_);
     } else {
       link_poses(model_, q_.data(), links_);
@@ -644,10 +702,11 @@ class MotionCheck {
   Eigen::Matrix<Scalar, 1, Eigen::Dynamic> end_;
   Eigen::Matrix<Scalar, 1, Eigen::Dynamic> delta_;
   Eigen::Matrix<Scalar, 1, Eigen::Dynamic> q_;
-  // Per pair, the joints that place its links (in the model's order), and the link where its
-  // links' chains part (-1: the world).
+  // Per pair, the joints that place its links below the link where its links' chains part (in
+  // the model's order), that link (-1: the world), and the samples' stretch (PairPlan).
   std::vector<std::vector<int>> pair_joints_;
   std::vector<int> common_links_;
+  std::vector<Scalar> stretch_;
   // Per pair, the number of joints its two chains share.
   std::vector<std::size_t> shared_;
   std::vector<Pose> links_;
@@ -665,6 +724,9 @@ class MotionCheck {
   // Per geometry, its chain at the motion's start and end, and whether it is placed yet.
   std::vector<detail::LinkMotionBound::PlacedChain> end_chains_[2];
   std::vector<char> chain_placed_[2];
+  // Per geometry, its box at the motion's start and end, and whether it is placed yet.
+  std::vector<detail::PlacedBox> end_boxes_[2];
+  std::vector<char> box_placed_[2];
   std::vector<PairPlan> plans_;
   std::vector<Sample> ahead_;
   std::vector<Unproven> unproven_;
