@@ -57,29 +57,41 @@ inline void offer_vertex(const Vector3& p, int i, Nearest& best) {
   best.norm2 = norm2;
 }
 
-// The segment from a (index ia) to b (index ib).
-inline void offer_segment(const Vector3& a, const Vector3& b, int ia, int ib, Nearest& best) {
+// The segment from a (index ia) to b (index ib). True when its nearest point lies inside it
+// (both weights positive).
+inline bool offer_segment(const Vector3& a, const Vector3& b, int ia, int ib, Nearest& best) {
   const Vector3 ab = b - a;
   const Scalar along = -a.dot(ab);  // the origin's projection, times |ab|^2
-  if (!(along > 0)) return offer_vertex(a, ia, best);
+  if (!(along > 0)) {
+    offer_vertex(a, ia, best);
+    return false;
+  }
   const Scalar length2 = ab.squaredNorm();
-  if (!(along < length2)) return offer_vertex(b, ib, best);
+  if (!(along < length2)) {
+    offer_vertex(b, ib, best);
+    return false;
+  }
   const Scalar wb = along / length2;
   const Scalar wa = 1 - wb;
-  if (!(wa > 0)) return offer_vertex(b, ib, best);
+  if (!(wa > 0)) {
+    offer_vertex(b, ib, best);
+    return false;
+  }
   const Scalar norm2 = (wa * a + wb * b).squaredNorm();
-  if (!(norm2 < best.norm2)) return;
+  if (!(norm2 < best.norm2)) return true;
   best.index[0] = ia;
   best.index[1] = ib;
   best.weight[0] = wa;
   best.weight[1] = wb;
   best.size = 2;
   best.norm2 = norm2;
+  return true;
 }
 
 // The triangle a, b, c (indices ia, ib, ic), whose edges `ab = b - a`, `ac = c - a` and normal
-// `n = ab x ac` a tetrahedron has already computed.
-inline void offer_triangle(const Vector3& a, const Vector3& b, const Vector3& c, const Vector3& ab,
+// `n = ab x ac` a tetrahedron has already computed. True when its nearest point lies inside it
+// (three positive weights).
+inline bool offer_triangle(const Vector3& a, const Vector3& b, const Vector3& c, const Vector3& ab,
                            const Vector3& ac, const Vector3& n, int ia, int ib, int ic,
                            Nearest& best) {
   const Scalar nn = n.squaredNorm();
@@ -92,7 +104,8 @@ inline void offer_triangle(const Vector3& a, const Vector3& b, const Vector3& c,
   if (!(nn > kFlat * kFlat * ab.squaredNorm() * ac.squaredNorm())) {
     offer_segment(b, c, ib, ic, best);
     offer_segment(a, c, ia, ic, best);
-    return offer_segment(a, b, ia, ib, best);
+    offer_segment(a, b, ia, ib, best);
+    return false;
   }
   if (va > 0 && vb > 0 && vc > 0) {
     const Scalar wb = vb / nn;
@@ -110,25 +123,32 @@ inline void offer_triangle(const Vector3& a, const Vector3& b, const Vector3& c,
         best.size = 3;
         best.norm2 = norm2;
       }
-      return;
+      return true;
     }
     // Coordinates positive yet a weight rounded to zero: every edge.
     offer_segment(b, c, ib, ic, best);
     offer_segment(a, c, ia, ic, best);
-    return offer_segment(a, b, ia, ib, best);
+    offer_segment(a, b, ia, ib, best);
+    return false;
   }
-  // Outside (or degenerate): the edges opposite the coordinates that are not positive.
-  if (!(va > 0)) offer_segment(b, c, ib, ic, best);
-  if (!(vb > 0)) offer_segment(a, c, ia, ic, best);
+  // Outside: the edges opposite the coordinates that are not positive, whose lines separate the
+  // origin's foot in the triangle's plane from the triangle. Where that foot's own foot on such an
+  // edge lies inside the edge, it is the triangle's nearest point (every point of the triangle is
+  // beyond the line, so at least as far from the origin): the other edges are not tried. The
+  // nearest point is the same in exact arithmetic; rounding may choose another edge only where
+  // two edges' points are equally near to within it.
+  if (!(va > 0) && offer_segment(b, c, ib, ic, best)) return false;
+  if (!(vb > 0) && offer_segment(a, c, ia, ic, best)) return false;
   if (!(vc > 0)) offer_segment(a, b, ia, ib, best);
+  return false;
 }
 
-// The triangle a, b, c (indices ia, ib, ic).
-inline void offer_triangle(const Vector3& a, const Vector3& b, const Vector3& c, int ia, int ib,
+// The triangle a, b, c (indices ia, ib, ic). True when its nearest point lies inside it.
+inline bool offer_triangle(const Vector3& a, const Vector3& b, const Vector3& c, int ia, int ib,
                            int ic, Nearest& best) {
   const Vector3 ab = b - a;
   const Vector3 ac = c - a;
-  offer_triangle(a, b, c, ab, ac, ab.cross(ac), ia, ib, ic, best);
+  return offer_triangle(a, b, c, ab, ac, ab.cross(ac), ia, ib, ic, best);
 }
 
 // The tetrahedron a, b, c, d (indices 0 to 3).
@@ -151,7 +171,8 @@ inline void offer_tetrahedron(const Vector3& a, const Vector3& b, const Vector3&
     offer_triangle(b, c, d, 1, 2, 3, best);
     offer_triangle(a, c, d, e2, e3, n_acd, 0, 2, 3, best);
     offer_triangle(a, b, d, e1, e3, n_abd, 0, 1, 3, best);
-    return offer_triangle(a, b, c, e1, e2, n_abc, 0, 1, 2, best);
+    offer_triangle(a, b, c, e1, e2, n_abc, 0, 1, 2, best);
+    return;
   }
   // Cramer's rule (the triple products e1 . (r x e3) and e1 . (e2 x r) read as r . (e3 x e1) and
   // r . (e1 x e2)); where the origin is inside, repeated once for its residual (iterative
@@ -180,9 +201,13 @@ inline void offer_tetrahedron(const Vector3& a, const Vector3& b, const Vector3&
     best.norm2 = r.squaredNorm();
     return;
   }
-  if (!(alpha[0] > 0)) offer_triangle(b, c, d, 1, 2, 3, best);
-  if (!(alpha[1] > 0)) offer_triangle(a, c, d, e2, e3, n_acd, 0, 2, 3, best);
-  if (!(alpha[2] > 0)) offer_triangle(a, b, d, e1, e3, n_abd, 0, 1, 3, best);
+  // The faces opposite the coordinates that are not positive, whose planes separate the origin
+  // from the tetrahedron. Where the origin's foot on such a face lies inside the face, it is the
+  // tetrahedron's nearest point (every point of it is beyond the plane): the other faces are not
+  // tried (as for a triangle's edges, rounding aside the same point).
+  if (!(alpha[0] > 0) && offer_triangle(b, c, d, 1, 2, 3, best)) return;
+  if (!(alpha[1] > 0) && offer_triangle(a, c, d, e2, e3, n_acd, 0, 2, 3, best)) return;
+  if (!(alpha[2] > 0) && offer_triangle(a, b, d, e1, e3, n_abd, 0, 1, 3, best)) return;
   if (!(alpha[3] > 0)) offer_triangle(a, b, c, e1, e2, n_abc, 0, 1, 2, best);
 }
 
