@@ -4,11 +4,15 @@
 #include <limits>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "penetration_oracle.hpp"
+#include "geometry/framed_body.hpp"
 #include "solvers/penetration.hpp"
+#include "swarmcollide/geometry/convex_polyhedron.hpp"
 #include "swarmcollide/geometry/hull.hpp"
+#include "swarmcollide/geometry/pose.hpp"
 
 namespace swarmcollide {
 namespace {
@@ -193,6 +197,49 @@ TEST(Penetration, RandomOverlapsAtVariousDepthsMatchTheOracle) {
     const VertexMatrix b = random_points(rng, nb, offset, 0.3 + trial % 3 * 0.4);
     check(a, b, "trial " + std::to_string(trial));
   }
+}
+
+// A pair's kept surface (KeptSurface) starts the expansion at the next poses: the answers keep
+// the contract frame after frame as the bodies turn and slide through each other, and a surface
+// spoiled on purpose (corners swapped, an index out of range, an adjacency broken) is either
+// refused or still proves only true bounds.
+TEST(Penetration, KeptSurfacesStartLaterExpansionsAndProveOnlyTrueBounds) {
+  std::mt19937_64 rng(24);
+  std::uniform_real_distribution<Scalar> unit(-1, 1);
+  int started_kept = 0;
+  for (int trial = 0; trial < 40; ++trial) {
+    SCOPED_TRACE("trial " + std::to_string(trial));
+    const ConvexPolyhedron a(random_points(rng, 8 + trial % 50, Vector3::Zero(), 1));
+    const ConvexPolyhedron b(random_points(rng, 8 + (trial * 7) % 50, Vector3::Zero(), 0.6));
+    const Vector3 start(unit(rng), unit(rng), unit(rng));
+    const Vector3 velocity = Vector3(unit(rng), unit(rng), unit(rng)) * 0.01;
+    const Vector3 spin = Vector3(unit(rng), unit(rng), unit(rng)) * 0.02;
+    detail::KeptSurface surface;
+    for (int frame = 0; frame < 8; ++frame) {
+      SCOPED_TRACE("frame " + std::to_string(frame));
+      Pose pose_b;
+      pose_b.rotation = rotation(frame * spin.x(), frame * spin.y(), frame * spin.z());
+      pose_b.translation = start * 0.6 + frame * velocity;
+      const detail::FramedPair pair = detail::frame_validated_pair(a, Pose(), b, pose_b, 1e-9);
+      if (!surface.faces.empty()) {
+        ++started_kept;
+        // Spoiled as a stale or mistaken cache could be.
+        if (frame == 5) std::swap(surface.corners[0], surface.corners[1]);
+        if (frame == 6) surface.corners.back()[1] = static_cast<int>(b.size());
+        if (frame == 7) surface.faces[0].adj[0] = surface.faces[0].adj[1];
+      }
+      const PenetrationBounds r = penetration(pair.a, pair.b, Vector3::Zero(), nullptr,
+                                              pair.tolerance, kIterations, &surface);
+      const VertexMatrix world_b = transformed(b.vertices(), pose_b.rotation, pose_b.translation);
+      const Scalar exact = oracle_signed_distance(a.vertices(), world_b);
+      EXPECT_LE(pair.frame.length_to_world(r.lower), exact + kOracleSlack);
+      EXPECT_GE(pair.frame.length_to_world(r.upper), exact - kOracleSlack);
+      if (exact < -1e-9) {
+        EXPECT_TRUE(r.proven);
+      }
+    }
+  }
+  EXPECT_GT(started_kept, 40);
 }
 
 TEST(Penetration, BadHintsDoNotTrapTheSearchInALocalMaximum) {

@@ -171,6 +171,7 @@ void remember(const FramedPair& pair, const Answer& answer, PairProof& proof) {
     if (count_a == 4 && count_b == 4) {
       proof.kind = PairProof::Kind::enclosing;
       proof.enclosing = enclosing;
+      proof.on_face = false;
       proof.lower = -std::numeric_limits<float>::infinity();
       return;
     }
@@ -273,7 +274,8 @@ void answer_compounds(const PlacedBody& a, const PlacedBody& b, const FramedPair
 }  // namespace
 
 void answer_pair(const PlacedBody& a, const PlacedBody& b, PairProof& proof,
-                 const QueryOptions& options, const PairQuestion& question, PairAnswer& out) {
+                 const QueryOptions& options, const PairQuestion& question, PairAnswer& out,
+                 KeptSurface* surface) {
   // Every field is set afresh: `out` is a buffer reused from query to query.
   out.belongs = false;
   out.certified = false;
@@ -312,9 +314,15 @@ void answer_pair(const PlacedBody& a, const PlacedBody& b, PairProof& proof,
   // distance of zero (to rounding): its common point is the answer.
   const bool compound = a.compound != nullptr || b.compound != nullptr;
   std::optional<CommonPoint> common;
+  // The contact tetrahedron kept from the last frame still encloses the origin.
+  bool face_kept = false;
   if (question.warm && proof.kind == PairProof::Kind::enclosing && !compound) {
     common = enclosed(pair, proof.enclosing);
-    if (!common) common = repaired(pair, proof.enclosing, options.exact.max_iterations);
+    face_kept = common && proof.on_face;
+    if (!common) {
+      common = repaired(pair, proof.enclosing, options.exact.max_iterations);
+      if (common) proof.on_face = false;
+    }
   }
   bool value_settled = true;
   std::optional<DualStart> next;
@@ -393,7 +401,15 @@ void answer_pair(const PlacedBody& a, const PlacedBody& b, PairProof& proof,
     std::optional<CommonPoint> tetrahedron_common = common;
     if (!common && question.warm && proof.kind == PairProof::Kind::enclosing) {
       tetrahedron_common = enclosed(pair, proof.enclosing);
+      face_kept = tetrahedron_common && proof.on_face;
     }
+    // The surface of the pair's last expansion (never a curved body's: its support points are
+    // numbered as they are found, and its indices name other points at other poses). One made
+    // from a solver's corral (a pair's first contact) is dropped where a contact tetrahedron is
+    // made after it: on a resting contact that tetrahedron's expansion takes a step or two,
+    // fewer than placing a surface again costs, and it is kept only where it takes more.
+    KeptSurface* kept_surface = !pair.a.curved() && !pair.b.curved() ? surface : nullptr;
+    const bool surface_was_kept = kept_surface != nullptr && !kept_surface->faces.empty();
     const auto signed_distance = [&](Method m) {
       QueryOptions o = options;
       o.method = m;
@@ -404,7 +420,7 @@ void answer_pair(const PlacedBody& a, const PlacedBody& b, PairProof& proof,
         Answer overlap =
             exact_penetration(pair, o.exact.max_iterations, Vector3::Zero(),
                               (tetrahedron_common->point_b - tetrahedron_common->point_a).norm(),
-                              &corral);
+                              &corral, kept_surface);
         overlap.intersection_proven = true;
         return finish_result(pair, std::move(overlap), m, Goal::signed_distance);
       }
@@ -412,6 +428,7 @@ void answer_pair(const PlacedBody& a, const PlacedBody& b, PairProof& proof,
                            Goal::signed_distance);
     };
     DistanceResult contact = signed_distance(method);
+    const bool corral_surface = kept_surface != nullptr && !surface_was_kept && !face_kept;
     if (!contact.certified && question.escalate && method != Method::exact) {
       contact = signed_distance(Method::exact);
       out.settled = Settled::escalated;
@@ -419,9 +436,12 @@ void answer_pair(const PlacedBody& a, const PlacedBody& b, PairProof& proof,
     out.certified = out.certified && contact.certified;
     take_values(contact, out);
     thread_local ContactFeatures features;
-    // An overlap's contact face makes the tetrahedron the next frame's penetration starts from.
+    // An overlap's contact face makes the tetrahedron the next frame's penetration starts from,
+    // unless the one made so in an earlier frame still encloses the origin: after a small
+    // motion it is still on the face (a pile's resting contacts, frame after frame), and the
+    // next frame checks it again at its poses (enclosed) before anything starts from it.
     if (add_contact_points(pair, contact, question, out, features) && question.warm &&
-        contact.distance < 0) {
+        contact.distance < 0 && !face_kept) {
       // The last tetrahedron's apex starts the climbs to the new one's.
       PairProof::Enclosing tetrahedron{};
       const bool kept = proof.kind == PairProof::Kind::enclosing;
@@ -431,6 +451,8 @@ void answer_pair(const PlacedBody& a, const PlacedBody& b, PairProof& proof,
           contact_tetrahedron(pair, contact.direction, features, tetrahedron)) {
         proof.kind = PairProof::Kind::enclosing;
         proof.enclosing = tetrahedron;
+        proof.on_face = true;
+        if (corral_surface) kept_surface->clear();
         proof.lower = -std::numeric_limits<float>::infinity();
       }
     }

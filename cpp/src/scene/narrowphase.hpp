@@ -11,6 +11,8 @@
 
 namespace swarmcollide::detail {
 
+struct KeptSurface;
+
 /// What a scene query asks of each candidate pair.
 struct PairQuestion {
   /// A pair belongs to the answer when its distance is at most `threshold` (world units) plus
@@ -78,8 +80,10 @@ struct PlacedBody {
 /// certificates are made by verdict.hpp's `finish_result`, as for every query. A pair with a
 /// compound body is screened by the envelopes (a cached bound or direction, or the centres'
 /// line) and otherwise answered by Query's compound queries; an enclosing simplex of envelopes
-/// proves nothing about their parts, so none is kept for it.
+/// proves nothing about their parts, so none is kept for it. `surface`, when not null, is the
+/// pair's kept expansion surface (see penetration), read and replaced by a contact's depth.
 void answer_pair(const PlacedBody& a, const PlacedBody& b, PairProof& proof,
-                 const QueryOptions& options, const PairQuestion& question, PairAnswer& out);
+                 const QueryOptions& options, const PairQuestion& question, PairAnswer& out,
+                 KeptSurface* surface = nullptr);
 
 }  // namespace swarmcollide::detail

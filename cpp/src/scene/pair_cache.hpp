@@ -50,6 +50,9 @@ struct PairProof {
 
   std::uint64_t key = 0;
   Kind kind = Kind::none;
+  /// An enclosing proof made by a contact (contact_tetrahedron: its base on the contact face),
+  /// not by a solver's corral: while it still encloses the origin it is kept as it is.
+  bool on_face = false;
   /// A certified lower bound on the pair's distance when the proof was made (world units,
   /// rounded down; minus infinity when none), and the pair's size then (rounded up).
   float lower = -std::numeric_limits<float>::infinity();

@@ -53,10 +53,12 @@ void PairTable::remove(const std::unordered_set<BodyId>& gone) {
     if (involves(pairs[i].key)) continue;
     pairs[kept] = pairs[i];
     proofs[kept] = proofs[i];
+    std::swap(surfaces[kept], surfaces[i]);
     ++kept;
   }
   pairs.resize(kept);
   proofs.resize(kept);
+  surfaces.resize(kept);
   for (auto it = excluded_.begin(); it != excluded_.end();) {
     it = involves(*it) ? excluded_.erase(it) : std::next(it);
   }
@@ -91,6 +93,8 @@ void PairTable::remake(FclBroadphase& broadphase, BodyId id_limit, bool warm_sta
   sort_pairs(fresh_, id_limit);
   new_proofs_.clear();
   new_proofs_.reserve(fresh_.size());
+  new_surfaces_.clear();
+  new_surfaces_.resize(fresh_.size());
   if (warm_start && !pairs.empty()) {
     order_.clear();
     for (std::size_t i = 0; i < pairs.size(); ++i) {
@@ -101,6 +105,7 @@ void PairTable::remake(FclBroadphase& broadphase, BodyId id_limit, bool warm_sta
     for (Candidate& c : fresh_) {
       while (old != order_.end() && old->first < c.key) ++old;
       if (old != order_.end() && old->first == c.key) {
+        std::swap(new_surfaces_[new_proofs_.size()], surfaces[old->second]);
         new_proofs_.push_back(proofs[old->second]);
         c.cached = pairs[old->second].cached;
       } else {
@@ -112,6 +117,7 @@ void PairTable::remake(FclBroadphase& broadphase, BodyId id_limit, bool warm_sta
   }
   pairs.swap(fresh_);
   proofs.swap(new_proofs_);
+  surfaces.swap(new_surfaces_);
 }
 
 void PairTable::requery_pairs(FclBroadphase& broadphase, BodyId id_limit) {
@@ -141,11 +147,14 @@ void PairTable::requery_pairs(FclBroadphase& broadphase, BodyId id_limit) {
     pairs.pop_back();
     proofs[i] = proofs.back();
     proofs.pop_back();
+    std::swap(surfaces[i], surfaces.back());
+    surfaces.pop_back();
   }
   for (std::size_t j = 0; j < fresh_.size(); ++j) {
     if (kept_[j]) continue;
     pairs.push_back(fresh_[j]);
     proofs.emplace_back(fresh_[j].key);
+    surfaces.emplace_back();
   }
 }
 

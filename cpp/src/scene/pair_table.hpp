@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "../solvers/expanding_polytope.hpp"
 #include "fcl_broadphase.hpp"
 #include "pair_cache.hpp"
 #include "scene_body.hpp"
@@ -34,6 +35,9 @@ class PairTable {
   /// The pairs, and `proofs[i]` what the last query proved about `pairs[i]`.
   std::vector<Candidate> pairs;
   std::vector<PairProof> proofs;
+  /// `surfaces[i]` the surface of `pairs[i]`'s last expanding polytope, where a contact's depth
+  /// kept one (penetration's KeptSurface).
+  std::vector<KeptSurface> surfaces;
 
   /// Whether two broadphase objects make a pair: two bodies whose filters pair them and whose
   /// pair is not excluded. Read from the objects, whose copies of the ids and filters lie beside
@@ -89,6 +93,7 @@ class PairTable {
   std::vector<std::pair<std::uint64_t, std::uint32_t>> order_;
   std::vector<std::pair<std::uint64_t, std::uint32_t>> order_scratch_;
   std::vector<PairProof> new_proofs_;
+  std::vector<KeptSurface> new_surfaces_;
 };
 
 }  // namespace swarmcollide::detail

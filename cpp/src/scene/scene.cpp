@@ -129,6 +129,7 @@ void Scene::Impl::answer_chunk(const PairQuestion& question, std::size_t begin,
     } else if (c.cached) {
       // Not a candidate: its proof is dropped, as when the broadphase no longer returns a pair.
       table.proofs[i] = PairProof(c.key);
+      table.surfaces[i].clear();
       c.cached = false;
     }
   }
@@ -146,7 +147,8 @@ void Scene::Impl::answer_chunk(const PairQuestion& question, std::size_t begin,
       detail::answer_pair(
           {&c.first->body, &c.first->pose, c.first->travelled, c.first->compound.get()},
           {&c.second->body, &c.second->pose, c.second->travelled, c.second->compound.get()},
-          proof, pair_options, question, answer);
+          proof, pair_options, question, answer,
+          question.warm ? &table.surfaces[picked[k]] : nullptr);
     } catch (const std::invalid_argument& error) {
       throw std::invalid_argument("bodies " + std::to_string(c.first->id) + " and " +
                                   std::to_string(c.second->id) + ": " + error.what());

@@ -181,9 +181,10 @@ bool settles_signed_distance(const FramedPair& pair, const MinNormPoint& corral,
 }
 
 Answer exact_penetration(const FramedPair& pair, int max_iterations, const Vector3& hint,
-                         Scalar distance_upper, const MinNormPoint* nearest) {
+                         Scalar distance_upper, const MinNormPoint* nearest,
+                         KeptSurface* surface) {
   PenetrationBounds bounds =
-      penetration(pair.a, pair.b, hint, nearest, pair.tolerance, max_iterations);
+      penetration(pair.a, pair.b, hint, nearest, pair.tolerance, max_iterations, surface);
   Answer answer;
   // The separation less what the scans in the bodies' own frames may fall short by: the query
   // layer's verdicts subtract kFrameRounding, which covers the rest of the solver's margin (64 u

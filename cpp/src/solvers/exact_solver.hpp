@@ -3,6 +3,7 @@
 
 #include "../geometry/framed_body.hpp"
 #include "answer.hpp"
+#include "expanding_polytope.hpp"
 #include "swarmcollide/queries/options.hpp"
 #include "wolfe_min_norm.hpp"
 
@@ -44,9 +45,11 @@ bool settles_signed_distance(const FramedPair& pair, const MinNormPoint& corral,
 /// (which may be zero); `distance_upper`, any upper bound on their distance, also bounds the
 /// signed distance. `nearest`, when not null, is the corral of Wolfe's algorithm on B - A run to
 /// its stopping tests: the solver does not run it again, and the expanding polytope starts from
-/// its tetrahedron if that encloses the origin (an intersection proof).
+/// its tetrahedron if that encloses the origin (an intersection proof). `surface`, when not
+/// null, is the pair's kept surface (penetration's).
 Answer exact_penetration(const FramedPair& pair, int max_iterations, const Vector3& hint,
-                         Scalar distance_upper, const MinNormPoint* nearest = nullptr);
+                         Scalar distance_upper, const MinNormPoint* nearest = nullptr,
+                         KeptSurface* surface = nullptr);
 
 /// The exact signed distance: `exact_distance` when a direction proves the bodies apart, the
 /// certified penetration depth otherwise (starting from the direction `hint`, which may be zero).

@@ -293,6 +293,85 @@ ExpansionResult ExpandingPolytope::run(const FramedBody& a, const FramedBody& b,
     heap_.emplace_back(faces_[f].distance, f);
   }
   std::make_heap(heap_.begin(), heap_.end(), kNearestFirst);
+  return expand_surface(a, b, stop_gap, max_iterations, false);
+}
+
+ExpansionResult ExpandingPolytope::run(const FramedBody& a, const FramedBody& b,
+                                       const KeptSurface& kept, Scalar stop_gap,
+                                       int max_iterations, bool& started) {
+  started = false;
+  ExpansionResult result;
+  if (kept.faces.size() < 4) return result;
+  kept_depth_ = -1;
+  vertices_.clear();
+  norms_.clear();
+  points_a_.clear();
+  points_b_.clear();
+  for (const std::array<int, 2>& c : kept.corners) {
+    if (c[0] < 0 || c[0] >= a.size() || c[1] < 0 || c[1] >= b.size()) return result;
+    points_a_.push_back(a.vertex(c[0]));
+    points_b_.push_back(b.vertex(c[1]));
+    const Vector3 w = -(points_b_.back() - points_a_.back());
+    vertices_.push_back({w, c[0], c[1]});
+    norms_.push_back(w.norm());
+  }
+  const int corners = static_cast<int>(vertices_.size());
+  const int count = static_cast<int>(kept.faces.size());
+  if (faces_.size() < kept.faces.size()) faces_.resize(2 * kept.faces.size());
+  heap_.clear();
+  for (int f = 0; f < count; ++f) {
+    const KeptSurface::Face& k = kept.faces[f];
+    if (k.v[0] >= corners || k.v[1] >= corners || k.v[2] >= corners) return result;
+    if (!make_face(k.v[0], k.v[1], k.v[2], faces_[f])) return result;
+    for (int e = 0; e < 3; ++e) {
+      faces_[f].adj[e] = k.adj[e];
+      faces_[f].adj_edge[e] = k.adj_edge[e];
+    }
+    heap_.emplace_back(faces_[f].distance, f);
+  }
+  face_count_ = count;
+  // The adjacency is read as kept: verify checks it from scratch before any bound is proven.
+  std::make_heap(heap_.begin(), heap_.end(), kNearestFirst);
+  started = true;
+  return expand_surface(a, b, stop_gap, max_iterations, true);
+}
+
+void ExpandingPolytope::keep(const ExpansionResult& last, int most_corners, KeptSurface& out) {
+  out.clear();
+  if (!last.verified || static_cast<int>(vertices_.size()) > most_corners) return;
+  // Only live faces, renumbered; every corner is kept (a corner no live face uses is rare).
+  std::vector<int>& number = stack_;
+  number.assign(static_cast<std::size_t>(face_count_), -1);
+  int live = 0;
+  for (int f = 0; f < face_count_; ++f) {
+    if (faces_[f].alive) number[f] = live++;
+  }
+  if (live > 255) return;
+  out.corners.reserve(vertices_.size());
+  out.faces.reserve(static_cast<std::size_t>(live));
+  for (const DifferencePoint& v : vertices_) out.corners.push_back({v.ia, v.ib});
+  for (int f = 0; f < face_count_; ++f) {
+    const Face& face = faces_[f];
+    if (!face.alive) continue;
+    KeptSurface::Face k;
+    for (int e = 0; e < 3; ++e) {
+      k.v[e] = static_cast<std::uint8_t>(face.v[e]);
+      const int across = face.adj[e] >= 0 && face.adj[e] < face_count_ ? number[face.adj[e]] : -1;
+      if (across < 0) {
+        out.clear();
+        return;
+      }
+      k.adj[e] = static_cast<std::uint8_t>(across);
+      k.adj_edge[e] = static_cast<std::uint8_t>(face.adj_edge[e]);
+    }
+    out.faces.push_back(k);
+  }
+}
+
+ExpansionResult ExpandingPolytope::expand_surface(const FramedBody& a, const FramedBody& b,
+                                                  Scalar stop_gap, int max_iterations,
+                                                  bool placed) {
+  ExpansionResult result;
   // Climbs start from a corner on large polytopes only: a curved body's support ignores starts.
   const bool climb_a = !a.curved() && a.size() > kHillClimbingThreshold;
   const bool climb_b = !b.curved() && b.size() > kHillClimbingThreshold;
@@ -302,11 +381,13 @@ ExpansionResult ExpandingPolytope::run(const FramedBody& a, const FramedBody& b,
   // have their own heights, and no scan shortfall: a positive one tells a placed body.
   const bool keep_a = climb_a && a.scan_shortfall() > 0;
   const bool keep_b = climb_b && b.scan_shortfall() > 0;
-  points_a_.clear();
-  points_b_.clear();
-  for (const DifferencePoint& v : vertices_) {
-    if (keep_a) points_a_.push_back(a.vertex(v.ia));
-    if (keep_b) points_b_.push_back(b.vertex(v.ib));
+  if (!placed) {
+    points_a_.clear();
+    points_b_.clear();
+    for (const DifferencePoint& v : vertices_) {
+      if (keep_a) points_a_.push_back(a.vertex(v.ia));
+      if (keep_b) points_b_.push_back(b.vertex(v.ib));
+    }
   }
   const auto height_a = [&](int v, const Vector3& n) {
     return keep_a ? points_a_[v].dot(n) : a.height(vertices_[v].ia, n);

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <limits>
 #include <vector>
 
@@ -15,6 +16,27 @@ struct DifferencePoint {
   Vector3 w = Vector3::Zero();
   int ia = -1;
   int ib = -1;
+};
+
+/// An expansion's last surface by the bodies' point indices, kept to start a later one at other
+/// poses (a scene's pair in contact, frame after frame): each corner is placed again from its
+/// indices and each face proven oriented again from them, so what was kept is only where the
+/// expansion starts, never part of a proof. Empty when nothing is kept.
+struct KeptSurface {
+  /// (index in A, index in B) of each corner.
+  std::vector<std::array<int, 2>> corners;
+  /// Each face's corners (counter-clockwise seen from outside), the face across each edge k
+  /// (corner k to k + 1) and which edge of that face it is.
+  struct Face {
+    std::array<std::uint8_t, 3> v;
+    std::array<std::uint8_t, 3> adj;
+    std::array<std::uint8_t, 3> adj_edge;
+  };
+  std::vector<Face> faces;
+  void clear() {
+    corners.clear();
+    faces.clear();
+  }
 };
 
 /// What the expansion proved and found.
@@ -67,8 +89,20 @@ class ExpandingPolytope {
   ExpansionResult run(const FramedBody& a, const FramedBody& b,
                       const std::array<DifferencePoint, 4>& start, Scalar stop_gap,
                       int max_iterations);
+  /// The same from the surface `kept` at the bodies' present poses: `started` is false (and
+  /// nothing run) when a corner's indices are out of range or a face cannot be proven oriented
+  /// with the origin inside there.
+  ExpansionResult run(const FramedBody& a, const FramedBody& b, const KeptSurface& kept,
+                      Scalar stop_gap, int max_iterations, bool& started);
+  /// The last run's surface into `out` when it was verified and has at most `most_corners`
+  /// corners; `out` emptied otherwise.
+  void keep(const ExpansionResult& last, int most_corners, KeptSurface& out);
 
  private:
+  // The expansion from the surface in vertices_, faces_ and heap_.
+  // `placed`: points_a_ and points_b_ already hold every vertex's points.
+  ExpansionResult expand_surface(const FramedBody& a, const FramedBody& b, Scalar stop_gap,
+                                 int max_iterations, bool placed);
   struct Face {
     std::array<int, 3> v;         // vertices, counter-clockwise seen from outside
     std::array<int, 3> adj;       // the face across edge k (v[k] -> v[k + 1])

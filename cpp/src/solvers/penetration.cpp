@@ -32,6 +32,13 @@ constexpr long long kAxesFallbackWork = 1LL << 22;
 constexpr int kWitnessWidenings = 5;
 // Iterations of Wolfe's algorithm on the witnesses' features (it stops at rounding long before).
 constexpr int kWitnessIterations = 100;
+// Corners of a surface kept for the next solve of the same pair (KeptSurface): an expansion
+// adds one or two per frame to the one it started from, and a larger one costs more to place
+// again than a few steps from a tetrahedron.
+constexpr int kMostKeptCorners = 16;
+// Steps from a tetrahedron from which its surface is kept: a resting contact's tetrahedron on
+// its face takes one or two, fewer than placing a surface's faces again costs.
+constexpr int kKeptFromSteps = 4;
 
 // Buffers a solve reuses from the previous one on the same thread.
 struct Workspace {
@@ -99,8 +106,9 @@ int scanned_support(const FramedBody& body, Scalar shortfall, const Vector3& n, 
 class Solver {
  public:
   Solver(const FramedBody& a, const FramedBody& b, Scalar tolerance, int max_iterations,
-         Scalar coordinate)
-      : a_(a),
+         Scalar coordinate, KeptSurface* surface = nullptr)
+      : surface_(surface),
+        a_(a),
         b_(b),
         tolerance_(tolerance),
         max_iterations_(std::max(1, max_iterations)),
@@ -117,8 +125,9 @@ class Solver {
     // the directions to measure: the hint is tried only if they leave a gap. Otherwise Wolfe's
     // nearest point (the caller's, or found here from the hint) bounds the distance, and its
     // tetrahedron, if it encloses the origin, starts the polytope.
-    const bool enclosed = nearest != nullptr && nearest->size == MinNormPoint::kCapacity &&
-                          enclose(*nearest);
+    const bool enclosed =
+        (surface_ != nullptr && enclose_kept()) ||
+        (nearest != nullptr && nearest->size == MinNormPoint::kCapacity && enclose(*nearest));
     if (!enclosed) {
       offer_hint(hint);
       if (nearest != nullptr) {
@@ -139,6 +148,13 @@ class Solver {
     if (!done() && axes_work(a_, b_) <= kAxesFallbackWork) {
       enumerate_axes();
       finish();
+    }
+    if (surface_ != nullptr) {
+      if (expanded_ && (expanded_from_kept_ || expansion_.iterations >= kKeptFromSteps)) {
+        ws_.polytope.keep(expansion_, kMostKeptCorners, *surface_);
+      } else {
+        surface_->clear();
+      }
     }
     return result();
   }
@@ -279,8 +295,31 @@ class Solver {
       start_tetrahedron[k] = {-m.corral[k].p, m.corral[k].ia, m.corral[k].ib};
     }
     const Scalar stop_gap = std::max(polytope_gap(), floor() / 4);
+    expanded_from_kept_ = false;
+    return use_expansion(ws_.polytope.run(a_, b_, start_tetrahedron, stop_gap, max_iterations_));
+  }
+
+  // The expanding polytope from the surface this pair's last one ended with (surface_), its
+  // corners placed at these poses: after a small motion most of its faces are still where the
+  // new expansion would put them, and it needs a step or two instead of a few from a
+  // tetrahedron. False when that surface does not enclose the origin provably any more (a face
+  // cannot be proven oriented), or its expansion stopped short of the gap (a horizon that is not
+  // one loop, on a surface the motion left a little concave), or proved no bound: the
+  // tetrahedron's expansion then runs as if nothing were kept.
+  bool enclose_kept() {
+    const Scalar stop_gap = std::max(polytope_gap(), floor() / 4);
+    bool started = false;
     const ExpansionResult e =
-        ws_.polytope.run(a_, b_, start_tetrahedron, stop_gap, max_iterations_);
+        ws_.polytope.run(a_, b_, *surface_, stop_gap, max_iterations_, started);
+    if (!started || !e.converged) return false;
+    expanded_from_kept_ = true;
+    return use_expansion(e);
+  }
+
+  // What an expansion found: its best normal is offered, and its bound proven if verified.
+  bool use_expansion(const ExpansionResult& e) {
+    expanded_ = true;
+    expansion_ = e;
     iterations_ += e.iterations;
     if (e.best_separation > -kInfinity && offer(e.best_normal, e.best_separation)) {
       // The supports there seed the scans that measure it, and the face may give the witnesses.
@@ -529,6 +568,12 @@ class Solver {
     return r;
   }
 
+  // The surface kept for this pair (null: none), read before and written after the solve.
+  KeptSurface* surface_;
+  // Whether an expansion ran, and the last one's result (its surface is the workspace's).
+  bool expanded_ = false;
+  bool expanded_from_kept_ = false;
+  ExpansionResult expansion_;
   const FramedBody& a_;
   const FramedBody& b_;
   Scalar tolerance_;
@@ -564,10 +609,10 @@ class Solver {
 }  // namespace
 
 PenetrationBounds penetration(const FramedBody& a, const FramedBody& b, const Vector3& hint,
-                              const MinNormPoint* nearest, Scalar tolerance,
-                              int max_iterations) {
+                              const MinNormPoint* nearest, Scalar tolerance, int max_iterations,
+                              KeptSurface* surface) {
   const Scalar coordinate = std::max(coordinate_bound(a), coordinate_bound(b));
-  Solver solver(a, b, tolerance, max_iterations, coordinate);
+  Solver solver(a, b, tolerance, max_iterations, coordinate, surface);
   return solver.solve(hint, nearest);
 }
 

@@ -2,6 +2,7 @@
 #pragma once
 
 #include "../geometry/framed_body.hpp"
+#include "expanding_polytope.hpp"
 #include "swarmcollide/geometry/hull.hpp"
 #include "swarmcollide/problem/convex_weights.hpp"
 #include "swarmcollide/types.hpp"
@@ -85,8 +86,13 @@ struct PenetrationBounds {
 /// those read; a large body's scan is the branch and bound of its SupportTree, built once per
 /// body), so the lower bound's margin includes both bodies' `scan_shortfall`. Once a thread's
 /// buffers have grown (and the bodies' trees are built), nothing is allocated.
+/// `surface`, when not null, is the surface of this pair's last expansion (KeptSurface, empty
+/// when none): if it still encloses the origin at these poses the expansion starts from it
+/// instead of a tetrahedron, and the surface this solve ends with replaces it (emptied when no
+/// expansion ran, or its surface proved nothing).
 PenetrationBounds penetration(const FramedBody& a, const FramedBody& b, const Vector3& hint,
-                              const MinNormPoint* nearest, Scalar tolerance, int max_iterations);
+                              const MinNormPoint* nearest, Scalar tolerance, int max_iterations,
+                              KeptSurface* surface = nullptr);
 
 /// The same for the convex hulls of the rows of `a` and `b` (points given in the frame), whose
 /// hulls are `hull_a` and `hull_b`.
