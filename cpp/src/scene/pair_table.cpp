@@ -70,6 +70,15 @@ std::size_t PairTable::cached_pairs() const {
                     [](const PairProof& p) { return p.kind != PairProof::Kind::none; }));
 }
 
+std::size_t PairTable::cache_bytes() const {
+  std::size_t bytes =
+      proofs.capacity() * sizeof(PairProof) + surfaces.capacity() * sizeof(KeptSurface);
+  for (const KeptSurface& s : surfaces) {
+    bytes += s.corners.capacity() * sizeof(s.corners[0]) + s.faces.capacity() * sizeof(s.faces[0]);
+  }
+  return bytes;
+}
+
 void PairTable::add_pair(const BoxedObject* a, const BoxedObject* b,
                          std::vector<Candidate>& out) const {
   if (!pairable(*a, *b)) return;

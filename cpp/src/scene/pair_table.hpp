@@ -67,6 +67,8 @@ class PairTable {
   void remove(const std::unordered_set<BodyId>& gone);
   /// How many pairs have a proof.
   std::size_t cached_pairs() const;
+  /// The bytes the proofs and the kept surfaces take.
+  std::size_t cache_bytes() const;
 
  private:
   void add_pair(const BoxedObject* a, const BoxedObject* b, std::vector<Candidate>& out) const;

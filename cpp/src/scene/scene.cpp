@@ -203,7 +203,7 @@ void Scene::Impl::answer(const PairQuestion& asked) {
   if (!std::is_sorted(found.begin(), found.end(), by_key)) {
     detail::sort_by_pair_key(found, found_scratch, next_id, [](const Found& f) { return f.first; });
   }
-  stats.cache_bytes = table.proofs.capacity() * sizeof(PairProof);
+  stats.cache_bytes = table.cache_bytes();
 }
 
 void Scene::Impl::tally(SceneStats& s, const PairAnswer& a) {

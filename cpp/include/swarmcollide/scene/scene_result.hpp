@@ -75,7 +75,8 @@ struct SceneStats {
   /// Candidates whose answer (verdict, and value where one is reported) is proven.
   std::size_t certified = 0;
   /// Pairs with cached proofs after the query, and the bytes their storage takes: a 64-byte
-  /// record for every pair whose broadphase boxes (padded boxes with margins for motion) overlap.
+  /// record for every pair whose broadphase boxes (padded boxes with margins for motion) overlap,
+  /// and, for a pair in contact, the last expanding polytope's surface (at most 16 corners).
   std::size_t cached_pairs = 0;
   std::size_t cache_bytes = 0;
 };
