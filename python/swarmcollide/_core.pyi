@@ -1250,7 +1250,8 @@ class SceneStats:
     cached_pairs, cache_bytes : int
         Pairs with a cached proof after the query, and the bytes their storage takes: a 64-byte
         record for every pair whose broadphase boxes (padded boxes with margins for motion)
-        overlap.
+        overlap, and for a pair in contact the last expanding polytope's surface (at most 16
+        corners).
     """
     def __repr__(self) -> str:
         ...
