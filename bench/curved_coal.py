@@ -129,7 +129,7 @@ def check(cases: List[dict], request, result) -> Dict[str, int]:
             c["a"].bounding_radius, c["b"].bounding_radius)
 
         def inside(value: float, slack: float) -> bool:
-            return ours.lower_bound - slack * size <= value <= ours.distance + slack * size
+            return bool(ours.lower_bound - slack * size <= value <= ours.distance + slack * size)
 
         found["certified"] += bool(ours.certified)
         found["overlapping"] += bool(ours.distance < 0)
@@ -142,7 +142,7 @@ def check(cases: List[dict], request, result) -> Dict[str, int]:
         if exact is not None:
             found["closed_form"] += 1
             found["ours_off_closed_form"] += not inside(exact, 1e-12)
-            found["coal_off_closed_form"] += abs(theirs - exact) > 1e-6 * size
+            found["coal_off_closed_form"] += bool(abs(theirs - exact) > 1e-6 * size)
     return found
 
 
