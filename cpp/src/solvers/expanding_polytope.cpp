@@ -230,22 +230,27 @@ bool ExpandingPolytope::expand(int closest, int added) {
   return true;
 }
 
+bool ExpandingPolytope::linked(int i) const {
+  const Face& f = faces_[i];
+  for (int k = 0; k < 3; ++k) {
+    const int g = f.adj[k];
+    const int e = f.adj_edge[k];
+    if (g < 0 || g >= face_count_ || e < 0 || e > 2 || !faces_[g].alive) return false;
+    const Face& h = faces_[g];
+    if (h.adj[e] != i || h.adj_edge[e] != k) return false;
+    if (h.v[e] != f.v[(k + 1) % 3] || h.v[(e + 1) % 3] != f.v[k]) return false;
+  }
+  return true;
+}
+
 bool ExpandingPolytope::verify(Scalar& depth_lower) const {
   Scalar nearest = 1e300;
   bool any = false;
-  const int count = face_count_;
-  for (int i = 0; i < count; ++i) {
+  for (int i = 0; i < face_count_; ++i) {
     const Face& f = faces_[i];
     if (!f.alive) continue;
     any = true;
-    for (int k = 0; k < 3; ++k) {
-      const int g = f.adj[k];
-      const int e = f.adj_edge[k];
-      if (g < 0 || g >= count || e < 0 || e > 2 || !faces_[g].alive) return false;
-      const Face& h = faces_[g];
-      if (h.adj[e] != i || h.adj_edge[e] != k) return false;
-      if (h.v[e] != f.v[(k + 1) % 3] || h.v[(e + 1) % 3] != f.v[k]) return false;
-    }
+    if (!linked(i)) return false;
     // Its orientation was proven and its bound `low` computed when make_face built it, from
     // these very vertices (a face never changes; the expansion replaces faces whole).
     nearest = std::min(nearest, f.low);
@@ -330,7 +335,11 @@ ExpansionResult ExpandingPolytope::run(const FramedBody& a, const FramedBody& b,
     heap_.emplace_back(faces_[f].distance, f);
   }
   face_count_ = count;
-  // The adjacency is read as kept: verify checks it from scratch before any bound is proven.
+  // The expansion walks the adjacency before verify checks it again: a kept surface whose
+  // neighbours do not name each other back (or name no face) starts nothing.
+  for (int f = 0; f < count; ++f) {
+    if (!linked(f)) return result;
+  }
   std::make_heap(heap_.begin(), heap_.end(), kNearestFirst);
   started = true;
   return expand_surface(a, b, stop_gap, max_iterations, true);

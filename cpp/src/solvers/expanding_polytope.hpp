@@ -137,6 +137,9 @@ class ExpandingPolytope {
   static constexpr int kConeBroken = -2;
   // Faces that may join the visible ones in one expansion (see expand).
   static constexpr int kWidenings = 16;
+  // Whether live face i's neighbours across its edges are live faces that name it back across
+  // the same edge, reversed: the closed surface verify proves and the expansion walks.
+  bool linked(int i) const;
   bool verify(Scalar& depth_lower) const;
 
   std::vector<DifferencePoint> vertices_;
