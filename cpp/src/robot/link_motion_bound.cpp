@@ -377,7 +377,7 @@ LinkMotionBound::DirectionalSpeed LinkMotionBound::directional_speed(
   // The joints above the frame C the pair is measured in, and C's deviation from rigid (the
   // header): none and 0 in the world's frame.
   const std::size_t shared = shared_joints(chains_, la, lb);
-  const Scalar sigma = common_sigma(pair);
+  const Scalar sigma = sigma_after(la, shared);
   const Scalar in_common = (1 + 4 * sigma) * kRoundUp;
   DirectionalSpeed speed{0, 0, 0, 2 * sigma};
   const auto add = [&](int g, const PlacedChain& placed) {
@@ -425,10 +425,11 @@ int LinkMotionBound::common_link(const GeometryPair& pair) const {
 }
 
 Scalar LinkMotionBound::common_sigma(const GeometryPair& pair) const {
-  const std::size_t shared = shared_count(pair);
-  if (shared == 0) return 0;
-  return chain_sigma_[chains_[static_cast<std::size_t>(model_.geometries()[pair.a].link)]
-                             [shared - 1]];
+  return sigma_after(model_.geometries()[pair.a].link, shared_count(pair));
+}
+
+Scalar LinkMotionBound::sigma_after(int link, std::size_t shared) const {
+  return shared == 0 ? 0 : chain_sigma_[chains_[static_cast<std::size_t>(link)][shared - 1]];
 }
 
 Scalar LinkMotionBound::pair_margin(const GeometryPair& pair) const {

@@ -158,6 +158,9 @@ class LinkMotionBound {
   Scalar pair_margin(const GeometryPair& pair) const;
 
  private:
+  // sigma_C of the frame where link `link`'s chain parts from another after `shared` joints.
+  Scalar sigma_after(int link, std::size_t shared) const;
+
   struct GeometryMotion {
     // Per joint of the link's chain (root first): the speed of the geometry's points due to it,
     // per unit of time.

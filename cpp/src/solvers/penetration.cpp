@@ -186,6 +186,8 @@ class Solver {
     if (!(a_.curved() || b_.curved()) || !scanned_a || !scanned_b) return tolerance_ / 2;
     return std::max(tolerance_ / 2, tolerance_ - 2 * margin() - 64 * kRoundoff * reach());
   }
+  // Where an expansion stops: the polytope's gap, and no finer than a quarter of the floor.
+  Scalar stop_gap() const { return std::max(polytope_gap(), floor() / 4); }
 
   // Flat bodies touch along their plane and two segments along their common normal, which the
   // polytope cannot find when A - B has no interior; trying these costs a few climbs.
@@ -294,9 +296,9 @@ class Solver {
     for (int k = 0; k < 4; ++k) {
       start_tetrahedron[k] = {-m.corral[k].p, m.corral[k].ia, m.corral[k].ib};
     }
-    const Scalar stop_gap = std::max(polytope_gap(), floor() / 4);
     expanded_from_kept_ = false;
-    return use_expansion(ws_.polytope.run(a_, b_, start_tetrahedron, stop_gap, max_iterations_));
+    return use_expansion(
+        ws_.polytope.run(a_, b_, start_tetrahedron, stop_gap(), max_iterations_));
   }
 
   // The expanding polytope from the surface this pair's last one ended with (surface_), its
@@ -307,10 +309,9 @@ class Solver {
   // one loop, on a surface the motion left a little concave), or proved no bound: the
   // tetrahedron's expansion then runs as if nothing were kept.
   bool enclose_kept() {
-    const Scalar stop_gap = std::max(polytope_gap(), floor() / 4);
     bool started = false;
     const ExpansionResult e =
-        ws_.polytope.run(a_, b_, *surface_, stop_gap, max_iterations_, started);
+        ws_.polytope.run(a_, b_, *surface_, stop_gap(), max_iterations_, started);
     if (!started || !e.converged) return false;
     expanded_from_kept_ = true;
     return use_expansion(e);
