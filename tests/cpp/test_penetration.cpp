@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <random>
 #include <string>
@@ -201,8 +202,8 @@ TEST(Penetration, RandomOverlapsAtVariousDepthsMatchTheOracle) {
 
 // A pair's kept surface (KeptSurface) starts the expansion at the next poses: the answers keep
 // the contract frame after frame as the bodies turn and slide through each other, and a surface
-// spoiled on purpose (corners swapped, an index out of range, an adjacency broken) is either
-// refused or still proves only true bounds.
+// spoiled on purpose (corners swapped, an index out of range, a face or edge named that is not
+// there, an adjacency broken) is either refused or still proves only true bounds.
 TEST(Penetration, KeptSurfacesStartLaterExpansionsAndProveOnlyTrueBounds) {
   std::mt19937_64 rng(24);
   std::uniform_real_distribution<Scalar> unit(-1, 1);
@@ -223,7 +224,11 @@ TEST(Penetration, KeptSurfacesStartLaterExpansionsAndProveOnlyTrueBounds) {
       const detail::FramedPair pair = detail::frame_validated_pair(a, Pose(), b, pose_b, 1e-9);
       if (!surface.faces.empty()) {
         ++started_kept;
-        // Spoiled as a stale or mistaken cache could be.
+        // Spoiled as a stale or mistaken cache could be: a face or an edge that is not there
+        // is refused; neighbours that do not name each other back are left to the final check.
+        const auto faces = static_cast<std::uint8_t>(surface.faces.size());
+        if (frame == 3) surface.faces.back().adj[1] = faces;
+        if (frame == 4) surface.faces[1].adj_edge[2] = 3;
         if (frame == 5) std::swap(surface.corners[0], surface.corners[1]);
         if (frame == 6) surface.corners.back()[1] = static_cast<int>(b.size());
         if (frame == 7) surface.faces[0].adj[0] = surface.faces[0].adj[1];
