@@ -269,6 +269,7 @@ ExpansionResult ExpandingPolytope::run(const FramedBody& a, const FramedBody& b,
                                        int max_iterations) {
   ExpansionResult result;
   kept_depth_ = -1;
+  started_from_ = nullptr;
   vertices_.assign(start.begin(), start.end());
   norms_.clear();
   for (const DifferencePoint& v : vertices_) norms_.push_back(v.w.norm());
@@ -310,6 +311,7 @@ ExpansionResult ExpandingPolytope::run(const FramedBody& a, const FramedBody& b,
                                        int max_iterations, bool& started) {
   started = false;
   ExpansionResult result;
+  started_from_ = nullptr;
   if (kept.faces.size() < 4) return result;
   kept_depth_ = -1;
   vertices_.clear();
@@ -346,10 +348,17 @@ ExpansionResult ExpandingPolytope::run(const FramedBody& a, const FramedBody& b,
   face_count_ = count;
   std::make_heap(heap_.begin(), heap_.end(), kNearestFirst);
   started = true;
+  started_from_ = &kept;
   return expand_surface(a, b, stop_gap, max_iterations, true);
 }
 
 void ExpandingPolytope::keep(const ExpansionResult& last, int most_corners, KeptSurface& out) {
+  // A run from `out` that added no face (faces are only ever added: face_count_ counts the
+  // replaced ones too) ends on the very surface `out` holds, faces and corners in its order.
+  if (started_from_ == &out && face_count_ == static_cast<int>(out.faces.size()) &&
+      vertices_.size() == out.corners.size() && last.verified) {
+    return;
+  }
   out.clear();
   if (!last.verified || static_cast<int>(vertices_.size()) > most_corners) return;
   // Only live faces, renumbered; every corner is kept (a corner no live face uses is rare).

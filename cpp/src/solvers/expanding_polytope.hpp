@@ -166,6 +166,9 @@ class ExpandingPolytope {
   // The best depth bound of a surface verified before a step that dipped below it (see expand);
   // negative when none was.
   Scalar kept_depth_ = -1;
+  // The surface the last run started from, when it was a kept one (keep() need not rewrite it
+  // where the run added nothing).
+  const KeptSurface* started_from_ = nullptr;
 };
 
 }  // namespace swarmcollide::detail
