@@ -192,6 +192,21 @@ py::object answer(const Query& query, PairQuery kind, const py::handle& a, const
     polyhedron_a = &body_a.emplace(a, "a").get();
     polyhedron_b = &body_b.emplace(b, "b").get();
   }
+  if (kind == PairQuery::collide) {
+    // The verdict alone: Query::collide builds no DistanceResult.
+    const auto decide = [&] {
+      return placed ? query.collide(*polyhedron_a, place_a, *polyhedron_b, place_b, escalate)
+                    : query.collide(*polyhedron_a, *polyhedron_b, escalate);
+    };
+    bool colliding = false;
+    if (releases_gil(query.options(), polyhedron_a->size() + polyhedron_b->size())) {
+      py::gil_scoped_release release;
+      colliding = decide();
+    } else {
+      colliding = decide();
+    }
+    return py::bool_(colliding);
+  }
   const auto solve = [&] {
     return answer_bodies(query, kind, *polyhedron_a, place_a, *polyhedron_b, place_b, escalate,
                          placed);
@@ -203,7 +218,6 @@ py::object answer(const Query& query, PairQuery kind, const py::handle& a, const
   } else {
     result = solve();
   }
-  if (kind == PairQuery::collide) return py::bool_(result.colliding);
   return py::cast(std::move(result));
 }
 

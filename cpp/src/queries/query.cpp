@@ -57,6 +57,19 @@ QueryOptions escalation(const QueryOptions& options) {
   return exact;
 }
 
+// Whether `pair` collides, as collision() decides it: collide returns only the verdict, so it
+// is taken from the values a batch row keeps, without the DistanceResult (weights over the
+// given points, history) that collision() builds, a tenth of an overlapping verdict's cost
+// between small bodies.
+bool verdict_of(const QueryOptions& options, const detail::FramedPair& pair, bool escalate) {
+  if (pair.a.curved() || pair.b.curved()) {
+    detail::require_shapes(options.method, pair.a.body(), pair.b.body());
+  }
+  return detail::answer_row(options, detail::solver_for(options.method), detail::Goal::verdict,
+                            pair, escalate)
+      .values.colliding;
+}
+
 }  // namespace
 
 namespace detail {
@@ -123,12 +136,17 @@ DistanceResult Query::collision(const ConvexPolyhedron& a, const Pose& pose_a,
 }
 
 bool Query::collide(const ConvexPolyhedron& a, const ConvexPolyhedron& b, bool escalate) const {
-  return collision(a, b, escalate).colliding;
+  require(options_.method, kCollide, "collide");
+  return verdict_of(options_,
+                    detail::frame_validated_pair(a, kIdentity, b, kIdentity, options_.tolerance),
+                    escalate);
 }
 
 bool Query::collide(const ConvexPolyhedron& a, const Pose& pose_a, const ConvexPolyhedron& b,
                     const Pose& pose_b, bool escalate) const {
-  return collision(a, pose_a, b, pose_b, escalate).colliding;
+  require(options_.method, kCollide, "collide");
+  return verdict_of(options_, detail::frame_pair(a, pose_a, b, pose_b, options_.tolerance),
+                    escalate);
 }
 
 DistanceResult Query::signed_distance(const ConvexPolyhedron& a, const ConvexPolyhedron& b) const {
