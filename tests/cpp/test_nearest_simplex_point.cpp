@@ -48,12 +48,18 @@ Simplex simplex_of(const std::array<Vector3, 4>& points) {
 }
 
 // The projection's answer is a face of the given simplex (its points in their order) with
-// positive weights summing to one; returns the norm of their combination.
+// positive weights summing to one, and the point it hands back is their combination as Wolfe's
+// algorithm forms it (combination(), the same operations: equal values) with its squared norm;
+// returns the norm of that combination.
 Scalar checked_norm(const Simplex& given, int m) {
   Simplex s;
   std::array<Scalar, 4> w{};
   int size = 0;
-  nearest_simplex_point(given, m, s, w, size);
+  Vector3 point;
+  Scalar norm2 = 0;
+  nearest_simplex_point(given, m, s, w, size, false, point, norm2);
+  EXPECT_EQ(point, combination(s, w, size));
+  EXPECT_EQ(norm2, point.squaredNorm());
   EXPECT_GE(size, 1);
   EXPECT_LE(size, m);
   Scalar total = 0;

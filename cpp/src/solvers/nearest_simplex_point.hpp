@@ -27,9 +27,24 @@ namespace swarmcollide::detail {
 /// `bounded`: the caller knows every coordinate is at most 2^100 in magnitude (points of a frame,
 /// framed_body.hpp), so only the last point's are read to rule out the scaling below whenever
 /// one of them is at least 2^-100; the answer is the same bit for bit.
+/// `point` and `norm2`: the nearest point, the combination of `face` with weights `w`, and its
+/// squared norm, which Wolfe's algorithm takes as its corral's point instead of forming it again:
+/// the weights times the points summed in order, as combination() (wolfe_min_norm.hpp) sums them
+/// onto a zero vector, so the same values (only a zero coordinate's sign may differ, -0 where
+/// combination's first sum makes +0).
 template <class Point>
 void nearest_simplex_point(const std::array<Point, 4>& s, int m, std::array<Point, 4>& face,
-                           std::array<Scalar, 4>& w, int& size, bool bounded = false);
+                           std::array<Scalar, 4>& w, int& size, bool bounded, Vector3& point,
+                           Scalar& norm2);
+
+/// The same without the point.
+template <class Point>
+void nearest_simplex_point(const std::array<Point, 4>& s, int m, std::array<Point, 4>& face,
+                           std::array<Scalar, 4>& w, int& size, bool bounded = false) {
+  Vector3 point;
+  Scalar norm2;
+  nearest_simplex_point(s, m, face, w, size, bounded, point, norm2);
+}
 
 namespace nearest_simplex_detail {
 
@@ -39,13 +54,16 @@ namespace nearest_simplex_detail {
 constexpr Scalar kFlat = 1e-8;
 
 // The nearest point found so far: a face of the simplex (`size` of its points, by index,
-// increasing) with weights on them, and the squared norm of their combination. Candidates are
-// offered to it in place: returning faces by value costs more than the arithmetic here.
+// increasing) with weights on them, their combination `point` (the weights times the points,
+// summed in order; a tetrahedron's interior point is left to the caller) and its squared norm.
+// Candidates are offered to it in place: returning faces by value costs more than the
+// arithmetic here.
 struct Nearest {
   std::array<int, 4> index{};
   std::array<Scalar, 4> weight{};
   int size = 0;
   Scalar norm2 = std::numeric_limits<Scalar>::infinity();
+  Vector3 point;
 };
 
 inline void offer_vertex(const Vector3& p, int i, Nearest& best) {
@@ -55,6 +73,7 @@ inline void offer_vertex(const Vector3& p, int i, Nearest& best) {
   best.weight[0] = 1;
   best.size = 1;
   best.norm2 = norm2;
+  best.point = p;
 }
 
 // The segment from a (index ia) to b (index ib). True when its nearest point lies inside it
@@ -77,7 +96,8 @@ inline bool offer_segment(const Vector3& a, const Vector3& b, int ia, int ib, Ne
     offer_vertex(b, ib, best);
     return false;
   }
-  const Scalar norm2 = (wa * a + wb * b).squaredNorm();
+  const Vector3 point = wa * a + wb * b;
+  const Scalar norm2 = point.squaredNorm();
   if (!(norm2 < best.norm2)) return true;
   best.index[0] = ia;
   best.index[1] = ib;
@@ -85,6 +105,7 @@ inline bool offer_segment(const Vector3& a, const Vector3& b, int ia, int ib, Ne
   best.weight[1] = wb;
   best.size = 2;
   best.norm2 = norm2;
+  best.point = point;
   return true;
 }
 
@@ -112,7 +133,8 @@ inline bool offer_triangle(const Vector3& a, const Vector3& b, const Vector3& c,
     const Scalar wc = vc / nn;
     const Scalar wa = 1 - wb - wc;
     if (wa > 0 && wb > 0 && wc > 0) {
-      const Scalar norm2 = (wa * a + wb * b + wc * c).squaredNorm();
+      const Vector3 point = wa * a + wb * b + wc * c;
+      const Scalar norm2 = point.squaredNorm();
       if (norm2 < best.norm2) {
         best.index[0] = ia;
         best.index[1] = ib;
@@ -122,6 +144,7 @@ inline bool offer_triangle(const Vector3& a, const Vector3& b, const Vector3& c,
         best.weight[2] = wc;
         best.size = 3;
         best.norm2 = norm2;
+        best.point = point;
       }
       return true;
     }
@@ -215,7 +238,8 @@ inline void offer_tetrahedron(const Vector3& a, const Vector3& b, const Vector3&
 
 template <class Point>
 void nearest_simplex_point(const std::array<Point, 4>& s, int m, std::array<Point, 4>& face,
-                           std::array<Scalar, 4>& w, int& size, bool bounded) {
+                           std::array<Scalar, 4>& w, int& size, bool bounded, Vector3& point,
+                           Scalar& norm2) {
   using namespace nearest_simplex_detail;
   std::array<Vector3, 4> scaled;
   std::array<const Vector3*, 4> p = {&s[0].p, &s[1].p, &s[2].p, &s[3].p};
@@ -230,6 +254,7 @@ void nearest_simplex_point(const std::array<Point, 4>& s, int m, std::array<Poin
                                     std::abs(last.y()) >= kSmallest ||
                                     std::abs(last.z()) >= kSmallest);
   Scalar reach = 1;
+  bool rescaled = false;
   if (!in_range) {
     Vector3 largest = s[0].p.cwiseAbs();
     for (int k = 1; k < m; ++k) largest = largest.cwiseMax(s[k].p.cwiseAbs());
@@ -241,6 +266,7 @@ void nearest_simplex_point(const std::array<Point, 4>& s, int m, std::array<Poin
       scaled[k] = factor * s[k].p;
       p[k] = &scaled[k];
     }
+    rescaled = true;
   }
   Nearest f;
   switch (m) {
@@ -262,6 +288,16 @@ void nearest_simplex_point(const std::array<Point, 4>& s, int m, std::array<Poin
     w[k] = f.weight[k];
   }
   size = f.size;
+  // The offers' point is the combination of the points they were given, in the face's order:
+  // the caller's own unless they were scaled. A tetrahedron's interior point (Cramer's) is not.
+  if (!rescaled && f.size > 0 && f.size < 4) {
+    point = f.point;
+    norm2 = f.norm2;
+    return;
+  }
+  point = Vector3::Zero();
+  for (int k = 0; k < f.size; ++k) point += w[k] * face[k].p;
+  norm2 = point.squaredNorm();
 }
 
 }  // namespace swarmcollide::detail

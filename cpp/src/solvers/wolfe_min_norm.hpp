@@ -66,6 +66,8 @@ MinNormPoint wolfe_min_norm_from(const Oracle& oracle, const MinNormPoint& start
   // A start of several points is first brought to the nearest point of its hull (where it may
   // already be, up to rounding).
   bool settle = start.size > 1;
+  // |x|^2 of the current corral's point, which the projection gave with it.
+  Scalar xx = start.x.squaredNorm();
   int iteration = 1;
   for (; iteration <= max_iterations; ++iteration) {
     MinNormPoint& now = corrals[current];
@@ -73,7 +75,6 @@ MinNormPoint wolfe_min_norm_from(const Oracle& oracle, const MinNormPoint& start
     int m = now.size;
     if (!settle) {
       const Vector3& x = now.x;
-      const Scalar xx = x.squaredNorm();
       if (xx == 0) break;
       const Scalar norm = std::sqrt(xx);
       if (stop(now, norm, static_cast<const OraclePoint*>(nullptr))) break;
@@ -90,11 +91,11 @@ MinNormPoint wolfe_min_norm_from(const Oracle& oracle, const MinNormPoint& start
       now.corral[m] = q;
       ++m;
     }
-    nearest_simplex_point(now.corral, m, next.corral, next.weights, next.size, bounded);
-    next.x = combination(next.corral, next.weights, next.size);
-    const Scalar before = now.x.squaredNorm();
-    const Scalar after = next.x.squaredNorm();
-    if (!(settle ? after <= before : after < before)) break;  // no progress left above rounding
+    Scalar after;
+    nearest_simplex_point(now.corral, m, next.corral, next.weights, next.size, bounded, next.x,
+                          after);
+    if (!(settle ? after <= xx : after < xx)) break;  // no progress left above rounding
+    xx = after;
     settle = false;
     current = 1 - current;
   }
