@@ -20,6 +20,10 @@ struct BodyBalls {
   /// The unit outward normals of the hull's triangles in the body's frame, found with the inner
   /// ball (else null): the axes apart_across_faces tries.
   const std::vector<Vector3>* face_normals = nullptr;
+  /// The same normals by coordinate, for scans two at a time (null with more than
+  /// PointColumns::kCapacity of them): the nearest normal is the first of the largest inner
+  /// products, each rounded as Vector3::dot rounds it, bit for bit.
+  const PointColumns* normal_columns = nullptr;
   /// The body's ConvexPolyhedron::centred_columns, looked up with the balls: a row's screens scan
   /// the bodies up to six times, and a lookup out of line for each scan cost collide_many 48
   /// instructions per row (8 vertices, overlapping: swarmcollide-thread-scaling count).
