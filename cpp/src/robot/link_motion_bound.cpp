@@ -425,7 +425,7 @@ LinkMotionBound::TwistSpeed LinkMotionBound::twist_speed(const GeometryPair& pai
                                                          const PlacedChain& placed_b) const {
   // As directional_speed: measured in the frame C where the chains part.
   const std::size_t shared = shared_count(pair);
-  const Scalar sigma = common_sigma(pair);
+  const Scalar sigma = sigma_after(model_.geometries()[pair.a].link, shared);
   const Scalar in_common = (1 + 4 * sigma) * kRoundUp;
   // The separation's rate at the sample is within [low, high], to `error`.
   Scalar low = 0;
