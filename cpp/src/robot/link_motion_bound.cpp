@@ -105,6 +105,7 @@ LinkMotionBound::LinkMotionBound(const RobotModel& model) : model_(model) {
   start_axes_.assign(joints.size(), Vector3::Zero());
   end_axes_.assign(joints.size(), Vector3::Zero());
   change_.resize(joints.size());
+  velocity_.resize(joints.size());
   slide_.resize(joints.size());
   value_error_.resize(joints.size());
   geometries_.resize(geometries.size());
@@ -123,12 +124,13 @@ void LinkMotionBound::set_motion(const Scalar* q0, const Scalar* q1,
   for (std::size_t j = 0; j < joints.size(); ++j) {
     const Joint& joint = joints[j];
     const int dof = model_.driving_dof(static_cast<int>(j));
-    change_[j] = slide_[j] = value_error_[j] = 0;
+    change_[j] = slide_[j] = value_error_[j] = velocity_[j] = 0;
     if (dof < 0) continue;
     const Scalar rate = std::abs(joint.mimic < 0 ? 1 : joint.multiplier);
     const Scalar v0 = model_.joint_value(static_cast<int>(j), q0[dof]);
     const Scalar v1 = model_.joint_value(static_cast<int>(j), q1[dof]);
     change_[j] = rate * std::abs(q1[dof] - q0[dof]) * kRoundUp;
+    velocity_[j] = (joint.mimic < 0 ? 1 : joint.multiplier) * (q1[dof] - q0[dof]);
     // q(t) = q0 + t (q1 - q0), the mimic's multiple and offset, and the motion's `value -
     // reference` are each a few roundoffs of these magnitudes away from the exact values.
     value_error_[j] = 8 * kUnit *
@@ -244,7 +246,7 @@ void LinkMotionBound::set_motion(const Scalar* q0, const Scalar* q1,
       const int j = chain[k];
       if (model_.driving_dof(j) < 0) continue;
       motion.terms.push_back({k, joints[j].type != JointType::prismatic, change_[j],
-                              1 + 4 * chain_sigma_[j], motion.speed_below[k]});
+                              1 + 4 * chain_sigma_[j], motion.speed_below[k], velocity_[j]});
     }
   }
 }
@@ -303,7 +305,10 @@ void LinkMotionBound::place_chain(int g, const std::vector<Pose>& links, const P
   if (placed.axis.size() != chain.size()) {
     placed.axis.assign(chain.size(), Vector3::Zero());
     placed.reach.assign(chain.size(), 0);
+    placed.origin.assign(chain.size(), Vector3::Zero());
   }
+  placed.centre = centre;
+  placed.radius = bounds.radius + slack;
   for (std::size_t k = first; k < chain.size(); ++k) {
     const int j = chain[k];
     if (model_.driving_dof(j) < 0) {
@@ -315,6 +320,7 @@ void LinkMotionBound::place_chain(int g, const std::vector<Pose>& links, const P
     const Pose& frame = links[static_cast<std::size_t>(joint.child)];
     const Vector3 axis = (frame.rotation * joint.axis).normalized();
     placed.axis[k] = axis;
+    placed.origin[k] = frame.translation;
     placed.reach[k] = joint.type == JointType::prismatic
                           ? 0
                           : off_axis(centre - frame.translation, axis) + bounds.radius + slack;
@@ -410,6 +416,93 @@ LinkMotionBound::DirectionalSpeed LinkMotionBound::directional_speed(
   speed.linear *= kRoundUp;
   speed.quadratic *= kRoundUp;
   speed.cubic *= kRoundUp;
+  return speed;
+}
+
+LinkMotionBound::TwistSpeed LinkMotionBound::twist_speed(const GeometryPair& pair,
+                                                         const Vector3& n,
+                                                         const PlacedChain& placed_a,
+                                                         const PlacedChain& placed_b) const {
+  // As directional_speed: measured in the frame C where the chains part.
+  const std::size_t shared = shared_count(pair);
+  const Scalar sigma = sigma_after(model_.geometries()[pair.a].link, shared);
+  const Scalar in_common = (1 + 4 * sigma) * kRoundUp;
+  // The separation's rate at the sample is within [low, high], to `error`.
+  Scalar low = 0;
+  Scalar high = 0;
+  Scalar error = 0;
+  TwistSpeed speed{0, 0, 0, 0, 0};
+  const auto add = [&](int g, const PlacedChain& placed, Scalar side) {
+    if (model_.geometries()[static_cast<std::size_t>(g)].link < 0) return;
+    const std::vector<GeometryMotion::Term>& terms =
+        geometries_[static_cast<std::size_t>(g)].terms;
+    Vector3 w = Vector3::Zero();
+    Scalar along = 0;
+    Scalar spread_error = 0;
+    // The sums from each joint down of the joints' speeds at the sample (S_k) and of their
+    // growth, made by taking each joint's term off the whole: each step rounds by at most a
+    // roundoff of the whole, which `slack` adds back.
+    Scalar p0 = 0;
+    Scalar p1 = 0;
+    for (std::size_t i = terms.size(); i-- > 0;) {
+      const GeometryMotion::Term& term = terms[i];
+      if (term.k < shared) break;
+      const Scalar m = term.change * (term.rigid * in_common);
+      p0 += m * (term.turn ? placed.reach[term.k] : 1);
+      if (term.turn) p1 += m * term.below;
+    }
+    const Scalar slack = 4 * static_cast<Scalar>(terms.size() + 1) * kUnit;
+    const Scalar slack0 = slack * p0;
+    const Scalar slack1 = slack * p1;
+    Scalar omega = 0;
+    for (const GeometryMotion::Term& term : terms) {
+      if (term.k < shared) continue;
+      const Vector3& axis = placed.axis[term.k];
+      const Scalar m = term.change * (term.rigid * in_common);
+      const Scalar s0 = m * (term.turn ? placed.reach[term.k] : 1);
+      const Scalar s1 = term.turn ? m * term.below : 0;
+      speed.a0 += omega * s0;
+      speed.a1 += omega * s1;
+      if (!term.turn) {
+        along += term.velocity * n.dot(axis);
+        error += m * (16 * kUnit + 4.01 * sigma);
+      } else {
+        const Vector3 offset = placed.centre - placed.origin[term.k];
+        along += term.velocity * n.dot(axis.cross(offset));
+        w += term.velocity * axis;
+        error += m * ((64 * kUnit + 8 * sigma) * offset.norm() +
+                      (8 * kUnit + 4.01 * sigma) * placed.reach[term.k]);
+        spread_error += m;
+        const Scalar across = n.cross(axis).norm() + 8 * kUnit + 4.01 * sigma;
+        const Scalar from0 = p0 + slack0;
+        const Scalar from1 = p1 + slack1;
+        speed.a0 += m * across * from0;
+        speed.a1 += m * (across * from1 + omega * from0);
+        speed.a2 += m * omega * from1;
+        omega += m;
+      }
+      p0 = std::max<Scalar>(p0 - s0, 0);
+      p1 = std::max<Scalar>(p1 - s1, 0);
+    }
+    // The ball's points: its centre's rate along n, give or take r |n x W|.
+    const Scalar spread =
+        placed.radius * (n.cross(w).norm() + spread_error * (16 * kUnit + 8 * sigma));
+    if (side > 0) {
+      low += along - spread;
+      high += along + spread;
+    } else {
+      low -= along + spread;
+      high -= along - spread;
+    }
+  };
+  add(pair.a, placed_a, -1);
+  add(pair.b, placed_b, 1);
+  error = error * kRoundUp + 16 * kUnit * (std::abs(low) + std::abs(high));
+  speed.forward = -low + error;
+  speed.backward = high + error;
+  speed.a0 *= kRoundUp;
+  speed.a1 *= kRoundUp;
+  speed.a2 *= kRoundUp;
   return speed;
 }
 

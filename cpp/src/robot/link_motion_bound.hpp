@@ -128,7 +128,44 @@ class LinkMotionBound {
   struct PlacedChain {
     std::vector<Vector3> axis;
     std::vector<Scalar> reach;
+    /// Per joint, its child frame's origin (a point of its axis); the geometry's bounding ball's
+    /// centre and its radius with the frames' rounding (what `reach` adds to the distance).
+    std::vector<Vector3> origin;
+    Vector3 centre = Vector3::Zero();
+    Scalar radius = 0;
   };
+  /// The twist bound along a unit direction n: over a time h forward (backward) a separation
+  /// `apart` along n leaves the pair at least `apart (1 - loss) - (forward h + a0 h^2 / 2 + a1
+  /// h^3 / 6 + a2 h^4 / 12)` apart (`backward` in place of `forward`; `loss` directional_speed's).
+  ///
+  /// Proof. In the frame C the pair is measured in, a geometry's points move with the twist of
+  /// its joints below C: x' = sum_k w_k a_k x (x - o_k) over its turns (rate w_k, unit axis a_k
+  /// through o_k) plus sum_k w_k a_k over its slides, i.e. x' = V + W x x with W = sum w_k a_k
+  /// over the turns. For a point pair (x in A, y in B) f = n . (y - x) has f(t + h) = f(t) + h
+  /// f'(t) + int_0^h (h - s) f''(t + s) ds. Every point lies in the bounding ball (c, r), so
+  /// n . x' >= n . x'(c) - r |n x W| and <= n . x'(c) + r |n x W|: f'(t) >= low and <= high
+  /// (forward = -low, backward = high, each with the rounding added). The acceleration of a
+  /// material point is x'' = sum_k (Omega_k x v_k(x) + w_k a_k x v_{>=k}(x)), with v_k(x) the
+  /// velocity joint k alone gives x, v_{>=k} the sum from k down, and Omega_k the angular velocity
+  /// of the frames above k below C (differentiate w_k a_k x (x - o_k): a_k turns at Omega_k, o_k
+  /// moves with the frames above, and (A x B) x C + B x (A x C) = A x (B x C) folds the two
+  /// Omega_k terms into one; a slide's v_k = w_k a_k turns at Omega_k alone). With |v_k| <= S_k =
+  /// |w_k| (d_k + s B_k) (d_k the reach about k's axis at the sample, B_k the speed of the joints
+  /// below it over the motion: they alone change that distance; |w_k| for a slide) and |n x a_k|
+  /// <= c_k + s Omega_k, |n . x''| <= sum_k (Omega_k S_k + |w_k| (c_k + s Omega_k) sum_{j >= k}
+  /// S_j) = a0 + a1 s + a2 s^2 at a time s either way, and the integral gives the h^2, h^3, h^4
+  /// terms. The frames' deviation from rigid and the placed chains' rounding are the factors and
+  /// slacks directional_speed takes (1 + 4 sigma on every rate, 8u + 4.01 sigma_C on |n x a|),
+  /// with 64u + 8 sigma of |c - o_k| per turn for the rounding of the cross products.
+  struct TwistSpeed {
+    Scalar forward;
+    Scalar backward;
+    Scalar a0;
+    Scalar a1;
+    Scalar a2;
+  };
+  TwistSpeed twist_speed(const GeometryPair& pair, const Vector3& direction, const PlacedChain& a,
+                         const PlacedChain& b) const;
   /// Geometry `g`'s chain at the configuration of `links`, the geometry at `pose`, into `placed`;
   /// the joints before `first` in the chain are left as they were (a pair's shared joints, which
   /// neither speed of the pair reads: `shared_count`).
@@ -183,6 +220,8 @@ class LinkMotionBound {
       Scalar change;
       Scalar rigid;
       Scalar below;
+      // Its signed rate (the joint value's change over the motion).
+      Scalar velocity;
     };
     std::vector<Term> terms;
   };
@@ -211,6 +250,8 @@ class LinkMotionBound {
   std::vector<Scalar> axis_reach_;
   // Per motion: each joint's change (absolute), its largest slide, the rounding of its value.
   std::vector<Scalar> change_;
+  // Per motion: each joint's signed change (its value's rate).
+  std::vector<Scalar> velocity_;
   std::vector<Scalar> slide_;
   std::vector<Scalar> value_error_;
   // Per motion: each turning joint's axis in the world at the two ends.
