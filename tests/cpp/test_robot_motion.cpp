@@ -107,6 +107,31 @@ TimeOfMotion random_time(const RobotModel& model, detail::LinkMotionBound& bound
   return at;
 }
 
+// A second time t of the motion `at` to measure from at.s, either way from it: any time on even
+// samples, within 0.01 of at.s on odd ones (where the bounds are tight); h = |t - at.s|, the
+// configuration then, and link `common`'s pose then (the identity for -1, the world's frame).
+struct OtherTime {
+  Scalar t;
+  Scalar h;
+  Eigen::RowVectorXd q;
+  Pose common;
+};
+
+OtherTime other_time(const RobotModel& model, const TimeOfMotion& at, int sample, int common,
+                     std::mt19937_64& rng) {
+  std::uniform_real_distribution<Scalar> unit(0, 1);
+  OtherTime other;
+  other.t = sample % 2 == 0 ? unit(rng) : at.s + (unit(rng) - 0.5) * 0.02;
+  other.h = std::abs(other.t - at.s);
+  other.q = at.q0 + other.t * (at.q1 - at.q0);
+  if (common >= 0) {
+    std::vector<Pose> links;
+    link_poses(model, other.q.data(), links);
+    other.common = links[common];
+  }
+  return other;
+}
+
 TEST(RobotMotion, EveryPointMovesNoFartherThanItsGeometrysBound) {
   const RobotModel arm = spatial_arm();
   ASSERT_EQ(arm.dof(), 3);  // the wrist is fixed, the finger mimics the turn
@@ -152,16 +177,14 @@ TEST(RobotMotion, PointsMoveNoFartherThanTheLocalBoundAroundAConfiguration) {
   const RobotModel arm = spatial_arm();
   detail::LinkMotionBound bound(arm);
   std::mt19937_64 rng(9);
-  std::uniform_real_distribution<Scalar> unit(0, 1);
   const int table = 6;
   Scalar tightest = 0;
   for (int motion = 0; motion < 200; ++motion) {
     const TimeOfMotion at = random_time(arm, bound, rng);
     for (int sample = 0; sample < 10; ++sample) {
-      // Either way from s, far and near.
-      const Scalar t = sample % 2 == 0 ? unit(rng) : at.s + (unit(rng) - 0.5) * 0.02;
-      const Scalar h = std::abs(t - at.s);
-      const Eigen::RowVectorXd qt = at.q0 + t * (at.q1 - at.q0);
+      const OtherTime other = other_time(arm, at, sample, -1, rng);
+      const Scalar h = other.h;
+      const Eigen::RowVectorXd& qt = other.q;
       for (int g = 0; g < table; ++g) {
         const Pose from = geometry_pose(arm, at.qs, g);
         const Pose to = geometry_pose(arm, qt, g);
@@ -187,7 +210,6 @@ TEST(RobotMotion, PointsMoveAlongADirectionNoFartherThanTheDirectionalBound) {
   const RobotModel arm = spatial_arm();
   detail::LinkMotionBound bound(arm);
   std::mt19937_64 rng(13);
-  std::uniform_real_distribution<Scalar> unit(0, 1);
   std::normal_distribution<Scalar> normal;
   const int table = 6;
   Scalar tightest = 0;
@@ -197,9 +219,9 @@ TEST(RobotMotion, PointsMoveAlongADirectionNoFartherThanTheDirectionalBound) {
     const Vector3 n = motion % 2 == 0 ? Vector3::UnitZ()
                                       : Vector3(normal(rng), normal(rng), normal(rng)).normalized();
     for (int sample = 0; sample < 10; ++sample) {
-      const Scalar t = sample % 2 == 0 ? unit(rng) : at.s + (unit(rng) - 0.5) * 0.02;
-      const Scalar h = std::abs(t - at.s);
-      const Eigen::RowVectorXd qt = at.q0 + t * (at.q1 - at.q0);
+      const OtherTime other = other_time(arm, at, sample, -1, rng);
+      const Scalar h = other.h;
+      const Eigen::RowVectorXd& qt = other.q;
       for (int g = 0; g < table; ++g) {
         const Pose from = geometry_pose(arm, at.qs, g);
         const Pose to = geometry_pose(arm, qt, g);
@@ -225,7 +247,6 @@ TEST(RobotMotion, SelfPairsMoveAlongADirectionTurningWithTheirCommonFrameWithinT
   const RobotModel arm = spatial_arm();
   detail::LinkMotionBound bound(arm);
   std::mt19937_64 rng(17);
-  std::uniform_real_distribution<Scalar> unit(0, 1);
   std::normal_distribution<Scalar> normal;
   // Pairs whose chains share joints, with the links where they part: upper and finger part at
   // the shoulder's link, carriage and finger too, column and hand at the turn's link; base and
@@ -247,12 +268,10 @@ TEST(RobotMotion, SelfPairsMoveAlongADirectionTurningWithTheirCommonFrameWithinT
       // The direction in the common frame's coordinates.
       const Vector3 m = common_s.rotation.transpose() * n;
       for (int sample = 0; sample < 10; ++sample) {
-        const Scalar t = sample % 2 == 0 ? unit(rng) : at.s + (unit(rng) - 0.5) * 0.02;
-        const Scalar h = std::abs(t - at.s);
-        const Eigen::RowVectorXd qt = at.q0 + t * (at.q1 - at.q0);
-        std::vector<Pose> links_t;
-        link_poses(arm, qt.data(), links_t);
-        const Pose common_t = commons[p] < 0 ? Pose{} : links_t[commons[p]];
+        const OtherTime other = other_time(arm, at, sample, commons[p], rng);
+        const Scalar h = other.h;
+        const Eigen::RowVectorXd& qt = other.q;
+        const Pose& common_t = other.common;
         const Scalar allowed =
             h * (speed.linear + h * (speed.quadratic / 2 + h * speed.cubic / 3));
         // Each body's points move along m, in the common frame, by at most its share: the
@@ -282,7 +301,6 @@ TEST(RobotMotion, SeparationsAlongADirectionCloseNoFasterThanTheTwistBoundEither
   const RobotModel arm = spatial_arm();
   detail::LinkMotionBound bound(arm);
   std::mt19937_64 rng(19);
-  std::uniform_real_distribution<Scalar> unit(0, 1);
   std::normal_distribution<Scalar> normal;
   // Self pairs measured in the frame where their chains part, and links against the table.
   const GeometryPair pairs[] = {{2, 5}, {3, 5}, {1, 4}, {0, 4}, {2, 6}, {4, 6}, {5, 6}, {3, 6}};
@@ -301,13 +319,11 @@ TEST(RobotMotion, SeparationsAlongADirectionCloseNoFasterThanTheTwistBoundEither
       // The direction in the common frame's coordinates.
       const Vector3 m = common_s.rotation.transpose() * n;
       for (int sample = 0; sample < 10; ++sample) {
-        const Scalar t = sample % 2 == 0 ? unit(rng) : at.s + (unit(rng) - 0.5) * 0.02;
-        const Scalar h = std::abs(t - at.s);
-        const Eigen::RowVectorXd qt = at.q0 + t * (at.q1 - at.q0);
-        std::vector<Pose> links_t;
-        link_poses(arm, qt.data(), links_t);
-        const Pose common_t = common < 0 ? Pose{} : links_t[common];
-        const Scalar rate = t > at.s ? twist.forward : twist.backward;
+        const OtherTime other = other_time(arm, at, sample, common, rng);
+        const Scalar h = other.h;
+        const Eigen::RowVectorXd& qt = other.q;
+        const Pose& common_t = other.common;
+        const Scalar rate = other.t > at.s ? twist.forward : twist.backward;
         const Scalar allowed =
             h * (rate + h * (twist.a0 / 2 + h * (twist.a1 / 6 + h * twist.a2 / 12)));
         // How far the separation of any point of A and any of B along m shrank: A's points
