@@ -62,11 +62,12 @@ RobotModel spatial_arm() {
   return RobotModel(links, joints, geometries);
 }
 
-// Geometry g's pose at the configuration q.
+// Geometry g's pose at the configuration q (its origin for one fixed in the world, link -1).
 Pose geometry_pose(const RobotModel& model, const Eigen::RowVectorXd& q, int g) {
+  const Geometry& geometry = model.geometries()[g];
+  if (geometry.link < 0) return geometry.origin;
   std::vector<Pose> links;
   link_poses(model, q.data(), links);
-  const Geometry& geometry = model.geometries()[g];
   return compose(links[geometry.link], geometry.origin);
 }
 
