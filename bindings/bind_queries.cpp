@@ -137,6 +137,14 @@ bool releases_gil(const QueryOptions& options, int points) {
   return points > kReleaseAbovePoints || !method_info(options.method).always_certified;
 }
 
+// `solve()` without the GIL where `release` says so (releases_gil), with it otherwise.
+template <typename Solve>
+auto released_if(bool release, const Solve& solve) {
+  if (!release) return solve();
+  py::gil_scoped_release released;
+  return solve();
+}
+
 // `kind` between convex bodies or compound bodies, `escalate` for the verdicts. Without poses
 // (`placed` false: both were None) through the overloads without poses, which validate none.
 template <typename Body>
@@ -192,33 +200,20 @@ py::object answer(const Query& query, PairQuery kind, const py::handle& a, const
     polyhedron_a = &body_a.emplace(a, "a").get();
     polyhedron_b = &body_b.emplace(b, "b").get();
   }
+  const bool release = releases_gil(query.options(), polyhedron_a->size() + polyhedron_b->size());
   if (kind == PairQuery::collide) {
     // The verdict alone: Query::collide builds no DistanceResult.
     const auto decide = [&] {
       return placed ? query.collide(*polyhedron_a, place_a, *polyhedron_b, place_b, escalate)
                     : query.collide(*polyhedron_a, *polyhedron_b, escalate);
     };
-    bool colliding = false;
-    if (releases_gil(query.options(), polyhedron_a->size() + polyhedron_b->size())) {
-      py::gil_scoped_release release;
-      colliding = decide();
-    } else {
-      colliding = decide();
-    }
-    return py::bool_(colliding);
+    return py::bool_(released_if(release, decide));
   }
   const auto solve = [&] {
     return answer_bodies(query, kind, *polyhedron_a, place_a, *polyhedron_b, place_b, escalate,
                          placed);
   };
-  DistanceResult result;
-  if (releases_gil(query.options(), polyhedron_a->size() + polyhedron_b->size())) {
-    py::gil_scoped_release release;
-    result = solve();
-  } else {
-    result = solve();
-  }
-  return py::cast(std::move(result));
+  return py::cast(released_if(release, solve));
 }
 
 // The module's query functions (swarmcollide.queries) as written in Python, by PairQuery: their
