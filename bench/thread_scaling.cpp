@@ -19,10 +19,12 @@
 // threads run as on a quiet machine, where under the default scheduler a thread started for a
 // batch of a few milliseconds waits behind other sessions' work and two threads scale by 1.0x.
 //
-// With `count KIND STATE ROWS` (KIND collide, distance or signed_distance; STATE apart or
-// overlapping) it answers that batch once on one thread to warm it, then once more with
-// callgrind's collection on: run under `valgrind --tool=callgrind --collect-atstart=no`, the
-// instructions of the second call over ROWS are the instructions per row.
+// With `count KIND STATE ROWS [VERTICES [THREADS]]` (KIND collide, distance or signed_distance;
+// STATE apart or overlapping; VERTICES 8 unless given, THREADS 1) it answers that batch once to
+// warm it, then once more with callgrind's collection on: run under `valgrind --tool=callgrind
+// --collect-atstart=no`, the instructions of the second call over ROWS are the instructions per
+// row. It prints a hash of every field of every row, which a change that keeps the answers must
+// keep bit for bit (on any number of threads).
 #include <sys/resource.h>
 #include <time.h>
 #include <unistd.h>
@@ -322,28 +324,58 @@ void compare(const char* name, const Work& work, bool pooled, int rounds) {
   std::fflush(stdout);
 }
 
-int count_instructions(const std::string& kind, const std::string& state, std::size_t count) {
-  const sc::ConvexPolyhedron a = sphere_body(8, 1);
-  const sc::ConvexPolyhedron b = sphere_body(8, 2);
+// A hash of the bits of every field of every row of `result` (FNV-1a over their bytes).
+std::uint64_t result_hash(const sc::BatchResult& result) {
+  std::uint64_t hash = 14695981039346656037ULL;
+  const auto mix = [&hash](const void* data, std::size_t bytes) {
+    const auto* byte = static_cast<const unsigned char*>(data);
+    for (std::size_t k = 0; k < bytes; ++k) hash = (hash ^ byte[k]) * 1099511628211ULL;
+  };
+  for (std::size_t i = 0; i < result.rows(); ++i) {
+    const auto row = static_cast<Eigen::Index>(i);
+    const double values[] = {result.distance(row),   result.lower_bound(row),
+                             result.point_a(row, 0), result.point_a(row, 1),
+                             result.point_a(row, 2), result.point_b(row, 0),
+                             result.point_b(row, 1), result.point_b(row, 2),
+                             result.direction(row, 0), result.direction(row, 1),
+                             result.direction(row, 2)};
+    const int counts[] = {result.iterations(row), result.part_a(row), result.part_b(row)};
+    const bool flags[] = {result.colliding(row), result.certified(row), result.escalated(row)};
+    mix(values, sizeof values);
+    mix(counts, sizeof counts);
+    mix(flags, sizeof flags);
+  }
+  return hash;
+}
+
+int count_instructions(const std::string& kind, const std::string& state, std::size_t count,
+                       int vertices, int threads) {
+  const sc::ConvexPolyhedron a = sphere_body(vertices, 1);
+  const sc::ConvexPolyhedron b = sphere_body(vertices, 2);
   const PoseRows rows = poses(count, state == "apart" ? 3.0 : 1.8, 3);
   const Batch batch = kind == "collide"    ? Batch{&sc::collide_many}
                       : kind == "distance" ? Batch{&sc::distance_many}
                                            : Batch{&sc::signed_distance_many};
-  const Work work = pool(batch, a, b, rows);
-  work(0, 1);
+  sc::BatchSettings settings;
+  settings.threads = threads;
+  sc::BatchPoses at;
+  at.array_b = rows.part(0, rows.count);
+  batch(a, b, sc::QueryOptions{}, settings, at);
   CALLGRIND_TOGGLE_COLLECT;
-  work(0, 1);
+  const sc::BatchResult result = batch(a, b, sc::QueryOptions{}, settings, at);
   CALLGRIND_TOGGLE_COLLECT;
-  std::printf("%s %s %zu rows: checksum %.17g\n", kind.c_str(), state.c_str(), count,
-              sink_double);
+  std::printf("%s %s %zu rows, %d vertices, %d threads: hash %016llx\n", kind.c_str(),
+              state.c_str(), count, vertices, threads,
+              static_cast<unsigned long long>(result_hash(result)));
   return 0;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc == 5 && std::string(argv[1]) == "count") {
-    return count_instructions(argv[2], argv[3], std::strtoul(argv[4], nullptr, 10));
+  if (argc >= 5 && argc <= 7 && std::string(argv[1]) == "count") {
+    return count_instructions(argv[2], argv[3], std::strtoul(argv[4], nullptr, 10),
+                              argc > 5 ? std::atoi(argv[5]) : 8, argc > 6 ? std::atoi(argv[6]) : 1);
   }
   const std::size_t count = argc > 1 ? std::strtoul(argv[1], nullptr, 10) : 20000;
   const int rounds = argc > 2 ? std::atoi(argv[2]) : 11;
