@@ -190,8 +190,10 @@ class FramedBody {
   }
 
   // The body's points in its own frame, centred on its box (ConvexPolyhedron::centred_vertices),
-  // and its hull when it is not the body's (lazily built); the hull points when they are not
-  // every given point.
+  // and the hull its climbs read: the hull points' own when they are not every given point, the
+  // body's when they are (held, not asked of the body at every climb), none for a body scanned
+  // whole (hull() asks the body's, lazily built); the hull points when they are not every given
+  // point.
   const ConvexPolyhedron* body_;
   const VertexMatrix* vertices_;
   const Hull* hull_;
