@@ -318,6 +318,22 @@ TEST(Poses, OnlyFiniteProperRotationsAreRigidMotions) {
   }
 }
 
+// A large body climbs a hull held in its frame: the hull points' own when some given points lie
+// inside, the body's own when every point is a hull point (not asked of the body at every climb).
+TEST(FramedBodies, ClimbAHullTheyHold) {
+  Random rng(7);
+  VertexMatrix sphere(100, 3);
+  for (int i = 0; i < 100; ++i) sphere.row(i) = rng.vector().normalized().transpose();
+  const ConvexPolyhedron round(sphere);
+  const ConvexPolyhedron cloud = rng.body(100);
+  ASSERT_TRUE(round.hull_points().every_point);
+  ASSERT_FALSE(cloud.hull_points().every_point);
+  const detail::FramedPair pair =
+      detail::frame_pair(round, Pose{rng.rotation(), rng.vector()}, cloud, Pose{}, 1e-9);
+  EXPECT_EQ(&pair.a.hull(), &round.hull());
+  EXPECT_EQ(&pair.b.hull(), &cloud.hull_points().hull);
+}
+
 // The exact support is the largest height computed in the frame, whatever the body's own
 // coordinates (here 1e8 from the body, where they round a hundred million times coarser than
 // its frame coordinates); points given in the frame are answered as they are.
