@@ -78,7 +78,6 @@ FramedBody::FramedBody(const ConvexPolyhedron& body, const Pose& pose, bool rota
       given_ = &read;
     }
   }
-  if (rotated_) transposed_ = rotation_.transpose();
   const int half = -exponent_ / 2;
   scale_high_ = power_of_two(half);
   scale_low_ = power_of_two(-exponent_ - half);

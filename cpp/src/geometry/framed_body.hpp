@@ -124,14 +124,8 @@ class FramedBody {
     return in_frame_ ? point_height(*vertices_, i, d) : vertex(i).dot(d);
   }
   /// A frame direction in the body's own frame (support points do not depend on the scale).
-  /// `rotation^T d` as the columns of the transpose held (`transposed_`) times d's components, two
-  /// coordinates at a time, as the product with the rotation itself is formed: each coordinate
-  /// is summed as Eigen sums `rotation.transpose() * d` (`(r_0i d_0 + r_1i d_1) + r_2i d_2`), so
-  /// the same numbers, in 24 instructions instead of its 3 dot products' 33 (two per support
-  /// call of a rotated body: a curved pair asks about 140 per query).
   Vector3 local_direction(const Vector3& d) const {
-    if (!rotated_) return d;
-    return transposed_.col(0) * d.x() + transposed_.col(1) * d.y() + transposed_.col(2) * d.z();
+    return rotated_ ? Vector3(rotation_.transpose() * d) : d;
   }
   /// Index of a point farthest along frame direction `d`, by scanning the points in the body's
   /// own frame (see ConvexPolyhedron::support_index).
@@ -207,8 +201,6 @@ class FramedBody {
   // every framed query's loops for the few penetration calls it would spare.
   bool in_frame_;
   Matrix3 rotation_;
-  // rotation_'s transpose, for local_direction (set only when rotated_).
-  Matrix3 transposed_;
   bool rotated_;
   // The exact type of a curved body's support function when it is one of shapes.hpp's
   // (curved_supports.hpp), whose support curved_support calls without the virtual call. Beside
