@@ -173,6 +173,27 @@ TEST(Curved, SupportPointsAreInsideAndHighest) {
   }
 }
 
+// An ellipsoid's support point does not depend on the direction's length: a direction whose
+// largest component is within [2^-100, 2^100] is used as it is, others are first scaled by a
+// power of two (EllipsoidSupport::support), and the two must give the same point bit for bit,
+// on either side of both limits, for radii of very different sizes.
+TEST(Curved, EllipsoidSupportsDoNotDependOnThePowerOfTwoOfTheDirection) {
+  Random rng(29);
+  for (int trial = 0; trial < 400; ++trial) {
+    const Vector3 radii(std::exp(rng.uniform(-5, 5)), std::exp(rng.uniform(-5, 5)),
+                        std::exp(rng.uniform(-5, 5)));
+    const Ellipsoid e(radii);
+    Vector3 d = rng.unit();
+    if (trial % 3 == 1) d.y() = 0;
+    const Vector3 expected = e.curved()->support(d);
+    for (int exponent : {-300, -102, -101, -100, -99, -40, 0, 40, 99, 100, 101, 102, 300}) {
+      const Vector3 p = e.curved()->support(d * std::ldexp(1.0, exponent));
+      EXPECT_EQ(p, expected) << "radii " << radii.transpose() << ", direction "
+                             << d.transpose() << " times 2^" << exponent;
+    }
+  }
+}
+
 // A framed curved body calls shapes.hpp's support functions by their exact type
 // (FramedBody::curved_support, curved_supports.hpp), not through the virtual call: its support
 // points are the virtual call's, bit for bit, for every kind (a kind mapped to another shape's
