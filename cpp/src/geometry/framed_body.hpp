@@ -189,11 +189,11 @@ class FramedBody {
     return rotated_ ? Vector3(rotation_ * local + offset_) : Vector3(local + offset_);
   }
 
-  // The body's points in its own frame, centred on its box (ConvexPolyhedron::centred_vertices),
-  // and the hull its climbs read: the hull points' own when they are not every given point, the
-  // body's when they are (held, not asked of the body at every climb), none for a body scanned
-  // whole (hull() asks the body's, lazily built); the hull points when they are not every given
-  // point.
+  // vertices_: the points the supports read, in the body's own frame, centred on its box (the
+  // body's centred_vertices, or its hull points' when some given points lie inside; given_ then
+  // holds those hull points). hull_: the hull a large body's climbs read, held rather than asked
+  // of the body at every climb; null for a small body, scanned whole (hull() then asks the body,
+  // which builds it lazily).
   const ConvexPolyhedron* body_;
   const VertexMatrix* vertices_;
   const Hull* hull_;
