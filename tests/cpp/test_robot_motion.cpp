@@ -2,7 +2,8 @@
 // pair's speed bound allows, and a self pair's distance changes no faster than its bound, which
 // leaves out the joints both chains share, as do its directional and twist bounds in the frame
 // where the chains part), and robot_check_motion's bracket on a bar turning into a post, against
-// the closed form, also as a self pair carried by a turn both links share.
+// the closed form (at several time tolerances and contact thresholds), also as a self pair
+// carried by a turn both links share.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -477,15 +478,19 @@ void expect_bar_contact_bracketed(const RobotMotionCheck& check,
   EXPECT_LE(check.t_upper(0) - check.t_lower(0), options.time_tolerance);
 }
 
-TEST(RobotMotion, ABarTurningIntoAPostIsBracketedAtTheClosedForm) {
+// A bar from the axis of a turn about z to x = 1, 0.02 thick; a post 0.02 wide at (0, 0.6).
+RobotModel bar_and_post() {
   std::vector<Link> links{{"base"}, {"arm"}};
   std::vector<Joint> joints{{"turn", JointType::revolute, 0, 1, Pose{}, Vector3::UnitZ(), -3, 3,
                              0}};
-  // A bar from the axis to x = 1, 0.02 thick; a post 0.02 wide at (0, 0.6).
   std::vector<Geometry> geometries{
       {"bar", 1, placed({0.5, 0, 0}), Box(Vector3(0.5, 0.01, 0.01)), std::nullopt},
       {"post", -1, placed({0, 0.6, 0}), Box(Vector3(0.01, 0.01, 1)), std::nullopt}};
-  const RobotModel model(links, joints, geometries);
+  return RobotModel(links, joints, geometries);
+}
+
+TEST(RobotMotion, ABarTurningIntoAPostIsBracketedAtTheClosedForm) {
+  const RobotModel model = bar_and_post();
   Configurations q0(2, 1);
   Configurations q1(2, 1);
   q0 << 0, 0;
@@ -503,6 +508,28 @@ TEST(RobotMotion, ABarTurningIntoAPostIsBracketedAtTheClosedForm) {
     EXPECT_FALSE(check.touches(1));
     EXPECT_EQ(check.pair(1), -1);
     EXPECT_EQ(check.status[1], MotionStatus::converged);
+  }
+}
+
+TEST(RobotMotion, ABarTurningIntoAPostIsBracketedAtEveryTimeTolerance) {
+  // Where the steps fall below the time tolerance with a contact sampled ahead, the bracket is
+  // closed by a sample one tolerance ahead (or the interval split): at every width and contact
+  // threshold the bracket must hold the closed form's contact (at 1e-3 the sample ahead closes
+  // it, one tolerance wide, where splitting gave half of one).
+  const RobotModel model = bar_and_post();
+  Configurations q0(1, 1);
+  Configurations q1(1, 1);
+  q0 << 0;
+  q1 << 2;
+  for (const Scalar time_tolerance : {1e-3, 1e-5, 1e-7}) {
+    for (const Scalar tolerance : {1e-6, 1e-9}) {
+      TimeOfImpactOptions options;
+      options.time_tolerance = time_tolerance;
+      options.query.tolerance = tolerance;
+      const RobotMotionCheck check = robot_check_motion(model, {{0, 1}}, q0, q1, options, {});
+      ASSERT_TRUE(check.certified(0)) << time_tolerance << " " << tolerance;
+      expect_bar_contact_bracketed(check, options);
+    }
   }
 }
 

@@ -466,6 +466,19 @@ class MotionCheck {
         ahead.push_back(sample(pair, plan, std::min(horizon, low.t + width), horizon));
         continue;
       }
+      // Steps are below the time tolerance with a contact ahead: look one tolerance ahead rather
+      // than split the interval, as with none ahead. The steps stall where the pair closes at
+      // about the speed that bounds them, so the contact is mostly within the tolerance, and a
+      // contact there closes the bracket; a sample found apart is one more sample ahead.
+      // (bench/robot_motion_profile.py's 1000 edges: queries per edge 15.45 -> 15.26; callgrind
+      // on 200 edges 129.67M -> 128.53M. Probing past where `low`'s reach ends and closing the
+      // bracket from there, 14.81 queries per edge but 132.03M: the contact sample then
+      // overlaps, and the signed distance at the first contact runs the penetration solver.)
+      const Scalar probe = detail::advanced(low.t, width);
+      if (ahead.back().contact && probe > low.t && probe < limit) {
+        ahead.push_back(sample(pair, plan, probe, horizon));
+        continue;
+      }
       // Neither end proves the interval: split it.
       const Scalar middle = low.t + (limit - low.t) / 2;
       if (!(middle > low.t && middle < limit)) return unproven(low, MotionStatus::unresolved);
