@@ -38,30 +38,14 @@ fcl::detail::GJK<Scalar>::Status run_gjk(const FramedPair& pair, const fcl::Shap
 }
 
 // The support indices of `body` along `count` (at most 4) directions `local` in its own frame, into
-// `out`: on a small body one pass over its points for all the directions (the first highest
-// point each, as a scan finds it), on a large one a climb each from its hull's cube map of
-// starts (Hull::climb_starts), on a curved one its support function's point each.
+// `out`, each as the solvers find it: on a small body a scan of its points by coordinate, two
+// heights at a time (a single pass for all the directions, one height and one comparison at a
+// time, cost 70 to 900 instructions more per query at 4-32 vertices in callgrind_query.py, though
+// 41 fewer on overlapping 4-vertex pairs), on a large one a climb from its hull's cube map of
+// starts (Hull::climb_starts), on a curved one its support function's point.
 void local_supports(const FramedBody& body, const std::array<Vector3, 4>& local, int count,
                     std::array<int, 4>& out) {
-  if (body.curved() || body.size() > kHillClimbingThreshold) {
-    for (int k = 0; k < count; ++k) out[k] = body.local_support_index(local[k], -1);
-    return;
-  }
-  const VertexMatrix& points = body.local_points();
-  std::array<Scalar, 4> highest;
-  for (int k = 0; k < count; ++k) {
-    out[k] = 0;
-    highest[k] = point_height(points, 0, local[k]);
-  }
-  for (int i = 1; i < body.size(); ++i) {
-    for (int k = 0; k < count; ++k) {
-      const Scalar h = point_height(points, i, local[k]);
-      if (h > highest[k]) {
-        highest[k] = h;
-        out[k] = i;
-      }
-    }
-  }
+  for (int k = 0; k < count; ++k) out[k] = body.local_support_index(local[k], -1);
 }
 
 // The answer along the line between the bodies' centres: its separation (the lower bound) and
