@@ -7,6 +7,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "contract.hpp"
@@ -14,6 +15,7 @@
 #include "oracle.hpp"
 #include "paper_cases.hpp"
 #include "shapes.hpp"
+#include "swarmcollide/geometry/shapes.hpp"
 
 namespace swarmcollide::testing {
 namespace {
@@ -363,6 +365,84 @@ TEST(FramedBodies, ExactSupportIsTheLargestHeightInTheFrame) {
     EXPECT_EQ(in_frame.height(i, Vector3(0.3, -0.2, 0.9)),
               in_frame.vertex(i).dot(Vector3(0.3, -0.2, 0.9)));
   }
+}
+
+// Two framings of a pair agree field by field: a pair re-placed by KeptPair must be the pair
+// frame_turned_pair makes, so that a batch's answers are the same bit for bit.
+void expect_same_framing(const detail::FramedPair& kept, const detail::FramedPair& fresh) {
+  EXPECT_EQ(kept.frame.centre, fresh.frame.centre);
+  EXPECT_EQ(kept.frame.exponent, fresh.frame.exponent);
+  EXPECT_EQ(kept.frame.size, fresh.frame.size);
+  EXPECT_EQ(kept.tolerance, fresh.tolerance);
+  EXPECT_EQ(kept.radius_a, fresh.radius_a);
+  EXPECT_EQ(kept.radius_b, fresh.radius_b);
+  EXPECT_EQ(kept.support_error, fresh.support_error);
+  EXPECT_EQ(kept.adjusted, fresh.adjusted);
+  Random rng(11);
+  for (const auto& [k, f] : {std::pair{&kept.a, &fresh.a}, std::pair{&kept.b, &fresh.b}}) {
+    EXPECT_EQ(&k->body(), &f->body());
+    EXPECT_EQ(k->rotation(), f->rotation());
+    EXPECT_EQ(k->rotated(), f->rotated());
+    EXPECT_EQ(k->offset(), f->offset());
+    EXPECT_EQ(k->exponent(), f->exponent());
+    EXPECT_EQ(k->support_error(), f->support_error());
+    EXPECT_EQ(k->scan_shortfall(), f->scan_shortfall());
+    ASSERT_EQ(k->size(), f->size());
+    for (int i = 0; i < k->size(); ++i) EXPECT_EQ(k->vertex(i), f->vertex(i));
+    for (int n = 0; n < 20; ++n) {
+      const Vector3 d = rng.unit();
+      EXPECT_EQ(k->support_index(d), f->support_index(d));
+      EXPECT_EQ(k->support_index(d, 0), f->support_index(d, 0));
+    }
+  }
+}
+
+// A batch keeps its pair from row to row: re-placed under each row's poses it is the pair framed
+// anew (small, large, rounded and curved bodies, turned or not, far apart or near), a curved
+// body's support points start again from its own, and other bodies are framed anew.
+TEST(FramedBodies, AKeptPairReplacedIsThePairFramedAnew) {
+  Random rng(13);
+  const ConvexPolyhedron small = rng.body(8);
+  const ConvexPolyhedron large = rng.body(100);
+  const ConvexPolyhedron rounded(rng.body(6).vertices(), 0.25);
+  const Ellipsoid curved(Vector3(0.5, 1, 1.5));
+  const std::vector<std::pair<const ConvexPolyhedron*, const ConvexPolyhedron*>> bodies = {
+      {&small, &large}, {&rounded, &small}, {&curved, &small}, {&small, &curved}};
+  detail::KeptPair kept;
+  for (const auto& [a, b] : bodies) {
+    for (int row = 0; row < 6; ++row) {
+      const Pose pose_a = row % 3 == 0 ? Pose{} : Pose{rng.rotation(), rng.vector()};
+      const Pose pose_b{row % 2 == 0 ? Matrix3::Identity() : rng.rotation(),
+                        rng.vector() * std::pow(10.0, row - 2)};
+      const bool turned_a = !pose_a.has_identity_rotation();
+      const bool turned_b = !pose_b.has_identity_rotation();
+      const detail::FramedPair& pair = kept.frame(*a, pose_a, turned_a, *b, pose_b, turned_b, 1e-6);
+      const detail::FramedPair fresh =
+          detail::frame_turned_pair(*a, pose_a, turned_a, *b, pose_b, turned_b, 1e-6);
+      expect_same_framing(pair, fresh);
+      // A query's support points of a curved body are its own: the next row does not see them.
+      if (pair.a.curved()) pair.a.support_index(rng.unit());
+      if (pair.b.curved()) pair.b.support_index(rng.unit());
+    }
+  }
+}
+
+// A row that cannot be framed throws as frame_turned_pair does, and the pair kept answers the
+// next row as a pair framed anew.
+TEST(FramedBodies, AKeptPairRefusesWhatFramingRefuses) {
+  Random rng(17);
+  const ConvexPolyhedron a = rng.body(8);
+  const ConvexPolyhedron b = moved(rng.body(8), Vector3(1e308, 0, 0));
+  detail::KeptPair kept;
+  kept.frame(a, Pose{}, false, b, Pose{}, false, 1e-9);
+  // B's box centre lands beyond the double range.
+  const Pose beyond{Matrix3::Identity(), Vector3(1e308, 0, 0)};
+  EXPECT_THROW(kept.frame(a, Pose{}, false, b, beyond, false, 1e-9), std::invalid_argument);
+  EXPECT_THROW(detail::frame_turned_pair(a, Pose{}, false, b, beyond, false, 1e-9),
+               std::invalid_argument);
+  const Pose next{rng.rotation(), Vector3(0, 3, 0)};
+  expect_same_framing(kept.frame(a, Pose{}, false, b, next, true, 1e-9),
+                      detail::frame_turned_pair(a, Pose{}, false, b, next, true, 1e-9));
 }
 
 }  // namespace

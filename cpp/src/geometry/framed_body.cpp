@@ -65,10 +65,7 @@ FramedBody::FramedBody(const ConvexPolyhedron& body, const Pose& pose, bool rota
       vertices_(&body.centred_vertices()),
       hull_(nullptr),
       given_(nullptr),
-      in_frame_(false),
-      rotation_(pose.rotation),
-      rotated_(rotated),
-      exponent_(frame.exponent) {
+      in_frame_(false) {
   // Small bodies are scanned whole: their hull points are every point (hull_points).
   if (body.size() > kHillClimbingThreshold) {
     const HullPoints& read = body.hull_points();
@@ -82,24 +79,39 @@ FramedBody::FramedBody(const ConvexPolyhedron& body, const Pose& pose, bool rota
       hull_ = &body.hull();
     }
   }
-  const int half = -exponent_ / 2;
-  scale_high_ = power_of_two(half);
-  scale_low_ = power_of_two(-exponent_ - half);
-  const Vector3 from_centre = world_centre - frame.centre;
-  for (int k = 0; k < 3; ++k) offset_(k) = times_power_of_two(from_centre(k), -exponent_);
   if (const SupportFunction* shape = body.curved()) {
     curved_ = shape;
     curved_kind_ = curved_kind(*shape);
+    hull_ = nullptr;
+    given_ = nullptr;
+  } else if (vertices_ == &body.centred_vertices()) {
+    columns_ = body.centred_columns();
+  }
+  place(pose, rotated, world_centre, frame);
+}
+
+void FramedBody::place(const Pose& pose, bool rotated, const Vector3& world_centre,
+                       const Frame& frame) {
+  rotation_ = pose.rotation;
+  rotated_ = rotated;
+  // A batch's rows mostly share their frame's exponent: its scale is kept then.
+  if (frame.exponent != exponent_) {
+    exponent_ = frame.exponent;
+    const int half = -exponent_ / 2;
+    scale_high_ = power_of_two(half);
+    scale_low_ = power_of_two(-exponent_ - half);
+  }
+  const Vector3 from_centre = world_centre - frame.centre;
+  for (int k = 0; k < 3; ++k) offset_(k) = times_power_of_two(from_centre(k), -exponent_);
+  if (curved_) {
     // The cache of the body's own points is made once per body and copied: hashing them again
     // was most of what framing a curved body cost.
+    const ConvexPolyhedron& body = *body_;
     found_ = SharedSupportCache(
         body.derived<SupportCache>([&body] { return SupportCache(body.centred_vertices()); }));
     vertices_ = &found_->points();
-    hull_ = nullptr;
-    given_ = nullptr;
     support_error_ = curved_support_error(body, exponent_);
   }
-  if (!curved_ && vertices_ == &body.centred_vertices()) columns_ = body.centred_columns();
 }
 
 int FramedBody::curved_support(const Vector3& local) const {
@@ -190,11 +202,20 @@ ConvexWeights FramedBody::given_weights(ConvexWeights weights) const {
   return ConvexWeights(std::move(dense));
 }
 
-FramedPair frame_turned_pair(const ConvexPolyhedron& a, const Pose& pose_a, bool turned_a,
-                             const ConvexPolyhedron& b, const Pose& pose_b, bool turned_b,
-                             Scalar relative_tolerance) {
-  const Vector3 centre_a = world_centre(a, pose_a, turned_a, "a");
-  const Vector3 centre_b = world_centre(b, pose_b, turned_b, "b");
+namespace {
+
+// Everything of a FramedPair but its bodies, for bodies whose boxes' centres land at `centre_a`
+// and `centre_b` (world_centre).
+struct PairFrame {
+  Frame frame;
+  Scalar tolerance;
+  Scalar radius_a;
+  Scalar radius_b;
+  Scalar support_error;
+};
+
+PairFrame pair_frame(const ConvexPolyhedron& a, const Vector3& centre_a, const ConvexPolyhedron& b,
+                     const Vector3& centre_b, Scalar relative_tolerance) {
   Frame frame;
   // Halves first: the sum and difference of two coordinates near the largest double overflow.
   frame.centre = centre_a / 2 + centre_b / 2;
@@ -209,21 +230,55 @@ FramedPair frame_turned_pair(const ConvexPolyhedron& a, const Pose& pose_a, bool
   frame.size = 2 * times_power_of_two(extent, -frame.exponent);
   // The extent counts the rounding (it is in the bounds' radius), so the frame holds the rounded
   // bodies and the tolerance is relative to their size.
-  const Scalar radius_a = times_power_of_two(a.radius(), -frame.exponent);
-  const Scalar radius_b = times_power_of_two(b.radius(), -frame.exponent);
   const Scalar support_error =
       a.curved() || b.curved() ? (curved_support_error(a, frame.exponent) +
                                   curved_support_error(b, frame.exponent)) *
                                      (1 + 4 * kRoundoff)
                                : 0;
-  return {frame,
-          FramedBody(a, pose_a, turned_a, centre_a, frame),
-          FramedBody(b, pose_b, turned_b, centre_b, frame),
-          relative_tolerance * frame.size,
-          radius_a,
-          radius_b,
-          support_error,
-          radius_a > 0 || radius_b > 0 || support_error > 0};
+  return {frame, relative_tolerance * frame.size,
+          times_power_of_two(a.radius(), -frame.exponent),
+          times_power_of_two(b.radius(), -frame.exponent), support_error};
+}
+
+}  // namespace
+
+FramedPair frame_turned_pair(const ConvexPolyhedron& a, const Pose& pose_a, bool turned_a,
+                             const ConvexPolyhedron& b, const Pose& pose_b, bool turned_b,
+                             Scalar relative_tolerance) {
+  const Vector3 centre_a = world_centre(a, pose_a, turned_a, "a");
+  const Vector3 centre_b = world_centre(b, pose_b, turned_b, "b");
+  const PairFrame f = pair_frame(a, centre_a, b, centre_b, relative_tolerance);
+  return {f.frame,
+          FramedBody(a, pose_a, turned_a, centre_a, f.frame),
+          FramedBody(b, pose_b, turned_b, centre_b, f.frame),
+          f.tolerance,
+          f.radius_a,
+          f.radius_b,
+          f.support_error,
+          f.radius_a > 0 || f.radius_b > 0 || f.support_error > 0};
+}
+
+const FramedPair& KeptPair::frame(const ConvexPolyhedron& a, const Pose& pose_a, bool turned_a,
+                                  const ConvexPolyhedron& b, const Pose& pose_b, bool turned_b,
+                                  Scalar relative_tolerance) {
+  if (!pair_ || &pair_->a.body() != &a || &pair_->b.body() != &b) {
+    pair_.emplace(frame_turned_pair(a, pose_a, turned_a, b, pose_b, turned_b, relative_tolerance));
+    return *pair_;
+  }
+  // Every field that the poses decide is written, once nothing more can throw.
+  const Vector3 centre_a = world_centre(a, pose_a, turned_a, "a");
+  const Vector3 centre_b = world_centre(b, pose_b, turned_b, "b");
+  const PairFrame f = pair_frame(a, centre_a, b, centre_b, relative_tolerance);
+  FramedPair& pair = *pair_;
+  pair.frame = f.frame;
+  pair.a.place(pose_a, turned_a, centre_a, f.frame);
+  pair.b.place(pose_b, turned_b, centre_b, f.frame);
+  pair.tolerance = f.tolerance;
+  pair.radius_a = f.radius_a;
+  pair.radius_b = f.radius_b;
+  pair.support_error = f.support_error;
+  pair.adjusted = f.radius_a > 0 || f.radius_b > 0 || f.support_error > 0;
+  return pair;
 }
 
 FramedPair frame_pair(const ConvexPolyhedron& a, const Pose& pose_a, const ConvexPolyhedron& b,

@@ -1,7 +1,9 @@
 // The working frame of a query and the bodies placed in it; private to the library's sources.
 #pragma once
 
+#include <limits>
 #include <memory>
+#include <optional>
 
 #include "normalise.hpp"
 #include "support.hpp"
@@ -82,6 +84,11 @@ class FramedBody {
   /// centre the frame; `rotated` is `!pose.has_identity_rotation()`, which frame_pair knows too.
   FramedBody(const ConvexPolyhedron& body, const Pose& pose, bool rotated,
              const Vector3& world_centre, const Frame& frame);
+  /// Places the body as the constructor does with these arguments, for a new query: what depends
+  /// on the body alone (its points, hull, columns, support function) is kept, and a curved body's
+  /// support points start again from the body's own. Only for a body framed from a
+  /// ConvexPolyhedron. A batch re-places the bodies of its last row when they are the next row's.
+  void place(const Pose& pose, bool rotated, const Vector3& world_centre, const Frame& frame);
   /// Points already in the frame, with their hull (`points` of a framed body, for a solver that
   /// reads every point many times): point i is row i as it is, and support queries compare these
   /// coordinates themselves. `body()` is not available; `points` and `hull` must outlive it.
@@ -210,7 +217,8 @@ class FramedBody {
   // longer (its store, the larger pair).
   CurvedKind curved_kind_ = CurvedKind::other;
   Vector3 offset_;
-  int exponent_;
+  // No frame's exponent until the body is placed (place() keeps the scale of an unchanged one).
+  int exponent_ = std::numeric_limits<int>::min();
   // 2^-exponent as two factors, each representable even for the most extreme exponents.
   Scalar scale_high_;
   Scalar scale_low_;
@@ -263,5 +271,21 @@ FramedPair frame_validated_pair(const ConvexPolyhedron& a, const Pose& pose_a,
 FramedPair frame_turned_pair(const ConvexPolyhedron& a, const Pose& pose_a, bool turned_a,
                              const ConvexPolyhedron& b, const Pose& pose_b, bool turned_b,
                              Scalar relative_tolerance);
+
+/// The framed pair of a batch's rows, kept from one row to the next (one per thread): a row of
+/// the last row's bodies re-places them (FramedBody::place), which leaves the pair as
+/// frame_turned_pair would make it without building one (a third of what framing an 8-vertex
+/// pair cost); other bodies are framed anew.
+class KeptPair {
+ public:
+  /// frame_turned_pair's pair of these bodies under these poses, until the next call. Throws as
+  /// frame_turned_pair does.
+  const FramedPair& frame(const ConvexPolyhedron& a, const Pose& pose_a, bool turned_a,
+                          const ConvexPolyhedron& b, const Pose& pose_b, bool turned_b,
+                          Scalar relative_tolerance);
+
+ private:
+  std::optional<FramedPair> pair_;
+};
 
 }  // namespace swarmcollide::detail

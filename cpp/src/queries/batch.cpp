@@ -531,7 +531,7 @@ class BallsCache {
 
 // Answers a convex pair under poses validated once for the batch into its row, as Query answers
 // it; a collision that the screens settle (the bodies' balls, or an axis through their centres)
-// needs neither a frame nor a solver.
+// needs neither a frame nor a solver. The last row's framed pair is kept for the next (KeptPair).
 class ConvexRows {
  public:
   // `solve` is the solver of the batch's method (solver_for), looked up once.
@@ -554,9 +554,9 @@ class ConvexRows {
           detail::collision_by_screens(a, pose_a, balls_a, b, pose_b, balls_b, options.tolerance);
       if (settled) return rows_.write(row, *settled);
     }
-    const detail::FramedPair pair = detail::frame_turned_pair(
-        a, pose_a, poses.turned_a, b, pose_b, poses.turned_b, options.tolerance);
-    rows_.write(row, detail::answer_row(row_options.seeded(), solve_, asked(kind_).goal, pair,
+    rows_.write(row, detail::answer_row(row_options.seeded(), solve_, asked(kind_).goal,
+                                        pair_.frame(a, pose_a, poses.turned_a, b, pose_b,
+                                                    poses.turned_b, options.tolerance),
                                         escalate_));
   }
 
@@ -567,6 +567,7 @@ class ConvexRows {
   detail::Solver solve_;
   BallsCache balls_a_;
   BallsCache balls_b_;
+  detail::KeptPair pair_;
 };
 
 BatchResult convex_batch(Kind kind, const BatchBodies<ConvexPolyhedron>& as,
@@ -624,8 +625,8 @@ BatchResult stack_batch(Kind kind, const VertexStack& as, const VertexStack& bs,
                std::size_t i, const RowOptions& pair_options, const RowPoses& poses) {
       const ConvexPolyhedron a = body(as, i, first_index);
       const ConvexPolyhedron b = body(bs, i, first_index);
-      // Every row's bodies are new (and may reuse the last row's addresses): no ball is kept, and
-      // no hull is built for an inner ball.
+      // Every row's bodies are new (and may reuse the last row's addresses): no ball or framed
+      // pair is kept, and no hull is built for an inner ball.
       ConvexRows(kind, writer, escalate, false, solve)
           .answer(i, pair_options, a, b, poses);
     };
