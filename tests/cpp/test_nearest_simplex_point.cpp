@@ -221,6 +221,36 @@ TEST(NearestSimplexPoint, NearlyFlatSimplexesMatchTheFaceEnumeration) {
   }
 }
 
+// Tetrahedra the origin lies beyond an edge or a vertex of (two or three barycentric coordinates
+// negative, the case where the projection tries the face opposite the most negative one first,
+// then the others): the nearest point is the enumeration's.
+TEST(NearestSimplexPoint, TetrahedraFacingTheOriginWithSeveralFacesMatchTheFaceEnumeration) {
+  std::mt19937_64 rng(17);
+  std::uniform_real_distribution<Scalar> unit(-1, 1);
+  const auto random = [&]() -> Vector3 { return Vector3(unit(rng), unit(rng), unit(rng)); };
+  int several = 0;
+  for (int trial = 0; trial < 3000; ++trial) {
+    std::array<Vector3, 4> points;
+    for (Vector3& p : points) p = random();
+    // The origin moved out beyond a vertex (1 point) or the middle of an edge (2 points).
+    const int beyond = 1 + trial % 2;
+    Vector3 feature = Vector3::Zero();
+    for (int k = 0; k < beyond; ++k) feature += points[3 - k] / beyond;
+    const Vector3 centre = (points[0] + points[1] + points[2] + points[3]) / 4;
+    const Vector3 origin = feature + (0.1 + 2 * std::abs(unit(rng))) * (feature - centre);
+    for (Vector3& p : points) p -= origin;
+    Eigen::Matrix3d edges;
+    for (int k = 0; k < 3; ++k) edges.col(k) = points[k + 1] - points[0];
+    const Vector3 tail = edges.fullPivLu().solve(-points[0]);
+    const int negative = (1 - tail.sum() < 0) + (tail.array() < 0).count();
+    several += negative >= 2;
+    const Simplex s = simplex_of(points);
+    SCOPED_TRACE(trial);
+    EXPECT_NEAR(checked_norm(s, 4), oracle_norm(s, 4), 1e-12);
+  }
+  EXPECT_GT(several, 1500);
+}
+
 // Squares of coordinates near 1e-300 or 1e300 underflow or overflow: the projection scales them
 // first, so the nearest point is the unit simplex's nearest point, scaled.
 TEST(NearestSimplexPoint, FarScalesGiveTheScaledNearestPoint) {

@@ -53,23 +53,41 @@ namespace nearest_simplex_detail {
 // rounding: every face is tried.
 constexpr Scalar kFlat = 1e-8;
 
-// The nearest point found so far: a face of the simplex (`size` of its points, by index,
-// increasing) with weights on them, their combination `point` (the weights times the points,
-// summed in order; a tetrahedron's interior point is left to the caller) and its squared norm.
-// Candidates are offered to it in place: returning faces by value costs more than the
-// arithmetic here.
+// Dot and cross products of 3-vectors on their coordinates, for the triangle's coordinates:
+// kept in scalar registers they take fewer instructions than Eigen's packets of two, which
+// shuffle lanes (a triangle's projection about 15% fewer). The dot product sums as Eigen's
+// packets of two sum a Vector3's, (x + y) + z, so the values are the same where Eigen
+// vectorises (SSE2, NEON).
+inline Scalar dot(const Vector3& u, const Vector3& v) {
+  return (u.x() * v.x() + u.y() * v.y()) + u.z() * v.z();
+}
+
+inline Vector3 cross(const Vector3& u, const Vector3& v) {
+  return {u.y() * v.z() - u.z() * v.y(), u.z() * v.x() - u.x() * v.z(),
+          u.x() * v.y() - u.y() * v.x()};
+}
+
+// The nearest point found so far: a face of the simplex (`size` of the caller's points
+// `simplex`, in their order, written straight into the caller's `face`) with weights on them
+// (into the caller's `weight`), their combination `point` (the weights times the points as the
+// offers were given them, summed in order; a tetrahedron's interior point is left to the caller)
+// and its squared norm. Candidates are offered to it in place: returning faces by value, or
+// keeping their indices to copy the points afterwards, costs more than the arithmetic here.
+template <class Point>
 struct Nearest {
-  std::array<int, 4> index{};
-  std::array<Scalar, 4> weight{};
+  const std::array<Point, 4>& simplex;
+  std::array<Point, 4>& face;
+  std::array<Scalar, 4>& weight;
   int size = 0;
   Scalar norm2 = std::numeric_limits<Scalar>::infinity();
   Vector3 point;
 };
 
-inline void offer_vertex(const Vector3& p, int i, Nearest& best) {
+template <class Point>
+inline void offer_vertex(const Vector3& p, int i, Nearest<Point>& best) {
   const Scalar norm2 = p.squaredNorm();
   if (!(norm2 < best.norm2)) return;
-  best.index[0] = i;
+  best.face[0] = best.simplex[i];
   best.weight[0] = 1;
   best.size = 1;
   best.norm2 = norm2;
@@ -78,7 +96,8 @@ inline void offer_vertex(const Vector3& p, int i, Nearest& best) {
 
 // The segment from a (index ia) to b (index ib). True when its nearest point lies inside it
 // (both weights positive).
-inline bool offer_segment(const Vector3& a, const Vector3& b, int ia, int ib, Nearest& best) {
+template <class Point>
+inline bool offer_segment(const Vector3& a, const Vector3& b, int ia, int ib, Nearest<Point>& best) {
   const Vector3 ab = b - a;
   const Scalar along = -a.dot(ab);  // the origin's projection, times |ab|^2
   if (!(along > 0)) {
@@ -99,8 +118,8 @@ inline bool offer_segment(const Vector3& a, const Vector3& b, int ia, int ib, Ne
   const Vector3 point = wa * a + wb * b;
   const Scalar norm2 = point.squaredNorm();
   if (!(norm2 < best.norm2)) return true;
-  best.index[0] = ia;
-  best.index[1] = ib;
+  best.face[0] = best.simplex[ia];
+  best.face[1] = best.simplex[ib];
   best.weight[0] = wa;
   best.weight[1] = wb;
   best.size = 2;
@@ -112,17 +131,20 @@ inline bool offer_segment(const Vector3& a, const Vector3& b, int ia, int ib, Ne
 // The triangle a, b, c (indices ia, ib, ic), whose edges `ab = b - a`, `ac = c - a` and normal
 // `n = ab x ac` a tetrahedron has already computed. True when its nearest point lies inside it
 // (three positive weights).
+template <class Point>
 inline bool offer_triangle(const Vector3& a, const Vector3& b, const Vector3& c, const Vector3& ab,
                            const Vector3& ac, const Vector3& n, int ia, int ib, int ic,
-                           Nearest& best) {
-  const Scalar nn = n.squaredNorm();
+                           Nearest<Point>& best) {
+  const Scalar nn = dot(n, n);
   // The barycentric coordinates times |n|^2, by Lagrange's identity: -n . (a x ac) and
   // -n . (ab x a), as triple products through the one cross product n x a.
-  const Vector3 t = n.cross(a);
-  const Scalar vb = -ac.dot(t);
-  const Scalar vc = ab.dot(t);
+  const Vector3 t = cross(n, a);
+  const Scalar vb = -dot(ac, t);
+  const Scalar vc = dot(ab, t);
   const Scalar va = nn - vb - vc;
-  if (!(nn > kFlat * kFlat * ab.squaredNorm() * ac.squaredNorm())) {
+  const Scalar ab2 = dot(ab, ab);
+  const Scalar ac2 = dot(ac, ac);
+  if (!(nn > kFlat * kFlat * ab2 * ac2)) {
     offer_segment(b, c, ib, ic, best);
     offer_segment(a, c, ia, ic, best);
     offer_segment(a, b, ia, ib, best);
@@ -133,12 +155,15 @@ inline bool offer_triangle(const Vector3& a, const Vector3& b, const Vector3& c,
     const Scalar wc = vc / nn;
     const Scalar wa = 1 - wb - wc;
     if (wa > 0 && wb > 0 && wc > 0) {
-      const Vector3 point = wa * a + wb * b + wc * c;
-      const Scalar norm2 = point.squaredNorm();
+      const Scalar px = (wa * a.x() + wb * b.x()) + wc * c.x();
+      const Scalar py = (wa * a.y() + wb * b.y()) + wc * c.y();
+      const Scalar pz = (wa * a.z() + wb * b.z()) + wc * c.z();
+      const Scalar norm2 = (px * px + py * py) + pz * pz;
+      const Vector3 point(px, py, pz);
       if (norm2 < best.norm2) {
-        best.index[0] = ia;
-        best.index[1] = ib;
-        best.index[2] = ic;
+        best.face[0] = best.simplex[ia];
+        best.face[1] = best.simplex[ib];
+        best.face[2] = best.simplex[ic];
         best.weight[0] = wa;
         best.weight[1] = wb;
         best.weight[2] = wc;
@@ -167,16 +192,18 @@ inline bool offer_triangle(const Vector3& a, const Vector3& b, const Vector3& c,
 }
 
 // The triangle a, b, c (indices ia, ib, ic). True when its nearest point lies inside it.
+template <class Point>
 inline bool offer_triangle(const Vector3& a, const Vector3& b, const Vector3& c, int ia, int ib,
-                           int ic, Nearest& best) {
+                           int ic, Nearest<Point>& best) {
   const Vector3 ab = b - a;
   const Vector3 ac = c - a;
   return offer_triangle(a, b, c, ab, ac, ab.cross(ac), ia, ib, ic, best);
 }
 
 // The tetrahedron a, b, c, d (indices 0 to 3).
+template <class Point>
 inline void offer_tetrahedron(const Vector3& a, const Vector3& b, const Vector3& c,
-                              const Vector3& d, Nearest& best) {
+                              const Vector3& d, Nearest<Point>& best) {
   const Vector3 e1 = b - a;
   const Vector3 e2 = c - a;
   const Vector3 e3 = d - a;
@@ -213,25 +240,93 @@ inline void offer_tetrahedron(const Vector3& a, const Vector3& b, const Vector3&
     alpha[1] -= r.dot(n_acd) * inverse;
     alpha[2] += r.dot(n_abd) * inverse;
     alpha[3] -= r.dot(n_abc) * inverse;
-    r = a + alpha[1] * e1 + alpha[2] * e2 + alpha[3] * e3;
     inside = interior();
-    if (!inside) break;
+    if (!inside || pass == 1) break;
+    r = a + alpha[1] * e1 + alpha[2] * e2 + alpha[3] * e3;
   }
   if (inside) {
-    best.index = {0, 1, 2, 3};
+    best.face = best.simplex;
     best.weight = alpha;
     best.size = 4;
-    best.norm2 = r.squaredNorm();
     return;
   }
   // The faces opposite the coordinates that are not positive, whose planes separate the origin
   // from the tetrahedron. Where the origin's foot on such a face lies inside the face, it is the
   // tetrahedron's nearest point (every point of it is beyond the plane): the other faces are not
-  // tried (as for a triangle's edges, rounding aside the same point).
-  if (!(alpha[0] > 0) && offer_triangle(b, c, d, 1, 2, 3, best)) return;
-  if (!(alpha[1] > 0) && offer_triangle(a, c, d, e2, e3, n_acd, 0, 2, 3, best)) return;
-  if (!(alpha[2] > 0) && offer_triangle(a, b, d, e1, e3, n_abd, 0, 1, 3, best)) return;
-  if (!(alpha[3] > 0)) offer_triangle(a, b, c, e1, e2, n_abc, 0, 1, 2, best);
+  // tried (as for a triangle's edges, rounding aside the same point). The face opposite the most
+  // negative coordinate is tried first, the likeliest to hold it (on the curved benches, Wolfe's
+  // tetrahedra outside the origin have two or three such faces, and the first in index order held
+  // it in 39% of its tries). The order matters only where rounding does (two faces each taking
+  // the foot as inside, or two different edges or vertices exactly as near): in exact arithmetic
+  // only the face holding the nearest point is taken, and every face offers the same edges (each
+  // from its lower index, the same values whichever face offers it) and vertices.
+  const auto offer_face = [&](int k) {
+    switch (k) {
+      case 0:
+        return offer_triangle(b, c, d, 1, 2, 3, best);
+      case 1:
+        return offer_triangle(a, c, d, e2, e3, n_acd, 0, 2, 3, best);
+      case 2:
+        return offer_triangle(a, b, d, e1, e3, n_abd, 0, 1, 3, best);
+      default:
+        return offer_triangle(a, b, c, e1, e2, n_abc, 0, 1, 2, best);
+    }
+  };
+  int first = 0;
+  for (int k = 1; k < 4; ++k) {
+    if (alpha[k] < alpha[first]) first = k;
+  }
+  if (!(alpha[first] > 0) && offer_face(first)) return;
+  for (int k = 0; k < 4; ++k) {
+    if (k != first && !(alpha[k] > 0) && offer_face(k)) return;
+  }
+}
+
+// The nearest point of the hull of the first m of a, b, c, d, offered to `best`.
+template <class Point>
+inline void offer_simplex(const Vector3& a, const Vector3& b, const Vector3& c, const Vector3& d,
+                          int m, Nearest<Point>& best) {
+  switch (m) {
+    case 1:
+      offer_vertex(a, 0, best);
+      break;
+    case 2:
+      offer_segment(a, b, 0, 1, best);
+      break;
+    case 3:
+      offer_triangle(a, b, c, 0, 1, 2, best);
+      break;
+    default:
+      offer_tetrahedron(a, b, c, d, best);
+      break;
+  }
+}
+
+// The combination of the first `size` points of `face` with weights `w`, as combination()
+// (wolfe_min_norm.hpp) sums it, and its squared norm.
+template <class Point>
+inline void combine(const std::array<Point, 4>& face, const std::array<Scalar, 4>& w, int size,
+                    Vector3& point, Scalar& norm2) {
+  point = Vector3::Zero();
+  for (int k = 0; k < size; ++k) point += w[k] * face[k].p;
+  norm2 = point.squaredNorm();
+}
+
+// nearest_simplex_point for points whose largest coordinate `reach` is far from one: the
+// triangle's squared normal is of the fourth power of the coordinates, which overflows or
+// underflows there, so the points are first scaled by a power of two (exactly), which leaves the
+// weights as they are; the point is then the combination of the caller's points.
+template <class Point>
+[[gnu::noinline, gnu::cold]] void nearest_scaled_simplex_point(
+    const std::array<Point, 4>& s, int m, Scalar reach, std::array<Point, 4>& face,
+    std::array<Scalar, 4>& w, int& size, Vector3& point, Scalar& norm2) {
+  const Scalar factor = std::ldexp(Scalar(1), -std::ilogb(reach));
+  std::array<Vector3, 4> scaled;
+  for (int k = 0; k < m; ++k) scaled[k] = factor * s[k].p;
+  Nearest<Point> best{s, face, w};
+  offer_simplex(scaled[0], scaled[1], scaled[2], scaled[3], m, best);
+  size = best.size;
+  combine(face, w, size, point, norm2);
 }
 
 }  // namespace nearest_simplex_detail
@@ -241,63 +336,33 @@ void nearest_simplex_point(const std::array<Point, 4>& s, int m, std::array<Poin
                            std::array<Scalar, 4>& w, int& size, bool bounded, Vector3& point,
                            Scalar& norm2) {
   using namespace nearest_simplex_detail;
-  std::array<Vector3, 4> scaled;
-  std::array<const Vector3*, 4> p = {&s[0].p, &s[1].p, &s[2].p, &s[3].p};
-  // The triangle's squared normal is of the fourth power of the coordinates, which overflows or
-  // underflows for coordinates far from one: such points are first scaled by a power of two
-  // (exactly), which leaves the weights as they are.
   constexpr Scalar kSmallest = 0x1p-100;
   constexpr Scalar kLargest = 0x1p100;
-  // The largest coordinate (`reach`) is then in [2^-100, 2^100]: no scaling.
+  // The largest coordinate (`reach`) in [2^-100, 2^100]: no scaling.
   const Vector3& last = s[m - 1].p;
   const bool in_range = bounded && (std::abs(last.x()) >= kSmallest ||
                                     std::abs(last.y()) >= kSmallest ||
                                     std::abs(last.z()) >= kSmallest);
-  Scalar reach = 1;
-  bool rescaled = false;
   if (!in_range) {
     Vector3 largest = s[0].p.cwiseAbs();
     for (int k = 1; k < m; ++k) largest = largest.cwiseMax(s[k].p.cwiseAbs());
-    reach = largest.maxCoeff();
-  }
-  if ((reach < kSmallest && reach > 0) || (reach > kLargest && std::isfinite(reach))) {
-    const Scalar factor = std::ldexp(Scalar(1), -std::ilogb(reach));
-    for (int k = 0; k < m; ++k) {
-      scaled[k] = factor * s[k].p;
-      p[k] = &scaled[k];
+    const Scalar reach = largest.maxCoeff();
+    if ((reach < kSmallest && reach > 0) || (reach > kLargest && std::isfinite(reach))) {
+      nearest_scaled_simplex_point(s, m, reach, face, w, size, point, norm2);
+      return;
     }
-    rescaled = true;
   }
-  Nearest f;
-  switch (m) {
-    case 1:
-      offer_vertex(*p[0], 0, f);
-      break;
-    case 2:
-      offer_segment(*p[0], *p[1], 0, 1, f);
-      break;
-    case 3:
-      offer_triangle(*p[0], *p[1], *p[2], 0, 1, 2, f);
-      break;
-    default:
-      offer_tetrahedron(*p[0], *p[1], *p[2], *p[3], f);
-      break;
-  }
-  for (int k = 0; k < f.size; ++k) {
-    face[k] = s[f.index[k]];
-    w[k] = f.weight[k];
-  }
-  size = f.size;
-  // The offers' point is the combination of the points they were given, in the face's order:
-  // the caller's own unless they were scaled. A tetrahedron's interior point (Cramer's) is not.
-  if (!rescaled && f.size > 0 && f.size < 4) {
-    point = f.point;
-    norm2 = f.norm2;
+  Nearest<Point> best{s, face, w};
+  offer_simplex(s[0].p, s[1].p, s[2].p, s[3].p, m, best);
+  size = best.size;
+  // The offers' point is the combination of the caller's points, in the face's order; a
+  // tetrahedron's interior point (Cramer's) is not.
+  if (best.size > 0 && best.size < 4) {
+    point = best.point;
+    norm2 = best.norm2;
     return;
   }
-  point = Vector3::Zero();
-  for (int k = 0; k < f.size; ++k) point += w[k] * face[k].p;
-  norm2 = point.squaredNorm();
+  combine(face, w, size, point, norm2);
 }
 
 }  // namespace swarmcollide::detail
