@@ -75,6 +75,10 @@ inline Vector3 cross(const Vector3& u, const Vector3& v) {
 // keeping their indices to copy the points afterwards, costs more than the arithmetic here.
 template <class Point>
 struct Nearest {
+  Nearest(const std::array<Point, 4>& points, std::array<Point, 4>& into,
+          std::array<Scalar, 4>& weights)
+      : simplex(points), face(into), weight(weights) {}
+
   const std::array<Point, 4>& simplex;
   std::array<Point, 4>& face;
   std::array<Scalar, 4>& weight;
