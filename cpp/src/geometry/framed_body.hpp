@@ -87,7 +87,8 @@ class FramedBody {
   /// Places the body as the constructor does with these arguments, for a new query: what depends
   /// on the body alone (its points, hull, columns, support function) is kept, and a curved body's
   /// support points start again from the body's own. Only for a body framed from a
-  /// ConvexPolyhedron. A batch re-places the bodies of its last row when they are the next row's.
+  /// ConvexPolyhedron. A batch re-places the bodies of its last row when they are the next row's
+  /// (KeptPair). Defined inline in framed_body.cpp, where its callers are.
   void place(const Pose& pose, bool rotated, const Vector3& world_centre, const Frame& frame);
   /// Points already in the frame, with their hull (`points` of a framed body, for a solver that
   /// reads every point many times): point i is row i as it is, and support queries compare these
