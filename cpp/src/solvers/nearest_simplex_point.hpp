@@ -29,13 +29,22 @@ namespace swarmcollide::detail {
 /// one of them is at least 2^-100; the answer is the same bit for bit.
 /// `point` and `norm2`: the nearest point, the combination of `face` with weights `w`, and its
 /// squared norm, which Wolfe's algorithm takes as its corral's point instead of forming it again:
-/// the weights times the points summed in order, as combination() (wolfe_min_norm.hpp) sums them
-/// onto a zero vector, so the same values (only a zero coordinate's sign may differ, -0 where
+/// the weights times the points summed in order, as combination() below sums them onto a zero
+/// vector, so the same values (only a zero coordinate's sign may differ, -0 where
 /// combination's first sum makes +0).
 template <class Point>
 void nearest_simplex_point(const std::array<Point, 4>& s, int m, std::array<Point, 4>& face,
                            std::array<Scalar, 4>& w, int& size, bool bounded, Vector3& point,
                            Scalar& norm2);
+
+/// The combination of the first `m` points of `s` with weights `w`, summed in order onto a zero
+/// vector.
+template <class Point>
+Vector3 combination(const std::array<Point, 4>& s, const std::array<Scalar, 4>& w, int m) {
+  Vector3 x = Vector3::Zero();
+  for (int k = 0; k < m; ++k) x += w[k] * s[k].p;
+  return x;
+}
 
 /// The same without the point.
 template <class Point>
@@ -306,16 +315,6 @@ inline void offer_simplex(const Vector3& a, const Vector3& b, const Vector3& c, 
   }
 }
 
-// The combination of the first `size` points of `face` with weights `w`, as combination()
-// (wolfe_min_norm.hpp) sums it, and its squared norm.
-template <class Point>
-inline void combine(const std::array<Point, 4>& face, const std::array<Scalar, 4>& w, int size,
-                    Vector3& point, Scalar& norm2) {
-  point = Vector3::Zero();
-  for (int k = 0; k < size; ++k) point += w[k] * face[k].p;
-  norm2 = point.squaredNorm();
-}
-
 // nearest_simplex_point for points whose largest coordinate `reach` is far from one: the
 // triangle's squared normal is of the fourth power of the coordinates, which overflows or
 // underflows there, so the points are first scaled by a power of two (exactly), which leaves the
@@ -330,7 +329,8 @@ template <class Point>
   Nearest<Point> best{s, face, w};
   offer_simplex(scaled[0], scaled[1], scaled[2], scaled[3], m, best);
   size = best.size;
-  combine(face, w, size, point, norm2);
+  point = combination(face, w, size);
+  norm2 = point.squaredNorm();
 }
 
 }  // namespace nearest_simplex_detail
@@ -366,7 +366,8 @@ void nearest_simplex_point(const std::array<Point, 4>& s, int m, std::array<Poin
     norm2 = best.norm2;
     return;
   }
-  combine(face, w, size, point, norm2);
+  point = combination(face, w, size);
+  norm2 = point.squaredNorm();
 }
 
 }  // namespace swarmcollide::detail

@@ -30,14 +30,6 @@ struct MinNormPoint {
   int iterations = 0;
 };
 
-// The combination of the first m points of `s` with weights `w`.
-inline Vector3 combination(const std::array<OraclePoint, 4>& s, const std::array<Scalar, 4>& w,
-                           int m) {
-  Vector3 x = Vector3::Zero();
-  for (int k = 0; k < m; ++k) x += w[k] * s[k].p;
-  return x;
-}
-
 /// Wolfe's nearest-point algorithm (Wolfe 1976) on the polytope spanned by `oracle`, where
 /// `oracle(d)` returns an OraclePoint minimising `d . q`, from `start`: up to four oracle points
 /// (first brought to the nearest point of their hull). Each new oracle point joins the corral,
