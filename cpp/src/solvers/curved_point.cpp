@@ -7,7 +7,6 @@
 #include "../geometry/normalise.hpp"
 #include "../queries/verdict.hpp"
 #include "exact_solver.hpp"
-#include "minkowski.hpp"
 #include "witness.hpp"
 
 namespace swarmcollide::detail {
@@ -234,7 +233,11 @@ std::optional<Answer> point_against_curved(const FramedPair& pair, Goal goal,
   normal.normalize();
   if (!curved_a) normal = -normal;
   // Measured before the weights are made: a support point it adds is counted among the shape's.
-  const Scalar lower = separation(pair.a, pair.b, normal);
+  // separation(pair.a, pair.b, normal) with the point's support, its one point, not scanned for:
+  // the same difference of the same placed points, so the same value.
+  const int top = shape.support_index(curved_a ? normal : Vector3(-normal));
+  const Vector3 across = curved_a ? Vector3(p - shape.vertex(top)) : Vector3(shape.vertex(top) - p);
+  const Scalar lower = normal.dot(across);
   Answer answer = answer_from_witness(pair, w);
   answer.lower = lower;
   answer.direction = normal;
