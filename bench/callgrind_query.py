@@ -11,7 +11,9 @@ contenders on a shared machine where wall-clock cannot.
 
 With ``--curved`` it runs ``swarmcollide-callgrind-curved`` (bench/callgrind_curved.cpp) instead:
 signed distances of curved shapes (bench/curved_coal.py's pairs of kinds) against coal's
-primitives, apart and overlapping, one row per pair of kinds.
+primitives, apart and overlapping, one row per pair of kinds; a second table sets coal's GJK and
+EPA tolerances (an absolute 1e-6 by default) to ours, 1e-9 of the pair's size, and prints ours
+against coal at the same precision.
 
 With ``--profile "n=8 overlap distance"`` it also prints where one row's instructions go: each
 function's inclusive instructions per query for ours (``callgrind_annotate --inclusive=yes`` on
@@ -152,8 +154,23 @@ def main() -> None:
             print(f"{row['vertices']:>8} {row['proximity']:9} {row['query']:9} "
                   f"{row['fcl_method']:10.0f} {row['fcl_direct']:8.0f} "
                   f"{row['fcl_method'] / row['fcl_direct']:10.2f}")
+    matched_rows = []
+    for workload, proximity, query in keys:
+        matched = found.get((workload, proximity, query, "coal_matched"))
+        ours = found.get((workload, proximity, query, "ours"))
+        if matched is None or ours is None:
+            continue
+        matched_rows.append({"shapes": workload.split("=")[1], "proximity": proximity,
+                             "query": query, "ours": ours, "coal_at_our_tolerance": matched})
+    if matched_rows:
+        print(f"\ncoal at our tolerance (1e-9 of the pair's size, not its absolute 1e-6):\n"
+              f"{'workload':>20} {'proximity':9} {'ours':>8} {'coal':>8} {'ours/coal':>9}")
+        for row in matched_rows:
+            print(f"{row['shapes']:>20} {row['proximity']:9} {row['ours']:8.0f} "
+                  f"{row['coal_at_our_tolerance']:8.0f} "
+                  f"{row['ours'] / row['coal_at_our_tolerance']:9.2f}")
     if args.json:
-        rows += fcl_rows
+        rows += fcl_rows + matched_rows
         Path(args.json).write_text(json.dumps({"pairs": args.pairs, "repeats": args.repeats,
                                                "instructions_per_query": rows}, indent=1) + "\n")
 
