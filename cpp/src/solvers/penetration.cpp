@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "../geometry/curved_depth.hpp"
+#include "../geometry/normalise.hpp"
 #include "../geometry/support_tree.hpp"
 #include "candidate_axes.hpp"
 #include "expanding_polytope.hpp"
@@ -84,7 +85,10 @@ Scalar largest_coordinate(const VertexMatrix& a, const VertexMatrix& b) {
 // A bound on the absolute coordinates of a placed body's points, without reading them: the
 // centre of its box in the frame plus its radius, rounded up.
 Scalar coordinate_bound(const FramedBody& body) {
-  const Scalar radius = std::ldexp(body.body().bounds().radius, -body.exponent());
+  // times_power_of_two is std::ldexp's value here, without the library call: it rounds once
+  // unless its factor splits (|exponent| > 1000), where the partial product stays a normal double
+  // for every radius whose scaled value is not zero either way.
+  const Scalar radius = times_power_of_two(body.body().bounds().radius, -body.exponent());
   return (body.offset().cwiseAbs().maxCoeff() + radius) * (1 + 16 * kRoundoff);
 }
 
