@@ -247,6 +247,32 @@ TEST(Penetration, KeptSurfacesStartLaterExpansionsAndProveOnlyTrueBounds) {
   EXPECT_GT(started_kept, 40);
 }
 
+// The separation a lower bound rests on is measured between the scans' supports along the
+// answer's normal: small placed polytopes, which support_index scans whole, take the expansion's
+// supports along its best normal instead of scanning again, and they must be the same points.
+TEST(Penetration, SmallPolytopesSeparationIsTheScansAlongTheNormal) {
+  std::mt19937_64 rng(31);
+  std::uniform_real_distribution<Scalar> unit(-1, 1);
+  int proven = 0;
+  for (int trial = 0; trial < 40; ++trial) {
+    SCOPED_TRACE("trial " + std::to_string(trial));
+    const ConvexPolyhedron a(random_points(rng, 4 + trial % 24, Vector3::Zero(), 1));
+    const ConvexPolyhedron b(random_points(rng, 4 + (trial * 7) % 24, Vector3::Zero(), 0.6));
+    Pose pose_b;
+    pose_b.rotation = rotation(unit(rng), unit(rng), unit(rng));
+    pose_b.translation = Vector3(unit(rng), unit(rng), unit(rng)) * 0.5;
+    const detail::FramedPair pair = detail::frame_validated_pair(a, Pose(), b, pose_b, 1e-9);
+    const PenetrationBounds r =
+        penetration(pair.a, pair.b, Vector3::Zero(), nullptr, pair.tolerance, kIterations);
+    const Vector3& n = r.normal;
+    EXPECT_EQ(r.separation, pair.b.height(pair.b.support_index(-n), n) -
+                                pair.a.height(pair.a.support_index(n), n));
+    proven += r.proven && r.upper < 0;
+  }
+  // Most pairs overlap, so the expansion ran and gave the normal.
+  EXPECT_GT(proven, 30);
+}
+
 TEST(Penetration, BadHintsDoNotTrapTheSearchInALocalMaximum) {
   // s has many local maxima on the sphere: any hint, however poor, still ends at the global one.
   std::mt19937_64 rng(3);
