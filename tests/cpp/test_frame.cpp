@@ -365,6 +365,14 @@ TEST(FramedBodies, ExactSupportIsTheLargestHeightInTheFrame) {
     EXPECT_EQ(in_frame.height(i, Vector3(0.3, -0.2, 0.9)),
               in_frame.vertex(i).dot(Vector3(0.3, -0.2, 0.9)));
   }
+  // A height from the point placed already is height()'s, bit for bit, placed or given in the
+  // frame (the penetration solver's witnesses read their corners' heights so).
+  const Vector3 d(0.3, -0.2, 0.9);
+  for (const detail::FramedBody* body : {&pair.a, &pair.b, &in_frame}) {
+    for (int i = 0; i < body->size(); ++i) {
+      EXPECT_EQ(body->height(i, body->vertex(i), d), body->height(i, d));
+    }
+  }
 }
 
 // Two framings of a pair agree field by field: a pair re-placed by KeptPair must be the pair

@@ -65,6 +65,13 @@ VertexMatrix random_points(std::mt19937_64& rng, int n, const Vector3& centre, S
   return v;
 }
 
+// Bodies of random points about the origin, A's in a ball of radius 1 and B's of radius 0.6 (in
+// that order from `rng`): the pairs the tests below pose through each other.
+std::pair<ConvexPolyhedron, ConvexPolyhedron> random_bodies(std::mt19937_64& rng, int na, int nb) {
+  return {ConvexPolyhedron(random_points(rng, na, Vector3::Zero(), 1)),
+          ConvexPolyhedron(random_points(rng, nb, Vector3::Zero(), 0.6))};
+}
+
 // The contract of every answer: proven bounds around the oracle, a unit normal whose computed
 // separation is the lower bound up to its margin, and witnesses that are convex combinations of
 // the bodies' points on their supporting features along the normal.
@@ -210,8 +217,7 @@ TEST(Penetration, KeptSurfacesStartLaterExpansionsAndProveOnlyTrueBounds) {
   int started_kept = 0;
   for (int trial = 0; trial < 40; ++trial) {
     SCOPED_TRACE("trial " + std::to_string(trial));
-    const ConvexPolyhedron a(random_points(rng, 8 + trial % 50, Vector3::Zero(), 1));
-    const ConvexPolyhedron b(random_points(rng, 8 + (trial * 7) % 50, Vector3::Zero(), 0.6));
+    const auto [a, b] = random_bodies(rng, 8 + trial % 50, 8 + (trial * 7) % 50);
     const Vector3 start(unit(rng), unit(rng), unit(rng));
     const Vector3 velocity = Vector3(unit(rng), unit(rng), unit(rng)) * 0.01;
     const Vector3 spin = Vector3(unit(rng), unit(rng), unit(rng)) * 0.02;
@@ -245,6 +251,31 @@ TEST(Penetration, KeptSurfacesStartLaterExpansionsAndProveOnlyTrueBounds) {
     }
   }
   EXPECT_GT(started_kept, 40);
+}
+
+// The separation a lower bound rests on is measured between the scans' supports along the
+// answer's normal: small placed polytopes, which support_index scans whole, take the expansion's
+// supports along its best normal instead of scanning again, and they must be the same points.
+TEST(Penetration, SmallPolytopesSeparationIsTheScansAlongTheNormal) {
+  std::mt19937_64 rng(31);
+  std::uniform_real_distribution<Scalar> unit(-1, 1);
+  int proven = 0;
+  for (int trial = 0; trial < 40; ++trial) {
+    const auto [a, b] = random_bodies(rng, 4 + trial % 24, 4 + (trial * 7) % 24);
+    Pose pose_b;
+    pose_b.rotation = rotation(unit(rng), unit(rng), unit(rng));
+    pose_b.translation = Vector3(unit(rng), unit(rng), unit(rng)) * 0.5;
+    const detail::FramedPair pair = detail::frame_validated_pair(a, Pose(), b, pose_b, 1e-9);
+    const PenetrationBounds r =
+        penetration(pair.a, pair.b, Vector3::Zero(), nullptr, pair.tolerance, kIterations);
+    const Vector3& n = r.normal;
+    EXPECT_EQ(r.separation, pair.b.height(pair.b.support_index(-n), n) -
+                                pair.a.height(pair.a.support_index(n), n))
+        << "trial " << trial;
+    proven += r.proven && r.upper < 0;
+  }
+  // Most pairs overlap, so the expansion ran and gave the normal.
+  EXPECT_GT(proven, 30);
 }
 
 TEST(Penetration, BadHintsDoNotTrapTheSearchInALocalMaximum) {

@@ -131,6 +131,11 @@ class FramedBody {
   Scalar height(int i, const Vector3& d) const {
     return in_frame_ ? point_height(*vertices_, i, d) : vertex(i).dot(d);
   }
+  /// `height(i, d)` for a caller that has placed point i already (`placed` is `vertex(i)`): the
+  /// same value, without placing the point a second time.
+  Scalar height(int i, const Vector3& placed, const Vector3& d) const {
+    return in_frame_ ? point_height(*vertices_, i, d) : placed.dot(d);
+  }
   /// A frame direction in the body's own frame (support points do not depend on the scale).
   Vector3 local_direction(const Vector3& d) const {
     return rotated_ ? Vector3(rotation_.transpose() * d) : d;

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "../geometry/curved_depth.hpp"
+#include "../geometry/normalise.hpp"
 #include "../geometry/support_tree.hpp"
 #include "candidate_axes.hpp"
 #include "expanding_polytope.hpp"
@@ -84,8 +85,17 @@ Scalar largest_coordinate(const VertexMatrix& a, const VertexMatrix& b) {
 // A bound on the absolute coordinates of a placed body's points, without reading them: the
 // centre of its box in the frame plus its radius, rounded up.
 Scalar coordinate_bound(const FramedBody& body) {
-  const Scalar radius = std::ldexp(body.body().bounds().radius, -body.exponent());
+  // times_power_of_two is std::ldexp's value here, without the library call: it rounds once
+  // unless its factor splits (|exponent| > 1000), where the partial product stays a normal double
+  // for every radius whose scaled value is not zero either way.
+  const Scalar radius = times_power_of_two(body.body().bounds().radius, -body.exponent());
   return (body.offset().cwiseAbs().maxCoeff() + radius) * (1 + 16 * kRoundoff);
+}
+
+// Whether support_index scans every point of `body` (a small polyhedron), whatever its start: its
+// support along a direction is then scanned_support's.
+bool scanned_whole(const FramedBody& body) {
+  return !body.curved() && body.size() <= kHillClimbingThreshold;
 }
 
 // A point of `body` highest along `n` as a scan of its points finds it (FramedBody::
@@ -216,12 +226,16 @@ class Solver {
   // exactly by `finish`. True when it became the candidate.
   bool offer(const Vector3& n) {
     if (!n.allFinite()) return false;
-    return offer(n, separation(a_, b_, n, climb_a_, climb_b_));
+    const Scalar estimate = separation(a_, b_, n, climb_a_, climb_b_);
+    const bool taken = offer(n, estimate);
+    climbs_along_candidate_ = taken;
+    return taken;
   }
   bool offer(const Vector3& n, Scalar estimate) {
     if (!(estimate > estimate_)) return false;
     estimate_ = estimate;
     candidate_ = n;
+    climbs_along_candidate_ = false;
     return true;
   }
   bool offer_hint(const Vector3& hint) {
@@ -234,9 +248,15 @@ class Solver {
   void finish() {
     if (!(estimate_ > -kInfinity)) offer(Vector3::UnitX());
     normal_ = candidate_;
-    top_a_ = scanned_support(a_, shortfall_a_, candidate_, climb_a_);
-    top_b_ = scanned_support(b_, shortfall_b_, -candidate_, climb_b_);
-    separation_ = b_.height(top_b_, candidate_) - a_.height(top_a_, candidate_);
+    // A polytope that support_index scans whole has its scan's support in the climb start
+    // already when that start was found along the candidate (scanned_support would repeat it).
+    const bool known_a = climbs_along_candidate_ && scanned_whole(a_);
+    const bool known_b = climbs_along_candidate_ && scanned_whole(b_);
+    top_a_ = known_a ? climb_a_ : scanned_support(a_, shortfall_a_, candidate_, climb_a_);
+    top_b_ = known_b ? climb_b_ : scanned_support(b_, shortfall_b_, -candidate_, climb_b_);
+    top_height_a_ = a_.height(top_a_, candidate_);
+    top_height_b_ = b_.height(top_b_, candidate_);
+    separation_ = top_height_b_ - top_height_a_;
   }
 
   void set_upper(Scalar value, PenetrationProof proof) {
@@ -326,6 +346,8 @@ class Solver {
       // The supports there seed the scans that measure it, and the face may give the witnesses.
       climb_a_ = e.best_ia;
       climb_b_ = e.best_ib;
+      // The expansion asked them of support_index along this very normal.
+      climbs_along_candidate_ = true;
       face_ = e.best_face;
       face_normal_ = e.best_normal;
     }
@@ -472,8 +494,8 @@ class Solver {
     int size = 0;
     nearest_simplex_point(corners, 3, nearest, alpha, size);
     const Vector3& n = normal_;
-    const Scalar top_a = a_.height(top_a_, n);
-    const Scalar bottom_b = b_.height(top_b_, n);
+    const Scalar top_a = top_height_a_;
+    const Scalar bottom_b = top_height_b_;
     std::array<int, MinNormPoint::kCapacity> ia{};
     std::array<int, MinNormPoint::kCapacity> ib{};
     std::array<Scalar, MinNormPoint::kCapacity> weights{};
@@ -482,15 +504,18 @@ class Solver {
     for (int k = 0; k < size; ++k) {
       const int i = nearest[k].ia;
       const int j = nearest[k].ib;
+      // Each corner's points are placed once, for their heights and the witnesses.
+      const Vector3 x = a_.vertex(i);
+      const Vector3 y = b_.vertex(j);
       // How far the corners fall short of the supporting planes: the features they lie on.
-      const Scalar short_of = std::max(top_a - a_.height(i, n), b_.height(j, n) - bottom_b);
+      const Scalar short_of = std::max(top_a - a_.height(i, x, n), b_.height(j, y, n) - bottom_b);
       if (!std::isfinite(short_of)) return false;
       slack = std::max(slack, short_of);
       ia[k] = i;
       ib[k] = j;
       weights[k] = alpha[k];
-      point_a += alpha[k] * a_.vertex(i);
-      point_b += alpha[k] * b_.vertex(j);
+      point_a += alpha[k] * x;
+      point_b += alpha[k] * y;
     }
     const Scalar residual = (point_b - point_a - separation_ * n).norm();
     if (!(residual <= target)) return false;
@@ -517,8 +542,7 @@ class Solver {
     r.weights_a = ConvexWeights(a_.size(), rolling.index_a, rolling.weight_a, rolling.size_a);
     r.weights_b = ConvexWeights(b_.size(), rolling.index_b, rolling.weight_b, rolling.size_b);
     r.witness_residual = residual;
-    r.feature_slack = std::max(a_.height(top_a_, n) - n.dot(r.point_a),
-                               n.dot(r.point_b) - b_.height(top_b_, n));
+    r.feature_slack = std::max(top_height_a_ - n.dot(r.point_a), n.dot(r.point_b) - top_height_b_);
     return true;
   }
 
@@ -588,12 +612,19 @@ class Solver {
   // Climb starts shared by the directions offered.
   int climb_a_ = -1;
   int climb_b_ = -1;
+  // The climb starts are support_index's supports along candidate_ (of A, and of B along minus
+  // it), found when the candidate was offered.
+  bool climbs_along_candidate_ = false;
   Vector3 candidate_ = Vector3::UnitX();
   Scalar estimate_ = -kInfinity;
   Vector3 normal_ = Vector3::UnitX();
   Scalar separation_ = -kInfinity;
   int top_a_ = 0;
   int top_b_ = 0;
+  // Their heights along normal_ (finish computes them for the separation; the witnesses read
+  // them again).
+  Scalar top_height_a_ = 0;
+  Scalar top_height_b_ = 0;
   Scalar proven_upper_ = kInfinity;
   PenetrationProof proof_ = PenetrationProof::none;
   Scalar nearest_length_ = kInfinity;
