@@ -113,8 +113,11 @@ Scalar twist_reach(Scalar apart, Scalar rate, const detail::LinkMotionBound::Twi
 // inside robot_check_motion: 264.3M instructions and 42.2 queries per edge with none measured
 // again; 246.0M and 28.3 at 0.5; 245.2M and 25.9 at 0.25. After the self pairs' directional
 // bound in their common frame and the end screens' reach: 178.4M and 17.4 at 0.25 with the
-// speculative sample at 0.8; with it at 0.6, 174.9M and 16.2 at 0.15, 176.3M and 15.9 at 0.1.)
-constexpr Scalar kRemeasured = 0.15;
+// speculative sample at 0.8; with it at 0.6, 174.9M and 16.2 at 0.15, 176.3M and 15.9 at 0.1.
+// Once a query after the first started from the last one's corral, on 1000 edges: 558.65M and
+// 14.94 at 0.08, 555.34M and 15.26 at 0.15, 553.87M and 16.04 at 0.3, 557.29M and 17.27 at 0.5,
+// 566.32M and 19.10 at 0.75.)
+constexpr Scalar kRemeasured = 0.3;
 
 // What one pair's distance at one time proves.
 struct Sample {
@@ -558,7 +561,7 @@ class MotionCheck {
       if (separating_) {
         // The separation along the last query's direction is a lower bound on the distance as
         // a query's is (the same support climbs), at a tenth of a query's cost; it is stepped
-        // from while it keeps 0.15 of what that query proved (kRemeasured). Any direction gives
+        // from while it keeps 0.3 of what that query proved (kRemeasured). Any direction gives
         // a lower bound: one fixed in the frame where the links' chains part (the samples'
         // frame) turns with both links as the joints they share move, and keeps their
         // separation (directional_speed).
