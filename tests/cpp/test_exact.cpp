@@ -9,7 +9,9 @@
 #include "hard_cases.hpp"
 #include "oracle.hpp"
 #include "paper_cases.hpp"
+#include "queries/verdict.hpp"
 #include "shapes.hpp"
+#include "solvers/exact_solver.hpp"
 
 namespace swarmcollide::testing {
 namespace {
@@ -56,6 +58,48 @@ TEST(Exact, LargeBodiesMatchTheOracle) {
       expect_contract(a, b, QueryKind::signed_distance, m, r, truth, s);
       EXPECT_NEAR(r.distance, truth.signed_distance, s.tolerance + s.rounding);
     }
+  }
+}
+
+// A pair stepping along a path, each distance started from the last one's corral with its points'
+// support indices read again at the new poses (the robot motion check's queries after a pair's
+// first): any start leaves the bounds proven, as they come from the supports along the direction
+// Wolfe's algorithm ends with. Every answer brackets the oracle's distance, certified, within
+// the tolerance of the answer started afresh, on bodies scanned (8 points) and climbed (64).
+TEST(Exact, AStartFromTheLastPosesCorralProvesTheDistance) {
+  Random rng(29);
+  for (const int points : {8, 64}) {
+    const ConvexPolyhedron a = rng.body(points);
+    const ConvexPolyhedron b = rng.body(points);
+    const Matrix3 turn = Eigen::AngleAxis<Scalar>(0.05, rng.unit()).toRotationMatrix();
+    Pose pose_b = at(Vector3(3.5, 0.3, -0.2), rng.rotation());
+    detail::MinNormPoint corral;
+    int warm = 0;
+    for (int step = 0; step < 40; ++step) {
+      SCOPED_TRACE(std::to_string(points) + " points, step " + std::to_string(step));
+      // Towards A and about it, so the nearest features change along the path.
+      pose_b.translation = turn * pose_b.translation * 0.99;
+      pose_b.rotation = turn * pose_b.rotation;
+      const detail::FramedPair framed =
+          detail::frame_pair(a, Pose{}, b, pose_b, kDefaultTolerance);
+      const DistanceResult fresh = detail::finish_result(
+          framed, detail::exact_distance(framed, 100, Vector3::Zero()), Method::exact,
+          detail::Goal::distance, detail::Weights::none);
+      warm += corral.size > 0;
+      detail::Answer answer = detail::exact_distance_again(framed, 100, corral);
+      const DistanceResult r = detail::finish_result(framed, std::move(answer), Method::exact,
+                                                     detail::Goal::distance,
+                                                     detail::Weights::none);
+      VertexMatrix placed = (b.vertices() * pose_b.rotation.transpose()).eval();
+      placed.rowwise() += pose_b.translation.transpose();
+      const Reference truth = reference(a, ConvexPolyhedron(placed));
+      const PairScale s = scale_of(a, ConvexPolyhedron(placed), kDefaultTolerance);
+      EXPECT_TRUE(r.certified);
+      EXPECT_LE(r.lower_bound, truth.distance + s.rounding);
+      EXPECT_GE(r.distance, truth.distance - s.rounding);
+      EXPECT_NEAR(r.distance, fresh.distance, s.tolerance + s.rounding);
+    }
+    EXPECT_GT(warm, 30);
   }
 }
 

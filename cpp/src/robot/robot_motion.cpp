@@ -113,8 +113,11 @@ Scalar twist_reach(Scalar apart, Scalar rate, const detail::LinkMotionBound::Twi
 // inside robot_check_motion: 264.3M instructions and 42.2 queries per edge with none measured
 // again; 246.0M and 28.3 at 0.5; 245.2M and 25.9 at 0.25. After the self pairs' directional
 // bound in their common frame and the end screens' reach: 178.4M and 17.4 at 0.25 with the
-// speculative sample at 0.8; with it at 0.6, 174.9M and 16.2 at 0.15, 176.3M and 15.9 at 0.1.)
-constexpr Scalar kRemeasured = 0.15;
+// speculative sample at 0.8; with it at 0.6, 174.9M and 16.2 at 0.15, 176.3M and 15.9 at 0.1.
+// Once a query after the first started from the last one's corral, on 1000 edges: 558.65M and
+// 14.94 at 0.08, 555.34M and 15.26 at 0.15, 553.87M and 16.04 at 0.3, 557.29M and 17.27 at 0.5,
+// 566.32M and 19.10 at 0.75.)
+constexpr Scalar kRemeasured = 0.3;
 
 // What one pair's distance at one time proves.
 struct Sample {
@@ -390,6 +393,7 @@ class MotionCheck {
     Scalar before = kInfinity;
     Sample low;
     separating_.reset();
+    corral_.size = 0;
     if (plan.first_contact > 0) {
       // The plan's screens prove the pair apart up to `first_contact`: the advancement starts
       // there rather than with a query at t = 0, and as from a reach that grew (from none), with
@@ -550,31 +554,35 @@ class MotionCheck {
     const BodyBounds& b = model_.geometries()[pair.b].body.bounds();
     // The motion's size for this pair: the sum of the two bounding balls' diameters.
     const Scalar threshold = options_.query.tolerance * 2 * (a.radius + b.radius);
-    if (separating_) {
-      // The separation along the last query's direction is a lower bound on the distance as a
-      // query's is (the same support climbs), at a tenth of a query's cost; it is stepped from
-      // while it keeps 0.15 of what that query proved (kRemeasured). Any direction gives a
-      // lower bound: one fixed in the frame where the links' chains part (the samples' frame)
-      // turns with both links as the joints they share move, and keeps their separation
-      // (directional_speed).
+    const bool polytopes =
+        query_->options().method == Method::exact && plan.convex && !plan.curved;
+    if (separating_ || polytopes) {
       const detail::FramedPair framed = frame(pair);
-      const Scalar apart = separation_along(framed, *separating_) - plan.margin;
-      if (apart > threshold && apart >= kRemeasured * separating_->apart) {
-        return apart_sample(pair, plan, t, apart, separating_->direction, local);
+      if (separating_) {
+        // The separation along the last query's direction is a lower bound on the distance as
+        // a query's is (the same support climbs), at a tenth of a query's cost; it is stepped
+        // from while it keeps 0.3 of what that query proved (kRemeasured). Any direction gives
+        // a lower bound: one fixed in the frame where the links' chains part (the samples'
+        // frame) turns with both links as the joints they share move, and keeps their
+        // separation (directional_speed).
+        const Scalar apart = separation_along(framed, *separating_) - plan.margin;
+        if (apart > threshold && apart >= kRemeasured * separating_->apart) {
+          return apart_sample(pair, plan, t, apart, separating_->direction, local);
+        }
       }
-      if (query_->options().method == Method::exact && plan.convex && !plan.curved) {
+      if (polytopes) {
         // Query::distance's answer for two polytopes with the exact method (its solver's on
-        // the same framed pair: bit for bit), without framing the pair again. (Started from
-        // the last query's direction instead of the centres' difference, Wolfe's steps were
-        // as many: callgrind on bench/robot_motion_profile.py's 200 edges, exact_distance
-        // 27.98M -> 27.84M instructions.)
+        // the same framed pair), without framing the pair again; after the pair's first query,
+        // Wolfe's algorithm starts from that query's last corral (exact_distance_again).
+        // (bench/robot_motion_profile.py's 1000 edges under callgrind: 577.7M -> 555.4M
+        // instructions. Started from the last query's direction instead of the centres'
+        // difference, Wolfe's steps were as many: on 200 edges, exact_distance 27.98M -> 27.84M.)
         ++iterations_;
+        detail::Answer answer =
+            detail::exact_distance_again(framed, query_->options().exact.max_iterations, corral_);
         return answered(pair, plan, t, local, threshold,
-                        detail::finish_result(
-                            framed,
-                            detail::exact_distance(framed, query_->options().exact.max_iterations,
-                                                   Vector3::Zero()),
-                            Method::exact, detail::Goal::distance, detail::Weights::none));
+                        detail::finish_result(framed, std::move(answer), Method::exact,
+                                              detail::Goal::distance, detail::Weights::none));
       }
     }
     ++iterations_;
@@ -764,6 +772,8 @@ class MotionCheck {
   // query first stays unproven.
   std::optional<Query> second_;
   std::optional<Separating> separating_;
+  // The pair's last query's corral (size 0: none yet), the next query's start.
+  detail::MinNormPoint corral_;
   int iterations_ = 0;
   Eigen::Matrix<Scalar, 1, Eigen::Dynamic> start_;
   Eigen::Matrix<Scalar, 1, Eigen::Dynamic> end_;

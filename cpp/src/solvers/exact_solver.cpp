@@ -66,11 +66,27 @@ Answer corral_answer(const FramedPair& pair, const MinNormPoint& nearest, long e
 
 template <class Start>
 Answer nearest_points(const FramedPair& pair, int max_iterations, const Start& start, int hint_a,
-                      int hint_b) {
+                      int hint_b, MinNormPoint& nearest) {
   long evaluations = 0;
-  const MinNormPoint nearest =
-      nearest_corral(pair, max_iterations, start, hint_a, hint_b, evaluations);
+  nearest = nearest_corral(pair, max_iterations, start, hint_a, hint_b, evaluations);
   return corral_answer(pair, nearest, evaluations);
+}
+
+template <class Start>
+Answer nearest_points(const FramedPair& pair, int max_iterations, const Start& start, int hint_a,
+                      int hint_b) {
+  MinNormPoint nearest;
+  return nearest_points(pair, max_iterations, start, hint_a, hint_b, nearest);
+}
+
+// A corral as a start: one of several points counts as no point reached yet, since one already
+// at its nearest point (FCL's projections leave it so) would otherwise end the search as making
+// no progress.
+MinNormPoint corral_start(const MinNormPoint& corral) {
+  MinNormPoint start = corral;
+  start.x = corral.size > 1 ? Vector3::Constant(std::numeric_limits<Scalar>::infinity())
+                            : corral.corral[0].p;
+  return start;
 }
 
 Vector3 start_direction(const FramedPair& pair, const Vector3& start) {
@@ -84,12 +100,25 @@ Answer exact_distance(const FramedPair& pair, int max_iterations, const Vector3&
 }
 
 Answer exact_distance(const FramedPair& pair, int max_iterations, const MinNormPoint& corral) {
-  // A corral of several points counts as no point reached yet: one already at its nearest point
-  // (FCL's projections leave it so) would otherwise end the search as making no progress.
-  MinNormPoint start = corral;
-  start.x = corral.size > 1 ? Vector3::Constant(std::numeric_limits<Scalar>::infinity())
-                            : corral.corral[0].p;
-  return nearest_points(pair, max_iterations, start, corral.corral[0].ia, corral.corral[0].ib);
+  return nearest_points(pair, max_iterations, corral_start(corral), corral.corral[0].ia,
+                        corral.corral[0].ib);
+}
+
+Answer exact_distance_again(const FramedPair& pair, int max_iterations, MinNormPoint& corral) {
+  Answer answer;
+  if (corral.size == 0) {
+    answer = nearest_points(pair, max_iterations, start_direction(pair, Vector3::Zero()), -1, -1,
+                            corral);
+  } else {
+    for (int k = 0; k < corral.size; ++k) {
+      OraclePoint& point = corral.corral[k];
+      point.p = pair.b.vertex(point.ib) - pair.a.vertex(point.ia);
+    }
+    answer = nearest_points(pair, max_iterations, corral_start(corral), corral.corral[0].ia,
+                            corral.corral[0].ib, corral);
+  }
+  if (corral.size >= MinNormPoint::kCapacity) corral.size = 0;
+  return answer;
 }
 
 Answer settled_distance(const FramedPair& pair, int max_iterations, const Vector3& start) {

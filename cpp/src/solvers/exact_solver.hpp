@@ -19,6 +19,13 @@ Answer exact_distance(const FramedPair& pair, int max_iterations, const Vector3&
 /// with the bodies' support indices, positive weights summing to one).
 Answer exact_distance(const FramedPair& pair, int max_iterations, const MinNormPoint& corral);
 
+/// exact_distance for a pair met again at nearby poses (a motion's samples): Wolfe's algorithm
+/// starts from `corral`, its last corral for the pair, the points' support indices read again at
+/// these poses (none: from the centres' difference), and its new last corral is written back
+/// (emptied when it encloses the origin, a contact). Any start leaves the answer proven: its
+/// bounds come from the supports along the direction the search ends with.
+Answer exact_distance_again(const FramedPair& pair, int max_iterations, MinNormPoint& corral);
+
 /// exact_distance for a caller that needs only the value proven to the tolerance, its direction
 /// the witnesses' (a signed distance's contact normal): Wolfe's algorithm from `start` stops as
 /// soon as a corral's new point separates the bodies, along the corral's point, by its norm less
