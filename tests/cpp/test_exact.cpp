@@ -157,6 +157,25 @@ TEST(Fcl, HandsWhatItCannotProveToExact) {
   EXPECT_NEAR(depth.distance, -0.5, 1e-12);
 }
 
+// A distance whose witnesses come within the tolerance is proven to it by them alone: FCL's
+// answer stands without the enclosure test or the separation's scans, its lower bound the zero
+// every distance has, whether the cubes overlap, touch or lie apart by less than the tolerance.
+TEST(Fcl, ADistanceWithinTheToleranceStandsOnItsWitnesses) {
+  const Query fcl = query_of(Method::fcl);
+  const ConvexPolyhedron a = unit_cube();
+  for (const Scalar offset : {0.999, 1.0, 1.0 + 1e-9}) {
+    SCOPED_TRACE(offset);
+    const ConvexPolyhedron b = moved(unit_cube(), {offset, 0.25, 0.125});
+    const PairScale s = scale_of(a, b, kDefaultTolerance);
+    const DistanceResult r = fcl.distance(a, b);
+    expect_contract(a, b, QueryKind::distance, Method::fcl, r, reference(a, b), s);
+    EXPECT_EQ(r.method, Method::fcl);
+    EXPECT_TRUE(r.certified && r.colliding);
+    EXPECT_LE(r.distance, s.tolerance);
+    EXPECT_EQ(r.lower_bound, 0);
+  }
+}
+
 // libccd's EPA depth stands when the certificate proves it.
 TEST(Libccd, ItsDepthStandsWhenProven) {
   const DistanceResult r =

@@ -130,9 +130,16 @@ Answer solve_fcl(const FramedPair& pair, const QueryOptions& options, Goal goal)
   const bool usable = status != Gjk::Failed && corral.size > 0;
   if (usable) {
     // A corral around the origin proves the overlap, which settles a verdict and a distance
-    // (zero) whatever the separation along the witnesses: those skip its two scans.
-    const Witness witness = witness_of(pair, corral);
-    const bool separated = !witness.encloses_origin || goal == Goal::signed_distance;
+    // (zero) whatever the separation along the witnesses: those skip its two scans. A distance
+    // needs no enclosure test where the witnesses already prove contact (contact_witness_of):
+    // within the tolerance they settle it at zero as the proof would, and a distance reports
+    // no intersection proof; zero, its lower bound, needs no scan either.
+    const bool distance_goal = goal == Goal::distance;
+    const Witness witness =
+        distance_goal ? contact_witness_of(pair, corral) : witness_of(pair, corral);
+    const bool contact =
+        witness.encloses_origin || (distance_goal && witnesses_prove_contact(pair, witness));
+    const bool separated = !contact || goal == Goal::signed_distance;
     Answer answer = answer_from_corral(pair, corral, witness, separated);
     if (settles(answer)) return answer;
   }

@@ -53,9 +53,7 @@ Witness witness_of(const FramedPair& pair, const MinNormPoint& corral) {
 
 Witness contact_witness_of(const FramedPair& pair, const MinNormPoint& corral) {
   Witness w = combined_witness(pair, corral);
-  if (!(w.distance + kFrameRounding <= pair.tolerance)) {
-    w.encloses_origin = corral_encloses_origin(corral);
-  }
+  if (!witnesses_prove_contact(pair, w)) w.encloses_origin = corral_encloses_origin(corral);
   return w;
 }
 

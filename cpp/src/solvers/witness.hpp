@@ -43,6 +43,11 @@ Witness combined_witness(const FramedPair& pair, const MinNormPoint& corral);
 /// overlapping pair's search costs.
 Witness contact_witness_of(const FramedPair& pair, const MinNormPoint& corral);
 
+/// The witnesses' distance is within the pair's tolerance beyond rounding: they prove contact.
+inline bool witnesses_prove_contact(const FramedPair& pair, const Witness& witness) {
+  return witness.distance + kFrameRounding <= pair.tolerance;
+}
+
 /// The witness of the single pair of points (x_ia, y_ib).
 Witness vertex_witness(const FramedPair& pair, int ia, int ib);
 
