@@ -139,36 +139,35 @@ def main() -> None:
 
         print(f"{workload.split('=')[1]:>20} {proximity:9} {query:16} {show(ours)} {show(batch)} {show(coal)} "
               f"{ratio(ours):>9} {ratio(batch):>10}")
-    fcl_rows = []
-    for workload, proximity, query in keys:
-        method = found.get((workload, proximity, query, "ours_fcl"))
-        direct = found.get((workload, proximity, query, "fcl"))
-        if method is None or direct is None:
-            continue
-        fcl_rows.append({"vertices": int(workload.split("=")[1]), "proximity": proximity,
-                         "query": query, "fcl_method": method, "fcl_direct": direct})
-    if fcl_rows:
-        print(f"\n{'vertices':>8} {'proximity':9} {'query':9} {'fcl method':>10} {'FCL':>8} "
-              f"{'method/FCL':>10}")
-        for row in fcl_rows:
-            print(f"{row['vertices']:>8} {row['proximity']:9} {row['query']:9} "
-                  f"{row['fcl_method']:10.0f} {row['fcl_direct']:8.0f} "
-                  f"{row['fcl_method'] / row['fcl_direct']:10.2f}")
-    matched_rows = []
-    for workload, proximity, query in keys:
-        matched = found.get((workload, proximity, query, "coal_matched"))
-        ours = found.get((workload, proximity, query, "ours"))
-        if matched is None or ours is None:
-            continue
-        matched_rows.append({"shapes": workload.split("=")[1], "proximity": proximity,
-                             "query": query, "ours": ours, "coal_at_our_tolerance": matched})
-    if matched_rows:
-        print(f"\ncoal at our tolerance (1e-9 of the pair's size, not its absolute 1e-6):\n"
-              f"{'workload':>20} {'proximity':9} {'ours':>8} {'coal':>8} {'ours/coal':>9}")
-        for row in matched_rows:
-            print(f"{row['shapes']:>20} {row['proximity']:9} {row['ours']:8.0f} "
-                  f"{row['coal_at_our_tolerance']:8.0f} "
-                  f"{row['ours'] / row['coal_at_our_tolerance']:9.2f}")
+    def both(first: str, second: str):
+        """(workload, proximity, query, first's count, second's count) wherever both contenders
+        were counted."""
+        for workload, proximity, query in keys:
+            x = found.get((workload, proximity, query, first))
+            y = found.get((workload, proximity, query, second))
+            if x is not None and y is not None:
+                yield workload.split("=")[1], proximity, query, x, y
+
+    def print_ratios(title: str, key: str, rows: list[dict], top: str, bottom: str) -> None:
+        """A table of `top`'s and `bottom`'s counts per row and their ratio, under `title`."""
+        if not rows:
+            return
+        print(f"\n{title}\n{key:>20} {'proximity':9} {'query':16} {top:>22} {bottom:>22} "
+              f"{'ratio':>6}")
+        for row in rows:
+            print(f"{row[key]!s:>20} {row['proximity']:9} {row['query']:16} {row[top]:22.0f} "
+                  f"{row[bottom]:22.0f} {row[top] / row[bottom]:6.2f}")
+
+    fcl_rows = [{"vertices": int(size), "proximity": proximity, "query": query,
+                 "fcl_method": method, "fcl_direct": direct}
+                for size, proximity, query, method, direct in both("ours_fcl", "fcl")]
+    print_ratios("the fcl method against the raw FCL call it wraps:", "vertices", fcl_rows,
+                 "fcl_method", "fcl_direct")
+    matched_rows = [{"shapes": shapes, "proximity": proximity, "query": query, "ours": ours,
+                     "coal_at_our_tolerance": matched}
+                    for shapes, proximity, query, ours, matched in both("ours", "coal_matched")]
+    print_ratios("coal at our tolerance (1e-9 of the pair's size, not its absolute 1e-6):",
+                 "shapes", matched_rows, "ours", "coal_at_our_tolerance")
     if args.json:
         rows += fcl_rows + matched_rows
         Path(args.json).write_text(json.dumps({"pairs": args.pairs, "repeats": args.repeats,
