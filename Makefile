@@ -111,15 +111,17 @@ bench: install $(VENV)/.bench-installed bench-scene bench-compound
 	$(PY) bench/report.py --results bench/results --plots bench/plots --out bench/RESULTS.md
 
 # The core, the C++ tests and the extension, built with ASan and UBSan (SWARMCOLLIDE_SANITIZE) in
-# their own directory, at -O1 with assertions on (Eigen's index checks included) and line tables
-# only: with -g1 the reports' stacks still name functions, files and lines, and the build, most of
-# this target's time, is a quarter shorter than with -g (ball_screen.cpp 339 s -> 261 s,
-# test_batch.cpp 175 s -> 123 s on a loaded host). Python itself is not instrumented, so the ASan
-# and UBSan runtimes are preloaded into it, and pytest imports the instrumented extension through
-# PYTHONPATH (the .venv supplies NumPy, SciPy, pytest and the package's metadata). CPython never frees some of its own memory at exit, so leak detection,
-# which would report that, is on for ctest only. PYTHONMALLOC=malloc routes Python's small objects
-# through ASan's malloc too. A report from a call in a sandboxed child (tests/python/sandbox.py)
-# appears in that test's failure message.
+# their own directory, at -O1 with assertions on (Eigen's index checks included). The build is most
+# of this target's time, so it keeps line tables only (-g1: the reports' stacks still name
+# functions, files and lines; full -g took a quarter longer: ball_screen.cpp 339 s -> 261 s,
+# test_batch.cpp 175 s -> 123 s on a loaded host) and leaves out GCC's points-to analysis, which
+# took 78% of ball_screen.cpp's instrumented build (19 times its release build, where other files
+# take 3; 19 s of CPU without it instead of 95). Python itself is not instrumented, so the ASan and
+# UBSan runtimes are preloaded into it, and pytest imports the instrumented extension through
+# PYTHONPATH (the .venv supplies NumPy, SciPy, pytest and the package's metadata). CPython never
+# frees some of its own memory at exit, so leak detection, which would report that, is on for ctest
+# only. PYTHONMALLOC=malloc routes Python's small objects through ASan's malloc too. A report from a
+# call in a sandboxed child (tests/python/sandbox.py) appears in that test's failure message.
 SAN_BUILD := build/sanitize
 SAN_SITE := $(SAN_BUILD)/site
 SAN_PYTESTS ?= tests/python/test_trust.py tests/python/test_contract.py tests/python/test_batch.py \
@@ -130,7 +132,7 @@ SAN_RUNTIMES = $$(gcc -print-file-name=libasan.so) $$(gcc -print-file-name=libub
 
 test-sanitize: install
 	cmake -S . -B $(SAN_BUILD) -G Ninja -DSWARMCOLLIDE_SANITIZE=ON \
-	  -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1" \
+	  -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -fno-tree-pta" \
 	  -DCMAKE_INTERPROCEDURAL_OPTIMIZATION=OFF \
 	  -DSWARMCOLLIDE_BUILD_TESTS=ON -DSWARMCOLLIDE_BUILD_PYTHON=ON \
 	  -DPython_EXECUTABLE=$(abspath $(PY)) -Dpybind11_DIR="$$($(PY) -m pybind11 --cmakedir)"
