@@ -383,6 +383,12 @@ class Solver {
     set_upper(-rolling.depth_lower, PenetrationProof::rolling_ball);
     offer(rolling.normal);
     finish();
+    // A secant step's point, alone in the corral, may lie a little off the direction it was
+    // asked along, whose separation met the search's gap: that direction is measured too.
+    if (!done() && rolling.measured != rolling.normal) {
+      offer(rolling.measured);
+      finish();
+    }
     return done();
   }
 

@@ -17,6 +17,9 @@ struct RollingBallDepth {
   Scalar depth_lower = 0;
   /// Unit, from A to B.
   Vector3 normal = Vector3::UnitX();
+  /// The unit direction along which the search's last oracle point was asked (the normal's
+  /// own, or a secant direction's): its separation met the search's gap.
+  Vector3 measured = Vector3::UnitX();
   Vector3 point_a = Vector3::Zero();
   Vector3 point_b = Vector3::Zero();
   /// The witnesses as weights over the bodies' points (a curved body's witness is added to its
