@@ -313,6 +313,50 @@ TEST(BoxScreen, TheBoxesSeparationIsALowerBoundOnTheirDistance) {
   EXPECT_GT(apart, 100);
 }
 
+// The face axes alone (check_motion's plan screens by them): a subset of the 15 axes, so never
+// above the whole test's separation, and box_separation's answer when its first 6 axes are
+// enough; still a lower bound on the corners' hulls' distance.
+TEST(BoxScreen, TheFaceAxesSeparationIsALowerBoundBelowTheWholeTests) {
+  Random rng(19);
+  QueryOptions options;
+  options.method = Method::exact;
+  const Query exact(options);
+  int apart = 0;
+  int below = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    const Vector3 ha(rng.uniform(0.01, 1), rng.uniform(0.01, 1), rng.uniform(0.01, 1));
+    const Vector3 hb(rng.uniform(0.01, 1), rng.uniform(0.01, 1), rng.uniform(0.01, 1));
+    const Pose pa = at(rng.vector(1), rng.rotation());
+    const Pose pb = at(rng.vector(1), rng.rotation());
+    const Aabb a{-ha, ha};
+    const Aabb b{-hb, hb};
+    const detail::PlacedBox placed_a(a, pa);
+    const detail::PlacedBox placed_b(b, pb);
+    const Scalar faces = detail::face_separation(placed_a, placed_b);
+    const Scalar whole = detail::box_separation(a, pa, b, pb);
+    EXPECT_LE(faces, whole) << trial;
+    EXPECT_EQ(faces, detail::box_separation(placed_a, placed_b, [](Scalar) { return true; }))
+        << trial;
+    if (!(faces > 0)) continue;
+    ++apart;
+    below += faces < whole;
+    VertexMatrix corners_a(8, 3);
+    VertexMatrix corners_b(8, 3);
+    for (int k = 0; k < 8; ++k) {
+      const Vector3 sign(k & 1 ? 1 : -1, k & 2 ? 1 : -1, k & 4 ? 1 : -1);
+      corners_a.row(k) = sign.cwiseProduct(ha).transpose();
+      corners_b.row(k) = sign.cwiseProduct(hb).transpose();
+    }
+    const DistanceResult d =
+        exact.distance(ConvexPolyhedron(corners_a), pa, ConvexPolyhedron(corners_b), pb);
+    EXPECT_LE(faces, d.distance) << trial;
+    EXPECT_LE(faces, d.lower_bound + 1e-13) << trial;
+  }
+  EXPECT_GT(apart, 100);
+  // The cross axes separate some pairs farther.
+  EXPECT_GT(below, 0);
+}
+
 // Boxes turned from each other by 1e-17 to 1e-13 rad (columns parallel to a few ulps), the one's
 // centre inside the other: no axis separates them. The near-parallel columns' cross products are
 // rounding alone, along which the triple products the screen reads are off by some u (the slack
