@@ -12,9 +12,11 @@
 
 namespace swarmcollide::detail {
 
-/// A box placed by a pose with what the test takes from it alone (its centre and half-widths,
-/// its Gram matrix R^T R, cofactor columns R_{m+1} x R_{m+2} and their norms), made once for
-/// every pair it is screened in: the same expressions as made per pair, so the same values.
+/// A box placed by a pose with what the face axes take from it alone (its centre and
+/// half-widths, its Gram matrix R^T R and its columns' norms), made once for every pair it is
+/// screened in: the same expressions as made per pair, so the same values. The cross axes'
+/// cofactor columns are made by box_separation where the face axes are not enough (most of the
+/// screens that place a box once for many pairs take its face axes alone).
 struct PlacedBox {
   PlacedBox() = default;
   PlacedBox(const Aabb& box, const Pose& pose)
@@ -22,32 +24,33 @@ struct PlacedBox {
         centre(pose.rotation * ((box.max + box.min) / 2) + pose.translation),
         rotation(pose.rotation),
         gram(pose.rotation.transpose() * pose.rotation) {
-    for (int m = 0; m < 3; ++m) {
-      cofactors.col(m) = rotation.col((m + 1) % 3).cross(rotation.col((m + 2) % 3));
-    }
     for (int i = 0; i < 3; ++i) {
       column_norm1(i) = rotation.col(i).lpNorm<1>();
       column_norm(i) = rotation.col(i).norm();
     }
     centre_norm = centre.lpNorm<1>();
     half_sum = half.sum();
-    frobenius2 = gram.trace();
-    frobenius = std::sqrt(frobenius2);
   }
 
   Vector3 half;
   Vector3 centre;
   Matrix3 rotation;
   Matrix3 gram;
-  Matrix3 cofactors;
   // The columns' 1-norms and lengths (the box axes').
   Vector3 column_norm1;
   Vector3 column_norm;
   Scalar centre_norm;
   Scalar half_sum;
-  Scalar frobenius2;
-  Scalar frobenius;
 };
+
+// The cofactor columns R_{m+1} x R_{m+2} of a placed box (box_separation's X_m and Y_m).
+inline Matrix3 cofactor_columns(const Matrix3& rotation) {
+  Matrix3 cofactors;
+  for (int m = 0; m < 3; ++m) {
+    cofactors.col(m) = rotation.col((m + 1) % 3).cross(rotation.col((m + 2) % 3));
+  }
+  return cofactors;
+}
 
 // Offers one axis to `best`: the separation along it, of 1-norm `norm1` and length `length`,
 // with `along` = between . axis and the two half-widths, less `slack` and the margin
@@ -121,12 +124,12 @@ Scalar box_separation(const PlacedBox& a, const PlacedBox& b, const Enough& enou
   const Matrix3& ra = a.rotation;
   const Matrix3& rb = b.rotation;
   // d(m, j) = X_m . B_j, e(m, i) = Y_m . A_i.
-  const Matrix3 d = a.cofactors.transpose() * rb;
-  const Matrix3 e = b.cofactors.transpose() * ra;
-  const Scalar fa2 = a.frobenius2;
-  const Scalar fb2 = b.frobenius2;
-  const Scalar fa = a.frobenius;
-  const Scalar fb = b.frobenius;
+  const Matrix3 d = cofactor_columns(ra).transpose() * rb;
+  const Matrix3 e = cofactor_columns(rb).transpose() * ra;
+  const Scalar fa2 = a.gram.trace();
+  const Scalar fb2 = b.gram.trace();
+  const Scalar fa = std::sqrt(fa2);
+  const Scalar fb = std::sqrt(fb2);
   const Scalar slack = 1e-13 * (fa2 * fb * a.half_sum + fa * fb2 * b.half_sum);
   for (int i = 0; i < 3; ++i) {
     const int i1 = (i + 1) % 3;

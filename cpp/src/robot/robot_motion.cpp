@@ -705,13 +705,17 @@ class MotionCheck {
     return (ca - cb).norm() - a.radius - b.radius - margin;
   }
 
-  // The better of `balls`, the pair's ball separation, and its boxes' (-inf when neither
-  // separates them).
+  // The better of `balls`, the pair's ball separation, and its boxes' over their face axes (-inf
+  // when neither separates them), as the plan screens: a sample's screen decides only whether
+  // it proves the pair apart to the horizon, and the cross axes' work cost more than the
+  // samples they saved (bench/robot_motion_profile.py's 1000 edges under callgrind 510.72M ->
+  // 501.70M instructions with the face axes alone; 16.37 -> 16.71 queries per edge).
   Scalar screen_boxes(const GeometryPair& pair, const Pose& pose_a, const Pose& pose_b,
                       Scalar balls) const {
     const BodyBounds& a = model_.geometries()[pair.a].body.bounds();
     const BodyBounds& b = model_.geometries()[pair.b].body.bounds();
-    return std::max(balls, detail::box_separation(a.box, pose_a, b.box, pose_b));
+    return std::max(balls, detail::face_separation(detail::PlacedBox(a.box, pose_a),
+                                                   detail::PlacedBox(b.box, pose_b)));
   }
 
   // Geometry g's bounding ball's centre with the geometry at `pose`.
