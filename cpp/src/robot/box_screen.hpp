@@ -12,9 +12,11 @@
 
 namespace swarmcollide::detail {
 
-/// A box placed by a pose with what the test takes from it alone (its centre and half-widths,
-/// its Gram matrix R^T R, cofactor columns R_{m+1} x R_{m+2} and their norms), made once for
-/// every pair it is screened in: the same expressions as made per pair, so the same values.
+/// A box placed by a pose with what the face axes take from it alone (its centre and
+/// half-widths, its Gram matrix R^T R and its columns' norms), made once for every pair it is
+/// screened in: the same expressions as made per pair, so the same values. The cross axes'
+/// cofactor columns are made by box_separation where the face axes are not enough (most of the
+/// screens that place a box once for many pairs take its face axes alone).
 struct PlacedBox {
   PlacedBox() = default;
   PlacedBox(const Aabb& box, const Pose& pose)
@@ -22,32 +24,68 @@ struct PlacedBox {
         centre(pose.rotation * ((box.max + box.min) / 2) + pose.translation),
         rotation(pose.rotation),
         gram(pose.rotation.transpose() * pose.rotation) {
-    for (int m = 0; m < 3; ++m) {
-      cofactors.col(m) = rotation.col((m + 1) % 3).cross(rotation.col((m + 2) % 3));
-    }
     for (int i = 0; i < 3; ++i) {
       column_norm1(i) = rotation.col(i).lpNorm<1>();
       column_norm(i) = rotation.col(i).norm();
     }
     centre_norm = centre.lpNorm<1>();
     half_sum = half.sum();
-    frobenius2 = gram.trace();
-    frobenius = std::sqrt(frobenius2);
   }
 
   Vector3 half;
   Vector3 centre;
   Matrix3 rotation;
   Matrix3 gram;
-  Matrix3 cofactors;
   // The columns' 1-norms and lengths (the box axes').
   Vector3 column_norm1;
   Vector3 column_norm;
   Scalar centre_norm;
   Scalar half_sum;
-  Scalar frobenius2;
-  Scalar frobenius;
 };
+
+// The cofactor columns R_{m+1} x R_{m+2} of a placed box (box_separation's X_m and Y_m).
+inline Matrix3 cofactor_columns(const Matrix3& rotation) {
+  Matrix3 cofactors;
+  for (int m = 0; m < 3; ++m) {
+    cofactors.col(m) = rotation.col((m + 1) % 3).cross(rotation.col((m + 2) % 3));
+  }
+  return cofactors;
+}
+
+// Offers one axis to `best`: the separation along it, of 1-norm `norm1` and length `length`,
+// with `along` = between . axis and the two half-widths, less `slack` and the margin
+// (box_separation's proof).
+inline void offer_axis(Scalar& best, Scalar magnitude, Scalar norm1, Scalar length, Scalar along,
+                       Scalar reach_a, Scalar reach_b, Scalar slack) {
+  const Scalar gap = std::abs(along) - reach_a - reach_b - 1e-12 * magnitude * norm1 - slack;
+  if (gap > 0 && length > 0) best = std::max(best, gap / length * (1 - 1e-12));
+}
+
+// The two boxes' centres' difference and the magnitude their margin is taken of.
+inline Vector3 box_between(const PlacedBox& a, const PlacedBox& b) { return b.centre - a.centre; }
+inline Scalar box_magnitude(const PlacedBox& a, const PlacedBox& b) {
+  return a.centre_norm + b.centre_norm + a.half_sum + b.half_sum;
+}
+
+/// box_separation over the 3 + 3 box axes alone (-inf when none separates the boxes): a proven
+/// lower bound as well (each axis' separation is one), at a third of the work of all 15.
+inline Scalar face_separation(const PlacedBox& a, const PlacedBox& b) {
+  const Vector3 between = box_between(a, b);
+  const Scalar magnitude = box_magnitude(a, b);
+  const Matrix3& ra = a.rotation;
+  const Matrix3& rb = b.rotation;
+  Scalar best = -std::numeric_limits<Scalar>::infinity();
+  // Entry (k, i): column k of the first dotted with column i of the second.
+  const Matrix3 across = ra.transpose() * rb;
+  for (int i = 0; i < 3; ++i) {
+    offer_axis(best, magnitude, a.column_norm1(i), a.column_norm(i), between.dot(ra.col(i)),
+               a.half.dot(a.gram.col(i).cwiseAbs()),
+               b.half.dot(across.row(i).transpose().cwiseAbs()), 0);
+    offer_axis(best, magnitude, b.column_norm1(i), b.column_norm(i), between.dot(rb.col(i)),
+               a.half.dot(across.col(i).cwiseAbs()), b.half.dot(b.gram.col(i).cwiseAbs()), 0);
+  }
+  return best;
+}
 
 /// A proven lower bound on the distance between the boxes `a` and `b`, given in their bodies' own
 /// frames and placed by their poses (-inf when no axis separates them): the largest
@@ -77,39 +115,21 @@ struct PlacedBox {
 /// inside the factor 12).
 template <typename Enough>
 Scalar box_separation(const PlacedBox& a, const PlacedBox& b, const Enough& enough) {
+  Scalar best = face_separation(a, b);
+  if (enough(best)) return best;
   const Vector3& half_a = a.half;
   const Vector3& half_b = b.half;
-  const Vector3 between = b.centre - a.centre;
-  const Scalar magnitude = a.centre_norm + b.centre_norm + a.half_sum + b.half_sum;
+  const Vector3 between = box_between(a, b);
+  const Scalar magnitude = box_magnitude(a, b);
   const Matrix3& ra = a.rotation;
   const Matrix3& rb = b.rotation;
-  Scalar best = -std::numeric_limits<Scalar>::infinity();
-  // An axis of 1-norm `norm1` and length `length`, with `along` = between . axis and the two
-  // half-widths, less `slack`.
-  const auto offer = [&](Scalar norm1, Scalar length, Scalar along, Scalar reach_a,
-                         Scalar reach_b, Scalar slack) {
-    const Scalar gap = std::abs(along) - reach_a - reach_b - 1e-12 * magnitude * norm1 - slack;
-    if (gap > 0 && length > 0) best = std::max(best, gap / length * (1 - 1e-12));
-  };
-  // Entry (k, i): column k of the first dotted with column i of the second.
-  const Matrix3& gram_a = a.gram;
-  const Matrix3& gram_b = b.gram;
-  const Matrix3 across = ra.transpose() * rb;
-  for (int i = 0; i < 3; ++i) {
-    offer(a.column_norm1(i), a.column_norm(i), between.dot(ra.col(i)),
-          half_a.dot(gram_a.col(i).cwiseAbs()), half_b.dot(across.row(i).transpose().cwiseAbs()),
-          0);
-    offer(b.column_norm1(i), b.column_norm(i), between.dot(rb.col(i)),
-          half_a.dot(across.col(i).cwiseAbs()), half_b.dot(gram_b.col(i).cwiseAbs()), 0);
-  }
-  if (enough(best)) return best;
   // d(m, j) = X_m . B_j, e(m, i) = Y_m . A_i.
-  const Matrix3 d = a.cofactors.transpose() * rb;
-  const Matrix3 e = b.cofactors.transpose() * ra;
-  const Scalar fa2 = a.frobenius2;
-  const Scalar fb2 = b.frobenius2;
-  const Scalar fa = a.frobenius;
-  const Scalar fb = b.frobenius;
+  const Matrix3 d = cofactor_columns(ra).transpose() * rb;
+  const Matrix3 e = cofactor_columns(rb).transpose() * ra;
+  const Scalar fa2 = a.gram.trace();
+  const Scalar fb2 = b.gram.trace();
+  const Scalar fa = std::sqrt(fa2);
+  const Scalar fb = std::sqrt(fb2);
   const Scalar slack = 1e-13 * (fa2 * fb * a.half_sum + fa * fb2 * b.half_sum);
   for (int i = 0; i < 3; ++i) {
     const int i1 = (i + 1) % 3;
@@ -118,9 +138,9 @@ Scalar box_separation(const PlacedBox& a, const PlacedBox& b, const Enough& enou
       const int j1 = (j + 1) % 3;
       const int j2 = (j + 2) % 3;
       const Vector3 axis = ra.col(i).cross(rb.col(j));
-      offer(axis.lpNorm<1>(), axis.norm(), between.dot(axis),
-            half_a(i1) * std::abs(d(i2, j)) + half_a(i2) * std::abs(d(i1, j)),
-            half_b(j1) * std::abs(e(j2, i)) + half_b(j2) * std::abs(e(j1, i)), slack);
+      offer_axis(best, magnitude, axis.lpNorm<1>(), axis.norm(), between.dot(axis),
+                 half_a(i1) * std::abs(d(i2, j)) + half_a(i2) * std::abs(d(i1, j)),
+                 half_b(j1) * std::abs(e(j2, i)) + half_b(j2) * std::abs(e(j1, i)), slack);
     }
   }
   return best;
