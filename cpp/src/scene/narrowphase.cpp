@@ -32,11 +32,27 @@ struct CommonPoint {
   Vector3 point_b;
 };
 
+// A tetrahedron's point pairs placed at the pair's present poses: on_a[k] of A and on_b[k] of B.
+struct PlacedTetrahedron {
+  std::array<Vector3, 4> on_a;
+  std::array<Vector3, 4> on_b;
+};
+
+PlacedTetrahedron place(const FramedPair& pair, const PairProof::Enclosing& proof) {
+  PlacedTetrahedron t;
+  for (int k = 0; k < 4; ++k) {
+    t.on_a[k] = pair.a.vertex(proof.a[k]);
+    t.on_b[k] = pair.b.vertex(proof.b[k]);
+  }
+  return t;
+}
+
 // The common point a tetrahedron of point pairs (on_a[k], on_b[k]) proves when it encloses the
 // origin (encloses_origin, beyond rounding): the origin's barycentric coordinates weigh the pairs'
 // points on each body.
-std::optional<CommonPoint> common_point(const std::array<Vector3, 4>& on_a,
-                                        const std::array<Vector3, 4>& on_b) {
+std::optional<CommonPoint> common_point(const PlacedTetrahedron& t) {
+  const std::array<Vector3, 4>& on_a = t.on_a;
+  const std::array<Vector3, 4>& on_b = t.on_b;
   std::array<Scalar, 4> weight;
   if (!encloses_origin({on_b[0] - on_a[0], on_b[1] - on_a[1], on_b[2] - on_a[2], on_b[3] - on_a[3]},
                        weight)) {
@@ -51,14 +67,13 @@ std::optional<CommonPoint> common_point(const std::array<Vector3, 4>& on_a,
   return common;
 }
 
-// The cached tetrahedron as a corral of Wolfe's algorithm (equal weights): where Wolfe's algorithm
-// restarts, or, once it is known to enclose the origin at the new poses, where the expanding
-// polytope starts.
-MinNormPoint corral_of(const FramedPair& pair, const PairProof::Enclosing& proof) {
+// The cached tetrahedron (`proof`, placed as `t`) as a corral of Wolfe's algorithm (equal
+// weights): where Wolfe's algorithm restarts, or, once it is known to enclose the origin at the
+// new poses, where the expanding polytope starts.
+MinNormPoint corral_of(const PlacedTetrahedron& t, const PairProof::Enclosing& proof) {
   MinNormPoint corral;
   for (int k = 0; k < 4; ++k) {
-    corral.corral[k] = {pair.b.vertex(proof.b[k]) - pair.a.vertex(proof.a[k]), proof.a[k],
-                        proof.b[k]};
+    corral.corral[k] = {t.on_b[k] - t.on_a[k], proof.a[k], proof.b[k]};
     corral.weights[k] = 0.25;
     corral.x += 0.25 * corral.corral[k].p;
   }
@@ -66,24 +81,13 @@ MinNormPoint corral_of(const FramedPair& pair, const PairProof::Enclosing& proof
   return corral;
 }
 
-// The common point a cached tetrahedron proves when, at the new poses, it still encloses the
-// origin.
-std::optional<CommonPoint> enclosed(const FramedPair& pair, const PairProof::Enclosing& proof) {
-  std::array<Vector3, 4> on_a;
-  std::array<Vector3, 4> on_b;
-  for (int k = 0; k < 4; ++k) {
-    on_a[k] = pair.a.vertex(proof.a[k]);
-    on_b[k] = pair.b.vertex(proof.b[k]);
-  }
-  return common_point(on_a, on_b);
-}
-
-// A cached tetrahedron that no longer encloses the origin is where Wolfe's algorithm starts: after
-// a small motion a step or two find one that does, whose common point is the answer and which
-// replaces the cached one. Otherwise the pair is answered as if nothing were cached.
+// A cached tetrahedron that no longer encloses the origin (placed as `t`) is where Wolfe's
+// algorithm starts: after a small motion a step or two find one that does, whose common point is
+// the answer and which replaces the cached one (and `t`, placed). Otherwise the pair is answered
+// as if nothing were cached.
 std::optional<CommonPoint> repaired(const FramedPair& pair, PairProof::Enclosing& proof,
-                                    int max_iterations) {
-  const MinNormPoint start = corral_of(pair, proof);
+                                    PlacedTetrahedron& t, int max_iterations) {
+  const MinNormPoint start = corral_of(t, proof);
   int ia = proof.a[0];
   int ib = proof.b[0];
   const auto oracle = [&](const Vector3& d) {
@@ -91,18 +95,18 @@ std::optional<CommonPoint> repaired(const FramedPair& pair, PairProof::Enclosing
   };
   const MinNormPoint found = wolfe_min_norm_from(oracle, start, 2, max_iterations);
   if (found.size != 4) return std::nullopt;
-  std::array<Vector3, 4> on_a;
-  std::array<Vector3, 4> on_b;
+  PlacedTetrahedron found_placed;
   for (int k = 0; k < 4; ++k) {
-    on_a[k] = pair.a.vertex(found.corral[k].ia);
-    on_b[k] = pair.b.vertex(found.corral[k].ib);
+    found_placed.on_a[k] = pair.a.vertex(found.corral[k].ia);
+    found_placed.on_b[k] = pair.b.vertex(found.corral[k].ib);
   }
-  std::optional<CommonPoint> common = common_point(on_a, on_b);
+  std::optional<CommonPoint> common = common_point(found_placed);
   if (common) {
     for (int k = 0; k < 4; ++k) {
       proof.a[k] = found.corral[k].ia;
       proof.b[k] = found.corral[k].ib;
     }
+    t = found_placed;
   }
   return common;
 }
@@ -314,13 +318,17 @@ void answer_pair(const PlacedBody& a, const PlacedBody& b, PairProof& proof,
   // distance of zero (to rounding): its common point is the answer.
   const bool compound = a.compound != nullptr || b.compound != nullptr;
   std::optional<CommonPoint> common;
+  // The cached tetrahedron placed at these poses, once it is (its corners are those of the
+  // expanding polytope's start too).
+  PlacedTetrahedron placed;
   // The contact tetrahedron kept from the last frame still encloses the origin.
   bool face_kept = false;
   if (question.warm && proof.kind == PairProof::Kind::enclosing && !compound) {
-    common = enclosed(pair, proof.enclosing);
+    placed = place(pair, proof.enclosing);
+    common = common_point(placed);
     face_kept = common && proof.on_face;
     if (!common) {
-      common = repaired(pair, proof.enclosing, options.exact.max_iterations);
+      common = repaired(pair, proof.enclosing, placed, options.exact.max_iterations);
       if (common) proof.on_face = false;
     }
   }
@@ -400,7 +408,8 @@ void answer_pair(const PlacedBody& a, const PlacedBody& b, PairProof& proof,
     // running Wolfe's algorithm again to find one.
     std::optional<CommonPoint> tetrahedron_common = common;
     if (!common && question.warm && proof.kind == PairProof::Kind::enclosing) {
-      tetrahedron_common = enclosed(pair, proof.enclosing);
+      placed = place(pair, proof.enclosing);
+      tetrahedron_common = common_point(placed);
       face_kept = tetrahedron_common && proof.on_face;
     }
     // The surface of the pair's last expansion (never a curved body's: its support points are
@@ -414,7 +423,7 @@ void answer_pair(const PlacedBody& a, const PlacedBody& b, PairProof& proof,
       QueryOptions o = options;
       o.method = m;
       if (m == Method::dual && tetrahedron_common) {
-        const MinNormPoint corral = corral_of(pair, proof.enclosing);
+        const MinNormPoint corral = corral_of(placed, proof.enclosing);
         // No direction to try first: the polytope from the tetrahedron finds the normal, and a
         // hint would only cost two more support climbs.
         Answer overlap =
@@ -439,7 +448,7 @@ void answer_pair(const PlacedBody& a, const PlacedBody& b, PairProof& proof,
     // An overlap's contact face makes the tetrahedron the next frame's penetration starts from,
     // unless the one made so in an earlier frame still encloses the origin: after a small
     // motion it is still on the face (a pile's resting contacts, frame after frame), and the
-    // next frame checks it again at its poses (enclosed) before anything starts from it.
+    // next frame checks it again at its poses (common_point) before anything starts from it.
     if (add_contact_points(pair, contact, question, out, features) && question.warm &&
         contact.distance < 0 && !face_kept) {
       // The last tetrahedron's apex starts the climbs to the new one's.

@@ -6,6 +6,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "../geometry/support.hpp"
+
 namespace swarmcollide::detail {
 
 namespace {
@@ -70,12 +72,20 @@ void update_box(SceneBody& b) {
       high = high.cwiseMax(p);
     }
   } else {
+    // ConvexPolyhedron::support_index(d, start)'s climb where every point is a hull point, the hull
+    // read once for the six: looked up at each call, it cost a third of a climb from a support
+    // that has not moved.
+    const Hull* hull = b.body.hull_points().every_point ? &b.body.hull() : nullptr;
+    const auto climb = [&](const Vector3& d, int start) {
+      return hull != nullptr ? climb_support(b.body.centred_vertices(), *hull, d, start)
+                             : b.body.support_index(d, start);
+    };
     for (int k = 0; k < 3; ++k) {
       const Vector3 axis = r.row(k).transpose();
       int& up = b.box_supports[2 * k];
       int& down = b.box_supports[2 * k + 1];
-      up = b.body.support_index(axis, up);
-      down = b.body.support_index(-axis, down);
+      up = climb(axis, up);
+      down = climb(-axis, down);
       high(k) = axis.dot(points.row(up).transpose()) + t(k);
       low(k) = axis.dot(points.row(down).transpose()) + t(k);
     }

@@ -100,9 +100,12 @@ bool scanned_whole(const FramedBody& body) {
 
 // A point of `body` highest along `n` as a scan of its points finds it (FramedBody::
 // support_index, whose shortfall margin() covers): for large placed bodies by the branch and
-// bound of their support tree (built once per body), seeded by a climb from `hint`. `shortfall`
-// is the body's scan_shortfall(), which the solver keeps.
-int scanned_support(const FramedBody& body, Scalar shortfall, const Vector3& n, int hint) {
+// bound of their support tree (built once per body), seeded by a climb from `hint`, or by `hint`
+// itself where it is a climb's answer along `n` already (`climbed`: a climb from a point none of
+// whose neighbours is higher, and no lower than its cube-map cell's start, stays there).
+// `shortfall` is the body's scan_shortfall(), which the solver keeps.
+int scanned_support(const FramedBody& body, Scalar shortfall, const Vector3& n, int hint,
+                    bool climbed) {
   if (body.curved() || body.size() <= kHillClimbingThreshold || shortfall == 0) {
     return body.support_index(n);
   }
@@ -110,7 +113,8 @@ int scanned_support(const FramedBody& body, Scalar shortfall, const Vector3& n, 
   const int key = &points == &body.body().centred_vertices() ? 0 : 1;
   const SupportTree& tree =
       body.body().derived<SupportTree>([&] { return SupportTree(points); }, key);
-  return tree.support_index(points, body.local_direction(n), body.support_index(n, hint));
+  return tree.support_index(points, body.local_direction(n),
+                            climbed ? hint : body.support_index(n, hint));
 }
 
 class Solver {
@@ -252,8 +256,12 @@ class Solver {
     // already when that start was found along the candidate (scanned_support would repeat it).
     const bool known_a = climbs_along_candidate_ && scanned_whole(a_);
     const bool known_b = climbs_along_candidate_ && scanned_whole(b_);
-    top_a_ = known_a ? climb_a_ : scanned_support(a_, shortfall_a_, candidate_, climb_a_);
-    top_b_ = known_b ? climb_b_ : scanned_support(b_, shortfall_b_, -candidate_, climb_b_);
+    top_a_ = known_a ? climb_a_
+                     : scanned_support(a_, shortfall_a_, candidate_, climb_a_,
+                                       climbs_along_candidate_);
+    top_b_ = known_b ? climb_b_
+                     : scanned_support(b_, shortfall_b_, -candidate_, climb_b_,
+                                       climbs_along_candidate_);
     top_height_a_ = a_.height(top_a_, candidate_);
     top_height_b_ = b_.height(top_b_, candidate_);
     separation_ = top_height_b_ - top_height_a_;
