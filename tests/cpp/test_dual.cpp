@@ -133,6 +133,7 @@ TEST(Dual, SignedDistancesOfTouchingPairsAreCertified) {
       const PairScale s = scale_of(a, b, kDefaultTolerance);
       EXPECT_TRUE(r.certified);
       EXPECT_TRUE(r.colliding);
+      EXPECT_LE(r.lower_bound, r.distance);
       EXPECT_NEAR(r.distance, reference.distance, s.tolerance + s.rounding);
     }
   }
