@@ -116,11 +116,11 @@ bench: install $(VENV)/.bench-installed bench-scene bench-compound
 # functions, files and lines; full -g took a quarter longer: ball_screen.cpp 339 s -> 261 s,
 # test_batch.cpp 175 s -> 123 s on a loaded host) and leaves out GCC's points-to analysis, which
 # took 78% of ball_screen.cpp's instrumented build (19 times its release build, where other files
-# take 3; 19 s of CPU without it instead of 95). Python itself is not instrumented, so the ASan and
-# UBSan runtimes are preloaded into it, and pytest imports the instrumented extension through
-# PYTHONPATH (the .venv supplies NumPy, SciPy, pytest and the package's metadata). CPython never
-# frees some of its own memory at exit, so leak detection, which would report that, is on for ctest
-# only. PYTHONMALLOC=malloc routes Python's small objects through ASan's malloc too. A report from a
+# take 3; 19 s of CPU without it instead of 95): the whole instrumented build took 1,221 s of CPU
+# instead of 2,082. Python itself is not instrumented, so the ASan and UBSan runtimes are preloaded
+# into it, and pytest imports the instrumented extension through PYTHONPATH (the .venv supplies
+# NumPy, SciPy, pytest and the package's metadata). CPython never frees some of its own memory at
+# exit, so leak detection, which would report that, is on for ctest only. PYTHONMALLOC=malloc routes Python's small objects through ASan's malloc too. A report from a
 # call in a sandboxed child (tests/python/sandbox.py) appears in that test's failure message.
 SAN_BUILD := build/sanitize
 SAN_SITE := $(SAN_BUILD)/site
