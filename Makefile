@@ -120,8 +120,9 @@ bench: install $(VENV)/.bench-installed bench-scene bench-compound
 # instead of 2,082. Python itself is not instrumented, so the ASan and UBSan runtimes are preloaded
 # into it, and pytest imports the instrumented extension through PYTHONPATH (the .venv supplies
 # NumPy, SciPy, pytest and the package's metadata). CPython never frees some of its own memory at
-# exit, so leak detection, which would report that, is on for ctest only. PYTHONMALLOC=malloc routes Python's small objects through ASan's malloc too. A report from a
-# call in a sandboxed child (tests/python/sandbox.py) appears in that test's failure message.
+# exit, so leak detection, which would report that, is on for ctest only. PYTHONMALLOC=malloc
+# routes Python's small objects through ASan's malloc too. A report from a call in a sandboxed
+# child (tests/python/sandbox.py) appears in that test's failure message.
 SAN_BUILD := build/sanitize
 SAN_SITE := $(SAN_BUILD)/site
 SAN_PYTESTS ?= tests/python/test_trust.py tests/python/test_contract.py tests/python/test_batch.py \
