@@ -95,17 +95,15 @@ std::optional<CommonPoint> repaired(const FramedPair& pair, PairProof::Enclosing
   };
   const MinNormPoint found = wolfe_min_norm_from(oracle, start, 2, max_iterations);
   if (found.size != 4) return std::nullopt;
-  PlacedTetrahedron found_placed;
+  PairProof::Enclosing found_proof;
   for (int k = 0; k < 4; ++k) {
-    found_placed.on_a[k] = pair.a.vertex(found.corral[k].ia);
-    found_placed.on_b[k] = pair.b.vertex(found.corral[k].ib);
+    found_proof.a[k] = found.corral[k].ia;
+    found_proof.b[k] = found.corral[k].ib;
   }
+  const PlacedTetrahedron found_placed = place(pair, found_proof);
   std::optional<CommonPoint> common = common_point(found_placed);
   if (common) {
-    for (int k = 0; k < 4; ++k) {
-      proof.a[k] = found.corral[k].ia;
-      proof.b[k] = found.corral[k].ib;
-    }
+    proof = found_proof;
     t = found_placed;
   }
   return common;
