@@ -227,11 +227,16 @@ TEST(SupportTree, FindsThePointAScanFinds) {
   }
 }
 
-// The column scan (two heights at a time) answers the row scan's index, bit for bit: for every
-// count up to its capacity (odd counts are padded), on random clouds, on grids whose heights tie
-// (the first maximiser wins), on heights of both signs of zero, and on directions that make
-// heights infinite or NaN (the row scan keeps its first point against a NaN).
+// The column scan (several heights at a time), on every instruction set this processor runs,
+// answers the row scan's index, bit for bit: for every count up to its capacity (the columns are
+// padded), on random clouds, on grids whose heights tie (the first maximiser wins), on heights of
+// both signs of zero, and on directions that make heights infinite or NaN (the row scan keeps its
+// first point against a NaN).
 TEST(PointColumns, ScanFindsTheRowScansIndex) {
+  constexpr std::array<detail::KernelIsa, 3> kIsas = {
+      detail::KernelIsa::baseline, detail::KernelIsa::avx2, detail::KernelIsa::avx512};
+  int sets = 0;
+  for (const auto isa : kIsas) sets += detail::kernel_isa_available(isa) ? 1 : 0;
   std::mt19937_64 rng(11);
   std::normal_distribution<double> normal;
   const double inf = std::numeric_limits<double>::infinity();
@@ -257,13 +262,20 @@ TEST(PointColumns, ScanFindsTheRowScansIndex) {
         if (trial == 2) d = Vector3(nan, 1, 0);
         if (trial == 3) d = Vector3(inf, -inf, 1);
         if (trial == 4) d = Vector3(1e10, 1e10, 1e10);
-        EXPECT_EQ(columns.scan(d), detail::scan_support(points, d))
+        const int expected = detail::scan_support(points, d);
+        EXPECT_EQ(columns.scan(d), expected)
             << "count " << count << " shape " << shape << " trial " << trial;
-        ++checked;
+        for (const auto isa : kIsas) {
+          if (!detail::kernel_isa_available(isa)) continue;
+          EXPECT_EQ(columns.scan_with(detail::column_scan_for(isa), d), expected)
+              << detail::kernel_isa_name(isa) << ", count " << count << " shape " << shape
+              << " trial " << trial;
+          ++checked;
+        }
       }
     }
   }
-  EXPECT_EQ(checked, detail::PointColumns::kCapacity * 4 * 40);
+  EXPECT_EQ(checked, detail::PointColumns::kCapacity * 4 * 40 * sets);
 }
 
 TEST(Hull, CubeHasEightVerticesAndTwelveOutwardTriangles) {

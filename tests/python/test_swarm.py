@@ -101,6 +101,11 @@ rng = np.random.default_rng(5)
 a, b = rng.normal(size=(12, 3)), rng.normal(size=(17, 3)) + [3, 0, 0]
 r = sc.distance(a, b, method="ipso", seed=4, tolerance=0)
 print(r.distance.hex(), *(float(w).hex() for w in np.concatenate([r.weights_a, r.weights_b])))
+# The exact paths' support scans of small bodies (geometry/column_scan.hpp) follow the same set.
+for n in (4, 7, 8, 20, 32):
+    p, q = rng.normal(size=(n, 3)), rng.normal(size=(n, 3)) + [0.5, 0, 0]
+    for r in (sc.signed_distance(p, q), sc.distance(p, q + [3, 0, 0], tolerance=0)):
+        print(*(float(x).hex() for x in [r.distance, r.lower_bound, *r.point_a, *r.point_b]))
 """
 
 
@@ -112,7 +117,7 @@ def _solve_with_kernels(isa):
     return subprocess.run([sys.executable, "-c", _SOLVE], env=env, capture_output=True, text=True)
 
 
-def test_forcing_the_baseline_kernels_changes_no_bit():
+def test_forcing_the_baseline_kernels_and_scans_changes_no_bit():
     widest, baseline = _solve_with_kernels(None), _solve_with_kernels("baseline")
     assert widest.returncode == 0 and baseline.returncode == 0, widest.stderr + baseline.stderr
     assert baseline.stdout == widest.stdout

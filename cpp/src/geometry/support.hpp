@@ -7,10 +7,7 @@
 #include <cmath>
 #include <cstddef>
 
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
-
+#include "column_scan.hpp"
 #include "swarmcollide/geometry/hull.hpp"
 #include "swarmcollide/types.hpp"
 
@@ -44,25 +41,23 @@ inline int scan_support(const VertexMatrix& points, const Vector3& d) {
                        [&](int i) { return point_height(points, i, d); });
 }
 
-/// The points of a small body by coordinate, for scans that compute two heights at once: the x
-/// of every point, then the y, then the z, each column padded to an even length by repeating its
-/// last entry. The scans' answers are scan_support's, bit for bit.
+/// The points of a small body by coordinate, for scans that compute several heights at once
+/// (column_scan.hpp): the x of every point, then the y, then the z, each column padded by
+/// repeating its last entry. The scans' answers are scan_support's, bit for bit.
 class PointColumns {
  public:
   /// The most points held: the bodies scanned whole (kHillClimbingThreshold points).
-  static constexpr int kCapacity = 32;
+  static constexpr int kCapacity = kColumnCapacity;
 
   PointColumns() = default;
   /// Holds `points` (at most kCapacity rows, at least one).
   void assign(const VertexMatrix& points) {
     count_ = static_cast<int>(points.rows());
-    padded_ = count_ + count_ % 2;
+    const int padded = (count_ + kColumnPadding - 1) / kColumnPadding * kColumnPadding;
     const Scalar* row = points.data();
-    for (int i = 0; i < count_; ++i, row += 3) {
-      for (int k = 0; k < 3; ++k) columns_[k * kCapacity + i] = row[k];
-    }
-    if (padded_ > count_) {
-      for (int k = 0; k < 3; ++k) columns_[k * kCapacity + count_] = row[k - 3];
+    for (int i = 0; i < padded; ++i) {
+      const Scalar* point = row + 3 * std::min(i, count_ - 1);
+      for (int k = 0; k < 3; ++k) columns_[k * kCapacity + i] = point[k];
     }
   }
   /// True once points are held.
@@ -70,50 +65,14 @@ class PointColumns {
 
   /// scan_support of the points held: the first index maximising `d . x`, each height rounded as
   /// point_height rounds it, `(x d_x + y d_y) + z d_z`.
-  int scan(const Vector3& d) const {
-    const Scalar* x = columns_.data();
-    const Scalar* y = x + kCapacity;
-    const Scalar* z = y + kCapacity;
-#if defined(__SSE2__)
-    // Two heights per step, each lane rounded as the scalar sum is; the highest is found as the
-    // first height equal to the greatest, which is the first maximiser when no height is NaN (a
-    // NaN, from infinite products, takes the scalar comparisons on the same heights).
-    alignas(16) Scalar heights[kCapacity];
-    const __m128d dx = _mm_set1_pd(d.x());
-    const __m128d dy = _mm_set1_pd(d.y());
-    const __m128d dz = _mm_set1_pd(d.z());
-    const auto height = [&](int i) {
-      return _mm_add_pd(_mm_add_pd(_mm_mul_pd(_mm_loadu_pd(x + i), dx),
-                                   _mm_mul_pd(_mm_loadu_pd(y + i), dy)),
-                        _mm_mul_pd(_mm_loadu_pd(z + i), dz));
-    };
-    __m128d h = height(0);
-    _mm_store_pd(heights, h);
-    __m128d top = h;
-    __m128d unordered = _mm_cmpunord_pd(h, h);
-    for (int i = 2; i < padded_; i += 2) {
-      h = height(i);
-      _mm_store_pd(heights + i, h);
-      top = _mm_max_pd(top, h);
-      unordered = _mm_or_pd(unordered, _mm_cmpunord_pd(h, h));
-    }
-    if (_mm_movemask_pd(unordered) != 0) {
-      return first_highest(count_, [&heights](int i) { return heights[i]; });
-    }
-    top = _mm_max_pd(top, _mm_unpackhi_pd(top, top));
-    top = _mm_unpacklo_pd(top, top);
-    for (int i = 0;; i += 2) {
-      const int equal = _mm_movemask_pd(_mm_cmpeq_pd(_mm_load_pd(heights + i), top));
-      if (equal != 0) return i + (equal & 1 ? 0 : 1);
-    }
-#else
-    return first_highest(count_, [&](int i) { return x[i] * d.x() + y[i] * d.y() + z[i] * d.z(); });
-#endif
+  int scan(const Vector3& d) const { return scan_columns(columns_.data(), count_, d.x(), d.y(), d.z()); }
+  /// The same by `kernel`, one instruction set's scan (column_scan_for).
+  int scan_with(ColumnScan kernel, const Vector3& d) const {
+    return kernel(columns_.data(), count_, d.x(), d.y(), d.z());
   }
 
  private:
   int count_ = 0;
-  int padded_ = 0;
   std::array<Scalar, 3 * kCapacity> columns_;
 };
 

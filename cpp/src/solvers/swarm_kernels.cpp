@@ -1,12 +1,8 @@
 #include "swarm_kernels.hpp"
 
 #include <algorithm>
-#include <atomic>
-#include <cstdlib>
 #include <cstring>
 #include <limits>
-#include <stdexcept>
-#include <string>
 #include <utility>
 
 #include "swarmcollide/detail/random.hpp"
@@ -54,16 +50,13 @@ namespace baseline {
 namespace {
 
 struct Kernels {
-  KernelIsa isa;
   decltype(&baseline::draw_uniforms) draw_uniforms;
   decltype(&baseline::score_initial_positions) score_initial_positions;
   decltype(&baseline::advance_particles) advance_particles;
 };
 
-#define SWARMCOLLIDE_KERNELS(set)                                                               \
-  Kernels {                                                                                     \
-    KernelIsa::set, &set::draw_uniforms, &set::score_initial_positions, &set::advance_particles \
-  }
+#define SWARMCOLLIDE_KERNELS(set) \
+  Kernels { &set::draw_uniforms, &set::score_initial_positions, &set::advance_particles }
 constexpr Kernels kBaseline = SWARMCOLLIDE_KERNELS(baseline);
 #ifdef SWARMCOLLIDE_WIDER_KERNELS
 constexpr Kernels kAvx2 = SWARMCOLLIDE_KERNELS(avx2);
@@ -79,76 +72,9 @@ const Kernels& kernels_of(KernelIsa isa) {
   return kBaseline;
 }
 
-const Kernels* from_environment() {
-  const char* requested = std::getenv("SWARMCOLLIDE_ISA");
-  if (requested == nullptr || *requested == '\0') {
-    for (KernelIsa isa : {KernelIsa::avx512, KernelIsa::avx2}) {
-      if (kernel_isa_available(isa)) return &kernels_of(isa);
-    }
-    return &kBaseline;
-  }
-  const std::optional<KernelIsa> isa = kernel_isa_from_name(requested);
-  if (!isa || !kernel_isa_available(*isa)) {
-    throw std::runtime_error(std::string("SWARMCOLLIDE_ISA=") + requested +
-                             " names no instruction set this build and processor run (use "
-                             "avx512, avx2 or baseline, or unset it)");
-  }
-  return &kernels_of(*isa);
-}
-
-// Chosen on first use; a race only makes two threads choose the same set.
-std::atomic<const Kernels*> chosen{nullptr};
-
-const Kernels& kernels() {
-  const Kernels* k = chosen.load(std::memory_order_acquire);
-  if (k == nullptr) {
-    k = from_environment();
-    chosen.store(k, std::memory_order_release);
-  }
-  return *k;
-}
+const Kernels& kernels() { return kernels_of(kernel_isa()); }
 
 }  // namespace
-
-const char* kernel_isa_name(KernelIsa isa) {
-  switch (isa) {
-    case KernelIsa::avx512:
-      return "avx512";
-    case KernelIsa::avx2:
-      return "avx2";
-    case KernelIsa::baseline:
-      break;
-  }
-  return "baseline";
-}
-
-std::optional<KernelIsa> kernel_isa_from_name(std::string_view name) {
-  for (KernelIsa isa : {KernelIsa::baseline, KernelIsa::avx2, KernelIsa::avx512}) {
-    if (name == kernel_isa_name(isa)) return isa;
-  }
-  return std::nullopt;
-}
-
-bool kernel_isa_available(KernelIsa isa) {
-#ifdef SWARMCOLLIDE_WIDER_KERNELS
-  __builtin_cpu_init();
-  if (isa == KernelIsa::avx512) return __builtin_cpu_supports("x86-64-v4");
-  if (isa == KernelIsa::avx2) return __builtin_cpu_supports("x86-64-v3");
-  return true;
-#else
-  return isa == KernelIsa::baseline;
-#endif
-}
-
-KernelIsa kernel_isa() { return kernels().isa; }
-
-void use_kernel_isa(KernelIsa isa) {
-  if (!kernel_isa_available(isa)) {
-    throw std::invalid_argument(std::string("the ") + kernel_isa_name(isa) +
-                                " kernels cannot run here");
-  }
-  chosen.store(&kernels_of(isa), std::memory_order_release);
-}
 
 UniformLanes::UniformLanes(std::uint64_t seed) {
   // splitmix64, as in Xoshiro256, spreads any seed over all 32 words.

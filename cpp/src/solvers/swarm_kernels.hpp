@@ -1,8 +1,8 @@
 #pragma once
 
 #include <cstdint>
-#include <optional>
-#include <string_view>
+
+#include "../detail/instruction_set.hpp"
 
 // The swarm's inner loops over raw arrays. Each is compiled once per instruction set (AVX-512,
 // AVX2, and the x86-64 baseline), with vectors one register wide; the widest set the processor
@@ -122,25 +122,5 @@ struct RankedParticle {
 /// `scratch` holds 2 (particles + 1) entries. The same on every instruction set.
 void order_by_personal_best(int particles, const std::int64_t* key, const std::int64_t* improved,
                             int* order, RankedParticle* scratch);
-
-/// The instruction sets the kernels are compiled for.
-enum class KernelIsa { baseline, avx2, avx512 };
-
-/// "baseline", "avx2" or "avx512".
-const char* kernel_isa_name(KernelIsa isa);
-
-/// The set named by `name` (as kernel_isa_name spells it), or nothing.
-std::optional<KernelIsa> kernel_isa_from_name(std::string_view name);
-
-/// Whether this build has kernels for `isa` and this processor can run them.
-bool kernel_isa_available(KernelIsa isa);
-
-/// The set whose kernels the functions above run: SWARMCOLLIDE_ISA's if it is set, else the
-/// widest available. Throws std::runtime_error when SWARMCOLLIDE_ISA names no available set.
-KernelIsa kernel_isa();
-
-/// Makes every later call run the kernels of `isa` (tests compare the sets in one process).
-/// Throws std::invalid_argument when it is not available.
-void use_kernel_isa(KernelIsa isa);
 
 }  // namespace swarmcollide::detail

@@ -1,0 +1,129 @@
+#include "column_scan.hpp"
+
+#include <stdexcept>
+
+// Each set's scan computes every height lane by lane as the scalar loop does, `(x d_x + y d_y) +
+// z d_z` with the products rounded apart (this file is compiled without contraction), takes the
+// greatest, and returns the first point whose height equals it: the first maximiser, whatever the
+// width, when no height is NaN. Where one is, the scalar comparisons decide, on the same heights.
+// Only GCC on x86-64 gets the wider sets, as the swarm's kernels (swarm_kernels.cpp).
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+#define SWARMCOLLIDE_WIDER_SCANS 1
+#endif
+#if defined(__x86_64__)
+#include <immintrin.h>
+#endif
+
+namespace swarmcollide::detail {
+
+static_assert(kColumnCapacity % kColumnPadding == 0, "whole registers of the widest set");
+
+#ifdef SWARMCOLLIDE_WIDER_SCANS
+#pragma GCC push_options
+#pragma GCC target("arch=x86-64-v3")
+int scan_columns_avx2(const double* columns, int count, double dx, double dy, double dz) {
+  const double* x = columns;
+  const double* y = x + kColumnCapacity;
+  const double* z = y + kColumnCapacity;
+  const __m256d along_x = _mm256_set1_pd(dx);
+  const __m256d along_y = _mm256_set1_pd(dy);
+  const __m256d along_z = _mm256_set1_pd(dz);
+  alignas(32) double heights[kColumnCapacity];
+  const int padded = (count + 3) & ~3;
+  __m256d top = _mm256_setzero_pd();
+  __m256d unordered = _mm256_setzero_pd();
+  for (int i = 0; i < padded; i += 4) {
+    const __m256d h =
+        _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(_mm256_loadu_pd(x + i), along_x),
+                                    _mm256_mul_pd(_mm256_loadu_pd(y + i), along_y)),
+                      _mm256_mul_pd(_mm256_loadu_pd(z + i), along_z));
+    _mm256_store_pd(heights + i, h);
+    top = i == 0 ? h : _mm256_max_pd(top, h);
+    unordered = _mm256_or_pd(unordered, _mm256_cmp_pd(h, h, _CMP_UNORD_Q));
+  }
+  if (_mm256_movemask_pd(unordered) != 0) return first_highest_column(columns, count, dx, dy, dz);
+  // The greatest in every lane: swap the halves, then the neighbours.
+  top = _mm256_max_pd(top, _mm256_permute2f128_pd(top, top, 1));
+  top = _mm256_max_pd(top, _mm256_permute_pd(top, 0b0101));
+  for (int i = 0;; i += 4) {
+    const int equal =
+        _mm256_movemask_pd(_mm256_cmp_pd(_mm256_load_pd(heights + i), top, _CMP_EQ_OQ));
+    if (equal != 0) return i + __builtin_ctz(static_cast<unsigned>(equal));
+  }
+}
+#pragma GCC pop_options
+
+#pragma GCC push_options
+#pragma GCC target("arch=x86-64-v4")
+// GCC 12's own AVX-512 intrinsics start from a self-initialised `_mm512_undefined_pd`, which its
+// -Wmaybe-uninitialized reports in every caller.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+// A body of up to eight points in one step.
+int scan_columns_avx512(const double* columns, int count, double dx, double dy, double dz) {
+  const double* x = columns;
+  const double* y = x + kColumnCapacity;
+  const double* z = y + kColumnCapacity;
+  const __m512d along_x = _mm512_set1_pd(dx);
+  const __m512d along_y = _mm512_set1_pd(dy);
+  const __m512d along_z = _mm512_set1_pd(dz);
+  __m512d heights[kColumnCapacity / 8];
+  const int steps = (count + 7) / 8;
+  __m512d top = _mm512_setzero_pd();
+  __mmask8 unordered = 0;
+  for (int s = 0; s < steps; ++s) {
+    const int i = 8 * s;
+    const __m512d h =
+        _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(_mm512_loadu_pd(x + i), along_x),
+                                    _mm512_mul_pd(_mm512_loadu_pd(y + i), along_y)),
+                      _mm512_mul_pd(_mm512_loadu_pd(z + i), along_z));
+    heights[s] = h;
+    top = s == 0 ? h : _mm512_max_pd(top, h);
+    unordered |= _mm512_cmp_pd_mask(h, h, _CMP_UNORD_Q);
+  }
+  if (unordered != 0) return first_highest_column(columns, count, dx, dy, dz);
+  // The greatest in every lane: the halves', then as the AVX2 scan finds it.
+  __m256d half = _mm256_max_pd(_mm512_castpd512_pd256(top), _mm512_extractf64x4_pd(top, 1));
+  half = _mm256_max_pd(half, _mm256_permute2f128_pd(half, half, 1));
+  half = _mm256_max_pd(half, _mm256_permute_pd(half, 0b0101));
+  const __m512d greatest = _mm512_broadcastsd_pd(_mm256_castpd256_pd128(half));
+  for (int s = 0;; ++s) {
+    const __mmask8 equal = _mm512_cmp_pd_mask(heights[s], greatest, _CMP_EQ_OQ);
+    if (equal != 0) return 8 * s + __builtin_ctz(static_cast<unsigned>(equal));
+  }
+}
+#pragma GCC diagnostic pop
+#pragma GCC pop_options
+#endif
+
+#ifndef SWARMCOLLIDE_WIDER_SCANS
+int scan_columns_avx2(const double* columns, int count, double dx, double dy, double dz) {
+  return scan_columns_baseline(columns, count, dx, dy, dz);
+}
+int scan_columns_avx512(const double* columns, int count, double dx, double dy, double dz) {
+  return scan_columns_baseline(columns, count, dx, dy, dz);
+}
+#endif
+
+ColumnScan column_scan_for(KernelIsa isa) {
+  if (isa != KernelIsa::baseline && kernel_isa_available(isa)) {
+    return isa == KernelIsa::avx512 ? &scan_columns_avx512 : &scan_columns_avx2;
+  }
+  return &scan_columns_baseline;
+}
+
+std::atomic<int> column_scan_set{-1};
+
+int choose_column_scan(const double* columns, int count, double dx, double dy, double dz) {
+  KernelIsa isa = KernelIsa::baseline;
+  try {
+    isa = kernel_isa();
+  } catch (const std::runtime_error&) {
+    isa = widest_kernel_isa();
+  }
+  // A race makes two threads choose the same set.
+  column_scan_set.store(static_cast<int>(isa), std::memory_order_relaxed);
+  return column_scan_for(isa)(columns, count, dx, dy, dz);
+}
+
+}  // namespace swarmcollide::detail

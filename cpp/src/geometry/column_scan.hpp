@@ -1,0 +1,115 @@
+// The support scan of a small body's points held by coordinate (PointColumns), on the x86-64
+// baseline inline and on wider instruction sets out of line; private to the library's sources.
+#pragma once
+
+#include <atomic>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
+#include "../detail/instruction_set.hpp"
+
+namespace swarmcollide::detail {
+
+/// Entries per column, and the multiple each column is padded to: the widest set's doubles in a
+/// register.
+constexpr int kColumnCapacity = 32;
+constexpr int kColumnPadding = 8;
+
+/// A scan: the first index in [0, count) maximising `(x_i d_x + y_i d_y) + z_i d_z`, each height
+/// rounded as written (no contraction), over `columns`, the x of kColumnCapacity points, then their
+/// y, then their z, each column padded to a multiple of kColumnPadding entries by repeating its last
+/// point. Heights that are NaN are compared as scalars compare them (never higher). The direction
+/// comes as its coordinates: the wider sets' file, like the swarm's kernels, stays free of Eigen
+/// (see swarm_kernels.hpp).
+using ColumnScan = int (*)(const double* columns, int count, double dx, double dy, double dz);
+
+/// The scalar scan, from the first point: the answer wherever a height is NaN.
+inline int first_highest_column(const double* columns, int count, double dx, double dy,
+                                double dz) {
+  const double* x = columns;
+  const double* y = x + kColumnCapacity;
+  const double* z = y + kColumnCapacity;
+  int best = 0;
+  double highest = x[0] * dx + y[0] * dy + z[0] * dz;
+  for (int i = 1; i < count; ++i) {
+    const double h = x[i] * dx + y[i] * dy + z[i] * dz;
+    if (h > highest) {
+      highest = h;
+      best = i;
+    }
+  }
+  return best;
+}
+
+/// The baseline's scan, two heights a step (SSE2), each lane rounded as the scalar sum is; the
+/// highest is found as the first height equal to the greatest, which is the first maximiser when no
+/// height is NaN (a NaN, from infinite products, takes the scalar comparisons on the same heights).
+inline int scan_columns_baseline(const double* columns, int count, double dx, double dy,
+                                 double dz) {
+#if defined(__SSE2__)
+  const double* x = columns;
+  const double* y = x + kColumnCapacity;
+  const double* z = y + kColumnCapacity;
+  alignas(16) double heights[kColumnCapacity];
+  const __m128d along_x = _mm_set1_pd(dx);
+  const __m128d along_y = _mm_set1_pd(dy);
+  const __m128d along_z = _mm_set1_pd(dz);
+  const auto height = [&](int i) {
+    return _mm_add_pd(_mm_add_pd(_mm_mul_pd(_mm_loadu_pd(x + i), along_x),
+                                 _mm_mul_pd(_mm_loadu_pd(y + i), along_y)),
+                      _mm_mul_pd(_mm_loadu_pd(z + i), along_z));
+  };
+  __m128d h = height(0);
+  _mm_store_pd(heights, h);
+  __m128d top = h;
+  __m128d unordered = _mm_cmpunord_pd(h, h);
+  for (int i = 2; i < count; i += 2) {
+    h = height(i);
+    _mm_store_pd(heights + i, h);
+    top = _mm_max_pd(top, h);
+    unordered = _mm_or_pd(unordered, _mm_cmpunord_pd(h, h));
+  }
+  if (_mm_movemask_pd(unordered) != 0) return first_highest_column(columns, count, dx, dy, dz);
+  top = _mm_max_pd(top, _mm_unpackhi_pd(top, top));
+  top = _mm_unpacklo_pd(top, top);
+  for (int i = 0;; i += 2) {
+    const int equal = _mm_movemask_pd(_mm_cmpeq_pd(_mm_load_pd(heights + i), top));
+    if (equal != 0) return i + (equal & 1 ? 0 : 1);
+  }
+#else
+  return first_highest_column(columns, count, dx, dy, dz);
+#endif
+}
+
+/// The wider sets' scans (the baseline's where the build has none): four heights a step (AVX2),
+/// eight (AVX-512), the same index bit for bit.
+int scan_columns_avx2(const double* columns, int count, double dx, double dy, double dz);
+int scan_columns_avx512(const double* columns, int count, double dx, double dy, double dz);
+
+/// `isa`'s scan (tests compare them); the baseline's where this build or processor has no other.
+ColumnScan column_scan_for(KernelIsa isa);
+
+/// The set the scans run: kernel_isa()'s (SWARMCOLLIDE_ISA's, else the widest available), chosen
+/// at the first scan, or the widest where SWARMCOLLIDE_ISA names none that runs (the swarm
+/// reports that at its first solve; the scans give the same index on every set). -1 until chosen.
+extern std::atomic<int> column_scan_set;
+/// Chooses column_scan_set, then scans.
+int choose_column_scan(const double* columns, int count, double dx, double dy, double dz);
+
+/// The scan on the chosen set: the baseline's inline, a wider set's by a direct call.
+inline int scan_columns(const double* columns, int count, double dx, double dy, double dz) {
+  switch (column_scan_set.load(std::memory_order_relaxed)) {
+    case static_cast<int>(KernelIsa::avx512):
+      return scan_columns_avx512(columns, count, dx, dy, dz);
+    case static_cast<int>(KernelIsa::avx2):
+      return scan_columns_avx2(columns, count, dx, dy, dz);
+    case static_cast<int>(KernelIsa::baseline):
+      return scan_columns_baseline(columns, count, dx, dy, dz);
+    default:
+      return choose_column_scan(columns, count, dx, dy, dz);
+  }
+}
+
+}  // namespace swarmcollide::detail
