@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -10,6 +11,9 @@
 
 #include "penetration_oracle.hpp"
 #include "geometry/framed_body.hpp"
+#include "geometry/normalise.hpp"
+#include "solvers/expanding_polytope.hpp"
+#include "solvers/minkowski.hpp"
 #include "solvers/penetration.hpp"
 #include "swarmcollide/geometry/convex_polyhedron.hpp"
 #include "swarmcollide/geometry/hull.hpp"
@@ -324,6 +328,77 @@ TEST(Penetration, BoxContacts) {
   const Eigen::Matrix3d turn = rotation(0.3, -0.7, 1.1);
   check(transformed(unit, turn, Vector3::Zero()),
         transformed(unit, turn, turn * Vector3(0.6, 0.2, 0.1)), "rotated parallel boxes");
+}
+
+// A box resting on a larger one, 0.01 into it: the facet of A - B along their normal is a
+// rectangle that the expansion splits into several faces, and the one its best normal came from
+// need not hold a given ray's crossing. The walk from it (face_crossed) must end on a face the ray
+// crosses, on that facet, and the solver's witnesses (found on such a face when the best one
+// does not hold the origin's foot) must satisfy the contract.
+TEST(Penetration, FaceCrossedFindsTheFaceOfASplitFacetThatARayCrosses) {
+  const VertexMatrix base = box({0, 0, 0}, {1, 1, 1});
+  const VertexMatrix top = box({0.1, 0.2, 0.99}, {0.7, 0.7, 1.39});
+  check(base, top, "resting face on face");
+  const ConvexPolyhedron body_a(base);
+  const ConvexPolyhedron body_b(top);
+  const detail::FramedPair pair =
+      detail::frame_validated_pair(body_a, Pose(), body_b, Pose(), 1e-9);
+  // A tetrahedron of points of A - B around the origin starts the expansion.
+  std::vector<detail::DifferencePoint> points;
+  for (int i = 0; i < 8; ++i) {
+    for (int j = 0; j < 8; ++j) points.push_back({pair.a.vertex(i) - pair.b.vertex(j), i, j});
+  }
+  std::array<detail::DifferencePoint, 4> start;
+  bool found = false;
+  const int n = static_cast<int>(points.size());
+  for (int i = 0; i < n && !found; ++i) {
+    for (int j = i + 1; j < n && !found; ++j) {
+      for (int k = j + 1; k < n && !found; ++k) {
+        for (int l = k + 1; l < n && !found; ++l) {
+          found = detail::encloses_origin({points[i].w, points[j].w, points[k].w, points[l].w});
+          if (found) start = {points[i], points[j], points[k], points[l]};
+        }
+      }
+    }
+  }
+  ASSERT_TRUE(found);
+  detail::ExpandingPolytope polytope;
+  const detail::ExpansionResult e = polytope.run(pair.a, pair.b, start, 1e-12, kIterations);
+  ASSERT_TRUE(e.verified);
+  ASSERT_GE(e.best_face_index, 0);
+  // The facet: A's top face less B's bottom face, at height 0.01 along z (in frame units).
+  const Scalar height = detail::times_power_of_two(0.01, -pair.frame.exponent);
+  std::mt19937_64 rng(30);
+  std::uniform_real_distribution<Scalar> across(-0.65, 0.85);
+  int crossed = 0;
+  int elsewhere = 0;
+  int on_facet = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    // A ray through the facet's interior (x in (-0.7, 0.9) and y in (-0.5, 0.8) less margins).
+    const Vector3 d = Vector3(detail::times_power_of_two(across(rng), -pair.frame.exponent),
+                              detail::times_power_of_two(across(rng) * 0.8, -pair.frame.exponent),
+                              height)
+                          .normalized();
+    std::array<detail::DifferencePoint, 3> corners;
+    const int f = polytope.face_crossed(e.best_face_index, d, corners);
+    if (f < 0) continue;
+    ++crossed;
+    elsewhere += f != e.best_face_index;
+    Eigen::Matrix3d m;
+    for (int k = 0; k < 3; ++k) {
+      const detail::DifferencePoint& c = corners[k];
+      EXPECT_EQ(c.w, pair.a.vertex(c.ia) - pair.b.vertex(c.ib));
+      m.col(k) = c.w;
+    }
+    on_facet += (m.row(2).array() - height).abs().maxCoeff() <= 1e-15;
+    // d = m c with every c_k >= 0: the ray crosses the face.
+    const Vector3 c = m.partialPivLu().solve(d);
+    EXPECT_GE(c.minCoeff(), -1e-12) << "trial " << trial;
+  }
+  EXPECT_GT(crossed, 150);
+  // The facet's faces are where most of these rays cross (200, 133 and 134 when written).
+  EXPECT_GT(elsewhere, 0);
+  EXPECT_GT(on_facet, 100);
 }
 
 TEST(Penetration, TouchingAndNearlyTouchingFaces) {

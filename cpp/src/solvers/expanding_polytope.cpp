@@ -390,6 +390,33 @@ void ExpandingPolytope::keep(const ExpansionResult& last, int most_corners, Kept
   }
 }
 
+int ExpandingPolytope::face_crossed(int from, const Vector3& d,
+                                    std::array<DifferencePoint, 3>& corners) const {
+  int f = from;
+  for (int step = 0; step < kMostCrossingSteps; ++step) {
+    if (f < 0 || f >= face_count_ || !faces_[f].alive) return -1;
+    const Face& face = faces_[f];
+    // d = sum_k c_k v_k over the corners: det(v_k, v_k+1, d) is the opposite corner's c times
+    // det(v_0, v_1, v_2), positive on a face proven oriented. The ray crosses the face where no
+    // c is negative, and passes beyond the edge of the most negative one.
+    int beyond = -1;
+    Scalar least = 0;
+    for (int k = 0; k < 3; ++k) {
+      const Scalar c = vertices_[face.v[k]].w.cross(vertices_[face.v[(k + 1) % 3]].w).dot(d);
+      if (c < least) {
+        least = c;
+        beyond = k;
+      }
+    }
+    if (beyond < 0) {
+      for (int k = 0; k < 3; ++k) corners[k] = vertices_[face.v[k]];
+      return f;
+    }
+    f = face.adj[beyond];
+  }
+  return -1;
+}
+
 ExpansionResult ExpandingPolytope::expand_surface(const FramedBody& a, const FramedBody& b,
                                                   Scalar stop_gap, int max_iterations,
                                                   bool placed) {
@@ -486,6 +513,7 @@ ExpansionResult ExpandingPolytope::expand_surface(const FramedBody& a, const Fra
       result.best_ia = ia;
       result.best_ib = ib;
       for (int k = 0; k < 3; ++k) result.best_face[k] = vertices_[face.v[k]];
+      result.best_face_index = closest;
       result.best_face_distance = face.distance;
     }
     if (-result.best_separation - face.distance <= stop_gap) {

@@ -57,6 +57,8 @@ struct ExpansionResult {
   /// The corners of the face whose normal is `best_normal`: where the expansion converged, the
   /// origin's foot on it combines them into witnesses.
   std::array<DifferencePoint, 3> best_face;
+  /// That face's index on the surface, where ExpandingPolytope::face_crossed may start.
+  int best_face_index = -1;
   /// That face's `distance` (the least of `best_normal . w` over its corners).
   Scalar best_face_distance = -std::numeric_limits<Scalar>::infinity();
   /// The gap between the least support met, `-best_separation`, and the nearest face's plane
@@ -97,6 +99,13 @@ class ExpandingPolytope {
   /// The last run's surface into `out` when it was verified and has at most `most_corners`
   /// corners; `out` emptied otherwise.
   void keep(const ExpansionResult& last, int most_corners, KeptSurface& out);
+  /// The face of the last run's surface that the ray from the origin along `d` crosses, its
+  /// corners into `corners`: found by walking from face `from` across the edge the ray passes
+  /// beyond, for at most `kMostCrossingSteps` faces. A resting contact's facet of `A - B` is
+  /// split into several faces, and the one its best normal came from need not hold the origin's
+  /// foot on it, which another of them does. -1 when the walk meets a face that is not live or
+  /// does not end; nothing here is proven (the caller checks what it makes of the corners).
+  int face_crossed(int from, const Vector3& d, std::array<DifferencePoint, 3>& corners) const;
 
  private:
   // The expansion from the surface in vertices_, faces_ and heap_.
@@ -137,6 +146,8 @@ class ExpandingPolytope {
   static constexpr int kConeBroken = -2;
   // Faces that may join the visible ones in one expansion (see expand).
   static constexpr int kWidenings = 16;
+  // Faces face_crossed walks across: a facet split by a few expansions has a few faces.
+  static constexpr int kMostCrossingSteps = 8;
   // Whether live face i's neighbours across its edges are live faces that name it back across
   // the same edge, reversed: the closed surface verify proves and the expansion walks.
   bool linked(int i) const;

@@ -338,6 +338,7 @@ class Solver {
   // tetrahedron's expansion then runs as if nothing were kept.
   bool enclose_kept() {
     bool started = false;
+    face_index_ = -1;
     const ExpansionResult e =
         ws_.polytope.run(a_, b_, *surface_, stop_gap(), max_iterations_, started);
     if (!started || !e.converged) return false;
@@ -350,6 +351,8 @@ class Solver {
     expanded_ = true;
     expansion_ = e;
     iterations_ += e.iterations;
+    // This run's surface replaced the one an earlier face was on.
+    face_index_ = -1;
     if (e.best_separation > -kInfinity && offer(e.best_normal, e.best_separation)) {
       // The supports there seed the scans that measure it, and the face may give the witnesses.
       climb_a_ = e.best_ia;
@@ -357,6 +360,7 @@ class Solver {
       // The expansion asked them of support_index along this very normal.
       climbs_along_candidate_ = true;
       face_ = e.best_face;
+      face_index_ = e.best_face_index;
       face_normal_ = e.best_normal;
     }
     if (e.verified) set_upper(-e.depth_lower, PenetrationProof::polytope);
@@ -479,7 +483,14 @@ class Solver {
     // leaves witnesses apart by far more than the tolerance. The slack widens until they agree.
     const Scalar target = std::max(tolerance_, 4 * margin());
     Scalar slack = 1024 * margin() + 2 * std::min(gap, Scalar(1e-9));
-    if (normal_ == face_normal_ && witnesses_from_face(slack, target, r)) return;
+    if (normal_ == face_normal_ && witnesses_from_face(face_, slack, target, r)) return;
+    // Its face rejected, most often because the foot lies on another face of the same facet (a
+    // resting contact's): that face, if the surface is still the one it came from.
+    if (normal_ == face_normal_ && face_index_ >= 0) {
+      std::array<DifferencePoint, 3> crossed;
+      const int f = ws_.polytope.face_crossed(face_index_, normal_, crossed);
+      if (f >= 0 && f != face_index_ && witnesses_from_face(crossed, slack, target, r)) return;
+    }
     if (rolling_ && rolling_->proven && normal_ == rolling_->normal &&
         witnesses_from_rolling_ball(*rolling_, target, r)) {
       return;
@@ -490,8 +501,9 @@ class Solver {
     }
   }
 
-  // The witnesses the expansion's last face gives: where it converged, the face lies in the
-  // facet of A - B along the normal, and the origin's nearest point on it (its foot on the
+  // The witnesses a face of the expansion gives (its best normal's, or the face of the same
+  // surface the ray from the origin along that normal crosses): where it converged, the face lies
+  // in the facet of A - B along the normal, and the origin's nearest point on it (its foot on the
   // face's plane, inside the face) combines the face's corners into points of both supporting
   // features whose difference is the separation along the normal. Where it stopped early (a
   // loose tolerance), the corners lie below the supporting planes, by the feature slack reported
@@ -500,9 +512,10 @@ class Solver {
   // more than `target` (a foot outside the face, among others) or off `upper * normal` by more
   // than the gap (an answer's witnesses lie along its normal at its upper bound, to within the
   // gap).
-  bool witnesses_from_face(Scalar slack, Scalar target, PenetrationBounds& r) const {
+  bool witnesses_from_face(const std::array<DifferencePoint, 3>& face, Scalar slack,
+                           Scalar target, PenetrationBounds& r) const {
     std::array<OraclePoint, MinNormPoint::kCapacity> corners;
-    for (int k = 0; k < 3; ++k) corners[k] = {face_[k].w, face_[k].ia, face_[k].ib};
+    for (int k = 0; k < 3; ++k) corners[k] = {face[k].w, face[k].ia, face[k].ib};
     std::array<OraclePoint, MinNormPoint::kCapacity> nearest;
     std::array<Scalar, MinNormPoint::kCapacity> alpha{};
     int size = 0;
@@ -650,6 +663,8 @@ class Solver {
   // The expanding polytope's face along its best normal, `face_normal_` (NaN until it has one).
   std::array<DifferencePoint, 3> face_;
   Vector3 face_normal_ = Vector3::Constant(std::numeric_limits<Scalar>::quiet_NaN());
+  // Its index on the workspace polytope's surface while that is the surface it is on (else -1).
+  int face_index_ = -1;
 };
 
 }  // namespace
