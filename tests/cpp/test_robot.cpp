@@ -107,8 +107,8 @@ TEST(Robot, TurnsAboutCoordinateAxesComposeAsTheAngleAxisMatrixDoes) {
   geometries.push_back({"g", n, Pose{}, Box(Vector3::Constant(0.1))});
   // Geometries at origins of every kind of the joints' too, on the links with general poses.
   for (int j = 0; j < n; ++j) {
-    geometries.push_back({"g" + std::to_string(j), n - j, joints[static_cast<std::size_t>(j)].origin,
-                          Box(Vector3::Constant(0.1))});
+    geometries.push_back({"g" + std::to_string(j), n - j,
+                          joints[static_cast<std::size_t>(j)].origin, Box(Vector3::Constant(0.1))});
   }
   const RobotModel model(links, joints, geometries);
   const Scalar q[] = {0.3, -1.1, 2.5, -3.9, 1e-9, 3.14159, -0.7};
@@ -143,7 +143,9 @@ TEST(Robot, TurnsAboutCoordinateAxesComposeAsTheAngleAxisMatrixDoes) {
     const Vector3 translation = link.rotation * geometry.origin.translation + link.translation;
     for (int r = 0; r < 3; ++r) {
       EXPECT_EQ(pose.translation(r), translation(r)) << "geometry " << g;
-      for (int c = 0; c < 3; ++c) EXPECT_EQ(pose.rotation(r, c), rotation(r, c)) << "geometry " << g;
+      for (int c = 0; c < 3; ++c) {
+        EXPECT_EQ(pose.rotation(r, c), rotation(r, c)) << "geometry " << g;
+      }
     }
   }
 }

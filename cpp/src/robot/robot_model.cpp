@@ -185,7 +185,8 @@ RobotModel::RobotModel(std::vector<Link> links, std::vector<Joint> joints,
   }
   for (const Joint& joint : joints_) {
     joint_zeros_.push_back(origin_zeros(joint.origin));
-    axis_coordinate_.push_back(joint.type == JointType::prismatic ? -1 : coordinate_axis(joint.axis));
+    axis_coordinate_.push_back(joint.type == JointType::prismatic ? -1
+                                                                  : coordinate_axis(joint.axis));
   }
 }
 
