@@ -70,7 +70,8 @@ TEST(Robot, ForwardKinematicsIsThePlanarArmsClosedForm) {
 // Turns about a coordinate axis (either sign) take link_poses' fast path: it must give the poses
 // of the plain products (the parent's pose, the origin, then Eigen's angle-axis matrix) bit for
 // bit, after general origins, origins turned about a coordinate axis (URDF's single rpy angles)
-// and identities alike.
+// and identities alike, whose translations have none to three nonzero coordinates (the origins'
+// products skip their exact zeros: OriginZeros); so must the geometries' poses at the links.
 TEST(Robot, TurnsAboutCoordinateAxesComposeAsTheAngleAxisMatrixDoes) {
   const Vector3 axes[] = {Vector3::UnitZ(), -Vector3::UnitZ(), Vector3::UnitX(),
                           -Vector3::UnitX(), Vector3::UnitY(), -Vector3::UnitY(),
@@ -97,11 +98,18 @@ TEST(Robot, TurnsAboutCoordinateAxesComposeAsTheAngleAxisMatrixDoes) {
       origin.rotation((k + 2) % 3, (k + 1) % 3) = std::sin(angle);
       origin.rotation((k + 1) % 3, (k + 2) % 3) = -std::sin(angle);
     }
-    origin.translation = Vector3(0.1 * j, -0.2, 0.3);
+    // j % 4 nonzero coordinates, from the j % 3-th on.
+    origin.translation.setZero();
+    for (int c = 0; c < j % 4; ++c) origin.translation[(j + c) % 3] = 0.1 * (j + 1) - 0.2 * c;
     joints.push_back({"j" + std::to_string(j), JointType::revolute, j, j + 1, origin, axes[j], -4,
                       4, 0.1 * j});
   }
   geometries.push_back({"g", n, Pose{}, Box(Vector3::Constant(0.1))});
+  // Geometries at origins of every kind of the joints' too, on the links with general poses.
+  for (int j = 0; j < n; ++j) {
+    geometries.push_back({"g" + std::to_string(j), n - j,
+                          joints[static_cast<std::size_t>(j)].origin, Box(Vector3::Constant(0.1))});
+  }
   const RobotModel model(links, joints, geometries);
   const Scalar q[] = {0.3, -1.1, 2.5, -3.9, 1e-9, 3.14159, -0.7};
   std::vector<Pose> got;
@@ -124,6 +132,19 @@ TEST(Robot, TurnsAboutCoordinateAxesComposeAsTheAngleAxisMatrixDoes) {
       EXPECT_EQ(pose.translation(r), expected.translation(r)) << "joint " << j;
       for (int c = 0; c < 3; ++c) {
         EXPECT_EQ(pose.rotation(r, c), expected.rotation(r, c)) << "joint " << j;
+      }
+    }
+  }
+  for (int g = 1; g <= n; ++g) {
+    const Geometry& geometry = model.geometries()[static_cast<std::size_t>(g)];
+    const Pose& link = got[static_cast<std::size_t>(geometry.link)];
+    const Pose pose = geometry_pose(model, got, g);
+    const Matrix3 rotation = link.rotation * geometry.origin.rotation;
+    const Vector3 translation = link.rotation * geometry.origin.translation + link.translation;
+    for (int r = 0; r < 3; ++r) {
+      EXPECT_EQ(pose.translation(r), translation(r)) << "geometry " << g;
+      for (int c = 0; c < 3; ++c) {
+        EXPECT_EQ(pose.rotation(r, c), rotation(r, c)) << "geometry " << g;
       }
     }
   }

@@ -64,16 +64,6 @@ Pose motion(const Joint& joint, Scalar value) {
   return pose;
 }
 
-// k when `axis` is the unit vector e_k or -e_k exactly, else -1.
-int coordinate_axis(const Vector3& axis) {
-  for (int k = 0; k < 3; ++k) {
-    const int i = (k + 1) % 3;
-    const int j = (k + 2) % 3;
-    if (axis[i] == 0 && axis[j] == 0 && std::abs(axis[k]) == 1) return k;
-  }
-  return -1;
-}
-
 // compose(placed, motion(joint, value)) for a turn by `amount` about sign e_k, bitwise: Eigen's
 // AngleAxis matrix about sign e_k has c on the other two diagonal entries, (1 - c) + c on the
 // k-th, +-s off the diagonal in the plane of the turn and exact zeros elsewhere, so each entry of
@@ -100,6 +90,56 @@ inline void composed(const Pose& outer, const Pose& inner, Pose& pose) {
   pose.rotation.noalias() = outer.rotation * inner.rotation;
   pose.translation.noalias() = outer.rotation * inner.translation;
   pose.translation += outer.translation;
+}
+
+// compose(outer, origin) into `pose` for an origin that turns about e_k (OriginZeros) with at
+// most two nonzero coordinates in its translation, with no product by its exact zeros: the same
+// pose bit for bit wherever an entry is nonzero. Each entry of the product is a sum of three
+// products, of which at most two are then not exact zeros (or times 1, exact), and two rounded
+// products summed with exact zeros give the same rounded sum in any order.
+template <int k>
+void placed_by_turn(const Pose& outer, const Pose& origin, const OriginZeros& zeros, Pose& pose) {
+  constexpr int i = (k + 1) % 3;
+  constexpr int j = (k + 2) % 3;
+  const Matrix3& r = outer.rotation;
+  const Matrix3& o = origin.rotation;
+  pose.rotation.col(k) = r.col(k);
+  pose.rotation.col(i) = r.col(i) * o(i, i) + r.col(j) * o(j, i);
+  pose.rotation.col(j) = r.col(i) * o(i, j) + r.col(j) * o(j, j);
+  const Vector3& t = origin.translation;
+  if (zeros.count == 0) {
+    pose.translation = outer.translation;
+  } else if (zeros.count == 1) {
+    pose.translation = r.col(zeros.axes[0]) * t[zeros.axes[0]] + outer.translation;
+  } else {
+    pose.translation =
+        (r.col(zeros.axes[0]) * t[zeros.axes[0]] + r.col(zeros.axes[1]) * t[zeros.axes[1]]) +
+        outer.translation;
+  }
+}
+
+// compose(outer, origin) into `pose` (not aliasing either), by placed_by_turn where the origin's
+// zeros allow. (A Panda joint's origin turns about e_x or e_z with at most two nonzero
+// coordinates: 15 products rather than 36.)
+inline void placed_by(const Pose& outer, const Pose& origin, const OriginZeros& zeros,
+                      Pose& pose) {
+  if (zeros.count > 2) {
+    composed(outer, origin, pose);
+    return;
+  }
+  switch (zeros.turn_axis) {
+    case 0:
+      placed_by_turn<0>(outer, origin, zeros, pose);
+      return;
+    case 1:
+      placed_by_turn<1>(outer, origin, zeros, pose);
+      return;
+    case 2:
+      placed_by_turn<2>(outer, origin, zeros, pose);
+      return;
+    default:
+      composed(outer, origin, pose);
+  }
 }
 
 }  // namespace
@@ -137,14 +177,15 @@ void link_poses(const RobotModel& model, const Scalar* q, const std::vector<int>
   for (int j : joints) {
     const Joint& joint = model.joints()[j];
     const int dof = model.driving_dof(j);
+    const OriginZeros& zeros = model.joint_origin_zeros(j);
     if (dof < 0) {
-      composed(links[joint.parent], joint.origin, links[joint.child]);
+      placed_by(links[joint.parent], joint.origin, zeros, links[joint.child]);
       continue;
     }
     Pose placed;
-    composed(links[joint.parent], joint.origin, placed);
+    placed_by(links[joint.parent], joint.origin, zeros, placed);
     const Scalar value = model.joint_value(j, q[dof]);
-    const int k = joint.type == JointType::prismatic ? -1 : coordinate_axis(joint.axis);
+    const int k = model.axis_coordinate(j);
     if (k < 0) {
       links[joint.child] = compose(placed, motion(joint, value));
     } else {
@@ -168,6 +209,15 @@ void write_transform(const Pose& pose, Scalar* t) {
 
 }  // namespace
 
+Pose geometry_pose(const RobotModel& model, const std::vector<Pose>& links, int g) {
+  const Geometry& geometry = model.geometries()[static_cast<std::size_t>(g)];
+  if (geometry.link < 0) return geometry.origin;
+  Pose pose;
+  placed_by(links[static_cast<std::size_t>(geometry.link)], geometry.origin,
+            model.geometry_origin_zeros(g), pose);
+  return pose;
+}
+
 void forward_kinematics(const RobotModel& model, const Configurations& q, Scalar* transforms) {
   std::vector<Pose> links;
   for (Eigen::Index i = 0; i < q.rows(); ++i) {
@@ -183,10 +233,8 @@ void geometry_poses(const RobotModel& model, const Configurations& q, Scalar* tr
   std::vector<Pose> links;
   for (Eigen::Index i = 0; i < q.rows(); ++i) {
     link_poses(model, q.row(i).data(), links);
-    for (const Geometry& geometry : model.geometries()) {
-      write_transform(
-          geometry.link < 0 ? geometry.origin : compose(links[geometry.link], geometry.origin),
-          transforms);
+    for (std::size_t g = 0; g < model.geometries().size(); ++g) {
+      write_transform(geometry_pose(model, links, static_cast<int>(g)), transforms);
       transforms += 16;
     }
   }

@@ -189,8 +189,8 @@ void LinkMotionBound::set_motion(const Scalar* q0, const Scalar* q1,
     // the frames' (as pair_margin's), the corners' placing and off_axis's few products.
     const Geometry& geometry = geometries[g];
     const Aabb& box = geometry.body.bounds().box;
-    const Pose at_start = compose(start_links[static_cast<std::size_t>(link)], geometry.origin);
-    const Pose at_end = compose(end_links[static_cast<std::size_t>(link)], geometry.origin);
+    const Pose at_start = geometry_pose(model_, start_links, static_cast<int>(g));
+    const Pose at_end = geometry_pose(model_, end_links, static_cast<int>(g));
     for (int c = 0; c < 8; ++c) {
       const Vector3 corner((c & 1) ? box.max.x() : box.min.x(), (c & 2) ? box.max.y() : box.min.y(),
                            (c & 4) ? box.max.z() : box.min.z());

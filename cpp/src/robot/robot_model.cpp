@@ -1,5 +1,6 @@
 #include "swarmcollide/robot/robot_model.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -43,6 +44,36 @@ void check_joint(Joint& joint, int links) {
                                 std::to_string(joint.lower) + ", " + std::to_string(joint.upper) +
                                 "]");
   }
+}
+
+OriginZeros origin_zeros(const Pose& origin) {
+  OriginZeros zeros;
+  const Matrix3& r = origin.rotation;
+  for (int k = 0; k < 3 && zeros.turn_axis < 0; ++k) {
+    const int i = (k + 1) % 3;
+    const int j = (k + 2) % 3;
+    if (r(k, k) == 1 && r(k, i) == 0 && r(k, j) == 0 && r(i, k) == 0 && r(j, k) == 0) {
+      zeros.turn_axis = k;
+    }
+  }
+  int count = 0;
+  for (int k = 0; k < 3; ++k) {
+    if (origin.translation[k] == 0) continue;
+    if (count < 2) zeros.axes[count] = k;
+    ++count;
+  }
+  zeros.count = std::min(count, 3);
+  return zeros;
+}
+
+// k when `axis` is the unit vector e_k or -e_k exactly, else -1.
+int coordinate_axis(const Vector3& axis) {
+  for (int k = 0; k < 3; ++k) {
+    const int i = (k + 1) % 3;
+    const int j = (k + 2) % 3;
+    if (axis[i] == 0 && axis[j] == 0 && std::abs(axis[k]) == 1) return k;
+  }
+  return -1;
 }
 
 void check_unique(const std::string& name, std::unordered_set<std::string>& seen,
@@ -150,6 +181,12 @@ RobotModel::RobotModel(std::vector<Link> links, std::vector<Joint> joints,
                                   std::to_string(link_count) + ")");
     }
     validate_pose(geometry.origin, ("geometry '" + geometry.name + "' origin").c_str());
+    geometry_zeros_.push_back(origin_zeros(geometry.origin));
+  }
+  for (const Joint& joint : joints_) {
+    joint_zeros_.push_back(origin_zeros(joint.origin));
+    axis_coordinate_.push_back(joint.type == JointType::prismatic ? -1
+                                                                  : coordinate_axis(joint.axis));
   }
 }
 

@@ -761,8 +761,7 @@ class MotionCheck {
   Pose placed(int g) const { return placed(links_, g); }
 
   Pose placed(const std::vector<Pose>& links, int g) const {
-    const Geometry& geometry = model_.geometries()[static_cast<std::size_t>(g)];
-    return geometry.link < 0 ? geometry.origin : compose(links[geometry.link], geometry.origin);
+    return geometry_pose(model_, links, g);
   }
 
   const RobotModel& model_;

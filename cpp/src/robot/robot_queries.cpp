@@ -219,8 +219,7 @@ class ConfigurationCheck {
     centres_.resize(geometries.size());
     for (std::size_t g = 0; g < geometries.size(); ++g) {
       const Geometry& geometry = geometries[g];
-      world_[g] = geometry.link < 0 ? geometry.origin
-                                    : compose(links_[geometry.link], geometry.origin);
+      world_[g] = geometry_pose(model_, links_, static_cast<int>(g));
       centres_[g] = world_[g].rotation * geometry.body.bounds().centre + world_[g].translation;
     }
   }

@@ -43,6 +43,10 @@ void link_poses(const RobotModel& model, const Scalar* q, std::vector<Pose>& lin
 void link_poses(const RobotModel& model, const Scalar* q, const std::vector<int>& joints,
                 std::vector<Pose>& links);
 
+/// Geometry `g`'s world pose with the links at `links` (link_poses): its link's pose times its
+/// origin (an obstacle's origin).
+Pose geometry_pose(const RobotModel& model, const std::vector<Pose>& links, int g);
+
 /// Forward kinematics over admitted configurations: link l's homogeneous transform at row i is
 /// written row-major at `transforms + (i * links + l) * 16`.
 void forward_kinematics(const RobotModel& model, const Configurations& q, Scalar* transforms);

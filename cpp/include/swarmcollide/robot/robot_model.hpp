@@ -56,6 +56,17 @@ struct Geometry {
   std::optional<CompoundBody> parts;
 };
 
+/// Which entries of an origin (a joint's or a geometry's pose in its link's frame) are exact
+/// zeros, found once so that the forward kinematics multiplies by none of them.
+struct OriginZeros {
+  /// k when the rotation's k-th row and column are e_k exactly (a turn about e_k; the identity
+  /// too), else -1.
+  int turn_axis = -1;
+  /// The translation's nonzero coordinates, `axes[0..count)`, when at most two are; else 3.
+  int count = 3;
+  int axes[2] = {0, 0};
+};
+
 /// A robot as a plain table of links, joints and geometries: immutable once built, so one model
 /// is shared by every thread and every call (the per-call data lives in the calls, and no call
 /// leaves anything behind that could change the next answer, unlike a solver state carried from
@@ -89,6 +100,15 @@ class RobotModel {
     const Joint& joint = joints_[static_cast<std::size_t>(j)];
     return joint.mimic < 0 ? value : joint.multiplier * value + joint.offset;
   }
+  /// The exact zeros of joint `j`'s origin, and of geometry `g`'s.
+  const OriginZeros& joint_origin_zeros(int j) const {
+    return joint_zeros_[static_cast<std::size_t>(j)];
+  }
+  const OriginZeros& geometry_origin_zeros(int g) const {
+    return geometry_zeros_[static_cast<std::size_t>(g)];
+  }
+  /// k when joint `j` turns about e_k or -e_k exactly, else -1 (and for a slide).
+  int axis_coordinate(int j) const { return axis_coordinate_[static_cast<std::size_t>(j)]; }
   /// The joint whose child is link `l`, -1 for the root.
   int parent_joint(int l) const { return parent_joint_[static_cast<std::size_t>(l)]; }
   /// The joints in an order where each joint's parent link is placed before it (root first).
@@ -109,6 +129,9 @@ class RobotModel {
   std::vector<int> driving_dof_;
   std::vector<int> parent_joint_;
   std::vector<int> order_;
+  std::vector<OriginZeros> joint_zeros_;
+  std::vector<OriginZeros> geometry_zeros_;
+  std::vector<int> axis_coordinate_;
   std::vector<std::optional<CompoundBody>> compounds_;
 };
 
