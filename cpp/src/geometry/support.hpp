@@ -70,7 +70,7 @@ class PointColumns {
 
   /// scan_support of the points held: the first index maximising `d . x`, each height rounded as
   /// point_height rounds it, `(x d_x + y d_y) + z d_z`.
-  int scan(const Vector3& d) const {
+  [[gnu::always_inline]] int scan(const Vector3& d) const {
     const Scalar* x = columns_.data();
     const Scalar* y = x + kCapacity;
     const Scalar* z = y + kCapacity;

@@ -122,9 +122,16 @@ bool DistanceFinish::whole(const Vector3& start, int& hint_a, int& hint_b, BestB
   // nearer. Small bodies are scanned, whatever the hints.
   const bool climbs =
       pair_.a.size() > kHillClimbingThreshold || pair_.b.size() > kHillClimbingThreshold;
+  const bool scanned = pair_.a.scanned() && pair_.b.scanned();
   Vector3 previous = start;
-  const auto oracle = [&](const Vector3& d) {
+  // Inline in the search (out of line, the call cost what the inline scans save).
+  const auto oracle = [&](const Vector3& d) __attribute__((always_inline)) {
     ++evaluations_;
+    if (scanned) {
+      hint_a = pair_.a.scanned_support_index(d);
+      hint_b = pair_.b.scanned_support_index(-d);
+      return OraclePoint{pair_.b.vertex(hint_b) - pair_.a.vertex(hint_a), hint_a, hint_b};
+    }
     if (climbs) {
       const Scalar along = d.dot(previous);
       if (along < 0 || along * along < kNearbyCosine * kNearbyCosine * d.squaredNorm() *
