@@ -165,7 +165,7 @@ class FramedBody {
   /// on a small pair asks two per step, where the call out of line and its tests of the body's
   /// kind were a sixth of each scan (swarmcollide-thread-scaling count distance, 8 vertices).
   [[gnu::always_inline]] int scanned_support_index(const Vector3& d) const {
-    return columns_->scan(local_direction(d));
+    return columns_->inline_scan(local_direction(d));
   }
   /// The same, climbing the hull from `start` when the body has more than
   /// `kHillClimbingThreshold` points (see ConvexPolyhedron::support_index): for searches, whose

@@ -70,7 +70,11 @@ class PointColumns {
 
   /// scan_support of the points held: the first index maximising `d . x`, each height rounded as
   /// point_height rounds it, `(x d_x + y d_y) + z d_z`.
-  [[gnu::always_inline]] int scan(const Vector3& d) const {
+  int scan(const Vector3& d) const { return inline_scan(d); }
+  /// The same, always inline: for the searches' oracles on small pairs
+  /// (FramedBody::scanned_support_index), which ask two per step. Everywhere else the compiler
+  /// chooses (inlined everywhere, the penetration solver's signed distances took 1% more).
+  [[gnu::always_inline]] int inline_scan(const Vector3& d) const {
     const Scalar* x = columns_.data();
     const Scalar* y = x + kCapacity;
     const Scalar* z = y + kCapacity;
