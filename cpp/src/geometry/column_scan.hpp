@@ -46,8 +46,8 @@ inline int first_highest_column(const double* columns, int count, double dx, dou
 /// The baseline's scan, two heights a step (SSE2), each lane rounded as the scalar sum is; the
 /// highest is found as the first height equal to the greatest, which is the first maximiser when no
 /// height is NaN (a NaN, from infinite products, takes the scalar comparisons on the same heights).
-inline int scan_columns_baseline(const double* columns, int count, double dx, double dy,
-                                 double dz) {
+[[gnu::always_inline]] inline int scan_columns_baseline(const double* columns, int count,
+                                                        double dx, double dy, double dz) {
 #if defined(__SSE2__)
   const double* x = columns;
   const double* y = x + kColumnCapacity;
@@ -98,8 +98,11 @@ extern std::atomic<int> column_scan_set;
 /// Chooses column_scan_set, then scans.
 int choose_column_scan(const double* columns, int count, double dx, double dy, double dz);
 
-/// The scan on the chosen set: the baseline's inline, a wider set's by a direct call.
-inline int scan_columns(const double* columns, int count, double dx, double dy, double dz) {
+/// The scan on the chosen set: the baseline's inline, a wider set's by a direct call (always
+/// inline, for PointColumns::inline_scan; PointColumns::scan leaves its own inlining to the
+/// compiler).
+[[gnu::always_inline]] inline int scan_columns(const double* columns, int count, double dx,
+                                               double dy, double dz) {
   switch (column_scan_set.load(std::memory_order_relaxed)) {
     case static_cast<int>(KernelIsa::avx512):
       return scan_columns_avx512(columns, count, dx, dy, dz);
