@@ -118,12 +118,24 @@ Answer solve_fcl(const FramedPair& pair, const QueryOptions& options, Goal goal)
     while (same < corral.size && !(corral.corral[same].ia == ia && corral.corral[same].ib == ib))
       ++same;
     if (same == corral.size) {
-      corral.corral[corral.size++] = {pair.b.vertex(ib) - pair.a.vertex(ia), ia, ib};
+      corral.corral[corral.size++] = {Vector3::Zero(), ia, ib};
       corral.weights[same] = 0;
     }
     corral.weights[same] += weight[k];
   }
   for (int k = 0; k < corral.size; ++k) corral.weights[k] /= total;
+  // The corral's Minkowski points, placed only for those that read them (the enclosure test, the
+  // exact solver): the witness places the bodies' points itself, and a distance whose witnesses
+  // prove contact, or a corral of fewer than four points, needs nothing more.
+  bool placed = false;
+  const auto place_corral = [&pair, &corral, &placed] {
+    if (placed) return;
+    for (int k = 0; k < corral.size; ++k) {
+      OraclePoint& q = corral.corral[k];
+      q.p = pair.b.vertex(q.ib) - pair.a.vertex(q.ia);
+    }
+    placed = true;
+  };
   const auto settles = [&pair, goal](const Answer& answer) {
     return goal_reached(pair, goal, answer.lower, answer.upper, answer.intersection_proven);
   };
@@ -131,14 +143,17 @@ Answer solve_fcl(const FramedPair& pair, const QueryOptions& options, Goal goal)
   if (usable) {
     // A corral around the origin proves the overlap, which settles a verdict and a distance
     // (zero) whatever the separation along the witnesses: those skip its two scans. A distance
-    // needs no enclosure test where the witnesses already prove contact (contact_witness_of):
+    // needs no enclosure test where the witnesses already prove contact (as contact_witness_of):
     // within the tolerance they settle it at zero as the proof would, and a distance reports
     // no intersection proof; zero, its lower bound, needs no scan either.
     const bool distance_goal = goal == Goal::distance;
-    const Witness witness =
-        distance_goal ? contact_witness_of(pair, corral) : witness_of(pair, corral);
-    const bool contact =
-        witness.encloses_origin || (distance_goal && witnesses_prove_contact(pair, witness));
+    Witness witness = combined_witness(pair, corral);
+    const bool witnesses_contact = distance_goal && witnesses_prove_contact(pair, witness);
+    if (!witnesses_contact && corral.size == 4) {
+      place_corral();
+      witness.encloses_origin = corral_encloses_origin(corral);
+    }
+    const bool contact = witness.encloses_origin || witnesses_contact;
     const bool separated = !contact || goal == Goal::signed_distance;
     Answer answer = answer_from_corral(pair, corral, witness, separated);
     if (settles(answer)) return answer;
@@ -147,6 +162,7 @@ Answer solve_fcl(const FramedPair& pair, const QueryOptions& options, Goal goal)
   // FCL's simplex (FCL stops when a support point comes within sqrt(its tolerance) of an earlier
   // one, often an iteration or two short), then from the direction if that simplex was too
   // degenerate to continue; signed distances from its direction.
+  place_corral();
   const Vector3 start =
       usable ? Vector3(combination(corral.corral, corral.weights, corral.size))
              : Vector3::Zero();
