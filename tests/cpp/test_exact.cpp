@@ -176,6 +176,23 @@ TEST(Fcl, ADistanceWithinTheToleranceStandsOnItsWitnesses) {
   }
 }
 
+// At a zero tolerance no witnesses prove contact: a collision verdict on overlapping bodies stands
+// on FCL's final simplex alone, a tetrahedron whose Minkowski points (placed only for this test)
+// enclose the origin, with no escalation to "exact".
+TEST(Fcl, ItsEnclosingSimplexProvesAnOverlap) {
+  QueryOptions options;
+  options.method = Method::fcl;
+  options.tolerance = 0;
+  const Query fcl(options);
+  const ConvexPolyhedron a = unit_cube();
+  const ConvexPolyhedron b = moved(unit_cube(), {0.5, 0.25, 0.125});
+  const DistanceResult r = fcl.collision(a, b);
+  expect_contract(a, b, QueryKind::collide, Method::fcl, r, reference(a, b), scale_of(a, b, 0));
+  EXPECT_EQ(r.method, Method::fcl);
+  EXPECT_FALSE(r.escalated_from.has_value());
+  EXPECT_TRUE(r.certified && r.colliding);
+}
+
 // libccd's EPA depth stands when the certificate proves it.
 TEST(Libccd, ItsDepthStandsWhenProven) {
   const DistanceResult r =

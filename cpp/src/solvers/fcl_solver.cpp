@@ -2,8 +2,6 @@
 
 #include <fcl/narrowphase/detail/convexity_based_algorithm/gjk.h>
 
-#include <array>
-
 #include "../queries/verdict.hpp"
 #include "exact_solver.hpp"
 #include "fcl_shape.hpp"
@@ -35,17 +33,6 @@ fcl::detail::GJK<Scalar>::Status run_gjk(const FramedPair& pair, const fcl::Shap
   Vector3 guess = -difference.toshape0.translation();
   if (!(guess.norm() > 0)) guess = Vector3::UnitX();
   return gjk.evaluate(difference, guess);
-}
-
-// The support indices of `body` along `count` (at most 4) directions `local` in its own frame, into
-// `out`, each as the solvers find it: on a small body a scan of its points by coordinate, two
-// heights at a time (a single pass for all the directions, one height and one comparison at a
-// time, cost 70 to 900 instructions more per query at 4-32 vertices in callgrind_query.py, though
-// 41 fewer on overlapping 4-vertex pairs), on a large one a climb from its hull's cube map of
-// starts (Hull::climb_starts), on a curved one its support function's point.
-void local_supports(const FramedBody& body, const std::array<Vector3, 4>& local, int count,
-                    std::array<int, 4>& out) {
-  for (int k = 0; k < count; ++k) out[k] = body.local_support_index(local[k], -1);
 }
 
 // The answer along the line between the bodies' centres: its separation (the lower bound) and
@@ -87,43 +74,50 @@ Answer solve_fcl(const FramedPair& pair, const QueryOptions& options, Goal goal)
   fcl::detail::MinkowskiDiff<Scalar> difference;
   const Gjk::Status status = run_gjk(pair, shape_a, shape_b, gjk, difference);
   // FCL's simplex as the bodies' own points: the support indices along each simplex vertex's
-  // direction, found in the bodies' own frames (local_supports); on large bodies a climb is a few
-  // neighbour checks where a scan would cost as much as an iteration of FCL's GJK (whose supports
-  // scan every vertex). Any points of the bodies give a valid witness: the bounds are computed
-  // from these points, not from FCL's.
+  // direction, found in the bodies' own frames as the solvers find them: on a small body a scan
+  // of its points by coordinate, two heights at a time (a single pass for all the directions, one
+  // height and one comparison at a time, cost 70 to 900 instructions more per query at 4-32
+  // vertices in callgrind_query.py, though 41 fewer on overlapping 4-vertex pairs; all of A's
+  // scans before B's, 60 to 140 more than each pair's in turn), on a large one a climb from its
+  // hull's cube map of starts (Hull::climb_starts), a few neighbour checks where a scan would cost
+  // as much as an iteration of FCL's GJK (whose supports scan every vertex), on a curved one its
+  // support function's point. Any points of the bodies give a valid witness: the bounds are
+  // computed from these points, not from FCL's.
   const Gjk::Simplex& simplex = *gjk.getSimplex();
-  std::array<Vector3, 4> along_a;
-  std::array<Vector3, 4> along_b;
-  std::array<Scalar, 4> weight;
-  int count = 0;
-  for (unsigned int k = 0; k < simplex.rank; ++k) {
-    if (!(simplex.p[k] > 0)) continue;  // a point the last projection gave no weight
-    along_a[count] = simplex.c[k]->d;
-    along_b[count].noalias() = -(difference.toshape1 * simplex.c[k]->d);
-    weight[count++] = simplex.p[k];
-  }
-  std::array<int, 4> support_a;
-  std::array<int, 4> support_b;
-  local_supports(pair.a, along_a, count, support_a);
-  local_supports(pair.b, along_b, count, support_b);
   MinNormPoint corral;
   Scalar total = 0;
-  for (int k = 0; k < count; ++k) {
-    const int ia = support_a[k];
-    const int ib = support_b[k];
-    total += weight[k];
+  for (unsigned int k = 0; k < simplex.rank; ++k) {
+    const Scalar weight = simplex.p[k];
+    if (!(weight > 0)) continue;  // a point the last projection gave no weight
+    const Vector3& along_a = simplex.c[k]->d;
+    const Vector3 along_b = -(difference.toshape1 * along_a);
+    const int ia = pair.a.local_support_index(along_a, -1);
+    const int ib = pair.b.local_support_index(along_b, -1);
+    total += weight;
     // Two of FCL's points may be the same pair of vertices: one corral point, their weights
     // summed.
     int same = 0;
     while (same < corral.size && !(corral.corral[same].ia == ia && corral.corral[same].ib == ib))
       ++same;
     if (same == corral.size) {
-      corral.corral[corral.size++] = {pair.b.vertex(ib) - pair.a.vertex(ia), ia, ib};
+      corral.corral[corral.size++] = {Vector3::Zero(), ia, ib};
       corral.weights[same] = 0;
     }
-    corral.weights[same] += weight[k];
+    corral.weights[same] += weight;
   }
   for (int k = 0; k < corral.size; ++k) corral.weights[k] /= total;
+  // The corral's Minkowski points, placed only for those that read them (the enclosure test, the
+  // exact solver): the witness places the bodies' points itself, and a distance whose witnesses
+  // prove contact, or a corral of fewer than four points, needs nothing more.
+  bool placed = false;
+  const auto place_corral = [&pair, &corral, &placed] {
+    if (placed) return;
+    for (int k = 0; k < corral.size; ++k) {
+      OraclePoint& q = corral.corral[k];
+      q.p = pair.b.vertex(q.ib) - pair.a.vertex(q.ia);
+    }
+    placed = true;
+  };
   const auto settles = [&pair, goal](const Answer& answer) {
     return goal_reached(pair, goal, answer.lower, answer.upper, answer.intersection_proven);
   };
@@ -131,14 +125,17 @@ Answer solve_fcl(const FramedPair& pair, const QueryOptions& options, Goal goal)
   if (usable) {
     // A corral around the origin proves the overlap, which settles a verdict and a distance
     // (zero) whatever the separation along the witnesses: those skip its two scans. A distance
-    // needs no enclosure test where the witnesses already prove contact (contact_witness_of):
+    // needs no enclosure test where the witnesses already prove contact (as contact_witness_of):
     // within the tolerance they settle it at zero as the proof would, and a distance reports
     // no intersection proof; zero, its lower bound, needs no scan either.
     const bool distance_goal = goal == Goal::distance;
-    const Witness witness =
-        distance_goal ? contact_witness_of(pair, corral) : witness_of(pair, corral);
-    const bool contact =
-        witness.encloses_origin || (distance_goal && witnesses_prove_contact(pair, witness));
+    Witness witness = combined_witness(pair, corral);
+    const bool witnesses_contact = distance_goal && witnesses_prove_contact(pair, witness);
+    if (!witnesses_contact && corral.size == 4) {
+      place_corral();
+      witness.encloses_origin = corral_encloses_origin(corral);
+    }
+    const bool contact = witness.encloses_origin || witnesses_contact;
     const bool separated = !contact || goal == Goal::signed_distance;
     Answer answer = answer_from_corral(pair, corral, witness, separated);
     if (settles(answer)) return answer;
@@ -147,6 +144,7 @@ Answer solve_fcl(const FramedPair& pair, const QueryOptions& options, Goal goal)
   // FCL's simplex (FCL stops when a support point comes within sqrt(its tolerance) of an earlier
   // one, often an iteration or two short), then from the direction if that simplex was too
   // degenerate to continue; signed distances from its direction.
+  place_corral();
   const Vector3 start =
       usable ? Vector3(combination(corral.corral, corral.weights, corral.size))
              : Vector3::Zero();
