@@ -94,6 +94,30 @@ TEST(Dual, TheStartSettlesPairsWithoutTheSwarm) {
   }
 }
 
+// A signed distance of a pair apart along the centres' direction starts the distance search from
+// that direction's oracle point, asked before it (overlap_first): the search's witnesses read
+// that point's vertices, which its own oracle did not place. Two tetrahedra apex to apex along
+// the line through their box centres have that very point as their nearest points: its witness
+// settles the search at once, with no second oracle call (a witness off the bodies would not).
+TEST(Dual, ASignedDistanceApartAtTheStartHasItsFirstPointAsWitnesses) {
+  VertexMatrix points_a(4, 3);
+  points_a << 1, 0, 0, -1, 1, 0, -1, -1, 1, -1, -1, -1;
+  VertexMatrix points_b = points_a;
+  points_b.col(0) = (3 - points_a.col(0).array()).matrix();
+  const ConvexPolyhedron a(points_a);
+  const ConvexPolyhedron b(points_b);
+  const Query dual(with(Method::dual));
+  for (const DistanceResult& r : {dual.signed_distance(a, b), dual.distance(a, b)}) {
+    EXPECT_TRUE(r.certified);
+    EXPECT_EQ(r.evaluations, 1);
+    EXPECT_NEAR(r.distance, 1, 1e-12);
+    EXPECT_NEAR((r.point_a - Vector3(1, 0, 0)).norm(), 0, 1e-12);
+    EXPECT_NEAR((r.point_b - Vector3(2, 0, 0)).norm(), 0, 1e-12);
+    EXPECT_EQ(r.weights_a.dense(), VectorX::Unit(4, 0));
+    EXPECT_EQ(r.weights_b.dense(), VectorX::Unit(4, 0));
+  }
+}
+
 // Overlaps within the frame's rounding (|gap| below 1e-12) as well: Wolfe's corral of four may
 // hold the origin only up to rounding, and the expanding polytope's depth proves nothing; the
 // answer is still certified, the pair colliding (within the tolerance), and the exact method's.

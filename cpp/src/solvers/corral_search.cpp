@@ -24,7 +24,7 @@ bool DistanceFinish::walk_from_corral(const Vector3& start, const MinNormPoint& 
     return Separation{current.x.dot(q.p) * inverse_norm, current.x * inverse_norm};
   };
   return whole_search(pair_, start, &corral, hint_a, hint_b, bounds, goal, enclosure,
-                      max_iterations_, evaluations_, oracle, measured);
+                      max_iterations_, evaluations_, oracle, measured, PlacedByBodies{pair_});
 }
 
 }  // namespace swarmcollide::detail

@@ -1,6 +1,7 @@
 #include "distance_finish.hpp"
 
 #include <algorithm>
+#include <array>
 #include <vector>
 
 #include "../queries/verdict.hpp"
@@ -141,16 +142,35 @@ bool DistanceFinish::whole(const Vector3& start, int& hint_a, int& hint_b, BestB
   // dispatched to wider instruction sets, 260-vertex rows 6,204 -> 6,442 instructions; flattened,
   // swarmcollide-thread-scaling count distance: 8 vertices apart 3,388 -> 3,369, overlapping
   // 5,146 -> 4,984, 260 apart 6,442 -> 6,176).
+  // The oracle keeps the points it placed, by index (a scanned body has at most
+  // kHillClimbingThreshold), and the corrals' witnesses read them: placing them again was most of
+  // what a witness cost (callgrind_query, 4 vertices overlapping: 505 of 5,529 instructions a
+  // distance). Every corral point is an oracle point, or the given first one, placed here.
   if (pair_.a.scanned() && pair_.b.scanned()) {
+    std::array<Vector3, kHillClimbingThreshold> placed_a;
+    std::array<Vector3, kHillClimbingThreshold> placed_b;
+    if (first_point != nullptr) {
+      placed_a[first_point->ia] = pair_.a.vertex(first_point->ia);
+      placed_b[first_point->ib] = pair_.b.vertex(first_point->ib);
+    }
     const auto scans = [&](const Vector3& d) __attribute__((always_inline)) {
       ++evaluations_;
       hint_a = pair_.a.scanned_support_index(d);
       hint_b = pair_.b.scanned_support_index(-d);
-      return OraclePoint{pair_.b.vertex(hint_b) - pair_.a.vertex(hint_a), hint_a, hint_b};
+      const Vector3& x = placed_a[hint_a] = pair_.a.vertex(hint_a);
+      const Vector3& y = placed_b[hint_b] = pair_.b.vertex(hint_b);
+      return OraclePoint{y - x, hint_a, hint_b};
+    };
+    const auto kept = [&](const MinNormPoint& corral, bool enclose) {
+      return tested_witness(pair_, corral,
+                            combined_witness(
+                                corral, [&](int i) -> const Vector3& { return placed_a[i]; },
+                                [&](int j) -> const Vector3& { return placed_b[j]; }),
+                            enclose);
     };
     const auto small_search = [&]() SWARMCOLLIDE_FLATTEN {
       return whole_search(pair_, start, first_point, hint_a, hint_b, bounds, goal, enclosure,
-                          max_iterations_, evaluations_, scans, measured);
+                          max_iterations_, evaluations_, scans, measured, kept);
     };
     return small_search();
   }
@@ -174,7 +194,7 @@ bool DistanceFinish::whole(const Vector3& start, int& hint_a, int& hint_b, BestB
   };
   const auto climbing_search = [&]() SWARMCOLLIDE_FLATTEN {
     return whole_search(pair_, start, first_point, hint_a, hint_b, bounds, goal, enclosure,
-                        max_iterations_, evaluations_, oracle, measured);
+                        max_iterations_, evaluations_, oracle, measured, PlacedByBodies{pair_});
   };
   return climbing_search();
 }

@@ -66,7 +66,7 @@ bool DistanceFinish::whole_secant(const Vector3& start, int& hint_a, int& hint_b
   };
   const OraclePoint* asked_here = nullptr;  // the first point is asked along `start`
   return whole_search(pair_, start, asked_here, hint_a, hint_b, bounds, goal, enclosure,
-                      max_iterations_, evaluations_, oracle, measured);
+                      max_iterations_, evaluations_, oracle, measured, PlacedByBodies{pair_});
 }
 
 }  // namespace swarmcollide::detail

@@ -43,6 +43,15 @@ MinNormPoint first_corral(const MinNormPoint* given, const Vector3&, const Oracl
   return *given;
 }
 
+/// The witnesses of a corral, their points placed by the bodies: whole_search's `witnesses` for
+/// an oracle that keeps no placed points.
+struct PlacedByBodies {
+  const FramedPair& pair;
+  Witness operator()(const MinNormPoint& corral, bool enclose) const {
+    return enclose ? witness_of(pair, corral) : contact_witness_of(pair, corral);
+  }
+};
+
 /// Wolfe's algorithm on B - A from the oracle's point along the unit direction `start` (or
 /// `first`: that point already asked from the same hints, or a corral whose last point it is),
 /// offering its bounds to `bounds` and stopping as soon as they settle `goal`
@@ -51,20 +60,20 @@ MinNormPoint first_corral(const MinNormPoint* given, const Vector3&, const Oracl
 /// `oracle(d)` is the support point of B - A for the corral's point `d`, its supports from and into
 /// `hint_a`/`hint_b`; `along(current, q, inverse_norm)` is the Separation of the point `q` it
 /// returned for the corral `current` (whose point's norm is 1 / inverse_norm). `evaluations`
-/// counts the oracle calls made here (the oracle counts its own).
-template <class First, class Oracle, class Along>
+/// counts the oracle calls made here (the oracle counts its own). `witnesses(corral, enclose)` is
+/// the corral's witness_of where `enclose`, else its contact_witness_of (PlacedByBodies, or the
+/// same from points the oracle kept).
+template <class First, class Oracle, class Along, class Witnesses>
 bool whole_search(const FramedPair& pair, const Vector3& start, const First* first_point,
                   int& hint_a, int& hint_b, BestBounds& bounds, Goal goal, bool enclosure,
-                  int max_iterations, long& evaluations, const Oracle& oracle,
-                  const Along& along) {
+                  int max_iterations, long& evaluations, const Oracle& oracle, const Along& along,
+                  const Witnesses& witnesses) {
   // A corral's witnesses. A distance needs no intersection proof where they prove contact, nor
   // does a verdict asked without `enclosure` (a fifth of an overlapping verdict's cost): the
   // witnesses within the tolerance prove the same verdict. Rounded or curved pairs keep it: there
   // the witnesses' distance is not yet the rounded bodies' bound that close_proven reads.
   const bool keep = goal != Goal::distance && (enclosure || pair.adjusted);
-  const auto witness = [&](const MinNormPoint& corral) {
-    return keep ? witness_of(pair, corral) : contact_witness_of(pair, corral);
-  };
+  const auto witness = [&](const MinNormPoint& corral) { return witnesses(corral, keep); };
   // The bounds of a corral: its witnesses (an upper bound) and the separation along them (a lower
   // bound, its supports climbing from the hints).
   const auto offer = [&](const MinNormPoint& corral) {

@@ -17,41 +17,8 @@ static_assert(Witness::kCapacity == ConvexWeights::kSparseCapacity);
 }  // namespace
 
 Witness combined_witness(const FramedPair& pair, const MinNormPoint& corral) {
-  Witness w;
-  w.size = corral.size;
-  Scalar total = 0;
-  for (int k = 0; k < corral.size; ++k) total += corral.weights[k];
-  // Summed in locals: the compiler cannot keep the witness's own fields in registers across the
-  // vertex reads (they might alias), and the stores and reloads of each sum would stall.
-  Vector3 point_a = Vector3::Zero();
-  Vector3 point_b = Vector3::Zero();
-  // A corral's neighbouring points often share a body's vertex (a vertex of A against an edge or
-  // a face of B, an edge against an edge): placed once, it is read again.
-  int placed_a = -1;
-  int placed_b = -1;
-  Vector3 vertex_a = Vector3::Zero();  // set at the first point (no index is -1), for GCC
-  Vector3 vertex_b = Vector3::Zero();
-  for (int k = 0; k < corral.size; ++k) {
-    const OraclePoint& q = corral.corral[k];
-    const Scalar weight = corral.weights[k] / total;
-    w.ia[k] = q.ia;
-    w.ib[k] = q.ib;
-    w.weights[k] = weight;
-    if (q.ia != placed_a) {
-      placed_a = q.ia;
-      vertex_a = pair.a.vertex(q.ia);
-    }
-    if (q.ib != placed_b) {
-      placed_b = q.ib;
-      vertex_b = pair.b.vertex(q.ib);
-    }
-    point_a += weight * vertex_a;
-    point_b += weight * vertex_b;
-  }
-  w.point_a = point_a;
-  w.point_b = point_b;
-  w.distance = (point_b - point_a).norm();
-  return w;
+  return combined_witness(
+      corral, [&](int i) { return pair.a.vertex(i); }, [&](int j) { return pair.b.vertex(j); });
 }
 
 bool corral_encloses_origin(const MinNormPoint& corral) {
