@@ -262,6 +262,37 @@ TEST(Curved, SpheresAgainstCylindersAndConesMatchThePointDistance) {
   }
 }
 
+// The closed form of a point against a shape finds its witness on the shape from support points
+// that it does not number among the shape's (curved_point.cpp): the witness is still a point of
+// the cylinder, at the answer's distance from the ball's, and the ball's weights are its one
+// point's (a curved body reports none).
+TEST(Curved, ClosedFormWitnessesLieOnTheShapeAndTheBall) {
+  Random rng(31);
+  for (int trial = 0; trial < 30; ++trial) {
+    const Scalar r = rng.uniform(0.2, 2);
+    const Scalar h = rng.uniform(0.2, 2);
+    const Cylinder cylinder(r, h);
+    const Sphere ball(rng.uniform(0.05, 0.5));
+    const Matrix3 turn = rng.rotation();
+    const Pose pose_shape = at(rng.vector(1), turn);
+    const Vector3 local = rng.vector(3);
+    const Pose pose_ball = at(turn * local + pose_shape.translation);
+    const DistanceResult d = Query().signed_distance(cylinder, pose_shape, ball, pose_ball);
+    ASSERT_TRUE(d.certified);
+    const Vector3 on_shape = turn.transpose() * (d.point_a - pose_shape.translation);
+    const Scalar slack = 1e-12;
+    EXPECT_LE(std::hypot(on_shape.x(), on_shape.y()), r + slack);
+    EXPECT_LE(std::abs(on_shape.z()), h + slack);
+    if (d.distance > 0) {
+      EXPECT_NEAR((d.point_b - pose_ball.translation).norm(), ball.radius(), slack);
+      EXPECT_NEAR((d.point_b - d.point_a).norm(), d.distance, slack);
+    }
+    EXPECT_EQ(d.weights_a.count(), 0);
+    ASSERT_EQ(d.weights_b.count(), 1);
+    EXPECT_NEAR(d.weights_b.dense()(0), 1, 1e-15);
+  }
+}
+
 TEST(Curved, CoaxialAndSideBySideCylinders) {
   const Cylinder a(1, 2);
   const Cylinder b(0.5, 1);

@@ -118,21 +118,34 @@ FramedBody::FramedBody(const ConvexPolyhedron& body, const Pose& pose, bool rota
   place(pose, rotated, world_centre, frame);
 }
 
-int FramedBody::curved_support(const Vector3& local) const {
-  // Support points are in the shape's frame, which is centred on the body's box. The shapes of
-  // shapes.hpp are called by their exact (final) type: the same function, inlined here.
+// `use` of the curved body's support point along `local`, in its own frame (centred on its box),
+// for its two users below. The use sits in each case: applied to the switch's result, the add of
+// curved_support made the curved rows 0.2-0.5% longer (callgrind_query.py --curved).
+template <typename Use>
+[[gnu::always_inline]] inline auto FramedBody::use_curved_support(const Vector3& local,
+                                                                  const Use& use) const {
+  // The shapes of shapes.hpp are called by their exact (final) type: the same function, inlined
+  // here.
   switch (curved_kind_) {
     case CurvedKind::cylinder:
-      return found_->add(
-          static_cast<const CylinderSupport*>(curved_)->CylinderSupport::support(local));
+      return use(static_cast<const CylinderSupport*>(curved_)->CylinderSupport::support(local));
     case CurvedKind::ellipsoid:
-      return found_->add(
-          static_cast<const EllipsoidSupport*>(curved_)->EllipsoidSupport::support(local));
+      return use(static_cast<const EllipsoidSupport*>(curved_)->EllipsoidSupport::support(local));
     case CurvedKind::cone:
-      return found_->add(static_cast<const ConeSupport*>(curved_)->ConeSupport::support(local));
+      return use(static_cast<const ConeSupport*>(curved_)->ConeSupport::support(local));
     default:
-      return found_->add(curved_->support(local));
+      return use(curved_->support(local));
   }
+}
+
+int FramedBody::curved_support(const Vector3& local) const {
+  return use_curved_support(local, [this](const Vector3& point) { return found_->add(point); });
+}
+
+Vector3 FramedBody::curved_support_point(const Vector3& local) const {
+  // The coordinates the cache would store (-0 + 0 = +0), placed as vertex() places them.
+  return use_curved_support(
+      local, [this](const Vector3& point) { return placed(point + Vector3::Zero()); });
 }
 
 int FramedBody::add_point(const Vector3& frame_point) const {

@@ -158,6 +158,10 @@ class FramedBody {
     if (curved_ || size() <= kHillClimbingThreshold) return local_support_index(local);
     return climb_support(*vertices_, hull(), local, start);
   }
+  /// The point `vertex(local_support_index(local))` of a curved body (`local` a direction in its
+  /// own frame), the same coordinates, without numbering it among the body's points: for a closed
+  /// form that reports no weights over the shape (point_against_curved).
+  Vector3 curved_support_point(const Vector3& local) const;
   /// True for a small polyhedron whose support points are scans of its points by coordinate
   /// (`support_index` takes them from any start): `scanned_support_index` answers it.
   bool scanned() const { return columns_ != nullptr; }
@@ -201,6 +205,9 @@ class FramedBody {
   int exponent() const { return exponent_; }
 
  private:
+  // `use(point)` of the curved body's support point along `local`, in its own frame.
+  template <typename Use>
+  auto use_curved_support(const Vector3& local, const Use& use) const;
   // The index of the curved body's support point along `local` (its own frame), appended to the
   // points unless it is one of them already.
   int curved_support(const Vector3& local) const;

@@ -1,13 +1,13 @@
 #include "curved_point.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
 #include "../geometry/normalise.hpp"
 #include "../queries/verdict.hpp"
 #include "exact_solver.hpp"
-#include "witness.hpp"
 
 namespace swarmcollide::detail {
 
@@ -204,45 +204,39 @@ std::optional<Answer> point_against_curved(const FramedPair& pair, Goal goal,
     return overlap;
   }
   if (!(nearest.normal.squaredNorm() > 0)) return std::nullopt;
-  // The witness on the shape: the combination of its support points.
-  const int first = shape.local_support_index(nearest.first);
-  Witness w;
-  std::array<int, Witness::kCapacity>& on_shape = curved_a ? w.ia : w.ib;
-  std::array<int, Witness::kCapacity>& on_point = curved_a ? w.ib : w.ia;
-  on_shape[0] = first;
-  on_point[0] = 0;
-  w.weights[0] = 1;
-  w.size = 1;
-  Vector3 witness = shape.vertex(first);
+  // The witness on the shape: the combination of its support points, found without numbering
+  // them among the shape's points (weights over a curved body's points are never reported, so
+  // the shape's side has none). The point's weights are those of each support point.
+  const Vector3 first = shape.curved_support_point(nearest.first);
+  Vector3 witness = first;
+  std::array<Scalar, ConvexWeights::kSparseCapacity> weights{1, 0, 0, 0};
+  int size = 1;
   if (nearest.weight < 1) {
-    const int second = shape.local_support_index(nearest.second);
+    const Vector3 second = shape.curved_support_point(nearest.second);
     if (second != first) {
-      on_shape[1] = second;
-      on_point[1] = 0;
-      w.weights[0] = nearest.weight;
-      w.weights[1] = 1 - nearest.weight;
-      w.size = 2;
-      witness = nearest.weight * witness + (1 - nearest.weight) * shape.vertex(second);
+      weights = {nearest.weight, 1 - nearest.weight, 0, 0};
+      size = 2;
+      witness = nearest.weight * witness + (1 - nearest.weight) * second;
     }
   }
-  w.point_a = curved_a ? witness : p;
-  w.point_b = curved_a ? p : witness;
-  w.distance = (w.point_b - w.point_a).norm();
+  Answer answer;
+  answer.point_a = curved_a ? witness : p;
+  answer.point_b = curved_a ? p : witness;
+  answer.upper = (answer.point_b - answer.point_a).norm();
+  (curved_a ? answer.weights_b : answer.weights_a) =
+      ConvexWeights(point.size(), {0, 0, 0, 0}, weights, size);
   // The normal in the frame, from A to B.
   Vector3 normal = shape.rotated() ? Vector3(shape.rotation() * nearest.normal) : nearest.normal;
   normal.normalize();
   if (!curved_a) normal = -normal;
-  // Measured before the weights are made: a support point it adds is counted among the shape's.
   // separation(pair.a, pair.b, normal) with the point's support, its one point, not scanned for:
   // the same difference of the same placed points, so the same value.
-  const int top = shape.support_index(curved_a ? normal : Vector3(-normal));
-  const Vector3 across = curved_a ? Vector3(p - shape.vertex(top)) : Vector3(shape.vertex(top) - p);
-  const Scalar lower = normal.dot(across);
-  Answer answer = answer_from_witness(pair, w);
-  answer.lower = lower;
+  const Vector3 top =
+      shape.curved_support_point(shape.local_direction(curved_a ? normal : Vector3(-normal)));
+  answer.lower = normal.dot(curved_a ? Vector3(p - top) : Vector3(top - p));
   answer.direction = normal;
   answer.iterations = 1;
-  answer.evaluations = w.size + 1;
+  answer.evaluations = size + 1;
   if (!goal_reached(pair, goal, answer.lower, answer.upper, false)) return std::nullopt;
   return answer;
 }

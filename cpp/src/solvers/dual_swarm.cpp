@@ -266,7 +266,7 @@ Answer solve_dual_from(const FramedPair& pair, const QueryOptions& options, Goal
   if (point_and_curved(pair)) {
     if (std::optional<Answer> closed =
             point_against_curved(pair, goal, options.exact.max_iterations)) {
-      return *closed;
+      return std::move(*closed);
     }
   }
   // A distance or a verdict is the search's answer, returned as it is made: a named answer

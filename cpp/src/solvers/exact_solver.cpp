@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <limits>
 #include <type_traits>
+#include <utility>
 
 #include "../queries/verdict.hpp"
 #include "curved_point.hpp"
@@ -250,7 +251,7 @@ Answer solve_exact(const FramedPair& pair, const QueryOptions& options, Goal goa
   if (point_and_curved(pair)) {
     if (std::optional<Answer> closed =
             point_against_curved(pair, goal, options.exact.max_iterations)) {
-      return *closed;
+      return std::move(*closed);
     }
   }
   if (goal == Goal::signed_distance) {
