@@ -229,18 +229,39 @@ TEST(Curved, FramedSupportsAreTheShapesOwn) {
   }
 }
 
+// A random ball near a random shape of radius `r` and half-length `h`: the ball's centre at
+// `local` in the shape's frame.
+struct BallNearShape {
+  explicit BallNearShape(Random& rng)
+      : r(rng.uniform(0.2, 2)),
+        h(rng.uniform(0.2, 2)),
+        ball(rng.uniform(0.05, 0.5)),
+        turn(rng.rotation()),
+        pose_shape(at(rng.vector(1), turn)),
+        local(rng.vector(3)),
+        pose_ball(at(turn * local + pose_shape.translation)) {}
+
+  Scalar r;
+  Scalar h;
+  Sphere ball;
+  Matrix3 turn;
+  Pose pose_shape;
+  Vector3 local;
+  Pose pose_ball;
+};
+
 TEST(Curved, SpheresAgainstCylindersAndConesMatchThePointDistance) {
   Random rng(13);
   for (int trial = 0; trial < 30; ++trial) {
-    const Scalar r = rng.uniform(0.2, 2);
-    const Scalar h = rng.uniform(0.2, 2);
+    const BallNearShape pair(rng);
+    const Scalar r = pair.r;
+    const Scalar h = pair.h;
     const Cylinder cylinder(r, h);
     const Cone cone(r, h);
-    const Sphere ball(rng.uniform(0.05, 0.5));
-    const Matrix3 turn = rng.rotation();
-    const Pose pose_shape = at(rng.vector(1), turn);
-    const Vector3 local = rng.vector(3);
-    const Pose pose_ball = at(turn * local + pose_shape.translation);
+    const Sphere& ball = pair.ball;
+    const Pose& pose_shape = pair.pose_shape;
+    const Vector3& local = pair.local;
+    const Pose& pose_ball = pair.pose_ball;
     for (Method method : kCurvedMethods) {
       SCOPED_TRACE(method_name(method));
       const Query query = query_of(method);
@@ -269,22 +290,17 @@ TEST(Curved, SpheresAgainstCylindersAndConesMatchThePointDistance) {
 TEST(Curved, ClosedFormWitnessesLieOnTheShapeAndTheBall) {
   Random rng(31);
   for (int trial = 0; trial < 30; ++trial) {
-    const Scalar r = rng.uniform(0.2, 2);
-    const Scalar h = rng.uniform(0.2, 2);
-    const Cylinder cylinder(r, h);
-    const Sphere ball(rng.uniform(0.05, 0.5));
-    const Matrix3 turn = rng.rotation();
-    const Pose pose_shape = at(rng.vector(1), turn);
-    const Vector3 local = rng.vector(3);
-    const Pose pose_ball = at(turn * local + pose_shape.translation);
-    const DistanceResult d = Query().signed_distance(cylinder, pose_shape, ball, pose_ball);
+    const BallNearShape pair(rng);
+    const Cylinder cylinder(pair.r, pair.h);
+    const DistanceResult d =
+        Query().signed_distance(cylinder, pair.pose_shape, pair.ball, pair.pose_ball);
     ASSERT_TRUE(d.certified);
-    const Vector3 on_shape = turn.transpose() * (d.point_a - pose_shape.translation);
+    const Vector3 on_shape = pair.turn.transpose() * (d.point_a - pair.pose_shape.translation);
     const Scalar slack = 1e-12;
-    EXPECT_LE(std::hypot(on_shape.x(), on_shape.y()), r + slack);
-    EXPECT_LE(std::abs(on_shape.z()), h + slack);
+    EXPECT_LE(std::hypot(on_shape.x(), on_shape.y()), pair.r + slack);
+    EXPECT_LE(std::abs(on_shape.z()), pair.h + slack);
     if (d.distance > 0) {
-      EXPECT_NEAR((d.point_b - pose_ball.translation).norm(), ball.radius(), slack);
+      EXPECT_NEAR((d.point_b - pair.pose_ball.translation).norm(), pair.ball.radius(), slack);
       EXPECT_NEAR((d.point_b - d.point_a).norm(), d.distance, slack);
     }
     EXPECT_EQ(d.weights_a.count(), 0);
