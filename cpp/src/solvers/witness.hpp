@@ -42,8 +42,9 @@ Witness combined_witness(const FramedPair& pair, const MinNormPoint& corral);
 /// was most of what a witness cost: DistanceFinish::whole). Always inline: called out of line
 /// from combined_witness(pair, corral), it made each witness 20 instructions longer.
 template <class VertexA, class VertexB>
-[[gnu::always_inline]] inline Witness combined_witness(const MinNormPoint& corral, const VertexA& vertex_a,
-                         const VertexB& vertex_b) {
+[[gnu::always_inline]] inline Witness combined_witness(const MinNormPoint& corral,
+                                                       const VertexA& vertex_a,
+                                                       const VertexB& vertex_b) {
   Witness w;
   w.size = corral.size;
   Scalar total = 0;
