@@ -484,11 +484,13 @@ BatchResult run_batch(Kind kind, std::size_t count, const QueryOptions& options,
           const Pose& pose_a = ahead.a(i);
           const Pose& pose_b = ahead.b(i);
           const bool turned_a = posed_a && !pose_a.has_identity_rotation();
-          const bool turned_b = posed_b && !pose_b.has_identity_rotation();
           if (posed_a && !detail::valid_pose(pose_a, turned_a)) {
             validate_pose(pose_a, "poses_a", index);
           }
-          if (posed_b && !detail::valid_pose(pose_b, turned_b)) {
+          // A row whose bodies share a pose checks it once.
+          const bool shared = posed_a && posed_b && detail::same_pose(pose_a, pose_b);
+          const bool turned_b = shared ? turned_a : posed_b && !pose_b.has_identity_rotation();
+          if (posed_b && !shared && !detail::valid_pose(pose_b, turned_b)) {
             validate_pose(pose_b, "poses_b", index);
           }
           answer(i, RowOptions(pair_options, seed, index), RowPoses{pose_a, turned_a, pose_b,
