@@ -711,6 +711,29 @@ TEST(Batch, PosesAreCheckedOnceNamingTheRow) {
             std::string::npos);
 }
 
+// A row whose bodies share a pose checks it once, with the verdicts of checking both: a pose B
+// that differs from A is checked itself.
+TEST(Batch, ASharedPoseIsCheckedOnce) {
+  Random rng(12);
+  const ConvexPolyhedron a = rng.body(6);
+  BatchPoses poses;
+  poses.a = random_poses(5, rng, 2);
+  poses.b = poses.a;
+  BatchSettings settings;
+  settings.first_index = 20;
+  EXPECT_EQ(error_of([&] { distance_many(a, a, {}, settings, poses); }), "");
+  poses.b[3].translation(2) = std::numeric_limits<double>::quiet_NaN();
+  const std::string not_finite = error_of([&] { collide_many(a, a, {}, settings, poses); });
+  EXPECT_EQ(not_finite.rfind("poses_b[23] has a NaN", 0), 0u) << not_finite;
+  poses.b = poses.a;
+  poses.b[3].rotation(2, 2) *= 1.5;
+  const std::string scaled = error_of([&] { distance_many(a, a, {}, settings, poses); });
+  EXPECT_EQ(scaled.rfind("poses_b[23] is not a rigid motion", 0), 0u) << scaled;
+  poses.a[3] = poses.b[3];
+  const std::string both = error_of([&] { distance_many(a, a, {}, settings, poses); });
+  EXPECT_EQ(both.rfind("poses_a[23] is not a rigid motion", 0), 0u) << both;
+}
+
 // A result's arrays are views of one block: each starts on a cache line (so that chunks of 64
 // rows share none), a large block on a huge page's boundary; copies are deep and a moved-from
 // result is empty.

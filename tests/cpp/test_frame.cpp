@@ -320,6 +320,46 @@ TEST(Poses, OnlyFiniteProperRotationsAreRigidMotions) {
   }
 }
 
+// A query whose bodies share a pose (the same object, or a copy) checks it once: the verdicts are
+// those of checking each pose, and a pose B that differs from A in any one of its twelve entries
+// is checked itself, naming B.
+TEST(Poses, ASharedPoseIsCheckedOnceWithTheSameVerdicts) {
+  Random rng(9);
+  const ConvexPolyhedron a = rng.body(6);
+  const ConvexPolyhedron b = rng.body(6);
+  const Query query;
+  const auto error = [&](const Pose& pose_a, const Pose& pose_b) {
+    try {
+      query.distance(a, pose_a, b, pose_b);
+      query.collide(a, pose_a, b, pose_b);
+      query.signed_distance(a, pose_a, b, pose_b);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  const Pose pose{rng.rotation(), rng.vector()};
+  const Pose copy = pose;
+  EXPECT_EQ(error(pose, pose), "");
+  EXPECT_EQ(error(pose, copy), "");
+  expect_identical(query.distance(a, pose, b, pose), query.distance(a, pose, b, copy));
+  Pose scaled = pose;
+  scaled.rotation *= 1.5;
+  EXPECT_EQ(error(scaled, scaled).rfind("pose_a is not a rigid motion", 0), 0u);
+  for (int k = 0; k < 12; ++k) {
+    for (const Scalar bad : {std::numeric_limits<Scalar>::quiet_NaN(), Scalar(7)}) {
+      Pose other = copy;
+      (k < 9 ? other.rotation.data()[k] : other.translation(k - 9)) = bad;
+      const std::string message = error(pose, other);
+      if (k >= 9 && !std::isnan(bad)) {  // a finite translation is valid
+        EXPECT_EQ(message, "") << k;
+      } else {
+        EXPECT_EQ(message.rfind("pose_b ", 0), 0u) << k << " " << bad << ": " << message;
+      }
+    }
+  }
+}
+
 // A large body climbs a hull held in its frame: the hull points' own when some given points lie
 // inside, the body's own when every point is a hull point (not asked of the body at every climb).
 TEST(FramedBodies, ClimbAHullTheyHold) {
