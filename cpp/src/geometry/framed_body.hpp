@@ -82,6 +82,7 @@ class FramedBody {
   /// `world_centre` is where the centre of the body's box lands under the pose,
   /// `pose.rotation * body.bounds().centre + pose.translation`, as frame_pair computed it to
   /// centre the frame; `rotated` is `!pose.has_identity_rotation()`, which frame_pair knows too.
+  /// Defined inline in framed_body.cpp, where its caller (the framing of a pair) is.
   FramedBody(const ConvexPolyhedron& body, const Pose& pose, bool rotated,
              const Vector3& world_centre, const Frame& frame);
   /// Places the body as the constructor does with these arguments, for a new query: what depends
