@@ -48,6 +48,22 @@ void core_reach(const ConvexPolyhedron& body, const Pose& origin, const Vector3&
 
 }  // namespace
 
+Scalar LinkMotionBound::PlacedCorners::farthest_off_axis(const Vector3& origin,
+                                                         const Vector3& axis) const {
+  // Each corner's expressions are off_axis's on corner - origin, in its order (its dot product
+  // and squared norm sum their 3 products from the first), and a rounded square root is
+  // nondecreasing: the root of the largest square is the largest root.
+  using Corners = Eigen::Array<Scalar, 8, 1>;
+  const Corners px = x - origin.x();
+  const Corners py = y - origin.y();
+  const Corners pz = z - origin.z();
+  const Corners along = px * axis.x() + py * axis.y() + pz * axis.z();
+  const Corners qx = px - along * axis.x();
+  const Corners qy = py - along * axis.y();
+  const Corners qz = pz - along * axis.z();
+  return std::sqrt((qx * qx + qy * qy + qz * qz).maxCoeff());
+}
+
 LinkMotionBound::LinkMotionBound(const RobotModel& model) : model_(model) {
   const std::vector<Joint>& joints = model.joints();
   origin_sigma_.resize(joints.size());
@@ -194,8 +210,14 @@ void LinkMotionBound::set_motion(const Scalar* q0, const Scalar* q1,
     for (int c = 0; c < 8; ++c) {
       const Vector3 corner((c & 1) ? box.max.x() : box.min.x(), (c & 2) ? box.max.y() : box.min.y(),
                            (c & 4) ? box.max.z() : box.min.z());
-      start_corners_[c] = at_start.rotation * corner + at_start.translation;
-      end_corners_[c] = at_end.rotation * corner + at_end.translation;
+      const Vector3 start = at_start.rotation * corner + at_start.translation;
+      const Vector3 end = at_end.rotation * corner + at_end.translation;
+      start_corners_.x[c] = start.x();
+      start_corners_.y[c] = start.y();
+      start_corners_.z[c] = start.z();
+      end_corners_.x[c] = end.x();
+      end_corners_.y[c] = end.y();
+      end_corners_.z[c] = end.z();
     }
     const Scalar slack =
         64 * kUnit * static_cast<Scalar>(n + 2) * (motion.extent + 2 * geometry.body.bounds().radius);
@@ -211,19 +233,11 @@ void LinkMotionBound::set_motion(const Scalar* q0, const Scalar* q1,
         // at the end) changes only through the joints below, by at most `below` (the header).
         // The frames are rigid to within sigma: distances in them and in the world differ by
         // at most that factor, as in local_speed.
-        const Joint& joint = joints[j];
-        const auto farthest = [&](const std::vector<Pose>& links, const Vector3* corners,
-                                  const Vector3& axis) {
-          const Pose& frame = links[static_cast<std::size_t>(joint.child)];
-          Scalar most = 0;
-          for (int c = 0; c < 8; ++c) {
-            most = std::max(most, off_axis(corners[c] - frame.translation, axis));
-          }
-          return most;
-        };
+        const auto child = static_cast<std::size_t>(joints[j].child);
         const Scalar measured =
-            ((farthest(start_links, start_corners_, start_axes_[j]) +
-              farthest(end_links, end_corners_, end_axes_[j]) + below) /
+            ((start_corners_.farthest_off_axis(start_links[child].translation, start_axes_[j]) +
+              end_corners_.farthest_off_axis(end_links[child].translation, end_axes_[j]) +
+              below) /
                  2 * (1 + 4 * chain_sigma_[j]) +
              slack) *
             kRoundUp;
