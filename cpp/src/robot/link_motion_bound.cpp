@@ -48,8 +48,28 @@ void core_reach(const ConvexPolyhedron& body, const Pose& origin, const Vector3&
 
 }  // namespace
 
-Scalar LinkMotionBound::PlacedCorners::farthest_off_axis(const Vector3& origin,
-                                                         const Vector3& axis) const {
+LinkMotionBound::BoxCorners LinkMotionBound::BoxCorners::of(const Aabb& box) {
+  BoxCorners corners;
+  for (int c = 0; c < 8; ++c) {
+    corners.x[c] = (c & 1) ? box.max.x() : box.min.x();
+    corners.y[c] = (c & 2) ? box.max.y() : box.min.y();
+    corners.z[c] = (c & 4) ? box.max.z() : box.min.z();
+  }
+  return corners;
+}
+
+LinkMotionBound::BoxCorners LinkMotionBound::BoxCorners::placed(const Pose& pose) const {
+  // Each coordinate as the product's: its 3 products summed from the first, then the
+  // translation added.
+  const Matrix3& r = pose.rotation;
+  const Vector3& t = pose.translation;
+  return {r(0, 0) * x + r(0, 1) * y + r(0, 2) * z + t.x(),
+          r(1, 0) * x + r(1, 1) * y + r(1, 2) * z + t.y(),
+          r(2, 0) * x + r(2, 1) * y + r(2, 2) * z + t.z()};
+}
+
+Scalar LinkMotionBound::BoxCorners::farthest_off_axis(const Vector3& origin,
+                                                      const Vector3& axis) const {
   // Each corner's expressions are off_axis's on corner - origin, in its order (its dot product
   // and squared norm sum their 3 products from the first), and a rounded square root is
   // nondecreasing: the root of the largest square is the largest root.
@@ -125,6 +145,26 @@ LinkMotionBound::LinkMotionBound(const RobotModel& model) : model_(model) {
   slide_.resize(joints.size());
   value_error_.resize(joints.size());
   geometries_.resize(geometries.size());
+  box_corners_.reserve(geometries.size());
+  for (const Geometry& geometry : geometries) {
+    box_corners_.push_back(BoxCorners::of(geometry.body.bounds().box));
+  }
+  const std::size_t links = chains_.size();
+  shared_.assign(links * links, 0);
+  for (std::size_t a = 0; a < links; ++a) {
+    for (std::size_t b = 0; b < links; ++b) {
+      const std::vector<int>& x = chains_[a];
+      const std::vector<int>& y = chains_[b];
+      std::size_t k = 0;
+      while (k < x.size() && k < y.size() && x[k] == y[k]) ++k;
+      shared_[a * links + b] = k;
+    }
+  }
+}
+
+std::size_t LinkMotionBound::shared_joints(int a, int b) const {
+  if (a < 0 || b < 0) return 0;
+  return shared_[static_cast<std::size_t>(a) * chains_.size() + static_cast<std::size_t>(b)];
 }
 
 void LinkMotionBound::set_motion(const Scalar* q0, const Scalar* q1) {
@@ -167,21 +207,24 @@ void LinkMotionBound::set_motion(const Scalar* q0, const Scalar* q1,
   for (std::size_t g = 0; g < geometries.size(); ++g) {
     GeometryMotion& motion = geometries_[g];
     const int link = geometries[g].link;
-    motion.speed.clear();
-    motion.speed_below.clear();
     motion.rounding = 0;
     if (link < 0) {
+      motion.speed.clear();
+      motion.speed_below.clear();
       motion.extent = origin_reach_[g];
       continue;
     }
     const std::vector<int>& chain = chains_[static_cast<std::size_t>(link)];
     const std::size_t n = chain.size();
-    motion.speed.assign(n, 0);
+    // Sized on the first motion (a geometry's chain is the same on every one); every entry is
+    // written below.
+    motion.speed.resize(n);
+    motion.speed_below.resize(n);
+    turns_.resize(n);
     // z: the points' distance from the frame of chain[k]'s child; turn: from chain[k]'s axis.
     Scalar z = origin_reach_[g];
     Scalar turn = axis_reach_[g];
     // Per joint, the bound on the points' distance from its axis from the chain.
-    turns_.assign(n, 0);
     for (std::size_t k = n; k-- > 0;) {
       if (k + 1 < n) {
         const int after = chain[k + 1];
@@ -204,21 +247,10 @@ void LinkMotionBound::set_motion(const Scalar* q0, const Scalar* q1,
     // The box's corners placed at both ends, and the rounding of their distances from the axes:
     // the frames' (as pair_margin's), the corners' placing and off_axis's few products.
     const Geometry& geometry = geometries[g];
-    const Aabb& box = geometry.body.bounds().box;
-    const Pose at_start = geometry_pose(model_, start_links, static_cast<int>(g));
-    const Pose at_end = geometry_pose(model_, end_links, static_cast<int>(g));
-    for (int c = 0; c < 8; ++c) {
-      const Vector3 corner((c & 1) ? box.max.x() : box.min.x(), (c & 2) ? box.max.y() : box.min.y(),
-                           (c & 4) ? box.max.z() : box.min.z());
-      const Vector3 start = at_start.rotation * corner + at_start.translation;
-      const Vector3 end = at_end.rotation * corner + at_end.translation;
-      start_corners_.x[c] = start.x();
-      start_corners_.y[c] = start.y();
-      start_corners_.z[c] = start.z();
-      end_corners_.x[c] = end.x();
-      end_corners_.y[c] = end.y();
-      end_corners_.z[c] = end.z();
-    }
+    const BoxCorners start_corners =
+        box_corners_[g].placed(geometry_pose(model_, start_links, static_cast<int>(g)));
+    const BoxCorners end_corners =
+        box_corners_[g].placed(geometry_pose(model_, end_links, static_cast<int>(g)));
     const Scalar slack =
         64 * kUnit * static_cast<Scalar>(n + 2) * (motion.extent + 2 * geometry.body.bounds().radius);
     // From the bottom of the chain up: `below` bounds how far the joints below chain[k] move the
@@ -226,6 +258,7 @@ void LinkMotionBound::set_motion(const Scalar* q0, const Scalar* q1,
     Scalar below = 0;
     for (std::size_t k = n; k-- > 0;) {
       const int j = chain[k];
+      motion.speed[k] = 0;
       if (model_.driving_dof(j) < 0) continue;
       Scalar reach = 1;
       if (joints[j].type != JointType::prismatic) {
@@ -235,8 +268,8 @@ void LinkMotionBound::set_motion(const Scalar* q0, const Scalar* q1,
         // at most that factor, as in local_speed.
         const auto child = static_cast<std::size_t>(joints[j].child);
         const Scalar measured =
-            ((start_corners_.farthest_off_axis(start_links[child].translation, start_axes_[j]) +
-              end_corners_.farthest_off_axis(end_links[child].translation, end_axes_[j]) +
+            ((start_corners.farthest_off_axis(start_links[child].translation, start_axes_[j]) +
+              end_corners.farthest_off_axis(end_links[child].translation, end_axes_[j]) +
               below) /
                  2 * (1 + 4 * chain_sigma_[j]) +
              slack) *
@@ -250,10 +283,10 @@ void LinkMotionBound::set_motion(const Scalar* q0, const Scalar* q1,
     motion.total = 0;
     for (Scalar speed : motion.speed) motion.total += speed;
     motion.total *= kRoundUp;
-    motion.speed_below.assign(n, 0);
     for (std::size_t k = 0; k < n; ++k) {
-      for (std::size_t m = k + 1; m < n; ++m) motion.speed_below[k] += motion.speed[m];
-      motion.speed_below[k] *= kRoundUp;
+      Scalar below_k = 0;
+      for (std::size_t m = k + 1; m < n; ++m) below_k += motion.speed[m];
+      motion.speed_below[k] = below_k * kRoundUp;
     }
     motion.terms.clear();
     for (std::size_t k = 0; k < n; ++k) {
@@ -264,20 +297,6 @@ void LinkMotionBound::set_motion(const Scalar* q0, const Scalar* q1,
     }
   }
 }
-
-namespace {
-
-// The number of joints the chains of links `a` and `b` share (-1: an obstacle, no chain).
-std::size_t shared_joints(const std::vector<std::vector<int>>& chains, int a, int b) {
-  if (a < 0 || b < 0) return 0;
-  const std::vector<int>& x = chains[static_cast<std::size_t>(a)];
-  const std::vector<int>& y = chains[static_cast<std::size_t>(b)];
-  std::size_t k = 0;
-  while (k < x.size() && k < y.size() && x[k] == y[k]) ++k;
-  return k;
-}
-
-}  // namespace
 
 void LinkMotionBound::add_shared_turns(Scalar& speed, int link, std::size_t shared,
                                        Scalar extents) const {
@@ -291,7 +310,7 @@ void LinkMotionBound::add_shared_turns(Scalar& speed, int link, std::size_t shar
 Scalar LinkMotionBound::pair_speed(const GeometryPair& pair) const {
   const int la = model_.geometries()[pair.a].link;
   const int lb = model_.geometries()[pair.b].link;
-  const std::size_t shared = shared_joints(chains_, la, lb);
+  const std::size_t shared = shared_joints(la, lb);
   const GeometryMotion& a = geometries_[pair.a];
   const GeometryMotion& b = geometries_[pair.b];
   Scalar speed = 0;
@@ -304,22 +323,19 @@ Scalar LinkMotionBound::pair_speed(const GeometryPair& pair) const {
 void LinkMotionBound::place_chain(int g, const std::vector<Pose>& links, const Pose& pose,
                                   PlacedChain& placed, std::size_t first) const {
   const int link = model_.geometries()[static_cast<std::size_t>(g)].link;
-  if (link < 0) {
-    placed.axis.clear();
-    placed.reach.clear();
-    return;
-  }
+  if (link < 0) return;
   const std::vector<int>& chain = chains_[static_cast<std::size_t>(link)];
   const GeometryMotion& motion = geometries_[static_cast<std::size_t>(g)];
   const BodyBounds& bounds = model_.geometries()[static_cast<std::size_t>(g)].body.bounds();
   const Vector3 centre = pose.rotation * bounds.centre + pose.translation;
   // The rounding of the placed frames (as pair_margin's), and the ball's radius.
   const Scalar slack = 64 * kUnit * static_cast<Scalar>(chain.size() + 1) * motion.extent;
-  // Sized once (a chain's length changes from geometry to geometry, rarely from call to call).
-  if (placed.axis.size() != chain.size()) {
-    placed.axis.assign(chain.size(), Vector3::Zero());
-    placed.reach.assign(chain.size(), 0);
-    placed.origin.assign(chain.size(), Vector3::Zero());
+  // Grown to the longest chain placed in it (a sampled pair's chains change from pair to pair,
+  // a third of the samples'), the entries past this chain left as they were.
+  if (placed.axis.size() < chain.size()) {
+    placed.axis.resize(chain.size(), Vector3::Zero());
+    placed.reach.resize(chain.size(), 0);
+    placed.origin.resize(chain.size(), Vector3::Zero());
   }
   placed.centre = centre;
   placed.radius = bounds.radius + slack;
@@ -357,7 +373,7 @@ LinkMotionBound::LocalSpeed LinkMotionBound::local_speed(const GeometryPair& pai
                                                          const PlacedChain& placed_b) const {
   const int la = model_.geometries()[pair.a].link;
   const int lb = model_.geometries()[pair.b].link;
-  const std::size_t shared = shared_joints(chains_, la, lb);
+  const std::size_t shared = shared_joints(la, lb);
   LocalSpeed local{0, 0};
   const auto add = [&](int g, int link, const PlacedChain& placed) {
     if (link < 0) return;
@@ -396,7 +412,7 @@ LinkMotionBound::DirectionalSpeed LinkMotionBound::directional_speed(
   const int lb = model_.geometries()[pair.b].link;
   // The joints above the frame C the pair is measured in, and C's deviation from rigid (the
   // header): none and 0 in the world's frame.
-  const std::size_t shared = shared_joints(chains_, la, lb);
+  const std::size_t shared = shared_joints(la, lb);
   const Scalar sigma = sigma_after(la, shared);
   const Scalar in_common = (1 + 4 * sigma) * kRoundUp;
   DirectionalSpeed speed{0, 0, 0, 2 * sigma};
@@ -521,7 +537,7 @@ LinkMotionBound::TwistSpeed LinkMotionBound::twist_speed(const GeometryPair& pai
 }
 
 std::size_t LinkMotionBound::shared_count(const GeometryPair& pair) const {
-  return shared_joints(chains_, model_.geometries()[pair.a].link, model_.geometries()[pair.b].link);
+  return shared_joints(model_.geometries()[pair.a].link, model_.geometries()[pair.b].link);
 }
 
 int LinkMotionBound::common_link(const GeometryPair& pair) const {

@@ -124,7 +124,8 @@ class LinkMotionBound {
   /// the joint's axis in the world and the reach of the geometry's bounding ball about it (its
   /// centre's distance from the axis plus its radius and the frames' rounding), what
   /// `local_speed` and `directional_speed` take from the configuration. Computed once, it serves
-  /// every pair of the geometry there (zero for fixed joints; empty for an obstacle).
+  /// every pair of the geometry there (zero for fixed joints; nothing for an obstacle, whose
+  /// chain no bound reads). The vectors may run past the chain: what is there is not read.
   struct PlacedChain {
     std::vector<Vector3> axis;
     std::vector<Scalar> reach;
@@ -234,6 +235,11 @@ class LinkMotionBound {
   const RobotModel& model_;
   // Per link, its chain of joints from the root down (fixed joints included).
   std::vector<std::vector<int>> chains_;
+  // Per two links a and b, at a * (number of links) + b, the number of joints their chains share
+  // (read for every pair by every speed: a table rather than the chains compared each time).
+  std::vector<std::size_t> shared_;
+  // The number of joints the chains of links `a` and `b` share (0 with an obstacle, -1).
+  std::size_t shared_joints(int a, int b) const;
   // Per joint, sigma of its origin, and of the product of the origins from the root to it.
   std::vector<Scalar> origin_sigma_;
   std::vector<Scalar> chain_sigma_;
@@ -259,24 +265,27 @@ class LinkMotionBound {
   std::vector<Vector3> end_axes_;
   std::vector<GeometryMotion> geometries_;
   // Scratch: the link poses at the ends, the chain's bounds on one geometry's distances from
-  // the axes, its box's corners placed at the ends.
+  // the axes.
   std::vector<Pose> start_links_;
   std::vector<Pose> end_links_;
   std::vector<Scalar> turns_;
-  // A box's 8 corners placed, one array per coordinate, so that the distances of all 8 from an
-  // axis are taken side by side (two corners an instruction rather than one, bench/
-  // robot_motion_profile.py's set_motion 43.7k -> ?k instructions an edge).
-  struct PlacedCorners {
+  // A box's 8 corners, one array per coordinate, so that they are placed and their distances
+  // from an axis taken side by side (two corners an instruction rather than one).
+  struct BoxCorners {
     Eigen::Array<Scalar, 8, 1> x;
     Eigen::Array<Scalar, 8, 1> y;
     Eigen::Array<Scalar, 8, 1> z;
 
+    // Corner c has box.max's coordinate i where bit i of c is set, box.min's elsewhere.
+    static BoxCorners of(const Aabb& box);
+    // The corners placed by `pose`: pose.rotation * corner + pose.translation, bit for bit.
+    BoxCorners placed(const Pose& pose) const;
     // The largest distance of the corners from the line through `origin` along the unit
     // `axis`: the largest off_axis(corner - origin, axis), bit for bit.
     Scalar farthest_off_axis(const Vector3& origin, const Vector3& axis) const;
   };
-  PlacedCorners start_corners_;
-  PlacedCorners end_corners_;
+  // Per geometry, its box's corners in its own frame.
+  std::vector<BoxCorners> box_corners_;
 };
 
 }  // namespace swarmcollide::detail
