@@ -322,6 +322,17 @@ Scalar LinkMotionBound::pair_speed(const GeometryPair& pair) const {
 
 void LinkMotionBound::place_chain(int g, const std::vector<Pose>& links, const Pose& pose,
                                   PlacedChain& placed, std::size_t first) const {
+  place_chain_from(g, links, pose, placed, first, nullptr);
+}
+
+void LinkMotionBound::place_end_chain(int g, int end, const std::vector<Pose>& links,
+                                      const Pose& pose, PlacedChain& placed) const {
+  place_chain_from(g, links, pose, placed, 0, end == 0 ? &start_axes_ : &end_axes_);
+}
+
+void LinkMotionBound::place_chain_from(int g, const std::vector<Pose>& links, const Pose& pose,
+                                       PlacedChain& placed, std::size_t first,
+                                       const std::vector<Vector3>* turn_axes) const {
   const int link = model_.geometries()[static_cast<std::size_t>(g)].link;
   if (link < 0) return;
   const std::vector<int>& chain = chains_[static_cast<std::size_t>(link)];
@@ -348,12 +359,13 @@ void LinkMotionBound::place_chain(int g, const std::vector<Pose>& links, const P
     }
     const Joint& joint = model_.joints()[j];
     const Pose& frame = links[static_cast<std::size_t>(joint.child)];
-    const Vector3 axis = (frame.rotation * joint.axis).normalized();
+    const bool turn = joint.type != JointType::prismatic;
+    const Vector3 axis = turn && turn_axes ? (*turn_axes)[static_cast<std::size_t>(j)]
+                                           : (frame.rotation * joint.axis).normalized();
     placed.axis[k] = axis;
     placed.origin[k] = frame.translation;
-    placed.reach[k] = joint.type == JointType::prismatic
-                          ? 0
-                          : off_axis(centre - frame.translation, axis) + bounds.radius + slack;
+    placed.reach[k] = turn ? off_axis(centre - frame.translation, axis) + bounds.radius + slack
+                           : 0;
   }
 }
 

@@ -172,6 +172,11 @@ class LinkMotionBound {
   /// neither speed of the pair reads: `shared_count`).
   void place_chain(int g, const std::vector<Pose>& links, const Pose& pose, PlacedChain& placed,
                    std::size_t first = 0) const;
+  /// place_chain at the motion's start (`end` 0) or end (1), `links` the link poses set_motion
+  /// was given there: the turning joints' axes are set_motion's (the same expressions, made once
+  /// per motion rather than once per geometry on the joint's chain).
+  void place_end_chain(int g, int end, const std::vector<Pose>& links, const Pose& pose,
+                       PlacedChain& placed) const;
   /// local_speed from the two geometries' placed chains (the same bound, bit for bit).
   LocalSpeed local_speed(const GeometryPair& pair, const PlacedChain& a,
                          const PlacedChain& b) const;
@@ -196,6 +201,11 @@ class LinkMotionBound {
   Scalar pair_margin(const GeometryPair& pair) const;
 
  private:
+  // place_chain, the turning joints' axes read from `turn_axes` (per joint) when it is given.
+  void place_chain_from(int g, const std::vector<Pose>& links, const Pose& pose,
+                        PlacedChain& placed, std::size_t first,
+                        const std::vector<Vector3>* turn_axes) const;
+
   // sigma_C of the frame where link `link`'s chain parts from another after `shared` joints.
   Scalar sigma_after(int link, std::size_t shared) const;
 
