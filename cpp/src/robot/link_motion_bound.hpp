@@ -206,6 +206,9 @@ class LinkMotionBound {
                         PlacedChain& placed, std::size_t first,
                         const std::vector<Vector3>* turn_axes) const;
 
+  // The number of joints the chains of links `a` and `b` share (0 with an obstacle, -1).
+  std::size_t shared_joints(int a, int b) const;
+
   // sigma_C of the frame where link `link`'s chain parts from another after `shared` joints.
   Scalar sigma_after(int link, std::size_t shared) const;
 
@@ -248,8 +251,6 @@ class LinkMotionBound {
   // Per two links a and b, at a * (number of links) + b, the number of joints their chains share
   // (read for every pair by every speed: a table rather than the chains compared each time).
   std::vector<std::size_t> shared_;
-  // The number of joints the chains of links `a` and `b` share (0 with an obstacle, -1).
-  std::size_t shared_joints(int a, int b) const;
   // Per joint, sigma of its origin, and of the product of the origins from the root to it.
   std::vector<Scalar> origin_sigma_;
   std::vector<Scalar> chain_sigma_;
@@ -288,10 +289,11 @@ class LinkMotionBound {
 
     // Corner c has box.max's coordinate i where bit i of c is set, box.min's elsewhere.
     static BoxCorners of(const Aabb& box);
-    // The corners placed by `pose`: pose.rotation * corner + pose.translation, bit for bit.
+    // The corners placed by `pose`: pose.rotation * corner + pose.translation, the same
+    // products summed in the same order as the matrix product's.
     BoxCorners placed(const Pose& pose) const;
     // The largest distance of the corners from the line through `origin` along the unit
-    // `axis`: the largest off_axis(corner - origin, axis), bit for bit.
+    // `axis`: the largest off_axis(corner - origin, axis), its expressions in its order.
     Scalar farthest_off_axis(const Vector3& origin, const Vector3& axis) const;
   };
   // Per geometry, its box's corners in its own frame.
