@@ -356,6 +356,50 @@ TEST(RobotMotion, SeparationsAlongADirectionCloseNoFasterThanTheTwistBoundEither
   EXPECT_GT(tightest, 0.5) << tightest;
 }
 
+void expect_same_chain(const detail::LinkMotionBound::PlacedChain& x,
+                       const detail::LinkMotionBound::PlacedChain& y, std::size_t length,
+                       int g) {
+  for (std::size_t k = 0; k < length; ++k) {
+    EXPECT_EQ(x.axis[k], y.axis[k]) << "geometry " << g << ", joint " << k;
+    EXPECT_EQ(x.reach[k], y.reach[k]) << "geometry " << g << ", joint " << k;
+    EXPECT_EQ(x.origin[k], y.origin[k]) << "geometry " << g << ", joint " << k;
+  }
+  EXPECT_EQ(x.centre, y.centre) << g;
+  EXPECT_EQ(x.radius, y.radius) << g;
+}
+
+TEST(RobotMotion, TheEndChainsAreTheChainsPlacedAtTheMotionsEndsBitForBit) {
+  // robot_check_motion places every geometry's chain at the two ends from set_motion's axes, and
+  // the sampled pairs' chains into one PlacedChain whatever chain was placed in it before.
+  const RobotModel arm = spatial_arm();
+  detail::LinkMotionBound bound(arm);
+  std::mt19937_64 rng(23);
+  // Chain lengths 0 (base) to 3 (carriage, hand), placed longest first and shortest last.
+  const int order[] = {4, 3, 5, 2, 1, 0};
+  for (int motion = 0; motion < 50; ++motion) {
+    const Eigen::RowVectorXd q0 = random_configuration(rng);
+    const Eigen::RowVectorXd q1 = random_configuration(rng);
+    bound.set_motion(q0.data(), q1.data());
+    detail::LinkMotionBound::PlacedChain reused;
+    for (int end = 0; end < 2; ++end) {
+      const Eigen::RowVectorXd& q = end == 0 ? q0 : q1;
+      std::vector<Pose> links;
+      link_poses(arm, q.data(), links);
+      for (const int g : order) {
+        const Pose pose = geometry_pose(arm, q, g);
+        const std::size_t length = bound.shared_count({g, g});
+        detail::LinkMotionBound::PlacedChain fresh;
+        bound.place_chain(g, links, pose, fresh);
+        detail::LinkMotionBound::PlacedChain at_end;
+        bound.place_end_chain(g, end, links, pose, at_end);
+        expect_same_chain(fresh, at_end, length, g);
+        bound.place_chain(g, links, pose, reused);
+        expect_same_chain(fresh, reused, length, g);
+      }
+    }
+  }
+}
+
 TEST(RobotMotion, SelfPairDistancesChangeNoFasterThanTheirBound) {
   const RobotModel arm = spatial_arm();
   detail::LinkMotionBound bound(arm);

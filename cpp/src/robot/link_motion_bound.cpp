@@ -48,6 +48,42 @@ void core_reach(const ConvexPolyhedron& body, const Pose& origin, const Vector3&
 
 }  // namespace
 
+LinkMotionBound::BoxCorners LinkMotionBound::BoxCorners::of(const Aabb& box) {
+  BoxCorners corners;
+  for (int c = 0; c < 8; ++c) {
+    corners.x[c] = (c & 1) ? box.max.x() : box.min.x();
+    corners.y[c] = (c & 2) ? box.max.y() : box.min.y();
+    corners.z[c] = (c & 4) ? box.max.z() : box.min.z();
+  }
+  return corners;
+}
+
+LinkMotionBound::BoxCorners LinkMotionBound::BoxCorners::placed(const Pose& pose) const {
+  // Each coordinate as the product's: its 3 products summed from the first, then the
+  // translation added.
+  const Matrix3& r = pose.rotation;
+  const Vector3& t = pose.translation;
+  return {r(0, 0) * x + r(0, 1) * y + r(0, 2) * z + t.x(),
+          r(1, 0) * x + r(1, 1) * y + r(1, 2) * z + t.y(),
+          r(2, 0) * x + r(2, 1) * y + r(2, 2) * z + t.z()};
+}
+
+Scalar LinkMotionBound::BoxCorners::farthest_off_axis(const Vector3& origin,
+                                                      const Vector3& axis) const {
+  // Each corner's expressions are off_axis's on corner - origin, in its order (its dot product
+  // and squared norm sum their 3 products from the first), and a rounded square root is
+  // nondecreasing: the root of the largest square is the largest root.
+  using Corners = Eigen::Array<Scalar, 8, 1>;
+  const Corners px = x - origin.x();
+  const Corners py = y - origin.y();
+  const Corners pz = z - origin.z();
+  const Corners along = px * axis.x() + py * axis.y() + pz * axis.z();
+  const Corners qx = px - along * axis.x();
+  const Corners qy = py - along * axis.y();
+  const Corners qz = pz - along * axis.z();
+  return std::sqrt((qx * qx + qy * qy + qz * qz).maxCoeff());
+}
+
 LinkMotionBound::LinkMotionBound(const RobotModel& model) : model_(model) {
   const std::vector<Joint>& joints = model.joints();
   origin_sigma_.resize(joints.size());
@@ -109,6 +145,26 @@ LinkMotionBound::LinkMotionBound(const RobotModel& model) : model_(model) {
   slide_.resize(joints.size());
   value_error_.resize(joints.size());
   geometries_.resize(geometries.size());
+  box_corners_.reserve(geometries.size());
+  for (const Geometry& geometry : geometries) {
+    box_corners_.push_back(BoxCorners::of(geometry.body.bounds().box));
+  }
+  const std::size_t links = chains_.size();
+  shared_.assign(links * links, 0);
+  for (std::size_t a = 0; a < links; ++a) {
+    for (std::size_t b = 0; b < links; ++b) {
+      const std::vector<int>& x = chains_[a];
+      const std::vector<int>& y = chains_[b];
+      std::size_t k = 0;
+      while (k < x.size() && k < y.size() && x[k] == y[k]) ++k;
+      shared_[a * links + b] = k;
+    }
+  }
+}
+
+std::size_t LinkMotionBound::shared_joints(int a, int b) const {
+  if (a < 0 || b < 0) return 0;
+  return shared_[static_cast<std::size_t>(a) * chains_.size() + static_cast<std::size_t>(b)];
 }
 
 void LinkMotionBound::set_motion(const Scalar* q0, const Scalar* q1) {
@@ -151,21 +207,24 @@ void LinkMotionBound::set_motion(const Scalar* q0, const Scalar* q1,
   for (std::size_t g = 0; g < geometries.size(); ++g) {
     GeometryMotion& motion = geometries_[g];
     const int link = geometries[g].link;
-    motion.speed.clear();
-    motion.speed_below.clear();
     motion.rounding = 0;
     if (link < 0) {
+      motion.speed.clear();
+      motion.speed_below.clear();
       motion.extent = origin_reach_[g];
       continue;
     }
     const std::vector<int>& chain = chains_[static_cast<std::size_t>(link)];
     const std::size_t n = chain.size();
-    motion.speed.assign(n, 0);
+    // Sized on the first motion (a geometry's chain is the same on every one); every entry is
+    // written below.
+    motion.speed.resize(n);
+    motion.speed_below.resize(n);
+    turns_.resize(n);
     // z: the points' distance from the frame of chain[k]'s child; turn: from chain[k]'s axis.
     Scalar z = origin_reach_[g];
     Scalar turn = axis_reach_[g];
     // Per joint, the bound on the points' distance from its axis from the chain.
-    turns_.assign(n, 0);
     for (std::size_t k = n; k-- > 0;) {
       if (k + 1 < n) {
         const int after = chain[k + 1];
@@ -188,15 +247,10 @@ void LinkMotionBound::set_motion(const Scalar* q0, const Scalar* q1,
     // The box's corners placed at both ends, and the rounding of their distances from the axes:
     // the frames' (as pair_margin's), the corners' placing and off_axis's few products.
     const Geometry& geometry = geometries[g];
-    const Aabb& box = geometry.body.bounds().box;
-    const Pose at_start = geometry_pose(model_, start_links, static_cast<int>(g));
-    const Pose at_end = geometry_pose(model_, end_links, static_cast<int>(g));
-    for (int c = 0; c < 8; ++c) {
-      const Vector3 corner((c & 1) ? box.max.x() : box.min.x(), (c & 2) ? box.max.y() : box.min.y(),
-                           (c & 4) ? box.max.z() : box.min.z());
-      start_corners_[c] = at_start.rotation * corner + at_start.translation;
-      end_corners_[c] = at_end.rotation * corner + at_end.translation;
-    }
+    const BoxCorners start_corners =
+        box_corners_[g].placed(geometry_pose(model_, start_links, static_cast<int>(g)));
+    const BoxCorners end_corners =
+        box_corners_[g].placed(geometry_pose(model_, end_links, static_cast<int>(g)));
     const Scalar slack =
         64 * kUnit * static_cast<Scalar>(n + 2) * (motion.extent + 2 * geometry.body.bounds().radius);
     // From the bottom of the chain up: `below` bounds how far the joints below chain[k] move the
@@ -204,6 +258,7 @@ void LinkMotionBound::set_motion(const Scalar* q0, const Scalar* q1,
     Scalar below = 0;
     for (std::size_t k = n; k-- > 0;) {
       const int j = chain[k];
+      motion.speed[k] = 0;
       if (model_.driving_dof(j) < 0) continue;
       Scalar reach = 1;
       if (joints[j].type != JointType::prismatic) {
@@ -211,19 +266,11 @@ void LinkMotionBound::set_motion(const Scalar* q0, const Scalar* q1,
         // at the end) changes only through the joints below, by at most `below` (the header).
         // The frames are rigid to within sigma: distances in them and in the world differ by
         // at most that factor, as in local_speed.
-        const Joint& joint = joints[j];
-        const auto farthest = [&](const std::vector<Pose>& links, const Vector3* corners,
-                                  const Vector3& axis) {
-          const Pose& frame = links[static_cast<std::size_t>(joint.child)];
-          Scalar most = 0;
-          for (int c = 0; c < 8; ++c) {
-            most = std::max(most, off_axis(corners[c] - frame.translation, axis));
-          }
-          return most;
-        };
+        const auto child = static_cast<std::size_t>(joints[j].child);
         const Scalar measured =
-            ((farthest(start_links, start_corners_, start_axes_[j]) +
-              farthest(end_links, end_corners_, end_axes_[j]) + below) /
+            ((start_corners.farthest_off_axis(start_links[child].translation, start_axes_[j]) +
+              end_corners.farthest_off_axis(end_links[child].translation, end_axes_[j]) +
+              below) /
                  2 * (1 + 4 * chain_sigma_[j]) +
              slack) *
             kRoundUp;
@@ -236,10 +283,10 @@ void LinkMotionBound::set_motion(const Scalar* q0, const Scalar* q1,
     motion.total = 0;
     for (Scalar speed : motion.speed) motion.total += speed;
     motion.total *= kRoundUp;
-    motion.speed_below.assign(n, 0);
     for (std::size_t k = 0; k < n; ++k) {
-      for (std::size_t m = k + 1; m < n; ++m) motion.speed_below[k] += motion.speed[m];
-      motion.speed_below[k] *= kRoundUp;
+      Scalar below_k = 0;
+      for (std::size_t m = k + 1; m < n; ++m) below_k += motion.speed[m];
+      motion.speed_below[k] = below_k * kRoundUp;
     }
     motion.terms.clear();
     for (std::size_t k = 0; k < n; ++k) {
@@ -250,20 +297,6 @@ void LinkMotionBound::set_motion(const Scalar* q0, const Scalar* q1,
     }
   }
 }
-
-namespace {
-
-// The number of joints the chains of links `a` and `b` share (-1: an obstacle, no chain).
-std::size_t shared_joints(const std::vector<std::vector<int>>& chains, int a, int b) {
-  if (a < 0 || b < 0) return 0;
-  const std::vector<int>& x = chains[static_cast<std::size_t>(a)];
-  const std::vector<int>& y = chains[static_cast<std::size_t>(b)];
-  std::size_t k = 0;
-  while (k < x.size() && k < y.size() && x[k] == y[k]) ++k;
-  return k;
-}
-
-}  // namespace
 
 void LinkMotionBound::add_shared_turns(Scalar& speed, int link, std::size_t shared,
                                        Scalar extents) const {
@@ -277,7 +310,7 @@ void LinkMotionBound::add_shared_turns(Scalar& speed, int link, std::size_t shar
 Scalar LinkMotionBound::pair_speed(const GeometryPair& pair) const {
   const int la = model_.geometries()[pair.a].link;
   const int lb = model_.geometries()[pair.b].link;
-  const std::size_t shared = shared_joints(chains_, la, lb);
+  const std::size_t shared = shared_joints(la, lb);
   const GeometryMotion& a = geometries_[pair.a];
   const GeometryMotion& b = geometries_[pair.b];
   Scalar speed = 0;
@@ -289,23 +322,31 @@ Scalar LinkMotionBound::pair_speed(const GeometryPair& pair) const {
 
 void LinkMotionBound::place_chain(int g, const std::vector<Pose>& links, const Pose& pose,
                                   PlacedChain& placed, std::size_t first) const {
+  place_chain_from(g, links, pose, placed, first, nullptr);
+}
+
+void LinkMotionBound::place_end_chain(int g, int end, const std::vector<Pose>& links,
+                                      const Pose& pose, PlacedChain& placed) const {
+  place_chain_from(g, links, pose, placed, 0, end == 0 ? &start_axes_ : &end_axes_);
+}
+
+void LinkMotionBound::place_chain_from(int g, const std::vector<Pose>& links, const Pose& pose,
+                                       PlacedChain& placed, std::size_t first,
+                                       const std::vector<Vector3>* turn_axes) const {
   const int link = model_.geometries()[static_cast<std::size_t>(g)].link;
-  if (link < 0) {
-    placed.axis.clear();
-    placed.reach.clear();
-    return;
-  }
+  if (link < 0) return;
   const std::vector<int>& chain = chains_[static_cast<std::size_t>(link)];
   const GeometryMotion& motion = geometries_[static_cast<std::size_t>(g)];
   const BodyBounds& bounds = model_.geometries()[static_cast<std::size_t>(g)].body.bounds();
   const Vector3 centre = pose.rotation * bounds.centre + pose.translation;
   // The rounding of the placed frames (as pair_margin's), and the ball's radius.
   const Scalar slack = 64 * kUnit * static_cast<Scalar>(chain.size() + 1) * motion.extent;
-  // Sized once (a chain's length changes from geometry to geometry, rarely from call to call).
-  if (placed.axis.size() != chain.size()) {
-    placed.axis.assign(chain.size(), Vector3::Zero());
-    placed.reach.assign(chain.size(), 0);
-    placed.origin.assign(chain.size(), Vector3::Zero());
+  // Grown to the longest chain placed in it (a sampled pair's chains change from pair to pair,
+  // a third of the samples'), the entries past this chain left as they were.
+  if (placed.axis.size() < chain.size()) {
+    placed.axis.resize(chain.size(), Vector3::Zero());
+    placed.reach.resize(chain.size(), 0);
+    placed.origin.resize(chain.size(), Vector3::Zero());
   }
   placed.centre = centre;
   placed.radius = bounds.radius + slack;
@@ -318,12 +359,13 @@ void LinkMotionBound::place_chain(int g, const std::vector<Pose>& links, const P
     }
     const Joint& joint = model_.joints()[j];
     const Pose& frame = links[static_cast<std::size_t>(joint.child)];
-    const Vector3 axis = (frame.rotation * joint.axis).normalized();
+    const bool turn = joint.type != JointType::prismatic;
+    const Vector3 axis = turn && turn_axes ? (*turn_axes)[static_cast<std::size_t>(j)]
+                                           : (frame.rotation * joint.axis).normalized();
     placed.axis[k] = axis;
     placed.origin[k] = frame.translation;
-    placed.reach[k] = joint.type == JointType::prismatic
-                          ? 0
-                          : off_axis(centre - frame.translation, axis) + bounds.radius + slack;
+    placed.reach[k] = turn ? off_axis(centre - frame.translation, axis) + bounds.radius + slack
+                           : 0;
   }
 }
 
@@ -343,7 +385,7 @@ LinkMotionBound::LocalSpeed LinkMotionBound::local_speed(const GeometryPair& pai
                                                          const PlacedChain& placed_b) const {
   const int la = model_.geometries()[pair.a].link;
   const int lb = model_.geometries()[pair.b].link;
-  const std::size_t shared = shared_joints(chains_, la, lb);
+  const std::size_t shared = shared_joints(la, lb);
   LocalSpeed local{0, 0};
   const auto add = [&](int g, int link, const PlacedChain& placed) {
     if (link < 0) return;
@@ -382,7 +424,7 @@ LinkMotionBound::DirectionalSpeed LinkMotionBound::directional_speed(
   const int lb = model_.geometries()[pair.b].link;
   // The joints above the frame C the pair is measured in, and C's deviation from rigid (the
   // header): none and 0 in the world's frame.
-  const std::size_t shared = shared_joints(chains_, la, lb);
+  const std::size_t shared = shared_joints(la, lb);
   const Scalar sigma = sigma_after(la, shared);
   const Scalar in_common = (1 + 4 * sigma) * kRoundUp;
   DirectionalSpeed speed{0, 0, 0, 2 * sigma};
@@ -507,7 +549,7 @@ LinkMotionBound::TwistSpeed LinkMotionBound::twist_speed(const GeometryPair& pai
 }
 
 std::size_t LinkMotionBound::shared_count(const GeometryPair& pair) const {
-  return shared_joints(chains_, model_.geometries()[pair.a].link, model_.geometries()[pair.b].link);
+  return shared_joints(model_.geometries()[pair.a].link, model_.geometries()[pair.b].link);
 }
 
 int LinkMotionBound::common_link(const GeometryPair& pair) const {

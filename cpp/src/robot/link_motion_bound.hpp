@@ -124,7 +124,8 @@ class LinkMotionBound {
   /// the joint's axis in the world and the reach of the geometry's bounding ball about it (its
   /// centre's distance from the axis plus its radius and the frames' rounding), what
   /// `local_speed` and `directional_speed` take from the configuration. Computed once, it serves
-  /// every pair of the geometry there (zero for fixed joints; empty for an obstacle).
+  /// every pair of the geometry there (zero for fixed joints; nothing for an obstacle, whose
+  /// chain no bound reads). The vectors may run past the chain: what is there is not read.
   struct PlacedChain {
     std::vector<Vector3> axis;
     std::vector<Scalar> reach;
@@ -171,6 +172,11 @@ class LinkMotionBound {
   /// neither speed of the pair reads: `shared_count`).
   void place_chain(int g, const std::vector<Pose>& links, const Pose& pose, PlacedChain& placed,
                    std::size_t first = 0) const;
+  /// place_chain at the motion's start (`end` 0) or end (1), `links` the link poses set_motion
+  /// was given there: the turning joints' axes are set_motion's (the same expressions, made once
+  /// per motion rather than once per geometry on the joint's chain).
+  void place_end_chain(int g, int end, const std::vector<Pose>& links, const Pose& pose,
+                       PlacedChain& placed) const;
   /// local_speed from the two geometries' placed chains (the same bound, bit for bit).
   LocalSpeed local_speed(const GeometryPair& pair, const PlacedChain& a,
                          const PlacedChain& b) const;
@@ -195,6 +201,14 @@ class LinkMotionBound {
   Scalar pair_margin(const GeometryPair& pair) const;
 
  private:
+  // place_chain, the turning joints' axes read from `turn_axes` (per joint) when it is given.
+  void place_chain_from(int g, const std::vector<Pose>& links, const Pose& pose,
+                        PlacedChain& placed, std::size_t first,
+                        const std::vector<Vector3>* turn_axes) const;
+
+  // The number of joints the chains of links `a` and `b` share (0 with an obstacle, -1).
+  std::size_t shared_joints(int a, int b) const;
+
   // sigma_C of the frame where link `link`'s chain parts from another after `shared` joints.
   Scalar sigma_after(int link, std::size_t shared) const;
 
@@ -234,6 +248,9 @@ class LinkMotionBound {
   const RobotModel& model_;
   // Per link, its chain of joints from the root down (fixed joints included).
   std::vector<std::vector<int>> chains_;
+  // Per two links a and b, at a * (number of links) + b, the number of joints their chains share
+  // (read for every pair by every speed: a table rather than the chains compared each time).
+  std::vector<std::size_t> shared_;
   // Per joint, sigma of its origin, and of the product of the origins from the root to it.
   std::vector<Scalar> origin_sigma_;
   std::vector<Scalar> chain_sigma_;
@@ -259,12 +276,28 @@ class LinkMotionBound {
   std::vector<Vector3> end_axes_;
   std::vector<GeometryMotion> geometries_;
   // Scratch: the link poses at the ends, the chain's bounds on one geometry's distances from
-  // the axes, its box's corners placed at the ends.
+  // the axes.
   std::vector<Pose> start_links_;
   std::vector<Pose> end_links_;
   std::vector<Scalar> turns_;
-  Vector3 start_corners_[8];
-  Vector3 end_corners_[8];
+  // A box's 8 corners, one array per coordinate, so that they are placed and their distances
+  // from an axis taken side by side (two corners an instruction rather than one).
+  struct BoxCorners {
+    Eigen::Array<Scalar, 8, 1> x;
+    Eigen::Array<Scalar, 8, 1> y;
+    Eigen::Array<Scalar, 8, 1> z;
+
+    // Corner c has box.max's coordinate i where bit i of c is set, box.min's elsewhere.
+    static BoxCorners of(const Aabb& box);
+    // The corners placed by `pose`: pose.rotation * corner + pose.translation, the same
+    // products summed in the same order as the matrix product's.
+    BoxCorners placed(const Pose& pose) const;
+    // The largest distance of the corners from the line through `origin` along the unit
+    // `axis`: the largest off_axis(corner - origin, axis), its expressions in its order.
+    Scalar farthest_off_axis(const Vector3& origin, const Vector3& axis) const;
+  };
+  // Per geometry, its box's corners in its own frame.
+  std::vector<BoxCorners> box_corners_;
 };
 
 }  // namespace swarmcollide::detail

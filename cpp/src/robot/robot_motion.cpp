@@ -296,8 +296,8 @@ class MotionCheck {
   // screens at both ends.
   void plan() {
     plans_.clear();
-    place_all(start_links_, start_world_, start_centres_);
-    place_all(end_links_, end_world_, end_centres_);
+    place_all(start_links_, start_world_, start_centres_, start_sizes_);
+    place_all(end_links_, end_world_, end_centres_, end_sizes_);
     for (std::vector<char>& placed : chain_placed_) placed.assign(start_world_.size(), 0);
     for (auto& chains : end_chains_) chains.resize(start_world_.size());
     for (std::vector<char>& placed : box_placed_) placed.assign(start_world_.size(), 0);
@@ -309,8 +309,10 @@ class MotionCheck {
       // The balls at both ends first, then each end's local speed bound and its boxes, until
       // the reaches from the two ends meet.
       const Scalar balls_start =
-          ball_separation(pair, start_centres_[pair.a], start_centres_[pair.b]);
-      const Scalar balls_end = ball_separation(pair, end_centres_[pair.a], end_centres_[pair.b]);
+          ball_separation(pair, start_centres_[pair.a], start_sizes_[pair.a],
+                          start_centres_[pair.b], start_sizes_[pair.b]);
+      const Scalar balls_end = ball_separation(pair, end_centres_[pair.a], end_sizes_[pair.a],
+                                               end_centres_[pair.b], end_sizes_[pair.b]);
       if (detail::reach_over(balls_start - margin, speed) +
               detail::reach_over(balls_end - margin, speed) > 1) {
         continue;
@@ -364,8 +366,8 @@ class MotionCheck {
     const auto i = static_cast<std::size_t>(g);
     detail::LinkMotionBound::PlacedChain& chain = end_chains_[end][i];
     if (!chain_placed_[end][i]) {
-      bound_.place_chain(g, end == 0 ? start_links_ : end_links_,
-                         (end == 0 ? start_world_ : end_world_)[i], chain);
+      bound_.place_end_chain(g, end, end == 0 ? start_links_ : end_links_,
+                             (end == 0 ? start_world_ : end_world_)[i], chain);
       chain_placed_[end][i] = 1;
     }
     return chain;
@@ -693,15 +695,19 @@ class MotionCheck {
   // A proven lower bound on the pair's distance at `pose_a` and `pose_b` from its geometries'
   // bounding balls (as robot_check screens).
   Scalar ball_separation(const GeometryPair& pair, const Pose& pose_a, const Pose& pose_b) const {
-    return ball_separation(pair, centre(pair.a, pose_a), centre(pair.b, pose_b));
+    const Vector3 ca = centre(pair.a, pose_a);
+    const Vector3 cb = centre(pair.b, pose_b);
+    return ball_separation(pair, ca, ca.lpNorm<Eigen::Infinity>(), cb,
+                           cb.lpNorm<Eigen::Infinity>());
   }
 
-  // The same from the balls' centres placed, `ca` and `cb`.
-  Scalar ball_separation(const GeometryPair& pair, const Vector3& ca, const Vector3& cb) const {
+  // The same from the balls' centres placed, `ca` and `cb`, and their largest coordinates'
+  // magnitudes, `size_a` and `size_b` (what the margin is taken of).
+  Scalar ball_separation(const GeometryPair& pair, const Vector3& ca, Scalar size_a,
+                         const Vector3& cb, Scalar size_b) const {
     const BodyBounds& a = model_.geometries()[pair.a].body.bounds();
     const BodyBounds& b = model_.geometries()[pair.b].body.bounds();
-    const Scalar margin = 1e-12 * (ca.lpNorm<Eigen::Infinity>() + cb.lpNorm<Eigen::Infinity>() +
-                                   a.radius + b.radius);
+    const Scalar margin = 1e-12 * (size_a + size_b + a.radius + b.radius);
     return (ca - cb).norm() - a.radius - b.radius - margin;
   }
 
@@ -724,15 +730,17 @@ class MotionCheck {
            pose.translation;
   }
 
-  // Every geometry's pose at the configuration of `links`, and its bounding ball's centre there
-  // (placed once for all its pairs).
+  // Every geometry's pose at the configuration of `links`, its bounding ball's centre there and
+  // the centre's largest coordinate magnitude (placed once for all its pairs).
   void place_all(const std::vector<Pose>& links, std::vector<Pose>& world,
-                 std::vector<Vector3>& centres) const {
+                 std::vector<Vector3>& centres, std::vector<Scalar>& sizes) const {
     world.resize(model_.geometries().size());
     centres.resize(world.size());
+    sizes.resize(world.size());
     for (std::size_t g = 0; g < world.size(); ++g) {
       world[g] = placed(links, static_cast<int>(g));
       centres[g] = centre(static_cast<int>(g), world[g]);
+      sizes[g] = centres[g].lpNorm<Eigen::Infinity>();
     }
   }
 
@@ -798,6 +806,8 @@ class MotionCheck {
   std::vector<Pose> end_world_;
   std::vector<Vector3> start_centres_;
   std::vector<Vector3> end_centres_;
+  std::vector<Scalar> start_sizes_;
+  std::vector<Scalar> end_sizes_;
   Pose pose_a_;
   Pose pose_b_;
   // The sampled pair's chains at its poses.
