@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "curved_supports.hpp"
+#include "framed_curved_support.hpp"
 #include "normalise.hpp"
 #include "pose_check.hpp"
 
@@ -122,29 +123,7 @@ CurvedKind curved_kind(const SupportFunction& shape) {
   place(pose, rotated, world_centre, frame);
 }
 
-// `use` of the curved body's support point along `local`, in its own frame (centred on its box),
-// for its two users below. The use sits in each case: applied to the switch's result, the add of
-// curved_support made the curved rows 0.2-0.5% longer (callgrind_query.py --curved).
-template <typename Use>
-[[gnu::always_inline]] inline auto FramedBody::use_curved_support(const Vector3& local,
-                                                                  const Use& use) const {
-  // The shapes of shapes.hpp are called by their exact (final) type: the same function, inlined
-  // here.
-  switch (curved_kind_) {
-    case CurvedKind::cylinder:
-      return use(static_cast<const CylinderSupport*>(curved_)->CylinderSupport::support(local));
-    case CurvedKind::ellipsoid:
-      return use(static_cast<const EllipsoidSupport*>(curved_)->EllipsoidSupport::support(local));
-    case CurvedKind::cone:
-      return use(static_cast<const ConeSupport*>(curved_)->ConeSupport::support(local));
-    default:
-      return use(curved_->support(local));
-  }
-}
-
-int FramedBody::curved_support(const Vector3& local) const {
-  return use_curved_support(local, [this](const Vector3& point) { return found_->add(point); });
-}
+int FramedBody::curved_support(const Vector3& local) const { return inline_curved_support(local); }
 
 Vector3 FramedBody::curved_support_point(const Vector3& local) const {
   // The coordinates the cache would store (-0 + 0 = +0), placed as vertex() places them.

@@ -163,6 +163,11 @@ class FramedBody {
   /// own frame), the same coordinates, without numbering it among the body's points: for a closed
   /// form that reports no weights over the shape (point_against_curved).
   Vector3 curved_support_point(const Vector3& local) const;
+  /// `support_index(d, start)`, the same index, with a curved body's support and a small body's
+  /// scan always inline: for the curved pairs' searches (curved_search.cpp), whose oracles ask
+  /// two per step (a curved support out of line cost 16 of its 117 instructions in the call and
+  /// its dispatch). Defined in framed_curved_support.hpp, which its callers include.
+  inline int inline_support_index(const Vector3& d, int start) const;
   /// True for a small polyhedron whose support points are scans of its points by coordinate
   /// (`support_index` takes them from any start): `scanned_support_index` answers it.
   bool scanned() const { return columns_ != nullptr; }
@@ -206,12 +211,15 @@ class FramedBody {
   int exponent() const { return exponent_; }
 
  private:
-  // `use(point)` of the curved body's support point along `local`, in its own frame.
+  // `use(point)` of the curved body's support point along `local`, in its own frame
+  // (framed_curved_support.hpp).
   template <typename Use>
   auto use_curved_support(const Vector3& local, const Use& use) const;
   // The index of the curved body's support point along `local` (its own frame), appended to the
   // points unless it is one of them already.
   int curved_support(const Vector3& local) const;
+  // The same, always inline (framed_curved_support.hpp).
+  inline int inline_curved_support(const Vector3& local) const;
   Vector3 scaled(const Vector3& v) const { return v * scale_high_ * scale_low_; }
   // A point of the body's own frame, centred on its box, in the frame.
   Vector3 placed(const Vector3& centred) const {

@@ -17,19 +17,6 @@ namespace {
 // a quarter of them wait a dozen swarm iterations for the next finish.
 constexpr int kFinishSteps = 10;
 
-// Directions closer than this cosine (about 25 degrees) are nearby: a climb for one starts from
-// the support of the other (coal's threshold too).
-constexpr Scalar kNearbyCosine = 0.9;
-
-// Inlines everything a search calls into it (see DistanceFinish::whole). Not under the
-// sanitizers: GCC 12 took an hour to compile this file flattened with their instrumentation at
-// -O1 (make test-sanitize), against 18 seconds for the release build.
-#if defined(__SANITIZE_ADDRESS__)
-#define SWARMCOLLIDE_FLATTEN
-#else
-#define SWARMCOLLIDE_FLATTEN __attribute__((flatten))
-#endif
-
 struct Buffers {
   std::vector<char> visited;  // all zero between uses
   std::vector<int> feature_a;
@@ -119,13 +106,20 @@ bool DistanceFinish::from(const Vector3& n, int& hint_a, int& hint_b, BestBounds
 
 bool DistanceFinish::whole(const Vector3& start, int& hint_a, int& hint_b, BestBounds& bounds,
                            Goal goal, bool enclosure, const OraclePoint* first_point) {
-  // Two ellipsoids (smooth, strictly convex) ask along secant directions (secant_search.cpp). The
-  // edges and flat faces of cylinders, cones and boxes make the support map far from affine:
-  // secant steps there cost more support calls than they save (cylinder-cylinder apart 29,380 ->
-  // 43,068 instructions per query), and a polytope's Wolfe walk ends in a few exact steps.
-  // Its first point is asked again there (`first_point` only saves a scan of a polytope).
-  if (smooth(pair_.a) && smooth(pair_.b)) {
-    return whole_secant(start, hint_a, hint_b, bounds, goal, enclosure);
+  // Curved pairs have searches of their own, which take the curved supports inline
+  // (curved_search.cpp): inlined into this function's searches, the supports made 64-vertex
+  // polytope rows up to 287 instructions longer. Two ellipsoids (smooth, strictly convex) ask
+  // along secant directions (secant_search.cpp). The edges and flat faces of cylinders, cones and
+  // boxes make the support map far from affine: secant steps there cost more support calls than
+  // they save (cylinder-cylinder apart 29,380 -> 43,068 instructions per query), and a
+  // polytope's Wolfe walk ends in a few exact steps. Its first point is asked again there
+  // (`first_point` only saves a scan of a polytope). A curved pair is `adjusted` (its support
+  // error): polyhedra without radii pass one test, as they passed smooth()'s.
+  if (pair_.adjusted && (pair_.a.curved() || pair_.b.curved())) {
+    if (smooth(pair_.a) && smooth(pair_.b)) {
+      return whole_secant(start, hint_a, hint_b, bounds, goal, enclosure);
+    }
+    return whole_curved(start, hint_a, hint_b, bounds, goal, enclosure, first_point);
   }
   // Each oracle point bounds the distance by its separation along the corral's point `x`, which
   // its supports along `x` share with `x/|x|`.

@@ -51,7 +51,11 @@ class DistanceFinish {
   // whole() for two ellipsoids: Wolfe's steps along secant directions (secant_search.cpp).
   bool whole_secant(const Vector3& start, int& hint_a, int& hint_b, BestBounds& bounds,
                     Goal goal, bool enclosure);
-  // whole()'s search from a corral, in a file of its own (corral_search.cpp).
+  // whole() for curved pairs but two ellipsoids, in a file of its own (curved_search.cpp), with
+  // their supports inline.
+  bool whole_curved(const Vector3& start, int& hint_a, int& hint_b, BestBounds& bounds, Goal goal,
+                    bool enclosure, const OraclePoint* first_point);
+  // whole()'s search from a corral, the same way (curved_search.cpp).
   bool walk_from_corral(const Vector3& start, const MinNormPoint& corral, int& hint_a,
                         int& hint_b, BestBounds& bounds, Goal goal, bool enclosure);
   void feature(const FramedBody& body, const Vector3& n, int& hint, std::vector<int>& found);

@@ -1,0 +1,78 @@
+// DistanceFinish's Wolfe searches for curved pairs (but two ellipsoids, secant_search.cpp): from
+// a point (whole_curved) and from a corral a Wolfe walk left (walk_from_corral, overlap_first on
+// curved pairs). In a file of their own, with the curved supports inline
+// (framed_curved_support.hpp): whole()'s search from a single point, which every polytope query
+// runs, compiles as it does alone. One search taking either start, or whole()'s oracle shared as
+// a function object or a template, cost polytope queries 1-4% more instructions, and the curved
+// supports inlined into every solver up to 287 instructions more a 64-vertex polytope query; the
+// oracle and measure are therefore whole()'s, written again.
+#include "../geometry/framed_curved_support.hpp"
+#include "distance_finish.hpp"
+#include "minkowski.hpp"
+#include "whole_search.hpp"
+
+namespace swarmcollide::detail {
+
+namespace {
+
+// Each oracle point bounds the distance by its separation along the corral's point `x`, which its
+// supports along `x` share with `x/|x|` (as whole()'s).
+Separation measured(const MinNormPoint& current, const OraclePoint& q, Scalar inverse_norm) {
+  return Separation{current.x.dot(q.p) * inverse_norm, current.x * inverse_norm};
+}
+
+// minkowski_support with the supports inline: the same points. A curved body's support is its
+// support function's, a small polyhedron's a scan, whatever the hints; a large polyhedron climbs
+// from its hint.
+[[gnu::always_inline]] inline OraclePoint curved_pair_support(const FramedPair& pair,
+                                                              const Vector3& d, int& hint_a,
+                                                              int& hint_b) {
+  hint_a = pair.a.inline_support_index(d, hint_a);
+  hint_b = pair.b.inline_support_index(-d, hint_b);
+  return {pair.b.vertex(hint_b) - pair.a.vertex(hint_a), hint_a, hint_b};
+}
+
+}  // namespace
+
+bool DistanceFinish::whole_curved(const Vector3& start, int& hint_a, int& hint_b,
+                                  BestBounds& bounds, Goal goal, bool enclosure,
+                                  const OraclePoint* first_point) {
+  // A large polyhedron beside a curved body climbs from its previous support, unless the
+  // direction turned by more than about 25 degrees (as whole()'s climbing search).
+  const bool climbs =
+      pair_.a.size() > kHillClimbingThreshold || pair_.b.size() > kHillClimbingThreshold;
+  Vector3 previous = start;
+  const auto oracle = [&](const Vector3& d) __attribute__((always_inline)) {
+    ++evaluations_;
+    if (climbs) {
+      const Scalar along = d.dot(previous);
+      if (along < 0 || along * along < kNearbyCosine * kNearbyCosine * d.squaredNorm() *
+                                            previous.squaredNorm()) {
+        hint_a = hint_b = -1;
+      }
+      previous = d;
+    }
+    return curved_pair_support(pair_, d, hint_a, hint_b);
+  };
+  const auto search = [&]() SWARMCOLLIDE_FLATTEN {
+    return whole_search(pair_, start, first_point, hint_a, hint_b, bounds, goal, enclosure,
+                        max_iterations_, evaluations_, oracle, measured, PlacedByBodies{pair_});
+  };
+  return search();
+}
+
+bool DistanceFinish::walk_from_corral(const Vector3& start, const MinNormPoint& corral,
+                                      int& hint_a, int& hint_b, BestBounds& bounds, Goal goal,
+                                      bool enclosure) {
+  // A curved body's supports are its support function's. A large polytope beside it climbs from
+  // the hints without whole()'s reset after a turn, which only chooses where a climb starts: it
+  // ends at the support from any start, within the margins whole()'s bounds already take.
+  const auto oracle = [&](const Vector3& d) {
+    ++evaluations_;
+    return curved_pair_support(pair_, d, hint_a, hint_b);
+  };
+  return whole_search(pair_, start, &corral, hint_a, hint_b, bounds, goal, enclosure,
+                      max_iterations_, evaluations_, oracle, measured, PlacedByBodies{pair_});
+}
+
+}  // namespace swarmcollide::detail
