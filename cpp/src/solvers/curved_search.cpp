@@ -67,12 +67,15 @@ bool DistanceFinish::walk_from_corral(const Vector3& start, const MinNormPoint& 
   // A curved body's supports are its support function's. A large polytope beside it climbs from
   // the hints without whole()'s reset after a turn, which only chooses where a climb starts: it
   // ends at the support from any start, within the margins whole()'s bounds already take.
-  const auto oracle = [&](const Vector3& d) {
+  const auto oracle = [&](const Vector3& d) __attribute__((always_inline)) {
     ++evaluations_;
     return curved_pair_support(pair_, d, hint_a, hint_b);
   };
-  return whole_search(pair_, start, &corral, hint_a, hint_b, bounds, goal, enclosure,
-                      max_iterations_, evaluations_, oracle, measured, PlacedByBodies{pair_});
+  const auto search = [&]() SWARMCOLLIDE_FLATTEN {
+    return whole_search(pair_, start, &corral, hint_a, hint_b, bounds, goal, enclosure,
+                        max_iterations_, evaluations_, oracle, measured, PlacedByBodies{pair_});
+  };
+  return search();
 }
 
 }  // namespace swarmcollide::detail
