@@ -76,8 +76,11 @@ bool DistanceFinish::whole_secant(const Vector3& start, int& hint_a, int& hint_b
                : Separation{current.x.dot(q.p) * inverse_norm, current.x * inverse_norm};
   };
   const OraclePoint* asked_here = nullptr;  // the first point is asked along `start`
-  return whole_search(pair_, start, asked_here, hint_a, hint_b, bounds, goal, enclosure,
-                      max_iterations_, evaluations_, oracle, measured, PlacedByBodies{pair_});
+  const auto search = [&]() SWARMCOLLIDE_FLATTEN {
+    return whole_search(pair_, start, asked_here, hint_a, hint_b, bounds, goal, enclosure,
+                        max_iterations_, evaluations_, oracle, measured, PlacedByBodies{pair_});
+  };
+  return search();
 }
 
 }  // namespace swarmcollide::detail
