@@ -1,6 +1,7 @@
 // FramedBody's support points of curved bodies, defined inline for the files that include this
 // header: framed_body.cpp (its out-of-line curved_support) and the curved pairs' searches
-// (curved_search.cpp, secant_search.cpp); private to the library's sources. Inlined into every
+// (curved_search.cpp, secant_search.cpp, through solvers/inline_minkowski.hpp); private to the
+// library's sources. Inlined into every
 // solver through framed_body.hpp, the support made 64-vertex polytope rows up to 287
 // instructions longer.
 #pragma once

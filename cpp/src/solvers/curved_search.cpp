@@ -6,9 +6,8 @@
 // a function object or a template, cost polytope queries 1-4% more instructions, and the curved
 // supports inlined into every solver up to 287 instructions more a 64-vertex polytope query; the
 // oracle and measure are therefore whole()'s, written again.
-#include "../geometry/framed_curved_support.hpp"
 #include "distance_finish.hpp"
-#include "minkowski.hpp"
+#include "inline_minkowski.hpp"
 #include "whole_search.hpp"
 
 namespace swarmcollide::detail {
@@ -19,17 +18,6 @@ namespace {
 // supports along `x` share with `x/|x|` (as whole()'s).
 Separation measured(const MinNormPoint& current, const OraclePoint& q, Scalar inverse_norm) {
   return Separation{current.x.dot(q.p) * inverse_norm, current.x * inverse_norm};
-}
-
-// minkowski_support with the supports inline: the same points. A curved body's support is its
-// support function's, a small polyhedron's a scan, whatever the hints; a large polyhedron climbs
-// from its hint.
-[[gnu::always_inline]] inline OraclePoint curved_pair_support(const FramedPair& pair,
-                                                              const Vector3& d, int& hint_a,
-                                                              int& hint_b) {
-  hint_a = pair.a.inline_support_index(d, hint_a);
-  hint_b = pair.b.inline_support_index(-d, hint_b);
-  return {pair.b.vertex(hint_b) - pair.a.vertex(hint_a), hint_a, hint_b};
 }
 
 }  // namespace
@@ -52,7 +40,7 @@ bool DistanceFinish::whole_curved(const Vector3& start, int& hint_a, int& hint_b
       }
       previous = d;
     }
-    return curved_pair_support(pair_, d, hint_a, hint_b);
+    return inline_minkowski_support(pair_, d, hint_a, hint_b);
   };
   const auto search = [&]() SWARMCOLLIDE_FLATTEN {
     return whole_search(pair_, start, first_point, hint_a, hint_b, bounds, goal, enclosure,
@@ -69,7 +57,7 @@ bool DistanceFinish::walk_from_corral(const Vector3& start, const MinNormPoint& 
   // ends at the support from any start, within the margins whole()'s bounds already take.
   const auto oracle = [&](const Vector3& d) __attribute__((always_inline)) {
     ++evaluations_;
-    return curved_pair_support(pair_, d, hint_a, hint_b);
+    return inline_minkowski_support(pair_, d, hint_a, hint_b);
   };
   const auto search = [&]() SWARMCOLLIDE_FLATTEN {
     return whole_search(pair_, start, &corral, hint_a, hint_b, bounds, goal, enclosure,

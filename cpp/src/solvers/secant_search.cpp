@@ -3,26 +3,15 @@
 // file, polytope queries took 1-3% more instructions, the secant code unused).
 #include <cmath>
 
-#include "../geometry/framed_curved_support.hpp"
 #include "../queries/verdict.hpp"
 #include "distance_finish.hpp"
-#include "minkowski.hpp"
+#include "inline_minkowski.hpp"
 #include "secant_direction.hpp"
 #include "whole_search.hpp"
 
 namespace swarmcollide::detail {
 
 namespace {
-
-// minkowski_support of two ellipsoids, their supports inline (framed_curved_support.hpp): the
-// same points, without the call and its dispatch on the shape per support.
-[[gnu::always_inline]] inline OraclePoint ellipsoids_support(const FramedPair& pair,
-                                                             const Vector3& d, int& hint_a,
-                                                             int& hint_b) {
-  hint_a = pair.a.inline_support_index(d, hint_a);
-  hint_b = pair.b.inline_support_index(-d, hint_b);
-  return {pair.b.vertex(hint_b) - pair.a.vertex(hint_a), hint_a, hint_b};
-}
 
 // Wolfe's oracle point for the corral's point `d` (DistanceFinish::whole_secant): the support
 // along the secant direction when it is nearer than the corral along `d` (it then joins the
@@ -36,7 +25,7 @@ OraclePoint secant_support(const FramedPair& pair, const Vector3& d, Secant& sec
   Vector3 m;
   if (secant.count >= 2 && secant_direction(secant.samples, secant.count, norm, m)) {
     ++evaluations;
-    const OraclePoint q = ellipsoids_support(pair, m, hint_a, hint_b);
+    const OraclePoint q = inline_minkowski_support(pair, m, hint_a, hint_b);
     secant.remember(m, q.p);
     bounds.offer_lower(m, m.dot(q.p));
     if (d.dot(q.p) < dd - 1e-13 * norm) {
@@ -46,7 +35,7 @@ OraclePoint secant_support(const FramedPair& pair, const Vector3& d, Secant& sec
     }
   }
   ++evaluations;
-  const OraclePoint q = ellipsoids_support(pair, d, hint_a, hint_b);
+  const OraclePoint q = inline_minkowski_support(pair, d, hint_a, hint_b);
   if (norm > 0) secant.remember(d / norm, q.p);
   return q;
 }
