@@ -32,14 +32,7 @@ bool DistanceFinish::whole_curved(const Vector3& start, int& hint_a, int& hint_b
   Vector3 previous = start;
   const auto oracle = [&](const Vector3& d) __attribute__((always_inline)) {
     ++evaluations_;
-    if (climbs) {
-      const Scalar along = d.dot(previous);
-      if (along < 0 || along * along < kNearbyCosine * kNearbyCosine * d.squaredNorm() *
-                                            previous.squaredNorm()) {
-        hint_a = hint_b = -1;
-      }
-      previous = d;
-    }
+    if (climbs) drop_hints_after_turn(d, previous, hint_a, hint_b);
     return inline_minkowski_support(pair_, d, hint_a, hint_b);
   };
   const auto search = [&]() SWARMCOLLIDE_FLATTEN {

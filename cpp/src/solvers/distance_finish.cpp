@@ -176,14 +176,7 @@ bool DistanceFinish::whole(const Vector3& start, int& hint_a, int& hint_b, BestB
   Vector3 previous = start;
   const auto oracle = [&](const Vector3& d) __attribute__((always_inline)) {
     ++evaluations_;
-    if (climbs) {
-      const Scalar along = d.dot(previous);
-      if (along < 0 || along * along < kNearbyCosine * kNearbyCosine * d.squaredNorm() *
-                                            previous.squaredNorm()) {
-        hint_a = hint_b = -1;
-      }
-      previous = d;
-    }
+    if (climbs) drop_hints_after_turn(d, previous, hint_a, hint_b);
     return minkowski_support(pair_.a, pair_.b, d, hint_a, hint_b);
   };
   const auto climbing_search = [&]() SWARMCOLLIDE_FLATTEN {

@@ -25,6 +25,19 @@ namespace swarmcollide::detail {
 /// starts from the support of the other (coal's threshold too).
 inline constexpr Scalar kNearbyCosine = 0.9;
 
+/// A climbing search's step to direction `d` from `previous`: where the direction turned by more
+/// than kNearbyCosine allows, the climbs start afresh (the hints dropped), as the hull's starts
+/// are then nearer; `previous` becomes `d`.
+[[gnu::always_inline]] inline void drop_hints_after_turn(const Vector3& d, Vector3& previous,
+                                                         int& hint_a, int& hint_b) {
+  const Scalar along = d.dot(previous);
+  if (along < 0 ||
+      along * along < kNearbyCosine * kNearbyCosine * d.squaredNorm() * previous.squaredNorm()) {
+    hint_a = hint_b = -1;
+  }
+  previous = d;
+}
+
 /// An oracle point's separation along the unit direction it bounds the distance by.
 struct Separation {
   Scalar value;
