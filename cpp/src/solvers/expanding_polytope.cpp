@@ -231,7 +231,8 @@ bool ExpandingPolytope::expand(int closest, int added) {
   return true;
 }
 
-bool ExpandingPolytope::linked(int i) const {
+// Always inline: verify asks it of every live face, and its call was a sixth of what it cost.
+[[gnu::always_inline]] inline bool ExpandingPolytope::linked(int i) const {
   // The corner after each (a table: `% 3` of a read index costs a multiplication and shifts, and
   // verify asks this of every face).
   constexpr std::array<int, 3> kNext = {1, 2, 0};
