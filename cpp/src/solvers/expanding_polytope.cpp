@@ -86,7 +86,10 @@ bool ExpandingPolytope::flatten(int f) {
   return true;
 }
 
-bool ExpandingPolytope::make_face(int v0, int v1, int v2, Face& face) const {
+// Always inline: the expansion makes a few faces a step, in loops whose calls cost more than the
+// faces' bookkeeping.
+[[gnu::always_inline]] inline bool ExpandingPolytope::make_face(int v0, int v1, int v2,
+                                                                Face& face) const {
   const Vector3& p = vertices_[v0].w;
   const Vector3& q = vertices_[v1].w;
   const Vector3& r = vertices_[v2].w;
