@@ -115,7 +115,8 @@ bool ExpandingPolytope::flatten(int f) {
   return true;
 }
 
-int ExpandingPolytope::cone(int added) {
+// Always inline into expand, its one caller, once per attempt.
+[[gnu::always_inline]] inline int ExpandingPolytope::cone(int added) {
   horizon_.clear();
   for (int f : visible_) {
     for (int k = 0; k < 3; ++k) {
