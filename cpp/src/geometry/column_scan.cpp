@@ -17,6 +17,7 @@
 namespace swarmcollide::detail {
 
 static_assert(kColumnCapacity % kColumnPadding == 0, "whole registers of the widest set");
+static_assert(kColumnPadding % 8 == 0, "the AVX2 scan reads two registers a step");
 
 #ifdef SWARMCOLLIDE_WIDER_SCANS
 #pragma GCC push_options
@@ -28,26 +29,49 @@ int scan_columns_avx2(const double* columns, int count, double dx, double dy, do
   const __m256d along_x = _mm256_set1_pd(dx);
   const __m256d along_y = _mm256_set1_pd(dy);
   const __m256d along_z = _mm256_set1_pd(dz);
+  const auto heights_at = [&](int i) {
+    return _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(_mm256_loadu_pd(x + i), along_x),
+                                       _mm256_mul_pd(_mm256_loadu_pd(y + i), along_y)),
+                         _mm256_mul_pd(_mm256_loadu_pd(z + i), along_z));
+  };
+  // The greatest of `h` in every lane: swap the halves, then the neighbours.
+  const auto greatest = [](__m256d h) {
+    h = _mm256_max_pd(h, _mm256_permute2f128_pd(h, h, 1));
+    return _mm256_max_pd(h, _mm256_permute_pd(h, 0b0101));
+  };
+  const auto lanes_equal = [](__m256d h, __m256d top) {
+    return _mm256_movemask_pd(_mm256_cmp_pd(h, top, _CMP_EQ_OQ));
+  };
+  // Up to eight points (the searches' small bodies, scanned at every step) in registers, without
+  // the loops and the heights' stores and loads: a quarter of a 4-point scan's instructions.
+  if (count <= 8) {
+    const __m256d low = heights_at(0);
+    const __m256d high = count > 4 ? heights_at(4) : low;
+    if (_mm256_movemask_pd(_mm256_cmp_pd(low, high, _CMP_UNORD_Q)) != 0) {
+      return first_highest_column(columns, count, dx, dy, dz);
+    }
+    const __m256d top = greatest(_mm256_max_pd(low, high));
+    const int equal = lanes_equal(low, top);
+    if (equal != 0) return __builtin_ctz(static_cast<unsigned>(equal));
+    return 4 + __builtin_ctz(static_cast<unsigned>(lanes_equal(high, top)));
+  }
+  // Larger bodies two registers a step (the columns are padded to kColumnPadding entries).
   alignas(32) double heights[kColumnCapacity];
-  const int padded = (count + 3) & ~3;
   __m256d top = _mm256_setzero_pd();
   __m256d unordered = _mm256_setzero_pd();
-  for (int i = 0; i < padded; i += 4) {
-    const __m256d h =
-        _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(_mm256_loadu_pd(x + i), along_x),
-                                    _mm256_mul_pd(_mm256_loadu_pd(y + i), along_y)),
-                      _mm256_mul_pd(_mm256_loadu_pd(z + i), along_z));
-    _mm256_store_pd(heights + i, h);
-    top = i == 0 ? h : _mm256_max_pd(top, h);
-    unordered = _mm256_or_pd(unordered, _mm256_cmp_pd(h, h, _CMP_UNORD_Q));
+  for (int i = 0; i < count; i += 8) {
+    const __m256d low = heights_at(i);
+    const __m256d high = heights_at(i + 4);
+    _mm256_store_pd(heights + i, low);
+    _mm256_store_pd(heights + i + 4, high);
+    const __m256d pair_top = _mm256_max_pd(low, high);
+    top = i == 0 ? pair_top : _mm256_max_pd(top, pair_top);
+    unordered = _mm256_or_pd(unordered, _mm256_cmp_pd(low, high, _CMP_UNORD_Q));
   }
   if (_mm256_movemask_pd(unordered) != 0) return first_highest_column(columns, count, dx, dy, dz);
-  // The greatest in every lane: swap the halves, then the neighbours.
-  top = _mm256_max_pd(top, _mm256_permute2f128_pd(top, top, 1));
-  top = _mm256_max_pd(top, _mm256_permute_pd(top, 0b0101));
+  top = greatest(top);
   for (int i = 0;; i += 4) {
-    const int equal =
-        _mm256_movemask_pd(_mm256_cmp_pd(_mm256_load_pd(heights + i), top, _CMP_EQ_OQ));
+    const int equal = lanes_equal(_mm256_load_pd(heights + i), top);
     if (equal != 0) return i + __builtin_ctz(static_cast<unsigned>(equal));
   }
 }

@@ -15,6 +15,7 @@
 #include "distance_finish.hpp"
 #include "exact_solver.hpp"
 #include "minkowski.hpp"
+#include "whole_search.hpp"
 #include "wolfe_min_norm.hpp"
 #include "witness.hpp"
 
@@ -228,11 +229,16 @@ std::optional<Answer> overlap_first(const FramedPair& pair, const QueryOptions& 
     walked = &kept;
     return true;
   };
-  // Polytopes' walks take no stop test (their steps are exact and few).
+  // Polytopes' walks take no stop test (their steps are exact and few). The small pairs' walk is
+  // flattened, as DistanceFinish::whole's searches are: left to the inliner, it called the
+  // projection (nearest_simplex_point, and its tetrahedron's) out of line at every step.
+  const auto scanned_walk = [&]() SWARMCOLLIDE_FLATTEN {
+    return wolfe_min_norm(scans, tilted(direction), 2, options.exact.max_iterations);
+  };
   const MinNormPoint corral =
       curved ? wolfe_min_norm(oracle, tilted(direction), 2, options.exact.max_iterations, apart)
       : pair.a.scanned() && pair.b.scanned()
-          ? wolfe_min_norm(scans, tilted(direction), 2, options.exact.max_iterations)
+          ? scanned_walk()
           : wolfe_min_norm(oracle, tilted(direction), 2, options.exact.max_iterations);
   if (walked != nullptr) return std::nullopt;
   Answer answer;

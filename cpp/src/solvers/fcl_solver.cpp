@@ -129,7 +129,10 @@ Answer solve_fcl(const FramedPair& pair, const QueryOptions& options, Goal goal)
     // within the tolerance they settle it at zero as the proof would, and a distance reports
     // no intersection proof; zero, its lower bound, needs no scan either.
     const bool distance_goal = goal == Goal::distance;
-    Witness witness = combined_witness(pair, corral);
+    // The witness inline (combined_witness(pair, corral), its call out of line, cost 20 more).
+    Witness witness = combined_witness(
+        corral, [&pair](int i) { return pair.a.vertex(i); },
+        [&pair](int j) { return pair.b.vertex(j); });
     const bool witnesses_contact = distance_goal && witnesses_prove_contact(pair, witness);
     if (!witnesses_contact && corral.size == 4) {
       place_corral();
