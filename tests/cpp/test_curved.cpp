@@ -229,6 +229,48 @@ TEST(Curved, FramedSupportsAreTheShapesOwn) {
   }
 }
 
+// The closed form of a ball against a cylinder or a cone (point_against_curved) takes the second
+// rim point of a pair from the first by a symmetry of the support function rather than asking it:
+// a cylinder's rim points along (x, y, 1) and (x, y, -1) differ only in the sign of their height,
+// and a cylinder's along (x, y, s) and (-x, -y, s), and a cone's along (x, y, -1) and (-x, -y, -1),
+// only in the signs of x and y, bit for bit (with -0 as +0, as the closed form mirrors them). A
+// support function that lost the symmetry (a rounding that depends on a sign) fails here.
+TEST(Curved, RimPointsAcrossAndAboveEachOtherAreMirrorImages) {
+  Random rng(41);
+  const Cylinder cylinder(0.7, 0.4);
+  const Cone cone(0.5, 0.9);
+  const auto mirrored = [](Vector3 p, bool height) {
+    if (height) {
+      p.z() = -p.z();
+    } else {
+      p.x() = -p.x();
+      p.y() = -p.y();
+    }
+    return Vector3(p + Vector3::Zero());
+  };
+  const auto support = [](const ConvexPolyhedron& shape, const Vector3& d) {
+    return Vector3(shape.curved()->support(d) + Vector3::Zero());
+  };
+  for (int k = 0; k < 2000; ++k) {
+    // Unit azimuths as the closed form makes them, some on an axis, and directions of any length.
+    Vector3 d = rng.unit();
+    if (k % 7 == 0) d.x() = 0;
+    if (k % 11 == 0) d.y() = 0;
+    const Scalar length = std::hypot(d.x(), d.y());
+    const Scalar ux = length > 0 ? d.x() / length : 1;
+    const Scalar uy = length > 0 ? d.y() / length : 0;
+    const Scalar s = k % 2 ? 1.0 : -1.0;
+    const Scalar scale = std::ldexp(1.0, static_cast<int>(rng.uniform(-60, 60)));
+    SCOPED_TRACE(::testing::Message() << "azimuth " << ux << " " << uy << " scale " << scale);
+    EXPECT_EQ(support(cylinder, scale * Vector3(ux, uy, -1)),
+              mirrored(support(cylinder, scale * Vector3(ux, uy, 1)), true));
+    EXPECT_EQ(support(cylinder, scale * Vector3(-ux, -uy, s)),
+              mirrored(support(cylinder, scale * Vector3(ux, uy, s)), false));
+    EXPECT_EQ(support(cone, scale * Vector3(-ux, -uy, -1)),
+              mirrored(support(cone, scale * Vector3(ux, uy, -1)), false));
+  }
+}
+
 // A random ball near a random shape of radius `r` and half-length `h`: the ball's centre at
 // `local` in the shape's frame.
 struct BallNearShape {
