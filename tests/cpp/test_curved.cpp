@@ -194,6 +194,31 @@ TEST(Curved, EllipsoidSupportsDoNotDependOnThePowerOfTwoOfTheDirection) {
   }
 }
 
+// The same for a cone (ConeSupport::support: a direction whose largest component is within
+// [2^-100, 2^100] is used as it is, for a radius and a half-length within [2^-200, 2^200]), on
+// directions near the tie between the apex and the rim too, where the comparison's roundings
+// decide: were the products not scaled exactly, some point would differ here.
+TEST(Curved, ConeSupportsDoNotDependOnThePowerOfTwoOfTheDirection) {
+  Random rng(31);
+  for (int trial = 0; trial < 600; ++trial) {
+    const Scalar r = std::exp(rng.uniform(-5, 5));
+    const Scalar h = std::exp(rng.uniform(-5, 5));
+    const Cone cone(r, h);
+    Vector3 d = rng.unit();
+    if (trial % 3 == 1) d.y() = 0;
+    if (trial % 2 == 0) {
+      // The apex and the rim equally high along d: h d_z = r |d_xy| - h d_z, to a rounding.
+      d.z() = std::hypot(d.x(), d.y()) * r / (2 * h) * (1 + rng.uniform(-4, 4) * 1e-16);
+    }
+    const Vector3 expected = cone.curved()->support(d);
+    for (int exponent : {-300, -102, -101, -100, -99, -40, 0, 40, 99, 100, 101, 102, 300}) {
+      const Vector3 p = cone.curved()->support(d * std::ldexp(1.0, exponent));
+      EXPECT_EQ(p, expected) << "r " << r << ", h " << h << ", direction " << d.transpose()
+                             << " times 2^" << exponent;
+    }
+  }
+}
+
 // A framed curved body calls shapes.hpp's support functions by their exact type
 // (FramedBody::curved_support, curved_supports.hpp), not through the virtual call: its support
 // points are the virtual call's, bit for bit, for every kind (a kind mapped to another shape's
