@@ -58,14 +58,17 @@ inline void require(Method method, Capability capability, const char* query) {
 /// cannot (`curved` is the curved body).
 [[noreturn]] void refuse_curved(Method method, const ConvexPolyhedron* curved);
 
+/// Throws std::invalid_argument (refuse_curved) when `method` cannot answer curved shapes; reads
+/// the dispatch table (method_info's table, behind its static's guard and a call, was 45
+/// instructions of every curved query). Out of line (methods.cpp): inline, its table read changed
+/// the code of the polytope queries around it (a distance 1 instruction longer).
+void require_curved_capable(Method method, const ConvexPolyhedron* curved);
+
 /// Throws std::invalid_argument when `method` cannot answer a pair with the curved body `a` or
-/// `b` (ConvexPolyhedron::curved), naming the methods that can. Cheap for polyhedra, and for
-/// curved pairs a read of the dispatch table (method_info's table, behind its static's guard and a
-/// call, was 45 instructions of every curved query).
+/// `b` (ConvexPolyhedron::curved), naming the methods that can. Cheap for polyhedra.
 inline void require_shapes(Method method, const ConvexPolyhedron& a, const ConvexPolyhedron& b) {
   if (!a.curved() && !b.curved()) return;
-  if (method_dispatch(method).capabilities & kCurvedShapes) return;
-  refuse_curved(method, a.curved() ? &a : &b);
+  require_curved_capable(method, a.curved() ? &a : &b);
 }
 
 /// The same for compound bodies with curved parts (CompoundBody::curved_part).

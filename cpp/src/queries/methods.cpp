@@ -286,6 +286,10 @@ namespace detail {
 
 void refuse_method(Method) { throw std::invalid_argument("unknown method"); }
 
+void require_curved_capable(Method method, const ConvexPolyhedron* curved) {
+  if (!(method_dispatch(method).capabilities & kCurvedShapes)) refuse_curved(method, curved);
+}
+
 void refuse_curved(Method method, const ConvexPolyhedron* curved) {
   std::string able;
   for (const MethodInfo& e : entries()) {
