@@ -194,6 +194,31 @@ TEST(Curved, EllipsoidSupportsDoNotDependOnThePowerOfTwoOfTheDirection) {
   }
 }
 
+// The same for a cone (ConeSupport::support: a direction whose largest component is within
+// [2^-100, 2^100] is used as it is, for a radius and a half-length within [2^-200, 2^200]), on
+// directions near the tie between the apex and the rim too, where the comparison's roundings
+// decide: were the products not scaled exactly, some point would differ here.
+TEST(Curved, ConeSupportsDoNotDependOnThePowerOfTwoOfTheDirection) {
+  Random rng(31);
+  for (int trial = 0; trial < 600; ++trial) {
+    const Scalar r = std::exp(rng.uniform(-5, 5));
+    const Scalar h = std::exp(rng.uniform(-5, 5));
+    const Cone cone(r, h);
+    Vector3 d = rng.unit();
+    if (trial % 3 == 1) d.y() = 0;
+    if (trial % 2 == 0) {
+      // The apex and the rim equally high along d: h d_z = r |d_xy| - h d_z, to a rounding.
+      d.z() = std::hypot(d.x(), d.y()) * r / (2 * h) * (1 + rng.uniform(-4, 4) * 1e-16);
+    }
+    const Vector3 expected = cone.curved()->support(d);
+    for (int exponent : {-300, -102, -101, -100, -99, -40, 0, 40, 99, 100, 101, 102, 300}) {
+      const Vector3 p = cone.curved()->support(d * std::ldexp(1.0, exponent));
+      EXPECT_EQ(p, expected) << "r " << r << ", h " << h << ", direction " << d.transpose()
+                             << " times 2^" << exponent;
+    }
+  }
+}
+
 // A framed curved body calls shapes.hpp's support functions by their exact type
 // (FramedBody::curved_support, curved_supports.hpp), not through the virtual call: its support
 // points are the virtual call's, bit for bit, for every kind (a kind mapped to another shape's
@@ -226,6 +251,48 @@ TEST(Curved, FramedSupportsAreTheShapesOwn) {
     for (std::size_t k = 0; k < directions.size(); ++k) {
       EXPECT_EQ(body.support_index(directions[k]), numbers[k]);
     }
+  }
+}
+
+// The closed form of a ball against a cylinder or a cone (point_against_curved) takes the second
+// rim point of a pair from the first by a symmetry of the support function rather than asking it:
+// a cylinder's rim points along (x, y, 1) and (x, y, -1) differ only in the sign of their height,
+// and a cylinder's along (x, y, s) and (-x, -y, s), and a cone's along (x, y, -1) and (-x, -y, -1),
+// only in the signs of x and y, bit for bit (with -0 as +0, as the closed form mirrors them). A
+// support function that lost the symmetry (a rounding that depends on a sign) fails here.
+TEST(Curved, RimPointsAcrossAndAboveEachOtherAreMirrorImages) {
+  Random rng(41);
+  const Cylinder cylinder(0.7, 0.4);
+  const Cone cone(0.5, 0.9);
+  const auto mirrored = [](Vector3 p, bool height) {
+    if (height) {
+      p.z() = -p.z();
+    } else {
+      p.x() = -p.x();
+      p.y() = -p.y();
+    }
+    return Vector3(p + Vector3::Zero());
+  };
+  const auto support = [](const ConvexPolyhedron& shape, const Vector3& d) {
+    return Vector3(shape.curved()->support(d) + Vector3::Zero());
+  };
+  for (int k = 0; k < 2000; ++k) {
+    // Unit azimuths as the closed form makes them, some on an axis, and directions of any length.
+    Vector3 d = rng.unit();
+    if (k % 7 == 0) d.x() = 0;
+    if (k % 11 == 0) d.y() = 0;
+    const Scalar length = std::hypot(d.x(), d.y());
+    const Scalar ux = length > 0 ? d.x() / length : 1;
+    const Scalar uy = length > 0 ? d.y() / length : 0;
+    const Scalar s = k % 2 ? 1.0 : -1.0;
+    const Scalar scale = std::ldexp(1.0, static_cast<int>(rng.uniform(-60, 60)));
+    SCOPED_TRACE(::testing::Message() << "azimuth " << ux << " " << uy << " scale " << scale);
+    EXPECT_EQ(support(cylinder, scale * Vector3(ux, uy, -1)),
+              mirrored(support(cylinder, scale * Vector3(ux, uy, 1)), true));
+    EXPECT_EQ(support(cylinder, scale * Vector3(-ux, -uy, s)),
+              mirrored(support(cylinder, scale * Vector3(ux, uy, s)), false));
+    EXPECT_EQ(support(cone, scale * Vector3(-ux, -uy, -1)),
+              mirrored(support(cone, scale * Vector3(ux, uy, -1)), false));
   }
 }
 

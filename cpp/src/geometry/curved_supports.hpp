@@ -117,11 +117,26 @@ class CylinderSupport final : public SupportFunction {
 // A cone's support: its apex or the rim point of its base, whichever is higher; the comparison
 // rounds by a few u of `h |d_z| + r |d_xy|` and the rim point as the cylinder's: under 20u of
 // `outer_radius() |d|` in all.
+//
+// For a radius and a half-length within [2^-200, 2^200] (tame_) and a direction whose largest
+// component is within [2^-100, 2^100], the direction itself rather than unit_scaled's d / 2^e:
+// the point reads unit_in_plane's quotients, the same numbers for both (as the cylinder's), and
+// the comparison of `h d_z` with `r (u . d_xy) - h d_z`, whose products and sums all scale by the
+// power of two exactly while they are normal (they lie within [2^-300, 2^300] times a quotient):
+// the same comparison, so the same point. (Only a component of at most 2^-700 of the largest might
+// round otherwise, subnormal in one scaling: a term below half an ulp of the others either way.)
+// The exponent, its power and the product were a third of the support's instructions.
 class ConeSupport final : public SupportFunction {
  public:
-  ConeSupport(Scalar radius, Scalar half_length) : r_(radius), h_(half_length) {}
+  ConeSupport(Scalar radius, Scalar half_length)
+      : r_(radius),
+        h_(half_length),
+        tame_(std::min(radius, half_length) >= 0x1p-200 &&
+              std::max(radius, half_length) <= 0x1p200) {}
   Vector3 support(const Vector3& direction) const override {
-    const Vector3 d = unit_scaled(direction);
+    const Scalar largest = direction.cwiseAbs().maxCoeff();
+    const bool plain = tame_ && largest >= 0x1p-100 && largest <= 0x1p100;
+    const Vector3 d = plain ? direction : unit_scaled(direction);
     const auto in_plane = unit_in_plane(d.x(), d.y());
     const Scalar apex = h_ * d.z();
     const Scalar rim = r_ * (in_plane.x() * d.x() + in_plane.y() * d.y()) - h_ * d.z();
@@ -155,6 +170,7 @@ class ConeSupport final : public SupportFunction {
  private:
   Scalar r_;
   Scalar h_;
+  bool tame_;
 };
 
 // An ellipsoid's support `R^2 d / |R d|` (R = diag(radii)), as `R u` with u the unit vector along

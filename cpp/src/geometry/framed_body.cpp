@@ -125,10 +125,10 @@ CurvedKind curved_kind(const SupportFunction& shape) {
 
 int FramedBody::curved_support(const Vector3& local) const { return inline_curved_support(local); }
 
-Vector3 FramedBody::curved_support_point(const Vector3& local) const {
-  // The coordinates the cache would store (-0 + 0 = +0), placed as vertex() places them.
-  return use_curved_support(
-      local, [this](const Vector3& point) { return placed(point + Vector3::Zero()); });
+Vector3 FramedBody::curved_local_support(const Vector3& local) const {
+  // The coordinates the cache would store (-0 + 0 = +0).
+  return use_curved_support(local,
+                            [](const Vector3& point) { return Vector3(point + Vector3::Zero()); });
 }
 
 int FramedBody::add_point(const Vector3& frame_point) const {

@@ -162,7 +162,15 @@ class FramedBody {
   /// The point `vertex(local_support_index(local))` of a curved body (`local` a direction in its
   /// own frame), the same coordinates, without numbering it among the body's points: for a closed
   /// form that reports no weights over the shape (point_against_curved).
-  Vector3 curved_support_point(const Vector3& local) const;
+  Vector3 curved_support_point(const Vector3& local) const {
+    return placed(curved_local_support(local));
+  }
+  /// That point in the body's own frame, centred on its box, before it is placed: the
+  /// coordinates the body's points would hold (-0 as +0).
+  Vector3 curved_local_support(const Vector3& local) const;
+  /// A point of the body's own frame, centred on its box, placed in the frame as `vertex()`
+  /// places the body's points.
+  Vector3 placed_point(const Vector3& centred) const { return placed(centred); }
   /// `support_index(d, start)`, the same index, with a curved body's support and a small body's
   /// scan always inline: for the curved pairs' searches (curved_search.cpp), whose oracles ask
   /// two per step (a curved support out of line cost 16 of its 117 instructions in the call and

@@ -54,23 +54,24 @@ inline void require(Method method, Capability capability, const char* query) {
   }
 }
 
-/// Throws std::invalid_argument naming the methods that answer curved shapes, for a method that
-/// cannot (`curved` is the curved body).
-[[noreturn]] void refuse_curved(Method method, const ConvexPolyhedron* curved);
+/// Throws std::invalid_argument naming the methods that answer curved shapes when `method` is
+/// not one of them (`curved` is the curved body the message names); reads
+/// the dispatch table (method_info's table, behind its static's guard and a call, was 45
+/// instructions of every curved query). Out of line (methods.cpp): inline, its table read changed
+/// the code of the polytope queries around it (a distance 1 instruction longer).
+void require_curved_capable(Method method, const ConvexPolyhedron* curved);
 
 /// Throws std::invalid_argument when `method` cannot answer a pair with the curved body `a` or
 /// `b` (ConvexPolyhedron::curved), naming the methods that can. Cheap for polyhedra.
 inline void require_shapes(Method method, const ConvexPolyhedron& a, const ConvexPolyhedron& b) {
   if (!a.curved() && !b.curved()) return;
-  if (method_info(method).capabilities & kCurvedShapes) return;
-  refuse_curved(method, a.curved() ? &a : &b);
+  require_curved_capable(method, a.curved() ? &a : &b);
 }
 
 /// The same for compound bodies with curved parts (CompoundBody::curved_part).
 inline void require_parts(Method method, const CompoundBody& a, const CompoundBody& b) {
   const ConvexPolyhedron* curved = a.curved_part() ? a.curved_part() : b.curved_part();
-  if (!curved || method_info(method).capabilities & kCurvedShapes) return;
-  refuse_curved(method, curved);
+  if (curved) require_curved_capable(method, curved);
 }
 
 /// What Query answers between the convex bodies of `pair` (framed, so with their poses checked)

@@ -286,7 +286,10 @@ namespace detail {
 
 void refuse_method(Method) { throw std::invalid_argument("unknown method"); }
 
-void refuse_curved(Method method, const ConvexPolyhedron* curved) {
+namespace {
+
+// The message of require_curved_capable.
+[[noreturn]] void refuse_curved(Method method, const ConvexPolyhedron* curved) {
   std::string able;
   for (const MethodInfo& e : entries()) {
     if (e.capabilities & kCurvedShapes)
@@ -297,6 +300,12 @@ void refuse_curved(Method method, const ConvexPolyhedron* curved) {
                               curved->curved()->name() +
                               " is a curved shape defined by its support function: use method " +
                               able + ", which answer every pair of shapes");
+}
+
+}  // namespace
+
+void require_curved_capable(Method method, const ConvexPolyhedron* curved) {
+  if (!(method_dispatch(method).capabilities & kCurvedShapes)) refuse_curved(method, curved);
 }
 
 }  // namespace detail

@@ -13,6 +13,14 @@ namespace swarmcollide::detail {
 
 namespace {
 
+// How the support point along Nearest::second follows from the one along `first`, exactly, by a
+// symmetry of the support function (curved_supports.hpp): none, the same point with its height
+// negated (a cylinder's rim points above each other: the support reads only the sign of d_z), or
+// with its x and y negated (rim points across a cap or a cone's base: unit_in_plane and
+// unit_scaled see the same magnitudes, each quotient and product only changes sign, and a cone's
+// comparison of apex and rim reads the same numbers).
+enum class Mirror { none, height, across };
+
 // What the closed form chooses, in the shape's own frame: the outward normal at the nearest
 // surface point, and that point as `weight` of the support point along `first` and `1 - weight`
 // of the one along `second` (both points of the shape, with kInward's pull).
@@ -21,8 +29,23 @@ struct Nearest {
   Vector3 normal = Vector3::Zero();
   Vector3 first = Vector3::Zero();
   Vector3 second = Vector3::Zero();
+  Mirror mirror = Mirror::none;
   Scalar weight = 1;
 };
+
+// The support point along `nearest.second` in the shape's own frame, `first` being the one along
+// `nearest.first`: mirrored when a symmetry gives it (the same coordinates as the support's, with
+// -0 as +0 as the shape's points store them: a support call fewer), else asked.
+Vector3 second_support(const FramedBody& shape, const Nearest& nearest, const Vector3& first) {
+  switch (nearest.mirror) {
+    case Mirror::height:
+      return {first.x(), first.y(), -first.z() + 0};
+    case Mirror::across:
+      return {-first.x() + 0, -first.y() + 0, first.z()};
+    default:
+      return shape.curved_local_support(nearest.second);
+  }
+}
 
 // The unit vector along (x, y) in the plane, or the x axis on the z axis (every azimuth is as
 // near there).
@@ -64,11 +87,13 @@ Nearest cylinder_nearest(const Vector3& p, Scalar r, Scalar h) {
     n.normal = {ux, uy, 0};
     n.first = {ux, uy, 1};
     n.second = {ux, uy, -1};
+    n.mirror = Mirror::height;
     n.weight = std::clamp((p.z() + h) / (2 * h), Scalar(0), Scalar(1));
   } else if (!side) {
     n.normal = {0, 0, s};
     n.first = {ux, uy, s};
     n.second = {-ux, -uy, s};
+    n.mirror = Mirror::across;
     n.weight = std::clamp((1 + rho / r) / 2, Scalar(0), Scalar(1));
   } else {
     n.normal = away_from(p, Vector3(r * ux, r * uy, s * h));
@@ -92,6 +117,7 @@ Nearest cone_nearest(const Vector3& p, Scalar r, Scalar h) {
     n.normal = {0, 0, -1};
     n.first = rim_direction;
     n.second = {-ux, -uy, -1};
+    n.mirror = Mirror::across;
     n.weight = std::clamp((1 + rho / r) / 2, Scalar(0), Scalar(1));
     return n;
   }
@@ -207,12 +233,13 @@ std::optional<Answer> point_against_curved(const FramedPair& pair, Goal goal,
   // The witness on the shape: the combination of its support points, found without numbering
   // them among the shape's points (weights over a curved body's points are never reported, so
   // the shape's side has none). The point's weights are those of each support point.
-  const Vector3 first = shape.curved_support_point(nearest.first);
+  const Vector3 first_local = shape.curved_local_support(nearest.first);
+  const Vector3 first = shape.placed_point(first_local);
   Vector3 witness = first;
   std::array<Scalar, ConvexWeights::kSparseCapacity> weights{1, 0, 0, 0};
   int size = 1;
   if (nearest.weight < 1) {
-    const Vector3 second = shape.curved_support_point(nearest.second);
+    const Vector3 second = shape.placed_point(second_support(shape, nearest, first_local));
     if (second != first) {
       weights = {nearest.weight, 1 - nearest.weight, 0, 0};
       size = 2;
