@@ -450,7 +450,9 @@ class MotionCheck {
             // at 1, and with kRemeasured 0.15, 15.91 at 0.8, 15.37 at 0.6, 15.54 at 0.5, 15.95
             // at 0.4: samples of either kind per edge 56.9, 54.0, 53.9, 54.7.)
             const Scalar rho = std::min<Scalar>(1, low.forward / before);
-            const Scalar far = detail::advanced(t, 0.6 * rho / (2 - rho) * low.forward);
+            Scalar far = detail::advanced(t, 0.6 * rho / (2 - rho) * low.forward);
+            const Scalar end = std::min(limit, 1 - plan.from_end);
+            if (t < end) far = std::min(far, t + (end - t) / 2);
             if (far > t && far < limit) {
               before = low.forward;
               ahead.push_back(sample(pair, plan, far, horizon));
