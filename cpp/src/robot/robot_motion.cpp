@@ -460,7 +460,7 @@ class MotionCheck {
             // 134.60M, at most 0.6 134.85M, halfway only where `far` is past `end` 135.82M; the
             // sample after a query at t = 0 taken so too, 133.24M -> 132.65M.)
             const Scalar rho = before < kInfinity ? std::min<Scalar>(1, low.forward / before) : 1;
-            Scalar far = detail::advanced(t, 0.6 * rho / (2 - rho) * low.forward);
+            Scalar far = detail::advanced(t, 1.3 * rho / (2 - rho) * low.forward);
             const Scalar end = std::min(limit, 1 - plan.from_end);
             if (t < end) far = std::min(far, t + (end - t) / 2);
             if (far > t && far < limit) {
