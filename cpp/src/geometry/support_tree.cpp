@@ -34,16 +34,15 @@ void SupportTree::build(const VertexMatrix& points, int index, int begin, int en
     high = high.cwiseMax(points.row(order_[k]).transpose());
   }
   const Vector3 centre = low / 2 + high / 2;
-  // |x_k - centre_k| as computed is within a roundoff of the exact one; d . x <= d . centre +
-  // sum_k |d_k| |x_k - centre_k|, where d . centre and the sum as computed are each within
-  // 3.01u |d| times |centre| (|half_side|) of the exact ones, and their sum within 2u.
-  Vector3 half_side = Vector3::Zero();
+  // |x - centre| as computed is within 4 roundoffs of the exact distance (one rounding per
+  // difference, then the norm); d . x <= d . centre + |d| |x - centre|, and d . centre as
+  // computed is within 3.01u |d| |centre|, the final product and sum within 2u of their terms.
+  Scalar radius = 0;
   for (int k = begin; k < end; ++k) {
-    half_side = half_side.cwiseMax((points.row(order_[k]).transpose() - centre).cwiseAbs());
+    radius = std::max(radius, (points.row(order_[k]).transpose() - centre).norm());
   }
-  half_side *= 1 + 8 * kRoundoff;
-  nodes_[index] = {centre,     half_side, 8 * kRoundoff * (centre.norm() + half_side.norm()),
-                   begin,      end,       -1};
+  radius *= 1 + 8 * kRoundoff;
+  nodes_[index] = {centre, radius + 8 * kRoundoff * (centre.norm() + radius), begin, end, -1};
   if (end - begin <= kLeafSize) return;
   int axis = 0;
   (high - low).maxCoeff(&axis);
@@ -63,10 +62,7 @@ int SupportTree::support_index(const VertexMatrix& points, const Vector3& d, int
   Scalar highest = point_height(points, best, d);
   // An upper bound on |d|: the norm is within 2u of the exact one.
   const Scalar length = d.norm() * (1 + 4 * kRoundoff);
-  const Vector3 magnitude = d.cwiseAbs();
-  const auto bound = [&](const Node& node) {
-    return node.centre.dot(d) + (magnitude.dot(node.half_side) + length * node.rounding);
-  };
+  const auto bound = [&](const Node& node) { return node.centre.dot(d) + length * node.reach; };
   // Depth-first, the child of larger bound first; the stack holds at most one sibling per level.
   std::array<int, 128> stack;
   int size = 0;

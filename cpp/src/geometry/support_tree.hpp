@@ -8,8 +8,8 @@
 
 namespace swarmcollide::detail {
 
-/// The points grouped into nested boxes (a median split along the longest side of each box, down
-/// to leaves of a few points), so that a support query proven as a scan's visits only the boxes
+/// The points grouped into nested balls (a median split along the longest side of each box, down
+/// to leaves of a few points), so that a support query proven as a scan's visits only the balls
 /// that can rise above the best point found: near the top of a large body, a few dozen points
 /// instead of all of them.
 class SupportTree {
@@ -26,15 +26,9 @@ class SupportTree {
  private:
   struct Node {
     Vector3 centre;
-    // The box's half sides, rounded up: every point x of the node has |x_k - centre_k| <=
-    // half_side_k. A box, not the ball around it: a leaf of points on a body's surface is a thin
-    // box across the normal there, whose bound along that normal barely rises above its points,
-    // where the ball's rises by the patch's radius (on 300 mesh hulls the ball tree read about
-    // twice the nodes).
-    Vector3 half_side;
-    // Added to |d| times itself, above d . centre + |d| . half_side as computed, it bounds the
-    // exact heights of every point of the node: the rounding of those products and sums.
-    Scalar rounding;
+    // Added to |d| times itself, above d . centre as computed, it bounds the exact heights of
+    // every point of the node: the ball's radius plus the rounding of that product and sum.
+    Scalar reach;
     int begin;  // the node's points are order_[begin, end)
     int end;
     int first_child;  // -1 for a leaf; the children are first_child and first_child + 1
