@@ -44,7 +44,7 @@ int scan_columns_avx2(const double* columns, int count, double dx, double dy, do
   };
   // Up to eight points (the searches' small bodies, scanned at every step) in registers, without
   // the loops and the heights' stores and loads: a quarter of a 4-point scan's instructions.
-  if (count <= 8) {
+  if (count <= kFewColumns) {
     const __m256d low = heights_at(0);
     const __m256d high = count > 4 ? heights_at(4) : low;
     if (_mm256_movemask_pd(_mm256_cmp_pd(low, high, _CMP_UNORD_Q)) != 0) {
@@ -83,7 +83,7 @@ int scan_columns_avx2(const double* columns, int count, double dx, double dy, do
 // -Wmaybe-uninitialized reports in every caller.
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-// A body of up to eight points in one step.
+// Eight points a step (scan_columns gives bodies of up to kFewColumns points to AVX2's scan).
 int scan_columns_avx512(const double* columns, int count, double dx, double dy, double dz) {
   const double* x = columns;
   const double* y = x + kColumnCapacity;
