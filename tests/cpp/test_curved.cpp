@@ -376,6 +376,57 @@ TEST(Curved, ClosedFormWitnessesLieOnTheShapeAndTheBall) {
   }
 }
 
+// A ball whose centre lies inside a cylinder or a cone: the closed form answers its signed
+// distance (point_against_curved, one iteration) rather than the penetration solver, either way
+// round, with the centre on the axis, at the shape's middle, and nearest the mantle, a cap, the
+// base or the slant. The bounds enclose the point's depth less the radius, certified, and the
+// witness on the shape lies on its surface, the ball's witness its surface point along the
+// normal: `point_b - point_a = distance * direction`.
+TEST(Curved, BallCentresInsideAreAnsweredByTheClosedForm) {
+  Random rng(37);
+  for (int trial = 0; trial < 40; ++trial) {
+    const Scalar r = rng.uniform(0.2, 2);
+    const Scalar h = rng.uniform(0.2, 2);
+    const Sphere ball(rng.uniform(0.05, 0.5));
+    const Matrix3 turn = rng.rotation();
+    const Pose pose_shape = at(rng.vector(1), turn);
+    // Points of the cylinder: on its axis, at its middle, or anywhere inside. The cone holds
+    // those below its slant.
+    Vector3 local(rng.uniform(-r, r), rng.uniform(-r, r), rng.uniform(-h, h));
+    if (trial % 8 == 0) local.head<2>().setZero();
+    if (trial % 16 == 8) local.setZero();
+    if (local.head<2>().norm() >= r) local.head<2>() *= 0.5;
+    const bool in_cone = 2 * h * local.head<2>().norm() < r * (h - local.z());
+    const Pose pose_ball = at(turn * local + pose_shape.translation);
+    const Cylinder cylinder(r, h);
+    const Cone cone(r, h);
+    for (const ConvexPolyhedron* shape : {static_cast<const ConvexPolyhedron*>(&cylinder),
+                                          static_cast<const ConvexPolyhedron*>(&cone)}) {
+      const bool is_cone = shape == &cone;
+      if (is_cone && !in_cone) continue;
+      SCOPED_TRACE(::testing::Message() << shape->curved()->name() << " trial " << trial);
+      const Scalar expected =
+          (is_cone ? point_to_cone(local, r, h) : point_to_cylinder(local, r, h)) - ball.radius();
+      const Scalar size = size_of(*shape, pose_shape, ball, pose_ball);
+      for (bool shape_first : {true, false}) {
+        const DistanceResult d = shape_first
+                                     ? Query().signed_distance(*shape, pose_shape, ball, pose_ball)
+                                     : Query().signed_distance(ball, pose_ball, *shape, pose_shape);
+        expect_answer(d, expected, size);
+        EXPECT_EQ(d.iterations, 1);
+        EXPECT_TRUE(d.colliding);
+        const Vector3 on_shape = shape_first ? d.point_a : d.point_b;
+        const Vector3 on_ball = shape_first ? d.point_b : d.point_a;
+        const Vector3 in_frame = turn.transpose() * (on_shape - pose_shape.translation);
+        EXPECT_NEAR(is_cone ? point_to_cone(in_frame, r, h) : point_to_cylinder(in_frame, r, h),
+                    0, 1e-12 * size);
+        EXPECT_NEAR((on_ball - pose_ball.translation).norm(), ball.radius(), 1e-12 * size);
+        EXPECT_LT((d.point_b - d.point_a - d.distance * d.direction).norm(), 1e-12 * size);
+      }
+    }
+  }
+}
+
 TEST(Curved, CoaxialAndSideBySideCylinders) {
   const Cylinder a(1, 2);
   const Cylinder b(0.5, 1);

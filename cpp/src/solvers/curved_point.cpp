@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "../geometry/curved_depth.hpp"
 #include "../geometry/normalise.hpp"
 #include "../queries/verdict.hpp"
 #include "exact_solver.hpp"
@@ -71,18 +72,15 @@ Vector3 away_from(const Vector3& p, const Vector3& q) {
 // A cylinder of radius r from z = -h to h: beside its side, the point at the same height on the
 // generator (between the two rim points of the point's azimuth); above or below a cap, the point
 // straight above on it (between the rim points along and against the azimuth); past a rim, the
-// rim point.
+// rim point. Inside, the nearer of the generator's point and the cap's.
 Nearest cylinder_nearest(const Vector3& p, Scalar r, Scalar h) {
   Nearest n;
   Scalar ux, uy, rho;
   azimuth(p.x(), p.y(), ux, uy, rho);
-  const bool side = rho > r;
-  const bool beyond_cap = std::abs(p.z()) > h;
+  n.inside = !(rho > r) && !(std::abs(p.z()) > h);
+  const bool side = n.inside ? r - rho <= h - std::abs(p.z()) : rho > r;
+  const bool beyond_cap = n.inside ? !side : std::abs(p.z()) > h;
   const Scalar s = p.z() < 0 ? -1 : 1;
-  if (!side && !beyond_cap) {
-    n.inside = true;
-    return n;
-  }
   if (side && !beyond_cap) {
     n.normal = {ux, uy, 0};
     n.first = {ux, uy, 1};
@@ -121,14 +119,29 @@ Nearest cone_nearest(const Vector3& p, Scalar r, Scalar h) {
     n.weight = std::clamp((1 + rho / r) / 2, Scalar(0), Scalar(1));
     return n;
   }
-  // Inside: above the base and below the slant's line, 2h rho < r (h - z).
-  if (z > -h && 2 * h * rho < r * (h - z)) {
-    n.inside = true;
-    return n;
-  }
   // The slant from the rim (r, -h) along (-r, 2h) to the apex.
   const Scalar along = -r * (rho - r) + 2 * h * (z + h);
   const Scalar length_squared = r * r + 4 * h * h;
+  // Inside: above the base and below the slant's line, 2h rho < r (h - z). The nearer of the
+  // point straight under on the base and the foot on the slant, which lies between the rim and
+  // the apex (the triangle's angles there are acute).
+  if (z > -h && 2 * h * rho < r * (h - z)) {
+    n.inside = true;
+    const Scalar slant = std::sqrt(length_squared);
+    if (z + h <= (r * (h - z) - 2 * h * rho) / slant) {
+      n.normal = {0, 0, -1};
+      n.first = rim_direction;
+      n.second = {-ux, -uy, -1};
+      n.mirror = Mirror::across;
+      n.weight = std::clamp((1 + rho / r) / 2, Scalar(0), Scalar(1));
+    } else {
+      n.normal = Vector3(2 * h * ux, 2 * h * uy, r) / slant;
+      n.first = rim_direction;
+      n.second = apex_direction;
+      n.weight = std::clamp(1 - along / length_squared, Scalar(0), Scalar(1));
+    }
+    return n;
+  }
   if (along <= 0) {
     n.normal = away_from(p, Vector3(r * ux, r * uy, -h));
     n.first = rim_direction;
@@ -220,16 +233,19 @@ std::optional<Answer> point_against_curved(const FramedPair& pair, Goal goal,
       break;
     }
   }
-  if (nearest.inside) {
-    if (goal != Goal::signed_distance) return std::nullopt;
-    // The closed-form depth of the point in the shape proves the overlap and bounds its depth;
-    // the separation along the nearest surface's normal bounds it the other way.
+  // A point inside is answered for a signed distance only (the searches prove an overlap for the
+  // other goals): by the penetration solver, where no closed form below settles it.
+  if (nearest.inside && goal != Goal::signed_distance) return std::nullopt;
+  const auto penetration = [&] {
     Answer overlap = exact_penetration(pair, max_iterations, pair.b.offset() - pair.a.offset(),
                                        std::numeric_limits<Scalar>::infinity());
     overlap.intersection_proven = overlap.upper + kFrameRounding < 0;
     return overlap;
+  };
+  if (!(nearest.normal.squaredNorm() > 0)) {
+    if (nearest.inside) return penetration();
+    return std::nullopt;
   }
-  if (!(nearest.normal.squaredNorm() > 0)) return std::nullopt;
   // The witness on the shape: the combination of its support points, found without numbering
   // them among the shape's points (weights over a curved body's points are never reported, so
   // the shape's side has none). The point's weights are those of each support point.
@@ -249,7 +265,17 @@ std::optional<Answer> point_against_curved(const FramedPair& pair, Goal goal,
   Answer answer;
   answer.point_a = curved_a ? witness : p;
   answer.point_b = curved_a ? p : witness;
-  answer.upper = (answer.point_b - answer.point_a).norm();
+  if (nearest.inside) {
+    // The depth the shape's closed form proves (SupportFunction::depth_of, with the frame's
+    // rounding: curved_depth.hpp) bounds the signed distance above, as the penetration solver's
+    // proof; the separation along the nearest surface's normal below, as outside.
+    const Scalar depth = closed_form_depth(pair.a, pair.b).depth;
+    if (!(depth > 0)) return penetration();
+    answer.upper = -depth;
+    answer.intersection_proven = answer.upper + kFrameRounding < 0;
+  } else {
+    answer.upper = (answer.point_b - answer.point_a).norm();
+  }
   (curved_a ? answer.weights_b : answer.weights_a) =
       ConvexWeights(point.size(), {0, 0, 0, 0}, weights, size);
   // The normal in the frame, from A to B.
@@ -264,7 +290,10 @@ std::optional<Answer> point_against_curved(const FramedPair& pair, Goal goal,
   answer.direction = normal;
   answer.iterations = 1;
   answer.evaluations = size + 1;
-  if (!goal_reached(pair, goal, answer.lower, answer.upper, false)) return std::nullopt;
+  if (!goal_reached(pair, goal, answer.lower, answer.upper, false)) {
+    if (nearest.inside) return penetration();
+    return std::nullopt;
+  }
   return answer;
 }
 
