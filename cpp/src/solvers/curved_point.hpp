@@ -20,8 +20,10 @@ namespace swarmcollide::detail {
 /// bounds come from the certificate machinery as any search's: the upper one is the distance to
 /// that combination (support points are points of the shape, so is their combination), the lower
 /// one the separation along the normal, measured with the shape's support function (its support
-/// error taken off by rounded.hpp). A point inside is answered by the penetration solver, whose
-/// closed-form depth (curved_depth.hpp) proves it.
+/// error taken off by rounded.hpp). A point inside a cylinder or a cone is answered the same way,
+/// the nearest surface point the nearer of the mantle and a cap (of the base and the slant), the
+/// upper bound minus the depth that the shape's closed form proves (curved_depth.hpp); inside an
+/// ellipsoid, or where that leaves the goal unmet, by the penetration solver.
 std::optional<Answer> point_against_curved(const FramedPair& pair, Goal goal,
                                            int max_iterations);
 
