@@ -415,6 +415,33 @@ TEST(FramedBodies, ExactSupportIsTheLargestHeightInTheFrame) {
   }
 }
 
+// A small body's inline scan in its own frame (the fcl method's recovery of FCL's simplex) is its
+// support scan: the same index along any direction, ties (a cube's faces and edges along the
+// axes and diagonals) included.
+TEST(FramedBodies, ASmallBodysInlineLocalScanIsItsSupportScan) {
+  Random rng(13);
+  const ConvexPolyhedron cube = unit_cube();
+  const ConvexPolyhedron four = rng.body(4);
+  const ConvexPolyhedron many = rng.body(32);
+  const detail::FramedPair pair =
+      detail::frame_pair(cube, Pose{rng.rotation(), rng.vector()}, four, Pose{}, 1e-9);
+  const detail::FramedPair other = detail::frame_pair(many, Pose{}, cube, Pose{}, 1e-9);
+  std::vector<Vector3> directions;
+  for (int k = 0; k < 3; ++k) {
+    directions.push_back(Vector3::Unit(k));
+    directions.push_back(-Vector3::Unit(k));
+  }
+  directions.push_back(Vector3(1, 1, 0));
+  directions.push_back(Vector3(-1, 1, 1));
+  for (int n = 0; n < 200; ++n) directions.push_back(rng.unit());
+  for (const detail::FramedBody* body : {&pair.a, &pair.b, &other.a, &other.b}) {
+    ASSERT_TRUE(body->scanned());
+    for (const Vector3& local : directions) {
+      EXPECT_EQ(body->scanned_local_support_index(local), body->local_support_index(local, -1));
+    }
+  }
+}
+
 // Two framings of a pair agree field by field: a pair re-placed by KeptPair must be the pair
 // frame_turned_pair makes, so that a batch's answers are the same bit for bit.
 void expect_same_framing(const detail::FramedPair& kept, const detail::FramedPair& fresh) {

@@ -2,6 +2,8 @@
 
 #include <fcl/narrowphase/detail/convexity_based_algorithm/gjk.h>
 
+#include <limits>
+
 #include "../queries/verdict.hpp"
 #include "exact_solver.hpp"
 #include "fcl_shape.hpp"
@@ -15,14 +17,16 @@ namespace {
 // GJK's stopping threshold in frame units (the bodies lie in the unit ball): relative precision
 // near double's; whatever GJK leaves unproven goes to the exact solver.
 constexpr Scalar kGjkTolerance = 1e-14;
-// FCL's GJK on the pair; on return `gjk` holds its final simplex in A's shape frame.
+// FCL's GJK on the pair; on return `gjk` holds its final simplex in A's shape frame, and
+// `gjk.shape` the pair's Minkowski difference. That difference is set up in `gjk.shape` itself,
+// which `evaluate` copies onto itself: a difference of its own cost a constructor's call more.
 fcl::detail::GJK<Scalar>::Status run_gjk(const FramedPair& pair, const fcl::ShapeBased& a,
-                                         const fcl::ShapeBased& b, fcl::detail::GJK<Scalar>& gjk,
-                                         fcl::detail::MinkowskiDiff<Scalar>& difference) {
+                                         const fcl::ShapeBased& b, fcl::detail::GJK<Scalar>& gjk) {
   // B's placement seen from A's shape frame, and directions from there into B's, from the
   // rotations themselves (no 4 x 4 transforms to build, invert and multiply).
   const Matrix3& rotation_a = pair.a.rotation();
   const Matrix3& rotation_b = pair.b.rotation();
+  fcl::detail::MinkowskiDiff<Scalar>& difference = gjk.shape;
   difference.shapes[0] = &a;
   difference.shapes[1] = &b;
   difference.toshape1.noalias() = rotation_b.transpose() * rotation_a;
@@ -33,6 +37,13 @@ fcl::detail::GJK<Scalar>::Status run_gjk(const FramedPair& pair, const fcl::Shap
   Vector3 guess = -difference.toshape0.translation();
   if (!(guess.norm() > 0)) guess = Vector3::UnitX();
   return gjk.evaluate(difference, guess);
+}
+
+// The index of `body`'s support point along `local`, a direction in its own frame: a small
+// body's scan inline, without the tests of its kind, else local_support_index's.
+[[gnu::always_inline]] inline int support_along(const FramedBody& body, const Vector3& local) {
+  return body.scanned() ? body.scanned_local_support_index(local)
+                        : body.local_support_index(local, -1);
 }
 
 // The answer along the line between the bodies' centres: its separation (the lower bound) and
@@ -71,8 +82,7 @@ Answer solve_fcl(const FramedPair& pair, const QueryOptions& options, Goal goal)
   using Gjk = fcl::detail::GJK<Scalar>;
   const int max_iterations = options.exact.max_iterations;
   Gjk gjk(static_cast<unsigned int>(max_iterations), kGjkTolerance);
-  fcl::detail::MinkowskiDiff<Scalar> difference;
-  const Gjk::Status status = run_gjk(pair, shape_a, shape_b, gjk, difference);
+  const Gjk::Status status = run_gjk(pair, shape_a, shape_b, gjk);
   // FCL's simplex as the bodies' own points: the support indices along each simplex vertex's
   // direction, found in the bodies' own frames as the solvers find them: on a small body a scan
   // of its points by coordinate, two heights at a time (a single pass for all the directions, one
@@ -90,9 +100,9 @@ Answer solve_fcl(const FramedPair& pair, const QueryOptions& options, Goal goal)
     const Scalar weight = simplex.p[k];
     if (!(weight > 0)) continue;  // a point the last projection gave no weight
     const Vector3& along_a = simplex.c[k]->d;
-    const Vector3 along_b = -(difference.toshape1 * along_a);
-    const int ia = pair.a.local_support_index(along_a, -1);
-    const int ib = pair.b.local_support_index(along_b, -1);
+    const Vector3 along_b = -(gjk.shape.toshape1 * along_a);
+    const int ia = support_along(pair.a, along_a);
+    const int ib = support_along(pair.b, along_b);
     total += weight;
     // Two of FCL's points may be the same pair of vertices: one corral point, their weights
     // summed.
@@ -100,10 +110,14 @@ Answer solve_fcl(const FramedPair& pair, const QueryOptions& options, Goal goal)
     while (same < corral.size && !(corral.corral[same].ia == ia && corral.corral[same].ib == ib))
       ++same;
     if (same == corral.size) {
-      corral.corral[corral.size++] = {Vector3::Zero(), ia, ib};
-      corral.weights[same] = 0;
+      // Its Minkowski point stays zero until place_corral places it.
+      corral.corral[same].ia = ia;
+      corral.corral[same].ib = ib;
+      corral.weights[same] = weight;
+      ++corral.size;
+    } else {
+      corral.weights[same] += weight;
     }
-    corral.weights[same] += weight;
   }
   for (int k = 0; k < corral.size; ++k) corral.weights[k] /= total;
   // The corral's Minkowski points, placed only for those that read them (the enclosure test, the
@@ -140,8 +154,18 @@ Answer solve_fcl(const FramedPair& pair, const QueryOptions& options, Goal goal)
     }
     const bool contact = witness.encloses_origin || witnesses_contact;
     const bool separated = !contact || goal == Goal::signed_distance;
-    Answer answer = answer_from_corral(pair, corral, witness, separated);
-    if (settles(answer)) return answer;
+    if (!separated) {
+      // Without a separation the answer's lower bound stays Answer's own: whether it settles the
+      // goal is known before it is made, and the answer is made where it is returned (a named
+      // answer returned was moved, 50 instructions of every overlapping pair).
+      const Scalar unmeasured = -std::numeric_limits<Scalar>::infinity();  // Answer's own
+      if (goal_reached(pair, goal, unmeasured, witness.distance, witness.encloses_origin)) {
+        return answer_from_corral(pair, corral, witness, false);
+      }
+    } else {
+      Answer answer = answer_from_corral(pair, corral, witness, true);
+      if (settles(answer)) return answer;
+    }
   }
   // Where FCL's answer does not settle the goal, the exact solver takes over: distances from
   // FCL's simplex (FCL stops when a support point comes within sqrt(its tolerance) of an earlier
