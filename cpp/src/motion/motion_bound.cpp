@@ -1,6 +1,7 @@
 #include "motion_bound.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -28,6 +29,61 @@ Scalar largest_row_norm(const VertexMatrix& points) {
   for (int i = 0; i < points.rows(); ++i) largest = std::max(largest, points.row(i).stableNorm());
   return largest;
 }
+
+// A polyhedron's points at a time t as lines in the time h from t (MotionBound, second order
+// aside): point i is at most rate_i h - depth_i above the core's support plane along a direction,
+// rate_i its speed along that direction at t and depth_i its depth below that plane at t. Kept
+// for polyhedra whose supports are scans of their points, whose pass here costs what a support
+// does.
+class PointLines {
+ public:
+  static bool fits(const ConvexPolyhedron& body) {
+    return !body.curved() && body.size() <= kHillClimbingThreshold;
+  }
+
+  // The body's points moving along the direction at x . turning (times `sense`: -1 going
+  // backwards in time), `facing` the direction in the body's frame. The depths are compared on
+  // the centred points (rounded relative to the body's size) and rounded down.
+  PointLines(const ConvexPolyhedron& body, const Vector3& turning, const Vector3& facing,
+             Scalar sense)
+      : count_(body.size()) {
+    const VertexMatrix& points = body.vertices();
+    const VertexMatrix& centred = body.centred_vertices();
+    Scalar top = -std::numeric_limits<Scalar>::infinity();
+    for (int i = 0; i < count_; ++i) {
+      rate_[i] = sense * points.row(i).dot(turning);
+      depth_[i] = centred.row(i).dot(facing);
+      top = std::max(top, depth_[i]);
+    }
+    for (int i = 0; i < count_; ++i) depth_[i] = (top - depth_[i]) * (1 - 2 * kUnit);
+  }
+
+  // The largest rate of the points on the support plane (depth 0): G's slope at 0.
+  Scalar top_rate() const {
+    Scalar top = -std::numeric_limits<Scalar>::infinity();
+    for (int i = 0; i < count_; ++i) {
+      if (depth_[i] == 0) top = std::max(top, rate_[i]);
+    }
+    return top;
+  }
+
+  // max_i (rate_i h - depth_i); `size` is set to max_i (|rate_i| h + depth_i), which bounds
+  // its rounding in roundoffs.
+  Scalar at(Scalar h, Scalar& size) const {
+    Scalar highest = -std::numeric_limits<Scalar>::infinity();
+    size = 0;
+    for (int i = 0; i < count_; ++i) {
+      highest = std::max(highest, rate_[i] * h - depth_[i]);
+      size = std::max(size, std::abs(rate_[i]) * h + depth_[i]);
+    }
+    return highest;
+  }
+
+ private:
+  std::array<Scalar, kHillClimbingThreshold> rate_;
+  std::array<Scalar, kHillClimbingThreshold> depth_;
+  int count_;
+};
 
 }  // namespace
 
@@ -140,6 +196,9 @@ MotionBound::TurnRates MotionBound::turn_rates(const RigidMotion& motion,
   rates.forward = rate(turning);
   rates.backward = rate(-turning);
   rates.growth = motion.angle() * u.norm() * reach * (1 + 16 * kUnit);
+  rates.shared_forward = rates.shared_backward = slack;
+  rates.turning = turning;
+  rates.facing = turn.transpose() * m;
   if (motion.kind() == MotionKind::screw) {
     // The screw's translation across its axis, R0 Q(t) v_perp, moves the whole body along
     // `towards` at (Q(t)^T m) . v_perp, which changes at most at |w x Q^T m| |v_perp| = |u|
@@ -152,6 +211,8 @@ MotionBound::TurnRates MotionBound::turn_rates(const RigidMotion& motion,
         kUnit * across.norm() * (512 * motion.start_rotation_norm() + 4 * std::abs(slide));
     rates.forward += slide + slide_slack;
     rates.backward += slide_slack - slide;
+    rates.shared_forward += slide + slide_slack;
+    rates.shared_backward += slide_slack - slide;
     rates.growth += u.norm() * across.norm() * (1 + 16 * kUnit);
   }
   return rates;
@@ -178,14 +239,58 @@ MotionBound::Reaches MotionBound::reaches_along(const ConvexPolyhedron& a,
   const TurnRates turn_a = turn_rates(*motion_a_, a, reach_a_, t, n);
   const TurnRates turn_b = turn_rates(*motion_b_, b, reach_b_, t, -n);
   const Scalar growth = (turn_a.growth + turn_b.growth) * (1 + 4 * kUnit);
-  const auto reach = [&](Scalar sense, Scalar rate_a, Scalar rate_b) {
+  const auto reach = [&](Scalar sense, Scalar rate_a, Scalar rate_b, Scalar shared_a,
+                         Scalar shared_b) {
     const Scalar translation = sense * n.dot(closing_);
     const Scalar rate =
         translation + rate_a + rate_b +
         16 * kUnit * (std::abs(translation) + std::abs(rate_a) + std::abs(rate_b)) + slack_;
-    return std::max(reach_over(apart, along(n, sense)), second_order_reach(rate, growth, apart));
+    const Scalar shared =
+        translation + shared_a + shared_b +
+        16 * kUnit * (std::abs(translation) + std::abs(shared_a) + std::abs(shared_b)) + slack_;
+    return std::max({reach_over(apart, along(n, sense)), second_order_reach(rate, growth, apart),
+                     depth_reach(a, turn_a, b, turn_b, sense, shared, growth, apart)});
   };
-  return {reach(1, turn_a.forward, turn_b.forward), reach(-1, turn_a.backward, turn_b.backward)};
+  return {reach(1, turn_a.forward, turn_b.forward, turn_a.shared_forward, turn_b.shared_forward),
+          reach(-1, turn_a.backward, turn_b.backward, turn_a.shared_backward,
+                turn_b.shared_backward)};
+}
+
+Scalar MotionBound::depth_reach(const ConvexPolyhedron& a, const TurnRates& turn_a,
+                                const ConvexPolyhedron& b, const TurnRates& turn_b, Scalar sense,
+                                Scalar shared, Scalar growth, Scalar apart) const {
+  if (!PointLines::fits(a) || !PointLines::fits(b)) return 0;
+  // The computed depths exceed the exact ones by at most the error of two heights each: the
+  // facing direction is within some 300 roundoffs of |R0| of the exact one (as turn_rates'
+  // directions are), and a height within a few roundoffs of the body's size. G is taken that much
+  // higher at every time, 0 included.
+  const auto depth_error = [](const RigidMotion& motion, const ConvexPolyhedron& body) {
+    const Scalar size = body.bounds().centre.stableNorm() + body.bounds().radius;
+    return 2 * kUnit * size * (512 * motion.start_rotation_norm() + 16);
+  };
+  const Scalar offset = depth_error(*motion_a_, a) + depth_error(*motion_b_, b);
+  if (!(offset < apart)) return 0;
+  const PointLines lines_a(a, turn_a.turning, turn_a.facing, sense);
+  const PointLines lines_b(b, turn_b.turning, turn_b.facing, sense);
+  // The time to evaluate G at: where the support points' own second-order model closes the gap
+  // (any time would be proven; this one is G's root while no other point overtakes them).
+  const Scalar top_a = lines_a.top_rate();
+  const Scalar top_b = lines_b.top_rate();
+  const Scalar top = shared + top_a + top_b +
+                     4 * kUnit * (std::abs(shared) + std::abs(top_a) + std::abs(top_b));
+  const Scalar h = second_order_reach(top, growth, apart - offset);
+  if (!(h > 0) || !std::isfinite(h)) return 0;
+  Scalar size_a = 0;
+  Scalar size_b = 0;
+  const Scalar turned = growth * h * h / 2;
+  const Scalar closed =
+      offset + shared * h + lines_a.at(h, size_a) + lines_b.at(h, size_b) + turned;
+  // Each term of the sum is within a few roundoffs of its size, the sum within some of theirs.
+  const Scalar bound =
+      closed + 16 * kUnit * (offset + std::abs(shared) * h + size_a + size_b + turned);
+  Scalar reach = h;
+  if (bound > apart) reach = h * ((apart - offset) / (bound - offset));
+  return reach * (1 - 16 * kUnit);
 }
 
 Scalar MotionBound::along(const Vector3& n, Scalar sense) const {
