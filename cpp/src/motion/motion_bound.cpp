@@ -13,6 +13,9 @@ namespace {
 
 constexpr Scalar kUnit = 0x1p-53;
 
+// Regula falsi steps of depth_reach after its chord.
+constexpr int kDepthRefinements = 1;
+
 // The largest |x| over the rows of `points`. The squares are summed directly, which is exact to a
 // few roundoffs while they stay in the normal range; where the largest square overflows or falls
 // below 2^-960 (bodies beyond about 1e154 or below 1e-144 in size, where squares lose digits or
@@ -280,17 +283,31 @@ Scalar MotionBound::depth_reach(const ConvexPolyhedron& a, const TurnRates& turn
                      4 * kUnit * (std::abs(shared) + std::abs(top_a) + std::abs(top_b));
   const Scalar h = second_order_reach(top, growth, apart - offset);
   if (!(h > 0) || !std::isfinite(h)) return 0;
-  Scalar size_a = 0;
-  Scalar size_b = 0;
-  const Scalar turned = growth * h * h / 2;
-  const Scalar closed =
-      offset + shared * h + lines_a.at(h, size_a) + lines_b.at(h, size_b) + turned;
-  // Each term of the sum is within a few roundoffs of its size, the sum within some of theirs.
-  const Scalar bound =
-      closed + 16 * kUnit * (offset + std::abs(shared) * h + size_a + size_b + turned);
-  Scalar reach = h;
-  if (bound > apart) reach = h * ((apart - offset) / (bound - offset));
-  return reach * (1 - 16 * kUnit);
+  // G at a time, rounded up: each term of the sum is within a few roundoffs of its size, the sum
+  // within some of theirs.
+  const auto closing = [&](Scalar at) {
+    Scalar size_a = 0;
+    Scalar size_b = 0;
+    const Scalar turned = growth * at * at / 2;
+    const Scalar closed =
+        offset + shared * at + lines_a.at(at, size_a) + lines_b.at(at, size_b) + turned;
+    return closed + 16 * kUnit * (offset + std::abs(shared) * at + size_a + size_b + turned);
+  };
+  constexpr Scalar kDown = 1 - 16 * kUnit;
+  const Scalar far = closing(h);
+  if (far <= apart) return h * kDown;
+  // The chord from (0, offset) to (h, far) lies above G: the gap is open until it reaches apart.
+  Scalar near = h * ((apart - offset) / (far - offset)) * kDown;
+  for (int k = 0; k < kDepthRefinements; ++k) {
+    // The chord from (near, G(near)) to (h, far) lies above G in between (regula falsi from
+    // below, each step proven).
+    const Scalar at_near = closing(near);
+    if (!(at_near < apart)) break;
+    const Scalar next = (near + (h - near) * ((apart - at_near) / (far - at_near))) * kDown;
+    if (!(next > near)) break;
+    near = next;
+  }
+  return near;
 }
 
 Scalar MotionBound::along(const Vector3& n, Scalar sense) const {
