@@ -65,7 +65,7 @@ Scalar motion_reach_across(const CompoundBody& body, const Vector3& axis);
 /// Near contact that rate is still the fastest point's, while the separation closes at the rate
 /// of the points on the support planes: advancement then closes the gap by a constant fraction a
 /// step (14 queries a touching turning motion against 3 a translating one, bench/motion.py). Point
-/// by point (`depth_reach`, polyhedra whose supports are scans): a point x of A that lies
+/// by point (`depth_reaches`, polyhedra whose supports are scans): a point x of A that lies
 /// `depth_x` below A's support plane along n at t, moving along n at `rate_x`, is at most
 /// rate_x h + k_A h^2 / 2 - depth_x above that plane after a time h; so the separation shrinks by
 /// at most G(h) = a' h + max_x (rate_x h - depth_x) + max_y (rate_y h - depth_y) + k h^2 / 2 (a'
@@ -119,13 +119,14 @@ class MotionBound {
   };
   static TurnRates turn_rates(const RigidMotion& motion, const ConvexPolyhedron& body,
                               Scalar reach, Scalar t, const Vector3& towards);
-  // The time a gap `apart` lasts at least from the points' own rates and depths (see above),
-  // going forwards (`sense` 1) or backwards (-1), where `shared` is the rate that every point of
-  // both bodies shares (the relative translation along n, the slides, the roundings) and `growth`
-  // k; 0 where the bodies are not both polyhedra whose supports are scans. Rounded down.
-  Scalar depth_reach(const ConvexPolyhedron& a, const TurnRates& turn_a, const ConvexPolyhedron& b,
-                     const TurnRates& turn_b, Scalar sense, Scalar shared, Scalar growth,
-                     Scalar apart) const;
+  // The times a gap `apart` lasts at least from the points' own rates and depths (see above),
+  // forwards and backwards, where `shared_forward` and `shared_backward` are the rates that every
+  // point of both bodies shares (the relative translation along n, the slides, the roundings)
+  // and `growth` k; 0 where the bodies are not both polyhedra whose supports are scans, or where
+  // neither turns. Rounded down.
+  Reaches depth_reaches(const ConvexPolyhedron& a, const TurnRates& turn_a,
+                        const ConvexPolyhedron& b, const TurnRates& turn_b, Scalar shared_forward,
+                        Scalar shared_backward, Scalar growth, Scalar apart) const;
   // The first time at which a gap `apart` closing at `rate` (negative: opening), growing by
   // `growth` per unit of time, can be gone; rounded down.
   static Scalar second_order_reach(Scalar rate, Scalar growth, Scalar apart);
