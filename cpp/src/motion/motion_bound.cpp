@@ -250,10 +250,6 @@ MotionBound::Reaches MotionBound::reaches_along(const ConvexPolyhedron& a,
     return translation + shared_a + shared_b +
            16 * kUnit * (std::abs(translation) + std::abs(shared_a) + std::abs(shared_b)) + slack_;
   };
-  const Reaches depth = depth_reaches(a, turn_a, b, turn_b,
-                                      shared(1, turn_a.shared_forward, turn_b.shared_forward),
-                                      shared(-1, turn_a.shared_backward, turn_b.shared_backward),
-                                      growth, apart);
   const auto reach = [&](Scalar sense, Scalar rate_a, Scalar rate_b) {
     const Scalar translation = sense * n.dot(closing_);
     const Scalar rate =
@@ -261,14 +257,20 @@ MotionBound::Reaches MotionBound::reaches_along(const ConvexPolyhedron& a,
         16 * kUnit * (std::abs(translation) + std::abs(rate_a) + std::abs(rate_b)) + slack_;
     return std::max(reach_over(apart, along(n, sense)), second_order_reach(rate, growth, apart));
   };
-  return {std::max(reach(1, turn_a.forward, turn_b.forward), depth.forward),
-          std::max(reach(-1, turn_a.backward, turn_b.backward), depth.backward)};
+  const Reaches known = {reach(1, turn_a.forward, turn_b.forward),
+                         reach(-1, turn_a.backward, turn_b.backward)};
+  const Reaches depth = depth_reaches(a, turn_a, b, turn_b,
+                                      shared(1, turn_a.shared_forward, turn_b.shared_forward),
+                                      shared(-1, turn_a.shared_backward, turn_b.shared_backward),
+                                      growth, apart, known);
+  return {std::max(known.forward, depth.forward), std::max(known.backward, depth.backward)};
 }
 
 MotionBound::Reaches MotionBound::depth_reaches(const ConvexPolyhedron& a, const TurnRates& turn_a,
                                                 const ConvexPolyhedron& b, const TurnRates& turn_b,
                                                 Scalar shared_forward, Scalar shared_backward,
-                                                Scalar growth, Scalar apart) const {
+                                                Scalar growth, Scalar apart,
+                                                const Reaches& known) const {
   // Without a turn every point of a body moves alike: G is the second-order model already taken.
   if (!PointLines::fits(a) || !PointLines::fits(b) ||
       (turn_a.turning.isZero() && turn_b.turning.isZero())) {
@@ -279,14 +281,15 @@ MotionBound::Reaches MotionBound::depth_reaches(const ConvexPolyhedron& a, const
   // directions are), and a height within a few roundoffs of the body's size. G is taken that much
   // higher at every time, 0 included.
   const auto depth_error = [](const RigidMotion& motion, const ConvexPolyhedron& body) {
-    const Scalar size = body.bounds().centre.stableNorm() + body.bounds().radius;
+    // An overflow to infinity only drops the bound (below).
+    const Scalar size = body.bounds().centre.norm() + body.bounds().radius;
     return 2 * kUnit * size * (512 * motion.start_rotation_norm() + 16);
   };
   const Scalar offset = depth_error(*motion_a_, a) + depth_error(*motion_b_, b);
   if (!(offset < apart)) return {0, 0};
   const PointLines lines_a(a, turn_a.turning, turn_a.facing);
   const PointLines lines_b(b, turn_b.turning, turn_b.facing);
-  const auto reach = [&](Scalar sense, Scalar shared) -> Scalar {
+  const auto reach = [&](Scalar sense, Scalar shared, Scalar longest) -> Scalar {
     // The time to evaluate G at: where the support points' own second-order model closes the
     // gap (any time would be proven; this one is G's root while no other point overtakes them).
     const Scalar top_a = lines_a.top_rate(sense);
@@ -294,7 +297,8 @@ MotionBound::Reaches MotionBound::depth_reaches(const ConvexPolyhedron& a, const
     const Scalar top = shared + top_a + top_b +
                        4 * kUnit * (std::abs(shared) + std::abs(top_a) + std::abs(top_b));
     const Scalar h = second_order_reach(top, growth, apart - offset);
-    if (!(h > 0) || !std::isfinite(h)) return 0;
+    // G is proven no farther than h: not evaluated where the reach known already gets there.
+    if (!(h > longest) || !std::isfinite(h)) return 0;
     // G at a time, rounded up: each term of the sum is within a few roundoffs of its size, the
     // sum within some of theirs.
     const auto closing = [&](Scalar at) {
@@ -322,7 +326,7 @@ MotionBound::Reaches MotionBound::depth_reaches(const ConvexPolyhedron& a, const
     }
     return near;
   };
-  return {reach(1, shared_forward), reach(-1, shared_backward)};
+  return {reach(1, shared_forward, known.forward), reach(-1, shared_backward, known.backward)};
 }
 
 Scalar MotionBound::along(const Vector3& n, Scalar sense) const {

@@ -122,11 +122,12 @@ class MotionBound {
   // The times a gap `apart` lasts at least from the points' own rates and depths (see above),
   // forwards and backwards, where `shared_forward` and `shared_backward` are the rates that every
   // point of both bodies shares (the relative translation along n, the slides, the roundings)
-  // and `growth` k; 0 where the bodies are not both polyhedra whose supports are scans, or where
-  // neither turns. Rounded down.
+  // and `growth` k; 0 where the bodies are not both polyhedra whose supports are scans, where
+  // neither turns, or where they cannot be longer than the `known` reaches. Rounded down.
   Reaches depth_reaches(const ConvexPolyhedron& a, const TurnRates& turn_a,
                         const ConvexPolyhedron& b, const TurnRates& turn_b, Scalar shared_forward,
-                        Scalar shared_backward, Scalar growth, Scalar apart) const;
+                        Scalar shared_backward, Scalar growth, Scalar apart,
+                        const Reaches& known) const;
   // The first time at which a gap `apart` closing at `rate` (negative: opening), growing by
   // `growth` per unit of time, can be gone; rounded down.
   static Scalar second_order_reach(Scalar rate, Scalar growth, Scalar apart);
