@@ -2,7 +2,8 @@
 // along a direction is said to last, forwards and backwards, the bodies' separation along that
 // direction stays positive, for linear and screw motions of polytopes and of a curved shape; and
 // the second-order reach, which reads the bodies' supports along their turning directions, is
-// what makes a grazing turn cheap.
+// what makes a grazing turn cheap; point by point, a point deep behind the support plane does not
+// hold back a slow one on it.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -145,6 +146,44 @@ TEST(MotionBound, APointTurningTowardsAFaceMeetsItNoSoonerThanTheReach) {
         EXPECT_GT(reach, 0.95 * meets) << gap;
       }
     }
+  }
+}
+
+TEST(MotionBound, ACornerNearTheAxisMeetsAFaceAtItsOwnRateNotTheFarEnds) {
+  // A plank 10 long turns about z from 30 to -30 degrees, its far end high above, while it slides
+  // down onto a block under its near end: the corner there closes the gap at about the slide's
+  // speed, while the far end moves along the gap's direction 10 times faster per radian but lies
+  // up to 5 deeper behind the support plane. Point by point the reach is never past the time the
+  // separation is gone and near contact within a few percent of it (farther, the rates' growth,
+  // taken for the whole plank, holds it back); from the supports along the turning directions
+  // alone it was a fraction of it near contact too.
+  const ConvexPolyhedron plank = testing::box(Vector3(0, -0.1, -0.5), Vector3(10, 0.1, 0.5));
+  const ConvexPolyhedron block = testing::box(Vector3(-0.5, -1.75, -1), Vector3(1.5, -1.25, 1));
+  const auto pose = [](Scalar degrees, Scalar down) {
+    return at(Vector3(0, -down, 0),
+              Eigen::AngleAxis<Scalar>(degrees * M_PI / 180, Vector3::UnitZ()).matrix());
+  };
+  const RigidMotion turn(pose(30, 0), pose(-30, 4));
+  const RigidMotion still(at(Vector3::Zero()), at(Vector3::Zero()));
+  const detail::MotionBound bound = bound_of(plank, turn, block, still);
+  const Vector3 n = -Vector3::UnitY();
+  const auto gone = [&](Scalar from) {
+    // The first time after `from` the separation along n is gone, by bisection.
+    Scalar low = from;
+    Scalar high = 1;
+    for (int k = 0; k < 100; ++k) {
+      const Scalar middle = (low + high) / 2;
+      (separation(plank, turn, block, still, n, middle) > 0 ? low : high) = middle;
+    }
+    return low - from;
+  };
+  for (const Scalar t : {0.1, 0.2, 0.28, 0.288}) {
+    const Scalar apart = separation(plank, turn, block, still, n, t);
+    ASSERT_GT(apart, 0);
+    const Scalar exact = gone(t);
+    const Scalar reach = bound.reaches_along(plank, block, t, n, apart).forward;
+    EXPECT_LE(reach, exact) << t;
+    if (t > 0.25) EXPECT_GT(reach, 0.95 * exact) << t;
   }
 }
 

@@ -233,6 +233,28 @@ def test_a_body_turning_about_its_own_long_axis_steps_by_its_width():
     assert turn.iterations <= 4 * slide.iterations + 4
 
 
+def test_a_plank_turning_onto_a_block_steps_by_its_corner():
+    """A plank 10 long turns from 30 to -30 degrees about z, its far end high above, while it
+    slides down onto a block under its near end: the corner there meets the block's face at
+    about the slide's speed, and a bound on each point's own rate and depth behind the support
+    plane steps as for that corner (5 queries; 39 when every point was taken at the fastest
+    one's rate)."""
+    points = np.array([[x, y, z] for x in (0, 10) for y in (-0.1, 0.1) for z in (-0.5, 0.5)])
+    plank, block = sc.ConvexPolyhedron(points), sc.Box([1.0, 0.25, 1.0])
+
+    def pose(degrees, down):
+        return transform(Rotation.from_euler("z", degrees, degrees=True).as_matrix(), [0, -down, 0])
+
+    r = sc.time_of_impact(plank, block, pose_a=(pose(30, 0), pose(-30, 4)),
+                          pose_b=transform(np.eye(3), [0.5, -1.5, 0]))
+    # The corner (0, -0.1) is at height -0.1 cos(30 - 60 t degrees) - 4 t; the face at -1.25.
+    meets = brentq(lambda t: 1.25 - 0.1 * np.cos(np.radians(30 - 60 * t)) - 4 * t, 0, 1)
+    slack = TOLERANCE * motion_size(plank, block) / 3.9  # contact within the tolerance, in time
+    assert r.touches and r.certified and r.t_upper - r.t_lower <= 1e-6
+    assert r.t_lower <= meets and r.t_upper >= meets - slack
+    assert r.iterations <= 8
+
+
 @pytest.mark.parametrize("far", [1e10, 1e160, 1e300])
 def test_bodies_far_apart_are_proven_free(far):
     """Margins on the translations' sizes are taken without squaring them: squares beyond 1e308

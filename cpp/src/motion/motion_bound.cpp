@@ -1,6 +1,7 @@
 #include "motion_bound.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -11,6 +12,9 @@ namespace swarmcollide::detail {
 namespace {
 
 constexpr Scalar kUnit = 0x1p-53;
+
+// Regula falsi steps of depth_reaches after its chord.
+constexpr int kDepthRefinements = 1;
 
 // The largest |x| over the rows of `points`. The squares are summed directly, which is exact to a
 // few roundoffs while they stay in the normal range; where the largest square overflows or falls
@@ -28,6 +32,64 @@ Scalar largest_row_norm(const VertexMatrix& points) {
   for (int i = 0; i < points.rows(); ++i) largest = std::max(largest, points.row(i).stableNorm());
   return largest;
 }
+
+// A polyhedron's points at a time t as lines in the time h from t (MotionBound, second order
+// aside): point i is at most rate_i h - depth_i above the core's support plane along a direction,
+// rate_i its speed along that direction at t and depth_i its depth below that plane at t. Kept
+// for polyhedra whose supports are scans of their points, whose pass here costs what a support
+// does.
+class PointLines {
+ public:
+  static bool fits(const ConvexPolyhedron& body) {
+    return !body.curved() && body.size() <= kHillClimbingThreshold;
+  }
+
+  // The body's points moving along the direction at x . turning going forwards in time (the
+  // opposite going backwards), `facing` the direction in the body's frame. The depths are
+  // compared on the centred points (rounded relative to the body's size) and rounded down. A
+  // body that does not turn (`turning` zero) keeps no points: all of them move alike, and the
+  // support points' line, rate 0 and depth 0, is the highest.
+  PointLines(const ConvexPolyhedron& body, const Vector3& turning, const Vector3& facing)
+      : count_(turning.isZero() ? 0 : body.size()) {
+    const VertexMatrix& points = body.vertices();
+    const VertexMatrix& centred = body.centred_vertices();
+    Scalar top = -std::numeric_limits<Scalar>::infinity();
+    for (int i = 0; i < count_; ++i) {
+      rate_[i] = points.row(i).dot(turning);
+      depth_[i] = centred.row(i).dot(facing);
+      top = std::max(top, depth_[i]);
+    }
+    for (int i = 0; i < count_; ++i) depth_[i] = (top - depth_[i]) * (1 - 2 * kUnit);
+  }
+
+  // The largest rate of the points on the support plane (depth 0), G's slope at 0, going
+  // forwards (`sense` 1) or backwards (-1).
+  Scalar top_rate(Scalar sense) const {
+    if (count_ == 0) return 0;
+    Scalar top = -std::numeric_limits<Scalar>::infinity();
+    for (int i = 0; i < count_; ++i) {
+      if (depth_[i] == 0) top = std::max(top, sense * rate_[i]);
+    }
+    return top;
+  }
+
+  // max_i (sense rate_i h - depth_i); `size` is set to max_i (|rate_i| h + depth_i), which
+  // bounds its rounding in roundoffs.
+  Scalar at(Scalar h, Scalar sense, Scalar& size) const {
+    Scalar highest = count_ == 0 ? 0 : -std::numeric_limits<Scalar>::infinity();
+    size = 0;
+    for (int i = 0; i < count_; ++i) {
+      highest = std::max(highest, sense * rate_[i] * h - depth_[i]);
+      size = std::max(size, std::abs(rate_[i]) * h + depth_[i]);
+    }
+    return highest;
+  }
+
+ private:
+  std::array<Scalar, kHillClimbingThreshold> rate_;
+  std::array<Scalar, kHillClimbingThreshold> depth_;
+  int count_;
+};
 
 }  // namespace
 
@@ -140,6 +202,9 @@ MotionBound::TurnRates MotionBound::turn_rates(const RigidMotion& motion,
   rates.forward = rate(turning);
   rates.backward = rate(-turning);
   rates.growth = motion.angle() * u.norm() * reach * (1 + 16 * kUnit);
+  rates.shared_forward = rates.shared_backward = slack;
+  rates.turning = turning;
+  rates.facing = turn.transpose() * m;
   if (motion.kind() == MotionKind::screw) {
     // The screw's translation across its axis, R0 Q(t) v_perp, moves the whole body along
     // `towards` at (Q(t)^T m) . v_perp, which changes at most at |w x Q^T m| |v_perp| = |u|
@@ -152,6 +217,8 @@ MotionBound::TurnRates MotionBound::turn_rates(const RigidMotion& motion,
         kUnit * across.norm() * (512 * motion.start_rotation_norm() + 4 * std::abs(slide));
     rates.forward += slide + slide_slack;
     rates.backward += slide_slack - slide;
+    rates.shared_forward += slide + slide_slack;
+    rates.shared_backward += slide_slack - slide;
     rates.growth += u.norm() * across.norm() * (1 + 16 * kUnit);
   }
   return rates;
@@ -178,6 +245,11 @@ MotionBound::Reaches MotionBound::reaches_along(const ConvexPolyhedron& a,
   const TurnRates turn_a = turn_rates(*motion_a_, a, reach_a_, t, n);
   const TurnRates turn_b = turn_rates(*motion_b_, b, reach_b_, t, -n);
   const Scalar growth = (turn_a.growth + turn_b.growth) * (1 + 4 * kUnit);
+  const auto shared = [&](Scalar sense, Scalar shared_a, Scalar shared_b) {
+    const Scalar translation = sense * n.dot(closing_);
+    return translation + shared_a + shared_b +
+           16 * kUnit * (std::abs(translation) + std::abs(shared_a) + std::abs(shared_b)) + slack_;
+  };
   const auto reach = [&](Scalar sense, Scalar rate_a, Scalar rate_b) {
     const Scalar translation = sense * n.dot(closing_);
     const Scalar rate =
@@ -185,7 +257,76 @@ MotionBound::Reaches MotionBound::reaches_along(const ConvexPolyhedron& a,
         16 * kUnit * (std::abs(translation) + std::abs(rate_a) + std::abs(rate_b)) + slack_;
     return std::max(reach_over(apart, along(n, sense)), second_order_reach(rate, growth, apart));
   };
-  return {reach(1, turn_a.forward, turn_b.forward), reach(-1, turn_a.backward, turn_b.backward)};
+  const Reaches known = {reach(1, turn_a.forward, turn_b.forward),
+                         reach(-1, turn_a.backward, turn_b.backward)};
+  const Reaches depth = depth_reaches(a, turn_a, b, turn_b,
+                                      shared(1, turn_a.shared_forward, turn_b.shared_forward),
+                                      shared(-1, turn_a.shared_backward, turn_b.shared_backward),
+                                      growth, apart, known);
+  return {std::max(known.forward, depth.forward), std::max(known.backward, depth.backward)};
+}
+
+MotionBound::Reaches MotionBound::depth_reaches(const ConvexPolyhedron& a, const TurnRates& turn_a,
+                                                const ConvexPolyhedron& b, const TurnRates& turn_b,
+                                                Scalar shared_forward, Scalar shared_backward,
+                                                Scalar growth, Scalar apart,
+                                                const Reaches& known) const {
+  // Without a turn every point of a body moves alike: G is the second-order model already taken.
+  if (!PointLines::fits(a) || !PointLines::fits(b) ||
+      (turn_a.turning.isZero() && turn_b.turning.isZero())) {
+    return {0, 0};
+  }
+  // The computed depths exceed the exact ones by at most the error of two heights each: the
+  // facing direction is within some 300 roundoffs of |R0| of the exact one (as turn_rates'
+  // directions are), and a height within a few roundoffs of the body's size. G is taken that much
+  // higher at every time, 0 included.
+  const auto depth_error = [](const RigidMotion& motion, const ConvexPolyhedron& body) {
+    // An overflow to infinity only drops the bound (below).
+    const Scalar size = body.bounds().centre.norm() + body.bounds().radius;
+    return 2 * kUnit * size * (512 * motion.start_rotation_norm() + 16);
+  };
+  const Scalar offset = depth_error(*motion_a_, a) + depth_error(*motion_b_, b);
+  if (!(offset < apart)) return {0, 0};
+  const PointLines lines_a(a, turn_a.turning, turn_a.facing);
+  const PointLines lines_b(b, turn_b.turning, turn_b.facing);
+  const auto reach = [&](Scalar sense, Scalar shared, Scalar longest) -> Scalar {
+    // The time to evaluate G at: where the support points' own second-order model closes the
+    // gap (any time would be proven; this one is G's root while no other point overtakes them).
+    const Scalar top_a = lines_a.top_rate(sense);
+    const Scalar top_b = lines_b.top_rate(sense);
+    const Scalar top = shared + top_a + top_b +
+                       4 * kUnit * (std::abs(shared) + std::abs(top_a) + std::abs(top_b));
+    const Scalar h = second_order_reach(top, growth, apart - offset);
+    // G is proven no farther than h: not evaluated where the reach known already gets there.
+    if (!(h > longest) || !std::isfinite(h)) return 0;
+    // G at a time, rounded up: each term of the sum is within a few roundoffs of its size, the
+    // sum within some of theirs.
+    const auto closing = [&](Scalar at) {
+      Scalar size_a = 0;
+      Scalar size_b = 0;
+      const Scalar turned = growth * at * at / 2;
+      const Scalar closed = offset + shared * at + lines_a.at(at, sense, size_a) +
+                            lines_b.at(at, sense, size_b) + turned;
+      return closed + 16 * kUnit * (offset + std::abs(shared) * at + size_a + size_b + turned);
+    };
+    constexpr Scalar kDown = 1 - 16 * kUnit;
+    const Scalar far = closing(h);
+    if (far <= apart) return h * kDown;
+    // The chord from (0, offset) to (h, far) lies above G: the gap is open until it reaches
+    // apart.
+    Scalar near = h * ((apart - offset) / (far - offset)) * kDown;
+    for (int k = 0; k < kDepthRefinements; ++k) {
+      // The chord from (near, G(near)) to (h, far) lies above G in between (regula falsi from
+      // below, each step proven).
+      const Scalar at_near = closing(near);
+      if (!(at_near < apart)) break;
+      const Scalar next = (near + (h - near) * ((apart - at_near) / (far - at_near))) * kDown;
+      if (!(next > near)) break;
+      near = next;
+    }
+    return near;
+  };
+  return {reach(1, shared_forward, known.forward), reach(-1, shared_backward, known.backward)};
 }
 
 Scalar MotionBound::along(const Vector3& n, Scalar sense) const {

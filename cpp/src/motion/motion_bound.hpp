@@ -61,6 +61,20 @@ Scalar motion_reach_across(const CompoundBody& body, const Vector3& axis);
 /// negative where the bodies draw apart) and k the sum of |w| |u| reach over the bodies. A screw
 /// adds its translation across the axis at t, (Q(t)^T m) . v_perp, to a, and |u| |v_perp|, how
 /// fast that turning velocity can change along n, to k.
+///
+/// Near contact that rate is still the fastest point's, while the separation closes at the rate
+/// of the points on the support planes: advancement then closes the gap by a constant fraction a
+/// step (14 queries a touching turning motion against 3 a translating one, bench/motion.py). Point
+/// by point (`depth_reaches`, polyhedra whose supports are scans): a point x of A that lies
+/// `depth_x` below A's support plane along n at t, moving along n at `rate_x`, is at most
+/// rate_x h + k_A h^2 / 2 - depth_x above that plane after a time h; so the separation shrinks by
+/// at most G(h) = a' h + max_x (rate_x h - depth_x) + max_y (rate_y h - depth_y) + k h^2 / 2 (a'
+/// the rates every point of a body shares: the translation, a screw's slide), a convex function
+/// of h with G(0) = 0 whose slope at 0 is the support points' rate. G at one time h_c proves the
+/// gap open until h_c apart / G(h_c) (the chord from 0 lies above a convex function), and h_c,
+/// the root of the support points' second-order model, makes that the root of G itself wherever
+/// no other point overtakes the support points before it: near contact the steps then close the
+/// gap as fast as Newton's would.
 class MotionBound {
  public:
   MotionBound(const RigidMotion& motion_a, Scalar reach_a, const RigidMotion& motion_b,
@@ -90,13 +104,30 @@ class MotionBound {
   // backwards in time (its support values along the turning direction and its opposite), and how
   // fast those rates can grow per unit of time from t; rounded up.
   // `reach` is the body's motion_reach_across about the motion's axis.
+  // `shared_forward` and `shared_backward` are the parts of the rates every point of the core
+  // shares (a screw's slide and the roundings); `turning` is Q(t)^T u, along which a point x of
+  // the core moves along `towards` at x . turning, and `facing` is `towards` in the body's frame
+  // at t, Q(t)^T m (both zero for a motion that does not turn).
   struct TurnRates {
     Scalar forward = 0;
     Scalar backward = 0;
     Scalar growth = 0;
+    Scalar shared_forward = 0;
+    Scalar shared_backward = 0;
+    Vector3 turning = Vector3::Zero();
+    Vector3 facing = Vector3::Zero();
   };
   static TurnRates turn_rates(const RigidMotion& motion, const ConvexPolyhedron& body,
                               Scalar reach, Scalar t, const Vector3& towards);
+  // The times a gap `apart` lasts at least from the points' own rates and depths (see above),
+  // forwards and backwards, where `shared_forward` and `shared_backward` are the rates that every
+  // point of both bodies shares (the relative translation along n, the slides, the roundings)
+  // and `growth` k; 0 where the bodies are not both polyhedra whose supports are scans, where
+  // neither turns, or where they cannot be longer than the `known` reaches. Rounded down.
+  Reaches depth_reaches(const ConvexPolyhedron& a, const TurnRates& turn_a,
+                        const ConvexPolyhedron& b, const TurnRates& turn_b, Scalar shared_forward,
+                        Scalar shared_backward, Scalar growth, Scalar apart,
+                        const Reaches& known) const;
   // The first time at which a gap `apart` closing at `rate` (negative: opening), growing by
   // `growth` per unit of time, can be gone; rounded down.
   static Scalar second_order_reach(Scalar rate, Scalar growth, Scalar apart);

@@ -115,8 +115,12 @@ class Advancement {
   }
 
   TimeOfImpactResult run() {
-    Sample low = sample(0);
-    if (low.contact) return contact(0, 0);
+    // The start is asked its signed distance, which is its distance when the bodies are apart: a
+    // motion that starts in contact answers with that result, without asking it again (two
+    // queries, the second's penetration depth aside, were a third of such a motion's cost).
+    const DistanceResult start = measure(0, Goal::signed_distance);
+    Sample low = sample(0, start);
+    if (low.contact) return contact(0, 0, start);
     // Sampled times after `low`, nearest last: each one still to be reached.
     std::vector<Sample> ahead;
     const Scalar width = options_.time_tolerance;
@@ -150,8 +154,9 @@ class Advancement {
         }
       }
       if (ahead.empty()) {
-        // Steps are below the time tolerance: look one tolerance ahead.
-        ahead.push_back(sample(std::min<Scalar>(1, low.t + width)));
+        // Steps are below the time tolerance: look one tolerance ahead, rounded down so that a
+        // contact there closes the bracket (rounded up, it was split once more).
+        ahead.push_back(sample(std::min<Scalar>(1, within(low.t, width))));
         continue;
       }
       // Neither end proves the interval: split it.
@@ -195,12 +200,30 @@ class Advancement {
     return result;
   }
 
-  Sample sample(Scalar t) {
+  // `t + width` rounded down to a time no more than `width` after t (t itself where none is).
+  static Scalar within(Scalar t, Scalar width) {
+    Scalar next = t + width;
+    while (next > t && next - t > width) next = std::nextafter(next, t);
+    return next > t ? next : t + width;
+  }
+
+  enum class Goal { distance, signed_distance };
+
+  // The query's answer at time t.
+  DistanceResult measure(Scalar t, Goal goal) {
     ++iterations_;
     const Pose pose_a = motion_a_.at(t);
     const Pose pose_b = motion_b_.at(t);
-    const auto result =
-        answer([&](const Query& q) { return q.distance(a_, pose_a, b_, pose_b); });
+    if (goal == Goal::signed_distance) {
+      return answer([&](const Query& q) { return q.signed_distance(a_, pose_a, b_, pose_b); });
+    }
+    return answer([&](const Query& q) { return q.distance(a_, pose_a, b_, pose_b); });
+  }
+
+  Sample sample(Scalar t) { return sample(t, measure(t, Goal::distance)); }
+
+  // What `result`, the query's answer at t, proves.
+  Sample sample(Scalar t, const DistanceResult& result) {
     Sample s{t, result.distance + margin_ <= contact_threshold_, 0, 0};
     const Scalar apart = result.lower_bound - margin_;
     if (s.contact || !(apart > 0)) return s;
@@ -234,7 +257,12 @@ class Advancement {
   }
 
   TimeOfImpactResult contact(Scalar lower, Scalar upper) {
-    TimeOfImpactResult r = touching(upper);
+    return contact(lower, upper, signed_at(upper));
+  }
+
+  // The same, with `result` the signed distance at `upper`.
+  TimeOfImpactResult contact(Scalar lower, Scalar upper, const DistanceResult& result) {
+    TimeOfImpactResult r = touching(upper, result);
     r.t_lower = lower;
     r.certified = true;
     r.status = MotionStatus::converged;
@@ -247,24 +275,27 @@ class Advancement {
     for (const Sample& s : ahead) {
       if (s.contact) upper = std::min(upper, s.t);
     }
-    TimeOfImpactResult r = touching(upper);
+    TimeOfImpactResult r = touching(upper, signed_at(upper));
     r.t_lower = low.t;
     r.certified = false;
     r.status = status;
     return r;
   }
 
-  // The poses, witnesses and normal at `t`.
-  TimeOfImpactResult touching(Scalar t) {
+  // The signed distance at t, which touching reports (not counted as an iteration).
+  DistanceResult signed_at(Scalar t) {
+    const Pose pose_a = motion_a_.at(t);
+    const Pose pose_b = motion_b_.at(t);
+    return answer([&](const Query& q) { return q.signed_distance(a_, pose_a, b_, pose_b); });
+  }
+
+  // The poses at `t`, with the witnesses and normal of `contact`, the signed distance there.
+  TimeOfImpactResult touching(Scalar t, const DistanceResult& contact) {
     TimeOfImpactResult r;
     r.touches = true;
     r.t_upper = t;
-    const Pose pose_a = motion_a_.at(t);
-    const Pose pose_b = motion_b_.at(t);
-    const auto contact =
-        answer([&](const Query& q) { return q.signed_distance(a_, pose_a, b_, pose_b); });
-    r.pose_a = shifted(pose_a, origin_);
-    r.pose_b = shifted(pose_b, origin_);
+    r.pose_a = shifted(motion_a_.at(t), origin_);
+    r.pose_b = shifted(motion_b_.at(t), origin_);
     r.distance = contact.distance;
     r.point_a = contact.point_a + origin_;
     r.point_b = contact.point_b + origin_;
