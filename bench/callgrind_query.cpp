@@ -3,16 +3,16 @@
 // bench/callgrind_query.py, which starts it under `valgrind --tool=callgrind
 // --collect-atstart=no` and prints the table; alone it only answers the queries.
 //
-// Each workload (n vertices, apart by 1 or overlapping by 1e-2: the random pairs of
-// random_pairs.hpp, both bodies under one random rigid pose) is answered by each contender once
-// uncounted (so thread-local buffers and lazily built hulls exist), then `--repeats` times over
-// its pairs with collection on, and the counts dumped under the label "n=N PROXIMITY QUERY
-// CONTENDER PAIRS*REPEATS". Contenders: ours (Query with explicit poses: distance, collision,
+// Each workload (n vertices, apart by 1 or overlapping by 1e-2, and with --gap apart by 1e-2: the
+// random pairs of random_pairs.hpp, both bodies under one random rigid pose) is answered by each
+// contender once uncounted (so thread-local buffers and lazily built hulls exist), then `--repeats`
+// times over its pairs with collection on, and the counts dumped under the label "n=N PROXIMITY
+// QUERY CONTENDER PAIRS*REPEATS". Contenders: ours (Query with explicit poses: distance, collision,
 // signed_distance; distance_many and collide_many over lists of the bodies with pose lists, one
-// thread), coal's GJKSolver (distance, a collision verdict stopping at the first separating
-// plane, and the signed distance by GJK + EPA), its support hint cleared before each call as in
-// narrowphase_coal.cpp; and the fcl method's distance beside the FCL call it wraps
-// (`fcl::distance` with FCL's own GJK, GST_INDEP, on prebuilt fcl::Convexd, request reused).
+// thread), coal's GJKSolver (distance, a collision verdict stopping at the first separating plane,
+// and the signed distance by GJK + EPA), its support hint cleared before each call as in
+// narrowphase_coal.cpp; and the fcl method's distance beside the FCL call it wraps (`fcl::distance`
+// with FCL's own GJK, GST_INDEP, on prebuilt fcl::Convexd, request reused).
 #include <coal/collision_data.h>
 #include <coal/narrowphase/narrowphase.h>
 #include <coal/shape/convex.h>
@@ -94,6 +94,7 @@ int main(int argc, char** argv) {
   std::vector<int> sizes{4, 8, 16, 64};
   int pairs = 20;
   int repeats = 5;
+  bool gap = false;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg == "--sizes" && i + 1 < argc) {
@@ -108,8 +109,11 @@ int main(int argc, char** argv) {
       pairs = std::atoi(argv[++i]);
     } else if (arg == "--repeats" && i + 1 < argc) {
       repeats = std::atoi(argv[++i]);
+    } else if (arg == "--gap") {
+      gap = true;
     } else {
-      std::fprintf(stderr, "usage: %s [--sizes 4,8,16,64] [--pairs P] [--repeats R]\n", argv[0]);
+      std::fprintf(stderr, "usage: %s [--sizes 4,8,16,64] [--pairs P] [--repeats R] [--gap]\n",
+                   argv[0]);
       leave(2);
     }
   }
@@ -118,7 +122,10 @@ int main(int argc, char** argv) {
     double target;
     int index;  // swarmcollide_bench.cpp's, which seeds the pairs
   };
-  const std::vector<Proximity> proximities{{"apart", 1.0, 0}, {"overlap", -1e-2, 7}};
+  std::vector<Proximity> proximities{{"apart", 1.0, 0}, {"overlap", -1e-2, 7}};
+  // narrowphase_coal.cpp's "gap 1e-2" pairs, apart by a hundredth: a verdict's search there runs
+  // until a direction separates them, where "apart" settles at the centres' direction.
+  if (gap) proximities.insert(proximities.begin() + 1, {"gap", 1e-2, 2});
   double sink = 0;
   for (int n : sizes) {
     for (const Proximity& proximity : proximities) {

@@ -101,6 +101,8 @@ def main() -> None:
     parser.add_argument("--sizes", default="4,8,16,64")
     parser.add_argument("--pairs", type=int, default=20)
     parser.add_argument("--repeats", type=int, default=5)
+    parser.add_argument("--gap", action="store_true",
+                        help="also the pairs apart by 1e-2 (narrowphase_coal.cpp's \"gap 1e-2\")")
     parser.add_argument("--json", help="write the counts here")
     parser.add_argument("--profile", metavar="ROW",
                         help='also print where ours spends one row\'s instructions, by function '
@@ -110,7 +112,7 @@ def main() -> None:
     args = parser.parse_args()
     driver = "swarmcollide-callgrind-curved" if args.curved else "swarmcollide-callgrind-query"
     binary = args.binary or f"build/bench/bench/{driver}"
-    sizes = [] if args.curved else ["--sizes", args.sizes]
+    sizes = [] if args.curved else ["--sizes", args.sizes] + (["--gap"] if args.gap else [])
     found = counts(binary, [*sizes, "--pairs", str(args.pairs), "--repeats", str(args.repeats)],
                    args.profile, args.top)
     rows = []
