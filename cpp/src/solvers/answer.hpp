@@ -29,10 +29,12 @@ enum class Goal {
 /// reports bounds and proofs only; `finish_result` (verdict.hpp) alone turns them into verdicts,
 /// certificates and a status.
 struct Answer {
+  /// The lower bound of an answer that measured no separation.
+  static constexpr Scalar kUnmeasured = -std::numeric_limits<Scalar>::infinity();
   /// The distance (signed distance) achieved by the witness points: an upper bound.
   Scalar upper = std::numeric_limits<Scalar>::infinity();
-  /// A lower bound: the separation along `direction`.
-  Scalar lower = -std::numeric_limits<Scalar>::infinity();
+  /// A lower bound: the separation along `direction` (kUnmeasured until one is measured).
+  Scalar lower = kUnmeasured;
   /// Witness points in the frame; `weights_a` and `weights_b` reproduce them from the points.
   Vector3 point_a = Vector3::Zero();
   Vector3 point_b = Vector3::Zero();

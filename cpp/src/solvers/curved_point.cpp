@@ -111,36 +111,35 @@ Nearest cone_nearest(const Vector3& p, Scalar r, Scalar h) {
   const Scalar z = p.z();
   const Vector3 rim_direction(ux, uy, -1);
   const Vector3 apex_direction(0, 0, 1);
-  if (z < -h && rho <= r) {
+  // The point straight under (or over) p on the base, between the rim points along and against
+  // the azimuth.
+  const auto on_base = [&] {
     n.normal = {0, 0, -1};
     n.first = rim_direction;
     n.second = {-ux, -uy, -1};
     n.mirror = Mirror::across;
     n.weight = std::clamp((1 + rho / r) / 2, Scalar(0), Scalar(1));
     return n;
-  }
+  };
+  if (z < -h && rho <= r) return on_base();
   // The slant from the rim (r, -h) along (-r, 2h) to the apex.
   const Scalar along = -r * (rho - r) + 2 * h * (z + h);
   const Scalar length_squared = r * r + 4 * h * h;
+  // The foot of p on the slant, between the rim and the apex, along the slant's normal.
+  const auto on_slant = [&](Scalar slant) {
+    n.normal = Vector3(2 * h * ux, 2 * h * uy, r) / slant;
+    n.first = rim_direction;
+    n.second = apex_direction;
+    n.weight = std::clamp(1 - along / length_squared, Scalar(0), Scalar(1));
+    return n;
+  };
   // Inside: above the base and below the slant's line, 2h rho < r (h - z). The nearer of the
   // point straight under on the base and the foot on the slant, which lies between the rim and
   // the apex (the triangle's angles there are acute).
   if (z > -h && 2 * h * rho < r * (h - z)) {
     n.inside = true;
     const Scalar slant = std::sqrt(length_squared);
-    if (z + h <= (r * (h - z) - 2 * h * rho) / slant) {
-      n.normal = {0, 0, -1};
-      n.first = rim_direction;
-      n.second = {-ux, -uy, -1};
-      n.mirror = Mirror::across;
-      n.weight = std::clamp((1 + rho / r) / 2, Scalar(0), Scalar(1));
-    } else {
-      n.normal = Vector3(2 * h * ux, 2 * h * uy, r) / slant;
-      n.first = rim_direction;
-      n.second = apex_direction;
-      n.weight = std::clamp(1 - along / length_squared, Scalar(0), Scalar(1));
-    }
-    return n;
+    return z + h <= (r * (h - z) - 2 * h * rho) / slant ? on_base() : on_slant(slant);
   }
   if (along <= 0) {
     n.normal = away_from(p, Vector3(r * ux, r * uy, -h));
@@ -149,11 +148,8 @@ Nearest cone_nearest(const Vector3& p, Scalar r, Scalar h) {
     n.normal = away_from(p, Vector3(0, 0, h));
     n.first = apex_direction;
   } else {
-    const Scalar slant = std::sqrt(length_squared);
-    n.normal = Vector3(2 * h * ux, 2 * h * uy, r) / slant;
-    n.first = rim_direction;
-    n.second = apex_direction;
-    n.weight = 1 - along / length_squared;
+    // 0 < along < length_squared: the clamp changes no weight here.
+    return on_slant(std::sqrt(length_squared));
   }
   return n;
 }

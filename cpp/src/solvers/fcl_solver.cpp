@@ -2,7 +2,6 @@
 
 #include <fcl/narrowphase/detail/convexity_based_algorithm/gjk.h>
 
-#include <limits>
 
 #include "../queries/verdict.hpp"
 #include "exact_solver.hpp"
@@ -155,11 +154,11 @@ Answer solve_fcl(const FramedPair& pair, const QueryOptions& options, Goal goal)
     const bool contact = witness.encloses_origin || witnesses_contact;
     const bool separated = !contact || goal == Goal::signed_distance;
     if (!separated) {
-      // Without a separation the answer's lower bound stays Answer's own: whether it settles the
-      // goal is known before it is made, and the answer is made where it is returned (a named
-      // answer returned was moved, 50 instructions of every overlapping pair).
-      const Scalar unmeasured = -std::numeric_limits<Scalar>::infinity();  // Answer's own
-      if (goal_reached(pair, goal, unmeasured, witness.distance, witness.encloses_origin)) {
+      // Without a separation the answer's lower bound stays Answer::kUnmeasured: whether it
+      // settles the goal is known before it is made, and the answer is made where it is returned
+      // (a named answer returned was moved, 50 instructions of every overlapping pair).
+      if (goal_reached(pair, goal, Answer::kUnmeasured, witness.distance,
+                       witness.encloses_origin)) {
         return answer_from_corral(pair, corral, witness, false);
       }
     } else {
