@@ -16,9 +16,12 @@
 extern "C" void* __libc_malloc(std::size_t size);
 extern "C" void* __libc_calloc(std::size_t count, std::size_t size);
 extern "C" void* __libc_realloc(void* pointer, std::size_t size);
+extern "C" void __libc_free(void* pointer);
 
 namespace {
 std::atomic<long> allocations{0};
+// Every call of free(), free(nullptr) included: a call for nothing is a cost of its own.
+std::atomic<long> frees{0};
 }
 
 extern "C" void* malloc(std::size_t size) {
@@ -34,6 +37,11 @@ extern "C" void* realloc(void* pointer, std::size_t size) {
   return __libc_realloc(pointer, size);
 }
 
+extern "C" void free(void* pointer) {
+  frees.fetch_add(1, std::memory_order_relaxed);
+  __libc_free(pointer);
+}
+
 namespace swarmcollide {
 namespace {
 
@@ -42,6 +50,13 @@ long allocations_during(Work&& work) {
   const long before = allocations.load();
   work();
   return allocations.load() - before;
+}
+
+template <typename Work>
+long frees_during(Work&& work) {
+  const long before = frees.load();
+  work();
+  return frees.load() - before;
 }
 
 TEST(AllocationCount, SeesEveryHeapAllocation) {
@@ -101,6 +116,33 @@ TEST(DualSteadyState, ADistanceSettledByItsStartAllocatesNothing) {
       EXPECT_EQ(allocations_during([&] { result = query.collision(a, b); }), 0)
           << n << " points, offset " << offset;
     }
+  }
+}
+
+// Nor does it call free(): a query makes and drops an answer's and a result's weights, which an
+// empty Eigen vector, freed with free(nullptr), made a call each (ConvexWeights holds a dense
+// vector only for dense weights), and a batch row an answer's.
+TEST(DualSteadyState, ADistanceSettledByItsStartCallsNoFree) {
+  VertexMatrix points(8, 3);
+  for (int i = 0; i < 8; ++i) {
+    const double t = 2.399963 * i;
+    const double z = 1 - (2.0 * i + 1) / 8;
+    const double r = std::sqrt(1 - z * z);
+    points.row(i) << r * std::cos(t), r * std::sin(t), z;
+  }
+  const ConvexPolyhedron a(points);
+  Pose pose;
+  pose.translation << 0.1, 0.2, 0.3;
+  for (const double offset : {3.0, 2.01, 1.5}) {  // apart, near, overlapping
+    const ConvexPolyhedron b(points.rowwise() + Eigen::RowVector3d(offset, 0.1, -0.2));
+    const Query query{QueryOptions{}};
+    DistanceResult result = query.distance(a, pose, b, pose);
+    bool colliding = query.collide(a, pose, b, pose);
+    ASSERT_TRUE(result.certified);
+    EXPECT_EQ(frees_during([&] { result = query.distance(a, pose, b, pose); }), 0) << offset;
+    EXPECT_EQ(frees_during([&] { result = query.collision(a, pose, b, pose); }), 0) << offset;
+    EXPECT_EQ(frees_during([&] { colliding = query.collide(a, pose, b, pose); }), 0) << offset;
+    EXPECT_EQ(colliding, result.colliding);
   }
 }
 

@@ -144,7 +144,10 @@ ConvexPolyhedron::ConvexPolyhedron(VertexMatrix points, Scalar radius)
   bounds_ = bounds_of(vertices_, radius_);
   centred_ = vertices_.rowwise() - bounds_.centre.transpose();
   static_assert(kHillClimbingThreshold <= detail::PointColumns::kCapacity);
-  if (centred_.rows() <= kHillClimbingThreshold) hull_cache_->columns.assign(centred_);
+  if (centred_.rows() <= kHillClimbingThreshold) {
+    hull_cache_->columns.assign(centred_);
+    columns_ = &hull_cache_->columns;
+  }
 }
 
 ConvexPolyhedron::ConvexPolyhedron(VertexMatrix points, Scalar radius,
@@ -171,7 +174,10 @@ ConvexPolyhedron::ConvexPolyhedron(const VertexMatrix& centred,
   // The given points, not the rounded differences of the placed ones: the solvers read these as
   // points of the shape, which they are.
   centred_ = centred;
-  if (centred_.rows() <= kHillClimbingThreshold) hull_cache_->columns.assign(centred_);
+  if (centred_.rows() <= kHillClimbingThreshold) {
+    hull_cache_->columns.assign(centred_);
+    columns_ = &hull_cache_->columns;
+  }
 }
 
 int ConvexPolyhedron::support_index(const Vector3& direction) const {
@@ -242,10 +248,6 @@ const Hull& ConvexPolyhedron::hull() const {
     }
   }
   return hull_cache_->hull;
-}
-
-const detail::PointColumns* ConvexPolyhedron::centred_columns() const {
-  return hull_cache_->columns.held() ? &hull_cache_->columns : nullptr;
 }
 
 const HullPoints& ConvexPolyhedron::hull_points() const {

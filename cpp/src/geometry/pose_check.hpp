@@ -2,6 +2,8 @@
 // to the library's sources.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 
@@ -9,10 +11,49 @@
 
 namespace swarmcollide::detail {
 
+/// |R^T R - I| (largest entry) and det R: how far a rotation is from a proper rotation.
+struct RotationDeviation {
+  Scalar orthogonality;
+  Scalar determinant;
+};
+
+/// The deviation of `r`. Inline: every query checks a pose with it, and its call was a tenth of
+/// the check.
+[[gnu::always_inline]] inline RotationDeviation rotation_deviation(const Matrix3& r) {
+  // R^T R - I is symmetric: its six distinct entries, the columns' dot products (written out:
+  // every row of a batch checks its poses).
+  const auto dot = [&r](int i, int j) {
+    return r(0, i) * r(0, j) + r(1, i) * r(1, j) + r(2, i) * r(2, j);
+  };
+  const Scalar orthogonality =
+      std::max({std::abs(dot(0, 0) - 1), std::abs(dot(1, 1) - 1), std::abs(dot(2, 2) - 1),
+                std::abs(dot(0, 1)), std::abs(dot(0, 2)), std::abs(dot(1, 2))});
+  return {orthogonality, r.determinant()};
+}
+
+/// True for a proper rotation within kRotationTolerance.
+inline bool rigid(const RotationDeviation& d) {
+  return d.orthogonality <= kRotationTolerance &&
+         std::abs(d.determinant - 1) <= kRotationTolerance;
+}
+
+/// True when the translation is finite: x - x is 0 for a finite x and NaN otherwise, and a NaN
+/// stays in the sum.
+inline bool finite_translation(const Pose& pose) {
+  const Vector3& t = pose.translation;
+  return (t.x() - t.x()) + (t.y() - t.y()) + (t.z() - t.z()) == 0;
+}
+
 /// What validate_pose checks, for a pose whose rotation is the identity exactly when `turned` is
 /// false (`turned == !pose.has_identity_rotation()`): framing a pair needs that test anyway, so it
-/// is made once. False where validate_pose would throw.
-bool valid_pose(const Pose& pose, bool turned);
+/// is made once. False where validate_pose would throw. The rotation's entries need no test of
+/// their own: the identity is finite, and every entry is a factor of a product in the
+/// determinant, so one that is infinite or NaN makes it infinite or NaN, which rigid() rejects.
+/// Inline: framing a pair and a batch row each check a pose or two with it (its call and its
+/// reloads of the rotation were some 10 instructions of every posed query).
+inline bool valid_pose(const Pose& pose, bool turned) {
+  return finite_translation(pose) && (!turned || rigid(rotation_deviation(pose.rotation)));
+}
 
 /// True when `x` and `y` hold the same bits: the same object, or a copy of it. Validation (and
 /// the identity test) reads nothing but those bits, so a pair whose bodies share a pose checks it

@@ -57,27 +57,17 @@ QueryOptions escalation(const QueryOptions& options) {
   return exact;
 }
 
-// Whether `pair` collides, as collision() decides it: collide returns only the verdict, so it
-// is taken from the values a batch row keeps, without the DistanceResult (weights over the
-// given points, history) that collision() builds, a tenth of an overlapping verdict's cost
-// between small bodies.
-bool verdict_of(const QueryOptions& options, const detail::FramedPair& pair, bool escalate) {
+// detail::answer_pair, always inline into Query's convex queries (answer_pair itself, out of
+// line, is for the scenes): the call between them, with its arguments and its own frame, was
+// some 20 instructions of every query.
+[[gnu::always_inline]] inline DistanceResult answered_pair(const QueryOptions& options,
+                                                           detail::Goal goal,
+                                                           const detail::FramedPair& pair,
+                                                           bool escalate,
+                                                           detail::Weights weights) {
+  using detail::Goal;
   if (pair.a.curved() || pair.b.curved()) {
     detail::require_shapes(options.method, pair.a.body(), pair.b.body());
-  }
-  return detail::answer_row(options, detail::solver_for(options.method), detail::Goal::verdict,
-                            pair, escalate)
-      .values.colliding;
-}
-
-}  // namespace
-
-namespace detail {
-
-DistanceResult answer_pair(const QueryOptions& options, Goal goal, const FramedPair& pair,
-                           bool escalate, Weights weights) {
-  if (pair.a.curved() || pair.b.curved()) {
-    require_shapes(options.method, pair.a.body(), pair.b.body());
   }
   // One named result, returned on every path, is made in the caller's place: returning either of
   // two named results moved the one returned, 70 instructions of every distance query.
@@ -89,18 +79,51 @@ DistanceResult answer_pair(const QueryOptions& options, Goal goal, const FramedP
   return result;
 }
 
-RowAnswer answer_row(const QueryOptions& options, Solver solve, Goal goal, const FramedPair& pair,
-                     bool escalate) {
-  Answer found = solve(pair, options, goal);
+// detail::answer_row, always inline into Query::collide (answer_row itself, out of line, is for
+// the batches), as answered_pair is.
+[[gnu::always_inline]] inline detail::RowAnswer answered_row(const QueryOptions& options,
+                                                             detail::Solver solve,
+                                                             detail::Goal goal,
+                                                             const detail::FramedPair& pair,
+                                                             bool escalate) {
+  using detail::Goal;
+  detail::Answer found = solve(pair, options, goal);
   // The values made in place in the row (assigned, they were made aside and copied in).
-  RowAnswer row{finish_values(pair, found, goal),
-                found.answered_by.has_value() && *found.answered_by != options.method};
+  detail::RowAnswer row{detail::finish_values(pair, found, goal),
+                        found.answered_by.has_value() && *found.answered_by != options.method};
   if (goal != Goal::verdict || row.values.certified || !escalate) return row;
-  Answer decided = solver_for(Method::exact)(pair, escalation(options), goal);
+  detail::Answer decided = detail::solver_for(Method::exact)(pair, escalation(options), goal);
   row.escalated = options.method != Method::exact ||
                   (decided.answered_by.has_value() && *decided.answered_by != Method::exact);
-  row.values = finish_values(pair, decided, goal);
+  row.values = detail::finish_values(pair, decided, goal);
   return row;
+}
+
+// Whether `pair` collides, as collision() decides it: collide returns only the verdict, so it
+// is taken from the values a batch row keeps, without the DistanceResult (weights over the
+// given points, history) that collision() builds, a tenth of an overlapping verdict's cost
+// between small bodies.
+bool verdict_of(const QueryOptions& options, const detail::FramedPair& pair, bool escalate) {
+  if (pair.a.curved() || pair.b.curved()) {
+    detail::require_shapes(options.method, pair.a.body(), pair.b.body());
+  }
+  return answered_row(options, detail::solver_for(options.method), detail::Goal::verdict, pair,
+                      escalate)
+      .values.colliding;
+}
+
+}  // namespace
+
+namespace detail {
+
+DistanceResult answer_pair(const QueryOptions& options, Goal goal, const FramedPair& pair,
+                           bool escalate, Weights weights) {
+  return answered_pair(options, goal, pair, escalate, weights);
+}
+
+RowAnswer answer_row(const QueryOptions& options, Solver solve, Goal goal, const FramedPair& pair,
+                     bool escalate) {
+  return answered_row(options, solve, goal, pair, escalate);
 }
 
 }  // namespace detail
@@ -109,33 +132,36 @@ Query::Query(QueryOptions options) : options_(std::move(options)) { options_.val
 
 DistanceResult Query::distance(const ConvexPolyhedron& a, const ConvexPolyhedron& b) const {
   require(options_.method, kDistance, "distance");
-  return detail::answer_pair(
+  return answered_pair(
       options_, detail::Goal::distance,
-      detail::frame_validated_pair(a, kIdentity, b, kIdentity, options_.tolerance), false);
+      detail::frame_validated_pair(a, kIdentity, b, kIdentity, options_.tolerance), false,
+      detail::Weights::given);
 }
 
 DistanceResult Query::distance(const ConvexPolyhedron& a, const Pose& pose_a,
                                const ConvexPolyhedron& b, const Pose& pose_b) const {
   require(options_.method, kDistance, "distance");
-  return detail::answer_pair(options_, detail::Goal::distance,
-                             detail::frame_pair(a, pose_a, b, pose_b, options_.tolerance), false);
+  return answered_pair(options_, detail::Goal::distance,
+                       detail::frame_pair(a, pose_a, b, pose_b, options_.tolerance), false,
+                       detail::Weights::given);
 }
 
 DistanceResult Query::collision(const ConvexPolyhedron& a, const ConvexPolyhedron& b,
                                 bool escalate) const {
   require(options_.method, kCollide, "collide");
-  return detail::answer_pair(
+  return answered_pair(
       options_, detail::Goal::verdict,
-      detail::frame_validated_pair(a, kIdentity, b, kIdentity, options_.tolerance), escalate);
+      detail::frame_validated_pair(a, kIdentity, b, kIdentity, options_.tolerance), escalate,
+      detail::Weights::given);
 }
 
 DistanceResult Query::collision(const ConvexPolyhedron& a, const Pose& pose_a,
                                 const ConvexPolyhedron& b, const Pose& pose_b,
                                 bool escalate) const {
   require(options_.method, kCollide, "collide");
-  return detail::answer_pair(options_, detail::Goal::verdict,
-                             detail::frame_pair(a, pose_a, b, pose_b, options_.tolerance),
-                             escalate);
+  return answered_pair(options_, detail::Goal::verdict,
+                       detail::frame_pair(a, pose_a, b, pose_b, options_.tolerance), escalate,
+                       detail::Weights::given);
 }
 
 bool Query::collide(const ConvexPolyhedron& a, const ConvexPolyhedron& b, bool escalate) const {
@@ -154,16 +180,18 @@ bool Query::collide(const ConvexPolyhedron& a, const Pose& pose_a, const ConvexP
 
 DistanceResult Query::signed_distance(const ConvexPolyhedron& a, const ConvexPolyhedron& b) const {
   require(options_.method, kSignedDistance, "signed_distance");
-  return detail::answer_pair(
+  return answered_pair(
       options_, detail::Goal::signed_distance,
-      detail::frame_validated_pair(a, kIdentity, b, kIdentity, options_.tolerance), false);
+      detail::frame_validated_pair(a, kIdentity, b, kIdentity, options_.tolerance), false,
+      detail::Weights::given);
 }
 
 DistanceResult Query::signed_distance(const ConvexPolyhedron& a, const Pose& pose_a,
                                       const ConvexPolyhedron& b, const Pose& pose_b) const {
   require(options_.method, kSignedDistance, "signed_distance");
-  return detail::answer_pair(options_, detail::Goal::signed_distance,
-                             detail::frame_pair(a, pose_a, b, pose_b, options_.tolerance), false);
+  return answered_pair(options_, detail::Goal::signed_distance,
+                       detail::frame_pair(a, pose_a, b, pose_b, options_.tolerance), false,
+                       detail::Weights::given);
 }
 
 DistanceResult distance(const ConvexPolyhedron& a, const ConvexPolyhedron& b,

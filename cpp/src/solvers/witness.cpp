@@ -50,17 +50,6 @@ Witness vertex_witness(const FramedPair& pair, int ia, int ib) {
   return w;
 }
 
-Answer answer_from_witness(const FramedPair& pair, const Witness& witness) {
-  Answer answer;
-  answer.upper = witness.distance;
-  answer.point_a = witness.point_a;
-  answer.point_b = witness.point_b;
-  answer.weights_a = ConvexWeights(pair.a.size(), witness.ia, witness.weights, witness.size);
-  answer.weights_b = ConvexWeights(pair.b.size(), witness.ib, witness.weights, witness.size);
-  answer.intersection_proven = witness.encloses_origin;
-  return answer;
-}
-
 Answer answer_from_corral(const FramedPair& pair, const MinNormPoint& corral) {
   return answer_from_corral(pair, corral, witness_of(pair, corral));
 }

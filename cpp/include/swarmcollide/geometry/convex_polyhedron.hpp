@@ -78,8 +78,9 @@ class ConvexPolyhedron {
   const VertexMatrix& centred_vertices() const { return centred_; }
   /// `centred_vertices()` by coordinate, made with the body when it has at most
   /// `kHillClimbingThreshold` points (null otherwise): the library's scans read them two at a
-  /// time, with the same answers as a scan of the rows.
-  const detail::PointColumns* centred_columns() const;
+  /// time, with the same answers as a scan of the rows. Inline: every query frames its bodies
+  /// with it.
+  const detail::PointColumns* centred_columns() const { return columns_; }
 
   /// The support function of a curved shape (shapes.hpp), null for a polyhedron: the body is
   /// then that shape (rounded by `radius()`), not the hull of its points.
@@ -157,6 +158,8 @@ class ConvexPolyhedron {
   VertexMatrix centred_;
   std::shared_ptr<detail::HullCache> hull_cache_;
   std::shared_ptr<const SupportFunction> curved_;
+  // The columns held in hull_cache_ (which every copy shares), null for a large body.
+  const detail::PointColumns* columns_ = nullptr;
 };
 
 }  // namespace swarmcollide

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <array>
+#include <optional>
 #include <utility>
 
 #include "swarmcollide/types.hpp"
@@ -18,8 +19,9 @@ class ConvexWeights {
 
   ConvexWeights() = default;
   /// Weights given densely, one per point.
-  explicit ConvexWeights(VectorX dense)
-      : count_(static_cast<int>(dense.size())), dense_(std::move(dense)) {}
+  explicit ConvexWeights(VectorX dense) : count_(static_cast<int>(dense.size())) {
+    if (count_ > 0) dense_.emplace(std::move(dense));
+  }
   /// Weights `weight[k]` at points `index[k]`, k < nonzeros <= kSparseCapacity, of a body of
   /// `count` points; an index may repeat (its weights add up).
   ConvexWeights(int count, const std::array<int, kSparseCapacity>& index,
@@ -30,7 +32,7 @@ class ConvexWeights {
   int count() const { return count_; }
   /// One weight per point.
   VectorX dense() const {
-    if (dense_.size() > 0) return dense_;
+    if (dense_) return *dense_;
     VectorX weights = VectorX::Zero(count_);
     for (int k = 0; k < nonzeros_; ++k) weights(index_[k]) += weight_[k];
     return weights;
@@ -38,8 +40,8 @@ class ConvexWeights {
   /// Calls `visit(index, weight)` for every stored weight (for dense weights, every point's).
   template <typename Visit>
   void for_each(const Visit& visit) const {
-    if (dense_.size() > 0) {
-      for (int i = 0; i < count_; ++i) visit(i, dense_(i));
+    if (dense_) {
+      for (int i = 0; i < count_; ++i) visit(i, (*dense_)(i));
     } else {
       for (int k = 0; k < nonzeros_; ++k) visit(index_[k], weight_[k]);
     }
@@ -50,7 +52,9 @@ class ConvexWeights {
   int nonzeros_ = 0;
   std::array<int, kSparseCapacity> index_{};
   std::array<Scalar, kSparseCapacity> weight_{};
-  VectorX dense_;
+  // Dense weights only when given so: a vector's destructor calls free() even when it holds
+  // nothing, and every query makes and drops a few sparse weights (an answer's, a result's).
+  std::optional<VectorX> dense_;
 };
 
 }  // namespace swarmcollide
