@@ -21,8 +21,8 @@ constexpr int kFinishSteps = 10;
 // Pairs of polytopes whose larger body has more points than this ask their search's points with
 // Nesterov's momentum (NesterovDirection). Smaller pairs' Wolfe walks end in about as few steps
 // without it: with it, the point the momentum asks in vain before it turns off made their steps
-// more (narrowphase_coal.cpp's pairs, 4 points overlapping: 4.7 -> 5.75 oracle calls a distance;
-// 8 points: 5.55 -> 5.90), and natively their queries longer.
+// more (narrowphase_coal.cpp's pairs, 4 points overlapping: 4.7 -> 5.45 oracle calls a distance;
+// 8 points: 5.55 -> 5.9), and natively their queries longer.
 constexpr int kMomentumSize = 8;
 
 struct Buffers {

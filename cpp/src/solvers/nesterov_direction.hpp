@@ -10,21 +10,22 @@
 namespace swarmcollide::detail {
 
 /// Where DistanceFinish::whole's search asks its oracle points: not along the corral's point x
-/// but along Nesterov's extrapolation y = delta x + (1 - delta) w, w the last oracle point and
-/// delta = (k + 2) / (k + 3) at the k-th point after the first (Montaut, Le Lidec, Petrik, Sivic
-/// and Carpentier, "Collision Detection Accelerated: An Optimization Perspective", RSS 2022; coal's
-/// GJKVariant::NesterovAcceleration). Wolfe's steps are Frank-Wolfe steps on |x|^2; the
-/// momentum carries the search across the zigzag between faces that makes polytope pairs near
-/// contact take 6 to 9 oracle points (coal's accelerated GJK from the box centres' direction
-/// took 3 to 5 on the same pairs, narrowphase_coal.cpp).
+/// but along Nesterov's momentum, coal's for polytopes (GJKVariant::NesterovAcceleration with its
+/// normalised directions, after Montaut, Le Lidec, Petrik, Sivic and Carpentier, "Collision
+/// Detection Accelerated: An Optimization Perspective", RSS 2022): the k-th direction after the
+/// first is delta d/|d| + (1 - delta) y/|y|, d the last direction, y = delta x + (1 - delta) w,
+/// w the last point kept and delta = (k + 2) / (k + 3). Wolfe's steps are Frank-Wolfe steps on
+/// |x|^2; the momentum carries the search across the zigzag between faces that makes polytope
+/// pairs near contact take 6 to 9 oracle points (coal's accelerated GJK from the box centres'
+/// direction took 3 to 5 on the same pairs, narrowphase_coal.cpp).
 ///
 /// Any direction's support point is a point of B - A, and its separation along that direction a
-/// lower bound on the distance, so the bounds stay proven whatever was asked: `asked` and
-/// `inverse_norm` say along what the last point was asked (`measured`). Wolfe's own tests read
-/// the new point along x (its gap, a point already in the corral, progress): a point asked along
-/// y is kept only where it lies nearer than the corral along x by more than those tests'
-/// rounding, so that it joins the corral and x moves nearer; otherwise the point along x is asked
-/// as well, and from then on every point, as coal turns the momentum off when it stops helping.
+/// lower bound on the distance, so the bounds stay proven whatever was asked: `measured` gives
+/// the separation along the direction the point was asked for. Wolfe's own tests read the new
+/// point along x (its gap, a point already in the corral, progress): a point asked with momentum
+/// is kept only where it lies nearer than the corral along x by more than those tests' rounding,
+/// so that it joins the corral and x moves nearer; otherwise the point along x is asked as well,
+/// and from then on every point, as coal turns the momentum off when it stops helping.
 class NesterovDirection {
  public:
   /// A search from the unit direction `start` (its first point asked here, or `first`, asked
@@ -34,7 +35,7 @@ class NesterovDirection {
       : last_(first != nullptr ? first->p : Vector3::Zero()),
         asked_(start),
         steps_(first != nullptr ? 1 : 0),
-        on_(accelerated) {}
+        on_(accelerated && !(first != nullptr && well_apart(start.dot(first->p), first->p))) {}
 
   /// The direction to ask for the corral's point `x` (the search's first point along its start,
   /// then x itself or the momentum's direction): coal's, for polytopes, normalised, the last
@@ -64,22 +65,23 @@ class NesterovDirection {
   /// test stops at 2e-14 |x|), compared squared. A point that is not turns the momentum off, and
   /// the caller asks along direction(x) again.
   bool keep(const Vector3& x, const OraclePoint& q) {
-    ++steps_;
+    const Scalar along = x.dot(q.p);
     if (extrapolated_) {
       const Scalar xx = x.squaredNorm();
-      const Scalar nearer = xx - x.dot(q.p);
+      const Scalar nearer = xx - along;
       if (!(nearer > 0 && nearer * nearer > 1e-26 * xx)) {
         on_ = false;
         return false;
       }
     }
-    // A point short of the origin's plane across x ends the momentum too: the search is then
-    // near its end, where the momentum's directions, turned from x, would ask their last point
-    // in vain (narrowphase_coal.cpp's pairs, 64 points apart: 4.6 oracle calls a distance with
-    // the momentum on until a point is refused, 4.1 without, 4.1 ending it here; 16 points
-    // overlapping 5.15 -> 5.10, 64 points apart by 1e-2 7.05 -> 6.75).
-    if (extrapolated_ && x.dot(q.p) > 0) on_ = false;
+    ++steps_;
     last_ = q.p;
+    // A kept point short of the origin's plane across x (x . q > 0) ends the momentum: the search
+    // is then near its end, where the momentum's directions, turned from x, would ask their
+    // last point in vain (narrowphase_coal.cpp's pairs, 64 points apart by 1e-2: 7.05 oracle
+    // calls a distance with the momentum on until a point is refused, 6.75 ending it here). So
+    // does a first point apart along the start (every later point is asked along x then).
+    if (extrapolated_ ? along > 0 : well_apart(along, q.p)) on_ = false;
     return true;
   }
 
@@ -91,6 +93,17 @@ class NesterovDirection {
   }
 
  private:
+  // Whether the search's first point `p`, `along` the start (its separation times |start| = 1),
+  // finds the bodies well apart: separated by more than half its norm. Wolfe's steps along x
+  // then reach such pairs' distance in a few points, and the momentum's turned directions made
+  // them more (narrowphase_coal.cpp's pairs apart by 1, 32 points: 4.0 -> 4.3 oracle calls a
+  // distance; 512 points 4.65 -> 5.1), where pairs near contact, whose first point is barely
+  // apart, keep it (512 points apart by 1e-2: 11.2 oracle calls a distance without momentum,
+  // 8.1 with; ending it at any first point apart along the start left 11.1).
+  static bool well_apart(Scalar along, const Vector3& p) {
+    return along > 0 && 4 * along * along > p.squaredNorm();
+  }
+
   // The last point kept.
   Vector3 last_;
   // The last direction the momentum asked (at first the start), and the inverse of its norm.
