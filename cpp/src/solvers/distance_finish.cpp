@@ -129,9 +129,9 @@ bool DistanceFinish::whole(const Vector3& start, int& hint_a, int& hint_b, BestB
     }
     return whole_curved(start, hint_a, hint_b, bounds, goal, enclosure, first_point);
   }
-  // Each oracle point is asked along Nesterov's extrapolation of the corral's point (or along the
-  // point itself), and bounds the distance by its separation along the direction it was asked
-  // for (NesterovDirection).
+  // Each oracle point is asked with Nesterov's momentum or along the corral's point itself, and
+  // bounds the distance by its separation along the direction it was asked for
+  // (NesterovDirection, AlongCorral).
   // Two small polytopes, scanned whole whatever the hints, have a search of their own whose
   // oracle scans both bodies inline (minkowski_support's two calls out of line and their tests
   // of the bodies' kinds were a sixth of each scan); the other pairs' search compiles as it did
@@ -145,18 +145,29 @@ bool DistanceFinish::whole(const Vector3& start, int& hint_a, int& hint_b, BestB
   // kHillClimbingThreshold), and the corrals' witnesses read them: placing them again was most of
   // what a witness cost (callgrind_query, 4 vertices overlapping: 505 of 5,529 instructions a
   // distance). Every corral point is an oracle point, or the given first one, placed here.
-  const bool accelerated = std::max(pair_.a.size(), pair_.b.size()) > kMomentumSize;
+  // Pairs with a body of more than kMomentumSize points ask their first point here, unless it is
+  // given, and search from it with the momentum, or without where it finds them well apart
+  // (NesterovDirection::well_apart); smaller pairs search as before. Each way is an instance of
+  // its own, holding its placed points and oracle: those without momentum compile as the search
+  // did before it (the momentum's state held and tested in every step made 4-point queries
+  // 40-220 instructions longer, 260-point batch rows apart 3%; the points and oracle held by
+  // whole() and read through references, 4-point queries 13-54).
+  OraclePoint along_start;
+  const OraclePoint* first = first_point;
+  const bool large = std::max(pair_.a.size(), pair_.b.size()) > kMomentumSize;
+  if (large && first == nullptr) {
+    // The search counts it, as the call it replaces.
+    along_start = minkowski_support(pair_.a, pair_.b, start, hint_a, hint_b);
+    first = &along_start;
+  }
+  const bool accelerated = large && !NesterovDirection::well_apart(start, *first);
   if (pair_.a.scanned() && pair_.b.scanned()) {
-    // One instance with the momentum, one without, each holding its own placed points and
-    // oracle: the smallest pairs' search compiles as it did before the momentum (with the
-    // momentum's tests in every step 4-point queries took 40-220 instructions longer, and with
-    // the points and oracle held by whole() and read through references, 13-54).
     const auto small_search = [&](auto directions) SWARMCOLLIDE_FLATTEN {
       std::array<Vector3, kHillClimbingThreshold> placed_a;
       std::array<Vector3, kHillClimbingThreshold> placed_b;
-      if (first_point != nullptr) {
-        placed_a[first_point->ia] = pair_.a.vertex(first_point->ia);
-        placed_b[first_point->ib] = pair_.b.vertex(first_point->ib);
+      if (first != nullptr) {
+        placed_a[first->ia] = pair_.a.vertex(first->ia);
+        placed_b[first->ib] = pair_.b.vertex(first->ib);
       }
       const auto scan = [&](const Vector3& d) __attribute__((always_inline)) {
         ++evaluations_;
@@ -166,9 +177,12 @@ bool DistanceFinish::whole(const Vector3& start, int& hint_a, int& hint_b, BestB
         const Vector3& y = placed_b[hint_b] = pair_.b.vertex(hint_b);
         return OraclePoint{y - x, hint_a, hint_b};
       };
+      // A point the momentum asked in vain turns it off: the next is asked along x, and kept.
       const auto scans = [&](const Vector3& x) __attribute__((always_inline)) {
-        const OraclePoint q = scan(directions.direction(x));
-        return directions.keep(x, q) ? q : scan(directions.direction(x));
+        for (;;) {
+          const OraclePoint q = scan(directions.direction(x));
+          if (directions.keep(x, q)) return q;
+        }
       };
       const auto measured = [&](const MinNormPoint& current, const OraclePoint& q,
                                 Scalar inverse_norm) {
@@ -181,10 +195,10 @@ bool DistanceFinish::whole(const Vector3& start, int& hint_a, int& hint_b, BestB
                                   [&](int j) -> const Vector3& { return placed_b[j]; }),
                               enclose);
       };
-      return whole_search(pair_, start, first_point, hint_a, hint_b, bounds, goal, enclosure,
+      return whole_search(pair_, start, first, hint_a, hint_b, bounds, goal, enclosure,
                           max_iterations_, evaluations_, scans, measured, kept);
     };
-    if (accelerated) return small_search(NesterovDirection(start, first_point, true));
+    if (accelerated) return small_search(NesterovDirection(start, *first));
     return small_search(AlongCorral());
   }
   // The supports of large bodies climb from the previous ones, unless the direction turned by
@@ -192,26 +206,28 @@ bool DistanceFinish::whole(const Vector3& start, int& hint_a, int& hint_b, BestB
   // nearer. Small bodies are scanned, whatever the hints.
   const bool climbs =
       pair_.a.size() > kHillClimbingThreshold || pair_.b.size() > kHillClimbingThreshold;
-  Vector3 previous = start;
-  const auto support = [&](const Vector3& d) __attribute__((always_inline)) {
-    ++evaluations_;
-    if (climbs) drop_hints_after_turn(d, previous, hint_a, hint_b);
-    return minkowski_support(pair_.a, pair_.b, d, hint_a, hint_b);
-  };
-  NesterovDirection momentum(start, first_point, accelerated);
-  const auto oracle = [&](const Vector3& x) __attribute__((always_inline)) {
-    const OraclePoint q = support(momentum.direction(x));
-    return momentum.keep(x, q) ? q : support(momentum.direction(x));
-  };
-  const auto measured = [&momentum](const MinNormPoint& current, const OraclePoint& q,
-                                    Scalar inverse_norm) {
-    return momentum.measured(current, q, inverse_norm);
-  };
-  const auto climbing_search = [&]() SWARMCOLLIDE_FLATTEN {
-    return whole_search(pair_, start, first_point, hint_a, hint_b, bounds, goal, enclosure,
+  const auto climbing_search = [&](auto directions) SWARMCOLLIDE_FLATTEN {
+    Vector3 previous = start;
+    const auto support = [&](const Vector3& d) __attribute__((always_inline)) {
+      ++evaluations_;
+      if (climbs) drop_hints_after_turn(d, previous, hint_a, hint_b);
+      return minkowski_support(pair_.a, pair_.b, d, hint_a, hint_b);
+    };
+    const auto oracle = [&](const Vector3& x) __attribute__((always_inline)) {
+      for (;;) {
+        const OraclePoint q = support(directions.direction(x));
+        if (directions.keep(x, q)) return q;
+      }
+    };
+    const auto measured = [&](const MinNormPoint& current, const OraclePoint& q,
+                              Scalar inverse_norm) {
+      return directions.measured(current, q, inverse_norm);
+    };
+    return whole_search(pair_, start, first, hint_a, hint_b, bounds, goal, enclosure,
                         max_iterations_, evaluations_, oracle, measured, PlacedByBodies{pair_});
   };
-  return climbing_search();
+  if (accelerated) return climbing_search(NesterovDirection(start, *first));
+  return climbing_search(AlongCorral());
 }
 
 bool DistanceFinish::whole_from_corral(const Vector3& start, const MinNormPoint& corral,

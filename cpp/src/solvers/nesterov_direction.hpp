@@ -28,22 +28,29 @@ namespace swarmcollide::detail {
 /// and from then on every point, as coal turns the momentum off when it stops helping.
 class NesterovDirection {
  public:
-  /// A search from the unit direction `start` (its first point asked here, or `first`, asked
-  /// before along it), with momentum where `accelerated`, else every point asked along the
-  /// corral's.
-  NesterovDirection(const Vector3& start, const OraclePoint* first, bool accelerated)
-      : last_(first != nullptr ? first->p : Vector3::Zero()),
-        asked_(start),
-        steps_(first != nullptr ? 1 : 0),
-        on_(accelerated && !(first != nullptr && well_apart(start.dot(first->p), first->p))) {}
+  /// A search from the unit direction `start` whose first point, asked along it, is `first`.
+  NesterovDirection(const Vector3& start, const OraclePoint& first)
+      : last_(first.p), asked_(start) {}
 
-  /// The direction to ask for the corral's point `x` (the search's first point along its start,
-  /// then x itself or the momentum's direction): coal's, for polytopes, normalised, the last
-  /// direction's unit vector weighted by delta and the unit vector of
-  /// y = delta x + (1 - delta) w by 1 - delta.
+  /// Whether the search's first point `first`, asked along the unit direction `start`, finds the
+  /// bodies well apart: separated by more than half its norm. Wolfe's steps along x then reach
+  /// such pairs' distance in a few points, and the momentum's turned directions made them more
+  /// (narrowphase_coal.cpp's pairs apart by 1, 32 points: 4.0 -> 4.3 oracle calls a distance;
+  /// 512 points 4.65 -> 5.1); such pairs' searches run without it. Pairs near contact, whose
+  /// first point is barely apart, keep it (512 points apart by 1e-2: 11.2 oracle calls a
+  /// distance without momentum, 8.1 with; without it at any first point apart along the start,
+  /// 11.1).
+  static bool well_apart(const Vector3& start, const OraclePoint& first) {
+    const Scalar along = start.dot(first.p);
+    return along > 0 && 4 * along * along > first.p.squaredNorm();
+  }
+
+  /// The direction to ask for the corral's point `x`: x itself once the momentum ended, else
+  /// coal's for polytopes, normalised, the last direction's unit vector weighted by delta and the
+  /// unit vector of y = delta x + (1 - delta) w by 1 - delta.
   const Vector3& direction(const Vector3& x) {
     extrapolated_ = false;
-    if (!on_ || steps_ == 0) return x;
+    if (!on_) return x;
     const Scalar delta = Scalar(steps_ + 2) / Scalar(steps_ + 3);
     const Vector3 y = delta * x + (1 - delta) * last_;
     // The last direction's unit vector: the start is one; an extrapolated direction's inverse
@@ -65,23 +72,21 @@ class NesterovDirection {
   /// test stops at 2e-14 |x|), compared squared. A point that is not turns the momentum off, and
   /// the caller asks along direction(x) again.
   bool keep(const Vector3& x, const OraclePoint& q) {
+    if (!extrapolated_) return true;
     const Scalar along = x.dot(q.p);
-    if (extrapolated_) {
-      const Scalar xx = x.squaredNorm();
-      const Scalar nearer = xx - along;
-      if (!(nearer > 0 && nearer * nearer > 1e-26 * xx)) {
-        on_ = false;
-        return false;
-      }
+    const Scalar xx = x.squaredNorm();
+    const Scalar nearer = xx - along;
+    if (!(nearer > 0 && nearer * nearer > 1e-26 * xx)) {
+      on_ = false;
+      return false;
     }
     ++steps_;
     last_ = q.p;
     // A kept point short of the origin's plane across x (x . q > 0) ends the momentum: the search
     // is then near its end, where the momentum's directions, turned from x, would ask their
     // last point in vain (narrowphase_coal.cpp's pairs, 64 points apart by 1e-2: 7.05 oracle
-    // calls a distance with the momentum on until a point is refused, 6.75 ending it here). So
-    // does a first point apart along the start (every later point is asked along x then).
-    if (extrapolated_ ? along > 0 : well_apart(along, q.p)) on_ = false;
+    // calls a distance with the momentum on until a point is refused, 6.75 ending it here).
+    if (along > 0) on_ = false;
     return true;
   }
 
@@ -93,25 +98,14 @@ class NesterovDirection {
   }
 
  private:
-  // Whether the search's first point `p`, `along` the start (its separation times |start| = 1),
-  // finds the bodies well apart: separated by more than half its norm. Wolfe's steps along x
-  // then reach such pairs' distance in a few points, and the momentum's turned directions made
-  // them more (narrowphase_coal.cpp's pairs apart by 1, 32 points: 4.0 -> 4.3 oracle calls a
-  // distance; 512 points 4.65 -> 5.1), where pairs near contact, whose first point is barely
-  // apart, keep it (512 points apart by 1e-2: 11.2 oracle calls a distance without momentum,
-  // 8.1 with; ending it at any first point apart along the start left 11.1).
-  static bool well_apart(Scalar along, const Vector3& p) {
-    return along > 0 && 4 * along * along > p.squaredNorm();
-  }
-
   // The last point kept.
   Vector3 last_;
   // The last direction the momentum asked (at first the start), and the inverse of its norm.
   Vector3 asked_;
   Scalar inverse_norm_ = 0;
-  // Points kept so far.
-  int steps_;
-  bool on_;
+  // Points kept so far, the first included.
+  int steps_ = 1;
+  bool on_ = true;
   bool extrapolated_ = false;
 };
 
