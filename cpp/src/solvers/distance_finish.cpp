@@ -146,8 +146,8 @@ bool DistanceFinish::whole(const Vector3& start, int& hint_a, int& hint_b, BestB
   // what a witness cost (callgrind_query, 4 vertices overlapping: 505 of 5,529 instructions a
   // distance). Every corral point is an oracle point, or the given first one, placed here.
   // Pairs with a body of more than kMomentumSize points ask their first point here, unless it is
-  // given, and search from it with the momentum, or without where it finds them well apart
-  // (NesterovDirection::well_apart); smaller pairs search as before. Each way is an instance of
+  // given, and search from it with the momentum, or without where it lies mostly along the start
+  // (NesterovDirection::mostly_along_start); smaller pairs search as before. Each way is an instance of
   // its own, holding its placed points and oracle: those without momentum compile as the search
   // did before it (the momentum's state held and tested in every step made 4-point queries
   // 40-220 instructions longer, 260-point batch rows apart 3%; the points and oracle held by
@@ -160,7 +160,7 @@ bool DistanceFinish::whole(const Vector3& start, int& hint_a, int& hint_b, BestB
     along_start = minkowski_support(pair_.a, pair_.b, start, hint_a, hint_b);
     first = &along_start;
   }
-  const bool accelerated = large && !NesterovDirection::well_apart(start, *first);
+  const bool accelerated = large && !NesterovDirection::mostly_along_start(start, *first);
   if (pair_.a.scanned() && pair_.b.scanned()) {
     const auto small_search = [&](auto directions) SWARMCOLLIDE_FLATTEN {
       std::array<Vector3, kHillClimbingThreshold> placed_a;

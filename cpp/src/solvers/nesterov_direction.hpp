@@ -32,17 +32,17 @@ class NesterovDirection {
   NesterovDirection(const Vector3& start, const OraclePoint& first)
       : last_(first.p), asked_(start) {}
 
-  /// Whether the search's first point `first`, asked along the unit direction `start`, finds the
-  /// bodies well apart: separated by more than half its norm. Wolfe's steps along x then reach
-  /// such pairs' distance in a few points, and the momentum's turned directions made them more
-  /// (narrowphase_coal.cpp's pairs apart by 1, 32 points: 4.0 -> 4.3 oracle calls a distance;
-  /// 512 points 4.65 -> 5.1); such pairs' searches run without it. Pairs near contact, whose
-  /// first point is barely apart, keep it (512 points apart by 1e-2: 11.2 oracle calls a
-  /// distance without momentum, 8.1 with; without it at any first point apart along the start,
-  /// 11.1).
-  static bool well_apart(const Vector3& start, const OraclePoint& first) {
+  /// Whether the search's first point `first`, asked along the unit direction `start`, lies
+  /// mostly along it (|start . first| more than half its norm): the bodies are then far apart or
+  /// deep in each other, where Wolfe's steps along x reach the answer in a few points and the
+  /// momentum's turned directions made them more (narrowphase_coal.cpp's pairs apart by 1,
+  /// 32 points: 4.0 -> 4.3 oracle calls a distance, 512 points 4.65 -> 5.1; overlapping by 0.2,
+  /// 64 points: 4.1 -> 4.85); such pairs' searches run without it. Pairs near contact, whose
+  /// first point lies across the start, keep it (512 points apart by 1e-2: 11.2 oracle calls a
+  /// distance without momentum, 8.1 with).
+  static bool mostly_along_start(const Vector3& start, const OraclePoint& first) {
     const Scalar along = start.dot(first.p);
-    return along > 0 && 4 * along * along > first.p.squaredNorm();
+    return 4 * along * along > first.p.squaredNorm();
   }
 
   /// The direction to ask for the corral's point `x`: x itself once the momentum ended, else
