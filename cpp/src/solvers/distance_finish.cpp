@@ -145,29 +145,23 @@ bool DistanceFinish::whole(const Vector3& start, int& hint_a, int& hint_b, BestB
   // kHillClimbingThreshold), and the corrals' witnesses read them: placing them again was most of
   // what a witness cost (callgrind_query, 4 vertices overlapping: 505 of 5,529 instructions a
   // distance). Every corral point is an oracle point, or the given first one, placed here.
-  // Pairs with a body of more than kMomentumSize points ask their first point here, unless it is
-  // given, and search from it with the momentum, or without where it lies mostly along the start
-  // (NesterovDirection::mostly_along_start); smaller pairs search as before. Each way is an instance of
-  // its own, holding its placed points and oracle: those without momentum compile as the search
-  // did before it (the momentum's state held and tested in every step made 4-point queries
-  // 40-220 instructions longer, 260-point batch rows apart 3%; the points and oracle held by
-  // whole() and read through references, 4-point queries 13-54).
-  OraclePoint along_start;
-  const OraclePoint* first = first_point;
+  // Pairs with a body of more than kMomentumSize points search with the momentum, but where
+  // their first point lies mostly along the start (NesterovDirection::mostly_along_start);
+  // smaller pairs search as before. Each way is an instance of its own, holding its placed points
+  // and oracle: those without momentum compile as the search did before it (the momentum's state
+  // held and tested in every step made 4-point queries 40-220 instructions longer; the points and
+  // oracle held by whole() and read through references, 13-54). Large bodies' first point is
+  // asked here, unless given, to choose: tested in every step of one instance, the momentum's
+  // state made 260-point batch rows apart 3% longer. Scanned pairs' instance with momentum tests
+  // their first point itself: asked here, 16-point verdicts apart, settled by it, took 8% longer.
   const bool large = std::max(pair_.a.size(), pair_.b.size()) > kMomentumSize;
-  if (large && first == nullptr) {
-    // The search counts it, as the call it replaces.
-    along_start = minkowski_support(pair_.a, pair_.b, start, hint_a, hint_b);
-    first = &along_start;
-  }
-  const bool accelerated = large && !NesterovDirection::mostly_along_start(start, *first);
   if (pair_.a.scanned() && pair_.b.scanned()) {
     const auto small_search = [&](auto directions) SWARMCOLLIDE_FLATTEN {
       std::array<Vector3, kHillClimbingThreshold> placed_a;
       std::array<Vector3, kHillClimbingThreshold> placed_b;
-      if (first != nullptr) {
-        placed_a[first->ia] = pair_.a.vertex(first->ia);
-        placed_b[first->ib] = pair_.b.vertex(first->ib);
+      if (first_point != nullptr) {
+        placed_a[first_point->ia] = pair_.a.vertex(first_point->ia);
+        placed_b[first_point->ib] = pair_.b.vertex(first_point->ib);
       }
       const auto scan = [&](const Vector3& d) __attribute__((always_inline)) {
         ++evaluations_;
@@ -195,10 +189,10 @@ bool DistanceFinish::whole(const Vector3& start, int& hint_a, int& hint_b, BestB
                                   [&](int j) -> const Vector3& { return placed_b[j]; }),
                               enclose);
       };
-      return whole_search(pair_, start, first, hint_a, hint_b, bounds, goal, enclosure,
+      return whole_search(pair_, start, first_point, hint_a, hint_b, bounds, goal, enclosure,
                           max_iterations_, evaluations_, scans, measured, kept);
     };
-    if (accelerated) return small_search(NesterovDirection(start, *first));
+    if (large) return small_search(NesterovDirection(start, first_point));
     return small_search(AlongCorral());
   }
   // The supports of large bodies climb from the previous ones, unless the direction turned by
@@ -206,6 +200,13 @@ bool DistanceFinish::whole(const Vector3& start, int& hint_a, int& hint_b, BestB
   // nearer. Small bodies are scanned, whatever the hints.
   const bool climbs =
       pair_.a.size() > kHillClimbingThreshold || pair_.b.size() > kHillClimbingThreshold;
+  OraclePoint along_start;
+  const OraclePoint* first = first_point;
+  if (large && first == nullptr) {
+    // The search counts it, as the call it replaces.
+    along_start = minkowski_support(pair_.a, pair_.b, start, hint_a, hint_b);
+    first = &along_start;
+  }
   const auto climbing_search = [&](auto directions) SWARMCOLLIDE_FLATTEN {
     Vector3 previous = start;
     const auto support = [&](const Vector3& d) __attribute__((always_inline)) {
@@ -226,7 +227,9 @@ bool DistanceFinish::whole(const Vector3& start, int& hint_a, int& hint_b, BestB
     return whole_search(pair_, start, first, hint_a, hint_b, bounds, goal, enclosure,
                         max_iterations_, evaluations_, oracle, measured, PlacedByBodies{pair_});
   };
-  if (accelerated) return climbing_search(NesterovDirection(start, *first));
+  if (large && !NesterovDirection::mostly_along_start(start, *first)) {
+    return climbing_search(NesterovDirection(start, first));
+  }
   return climbing_search(AlongCorral());
 }
 

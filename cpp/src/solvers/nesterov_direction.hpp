@@ -28,9 +28,13 @@ namespace swarmcollide::detail {
 /// and from then on every point, as coal turns the momentum off when it stops helping.
 class NesterovDirection {
  public:
-  /// A search from the unit direction `start` whose first point, asked along it, is `first`.
-  NesterovDirection(const Vector3& start, const OraclePoint& first)
-      : last_(first.p), asked_(start) {}
+  /// A search from the unit direction `start` whose first point, asked along it, is `first`, or
+  /// (null) the first it asks.
+  NesterovDirection(const Vector3& start, const OraclePoint* first)
+      : last_(first != nullptr ? first->p : Vector3::Zero()),
+        asked_(start),
+        steps_(first != nullptr ? 1 : 0),
+        on_(first == nullptr || !mostly_along_start(start, *first)) {}
 
   /// Whether the search's first point `first`, asked along the unit direction `start`, lies
   /// mostly along it (|start . first| more than half its norm): the bodies are then far apart or
@@ -50,7 +54,7 @@ class NesterovDirection {
   /// unit vector of y = delta x + (1 - delta) w by 1 - delta.
   const Vector3& direction(const Vector3& x) {
     extrapolated_ = false;
-    if (!on_) return x;
+    if (!on_ || steps_ == 0) return x;
     const Scalar delta = Scalar(steps_ + 2) / Scalar(steps_ + 3);
     const Vector3 y = delta * x + (1 - delta) * last_;
     // The last direction's unit vector: the start is one; an extrapolated direction's inverse
@@ -72,7 +76,14 @@ class NesterovDirection {
   /// test stops at 2e-14 |x|), compared squared. A point that is not turns the momentum off, and
   /// the caller asks along direction(x) again.
   bool keep(const Vector3& x, const OraclePoint& q) {
-    if (!extrapolated_) return true;
+    if (!on_) return true;
+    if (!extrapolated_) {
+      // The first point, asked along the start (x).
+      steps_ = 1;
+      last_ = q.p;
+      on_ = !mostly_along_start(x, q);
+      return true;
+    }
     const Scalar along = x.dot(q.p);
     const Scalar xx = x.squaredNorm();
     const Scalar nearer = xx - along;
@@ -104,8 +115,8 @@ class NesterovDirection {
   Vector3 asked_;
   Scalar inverse_norm_ = 0;
   // Points kept so far, the first included.
-  int steps_ = 1;
-  bool on_ = true;
+  int steps_;
+  bool on_;
   bool extrapolated_ = false;
 };
 
