@@ -126,7 +126,7 @@ TEST(Dual, MomentumAsksFewerPointsNearContact) {
       }
     }
   }
-  // With the momentum 252 and 202 against 327; without it 327 and 245.
+  // With the momentum 249 and 199 against 327; without it 327 and 245.
   EXPECT_LT(10 * distance_points, 9 * exact_points);
   EXPECT_LT(10 * verdict_points, 7 * exact_points);
 }
