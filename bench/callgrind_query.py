@@ -4,7 +4,10 @@ Runs ``swarmcollide-callgrind-query`` (bench/callgrind_query.cpp, built with the
 once under ``valgrind --tool=callgrind --collect-atstart=no``; the binary turns collection on
 around each contender's timed loop and dumps the counts under a label, and this script reads the
 dumps and prints instructions per query and ours / coal (and the fcl method's distance over the
-raw FCL call it wraps). Instruction counts do not depend on the machine's load, so they compare
+raw FCL call it wraps). A second table sets ours beside each of coal's GJK variants for distance and
+collide (its default, the bounding boxes' centres as initial guess, Nesterov's acceleration, both:
+narrowphase_coal.cpp's, natively the fastest is often one of the others) and over the variant
+counted fewest. Instruction counts do not depend on the machine's load, so they compare
 contenders on a shared machine where wall-clock cannot.
 
     .venv/bin/python bench/callgrind_query.py --binary build/bench/bench/swarmcollide-callgrind-query
@@ -165,13 +168,36 @@ def main() -> None:
                 for size, proximity, query, method, direct in both("ours_fcl", "fcl")]
     print_ratios("the fcl method against the raw FCL call it wraps:", "vertices", fcl_rows,
                  "fcl_method", "fcl_direct")
+    variant_names = ["coal", "coal_box", "coal_nesterov", "coal_nesterov_box"]
+    variant_rows = []
+    for workload, proximity, query in keys:
+        ours = found.get((workload, proximity, query, "ours"))
+        variants = {name: found.get((workload, proximity, query, name))
+                    for name in variant_names}
+        if ours is None or any(count is None for count in variants.values()):
+            continue
+        fewest = min(variant_names, key=lambda name: variants[name])
+        variant_rows.append({"vertices": int(workload.split("=")[1]), "proximity": proximity,
+                             "query": query, "ours": ours, **variants,
+                             "coal_fewest": fewest})
+    if variant_rows:
+        print("\nours against each of coal's GJK variants (narrowphase_coal.cpp's: natively the "
+              "fastest is often the box guess or Nesterov's):")
+        print(f"{'vertices':>8} {'proximity':9} {'query':9} {'ours':>8} "
+              + " ".join(f"{name:>17}" for name in variant_names)
+              + f" {'ours/fewest':>11} fewest")
+        for row in variant_rows:
+            fewest = row["coal_fewest"]
+            print(f"{row['vertices']:8} {row['proximity']:9} {row['query']:9} {row['ours']:8.0f} "
+                  + " ".join(f"{row[name]:17.0f}" for name in variant_names)
+                  + f" {row['ours'] / row[fewest]:11.2f} {fewest}")
     matched_rows = [{"shapes": shapes, "proximity": proximity, "query": query, "ours": ours,
                      "coal_at_our_tolerance": matched}
                     for shapes, proximity, query, ours, matched in both("ours", "coal_matched")]
     print_ratios("coal at our tolerance (1e-9 of the pair's size, not its absolute 1e-6):",
                  "shapes", matched_rows, "ours", "coal_at_our_tolerance")
     if args.json:
-        rows += fcl_rows + matched_rows
+        rows += fcl_rows + variant_rows + matched_rows
         Path(args.json).write_text(json.dumps({"pairs": args.pairs, "repeats": args.repeats,
                                                "instructions_per_query": rows}, indent=1) + "\n")
 
