@@ -59,6 +59,18 @@ long frees_during(Work&& work) {
   return frees.load() - before;
 }
 
+// n points spread over the unit sphere (a golden-angle spiral), the hull's every vertex.
+VertexMatrix sphere_points(int n) {
+  VertexMatrix points(n, 3);
+  for (int i = 0; i < n; ++i) {
+    const double t = 2.399963 * i;
+    const double z = 1 - (2.0 * i + 1) / n;
+    const double r = std::sqrt(1 - z * z);
+    points.row(i) << r * std::cos(t), r * std::sin(t), z;
+  }
+  return points;
+}
+
 TEST(AllocationCount, SeesEveryHeapAllocation) {
   EXPECT_EQ(allocations_during([] { VectorX(100).setZero(); }), 1);
 }
@@ -97,13 +109,7 @@ TEST_P(SteadyState, ASolveAllocatesNoMoreThanCopyingItsResult) {
 // its answer's weights are sparse, and its history (one value) is held in place (History).
 TEST(DualSteadyState, ADistanceSettledByItsStartAllocatesNothing) {
   for (const int n : {4, 8, 64}) {
-    VertexMatrix points(n, 3);
-    for (int i = 0; i < n; ++i) {
-      const double t = 2.399963 * i;
-      const double z = 1 - (2.0 * i + 1) / n;
-      const double r = std::sqrt(1 - z * z);
-      points.row(i) << r * std::cos(t), r * std::sin(t), z;
-    }
+    const VertexMatrix points = sphere_points(n);
     const ConvexPolyhedron a(points);
     for (const double offset : {3.0, 2.01, 1.5}) {  // apart, near, overlapping
       const ConvexPolyhedron b(points.rowwise() + Eigen::RowVector3d(offset, 0.1, -0.2));
@@ -123,13 +129,7 @@ TEST(DualSteadyState, ADistanceSettledByItsStartAllocatesNothing) {
 // empty Eigen vector, freed with free(nullptr), made a call each (ConvexWeights holds a dense
 // vector only for dense weights), and a batch row an answer's.
 TEST(DualSteadyState, ADistanceSettledByItsStartCallsNoFree) {
-  VertexMatrix points(8, 3);
-  for (int i = 0; i < 8; ++i) {
-    const double t = 2.399963 * i;
-    const double z = 1 - (2.0 * i + 1) / 8;
-    const double r = std::sqrt(1 - z * z);
-    points.row(i) << r * std::cos(t), r * std::sin(t), z;
-  }
+  const VertexMatrix points = sphere_points(8);
   const ConvexPolyhedron a(points);
   Pose pose;
   pose.translation << 0.1, 0.2, 0.3;
@@ -187,13 +187,7 @@ TEST(PenetrationSteadyState, AllocatesNothing) {
 // their points in the frame) and answers with sparse weights: a warmed-up query allocates nothing.
 TEST(PenetrationSteadyState, AnOverlappingSignedDistanceAllocatesNothing) {
   for (const int n : {12, 200}) {
-    VertexMatrix points(n, 3);
-    for (int i = 0; i < n; ++i) {
-      const double t = 2.399963 * i;
-      const double z = 1 - (2.0 * i + 1) / n;
-      const double r = std::sqrt(1 - z * z);
-      points.row(i) << r * std::cos(t), r * std::sin(t), z;
-    }
+    const VertexMatrix points = sphere_points(n);
     const ConvexPolyhedron a(points), b(points);
     const Pose pose_a{Eigen::AngleAxisd(0.3, Vector3(1, 2, 3).normalized()).toRotationMatrix(),
                       Vector3::Zero()};
@@ -216,13 +210,7 @@ TEST(PenetrationSteadyState, AnOverlappingSignedDistanceAllocatesNothing) {
 // query allocates for its own result's arrays (the dual's history, a penetration's weights): no
 // body is copied, no query rebuilt, no pose list made (one thread, so no thread is started).
 TEST(BatchSteadyState, RowsAllocateNoMoreThanTheirSingleQueries) {
-  VertexMatrix points(40, 3);
-  for (int i = 0; i < 40; ++i) {
-    const double t = 2.399963 * i;
-    const double z = 1 - (2.0 * i + 1) / 40;
-    const double r = std::sqrt(1 - z * z);
-    points.row(i) << r * std::cos(t), r * std::sin(t), z;
-  }
+  const VertexMatrix points = sphere_points(40);
   const ConvexPolyhedron a(points);
   const ConvexPolyhedron b(points.topRows(8).eval());
   BatchPoses few, many;

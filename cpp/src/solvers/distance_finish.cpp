@@ -171,12 +171,8 @@ bool DistanceFinish::whole(const Vector3& start, int& hint_a, int& hint_b, BestB
         const Vector3& y = placed_b[hint_b] = pair_.b.vertex(hint_b);
         return OraclePoint{y - x, hint_a, hint_b};
       };
-      // A point the momentum asked in vain turns it off: the next is asked along x, and kept.
       const auto scans = [&](const Vector3& x) __attribute__((always_inline)) {
-        for (;;) {
-          const OraclePoint q = scan(directions.direction(x));
-          if (directions.keep(x, q)) return q;
-        }
+        return directions.ask(x, scan);
       };
       const auto measured = [&](const MinNormPoint& current, const OraclePoint& q,
                                 Scalar inverse_norm) {
@@ -215,10 +211,7 @@ bool DistanceFinish::whole(const Vector3& start, int& hint_a, int& hint_b, BestB
       return minkowski_support(pair_.a, pair_.b, d, hint_a, hint_b);
     };
     const auto oracle = [&](const Vector3& x) __attribute__((always_inline)) {
-      for (;;) {
-        const OraclePoint q = support(directions.direction(x));
-        if (directions.keep(x, q)) return q;
-      }
+      return directions.ask(x, support);
     };
     const auto measured = [&](const MinNormPoint& current, const OraclePoint& q,
                               Scalar inverse_norm) {

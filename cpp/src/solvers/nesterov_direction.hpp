@@ -49,6 +49,24 @@ class NesterovDirection {
     return 4 * along * along > first.p.squaredNorm();
   }
 
+  /// The point `support` gives for the corral's point `x`: asked along direction(x), and along x
+  /// as well where the momentum's point is not kept (which turns the momentum off).
+  template <typename Support>
+  __attribute__((always_inline)) OraclePoint ask(const Vector3& x, Support& support) {
+    for (;;) {
+      const OraclePoint q = support(direction(x));
+      if (keep(x, q)) return q;
+    }
+  }
+
+  /// The separation of the kept point `q` along the direction it was asked for, which the
+  /// corral's point `x` of norm 1 / `inverse_x` gave.
+  Separation measured(const MinNormPoint& current, const OraclePoint& q, Scalar inverse_x) const {
+    if (extrapolated_) return Separation{asked_.dot(q.p) * inverse_norm_, asked_ * inverse_norm_};
+    return Separation{current.x.dot(q.p) * inverse_x, current.x * inverse_x};
+  }
+
+ private:
   /// The direction to ask for the corral's point `x`: x itself once the momentum ended, else
   /// coal's for polytopes, normalised, the last direction's unit vector weighted by delta and the
   /// unit vector of y = delta x + (1 - delta) w by 1 - delta.
@@ -74,7 +92,7 @@ class NesterovDirection {
   /// Whether the point `q`, asked along direction(x), is kept: it is if it was asked along x,
   /// or lies nearer than the corral along x by more than 1e-13 |x| (see the class; Wolfe's gap
   /// test stops at 2e-14 |x|), compared squared. A point that is not turns the momentum off, and
-  /// the caller asks along direction(x) again.
+  /// ask() asks again, along x.
   bool keep(const Vector3& x, const OraclePoint& q) {
     if (!on_) return true;
     if (!extrapolated_) {
@@ -101,14 +119,6 @@ class NesterovDirection {
     return true;
   }
 
-  /// The separation of the kept point `q` along the direction it was asked for, which the
-  /// corral's point `x` of norm 1 / `inverse_x` gave.
-  Separation measured(const MinNormPoint& current, const OraclePoint& q, Scalar inverse_x) const {
-    if (extrapolated_) return Separation{asked_.dot(q.p) * inverse_norm_, asked_ * inverse_norm_};
-    return Separation{current.x.dot(q.p) * inverse_x, current.x * inverse_x};
-  }
-
- private:
   // The last point kept.
   Vector3 last_;
   // The last direction the momentum asked (at first the start), and the inverse of its norm.
@@ -124,8 +134,10 @@ class NesterovDirection {
 /// and measured along it, for the pairs that ask none with momentum (distance_finish.cpp's
 /// kMomentumSize), whose search then compiles as it did without momentum.
 struct AlongCorral {
-  const Vector3& direction(const Vector3& x) const { return x; }
-  bool keep(const Vector3&, const OraclePoint&) const { return true; }
+  template <typename Support>
+  __attribute__((always_inline)) OraclePoint ask(const Vector3& x, Support& support) const {
+    return support(x);
+  }
   Separation measured(const MinNormPoint& current, const OraclePoint& q, Scalar inverse_x) const {
     return Separation{current.x.dot(q.p) * inverse_x, current.x * inverse_x};
   }
