@@ -36,11 +36,7 @@ inline Vector3 world_centre(const ConvexPolyhedron& body, const Pose& pose, bool
                             const char* name) {
   const Vector3 centre = turned ? Vector3(pose.rotation * body.bounds().centre + pose.translation)
                                 : Vector3(body.bounds().centre + pose.translation);
-  // x - x is 0 for a finite x and NaN otherwise, and a NaN stays in the sum: one test where
-  // allFinite made three.
-  const Scalar probe = (centre.x() - centre.x()) + (centre.y() - centre.y()) +
-                       (centre.z() - centre.z());
-  if (!(probe == 0)) refuse_placement(name);
+  if (!finite_entries(centre)) refuse_placement(name);
   return centre;
 }
 

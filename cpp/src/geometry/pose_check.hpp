@@ -37,12 +37,14 @@ inline bool rigid(const RotationDeviation& d) {
          std::abs(d.determinant - 1) <= kRotationTolerance;
 }
 
-/// True when the translation is finite: x - x is 0 for a finite x and NaN otherwise, and a NaN
-/// stays in the sum.
-inline bool finite_translation(const Pose& pose) {
-  const Vector3& t = pose.translation;
-  return (t.x() - t.x()) + (t.y() - t.y()) + (t.z() - t.z()) == 0;
+/// True when every entry of `v` is finite, in one test where allFinite makes three: x - x is 0
+/// for a finite x and NaN otherwise, and a NaN stays in the sum.
+inline bool finite_entries(const Vector3& v) {
+  return (v.x() - v.x()) + (v.y() - v.y()) + (v.z() - v.z()) == 0;
 }
+
+/// True when the translation is finite.
+inline bool finite_translation(const Pose& pose) { return finite_entries(pose.translation); }
 
 /// What validate_pose checks, for a pose whose rotation is the identity exactly when `turned` is
 /// false (`turned == !pose.has_identity_rotation()`): framing a pair needs that test anyway, so it

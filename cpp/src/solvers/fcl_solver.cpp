@@ -2,7 +2,6 @@
 
 #include <fcl/narrowphase/detail/convexity_based_algorithm/gjk.h>
 
-
 #include "../queries/verdict.hpp"
 #include "exact_solver.hpp"
 #include "fcl_shape.hpp"
