@@ -254,6 +254,37 @@ TEST(Curved, FramedSupportsAreTheShapesOwn) {
   }
 }
 
+// A curved body's support points live in a cache that its thread reuses from query to query
+// (SharedSupportCache), started by reading the body's own table (SupportCache::reset) until the
+// first point added copies it. Framed again after queries that added points (a hundred: the table
+// grew too) to its own table and to another body's, a body numbers its support points as it did
+// the first time: a point written into the body's own table, or a table kept from the last
+// query, would be found again under a number from that query.
+TEST(Curved, ReusedSupportCachesNumberAsNewOnes) {
+  Random rng(31);
+  const Cylinder cylinder(0.7, 0.4);
+  const Cone cone(0.5, 0.9);
+  std::vector<Vector3> directions;
+  for (int k = 0; k < 100; ++k) directions.push_back(rng.unit());
+  const Pose pose = at(Vector3(0.1, 0.2, 0.3), rng.rotation());
+  // The numbers of the support points along `directions`, the first `count` of them, in one
+  // framing of `shape`.
+  const auto numbers = [&](const ConvexPolyhedron& shape, std::size_t count) {
+    const detail::FramedPair pair = detail::frame_pair(shape, pose, shape, at(Vector3(1, 0, 0)),
+                                                       kDefaultTolerance);
+    EXPECT_EQ(pair.a.size(), shape.size());
+    std::vector<int> found;
+    for (std::size_t k = 0; k < count; ++k) found.push_back(pair.a.support_index(directions[k]));
+    return found;
+  };
+  const std::vector<int> first = numbers(cylinder, directions.size());
+  EXPECT_GT(*std::max_element(first.begin(), first.end()), 64);
+  EXPECT_EQ(numbers(cylinder, directions.size()), first);
+  EXPECT_EQ(numbers(cylinder, 3), std::vector<int>(first.begin(), first.begin() + 3));
+  numbers(cone, directions.size());
+  EXPECT_EQ(numbers(cylinder, directions.size()), first);
+}
+
 // The closed form of a ball against a cylinder or a cone (point_against_curved) takes the second
 // rim point of a pair from the first by a symmetry of the support function rather than asking it:
 // a cylinder's rim points along (x, y, 1) and (x, y, -1) differ only in the sign of their height,

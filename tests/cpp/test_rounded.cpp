@@ -4,10 +4,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 #include <stdexcept>
 #include <vector>
 
+#include "geometry/framed_body.hpp"
+#include "queries/rounded.hpp"
 #include "shapes.hpp"
 #include "swarmcollide/geometry/compound_body.hpp"
 #include "swarmcollide/geometry/shapes.hpp"
@@ -68,6 +72,38 @@ void expect_answer(const DistanceResult& r, Scalar expected, Scalar size,
 
 const std::vector<Method> kMeasuring = {Method::dual, Method::exact, Method::fcl};
 const std::vector<Method> kSigned = {Method::dual, Method::exact, Method::fcl, Method::libccd};
+
+// shifted_by_radii moves an inexact `core - r_a - r_b` out by its rounding's bound, then to the
+// next double outward, stepping the bits as next_down does: std::nextafter's value, bit for bit,
+// for bounds of either sign and near zero.
+TEST(Rounded, ShiftedBoundsStepAsNextafterDoes) {
+  const Sphere a(0.3);
+  const Sphere b(0.1);
+  const detail::FramedPair pair =
+      detail::frame_pair(a, at(Vector3::Zero()), b, at(Vector3(1, 0, 0)), kDefaultTolerance);
+  const Scalar radii = pair.radius_a + pair.radius_b;
+  const auto bits = [](Scalar x) {
+    std::uint64_t b;
+    std::memcpy(&b, &x, sizeof b);
+    return b;
+  };
+  Random rng(5);
+  std::vector<Scalar> cores{0.0, -0.0, radii, -radii, 1e-310, -1e-310, radii * (1 + 1e-15)};
+  for (int k = 0; k < 200; ++k) cores.push_back(rng.uniform(-2, 2));
+  int stepped = 0;
+  for (const Scalar core : cores) {
+    for (const Scalar outward : {-1.0, 1.0}) {
+      const Scalar shifted = detail::shifted_by_radii(pair, core, outward);
+      if (shifted == core - radii) continue;  // proven exact, not moved
+      ++stepped;
+      const Scalar moved = core - radii + outward * detail::subtraction_rounding(pair, core);
+      EXPECT_EQ(bits(shifted),
+                bits(std::nextafter(moved, outward * std::numeric_limits<Scalar>::infinity())))
+          << "core " << core << ", outward " << outward;
+    }
+  }
+  EXPECT_GT(stepped, 200);
+}
 
 TEST(Rounded, SpheresMatchTheClosedForm) {
   Random rng(3);

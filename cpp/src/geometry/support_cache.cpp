@@ -40,24 +40,38 @@ Pool* pool() {
 
 }  // namespace
 
-int SupportCache::add_growing(const Vector3& p) {
-  if (count_ == points_.rows()) points_.conservativeResize(2 * points_.rows(), Eigen::NoChange);
-  slots_.assign(2 * slots_.size(), -1);
-  for (int i = 0; i < count_; ++i) slots_[find(points_.row(i).transpose())] = i;
-  slots_[find(p)] = count_;
+int SupportCache::add_growing(const Vector3& p, std::size_t slot) {
+  if (slots_ != owned_.data()) {
+    // The start's table, borrowed since the reset, copied (a vector keeps its capacity, so a grown
+    // table is not reallocated; the start's is never full).
+    const int* borrowed = slots_;
+    owned_.resize(mask_ + 1);
+    std::copy_n(borrowed, owned_.size(), owned_.data());
+    own_table();
+  } else {
+    if (count_ == points_.rows()) points_.conservativeResize(2 * points_.rows(), Eigen::NoChange);
+    owned_.assign(2 * owned_.size(), -1);
+    own_table();
+    for (int i = 0; i < count_; ++i) slots_[find(points_.row(i).transpose())] = i;
+    slot = find(p);
+  }
+  slots_[slot] = count_;
   points_.row(count_) = p.transpose();
   return count_++;
 }
 
 void SupportCache::reset(const SupportCache& start) {
-  // The table copied (a vector keeps its capacity, so a grown table is not reallocated), and the
-  // first rows; the rows stay at least half the table's size.
-  slots_ = start.slots_;
+  // The first rows copied; the rows stay at least half the table's size.
   count_ = start.count_;
   if (points_.rows() < start.points_.rows()) points_.resize(start.points_.rows(), Eigen::NoChange);
   // Row-major: the first rows are the first 3 count_ coordinates, one memmove (Eigen's block
   // assignment went entry by entry).
   std::copy_n(start.points_.data(), 3 * static_cast<std::size_t>(count_), points_.data());
+  // Never written through while borrowed: the first point added makes count_ reach limit_, and
+  // add_growing copies the table before it writes.
+  slots_ = start.slots_;
+  mask_ = start.mask_;
+  limit_ = count_;
 }
 
 SharedSupportCache::SharedSupportCache(const SupportCache& start) {

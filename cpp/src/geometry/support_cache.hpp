@@ -20,17 +20,25 @@ class SupportCache {
  public:
   /// Starts with `initial`'s rows (the body's own points, all on its surface).
   explicit SupportCache(const VertexMatrix& initial)
-      : points_(capacity_for(initial.rows()), 3), slots_(2 * points_.rows(), -1) {
+      : points_(capacity_for(initial.rows()), 3), owned_(2 * points_.rows(), -1) {
+    own_table();
     for (Eigen::Index i = 0; i < initial.rows(); ++i) add(initial.row(i).transpose());
   }
   /// A copy of `other`'s points and table (not of its users).
   SupportCache(const SupportCache& other)
-      : points_(other.points_), slots_(other.slots_), count_(other.count_) {}
+      : points_(other.points_),
+        owned_(other.slots_, other.slots_ + other.mask_ + 1),
+        count_(other.count_) {
+    own_table();
+  }
   SupportCache& operator=(const SupportCache&) = delete;
   /// Starts again as `start`, a cache holding a body's own points only, keeping this one's
-  /// storage (a cache that grew keeps its rows and its table's capacity, but takes `start`'s
-  /// table, so that it costs a copy of `start`, not a rehash): the points are numbered as
-  /// `start` numbers them, so a reused cache answers as a new one.
+  /// storage: the points are numbered as `start` numbers them, so a reused cache answers as a
+  /// new one. Its points are copied, but its table is only read until a point is added: a query
+  /// that adds none (a closed form, point_against_curved) copies no table, and one that adds
+  /// points copies it then (a cache that grew keeps its table's capacity but takes `start`'s
+  /// table, so that it costs a copy, not a rehash). `start` must outlive this cache's use, as
+  /// the body that holds it outlives the framed body that reads this cache.
   void reset(const SupportCache& start);
 
   /// The number of `point` (exact equality of coordinates, -0 = +0), added when it is new.
@@ -38,9 +46,10 @@ class SupportCache {
     const Vector3 p = point + Vector3::Zero();  // -0 + 0 = +0, so both zeros hash alike
     const std::size_t slot = find(p);
     if (slots_[slot] >= 0) return slots_[slot];
-    // A full table grows out of line: inlined, the growth made every call save and restore the
-    // registers it uses (a cylinder pair apart: 3.7% of its query's instructions).
-    if (2 * static_cast<std::size_t>(count_) == slots_.size()) return add_growing(p);
+    // A full table grows out of line, and a borrowed one is copied there: inlined, the growth
+    // made every call save and restore the registers it uses (a cylinder pair apart: 3.7% of its
+    // query's instructions).
+    if (count_ == limit_) return add_growing(p, slot);
     slots_[slot] = count_;
     points_.row(count_) = p.transpose();
     return count_++;
@@ -73,22 +82,37 @@ class SupportCache {
   }
   // The slot holding `p`, or the empty slot where it goes.
   std::size_t find(const Vector3& p) const {
-    const std::size_t mask = slots_.size() - 1;
-    std::size_t slot = hash(p) & mask;
+    std::size_t slot = hash(p) & mask_;
     for (int i = slots_[slot]; i >= 0; i = slots_[slot]) {
       if (points_(i, 0) == p.x() && points_(i, 1) == p.y() && points_(i, 2) == p.z()) break;
-      slot = (slot + 1) & mask;
+      slot = (slot + 1) & mask_;
     }
     return slot;
   }
-  // Adds the new point `p` (with -0 as +0) to a full table: doubles the table (kept at most half
-  // full), rehashing the points, and the rows when they are full (support_cache.cpp). There are
-  // always at least half as many rows as slots (reset keeps a grown cache's rows but takes the
-  // start's smaller table), so a full table comes first.
-  int add_growing(const Vector3& p);
+  // The table is this cache's own storage: full at half its slots.
+  void own_table() {
+    slots_ = owned_.data();
+    mask_ = owned_.size() - 1;
+    limit_ = static_cast<int>(owned_.size() / 2);
+  }
+  // Adds the new point `p` (with -0 as +0), whose empty slot `find` gave, where `add` cannot: to
+  // a borrowed table, which it copies into this cache's storage first (the slot is the copy's),
+  // or to a full one, which it doubles (kept at most half full), rehashing the points, and the
+  // rows when they are full (support_cache.cpp). There are always at least half as many rows as
+  // slots (reset keeps a grown cache's rows but takes the start's smaller table), so a full table
+  // comes first.
+  int add_growing(const Vector3& p, std::size_t slot);
 
   VertexMatrix points_;
-  std::vector<int> slots_;
+  // The table's storage, and the table itself: the storage, or after a reset the start's table,
+  // read only (the first point added copies it: count_ is limit_ there). Its size less one (a
+  // power of two) masks the hashes; add goes out of line when count_ reaches limit_ (half the
+  // size, or the count at the reset while borrowed). Members rather than the vector's size: each
+  // support call of a search reads them, where the size was a subtraction and a shift.
+  std::vector<int> owned_;
+  int* slots_ = nullptr;
+  std::size_t mask_ = 0;
+  int limit_ = 0;
   int count_ = 0;
   // The handles (SharedSupportCache) that share this cache.
   std::atomic<int> users_{0};

@@ -2,17 +2,17 @@
 // point's closed form; private to the library's sources.
 #pragma once
 
-#include <optional>
-
 #include "../geometry/framed_body.hpp"
 #include "answer.hpp"
 
 namespace swarmcollide::detail {
 
-/// The answer for `goal` of a pair whose one body is a single point (the core of a sphere) and
-/// whose other is a cylinder, a cone or an ellipsoid in its own frame, or nothing (any other
+/// True, with `answer` (default-constructed by the caller) the answer for `goal`, for a pair
+/// whose one body is a single point (the core of a sphere) and whose other is a cylinder, a cone
+/// or an ellipsoid in its own frame; false (`answer` then holds nothing to use) for any other
 /// pair, a point on the surface, a point inside for goals other than the signed distance, or
-/// bounds that leave the goal unmet): the caller's search then answers it.
+/// bounds that leave the goal unmet: the caller's search then answers it. The answer is written
+/// in the caller's place: returned in an optional and moved out of it, it was moved twice.
 ///
 /// The closed form only chooses: the outward normal of the nearest surface point, and that point
 /// as a combination of at most two of the shape's support points (rim points, the apex; an
@@ -24,8 +24,7 @@ namespace swarmcollide::detail {
 /// the nearest surface point the nearer of the mantle and a cap (of the base and the slant), the
 /// upper bound minus the depth that the shape's closed form proves (curved_depth.hpp); inside an
 /// ellipsoid, or where that leaves the goal unmet, by the penetration solver.
-std::optional<Answer> point_against_curved(const FramedPair& pair, Goal goal,
-                                           int max_iterations);
+bool point_against_curved(const FramedPair& pair, Goal goal, int max_iterations, Answer& answer);
 
 /// True when `pair` may be one point against a curved body (cheap; point_against_curved decides).
 inline bool point_and_curved(const FramedPair& pair) {

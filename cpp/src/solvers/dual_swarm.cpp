@@ -270,10 +270,8 @@ std::optional<Answer> overlap_first(const FramedPair& pair, const QueryOptions& 
 Answer solve_dual_from(const FramedPair& pair, const QueryOptions& options, Goal goal,
                        const DualStart* start) {
   if (point_and_curved(pair)) {
-    if (std::optional<Answer> closed =
-            point_against_curved(pair, goal, options.exact.max_iterations)) {
-      return std::move(*closed);
-    }
+    Answer closed;
+    if (point_against_curved(pair, goal, options.exact.max_iterations, closed)) return closed;
   }
   // A distance or a verdict is the search's answer, returned as it is made: a named answer
   // returned among others is moved out, which cost every batch row of distance_many 57

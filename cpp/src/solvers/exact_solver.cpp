@@ -249,10 +249,8 @@ Answer exact_signed_distance(const FramedPair& pair, int max_iterations, const V
 
 Answer solve_exact(const FramedPair& pair, const QueryOptions& options, Goal goal) {
   if (point_and_curved(pair)) {
-    if (std::optional<Answer> closed =
-            point_against_curved(pair, goal, options.exact.max_iterations)) {
-      return std::move(*closed);
-    }
+    Answer closed;
+    if (point_against_curved(pair, goal, options.exact.max_iterations, closed)) return closed;
   }
   if (goal == Goal::signed_distance) {
     return exact_signed_distance(pair, options.exact.max_iterations, Vector3::Zero());
