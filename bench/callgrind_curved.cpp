@@ -1,5 +1,5 @@
 // swarmcollide-callgrind-curved: instructions per signed distance of curved shapes (cylinders,
-// cones, ellipsoids, spheres, boxes), ours against coal's primitives, counted by callgrind. Run
+// cones, ellipsoids, spheres, capsules, boxes), ours against coal's primitives, counted by callgrind. Run
 // it through `bench/callgrind_query.py --curved`, which starts it under valgrind with collection
 // off and prints the table; alone it only answers the queries.
 //
@@ -59,6 +59,9 @@ Shape make(const std::string& kind, Normals& random) {
   }
   if (kind == "sphere") {
     return {std::make_shared<sc::Sphere>(r), std::make_shared<coal::Sphere>(r)};
+  }
+  if (kind == "capsule") {
+    return {std::make_shared<sc::Capsule>(r, h), std::make_shared<coal::Capsule>(r, 2 * h)};
   }
   const sc::Vector3 extents(uniform(random, 0.2, 1.0), uniform(random, 0.2, 1.0),
                             uniform(random, 0.2, 1.0));
@@ -123,7 +126,10 @@ int main(int argc, char** argv) {
   const std::vector<std::pair<std::string, std::string>> kinds{
       {"cylinder", "cylinder"},  {"cylinder", "cone"},  {"cone", "cone"},
       {"ellipsoid", "ellipsoid"}, {"cylinder", "ellipsoid"}, {"cone", "ellipsoid"},
-      {"cylinder", "sphere"},    {"ellipsoid", "box"},  {"cone", "box"}};
+      {"cylinder", "sphere"},    {"ellipsoid", "box"},  {"cone", "box"},
+      // A scene of balls and capsules asks these (coal answers the first three in closed form).
+      {"sphere", "sphere"},      {"sphere", "capsule"}, {"capsule", "capsule"},
+      {"sphere", "box"},         {"capsule", "box"}};
   Normals random(26);
   const sc::Query query;
   coal::DistanceResult coal_result;

@@ -1,7 +1,7 @@
 """Curved shapes from Python: swarmcollide's Cylinder, Cone and Ellipsoid (support-function bodies,
 issue 26) against coal's own primitives, in one process, the contenders interleaved round by round.
 
-For each pair of shape kinds (cylinder, cone, ellipsoid, and sphere and box beside them), random
+For each pair of shape kinds (cylinder, cone, ellipsoid, and sphere, capsule and box beside them), random
 sizes in [0.2, 1] and random poses give pairs apart and overlapping. Before any timing, coal's
 signed distance on every pair is checked against swarmcollide's certified bounds: it must lie in
 ``[lower_bound - 1e-6 size, distance + 1e-6 size]`` (coal stops at 1e-6), and the verdicts agree
@@ -30,10 +30,13 @@ import numpy as np
 import record
 import swarmcollide as sc
 
-KINDS = ("cylinder", "cone", "ellipsoid", "sphere", "box")
+KINDS = ("cylinder", "cone", "ellipsoid", "sphere", "capsule", "box")
 PAIRS = [("cylinder", "cylinder"), ("cylinder", "cone"), ("cone", "cone"),
          ("ellipsoid", "ellipsoid"), ("cylinder", "ellipsoid"), ("cone", "ellipsoid"),
-         ("cylinder", "sphere"), ("ellipsoid", "box"), ("cone", "box")]
+         ("cylinder", "sphere"), ("ellipsoid", "box"), ("cone", "box"),
+         # What a scene of balls and capsules asks (coal answers the first three in closed form).
+         ("sphere", "sphere"), ("sphere", "capsule"), ("capsule", "capsule"), ("sphere", "box"),
+         ("capsule", "box")]
 
 
 def random_rotation(rng: np.random.Generator) -> np.ndarray:
@@ -57,6 +60,8 @@ def make(kind: str, rng: np.random.Generator):
         return sc.Ellipsoid(radii), coal.Ellipsoid(*radii)
     if kind == "sphere":
         return sc.Sphere(r), coal.Sphere(r)
+    if kind == "capsule":
+        return sc.Capsule(r, h), coal.Capsule(r, 2 * h)
     half = rng.uniform(0.2, 1.0, 3)
     return sc.Box(half), coal.Box(*(2 * half))
 
