@@ -44,6 +44,10 @@ bool positively_oriented(const Vector3& p, const Vector3& q, const Vector3& r, S
   return true;
 }
 
+// The corner after each of a face's: a table, as `% 3` of an index read at run time costs a
+// multiplication and shifts (cone asks it of every horizon edge, linked of every face verified).
+constexpr std::array<int, 3> kNext = {1, 2, 0};
+
 using HeapEntry = std::pair<Scalar, int>;
 constexpr auto kNearestFirst = std::greater<HeapEntry>();
 
@@ -137,7 +141,7 @@ bool ExpandingPolytope::flatten(int f) {
     const Face& f = faces_[horizon_[e].first];
     const int k = horizon_[e].second;
     const int from = f.v[k];
-    const int to = f.v[(k + 1) % 3];
+    const int to = f.v[kNext[k]];
     if (!make_face(from, to, added, made[e])) return f.adj[k];
     if (start_stamp_[from] == vertex_stamp_) return kConeBroken;
     start_stamp_[from] = vertex_stamp_;
@@ -239,9 +243,6 @@ bool ExpandingPolytope::expand(int closest, int added) {
 
 // Always inline: verify asks it of every live face, and its call was a sixth of what it cost.
 [[gnu::always_inline]] inline bool ExpandingPolytope::linked(int i) const {
-  // The corner after each (a table: `% 3` of a read index costs a multiplication and shifts, and
-  // verify asks this of every face).
-  constexpr std::array<int, 3> kNext = {1, 2, 0};
   const Face& f = faces_[i];
   for (int k = 0; k < 3; ++k) {
     // One unsigned comparison each also rejects the negative.
