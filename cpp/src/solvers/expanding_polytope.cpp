@@ -44,6 +44,10 @@ bool positively_oriented(const Vector3& p, const Vector3& q, const Vector3& r, S
   return true;
 }
 
+// The corner after each of a face's: a table, as `% 3` of an index read at run time costs a
+// multiplication and shifts (cone asks it of every horizon edge, linked of every face verified).
+constexpr std::array<int, 3> kNext = {1, 2, 0};
+
 using HeapEntry = std::pair<Scalar, int>;
 constexpr auto kNearestFirst = std::greater<HeapEntry>();
 
@@ -137,7 +141,7 @@ bool ExpandingPolytope::flatten(int f) {
     const Face& f = faces_[horizon_[e].first];
     const int k = horizon_[e].second;
     const int from = f.v[k];
-    const int to = f.v[(k + 1) % 3];
+    const int to = f.v[kNext[k]];
     if (!make_face(from, to, added, made[e])) return f.adj[k];
     if (start_stamp_[from] == vertex_stamp_) return kConeBroken;
     start_stamp_[from] = vertex_stamp_;
@@ -149,7 +153,7 @@ bool ExpandingPolytope::flatten(int f) {
   return kConeMade;
 }
 
-bool ExpandingPolytope::expand(int closest, int added) {
+bool ExpandingPolytope::expand(int closest, int added, Scalar ceiling) {
   const Vector3& w = vertices_[added].w;
   const auto sees = [&](int f) { return faces_[f].normal.dot(w) > faces_[f].top; };
   if (!sees(closest)) return false;
@@ -225,6 +229,7 @@ bool ExpandingPolytope::expand(int closest, int added) {
   for (int f : visible_) faces_[f].alive = false;
   for (std::size_t e = 0; e < horizon_.size(); ++e) {
     const HeapEntry entry(faces_[base + e].distance, face_count_++);
+    if (entry.first > ceiling) continue;
     // The nearest face's entry leads the heap (run drops stale ones before it picks `closest`),
     // and the face is replaced: the first new face takes its place.
     if (e == 0 && heap_.front().second == closest) {
@@ -237,11 +242,18 @@ bool ExpandingPolytope::expand(int closest, int added) {
   return true;
 }
 
+void ExpandingPolytope::heap_live_faces() {
+  heap_.resize(static_cast<std::size_t>(face_count_));
+  std::size_t live = 0;
+  for (int f = 0; f < face_count_; ++f) {
+    if (faces_[f].alive) heap_[live++] = HeapEntry(faces_[f].distance, f);
+  }
+  heap_.resize(live);
+  std::make_heap(heap_.begin(), heap_.end(), kNearestFirst);
+}
+
 // Always inline: verify asks it of every live face, and its call was a sixth of what it cost.
 [[gnu::always_inline]] inline bool ExpandingPolytope::linked(int i) const {
-  // The corner after each (a table: `% 3` of a read index costs a multiplication and shifts, and
-  // verify asks this of every face).
-  constexpr std::array<int, 3> kNext = {1, 2, 0};
   const Face& f = faces_[i];
   for (int k = 0; k < 3; ++k) {
     // One unsigned comparison each also rejects the negative.
@@ -469,10 +481,22 @@ ExpansionResult ExpandingPolytope::expand_surface(const FramedBody& a, const Fra
 
   for (int iteration = 0; iteration < max_iterations; ++iteration) {
     // Stale entries (faces removed since, or flattened since: see flatten) are dropped.
-    while (!faces_[heap_.front().second].alive ||
-           heap_.front().first != faces_[heap_.front().second].distance) {
+    while (!heap_.empty() && (!faces_[heap_.front().second].alive ||
+                              heap_.front().first != faces_[heap_.front().second].distance)) {
       std::pop_heap(heap_.begin(), heap_.end(), kNearestFirst);
       heap_.pop_back();
+    }
+    // The heap lacks only faces made farther than the least support met then, so farther than
+    // it now (it never rises): its nearest face is every live face's while that is no farther.
+    // Past it (rounding alone allows that: the faces lie inside A - B) the nearest face is too,
+    // so the test below stops on the best face's gap alone; if that is not closed, every live
+    // face is heaped again and the expansion takes the nearest as if none had been left out.
+    if (heap_.empty() || heap_.front().first > -result.best_separation) {
+      if (-result.best_separation - result.best_face_distance <= stop_gap) {
+        result.converged = true;
+        break;
+      }
+      heap_live_faces();
     }
     const int closest = heap_.front().second;
     const Face& face = faces_[closest];
@@ -555,7 +579,7 @@ ExpansionResult ExpandingPolytope::expand_surface(const FramedBody& a, const Fra
     norms_.push_back(w.norm());
     if (keep_a) points_a_.push_back(x);
     if (keep_b) points_b_.push_back(y);
-    if (!expand(closest, static_cast<int>(vertices_.size()) - 1)) {
+    if (!expand(closest, static_cast<int>(vertices_.size()) - 1, -result.best_separation)) {
       vertices_.pop_back();
       norms_.pop_back();
       if (keep_a) points_a_.pop_back();

@@ -135,7 +135,14 @@ class ExpandingPolytope {
   // (`low` is a bound along any unit vector); true when it did. The face's orientation, proven
   // from its corners alone, does not change.
   bool flatten(int f);
-  bool expand(int closest, int added);
+  // Replaces the faces vertex `added` sees, from `closest`, by its cone. The new faces farther
+  // than `ceiling` (the least support met, which bounds the depth from above) are left out of
+  // the heap: the nearest face is never one of them while the expansion goes on (see
+  // expand_surface), and on curved pairs more than half of the new faces are.
+  bool expand(int closest, int added, Scalar ceiling);
+  // The heap of every live face, for when the faces left out of it (see expand) may be the
+  // nearest.
+  void heap_live_faces();
   // The new faces from vertex `added` to the horizon of the faces in `visible_` (those marked
   // with stamp_ in seen_stamp_), made in faces_ after the first face_count_, with horizon_ and
   // start_face_: kConeMade; kConeBroken where the horizon is not one loop through distinct
