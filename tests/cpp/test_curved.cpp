@@ -265,7 +265,8 @@ TEST(Curved, FramedSupportsAreTheShapesOwn) {
 TEST(Curved, SearchSupportsAreTheBodiesOwn) {
   Random rng(29);
   const ConvexPolyhedron shapes[] = {Cylinder(0.7, 0.4), Cone(0.5, 0.9),
-                                     Ellipsoid(Vector3(0.3, 0.8, 0.5)), Box(Vector3(0.2, 0.5, 0.3))};
+                                     Ellipsoid(Vector3(0.3, 0.8, 0.5)),
+                                     Box(Vector3(0.2, 0.5, 0.3))};
   for (const ConvexPolyhedron& a : shapes) {
     for (const ConvexPolyhedron& b : shapes) {
       const detail::FramedPair pair =
