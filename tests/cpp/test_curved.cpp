@@ -17,6 +17,7 @@
 #include "compound_oracle.hpp"
 #include "shapes.hpp"
 #include "solvers/fcl_shape.hpp"
+#include "solvers/inline_minkowski.hpp"
 #include "swarmcollide/geometry/compound_body.hpp"
 #include "swarmcollide/geometry/shapes.hpp"
 #include "swarmcollide/queries/batch.hpp"
@@ -283,6 +284,51 @@ TEST(Curved, ReusedSupportCachesNumberAsNewOnes) {
   EXPECT_EQ(numbers(cylinder, 3), std::vector<int>(first.begin(), first.begin() + 3));
   numbers(cone, directions.size());
   EXPECT_EQ(numbers(cylinder, directions.size()), first);
+}
+
+// The curved pairs' searches ask their supports inline (inline_minkowski_support): a cylinder's
+// without its finiteness test (CylinderSupport::finite_support), and a curved body's point placed
+// as it is found (FramedBody::inline_support) rather than read back from the body's points. Both
+// are minkowski_support's, bit for bit: the same numbers and the same point, for every kind beside
+// every kind, along axes (zero components in the unrotated body's frame) and random directions,
+// asked first inline or first out of line (a point new to the cache, or one it holds). A copy of a
+// support that drifted, or a point placed otherwise than the body's own, differs here.
+TEST(Curved, SearchSupportsAreTheBodiesOwn) {
+  Random rng(29);
+  const ConvexPolyhedron shapes[] = {Cylinder(0.7, 0.4), Cone(0.5, 0.9),
+                                     Ellipsoid(Vector3(0.3, 0.8, 0.5)),
+                                     Box(Vector3(0.2, 0.5, 0.3))};
+  for (const ConvexPolyhedron& a : shapes) {
+    for (const ConvexPolyhedron& b : shapes) {
+      const detail::FramedPair pair =
+          detail::frame_pair(a, at(rng.vector(1), rng.rotation()), b, at(rng.vector(1)), 1e-9);
+      for (int k = 0; k < 200; ++k) {
+        const Vector3 d =
+            k % 4 == 0 ? Vector3(Vector3::Unit(k / 4 % 3) * (k % 8 == 0 ? 1.0 : -1.0)) : rng.unit();
+        int inline_a = -1;
+        int inline_b = -1;
+        int a_index = -1;
+        int b_index = -1;
+        detail::OraclePoint asked_inline;
+        detail::OraclePoint asked;
+        if (k % 2 == 0) {
+          asked_inline = detail::inline_minkowski_support(pair, d, inline_a, inline_b);
+          asked = detail::minkowski_support(pair.a, pair.b, d, a_index, b_index);
+        } else {
+          asked = detail::minkowski_support(pair.a, pair.b, d, a_index, b_index);
+          asked_inline = detail::inline_minkowski_support(pair, d, inline_a, inline_b);
+        }
+        EXPECT_EQ(inline_a, a_index) << "direction " << d.transpose();
+        EXPECT_EQ(inline_b, b_index) << "direction " << d.transpose();
+        EXPECT_EQ(asked_inline.ia, asked.ia);
+        EXPECT_EQ(asked_inline.ib, asked.ib);
+        for (int c = 0; c < 3; ++c) {
+          EXPECT_EQ(std::signbit(asked_inline.p(c)), std::signbit(asked.p(c)));
+          EXPECT_EQ(asked_inline.p(c), asked.p(c)) << "direction " << d.transpose();
+        }
+      }
+    }
+  }
 }
 
 // The closed form of a ball against a cylinder or a cone (point_against_curved) takes the second

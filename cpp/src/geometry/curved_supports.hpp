@@ -100,6 +100,11 @@ class CylinderSupport final : public SupportFunction {
     // NaN exactly when a component is infinite or NaN.
     const Scalar finite = (d.x() - d.x()) + (d.y() - d.y()) + (d.z() - d.z());
     if (finite != 0) return Vector3::Zero();
+    return finite_support(d);
+  }
+  /// support(d) for a direction known to be finite (a search's), without the test: the same
+  /// point. The test was a third of the support's instructions in a search's steps.
+  Vector3 finite_support(const Vector3& d) const {
     const auto in_plane = unit_in_plane(d.x(), d.y());
     const Scalar z = d.z() > 0 ? h_ : d.z() < 0 ? -h_ : 0;
     return {r_ * in_plane.x() * kInward, r_ * in_plane.y() * kInward, z};

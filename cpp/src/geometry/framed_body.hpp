@@ -171,11 +171,13 @@ class FramedBody {
   /// A point of the body's own frame, centred on its box, placed in the frame as `vertex()`
   /// places the body's points.
   Vector3 placed_point(const Vector3& centred) const { return placed(centred); }
-  /// `support_index(d, start)`, the same index, with a curved body's support and a small body's
-  /// scan always inline: for the curved pairs' searches (curved_search.cpp), whose oracles ask
-  /// two per step (a curved support out of line cost 16 of its 117 instructions in the call and
-  /// its dispatch). Defined in framed_curved_support.hpp, which its callers include.
-  inline int inline_support_index(const Vector3& d, int start) const;
+  /// `vertex(support_index(d, index))` for a finite `d`, that index into `index` (a large body
+  /// climbs from it): the same point, with a curved body's support and a small body's scan
+  /// always inline, and a curved body's point placed as it is found rather than read back: for
+  /// the curved pairs' searches (curved_search.cpp), whose oracles ask two per step (a curved
+  /// support out of line cost 16 of its 117 instructions in the call and its dispatch). Defined
+  /// in framed_curved_support.hpp, which its callers include.
+  inline Vector3 inline_support(const Vector3& d, int& index) const;
   /// True for a small polyhedron whose support points are scans of its points by coordinate
   /// (`support_index` takes them from any start): `scanned_support_index` answers it.
   bool scanned() const { return columns_ != nullptr; }
@@ -227,7 +229,7 @@ class FramedBody {
  private:
   // `use(point)` of the curved body's support point along `local`, in its own frame
   // (framed_curved_support.hpp).
-  template <typename Use>
+  template <bool kFinite = false, typename Use>
   auto use_curved_support(const Vector3& local, const Use& use) const;
   // The index of the curved body's support point along `local` (its own frame), appended to the
   // points unless it is one of them already.

@@ -9,15 +9,15 @@
 
 namespace swarmcollide::detail {
 
-/// minkowski_support(pair.a, pair.b, d, hint_a, hint_b): the same point. A curved body's support
-/// is its support function's, a small polyhedron's a scan, whatever the hints; a large polyhedron
-/// climbs from its hint.
+/// minkowski_support(pair.a, pair.b, d, hint_a, hint_b) for a finite `d` (a search's): the same
+/// point. A curved body's support is its support function's, a small polyhedron's a scan,
+/// whatever the hints; a large polyhedron climbs from its hint.
 [[gnu::always_inline]] inline OraclePoint inline_minkowski_support(const FramedPair& pair,
                                                                    const Vector3& d, int& hint_a,
                                                                    int& hint_b) {
-  hint_a = pair.a.inline_support_index(d, hint_a);
-  hint_b = pair.b.inline_support_index(-d, hint_b);
-  return {pair.b.vertex(hint_b) - pair.a.vertex(hint_a), hint_a, hint_b};
+  const Vector3 point_a = pair.a.inline_support(d, hint_a);
+  const Vector3 point_b = pair.b.inline_support(-d, hint_b);
+  return {point_b - point_a, hint_a, hint_b};
 }
 
 }  // namespace swarmcollide::detail
