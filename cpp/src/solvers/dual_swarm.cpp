@@ -8,8 +8,10 @@
 #include <utility>
 #include <vector>
 
+#include "../queries/rounded.hpp"
 #include "../queries/verdict.hpp"
 #include "best_bounds.hpp"
+#include "core_closed_form.hpp"
 #include "curved_point.hpp"
 #include "direction_swarm.hpp"
 #include "distance_finish.hpp"
@@ -269,9 +271,16 @@ std::optional<Answer> overlap_first(const FramedPair& pair, const QueryOptions& 
 
 Answer solve_dual_from(const FramedPair& pair, const QueryOptions& options, Goal goal,
                        const DualStart* start) {
-  if (point_and_curved(pair)) {
-    Answer closed;
-    if (point_against_curved(pair, goal, options.exact.max_iterations, closed)) return closed;
+  // The closed forms' pairs are all rounded or curved (FramedPair::adjusted): two sharp
+  // polyhedra pay one test for both.
+  if (rounded(pair)) {
+    if (point_and_curved(pair)) {
+      Answer closed;
+      if (point_against_curved(pair, goal, options.exact.max_iterations, closed)) return closed;
+    } else if (small_cores(pair)) {
+      Answer closed;
+      if (core_closed_form(pair, goal, closed)) return closed;
+    }
   }
   // A distance or a verdict is the search's answer, returned as it is made: a named answer
   // returned among others is moved out, which cost every batch row of distance_many 57
