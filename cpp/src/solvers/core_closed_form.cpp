@@ -78,58 +78,64 @@ void nearest_on_segments(const Vector3& p0, const Vector3& p1, const Vector3& q0
 }
 
 // The half extents of `body` when its eight points are the corners of a box in its own frame
-// (centred on that box: a Box's, exactly), else false.
-bool box_extents(const FramedBody& body, Vector3& half) {
+// (centred on that box: a Box's, exactly), else false; `corner[c]` the point at the corner whose
+// bit k is set when its coordinate k is positive.
+bool box_extents(const FramedBody& body, Vector3& half, std::array<int, 8>& corner) {
   const VertexMatrix& x = body.local_points();
   half = x.row(0).cwiseAbs().transpose();
   if (!(half.minCoeff() > 0)) return false;
   unsigned corners = 0;
   for (int i = 0; i < 8; ++i) {
-    unsigned corner = 0;
+    unsigned bits = 0;
     for (int k = 0; k < 3; ++k) {
       if (std::abs(x(i, k)) != half(k)) return false;
-      corner |= unsigned(x(i, k) > 0) << k;
+      bits |= unsigned(x(i, k) > 0) << k;
     }
-    corners |= 1u << corner;
+    corners |= 1u << bits;
+    corner[bits] = i;
   }
   return corners == 0xFFu;
 }
 
-// The nearest point of the box `body` (half extents `half`) to the frame point `p`, as the
-// combination of the corners of the face, edge or corner it lies on: the point clamped to the
-// extents in the box's own frame, each coordinate the combination of the two faces across that
-// axis. False for a point inside the box or on it.
-bool nearest_on_box(const FramedBody& body, const Vector3& half, const Vector3& p,
-                    CorePoint& nearest) {
+// The nearest point of the box `body` (half extents `half`, corners `corner`) to the frame point
+// `p`, as the combination of the corners of the face, edge or corner it lies on: the point clamped
+// to the extents in the box's own frame, each free coordinate the combination of the two faces
+// across its axis. False for a point inside the box or on it.
+bool nearest_on_box(const FramedBody& body, const Vector3& half, const std::array<int, 8>& corner,
+                    const Vector3& p, CorePoint& nearest) {
   const Vector3 turned = body.local_direction(p - body.offset());
   Vector3 clamp;
-  Vector3 upper_share;  // the weight of the face at +half(k) along axis k
-  bool outside = false;
+  unsigned clamped_bits = 0;  // the clamped axes' side: bit k set at +half(k)
+  std::array<int, 3> free_axes{};
+  int free = 0;
   for (int k = 0; k < 3; ++k) {
     const Scalar local = times_power_of_two(turned(k), body.exponent());
     if (local > half(k)) {
       clamp(k) = half(k);
-      upper_share(k) = 1;
-      outside = true;
+      clamped_bits |= 1u << k;
     } else if (local < -half(k)) {
       clamp(k) = -half(k);
-      upper_share(k) = 0;
-      outside = true;
     } else {
       clamp(k) = local;
-      upper_share(k) = clamped((1 + local / half(k)) / 2);
+      free_axes[free++] = k;
     }
   }
-  if (!outside) return false;
+  if (free == 3) return false;
   nearest.point = body.placed_point(clamp);
-  // One axis at least has a share of exactly 0 or 1: four corners at most weigh.
-  const VertexMatrix& x = body.local_points();
+  // Two free axes at most: four corners at most weigh, each the product of its sides' shares.
   nearest.size = 0;
-  for (int i = 0; i < 8; ++i) {
+  for (unsigned sides = 0; sides < (1u << free); ++sides) {
+    unsigned bits = clamped_bits;
     Scalar weight = 1;
-    for (int k = 0; k < 3; ++k) weight *= x(i, k) > 0 ? upper_share(k) : 1 - upper_share(k);
-    if (weight > 0 && nearest.size < ConvexWeights::kSparseCapacity) {
-      nearest.index[nearest.size] = i;
+    for (int j = 0; j < free; ++j) {
+      const int k = free_axes[j];
+      const Scalar upper_share = clamped((1 + clamp(k) / half(k)) / 2);
+      const bool upper = (sides >> j) & 1u;
+      bits |= unsigned(upper) << k;
+      weight *= upper ? upper_share : 1 - upper_share;
+    }
+    if (weight > 0) {
+      nearest.index[nearest.size] = corner[bits];
       nearest.weight[nearest.size] = weight;
       ++nearest.size;
     }
@@ -145,9 +151,10 @@ bool nearest_points(const FramedPair& pair, CorePoint& on_a, CorePoint& on_b) {
     const bool box_a = size_a == 8;
     const FramedBody& box = box_a ? pair.a : pair.b;
     Vector3 half;
-    if (!box_extents(box, half)) return false;
+    std::array<int, 8> corner;
+    if (!box_extents(box, half, corner)) return false;
     const Vector3 p = (box_a ? pair.b : pair.a).vertex(0);
-    if (!nearest_on_box(box, half, p, box_a ? on_a : on_b)) return false;
+    if (!nearest_on_box(box, half, corner, p, box_a ? on_a : on_b)) return false;
     (box_a ? on_b : on_a).point = p;
     return true;
   }
