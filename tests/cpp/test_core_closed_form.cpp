@@ -18,7 +18,8 @@ using Long = long double;
 
 // Distance from p to the segment (q0, q1), in long double.
 Long to_segment(const Vector3& p, const Vector3& q0, const Vector3& q1) {
-  Long along = 0, length = 0;
+  Long along = 0;
+  Long length = 0;
   for (int k = 0; k < 3; ++k) {
     along += Long(p(k) - q0(k)) * Long(q1(k) - q0(k));
     length += Long(q1(k) - q0(k)) * Long(q1(k) - q0(k));
@@ -40,7 +41,8 @@ Long between_segments(const Vector3& p0, const Vector3& p1, const Vector3& q0,
     const Vector3 p = (p0.cast<Long>() + s * (p1 - p0).cast<Long>()).cast<Scalar>();
     return to_segment(p, q0, q1);
   };
-  Long lo = 0, hi = 1;
+  Long lo = 0;
+  Long hi = 1;
   for (int step = 0; step < 200; ++step) {
     const Long m1 = lo + (hi - lo) * 0.381966L;
     const Long m2 = hi - (hi - lo) * 0.381966L;
@@ -157,7 +159,8 @@ TEST(CoreClosedForm, ZeroLengthCapsulesAreBalls) {
     const Pose moved = at(at_point - Vector3(0, 0, 1));
     const Scalar expected =
         Scalar(to_segment(at_point, Vector3(0, 0, -1), Vector3(0, 0, 1))) - 0.75;
-    expect_closed_form(ball.body, moved, capsule, {}, expected, size_of(ball.body, moved, capsule, {}));
+    expect_closed_form(ball.body, moved, capsule, {}, expected,
+                       size_of(ball.body, moved, capsule, {}));
   }
 }
 
