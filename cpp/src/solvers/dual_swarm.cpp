@@ -8,8 +8,10 @@
 #include <utility>
 #include <vector>
 
+#include "../queries/rounded.hpp"
 #include "../queries/verdict.hpp"
 #include "best_bounds.hpp"
+#include "core_closed_form.hpp"
 #include "curved_point.hpp"
 #include "direction_swarm.hpp"
 #include "distance_finish.hpp"
@@ -269,10 +271,6 @@ std::optional<Answer> overlap_first(const FramedPair& pair, const QueryOptions& 
 
 Answer solve_dual_from(const FramedPair& pair, const QueryOptions& options, Goal goal,
                        const DualStart* start) {
-  if (point_and_curved(pair)) {
-    Answer closed;
-    if (point_against_curved(pair, goal, options.exact.max_iterations, closed)) return closed;
-  }
   // A distance or a verdict is the search's answer, returned as it is made: a named answer
   // returned among others is moved out, which cost every batch row of distance_many 57
   // instructions (swarmcollide-thread-scaling count, 8 vertices).
@@ -331,14 +329,35 @@ Answer solve_dual_from(const FramedPair& pair, const QueryOptions& options, Goal
   return overlap;
 }
 
+// A closed form's answer where one settles the pair (point_against_curved, core_closed_form),
+// else the search's. One named answer on every path, made in the caller's place: returned beside
+// the search's answers, the closed form's was moved out.
+Answer closed_form_or_search(const FramedPair& pair, const QueryOptions& options, Goal goal,
+                             const DualStart* start) {
+  Answer answer;
+  const bool closed = point_and_curved(pair)
+                          ? point_against_curved(pair, goal, options.exact.max_iterations, answer)
+                          : core_closed_form(pair, goal, answer);
+  if (!closed) answer = solve_dual_from(pair, options, goal, start);
+  return answer;
+}
+
+// The closed forms' pairs are all rounded or curved (FramedPair::adjusted): two sharp polyhedra
+// pay one test for both.
+bool closed_form_pair(const FramedPair& pair) {
+  return rounded(pair) && (point_and_curved(pair) || small_cores(pair));
+}
+
 }  // namespace
 
 Answer solve_dual(const FramedPair& pair, const QueryOptions& options, Goal goal) {
+  if (closed_form_pair(pair)) return closed_form_or_search(pair, options, goal, nullptr);
   return solve_dual_from(pair, options, goal, nullptr);
 }
 
 Answer solve_dual(const FramedPair& pair, const QueryOptions& options, Goal goal,
                   const DualStart& start) {
+  if (closed_form_pair(pair)) return closed_form_or_search(pair, options, goal, &start);
   return solve_dual_from(pair, options, goal, &start);
 }
 

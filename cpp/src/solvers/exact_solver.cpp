@@ -5,7 +5,9 @@
 #include <type_traits>
 #include <utility>
 
+#include "../queries/rounded.hpp"
 #include "../queries/verdict.hpp"
+#include "core_closed_form.hpp"
 #include "curved_point.hpp"
 #include "minkowski.hpp"
 #include "penetration.hpp"
@@ -248,9 +250,16 @@ Answer exact_signed_distance(const FramedPair& pair, int max_iterations, const V
 }
 
 Answer solve_exact(const FramedPair& pair, const QueryOptions& options, Goal goal) {
-  if (point_and_curved(pair)) {
-    Answer closed;
-    if (point_against_curved(pair, goal, options.exact.max_iterations, closed)) return closed;
+  // The closed forms' pairs are all rounded or curved (FramedPair::adjusted): two sharp
+  // polyhedra pay one test for both.
+  if (rounded(pair)) {
+    if (point_and_curved(pair)) {
+      Answer closed;
+      if (point_against_curved(pair, goal, options.exact.max_iterations, closed)) return closed;
+    } else if (small_cores(pair)) {
+      Answer closed;
+      if (core_closed_form(pair, goal, closed)) return closed;
+    }
   }
   if (goal == Goal::signed_distance) {
     return exact_signed_distance(pair, options.exact.max_iterations, Vector3::Zero());

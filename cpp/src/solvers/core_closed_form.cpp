@@ -1,0 +1,209 @@
+#include "core_closed_form.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "../geometry/normalise.hpp"
+#include "../queries/verdict.hpp"
+
+namespace swarmcollide::detail {
+
+namespace {
+
+// A point of a core in the frame, as the combination `weight` of its points `index`.
+struct CorePoint {
+  Vector3 point = Vector3::Zero();
+  std::array<int, ConvexWeights::kSparseCapacity> index{0, 0, 0, 0};
+  std::array<Scalar, ConvexWeights::kSparseCapacity> weight{1, 0, 0, 0};
+  int size = 1;
+};
+
+Scalar clamped(Scalar x) { return std::clamp(x, Scalar(0), Scalar(1)); }
+
+// `c` the point `1 - s` of a segment's end `p0` and `s` of its end `p1` (one point when the core
+// has one: `p1` is `p0`), its ends themselves at s = 0 and 1. Written in place: returned, the
+// point and its weights were copied out (44 instructions of a ball's query).
+void on_segment(int size, const Vector3& p0, const Vector3& p1, Scalar s, CorePoint& c) {
+  if (size == 1 || s == 0) {
+    c.point = p0;
+  } else if (s == 1) {
+    c.point = p1;
+    c.index[0] = 1;
+  } else {
+    c.point = (1 - s) * p0 + s * p1;
+    c.index = {0, 1, 0, 0};
+    c.weight = {1 - s, s, 0, 0};
+    c.size = 2;
+  }
+}
+
+// The parameters s and t of the nearest points p0 + s (p1 - p0) and q0 + t (q1 - q0) of two
+// segments, either of which may be a point (its ends equal): Ericson's clamped closed form
+// (Real-Time Collision Detection, 5.1.9), the lines' nearest points with t clamped to the second
+// segment and s chosen again for the clamped t. Where sin^2 of the angle between the segments is
+// below 2^-40 the lines' nearest points are ill-conditioned, and the segments are taken as
+// parallel: s = 0, and the nearest point of the second to that end; where they overlap, every
+// point of the overlap is as near.
+void nearest_on_segments(const Vector3& p0, const Vector3& p1, const Vector3& q0,
+                         const Vector3& q1, Scalar& s, Scalar& t) {
+  const Vector3 d1 = p1 - p0;
+  const Vector3 d2 = q1 - q0;
+  const Vector3 r = p0 - q0;
+  const Scalar a = d1.squaredNorm();
+  const Scalar e = d2.squaredNorm();
+  const Scalar f = d2.dot(r);
+  s = 0;
+  t = 0;
+  if (!(a > 0)) {
+    if (e > 0) t = clamped(f / e);
+    return;
+  }
+  const Scalar c = d1.dot(r);
+  if (!(e > 0)) {
+    s = clamped(-c / a);
+    return;
+  }
+  const Scalar b = d1.dot(d2);
+  const Scalar denominator = a * e - b * b;
+  if (denominator > 0x1p-40 * a * e) s = clamped((b * f - c * e) / denominator);
+  t = (b * s + f) / e;
+  if (t < 0) {
+    t = 0;
+    s = clamped(-c / a);
+  } else if (t > 1) {
+    t = 1;
+    s = clamped((b - c) / a);
+  }
+}
+
+// The half extents of `body` when its eight points are the corners of a box in its own frame
+// (centred on that box: a Box's, exactly), else false; `corner[c]` the point at the corner whose
+// bit k is set when its coordinate k is positive.
+bool box_extents(const FramedBody& body, Vector3& half, std::array<int, 8>& corner) {
+  const VertexMatrix& x = body.local_points();
+  half = x.row(0).cwiseAbs().transpose();
+  if (!(half.minCoeff() > 0)) return false;
+  unsigned corners = 0;
+  for (int i = 0; i < 8; ++i) {
+    unsigned bits = 0;
+    for (int k = 0; k < 3; ++k) {
+      if (std::abs(x(i, k)) != half(k)) return false;
+      bits |= unsigned(x(i, k) > 0) << k;
+    }
+    corners |= 1u << bits;
+    corner[bits] = i;
+  }
+  return corners == 0xFFu;
+}
+
+// The nearest point of the box `body` (half extents `half`, corners `corner`) to the frame point
+// `p`, as the combination of the corners of the face, edge or corner it lies on: the point clamped
+// to the extents in the box's own frame, each free coordinate the combination of the two faces
+// across its axis. False for a point inside the box or on it.
+bool nearest_on_box(const FramedBody& body, const Vector3& half, const std::array<int, 8>& corner,
+                    const Vector3& p, CorePoint& nearest) {
+  const Vector3 turned = body.local_direction(p - body.offset());
+  Vector3 clamp;
+  unsigned clamped_bits = 0;  // the clamped axes' side: bit k set at +half(k)
+  std::array<int, 3> free_axes{};
+  int free = 0;
+  for (int k = 0; k < 3; ++k) {
+    const Scalar local = times_power_of_two(turned(k), body.exponent());
+    if (local > half(k)) {
+      clamp(k) = half(k);
+      clamped_bits |= 1u << k;
+    } else if (local < -half(k)) {
+      clamp(k) = -half(k);
+    } else {
+      clamp(k) = local;
+      free_axes[free++] = k;
+    }
+  }
+  if (free == 3) return false;
+  nearest.point = body.placed_point(clamp);
+  // Two free axes at most: four corners at most weigh, each the product of its sides' shares.
+  nearest.size = 0;
+  for (unsigned sides = 0; sides < (1u << free); ++sides) {
+    unsigned bits = clamped_bits;
+    Scalar weight = 1;
+    for (int j = 0; j < free; ++j) {
+      const int k = free_axes[j];
+      const Scalar upper_share = clamped((1 + clamp(k) / half(k)) / 2);
+      const bool upper = (sides >> j) & 1u;
+      bits |= unsigned(upper) << k;
+      weight *= upper ? upper_share : 1 - upper_share;
+    }
+    if (weight > 0) {
+      nearest.index[nearest.size] = corner[bits];
+      nearest.weight[nearest.size] = weight;
+      ++nearest.size;
+    }
+  }
+  return true;
+}
+
+// The nearest points of the cores of `pair`, or false where no closed form here chooses them.
+bool nearest_points(const FramedPair& pair, CorePoint& on_a, CorePoint& on_b) {
+  const int size_a = pair.a.size();
+  const int size_b = pair.b.size();
+  if (size_a == 8 || size_b == 8) {
+    const bool box_a = size_a == 8;
+    const FramedBody& box = box_a ? pair.a : pair.b;
+    Vector3 half;
+    std::array<int, 8> corner;
+    if (!box_extents(box, half, corner)) return false;
+    const Vector3 p = (box_a ? pair.b : pair.a).vertex(0);
+    if (!nearest_on_box(box, half, corner, p, box_a ? on_a : on_b)) return false;
+    (box_a ? on_b : on_a).point = p;
+    return true;
+  }
+  const Vector3 p0 = pair.a.vertex(0);
+  const Vector3 p1 = size_a == 2 ? pair.a.vertex(1) : p0;
+  const Vector3 q0 = pair.b.vertex(0);
+  const Vector3 q1 = size_b == 2 ? pair.b.vertex(1) : q0;
+  Scalar s;
+  Scalar t;
+  nearest_on_segments(p0, p1, q0, q1, s, t);
+  on_segment(size_a, p0, p1, s, on_a);
+  on_segment(size_b, q0, q1, t, on_b);
+  return true;
+}
+
+// exact_separation's value, `min_j n.y_j - max_i n.x_i` from the heights its scans compare, for
+// bodies of eight points at most: every height, without a scan's call for each body (65
+// instructions each for one point).
+Scalar separation_of_all(const FramedPair& pair, const Vector3& n) {
+  Scalar top_a = pair.a.height(0, n);
+  for (int i = 1; i < pair.a.size(); ++i) top_a = std::max(top_a, pair.a.height(i, n));
+  Scalar bottom_b = pair.b.height(0, n);
+  for (int j = 1; j < pair.b.size(); ++j) bottom_b = std::min(bottom_b, pair.b.height(j, n));
+  return bottom_b - top_a;
+}
+
+}  // namespace
+
+bool core_closed_form(const FramedPair& pair, Goal goal, Answer& answer) {
+  CorePoint on_a;
+  CorePoint on_b;
+  if (!small_cores(pair) || !nearest_points(pair, on_a, on_b)) return false;
+  const Vector3 between = on_b.point - on_a.point;
+  const Scalar distance = between.norm();
+  // Cores that touch or overlap have no normal here: the search proves their overlap.
+  if (!(distance > 0)) return false;
+  const Vector3 normal = between / distance;
+  const Scalar lower = separation_of_all(pair, normal);
+  if (!goal_reached(pair, goal, lower, distance, false)) return false;
+  answer.upper = distance;
+  answer.lower = lower;
+  answer.point_a = on_a.point;
+  answer.point_b = on_b.point;
+  answer.weights_a = ConvexWeights(pair.a.size(), on_a.index, on_a.weight, on_a.size);
+  answer.weights_b = ConvexWeights(pair.b.size(), on_b.index, on_b.weight, on_b.size);
+  answer.direction = normal;
+  answer.iterations = 1;
+  answer.evaluations = 1;
+  return true;
+}
+
+}  // namespace swarmcollide::detail
