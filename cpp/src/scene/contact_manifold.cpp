@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "../geometry/nearest_on_segments.hpp"
 #include "../solvers/minkowski.hpp"
 
 namespace swarmcollide::detail {
@@ -137,37 +138,10 @@ void clip_segment(const Point2& s, const Point2& t, const Polygon& clip, Scalar 
 
 // The nearest points of segments (p0, p1) and (q0, q1) (either may be a point), their midpoint.
 Point2 nearest_midpoint(const Point2& p0, const Point2& p1, const Point2& q0, const Point2& q1) {
-  const Point2 d1 = p1 - p0;
-  const Point2 d2 = q1 - q0;
-  const Point2 r = p0 - q0;
-  const Scalar a = d1.squaredNorm();
-  const Scalar e = d2.squaredNorm();
-  const Scalar f = d2.dot(r);
-  Scalar s = 0;
-  Scalar t = 0;
-  if (a == 0 && e == 0) {
-    // Two points.
-  } else if (a == 0) {
-    t = std::clamp(f / e, Scalar(0), Scalar(1));
-  } else {
-    const Scalar c = d1.dot(r);
-    if (e == 0) {
-      s = std::clamp(-c / a, Scalar(0), Scalar(1));
-    } else {
-      const Scalar b = d1.dot(d2);
-      const Scalar denominator = a * e - b * b;
-      s = denominator > 0 ? std::clamp((b * f - c * e) / denominator, Scalar(0), Scalar(1)) : 0;
-      t = (b * s + f) / e;
-      if (t < 0) {
-        t = 0;
-        s = std::clamp(-c / a, Scalar(0), Scalar(1));
-      } else if (t > 1) {
-        t = 1;
-        s = std::clamp((b - c) / a, Scalar(0), Scalar(1));
-      }
-    }
-  }
-  return (p0 + s * d1 + q0 + t * d2) / 2;
+  Scalar s;
+  Scalar t;
+  nearest_on_segments(p0, p1, q0, q1, 0, s, t);
+  return (p0 + s * (p1 - p0) + q0 + t * (q1 - q0)) / 2;
 }
 
 // Two segments, into `out`: where they cross (one point), or the ends of their common part when

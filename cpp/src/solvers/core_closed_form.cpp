@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 
+#include "../geometry/nearest_on_segments.hpp"
 #include "../geometry/normalise.hpp"
 #include "../queries/verdict.hpp"
 
@@ -35,45 +36,6 @@ void on_segment(int size, const Vector3& p0, const Vector3& p1, Scalar s, CorePo
     c.index = {0, 1, 0, 0};
     c.weight = {1 - s, s, 0, 0};
     c.size = 2;
-  }
-}
-
-// The parameters s and t of the nearest points p0 + s (p1 - p0) and q0 + t (q1 - q0) of two
-// segments, either of which may be a point (its ends equal): Ericson's clamped closed form
-// (Real-Time Collision Detection, 5.1.9), the lines' nearest points with t clamped to the second
-// segment and s chosen again for the clamped t. Where sin^2 of the angle between the segments is
-// below 2^-40 the lines' nearest points are ill-conditioned, and the segments are taken as
-// parallel: s = 0, and the nearest point of the second to that end; where they overlap, every
-// point of the overlap is as near.
-void nearest_on_segments(const Vector3& p0, const Vector3& p1, const Vector3& q0,
-                         const Vector3& q1, Scalar& s, Scalar& t) {
-  const Vector3 d1 = p1 - p0;
-  const Vector3 d2 = q1 - q0;
-  const Vector3 r = p0 - q0;
-  const Scalar a = d1.squaredNorm();
-  const Scalar e = d2.squaredNorm();
-  const Scalar f = d2.dot(r);
-  s = 0;
-  t = 0;
-  if (!(a > 0)) {
-    if (e > 0) t = clamped(f / e);
-    return;
-  }
-  const Scalar c = d1.dot(r);
-  if (!(e > 0)) {
-    s = clamped(-c / a);
-    return;
-  }
-  const Scalar b = d1.dot(d2);
-  const Scalar denominator = a * e - b * b;
-  if (denominator > 0x1p-40 * a * e) s = clamped((b * f - c * e) / denominator);
-  t = (b * s + f) / e;
-  if (t < 0) {
-    t = 0;
-    s = clamped(-c / a);
-  } else if (t > 1) {
-    t = 1;
-    s = clamped((b - c) / a);
   }
 }
 
@@ -164,7 +126,8 @@ bool nearest_points(const FramedPair& pair, CorePoint& on_a, CorePoint& on_b) {
   const Vector3 q1 = size_b == 2 ? pair.b.vertex(1) : q0;
   Scalar s;
   Scalar t;
-  nearest_on_segments(p0, p1, q0, q1, s, t);
+  // Below sin^2 2^-40 of the angle between them, the lines' nearest points are ill-conditioned.
+  nearest_on_segments(p0, p1, q0, q1, 0x1p-40, s, t);
   on_segment(size_a, p0, p1, s, on_a);
   on_segment(size_b, q0, q1, t, on_b);
   return true;
