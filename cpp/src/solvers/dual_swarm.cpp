@@ -8,11 +8,9 @@
 #include <utility>
 #include <vector>
 
-#include "../queries/rounded.hpp"
 #include "../queries/verdict.hpp"
 #include "best_bounds.hpp"
-#include "core_closed_form.hpp"
-#include "curved_point.hpp"
+#include "closed_forms.hpp"
 #include "direction_swarm.hpp"
 #include "distance_finish.hpp"
 #include "exact_solver.hpp"
@@ -335,17 +333,10 @@ Answer solve_dual_from(const FramedPair& pair, const QueryOptions& options, Goal
 Answer closed_form_or_search(const FramedPair& pair, const QueryOptions& options, Goal goal,
                              const DualStart* start) {
   Answer answer;
-  const bool closed = point_and_curved(pair)
-                          ? point_against_curved(pair, goal, options.exact.max_iterations, answer)
-                          : core_closed_form(pair, goal, answer);
-  if (!closed) answer = solve_dual_from(pair, options, goal, start);
+  if (!answered_in_closed_form(pair, goal, options.exact.max_iterations, answer)) {
+    answer = solve_dual_from(pair, options, goal, start);
+  }
   return answer;
-}
-
-// The closed forms' pairs are all rounded or curved (FramedPair::adjusted): two sharp polyhedra
-// pay one test for both.
-bool closed_form_pair(const FramedPair& pair) {
-  return rounded(pair) && (point_and_curved(pair) || small_cores(pair));
 }
 
 }  // namespace

@@ -5,10 +5,8 @@
 #include <type_traits>
 #include <utility>
 
-#include "../queries/rounded.hpp"
 #include "../queries/verdict.hpp"
-#include "core_closed_form.hpp"
-#include "curved_point.hpp"
+#include "closed_forms.hpp"
 #include "minkowski.hpp"
 #include "penetration.hpp"
 #include "witness.hpp"
@@ -250,16 +248,9 @@ Answer exact_signed_distance(const FramedPair& pair, int max_iterations, const V
 }
 
 Answer solve_exact(const FramedPair& pair, const QueryOptions& options, Goal goal) {
-  // The closed forms' pairs are all rounded or curved (FramedPair::adjusted): two sharp
-  // polyhedra pay one test for both.
-  if (rounded(pair)) {
-    if (point_and_curved(pair)) {
-      Answer closed;
-      if (point_against_curved(pair, goal, options.exact.max_iterations, closed)) return closed;
-    } else if (small_cores(pair)) {
-      Answer closed;
-      if (core_closed_form(pair, goal, closed)) return closed;
-    }
+  if (closed_form_pair(pair)) {
+    Answer closed;
+    if (answered_in_closed_form(pair, goal, options.exact.max_iterations, closed)) return closed;
   }
   if (goal == Goal::signed_distance) {
     return exact_signed_distance(pair, options.exact.max_iterations, Vector3::Zero());
