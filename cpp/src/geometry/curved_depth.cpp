@@ -33,7 +33,7 @@ ClosedFormDepth points_inside(const FramedBody& curved, const FramedBody& inner)
   }
   const Scalar framed = times_power_of_two(depth, -curved.exponent());
   if (!(framed > 0)) return least;
-  least.depth = depth_in_frame(curved, framed, skew, farthest);
+  least.depth = depth_in_frame(framed, skew, farthest, curved.scan_shortfall());
   least.normal = outward.normalized();
   // Inside the ball about the point that the bound proves the shape holds.
   least.surface = deepest_point + least.depth * least.normal;

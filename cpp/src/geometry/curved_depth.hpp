@@ -55,11 +55,11 @@ inline Scalar rotation_skew(const FramedBody& body) {
 /// A proven lower bound on the depth in `body` of a frame point within `farthest` of the body's
 /// offset, from `framed`, a lower bound (its own rounding included) on the depth of its own-frame
 /// coordinates (in_own_frame) in the body's shape, scaled to frame units; `skew` is
-/// rotation_skew(body). The placement's rounding is taken off: scan_shortfall covers the
-/// frame's placing of the body's points, and as much again the turn back; then the frame's own.
-inline Scalar depth_in_frame(const FramedBody& body, Scalar framed, Scalar skew,
-                             Scalar farthest) {
-  return framed * (1 - skew) - 2 * skew * farthest - 2 * body.scan_shortfall() - kFrameRounding;
+/// rotation_skew(body) and `shortfall` its scan_shortfall(). The placement's rounding is taken
+/// off: the shortfall covers the frame's placing of the body's points, and as much again the turn
+/// back; then the frame's own.
+inline Scalar depth_in_frame(Scalar framed, Scalar skew, Scalar farthest, Scalar shortfall) {
+  return framed * (1 - skew) - 2 * skew * farthest - 2 * shortfall - kFrameRounding;
 }
 
 /// The most points a polyhedron may have for closed_form_depth to read them (points and

@@ -158,16 +158,16 @@ Scalar separation_of_all(const FramedPair& pair, const Vector3& n) {
 // `half`, corners `corner`) when `top`, else the least: the very value that separation_of_all's
 // scan of every height computes (the first point's on ties), from the corners that may hold it.
 // Along an own-frame axis k whose component l_k of n is large, `2^-e h_k |l_k|` above the box's
-// scan_shortfall, the corners on the far side are lower by `2^-e 2 h_k |l_k|` (less l_k's rounding,
-// 5.2u), over twice what rounding may move a computed height (some 13u of the reach, by
-// framed_body.cpp's analysis of scan_shortfall, which is 64u of it): none of them holds the
-// extreme value as computed. Both sides are measured across the other axes: the four corners of a
-// face for its normal, one corner for a direction off every face (8 heights were 540
-// instructions of a ball-box query).
+// scan_shortfall (`shortfall`), the corners on the far side are lower by `2^-e 2 h_k |l_k|`
+// (less l_k's rounding, 5.2u), over twice what rounding may move a computed height (some 13u of
+// the reach, by framed_body.cpp's analysis of scan_shortfall, which is 64u of it): none of them
+// holds the extreme value as computed. Both sides are measured across the other axes: the four
+// corners of a face for its normal, one corner for a direction off every face (8 heights were
+// 540 instructions of a ball-box query).
 Scalar box_extreme_height(const FramedBody& box, const Vector3& half,
-                          const std::array<int, 8>& corner, const Vector3& n, bool top) {
+                          const std::array<int, 8>& corner, const Vector3& n, bool top,
+                          Scalar shortfall) {
   const Vector3 l = box.local_direction(n);
-  const Scalar shortfall = box.scan_shortfall();
   unsigned side = 0;  // the near side of each decided axis: bit k set at +half(k)
   unsigned open = 0;  // the axes measured on both sides
   for (int k = 0; k < 3; ++k) {
@@ -193,13 +193,15 @@ Scalar box_extreme_height(const FramedBody& box, const Vector3& half,
 }
 
 // separation_of_all's value for a point `p` (a ball's core, B when `box_a`) and a box (its
-// half extents `half`, corners `corner`), from the box's extreme height (box_extreme_height).
+// half extents `half`, corners `corner`, scan_shortfall `shortfall`), from the box's extreme
+// height (box_extreme_height).
 Scalar box_separation(const FramedPair& pair, bool box_a, const Vector3& half,
-                      const std::array<int, 8>& corner, const Vector3& p, const Vector3& n) {
+                      const std::array<int, 8>& corner, const Vector3& p, const Vector3& n,
+                      Scalar shortfall) {
   const FramedBody& point = box_a ? pair.b : pair.a;
   const Scalar at_point = point.height(0, p, n);
-  return box_a ? at_point - box_extreme_height(pair.a, half, corner, n, true)
-               : box_extreme_height(pair.b, half, corner, n, false) - at_point;
+  return box_a ? at_point - box_extreme_height(pair.a, half, corner, n, true, shortfall)
+               : box_extreme_height(pair.b, half, corner, n, false, shortfall) - at_point;
 }
 
 // The answer from the nearest points `on_a` and `on_b` of cores that are apart, or false when
@@ -231,12 +233,12 @@ template <typename Separation>
 
 // A signed distance for a point (a ball's core) `centre` inside the box (`local` its own-frame
 // coordinates, in_own_frame of `from_offset`, its difference from the box's offset; half extents
-// `half`, corners `corner`), the box A when `box_a`: the point's depth is its least distance to a face,
-// `min_k half(k) - |local(k)|`, along that face's normal. The upper bound is minus the depth that
-// the frame's rounding leaves proven (depth_in_frame, as the curved shapes' closed forms prove
-// theirs), the lower one the separation along the face's normal over every point. False where
-// the point is on the boundary to rounding, or the bounds are further apart than the tolerance:
-// the search answers then.
+// `half`, corners `corner`), the box A when `box_a`: the point's depth is its least distance to a
+// face, `min_k half(k) - |local(k)|`, along that face's normal. The upper bound is minus the depth
+// that the frame's rounding leaves proven (depth_in_frame, as the curved shapes' closed forms
+// prove theirs), the lower one the separation along the face's normal over every point less its
+// rounding. False where the point is on the boundary to rounding, or the bounds are further apart
+// than the tolerance: the search answers then.
 bool inside_box_answer(const FramedPair& pair, bool box_a, const Vector3& half,
                        const std::array<int, 8>& corner, const Vector3& centre,
                        const Vector3& local, const Vector3& from_offset, Answer& answer) {
@@ -253,7 +255,9 @@ bool inside_box_answer(const FramedPair& pair, bool box_a, const Vector3& half,
   // The difference rounds by u of half(face) at most, and taking this bound off by u again.
   const Scalar framed = times_power_of_two(least - 4 * kRoundoff * half(face), -box.exponent());
   if (!(framed > 0)) return false;
-  const Scalar depth = depth_in_frame(box, framed, rotation_skew(box), from_offset.norm());
+  const Scalar shortfall = box.scan_shortfall();
+  const Scalar depth =
+      depth_in_frame(framed, rotation_skew(box), from_offset.norm(), shortfall);
   if (!(depth > 0)) return false;
   Vector3 outward = box.rotated() ? Vector3(box.rotation().col(face)) : Vector3::Unit(face);
   outward.normalize();
@@ -261,14 +265,22 @@ bool inside_box_answer(const FramedPair& pair, bool box_a, const Vector3& half,
   if (!upper_side) outward = -outward;
   // From A to B: out of the box when it is A, into it when it is B.
   const Vector3 normal = box_a ? outward : Vector3(-outward);
-  const Scalar lower = box_separation(pair, box_a, half, corner, centre, normal);
+  // The separation as every height gives it, less its rounding (separation_margin, as the
+  // penetration solver's): the box's points, and the centre among them, have coordinates within
+  // its offset's and its radius.
+  const Scalar coordinate =
+      (box.offset().cwiseAbs().maxCoeff() +
+       times_power_of_two(box.body().bounds().radius, -box.exponent())) *
+      (1 + 16 * kRoundoff);
+  const Scalar lower = box_separation(pair, box_a, half, corner, centre, normal, shortfall) -
+                       separation_margin(coordinate);
   if (!goal_reached(pair, Goal::signed_distance, lower, -depth, false)) return false;
   // The witness on the box: the point of the face straight out from the centre.
   Vector3 clamp = local;
   clamp(face) = upper_side ? half(face) : -half(face);
   CorePoint on_face;
-  on_box(box, half, corner, clamp, unsigned(upper_side) << face, {(face + 1) % 3, (face + 2) % 3, 0},
-         2, on_face);
+  on_box(box, half, corner, clamp, unsigned(upper_side) << face,
+         {(face + 1) % 3, (face + 2) % 3, 0}, 2, on_face);
   const ConvexWeights on_box_weights(box.size(), on_face.index, on_face.weight, on_face.size);
   const ConvexWeights at_centre(1, {0, 0, 0, 0}, {1, 0, 0, 0}, 1);
   answer.upper = -depth;
@@ -300,7 +312,7 @@ bool ball_against_box(const FramedPair& pair, Goal goal, Answer& answer) {
   if (nearest_on_box(box, half, corner, local, box_a ? on_a : on_b)) {
     (box_a ? on_b : on_a).point = p;
     const auto separation = [&](const Vector3& n) {
-      return box_separation(pair, box_a, half, corner, p, n);
+      return box_separation(pair, box_a, half, corner, p, n, box.scan_shortfall());
     };
     return apart_answer(pair, goal, on_a, on_b, separation, answer);
   }
