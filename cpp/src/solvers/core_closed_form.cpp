@@ -179,16 +179,19 @@ Scalar box_extreme_height(const FramedBody& box, const Vector3& half,
   }
   int first = box.size();
   Scalar extreme = 0;
-  for (unsigned bits = 0; bits < 8; ++bits) {
-    if ((bits & ~open) != side) continue;
-    const int i = corner[bits];
+  // The corners `side | across` for every subset `across` of the open axes, in increasing order
+  // (`across - open` carries into the next subset's bits).
+  unsigned across = 0;
+  do {
+    const int i = corner[side | across];
     const Scalar h = box.height(i, n);
     // The scan keeps the first point of equal heights.
     if (first == box.size() || (top ? h > extreme : h < extreme) || (h == extreme && i < first)) {
       extreme = h;
       first = i;
     }
-  }
+    across = (across - open) & open;
+  } while (across != 0);
   return extreme;
 }
 
