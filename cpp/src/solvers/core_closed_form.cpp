@@ -82,17 +82,22 @@ void on_box(const FramedBody& body, const Vector3& half, const std::array<int, 8
             const Vector3& clamp, unsigned clamped_bits, const std::array<int, 3>& free_axes,
             int free, CorePoint& nearest) {
   nearest.point = body.placed_point(clamp);
-  // Two free axes at most: four corners at most weigh, each the product of its sides' shares.
+  // Two free axes at most: four corners at most weigh, each the product of its sides' shares
+  // (each axis' computed once: per corner, the divisions were a tenth of a ball-box query's
+  // closed form).
+  std::array<Scalar, 3> upper_share{};
+  for (int j = 0; j < free; ++j) {
+    const int k = free_axes[j];
+    upper_share[j] = clamped((1 + clamp(k) / half(k)) / 2);
+  }
   nearest.size = 0;
   for (unsigned sides = 0; sides < (1u << free); ++sides) {
     unsigned bits = clamped_bits;
     Scalar weight = 1;
     for (int j = 0; j < free; ++j) {
-      const int k = free_axes[j];
-      const Scalar upper_share = clamped((1 + clamp(k) / half(k)) / 2);
       const bool upper = (sides >> j) & 1u;
-      bits |= unsigned(upper) << k;
-      weight *= upper ? upper_share : 1 - upper_share;
+      bits |= unsigned(upper) << free_axes[j];
+      weight *= upper ? upper_share[j] : 1 - upper_share[j];
     }
     if (weight > 0) {
       nearest.index[nearest.size] = corner[bits];
