@@ -199,21 +199,143 @@ TEST(CoreClosedForm, BallsAgainstBoxes) {
   }
 }
 
-// A ball's centre inside a box: the closed form leaves it to the search, which proves the depth.
+// The signed distance of a ball of radius `radius` whose centre is `centre` (world) inside the
+// box of half extents `half` at `pose`, in long double: minus the centre's least distance to a
+// face in the box's frame (the pose's rotation transposed as its inverse), less the radius; NaN
+// for a centre outside the box or on it.
+Long inside_box(const Vector3& half, const Pose& pose, const Vector3& centre, Scalar radius) {
+  Long depth = HUGE_VALL;
+  for (int k = 0; k < 3; ++k) {
+    Long local = 0;
+    for (int j = 0; j < 3; ++j) {
+      local += Long(pose.rotation(j, k)) * (Long(centre(j)) - Long(pose.translation(j)));
+    }
+    depth = std::min(depth, Long(half(k)) - std::fabs(local));
+  }
+  return depth > 0 ? -depth - Long(radius) : Long(NAN);
+}
+
+// The witness of a body without radius as its weights give it: the combination of its points.
+Vector3 from_weights(const ConvexPolyhedron& body, const Pose& pose, const ConvexWeights& w) {
+  Vector3 point = Vector3::Zero();
+  w.for_each([&](int i, Scalar weight) {
+    point += weight * (pose.rotation * body.vertices().row(i).transpose() + pose.translation);
+  });
+  return point;
+}
+
+// A signed distance of a ball whose centre lies inside a box, both orders: answered in closed form
+// (one iteration), certified, its bounds enclosing the exact value `expected` (long double, within
+// the tolerance of each other), colliding, the contact normal and the witnesses consistent, and
+// the box's witness on its surface as its weights make it.
+void expect_inside_closed_form(const ConvexPolyhedron& box, const Pose& pose_box,
+                               const Sphere& ball, const Pose& pose_ball, Long expected) {
+  const Scalar size = size_of(box, pose_box, ball, pose_ball);
+  const Scalar slack = 1e-13 * size;
+  for (bool swapped : {false, true}) {
+    SCOPED_TRACE(swapped ? "ball first" : "box first");
+    const DistanceResult r = swapped ? Query().signed_distance(ball, pose_ball, box, pose_box)
+                                     : Query().signed_distance(box, pose_box, ball, pose_ball);
+    EXPECT_EQ(r.iterations, 1);
+    EXPECT_TRUE(r.certified);
+    EXPECT_TRUE(r.colliding);
+    // The bounds are proven up to the frame's rounding (kFrameRounding, 128 roundoffs of the
+    // size), which the verdicts take off: expect_closed_form's slack.
+    EXPECT_LE(Long(r.lower_bound), expected + Long(slack));
+    EXPECT_GE(Long(r.distance), expected - Long(slack));
+    EXPECT_LE(r.distance - r.lower_bound, kDefaultTolerance * size);
+    const Vector3 between = r.point_b - r.point_a;
+    EXPECT_LE((between - r.distance * r.direction).norm(), 1e-12 * size);
+    const Vector3 on_box = swapped ? r.point_b : r.point_a;
+    EXPECT_LE((on_box - from_weights(box, pose_box, swapped ? r.weights_b : r.weights_a)).norm(),
+              1e-12 * size);
+  }
+}
+
+// A ball's centre inside a box, turned and moved, at scales from 1e-100 to 1e100: anywhere, at the
+// box's centre, at equal depths below two or three faces, and just below a face. The closed form
+// answers (one iteration, where the search takes several) with the depth below the nearest face,
+// both bounds proven.
 TEST(CoreClosedForm, BallCentresInsideBoxesHaveTheirDepth) {
+  Random rng(71);
+  for (Scalar scale : {1e-100, 1e-20, 1.0, 1e20, 1e100}) {
+    const Vector3 half = Vector3(1, 0.5, 2) * scale;
+    const Box box(half);
+    for (int trial = 0; trial < 24; ++trial) {
+      SCOPED_TRACE(::testing::Message() << "scale " << scale << " trial " << trial);
+      const Sphere ball(rng.uniform(0.05, 1) * scale);
+      const Pose pose_box =
+          at(rng.vector(1) * scale, trial % 4 == 0 ? Matrix3::Identity() : rng.rotation());
+      Vector3 local = Vector3(rng.uniform(), rng.uniform(), rng.uniform()).cwiseProduct(half);
+      switch (trial % 6) {
+        case 1:  // the box's centre
+          local = Vector3::Zero();
+          break;
+        case 2:  // as deep below the two smaller faces
+          local = Vector3(0.75, 0.25, rng.uniform()) * scale;
+          break;
+        case 3:  // as deep below all three (0.25 each)
+          local = Vector3(0.75, -0.25, 1.75) * scale;
+          break;
+        case 4:  // 1e-6 of the box below a face
+          local(trial / 6 % 3) = (1 - 1e-6) * half(trial / 6 % 3);
+          break;
+        default:
+          break;
+      }
+      const Pose pose_ball = at(pose_box.rotation * local + pose_box.translation);
+      const Long expected = inside_box(half, pose_box, pose_ball.translation, ball.radius());
+      ASSERT_FALSE(std::isnan(double(expected)));
+      expect_inside_closed_form(box, pose_box, ball, pose_ball, expected);
+    }
+  }
+  // A centre exactly on a face, an edge or a corner has no depth to prove: the search answers.
   const Box box(Vector3(1, 0.5, 2));
   const Sphere ball(0.25);
-  for (const Vector3& centre : {Vector3(0.2, 0.1, -0.3), Vector3(0, 0, 0), Vector3(0.9, 0, 1)}) {
-    const Vector3 depths = Vector3(1, 0.5, 2) - centre.cwiseAbs();
-    const Scalar expected = -depths.minCoeff() - 0.25;
+  for (const Vector3& centre : {Vector3(1, 0, 0), Vector3(0.5, -0.5, 2), Vector3(-1, 0.5, -2)}) {
+    SCOPED_TRACE(::testing::Message() << centre.transpose());
     for (bool swapped : {false, true}) {
       const DistanceResult s = swapped ? Query().signed_distance(ball, at(centre), box, {})
                                        : Query().signed_distance(box, {}, ball, at(centre));
       EXPECT_TRUE(s.certified);
-      EXPECT_NEAR(s.distance, expected, 1e-9 * 4);
-      EXPECT_LE(s.lower_bound, expected + 1e-13);
-      EXPECT_TRUE(Query().collide(ball, at(centre), box, {}));
+      EXPECT_NEAR(s.distance, -0.25, 1e-9 * 5);
+      EXPECT_LE(s.lower_bound, -0.25 + 1e-13);
     }
+  }
+  // Inside, a distance and a collision are the searches' (they prove the overlap).
+  const Pose inside = at(Vector3(0.2, 0.1, -0.3));
+  const DistanceResult d = Query().distance(box, {}, ball, inside);
+  EXPECT_TRUE(d.certified);
+  EXPECT_EQ(d.distance, 0);
+  EXPECT_TRUE(Query().collide(ball, inside, box, {}));
+}
+
+// A box given as eight points in another order than a Box's (its corners read one by one): the
+// closed form answers a centre inside, apart beside a face, an edge and a corner, each witness on
+// the box as the weights make it.
+TEST(CoreClosedForm, BoxesOfPointsInAnyOrder) {
+  VertexMatrix corners(8, 3);
+  const int order[8] = {5, 2, 7, 0, 3, 6, 1, 4};
+  const Vector3 half(0.5, 1, 0.25);
+  for (int i = 0; i < 8; ++i) {
+    for (int k = 0; k < 3; ++k) corners(i, k) = (order[i] >> k) & 1 ? half(k) : -half(k);
+  }
+  const ConvexPolyhedron box(corners);
+  Random rng(73);
+  const Pose pose_box = at(Vector3(3, -2, 1), rng.rotation());
+  const Sphere ball(0.125);
+  const Vector3 inside(0.25, -0.5, 0.125);
+  const Pose pose_inside = at(pose_box.rotation * inside + pose_box.translation);
+  expect_inside_closed_form(box, pose_box, ball, pose_inside,
+                            inside_box(half, pose_box, pose_inside.translation, ball.radius()));
+  for (const Vector3& beside : {Vector3(0.25, 2, 0.125), Vector3(1, 2, 0), Vector3(1, -2, 1)}) {
+    SCOPED_TRACE(::testing::Message() << beside.transpose());
+    const Pose pose_ball = at(pose_box.rotation * beside + pose_box.translation);
+    const Scalar expected = (beside.cwiseAbs() - half).cwiseMax(0.0).norm() - ball.radius();
+    expect_closed_form(box, pose_box, ball, pose_ball, expected,
+                       size_of(box, pose_box, ball, pose_ball));
+    const DistanceResult r = Query().signed_distance(box, pose_box, ball, pose_ball);
+    EXPECT_LE((r.point_a - from_weights(box, pose_box, r.weights_a)).norm(), 1e-12);
   }
 }
 

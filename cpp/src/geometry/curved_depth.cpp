@@ -14,13 +14,7 @@ ClosedFormDepth points_inside(const FramedBody& curved, const FramedBody& inner)
   ClosedFormDepth least;
   if (!curved.curved() || inner.curved() || inner.size() > kClosedFormPoints) return least;
   const SupportFunction& shape = *curved.body().curved();
-  // The frame places the body as R x 2^-e + offset with R a valid pose's rotation (orthogonal to
-  // 1e-9): turning back by R^T is off by its skew e (3 max |R^T R - I| bounds it), and R may
-  // shrink a ball's radius by as much.
-  const Matrix3& r = curved.rotation();
-  const Scalar skew = curved.rotated()
-                          ? 3 * (r.transpose() * r - Matrix3::Identity()).cwiseAbs().maxCoeff()
-                          : 0;
+  const Scalar skew = rotation_skew(curved);
   Scalar depth = std::numeric_limits<Scalar>::infinity();
   Vector3 outward = Vector3::Zero();
   Vector3 deepest_point = Vector3::Zero();
@@ -28,24 +22,18 @@ ClosedFormDepth points_inside(const FramedBody& curved, const FramedBody& inner)
   for (int i = 0; i < inner.size(); ++i) {
     const Vector3 from_offset = inner.vertex(i) - curved.offset();
     farthest = std::max(farthest, from_offset.norm());
-    const Vector3 turned = curved.local_direction(from_offset);
-    Vector3 local;
-    for (int k = 0; k < 3; ++k) local(k) = times_power_of_two(turned(k), curved.exponent());
     Vector3 away;
-    const Scalar d = shape.depth_of(local, away);
+    const Scalar d = shape.depth_of(in_own_frame(curved, from_offset), away);
     if (d < depth) {
       depth = d;
-      outward = curved.rotated() ? Vector3(r * away) : away;
+      outward = curved.rotated() ? Vector3(curved.rotation() * away) : away;
       deepest_point = inner.vertex(i);
     }
     if (!(depth > 0)) return least;  // a point outside (or on) the shape: no proof
   }
   const Scalar framed = times_power_of_two(depth, -curved.exponent());
   if (!(framed > 0)) return least;
-  // The placement's rounding (scan_shortfall covers the frame's placing of the points, and as
-  // much again the turn back) and the frame's own.
-  least.depth = framed * (1 - skew) - 2 * skew * farthest - 2 * curved.scan_shortfall() -
-                kFrameRounding;
+  least.depth = depth_in_frame(framed, skew, farthest, curved.scan_shortfall());
   least.normal = outward.normalized();
   // Inside the ball about the point that the bound proves the shape holds.
   least.surface = deepest_point + least.depth * least.normal;

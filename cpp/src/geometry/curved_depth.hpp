@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "framed_body.hpp"
+#include "normalise.hpp"
 #include "swarmcollide/types.hpp"
 
 namespace swarmcollide::detail {
@@ -32,6 +33,34 @@ struct ClosedFormDepth {
 /// cylinder's or a cone's axis, at an ellipsoid's centre with two equal radii): its faces would
 /// have to be tens of thousands.
 ClosedFormDepth closed_form_depth(const FramedBody& a, const FramedBody& b);
+
+/// A frame point, given as `from_offset`, its difference from `body`'s offset, in the body's own
+/// frame (centred on its box, in the units of its points): where a closed form compares it with
+/// the body's shape.
+inline Vector3 in_own_frame(const FramedBody& body, const Vector3& from_offset) {
+  const Vector3 turned = body.local_direction(from_offset);
+  Vector3 local;
+  for (int k = 0; k < 3; ++k) local(k) = times_power_of_two(turned(k), body.exponent());
+  return local;
+}
+
+/// How far the rotation R that places `body` is from orthogonal: 3 max |R^T R - I| (0 for a body
+/// not turned) bounds how much turning back by R^T (in_own_frame) may be off, and how much R may
+/// shrink a ball's radius. A valid pose's rotation is orthogonal to 1e-9.
+inline Scalar rotation_skew(const FramedBody& body) {
+  const Matrix3& r = body.rotation();
+  return body.rotated() ? 3 * (r.transpose() * r - Matrix3::Identity()).cwiseAbs().maxCoeff() : 0;
+}
+
+/// A proven lower bound on the depth in `body` of a frame point within `farthest` of the body's
+/// offset, from `framed`, a lower bound (its own rounding included) on the depth of its own-frame
+/// coordinates (in_own_frame) in the body's shape, scaled to frame units; `skew` is
+/// rotation_skew(body) and `shortfall` its scan_shortfall(). The placement's rounding is taken
+/// off: the shortfall covers the frame's placing of the body's points, and as much again the turn
+/// back; then the frame's own.
+inline Scalar depth_in_frame(Scalar framed, Scalar skew, Scalar farthest, Scalar shortfall) {
+  return framed * (1 - skew) - 2 * skew * farthest - 2 * shortfall - kFrameRounding;
+}
 
 /// The most points a polyhedron may have for closed_form_depth to read them (points and
 /// segments, the cores of spheres and capsules, boxes).

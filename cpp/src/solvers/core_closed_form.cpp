@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 
+#include "../geometry/curved_depth.hpp"
 #include "../geometry/nearest_on_segments.hpp"
 #include "../geometry/normalise.hpp"
 #include "../queries/verdict.hpp"
@@ -44,6 +45,20 @@ void on_segment(int size, const Vector3& p0, const Vector3& p1, Scalar s, CorePo
 // bit k is set when its coordinate k is positive.
 bool box_extents(const FramedBody& body, Vector3& half, std::array<int, 8>& corner) {
   const VertexMatrix& x = body.local_points();
+  // A Box's points are its corners in that order (shapes.cpp): point i has coordinate k positive
+  // when bit k of i is set. 24 comparisons confirm it without sorting the corners out (a third of
+  // the instructions of the general reading below).
+  half = x.row(7).transpose();
+  if (half.minCoeff() > 0) {
+    bool in_order = true;
+    for (int i = 0; i < 7 && in_order; ++i) {
+      for (int k = 0; k < 3; ++k) in_order &= x(i, k) == ((i >> k) & 1 ? half(k) : -half(k));
+    }
+    if (in_order) {
+      corner = {0, 1, 2, 3, 4, 5, 6, 7};
+      return true;
+    }
+  }
   half = x.row(0).cwiseAbs().transpose();
   if (!(half.minCoeff() > 0)) return false;
   unsigned corners = 0;
@@ -59,42 +74,30 @@ bool box_extents(const FramedBody& body, Vector3& half, std::array<int, 8>& corn
   return corners == 0xFFu;
 }
 
-// The nearest point of the box `body` (half extents `half`, corners `corner`) to the frame point
-// `p`, as the combination of the corners of the face, edge or corner it lies on: the point clamped
-// to the extents in the box's own frame, each free coordinate the combination of the two faces
-// across its axis. False for a point inside the box or on it.
-bool nearest_on_box(const FramedBody& body, const Vector3& half, const std::array<int, 8>& corner,
-                    const Vector3& p, CorePoint& nearest) {
-  const Vector3 turned = body.local_direction(p - body.offset());
-  Vector3 clamp;
-  unsigned clamped_bits = 0;  // the clamped axes' side: bit k set at +half(k)
-  std::array<int, 3> free_axes{};
-  int free = 0;
-  for (int k = 0; k < 3; ++k) {
-    const Scalar local = times_power_of_two(turned(k), body.exponent());
-    if (local > half(k)) {
-      clamp(k) = half(k);
-      clamped_bits |= 1u << k;
-    } else if (local < -half(k)) {
-      clamp(k) = -half(k);
-    } else {
-      clamp(k) = local;
-      free_axes[free++] = k;
-    }
-  }
-  if (free == 3) return false;
+// The point of the box `body` (half extents `half`, corners `corner`) at own-frame coordinates
+// `clamp` on its boundary, as the combination of the corners of the face, edge or corner it lies
+// on: the clamped axes at the sides `clamped_bits` (bit k set at +half(k)), each of the `free`
+// axes `free_axes` the combination of the two faces across it.
+void on_box(const FramedBody& body, const Vector3& half, const std::array<int, 8>& corner,
+            const Vector3& clamp, unsigned clamped_bits, const std::array<int, 3>& free_axes,
+            int free, CorePoint& nearest) {
   nearest.point = body.placed_point(clamp);
-  // Two free axes at most: four corners at most weigh, each the product of its sides' shares.
+  // Two free axes at most: four corners at most weigh, each the product of its sides' shares
+  // (each axis' computed once: per corner, the divisions were a tenth of a ball-box query's
+  // closed form).
+  std::array<Scalar, 3> upper_share{};
+  for (int j = 0; j < free; ++j) {
+    const int k = free_axes[j];
+    upper_share[j] = clamped((1 + clamp(k) / half(k)) / 2);
+  }
   nearest.size = 0;
   for (unsigned sides = 0; sides < (1u << free); ++sides) {
     unsigned bits = clamped_bits;
     Scalar weight = 1;
     for (int j = 0; j < free; ++j) {
-      const int k = free_axes[j];
-      const Scalar upper_share = clamped((1 + clamp(k) / half(k)) / 2);
       const bool upper = (sides >> j) & 1u;
-      bits |= unsigned(upper) << k;
-      weight *= upper ? upper_share : 1 - upper_share;
+      bits |= unsigned(upper) << free_axes[j];
+      weight *= upper ? upper_share[j] : 1 - upper_share[j];
     }
     if (weight > 0) {
       nearest.index[nearest.size] = corner[bits];
@@ -102,24 +105,37 @@ bool nearest_on_box(const FramedBody& body, const Vector3& half, const std::arra
       ++nearest.size;
     }
   }
+}
+
+// The nearest point of the box `body` (half extents `half`, corners `corner`) to the point at
+// `local` in its own frame (in_own_frame): the point clamped to the extents, on the face, edge or
+// corner it lies on (on_box). False for a point inside the box or on it.
+bool nearest_on_box(const FramedBody& body, const Vector3& half, const std::array<int, 8>& corner,
+                    const Vector3& local, CorePoint& nearest) {
+  Vector3 clamp;
+  unsigned clamped_bits = 0;  // the clamped axes' side: bit k set at +half(k)
+  std::array<int, 3> free_axes{};
+  int free = 0;
+  for (int k = 0; k < 3; ++k) {
+    if (local(k) > half(k)) {
+      clamp(k) = half(k);
+      clamped_bits |= 1u << k;
+    } else if (local(k) < -half(k)) {
+      clamp(k) = -half(k);
+    } else {
+      clamp(k) = local(k);
+      free_axes[free++] = k;
+    }
+  }
+  if (free == 3) return false;
+  on_box(body, half, corner, clamp, clamped_bits, free_axes, free, nearest);
   return true;
 }
 
-// The nearest points of the cores of `pair`, or false where no closed form here chooses them.
-bool nearest_points(const FramedPair& pair, CorePoint& on_a, CorePoint& on_b) {
+// The nearest points of two cores of one or two points each (points and segments).
+void nearest_on_cores(const FramedPair& pair, CorePoint& on_a, CorePoint& on_b) {
   const int size_a = pair.a.size();
   const int size_b = pair.b.size();
-  if (size_a == 8 || size_b == 8) {
-    const bool box_a = size_a == 8;
-    const FramedBody& box = box_a ? pair.a : pair.b;
-    Vector3 half;
-    std::array<int, 8> corner;
-    if (!box_extents(box, half, corner)) return false;
-    const Vector3 p = (box_a ? pair.b : pair.a).vertex(0);
-    if (!nearest_on_box(box, half, corner, p, box_a ? on_a : on_b)) return false;
-    (box_a ? on_b : on_a).point = p;
-    return true;
-  }
   const Vector3 p0 = pair.a.vertex(0);
   const Vector3 p1 = size_a == 2 ? pair.a.vertex(1) : p0;
   const Vector3 q0 = pair.b.vertex(0);
@@ -130,7 +146,6 @@ bool nearest_points(const FramedPair& pair, CorePoint& on_a, CorePoint& on_b) {
   nearest_on_segments(p0, p1, q0, q1, 0x1p-40, s, t);
   on_segment(size_a, p0, p1, s, on_a);
   on_segment(size_b, q0, q1, t, on_b);
-  return true;
 }
 
 // exact_separation's value, `min_j n.y_j - max_i n.x_i` from the heights its scans compare, for
@@ -144,18 +159,73 @@ Scalar separation_of_all(const FramedPair& pair, const Vector3& n) {
   return bottom_b - top_a;
 }
 
-}  // namespace
+// The greatest height along the unit frame direction `n` of the box `box`'s points (half extents
+// `half`, corners `corner`) when `top`, else the least: the very value that separation_of_all's
+// scan of every height computes (the first point's on ties), from the corners that may hold it.
+// Along an own-frame axis k whose component l_k of n is large, `2^-e h_k |l_k|` above the box's
+// scan_shortfall (`shortfall`), the corners on the far side are lower by `2^-e 2 h_k |l_k|`
+// (less l_k's rounding, 5.2u), over twice what rounding may move a computed height (some 13u of
+// the reach, by framed_body.cpp's analysis of scan_shortfall, which is 64u of it): none of them
+// holds the extreme value as computed. Both sides are measured across the other axes: the four
+// corners of a face for its normal, one corner for a direction off every face (8 heights were
+// 540 instructions of a ball-box query).
+Scalar box_extreme_height(const FramedBody& box, const Vector3& half,
+                          const std::array<int, 8>& corner, const Vector3& n, bool top,
+                          Scalar shortfall) {
+  const Vector3 l = box.local_direction(n);
+  unsigned side = 0;  // the near side of each decided axis: bit k set at +half(k)
+  unsigned open = 0;  // the axes measured on both sides
+  for (int k = 0; k < 3; ++k) {
+    if (times_power_of_two(half(k) * std::abs(l(k)), -box.exponent()) > shortfall) {
+      side |= unsigned((l(k) > 0) == top) << k;
+    } else {
+      open |= 1u << k;
+    }
+  }
+  int first = box.size();
+  Scalar extreme = 0;
+  // The corners `side | across` for every subset `across` of the open axes, in increasing order
+  // (`across - open` carries into the next subset's bits).
+  unsigned across = 0;
+  do {
+    const int i = corner[side | across];
+    const Scalar h = box.height(i, n);
+    // The scan keeps the first point of equal heights.
+    if (first == box.size() || (top ? h > extreme : h < extreme) || (h == extreme && i < first)) {
+      extreme = h;
+      first = i;
+    }
+    across = (across - open) & open;
+  } while (across != 0);
+  return extreme;
+}
 
-bool core_closed_form(const FramedPair& pair, Goal goal, Answer& answer) {
-  CorePoint on_a;
-  CorePoint on_b;
-  if (!small_cores(pair) || !nearest_points(pair, on_a, on_b)) return false;
+// separation_of_all's value for a point `p` (a ball's core, B when `box_a`) and a box (its
+// half extents `half`, corners `corner`, scan_shortfall `shortfall`), from the box's extreme
+// height (box_extreme_height).
+Scalar box_separation(const FramedPair& pair, bool box_a, const Vector3& half,
+                      const std::array<int, 8>& corner, const Vector3& p, const Vector3& n,
+                      Scalar shortfall) {
+  const FramedBody& point = box_a ? pair.b : pair.a;
+  const Scalar at_point = point.height(0, p, n);
+  return box_a ? at_point - box_extreme_height(pair.a, half, corner, n, true, shortfall)
+               : box_extreme_height(pair.b, half, corner, n, false, shortfall) - at_point;
+}
+
+// The answer from the nearest points `on_a` and `on_b` of cores that are apart, or false when
+// they touch or its bounds leave `goal` unmet: the upper bound is their distance, the lower one
+// `separation(normal)`, the separation along the normal between them. Inline in both callers
+// (segments, a point and a box): its call cost the segments' queries 38 instructions.
+template <typename Separation>
+[[gnu::always_inline]] inline bool apart_answer(const FramedPair& pair, Goal goal,
+                                                const CorePoint& on_a, const CorePoint& on_b,
+                                                const Separation& separation, Answer& answer) {
   const Vector3 between = on_b.point - on_a.point;
   const Scalar distance = between.norm();
   // Cores that touch or overlap have no normal here: the search proves their overlap.
   if (!(distance > 0)) return false;
   const Vector3 normal = between / distance;
-  const Scalar lower = separation_of_all(pair, normal);
+  const Scalar lower = separation(normal);
   if (!goal_reached(pair, goal, lower, distance, false)) return false;
   answer.upper = distance;
   answer.lower = lower;
@@ -167,6 +237,108 @@ bool core_closed_form(const FramedPair& pair, Goal goal, Answer& answer) {
   answer.iterations = 1;
   answer.evaluations = 1;
   return true;
+}
+
+// A signed distance for a point (a ball's core) `centre` inside the box (`local` its own-frame
+// coordinates, in_own_frame of `from_offset`, its difference from the box's offset; half extents
+// `half`, corners `corner`), the box A when `box_a`: the point's depth is its least distance to a
+// face, `min_k half(k) - |local(k)|`, along that face's normal. The upper bound is minus the depth
+// that the frame's rounding leaves proven (depth_in_frame, as the curved shapes' closed forms
+// prove theirs), the lower one the separation along the face's normal over every point less its
+// rounding. False where the point is on the boundary to rounding, or the bounds are further apart
+// than the tolerance: the search answers then.
+bool inside_box_answer(const FramedPair& pair, bool box_a, const Vector3& half,
+                       const std::array<int, 8>& corner, const Vector3& centre,
+                       const Vector3& local, const Vector3& from_offset, Answer& answer) {
+  const FramedBody& box = box_a ? pair.a : pair.b;
+  int face = 0;
+  Scalar least = half(0) - std::abs(local(0));
+  for (int k = 1; k < 3; ++k) {
+    const Scalar depth = half(k) - std::abs(local(k));
+    if (depth < least) {
+      least = depth;
+      face = k;
+    }
+  }
+  // The difference rounds by u of half(face) at most, and taking this bound off by u again.
+  const Scalar framed = times_power_of_two(least - 4 * kRoundoff * half(face), -box.exponent());
+  if (!(framed > 0)) return false;
+  const Scalar shortfall = box.scan_shortfall();
+  const Scalar depth =
+      depth_in_frame(framed, rotation_skew(box), from_offset.norm(), shortfall);
+  if (!(depth > 0)) return false;
+  Vector3 outward = box.rotated() ? Vector3(box.rotation().col(face)) : Vector3::Unit(face);
+  outward.normalize();
+  const bool upper_side = local(face) >= 0;
+  if (!upper_side) outward = -outward;
+  // From A to B: out of the box when it is A, into it when it is B.
+  const Vector3 normal = box_a ? outward : Vector3(-outward);
+  // The separation as every height gives it, less its rounding (separation_margin, as the
+  // penetration solver's): the box's points, and the centre among them, have coordinates within
+  // its offset's and its radius.
+  const Scalar coordinate =
+      (box.offset().cwiseAbs().maxCoeff() +
+       times_power_of_two(box.body().bounds().radius, -box.exponent())) *
+      (1 + 16 * kRoundoff);
+  const Scalar lower = box_separation(pair, box_a, half, corner, centre, normal, shortfall) -
+                       separation_margin(coordinate);
+  if (!goal_reached(pair, Goal::signed_distance, lower, -depth, false)) return false;
+  // The witness on the box: the point of the face straight out from the centre.
+  Vector3 clamp = local;
+  clamp(face) = upper_side ? half(face) : -half(face);
+  CorePoint on_face;
+  on_box(box, half, corner, clamp, unsigned(upper_side) << face,
+         {(face + 1) % 3, (face + 2) % 3, 0}, 2, on_face);
+  const ConvexWeights on_box_weights(box.size(), on_face.index, on_face.weight, on_face.size);
+  const ConvexWeights at_centre(1, {0, 0, 0, 0}, {1, 0, 0, 0}, 1);
+  answer.upper = -depth;
+  answer.lower = lower;
+  answer.point_a = box_a ? on_face.point : centre;
+  answer.point_b = box_a ? centre : on_face.point;
+  answer.weights_a = box_a ? on_box_weights : at_centre;
+  answer.weights_b = box_a ? at_centre : on_box_weights;
+  answer.direction = normal;
+  answer.intersection_proven = answer.upper + kFrameRounding < 0;
+  answer.iterations = 1;
+  answer.evaluations = 1;
+  return true;
+}
+
+// A point (a ball's core) against a box: apart, from the nearest point on the box; inside, for a
+// signed distance, from the nearest face (inside_box_answer).
+bool ball_against_box(const FramedPair& pair, Goal goal, Answer& answer) {
+  const bool box_a = pair.a.size() == 8;
+  const FramedBody& box = box_a ? pair.a : pair.b;
+  Vector3 half;
+  std::array<int, 8> corner;
+  if (!box_extents(box, half, corner)) return false;
+  const Vector3 p = (box_a ? pair.b : pair.a).vertex(0);
+  const Vector3 from_offset = p - box.offset();
+  const Vector3 local = in_own_frame(box, from_offset);
+  CorePoint on_a;
+  CorePoint on_b;
+  if (nearest_on_box(box, half, corner, local, box_a ? on_a : on_b)) {
+    (box_a ? on_b : on_a).point = p;
+    const auto separation = [&](const Vector3& n) {
+      return box_separation(pair, box_a, half, corner, p, n, box.scan_shortfall());
+    };
+    return apart_answer(pair, goal, on_a, on_b, separation, answer);
+  }
+  // The searches prove the other goals' overlaps.
+  return goal == Goal::signed_distance &&
+         inside_box_answer(pair, box_a, half, corner, p, local, from_offset, answer);
+}
+
+}  // namespace
+
+bool core_closed_form(const FramedPair& pair, Goal goal, Answer& answer) {
+  if (!small_cores(pair)) return false;
+  if (pair.a.size() == 8 || pair.b.size() == 8) return ball_against_box(pair, goal, answer);
+  CorePoint on_a;
+  CorePoint on_b;
+  nearest_on_cores(pair, on_a, on_b);
+  const auto separation = [&](const Vector3& n) { return separation_of_all(pair, n); };
+  return apart_answer(pair, goal, on_a, on_b, separation, answer);
 }
 
 }  // namespace swarmcollide::detail
