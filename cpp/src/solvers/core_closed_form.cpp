@@ -105,8 +105,17 @@ bool nearest_on_box(const FramedBody& body, const Vector3& half, const std::arra
   return true;
 }
 
-// The nearest points of the cores of `pair`, or false where no closed form here chooses them.
-bool nearest_points(const FramedPair& pair, CorePoint& on_a, CorePoint& on_b) {
+// The points of two cores of one or two points each, placed in the frame once: the closed form
+// and the separation read them both (placing them again was 20 instructions a point).
+struct PlacedCores {
+  std::array<Vector3, 2> a;
+  std::array<Vector3, 2> b;
+};
+
+// The nearest points of the cores of `pair`, or false where no closed form here chooses them;
+// `cores` holds the cores' placed points when neither is a box.
+bool nearest_points(const FramedPair& pair, CorePoint& on_a, CorePoint& on_b,
+                    PlacedCores& cores) {
   const int size_a = pair.a.size();
   const int size_b = pair.b.size();
   if (size_a == 8 || size_b == 8) {
@@ -120,10 +129,10 @@ bool nearest_points(const FramedPair& pair, CorePoint& on_a, CorePoint& on_b) {
     (box_a ? on_b : on_a).point = p;
     return true;
   }
-  const Vector3 p0 = pair.a.vertex(0);
-  const Vector3 p1 = size_a == 2 ? pair.a.vertex(1) : p0;
-  const Vector3 q0 = pair.b.vertex(0);
-  const Vector3 q1 = size_b == 2 ? pair.b.vertex(1) : q0;
+  const Vector3& p0 = cores.a[0] = pair.a.vertex(0);
+  const Vector3& p1 = cores.a[1] = size_a == 2 ? pair.a.vertex(1) : p0;
+  const Vector3& q0 = cores.b[0] = pair.b.vertex(0);
+  const Vector3& q1 = cores.b[1] = size_b == 2 ? pair.b.vertex(1) : q0;
   Scalar s;
   Scalar t;
   // Below sin^2 2^-40 of the angle between them, the lines' nearest points are ill-conditioned.
@@ -144,18 +153,31 @@ Scalar separation_of_all(const FramedPair& pair, const Vector3& n) {
   return bottom_b - top_a;
 }
 
+// separation_of_all for cores of one or two points each, from their points as `cores` placed
+// them (FramedBody::height's value for a point already placed).
+Scalar separation_of_cores(const FramedPair& pair, const PlacedCores& cores, const Vector3& n) {
+  Scalar top_a = pair.a.height(0, cores.a[0], n);
+  if (pair.a.size() == 2) top_a = std::max(top_a, pair.a.height(1, cores.a[1], n));
+  Scalar bottom_b = pair.b.height(0, cores.b[0], n);
+  if (pair.b.size() == 2) bottom_b = std::min(bottom_b, pair.b.height(1, cores.b[1], n));
+  return bottom_b - top_a;
+}
+
 }  // namespace
 
 bool core_closed_form(const FramedPair& pair, Goal goal, Answer& answer) {
   CorePoint on_a;
   CorePoint on_b;
-  if (!small_cores(pair) || !nearest_points(pair, on_a, on_b)) return false;
+  PlacedCores cores;
+  if (!small_cores(pair) || !nearest_points(pair, on_a, on_b, cores)) return false;
   const Vector3 between = on_b.point - on_a.point;
   const Scalar distance = between.norm();
   // Cores that touch or overlap have no normal here: the search proves their overlap.
   if (!(distance > 0)) return false;
   const Vector3 normal = between / distance;
-  const Scalar lower = separation_of_all(pair, normal);
+  const bool box = pair.a.size() == 8 || pair.b.size() == 8;
+  const Scalar lower =
+      box ? separation_of_all(pair, normal) : separation_of_cores(pair, cores, normal);
   if (!goal_reached(pair, goal, lower, distance, false)) return false;
   answer.upper = distance;
   answer.lower = lower;
