@@ -43,8 +43,14 @@ void round_answer(const FramedPair& pair, Goal goal, Answer& answer) {
   const Scalar radius_a = pair.radius_a;
   const Scalar radius_b = pair.radius_b;
   const bool signed_goal = goal == Goal::signed_distance;
-  answer.lower = rounded_lower(pair, answer.lower);
-  answer.upper = rounded_upper(pair, answer.upper);
+  const RoundedBounds& kept = answer.rounded;
+  if (kept.core_lower == answer.lower && kept.core_upper == answer.upper) {
+    answer.lower = kept.lower;
+    answer.upper = kept.upper;
+  } else {
+    answer.lower = rounded_lower(pair, answer.lower);
+    answer.upper = rounded_upper(pair, answer.upper);
+  }
   for (Scalar& h : answer.history) {
     h = rounded_upper(pair, h);
     if (!signed_goal) h = std::max(h, 0.0);

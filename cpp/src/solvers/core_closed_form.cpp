@@ -178,9 +178,11 @@ bool core_closed_form(const FramedPair& pair, Goal goal, Answer& answer) {
   const bool box = pair.a.size() == 8 || pair.b.size() == 8;
   const Scalar lower =
       box ? separation_of_all(pair, normal) : separation_of_cores(pair, cores, normal);
-  if (!goal_reached(pair, goal, lower, distance, false)) return false;
+  const RoundedBounds rounded = rounded_bounds(pair, lower, distance);
+  if (!goal_reached(pair, goal, rounded, false)) return false;
   answer.upper = distance;
   answer.lower = lower;
+  answer.rounded = rounded;
   answer.point_a = on_a.point;
   answer.point_b = on_b.point;
   answer.weights_a = ConvexWeights(pair.a.size(), on_a.index, on_a.weight, on_a.size);
