@@ -133,6 +133,12 @@ bool nearest_points(const FramedPair& pair, CorePoint& on_a, CorePoint& on_b,
   const Vector3& p1 = cores.a[1] = size_a == 2 ? pair.a.vertex(1) : p0;
   const Vector3& q0 = cores.b[0] = pair.b.vertex(0);
   const Vector3& q1 = cores.b[1] = size_b == 2 ? pair.b.vertex(1) : q0;
+  // Two points are their own nearest points (the clamped form's s = t = 0, without its products).
+  if (size_a == 1 && size_b == 1) {
+    on_a.point = p0;
+    on_b.point = q0;
+    return true;
+  }
   Scalar s;
   Scalar t;
   // Below sin^2 2^-40 of the angle between them, the lines' nearest points are ill-conditioned.
