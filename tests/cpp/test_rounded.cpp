@@ -117,6 +117,10 @@ TEST(Rounded, RoundAnswerTakesTheBoundsAClosedFormRounded) {
   const detail::RoundedBounds rounded = detail::rounded_bounds(pair, core_lower, core_upper);
   EXPECT_EQ(rounded.lower, detail::rounded_lower(pair, core_lower));
   EXPECT_EQ(rounded.upper, detail::rounded_upper(pair, core_upper));
+  // The balls' closed form shifts both in one call, to the same values.
+  const detail::RoundedBounds shifted = detail::shifted_bounds(pair, core_lower, core_upper);
+  EXPECT_EQ(shifted.lower, rounded.lower);
+  EXPECT_EQ(shifted.upper, rounded.upper);
   const auto answer_of = [&](Scalar lower, Scalar upper) {
     detail::Answer answer;
     answer.lower = lower;

@@ -20,21 +20,17 @@ bool underflowed(Scalar radius) {
   return radius > 0 && radius < std::numeric_limits<Scalar>::min();
 }
 
-// True when the radii's sum `radii` is exact and neither radius lost bits in the frame: the
-// radii's part of shifted_by_radii's test for an exact difference.
-bool radii_exact(const FramedPair& pair, Scalar radii) {
-  return sum_error(pair.radius_a, pair.radius_b, radii) == 0 && !underflowed(pair.radius_a) &&
-         !underflowed(pair.radius_b);
-}
-
-// shifted_by_radii with its radii's sum `radii` and their test, radii_exact's value, given.
-// Moved by nothing when the sum and the difference are proven exact: sphere radii and distances
-// such as 1.5 stay 1.5.
-inline Scalar shifted(const FramedPair& pair, Scalar core, Scalar outward, Scalar radii,
-                      bool exact_radii) {
+// shifted_by_radii with the radii's sum `radii` given, and whether it is exact (`exact_sum`, from
+// sum_error). Moved by nothing when the sum and the difference are proven exact: sphere radii and
+// distances such as 1.5 stay 1.5. Always inline: the searches' stop tests call shifted_by_radii
+// at every step.
+[[gnu::always_inline]] inline Scalar shifted(const FramedPair& pair, Scalar core, Scalar outward,
+                                             Scalar radii, bool exact_sum) {
   const Scalar value = core - radii;
   if (!std::isfinite(core)) return value;
-  if (exact_radii && sum_error(core, -radii, value) == 0) return value;
+  const bool exact = exact_sum && sum_error(core, -radii, value) == 0 &&
+                     !underflowed(pair.radius_a) && !underflowed(pair.radius_b);
+  if (exact) return value;
   // std::nextafter's value from the bits (next_down, negated for a step up): its libm call was a
   // third of this function's cost, which a ball's distance pays twice or more.
   const Scalar moved = value + outward * subtraction_rounding(pair, core);
@@ -45,14 +41,14 @@ inline Scalar shifted(const FramedPair& pair, Scalar core, Scalar outward, Scala
 
 Scalar shifted_by_radii(const FramedPair& pair, Scalar core, Scalar outward) {
   const Scalar radii = pair.radius_a + pair.radius_b;
-  return shifted(pair, core, outward, radii, radii_exact(pair, radii));
+  return shifted(pair, core, outward, radii, sum_error(pair.radius_a, pair.radius_b, radii) == 0);
 }
 
 RoundedBounds shifted_bounds(const FramedPair& pair, Scalar core_lower, Scalar core_upper) {
   const Scalar radii = pair.radius_a + pair.radius_b;
-  const bool exact_radii = radii_exact(pair, radii);
-  return {core_lower, core_upper, shifted(pair, core_lower, -1, radii, exact_radii),
-          shifted(pair, core_upper, 1, radii, exact_radii)};
+  const bool exact_sum = sum_error(pair.radius_a, pair.radius_b, radii) == 0;
+  return {core_lower, core_upper, shifted(pair, core_lower, -1, radii, exact_sum),
+          shifted(pair, core_upper, 1, radii, exact_sum)};
 }
 
 void round_answer(const FramedPair& pair, Goal goal, Answer& answer) {

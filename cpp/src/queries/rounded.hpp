@@ -75,20 +75,17 @@ inline Scalar rounded_upper(const FramedPair& pair, Scalar core_upper) {
   return shifted_by_radii(pair, core_upper, 1);
 }
 
-/// shifted_by_radii of `core_lower` down and of `core_upper` up, with the bounds they shift, in
-/// one call that tests the radii once.
-RoundedBounds shifted_bounds(const FramedPair& pair, Scalar core_lower, Scalar core_upper);
-
 /// rounded_lower of `core_lower` and rounded_upper of `core_upper`, with the bounds they round:
 /// for a closed form, which tests its goal on them and keeps them in its answer (Answer::rounded).
 inline RoundedBounds rounded_bounds(const FramedPair& pair, Scalar core_lower, Scalar core_upper) {
-  // Balls and capsules: both bounds shifted by the radii alone, in one call.
-  if (pair.support_error == 0 && (pair.radius_a != 0 || pair.radius_b != 0)) {
-    return shifted_bounds(pair, core_lower, core_upper);
-  }
   return {core_lower, core_upper, rounded_lower(pair, core_lower),
           rounded_upper(pair, core_upper)};
 }
+
+/// rounded_bounds for a pair without support error (`pair.support_error == 0`: no curved body),
+/// the same values: both bounds shifted by the radii (shifted_by_radii, which moves neither
+/// without radii), in one call that tests the radii once. For balls' and capsules' closed forms.
+RoundedBounds shifted_bounds(const FramedPair& pair, Scalar core_lower, Scalar core_upper);
 
 /// Turns `answer`, found on the cores of `pair` for `goal`, into the rounded bodies' answer, in
 /// place: both bounds (and the history) by rounded_lower and rounded_upper; the witnesses moved

@@ -184,7 +184,8 @@ bool core_closed_form(const FramedPair& pair, Goal goal, Answer& answer) {
   const bool box = pair.a.size() == 8 || pair.b.size() == 8;
   const Scalar lower =
       box ? separation_of_all(pair, normal) : separation_of_cores(pair, cores, normal);
-  const RoundedBounds rounded = rounded_bounds(pair, lower, distance);
+  // Polyhedra: no support error, so the radii alone shift the bounds.
+  const RoundedBounds rounded = shifted_bounds(pair, lower, distance);
   if (!goal_reached(pair, goal, rounded, false)) return false;
   answer.upper = distance;
   answer.lower = lower;
