@@ -141,6 +141,16 @@ bool nearest_points(const FramedPair& pair, CorePoint& on_a, CorePoint& on_b,
   }
   Scalar s;
   Scalar t;
+  if (size_a == 1) {
+    // A ball against a capsule: the clamped form's value for a first segment of length zero
+    // (s = 0, t the clamped projection), without the products of that segment.
+    const Vector3 d2 = q1 - q0;
+    const Scalar e = d2.squaredNorm();
+    const Scalar f = d2.dot(p0 - q0);
+    on_a.point = p0;
+    on_segment(size_b, q0, q1, e > 0 ? clamped(f / e) : 0, on_b);
+    return true;
+  }
   // Below sin^2 2^-40 of the angle between them, the lines' nearest points are ill-conditioned.
   nearest_on_segments(p0, p1, q0, q1, 0x1p-40, s, t);
   on_segment(size_a, p0, p1, s, on_a);
