@@ -105,6 +105,46 @@ TEST(Rounded, ShiftedBoundsStepAsNextafterDoes) {
   EXPECT_GT(stepped, 200);
 }
 
+// A closed form rounds its bounds for its goal test and keeps them (Answer::rounded):
+// round_answer takes them for the very bounds they round, and rounds any other bounds anew.
+TEST(Rounded, RoundAnswerTakesTheBoundsAClosedFormRounded) {
+  const Sphere a(0.3);
+  const Sphere b(0.1);
+  const detail::FramedPair pair =
+      detail::frame_pair(a, at(Vector3::Zero()), b, at(Vector3(1, 0, 0)), kDefaultTolerance);
+  const Scalar core_lower = 0.37;
+  const Scalar core_upper = 0.38;
+  const detail::RoundedBounds rounded = detail::rounded_bounds(pair, core_lower, core_upper);
+  EXPECT_EQ(rounded.lower, detail::rounded_lower(pair, core_lower));
+  EXPECT_EQ(rounded.upper, detail::rounded_upper(pair, core_upper));
+  // The balls' closed form shifts both in one call, to the same values.
+  const detail::RoundedBounds shifted = detail::shifted_bounds(pair, core_lower, core_upper);
+  EXPECT_EQ(shifted.lower, rounded.lower);
+  EXPECT_EQ(shifted.upper, rounded.upper);
+  const auto answer_of = [&](Scalar lower, Scalar upper) {
+    detail::Answer answer;
+    answer.lower = lower;
+    answer.upper = upper;
+    answer.direction = Vector3::UnitX();
+    answer.point_b = Vector3(upper, 0, 0);
+    return answer;
+  };
+  // Kept bounds that differ from rounding anew show which was taken.
+  detail::Answer kept = answer_of(core_lower, core_upper);
+  kept.rounded = {core_lower, core_upper, 0.125, 0.25};
+  detail::round_answer(pair, detail::Goal::signed_distance, kept);
+  EXPECT_EQ(kept.lower, 0.125);
+  EXPECT_EQ(kept.upper, 0.25);
+  // Bounds changed since they were kept, or never kept, are rounded anew.
+  for (const bool keep : {true, false}) {
+    detail::Answer changed = answer_of(core_lower, core_upper * 2);
+    if (keep) changed.rounded = {core_lower, core_upper, 0.125, 0.25};
+    detail::round_answer(pair, detail::Goal::signed_distance, changed);
+    EXPECT_EQ(changed.lower, detail::rounded_lower(pair, core_lower));
+    EXPECT_EQ(changed.upper, detail::rounded_upper(pair, core_upper * 2));
+  }
+}
+
 TEST(Rounded, SpheresMatchTheClosedForm) {
   Random rng(3);
   for (int trial = 0; trial < 20; ++trial) {

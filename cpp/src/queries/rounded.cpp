@@ -20,17 +20,16 @@ bool underflowed(Scalar radius) {
   return radius > 0 && radius < std::numeric_limits<Scalar>::min();
 }
 
-}  // namespace
-
-// Moved by nothing when the sum and the difference are proven exact: sphere radii and distances
-// such as 1.5 stay 1.5.
-Scalar shifted_by_radii(const FramedPair& pair, Scalar core, Scalar outward) {
-  const Scalar radii = pair.radius_a + pair.radius_b;
+// shifted_by_radii with the radii's sum `radii` given, and whether it is exact (`exact_sum`, from
+// sum_error). Moved by nothing when the sum and the difference are proven exact: sphere radii and
+// distances such as 1.5 stay 1.5. Always inline: the searches' stop tests call shifted_by_radii
+// at every step.
+[[gnu::always_inline]] inline Scalar shifted(const FramedPair& pair, Scalar core, Scalar outward,
+                                             Scalar radii, bool exact_sum) {
   const Scalar value = core - radii;
   if (!std::isfinite(core)) return value;
-  const bool exact = sum_error(pair.radius_a, pair.radius_b, radii) == 0 &&
-                     sum_error(core, -radii, value) == 0 && !underflowed(pair.radius_a) &&
-                     !underflowed(pair.radius_b);
+  const bool exact = exact_sum && sum_error(core, -radii, value) == 0 &&
+                     !underflowed(pair.radius_a) && !underflowed(pair.radius_b);
   if (exact) return value;
   // std::nextafter's value from the bits (next_down, negated for a step up): its libm call was a
   // third of this function's cost, which a ball's distance pays twice or more.
@@ -38,24 +37,47 @@ Scalar shifted_by_radii(const FramedPair& pair, Scalar core, Scalar outward) {
   return outward > 0 ? -next_down(-moved) : next_down(moved);
 }
 
+}  // namespace
+
+Scalar shifted_by_radii(const FramedPair& pair, Scalar core, Scalar outward) {
+  const Scalar radii = pair.radius_a + pair.radius_b;
+  return shifted(pair, core, outward, radii, sum_error(pair.radius_a, pair.radius_b, radii) == 0);
+}
+
+RoundedBounds shifted_bounds(const FramedPair& pair, Scalar core_lower, Scalar core_upper) {
+  const Scalar radii = pair.radius_a + pair.radius_b;
+  const bool exact_sum = sum_error(pair.radius_a, pair.radius_b, radii) == 0;
+  return {core_lower, core_upper, shifted(pair, core_lower, -1, radii, exact_sum),
+          shifted(pair, core_upper, 1, radii, exact_sum)};
+}
+
 void round_answer(const FramedPair& pair, Goal goal, Answer& answer) {
   if (!rounded(pair)) return;
   const Scalar radius_a = pair.radius_a;
   const Scalar radius_b = pair.radius_b;
   const bool signed_goal = goal == Goal::signed_distance;
-  answer.lower = rounded_lower(pair, answer.lower);
-  answer.upper = rounded_upper(pair, answer.upper);
+  const RoundedBounds& kept = answer.rounded;
+  if (kept.core_lower == answer.lower && kept.core_upper == answer.upper) {
+    answer.lower = kept.lower;
+    answer.upper = kept.upper;
+  } else {
+    answer.lower = rounded_lower(pair, answer.lower);
+    answer.upper = rounded_upper(pair, answer.upper);
+  }
   for (Scalar& h : answer.history) {
     h = rounded_upper(pair, h);
     if (!signed_goal) h = std::max(h, 0.0);
   }
   const Vector3 between = answer.point_b - answer.point_a;
-  const Scalar gap = between.norm();
   if (signed_goal || answer.upper >= 0) {
     // The contact normal, else the witnesses' direction; cores that share their witness (one
-    // point twice, as two concentric spheres) have every direction for a normal.
+    // point twice, as two concentric spheres) have every direction for a normal. Their distance
+    // only when it is asked for (its square root was some 15 instructions of a signed distance).
     Vector3 n = signed_goal ? answer.direction : Vector3::Zero();
-    if (!(n.squaredNorm() > 0)) n = gap > 0 ? Vector3(between / gap) : Vector3::UnitZ();
+    if (!(n.squaredNorm() > 0)) {
+      const Scalar gap = between.norm();
+      n = gap > 0 ? Vector3(between / gap) : Vector3::UnitZ();
+    }
     answer.point_a += radius_a * n;
     answer.point_b -= radius_b * n;
     return;

@@ -75,6 +75,18 @@ inline Scalar rounded_upper(const FramedPair& pair, Scalar core_upper) {
   return shifted_by_radii(pair, core_upper, 1);
 }
 
+/// rounded_lower of `core_lower` and rounded_upper of `core_upper`, with the bounds they round:
+/// for a closed form, which tests its goal on them and keeps them in its answer (Answer::rounded).
+inline RoundedBounds rounded_bounds(const FramedPair& pair, Scalar core_lower, Scalar core_upper) {
+  return {core_lower, core_upper, rounded_lower(pair, core_lower),
+          rounded_upper(pair, core_upper)};
+}
+
+/// rounded_bounds for a pair without support error (`pair.support_error == 0`: no curved body),
+/// the same values: both bounds shifted by the radii (shifted_by_radii, which moves neither
+/// without radii), in one call that tests the radii once. For balls' and capsules' closed forms.
+RoundedBounds shifted_bounds(const FramedPair& pair, Scalar core_lower, Scalar core_upper);
+
 /// Turns `answer`, found on the cores of `pair` for `goal`, into the rounded bodies' answer, in
 /// place: both bounds (and the history) by rounded_lower and rounded_upper; the witnesses moved
 /// out to the surfaces, `point_a + r_a n` and `point_b - r_b n` along the unit normal n (the
@@ -83,7 +95,8 @@ inline Scalar rounded_upper(const FramedPair& pair, Scalar core_upper) {
 /// distance is then 0, both witnesses the point that splits the cores' witnesses in the ratio of
 /// the radii (within both rounded bodies), and the overlap counts as an intersection proof when
 /// the bound shows it beyond rounding. The weights stay those of the cores' witnesses. Nothing
-/// changes for two polyhedra.
+/// changes for two polyhedra. Bounds that `answer.rounded` holds rounded already are taken from
+/// it.
 void round_answer(const FramedPair& pair, Goal goal, Answer& answer);
 
 }  // namespace swarmcollide::detail

@@ -95,4 +95,10 @@ inline bool goal_reached(const FramedPair& pair, Goal goal, Scalar lower, Scalar
                                  rounded_upper(pair, upper), intersection_proven);
 }
 
+/// goal_reached for bounds rounded already (rounded_bounds).
+inline bool goal_reached(const FramedPair& pair, Goal goal, const RoundedBounds& bounds,
+                         bool intersection_proven) {
+  return verdict_detail::reached(pair, goal, bounds.lower, bounds.upper, intersection_proven);
+}
+
 }  // namespace swarmcollide::detail

@@ -23,6 +23,19 @@ enum class Goal {
   signed_distance,
 };
 
+/// The rounded bodies' bounds `lower` and `upper` (queries/rounded.hpp's rounded_lower and
+/// rounded_upper) of the bounds `core_lower` and `core_upper` on the cores. A closed form rounds
+/// its bounds for its goal test and keeps them here, and round_answer takes them rather than
+/// rounding the same bounds again (some 100 instructions of a ball's query). They are kept with
+/// the core bounds they round, so an answer whose bounds are others (by default, NaN matches
+/// none) is rounded anew.
+struct RoundedBounds {
+  Scalar core_lower = std::numeric_limits<Scalar>::quiet_NaN();
+  Scalar core_upper = std::numeric_limits<Scalar>::quiet_NaN();
+  Scalar lower = 0;
+  Scalar upper = 0;
+};
+
 /// A solver's findings, in frame units (see FramedPair). Both bounds are always valid (up to
 /// `kFrameRounding`): for a signed distance too, `upper` is proven (by a distance, or by an
 /// enumeration of the candidate directions), never merely the best separation found. The solver
@@ -51,6 +64,8 @@ struct Answer {
   bool intersection_proven = false;
   /// Set when a method other than the requested one produced the answer.
   std::optional<Method> answered_by;
+  /// `lower` and `upper` rounded already, where a closed form rounded them (see RoundedBounds).
+  RoundedBounds rounded;
 };
 
 }  // namespace swarmcollide::detail

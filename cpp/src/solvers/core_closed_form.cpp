@@ -132,14 +132,39 @@ bool nearest_on_box(const FramedBody& body, const Vector3& half, const std::arra
   return true;
 }
 
-// The nearest points of two cores of one or two points each (points and segments).
-void nearest_on_cores(const FramedPair& pair, CorePoint& on_a, CorePoint& on_b) {
+// The points of two cores of one or two points each, placed in the frame once: the closed form
+// and the separation read them both (placing them again was 20 instructions a point).
+struct PlacedCores {
+  std::array<Vector3, 2> a;
+  std::array<Vector3, 2> b;
+};
+
+// The nearest points of two cores of one or two points each (points and segments); `cores` holds
+// their placed points.
+void nearest_on_cores(const FramedPair& pair, CorePoint& on_a, CorePoint& on_b,
+                      PlacedCores& cores) {
   const int size_a = pair.a.size();
   const int size_b = pair.b.size();
-  const Vector3 p0 = pair.a.vertex(0);
-  const Vector3 p1 = size_a == 2 ? pair.a.vertex(1) : p0;
-  const Vector3 q0 = pair.b.vertex(0);
-  const Vector3 q1 = size_b == 2 ? pair.b.vertex(1) : q0;
+  const Vector3& p0 = cores.a[0] = pair.a.vertex(0);
+  const Vector3& p1 = cores.a[1] = size_a == 2 ? pair.a.vertex(1) : p0;
+  const Vector3& q0 = cores.b[0] = pair.b.vertex(0);
+  const Vector3& q1 = cores.b[1] = size_b == 2 ? pair.b.vertex(1) : q0;
+  // Two points are their own nearest points (the clamped form's s = t = 0, without its products).
+  if (size_a == 1 && size_b == 1) {
+    on_a.point = p0;
+    on_b.point = q0;
+    return;
+  }
+  if (size_a == 1) {
+    // A ball against a capsule: the clamped form's value for a first segment of length zero
+    // (s = 0, t the clamped projection), without the products of that segment.
+    const Vector3 d2 = q1 - q0;
+    const Scalar e = d2.squaredNorm();
+    const Scalar f = d2.dot(p0 - q0);
+    on_a.point = p0;
+    on_segment(size_b, q0, q1, e > 0 ? clamped(f / e) : 0, on_b);
+    return;
+  }
   Scalar s;
   Scalar t;
   // Below sin^2 2^-40 of the angle between them, the lines' nearest points are ill-conditioned.
@@ -149,18 +174,19 @@ void nearest_on_cores(const FramedPair& pair, CorePoint& on_a, CorePoint& on_b) 
 }
 
 // exact_separation's value, `min_j n.y_j - max_i n.x_i` from the heights its scans compare, for
-// bodies of eight points at most: every height, without a scan's call for each body (65
-// instructions each for one point).
-Scalar separation_of_all(const FramedPair& pair, const Vector3& n) {
-  Scalar top_a = pair.a.height(0, n);
-  for (int i = 1; i < pair.a.size(); ++i) top_a = std::max(top_a, pair.a.height(i, n));
-  Scalar bottom_b = pair.b.height(0, n);
-  for (int j = 1; j < pair.b.size(); ++j) bottom_b = std::min(bottom_b, pair.b.height(j, n));
+// cores of one or two points each: every height, from the points as `cores` placed them
+// (FramedBody::height's value for a point already placed), without a scan's call for each body
+// (65 instructions each for one point).
+Scalar separation_of_cores(const FramedPair& pair, const PlacedCores& cores, const Vector3& n) {
+  Scalar top_a = pair.a.height(0, cores.a[0], n);
+  if (pair.a.size() == 2) top_a = std::max(top_a, pair.a.height(1, cores.a[1], n));
+  Scalar bottom_b = pair.b.height(0, cores.b[0], n);
+  if (pair.b.size() == 2) bottom_b = std::min(bottom_b, pair.b.height(1, cores.b[1], n));
   return bottom_b - top_a;
 }
 
 // The greatest height along the unit frame direction `n` of the box `box`'s points (half extents
-// `half`, corners `corner`) when `top`, else the least: the very value that separation_of_all's
+// `half`, corners `corner`) when `top`, else the least: the very value that exact_separation's
 // scan of every height computes (the first point's on ties), from the corners that may hold it.
 // Along an own-frame axis k whose component l_k of n is large, `2^-e h_k |l_k|` above the box's
 // scan_shortfall (`shortfall`), the corners on the far side are lower by `2^-e 2 h_k |l_k|`
@@ -200,7 +226,7 @@ Scalar box_extreme_height(const FramedBody& box, const Vector3& half,
   return extreme;
 }
 
-// separation_of_all's value for a point `p` (a ball's core, B when `box_a`) and a box (its
+// exact_separation's value for a point `p` (a ball's core, B when `box_a`) and a box (its
 // half extents `half`, corners `corner`, scan_shortfall `shortfall`), from the box's extreme
 // height (box_extreme_height).
 Scalar box_separation(const FramedPair& pair, bool box_a, const Vector3& half,
@@ -226,9 +252,12 @@ template <typename Separation>
   if (!(distance > 0)) return false;
   const Vector3 normal = between / distance;
   const Scalar lower = separation(normal);
-  if (!goal_reached(pair, goal, lower, distance, false)) return false;
+  // Polyhedra: no support error, so the radii alone shift the bounds.
+  const RoundedBounds rounded = shifted_bounds(pair, lower, distance);
+  if (!goal_reached(pair, goal, rounded, false)) return false;
   answer.upper = distance;
   answer.lower = lower;
+  answer.rounded = rounded;
   answer.point_a = on_a.point;
   answer.point_b = on_b.point;
   answer.weights_a = ConvexWeights(pair.a.size(), on_a.index, on_a.weight, on_a.size);
@@ -282,7 +311,8 @@ bool inside_box_answer(const FramedPair& pair, bool box_a, const Vector3& half,
       (1 + 16 * kRoundoff);
   const Scalar lower = box_separation(pair, box_a, half, corner, centre, normal, shortfall) -
                        separation_margin(coordinate);
-  if (!goal_reached(pair, Goal::signed_distance, lower, -depth, false)) return false;
+  const RoundedBounds rounded = shifted_bounds(pair, lower, -depth);
+  if (!goal_reached(pair, Goal::signed_distance, rounded, false)) return false;
   // The witness on the box: the point of the face straight out from the centre.
   Vector3 clamp = local;
   clamp(face) = upper_side ? half(face) : -half(face);
@@ -293,6 +323,7 @@ bool inside_box_answer(const FramedPair& pair, bool box_a, const Vector3& half,
   const ConvexWeights at_centre(1, {0, 0, 0, 0}, {1, 0, 0, 0}, 1);
   answer.upper = -depth;
   answer.lower = lower;
+  answer.rounded = rounded;
   answer.point_a = box_a ? on_face.point : centre;
   answer.point_b = box_a ? centre : on_face.point;
   answer.weights_a = box_a ? on_box_weights : at_centre;
@@ -336,8 +367,9 @@ bool core_closed_form(const FramedPair& pair, Goal goal, Answer& answer) {
   if (pair.a.size() == 8 || pair.b.size() == 8) return ball_against_box(pair, goal, answer);
   CorePoint on_a;
   CorePoint on_b;
-  nearest_on_cores(pair, on_a, on_b);
-  const auto separation = [&](const Vector3& n) { return separation_of_all(pair, n); };
+  PlacedCores cores;
+  nearest_on_cores(pair, on_a, on_b, cores);
+  const auto separation = [&](const Vector3& n) { return separation_of_cores(pair, cores, n); };
   return apart_answer(pair, goal, on_a, on_b, separation, answer);
 }
 

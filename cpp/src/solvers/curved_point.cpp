@@ -285,9 +285,9 @@ bool point_against_curved(const FramedPair& pair, Goal goal, int max_iterations,
   answer.direction = normal;
   answer.iterations = 1;
   answer.evaluations = size + 1;
-  if (!goal_reached(pair, goal, answer.lower, answer.upper, false)) {
-    return nearest.inside && penetration();
-  }
+  const RoundedBounds rounded = rounded_bounds(pair, answer.lower, answer.upper);
+  if (!goal_reached(pair, goal, rounded, false)) return nearest.inside && penetration();
+  answer.rounded = rounded;
   return true;
 }
 
