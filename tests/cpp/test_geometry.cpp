@@ -265,6 +265,17 @@ TEST(PointColumns, ScanFindsTheRowScansIndex) {
         const int expected = detail::scan_support(points, d);
         EXPECT_EQ(columns.scan(d), expected)
             << "count " << count << " shape " << shape << " trial " << trial;
+        if (count <= detail::kRegisterColumns) {
+          // The few points' register scan, which every set takes for them, on the columns as
+          // PointColumns pads them (by the last point).
+          constexpr int kCapacity = detail::PointColumns::kCapacity;
+          std::array<double, 3 * kCapacity> held;
+          for (int i = 0; i < kCapacity; ++i) {
+            for (int k = 0; k < 3; ++k) held[k * kCapacity + i] = points(std::min(i, count - 1), k);
+          }
+          EXPECT_EQ(detail::scan_few_columns(held.data(), count, d.x(), d.y(), d.z()), expected)
+              << "few, count " << count << " shape " << shape << " trial " << trial;
+        }
         for (const auto isa : kIsas) {
           if (!detail::kernel_isa_available(isa)) continue;
           EXPECT_EQ(columns.scan_with(detail::column_scan_for(isa), d), expected)

@@ -83,6 +83,43 @@ inline int first_highest_column(const double* columns, int count, double dx, dou
 #endif
 }
 
+/// The most points the scan of a few points holds in two SSE2 registers, inline on every set.
+constexpr int kRegisterColumns = 4;
+static_assert(kColumnPadding >= kRegisterColumns, "the few points' registers read padding");
+
+/// The scan of up to kRegisterColumns points (`count` of them, the columns padded by their last
+/// point), in two SSE2 registers and inline: the same heights lane by lane as every set's scan,
+/// the same first maximiser. A wider set's scan is a call, around which the searches' oracles on
+/// the smallest pairs kept their live doubles on the stack (no vector register survives a call).
+[[gnu::always_inline]] inline int scan_few_columns(const double* columns, int count, double dx,
+                                                   double dy, double dz) {
+#if defined(__SSE2__)
+  const double* x = columns;
+  const double* y = x + kColumnCapacity;
+  const double* z = y + kColumnCapacity;
+  const __m128d along_x = _mm_set1_pd(dx);
+  const __m128d along_y = _mm_set1_pd(dy);
+  const __m128d along_z = _mm_set1_pd(dz);
+  const auto height = [&](int i) {
+    return _mm_add_pd(_mm_add_pd(_mm_mul_pd(_mm_loadu_pd(x + i), along_x),
+                                 _mm_mul_pd(_mm_loadu_pd(y + i), along_y)),
+                      _mm_mul_pd(_mm_loadu_pd(z + i), along_z));
+  };
+  const __m128d low = height(0);
+  const __m128d high = height(2);
+  if (_mm_movemask_pd(_mm_cmpunord_pd(low, high)) != 0) {
+    return first_highest_column(columns, count, dx, dy, dz);
+  }
+  __m128d top = _mm_max_pd(low, high);
+  top = _mm_max_pd(top, _mm_shuffle_pd(top, top, 1));
+  const int equal = _mm_movemask_pd(_mm_cmpeq_pd(low, top));
+  if (equal != 0) return equal & 1 ? 0 : 1;
+  return _mm_movemask_pd(_mm_cmpeq_pd(high, top)) & 1 ? 2 : 3;
+#else
+  return first_highest_column(columns, count, dx, dy, dz);
+#endif
+}
+
 /// The wider sets' scans (the baseline's where the build has none): four heights a step (AVX2),
 /// eight (AVX-512), the same index bit for bit.
 int scan_columns_avx2(const double* columns, int count, double dx, double dy, double dz);
@@ -107,8 +144,8 @@ constexpr int kFewColumns = 8;
 /// The scan on the chosen set: the baseline's inline, a wider set's by a direct call (always
 /// inline, for PointColumns::inline_scan; PointColumns::scan leaves its own inlining to the
 /// compiler). An AVX-512 host scans up to kFewColumns points with AVX2's.
-[[gnu::always_inline]] inline int scan_columns(const double* columns, int count, double dx,
-                                               double dy, double dz) {
+[[gnu::always_inline]] inline int scan_columns_on_set(const double* columns, int count, double dx,
+                                                      double dy, double dz) {
   switch (column_scan_set.load(std::memory_order_relaxed)) {
     case static_cast<int>(KernelIsa::avx512):
       if (count > kFewColumns) return scan_columns_avx512(columns, count, dx, dy, dz);
@@ -120,6 +157,13 @@ constexpr int kFewColumns = 8;
     default:
       return choose_column_scan(columns, count, dx, dy, dz);
   }
+}
+
+/// The scan of a few points inline (scan_few_columns), of more on the chosen set.
+[[gnu::always_inline]] inline int scan_columns(const double* columns, int count, double dx,
+                                               double dy, double dz) {
+  if (count <= kRegisterColumns) return scan_few_columns(columns, count, dx, dy, dz);
+  return scan_columns_on_set(columns, count, dx, dy, dz);
 }
 
 }  // namespace swarmcollide::detail

@@ -187,6 +187,12 @@ class FramedBody {
   [[gnu::always_inline]] int scanned_support_index(const Vector3& d) const {
     return columns_->inline_scan(local_direction(d));
   }
+  /// The same where the caller knows whether the body has at most kRegisterColumns points
+  /// (PointColumns::sized_scan).
+  template <bool few>
+  [[gnu::always_inline]] int sized_support_index(const Vector3& d) const {
+    return columns_->sized_scan<few>(local_direction(d));
+  }
   /// `local_support_index(local)` of a `scanned()` body (`local` a direction in its own frame),
   /// the same index, always inline: the fcl method recovers the bodies' points of FCL's simplex
   /// by eight such scans, where the tests of the body's kind were a fifth of each.

@@ -73,6 +73,13 @@ class PointColumns {
   [[gnu::always_inline]] int inline_scan(const Vector3& d) const {
     return scan_columns(columns_.data(), count_, d.x(), d.y(), d.z());
   }
+  /// The same where the caller knows whether at most kRegisterColumns points are held (`few`):
+  /// a search on two such bodies, or on larger ones, takes the count's test out of its steps.
+  template <bool few>
+  [[gnu::always_inline]] int sized_scan(const Vector3& d) const {
+    if constexpr (few) return scan_few_columns(columns_.data(), count_, d.x(), d.y(), d.z());
+    return scan_columns_on_set(columns_.data(), count_, d.x(), d.y(), d.z());
+  }
   /// The same by `kernel`, one instruction set's scan (column_scan_for).
   int scan_with(ColumnScan kernel, const Vector3& d) const {
     return kernel(columns_.data(), count_, d.x(), d.y(), d.z());
