@@ -286,6 +286,16 @@ class FramedBody {
   const PointColumns* columns_ = nullptr;
 };
 
+/// A bound on the absolute coordinates of a placed body's points, without reading them: the
+/// centre of its box in the frame plus its radius, rounded up (separation_margin's argument).
+/// times_power_of_two is std::ldexp's value here, without the library call: it rounds once unless
+/// its factor splits (|exponent| > 1000), where the partial product stays a normal double for
+/// every radius whose scaled value is not zero either way.
+inline Scalar coordinate_bound(const FramedBody& body) {
+  const Scalar radius = times_power_of_two(body.body().bounds().radius, -body.exponent());
+  return (body.offset().cwiseAbs().maxCoeff() + radius) * (1 + 16 * kRoundoff);
+}
+
 /// Two bodies in their common frame, with the query's tolerance in frame units.
 struct FramedPair {
   Frame frame;

@@ -16,8 +16,9 @@ namespace swarmcollide::detail {
 /// polygon's edges (2-vectors) and the cores of capsules (3-vectors) share it. Always inline, as
 /// each has one caller: out of line, a ball's query against a capsule took 30 instructions more.
 template <class Point>
-[[gnu::always_inline]] inline void nearest_on_segments(const Point& p0, const Point& p1, const Point& q0, const Point& q1,
-                         Scalar parallel, Scalar& s, Scalar& t) {
+[[gnu::always_inline]] inline void nearest_on_segments(const Point& p0, const Point& p1,
+                                                       const Point& q0, const Point& q1,
+                                                       Scalar parallel, Scalar& s, Scalar& t) {
   const auto clamped = [](Scalar x) { return std::clamp(x, Scalar(0), Scalar(1)); };
   const Point d1 = p1 - p0;
   const Point d2 = q1 - q0;

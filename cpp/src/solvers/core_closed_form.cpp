@@ -304,13 +304,9 @@ bool inside_box_answer(const FramedPair& pair, bool box_a, const Vector3& half,
   const Vector3 normal = box_a ? outward : Vector3(-outward);
   // The separation as every height gives it, less its rounding (separation_margin, as the
   // penetration solver's): the box's points, and the centre among them, have coordinates within
-  // its offset's and its radius.
-  const Scalar coordinate =
-      (box.offset().cwiseAbs().maxCoeff() +
-       times_power_of_two(box.body().bounds().radius, -box.exponent())) *
-      (1 + 16 * kRoundoff);
+  // the box's coordinate_bound.
   const Scalar lower = box_separation(pair, box_a, half, corner, centre, normal, shortfall) -
-                       separation_margin(coordinate);
+                       separation_margin(coordinate_bound(box));
   const RoundedBounds rounded = shifted_bounds(pair, lower, -depth);
   if (!goal_reached(pair, Goal::signed_distance, rounded, false)) return false;
   // The witness on the box: the point of the face straight out from the centre.

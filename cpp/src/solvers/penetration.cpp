@@ -82,16 +82,6 @@ Scalar largest_coordinate(const VertexMatrix& a, const VertexMatrix& b) {
   return std::max(a.cwiseAbs().maxCoeff(), b.cwiseAbs().maxCoeff());
 }
 
-// A bound on the absolute coordinates of a placed body's points, without reading them: the
-// centre of its box in the frame plus its radius, rounded up.
-Scalar coordinate_bound(const FramedBody& body) {
-  // times_power_of_two is std::ldexp's value here, without the library call: it rounds once
-  // unless its factor splits (|exponent| > 1000), where the partial product stays a normal double
-  // for every radius whose scaled value is not zero either way.
-  const Scalar radius = times_power_of_two(body.body().bounds().radius, -body.exponent());
-  return (body.offset().cwiseAbs().maxCoeff() + radius) * (1 + 16 * kRoundoff);
-}
-
 // Whether support_index scans every point of `body` (a small polyhedron), whatever its start: its
 // support along a direction is then scanned_support's.
 bool scanned_whole(const FramedBody& body) {
