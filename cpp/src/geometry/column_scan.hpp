@@ -144,8 +144,8 @@ constexpr int kFewColumns = 8;
 /// The scan on the chosen set: the baseline's inline, a wider set's by a direct call (always
 /// inline, for PointColumns::inline_scan; PointColumns::scan leaves its own inlining to the
 /// compiler). An AVX-512 host scans up to kFewColumns points with AVX2's.
-[[gnu::always_inline]] inline int scan_columns_on_set(const double* columns, int count, double dx,
-                                                      double dy, double dz) {
+[[gnu::always_inline]] inline int scan_columns(const double* columns, int count, double dx,
+                                               double dy, double dz) {
   switch (column_scan_set.load(std::memory_order_relaxed)) {
     case static_cast<int>(KernelIsa::avx512):
       if (count > kFewColumns) return scan_columns_avx512(columns, count, dx, dy, dz);
@@ -157,13 +157,6 @@ constexpr int kFewColumns = 8;
     default:
       return choose_column_scan(columns, count, dx, dy, dz);
   }
-}
-
-/// The scan of a few points inline (scan_few_columns), of more on the chosen set.
-[[gnu::always_inline]] inline int scan_columns(const double* columns, int count, double dx,
-                                               double dy, double dz) {
-  if (count <= kRegisterColumns) return scan_few_columns(columns, count, dx, dy, dz);
-  return scan_columns_on_set(columns, count, dx, dy, dz);
 }
 
 }  // namespace swarmcollide::detail

@@ -193,9 +193,8 @@ bool DistanceFinish::whole(const Vector3& start, int& hint_a, int& hint_b, BestB
       return whole_search(pair_, start, first_point, hint_a, hint_b, bounds, goal, enclosure,
                           max_iterations_, evaluations_, scans, measured, kept);
     };
-    // Two bodies of up to kRegisterColumns points, scanned inline, have an instance of their own,
-    // and the others scan on the chosen set: the count's test in every scan made 8-32-point rows
-    // 30-54 instructions longer.
+    // Two bodies of up to kRegisterColumns points, scanned in registers, have an instance of
+    // their own, and the others scan on the chosen set (PointColumns::sized_scan).
     constexpr std::false_type on_set{};
     if (large) return small_search(NesterovDirection(start, first_point), on_set);
     if (pair_.a.size() <= kRegisterColumns && pair_.b.size() <= kRegisterColumns) {
