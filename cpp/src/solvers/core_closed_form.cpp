@@ -3,13 +3,11 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <typeinfo>
 
 #include "../geometry/curved_depth.hpp"
 #include "../geometry/nearest_on_segments.hpp"
 #include "../geometry/normalise.hpp"
 #include "../queries/verdict.hpp"
-#include "swarmcollide/geometry/shapes.hpp"
 
 namespace swarmcollide::detail {
 
@@ -48,15 +46,9 @@ void on_segment(int size, const Vector3& p0, const Vector3& p1, Scalar s, CorePo
 bool box_extents(const FramedBody& body, Vector3& half, std::array<int, 8>& corner) {
   const VertexMatrix& x = body.local_points();
   // A Box's points are its corners in that order (shapes.cpp): point i has coordinate k positive
-  // when bit k of i is set, and centred on its box they are the corners themselves (its centre is
-  // 0 exactly). A Box is known so by its type; for other bodies, 24 comparisons confirm the order
-  // without sorting the corners out (a third of the instructions of the general reading below,
-  // and most of what a ball-box query spent here).
+  // when bit k of i is set. 24 comparisons confirm it without sorting the corners out (a third of
+  // the instructions of the general reading below).
   half = x.row(7).transpose();
-  if (typeid(body.body()) == typeid(Box)) {
-    corner = {0, 1, 2, 3, 4, 5, 6, 7};
-    return true;
-  }
   if (half.minCoeff() > 0) {
     bool in_order = true;
     for (int i = 0; i < 7 && in_order; ++i) {
