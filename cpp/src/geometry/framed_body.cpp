@@ -60,6 +60,23 @@ CurvedKind curved_kind(const SupportFunction& shape) {
 
 }  // namespace
 
+// Out of line: inlined into place, its branches made KeptPair::frame 9 instructions longer for
+// every polytope row (swarmcollide-thread-scaling count distance).
+[[gnu::noinline]] void FramedBody::start_support_points(const ConvexPolyhedron& other) {
+  // The cache of the body's own points is made once per body and copied: hashing them again
+  // was most of what framing a curved body cost. Against a single point (a ball's core) a
+  // closed form answers from the support function alone (point_against_curved): the body
+  // reads its own points, and takes a copy at its first new support point only
+  // (add_to_own_cache). Against any other body a search finds new points at once, and the
+  // copy is taken here, where taking it cost the searches 30-50 instructions fewer a body.
+  const ConvexPolyhedron& body = *body_;
+  const SupportCache& start = body.derived<SupportCache>(
+      [&body] { return SupportCache::sealed(body.centred_vertices()); });
+  found_ = other.size() == 1 ? SharedSupportCache::reading(start) : SharedSupportCache(start);
+  vertices_ = &found_->points();
+  support_error_ = curved_support_error(body, exponent_);
+}
+
 // Inlined into its two callers here, the constructor (every single query frames its pair through
 // it) and KeptPair::frame: called out of line it made every query 46 instructions longer
 // (callgrind_query.py).
@@ -78,20 +95,7 @@ CurvedKind curved_kind(const SupportFunction& shape) {
   }
   const Vector3 from_centre = world_centre - frame.centre;
   for (int k = 0; k < 3; ++k) offset_(k) = times_power_of_two(from_centre(k), -exponent_);
-  if (curved_) {
-    // The cache of the body's own points is made once per body and copied: hashing them again
-    // was most of what framing a curved body cost. Against a single point (a ball's core) a
-    // closed form answers from the support function alone (point_against_curved): the body
-    // reads its own points, and takes a copy at its first new support point only
-    // (add_to_own_cache). Against any other body a search finds new points at once, and the
-    // copy is taken here, where taking it cost the searches 30-50 instructions fewer a body.
-    const ConvexPolyhedron& body = *body_;
-    const SupportCache& start = body.derived<SupportCache>(
-        [&body] { return SupportCache::sealed(body.centred_vertices()); });
-    found_ = other.size() == 1 ? SharedSupportCache::reading(start) : SharedSupportCache(start);
-    vertices_ = &found_->points();
-    support_error_ = curved_support_error(body, exponent_);
-  }
+  if (curved_) start_support_points(other);
 }
 
 // Inlined into frame_turned_pair's framing, its only caller: called out of line it made every

@@ -251,6 +251,9 @@ class FramedBody {
   int curved_support(const Vector3& local) const;
   // The same, always inline (framed_curved_support.hpp).
   inline int inline_curved_support(const Vector3& local) const;
+  // A curved body's support points for a new framing against `other`, and their support error
+  // (place).
+  void start_support_points(const ConvexPolyhedron& other);
   // The number of `point` (in the body's own frame) among the curved body's support points,
   // added when it is new: to the body's own points (read until then) or to the cache this
   // framing took for its first new point (add_to_own_cache).
