@@ -60,9 +60,10 @@ CurvedKind curved_kind(const SupportFunction& shape) {
 
 }  // namespace
 
-// Out of line: inlined into place, its branches made KeptPair::frame 9 instructions longer for
-// every polytope row (swarmcollide-thread-scaling count distance).
-[[gnu::noinline]] void FramedBody::start_support_points(const ConvexPolyhedron& other) {
+// Inline in a pair's framing (the FramedBody constructor): called, it made the curved searches'
+// queries 17-23 instructions longer.
+[[gnu::always_inline]] inline void FramedBody::start_support_points(
+    const ConvexPolyhedron& other) {
   // The cache of the body's own points is made once per body and copied: hashing them again
   // was most of what framing a curved body cost. Against a single point (a ball's core) a
   // closed form answers from the support function alone (point_against_curved): the body
@@ -77,13 +78,18 @@ CurvedKind curved_kind(const SupportFunction& shape) {
   support_error_ = curved_support_error(body, exponent_);
 }
 
+// start_support_points for KeptPair::frame, out of line: inlined into it (as place is), its
+// branches made every polytope row 9 instructions longer (swarmcollide-thread-scaling count).
+[[gnu::noinline]] void FramedBody::restart_support_points(const ConvexPolyhedron& other) {
+  start_support_points(other);
+}
+
 // Inlined into its two callers here, the constructor (every single query frames its pair through
-// it) and KeptPair::frame: called out of line it made every query 46 instructions longer
+// it) and KeptPair::frame (place): called out of line it made every query 46 instructions longer
 // (callgrind_query.py).
-[[gnu::always_inline]] inline void FramedBody::place(const Pose& pose, bool rotated,
-                                                     const Vector3& world_centre,
-                                                     const Frame& frame,
-                                                     const ConvexPolyhedron& other) {
+[[gnu::always_inline]] inline void FramedBody::place_pose(const Pose& pose, bool rotated,
+                                                          const Vector3& world_centre,
+                                                          const Frame& frame) {
   rotation_ = pose.rotation;
   rotated_ = rotated;
   // A batch's rows mostly share their frame's exponent: its scale is kept then.
@@ -95,7 +101,14 @@ CurvedKind curved_kind(const SupportFunction& shape) {
   }
   const Vector3 from_centre = world_centre - frame.centre;
   for (int k = 0; k < 3; ++k) offset_(k) = times_power_of_two(from_centre(k), -exponent_);
-  if (curved_) start_support_points(other);
+}
+
+[[gnu::always_inline]] inline void FramedBody::place(const Pose& pose, bool rotated,
+                                                     const Vector3& world_centre,
+                                                     const Frame& frame,
+                                                     const ConvexPolyhedron& other) {
+  place_pose(pose, rotated, world_centre, frame);
+  if (curved_) restart_support_points(other);
 }
 
 // Inlined into frame_turned_pair's framing, its only caller: called out of line it made every
@@ -131,7 +144,8 @@ CurvedKind curved_kind(const SupportFunction& shape) {
   } else if (vertices_ == &body.centred_vertices()) {
     columns_ = body.centred_columns();
   }
-  place(pose, rotated, world_centre, frame, other);
+  place_pose(pose, rotated, world_centre, frame);
+  if (curved_) start_support_points(other);
 }
 
 int FramedBody::curved_support(const Vector3& local) const { return inline_curved_support(local); }

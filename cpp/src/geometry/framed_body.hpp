@@ -251,9 +251,13 @@ class FramedBody {
   int curved_support(const Vector3& local) const;
   // The same, always inline (framed_curved_support.hpp).
   inline int inline_curved_support(const Vector3& local) const;
-  // A curved body's support points for a new framing against `other`, and their support error
-  // (place).
+  // The pose's part of place (the rotation, the scale, the offset).
+  void place_pose(const Pose& pose, bool rotated, const Vector3& world_centre,
+                  const Frame& frame);
+  // A curved body's support points for a new framing against `other`, and their support error:
+  // inline for a pair's framing, out of line for a kept pair's (restart_support_points).
   void start_support_points(const ConvexPolyhedron& other);
+  void restart_support_points(const ConvexPolyhedron& other);
   // The number of `point` (in the body's own frame) among the curved body's support points,
   // added when it is new: to the body's own points (read until then) or to the cache this
   // framing took for its first new point (add_to_own_cache).
