@@ -56,8 +56,8 @@ class SupportCache {
   /// Starts again as `start`, a cache holding a body's own points only, keeping this one's
   /// storage: the points are numbered as `start` numbers them, so a reused cache answers as a
   /// new one. Its points are copied, but its table is only read until a point is added: a query
-  /// that adds none (a closed form, point_against_curved) copies no table, and one that adds
-  /// points copies it then (a cache that grew keeps its table's capacity but takes `start`'s
+  /// that adds none copies no table (a ball's closed form against a curved body takes no cache at
+  /// all: SharedSupportCache::reading), and one that adds points copies it then (a cache that grew keeps its table's capacity but takes `start`'s
   /// table, so that it costs a copy, not a rehash). `start` must outlive this cache's use, as
   /// the body that holds it outlives the framed body that reads this cache.
   void reset(const SupportCache& start);
