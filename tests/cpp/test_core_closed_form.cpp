@@ -339,5 +339,29 @@ TEST(CoreClosedForm, BoxesOfPointsInAnyOrder) {
   }
 }
 
+// Eight points that are not a box's corners (a Box's with its first corner moved in) are never
+// read as a box: the reading is kept with the body (core_closed_form.cpp's box_corners), and at
+// every query it says so; the search answers, beside a face the moved corner is not on, with the
+// box's distance. The Box beside it is read as one at every query too.
+TEST(CoreClosedForm, EightPointsOfNoBoxAreSearchedAtEveryQuery) {
+  const Box box(Vector3(0.5, 1, 0.25));
+  VertexMatrix points = box.vertices();
+  points.row(0) << -0.4, -0.9, -0.2;
+  const ConvexPolyhedron dented(points);
+  const Sphere ball(0.125);
+  Random rng(79);
+  const Pose pose = at(Vector3(3, -2, 1), rng.rotation());
+  const Pose beside = at(pose.rotation * Vector3(2, 0.25, 0) + pose.translation);
+  for (int asked = 0; asked < 2; ++asked) {
+    const DistanceResult searched = Query().signed_distance(dented, pose, ball, beside);
+    EXPECT_TRUE(searched.certified);
+    EXPECT_NEAR(searched.distance, 1.5 - 0.125, 1e-9);
+    const DistanceResult read = Query().signed_distance(box, pose, ball, beside);
+    EXPECT_TRUE(read.certified);
+    EXPECT_EQ(read.iterations, 1);
+    EXPECT_NEAR(read.distance, 1.5 - 0.125, 1e-9);
+  }
+}
+
 }  // namespace
 }  // namespace swarmcollide::testing

@@ -16,6 +16,7 @@
 #include "geometry/framed_body.hpp"
 #include "compound_oracle.hpp"
 #include "shapes.hpp"
+#include "solvers/curved_point.hpp"
 #include "solvers/fcl_shape.hpp"
 #include "solvers/inline_minkowski.hpp"
 #include "swarmcollide/geometry/compound_body.hpp"
@@ -284,6 +285,44 @@ TEST(Curved, ReusedSupportCachesNumberAsNewOnes) {
   EXPECT_EQ(numbers(cylinder, 3), std::vector<int>(first.begin(), first.begin() + 3));
   numbers(cone, directions.size());
   EXPECT_EQ(numbers(cylinder, directions.size()), first);
+}
+
+// A framed curved body reads its body's own points until it finds a new support point: a ball's
+// closed form against a cylinder (point_against_curved), which finds none, takes no cache from the
+// thread's pool (SharedSupportCache), whose taking, resetting and giving back were 150-200
+// instructions of such a query. A copy of a pair made before the first new point shares the cache
+// it then takes, and a new framing reads the body's own points again (the body's own are never
+// added to).
+TEST(Curved, ClosedFormsTakeNoSupportCache) {
+  const Cylinder cylinder(0.7, 0.4);
+  const Sphere ball(0.3);
+  Random rng(37);
+  const Pose pose = at(Vector3(0.1, 0.2, 0.3), rng.rotation());
+  const Pose away = at(Vector3(2, 0.5, 0));
+  const Vector3 d = rng.unit();
+  // A cylinder pair's search leaves caches in the pool.
+  Query().signed_distance(cylinder, pose, cylinder, away);
+  const std::size_t pooled = detail::SharedSupportCache::pooled();
+  ASSERT_GT(pooled, 0u);
+  const detail::FramedPair pair =
+      detail::frame_pair(cylinder, pose, ball, away, kDefaultTolerance);
+  detail::Answer answer;
+  ASSERT_TRUE(detail::point_against_curved(pair, detail::Goal::signed_distance, 100, answer));
+  EXPECT_EQ(detail::SharedSupportCache::pooled(), pooled);
+  EXPECT_EQ(pair.a.size(), cylinder.size());
+  const detail::FramedPair copy = pair;
+  EXPECT_EQ(detail::SharedSupportCache::pooled(), pooled - 1);
+  const int found = copy.a.support_index(d);
+  EXPECT_EQ(found, cylinder.size());
+  EXPECT_EQ(pair.a.size(), cylinder.size() + 1);
+  EXPECT_EQ(pair.a.vertex(found), copy.a.vertex(found));
+  EXPECT_EQ(pair.a.support_index(d), found);
+  const detail::FramedPair again =
+      detail::frame_pair(cylinder, pose, ball, away, kDefaultTolerance);
+  EXPECT_EQ(again.a.size(), cylinder.size());
+  EXPECT_EQ(again.a.support_index(d), found);
+  EXPECT_EQ(again.a.vertex(found), pair.a.vertex(found));
+  EXPECT_EQ(detail::SharedSupportCache::pooled(), pooled - 2);
 }
 
 // The curved pairs' searches ask their supports inline (inline_minkowski_support): a cylinder's

@@ -60,12 +60,36 @@ CurvedKind curved_kind(const SupportFunction& shape) {
 
 }  // namespace
 
+// Inline in a pair's framing (the FramedBody constructor): called, it made the curved searches'
+// queries 17-23 instructions longer.
+[[gnu::always_inline]] inline void FramedBody::start_support_points(
+    const ConvexPolyhedron& other) {
+  // The cache of the body's own points is made once per body and copied: hashing them again
+  // was most of what framing a curved body cost. Against a single point (a ball's core) a
+  // closed form answers from the support function alone (point_against_curved): the body
+  // reads its own points, and takes a copy at its first new support point only
+  // (add_to_own_cache). Against any other body a search finds new points at once, and the
+  // copy is taken here, where taking it cost the searches 30-50 instructions fewer a body.
+  const ConvexPolyhedron& body = *body_;
+  const SupportCache& start = body.derived<SupportCache>(
+      [&body] { return SupportCache::sealed(body.centred_vertices()); });
+  found_ = other.size() == 1 ? SharedSupportCache::reading(start) : SharedSupportCache(start);
+  vertices_ = &found_->points();
+  support_error_ = curved_support_error(body, exponent_);
+}
+
+// start_support_points for KeptPair::frame, out of line: inlined into it (as place is), its
+// branches made every polytope row 9 instructions longer (swarmcollide-thread-scaling count).
+[[gnu::noinline]] void FramedBody::restart_support_points(const ConvexPolyhedron& other) {
+  start_support_points(other);
+}
+
 // Inlined into its two callers here, the constructor (every single query frames its pair through
-// it) and KeptPair::frame: called out of line it made every query 46 instructions longer
+// it) and KeptPair::frame (place): called out of line it made every query 46 instructions longer
 // (callgrind_query.py).
-[[gnu::always_inline]] inline void FramedBody::place(const Pose& pose, bool rotated,
-                                                     const Vector3& world_centre,
-                                                     const Frame& frame) {
+[[gnu::always_inline]] inline void FramedBody::place_pose(const Pose& pose, bool rotated,
+                                                          const Vector3& world_centre,
+                                                          const Frame& frame) {
   rotation_ = pose.rotation;
   rotated_ = rotated;
   // A batch's rows mostly share their frame's exponent: its scale is kept then.
@@ -77,15 +101,14 @@ CurvedKind curved_kind(const SupportFunction& shape) {
   }
   const Vector3 from_centre = world_centre - frame.centre;
   for (int k = 0; k < 3; ++k) offset_(k) = times_power_of_two(from_centre(k), -exponent_);
-  if (curved_) {
-    // The cache of the body's own points is made once per body and copied: hashing them again
-    // was most of what framing a curved body cost.
-    const ConvexPolyhedron& body = *body_;
-    found_ = SharedSupportCache(
-        body.derived<SupportCache>([&body] { return SupportCache(body.centred_vertices()); }));
-    vertices_ = &found_->points();
-    support_error_ = curved_support_error(body, exponent_);
-  }
+}
+
+[[gnu::always_inline]] inline void FramedBody::place(const Pose& pose, bool rotated,
+                                                     const Vector3& world_centre,
+                                                     const Frame& frame,
+                                                     const ConvexPolyhedron& other) {
+  place_pose(pose, rotated, world_centre, frame);
+  if (curved_) restart_support_points(other);
 }
 
 // Inlined into frame_turned_pair's framing, its only caller: called out of line it made every
@@ -93,7 +116,8 @@ CurvedKind curved_kind(const SupportFunction& shape) {
 [[gnu::always_inline]] inline FramedBody::FramedBody(const ConvexPolyhedron& body,
                                                      const Pose& pose, bool rotated,
                                                      const Vector3& world_centre,
-                                                     const Frame& frame)
+                                                     const Frame& frame,
+                                                     const ConvexPolyhedron& other)
     : body_(&body),
       vertices_(&body.centred_vertices()),
       hull_(nullptr),
@@ -120,7 +144,8 @@ CurvedKind curved_kind(const SupportFunction& shape) {
   } else if (vertices_ == &body.centred_vertices()) {
     columns_ = body.centred_columns();
   }
-  place(pose, rotated, world_centre, frame);
+  place_pose(pose, rotated, world_centre, frame);
+  if (curved_) start_support_points(other);
 }
 
 int FramedBody::curved_support(const Vector3& local) const { return inline_curved_support(local); }
@@ -135,8 +160,40 @@ int FramedBody::add_point(const Vector3& frame_point) const {
   const Vector3 turned = local_direction(frame_point - offset_);
   Vector3 local;
   for (int k = 0; k < 3; ++k) local(k) = times_power_of_two(turned(k), exponent_);
-  return found_->add(local);
+  return add_support_point(local);
 }
+
+int FramedBody::add_to_own_cache(const Vector3& p, std::size_t slot) const {
+  found_.own();
+  vertices_ = &found_->points();
+  return found_->add_new(p, slot);
+}
+
+const VertexMatrix* FramedBody::shared_points() const {
+  if (curved_ && found_->is_sealed()) {
+    found_.own();
+    vertices_ = &found_->points();
+  }
+  return vertices_;
+}
+
+FramedBody::FramedBody(const FramedBody& body)
+    : body_(body.body_),
+      vertices_(body.shared_points()),
+      hull_(body.hull_),
+      given_(body.given_),
+      in_frame_(body.in_frame_),
+      rotation_(body.rotation_),
+      rotated_(body.rotated_),
+      curved_kind_(body.curved_kind_),
+      offset_(body.offset_),
+      exponent_(body.exponent_),
+      scale_high_(body.scale_high_),
+      scale_low_(body.scale_low_),
+      curved_(body.curved_),
+      found_(body.found_),
+      support_error_(body.support_error_),
+      columns_(body.columns_) {}
 
 FramedBody::FramedBody(const VertexMatrix& points, const Hull& hull)
     : body_(nullptr),
@@ -254,8 +311,8 @@ struct PairFrame {
   const Vector3 centre_b = world_centre(b, pose_b, turned_b, "b");
   const PairFrame f = pair_frame(a, centre_a, b, centre_b, relative_tolerance);
   return {f.frame,
-          FramedBody(a, pose_a, turned_a, centre_a, f.frame),
-          FramedBody(b, pose_b, turned_b, centre_b, f.frame),
+          FramedBody(a, pose_a, turned_a, centre_a, f.frame, b),
+          FramedBody(b, pose_b, turned_b, centre_b, f.frame, a),
           f.tolerance,
           f.radius_a,
           f.radius_b,
@@ -284,8 +341,8 @@ const FramedPair& KeptPair::frame(const ConvexPolyhedron& a, const Pose& pose_a,
   const PairFrame f = pair_frame(a, centre_a, b, centre_b, relative_tolerance);
   FramedPair& pair = *pair_;
   pair.frame = f.frame;
-  pair.a.place(pose_a, turned_a, centre_a, f.frame);
-  pair.b.place(pose_b, turned_b, centre_b, f.frame);
+  pair.a.place(pose_a, turned_a, centre_a, f.frame, b);
+  pair.b.place(pose_b, turned_b, centre_b, f.frame, a);
   pair.tolerance = f.tolerance;
   pair.radius_a = f.radius_a;
   pair.radius_b = f.radius_b;

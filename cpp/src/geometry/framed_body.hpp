@@ -81,20 +81,29 @@ class FramedBody {
  public:
   /// `world_centre` is where the centre of the body's box lands under the pose,
   /// `pose.rotation * body.bounds().centre + pose.translation`, as frame_pair computed it to
-  /// centre the frame; `rotated` is `!pose.has_identity_rotation()`, which frame_pair knows too.
-  /// Defined inline in framed_body.cpp, where its caller (the framing of a pair) is.
+  /// centre the frame; `rotated` is `!pose.has_identity_rotation()`, which frame_pair knows too;
+  /// `other` is the pair's other body (a curved body framed against a single point takes no
+  /// cache of support points until it finds a new one). Defined inline in framed_body.cpp, where
+  /// its caller (the framing of a pair) is.
   FramedBody(const ConvexPolyhedron& body, const Pose& pose, bool rotated,
-             const Vector3& world_centre, const Frame& frame);
+             const Vector3& world_centre, const Frame& frame, const ConvexPolyhedron& other);
   /// Places the body as the constructor does with these arguments, for a new query: what depends
   /// on the body alone (its points, hull, columns, support function) is kept, and a curved body's
   /// support points start again from the body's own. Only for a body framed from a
   /// ConvexPolyhedron. A batch re-places the bodies of its last row when they are the next row's
   /// (KeptPair). Defined inline in framed_body.cpp, where its callers are.
-  void place(const Pose& pose, bool rotated, const Vector3& world_centre, const Frame& frame);
+  void place(const Pose& pose, bool rotated, const Vector3& world_centre, const Frame& frame,
+             const ConvexPolyhedron& other);
   /// Points already in the frame, with their hull (`points` of a framed body, for a solver that
   /// reads every point many times): point i is row i as it is, and support queries compare these
   /// coordinates themselves. `body()` is not available; `points` and `hull` must outlive it.
   FramedBody(const VertexMatrix& points, const Hull& hull);
+  /// A copy shares the curved body's support points with `body`: the points either finds are
+  /// the other's too (a copy made before the first new point takes the cache both add to).
+  FramedBody(const FramedBody& body);
+  FramedBody(FramedBody&&) = default;
+  FramedBody& operator=(const FramedBody&) = delete;
+  FramedBody& operator=(FramedBody&&) = default;
 
   /// True for a curved body: its points are the support points found so far in this query.
   bool curved() const { return curved_ != nullptr; }
@@ -242,6 +251,28 @@ class FramedBody {
   int curved_support(const Vector3& local) const;
   // The same, always inline (framed_curved_support.hpp).
   inline int inline_curved_support(const Vector3& local) const;
+  // The pose's part of place (the rotation, the scale, the offset).
+  void place_pose(const Pose& pose, bool rotated, const Vector3& world_centre,
+                  const Frame& frame);
+  // A curved body's support points for a new framing against `other`, and their support error:
+  // inline for a pair's framing, out of line for a kept pair's (restart_support_points).
+  void start_support_points(const ConvexPolyhedron& other);
+  void restart_support_points(const ConvexPolyhedron& other);
+  // The number of `point` (in the body's own frame) among the curved body's support points,
+  // added when it is new: to the body's own points (read until then) or to the cache this
+  // framing took for its first new point (add_to_own_cache).
+  int add_support_point(const Vector3& point) const {
+    return found_->add(point, [this](const Vector3& p, std::size_t slot) {
+      return add_to_own_cache(p, slot);
+    });
+  }
+  // The first new support point `p` of a body that reads its body's own (sealed) points, `slot`
+  // its empty slot there (SupportCache::add_new): a cache of the thread's pool started as those
+  // takes it, and every later one (framed_body.cpp).
+  int add_to_own_cache(const Vector3& p, std::size_t slot) const;
+  // The support points, taken into a cache of their own first when they are the body's own (a
+  // copy then shares that cache with this body).
+  const VertexMatrix* shared_points() const;
   Vector3 scaled(const Vector3& v) const { return v * scale_high_ * scale_low_; }
   // A point of the body's own frame, centred on its box, in the frame.
   Vector3 placed(const Vector3& centred) const {
@@ -255,7 +286,8 @@ class FramedBody {
   // of the body at every climb; null for a small body, scanned whole (hull() then asks the body,
   // which builds it lazily).
   const ConvexPolyhedron* body_;
-  const VertexMatrix* vertices_;
+  // A curved body's until its first new support point: its body's own, then its cache's.
+  mutable const VertexMatrix* vertices_;
   const Hull* hull_;
   const HullPoints* given_;
   // Points given in the frame: the placement below is the identity, which heights and exact
@@ -276,9 +308,12 @@ class FramedBody {
   Scalar scale_high_;
   Scalar scale_low_;
   // A curved body's support function, its support points so far in its own frame (centred on its
-  // box; `vertices_` points to their rows), and their support error.
+  // box; `vertices_` points to their rows), and their support error. Framed against a single
+  // point, the body reads its body's own sealed cache until its first new point takes a cache of
+  // the thread's pool (add_to_own_cache): a ball's closed form against a cylinder, which finds
+  // none, takes none (taking, resetting and giving one back were 135 of its 2,283 instructions).
   const SupportFunction* curved_ = nullptr;
-  SharedSupportCache found_;
+  mutable SharedSupportCache found_;
   Scalar support_error_ = 0;
   // A small polyhedron's points (`vertices_`) by coordinate (ConvexPolyhedron::centred_columns),
   // for support_index's scans; null for larger bodies (climbed), curved bodies and points given in

@@ -36,7 +36,8 @@ template <bool kFinite, typename Use>
 }
 
 [[gnu::always_inline]] inline int FramedBody::inline_curved_support(const Vector3& local) const {
-  return use_curved_support(local, [this](const Vector3& point) { return found_->add(point); });
+  return use_curved_support(local,
+                            [this](const Vector3& point) { return add_support_point(point); });
 }
 
 [[gnu::always_inline]] inline Vector3 FramedBody::inline_support(const Vector3& d,
@@ -49,7 +50,7 @@ template <bool kFinite, typename Use>
     // two ellipsoids' searches longer (callgrind_curved, apart: 14,051 -> 14,859).
     const Vector3 kept = use_curved_support<true>(
         local_direction(d), [](const Vector3& point) { return Vector3(point + Vector3::Zero()); });
-    index = found_->add(kept);
+    index = add_support_point(kept);
     return placed(kept);
   }
   index = columns_ ? columns_->inline_scan(local_direction(d)) : support_index(d, index);

@@ -74,16 +74,23 @@ void SupportCache::reset(const SupportCache& start) {
   limit_ = count_;
 }
 
-SharedSupportCache::SharedSupportCache(const SupportCache& start) {
+SupportCache* SharedSupportCache::started_as(const SupportCache& start) {
   Pool* p = pool();
+  SupportCache* cache;
   if (p && !p->unused.empty()) {
-    cache_ = p->unused.back().release();
+    cache = p->unused.back().release();
     p->unused.pop_back();
-    cache_->reset(start);
+    cache->reset(start);
   } else {
-    cache_ = new SupportCache(start);
+    cache = new SupportCache(start);
   }
-  hold();
+  cache->users_.fetch_add(1, std::memory_order_relaxed);
+  return cache;
+}
+
+std::size_t SharedSupportCache::pooled() {
+  const Pool* p = pool();
+  return p ? p->unused.size() : 0;
 }
 
 void SharedSupportCache::release(SupportCache* cache) {

@@ -4,6 +4,8 @@
 #include <atomic>
 #include <cstdint>
 #include <cstring>
+#include <stdexcept>
+#include <utility>
 #include <vector>
 
 #include "swarmcollide/types.hpp"
@@ -24,7 +26,26 @@ class SupportCache {
     own_table();
     for (Eigen::Index i = 0; i < initial.rows(); ++i) add(initial.row(i).transpose());
   }
-  /// A copy of `other`'s points and table (not of its users).
+  /// A cache of `initial`'s rows that adds no point (`add` hands a new one to its caller): a
+  /// body's own, which its framings read until they find a new support point
+  /// (SharedSupportCache::reading), then copy (SharedSupportCache's constructor). Sealed, it is
+  /// only read, so every thread may read it.
+  static SupportCache sealed(const VertexMatrix& initial) {
+    SupportCache cache(initial);
+    cache.sealed_ = true;
+    cache.limit_ = cache.count_;  // every new point goes to add's test of the seal
+    return cache;
+  }
+  /// Moved whole, sealed or not (into the body's derived data, ConvexPolyhedron::derived).
+  SupportCache(SupportCache&& other) noexcept
+      : points_(std::move(other.points_)),
+        owned_(std::move(other.owned_)),
+        slots_(other.slots_),
+        mask_(other.mask_),
+        limit_(other.limit_),
+        count_(other.count_),
+        sealed_(other.sealed_) {}
+  /// A copy of `other`'s points and table (not of its users), not sealed.
   SupportCache(const SupportCache& other)
       : points_(other.points_),
         owned_(other.slots_, other.slots_ + other.mask_ + 1),
@@ -35,25 +56,44 @@ class SupportCache {
   /// Starts again as `start`, a cache holding a body's own points only, keeping this one's
   /// storage: the points are numbered as `start` numbers them, so a reused cache answers as a
   /// new one. Its points are copied, but its table is only read until a point is added: a query
-  /// that adds none (a closed form, point_against_curved) copies no table, and one that adds
-  /// points copies it then (a cache that grew keeps its table's capacity but takes `start`'s
+  /// that adds none copies no table (a ball's closed form against a curved body takes no cache at
+  /// all: SharedSupportCache::reading), and one that adds points copies it then (a cache that grew keeps its table's capacity but takes `start`'s
   /// table, so that it costs a copy, not a rehash). `start` must outlive this cache's use, as
   /// the body that holds it outlives the framed body that reads this cache.
   void reset(const SupportCache& start);
 
-  /// The number of `point` (exact equality of coordinates, -0 = +0), added when it is new.
-  int add(const Vector3& point) {
+  /// The number of `point` (exact equality of coordinates, -0 = +0), added when it is new; a
+  /// new point of a sealed cache is `sealed_add(p, slot)`'s (`p` the point with -0 as +0, `slot`
+  /// as add_new takes it), and the cache is left as it was. The seal is tested where a new point
+  /// meets a full or borrowed table, which add tests anyway: the points found and added cost no
+  /// more.
+  template <typename SealedAdd>
+  int add(const Vector3& point, const SealedAdd& sealed_add) {
     const Vector3 p = point + Vector3::Zero();  // -0 + 0 = +0, so both zeros hash alike
     const std::size_t slot = find(p);
     if (slots_[slot] >= 0) return slots_[slot];
     // A full table grows out of line, and a borrowed one is copied there: inlined, the growth
     // made every call save and restore the registers it uses (a cylinder pair apart: 3.7% of its
-    // query's instructions).
-    if (count_ == limit_) return add_growing(p, slot);
-    slots_[slot] = count_;
-    points_.row(count_) = p.transpose();
-    return count_++;
+    // query's instructions). A sealed table is full too, so its test costs the points found and
+    // added nothing.
+    if (count_ == limit_) return sealed_ ? sealed_add(p, slot) : add_growing(p, slot);
+    return insert(p, slot);
   }
+  /// The same for a cache that is not sealed.
+  int add(const Vector3& point) {
+    return add(point, [](const Vector3&, std::size_t) -> int {
+      throw std::logic_error("a sealed SupportCache was asked to add a point");
+    });
+  }
+  /// Adds `p` (with -0 as +0), not among the points, whose empty slot `find` gave: in this
+  /// cache's table, or in the table of the sealed cache it was started from (a copy or a reset of
+  /// it, whose table has the same slots) for the first point not among that one's.
+  int add_new(const Vector3& p, std::size_t slot) {
+    if (count_ == limit_) return add_growing(p, slot);
+    return insert(p, slot);
+  }
+  /// True for a sealed cache (`sealed`).
+  bool is_sealed() const { return sealed_; }
   /// Number of points found (the first `count()` rows of `points()`).
   int count() const { return count_; }
   /// The points, one per row; rows from `count()` on are unused.
@@ -89,6 +129,12 @@ class SupportCache {
     }
     return slot;
   }
+  // Adds `p`, new, at its empty slot in a table that is not full.
+  int insert(const Vector3& p, std::size_t slot) {
+    slots_[slot] = count_;
+    points_.row(count_) = p.transpose();
+    return count_++;
+  }
   // The table is this cache's own storage: full at half its slots.
   void own_table() {
     slots_ = owned_.data();
@@ -114,6 +160,8 @@ class SupportCache {
   std::size_t mask_ = 0;
   int limit_ = 0;
   int count_ = 0;
+  // A body's own points, which no query adds to (sealed()).
+  bool sealed_ = false;
   // The handles (SharedSupportCache) that share this cache.
   std::atomic<int> users_{0};
   friend class SharedSupportCache;
@@ -127,7 +175,21 @@ class SharedSupportCache {
  public:
   SharedSupportCache() = default;
   /// A cache started as `start` (SupportCache::reset).
-  explicit SharedSupportCache(const SupportCache& start);
+  explicit SharedSupportCache(const SupportCache& start) : cache_(started_as(start)) {}
+  /// A handle that reads the sealed cache `start` without holding a cache of its own (nor
+  /// counting itself among `start`'s users): a body that finds no new support point (a ball's
+  /// closed form against a cylinder) takes none from the pool. `start` must outlive it.
+  static SharedSupportCache reading(const SupportCache& start) {
+    SharedSupportCache handle;
+    // Never written through: a sealed cache hands every new point to add's caller.
+    handle.cache_ = const_cast<SupportCache*>(&start);
+    return handle;
+  }
+  /// Holds, in place of the sealed cache this handle reads (reading), a cache of its own started
+  /// as that one.
+  void own() { cache_ = started_as(*cache_); }
+  /// The number of unused caches in this thread's pool (for tests: what a query takes from it).
+  static std::size_t pooled();
   SharedSupportCache(const SharedSupportCache& other) : cache_(other.cache_) { hold(); }
   SharedSupportCache& operator=(const SharedSupportCache& other) {
     if (cache_ != other.cache_) {
@@ -154,15 +216,21 @@ class SharedSupportCache {
   SupportCache* operator->() const { return cache_; }
 
  private:
+  // A sealed cache (reading) is a body's, which counts no users and is never given back.
   void hold() {
-    if (cache_ != nullptr) cache_->users_.fetch_add(1, std::memory_order_relaxed);
+    if (cache_ != nullptr && !cache_->sealed_) {
+      cache_->users_.fetch_add(1, std::memory_order_relaxed);
+    }
   }
   void drop() {
-    if (cache_ != nullptr && cache_->users_.fetch_sub(1, std::memory_order_acq_rel) == 1) {
+    if (cache_ != nullptr && !cache_->sealed_ &&
+        cache_->users_.fetch_sub(1, std::memory_order_acq_rel) == 1) {
       release(cache_);
     }
     cache_ = nullptr;
   }
+  // A cache of this thread's pool (or a new one) started as `start`, held once.
+  static SupportCache* started_as(const SupportCache& start);
   // Gives an unused cache back to this thread's pool (or frees it).
   static void release(SupportCache* cache);
 

@@ -4,20 +4,12 @@
 
 #include <algorithm>
 
+#include "../detail/flatten.hpp"
 #include "../queries/verdict.hpp"
 #include "best_bounds.hpp"
 #include "minkowski.hpp"
 #include "witness.hpp"
 #include "wolfe_min_norm.hpp"
-
-// Inlines everything a search calls into it (see DistanceFinish::whole). Not under the
-// sanitizers: GCC 12 took an hour to compile distance_finish.cpp flattened with their
-// instrumentation at -O1 (make test-sanitize), against 18 seconds for the release build.
-#if defined(__SANITIZE_ADDRESS__)
-#define SWARMCOLLIDE_FLATTEN
-#else
-#define SWARMCOLLIDE_FLATTEN __attribute__((flatten))
-#endif
 
 namespace swarmcollide::detail {
 
