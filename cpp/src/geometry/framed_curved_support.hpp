@@ -49,7 +49,7 @@ template <bool kFinite, typename Use>
     // two ellipsoids' searches longer (callgrind_curved, apart: 14,051 -> 14,859).
     const Vector3 kept = use_curved_support<true>(
         local_direction(d), [](const Vector3& point) { return Vector3(point + Vector3::Zero()); });
-    index = found_->add(kept);
+    index = found_->add_without_negative_zeros(kept);
     return placed(kept);
   }
   index = columns_ ? columns_->inline_scan(local_direction(d)) : support_index(d, index);

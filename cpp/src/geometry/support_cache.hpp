@@ -43,7 +43,12 @@ class SupportCache {
 
   /// The number of `point` (exact equality of coordinates, -0 = +0), added when it is new.
   int add(const Vector3& point) {
-    const Vector3 p = point + Vector3::Zero();  // -0 + 0 = +0, so both zeros hash alike
+    return add_without_negative_zeros(point + Vector3::Zero());  // -0 + 0 = +0: both zeros alike
+  }
+  /// `add(p)` for a point without -0 coordinates (a sum with +0 already, as the curved searches'
+  /// supports place it): the same number, without adding +0 again (the compiler keeps both
+  /// additions, two instructions of every curved support call).
+  int add_without_negative_zeros(const Vector3& p) {
     const std::size_t slot = find(p);
     if (slots_[slot] >= 0) return slots_[slot];
     // A full table grows out of line, and a borrowed one is copied there: inlined, the growth
