@@ -41,6 +41,7 @@ Pool* pool() {
 }  // namespace
 
 int SupportCache::add_growing(const Vector3& p, std::size_t slot) {
+  if (slots_[slot] >= 0) return slots_[slot];
   if (slots_ != owned_.data()) {
     // The start's table, borrowed since the reset, copied (a vector keeps its capacity, so a grown
     // table is not reallocated; the start's is never full).

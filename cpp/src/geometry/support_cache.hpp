@@ -43,7 +43,20 @@ class SupportCache {
 
   /// The number of `point` (exact equality of coordinates, -0 = +0), added when it is new.
   int add(const Vector3& point) {
-    return add_without_negative_zeros(point + Vector3::Zero());  // -0 + 0 = +0: both zeros alike
+    const Vector3 p = point + Vector3::Zero();  // -0 + 0 = +0, so both zeros hash alike
+    if (count_ == limit_) return add_growing(p, find(p));
+    // Below the limit the row `count_` exists, unused: the point is written there before the
+    // search for it, which then needs only its coordinates' registers (a point found leaves the
+    // row unused again). Kept until after the search, they went to the stack and back: the
+    // expanding polytope's curved supports (FramedBody::curved_support) made the overlapping
+    // curved rows 10-197 instructions longer (callgrind_curved). The searches' inline supports
+    // (add_without_negative_zeros) search first: written ahead there, the cone rows apart took
+    // up to 112 instructions more.
+    points_.row(count_) = p.transpose();
+    const std::size_t slot = find(p);
+    if (slots_[slot] >= 0) return slots_[slot];
+    slots_[slot] = count_;
+    return count_++;
   }
   /// `add(p)` for a point without -0 coordinates (a sum with +0 already, as the curved searches'
   /// supports place it): the same number, without adding +0 again (the compiler keeps both
@@ -100,12 +113,13 @@ class SupportCache {
     mask_ = owned_.size() - 1;
     limit_ = static_cast<int>(owned_.size() / 2);
   }
-  // Adds the new point `p` (with -0 as +0), whose empty slot `find` gave, where `add` cannot: to
-  // a borrowed table, which it copies into this cache's storage first (the slot is the copy's),
-  // or to a full one, which it doubles (kept at most half full), rehashing the points, and the
-  // rows when they are full (support_cache.cpp). There are always at least half as many rows as
-  // slots (reset keeps a grown cache's rows but takes the start's smaller table), so a full table
-  // comes first.
+  // Adds `p` (with -0 as +0), whose slot `find` gave, where `add` cannot (count_ is limit_): its
+  // number if the slot holds it, else the new point added to a borrowed table, which it copies
+  // into this cache's storage first (the slot is the copy's), or to a full one, which it doubles
+  // (kept at most half full), rehashing the points, and the rows when they are full
+  // (support_cache.cpp). There are always at least half as many rows as slots (reset keeps a
+  // grown cache's rows but takes the start's smaller table), so a full table comes first: below
+  // the limit, the row `count_` exists.
   int add_growing(const Vector3& p, std::size_t slot);
 
   VertexMatrix points_;
