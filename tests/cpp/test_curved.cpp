@@ -325,6 +325,37 @@ TEST(Curved, ClosedFormsTakeNoSupportCache) {
   EXPECT_EQ(detail::SharedSupportCache::pooled(), pooled - 2);
 }
 
+// A support cache numbers each point once, in the order found, at every fill of its table: a
+// point it holds (asked again as found, or with -0 for +0) keeps its number and adds no row, also
+// when the table is the start's, borrowed (a reused cache before its first new point), or full
+// (the next new point grows it). add() writes a new point's row before it searches the table, so
+// a point found must leave every held row as it was.
+TEST(Curved, SupportCachesNumberEachPointOnce) {
+  VertexMatrix own(3, 3);
+  own << 1, 0, 0, 0, 1, 0, 0, 0, -1;
+  const detail::SupportCache start(own);
+  Random rng(37);
+  std::vector<Vector3> points;
+  for (int k = 0; k < 3; ++k) points.push_back(own.row(k).transpose());
+  for (int k = 0; k < 300; ++k) points.push_back(rng.unit());
+  for (int use = 0; use < 2; ++use) {  // a new cache, then one taken back from the pool
+    SCOPED_TRACE(use);
+    const detail::SharedSupportCache cache(start);
+    EXPECT_EQ(cache->add(Vector3(0, -0.0, -1)), 2);  // held by the borrowed table
+    EXPECT_EQ(cache->count(), 3);
+    for (int i = 3; i < static_cast<int>(points.size()); ++i) {
+      EXPECT_EQ(cache->add(points[i]), i);
+      EXPECT_EQ(cache->add(points[i]), i);
+      EXPECT_EQ(cache->add(points[i / 2]), i / 2);
+      EXPECT_EQ(cache->add(points[0]), 0);
+      ASSERT_EQ(cache->count(), i + 1);
+    }
+    for (int i = 0; i < cache->count(); ++i) {
+      EXPECT_EQ(Vector3(cache->points().row(i).transpose()), points[i]) << i;
+    }
+  }
+}
+
 // The curved pairs' searches ask their supports inline (inline_minkowski_support): a cylinder's
 // without its finiteness test (CylinderSupport::finite_support), and a curved body's point placed
 // as it is found (FramedBody::inline_support) rather than read back from the body's points. Both

@@ -266,6 +266,12 @@ class FramedBody {
       return add_to_own_cache(p, slot);
     });
   }
+  // The same for a point without -0 coordinates (SupportCache::add_without_negative_zeros).
+  int add_support_point_without_negative_zeros(const Vector3& point) const {
+    return found_->add_without_negative_zeros(point, [this](const Vector3& p, std::size_t slot) {
+      return add_to_own_cache(p, slot);
+    });
+  }
   // The first new support point `p` of a body that reads its body's own (sealed) points, `slot`
   // its empty slot there (SupportCache::add_new): a cache of the thread's pool started as those
   // takes it, and every later one (framed_body.cpp).

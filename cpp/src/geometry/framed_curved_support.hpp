@@ -50,7 +50,7 @@ template <bool kFinite, typename Use>
     // two ellipsoids' searches longer (callgrind_curved, apart: 14,051 -> 14,859).
     const Vector3 kept = use_curved_support<true>(
         local_direction(d), [](const Vector3& point) { return Vector3(point + Vector3::Zero()); });
-    index = add_support_point(kept);
+    index = add_support_point_without_negative_zeros(kept);
     return placed(kept);
   }
   index = columns_ ? columns_->inline_scan(local_direction(d)) : support_index(d, index);
