@@ -107,6 +107,8 @@ struct Options {
   int rounds = 0;
   // Only the contenders whose names start with this (for profiling one of them).
   std::string only;
+  // Only the proximities whose names start with this ("overlap", for profiling one of them).
+  std::string proximity;
 };
 
 Options parse(int argc, char** argv) {
@@ -119,6 +121,8 @@ Options parse(int argc, char** argv) {
       o.json = argv[++i];
     } else if (arg == "--only" && i + 1 < argc) {
       o.only = argv[++i];
+    } else if (arg == "--proximity" && i + 1 < argc) {
+      o.proximity = argv[++i];
     } else if (arg == "--rounds" && i + 1 < argc) {
       o.rounds = std::atoi(argv[++i]);
     } else if (arg == "--sizes" && i + 1 < argc) {
@@ -130,7 +134,8 @@ Options parse(int argc, char** argv) {
       }
     } else {
       std::fprintf(stderr,
-                   "usage: %s [--quick] [--sizes 8,64,...] [--rounds R] [--only NAME] [--json PATH]\n",
+                   "usage: %s [--quick] [--sizes 8,64,...] [--rounds R] [--only NAME] "
+                   "[--proximity NAME] [--json PATH]\n",
                    argv[0]);
       leave(2);
     }
@@ -154,6 +159,7 @@ int main(int argc, char** argv) {
   std::printf("%-5s %-13s %-32s %9s %7s\n", "n", "proximity", "contender", "us/call", "ratio");
   for (int n : options.sizes) {
     for (const Proximity& proximity : proximities) {
+      if (std::string(proximity.name).rfind(options.proximity, 0) != 0) continue;
       std::vector<Pair> pairs;
       std::vector<sc::Query> queries;
       for (int i = 0; i < pair_count; ++i) {
