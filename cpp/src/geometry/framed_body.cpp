@@ -163,20 +163,23 @@ int FramedBody::add_point(const Vector3& frame_point) const {
   return add_support_point(local);
 }
 
-int FramedBody::add_to_own_cache(const Vector3& p, std::size_t slot) const {
+void FramedBody::own_support_points() const {
   found_.own();
   vertices_ = &found_->points();
+}
+
+int FramedBody::add_to_own_cache(const Vector3& p, std::size_t slot) const {
+  own_support_points();
   return found_->add_new(p, slot);
 }
 
 const VertexMatrix* FramedBody::shared_points() const {
-  if (curved_ && found_->is_sealed()) {
-    found_.own();
-    vertices_ = &found_->points();
-  }
+  if (curved_ && found_->is_sealed()) own_support_points();
   return vertices_;
 }
 
+// `vertices_` is declared before `found_`: shared_points() has given `body` its own cache before
+// `found_` copies the handle to it.
 FramedBody::FramedBody(const FramedBody& body)
     : body_(body.body_),
       vertices_(body.shared_points()),

@@ -276,6 +276,8 @@ class FramedBody {
   // its empty slot there (SupportCache::add_new): a cache of the thread's pool started as those
   // takes it, and every later one (framed_body.cpp).
   int add_to_own_cache(const Vector3& p, std::size_t slot) const;
+  // A cache of the thread's pool, started as the body's own (sealed) points, in their place.
+  void own_support_points() const;
   // The support points, taken into a cache of their own first when they are the body's own (a
   // copy then shares that cache with this body).
   const VertexMatrix* shared_points() const;
