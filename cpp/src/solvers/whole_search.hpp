@@ -119,11 +119,12 @@ bool whole_search(const FramedPair& pair, const Vector3& start, const First* fir
       return norm - std::max(best_lower, Scalar(0)) > slack;
     };
     // A new point whose separation is at most zero (most steps of an overlapping search) leaves
-    // that test as the bounds alone decide it (the same values, up to a zero's sign): its sign,
-    // which the positive 1 / |x| does not change, is read first, and the division by |x| is
-    // taken only where the separation's value is (off the steps' critical path: taken at every
-    // first test, its latency held up their retirement, a tenth of a 4-point overlapping
-    // distance's samples natively).
+    // that test to the bounds alone: where the separation is the larger, both are at most zero,
+    // so the gap above the lower bound is |x| either way and neither lies above the tolerance.
+    // Its sign, which the positive 1 / |x| does not change, is read first, and the division by
+    // |x| is taken only where the separation's value is: taken at every corral's first test
+    // (beside the scans), its latency held up their retirement (natively a tenth of a 4-point
+    // overlapping distance's samples sat on it).
     if (q != nullptr && along(current, *q, Scalar(1)).value <= 0 && wide_of(bounds.lower()) &&
         !(bounds.lower() > pair.tolerance)) {
       return false;
