@@ -111,7 +111,6 @@ bool whole_search(const FramedPair& pair, const Vector3& start, const First* fir
   bool offered = false;
   const bool distance_without_radii =
       goal == Goal::distance && pair.radius_a == 0 && pair.radius_b == 0;
-  bool bounds_wide = false;
   const auto stop = [&](const MinNormPoint& current, Scalar norm, const OraclePoint* q) {
     // Every goal needs the bounds within the tolerance (and rounding) of each other, or a
     // separation above the tolerance: a cheap test first, as most iterations meet neither.
@@ -120,17 +119,14 @@ bool whole_search(const FramedPair& pair, const Vector3& start, const First* fir
       return norm - std::max(best_lower, Scalar(0)) > slack;
     };
     // A new point whose separation is at most zero (most steps of an overlapping search) leaves
-    // that test to the bounds alone: where the separation is the larger lower bound, both are at
-    // most zero, so the gap above it is |x| either way and neither lies above the tolerance.
-    // The bounds alone met neither at the corral's first test (`bounds_wide`, the oracle call
-    // between offers none), so the point's sign, which the positive 1 / |x| does not change,
-    // settles it, and the division by |x| is taken only where the separation's value is read:
-    // taken at every corral's first test (beside the scans), its latency held up their
-    // retirement (natively a tenth of a 4-point overlapping distance's samples sat on it).
-    if (q == nullptr) {
-      bounds_wide = wide_of(bounds.lower()) && !(bounds.lower() > pair.tolerance);
-      if (bounds_wide) return false;
-    } else if (bounds_wide && along(current, *q, Scalar(1)).value <= 0) {
+    // that test to the bounds alone: where the separation is the larger, both are at most zero,
+    // so the gap above the lower bound is |x| either way and neither lies above the tolerance.
+    // Its sign, which the positive 1 / |x| does not change, is read first, and the division by
+    // |x| is taken only where the separation's value is: taken at every corral's first test
+    // (beside the scans), its latency held up their retirement (natively a tenth of a 4-point
+    // overlapping distance's samples sat on it).
+    if (q != nullptr && along(current, *q, Scalar(1)).value <= 0 && wide_of(bounds.lower()) &&
+        !(bounds.lower() > pair.tolerance)) {
       return false;
     }
     const Scalar inverse_norm = q != nullptr ? 1 / norm : Scalar(0);
