@@ -12,10 +12,11 @@ each call, shapes and transforms built once); swarmcollide is called
 as a user would, ``sc.signed_distance(a, b, pose_a=..., pose_b=...)`` with 4x4 poses, with the
 default method ``dual`` (certified to 1e-9 of the pair's size), the same at coal's precision
 (``tolerance=1e-6 / size``: bounds proven within an absolute 1e-6, coal's default stopping
-tolerance; each pair's ``sc.query`` made once, as coal's request), and with ``fcl`` (FCL's GJK on FCL's own primitives, checked by our
-certificate, penetration by our exact solver). A contender's time is the median over rounds of its mean CPU time per
-call (the thread's); the ratio is ours / coal's for the same pairs in the same run. ``--json``
-writes one row per pair kind and contender (bench/record.py's format).
+tolerance; each pair's ``sc.query`` made once, as coal's request), and with ``fcl`` (FCL's GJK
+on FCL's own primitives, checked by our certificate, penetration by our exact solver). A
+contender's time is the median over rounds of its mean CPU time per call (the thread's); the ratio
+is ours / coal's for the same pairs in the same run. ``--json`` writes one row per pair kind and
+contender (bench/record.py's format).
 
     python bench/curved_coal.py [--pairs 200] [--rounds 5] [--json bench/results/curved_coal.json]
 """
