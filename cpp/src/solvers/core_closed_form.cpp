@@ -163,9 +163,9 @@ void nearest_on_cores(const FramedPair& pair, CorePoint& on_a, CorePoint& on_b,
                       PlacedCores& cores) {
   const int size_a = pair.a.size();
   const int size_b = pair.b.size();
-  const Vector3& p0 = cores.a[0] = pair.a.vertex(0);
+  const Vector3& p0 = cores.a[0] = size_a == 1 ? pair.a.single_vertex() : pair.a.vertex(0);
   const Vector3& p1 = cores.a[1] = size_a == 2 ? pair.a.vertex(1) : p0;
-  const Vector3& q0 = cores.b[0] = pair.b.vertex(0);
+  const Vector3& q0 = cores.b[0] = size_b == 1 ? pair.b.single_vertex() : pair.b.vertex(0);
   const Vector3& q1 = cores.b[1] = size_b == 2 ? pair.b.vertex(1) : q0;
   // Two points are their own nearest points (the clamped form's s = t = 0, without its products).
   if (size_a == 1 && size_b == 1) {
@@ -336,7 +336,7 @@ bool ball_against_box(const FramedPair& pair, Goal goal, Answer& answer) {
   if (!corners.box) return false;
   const Vector3& half = corners.half;
   const std::array<int, 8>& corner = corners.corner;
-  const Vector3 p = (box_a ? pair.b : pair.a).vertex(0);
+  const Vector3 p = (box_a ? pair.b : pair.a).single_vertex();
   const Vector3 from_offset = p - box.offset();
   const Vector3 local = in_own_frame(box, from_offset);
   CorePoint on_a;
