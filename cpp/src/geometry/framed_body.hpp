@@ -34,9 +34,7 @@ struct Frame {
   /// were 70 instructions of a batch row's distance).
   Scalar length_to_world(Scalar length) const { return times_power_of_two(length, exponent); }
   Vector3 point_to_world(const Vector3& p) const {
-    Vector3 world;
-    for (int k = 0; k < 3; ++k) world(k) = centre(k) + times_power_of_two(p(k), exponent);
-    return world;
+    return centre + times_power_of_two(p, exponent);
   }
 };
 
