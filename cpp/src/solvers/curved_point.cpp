@@ -201,7 +201,8 @@ Nearest ellipsoid_nearest(const Vector3& p, const Vector3& a) {
 // (an ellipsoid), each at most 1: a cylinder's rim over the cap the direction points to, `r |l_xy|
 // + h |l_z|`; a cone's apex `h l_z` or its base's rim `r |l_xy| - h l_z`, the higher; an
 // ellipsoid's `|diag(radii) l|`. The support is Lipschitz in l with the shape's outer radius, so
-// l's rounding (3u a component) moves it by 5.3u of that radius, and computing it adds 4u more.
+// l's rounding (3u a component) moves it by 5.3u of that radius, and computing it (a square root,
+// a product, a sum or the cone's difference) under 6u more.
 // Squares below the smallest normal double are off by less than it, far below the frame's
 // rounding (kFrameRounding is absolute in the frame, where these sizes are at most 2).
 Scalar support_value(CurvedShapeParameters::Kind kind, Scalar r, Scalar h, const Vector3& radii,
