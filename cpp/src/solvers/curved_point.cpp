@@ -236,9 +236,8 @@ bool point_against_curved(const FramedPair& pair, Goal goal, int max_iterations,
   const int unit = exponent_above(ellipsoid ? parameters.radii.maxCoeff()
                                             : std::max(parameters.radius, parameters.half_length));
   const Vector3 p = point.single_vertex();
-  const Vector3 turned = shape.local_direction(p - shape.offset());
-  Vector3 local;
-  for (int k = 0; k < 3; ++k) local(k) = times_power_of_two(turned(k), shape.exponent() - unit);
+  const Vector3 local =
+      times_power_of_two(shape.local_direction(p - shape.offset()), shape.exponent() - unit);
   const Scalar r = times_power_of_two(parameters.radius, -unit);
   const Scalar h = times_power_of_two(parameters.half_length, -unit);
   Vector3 radii = Vector3::Zero();
