@@ -355,9 +355,9 @@ bool ball_against_box(const FramedPair& pair, Goal goal, Answer& answer) {
 
 }  // namespace
 
-// Flattened: the box's corners are placed and measured in a loop (box_extreme_height), whose
-// calls of FramedBody's placement out of line reloaded the pose at every corner; inlined, a
-// ball-box query takes 150-170 instructions fewer, the balls' and capsules' 8-21.
+// Flattened: FramedBody's placements and turns (the cores' points, the box's witness), called out
+// of line, reload the pose at every call; inlined, a ball-box query took 150-170 instructions
+// fewer when it still placed the box's corners one by one, the balls' and capsules' 8-21.
 SWARMCOLLIDE_FLATTEN bool core_closed_form(const FramedPair& pair, Goal goal, Answer& answer) {
   if (!small_cores(pair)) return false;
   if (pair.a.size() == 8 || pair.b.size() == 8) return ball_against_box(pair, goal, answer);
