@@ -442,6 +442,60 @@ TEST(FramedBodies, ASmallBodysInlineLocalScanIsItsSupportScan) {
   }
 }
 
+// A body of one point (a ball's core) lies at the centre of its own box: single_vertex() reads it
+// at the body's offset, and it is vertex(0) under any pose and at any scale. A point whose box
+// centre rounds off it (odd multiples of the smallest subnormal: x / 2 rounds to even), in a pair
+// so small that its frame scales it up by 2^1064, is not at its offset: it is placed, as vertex(0)
+// places it.
+TEST(FramedBodies, ABallsCoreIsItsPlacedPoint) {
+  Random rng(17);
+  for (Scalar scale : {1e-300, 1.0, 1e300}) {
+    const Sphere ball(0.5 * scale);
+    const Sphere other(0.25 * scale);
+    for (int trial = 0; trial < 20; ++trial) {
+      const detail::FramedPair pair =
+          detail::frame_pair(ball, Pose{rng.rotation(), rng.vector(2) * scale}, other,
+                             Pose{rng.rotation(), rng.vector(2) * scale}, 1e-9);
+      for (const detail::FramedBody* body : {&pair.a, &pair.b}) {
+        EXPECT_EQ(body->single_vertex(), body->offset());
+        EXPECT_EQ(body->single_vertex(), body->vertex(0));
+      }
+    }
+  }
+  const Scalar tiny = std::numeric_limits<Scalar>::denorm_min();
+  const auto one_point = [](const Vector3& p) {
+    VertexMatrix points(1, 3);
+    points.row(0) = p.transpose();
+    return ConvexPolyhedron(points);
+  };
+  const ConvexPolyhedron odd = one_point(Vector3(3 * tiny, -5 * tiny, 7 * tiny));
+  const ConvexPolyhedron far = one_point(Vector3(1001 * tiny, 0, 0));
+  ASSERT_NE(odd.centred_vertices()(0, 0), 0);
+  const detail::FramedPair pair =
+      detail::frame_pair(odd, Pose{rng.rotation(), Vector3::Zero()}, far, Pose{}, 1e-9);
+  EXPECT_NE(pair.a.single_vertex(), pair.a.offset());
+  EXPECT_EQ(pair.a.single_vertex(), pair.a.vertex(0));
+}
+
+// times_power_of_two of a vector is that of each coordinate, bit for bit, for every exponent of
+// a frame: those with a normal power of two (one factor) and the extreme ones past +-1000 (split).
+TEST(FramedBodies, AVectorScalesAsItsCoordinates) {
+  Random rng(19);
+  const Scalar tiny = std::numeric_limits<Scalar>::denorm_min();
+  const std::vector<Vector3> vectors{rng.vector(), Vector3(tiny, -3 * tiny, 0x1p-1000),
+                                     Vector3(1e300, -1e-300, 0.75), Vector3(-0.0, 0.0, 1)};
+  for (int exponent : {-1100, -1074, -1001, -1000, -999, -3, 0, 5, 999, 1000, 1001, 1100}) {
+    for (const Vector3& v : vectors) {
+      const Vector3 scaled = detail::times_power_of_two(v, exponent);
+      for (int k = 0; k < 3; ++k) {
+        const Scalar each = detail::times_power_of_two(v(k), exponent);
+        EXPECT_TRUE(scaled(k) == each && std::signbit(scaled(k)) == std::signbit(each))
+            << "exponent " << exponent << " coordinate " << v(k);
+      }
+    }
+  }
+}
+
 // Two framings of a pair agree field by field: a pair re-placed by KeptPair must be the pair
 // frame_turned_pair makes, so that a batch's answers are the same bit for bit.
 void expect_same_framing(const detail::FramedPair& kept, const detail::FramedPair& fresh) {

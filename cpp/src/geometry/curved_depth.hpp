@@ -38,10 +38,7 @@ ClosedFormDepth closed_form_depth(const FramedBody& a, const FramedBody& b);
 /// frame (centred on its box, in the units of its points): where a closed form compares it with
 /// the body's shape.
 inline Vector3 in_own_frame(const FramedBody& body, const Vector3& from_offset) {
-  const Vector3 turned = body.local_direction(from_offset);
-  Vector3 local;
-  for (int k = 0; k < 3; ++k) local(k) = times_power_of_two(turned(k), body.exponent());
-  return local;
+  return times_power_of_two(body.local_direction(from_offset), body.exponent());
 }
 
 /// How far the rotation R that places `body` is from orthogonal: 3 max |R^T R - I| (0 for a body

@@ -99,8 +99,7 @@ CurvedKind curved_kind(const SupportFunction& shape) {
     scale_high_ = power_of_two(half);
     scale_low_ = power_of_two(-exponent_ - half);
   }
-  const Vector3 from_centre = world_centre - frame.centre;
-  for (int k = 0; k < 3; ++k) offset_(k) = times_power_of_two(from_centre(k), -exponent_);
+  offset_ = times_power_of_two(Vector3(world_centre - frame.centre), -exponent_);
 }
 
 [[gnu::always_inline]] inline void FramedBody::place(const Pose& pose, bool rotated,

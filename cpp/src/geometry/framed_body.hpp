@@ -34,9 +34,7 @@ struct Frame {
   /// were 70 instructions of a batch row's distance).
   Scalar length_to_world(Scalar length) const { return times_power_of_two(length, exponent); }
   Vector3 point_to_world(const Vector3& p) const {
-    Vector3 world;
-    for (int k = 0; k < 3; ++k) world(k) = centre(k) + times_power_of_two(p(k), exponent);
-    return world;
+    return centre + times_power_of_two(p, exponent);
   }
 };
 
@@ -137,6 +135,15 @@ class FramedBody {
 
   /// Point i of the body in the frame.
   Vector3 vertex(int i) const { return placed(vertices_->row(i).transpose()); }
+  /// `vertex(0)` of a body of one point (a ball's core): the point is the centre of its own box,
+  /// so its own-frame coordinates are zero and its place is the offset (its rotation and scaling
+  /// make zeros; but for the sign of a zero coordinate, the same point), without the placement's
+  /// products (some 40 instructions of a ball's closed form). A point whose box centre rounded
+  /// off it (subnormal coordinates) is placed.
+  Vector3 single_vertex() const {
+    const VertexMatrix& x = *vertices_;
+    return x(0, 0) == 0 && x(0, 1) == 0 && x(0, 2) == 0 ? offset_ : vertex(0);
+  }
   /// `d . vertex(i)`, as `exact_support_index` compares it.
   Scalar height(int i, const Vector3& d) const {
     return in_frame_ ? point_height(*vertices_, i, d) : vertex(i).dot(d);

@@ -32,6 +32,16 @@ inline Scalar times_power_of_two(Scalar x, int exponent) {
   return x * power_of_two(exponent);
 }
 
+/// times_power_of_two of each coordinate of `v`, the same values: one factor for the three where
+/// 2^exponent is a normal double (every frame but the most extreme), without a test for each
+/// (framing a pair places two offsets, and an answer turns two witnesses back).
+inline Vector3 times_power_of_two(const Vector3& v, int exponent) {
+  if (exponent >= -1000 && exponent <= 1000) return v * power_of_two(exponent);
+  Vector3 scaled;
+  for (int k = 0; k < 3; ++k) scaled(k) = times_power_of_two(v(k), exponent);
+  return scaled;
+}
+
 /// The exponent e with 2^(e-1) <= length < 2^e (0 for a zero length): dividing by 2^e brings
 /// `length` into [0.5, 1).
 inline int exponent_above(Scalar length) {

@@ -6,49 +6,10 @@
 
 namespace swarmcollide::detail {
 
-namespace {
-
-// The rounding error of the sum `sum` computed as `a + b` (Knuth's TwoSum: exact).
-Scalar sum_error(Scalar a, Scalar b, Scalar sum) {
-  const Scalar b_part = sum - a;
-  const Scalar a_part = sum - b_part;
-  return (a - a_part) + (b - b_part);
-}
-
-// A radius that may have lost bits when it was scaled into the frame.
-bool underflowed(Scalar radius) {
-  return radius > 0 && radius < std::numeric_limits<Scalar>::min();
-}
-
-// shifted_by_radii with the radii's sum `radii` given, and whether it is exact (`exact_sum`, from
-// sum_error). Moved by nothing when the sum and the difference are proven exact: sphere radii and
-// distances such as 1.5 stay 1.5. Always inline: the searches' stop tests call shifted_by_radii
-// at every step.
-[[gnu::always_inline]] inline Scalar shifted(const FramedPair& pair, Scalar core, Scalar outward,
-                                             Scalar radii, bool exact_sum) {
-  const Scalar value = core - radii;
-  if (!std::isfinite(core)) return value;
-  const bool exact = exact_sum && sum_error(core, -radii, value) == 0 &&
-                     !underflowed(pair.radius_a) && !underflowed(pair.radius_b);
-  if (exact) return value;
-  // std::nextafter's value from the bits (next_down, negated for a step up): its libm call was a
-  // third of this function's cost, which a ball's distance pays twice or more.
-  const Scalar moved = value + outward * subtraction_rounding(pair, core);
-  return outward > 0 ? -next_down(-moved) : next_down(moved);
-}
-
-}  // namespace
-
 Scalar shifted_by_radii(const FramedPair& pair, Scalar core, Scalar outward) {
+  using namespace rounding_detail;
   const Scalar radii = pair.radius_a + pair.radius_b;
   return shifted(pair, core, outward, radii, sum_error(pair.radius_a, pair.radius_b, radii) == 0);
-}
-
-RoundedBounds shifted_bounds(const FramedPair& pair, Scalar core_lower, Scalar core_upper) {
-  const Scalar radii = pair.radius_a + pair.radius_b;
-  const bool exact_sum = sum_error(pair.radius_a, pair.radius_b, radii) == 0;
-  return {core_lower, core_upper, shifted(pair, core_lower, -1, radii, exact_sum),
-          shifted(pair, core_upper, 1, radii, exact_sum)};
 }
 
 void round_answer(const FramedPair& pair, Goal goal, Answer& answer) {

@@ -163,9 +163,9 @@ void nearest_on_cores(const FramedPair& pair, CorePoint& on_a, CorePoint& on_b,
                       PlacedCores& cores) {
   const int size_a = pair.a.size();
   const int size_b = pair.b.size();
-  const Vector3& p0 = cores.a[0] = pair.a.vertex(0);
+  const Vector3& p0 = cores.a[0] = size_a == 1 ? pair.a.single_vertex() : pair.a.vertex(0);
   const Vector3& p1 = cores.a[1] = size_a == 2 ? pair.a.vertex(1) : p0;
-  const Vector3& q0 = cores.b[0] = pair.b.vertex(0);
+  const Vector3& q0 = cores.b[0] = size_b == 1 ? pair.b.single_vertex() : pair.b.vertex(0);
   const Vector3& q1 = cores.b[1] = size_b == 2 ? pair.b.vertex(1) : q0;
   // Two points are their own nearest points (the clamped form's s = t = 0, without its products).
   if (size_a == 1 && size_b == 1) {
@@ -203,57 +203,35 @@ Scalar separation_of_cores(const FramedPair& pair, const PlacedCores& cores, con
   return bottom_b - top_a;
 }
 
-// The greatest height along the unit frame direction `n` of the box `box`'s points (half extents
-// `half`, corners `corner`) when `top`, else the least: the very value that exact_separation's
-// scan of every height computes (the first point's on ties), from the corners that may hold it.
-// Along an own-frame axis k whose component l_k of n is large, `2^-e h_k |l_k|` above the box's
-// scan_shortfall (`shortfall`), the corners on the far side are lower by `2^-e 2 h_k |l_k|`
-// (less l_k's rounding, 5.2u), over twice what rounding may move a computed height (some 13u of
-// the reach, by framed_body.cpp's analysis of scan_shortfall, which is 64u of it): none of them
-// holds the extreme value as computed. Both sides are measured across the other axes: the four
-// corners of a face for its normal, one corner for a direction off every face (8 heights were
-// 540 instructions of a ball-box query).
-Scalar box_extreme_height(const FramedBody& box, const Vector3& half,
-                          const std::array<int, 8>& corner, const Vector3& n, bool top,
-                          Scalar shortfall) {
+// The greatest height along the unit frame direction `n` of the box `box` (half extents `half`)
+// when `top`, else the least: its support value, `n . o +- sum_k 2^-e h_k |l_k|` for its offset o
+// and `l = R^T n` (local_direction), which is exact for the placed box `R q + o`, q its scaled
+// corners, whatever R. Computed, it is within 9.5u of the reach |o| + 2^-e |h| of that value: l_k
+// is within 3.02u of (R^T n)_k (a 3-term dot product of a unit row), which moves the sum by 3.02u
+// sum_k 2^-e h_k <= 5.3u 2^-e |h|; the sum of three products rounds by 3.02u 2^-e |h|, n . o by
+// 3.02u |o|, the last addition by u of the reach. That is the rounding a scan of the placed
+// corners' heights carries (each corner placed to 5.2u of its size plus 1.8u of the reach, its
+// dot product 3u more; framed_body.cpp), inside kFrameRounding and separation_margin (64u of the
+// coordinate bound). The heights of the corners that may hold the extreme, placed one by one,
+// were 270 of a ball-box query's 2,040 instructions.
+Scalar box_extreme_height(const FramedBody& box, const Vector3& half, const Vector3& n, bool top) {
   const Vector3 l = box.local_direction(n);
-  unsigned side = 0;  // the near side of each decided axis: bit k set at +half(k)
-  unsigned open = 0;  // the axes measured on both sides
-  for (int k = 0; k < 3; ++k) {
-    if (times_power_of_two(half(k) * std::abs(l(k)), -box.exponent()) > shortfall) {
-      side |= unsigned((l(k) > 0) == top) << k;
-    } else {
-      open |= 1u << k;
-    }
-  }
-  int first = box.size();
-  Scalar extreme = 0;
-  // The corners `side | across` for every subset `across` of the open axes, in increasing order
-  // (`across - open` carries into the next subset's bits).
-  unsigned across = 0;
-  do {
-    const int i = corner[side | across];
-    const Scalar h = box.height(i, n);
-    // The scan keeps the first point of equal heights.
-    if (first == box.size() || (top ? h > extreme : h < extreme) || (h == extreme && i < first)) {
-      extreme = h;
-      first = i;
-    }
-    across = (across - open) & open;
-  } while (across != 0);
-  return extreme;
+  const Scalar reach = times_power_of_two(
+      half(0) * std::abs(l(0)) + half(1) * std::abs(l(1)) + half(2) * std::abs(l(2)),
+      -box.exponent());
+  const Scalar centre = box.offset().dot(n);
+  return top ? centre + reach : centre - reach;
 }
 
-// exact_separation's value for a point `p` (a ball's core, B when `box_a`) and a box (its
-// half extents `half`, corners `corner`, scan_shortfall `shortfall`), from the box's extreme
-// height (box_extreme_height).
-Scalar box_separation(const FramedPair& pair, bool box_a, const Vector3& half,
-                      const std::array<int, 8>& corner, const Vector3& p, const Vector3& n,
-                      Scalar shortfall) {
+// The separation along the unit frame direction `n` of a point `p` (a ball's core, B when
+// `box_a`) and a box (its half extents `half`): the point's height against the box's extreme one
+// (box_extreme_height).
+Scalar box_separation(const FramedPair& pair, bool box_a, const Vector3& half, const Vector3& p,
+                      const Vector3& n) {
   const FramedBody& point = box_a ? pair.b : pair.a;
   const Scalar at_point = point.height(0, p, n);
-  return box_a ? at_point - box_extreme_height(pair.a, half, corner, n, true, shortfall)
-               : box_extreme_height(pair.b, half, corner, n, false, shortfall) - at_point;
+  return box_a ? at_point - box_extreme_height(pair.a, half, n, true)
+               : box_extreme_height(pair.b, half, n, false) - at_point;
 }
 
 // The answer from the nearest points `on_a` and `on_b` of cores that are apart, or false when
@@ -320,10 +298,10 @@ bool inside_box_answer(const FramedPair& pair, bool box_a, const Vector3& half,
   if (!upper_side) outward = -outward;
   // From A to B: out of the box when it is A, into it when it is B.
   const Vector3 normal = box_a ? outward : Vector3(-outward);
-  // The separation as every height gives it, less its rounding (separation_margin, as the
-  // penetration solver's): the box's points, and the centre among them, have coordinates within
-  // the box's coordinate_bound.
-  const Scalar lower = box_separation(pair, box_a, half, corner, centre, normal, shortfall) -
+  // The separation from the box's support value, less its rounding (separation_margin, as the
+  // penetration solver's, which box_extreme_height's rounding and the centre's height are well
+  // within: the box, and the centre in it, lie within the box's coordinate_bound).
+  const Scalar lower = box_separation(pair, box_a, half, centre, normal) -
                        separation_margin(coordinate_bound(box));
   const RoundedBounds rounded = shifted_bounds(pair, lower, -depth);
   if (!goal_reached(pair, Goal::signed_distance, rounded, false)) return false;
@@ -358,7 +336,7 @@ bool ball_against_box(const FramedPair& pair, Goal goal, Answer& answer) {
   if (!corners.box) return false;
   const Vector3& half = corners.half;
   const std::array<int, 8>& corner = corners.corner;
-  const Vector3 p = (box_a ? pair.b : pair.a).vertex(0);
+  const Vector3 p = (box_a ? pair.b : pair.a).single_vertex();
   const Vector3 from_offset = p - box.offset();
   const Vector3 local = in_own_frame(box, from_offset);
   CorePoint on_a;
@@ -366,7 +344,7 @@ bool ball_against_box(const FramedPair& pair, Goal goal, Answer& answer) {
   if (nearest_on_box(box, half, corner, local, box_a ? on_a : on_b)) {
     (box_a ? on_b : on_a).point = p;
     const auto separation = [&](const Vector3& n) {
-      return box_separation(pair, box_a, half, corner, p, n, box.scan_shortfall());
+      return box_separation(pair, box_a, half, p, n);
     };
     return apart_answer(pair, goal, on_a, on_b, separation, answer);
   }
@@ -377,9 +355,9 @@ bool ball_against_box(const FramedPair& pair, Goal goal, Answer& answer) {
 
 }  // namespace
 
-// Flattened: the box's corners are placed and measured in a loop (box_extreme_height), whose
-// calls of FramedBody's placement out of line reloaded the pose at every corner; inlined, a
-// ball-box query takes 150-170 instructions fewer, the balls' and capsules' 8-21.
+// Flattened: FramedBody's placements and turns (the cores' points, the box's witness), called out
+// of line, reload the pose at every call; inlined, a ball-box query took 150-170 instructions
+// fewer when it still placed the box's corners one by one, the balls' and capsules' 8-21.
 SWARMCOLLIDE_FLATTEN bool core_closed_form(const FramedPair& pair, Goal goal, Answer& answer) {
   if (!small_cores(pair)) return false;
   if (pair.a.size() == 8 || pair.b.size() == 8) return ball_against_box(pair, goal, answer);
