@@ -288,9 +288,8 @@ bool inside_box_answer(const FramedPair& pair, bool box_a, const Vector3& half,
   // The difference rounds by u of half(face) at most, and taking this bound off by u again.
   const Scalar framed = times_power_of_two(least - 4 * kRoundoff * half(face), -box.exponent());
   if (!(framed > 0)) return false;
-  const Scalar shortfall = box.scan_shortfall();
   const Scalar depth =
-      depth_in_frame(framed, rotation_skew(box), from_offset.norm(), shortfall);
+      depth_in_frame(framed, rotation_skew(box), from_offset.norm(), box.scan_shortfall());
   if (!(depth > 0)) return false;
   Vector3 outward = box.rotated() ? Vector3(box.rotation().col(face)) : Vector3::Unit(face);
   outward.normalize();
