@@ -7,10 +7,10 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
-#include <thread>
 #include <type_traits>
 #include <vector>
 
+#include "../detail/hardware_threads.hpp"
 #include "../detail/kept_threads.hpp"
 #include "../detail/number_text.hpp"
 #include "advancement_steps.hpp"
@@ -376,7 +376,7 @@ std::vector<TimeOfImpactResult> solve_many(const BatchBodies<Body>& as,
     }
   };
   std::size_t workers = threads > 0 ? static_cast<std::size_t>(threads)
-                                    : std::max(1u, std::thread::hardware_concurrency());
+                                    : detail::hardware_threads();
   workers = std::min(workers, rows);
   detail::run_copies(workers, [&](std::size_t k) { work(k, workers); });
   for (std::size_t row = 0; row < rows; ++row) {

@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "../detail/hardware_threads.hpp"
 #include "../detail/kept_threads.hpp"
 #include "../geometry/framed_body.hpp"
 #include "../geometry/pose_check.hpp"
@@ -154,7 +155,7 @@ std::size_t worker_count(int threads, std::size_t pairs) {
                                 "] (0: one per hardware thread), got " + std::to_string(threads));
   }
   const std::size_t wanted = threads > 0 ? static_cast<std::size_t>(threads)
-                                         : std::max(1u, std::thread::hardware_concurrency());
+                                         : detail::hardware_threads();
   return std::min(wanted, std::max<std::size_t>(pairs, 1));
 }
 
@@ -273,15 +274,17 @@ class RowChunks {
     return false;
   }
 
-  // The next chunk of at most a cache line's rows, for a thread answering alone (see
-  // run_batch), from the first range not yet taken: the chunks after it still begin cache lines.
-  bool take_line(Chunk& chunk) {
+  // The next chunk of at most `most` rows that ends at the latest where a cache line of rows
+  // does, for a thread answering alone (see run_batch), from the first range not yet taken: the
+  // chunks after it still begin cache lines.
+  bool take_line(std::size_t most, Chunk& chunk) {
     const std::size_t failed = failed_.load(std::memory_order_relaxed);
     for (Range& range : ranges_) {
       const std::size_t start = range.next.load(std::memory_order_relaxed);
       if (start >= range.end) continue;
       if (start >= failed) return false;
-      chunk = {start, std::min(range.end, start + kLine)};
+      const std::size_t line_end = (start / kLine + 1) * kLine;
+      chunk = {start, std::min({range.end, line_end, start + most})};
       range.next.store(chunk.end, std::memory_order_relaxed);
       return true;
     }
@@ -419,15 +422,23 @@ class RowOptions {
   std::uint64_t index_;
 };
 
-// How long the calling thread answers rows alone before it wakes the batch's other threads: a
-// batch it finishes sooner does not wait for them. Waking a sleeping thread and waiting for it
-// cost 20-25 us per call on this project's 2-core VM (256 rows of collide_many on 8-vertex bodies
-// apart: 17 us on 1 thread, 40 us on 2; swarmcollide-thread-scaling under chrt -f 1).
-constexpr std::chrono::microseconds kAlone{30};
-// A batch of more rows outlasts kAlone even on the cheapest rows (those the ball screens settle,
-// 0.03 us or more): its calling thread wakes the other threads at once, which would otherwise
-// start kAlone later for nothing.
-constexpr std::size_t kAloneRows = 1024;
+// The calling thread answers a batch's first rows alone and wakes the other threads only once
+// the rows left, timed by its own rows so far, would take it longer than kWorthWaking: waking a
+// thread that has slept a millisecond or more costs the caller 5-15 us (the futex's interrupt to
+// the other core, through the hypervisor) and that thread starts 15-130 us later (this project's
+// 2-core VM; bench/README, Session 41). With the other threads woken at once (or after 30 us
+// for batches of up to 1,024 rows, the rule before), collide_many of 500-3,000 rows between 2 ms
+// of Python work took 1.2-1.5x as long on 2 threads as on 1.
+constexpr double kWorthWaking = 100e-6;  // seconds
+// The caller's first chunk, before its first estimate: a few rows, so that a batch of costly rows
+// (microseconds each) wakes the others after those, not after a cache line of rows.
+constexpr std::size_t kFirstRows = 8;
+
+// True when the rows left, at the pace of the `answered` rows that took `elapsed` seconds, would
+// take longer than kWorthWaking.
+bool worth_waking(double elapsed, std::size_t answered, std::size_t left) {
+  return elapsed * static_cast<double>(left) > kWorthWaking * static_cast<double>(answered);
+}
 
 // Runs `answer(i, options_i, poses_i)` (RowPoses), which writes row i of the batch, for every
 // pair, where options_i are the validated options to be seeded for pair i (RowOptions) and
@@ -457,8 +468,9 @@ BatchResult run_batch(Kind kind, std::size_t count, const QueryOptions& options,
   // they start.
   const std::thread::id caller = std::this_thread::get_id();
   std::atomic<std::size_t> homes{1};
-  // `alone`: the calling thread answers a cache line of rows at a time until kAlone has passed
-  // (or the rows are done), before any other thread is woken.
+  // `alone`: the calling thread answers rows up to a cache line at a time, before any other
+  // thread is woken, until the rows are done or worth waking the others for (kWorthWaking).
+  const auto start = std::chrono::steady_clock::now();
   const auto work = [&](bool alone) {
     const std::size_t home = std::this_thread::get_id() == caller
                                  ? 0
@@ -471,8 +483,10 @@ BatchResult run_batch(Kind kind, std::size_t count, const QueryOptions& options,
     QueryOptions pair_options = validated.options();
     pair_options.dual.record_history = false;  // a batch reports no history
     auto answer = make_answer(RowWriter(batch));
-    const auto until = std::chrono::steady_clock::now() + kAlone;
-    for (RowChunks::Chunk chunk; alone ? chunks.take_line(chunk) : chunks.take(home, chunk);) {
+    std::size_t answered = 0;  // rows this thread has answered alone
+    for (RowChunks::Chunk chunk;
+         alone ? chunks.take_line(answered == 0 ? kFirstRows : count, chunk)
+               : chunks.take(home, chunk);) {
       ahead.start(chunk.start, chunk.end);
       for (std::size_t i = chunk.start; i < chunk.end; ++i) {
         try {
@@ -502,10 +516,14 @@ BatchResult run_batch(Kind kind, std::size_t count, const QueryOptions& options,
           break;
         }
       }
-      if (alone && std::chrono::steady_clock::now() >= until) break;
+      if (alone) {
+        answered += chunk.end - chunk.start;
+        const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - start;
+        if (worth_waking(elapsed.count(), answered, count - answered)) break;
+      }
     }
   };
-  if (workers > 1 && count <= kAloneRows) work(true);
+  if (workers > 1) work(true);
   // Each thread takes rows until none is left: a copy that starts late finds fewer or none.
   if (!chunks.finished()) detail::run_copies(workers, [&](std::size_t) { work(false); });
   if (failure.any()) failure.rethrow(settings.first_index);

@@ -8,8 +8,8 @@
 #include <mutex>
 #include <stdexcept>
 #include <string>
-#include <thread>
 
+#include "../detail/hardware_threads.hpp"
 #include "../detail/kept_threads.hpp"
 #include "swarmcollide/queries/batch.hpp"
 
@@ -28,7 +28,7 @@ void over_configurations(std::size_t count, int threads, const MakeAnswer& make_
                                 "] (0: one per hardware thread), got " + std::to_string(threads));
   }
   const std::size_t wanted = threads > 0 ? static_cast<std::size_t>(threads)
-                                         : std::max(1u, std::thread::hardware_concurrency());
+                                         : detail::hardware_threads();
   const std::size_t workers = std::min(wanted, std::max<std::size_t>(count, 1));
   constexpr std::size_t kChunk = 8;
   std::atomic<std::size_t> next{0};

@@ -9,7 +9,6 @@
 #include <mutex>
 #include <stdexcept>
 #include <string>
-#include <thread>
 #include <utility>
 #include <vector>
 
@@ -20,6 +19,7 @@
 #include "scene_body.hpp"
 #include "swarmcollide/queries/methods.hpp"
 #include "swarmcollide/scene/scene.hpp"
+#include "../detail/hardware_threads.hpp"
 #include "../detail/thread_pool.hpp"
 
 namespace swarmcollide {
@@ -29,7 +29,7 @@ struct Scene::Impl {
       : options(o),
         broadphase(o.broadphase),
         pool(o.threads > 0 ? o.threads
-                           : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()))) {}
+                           : static_cast<int>(detail::hardware_threads())) {}
 
   /// Pairs a thread takes at a time: enough to make taking them cheap, few enough to balance.
   static constexpr std::size_t kChunk = 32;
