@@ -19,6 +19,10 @@
 // threads run as on a quiet machine, where under the default scheduler a thread started for a
 // batch of a few milliseconds waits behind other sessions' work and two threads scale by 1.0x.
 //
+// With `wake [ROUNDS]` it times waking a thread asleep on a condition variable after the caller
+// slept 0, 1, 2, 5 and 30 ms: what `notify_one` costs the caller, and how long the woken thread
+// takes to start (what a batch's other threads cost before their first row; run_batch's rule).
+//
 // With `count KIND STATE ROWS [VERTICES [THREADS]]` (KIND collide, distance or signed_distance;
 // STATE apart or overlapping; VERTICES 8 unless given, THREADS 1) it answers that batch once to
 // warm it, then once more with callgrind's collection on: run under `valgrind --tool=callgrind
@@ -32,12 +36,14 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <condition_variable>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <functional>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <thread>
 #include <vector>
@@ -370,9 +376,67 @@ int count_instructions(const std::string& kind, const std::string& state, std::s
   return 0;
 }
 
+// The `wake` probe: per idle time, the median and range over `rounds` of the caller's notify and
+// of the woken thread's start after it.
+int wake_latency(int rounds) {
+  std::mutex mutex;
+  std::condition_variable wake;
+  int generation = 0;  // -1: stop
+  double woke_at = 0;
+  std::atomic<bool> started{false};
+  std::thread sleeper([&] {
+    int seen = 0;
+    std::unique_lock<std::mutex> lock(mutex);
+    for (;;) {
+      wake.wait(lock, [&] { return generation != seen; });
+      if (generation < 0) return;
+      seen = generation;
+      woke_at = now();
+      started.store(true, std::memory_order_release);
+    }
+  });
+  const auto range = [](std::vector<double> us) {
+    std::sort(us.begin(), us.end());
+    char text[64];
+    std::snprintf(text, sizeof text, "%.1f us (%.1f-%.1f)", us[us.size() / 2], us.front(),
+                  us.back());
+    return std::string(text);
+  };
+  for (int idle_ms : {0, 1, 2, 5, 30}) {
+    std::vector<double> notify, start;
+    for (int r = 0; r < rounds; ++r) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(idle_ms));
+      started.store(false, std::memory_order_relaxed);
+      const double asked = now();
+      {
+        const std::lock_guard<std::mutex> lock(mutex);
+        ++generation;
+      }
+      wake.notify_one();
+      notify.push_back((now() - asked) * 1e6);
+      while (!started.load(std::memory_order_acquire)) {
+      }
+      const std::lock_guard<std::mutex> lock(mutex);
+      start.push_back((woke_at - asked) * 1e6);
+    }
+    std::printf("asleep after %2d ms idle: notify %s, start %s\n", idle_ms,
+                range(notify).c_str(), range(start).c_str());
+  }
+  {
+    const std::lock_guard<std::mutex> lock(mutex);
+    generation = -1;
+  }
+  wake.notify_one();
+  sleeper.join();
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  if (argc >= 2 && argc <= 3 && std::string(argv[1]) == "wake") {
+    return wake_latency(argc > 2 ? std::atoi(argv[2]) : 40);
+  }
   if (argc >= 5 && argc <= 7 && std::string(argv[1]) == "count") {
     return count_instructions(argv[2], argv[3], std::strtoul(argv[4], nullptr, 10),
                               argc > 5 ? std::atoi(argv[5]) : 8, argc > 6 ? std::atoi(argv[6]) : 1);
