@@ -295,6 +295,9 @@ class Robot:
             if frozenset((owners[a], owners[b])) not in self._disabled
         ]
         self._pair_table = np.asarray(table, dtype=np.int32).reshape(-1, 2)
+        # Each answer's pair names, indexed by its pair (-1, nothing checked, reads the last row):
+        # made here once, as building it took longer than a configuration's verdict.
+        self._pair_names = np.array(list(self.pairs) + [("", "")], dtype=str).reshape(-1, 2)
 
     @property
     def model(self) -> _core.RobotModel:
@@ -482,9 +485,7 @@ class Robot:
         raw = self._model.check(self._pair_table, table,
                                 query(method, tolerance=tolerance, seed=seed), threads, gradient,
                                 nearest)
-        # The last row names no pair: index -1 (nothing checked) reads it.
-        named = np.array(list(self.pairs) + [("", "")], dtype=str).reshape(-1, 2)
-        names = named[np.asarray(raw.pair)]
+        names = self._pair_names[np.asarray(raw.pair)]
         fields: Dict[str, Any] = dict(
             colliding=raw.colliding, min_distance=raw.min_distance, lower_bound=raw.lower_bound,
             certified=raw.certified, pair=raw.pair, pair_names=names.reshape(-1, 2),
@@ -566,10 +567,9 @@ class Robot:
         raw = self._model.check_motion(self._pair_table, start, end,
                                        query(method, tolerance=tolerance, seed=seed),
                                        float(time_tolerance), int(max_iterations), threads)
-        named = np.array(list(self.pairs) + [("", "")], dtype=str).reshape(-1, 2)
         fields: Dict[str, Any] = dict(
             touches=raw.touches, t_lower=raw.t_lower, t_upper=raw.t_upper, q=raw.configuration,
-            pair=raw.pair, pair_names=named[np.asarray(raw.pair)].reshape(-1, 2),
+            pair=raw.pair, pair_names=self._pair_names[np.asarray(raw.pair)].reshape(-1, 2),
             distance=raw.distance, point_a=raw.point_a, point_b=raw.point_b, normal=raw.normal,
             certified=raw.certified, iterations=raw.iterations, status=tuple(raw.status))
         if single_start and single_end:

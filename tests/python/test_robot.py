@@ -386,6 +386,22 @@ def test_bad_files_name_the_link_or_joint(tmp_path):
         sc.Robot.from_urdf(tmp_path / "none.urdf")
 
 
+def test_answers_name_the_pairs_checked_after_the_pairs_change(arm):
+    # The names an answer reads are made when the pairs change (add_obstacle, disable_pairs).
+    q = random_configurations(arm, 1, seed=3)[0]
+    before = arm.check(q)
+    assert tuple(before.pair_names) == arm.pairs[before.pair]
+    arm.add_obstacle(sc.Sphere(0.3), None, name="blob")  # deep into the base
+    deepest = arm.check(q)
+    assert tuple(deepest.pair_names) == arm.pairs[deepest.pair] == ("base", "blob")
+    arm.disable_pairs([("base", "blob")])
+    after = arm.check(q, nearest=False)
+    assert after.colliding and tuple(after.pair_names) == arm.pairs[after.pair]
+    assert ("base", "blob") not in arm.pairs and "blob" in after.pair_names
+    motion = arm.check_motion(q, q)
+    assert tuple(motion.pair_names) == arm.pairs[motion.pair]
+
+
 def test_obstacle_names_must_be_new(arm):
     with pytest.raises(ValueError, match="'base' is taken"):
         arm.add_obstacle(sc.Sphere(0.1), name="base")
