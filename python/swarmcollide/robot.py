@@ -298,6 +298,7 @@ class Robot:
         # Each answer's pair names, indexed by its pair (-1, nothing checked, reads the last row):
         # made here once, as building it took longer than a configuration's verdict.
         self._pair_names = np.array(list(self.pairs) + [("", "")], dtype=str).reshape(-1, 2)
+        self._pair_names.setflags(write=False)  # a single answer's names are a view of a row
 
     @property
     def model(self) -> _core.RobotModel:
@@ -485,15 +486,15 @@ class Robot:
         raw = self._model.check(self._pair_table, table,
                                 query(method, tolerance=tolerance, seed=seed), threads, gradient,
                                 nearest)
-        names = self._pair_names[np.asarray(raw.pair)]
-        fields: Dict[str, Any] = dict(
-            colliding=raw.colliding, min_distance=raw.min_distance, lower_bound=raw.lower_bound,
-            certified=raw.certified, pair=raw.pair, pair_names=names.reshape(-1, 2),
-            point_a=raw.point_a, point_b=raw.point_b, normal=raw.normal,
-            gradient=raw.gradient if gradient else None)
-        if single:
-            fields = {k: (v[0] if v is not None else None) for k, v in fields.items()}
-        return RobotCheck(**fields)
+        values = (raw.colliding, raw.min_distance, raw.lower_bound, raw.certified, raw.pair,
+                  raw.point_a, raw.point_b, raw.normal, raw.gradient if gradient else None)
+        if single:  # a planner's check of one state: its row, read without building more arrays
+            values = tuple(v[0] if v is not None else None for v in values)
+        colliding, min_distance, lower_bound, certified, pair, point_a, point_b, normal, slope = (
+            values)
+        return RobotCheck(colliding=colliding, min_distance=min_distance, lower_bound=lower_bound,
+                          certified=certified, pair=pair, pair_names=self._pair_names[pair],
+                          point_a=point_a, point_b=point_b, normal=normal, gradient=slope)
 
     def check_motion(self, q0: npt.ArrayLike, q1: npt.ArrayLike, *, limits: str = "raise",
                      threads: Optional[int] = None,
