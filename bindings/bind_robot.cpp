@@ -148,7 +148,32 @@ multiplier, offset : float
       .def_readonly("point_a", &RobotCheck::point_a)
       .def_readonly("point_b", &RobotCheck::point_b)
       .def_readonly("normal", &RobotCheck::normal)
-      .def_readonly("gradient", &RobotCheck::gradient);
+      .def_readonly("gradient", &RobotCheck::gradient)
+      .def(
+          "row",
+          [](const RobotCheck& check, Eigen::Index i) {
+            if (i < 0 || i >= check.colliding.size()) {
+              throw py::index_error("row " + std::to_string(i) + " is not in [0, " +
+                                    std::to_string(check.colliding.size()) + ")");
+            }
+            const auto values = [](const Scalar* first, py::ssize_t count) {
+              return py::array_t<Scalar>(count, first);
+            };
+            const py::object gradient =
+                check.gradient.rows() > i
+                    ? py::object(values(check.gradient.row(i).data(), check.gradient.cols()))
+                    : py::none();
+            return py::make_tuple(
+                bool(check.colliding(i)), check.min_distance(i), check.lower_bound(i),
+                bool(check.certified(i)), check.pair(i), values(check.point_a.row(i).data(), 3),
+                values(check.point_b.row(i).data(), 3), values(check.normal.row(i).data(), 3),
+                gradient);
+          },
+          py::arg("i"),
+          "Configuration i's (colliding, min_distance, lower_bound, certified, pair, point_a, "
+          "point_b, normal, gradient or None), as Python values and (3,) or (dof,) arrays: "
+          "cheaper than reading every field's array to index it, for a check of one "
+          "configuration.");
 
   py::class_<RobotMotionCheck>(m, "RobotMotionCheck",
                                "Per motion: free, or the first contact bracketed (see "

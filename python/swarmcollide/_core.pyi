@@ -823,6 +823,10 @@ class RobotCheck:
     """
     Per configuration: the verdict and the nearest pair.
     """
+    def row(self, i: typing.SupportsInt | typing.SupportsIndex) -> tuple[bool, float, float, bool, int, numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64], typing.Any]:
+        """
+        Configuration i's (colliding, min_distance, lower_bound, certified, pair, point_a, point_b, normal, gradient or None), as Python values and (3,) or (dof,) arrays: cheaper than reading every field's array to index it, for a check of one configuration.
+        """
     @property
     def certified(self) -> typing.Annotated[numpy.typing.NDArray[numpy.bool], "[m, 1]"]:
         ...

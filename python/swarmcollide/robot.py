@@ -486,10 +486,10 @@ class Robot:
         raw = self._model.check(self._pair_table, table,
                                 query(method, tolerance=tolerance, seed=seed), threads, gradient,
                                 nearest)
-        values = (raw.colliding, raw.min_distance, raw.lower_bound, raw.certified, raw.pair,
-                  raw.point_a, raw.point_b, raw.normal, raw.gradient if gradient else None)
-        if single:  # a planner's check of one state: its row, read without building more arrays
-            values = tuple(v[0] if v is not None else None for v in values)
+        # A planner's check of one state reads its row alone, without every field's array.
+        values = raw.row(0) if single else (
+            raw.colliding, raw.min_distance, raw.lower_bound, raw.certified, raw.pair,
+            raw.point_a, raw.point_b, raw.normal, raw.gradient if gradient else None)
         colliding, min_distance, lower_bound, certified, pair, point_a, point_b, normal, slope = (
             values)
         return RobotCheck(colliding=colliding, min_distance=min_distance, lower_bound=lower_bound,

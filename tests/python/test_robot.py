@@ -219,6 +219,25 @@ def test_answers_do_not_depend_on_the_threads(arm):
     np.testing.assert_array_equal(arm.distances(q, threads=1), arm.distances(q, threads=2))
 
 
+def test_one_configuration_is_its_row_of_the_batch(arm):
+    # A check of one configuration reads its row alone (RobotCheck.row): the same values.
+    q = random_configurations(arm, 12, seed=5)
+    for kinds in ({"gradient": True}, {"nearest": False}, {}):
+        batch = arm.check(q, **kinds)
+        for i in range(len(q)):
+            one = arm.check(q[i], **kinds)
+            for field in ("colliding", "min_distance", "lower_bound", "certified", "pair",
+                          "pair_names", "point_a", "point_b", "normal", "gradient"):
+                mine, theirs = getattr(one, field), getattr(batch, field)
+                if theirs is None:
+                    assert mine is None
+                    continue
+                np.testing.assert_array_equal(mine, theirs[i])
+                assert np.shape(mine) == np.shape(theirs[i]), field
+    with pytest.raises(IndexError, match="row 1 is not in"):
+        arm.model.check(arm._pair_table, arm.model.admit(q[:1]), sc.query()).row(1)
+
+
 def test_the_gradient_matches_finite_differences_where_the_nearest_pair_is_unique(arm):
     q = random_configurations(arm, 40, seed=3)
     check = arm.check(q, gradient=True)
