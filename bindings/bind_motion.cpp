@@ -25,18 +25,6 @@ namespace {
 
 using RowMatrix4 = Eigen::Matrix<Scalar, 4, 4, Eigen::RowMajor>;
 
-const char* status_name(MotionStatus status) {
-  switch (status) {
-    case MotionStatus::converged:
-      return "converged";
-    case MotionStatus::max_iterations:
-      return "max_iterations";
-    case MotionStatus::unresolved:
-      return "unresolved";
-  }
-  return "unknown";
-}
-
 RowMatrix4 transform(const Pose& pose) {
   RowMatrix4 m = RowMatrix4::Identity();
   m.topLeftCorner<3, 3>() = pose.rotation;

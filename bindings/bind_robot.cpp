@@ -58,12 +58,22 @@ BatchSettings settings_of(const py::object& threads) {
 std::vector<std::string> status_names(const std::vector<MotionStatus>& statuses) {
   std::vector<std::string> names;
   names.reserve(statuses.size());
-  for (MotionStatus status : statuses) {
-    names.emplace_back(status == MotionStatus::converged        ? "converged"
-                       : status == MotionStatus::max_iterations ? "max_iterations"
-                                                                : "unresolved");
-  }
+  for (MotionStatus status : statuses) names.emplace_back(status_name(status));
   return names;
+}
+
+// Row i of an answer's arrays, checked: a single configuration's (or motion's) answer is read as
+// Python values and small arrays, which costs less than reading every field's array to index it.
+Eigen::Index checked_row(Eigen::Index i, Eigen::Index rows) {
+  if (i < 0 || i >= rows) {
+    throw py::index_error("row " + std::to_string(i) + " is not in [0, " + std::to_string(rows) +
+                          ")");
+  }
+  return i;
+}
+
+py::array_t<Scalar> values(const Scalar* first, py::ssize_t count) {
+  return py::array_t<Scalar>(count, first);
 }
 
 }  // namespace
@@ -152,13 +162,7 @@ multiplier, offset : float
       .def(
           "row",
           [](const RobotCheck& check, Eigen::Index i) {
-            if (i < 0 || i >= check.colliding.size()) {
-              throw py::index_error("row " + std::to_string(i) + " is not in [0, " +
-                                    std::to_string(check.colliding.size()) + ")");
-            }
-            const auto values = [](const Scalar* first, py::ssize_t count) {
-              return py::array_t<Scalar>(count, first);
-            };
+            checked_row(i, check.colliding.size());
             const py::object gradient =
                 check.gradient.rows() > i
                     ? py::object(values(check.gradient.row(i).data(), check.gradient.cols()))
@@ -191,7 +195,22 @@ multiplier, offset : float
       .def_readonly("iterations", &RobotMotionCheck::iterations)
       .def_property_readonly(
           "status", [](const RobotMotionCheck& check) { return status_names(check.status); },
-          "Per motion: 'converged', 'max_iterations' or 'unresolved'.");
+          "Per motion: 'converged', 'max_iterations' or 'unresolved'.")
+      .def(
+          "row",
+          [](const RobotMotionCheck& check, Eigen::Index i) {
+            checked_row(i, check.touches.size());
+            return py::make_tuple(
+                bool(check.touches(i)), check.t_lower(i), check.t_upper(i),
+                values(check.configuration.row(i).data(), check.configuration.cols()),
+                check.pair(i), check.distance(i), values(check.point_a.row(i).data(), 3),
+                values(check.point_b.row(i).data(), 3), values(check.normal.row(i).data(), 3),
+                bool(check.certified(i)), check.iterations(i),
+                status_name(check.status[static_cast<std::size_t>(i)]));
+          },
+          py::arg("i"),
+          "Motion i's (touches, t_lower, t_upper, configuration, pair, distance, point_a, "
+          "point_b, normal, certified, iterations, status), as Python values and arrays.");
 
   py::class_<RobotModel, std::shared_ptr<RobotModel>>(m, "RobotModel", R"doc(
 A robot as a plain table of links, joints and geometries: immutable, shared by every thread.

@@ -95,6 +95,18 @@ std::string type_name(const py::handle& object) {
   return std::string(py::str(py::type::handle_of(object).attr("__name__")));
 }
 
+const char* status_name(MotionStatus status) {
+  switch (status) {
+    case MotionStatus::converged:
+      return "converged";
+    case MotionStatus::max_iterations:
+      return "max_iterations";
+    case MotionStatus::unresolved:
+      return "unresolved";
+  }
+  return "unknown";
+}
+
 // A mesh from another library (trimesh's Trimesh or PointCloud: anything with a `vertices`
 // attribute that is not itself an array, a sequence of points or a ConvexPolyhedron) stands for
 // its vertices; their convex hull is the body, as for the points of any array. Its faces are not

@@ -10,6 +10,7 @@
 #include "swarmcollide/geometry/convex_polyhedron.hpp"
 #include "swarmcollide/geometry/pose.hpp"
 #include "swarmcollide/motion/rigid_motion.hpp"
+#include "swarmcollide/motion/time_of_impact.hpp"
 #include "swarmcollide/types.hpp"
 
 namespace swarmcollide::bindings {
@@ -100,5 +101,8 @@ int to_count(const py::handle& value, const char* name, int least);
 
 /// The name of the type of `object`, for messages.
 std::string type_name(const py::handle& object);
+
+/// A motion's status as Python reads it: 'converged', 'max_iterations' or 'unresolved'.
+const char* status_name(MotionStatus status);
 
 }  // namespace swarmcollide::bindings

@@ -944,6 +944,10 @@ class RobotMotionCheck:
     """
     Per motion: free, or the first contact bracketed (see Robot.check_motion).
     """
+    def row(self, i: typing.SupportsInt | typing.SupportsIndex) -> tuple[bool, float, float, numpy.typing.NDArray[numpy.float64], int, float, numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64], bool, int, str]:
+        """
+        Motion i's (touches, t_lower, t_upper, configuration, pair, distance, point_a, point_b, normal, certified, iterations, status), as Python values and arrays.
+        """
     @property
     def certified(self) -> typing.Annotated[numpy.typing.NDArray[numpy.bool], "[m, 1]"]:
         ...

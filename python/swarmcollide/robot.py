@@ -568,16 +568,16 @@ class Robot:
         raw = self._model.check_motion(self._pair_table, start, end,
                                        query(method, tolerance=tolerance, seed=seed),
                                        float(time_tolerance), int(max_iterations), threads)
-        fields: Dict[str, Any] = dict(
-            touches=raw.touches, t_lower=raw.t_lower, t_upper=raw.t_upper, q=raw.configuration,
-            pair=raw.pair, pair_names=self._pair_names[np.asarray(raw.pair)].reshape(-1, 2),
-            distance=raw.distance, point_a=raw.point_a, point_b=raw.point_b, normal=raw.normal,
-            certified=raw.certified, iterations=raw.iterations, status=tuple(raw.status))
-        if single_start and single_end:
-            fields = {k: v[0] for k, v in fields.items()}
-            fields["touches"] = bool(fields["touches"])
-            fields["certified"] = bool(fields["certified"])
-        return RobotMotion(**fields)
+        # One motion (a planner's edge) reads its row alone, without every field's array.
+        values = raw.row(0) if single_start and single_end else (
+            raw.touches, raw.t_lower, raw.t_upper, raw.configuration, raw.pair, raw.distance,
+            raw.point_a, raw.point_b, raw.normal, raw.certified, raw.iterations, tuple(raw.status))
+        (touches, t_lower, t_upper, configuration, pair, distance, point_a, point_b, normal,
+         certified, iterations, status) = values
+        return RobotMotion(touches=touches, t_lower=t_lower, t_upper=t_upper, q=configuration,
+                           pair=pair, pair_names=self._pair_names[pair], distance=distance,
+                           point_a=point_a, point_b=point_b, normal=normal, certified=certified,
+                           iterations=iterations, status=status)
 
     def propose_disabled_pairs(self, samples: int = 1000, *, seed: int = 0,
                                threads: Optional[int] = None) -> PairProposal:

@@ -162,10 +162,15 @@ def test_batches_equal_single_calls_and_threads_do_not_change_answers():
     np.testing.assert_array_equal(one.distance, two.distance)
     assert one.status == two.status
     for i in (0, 13, 29):
+        # A single motion reads its row alone (RobotMotionCheck.row): every field the same.
         row = robot.check_motion(q0[i], q1[i])
-        assert (row.touches, row.t_lower, row.t_upper, row.pair, row.iterations) == (
-            one.touches[i], one.t_lower[i], one.t_upper[i], one.pair[i], one.iterations[i])
-        np.testing.assert_array_equal(row.q, one.q[i])
+        assert (row.touches, row.t_lower, row.t_upper, row.pair, row.iterations, row.certified,
+                row.status) == (one.touches[i], one.t_lower[i], one.t_upper[i], one.pair[i],
+                                one.iterations[i], one.certified[i], one.status[i])
+        assert isinstance(row.touches, bool) and isinstance(row.certified, bool)
+        np.testing.assert_array_equal(row.distance, one.distance[i])
+        for field in ("q", "pair_names", "point_a", "point_b", "normal"):
+            np.testing.assert_array_equal(getattr(row, field), getattr(one, field)[i])
     # One start serves every motion.
     fan = robot.check_motion(q0[0], q1[:5])
     for i in range(5):
