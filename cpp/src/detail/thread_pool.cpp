@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <exception>
 #include <limits>
@@ -28,6 +29,9 @@ std::size_t forks_so_far() {
   return forks.load(std::memory_order_relaxed);
 }
 
+// How long a caller whose chunks are done spins for the workers' last ones before it sleeps.
+constexpr std::chrono::microseconds kSpinBeforeSleeping{50};
+
 }  // namespace
 
 struct ThreadPool::Crew {
@@ -47,7 +51,7 @@ struct ThreadPool::Crew {
   std::size_t count = 0;
   std::size_t chunk = 1;
   std::size_t next = 0;
-  std::size_t busy = 0;
+  std::atomic<std::size_t> busy{0};  // changed under `mutex`; read without it while spinning
   std::size_t generation = 0;
   bool stopping = false;
   std::size_t failed_chunk = 0;
@@ -136,8 +140,14 @@ void ThreadPool::Crew::for_each_chunk(std::size_t items, std::size_t chunk_size,
   }
   wake.notify_all();
   run_chunks();
+  // Every chunk has been taken; wait for those still running on workers. Their last chunks are
+  // short (the callers hand out smaller ones towards the end), and a caller asleep on `done` wakes
+  // tens of microseconds after their notify on this project's VM: it spins a while first.
+  const auto spin_until = std::chrono::steady_clock::now() + kSpinBeforeSleeping;
+  while (busy.load(std::memory_order_acquire) != 0 &&
+         std::chrono::steady_clock::now() < spin_until) {
+  }
   std::unique_lock<std::mutex> lock(mutex);
-  // Every chunk has been taken; wait for those still running on workers.
   done.wait(lock, [&] { return busy == 0 && next >= count; });
   work = nullptr;
   count = 0;

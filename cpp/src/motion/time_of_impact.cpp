@@ -1,6 +1,7 @@
 #include "swarmcollide/motion/time_of_impact.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <exception>
 #include <limits>
@@ -12,6 +13,7 @@
 
 #include "../detail/hardware_threads.hpp"
 #include "../detail/kept_threads.hpp"
+#include "../detail/waking_pace.hpp"
 #include "../detail/number_text.hpp"
 #include "advancement_steps.hpp"
 #include "motion_bound.hpp"
@@ -362,8 +364,15 @@ std::vector<TimeOfImpactResult> solve_many(const BatchBodies<Body>& as,
   const auto pick = [](std::size_t n, std::size_t row) { return n == 1 ? 0 : row; };
   std::vector<TimeOfImpactResult> results(rows);
   std::vector<std::exception_ptr> errors(rows);
-  const auto work = [&](std::size_t first, std::size_t step) {
-    for (std::size_t row = first; row < rows; row += step) {
+  // Rows taken one at a time from a counter; the calling thread answers them alone until the
+  // rows left are worth waking the others for (detail::WakingPace).
+  std::atomic<std::size_t> next{0};
+  const detail::WakingPace pace(rows);
+  const auto work = [&](bool alone) {
+    for (std::size_t answered = 0;; ++answered) {
+      if (alone && pace.worth_waking(answered)) return;
+      const std::size_t row = next.fetch_add(1, std::memory_order_relaxed);
+      if (row >= rows) return;
       try {
         results[row] = Advancement<Body>(as[pick(as.size(), row)],
                                          motions_a[pick(motions_a.size(), row)],
@@ -378,7 +387,10 @@ std::vector<TimeOfImpactResult> solve_many(const BatchBodies<Body>& as,
   std::size_t workers = threads > 0 ? static_cast<std::size_t>(threads)
                                     : detail::hardware_threads();
   workers = std::min(workers, rows);
-  detail::run_copies(workers, [&](std::size_t k) { work(k, workers); });
+  if (workers > 1) work(true);
+  if (next.load(std::memory_order_relaxed) < rows) {
+    detail::run_copies(workers, [&](std::size_t) { work(false); });
+  }
   for (std::size_t row = 0; row < rows; ++row) {
     if (!errors[row]) continue;
     try {

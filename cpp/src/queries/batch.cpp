@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <atomic>
-#include <chrono>
 #include <exception>
 #include <limits>
 #include <mutex>
@@ -15,6 +14,7 @@
 
 #include "../detail/hardware_threads.hpp"
 #include "../detail/kept_threads.hpp"
+#include "../detail/waking_pace.hpp"
 #include "../geometry/framed_body.hpp"
 #include "../geometry/pose_check.hpp"
 #include "ball_screen.hpp"
@@ -422,23 +422,10 @@ class RowOptions {
   std::uint64_t index_;
 };
 
-// The calling thread answers a batch's first rows alone and wakes the other threads only once
-// the rows left, timed by its own rows so far, would take it longer than kWorthWaking: waking a
-// thread that has slept a millisecond or more costs the caller 5-15 us (the futex's interrupt to
-// the other core, through the hypervisor) and that thread starts 15-130 us later (this project's
-// 2-core VM; bench/README, Session 41). With the other threads woken at once (or after 30 us
-// for batches of up to 1,024 rows, the rule before), collide_many of 500-3,000 rows between 2 ms
-// of Python work took 1.2-1.5x as long on 2 threads as on 1.
-constexpr double kWorthWaking = 100e-6;  // seconds
-// The caller's first chunk, before its first estimate: a few rows, so that a batch of costly rows
-// (microseconds each) wakes the others after those, not after a cache line of rows.
+// The caller's first chunk, before its first estimate of the rows left (WakingPace): a few rows,
+// so that a batch of costly rows (microseconds each) wakes the others after those, not after a
+// cache line of rows.
 constexpr std::size_t kFirstRows = 8;
-
-// True when the rows left, at the pace of the `answered` rows that took `elapsed` seconds, would
-// take longer than kWorthWaking.
-bool worth_waking(double elapsed, std::size_t answered, std::size_t left) {
-  return elapsed * static_cast<double>(left) > kWorthWaking * static_cast<double>(answered);
-}
 
 // Runs `answer(i, options_i, poses_i)` (RowPoses), which writes row i of the batch, for every
 // pair, where options_i are the validated options to be seeded for pair i (RowOptions) and
@@ -469,8 +456,8 @@ BatchResult run_batch(Kind kind, std::size_t count, const QueryOptions& options,
   const std::thread::id caller = std::this_thread::get_id();
   std::atomic<std::size_t> homes{1};
   // `alone`: the calling thread answers rows up to a cache line at a time, before any other
-  // thread is woken, until the rows are done or worth waking the others for (kWorthWaking).
-  const auto start = std::chrono::steady_clock::now();
+  // thread is woken, until the rows are done or worth waking the others for (WakingPace).
+  const detail::WakingPace pace(count);
   const auto work = [&](bool alone) {
     const std::size_t home = std::this_thread::get_id() == caller
                                  ? 0
@@ -518,8 +505,7 @@ BatchResult run_batch(Kind kind, std::size_t count, const QueryOptions& options,
       }
       if (alone) {
         answered += chunk.end - chunk.start;
-        const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - start;
-        if (worth_waking(elapsed.count(), answered, count - answered)) break;
+        if (pace.worth_waking(answered)) break;
       }
     }
   };
