@@ -11,6 +11,8 @@
 #include <memory>
 #include <mutex>
 #include <set>
+#include <stdexcept>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -38,6 +40,47 @@ TEST(ThreadPool, EveryItemOnceInChunks) {
   for (const std::size_t count : {1, 7, 64, 1000}) {
     EXPECT_TRUE(every_item_once(pool, count, 3)) << count << " items";
   }
+}
+
+// The paced form (a scene's frames): every item once, chunks on their boundaries, the lowest
+// failing chunk's error rethrown after every chunk ran, and a long job shared with the workers.
+TEST(ThreadPool, ThePacedFormAnswersEveryItemOnceAndSharesALongJob) {
+  ThreadPool pool(2);
+  for (const std::size_t count : {1, 7, 64, 1000}) {
+    std::vector<std::atomic<int>> runs(count);
+    std::atomic<bool> aligned{true};
+    pool.for_each_chunk_paced(count, 3, [&](std::size_t begin, std::size_t end) {
+      if (begin % 3 != 0) aligned = false;
+      for (std::size_t k = begin; k < end; ++k) runs[k].fetch_add(1);
+    });
+    for (std::size_t k = 0; k < count; ++k) EXPECT_EQ(runs[k].load(), 1) << k << " of " << count;
+    EXPECT_TRUE(aligned) << count;
+  }
+  std::vector<std::atomic<int>> runs(600);
+  try {
+    pool.for_each_chunk_paced(runs.size(), 1, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t k = begin; k < end; ++k) {
+        runs[k].fetch_add(1);
+        if (k == 3 || k == 500) throw std::runtime_error("item " + std::to_string(k));
+      }
+    });
+    ADD_FAILURE() << "no error rethrown";
+  } catch (const std::runtime_error& e) {
+    EXPECT_STREQ(e.what(), "item 3");
+  }
+  for (const auto& run : runs) EXPECT_EQ(run.load(), 1);
+  // Items of 100 us: the caller's pace says the rest is worth waking the worker for, which takes
+  // some of them (within a few jobs: on a loaded machine it may start after the caller is done).
+  std::mutex mutex;
+  std::set<std::thread::id> threads;
+  for (int attempt = 0; attempt < 50 && threads.size() < 2; ++attempt) {
+    pool.for_each_chunk_paced(40, 1, [&](std::size_t, std::size_t) {
+      std::this_thread::sleep_for(std::chrono::microseconds(100));
+      const std::lock_guard<std::mutex> lock(mutex);
+      threads.insert(std::this_thread::get_id());
+    });
+  }
+  EXPECT_EQ(threads.size(), static_cast<std::size_t>(pool.size()));
 }
 
 // Runs `child_work` in a forked child with 10 s to finish: a hang becomes SIGALRM, a failure.

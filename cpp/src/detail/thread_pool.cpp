@@ -13,6 +13,8 @@
 #include <thread>
 #include <vector>
 
+#include "waking_pace.hpp"
+
 namespace swarmcollide::detail {
 
 namespace {
@@ -186,6 +188,34 @@ ThreadPool::Crew& ThreadPool::crew() {
 void ThreadPool::for_each_chunk(std::size_t count, std::size_t chunk,
                                 const std::function<void(std::size_t, std::size_t)>& work) {
   crew().for_each_chunk(count, chunk, work);
+}
+
+void ThreadPool::for_each_chunk_paced(std::size_t count, std::size_t chunk,
+                                      const std::function<void(std::size_t, std::size_t)>& work) {
+  chunk = std::max<std::size_t>(chunk, 1);
+  std::size_t done = 0;  // a whole number of chunks, so that the rest keep their boundaries
+  std::exception_ptr failure;  // the first (lowest) chunk's that failed alone
+  if (size() > 1) {
+    const WakingPace pace(count);
+    while (done < count && !pace.worth_waking(done)) {
+      const std::size_t end = std::min(count, done + chunk);
+      try {
+        work(done, end);
+      } catch (...) {
+        if (!failure) failure = std::current_exception();
+      }
+      done = end;
+    }
+  }
+  if (done < count) {
+    try {
+      for_each_chunk(count - done, chunk,
+                     [&](std::size_t begin, std::size_t end) { work(done + begin, done + end); });
+    } catch (...) {
+      if (!failure) throw;
+    }
+  }
+  if (failure) std::rethrow_exception(failure);
 }
 
 }  // namespace swarmcollide::detail

@@ -183,7 +183,7 @@ void Scene::Impl::answer(const PairQuestion& asked) {
   }
   // A single-threaded pool takes all the pairs at once; they are still answered a chunk at a
   // time.
-  pool.for_each_chunk(n, kChunk, [&](std::size_t first, std::size_t last) {
+  pool.for_each_chunk_paced(n, kChunk, [&](std::size_t first, std::size_t last) {
     for (std::size_t begin = first; begin < last; begin += kChunk) {
       answer_chunk(question, begin, std::min(last, begin + kChunk));
     }

@@ -144,7 +144,7 @@ SceneResult Scene::Impl::nearest(const std::vector<BodyId>& ids, int k) {
     answers.resize(candidates.size());
     scratch.assign(candidates.size(), PairProof{});
     const QueryOptions& base = options.query;
-    pool.for_each_chunk(candidates.size(), kChunk, [&](std::size_t begin, std::size_t end) {
+    pool.for_each_chunk_paced(candidates.size(), kChunk, [&](std::size_t begin, std::size_t end) {
       QueryOptions pair_options = base;
       PairQuestion q = question;
       for (std::size_t i = begin; i < end; ++i) {

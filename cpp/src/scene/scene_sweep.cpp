@@ -200,7 +200,7 @@ SweepResult Scene::sweep(const std::vector<BodyId>& ids, const std::vector<Pose>
                               : RigidMotion(b.pose, b.pose, sweep_options.motion);
   };
   std::vector<TimeOfImpactResult> results(pairs.size());
-  s.pool.for_each_chunk(pairs.size(), 1, [&](std::size_t begin, std::size_t end) {
+  s.pool.for_each_chunk_paced(pairs.size(), 1, [&](std::size_t begin, std::size_t end) {
     for (std::size_t k = begin; k < end; ++k) {
       const SweptPair& pair = pairs[k];
       TimeOfImpactOptions pair_options = options;
