@@ -8,7 +8,9 @@ detail/waking_pace.hpp and bench/README, Session 41).
 Cases: ``collide_many`` and ``distance_many`` of one 8-point body against another at m poses
 (apart: centres 2.4 apart, unit-sphere points), ``Robot.check`` of m configurations of pybullet's
 Franka Panda (needs ``pybullet`` from the bench extra; with and without ``nearest``), and
-``time_of_impact_many`` of m translations of an 8-point body past another. Prints, per case, the
+``time_of_impact_many`` of m translations of an 8-point body past another, and a frame of
+``Scene.colliding_pairs`` and ``Scene.contacts`` on scenes of 20-2,000 bodies (each moved a little
+before the query; the frame's time includes ``set_poses``). Prints, per case, the
 median time per call on 1 thread and on the default threads, in interleaved rounds, and their
 ratio (the default's gain: above 1 when it is faster).
 
@@ -60,6 +62,8 @@ def cases(sizes: List[int]) -> Dict[str, Callable[[object], object]]:
         found[f"time_of_impact_many m={m}"] = (
             lambda threads, motions=(starts, ends): sc.time_of_impact_many(
                 body, body, poses_b=motions, threads=threads))
+    for n, spread in ((20, 3.0), (100, 6.0), (400, 10.0), (2000, 18.0)):
+        found.update(scene_cases(n, spread, points))
     try:
         import pybullet_data
     except ImportError:
@@ -75,6 +79,28 @@ def cases(sizes: List[int]) -> Dict[str, Callable[[object], object]]:
                 lambda threads, rows=q[:m], nearest=nearest: robot.check(
                     rows, threads=threads, nearest=nearest))
     return found
+
+
+def scene_cases(n: int, spread: float, points: np.ndarray) -> Dict[str, Callable[[object], object]]:
+    """A frame of a scene of n bodies (each body moved a little, then the query), one scene per
+    thread count so that each keeps its own warm starts."""
+    rng = np.random.default_rng(n)
+    centres = rng.uniform(-spread, spread, size=(n, 3))
+    scenes = {}
+    for threads in (1, None):
+        scene = sc.Scene(threads=threads)
+        ids = np.concatenate([scene.add(points, np.eye(4)) for _ in range(n)])
+        scenes[threads] = (scene, ids)
+
+    def frame(threads: object, query: str) -> object:
+        scene, ids = scenes[threads]
+        poses = np.repeat(np.eye(4)[None], n, axis=0)
+        poses[:, :3, 3] = centres + 0.05 * rng.normal(size=(n, 3))
+        scene.set_poses(ids, poses)
+        return getattr(scene, query)()
+
+    return {f"Scene.{query} n={n}": (lambda threads, query=query: frame(threads, query))
+            for query in ("colliding_pairs", "contacts")}
 
 
 def main() -> int:
