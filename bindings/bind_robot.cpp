@@ -62,16 +62,17 @@ std::vector<std::string> status_names(const std::vector<MotionStatus>& statuses)
   return names;
 }
 
-// Row i of an answer's arrays, checked: a single configuration's (or motion's) answer is read as
-// Python values and small arrays, which costs less than reading every field's array to index it.
-Eigen::Index checked_row(Eigen::Index i, Eigen::Index rows) {
+// An IndexError unless row i is one of `rows`. A single configuration's (or motion's) answer is
+// read by row, as Python values and small arrays: cheaper than reading every field's array to
+// index it.
+void check_row(Eigen::Index i, Eigen::Index rows) {
   if (i < 0 || i >= rows) {
     throw py::index_error("row " + std::to_string(i) + " is not in [0, " + std::to_string(rows) +
                           ")");
   }
-  return i;
 }
 
+// `count` values from `first`, copied into a new array.
 py::array_t<Scalar> values(const Scalar* first, py::ssize_t count) {
   return py::array_t<Scalar>(count, first);
 }
@@ -162,7 +163,7 @@ multiplier, offset : float
       .def(
           "row",
           [](const RobotCheck& check, Eigen::Index i) {
-            checked_row(i, check.colliding.size());
+            check_row(i, check.colliding.size());
             const py::object gradient =
                 check.gradient.rows() > i
                     ? py::object(values(check.gradient.row(i).data(), check.gradient.cols()))
@@ -199,7 +200,7 @@ multiplier, offset : float
       .def(
           "row",
           [](const RobotMotionCheck& check, Eigen::Index i) {
-            checked_row(i, check.touches.size());
+            check_row(i, check.touches.size());
             return py::make_tuple(
                 bool(check.touches(i)), check.t_lower(i), check.t_upper(i),
                 values(check.configuration.row(i).data(), check.configuration.cols()),

@@ -13,8 +13,8 @@
 
 #include "../detail/hardware_threads.hpp"
 #include "../detail/kept_threads.hpp"
-#include "../detail/waking_pace.hpp"
 #include "../detail/number_text.hpp"
+#include "../detail/waking_pace.hpp"
 #include "advancement_steps.hpp"
 #include "motion_bound.hpp"
 #include "swarmcollide/queries/methods.hpp"
