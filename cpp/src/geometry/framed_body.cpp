@@ -40,8 +40,8 @@ inline Vector3 world_centre(const ConvexPolyhedron& body, const Pose& pose, bool
   return centre;
 }
 
-// A curved body's support error in a frame of exponent `exponent` (FramedBody::support_error),
-// for unit directions: SupportFunction's bound on the outer radius, which bounds.radius holds.
+// A curved body's support error in a frame of exponent `exponent` (its share of
+// FramedPair::support_error), for unit directions: SupportFunction's bound on the outer radius, which bounds.radius holds.
 Scalar curved_support_error(const ConvexPolyhedron& body, int exponent) {
   if (!body.curved()) return 0;
   return body.curved()->support_error_roundoffs() * kRoundoff *
@@ -75,7 +75,6 @@ CurvedKind curved_kind(const SupportFunction& shape) {
       [&body] { return SupportCache::sealed(body.centred_vertices()); });
   found_ = other.size() == 1 ? SharedSupportCache::reading(start) : SharedSupportCache(start);
   vertices_ = &found_->points();
-  support_error_ = curved_support_error(body, exponent_);
 }
 
 // start_support_points for KeptPair::frame, out of line: inlined into it (as place is), its
@@ -194,7 +193,6 @@ FramedBody::FramedBody(const FramedBody& body)
       scale_low_(body.scale_low_),
       curved_(body.curved_),
       found_(body.found_),
-      support_error_(body.support_error_),
       columns_(body.columns_) {}
 
 FramedBody::FramedBody(const VertexMatrix& points, const Hull& hull)
