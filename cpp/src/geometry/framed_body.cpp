@@ -50,7 +50,7 @@ Scalar curved_support_error(const ConvexPolyhedron& body, int exponent) {
 
 // The exact type of `shape` among curved_supports.hpp's (a typeid comparison per kind, once per
 // framed body).
-CurvedKind curved_kind(const SupportFunction& shape) {
+CurvedKind exact_kind(const SupportFunction& shape) {
   const std::type_info& type = typeid(shape);
   if (type == typeid(CylinderSupport)) return CurvedKind::cylinder;
   if (type == typeid(EllipsoidSupport)) return CurvedKind::ellipsoid;
@@ -136,7 +136,7 @@ CurvedKind curved_kind(const SupportFunction& shape) {
   }
   if (const SupportFunction* shape = body.curved()) {
     curved_ = shape;
-    curved_kind_ = curved_kind(*shape);
+    curved_kind_ = exact_kind(*shape);
     hull_ = nullptr;
     given_ = nullptr;
   } else if (vertices_ == &body.centred_vertices()) {

@@ -171,15 +171,13 @@ class FramedBody {
     if (curved_ || size() <= kHillClimbingThreshold) return local_support_index(local);
     return climb_support(*vertices_, hull(), local, start);
   }
-  /// The point `vertex(local_support_index(local))` of a curved body (`local` a direction in its
-  /// own frame), the same coordinates, without numbering it among the body's points: for a closed
-  /// form that reports no weights over the shape (point_against_curved).
-  Vector3 curved_support_point(const Vector3& local) const {
-    return placed(curved_local_support(local));
-  }
-  /// That point in the body's own frame, centred on its box, before it is placed: the
-  /// coordinates the body's points would hold (-0 as +0).
+  /// The point `local_points().row(local_support_index(local))` of a curved body (`local` a
+  /// direction in its own frame), the same coordinates (-0 as +0), without numbering it among the
+  /// body's points: for a closed form that reports no weights over the shape
+  /// (point_against_curved).
   Vector3 curved_local_support(const Vector3& local) const;
+  /// The exact type of a curved body's support function (CurvedKind::other for a polyhedron).
+  CurvedKind curved_kind() const { return curved_kind_; }
   /// A point of the body's own frame, centred on its box, placed in the frame as `vertex()`
   /// places the body's points.
   Vector3 placed_point(const Vector3& centred) const { return placed(centred); }

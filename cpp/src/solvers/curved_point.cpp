@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "../geometry/curved_depth.hpp"
+#include "../geometry/curved_supports.hpp"
 #include "../geometry/normalise.hpp"
 #include "../queries/verdict.hpp"
 #include "exact_solver.hpp"
@@ -220,6 +221,36 @@ Scalar support_value(CurvedShapeParameters::Kind kind, Scalar r, Scalar h, const
   return radii.cwiseProduct(l).norm();
 }
 
+// The kind and dimensions of a shape of curved_supports.hpp, read from its exact type (as
+// CurvedShapeParameters holds them): the virtual parameters() built the whole struct, its pose
+// too, some 20 instructions of a ball-cylinder query. False for any other support function (a
+// shape placed in its body's frame), which the searches answer.
+bool dimensions(const FramedBody& shape, CurvedShapeParameters& out) {
+  const SupportFunction* support = shape.body().curved();
+  switch (shape.curved_kind()) {
+    case CurvedKind::cylinder: {
+      const auto* cylinder = static_cast<const CylinderSupport*>(support);
+      out.kind = CurvedShapeParameters::Kind::cylinder;
+      out.radius = cylinder->radius();
+      out.half_length = cylinder->half_length();
+      return true;
+    }
+    case CurvedKind::cone: {
+      const auto* cone = static_cast<const ConeSupport*>(support);
+      out.kind = CurvedShapeParameters::Kind::cone;
+      out.radius = cone->radius();
+      out.half_length = cone->half_length();
+      return true;
+    }
+    case CurvedKind::ellipsoid:
+      out.kind = CurvedShapeParameters::Kind::ellipsoid;
+      out.radii = static_cast<const EllipsoidSupport*>(support)->radii();
+      return true;
+    default:
+      return false;
+  }
+}
+
 }  // namespace
 
 bool point_against_curved(const FramedPair& pair, Goal goal, int max_iterations, Answer& answer) {
@@ -227,8 +258,8 @@ bool point_against_curved(const FramedPair& pair, Goal goal, int max_iterations,
   const bool curved_a = pair.a.curved();
   const FramedBody& shape = curved_a ? pair.a : pair.b;
   const FramedBody& point = curved_a ? pair.b : pair.a;
-  const CurvedShapeParameters parameters = shape.body().curved()->parameters();
-  if (parameters.placed) return false;
+  CurvedShapeParameters parameters;
+  if (!dimensions(shape, parameters)) return false;
   // The point in the shape's own frame (centred on its box: the shape's origin for these), and
   // the shape, in units of its extent's power of two, so that no square in the closed forms
   // under- or overflows.
