@@ -283,20 +283,12 @@ bool point_against_curved(const FramedPair& pair, Goal goal, int max_iterations,
       times_power_of_two(shape.local_direction(p - shape.offset()), shape.exponent() - unit);
   const Scalar r = times_power_of_two(parameters.radius, -unit);
   const Scalar h = times_power_of_two(parameters.half_length, -unit);
-  Vector3 radii = Vector3::Zero();
-  Nearest nearest;
-  switch (parameters.kind) {
-    case CurvedShapeParameters::Kind::cylinder:
-      nearest = cylinder_nearest(local, r, h);
-      break;
-    case CurvedShapeParameters::Kind::cone:
-      nearest = cone_nearest(local, r, h);
-      break;
-    case CurvedShapeParameters::Kind::ellipsoid:
-      for (int k = 0; k < 3; ++k) radii(k) = times_power_of_two(parameters.radii(k), -unit);
-      nearest = ellipsoid_nearest(local, radii);
-      break;
-  }
+  const Vector3 radii = ellipsoid ? times_power_of_two(parameters.radii, -unit) : Vector3::Zero();
+  // Made in place (a Nearest default-made and assigned was stored twice).
+  const Nearest nearest =
+      parameters.kind == CurvedShapeParameters::Kind::cylinder ? cylinder_nearest(local, r, h)
+      : parameters.kind == CurvedShapeParameters::Kind::cone   ? cone_nearest(local, r, h)
+                                                               : ellipsoid_nearest(local, radii);
   // A point inside is answered for a signed distance only (the searches prove an overlap for the
   // other goals): by the penetration solver, where no closed form below settles it.
   if (nearest.inside && goal != Goal::signed_distance) return false;
