@@ -16,19 +16,21 @@ namespace swarmcollide::detail {
 namespace {
 
 // How the support point along Nearest::second follows from the one along `first`, exactly, by a
-// symmetry of the support function (curved_supports.hpp): none, the same point with its height
-// negated (a cylinder's rim points above each other: the support reads only the sign of d_z), or
-// with its x and y negated (rim points across a cap or a cone's base: unit_in_plane and
-// unit_scaled see the same magnitudes, each quotient and product only changes sign, and a cone's
-// comparison of apex and rim reads the same numbers).
-enum class Mirror { none, height, across };
+// symmetry of the support function (curved_supports.hpp): none, or the same point with its x and
+// y negated (rim points across a cone's base: unit_in_plane and unit_scaled see the same
+// magnitudes, each quotient and product only changes sign, and the comparison of apex and rim
+// reads the same numbers).
+enum class Mirror { none, across };
 
 // What the closed form chooses, in the shape's own frame: the outward normal at the nearest
-// surface point, and that point as `weight` of the support point along `first` and `1 - weight`
-// of the one along `second` (both points of the shape, with kInward's pull).
+// surface point, and that point either as `point` itself (`direct`: a cylinder's, in the closed
+// form's units and pulled inside the shape) or as `weight` of the support point along `first`
+// and `1 - weight` of the one along `second` (both points of the shape, with kInward's pull).
 struct Nearest {
   bool inside = false;
   Vector3 normal = Vector3::Zero();
+  bool direct = false;
+  Vector3 point = Vector3::Zero();
   Vector3 first = Vector3::Zero();
   Vector3 second = Vector3::Zero();
   Mirror mirror = Mirror::none;
@@ -39,14 +41,8 @@ struct Nearest {
 // `nearest.first`: mirrored when a symmetry gives it (the same coordinates as the support's, with
 // -0 as +0 as the shape's points store them: a support call fewer), else asked.
 Vector3 second_support(const FramedBody& shape, const Nearest& nearest, const Vector3& first) {
-  switch (nearest.mirror) {
-    case Mirror::height:
-      return {first.x(), first.y(), -first.z() + 0};
-    case Mirror::across:
-      return {-first.x() + 0, -first.y() + 0, first.z()};
-    default:
-      return shape.curved_local_support(nearest.second);
-  }
+  if (nearest.mirror == Mirror::across) return {-first.x() + 0, -first.y() + 0, first.z()};
+  return shape.curved_local_support(nearest.second);
 }
 
 // The unit vector along (x, y) in the plane, or the x axis on the z axis (every azimuth is as
@@ -75,9 +71,13 @@ Vector3 away_from(const Vector3& p, const Vector3& q) {
 }
 
 // A cylinder of radius r from z = -h to h: beside its side, the point at the same height on the
-// generator (between the two rim points of the point's azimuth); above or below a cap, the point
-// straight above on it (between the rim points along and against the azimuth); past a rim, the
-// rim point. Inside, the nearer of the generator's point and the cap's.
+// generator; above or below a cap, the point straight above on it; past a rim, the rim point.
+// Inside, the nearer of the generator's point and the cap's. The point is given directly, its
+// distance from the axis pulled in by kInward (the unit azimuth is within 3 roundoffs of length 1,
+// the rounded rho within one of the exact, so r |u| kInward and rho kInward stay below r; the
+// height is p_z or +-h, on the cylinder's height): the combination of two support points placed
+// in the frame that this replaced (the rim points above and below, or across the cap) is the same
+// point in exact arithmetic, and cost a support call and two placements more.
 Nearest cylinder_nearest(const Vector3& p, Scalar r, Scalar h) {
   Nearest n;
   Scalar ux, uy, rho;
@@ -86,21 +86,16 @@ Nearest cylinder_nearest(const Vector3& p, Scalar r, Scalar h) {
   const bool side = n.inside ? r - rho <= h - std::abs(p.z()) : rho > r;
   const bool beyond_cap = n.inside ? !side : std::abs(p.z()) > h;
   const Scalar s = p.z() < 0 ? -1 : 1;
+  n.direct = true;
   if (side && !beyond_cap) {
     n.normal = {ux, uy, 0};
-    n.first = {ux, uy, 1};
-    n.second = {ux, uy, -1};
-    n.mirror = Mirror::height;
-    n.weight = std::clamp((p.z() + h) / (2 * h), Scalar(0), Scalar(1));
+    n.point = {r * ux * kInward, r * uy * kInward, p.z()};
   } else if (!side) {
     n.normal = {0, 0, s};
-    n.first = {ux, uy, s};
-    n.second = {-ux, -uy, s};
-    n.mirror = Mirror::across;
-    n.weight = std::clamp((1 + rho / r) / 2, Scalar(0), Scalar(1));
+    n.point = {p.x() * kInward, p.y() * kInward, s * h};
   } else {
     n.normal = away_from(p, Vector3(r * ux, r * uy, s * h));
-    n.first = {ux, uy, s};
+    n.point = {r * ux * kInward, r * uy * kInward, s * h};
   }
   return n;
 }
@@ -251,18 +246,6 @@ bool dimensions(const FramedBody& shape, CurvedShapeParameters& out) {
   }
 }
 
-// The support point along `first`, a direction in the shape's own frame, as
-// FramedBody::curved_local_support gives it (the same coordinates, -0 as +0): a cylinder's inline,
-// without the test of a finite direction (cylinder_nearest's `first` is finite wherever its normal
-// is, and point_against_curved asks for it only then), 47 instructions fewer than the call;
-// a cone's and an ellipsoid's through the call.
-Vector3 first_support(const FramedBody& shape, CurvedShapeParameters::Kind kind,
-                      const Vector3& first) {
-  if (kind != CurvedShapeParameters::Kind::cylinder) return shape.curved_local_support(first);
-  const auto* cylinder = static_cast<const CylinderSupport*>(shape.body().curved());
-  return cylinder->finite_support(first) + Vector3::Zero();
-}
-
 }  // namespace
 
 bool point_against_curved(const FramedPair& pair, Goal goal, int max_iterations, Answer& answer) {
@@ -299,15 +282,17 @@ bool point_against_curved(const FramedPair& pair, Goal goal, int max_iterations,
     return true;
   };
   if (!(nearest.normal.squaredNorm() > 0)) return nearest.inside && penetration();
-  // The witness on the shape: the combination of its support points, found without numbering
-  // them among the shape's points (weights over a curved body's points are never reported, so
-  // the shape's side has none). The point's weights are those of each support point.
-  const Vector3 first_local = first_support(shape, parameters.kind, nearest.first);
-  const Vector3 first = shape.placed_point(first_local);
-  Vector3 witness = first;
+  // The witness on the shape: the nearest point itself (a cylinder's, from the closed form's
+  // units to the shape's own), or the combination of its support points, found without numbering
+  // them among the shape's points (weights over a curved body's points are never reported, so the
+  // shape's side has none). The point's weights are those of each support point.
   std::array<Scalar, ConvexWeights::kSparseCapacity> weights{1, 0, 0, 0};
   int size = 1;
-  if (nearest.weight < 1) {
+  const Vector3 first_local = nearest.direct ? times_power_of_two(nearest.point, unit)
+                                             : shape.curved_local_support(nearest.first);
+  const Vector3 first = shape.placed_point(first_local);
+  Vector3 witness = first;
+  if (!nearest.direct && nearest.weight < 1) {
     const Vector3 second = shape.placed_point(second_support(shape, nearest, first_local));
     if (second != first) {
       weights = {nearest.weight, 1 - nearest.weight, 0, 0};
