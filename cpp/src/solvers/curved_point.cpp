@@ -282,22 +282,28 @@ bool point_against_curved(const FramedPair& pair, Goal goal, int max_iterations,
     return true;
   };
   if (!(nearest.normal.squaredNorm() > 0)) return nearest.inside && penetration();
-  // The witness on the shape: the nearest point itself (a cylinder's, from the closed form's
-  // units to the shape's own), or the combination of its support points, found without numbering
-  // them among the shape's points (weights over a curved body's points are never reported, so the
-  // shape's side has none). The point's weights are those of each support point.
+  // The witness on the shape: the nearest point itself (a cylinder's: from the closed form's units
+  // to the frame's at once, both powers of two, then turned and moved as FramedBody::placed_point
+  // does), or the combination of its support points, found without numbering them among the
+  // shape's points (weights over a curved body's points are never reported, so the shape's side
+  // has none). The point's weights are those of each support point.
   std::array<Scalar, ConvexWeights::kSparseCapacity> weights{1, 0, 0, 0};
   int size = 1;
-  const Vector3 first_local = nearest.direct ? times_power_of_two(nearest.point, unit)
-                                             : shape.curved_local_support(nearest.first);
-  const Vector3 first = shape.placed_point(first_local);
-  Vector3 witness = first;
-  if (!nearest.direct && nearest.weight < 1) {
-    const Vector3 second = shape.placed_point(second_support(shape, nearest, first_local));
-    if (second != first) {
-      weights = {nearest.weight, 1 - nearest.weight, 0, 0};
-      size = 2;
-      witness = nearest.weight * witness + (1 - nearest.weight) * second;
+  Vector3 witness;
+  if (nearest.direct) {
+    const Vector3 scaled = times_power_of_two(nearest.point, unit - shape.exponent());
+    witness = shape.rotated() ? Vector3(shape.rotation() * scaled + shape.offset())
+                              : Vector3(scaled + shape.offset());
+  } else {
+    const Vector3 first_local = shape.curved_local_support(nearest.first);
+    witness = shape.placed_point(first_local);
+    if (nearest.weight < 1) {
+      const Vector3 second = shape.placed_point(second_support(shape, nearest, first_local));
+      if (second != witness) {
+        weights = {nearest.weight, 1 - nearest.weight, 0, 0};
+        size = 2;
+        witness = nearest.weight * witness + (1 - nearest.weight) * second;
+      }
     }
   }
   answer.point_a = curved_a ? witness : p;
