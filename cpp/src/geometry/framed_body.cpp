@@ -42,11 +42,10 @@ inline Vector3 world_centre(const ConvexPolyhedron& body, const Pose& pose, bool
 
 // A curved body's support error in a frame of exponent `exponent` (its share of
 // FramedPair::support_error), for unit directions: SupportFunction's bound on the outer radius,
-// which bounds.radius holds.
+// which bounds.radius holds (0 for a polyhedron, whose factor is 0 and radius finite).
 Scalar curved_support_error(const ConvexPolyhedron& body, int exponent) {
-  if (!body.curved()) return 0;
-  return body.curved()->support_error_roundoffs() * kRoundoff *
-         times_power_of_two(body.bounds().radius, -exponent) * (1 + 16 * kRoundoff);
+  return body.support_error_per_radius() * times_power_of_two(body.bounds().radius, -exponent) *
+         (1 + 16 * kRoundoff);
 }
 
 // The exact type of `shape` among curved_supports.hpp's (a typeid comparison per kind: where the
