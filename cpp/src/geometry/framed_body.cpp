@@ -48,8 +48,8 @@ Scalar curved_support_error(const ConvexPolyhedron& body, int exponent) {
          (1 + 16 * kRoundoff);
 }
 
-// The exact type of `shape` among curved_supports.hpp's (a typeid comparison per kind: where the
-// types differ, a comparison of their names' strings).
+// The exact type of `shape` among curved_supports.hpp's (a typeid comparison per kind, once per
+// framed body).
 CurvedKind exact_kind(const SupportFunction& shape) {
   const std::type_info& type = typeid(shape);
   if (type == typeid(CylinderSupport)) return CurvedKind::cylinder;
@@ -58,34 +58,22 @@ CurvedKind exact_kind(const SupportFunction& shape) {
   return CurvedKind::other;
 }
 
-// What a curved body's framing starts from, made once per body (its derived data): the cache of
-// its own points, sealed, and its support function's exact type, which was found at every
-// framing (14 instructions of a cylinder's, two string comparisons more for a cone's or an
-// ellipsoid's).
-struct CurvedStart {
-  SupportCache points;
-  CurvedKind kind;
-};
-
 }  // namespace
 
 // Inline in a pair's framing (the FramedBody constructor): called, it made the curved searches'
 // queries 17-23 instructions longer.
 [[gnu::always_inline]] inline void FramedBody::start_support_points(
     const ConvexPolyhedron& other) {
-  // The cache of the body's own points (and the support function's type) is made once per body
-  // and copied: hashing them again was most of what framing a curved body cost. Against a single point (a ball's core) a
+  // The cache of the body's own points is made once per body and copied: hashing them again
+  // was most of what framing a curved body cost. Against a single point (a ball's core) a
   // closed form answers from the support function alone (point_against_curved): the body
   // reads its own points, and takes a copy at its first new support point only
   // (add_to_own_cache). Against any other body a search finds new points at once, and the
   // copy is taken here, where taking it cost the searches 30-50 instructions fewer a body.
   const ConvexPolyhedron& body = *body_;
-  const CurvedStart& start = body.derived<CurvedStart>([&body] {
-    return CurvedStart{SupportCache::sealed(body.centred_vertices()), exact_kind(*body.curved())};
-  });
-  curved_kind_ = start.kind;
-  found_ = other.size() == 1 ? SharedSupportCache::reading(start.points)
-                             : SharedSupportCache(start.points);
+  const SupportCache& start = body.derived<SupportCache>(
+      [&body] { return SupportCache::sealed(body.centred_vertices()); });
+  found_ = other.size() == 1 ? SharedSupportCache::reading(start) : SharedSupportCache(start);
   vertices_ = &found_->points();
 }
 
@@ -148,6 +136,7 @@ struct CurvedStart {
   }
   if (const SupportFunction* shape = body.curved()) {
     curved_ = shape;
+    curved_kind_ = exact_kind(*shape);
     hull_ = nullptr;
     given_ = nullptr;
   } else if (vertices_ == &body.centred_vertices()) {
