@@ -74,7 +74,7 @@ Vector3 away_from(const Vector3& p, const Vector3& q) {
 // generator; above or below a cap, the point straight above on it; past a rim, the rim point.
 // Inside, the nearer of the generator's point and the cap's. The point is given directly, its
 // distance from the axis pulled in by kInward (the unit azimuth is within 3 roundoffs of length 1,
-// the rounded rho within one of the exact, so r |u| kInward and rho kInward stay below r; the
+// the rounded rho within two of the exact, so r |u| kInward and rho kInward stay below r; the
 // height is p_z or +-h, on the cylinder's height): the combination of two support points placed
 // in the frame that this replaced (the rim points above and below, or across the cap) is the same
 // point in exact arithmetic, and cost a support call and two placements more.
