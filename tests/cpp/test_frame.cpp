@@ -514,7 +514,7 @@ void expect_same_framing(const detail::FramedPair& kept, const detail::FramedPai
     EXPECT_EQ(k->rotated(), f->rotated());
     EXPECT_EQ(k->offset(), f->offset());
     EXPECT_EQ(k->exponent(), f->exponent());
-    EXPECT_EQ(k->support_error(), f->support_error());
+    EXPECT_EQ(k->curved_kind(), f->curved_kind());
     EXPECT_EQ(k->scan_shortfall(), f->scan_shortfall());
     ASSERT_EQ(k->size(), f->size());
     for (int i = 0; i < k->size(); ++i) EXPECT_EQ(k->vertex(i), f->vertex(i));

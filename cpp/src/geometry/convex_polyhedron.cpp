@@ -154,6 +154,7 @@ ConvexPolyhedron::ConvexPolyhedron(VertexMatrix points, Scalar radius,
                                    std::shared_ptr<const SupportFunction> shape)
     : ConvexPolyhedron(std::move(points), radius) {
   curved_ = std::move(shape);
+  support_error_per_radius_ = curved_->support_error_roundoffs() * detail::kRoundoff;
   // The points' box is the shape's, but their ball is not: the shape's outer radius bounds it.
   const Scalar huge = std::numeric_limits<Scalar>::infinity();
   bounds_.radius =

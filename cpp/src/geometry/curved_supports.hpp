@@ -128,6 +128,10 @@ class CylinderSupport final : public SupportFunction {
   CurvedShapeParameters parameters() const override {
     return shape_parameters(CurvedShapeParameters::Kind::cylinder, r_, h_);
   }
+  /// parameters()'s radius and half-length, without building the whole CurvedShapeParameters (its
+  /// pose too) through the virtual call: for the closed forms, which know the exact type.
+  Scalar radius() const { return r_; }
+  Scalar half_length() const { return h_; }
 
  private:
   Scalar r_;
@@ -182,6 +186,9 @@ class ConeSupport final : public SupportFunction {
   CurvedShapeParameters parameters() const override {
     return shape_parameters(CurvedShapeParameters::Kind::cone, r_, h_);
   }
+  /// parameters()'s radius and half-length (as the cylinder's).
+  Scalar radius() const { return r_; }
+  Scalar half_length() const { return h_; }
 
  private:
   Scalar r_;
@@ -250,6 +257,8 @@ class EllipsoidSupport final : public SupportFunction {
   CurvedShapeParameters parameters() const override {
     return shape_parameters(CurvedShapeParameters::Kind::ellipsoid, 0, 0, radii_);
   }
+  /// parameters()'s semi-axes (as the cylinder's radius).
+  const Vector3& radii() const { return radii_; }
 
  private:
   Vector3 radii_;

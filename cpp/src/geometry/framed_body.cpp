@@ -40,18 +40,24 @@ inline Vector3 world_centre(const ConvexPolyhedron& body, const Pose& pose, bool
   return centre;
 }
 
-// A curved body's support error in a frame of exponent `exponent` (FramedBody::support_error),
-// for unit directions: SupportFunction's bound on the outer radius, which bounds.radius holds.
+// A curved body's support error in a frame of exponent `exponent` (its share of
+// FramedPair::support_error), for unit directions: SupportFunction's bound on the outer radius,
+// which bounds.radius holds (0 for a polyhedron, whose factor is 0 and radius finite).
 Scalar curved_support_error(const ConvexPolyhedron& body, int exponent) {
-  if (!body.curved()) return 0;
-  return body.curved()->support_error_roundoffs() * kRoundoff *
-         times_power_of_two(body.bounds().radius, -exponent) * (1 + 16 * kRoundoff);
+  return body.support_error_per_radius() * times_power_of_two(body.bounds().radius, -exponent) *
+         (1 + 16 * kRoundoff);
 }
 
-// The exact type of `shape` among curved_supports.hpp's (a typeid comparison per kind, once per
-// framed body).
-CurvedKind curved_kind(const SupportFunction& shape) {
+// The exact type of `shape` among curved_supports.hpp's, once per framed body. The type_info
+// objects are compared by address first: a shape made in the library has its type's one object,
+// and where the addresses differ, type_info's == compares the names as strings (two string
+// comparisons before a cone's match, 73 instructions a cone's framing, one before an
+// ellipsoid's); a type none of them matches by address is compared by name after all.
+CurvedKind exact_kind(const SupportFunction& shape) {
   const std::type_info& type = typeid(shape);
+  if (&type == &typeid(CylinderSupport)) return CurvedKind::cylinder;
+  if (&type == &typeid(EllipsoidSupport)) return CurvedKind::ellipsoid;
+  if (&type == &typeid(ConeSupport)) return CurvedKind::cone;
   if (type == typeid(CylinderSupport)) return CurvedKind::cylinder;
   if (type == typeid(EllipsoidSupport)) return CurvedKind::ellipsoid;
   if (type == typeid(ConeSupport)) return CurvedKind::cone;
@@ -75,7 +81,6 @@ CurvedKind curved_kind(const SupportFunction& shape) {
       [&body] { return SupportCache::sealed(body.centred_vertices()); });
   found_ = other.size() == 1 ? SharedSupportCache::reading(start) : SharedSupportCache(start);
   vertices_ = &found_->points();
-  support_error_ = curved_support_error(body, exponent_);
 }
 
 // start_support_points for KeptPair::frame, out of line: inlined into it (as place is), its
@@ -137,7 +142,7 @@ CurvedKind curved_kind(const SupportFunction& shape) {
   }
   if (const SupportFunction* shape = body.curved()) {
     curved_ = shape;
-    curved_kind_ = curved_kind(*shape);
+    curved_kind_ = exact_kind(*shape);
     hull_ = nullptr;
     given_ = nullptr;
   } else if (vertices_ == &body.centred_vertices()) {
@@ -194,7 +199,6 @@ FramedBody::FramedBody(const FramedBody& body)
       scale_low_(body.scale_low_),
       curved_(body.curved_),
       found_(body.found_),
-      support_error_(body.support_error_),
       columns_(body.columns_) {}
 
 FramedBody::FramedBody(const VertexMatrix& points, const Hull& hull)

@@ -73,8 +73,8 @@ inline constexpr Scalar kFrameRounding = 128 * kRoundoff;
 /// body's points, all on its surface) and its index returned, so the solvers, which trade in
 /// point indices, read it as any other point. Its points are points of the body (the support
 /// function pulls them inside); the heights of its support points fall short of the support value
-/// by at most `support_error()` beyond `scan_shortfall()`. It has no hull the solvers may read:
-/// the parts that walk a hull or enumerate its faces check `curved()`.
+/// by at most its share of `FramedPair::support_error` beyond `scan_shortfall()`. It has no hull
+/// the solvers may read: the parts that walk a hull or enumerate its faces check `curved()`.
 class FramedBody {
  public:
   /// `world_centre` is where the centre of the body's box lands under the pose,
@@ -110,10 +110,6 @@ class FramedBody {
   /// then find on the supporting feature, or a rolling ball's witness (rolling_ball.hpp). Only for
   /// a curved body. Returns its number.
   int add_point(const Vector3& frame_point) const;
-  /// A bound on how far the support value along a unit frame direction may exceed the height of
-  /// a curved body's support point for it (in frame units), beyond `scan_shortfall()`; 0 for a
-  /// polyhedron. rounded.hpp takes it off every lower bound of a pair (FramedPair::support_error).
-  Scalar support_error() const { return support_error_; }
   /// The body framed; only for a body framed from a ConvexPolyhedron.
   const ConvexPolyhedron& body() const { return *body_; }
   /// Number of points (the hull points of a ConvexPolyhedron; a curved body's support points so
@@ -175,15 +171,13 @@ class FramedBody {
     if (curved_ || size() <= kHillClimbingThreshold) return local_support_index(local);
     return climb_support(*vertices_, hull(), local, start);
   }
-  /// The point `vertex(local_support_index(local))` of a curved body (`local` a direction in its
-  /// own frame), the same coordinates, without numbering it among the body's points: for a closed
-  /// form that reports no weights over the shape (point_against_curved).
-  Vector3 curved_support_point(const Vector3& local) const {
-    return placed(curved_local_support(local));
-  }
-  /// That point in the body's own frame, centred on its box, before it is placed: the
-  /// coordinates the body's points would hold (-0 as +0).
+  /// The point `local_points().row(local_support_index(local))` of a curved body (`local` a
+  /// direction in its own frame), the same coordinates (-0 as +0), without numbering it among the
+  /// body's points: for a closed form that reports no weights over the shape
+  /// (point_against_curved).
   Vector3 curved_local_support(const Vector3& local) const;
+  /// The exact type of a curved body's support function (CurvedKind::other for a polyhedron).
+  CurvedKind curved_kind() const { return curved_kind_; }
   /// A point of the body's own frame, centred on its box, placed in the frame as `vertex()`
   /// places the body's points.
   Vector3 placed_point(const Vector3& centred) const { return placed(centred); }
@@ -261,7 +255,7 @@ class FramedBody {
   // The pose's part of place (the rotation, the scale, the offset).
   void place_pose(const Pose& pose, bool rotated, const Vector3& world_centre,
                   const Frame& frame);
-  // A curved body's support points for a new framing against `other`, and their support error:
+  // A curved body's support points for a new framing against `other`:
   // inline for a pair's framing, out of line for a kept pair's (restart_support_points).
   void start_support_points(const ConvexPolyhedron& other);
   void restart_support_points(const ConvexPolyhedron& other);
@@ -322,14 +316,14 @@ class FramedBody {
   // 2^-exponent as two factors, each representable even for the most extreme exponents.
   Scalar scale_high_;
   Scalar scale_low_;
-  // A curved body's support function, its support points so far in its own frame (centred on its
-  // box; `vertices_` points to their rows), and their support error. Framed against a single
+  // A curved body's support function and its support points so far in its own frame (centred on
+  // its box; `vertices_` points to their rows); their support error is the pair's
+  // (FramedPair::support_error), which pair_frame computes. Framed against a single
   // point, the body reads its body's own sealed cache until its first new point takes a cache of
   // the thread's pool (add_to_own_cache): a ball's closed form against a cylinder, which finds
   // none, takes none (taking, resetting and giving one back were 135 of its 2,283 instructions).
   const SupportFunction* curved_ = nullptr;
   mutable SharedSupportCache found_;
-  Scalar support_error_ = 0;
   // A small polyhedron's points (`vertices_`) by coordinate (ConvexPolyhedron::centred_columns),
   // for support_index's scans; null for larger bodies (climbed), curved bodies and points given in
   // the frame.
@@ -357,8 +351,9 @@ struct FramedPair {
   /// on the cores, and queries/rounded.hpp turns their bounds into the rounded bodies'.
   Scalar radius_a = 0;
   Scalar radius_b = 0;
-  /// What the support points of curved bodies may fall short by, A's and B's added
-  /// (FramedBody::support_error; 0 for polyhedra): every lower bound of the pair loses it.
+  /// What the support points of curved bodies may fall short by along a unit frame direction,
+  /// beyond `scan_shortfall()`, A's and B's added (0 for polyhedra): every lower bound of the
+  /// pair loses it.
   Scalar support_error = 0;
   /// True when a radius or the support error is not zero: the solvers' bounds then go through
   /// queries/rounded.hpp (one test in every stop test, for two polyhedra).

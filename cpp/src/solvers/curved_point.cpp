@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "../geometry/curved_depth.hpp"
+#include "../geometry/curved_supports.hpp"
 #include "../geometry/normalise.hpp"
 #include "../queries/verdict.hpp"
 #include "exact_solver.hpp"
@@ -15,19 +16,21 @@ namespace swarmcollide::detail {
 namespace {
 
 // How the support point along Nearest::second follows from the one along `first`, exactly, by a
-// symmetry of the support function (curved_supports.hpp): none, the same point with its height
-// negated (a cylinder's rim points above each other: the support reads only the sign of d_z), or
-// with its x and y negated (rim points across a cap or a cone's base: unit_in_plane and
-// unit_scaled see the same magnitudes, each quotient and product only changes sign, and a cone's
-// comparison of apex and rim reads the same numbers).
-enum class Mirror { none, height, across };
+// symmetry of the support function (curved_supports.hpp): none, or the same point with its x and
+// y negated (rim points across a cone's base: unit_in_plane and unit_scaled see the same
+// magnitudes, each quotient and product only changes sign, and the comparison of apex and rim
+// reads the same numbers).
+enum class Mirror { none, across };
 
 // What the closed form chooses, in the shape's own frame: the outward normal at the nearest
-// surface point, and that point as `weight` of the support point along `first` and `1 - weight`
-// of the one along `second` (both points of the shape, with kInward's pull).
+// surface point, and that point either as `point` itself (`direct`: a cylinder's, in the closed
+// form's units and pulled inside the shape) or as `weight` of the support point along `first`
+// and `1 - weight` of the one along `second` (both points of the shape, with kInward's pull).
 struct Nearest {
   bool inside = false;
   Vector3 normal = Vector3::Zero();
+  bool direct = false;
+  Vector3 point = Vector3::Zero();
   Vector3 first = Vector3::Zero();
   Vector3 second = Vector3::Zero();
   Mirror mirror = Mirror::none;
@@ -38,14 +41,8 @@ struct Nearest {
 // `nearest.first`: mirrored when a symmetry gives it (the same coordinates as the support's, with
 // -0 as +0 as the shape's points store them: a support call fewer), else asked.
 Vector3 second_support(const FramedBody& shape, const Nearest& nearest, const Vector3& first) {
-  switch (nearest.mirror) {
-    case Mirror::height:
-      return {first.x(), first.y(), -first.z() + 0};
-    case Mirror::across:
-      return {-first.x() + 0, -first.y() + 0, first.z()};
-    default:
-      return shape.curved_local_support(nearest.second);
-  }
+  if (nearest.mirror == Mirror::across) return {-first.x() + 0, -first.y() + 0, first.z()};
+  return shape.curved_local_support(nearest.second);
 }
 
 // The unit vector along (x, y) in the plane, or the x axis on the z axis (every azimuth is as
@@ -74,9 +71,13 @@ Vector3 away_from(const Vector3& p, const Vector3& q) {
 }
 
 // A cylinder of radius r from z = -h to h: beside its side, the point at the same height on the
-// generator (between the two rim points of the point's azimuth); above or below a cap, the point
-// straight above on it (between the rim points along and against the azimuth); past a rim, the
-// rim point. Inside, the nearer of the generator's point and the cap's.
+// generator; above or below a cap, the point straight above on it; past a rim, the rim point.
+// Inside, the nearer of the generator's point and the cap's. The point is given directly, its
+// distance from the axis pulled in by kInward (the unit azimuth is within 3 roundoffs of length 1,
+// the rounded rho within two of the exact, so r |u| kInward and rho kInward stay below r; the
+// height is p_z or +-h, on the cylinder's height): the combination of two support points placed
+// in the frame that this replaced (the rim points above and below, or across the cap) is the same
+// point in exact arithmetic, and cost a support call and two placements more.
 Nearest cylinder_nearest(const Vector3& p, Scalar r, Scalar h) {
   Nearest n;
   Scalar ux, uy, rho;
@@ -85,21 +86,16 @@ Nearest cylinder_nearest(const Vector3& p, Scalar r, Scalar h) {
   const bool side = n.inside ? r - rho <= h - std::abs(p.z()) : rho > r;
   const bool beyond_cap = n.inside ? !side : std::abs(p.z()) > h;
   const Scalar s = p.z() < 0 ? -1 : 1;
+  n.direct = true;
   if (side && !beyond_cap) {
     n.normal = {ux, uy, 0};
-    n.first = {ux, uy, 1};
-    n.second = {ux, uy, -1};
-    n.mirror = Mirror::height;
-    n.weight = std::clamp((p.z() + h) / (2 * h), Scalar(0), Scalar(1));
+    n.point = {r * ux * kInward, r * uy * kInward, p.z()};
   } else if (!side) {
     n.normal = {0, 0, s};
-    n.first = {ux, uy, s};
-    n.second = {-ux, -uy, s};
-    n.mirror = Mirror::across;
-    n.weight = std::clamp((1 + rho / r) / 2, Scalar(0), Scalar(1));
+    n.point = {p.x() * kInward, p.y() * kInward, s * h};
   } else {
     n.normal = away_from(p, Vector3(r * ux, r * uy, s * h));
-    n.first = {ux, uy, s};
+    n.point = {r * ux * kInward, r * uy * kInward, s * h};
   }
   return n;
 }
@@ -220,6 +216,36 @@ Scalar support_value(CurvedShapeParameters::Kind kind, Scalar r, Scalar h, const
   return radii.cwiseProduct(l).norm();
 }
 
+// The kind and dimensions of a shape of curved_supports.hpp, read from its exact type (as
+// CurvedShapeParameters holds them): the virtual parameters() built the whole struct, its pose
+// too, some 20 instructions of a ball-cylinder query. False for any other support function (a
+// shape placed in its body's frame), which the searches answer.
+bool dimensions(const FramedBody& shape, CurvedShapeParameters& out) {
+  const SupportFunction* support = shape.body().curved();
+  switch (shape.curved_kind()) {
+    case CurvedKind::cylinder: {
+      const auto* cylinder = static_cast<const CylinderSupport*>(support);
+      out.kind = CurvedShapeParameters::Kind::cylinder;
+      out.radius = cylinder->radius();
+      out.half_length = cylinder->half_length();
+      return true;
+    }
+    case CurvedKind::cone: {
+      const auto* cone = static_cast<const ConeSupport*>(support);
+      out.kind = CurvedShapeParameters::Kind::cone;
+      out.radius = cone->radius();
+      out.half_length = cone->half_length();
+      return true;
+    }
+    case CurvedKind::ellipsoid:
+      out.kind = CurvedShapeParameters::Kind::ellipsoid;
+      out.radii = static_cast<const EllipsoidSupport*>(support)->radii();
+      return true;
+    default:
+      return false;
+  }
+}
+
 }  // namespace
 
 bool point_against_curved(const FramedPair& pair, Goal goal, int max_iterations, Answer& answer) {
@@ -227,8 +253,8 @@ bool point_against_curved(const FramedPair& pair, Goal goal, int max_iterations,
   const bool curved_a = pair.a.curved();
   const FramedBody& shape = curved_a ? pair.a : pair.b;
   const FramedBody& point = curved_a ? pair.b : pair.a;
-  const CurvedShapeParameters parameters = shape.body().curved()->parameters();
-  if (parameters.placed) return false;
+  CurvedShapeParameters parameters;
+  if (!dimensions(shape, parameters)) return false;
   // The point in the shape's own frame (centred on its box: the shape's origin for these), and
   // the shape, in units of its extent's power of two, so that no square in the closed forms
   // under- or overflows.
@@ -240,20 +266,12 @@ bool point_against_curved(const FramedPair& pair, Goal goal, int max_iterations,
       times_power_of_two(shape.local_direction(p - shape.offset()), shape.exponent() - unit);
   const Scalar r = times_power_of_two(parameters.radius, -unit);
   const Scalar h = times_power_of_two(parameters.half_length, -unit);
-  Vector3 radii = Vector3::Zero();
-  Nearest nearest;
-  switch (parameters.kind) {
-    case CurvedShapeParameters::Kind::cylinder:
-      nearest = cylinder_nearest(local, r, h);
-      break;
-    case CurvedShapeParameters::Kind::cone:
-      nearest = cone_nearest(local, r, h);
-      break;
-    case CurvedShapeParameters::Kind::ellipsoid:
-      for (int k = 0; k < 3; ++k) radii(k) = times_power_of_two(parameters.radii(k), -unit);
-      nearest = ellipsoid_nearest(local, radii);
-      break;
-  }
+  const Vector3 radii = ellipsoid ? times_power_of_two(parameters.radii, -unit) : Vector3::Zero();
+  // Made in place (a Nearest default-made and assigned was stored twice).
+  const Nearest nearest =
+      parameters.kind == CurvedShapeParameters::Kind::cylinder ? cylinder_nearest(local, r, h)
+      : parameters.kind == CurvedShapeParameters::Kind::cone   ? cone_nearest(local, r, h)
+                                                               : ellipsoid_nearest(local, radii);
   // A point inside is answered for a signed distance only (the searches prove an overlap for the
   // other goals): by the penetration solver, where no closed form below settles it.
   if (nearest.inside && goal != Goal::signed_distance) return false;
@@ -264,20 +282,28 @@ bool point_against_curved(const FramedPair& pair, Goal goal, int max_iterations,
     return true;
   };
   if (!(nearest.normal.squaredNorm() > 0)) return nearest.inside && penetration();
-  // The witness on the shape: the combination of its support points, found without numbering
-  // them among the shape's points (weights over a curved body's points are never reported, so
-  // the shape's side has none). The point's weights are those of each support point.
-  const Vector3 first_local = shape.curved_local_support(nearest.first);
-  const Vector3 first = shape.placed_point(first_local);
-  Vector3 witness = first;
+  // The witness on the shape: the nearest point itself (a cylinder's: from the closed form's units
+  // to the frame's at once, both powers of two, then turned and moved as FramedBody::placed_point
+  // does), or the combination of its support points, found without numbering them among the
+  // shape's points (weights over a curved body's points are never reported, so the shape's side
+  // has none). The point's weights are those of each support point.
   std::array<Scalar, ConvexWeights::kSparseCapacity> weights{1, 0, 0, 0};
   int size = 1;
-  if (nearest.weight < 1) {
-    const Vector3 second = shape.placed_point(second_support(shape, nearest, first_local));
-    if (second != first) {
-      weights = {nearest.weight, 1 - nearest.weight, 0, 0};
-      size = 2;
-      witness = nearest.weight * witness + (1 - nearest.weight) * second;
+  Vector3 witness;
+  if (nearest.direct) {
+    const Vector3 scaled = times_power_of_two(nearest.point, unit - shape.exponent());
+    witness = shape.rotated() ? Vector3(shape.rotation() * scaled + shape.offset())
+                              : Vector3(scaled + shape.offset());
+  } else {
+    const Vector3 first_local = shape.curved_local_support(nearest.first);
+    witness = shape.placed_point(first_local);
+    if (nearest.weight < 1) {
+      const Vector3 second = shape.placed_point(second_support(shape, nearest, first_local));
+      if (second != witness) {
+        weights = {nearest.weight, 1 - nearest.weight, 0, 0};
+        size = 2;
+        witness = nearest.weight * witness + (1 - nearest.weight) * second;
+      }
     }
   }
   answer.point_a = curved_a ? witness : p;
