@@ -57,4 +57,49 @@ template <bool kFinite, typename Use>
   return vertex(index);
 }
 
+inline bool FramedBody::add_support_derivative(const Vector3& d, Matrix3& out) const {
+  if (!curved_) return true;
+  const Vector3 m = local_direction(d);
+  const Scalar scale = scale_high_ * scale_low_;
+  // A rim's point (r u, z), u the unit vector along m's part in the plane, turns with m about
+  // the axis: its derivative is r / |m_xy| times the projection on the rim's tangent.
+  const auto rim = [&](Scalar radius) {
+    const Scalar across = std::hypot(m.x(), m.y());
+    if (!(across > 0)) return false;
+    const Vector3 tangent = Vector3(-m.y(), m.x(), 0) / across;
+    const Vector3 turned = rotated_ ? Vector3(rotation_ * tangent) : tangent;
+    out.noalias() += (scale * radius / across) * turned * turned.transpose();
+    return true;
+  };
+  switch (curved_kind_) {
+    case CurvedKind::cylinder:
+      return rim(static_cast<const CylinderSupport*>(curved_)->radius());
+    case CurvedKind::cone: {
+      const auto* cone = static_cast<const ConeSupport*>(curved_);
+      const Scalar apex = cone->half_length() * m.z();
+      const Scalar base = cone->radius() * std::hypot(m.x(), m.y()) - cone->half_length() * m.z();
+      if (apex >= base) return true;
+      return rim(cone->radius());
+    }
+    case CurvedKind::ellipsoid: {
+      // s = R^2 m / |R m| (R the radii): ds/dm = (R^2 - s s^T) / |R m|.
+      const Vector3& radii = static_cast<const EllipsoidSupport*>(curved_)->radii();
+      const Vector3 squares = radii.cwiseProduct(radii);
+      const Scalar length = m.cwiseProduct(radii).norm();
+      if (!(length > 0)) return false;
+      const Vector3 point = squares.cwiseProduct(m) / length;
+      Matrix3 local = Matrix3(squares.asDiagonal()) - point * point.transpose();
+      local *= scale / length;
+      if (rotated_) {
+        out.noalias() += rotation_ * local * rotation_.transpose();
+      } else {
+        out += local;
+      }
+      return true;
+    }
+    default:
+      return false;
+  }
+}
+
 }  // namespace swarmcollide::detail

@@ -8,6 +8,8 @@
 // oracle and measure are therefore whole()'s, written again.
 #include "distance_finish.hpp"
 #include "inline_minkowski.hpp"
+#include "nesterov_direction.hpp"
+#include "newton_direction.hpp"
 #include "whole_search.hpp"
 
 namespace swarmcollide::detail {
@@ -30,16 +32,29 @@ bool DistanceFinish::whole_curved(const Vector3& start, int& hint_a, int& hint_b
   const bool climbs =
       pair_.a.size() > kHillClimbingThreshold || pair_.b.size() > kHillClimbingThreshold;
   Vector3 previous = start;
-  const auto oracle = [&](const Vector3& d) __attribute__((always_inline)) {
-    ++evaluations_;
-    if (climbs) drop_hints_after_turn(d, previous, hint_a, hint_b);
-    return inline_minkowski_support(pair_, d, hint_a, hint_b);
-  };
-  const auto search = [&]() SWARMCOLLIDE_FLATTEN {
+  const auto search = [&](auto directions) SWARMCOLLIDE_FLATTEN {
+    const auto support = [&](const Vector3& d) __attribute__((always_inline)) {
+      ++evaluations_;
+      if (climbs) drop_hints_after_turn(d, previous, hint_a, hint_b);
+      return inline_minkowski_support(pair_, d, hint_a, hint_b);
+    };
+    const auto oracle = [&](const Vector3& x) __attribute__((always_inline)) {
+      return directions.ask(x, support);
+    };
+    const auto along = [&](const MinNormPoint& current, const OraclePoint& q,
+                           Scalar inverse_norm) {
+      return directions.measured(current, q, inverse_norm);
+    };
     return whole_search(pair_, start, first_point, hint_a, hint_b, bounds, goal, enclosure,
-                        max_iterations_, evaluations_, oracle, measured, PlacedByBodies{pair_});
+                        max_iterations_, evaluations_, oracle, along, PlacedByBodies{pair_});
   };
-  return search();
+  // Pairs with an ellipsoid ask along Newton's steps (NewtonDirection says where they paid);
+  // the others compile as the search did without them.
+  if (pair_.a.curved_kind() == CurvedKind::ellipsoid ||
+      pair_.b.curved_kind() == CurvedKind::ellipsoid) {
+    return search(NewtonDirection(pair_));
+  }
+  return search(AlongCorral());
 }
 
 bool DistanceFinish::walk_from_corral(const Vector3& start, const MinNormPoint& corral,
