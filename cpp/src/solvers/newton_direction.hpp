@@ -39,6 +39,8 @@ class NewtonDirection {
  public:
   explicit NewtonDirection(const FramedPair& pair) : pair_(pair) {}
 
+  /// The point `support` gives for the corral's point `x`: asked along direction(x), and along x
+  /// as well where Newton's point is not kept (which ends the steps).
   template <typename Support>
   __attribute__((always_inline)) OraclePoint ask(const Vector3& x, Support& support) {
     for (;;) {
@@ -52,6 +54,8 @@ class NewtonDirection {
     }
   }
 
+  /// The separation of the kept point `q` along the direction it was asked for: Newton's unit
+  /// direction, or the corral's point `x` of norm 1 / `inverse_x`.
   Separation measured(const MinNormPoint& current, const OraclePoint& q, Scalar inverse_x) const {
     if (extrapolated_) return Separation{asked_.dot(q.p), asked_};
     return Separation{current.x.dot(q.p) * inverse_x, current.x * inverse_x};
@@ -84,9 +88,8 @@ class NewtonDirection {
     const Vector3 step = m.llt().solve(last_point_ - phi * n);
     const Vector3 turned = n + step;
     const Scalar length = turned.norm();
-    if (!(length > 0) || !std::isfinite(length) || !(step.squaredNorm() < kLargestStep * kLargestStep)) {
-      return x;
-    }
+    const bool short_step = step.squaredNorm() < kLargestStep * kLargestStep;
+    if (!(length > 0) || !std::isfinite(length) || !short_step) return x;
     asked_ = turned / length;
     extrapolated_ = true;
     return asked_;
@@ -112,9 +115,13 @@ class NewtonDirection {
   static constexpr Scalar kLargestStep = 0.5;
 
   const FramedPair& pair_;
+  // The last direction asked and its point, from which the next step starts.
   Vector3 last_ = Vector3::Zero();
   Vector3 last_point_ = Vector3::Zero();
+  // Newton's last direction (unit).
   Vector3 asked_ = Vector3::Zero();
+  // Whether the first point (along the start) was asked, the steps are still on, and the point
+  // just asked was asked along asked_.
   bool asked_once_ = false;
   bool on_ = true;
   bool extrapolated_ = false;
