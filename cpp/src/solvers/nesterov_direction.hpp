@@ -103,9 +103,7 @@ class NesterovDirection {
       return true;
     }
     const Scalar along = x.dot(q.p);
-    const Scalar xx = x.squaredNorm();
-    const Scalar nearer = xx - along;
-    if (!(nearer > 0 && nearer * nearer > 1e-26 * xx)) {
+    if (!nearer_than_corral(x, along)) {
       on_ = false;
       return false;
     }

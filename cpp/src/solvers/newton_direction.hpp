@@ -95,18 +95,12 @@ class NewtonDirection {
     return asked_;
   }
 
-  // Whether the point `q`, asked along direction(x), is kept (NesterovDirection::keep's test);
+  // Whether the point `q`, asked along direction(x), is kept (nearer_than_corral);
   // a point refused ends the steps, and ask() asks again along x.
   bool keep(const Vector3& x, const OraclePoint& q) {
-    if (!extrapolated_) return true;
-    const Scalar along = x.dot(q.p);
-    const Scalar xx = x.squaredNorm();
-    const Scalar nearer = xx - along;
-    if (!(nearer > 0 && nearer * nearer > 1e-26 * xx)) {
-      on_ = false;
-      return false;
-    }
-    return true;
+    if (!extrapolated_ || nearer_than_corral(x, x.dot(q.p))) return true;
+    on_ = false;
+    return false;
   }
 
   // A support point's gap |p| - n . p within this of its separation n . p starts the steps;

@@ -30,6 +30,16 @@ inline constexpr Scalar kNearbyCosine = 0.9;
   previous = d;
 }
 
+/// Whether the point `p`, asked along another direction than the corral's point `x`, lies nearer
+/// than the corral along x by more than the rounding of Wolfe's tests (1e-13 |x|, compared
+/// squared; Wolfe's gap test stops at 2e-14 |x|): such a point joins the corral and x moves
+/// nearer. `along` is x . p. The test of the searches that ask along momentum or Newton's steps.
+[[gnu::always_inline]] inline bool nearer_than_corral(const Vector3& x, Scalar along) {
+  const Scalar xx = x.squaredNorm();
+  const Scalar nearer = xx - along;
+  return nearer > 0 && nearer * nearer > 1e-26 * xx;
+}
+
 /// An oracle point's separation along the unit direction it bounds the distance by.
 struct Separation {
   Scalar value;
