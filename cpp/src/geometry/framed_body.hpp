@@ -188,12 +188,15 @@ class FramedBody {
   /// support out of line cost 16 of its 117 instructions in the call and its dispatch). Defined
   /// in framed_curved_support.hpp, which its callers include.
   inline Vector3 inline_support(const Vector3& d, int& index) const;
-  /// Adds to `out` the derivative of the body's support point (in the frame) with respect to
-  /// the unit frame direction `d`, where the point moves smoothly with it: zero for a polyhedron
-  /// (a vertex stays the support near most directions), a rim's or an ellipsoid's curvature for a
-  /// curved body. False where no such model holds (another kind of support function, a direction
-  /// along a cylinder's or a cone's axis). Defined in framed_curved_support.hpp.
-  inline bool add_support_derivative(const Vector3& d, Matrix3& out) const;
+  /// Adds to `form` the quadratic form of the derivative K of the body's support point (in the
+  /// frame) with respect to the unit frame direction `d`, where the point moves smoothly with
+  /// it, on the frame vectors `u` and `v`: (u^T K u, u^T K v, v^T K v). K is zero for a
+  /// polyhedron (a vertex stays the support near most directions), a rim's or an ellipsoid's
+  /// curvature for a curved body. False where no such model holds (another kind of support
+  /// function, a direction along a cylinder's or a cone's axis). Defined in
+  /// framed_curved_support.hpp.
+  inline bool add_support_curvature(const Vector3& d, const Vector3& u, const Vector3& v,
+                                    Vector3& form) const;
   /// True for a small polyhedron whose support points are scans of its points by coordinate
   /// (`support_index` takes them from any start): `scanned_support_index` answers it.
   bool scanned() const { return columns_ != nullptr; }

@@ -57,18 +57,22 @@ template <bool kFinite, typename Use>
   return vertex(index);
 }
 
-inline bool FramedBody::add_support_derivative(const Vector3& d, Matrix3& out) const {
+inline bool FramedBody::add_support_curvature(const Vector3& d, const Vector3& u,
+                                              const Vector3& v, Vector3& form) const {
   if (!curved_) return true;
   const Vector3 m = local_direction(d);
+  const Vector3 lu = local_direction(u);
+  const Vector3 lv = local_direction(v);
   const Scalar scale = scale_high_ * scale_low_;
-  // A rim's point (r u, z), u the unit vector along m's part in the plane, turns with m about
-  // the axis: its derivative is r / |m_xy| times the projection on the rim's tangent.
+  // A rim's point (r t, z), t the unit vector along m's part in the plane, turns with m about
+  // the axis: its derivative is r / |m_xy| times the projection on the rim's tangent. The frame's
+  // directions have unit length, so the squares neither overflow nor lose the rim's tangent.
   const auto rim = [&](Scalar radius) {
-    const Scalar across = std::hypot(m.x(), m.y());
+    const Scalar across = std::sqrt(m.x() * m.x() + m.y() * m.y());
     if (!(across > 0)) return false;
-    const Vector3 tangent = Vector3(-m.y(), m.x(), 0) / across;
-    const Vector3 turned = rotated_ ? Vector3(rotation_ * tangent) : tangent;
-    out.noalias() += (scale * radius / across) * turned * turned.transpose();
+    const Scalar tu = (m.x() * lu.y() - m.y() * lu.x()) / across;
+    const Scalar tv = (m.x() * lv.y() - m.y() * lv.x()) / across;
+    form += (scale * radius / across) * Vector3(tu * tu, tu * tv, tv * tv);
     return true;
   };
   switch (curved_kind_) {
@@ -88,13 +92,12 @@ inline bool FramedBody::add_support_derivative(const Vector3& d, Matrix3& out) c
       const Scalar length = m.cwiseProduct(radii).norm();
       if (!(length > 0)) return false;
       const Vector3 point = squares.cwiseProduct(m) / length;
-      Matrix3 local = Matrix3(squares.asDiagonal()) - point * point.transpose();
-      local *= scale / length;
-      if (rotated_) {
-        out.noalias() += rotation_ * local * rotation_.transpose();
-      } else {
-        out += local;
-      }
+      const Scalar su = point.dot(lu);
+      const Scalar sv = point.dot(lv);
+      const Vector3 squares_u = squares.cwiseProduct(lu);
+      form += (scale / length) * Vector3(squares_u.dot(lu) - su * su,
+                                         squares_u.dot(lv) - su * sv,
+                                         squares.cwiseProduct(lv).dot(lv) - sv * sv);
       return true;
     }
     default:

@@ -16,10 +16,13 @@ namespace swarmcollide::detail {
 
 namespace {
 
-// Each oracle point bounds the distance by its separation along the corral's point `x`, which its
-// supports along `x` share with `x/|x|` (as whole()'s).
-Separation measured(const MinNormPoint& current, const OraclePoint& q, Scalar inverse_norm) {
-  return Separation{current.x.dot(q.p) * inverse_norm, current.x * inverse_norm};
+// Whether a pair's searches ask along Newton's steps (NewtonDirection says where they paid): a
+// pair with an ellipsoid, or two cylinders.
+bool newton_steps(const FramedPair& pair) {
+  const CurvedKind a = pair.a.curved_kind();
+  const CurvedKind b = pair.b.curved_kind();
+  return a == CurvedKind::ellipsoid || b == CurvedKind::ellipsoid ||
+         (a == CurvedKind::cylinder && b == CurvedKind::cylinder);
 }
 
 }  // namespace
@@ -50,8 +53,7 @@ bool DistanceFinish::whole_curved(const Vector3& start, int& hint_a, int& hint_b
   };
   // Pairs with an ellipsoid ask along Newton's steps (NewtonDirection says where they paid);
   // the others compile as the search did without them.
-  if (pair_.a.curved_kind() == CurvedKind::ellipsoid ||
-      pair_.b.curved_kind() == CurvedKind::ellipsoid) {
+  if (newton_steps(pair_)) {
     return search(NewtonDirection(pair_));
   }
   return search(AlongCorral());
@@ -63,15 +65,23 @@ bool DistanceFinish::walk_from_corral(const Vector3& start, const MinNormPoint& 
   // A curved body's supports are its support function's. A large polytope beside it climbs from
   // the hints without whole()'s reset after a turn, which only chooses where a climb starts: it
   // ends at the support from any start, within the margins whole()'s bounds already take.
-  const auto oracle = [&](const Vector3& d) __attribute__((always_inline)) {
-    ++evaluations_;
-    return inline_minkowski_support(pair_, d, hint_a, hint_b);
-  };
-  const auto search = [&]() SWARMCOLLIDE_FLATTEN {
+  const auto search = [&](auto directions) SWARMCOLLIDE_FLATTEN {
+    const auto support = [&](const Vector3& d) __attribute__((always_inline)) {
+      ++evaluations_;
+      return inline_minkowski_support(pair_, d, hint_a, hint_b);
+    };
+    const auto oracle = [&](const Vector3& x) __attribute__((always_inline)) {
+      return directions.ask(x, support);
+    };
+    const auto along = [&](const MinNormPoint& current, const OraclePoint& q,
+                           Scalar inverse_norm) {
+      return directions.measured(current, q, inverse_norm);
+    };
     return whole_search(pair_, start, &corral, hint_a, hint_b, bounds, goal, enclosure,
-                        max_iterations_, evaluations_, oracle, measured, PlacedByBodies{pair_});
+                        max_iterations_, evaluations_, oracle, along, PlacedByBodies{pair_});
   };
-  return search();
+  if (newton_steps(pair_)) return search(NewtonDirection(pair_));
+  return search(AlongCorral());
 }
 
 }  // namespace swarmcollide::detail
