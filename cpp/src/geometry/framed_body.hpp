@@ -18,6 +18,19 @@ namespace swarmcollide::detail {
 /// The exact type of a curved body's support function, where curved_supports.hpp has it.
 enum class CurvedKind : unsigned char { other, cylinder, cone, ellipsoid };
 
+/// A cylinder's or a cone's radius and half-length scaled into the frame, its axis (unit, from
+/// the base towards the top or the apex) and the apex in the frame, for the creases of the
+/// separation that NewtonDirection steps along: a cylinder's support point jumps between its
+/// rims across the directions normal to its axis, a cone's between its apex and its base rim
+/// across the directions normal to its slant lines.
+struct CreaseShape {
+  bool cone = false;
+  Vector3 axis = Vector3::UnitZ();
+  Vector3 apex = Vector3::Zero();
+  Scalar radius = 0;
+  Scalar half_length = 0;
+};
+
 /// Where a query computes: a world point `x` is `(x - centre) / 2^exponent` in the frame. The
 /// frame is centred on the pair and scaled by a power of two (exactly) so that both bodies lie
 /// in the unit ball. So an answer does not depend on the unit of length or on where the pair
@@ -197,6 +210,10 @@ class FramedBody {
   /// framed_curved_support.hpp.
   inline bool add_support_curvature(const Vector3& d, const Vector3& u, const Vector3& v,
                                     Vector3& form) const;
+  /// The shape of the crease that a cylinder's or a cone's support point makes in the
+  /// separation, where it jumps between two parts of the surface (CreaseShape), in the frame.
+  /// False for other bodies. Defined in framed_curved_support.hpp.
+  inline bool crease_shape(CreaseShape& out) const;
   /// True for a small polyhedron whose support points are scans of its points by coordinate
   /// (`support_index` takes them from any start): `scanned_support_index` answers it.
   bool scanned() const { return columns_ != nullptr; }

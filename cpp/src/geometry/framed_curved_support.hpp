@@ -81,7 +81,8 @@ inline bool FramedBody::add_support_curvature(const Vector3& d, const Vector3& u
     case CurvedKind::cone: {
       const auto* cone = static_cast<const ConeSupport*>(curved_);
       const Scalar apex = cone->half_length() * m.z();
-      const Scalar base = cone->radius() * std::hypot(m.x(), m.y()) - cone->half_length() * m.z();
+      const Scalar base =
+          cone->radius() * std::sqrt(m.x() * m.x() + m.y() * m.y()) - cone->half_length() * m.z();
       if (apex >= base) return true;
       return rim(cone->radius());
     }
@@ -103,6 +104,24 @@ inline bool FramedBody::add_support_curvature(const Vector3& d, const Vector3& u
     default:
       return false;
   }
+}
+
+inline bool FramedBody::crease_shape(CreaseShape& out) const {
+  if (curved_kind_ != CurvedKind::cylinder && curved_kind_ != CurvedKind::cone) return false;
+  const Scalar scale = scale_high_ * scale_low_;
+  out.axis = rotated_ ? Vector3(rotation_.col(2)) : Vector3::UnitZ();
+  if (curved_kind_ == CurvedKind::cylinder) {
+    const auto* cylinder = static_cast<const CylinderSupport*>(curved_);
+    out.radius = scale * cylinder->radius();
+    out.half_length = scale * cylinder->half_length();
+    return true;
+  }
+  const auto* cone = static_cast<const ConeSupport*>(curved_);
+  out.cone = true;
+  out.radius = scale * cone->radius();
+  out.half_length = scale * cone->half_length();
+  out.apex = placed(Vector3(0, 0, cone->half_length()));
+  return true;
 }
 
 }  // namespace swarmcollide::detail

@@ -21,8 +21,10 @@ namespace {
 bool newton_steps(const FramedPair& pair) {
   const CurvedKind a = pair.a.curved_kind();
   const CurvedKind b = pair.b.curved_kind();
-  return a == CurvedKind::ellipsoid || b == CurvedKind::ellipsoid ||
-         (a == CurvedKind::cylinder && b == CurvedKind::cylinder);
+  const auto creased = [](CurvedKind kind) {
+    return kind == CurvedKind::cylinder || kind == CurvedKind::cone;
+  };
+  return a == CurvedKind::ellipsoid || b == CurvedKind::ellipsoid || (creased(a) && creased(b));
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 // the library's sources.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 
 #include "../geometry/framed_curved_support.hpp"
@@ -53,10 +54,9 @@ class NewtonDirection {
  public:
   explicit NewtonDirection(const FramedPair& pair)
       : pair_(pair),
-        mantle_a_(pair.a),
-        mantle_b_(pair.b),
-        mantles_(pair.a.curved_kind() == CurvedKind::cylinder ||
-                 pair.b.curved_kind() == CurvedKind::cylinder),
+        crease_a_(pair.a, 1),
+        crease_b_(pair.b, -1),
+        creases_(crease_a_.tracked() || crease_b_.tracked()),
         tilt_(1e-3 * pair.tolerance) {}
 
   /// The point `support` gives for the corral's point `x`: asked along direction(x), and along x
@@ -69,6 +69,8 @@ class NewtonDirection {
       if (keep(x, q)) {
         last_ = d;
         last_point_ = q.p;
+        last_a_ = q.ia;
+        last_b_ = q.ib;
         return q;
       }
     }
@@ -82,6 +84,81 @@ class NewtonDirection {
   }
 
  private:
+  // The crease of the separation made by one body (CreaseShape), whose support is asked along
+  // `side` (1 for A, -1 for B) times the direction, and whether the search's directions have
+  // crossed it (the body's support point moved from one part to the other between two asks),
+  // which puts the nearest point on the segment between the parts.
+  class Crease {
+   public:
+    Crease(const FramedBody& body, Scalar side) : side_(side), tracked_(body.crease_shape(shape_)) {
+      slant_ = std::sqrt(shape_.radius * shape_.radius +
+                         4 * shape_.half_length * shape_.half_length);
+    }
+    bool tracked() const { return tracked_; }
+    // Whether the crease's normal turns with the direction's azimuth (a cone's).
+    bool turns() const { return shape_.cone; }
+    // Whether the nearest point is taken on the crease, from the last direction asked, d (of
+    // squared length `squared_length`): the directions asked have crossed it, and d lies within
+    // about 6 degrees of it. Called once for every direction asked after the first.
+    bool active(const Vector3& d, Scalar squared_length) {
+      on_ = false;
+      if (!tracked_) return false;
+      const Scalar height = this->height(side_ * d, squared_length);
+      if (height * previous_height_ < 0) crossed_ = true;
+      previous_height_ = height;
+      on_ = crossed_ && height * height < 0.01 * squared_length;
+      return on_;
+    }
+    // At the unit direction n (the body's own side of it): the crease's unit normal (from the
+    // base rim to the top rim or the apex, at n's azimuth), and the curvature along the
+    // direction across n that stays on it of the point of the segment between the two parts
+    // nearest `other` across the normal (a point of the other body): a rim's r / |n_xy|, times
+    // that point's share of the base rim for a cone (its apex does not move). The normal is
+    // kept for `tilt`. False along the axis.
+    bool at(const Vector3& n, const Vector3& other, Vector3& normal, Scalar& curvature) {
+      const Vector3 m = side_ * n;
+      const Scalar along_axis = shape_.axis.dot(m);
+      const Scalar across = std::sqrt(std::max(1 - along_axis * along_axis, Scalar(0)));
+      if (!(across > 0)) return false;
+      curvature = shape_.radius / across;
+      if (!shape_.cone) {
+        normal = shape_.axis;
+      } else {
+        // The apex less the rim point at m's azimuth, (-r u, 2 h) in the cone's own frame.
+        const Vector3 outward = (m - along_axis * shape_.axis) / across;
+        normal = (2 * shape_.half_length * shape_.axis - shape_.radius * outward) / slant_;
+        curvature *= std::clamp((shape_.apex - other).dot(normal) / slant_, Scalar(0), Scalar(1));
+      }
+      normal_ = normal;
+      return true;
+    }
+    // Adds to `direction` a tilt of `amount` along the crease's normal towards x's part: on the
+    // crease either part's point is a support point, and the one x would rather have is asked.
+    void tilt(const Vector3& x, Scalar amount, Vector3& direction) const {
+      if (on_) direction += std::copysign(amount, x.dot(normal_)) * normal_;
+    }
+
+   private:
+    // The height of the crease's first part (top rim, apex) above its second along d, over the
+    // distance between them: d . normal, with |m_xy| = sqrt(|d|^2 - (axis . d)^2).
+    Scalar height(const Vector3& d, Scalar squared_length) const {
+      const Scalar along_axis = shape_.axis.dot(d);
+      if (!shape_.cone) return along_axis;
+      const Scalar across = std::sqrt(std::max(squared_length - along_axis * along_axis, Scalar(0)));
+      return (2 * shape_.half_length * along_axis - shape_.radius * across) / slant_;
+    }
+
+    CreaseShape shape_;
+    Scalar side_;
+    bool tracked_;
+    // |apex - rim| (a cone's; 2 h for a cylinder, unused).
+    Scalar slant_ = 0;
+    Scalar previous_height_ = 0;
+    bool crossed_ = false;
+    bool on_ = false;
+    Vector3 normal_ = Vector3::Zero();
+  };
+
   // The direction to ask for the corral's point `x`: Newton's from the last direction asked and
   // its point where that point's own gap |p| - n . p is within kStart of its separation n . p
   // (the supports then lie on the smooth parts that the nearest points will), else x.
@@ -94,18 +171,26 @@ class NewtonDirection {
     const Scalar along = last_.dot(last_point_);
     if (!(along > 0)) return x;
     const Scalar squared_length = last_.squaredNorm();
-    if (mantles_) {
-      const bool on_a = mantle_a_.active(last_, squared_length);
-      const bool on_b = mantle_b_.active(last_, squared_length);
-      if (on_a && on_b) return across_mantles(x);
+    if (creases_) {
+      const bool on_a = crease_a_.active(last_, squared_length);
+      const bool on_b = crease_b_.active(last_, squared_length);
       if (on_a || on_b) {
-        return along_mantle(last_ / std::sqrt(squared_length),
-                            on_a ? mantle_a_.axis() : mantle_b_.axis(), x);
+        const Vector3 n = last_ / std::sqrt(squared_length);
+        if (on_a && on_b) return across_creases(n, x);
+        return on_a ? along_crease(n, crease_a_, pair_.b, -1, pair_.b.vertex(last_b_), x)
+                    : along_crease(n, crease_b_, pair_.a, 1, pair_.a.vertex(last_a_), x);
       }
     }
     const Scalar threshold = (1 + kStart) * along;
     if (!(last_point_.squaredNorm() * squared_length <= threshold * threshold)) return x;
-    const Vector3 n = last_ / std::sqrt(squared_length);
+    return smooth_step(last_ / std::sqrt(squared_length), x);
+  }
+
+  // Newton's step from the unit direction n (last_) where the support points lie on smooth
+  // parts. Out of line, as the creases' steps: the searches that inline it whole run every step
+  // through the tests above, and a few through this (inlined, the larger loop took two
+  // ellipsoids' and two cylinders' searches 3-5% more instructions).
+  [[gnu::noinline]] const Vector3& smooth_step(const Vector3& n, const Vector3& x) {
     const Scalar phi = n.dot(last_point_);
     // In the plane across n, on the unit vectors u along the gradient P p and v = n x u, Newton's
     // step solves the 2 x 2 system (K + phi I) (a, b) = (|P p|, 0).
@@ -134,50 +219,72 @@ class NewtonDirection {
     return asked_;
   }
 
-  // Both bodies' nearest points on their mantles: the direction is normal to both axes, fixed.
-  const Vector3& across_mantles(const Vector3& x) {
-    const Vector3 normal = mantle_a_.axis().cross(mantle_b_.axis());
+  // Both bodies' nearest points on their creases: the direction normal to both creases (for
+  // two cylinders the optimum itself; a cone's crease turns with the direction's azimuth).
+  [[gnu::noinline]] const Vector3& across_creases(const Vector3& n, const Vector3& x) {
+    Vector3 normal_a;
+    Vector3 normal_b;
+    Scalar unused;
+    if (!crease_a_.at(n, pair_.b.vertex(last_b_), normal_a, unused) ||
+        !crease_b_.at(n, pair_.a.vertex(last_a_), normal_b, unused)) {
+      return x;
+    }
+    const Vector3 normal = normal_a.cross(normal_b);
     const Scalar length = normal.norm();
-    if (!(length > 0x1p-20)) return along_mantle(last_.normalized(), mantle_a_.axis(), x);
-    return ask_tilted(normal.dot(last_) < 0 ? Vector3(-normal / length) : Vector3(normal / length),
+    if (!(length > 0x1p-20)) {
+      return along_crease(n, crease_a_, pair_.b, -1, pair_.b.vertex(last_b_), x);
+    }
+    return ask_tilted(normal.dot(n) < 0 ? Vector3(-normal / length) : Vector3(normal / length),
                       x);
   }
 
-  // One body's nearest point on its mantle (axis `axis`): the direction lies normal to the axis,
-  // where the separation is smooth along the great circle across it; Newton's step along that
-  // circle, from n moved onto it.
-  const Vector3& along_mantle(const Vector3& n, const Vector3& axis, const Vector3& x) {
-    const Vector3 onto = n - n.dot(axis) * axis;
+  // One body's nearest point on its crease (`crease`; the other body `other`, whose support is
+  // asked along `side` times the direction, and its last support point `other_point`): the
+  // direction lies on the crease, where the separation is smooth along the one direction e that
+  // stays on it; Newton's step along e, from n moved onto the crease.
+  [[gnu::noinline]] const Vector3& along_crease(const Vector3& n, Crease& crease,
+                                                const FramedBody& other,
+                              Scalar side, const Vector3& other_point, const Vector3& x) {
+    Vector3 normal;
+    Scalar own;
+    if (!crease.at(n, other_point, normal, own)) return x;
+    const Vector3 onto = n - n.dot(normal) * normal;
     const Scalar onto_length = onto.norm();
     if (!(onto_length > 0)) return x;
     const Vector3 m = onto / onto_length;
-    const Vector3 e = axis.cross(m);
+    const Vector3 e = normal.cross(m);
     Vector3 form = Vector3::Zero();
-    if (!pair_.a.add_support_curvature(m, e, e, form) ||
-        !pair_.b.add_support_curvature(-m, e, e, form)) {
+    if (!other.add_support_curvature(side * m, e, e, form)) {
       on_ = false;
       return x;
     }
-    // The support point at n stands for the one at m: the mantle's rims differ only along the
-    // axis, which m and e are normal to, and n lies on the mantle after the first step.
+    // The support point at n stands for the one at m: the crease's two parts differ only along
+    // its normal, which m and e are normal to, and n lies on the crease after the first step.
     const Scalar phi = m.dot(last_point_);
     const Scalar slope = e.dot(last_point_);
-    const Scalar curvature = form(0) + phi;
+    const Scalar curvature = form(0) + own + phi;
     if (!(phi > 0) || !(slope * slope <= (2 + kStart) * kStart * phi * phi) ||
         !(curvature > 0)) {
       return x;
     }
     const Scalar step = slope / curvature;
     if (!(std::abs(step) < kLargestStep)) return x;
-    return ask_tilted((m + step * e).normalized(), x);
+    Vector3 turned = (m + step * e).normalized();
+    // A cone's crease turns with the azimuth (its normal is the slant at the azimuth): the
+    // step, along the crease's tangent, is moved back onto it at the new azimuth.
+    if (crease.turns()) {
+      if (!crease.at(turned, other_point, normal, own)) return x;
+      turned = (turned - turned.dot(normal) * normal).normalized();
+    }
+    return ask_tilted(turned, x);
   }
 
   // `direction`, tilted a hair towards x along each mantle's axis: on a mantle the support point
   // may lie on either rim, and the one x would rather have is asked (the rim below x along x).
   const Vector3& ask_tilted(const Vector3& direction, const Vector3& x) {
     Vector3 tilted = direction;
-    if (mantle_a_.on()) tilted += std::copysign(tilt_, x.dot(mantle_a_.axis())) * mantle_a_.axis();
-    if (mantle_b_.on()) tilted += std::copysign(tilt_, x.dot(mantle_b_.axis())) * mantle_b_.axis();
+    crease_a_.tilt(x, tilt_, tilted);
+    crease_b_.tilt(x, tilt_, tilted);
     const Scalar length = tilted.norm();
     if (!(length > 0) || !std::isfinite(length)) return x;
     asked_ = tilted / length;
@@ -198,47 +305,20 @@ class NewtonDirection {
   static constexpr Scalar kStart = 1e-1;
   static constexpr Scalar kLargestStep = 0.5;
 
-  // A cylinder's mantle: its axis in the frame, and whether the search's directions have
-  // crossed the directions normal to it (its support point moved from one rim to the other),
-  // which puts the nearest point on the mantle.
-  class Mantle {
-   public:
-    explicit Mantle(const FramedBody& body)
-        : axis_(body.curved_kind() != CurvedKind::cylinder ? Vector3::Zero()
-                : body.rotated()                          ? Vector3(body.rotation().col(2))
-                                                          : Vector3::UnitZ()) {}
-    // Whether the nearest point is taken on the mantle, from the last direction asked, d (of
-    // squared length `squared_length`): the directions asked have crossed the normals to the
-    // axis (between two asks, the body's support moved from one rim to the other), and d lies
-    // within about 6 degrees of them. Called once for every direction asked after the first.
-    bool active(const Vector3& d, Scalar squared_length) {
-      const Scalar height = axis_.dot(d);
-      if (height * previous_height_ < 0) crossed_ = true;
-      previous_height_ = height;
-      on_ = crossed_ && height * height < 0.01 * squared_length;
-      return on_;
-    }
-    bool on() const { return on_; }
-    const Vector3& axis() const { return axis_; }
-
-   private:
-    Vector3 axis_;
-    Scalar previous_height_ = 0;
-    bool crossed_ = false;
-    bool on_ = false;
-  };
-
   const FramedPair& pair_;
-  Mantle mantle_a_;
-  Mantle mantle_b_;
-  // Whether either body is a cylinder (else the mantles are not tracked).
-  bool mantles_;
+  Crease crease_a_;
+  Crease crease_b_;
+  // Whether either body is a cylinder or a cone (else no crease is tracked).
+  bool creases_;
   // How far a direction on a mantle is tilted towards x's rim: a thousandth of the tolerance,
   // which the separation loses at most twice over (the frame's points lie in the unit ball).
   Scalar tilt_;
   // The last direction asked and its point, from which the next step starts.
   Vector3 last_ = Vector3::Zero();
   Vector3 last_point_ = Vector3::Zero();
+  // The bodies' points of last_point_.
+  int last_a_ = -1;
+  int last_b_ = -1;
   // Newton's last direction (unit).
   Vector3 asked_ = Vector3::Zero();
   // Whether the first point (along the start) was asked, the steps are still on, and the point
