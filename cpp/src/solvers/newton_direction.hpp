@@ -20,18 +20,20 @@ namespace swarmcollide::detail {
 /// projection across n. Newton's step t = (P K P + phi I)^-1 P p then turns n towards the optimum
 /// quadratically, where Wolfe's corrals close a rim against a rim by a factor of about 4 a step.
 /// It is solved as a 2 x 2 system on the unit vectors across n (K's quadratic form on them), in
-/// place of session 42's 3 x 3 matrices and their Cholesky factor: cone-ellipsoid pairs, which
-/// have no crease below, took 6% fewer instructions for it alone.
+/// place of session 42's 3 x 3 matrices and their Cholesky factor.
 ///
 /// A cylinder's support point jumps from one rim to the other as the direction crosses the
-/// normals to its axis, so where the nearest point lies on its mantle, phi has a crease there and
-/// the support points' own gaps stay large. Once the directions asked have crossed the normals
-/// (`Mantle`) and lie within about 6 degrees of them, the step is taken on the crease: from n
-/// moved onto it, along the one direction e = axis x n that stays on it, where phi is smooth
-/// (the rim's curvature, either rim's). Where both cylinders' mantles hold the nearest points,
-/// the direction normal to both axes is the optimum itself. On a crease either rim's point is a
-/// support point, and Wolfe's corral needs both: each direction is tilted towards x's rim by a
-/// thousandth of the tolerance, so that the rim asked is the one x would rather have.
+/// normals to its axis, a cone's between its apex and its base rim as it crosses the normals to
+/// its slant lines; where the nearest point lies on the mantle between, phi has a crease there
+/// and the support points' own gaps stay large. Once the directions asked have crossed a crease
+/// (`Crease`) and lie within about 6 degrees of it, the step is taken on it: from n moved onto
+/// it, along the one direction e = normal x n that stays on it, where phi is smooth (the rim's
+/// curvature; on a cone's slant, the nearest point's share of it, as the apex does not move),
+/// and a cone's step is moved back onto its crease at the new azimuth. Where both bodies'
+/// creases hold the nearest points, the direction normal to both (for two cylinders the optimum
+/// itself). On a crease either part's point is a support point, and Wolfe's corral needs both:
+/// each direction is tilted towards x's part by a thousandth of the tolerance, so that the part
+/// asked is the one x would rather have.
 ///
 /// Any direction's support point is a point of B - A and its separation along the direction a
 /// lower bound, so the bounds stay proven whatever is asked (`measured`). As NesterovDirection,
@@ -39,17 +41,17 @@ namespace swarmcollide::detail {
 /// x by more than Wolfe's tests' rounding; otherwise the point along x is asked as well, and the
 /// steps end for the search.
 ///
-/// Pairs with an ellipsoid, and two cylinders, search this way (curved_search.cpp), measured with
-/// `bench/callgrind_query.py --curved --pairs 100 --repeats 1`, instructions per signed distance
-/// apart (session 43, before -> after the creases and the 2 x 2 system): cylinder-cylinder 16,157
-/// -> 14,374, cylinder-ellipsoid 16,514 -> 15,153, cone-ellipsoid 16,977 -> 15,936,
-/// ellipsoid-box 17,269 -> 17,014. A cylinder beside a cone or a box lost with the steps (a
-/// C++ probe of 300 random pairs apart: cylinder-cone 18,290 -> 19,564, cylinder-box 14,877 ->
-/// 16,096 instructions, evaluations 17.4 -> 15.7 and 14.8 -> 14.2): the cone's crease (apex
-/// against rim) and the box's edges are not modelled, their nearest points seldom start the
-/// steps, and the tests of every step cost more than the steps save. Session 42: a start at a
-/// gap of 1e-2 or 1e-3 of the separation (kStart) gave cone-ellipsoid 15,724 and 16,868 where
-/// 1e-1 gave 15,660 (20 pairs).
+/// Pairs with an ellipsoid, and pairs of cylinders and cones, search this way
+/// (curved_search.cpp), measured with `bench/callgrind_query.py --curved --pairs 100 --repeats
+/// 1`, instructions per signed distance apart (session 43, session 42's steps -> the creases,
+/// the 2 x 2 system and the steps out of line): cylinder-cylinder 16,157 -> 14,585, cylinder-cone
+/// 16,676 -> 14,767, cone-cone 15,004 -> 13,596, cylinder-ellipsoid 16,514 -> 15,181,
+/// cone-ellipsoid 16,977 -> 14,633, ellipsoid-box 17,269 -> 17,028. A cylinder or a cone beside
+/// a box lost with the steps (cone-box 10,801 -> 11,658; a C++ probe of 300 random cylinder-box
+/// pairs apart 14,837 -> 15,720): a box's edges and faces make creases that are not modelled, and
+/// the tests of every step cost more than the steps save. Session 42: a start at a gap of 1e-2
+/// or 1e-3 of the separation (kStart) gave cone-ellipsoid 15,724 and 16,868 where 1e-1 gave
+/// 15,660 (20 pairs).
 class NewtonDirection {
  public:
   explicit NewtonDirection(const FramedPair& pair)
@@ -279,8 +281,7 @@ class NewtonDirection {
     return ask_tilted(turned, x);
   }
 
-  // `direction`, tilted a hair towards x along each mantle's axis: on a mantle the support point
-  // may lie on either rim, and the one x would rather have is asked (the rim below x along x).
+  // `direction`, tilted a hair towards x's part along each crease's normal (Crease::tilt).
   const Vector3& ask_tilted(const Vector3& direction, const Vector3& x) {
     Vector3 tilted = direction;
     crease_a_.tilt(x, tilt_, tilted);
@@ -310,7 +311,7 @@ class NewtonDirection {
   Crease crease_b_;
   // Whether either body is a cylinder or a cone (else no crease is tracked).
   bool creases_;
-  // How far a direction on a mantle is tilted towards x's rim: a thousandth of the tolerance,
+  // How far a direction on a crease is tilted towards x's part: a thousandth of the tolerance,
   // which the separation loses at most twice over (the frame's points lie in the unit ball).
   Scalar tilt_;
   // The last direction asked and its point, from which the next step starts.
