@@ -59,7 +59,8 @@ class NewtonDirection {
         crease_a_(pair.a, 1),
         crease_b_(pair.b, -1),
         creases_(crease_a_.tracked() || crease_b_.tracked()),
-        tilt_(1e-3 * pair.tolerance) {}
+        tilt_(1e-3 * pair.tolerance),
+        smallest_step_(10 * pair.tolerance) {}
 
   /// The point `support` gives for the corral's point `x`: asked along direction(x), and along x
   /// as well where Newton's point is not kept (which ends the steps).
@@ -105,10 +106,25 @@ class NewtonDirection {
     bool active(const Vector3& d, Scalar squared_length) {
       on_ = false;
       if (!tracked_) return false;
-      const Scalar height = this->height(side_ * d, squared_length);
-      if (height * previous_height_ < 0) crossed_ = true;
-      previous_height_ = height;
-      on_ = crossed_ && height * height < 0.01 * squared_length;
+      const Scalar along_axis = side_ * shape_.axis.dot(d);
+      if (!shape_.cone) {
+        if (along_axis * previous_height_ < 0) crossed_ = true;
+        previous_height_ = along_axis;
+        on_ = crossed_ && along_axis * along_axis < 0.01 * squared_length;
+        return on_;
+      }
+      // The apex's height above the base rim along d, 2 h a - r |d_xy| (a = axis . d), has the
+      // sign of 4 h^2 a^2 - r^2 (|d|^2 - a^2) where a > 0, and is negative elsewhere: its
+      // square root is taken only once the directions have crossed the crease.
+      const Scalar apex = 2 * shape_.half_length * along_axis;
+      const Scalar across_squared = std::max(squared_length - along_axis * along_axis, Scalar(0));
+      const Scalar rim_squared = shape_.radius * shape_.radius * across_squared;
+      const Scalar sign = apex > 0 && apex * apex > rim_squared ? 1 : -1;
+      if (sign * previous_height_ < 0) crossed_ = true;
+      previous_height_ = sign;
+      if (!crossed_) return false;
+      const Scalar height = (apex - std::sqrt(rim_squared)) / slant_;
+      on_ = height * height < 0.01 * squared_length;
       return on_;
     }
     // At the unit direction n (the body's own side of it): the crease's unit normal (from the
@@ -141,15 +157,6 @@ class NewtonDirection {
     }
 
    private:
-    // The height of the crease's first part (top rim, apex) above its second along d, over the
-    // distance between them: d . normal, with |m_xy| = sqrt(|d|^2 - (axis . d)^2).
-    Scalar height(const Vector3& d, Scalar squared_length) const {
-      const Scalar along_axis = shape_.axis.dot(d);
-      if (!shape_.cone) return along_axis;
-      const Scalar across = std::sqrt(std::max(squared_length - along_axis * along_axis, Scalar(0)));
-      return (2 * shape_.half_length * along_axis - shape_.radius * across) / slant_;
-    }
-
     CreaseShape shape_;
     Scalar side_;
     bool tracked_;
@@ -216,6 +223,7 @@ class NewtonDirection {
     const Scalar length = turned.norm();
     const bool short_step = step.squaredNorm() < kLargestStep * kLargestStep;
     if (!(length > 0) || !std::isfinite(length) || !short_step) return x;
+    if (step.squaredNorm() < smallest_step_ * smallest_step_) return converged(x);
     asked_ = turned / length;
     extrapolated_ = true;
     return asked_;
@@ -255,22 +263,22 @@ class NewtonDirection {
     if (!(onto_length > 0)) return x;
     const Vector3 m = onto / onto_length;
     const Vector3 e = normal.cross(m);
+    // The support point at n stands for the one at m: the crease's two parts differ only along
+    // its normal, which m and e are normal to, and n lies on the crease after the first step.
+    // The start's test comes before the other body's curvature, which most calls need not read.
+    const Scalar phi = m.dot(last_point_);
+    const Scalar slope = e.dot(last_point_);
+    if (!(phi > 0) || !(slope * slope <= (2 + kStart) * kStart * phi * phi)) return x;
     Vector3 form = Vector3::Zero();
     if (!other.add_support_curvature(side * m, e, e, form)) {
       on_ = false;
       return x;
     }
-    // The support point at n stands for the one at m: the crease's two parts differ only along
-    // its normal, which m and e are normal to, and n lies on the crease after the first step.
-    const Scalar phi = m.dot(last_point_);
-    const Scalar slope = e.dot(last_point_);
     const Scalar curvature = form(0) + own + phi;
-    if (!(phi > 0) || !(slope * slope <= (2 + kStart) * kStart * phi * phi) ||
-        !(curvature > 0)) {
-      return x;
-    }
+    if (!(curvature > 0)) return x;
     const Scalar step = slope / curvature;
     if (!(std::abs(step) < kLargestStep)) return x;
+    if (std::abs(step) < smallest_step_) return converged(x);
     Vector3 turned = (m + step * e).normalized();
     // A cone's crease turns with the azimuth (its normal is the slant at the azimuth): the
     // step, along the crease's tangent, is moved back onto it at the new azimuth.
@@ -306,6 +314,17 @@ class NewtonDirection {
   static constexpr Scalar kStart = 1e-1;
   static constexpr Scalar kLargestStep = 0.5;
 
+  // A step shorter than smallest_step_: the direction is Newton's to its square, and the
+  // corral's point x as near; the rest is asked along x, so that the last lower bound lies along
+  // the witnesses' direction (a signed distance's finish reads the separation along them, and
+  // asked a support pair of its own, out of line, where the search's last direction was
+  // Newton's: a C++ probe of 300 random pairs apart, two cylinders at 1e-9, 17,298 -> 16,107
+  // instructions a query; at 3e-7, 16,304 -> 15,141).
+  const Vector3& converged(const Vector3& x) {
+    on_ = false;
+    return x;
+  }
+
   const FramedPair& pair_;
   Crease crease_a_;
   Crease crease_b_;
@@ -314,6 +333,10 @@ class NewtonDirection {
   // How far a direction on a crease is tilted towards x's part: a thousandth of the tolerance,
   // which the separation loses at most twice over (the frame's points lie in the unit ball).
   Scalar tilt_;
+  // Steps shorter than this end Newton's steps (`converged`): ten times the tolerance (10 to
+  // 300 times it gave within 3% of each other at tolerances 3e-7 to 1e-11; a fixed 1e-3 took up
+  // to 20% more instructions at 1e-9, a fixed 1e-7 up to 5% more at 3e-7).
+  Scalar smallest_step_;
   // The last direction asked and its point, from which the next step starts.
   Vector3 last_ = Vector3::Zero();
   Vector3 last_point_ = Vector3::Zero();
