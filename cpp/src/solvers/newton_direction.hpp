@@ -160,8 +160,9 @@ class NewtonDirection {
     CreaseShape shape_;
     Scalar side_;
     bool tracked_;
-    // |apex - rim| (a cone's; 2 h for a cylinder, unused).
+    // |apex - rim| in the frame (a cone's; unused for a cylinder).
     Scalar slant_ = 0;
+    // The last height's sign carrier: a cylinder's axis . d, a cone's sign (+1 apex, -1 rim).
     Scalar previous_height_ = 0;
     bool crossed_ = false;
     bool on_ = false;
