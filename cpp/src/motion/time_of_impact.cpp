@@ -1,9 +1,7 @@
 #include "swarmcollide/motion/time_of_impact.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
-#include <exception>
 #include <limits>
 #include <optional>
 #include <stdexcept>
@@ -11,10 +9,8 @@
 #include <type_traits>
 #include <vector>
 
-#include "../detail/hardware_threads.hpp"
-#include "../detail/kept_threads.hpp"
 #include "../detail/number_text.hpp"
-#include "../detail/waking_pace.hpp"
+#include "../detail/row_threads.hpp"
 #include "advancement_steps.hpp"
 #include "motion_bound.hpp"
 #include "swarmcollide/queries/methods.hpp"
@@ -358,47 +354,22 @@ std::vector<TimeOfImpactResult> solve_many(const BatchBodies<Body>& as,
   check(motions_a.size(), false, "motions_a");
   check(motions_b.size(), false, "motions_b");
   if (motions_a.empty() || motions_b.empty() || as.size() == 0 || bs.size() == 0) return {};
-  if (threads < 0 || threads > kMaxThreads) {
-    throw std::invalid_argument("threads must be in [0, " + std::to_string(kMaxThreads) + "]");
-  }
   const auto pick = [](std::size_t n, std::size_t row) { return n == 1 ? 0 : row; };
   std::vector<TimeOfImpactResult> results(rows);
-  std::vector<std::exception_ptr> errors(rows);
-  // Rows taken one at a time from a counter; the calling thread answers them alone until the
-  // rows left are worth waking the others for (detail::WakingPace).
-  std::atomic<std::size_t> next{0};
-  const detail::WakingPace pace(rows);
-  const auto work = [&](bool alone) {
-    for (std::size_t answered = 0;; ++answered) {
-      if (alone && pace.worth_waking(answered)) return;
-      const std::size_t row = next.fetch_add(1, std::memory_order_relaxed);
-      if (row >= rows) return;
-      try {
-        results[row] = Advancement<Body>(as[pick(as.size(), row)],
-                                         motions_a[pick(motions_a.size(), row)],
-                                         bs[pick(bs.size(), row)],
-                                         motions_b[pick(motions_b.size(), row)], options)
-                           .run();
-      } catch (...) {
-        errors[row] = std::current_exception();
-      }
-    }
-  };
-  std::size_t workers = threads > 0 ? static_cast<std::size_t>(threads)
-                                    : detail::hardware_threads();
-  workers = std::min(workers, rows);
-  if (workers > 1) work(true);
-  if (next.load(std::memory_order_relaxed) < rows) {
-    detail::run_copies(workers, [&](std::size_t) { work(false); });
-  }
-  for (std::size_t row = 0; row < rows; ++row) {
-    if (!errors[row]) continue;
-    try {
-      std::rethrow_exception(errors[row]);
-    } catch (const std::invalid_argument& e) {
-      throw std::invalid_argument("row " + std::to_string(row) + ": " + e.what());
-    }
-  }
+  // Each motion answered whole by one thread (detail::over_rows: the caller alone until the rows
+  // left are worth waking the others for; the lowest failing row's error, "motion[i]: ...").
+  detail::over_rows(
+      rows, threads,
+      [&] {
+        return [&](std::size_t row) {
+          results[row] = Advancement<Body>(as[pick(as.size(), row)],
+                                           motions_a[pick(motions_a.size(), row)],
+                                           bs[pick(bs.size(), row)],
+                                           motions_b[pick(motions_b.size(), row)], options)
+                             .run();
+        };
+      },
+      "motion");
   return results;
 }
 

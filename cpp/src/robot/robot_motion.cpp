@@ -8,6 +8,7 @@
 #include <string>
 #include <utility>
 
+#include "../detail/row_threads.hpp"
 #include "../geometry/framed_body.hpp"
 #include "../motion/advancement_steps.hpp"
 #include "../queries/rounded.hpp"
@@ -15,7 +16,6 @@
 #include "../solvers/exact_solver.hpp"
 #include "../solvers/minkowski.hpp"
 #include "box_screen.hpp"
-#include "configuration_threads.hpp"
 #include "geometry_pairs.hpp"
 #include "link_motion_bound.hpp"
 #include "swarmcollide/queries/query.hpp"
@@ -877,7 +877,7 @@ RobotMotionCheck robot_check_motion(const RobotModel& model, const std::vector<G
   check.iterations.setZero(m);
   check.status.assign(static_cast<std::size_t>(m), MotionStatus::converged);
   // One checker per thread: its buffers are the thread's own; each writes only its rows.
-  detail::over_configurations(
+  detail::over_rows(
       static_cast<std::size_t>(m), settings.threads,
       [&] { return MotionCheck(model, pairs, q0, q1, options, check); }, "motion");
   return check;

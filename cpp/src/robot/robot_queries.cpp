@@ -7,8 +7,8 @@
 #include <string>
 #include <utility>
 
+#include "../detail/row_threads.hpp"
 #include "box_screen.hpp"
-#include "configuration_threads.hpp"
 #include "geometry_pairs.hpp"
 #include "swarmcollide/queries/query.hpp"
 
@@ -288,7 +288,7 @@ RobotCheck robot_check(const RobotModel& model, const std::vector<GeometryPair>&
   check.normal.setZero(m, 3);
   if (gradient) check.gradient.setZero(m, model.dof());
   // One checker per thread: its buffers are the thread's own; each writes only its rows.
-  detail::over_configurations(static_cast<std::size_t>(m), settings.threads, [&] {
+  detail::over_rows(static_cast<std::size_t>(m), settings.threads, [&] {
     return ConfigurationCheck(model, pairs, q, validated.options(), nearest, gradient, check);
   });
   return check;

@@ -1,5 +1,5 @@
-// Answering configurations (or motions) on threads, each answered whole by one thread; private to
-// the library's sources.
+// Answering a batch's rows (a robot's configurations or motions, time_of_impact_many's motions) on
+// threads, each answered whole by one thread; private to the library's sources.
 #pragma once
 
 #include <algorithm>
@@ -9,9 +9,9 @@
 #include <stdexcept>
 #include <string>
 
-#include "../detail/hardware_threads.hpp"
-#include "../detail/kept_threads.hpp"
-#include "../detail/waking_pace.hpp"
+#include "hardware_threads.hpp"
+#include "kept_threads.hpp"
+#include "waking_pace.hpp"
 #include "swarmcollide/queries/batch.hpp"
 
 namespace swarmcollide::detail {
@@ -24,8 +24,8 @@ namespace swarmcollide::detail {
 /// answers rows alone, one at a time, until the rows left are worth waking the others for
 /// (WakingPace).
 template <typename MakeAnswer>
-void over_configurations(std::size_t count, int threads, const MakeAnswer& make_answer,
-                         const char* label = "q") {
+void over_rows(std::size_t count, int threads, const MakeAnswer& make_answer,
+               const char* label = "q") {
   if (threads < 0 || threads > kMaxThreads) {
     throw std::invalid_argument("threads must be in [0, " + std::to_string(kMaxThreads) +
                                 "] (0: one per hardware thread), got " + std::to_string(threads));
