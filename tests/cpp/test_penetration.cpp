@@ -18,6 +18,7 @@
 #include "swarmcollide/geometry/convex_polyhedron.hpp"
 #include "swarmcollide/geometry/hull.hpp"
 #include "swarmcollide/geometry/pose.hpp"
+#include "swarmcollide/geometry/shapes.hpp"
 
 namespace swarmcollide {
 namespace {
@@ -399,6 +400,58 @@ TEST(Penetration, FaceCrossedFindsTheFaceOfASplitFacetThatARayCrosses) {
   // The facet's faces are where most of these rays cross (200, 133 and 134 when written).
   EXPECT_GT(elsewhere, 0);
   EXPECT_GT(on_facet, 100);
+}
+
+// Two overlapping cylinders: the expansion converges on a patch of faces a little tilted from
+// each other, often on a face other than its best normal's, which it has replaced by then. Its
+// near_best_face must be a live face there, and corners_around must give that face's corners
+// and its neighbours', each once, each a point of A - B; a replaced face gives none.
+TEST(Penetration, CornersAroundTheBestFaceOfACurvedSurface) {
+  std::mt19937_64 rng(44);
+  std::uniform_real_distribution<Scalar> size(0.2, 1.0);
+  std::uniform_real_distribution<Scalar> angle(-3.0, 3.0);
+  std::uniform_real_distribution<Scalar> shift(-0.15, 0.15);
+  const std::array<Vector3, 4> directions = {Vector3(1, 1, 1), Vector3(1, -1, -1),
+                                             Vector3(-1, 1, -1), Vector3(-1, -1, 1)};
+  int runs = 0;
+  int replaced = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    const Cylinder a(size(rng), size(rng));
+    const Cylinder b(size(rng), size(rng));
+    Pose pose_b;
+    pose_b.rotation = rotation(angle(rng), angle(rng), angle(rng));
+    pose_b.translation = Vector3(shift(rng), shift(rng), shift(rng));
+    const detail::FramedPair pair = detail::frame_validated_pair(a, Pose(), b, pose_b, 1e-9);
+    std::array<detail::DifferencePoint, 4> start;
+    for (int k = 0; k < 4; ++k) {
+      const int ia = pair.a.support_index(directions[k]);
+      const int ib = pair.b.support_index(-directions[k]);
+      start[k] = {pair.a.vertex(ia) - pair.b.vertex(ib), ia, ib};
+    }
+    if (!detail::encloses_origin({start[0].w, start[1].w, start[2].w, start[3].w})) continue;
+    detail::ExpandingPolytope polytope;
+    const detail::ExpansionResult e = polytope.run(pair.a, pair.b, start, 1e-9, kIterations);
+    ASSERT_TRUE(e.verified) << "trial " << trial;
+    ASSERT_GE(e.best_face_index, 0);
+    ++runs;
+    std::array<detail::DifferencePoint, detail::ExpandingPolytope::kMostNearbyCorners> corners;
+    const int count = polytope.corners_around(e.near_best_face, corners);
+    // A face and its neighbours': at least the face's three corners and one across each edge.
+    EXPECT_GE(count, 4) << "trial " << trial;
+    for (int i = 0; i < count; ++i) {
+      EXPECT_EQ(corners[i].w, pair.a.vertex(corners[i].ia) - pair.b.vertex(corners[i].ib));
+      for (int j = 0; j < i; ++j) {
+        EXPECT_FALSE(corners[i].ia == corners[j].ia && corners[i].ib == corners[j].ib);
+      }
+    }
+    if (e.near_best_face != e.best_face_index) {
+      ++replaced;
+      EXPECT_EQ(polytope.corners_around(e.best_face_index, corners), 0) << "trial " << trial;
+    }
+  }
+  EXPECT_GT(runs, 100);
+  // (14 of 194 when written.)
+  EXPECT_GT(replaced, 0);
 }
 
 TEST(Penetration, TouchingAndNearlyTouchingFaces) {

@@ -444,6 +444,42 @@ int ExpandingPolytope::face_crossed(int from, const Vector3& d,
   return -1;
 }
 
+int ExpandingPolytope::corners_around(
+    int from, std::array<DifferencePoint, kMostNearbyCorners>& corners) const {
+  const auto live = [&](int f) { return f >= 0 && f < face_count_ && faces_[f].alive; };
+  if (!live(from)) return 0;
+  // The face, the faces across its edges, and the faces across theirs: at most 1 + 3 + 6.
+  std::array<int, 10> near{from};
+  int faces = 1;
+  int ring_start = 0;
+  for (int ring = 0; ring < 2; ++ring) {
+    const int ring_end = faces;
+    for (int i = ring_start; i < ring_end; ++i) {
+      for (const int g : faces_[near[i]].adj) {
+        if (!live(g) || faces == static_cast<int>(near.size()) ||
+            std::find(near.begin(), near.begin() + faces, g) != near.begin() + faces) {
+          continue;
+        }
+        near[faces++] = g;
+      }
+    }
+    ring_start = ring_end;
+  }
+  std::array<int, kMostNearbyCorners> numbers{};
+  int count = 0;
+  for (int i = 0; i < faces; ++i) {
+    for (const int v : faces_[near[i]].v) {
+      if (count == kMostNearbyCorners ||
+          std::find(numbers.begin(), numbers.begin() + count, v) != numbers.begin() + count) {
+        continue;
+      }
+      numbers[count] = v;
+      corners[count++] = vertices_[v];
+    }
+  }
+  return count;
+}
+
 ExpansionResult ExpandingPolytope::expand_surface(const FramedBody& a, const FramedBody& b,
                                                   Scalar stop_gap, int max_iterations,
                                                   bool placed) {
@@ -479,6 +515,8 @@ ExpansionResult ExpandingPolytope::expand_surface(const FramedBody& a, const Fra
     most_ib = std::max(most_ib, v.ib);
   }
 
+  // The corner the best normal's support point became (-1 until one did).
+  int best_vertex = -1;
   for (int iteration = 0; iteration < max_iterations; ++iteration) {
     // Stale entries (faces removed since, or flattened since: see flatten) are dropped.
     while (!heap_.empty() && (!faces_[heap_.front().second].alive ||
@@ -546,7 +584,8 @@ ExpansionResult ExpandingPolytope::expand_surface(const FramedBody& a, const Fra
     const Vector3 w = -(y - x);
     const Scalar h = n.dot(w);
     result.iterations = iteration + 1;
-    if (-h > result.best_separation) {
+    const bool best_here = -h > result.best_separation;
+    if (best_here) {
       result.best_separation = -h;
       result.best_normal = n;
       result.best_ia = ia;
@@ -586,8 +625,23 @@ ExpansionResult ExpandingPolytope::expand_surface(const FramedBody& a, const Fra
       if (keep_b) points_b_.pop_back();
       break;
     }
+    if (best_here) best_vertex = static_cast<int>(vertices_.size()) - 1;
     most_ia = std::max(most_ia, ia);
     most_ib = std::max(most_ib, ib);
+  }
+  result.near_best_face = result.best_face_index;
+  if (result.best_face_index >= 0 && !faces_[result.best_face_index].alive) {
+    // The best normal's face was replaced by the cone from its support point, which stays a
+    // corner of the surface: a live face there.
+    result.near_best_face = -1;
+    for (int f = 0; f < face_count_ && best_vertex >= 0; ++f) {
+      const Face& face = faces_[f];
+      if (face.alive && (face.v[0] == best_vertex || face.v[1] == best_vertex ||
+                         face.v[2] == best_vertex)) {
+        result.near_best_face = f;
+        break;
+      }
+    }
   }
   result.verified = verify(result.depth_lower);
   if (kept_depth_ >= 0) {

@@ -59,6 +59,11 @@ struct ExpansionResult {
   std::array<DifferencePoint, 3> best_face;
   /// That face's index on the surface, where ExpandingPolytope::face_crossed may start.
   int best_face_index = -1;
+  /// A live face of the final surface at that face: itself, or where the expansion replaced it,
+  /// a face at the corner its support point became (-1 when there is none). The best normal's
+  /// face is replaced where the expansion stopped on another face's gap (a curved pair's, a
+  /// quarter of them): face_crossed and corners_around start here.
+  int near_best_face = -1;
   /// That face's `distance` (the least of `best_normal . w` over its corners).
   Scalar best_face_distance = -std::numeric_limits<Scalar>::infinity();
   /// The gap between the least support met, `-best_separation`, and the nearest face's plane
@@ -106,6 +111,15 @@ class ExpandingPolytope {
   /// foot on it, which another of them does. -1 when the walk meets a face that is not live or
   /// does not end; nothing here is proven (the caller checks what it makes of the corners).
   int face_crossed(int from, const Vector3& d, std::array<DifferencePoint, 3>& corners) const;
+  /// The most corners corners_around gives: a face's three, one more for each of the three faces
+  /// across its edges and for each of the six across theirs.
+  static constexpr int kMostNearbyCorners = 12;
+  /// The corners of face `from` of the last run's surface and of the live faces up to two edges
+  /// away from it, each once, into `corners`; their number (0 when `from` is not a live face).
+  /// On a curved pair's surface the faces where the expansion converged are a fine patch of
+  /// slightly tilted faces, and the origin's foot may lie just beyond the one the best normal
+  /// came from: a combination of these corners reaches it (nothing here is proven either).
+  int corners_around(int from, std::array<DifferencePoint, kMostNearbyCorners>& corners) const;
 
  private:
   // The expansion from the surface in vertices_, faces_ and heap_.
