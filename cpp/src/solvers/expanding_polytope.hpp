@@ -57,12 +57,12 @@ struct ExpansionResult {
   /// The corners of the face whose normal is `best_normal`: where the expansion converged, the
   /// origin's foot on it combines them into witnesses.
   std::array<DifferencePoint, 3> best_face;
-  /// That face's index on the surface, where ExpandingPolytope::face_crossed may start.
+  /// That face's index on the surface (replaced since, perhaps: see near_best_face).
   int best_face_index = -1;
   /// A live face of the final surface at that face: itself, or where the expansion replaced it,
   /// a face at the corner its support point became (-1 when there is none). The best normal's
-  /// face is replaced where the expansion stopped on another face's gap (a curved pair's, a
-  /// quarter of them): face_crossed and corners_around start here.
+  /// face is replaced where the expansion stopped on another face's gap (a fifth of a cylinder
+  /// pair's runs): face_crossed and corners_around start here.
   int near_best_face = -1;
   /// That face's `distance` (the least of `best_normal . w` over its corners).
   Scalar best_face_distance = -std::numeric_limits<Scalar>::infinity();
