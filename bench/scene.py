@@ -12,7 +12,7 @@ from __future__ import annotations
 import argparse
 import os
 import time
-from typing import Callable, Dict, List
+from typing import Callable, Dict, List, Optional
 
 import fcl
 import numpy as np
@@ -84,9 +84,13 @@ class OurScene:
         return self.count()
 
     def count(self):
-        pairs = len(self.scene.colliding_pairs())
+        return {"pairs": len(self.scene.colliding_pairs())}
+
+    def stats(self):
+        """The last query's stats, read after its timing (their cache_bytes walks the pair
+        table, which a frame does not need)."""
         stats = self.scene.stats
-        return {"pairs": pairs, "candidates": stats.candidates, "certified": stats.certified,
+        return {"candidates": stats.candidates, "certified": stats.certified,
                 "escalations": stats.escalations,
                 "bytes_per_cached_pair": stats.cache_bytes / max(stats.cached_pairs, 1)}
 
@@ -159,11 +163,14 @@ class Trimesh:
         return {"pairs": len(names)}
 
 
-def timed(run: Callable[[], Dict]) -> Dict:
+def timed(run: Callable[[], Dict], after: Optional[Callable[[], Dict]] = None) -> Dict:
+    """`run()`'s result with its times, and then what `after()` adds (untimed)."""
     wall, cpu = time.perf_counter(), time.process_time()
     result = run()
     result["seconds"] = time.perf_counter() - wall
     result["cpu_seconds"] = time.process_time() - cpu
+    if after is not None:
+        result.update(after())
     return result
 
 
@@ -191,10 +198,12 @@ def main() -> int:
         runs = {(name, kind): [] for name in contenders for kind in ("cold", "warm")}
         for _ in range(cold_repeats):
             for name, c in contenders.items():
-                runs[(name, "cold")].append(timed(lambda: c.cold(poses[0])))
+                runs[(name, "cold")].append(
+                    timed(lambda: c.cold(poses[0]), getattr(c, "stats", None)))
         for f in range(1, warm_frames + 1):
             for name, c in contenders.items():
-                runs[(name, "warm")].append(timed(lambda: c.frame(poses[f])))
+                runs[(name, "warm")].append(
+                    timed(lambda: c.frame(poses[f]), getattr(c, "stats", None)))
         for (name, kind), results in runs.items():
             row = {"contender": name, "n": n, "frame": kind, "repeats": len(results),
                    "median_s": float(np.median([r["seconds"] for r in results])),

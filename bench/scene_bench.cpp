@@ -208,37 +208,35 @@ class FclScene {
   std::unique_ptr<fcl::DynamicAABBTreeCollisionManagerd> manager_;
 };
 
-struct SceneFrame {
-  std::size_t pairs = 0;
-  sc::SceneStats stats;
-};
-
+// Each query returns the pairs it found; its stats are read after the timing (stats()), as a
+// user who reads them reads them apart from the frame: their cache_bytes walks the pair table.
 class OurScene {
  public:
   OurScene(const Workload& w, int threads) : w_(w) { options_.threads = threads; }
-  SceneFrame cold(const std::vector<sc::Pose>& poses) {
+  std::size_t cold(const std::vector<sc::Pose>& poses) {
     scene_ = std::make_unique<sc::Scene>(options_);
     ids_ = scene_->add(w_.bodies, poses);
     return query();
   }
-  SceneFrame frame(const std::vector<sc::Pose>& poses) {
+  std::size_t frame(const std::vector<sc::Pose>& poses) {
     scene_->set_poses(ids_, poses);
     return query();
   }
-  SceneFrame within(const std::vector<sc::Pose>& poses, double d) {
-    sc::Scene scene(options_);
-    scene.add(w_.bodies, poses);
-    return {static_cast<std::size_t>(scene.pairs_within(d).size()), scene.stats()};
+  // A fresh scene, kept for its stats.
+  std::size_t within(const std::vector<sc::Pose>& poses, double d) {
+    within_ = std::make_unique<sc::Scene>(options_);
+    within_->add(w_.bodies, poses);
+    return static_cast<std::size_t>(within_->pairs_within(d).size());
   }
+  const sc::SceneStats& stats() const { return scene_->stats(); }
+  const sc::SceneStats& within_stats() const { return within_->stats(); }
 
  private:
-  SceneFrame query() {
-    const sc::SceneResult r = scene_->colliding_pairs();
-    return {static_cast<std::size_t>(r.size()), scene_->stats()};
-  }
+  std::size_t query() { return static_cast<std::size_t>(scene_->colliding_pairs().size()); }
   const Workload& w_;
   sc::SceneOptions options_;
   std::unique_ptr<sc::Scene> scene_;
+  std::unique_ptr<sc::Scene> within_;
   std::vector<sc::BodyId> ids_;
 };
 
@@ -349,10 +347,9 @@ int main(int argc, char** argv) {
       fcl_cold.pairs = f.hits;
       fcl_cold.candidates = f.candidates;
       for (auto [scene, row] : {std::pair{&one, &one_cold}, std::pair{&two, &two_cold}}) {
-        const SceneFrame s = timed(*row, [&] { return scene->cold(w.frames[0]); });
-        row->pairs = s.pairs;
-        row->candidates = s.stats.candidates;
-        row->stats = s.stats;
+        row->pairs = timed(*row, [&] { return scene->cold(w.frames[0]); });
+        row->stats = scene->stats();
+        row->candidates = row->stats.candidates;
       }
     }
     // Warm frames: the same motion for every contender, which keeps its state between frames.
@@ -361,10 +358,9 @@ int main(int argc, char** argv) {
       fcl_warm.pairs = c.hits;
       fcl_warm.candidates = c.candidates;
       for (auto [scene, row] : {std::pair{&one, &one_warm}, std::pair{&two, &two_warm}}) {
-        const SceneFrame s = timed(*row, [&] { return scene->frame(w.frames[f]); });
-        row->pairs = s.pairs;
-        row->candidates = s.stats.candidates;
-        row->stats = s.stats;
+        row->pairs = timed(*row, [&] { return scene->frame(w.frames[f]); });
+        row->stats = scene->stats();
+        row->candidates = row->stats.candidates;
       }
     }
     for (const Row* r : {&fcl_cold, &one_cold, &two_cold, &fcl_warm, &one_warm, &two_warm}) {
@@ -380,10 +376,9 @@ int main(int argc, char** argv) {
         fcl_within.pairs = c.hits;
         fcl_within.candidates = c.candidates;
         for (auto [scene, row] : {std::pair{&one, &one_within}, std::pair{&two, &two_within}}) {
-          const SceneFrame s = timed(*row, [&] { return scene->within(w.frames[0], 0.1); });
-          row->pairs = s.pairs;
-          row->candidates = s.stats.candidates;
-          row->stats = s.stats;
+          row->pairs = timed(*row, [&] { return scene->within(w.frames[0], 0.1); });
+          row->stats = scene->within_stats();
+          row->candidates = row->stats.candidates;
         }
       }
       for (const Row* r : {&fcl_within, &one_within, &two_within}) {

@@ -1260,7 +1260,8 @@ class SceneStats:
         Pairs with a cached proof after the query, and the bytes their storage takes: a 64-byte
         record for every pair whose broadphase boxes (padded boxes with margins for motion)
         overlap, and for a pair in contact the last expanding polytope's surface (at most 16
-        corners).
+        corners). cache_bytes is summed when ``scene.stats`` is read (the storage then), not by
+        every query: the sum reads every pair's record.
     """
     def __repr__(self) -> str:
         ...

@@ -170,7 +170,6 @@ SceneResult Scene::Impl::nearest(const std::vector<BodyId>& ids, int k) {
     for (const PairAnswer& a : answers) tally(stats, a);
     stats.candidates = candidates.size();
     stats.cached_pairs = table.cached_pairs();
-    stats.cache_bytes = table.cache_bytes();
     for (Search& search : searches) {
       if (!search.done) search.found.clear();
     }

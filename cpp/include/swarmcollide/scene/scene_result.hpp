@@ -77,6 +77,8 @@ struct SceneStats {
   /// Pairs with cached proofs after the query, and the bytes their storage takes: a 64-byte
   /// record for every pair whose broadphase boxes (padded boxes with margins for motion) overlap,
   /// and, for a pair in contact, the last expanding polytope's surface (at most 16 corners).
+  /// `cache_bytes` is summed by Scene::stats() when it is read (the storage then), not by the
+  /// query: the sum reads every pair's record.
   std::size_t cached_pairs = 0;
   std::size_t cache_bytes = 0;
 };
