@@ -217,6 +217,9 @@ class FramedBody {
   /// True for a small polyhedron whose support points are scans of its points by coordinate
   /// (`support_index` takes them from any start): `scanned_support_index` answers it.
   bool scanned() const { return columns_ != nullptr; }
+  /// Scans by rows from now on (`scanned()` false): the same support indices (the columns' scans
+  /// are the rows' bit for bit), read from the one copy of the points that placing them reads.
+  void scan_rows() { columns_ = nullptr; }
   /// `support_index(d)` of a `scanned()` body, the same index, always inline: a search's oracle
   /// on a small pair asks two per step, where the call out of line and its tests of the body's
   /// kind were a sixth of each scan (swarmcollide-thread-scaling count distance, 8 vertices).
