@@ -556,8 +556,8 @@ ContactResult Scene::contacts(int max_points) {
 const SceneStats& Scene::stats() const {
   const std::lock_guard<std::mutex> lock(impl_->mutex);
   // Summed here, when asked, not by every query: the kept surfaces' sizes are read from every
-  // pair's record, and that walk of the table was a tenth of the misses of a warm frame of
-  // 10,000 bodies that had no surface at all (bench/README.md, session 45).
+  // pair's record, and that walk of the table was a third of the misses warm frames of 10,000
+  // bodies (with no surface at all) gained after 441b84b (bench/README.md, session 45).
   impl_->stats.cache_bytes = impl_->table.cache_bytes();
   return impl_->stats;
 }
