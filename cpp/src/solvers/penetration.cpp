@@ -9,6 +9,7 @@
 
 #include "../geometry/curved_depth.hpp"
 #include "../geometry/normalise.hpp"
+#include "../geometry/support.hpp"
 #include "../geometry/support_tree.hpp"
 #include "candidate_axes.hpp"
 #include "expanding_polytope.hpp"
@@ -534,15 +535,8 @@ class Solver {
     // Points of B - A (minus the corners) less separation * normal, as witnesses_within's.
     const Vector3 shift = separation_ * normal_;
     const auto oracle = [&](const Vector3& d) {
-      int least = 0;
-      Scalar lowest = -d.dot(corners[0].w);
-      for (int k = 1; k < count; ++k) {
-        const Scalar h = -d.dot(corners[k].w);
-        if (h < lowest) {
-          lowest = h;
-          least = k;
-        }
-      }
+      // The corner least along d in B - A: highest along d in A - B.
+      const int least = first_highest(count, [&](int k) { return d.dot(corners[k].w); });
       return OraclePoint{Vector3(-corners[least].w - shift), corners[least].ia,
                          corners[least].ib};
     };
