@@ -3,6 +3,7 @@
 #pragma once
 
 #include <atomic>
+#include <cstdint>
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -74,10 +75,14 @@ inline int first_highest_column(const double* columns, int count, double dx, dou
   if (_mm_movemask_pd(unordered) != 0) return first_highest_column(columns, count, dx, dy, dz);
   top = _mm_max_pd(top, _mm_unpackhi_pd(top, top));
   top = _mm_unpacklo_pd(top, top);
-  for (int i = 0;; i += 2) {
-    const int equal = _mm_movemask_pd(_mm_cmpeq_pd(_mm_load_pd(heights + i), top));
-    if (equal != 0) return i + (equal & 1 ? 0 : 1);
+  // Every point's equality to the greatest, in one mask: a loop that stopped at the first pair
+  // holding it left a branch that went the other way about half the time.
+  std::uint32_t equal = 0;
+  for (int i = 0; i < count; i += 2) {
+    const int pair = _mm_movemask_pd(_mm_cmpeq_pd(_mm_load_pd(heights + i), top));
+    equal |= static_cast<std::uint32_t>(pair) << i;
   }
+  return __builtin_ctz(equal);
 #else
   return first_highest_column(columns, count, dx, dy, dz);
 #endif
@@ -112,9 +117,11 @@ static_assert(kColumnPadding >= kRegisterColumns, "the few points' registers rea
   }
   __m128d top = _mm_max_pd(low, high);
   top = _mm_max_pd(top, _mm_shuffle_pd(top, top, 1));
-  const int equal = _mm_movemask_pd(_mm_cmpeq_pd(low, top));
-  if (equal != 0) return equal & 1 ? 0 : 1;
-  return _mm_movemask_pd(_mm_cmpeq_pd(high, top)) & 1 ? 2 : 3;
+  // The first of the four equal to the greatest, without a branch on which pair holds it (the
+  // processor guessed it wrong about half the time, and a search's next direction waits on it).
+  const int equal = _mm_movemask_pd(_mm_cmpeq_pd(low, top)) |
+                    _mm_movemask_pd(_mm_cmpeq_pd(high, top)) << 2;
+  return __builtin_ctz(static_cast<unsigned>(equal));
 #else
   return first_highest_column(columns, count, dx, dy, dz);
 #endif
