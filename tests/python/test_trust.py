@@ -318,6 +318,8 @@ CENSUS_CASES = {
     "0:2302": "dual's signed distance raises for two cubes far apart at scale 1e300",
     "0:683": "fcl with max_iterations=1 calls a deep overlap apart",
     "0:585": "fcl-indep certifies 0 for an overlap of subnormal bodies",
+    "47:3210": "fcl with max_iterations=1: a signed distance apart whose witnesses lie nearer (0.033) "
+    "than its distance (0.136), off its normal",
 }
 
 

@@ -1,20 +1,13 @@
 #include "witness.hpp"
 
-#include <algorithm>
-#include <array>
 #include <utility>
 
 #include "minkowski.hpp"
 
 namespace swarmcollide::detail {
 
-namespace {
-
-using Indices = std::array<int, ConvexWeights::kSparseCapacity>;
-using Weights = std::array<Scalar, ConvexWeights::kSparseCapacity>;
+// A witness's weights become an answer's sparse weights as they are (answer_from_witness).
 static_assert(Witness::kCapacity == ConvexWeights::kSparseCapacity);
-
-}  // namespace
 
 Witness combined_witness(const FramedPair& pair, const MinNormPoint& corral) {
   return combined_witness(
@@ -83,68 +76,6 @@ Answer answer_from_weights(const FramedPair& pair, const VertexMatrix& points_a,
     answer.lower = separation(pair.a, pair.b, answer.direction);
   }
   return answer;
-}
-
-void supporting_feature(const FramedBody& body, const Vector3& normal, Scalar slack,
-                        std::vector<int>& found) {
-  found.clear();
-  const Vector3 top = body.support(normal);
-  const Scalar floor = normal.dot(top) - slack;
-  for (int i = 0; i < body.size(); ++i) {
-    if (normal.dot(body.vertex(i)) >= floor) found.push_back(i);
-  }
-  std::sort(found.begin(), found.end(),
-            [&](int i, int j) { return normal.dot(body.vertex(i)) > normal.dot(body.vertex(j)); });
-}
-
-void signed_witnesses(const FramedPair& pair, const Vector3& n, Scalar s, Answer& answer) {
-  // Rounding puts points of the true feature up to kFrameRounding below the plane; a generous
-  // slack costs only a slightly larger subproblem, while a too small one could cut the feature.
-  constexpr Scalar kSlack = 1e3 * kFrameRounding;
-  thread_local std::vector<int> feature_a;
-  thread_local std::vector<int> feature_b;
-  supporting_feature(pair.a, n, kSlack, feature_a);
-  supporting_feature(pair.b, -n, kSlack, feature_b);
-  const Vector3 shift = -s * n;
-  const auto oracle = [&](const Vector3& d) {
-    int i = feature_a[0];
-    Scalar highest = d.dot(pair.a.vertex(i));
-    for (int k : feature_a) {
-      const Scalar h = d.dot(pair.a.vertex(k));
-      if (h > highest) {
-        highest = h;
-        i = k;
-      }
-    }
-    int j = feature_b[0];
-    Scalar lowest = d.dot(pair.b.vertex(j));
-    for (int k : feature_b) {
-      const Scalar h = d.dot(pair.b.vertex(k));
-      if (h < lowest) {
-        lowest = h;
-        j = k;
-      }
-    }
-    return OraclePoint{pair.b.vertex(j) + shift - pair.a.vertex(i), i, j};
-  };
-  const MinNormPoint nearest = wolfe_min_norm(oracle, n, 2, 100);
-  Indices ia{};
-  Indices ib{};
-  Weights w{};
-  Scalar total = 0;
-  for (int k = 0; k < nearest.size; ++k) total += nearest.weights[k];
-  answer.point_a.setZero();
-  answer.point_b.setZero();
-  for (int k = 0; k < nearest.size; ++k) {
-    ia[k] = nearest.corral[k].ia;
-    ib[k] = nearest.corral[k].ib;
-    w[k] = nearest.weights[k] / total;
-    answer.point_a += w[k] * pair.a.vertex(ia[k]);
-    answer.point_b += w[k] * pair.b.vertex(ib[k]);
-  }
-  answer.weights_a = ConvexWeights(pair.a.size(), ia, w, nearest.size);
-  answer.weights_b = ConvexWeights(pair.b.size(), ib, w, nearest.size);
-  answer.direction = n;
 }
 
 }  // namespace swarmcollide::detail
