@@ -232,6 +232,14 @@ def _distance(arguments: argparse.Namespace) -> int:
 
 
 def _decompose(arguments: argparse.Namespace) -> int:
+    # A parts file or a shape file is convex parts already: there is no mesh to decompose (and no
+    # decomposition record to report).
+    for suffix, kind in ((".npz", "a parts file"), (".json", "a shape file")):
+        if arguments.mesh.endswith(suffix):
+            raise ValueError(
+                f"{arguments.mesh}: decompose reads a mesh file (.obj, .stl, .ply, .off, .glb); "
+                f"this is {kind}, convex parts already, which `swarmcollide distance` takes as "
+                "it is")
     body = _body(arguments.mesh, arguments)
     body.save(arguments.output)
     d = body.decomposition

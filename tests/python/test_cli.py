@@ -96,6 +96,13 @@ def test_decompose_writes_a_parts_file_that_distance_reads(mesh_files, capsys):
     out = capsys.readouterr().out
     assert out.startswith("distance: 1 (lower bound 1, certified for the convex parts)")
     assert (mesh_files / "pair.png").stat().st_size > 0
+    # A parts file is convex parts already: decompose refuses it, naming it (it raised an
+    # AttributeError on its missing decomposition record: files census case files:0:621).
+    for made in ("l.npz", "l.json"):
+        assert main(["decompose", str(mesh_files / made), "-o", str(mesh_files / "again.npz"),
+                     "--quiet"]) == 1
+        err = capsys.readouterr().err
+        assert f"{made}: decompose reads a mesh file" in err and "Traceback" not in err
 
 
 def test_mesh_commands_fail_as_a_shell_user_expects(mesh_files, capsys):
