@@ -51,10 +51,15 @@ ROUNDING = 1e-12  # about 4500 units in the last place of the largest coordinate
 
 @dataclass(frozen=True)
 class Tolerance:
-    """The allowances for one pair, in its units."""
+    """The allowances for one pair, in its units. ``witness`` is the library's own default
+    tolerance for the pair (SLACK times its size as the library measures it, the diameter of a
+    ball around both bodies, which can exceed the widest extent ``slack`` is relative to): the
+    penetration solver accepts witnesses off ``distance * direction`` by up to it where the
+    normal is a gap's worth of angle off a long edge's facet (penetration.cpp, ``witnesses``)."""
 
     slack: float
     band: float
+    witness: float
 
 
 def tolerance_of(a: np.ndarray, b: np.ndarray, truth: oracle.Answer) -> Tolerance:
@@ -62,7 +67,16 @@ def tolerance_of(a: np.ndarray, b: np.ndarray, truth: oracle.Answer) -> Toleranc
     points = np.vstack([a, b])
     size = float(np.max(np.ptp(points, axis=0)))
     rounding = ROUNDING * float(np.max(np.abs(points))) + truth.error
-    return Tolerance(SLACK * size + rounding, BAND * size + rounding)
+    # On the points over their largest coordinate, which keeps the squares of bodies near the
+    # largest double finite.
+    reach = float(np.max(np.abs(points)))
+    unit = [body / reach if reach > 0 else body for body in (a, b)]
+    balls = [((body.min(axis=0) + body.max(axis=0)) / 2, np.linalg.norm(np.ptp(body, axis=0)) / 2)
+             for body in unit]
+    ball_size = (float(np.linalg.norm(balls[1][0] - balls[0][0]))
+                 + 2 * max(balls[0][1], balls[1][1])) * reach
+    return Tolerance(SLACK * size + rounding, BAND * size + rounding,
+                     SLACK * max(size, ball_size) + rounding)
 
 
 def run_case(seed: int, index: int) -> Dict[str, Any]:
@@ -198,7 +212,7 @@ def _witness_problems(
         # The witnesses realise the separation along the normal; the answer's value is its upper
         # bound, so they agree to within the bounds' gap (rounding, once converged).
         mismatch = _norm(point_b - point_a - distance * answer["direction"])
-        if mismatch > tolerance.slack + (distance - answer["lower_bound"]):
+        if mismatch > tolerance.witness + (distance - answer["lower_bound"]):
             problems.append(f"|point_b - point_a - distance * direction| = {mismatch:.3g}")
     elif not signed:
         mismatch = abs(_norm(point_b - point_a) - distance)

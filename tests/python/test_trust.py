@@ -320,6 +320,11 @@ CENSUS_CASES = {
     "0:585": "fcl-indep certifies 0 for an overlap of subnormal bodies",
     "47:3210": "fcl with max_iterations=1: a signed distance apart whose witnesses lie nearer (0.033) "
     "than its distance (0.136), off its normal",
+    "49:8148": "fcl's distance of a deep overlap certified at 0.02: FCL's weights on a tetrahedron of "
+    "other points (ties of repeated and collinear points) proved contact but left the witnesses "
+    "apart",
+    "49:9455": "a needle in a 256-point sphere at scale 3.5e51: witnesses off distance * direction "
+    "by the tolerance of the pair's size, which is larger than its widest extent",
 }
 
 

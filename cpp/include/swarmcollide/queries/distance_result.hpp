@@ -44,7 +44,9 @@ struct DistanceResult {
   /// delta of model (2): nonnegative, summing to one.
   ConvexWeights weights_b;
   /// Unit direction from A to B whose separation gives `lower_bound` (zero when none was found).
-  /// For signed distances it is the contact normal, and `point_b - point_a = distance * direction`.
+  /// For signed distances it is the contact normal, and `point_b - point_a = distance * direction`
+  /// to within the bounds' gap, or the tolerance where a normal a gap's worth of angle off a long
+  /// edge's facet tilts the witnesses apart.
   Vector3 direction = Vector3::Zero();
   /// Iterations run (of the method's main loop).
   int iterations = 0;
