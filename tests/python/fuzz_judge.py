@@ -66,10 +66,10 @@ def tolerance_of(a: np.ndarray, b: np.ndarray, truth: oracle.Answer) -> Toleranc
     """SLACK and BAND for the pair (a, b), whose true signed distance is ``truth``."""
     points = np.vstack([a, b])
     size = float(np.max(np.ptp(points, axis=0)))
-    rounding = ROUNDING * float(np.max(np.abs(points))) + truth.error
-    # On the points over their largest coordinate, which keeps the squares of bodies near the
-    # largest double finite.
     reach = float(np.max(np.abs(points)))
+    rounding = ROUNDING * reach + truth.error
+    # The balls on the points over their largest coordinate, which keeps the squares of bodies
+    # near the largest double finite.
     unit = [body / reach if reach > 0 else body for body in (a, b)]
     balls = [((body.min(axis=0) + body.max(axis=0)) / 2, np.linalg.norm(np.ptp(body, axis=0)) / 2)
              for body in unit]
