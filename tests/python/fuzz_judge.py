@@ -34,6 +34,7 @@ from typing import Any, Dict, List, Optional, Tuple
 import numpy as np
 
 import minkowski_oracle as oracle
+from contract import pair_scale
 from fuzz_api import API_MISMATCH, BATCH_QUERIES, PRECISE_METHODS, call, summary
 from fuzz_cases import ANSWER, ERROR, Case, make_case
 from sandbox import CRASHED, HUNG, RETURNED, Outcome
@@ -68,13 +69,7 @@ def tolerance_of(a: np.ndarray, b: np.ndarray, truth: oracle.Answer) -> Toleranc
     size = float(np.max(np.ptp(points, axis=0)))
     reach = float(np.max(np.abs(points)))
     rounding = ROUNDING * reach + truth.error
-    # The balls on the points over their largest coordinate, which keeps the squares of bodies
-    # near the largest double finite.
-    unit = [body / reach if reach > 0 else body for body in (a, b)]
-    balls = [((body.min(axis=0) + body.max(axis=0)) / 2, np.linalg.norm(np.ptp(body, axis=0)) / 2)
-             for body in unit]
-    ball_size = (float(np.linalg.norm(balls[1][0] - balls[0][0]))
-                 + 2 * max(balls[0][1], balls[1][1])) * reach
+    ball_size = pair_scale(a, b).size
     return Tolerance(SLACK * size + rounding, BAND * size + rounding,
                      SLACK * max(size, ball_size) + rounding)
 

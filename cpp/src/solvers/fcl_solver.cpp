@@ -135,18 +135,18 @@ Answer solve_fcl(const FramedPair& pair, const QueryOptions& options, Goal goal)
   };
   const bool usable = status != Gjk::Failed && corral.size > 0;
   if (usable) {
-    // A corral around the origin proves the overlap, which settles a verdict and a distance
-    // (zero) whatever the separation along the witnesses: those skip its two scans. A distance
-    // needs no enclosure test where the witnesses already prove contact (as contact_witness_of):
-    // within the tolerance they settle it at zero as the proof would, and a distance reports
-    // no intersection proof; zero, its lower bound, needs no scan either.
+    // A corral around the origin proves the overlap, which settles a verdict whatever the
+    // separation along the witnesses: it skips the two scans. A distance is settled by witnesses
+    // within the tolerance only (zero, its lower bound, needs no scan then), so it takes no
+    // enclosure test: FCL's weights on the corral's points, found again by support scans, can
+    // leave the witnesses of an enclosing corral apart (census case 49:8148).
     const bool distance_goal = goal == Goal::distance;
     // The witness inline (combined_witness(pair, corral), its call out of line, cost 20 more).
     Witness witness = combined_witness(
         corral, [&pair](int i) { return pair.a.vertex(i); },
         [&pair](int j) { return pair.b.vertex(j); });
     const bool witnesses_contact = distance_goal && witnesses_prove_contact(pair, witness);
-    if (!witnesses_contact && corral.size == 4) {
+    if (!distance_goal && corral.size == 4) {
       place_corral();
       witness.encloses_origin = corral_encloses_origin(corral);
     }
