@@ -393,6 +393,26 @@ def test_batches_take_compound_bodies_and_point_stacks():
     assert sc.time_of_impact_many(points, points).touches.all()
 
 
+def test_a_batch_row_answers_as_its_single_call_whatever_the_other_rows_hold():
+    # A batch with a compound body in any row wraps every body as a compound body of one part;
+    # a convex pair's row must still answer as the pair does alone (its separating directions
+    # bound the motion, a compound body's do not), not depend on its neighbours.
+    rng = np.random.default_rng(3)
+    a, b = (sc.ConvexPolyhedron(rng.normal(size=(12, 3)) * 0.5) for _ in range(2))
+    pair = sc.CompoundBody([sc.Box([0.3] * 3), sc.Sphere(0.2)], poses=np.stack([
+        transform(np.eye(3), [-0.4, 0, 0]), transform(np.eye(3), [0.4, 0, 0])]))
+    starts = np.stack([random_pose(rng, 3) for _ in range(8)])
+    ends = np.stack([random_pose(rng, 3) for _ in range(8)])
+    for motion in ("linear", "screw"):
+        mixed = sc.time_of_impact_many([a] * 7 + [a], [b] * 7 + [pair], poses_a=(starts, ends),
+                                       motion=motion)
+        for i in range(7):
+            single = sc.time_of_impact(a, b, pose_a=(starts[i], ends[i]), motion=motion)
+            assert toi_fields(mixed[i]) == toi_fields(single), (motion, i)
+        alone = sc.time_of_impact(a, pair, pose_a=(starts[7], ends[7]), motion=motion)
+        assert toi_fields(mixed[7]) == toi_fields(alone)
+
+
 def toi_fields(result):
     # repr: a free motion's distance is NaN, which equals nothing.
     return (result.touches, result.t_lower, result.t_upper, repr(result.distance), result.certified,

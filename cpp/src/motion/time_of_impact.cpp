@@ -320,11 +320,30 @@ class Advancement {
   int iterations_ = 0;
 };
 
+TimeOfImpactResult advance(const ConvexPolyhedron& a, const RigidMotion& motion_a,
+                           const ConvexPolyhedron& b, const RigidMotion& motion_b,
+                           const TimeOfImpactOptions& options) {
+  return Advancement<ConvexPolyhedron>(a, motion_a, b, motion_b, options).run();
+}
+
+// Two compound bodies of one part each are those parts (placed in their bodies' frames), and
+// answer as convex bodies: their queries' separating directions bound the motion, which a
+// compound body's do not. So a pair of convex bodies in a batch that holds compound bodies (where
+// every body is wrapped as one) answers as it does alone, whatever the other rows hold.
+TimeOfImpactResult advance(const CompoundBody& a, const RigidMotion& motion_a,
+                           const CompoundBody& b, const RigidMotion& motion_b,
+                           const TimeOfImpactOptions& options) {
+  if (a.size() == 1 && b.size() == 1) {
+    return advance(a.parts().front(), motion_a, b.parts().front(), motion_b, options);
+  }
+  return Advancement<CompoundBody>(a, motion_a, b, motion_b, options).run();
+}
+
 template <typename Body>
 TimeOfImpactResult solve(const Body& a, const RigidMotion& motion_a, const Body& b,
                          const RigidMotion& motion_b, const TimeOfImpactOptions& options) {
   options.validate();
-  return Advancement<Body>(a, motion_a, b, motion_b, options).run();
+  return advance(a, motion_a, b, motion_b, options);
 }
 
 template <typename Body>
@@ -362,11 +381,9 @@ std::vector<TimeOfImpactResult> solve_many(const BatchBodies<Body>& as,
       rows, threads,
       [&] {
         return [&](std::size_t row) {
-          results[row] = Advancement<Body>(as[pick(as.size(), row)],
-                                           motions_a[pick(motions_a.size(), row)],
-                                           bs[pick(bs.size(), row)],
-                                           motions_b[pick(motions_b.size(), row)], options)
-                             .run();
+          results[row] = advance(as[pick(as.size(), row)], motions_a[pick(motions_a.size(), row)],
+                                 bs[pick(bs.size(), row)], motions_b[pick(motions_b.size(), row)],
+                                 options);
         };
       },
       "motion");
