@@ -32,10 +32,19 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "python"))
 from fuzz_cases import make_case  # noqa: E402
 from fuzz_files import FILE_CATEGORIES, FILE_FAILURES, make_file_case, run_file_case  # noqa: E402
 from fuzz_judge import CATEGORIES, FAILURES, category_of, run_case  # noqa: E402
+from motion_cases import motion_case, run_motion_case  # noqa: E402
 from sandbox import Sandbox  # noqa: E402
 from scene_cases import run_scene_case, scene_case  # noqa: E402
 
 Record = Dict[str, Any]
+
+
+def make_motion_case(seed: int, index: int) -> SimpleNamespace:
+    """Motion case ``index`` described as the other corpora describe theirs."""
+    family, query, label, case = motion_case(seed, index)
+    note = case["label"] if isinstance(case, dict) else case
+    return SimpleNamespace(id=f"motions-{seed}-{index}", family=family, query=query, label=label,
+                           note=note)  # fmt: skip
 
 
 def make_scene_case(seed: int, index: int) -> SimpleNamespace:
@@ -49,14 +58,15 @@ CORPORA: Dict[str, Tuple[Callable[[int, int], Any], Callable[..., Any], tuple, f
     "queries": (make_case, run_case, CATEGORIES, FAILURES),
     "files": (make_file_case, run_file_case, FILE_CATEGORIES, FILE_FAILURES),
     "scene": (make_scene_case, run_scene_case, CATEGORIES, FAILURES),
+    "motions": (make_motion_case, run_motion_case, CATEGORIES, FAILURES),
 }
 """Each corpus's case maker, judge (run in the sandbox), categories and failing categories."""
 
 PRELOAD = {"queries": ("fuzz_judge",), "files": ("fuzz_judge", "fuzz_files"),
-           "scene": ("scene_cases",)}  # fmt: skip
+           "scene": ("scene_cases",), "motions": ("motion_cases",)}  # fmt: skip
 """The modules each corpus's children import once, before their first case."""
 
-TIMEOUT = {"queries": 20.0, "files": 30.0, "scene": 600.0}
+TIMEOUT = {"queries": 20.0, "files": 30.0, "scene": 600.0, "motions": 120.0}
 """Seconds before a case counts as a hang: a scene case runs a long motion."""
 
 
@@ -136,7 +146,7 @@ def read_report(path: Path) -> Tuple[Record, List[Record]]:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--corpus", choices=sorted(CORPORA), default="queries",
-                        help="the query cases (default), the files, CLI and inputs cases, or scenes")
+                        help="the query cases (default), the files, CLI and inputs cases, scenes or motions")
     parser.add_argument("--seed", type=int, default=0, help="the corpus (default 0)")
     parser.add_argument("--count", type=int, default=10000, help="cases 0 .. count-1")
     parser.add_argument("--workers", type=int, default=2, help="children at once")
