@@ -12,7 +12,8 @@ check      ``check``, ``distances``, ``forward_kinematics`` and ``geometry_poses
            pairs against the adjacency rule; batches against single calls and 1 thread against 2.
 motion     ``check_motion`` against dense sampling of ``distances`` along the segment: random,
            grazing (an obstacle placed at a link's support point mid-motion), still (q0 == q1),
-           starting in contact, and many turns of the continuous joints; batches against single
+           starting in contact, many turns of the continuous joints, and the whole robot and its
+           obstacles 1e3 to 1e6 times its size from the world's origin; batches against single
            calls and threads.
 argument   malformed URDF and MJCF files, tables, configurations and options: each must be a
            ValueError or TypeError whose message names what is wrong.
@@ -70,7 +71,7 @@ too (its meshes MuJoCo recentres, which test_robot.py covers)."""
 
 OBSTACLE_KINDS = ("box", "sphere", "capsule", "ellipsoid", "hull", "rounded", "compound")
 
-MOTIONS = ("random", "graze", "still", "start-in-contact", "turns")
+MOTIONS = ("random", "graze", "still", "start-in-contact", "turns", "far")
 
 
 # ----- the model ------------------------------------------------------------------------------
@@ -835,7 +836,20 @@ def motion_ends(model: ModelSpec, world: World, rng: np.random.Generator,
         ball = place_ball(model, world, q0, rng, -0.01 * model.scale)
     if ball is not None:
         model = replace(model, obstacles=model.obstacles + [ball])
+    if kind == "far":
+        model = moved(model, unit(rng.normal(size=3)) * 10 ** rng.uniform(3, 6) * model.scale)
     return model, q0, q1
+
+
+def moved(model: ModelSpec, offset: np.ndarray) -> ModelSpec:
+    """The model with its root, and so everything, and its obstacles moved by ``offset``."""
+    return replace(
+        model,
+        joints=[replace(j, xyz=j.xyz + offset) if j.parent == 0 else j for j in model.joints],
+        geometries=[replace(g, xyz=g.xyz + offset) if g.link == 0 else g
+                    for g in model.geometries],
+        obstacles=[replace(o, xyz=o.xyz + offset) for o in model.obstacles],
+    )  # fmt: skip
 
 
 def judge_motion(robot: sc.Robot, world: World, q0: np.ndarray, q1: np.ndarray, result: Any,
