@@ -588,7 +588,8 @@ class World:
         return 2 * (self.reaches[a] + self.reaches[b])
 
     def rounding(self, poses: Dict[str, np.ndarray]) -> float:
-        coordinates = max(float(np.abs(p[:3, 3]).max()) + self.reaches[n] for n, p in poses.items())
+        coordinates = max((float(np.abs(p[:3, 3]).max()) + self.reaches[n] for n, p in poses.items()),
+                          default=0.0)
         return ROUNDING * max(coordinates, self.model.scale)
 
     def exact(self, a: str, b: str, poses: Dict[str, np.ndarray]) -> Tuple[float, float]:
