@@ -7,6 +7,8 @@ case that is not "ok" (its id, category and reason), so that a fix can be checke
     .venv/bin/python tests/fuzz/census.py --rerun tests/fuzz/before.jsonl  # old -> new per case
     .venv/bin/python tests/fuzz/census.py --corpus files --count 600       # meshes, CLI, inputs
     .venv/bin/python tests/fuzz/census.py --corpus scene --count 200       # scenes
+    .venv/bin/python tests/fuzz/census.py --corpus robots --count 1000     # robots
+    .venv/bin/python tests/fuzz/census.py --corpus motions --count 1000    # motions
 
 The query corpus's categories are those of tests/python/fuzz_judge.py and its cases those of
 fuzz_cases.py; the files corpus (mesh files, the command line, what users pass from other
@@ -14,6 +16,11 @@ libraries) has both in tests/python/fuzz_files.py; the scene corpus's cases are 
 scene_cases.py, judged in fuzz_judge.py's categories: every broadphase through long seeded motions
 against brute force, every method's certified rows against exact distances, bodies far from the
 origin, and bad arguments (a case whose error does not name its argument counts as "error-type").
+The robots corpus's cases are those of robot_cases.py: random robots from tables, URDF and MJCF
+whose checks, distances and poses are judged against brute force, their motions against dense
+sampling, and bad models, configurations and options. The motions corpus's cases are those of
+motion_cases.py: time_of_impact against dense sampling and exact sweeps, batches against single
+calls, and bad arguments.
 """
 
 from __future__ import annotations
@@ -33,6 +40,7 @@ from fuzz_cases import make_case  # noqa: E402
 from fuzz_files import FILE_CATEGORIES, FILE_FAILURES, make_file_case, run_file_case  # noqa: E402
 from fuzz_judge import CATEGORIES, FAILURES, category_of, run_case  # noqa: E402
 from motion_cases import motion_case, run_motion_case  # noqa: E402
+from robot_cases import robot_case, run_robot_case  # noqa: E402
 from sandbox import Sandbox  # noqa: E402
 from scene_cases import run_scene_case, scene_case  # noqa: E402
 
@@ -54,19 +62,28 @@ def make_scene_case(seed: int, index: int) -> SimpleNamespace:
                            note=repr(arguments))  # fmt: skip
 
 
+def make_robot_case(seed: int, index: int) -> SimpleNamespace:
+    """Robot case ``index`` described as the other corpora describe theirs."""
+    family, query, label, arguments = robot_case(seed, index)
+    return SimpleNamespace(id=f"robots-{seed}-{index}", family=family, query=query, label=label,
+                           note=repr(arguments))  # fmt: skip
+
+
 CORPORA: Dict[str, Tuple[Callable[[int, int], Any], Callable[..., Any], tuple, frozenset]] = {
     "queries": (make_case, run_case, CATEGORIES, FAILURES),
     "files": (make_file_case, run_file_case, FILE_CATEGORIES, FILE_FAILURES),
     "scene": (make_scene_case, run_scene_case, CATEGORIES, FAILURES),
     "motions": (make_motion_case, run_motion_case, CATEGORIES, FAILURES),
+    "robots": (make_robot_case, run_robot_case, CATEGORIES, FAILURES),
 }
 """Each corpus's case maker, judge (run in the sandbox), categories and failing categories."""
 
 PRELOAD = {"queries": ("fuzz_judge",), "files": ("fuzz_judge", "fuzz_files"),
-           "scene": ("scene_cases",), "motions": ("motion_cases",)}  # fmt: skip
+           "scene": ("scene_cases",), "motions": ("motion_cases",),
+           "robots": ("robot_cases",)}  # fmt: skip
 """The modules each corpus's children import once, before their first case."""
 
-TIMEOUT = {"queries": 20.0, "files": 30.0, "scene": 600.0, "motions": 120.0}
+TIMEOUT = {"queries": 20.0, "files": 30.0, "scene": 600.0, "motions": 120.0, "robots": 60.0}
 """Seconds before a case counts as a hang: a scene case runs a long motion."""
 
 
@@ -146,7 +163,8 @@ def read_report(path: Path) -> Tuple[Record, List[Record]]:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--corpus", choices=sorted(CORPORA), default="queries",
-                        help="the query cases (default), the files, CLI and inputs cases, scenes or motions")
+                        help="the query cases (default), the files, CLI and inputs cases, scenes, "
+                        "robots or motions")
     parser.add_argument("--seed", type=int, default=0, help="the corpus (default 0)")
     parser.add_argument("--count", type=int, default=10000, help="cases 0 .. count-1")
     parser.add_argument("--workers", type=int, default=2, help="children at once")
