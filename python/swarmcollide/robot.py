@@ -369,11 +369,19 @@ class Robot:
     def disable_pairs(self, pairs: Sequence[Tuple[str, str]]) -> "Robot":
         """Stop checking these pairs of link (or obstacle) names; returns the robot.
 
-        Raises ``ValueError`` for a name that is no link or obstacle of the robot.
+        Raises ``TypeError`` for ``pairs`` that is not a sequence of pairs of names (a single
+        string, an entry of one or three names), ``ValueError`` for a name that is no link or
+        obstacle of the robot.
         """
         known = set(self._links) | {o[0] for o in self._obstacles}
         disabled = set(self._disabled)
-        for pair in pairs:
+        if isinstance(pairs, (str, bytes)):
+            raise TypeError(f"pairs must be a sequence of (name, name) pairs, got the string "
+                            f"{pairs!r}: write [({pairs!r}, ...)]")
+        for i, pair in enumerate(pairs):
+            if isinstance(pair, (str, bytes)) or len(pair) != 2:
+                raise TypeError(f"pairs[{i}] must be a pair of link or obstacle names, got "
+                                f"{pair!r}")
             a, b = pair
             for end in (a, b):
                 if end not in known:
@@ -535,8 +543,10 @@ class Robot:
         method, tolerance, seed
             The pair queries' (``method`` must answer distances: ``"exact"``, the default and
             the fastest here, ``"dual"``, ``"fcl"``; a query one leaves unproven is asked again
-            of ``"exact"``, or of ``"dual"`` after ``"exact"``); pairs within ``tolerance`` times their size (the sum of their bounding
-            balls' diameters) are in contact; ``tolerance`` must be positive.
+            of ``"exact"``, or of ``"dual"`` after ``"exact"``); pairs within ``tolerance`` times
+            their size (the sum of their bounding balls' diameters) are in contact;
+            ``tolerance`` must be positive. Every motion's queries take ``seed``, so a row of a
+            batch answers as the same motion alone.
 
         Returns
         -------

@@ -5,6 +5,7 @@ from __future__ import annotations
 import os
 from pathlib import Path
 from typing import Optional, Sequence, Union
+from xml.etree import ElementTree
 
 import numpy as np
 
@@ -76,7 +77,8 @@ def load_urdf(path: PathLike, package_dirs: Optional[Sequence[PathLike]] = None,
         model = yourdfpy.URDF.load(str(urdf_path), build_scene_graph=False, load_meshes=False,
                                    load_collision_meshes=False)
     except Exception as error:  # yourdfpy and lxml raise many types for bad files
-        raise ValueError(f"cannot read URDF file '{path}': {error}") from error
+        raise ValueError(f"cannot read URDF file '{path}': {_empty_geometry(urdf_path) or error}"
+                         ) from error
     robot = model.robot
     links = [link.name for link in robot.links]
     index = {name: i for i, name in enumerate(links)}
@@ -116,15 +118,34 @@ def load_urdf(path: PathLike, package_dirs: Optional[Sequence[PathLike]] = None,
     return ModelTables(links, joints, geometries)
 
 
+def _empty_geometry(urdf_path: Path) -> Optional[str]:
+    """What yourdfpy fails on without saying so (an IndexError): a link's empty ``<geometry>``."""
+    try:
+        root = ElementTree.parse(urdf_path).getroot()
+    except (ElementTree.ParseError, OSError):
+        return None
+    for link in root.iter("link"):
+        for element in list(link.iter("collision")) + list(link.iter("visual")):
+            geometry = element.find("geometry")
+            if geometry is not None and len(geometry) == 0:
+                return (f"link '{link.get('name')}': its <{element.tag}> element's <geometry> is "
+                        "empty (give a box, sphere, cylinder or mesh)")
+    return None
+
+
 def _body(geometry, name: str, link: str, urdf_path: Path, dirs, collision: str):
     if geometry is None:
         raise ValueError(f"link '{link}': a <collision> element has no <geometry>")
-    if geometry.box is not None:
-        return _core.Box(np.asarray(geometry.box.size, dtype=float) / 2)
-    if geometry.sphere is not None:
-        return _core.Sphere(float(geometry.sphere.radius))
-    if geometry.cylinder is not None:
-        return _core.Cylinder(float(geometry.cylinder.radius), float(geometry.cylinder.length) / 2)
+    try:
+        if geometry.box is not None:
+            return _core.Box(np.asarray(geometry.box.size, dtype=float) / 2)
+        if geometry.sphere is not None:
+            return _core.Sphere(float(geometry.sphere.radius))
+        if geometry.cylinder is not None:
+            return _core.Cylinder(float(geometry.cylinder.radius),
+                                  float(geometry.cylinder.length) / 2)
+    except ValueError as error:  # the shape's own message: say whose shape it is
+        raise ValueError(f"link '{link}': {error}") from error
     if geometry.mesh is not None:
         mesh_path = resolve_mesh_path(geometry.mesh.filename, urdf_path, dirs, link)
         try:
@@ -132,6 +153,10 @@ def _body(geometry, name: str, link: str, urdf_path: Path, dirs, collision: str)
         except ValueError as error:  # a file that is not a mesh: say whose it is
             raise ValueError(f"link '{link}': {error}") from error
         if geometry.mesh.scale is not None:
-            mesh.apply_scale(np.asarray(geometry.mesh.scale, float))
+            scale = np.asarray(geometry.mesh.scale, float)
+            if not (np.all(np.isfinite(scale)) and np.all(scale != 0)):
+                raise ValueError(f"link '{link}': mesh scale must be finite and non-zero, got "
+                                 f"{scale.tolist()}")
+            mesh.apply_scale(scale)
         return collision_bodies(collision)(mesh, name)
     raise ValueError(f"link '{link}': a <collision> geometry has no box, sphere, cylinder or mesh")

@@ -403,6 +403,23 @@ def test_bad_files_name_the_link_or_joint(tmp_path):
         sc.Robot.from_urdf(urdf, package_dirs=[tmp_path], collision="hulls")
     with pytest.raises(ValueError, match="not found"):
         sc.Robot.from_urdf(tmp_path / "none.urdf")
+    # A shape's own refusal, an empty <geometry> (yourdfpy fails on it without saying where) and
+    # a mesh scale that is not finite name their link.
+    for bad, message in [('<sphere radius="-0.1"/>', "link 'arm': radius must be"),
+                         ('<box size="0.2 0 0.2"/>', r"link 'arm': half_extents\[1\] must be"),
+                         ("", "link 'arm': its <collision> element's <geometry> is empty"),
+                         ('<mesh filename="arm.stl" scale="nan 1 1"/>',
+                          "link 'arm': mesh scale must be finite")]:
+        path = other / "bad.urdf"
+        trimesh.creation.box((0.1, 0.1, 0.1)).export(other / "arm.stl")
+        path.write_text(f"""<robot name="r">
+  <link name="base"><collision><geometry><sphere radius="0.1"/></geometry></collision></link>
+  <link name="arm"><collision><geometry>{bad}</geometry></collision></link>
+  <joint name="j" type="revolute"><parent link="base"/><child link="arm"/>
+    <origin xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+</robot>""")
+        with pytest.raises(ValueError, match=message):
+            sc.Robot.from_urdf(path)
 
 
 def test_answers_name_the_pairs_checked_after_the_pairs_change(arm):
@@ -419,6 +436,15 @@ def test_answers_name_the_pairs_checked_after_the_pairs_change(arm):
     assert ("base", "blob") not in arm.pairs and "blob" in after.pair_names
     motion = arm.check_motion(q, q)
     assert tuple(motion.pair_names) == arm.pairs[motion.pair]
+
+
+def test_disabled_pairs_must_be_pairs_of_names(arm):
+    with pytest.raises(TypeError, match=r"pairs\[0\] must be a pair of link or obstacle names"):
+        arm.disable_pairs([("base", "fore", "base")])
+    with pytest.raises(TypeError, match="pairs must be a sequence of .name, name. pairs"):
+        arm.disable_pairs("base")
+    with pytest.raises(ValueError, match="'nothing' is not a link or obstacle"):
+        arm.disable_pairs([("base", "nothing")])
 
 
 def test_obstacle_names_must_be_new(arm):

@@ -177,6 +177,41 @@ def test_batches_equal_single_calls_and_threads_do_not_change_answers():
         assert fan.t_upper[i] == robot.check_motion(q0[0], q1[i]).t_upper
 
 
+def test_batch_rows_answer_as_single_motions_with_the_dual_method_too():
+    # Every motion's queries take the caller's seed (as time_of_impact_many's): seeded by its
+    # row, a batch's row whose samples the randomized method decided differed from it alone.
+    robot = small_arm()
+    rng = np.random.default_rng(11)
+    lower, upper = np.clip(robot.limits, -np.pi, np.pi).T
+    q0 = rng.uniform(lower, upper, size=(6, robot.dof))
+    q1 = rng.uniform(lower, upper, size=(6, robot.dof))
+    batch = robot.check_motion(q0, q1, method="dual", seed=5)
+    for i in range(6):
+        row = robot.check_motion(q0[i], q1[i], method="dual", seed=5)
+        assert (row.touches, row.t_lower, row.t_upper, row.iterations, row.certified) == (
+            batch.touches[i], batch.t_lower[i], batch.t_upper[i], batch.iterations[i],
+            batch.certified[i])
+
+
+@pytest.mark.parametrize("far", [1e4, 1e5])
+def test_a_robot_far_from_the_world_origin_is_still_certified(far):
+    # There the placed frames' rounding margin (some 400 roundoffs of 1e4 or more) exceeds the
+    # contact threshold (1e-9 of the pair's size, 0.55): a distance of 0 proves no contact, but
+    # an overlap deeper than the margin does, measured by the signed distance.
+    def box_and_ball(x, ball_at):
+        """A 0.2 box turning about z at (x, 0, 0), and a ball of radius 0.1 at x + ball_at."""
+        arm = sc.Robot(["a", "b"], [sc.Joint("j", "continuous", 0, 1, origin=transform([x, 0, 0]))],
+                       [("box", 1, np.eye(4), sc.Box([0.1, 0.1, 0.1]))])
+        return arm.add_obstacle(sc.Sphere(0.1), transform([x + ball_at, 0, 0]), name="ball")
+
+    hit = box_and_ball(far, 0.22).check_motion([0.0], [0.7])  # the box's corner reaches the ball
+    at_origin = box_and_ball(0.0, 0.22).check_motion([0.0], [0.7])
+    assert hit.touches and hit.certified and at_origin.certified
+    assert abs(hit.t_upper - at_origin.t_upper) < 1e-5
+    start = box_and_ball(far, 0.15).check_motion([0.0], [0.5])  # overlapping at q0
+    assert start.touches and start.certified and start.t_upper == 0
+
+
 def test_the_exact_method_is_the_default_and_agrees_with_the_dual_one():
     robot = small_arm()
     rng = np.random.default_rng(3)

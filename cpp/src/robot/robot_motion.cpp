@@ -209,8 +209,10 @@ class MotionCheck {
     configuration_at(1);
     end_links_ = links_;
     bound_.set_motion(start_.data(), end_.data(), start_links_, end_links_);
+    // Every motion's queries take the caller's seed, as time_of_impact_many's do, so that a row
+    // of a batch answers as the same motion alone (seeded by its row, a row whose samples the
+    // dual method decided differed from it, within its bounds).
     QueryOptions query = options_.query;
-    query.seed = pair_seed(options_.query.seed, row);
     // A quarter of the motion's tolerance, as time_of_impact asks it: near contact the queries'
     // bounds are then within 3/8 of the threshold of each other, so a time not proven in contact
     // is proven apart by 5/8 of it less the margin, and bisection ends (motions.md).
@@ -647,6 +649,16 @@ class MotionCheck {
     }
     if ((result.distance + plan.margin) * plan.stretch <= threshold) return {t, true, 0, 0};
     const Scalar apart = result.lower_bound - plan.margin;
+    if (!(apart > 0) && result.distance <= threshold) {
+      // In contact, but its distance (0 for an overlap) is not proven within the threshold of
+      // it once the margin is added: far from the world's origin the placed frames' rounding
+      // exceeds the threshold (a robot 1e4 times its pairs' size away). An overlap deeper than
+      // the margin still proves contact; the signed distance measures it.
+      ++iterations_;
+      const DistanceResult depth =
+          detail::signed_distance_of(*query_, model_, pair, pose_a_, pose_b_);
+      if ((depth.distance + plan.margin) * plan.stretch <= threshold) return {t, true, 0, 0};
+    }
     if (!(apart > 0)) return {t, false, 0, 0};
     // The lower bound is the separation along `direction` (a compound geometry's is not).
     const Scalar length = result.direction.norm();
