@@ -66,8 +66,8 @@ def time_of_impact(
     Parameters
     ----------
     a, b : ConvexPolyhedron, CompoundBody, shape or array_like of shape (n, 3)
-        The bodies, in their own frames: anything ``distance`` takes (curved shapes with
-        ``method="dual"`` or ``"exact"``).
+        The bodies, in their own frames: anything ``distance`` takes (curved shapes with every
+        method here, ``"fcl"`` as FCL's own primitives).
     pose_a, pose_b : (start, end), a pose, or None
         Each body's motion: its poses at time 0 and time 1 (a ``(4, 4)`` transform, a pair
         ``(rotation, translation)``, a SciPy ``Rotation``, ...). A single pose, or None for the
@@ -75,9 +75,9 @@ def time_of_impact(
     method : str
         ``"exact"`` (default), ``"dual"`` or ``"fcl"``: the distance queries run at each sampled
         time. Advancement needs proven lower bounds, not values certified far from contact, which
-        "dual" pays its swarm rounds for; with "exact", a time whose query leaves the value
-        unproven and proves neither contact nor the bodies farther apart than the threshold is
-        asked again of "dual".
+        "dual" pays its swarm rounds for; with "exact" or "fcl", a time whose query leaves the
+        value unproven and proves neither contact nor the bodies farther apart than the
+        threshold is asked again of "dual".
     tolerance : float
         Contact threshold (> 0), relative to the motion's size, the sum of the two bodies'
         bounding-ball diameters (between 2/3 and 2 times the pair's size where they touch):

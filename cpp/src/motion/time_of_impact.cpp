@@ -176,14 +176,14 @@ class Advancement {
     return options;
   }
 
-  // The query's answer at the poses, asked again of "dual" where "exact" left it unproven and
-  // it decides nothing (TimeOfImpactOptions::query): neither proven in contact nor proven
+  // The query's answer at the poses, asked again of "dual" where "exact" or "fcl" (which goes on
+  // to "exact" itself) left it unproven and it decides nothing (TimeOfImpactOptions::query): neither proven in contact nor proven
   // farther apart than the contact threshold. Farther, an unproven value still steps as far as a
   // proven one would; in between, the bisection needs the value proven.
   template <typename Ask>
   auto answer(const Ask& ask) {
     auto result = ask(query_);
-    if (options_.query.method == Method::exact && !result.certified &&
+    if (options_.query.method != Method::dual && !result.certified &&
         !(result.distance + margin_ <= contact_threshold_) &&
         !(result.lower_bound - margin_ > contact_threshold_)) {
       // Made when first needed: most motions never ask it, and a Query checks its options.

@@ -65,12 +65,20 @@ Answer corral_answer(const FramedPair& pair, const MinNormPoint& nearest, long e
   return answer;
 }
 
+// Wolfe's answer from `start`, its corral in `nearest`. Where it leaves a polytope pair's value
+// unproven, the planes of its corral are tried (settles_signed_distance): a pair a hair apart
+// face to face has a nearest point whose direction is off by the rounding of unit points over
+// its norm, and the separation along it loses that angle times the faces' width (a polytope
+// 2e-9 of its size from a box's face: lower bound 0, uncertified, where a signed distance was
+// certified).
 template <class Start>
 Answer nearest_points(const FramedPair& pair, int max_iterations, const Start& start, int hint_a,
                       int hint_b, MinNormPoint& nearest) {
   long evaluations = 0;
   nearest = nearest_corral(pair, max_iterations, start, hint_a, hint_b, evaluations);
-  return corral_answer(pair, nearest, evaluations);
+  Answer answer = corral_answer(pair, nearest, evaluations);
+  settles_value(pair, nearest, answer);
+  return answer;
 }
 
 template <class Start>
@@ -179,6 +187,10 @@ bool plane_settles(const FramedPair& pair, const OraclePoint& p0, const Vector3&
 
 bool settles_signed_distance(const FramedPair& pair, const MinNormPoint& corral, Answer& answer) {
   if (pair.a.curved() || pair.b.curved()) return false;
+  return settles_value(pair, corral, answer);
+}
+
+bool settles_value(const FramedPair& pair, const MinNormPoint& corral, Answer& answer) {
   if (value_proven(pair, answer)) return true;
   const std::array<OraclePoint, MinNormPoint::kCapacity>& p = corral.corral;
   if (corral.size == 3) return plane_settles(pair, p[0], p[1].p, p[2].p, answer);
@@ -255,8 +267,9 @@ Answer exact_signed_distance(const FramedPair& pair, int max_iterations, const V
       nearest_corral(pair, max_iterations, start_direction(pair, hint), -1, -1, evaluations);
   Answer apart = corral_answer(pair, nearest, evaluations);
   // A positive separation proves the bodies apart, and their distance is the signed distance;
-  // a touching pair's may be settled without the expanding polytope.
-  if (apart.lower > kFrameRounding || settles_signed_distance(pair, nearest, apart)) return apart;
+  // a touching pair's may be settled without the expanding polytope, and an apart pair's value
+  // left unproven by rounding is settled the same way (as exact_distance's).
+  if (settles_signed_distance(pair, nearest, apart) || apart.lower > kFrameRounding) return apart;
   const Vector3 start = hint.norm() > 0 ? hint : apart.direction;
   // Wolfe's corral is not computed again; around the origin it starts the expanding polytope.
   Answer overlap = exact_penetration(pair, max_iterations, start, apart.upper, &nearest);

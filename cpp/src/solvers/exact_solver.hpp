@@ -48,6 +48,12 @@ Answer settled_distance(const FramedPair& pair, int max_iterations, const Vector
 /// on axes of symmetry) does not.
 bool settles_signed_distance(const FramedPair& pair, const MinNormPoint& corral, Answer& answer);
 
+/// The same for any pair, curved ones too, where only the value is asked (a distance): the lower
+/// bound a plane of the corral proves is the separation along its normal, and a normal a square
+/// root of the tolerance off moves the witnesses' relation by that angle times a distance within
+/// the tolerance of zero.
+bool settles_value(const FramedPair& pair, const MinNormPoint& corral, Answer& answer);
+
 /// The certified penetration depth of touching or overlapping bodies, from the direction `hint`
 /// (which may be zero); `distance_upper`, any upper bound on their distance, also bounds the
 /// signed distance. `nearest`, when not null, is the corral of Wolfe's algorithm on B - A run to

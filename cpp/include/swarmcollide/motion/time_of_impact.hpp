@@ -32,10 +32,10 @@ inline QueryOptions exact_queries() {
 /// and the iteration cap.
 struct TimeOfImpactOptions {
   /// The queries at each sampled time: `query.method` must answer distances and signed
-  /// distances ("exact", the default, "dual", "fcl"). With "exact", a sampled time whose query
-  /// leaves the value unproven (Wolfe's algorithm can stall on smooth surfaces, or by rounding
-  /// near contact) and proves neither contact nor the bodies farther apart than the contact
-  /// threshold is asked again of "dual", whose swarm proves those.
+  /// distances ("exact", the default, "dual", "fcl"). With "exact" or "fcl", a sampled time
+  /// whose query leaves the value unproven (Wolfe's algorithm can stall on smooth surfaces, or
+  /// by rounding near contact) and proves neither contact nor the bodies farther apart than the
+  /// contact threshold is asked again of "dual", whose swarm proves those.
   /// `query.tolerance` (relative, > 0) is the contact
   /// threshold: the bodies touch when they are within `tolerance x size` of each other, where
   /// `size` is the sum of the two bodies' bounding-ball diameters (BodyBounds::radius), constant
