@@ -345,16 +345,26 @@ def _sweep_distance(case: Dict[str, Any], b_pose: np.ndarray, t: float):
                               pose_b=b_pose)  # fmt: skip
 
 
+def grazing_motions(case: Dict[str, Any]) -> Optional[Tuple[Motion, Motion, Any]]:
+    """A's motion, B's (still where A's sweep comes within ``graze`` x the size of it) and that
+    closest approach (an exact signed distance), or None where the sweep gives no normal."""
+    size = motion_size(case["a"], case["b"])
+    approach = _sweep_distance(case, case["still"], 1.0)
+    if not np.all(np.isfinite(approach.direction)) or not np.any(approach.direction):
+        return None
+    shifted = case["still"].copy()
+    shifted[:3, 3] += (case["graze"] * size - approach.distance) * np.asarray(approach.direction)
+    return (case["start"], case["end"]), (shifted, shifted), _sweep_distance(case, shifted, 1.0)
+
+
 def run_swept(case: Dict[str, Any]) -> Dict[str, Any]:
     a, b = case["a"], case["b"]
     size = motion_size(a, b)
-    approach = _sweep_distance(case, case["still"], 1.0)
-    if not np.all(np.isfinite(approach.direction)) or not np.any(approach.direction):
+    grazing = grazing_motions(case)
+    if grazing is None:
         return _verdict("ok", "no normal to shift along")
-    shifted = case["still"].copy()
-    shifted[:3, 3] += (case["graze"] * size - approach.distance) * np.asarray(approach.direction)
-    closest = _sweep_distance(case, shifted, 1.0)
-    motion_a, motion_b = (case["start"], case["end"]), (shifted, shifted)
+    motion_a, motion_b, closest = grazing
+    shifted = motion_b[0]
     result = sc.time_of_impact(a, b, pose_a=motion_a, pose_b=motion_b, method=case["method"])
     band = sc.DEFAULT_TOLERANCE * size
     slack = 4 * ORACLE_TOLERANCE * size + rounding(motion_a, motion_b, size)

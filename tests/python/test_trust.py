@@ -12,6 +12,7 @@ from typing import Any, List
 
 import numpy as np
 import pytest
+from scipy.spatial.transform import Rotation
 from fuzz_api import METHODS, OPTIONS_OF, invoke
 from fuzz_judge import judge_single, run_case
 from minkowski_oracle import signed_distance as exact_signed_distance
@@ -377,3 +378,44 @@ def test_a_certified_distance_is_within_the_tolerance_of_the_true_one(method):
         size = pair_size(a, identity, b, identity)
         assert r.distance - true <= 1e-9 * size + 1e-12 * size, (index, r, true)
         assert r.lower_bound <= true + 1e-12 * size, (index, r, true)
+
+
+def near_touching_pairs(seed, count):
+    """A random 4-39 point polytope against each shape a hair apart: B placed by bisection on the
+    verdict along a random direction, then moved out by delta x the pair's size."""
+    rng = np.random.default_rng(seed)
+    shapes = {"box": lambda r: sc.Box(r), "cylinder": lambda r: sc.Cylinder(r[0], r[1]),
+              "cone": lambda r: sc.Cone(r[0], r[1]), "ellipsoid": lambda r: sc.Ellipsoid(r)}
+    for _ in range(count):
+        a = sc.ConvexPolyhedron(rng.normal(size=(int(rng.integers(4, 40)), 3)) * 0.5)
+        for name, make in shapes.items():
+            b = make(rng.uniform(0.1, 0.6, 3))
+            u = rng.normal(size=3)
+            u /= np.linalg.norm(u)
+            pose = np.eye(4)
+            pose[:3, :3] = Rotation.random(random_state=rng).as_matrix()
+            low, high = 0.0, 5.0
+            for _ in range(45):
+                middle = (low + high) / 2
+                pose[:3, 3] = middle * u
+                if sc.collide(a, b, pose_b=pose):
+                    low = middle
+                else:
+                    high = middle
+            size = 2 * (a.bounding_radius + b.bounding_radius)
+            for delta in (1e-9, 1e-8, 1e-7):
+                pose[:3, 3] = (high + delta * size) * u
+                yield name, delta, a, b, pose.copy()
+
+
+def test_the_exact_distance_of_bodies_a_hair_apart_is_mostly_certified():
+    # Wolfe's nearest point a hair from the origin has a direction off by the rounding of unit
+    # points over its norm, and the separation along it lost that angle times a face's width: of
+    # such pairs with boxes, cylinders, cones and ellipsoids (1e-9 to 1e-7 of the size apart), 16
+    # of 48 were uncertified at the default tolerance, some with lower bound 0. The corral's
+    # planes prove most of them (here 4 of 96 are left: near the tolerance's border, for
+    # "dual", the default, whose finish and swarm prove them).
+    unproven = [(name, delta) for seed in (1, 2)
+                for name, delta, a, b, pose in near_touching_pairs(seed, 4)
+                if not sc.distance(a, b, pose_b=pose, method="exact").certified]
+    assert len(unproven) <= 6, unproven

@@ -63,9 +63,17 @@ struct Sample {
 };
 
 // Conservative advancement on one pair: `Body` is ConvexPolyhedron or CompoundBody.
+// Compound pairs with more part pairs than this step by the whole motion's speed alone (their
+// other pairs are not measured at every sample).
+constexpr std::size_t kMostPartPairs = 256;
+
 template <typename Body>
 class Advancement {
  public:
+  // A query's answer: a compound pair's names the parts that realise it.
+  using Result = std::conditional_t<std::is_same<Body, CompoundBody>::value, CompoundResult,
+                                    DistanceResult>;
+
   Advancement(const Body& a, const RigidMotion& motion_a, const Body& b,
               const RigidMotion& motion_b, const TimeOfImpactOptions& options)
       : a_(a),
@@ -116,7 +124,7 @@ class Advancement {
     // The start is asked its signed distance, which is its distance when the bodies are apart: a
     // motion that starts in contact answers with that result, without asking it again (two
     // queries, the second's penetration depth aside, were a third of such a motion's cost).
-    const DistanceResult start = measure(0, Goal::signed_distance);
+    const Result start = measure(0, Goal::signed_distance);
     Sample low = sample(0, start);
     if (low.contact) return contact(0, 0, start);
     // Sampled times after `low`, nearest last: each one still to be reached.
@@ -208,7 +216,7 @@ class Advancement {
   enum class Goal { distance, signed_distance };
 
   // The query's answer at time t.
-  DistanceResult measure(Scalar t, Goal goal) {
+  Result measure(Scalar t, Goal goal) {
     ++iterations_;
     const Pose pose_a = motion_a_.at(t);
     const Pose pose_b = motion_b_.at(t);
@@ -221,24 +229,86 @@ class Advancement {
   Sample sample(Scalar t) { return sample(t, measure(t, Goal::distance)); }
 
   // What `result`, the query's answer at t, proves.
-  Sample sample(Scalar t, const DistanceResult& result) {
+  Sample sample(Scalar t, const Result& result) {
     Sample s{t, result.distance + margin_ <= contact_threshold_, 0, 0};
     const Scalar apart = result.lower_bound - margin_;
     if (s.contact || !(apart > 0)) return s;
     s.forward = s.backward = detail::reach_over(apart, bound_.full());
     const Scalar length = result.direction.norm();
-    if (length > 0.5) reach_along(t, result.direction / length, apart, s);
+    if (length > 0.5) reach_along(t, result, result.direction / length, apart, s);
     return s;
   }
 
   // The lower bound of a convex pair is the separation along `direction`, so its reaches along it
-  // hold (a compound body's is not: its parts may lie anywhere along it).
-  void reach_along(Scalar t, const Vector3& n, Scalar apart, Sample& s) const {
+  // hold. A compound body's is the least over its part pairs: only the pair that realises the
+  // answer (`part_a`, `part_b`, whose own lower bound, at least the compound's, is its separation
+  // along `direction`) keeps to it; every other pair is apart by at least the compound's bound
+  // and by what other_pairs_apart measures, closing at no more than the whole motion's speed.
+  // The union stays apart while every pair does. (Without it, a tetrahedron grazing a compound
+  // body of an ellipsoid and a cone took 25,968 queries and 149 s; alone, the ellipsoid 16.)
+  void reach_along(Scalar t, const Result& result, const Vector3& n, Scalar apart,
+                   Sample& s) const {
+    detail::MotionBound::Reaches reaches{0, 0};
     if constexpr (std::is_same<Body, ConvexPolyhedron>::value) {
-      const detail::MotionBound::Reaches reaches = bound_.reaches_along(a_, b_, t, n, apart);
-      s.forward = std::max(s.forward, reaches.forward);
-      s.backward = std::max(s.backward, reaches.backward);
+      reaches = bound_.reaches_along(a_, b_, t, n, apart);
+    } else {
+      const std::size_t pairs = a_.parts().size() * b_.parts().size();
+      if (pairs > kMostPartPairs || result.part_a < 0 || result.part_b < 0) return;
+      reaches = bound_.reaches_along(a_.parts()[static_cast<std::size_t>(result.part_a)],
+                                     b_.parts()[static_cast<std::size_t>(result.part_b)], t, n,
+                                     apart);
+      const Scalar others = detail::reach_over(
+          std::max(apart, other_pairs_apart(t, result.part_a, result.part_b, n)), bound_.full());
+      reaches.forward = std::min(reaches.forward, others);
+      reaches.backward = std::min(reaches.backward, others);
     }
+    s.forward = std::max(s.forward, reaches.forward);
+    s.backward = std::max(s.backward, reaches.backward);
+  }
+
+  // A lower bound at t on the distance between every pair of parts but (`skip_a`, `skip_b`):
+  // the best of their bounding balls' separation and their separations along `n` (the realising
+  // pair's direction, which often separates its neighbours too) and along their centres'
+  // difference, less the poses' rounding (the margin).
+  Scalar other_pairs_apart(Scalar t, int skip_a, int skip_b, const Vector3& n) const {
+    const Pose pose_a = motion_a_.at(t);
+    const Pose pose_b = motion_b_.at(t);
+    Scalar least = std::numeric_limits<Scalar>::infinity();
+    for (std::size_t i = 0; i < a_.parts().size(); ++i) {
+      const ConvexPolyhedron& part_a = a_.parts()[i];
+      const Vector3 centre_a = pose_a.rotation * part_a.bounds().centre + pose_a.translation;
+      for (std::size_t j = 0; j < b_.parts().size(); ++j) {
+        if (static_cast<int>(i) == skip_a && static_cast<int>(j) == skip_b) continue;
+        const ConvexPolyhedron& part_b = b_.parts()[j];
+        const Vector3 centre_b = pose_b.rotation * part_b.bounds().centre + pose_b.translation;
+        const Vector3 between = centre_b - centre_a;
+        const Scalar rounding = 16 * kUnit *
+            (centre_a.norm() + centre_b.norm() + part_a.bounds().radius + part_b.bounds().radius);
+        Scalar apart = between.norm() - part_a.bounds().radius - part_b.bounds().radius - rounding;
+        apart = std::max(apart, separation(part_a, pose_a, part_b, pose_b, n));
+        const Scalar length = between.norm();
+        if (length > 0) {
+          apart = std::max(apart, separation(part_a, pose_a, part_b, pose_b, between / length));
+        }
+        least = std::min(least, apart - margin_);
+      }
+    }
+    return least;
+  }
+
+  // How far B lies beyond A along the unit `n` at the poses (a lower bound on their distance
+  // where positive): their support values, less a curved support's error and the rounding of
+  // the placed heights.
+  static Scalar separation(const ConvexPolyhedron& a, const Pose& pose_a,
+                           const ConvexPolyhedron& b, const Pose& pose_b, const Vector3& n) {
+    const Vector3 top = pose_a.rotation * a.support(pose_a.rotation.transpose() * n) +
+                        pose_a.translation;
+    const Vector3 bottom = pose_b.rotation * b.support(-(pose_b.rotation.transpose() * n)) +
+                           pose_b.translation;
+    const Scalar error = a.support_error_per_radius() * a.bounds().radius +
+                         b.support_error_per_radius() * b.bounds().radius +
+                         32 * kUnit * (top.norm() + bottom.norm() + a.radius() + b.radius());
+    return n.dot(bottom) - n.dot(top) - a.radius() - b.radius() - error;
   }
 
   TimeOfImpactResult free() {
