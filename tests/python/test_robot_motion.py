@@ -148,14 +148,17 @@ def test_random_motions_of_a_small_arm_agree_with_dense_sampling(seed):
     assert 5 <= touching <= count - 5
 
 
-def test_batches_equal_single_calls_and_threads_do_not_change_answers():
+@pytest.mark.parametrize("method", ["exact", "dual"])
+def test_batches_equal_single_calls_and_threads_do_not_change_answers(method):
+    # Every motion's queries take the caller's seed (as time_of_impact_many's): seeded by its
+    # row, a batch's row whose samples the dual method decided differed from it alone.
     robot = small_arm()
     rng = np.random.default_rng(7)
     lower, upper = np.clip(robot.limits, -np.pi, np.pi).T
     q0 = rng.uniform(lower, upper, size=(30, robot.dof))
     q1 = rng.uniform(lower, upper, size=(30, robot.dof))
-    one = robot.check_motion(q0, q1, threads=1)
-    two = robot.check_motion(q0, q1, threads=2)
+    one = robot.check_motion(q0, q1, threads=1, method=method, seed=5)
+    two = robot.check_motion(q0, q1, threads=2, method=method, seed=5)
     for field in ("touches", "t_lower", "t_upper", "q", "pair", "point_a", "point_b", "normal",
                   "certified", "iterations"):
         np.testing.assert_array_equal(getattr(one, field), getattr(two, field))
@@ -163,7 +166,7 @@ def test_batches_equal_single_calls_and_threads_do_not_change_answers():
     assert one.status == two.status
     for i in (0, 13, 29):
         # A single motion reads its row alone (RobotMotionCheck.row): every field the same.
-        row = robot.check_motion(q0[i], q1[i])
+        row = robot.check_motion(q0[i], q1[i], method=method, seed=5)
         assert (row.touches, row.t_lower, row.t_upper, row.pair, row.iterations, row.certified,
                 row.status) == (one.touches[i], one.t_lower[i], one.t_upper[i], one.pair[i],
                                 one.iterations[i], one.certified[i], one.status[i])
@@ -172,25 +175,9 @@ def test_batches_equal_single_calls_and_threads_do_not_change_answers():
         for field in ("q", "pair_names", "point_a", "point_b", "normal"):
             np.testing.assert_array_equal(getattr(row, field), getattr(one, field)[i])
     # One start serves every motion.
-    fan = robot.check_motion(q0[0], q1[:5])
+    fan = robot.check_motion(q0[0], q1[:5], method=method, seed=5)
     for i in range(5):
-        assert fan.t_upper[i] == robot.check_motion(q0[0], q1[i]).t_upper
-
-
-def test_batch_rows_answer_as_single_motions_with_the_dual_method_too():
-    # Every motion's queries take the caller's seed (as time_of_impact_many's): seeded by its
-    # row, a batch's row whose samples the randomized method decided differed from it alone.
-    robot = small_arm()
-    rng = np.random.default_rng(11)
-    lower, upper = np.clip(robot.limits, -np.pi, np.pi).T
-    q0 = rng.uniform(lower, upper, size=(6, robot.dof))
-    q1 = rng.uniform(lower, upper, size=(6, robot.dof))
-    batch = robot.check_motion(q0, q1, method="dual", seed=5)
-    for i in range(6):
-        row = robot.check_motion(q0[i], q1[i], method="dual", seed=5)
-        assert (row.touches, row.t_lower, row.t_upper, row.iterations, row.certified) == (
-            batch.touches[i], batch.t_lower[i], batch.t_upper[i], batch.iterations[i],
-            batch.certified[i])
+        assert fan.t_upper[i] == robot.check_motion(q0[0], q1[i], method=method, seed=5).t_upper
 
 
 @pytest.mark.parametrize("far", [1e4, 1e5])
