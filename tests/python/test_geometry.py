@@ -61,6 +61,22 @@ def test_support_aabb_centroid():
         body.support([np.nan, 0, 0])
 
 
+@pytest.mark.parametrize("count", [8, 32, 33, 40, 64, 300])
+@pytest.mark.parametrize("inner", [False, True])
+def test_support_is_the_highest_point_of_every_body(count, inner):
+    # Points on a sphere are every one a vertex; beyond the columns of small bodies (32 points)
+    # support() scanned nothing and returned a wrong point for 96-100% of directions.
+    rng = np.random.default_rng(count)
+    points = rng.normal(size=(count, 3))
+    points /= np.linalg.norm(points, axis=1)[:, None]
+    if inner:
+        points = np.vstack([points, rng.normal(size=(count, 3)) * 0.1])
+    body = sc.ConvexPolyhedron(points, radius=0.1)
+    for d in rng.normal(size=(50, 3)):
+        assert body.support(d) @ d == pytest.approx(np.max(points @ d), abs=1e-12)
+        assert points[body.support_index(d)] @ d == pytest.approx(np.max(points @ d), abs=1e-12)
+
+
 def test_hull_of_a_cube_with_an_inner_point():
     body = sc.ConvexPolyhedron(np.vstack([CUBE, [[0.5, 0.5, 0.5]]]))
     hull = body.hull()

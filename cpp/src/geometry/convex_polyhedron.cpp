@@ -183,7 +183,13 @@ ConvexPolyhedron::ConvexPolyhedron(const VertexMatrix& centred,
 
 int ConvexPolyhedron::support_index(const Vector3& direction) const {
   const HullPoints& read = hull_points();
-  if (read.every_point) return hull_cache_->columns.scan(direction);
+  // The columns hold small bodies' points only: a larger body whose every point is a vertex (a
+  // sphere's 40 points) scans them all. (Since 19b4074 it scanned the empty columns, and
+  // support(), libccd's supports and the motions' turn rates read a wrong point.)
+  if (read.every_point) {
+    return columns_ != nullptr ? columns_->scan(direction)
+                               : detail::scan_support(centred_, direction);
+  }
   return read.indices[detail::scan_support(read.centred, direction)];
 }
 
