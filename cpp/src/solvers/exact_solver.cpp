@@ -159,6 +159,15 @@ Answer settled_distance(const FramedPair& pair, int max_iterations, const Vector
 
 namespace {
 
+// Whether `n` keeps `answer`'s witnesses within the tolerance of `upper * n`: taken as the
+// answer's direction, the lower bound is its separation along n, and `point_b - point_a =
+// distance * direction` must still hold to the tolerance. Bodies a hair apart (upper within a few
+// tolerances) always keep it; a pair farther apart whose plane proves the value from a direction
+// some 1e-9 off the witnesses' would not (a robot's links 1.9e-9 off).
+bool keeps_witnesses(const FramedPair& pair, const Answer& answer, const Vector3& n) {
+  return (answer.point_b - answer.point_a - answer.upper * n).norm() <= pair.tolerance;
+}
+
 // True when the plane through p0, p1 and p2 (points of B - A) proves `answer`'s value: the
 // separation along its normal, either way, within the tolerance of `answer.upper`. The normal
 // of three points of norm about 1 is as accurate as they are, where the direction of a nearest
@@ -174,7 +183,7 @@ bool plane_settles(const FramedPair& pair, const OraclePoint& p0, const Vector3&
     int hint_a = p0.ia;
     int hint_b = p0.ib;
     const Scalar s = separation(pair.a, pair.b, n, hint_a, hint_b);
-    if (value_proven(pair, s, answer.upper)) {
+    if (value_proven(pair, s, answer.upper) && keeps_witnesses(pair, answer, n)) {
       answer.lower = s;
       answer.direction = n;
       return true;
@@ -214,7 +223,7 @@ bool settles_value(const FramedPair& pair, const MinNormPoint& corral, Answer& a
   int hint_b = p[0].ib;
   const Vector3 lowest = minkowski_support(pair.a, pair.b, n, hint_a, hint_b).p;
   const Scalar s = n.dot(lowest);  // the separation along n
-  if (value_proven(pair, s, answer.upper)) {
+  if (value_proven(pair, s, answer.upper) && keeps_witnesses(pair, answer, n)) {
     answer.lower = s;
     answer.direction = n;
     return true;
