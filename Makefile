@@ -2,8 +2,9 @@
 # make test: set up everything and run the C++ (ctest) and Python (pytest) suites.
 # make test-sanitize: the same under AddressSanitizer and UBSan (the C++ tests and a pytest subset).
 # make census: the fuzz census (tests/fuzz/census.py): the pair queries, then the files, CLI and
-# inputs corpus, then scenes; CENSUS_ARGS="--count 500" FILES_CENSUS_ARGS="--count 100"
-# SCENE_CENSUS_ARGS="--count 40" for a quick one.
+# inputs corpus, scenes, curved shapes, motions and robots; CENSUS_ARGS="--count 500"
+# FILES_CENSUS_ARGS="--count 100" SCENE_CENSUS_ARGS="--count 40" MOTIONS_CENSUS_ARGS="--count 300"
+# ROBOTS_CENSUS_ARGS="--count 400" for a quick one.
 PYTHON ?= python3
 VENV := .venv
 PY := $(VENV)/bin/python
@@ -165,6 +166,10 @@ census: install $(VENV)/.bench-installed
 	  --json build/fuzz/files.jsonl $(FILES_CENSUS_ARGS)
 	$(PY) tests/fuzz/census.py --corpus scene --json build/fuzz/scene.jsonl $(SCENE_CENSUS_ARGS)
 	$(PY) tests/fuzz/curved_census.py --json build/fuzz/curved.jsonl $(CURVED_CENSUS_ARGS)
+	$(PY) tests/fuzz/census.py --corpus motions --count 3000 --json build/fuzz/motions.jsonl \
+	  $(MOTIONS_CENSUS_ARGS)
+	$(PY) tests/fuzz/census.py --corpus robots --count 4000 --json build/fuzz/robots.jsonl \
+	  $(ROBOTS_CENSUS_ARGS)
 
 stubs: install
 	$(PY) -m pybind11_stubgen swarmcollide._core -o python --numpy-array-use-type-var
