@@ -135,10 +135,11 @@ def random_motion(rng: np.random.Generator, scale: float, travel: float) -> Moti
     shorter way round) or hardly at all."""
     start = random_pose(rng, np.zeros(3), travel / 2)
     end = np.eye(4)
-    angle = (rng.uniform(0, 0.98 * np.pi), rng.uniform(0, 1e-3), 0.0)[int(rng.choice(3, p=[
-        0.7, 0.15, 0.15]))]
+    choices = (rng.uniform(0, 0.98 * np.pi), rng.uniform(0, 1e-3), 0.0)
+    angle = choices[int(rng.choice(3, p=[0.7, 0.15, 0.15]))]
     axis = rng.normal(size=3)
-    end[:3, :3] = start[:3, :3] @ Rotation.from_rotvec(angle * axis / np.linalg.norm(axis)).as_matrix()
+    turn = Rotation.from_rotvec(angle * axis / np.linalg.norm(axis)).as_matrix()
+    end[:3, :3] = start[:3, :3] @ turn
     end[:3, 3] = start[:3, 3] + rng.normal(size=3) / np.sqrt(3) * travel
     return start, end
 

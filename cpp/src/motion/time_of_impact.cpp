@@ -62,11 +62,11 @@ struct Sample {
   Scalar backward;
 };
 
-// Conservative advancement on one pair: `Body` is ConvexPolyhedron or CompoundBody.
 // Compound pairs with more part pairs than this step by the whole motion's speed alone (their
 // other pairs are not measured at every sample).
 constexpr std::size_t kMostPartPairs = 256;
 
+// Conservative advancement on one pair: `Body` is ConvexPolyhedron or CompoundBody.
 template <typename Body>
 class Advancement {
  public:
@@ -185,9 +185,10 @@ class Advancement {
   }
 
   // The query's answer at the poses, asked again of "dual" where "exact" or "fcl" (which goes on
-  // to "exact" itself) left it unproven and it decides nothing (TimeOfImpactOptions::query): neither proven in contact nor proven
-  // farther apart than the contact threshold. Farther, an unproven value still steps as far as a
-  // proven one would; in between, the bisection needs the value proven.
+  // to "exact" itself) left it unproven and it decides nothing (TimeOfImpactOptions::query):
+  // neither proven in contact nor proven farther apart than the contact threshold. Farther, an
+  // unproven value still steps as far as a proven one would; in between, the bisection needs
+  // the value proven.
   template <typename Ask>
   auto answer(const Ask& ask) {
     auto result = ask(query_);
