@@ -65,12 +65,11 @@ Answer corral_answer(const FramedPair& pair, const MinNormPoint& nearest, long e
   return answer;
 }
 
-// Wolfe's answer from `start`, its corral in `nearest`. Where it leaves a polytope pair's value
-// unproven, the planes of its corral are tried (settles_signed_distance): a pair a hair apart
-// face to face has a nearest point whose direction is off by the rounding of unit points over
-// its norm, and the separation along it loses that angle times the faces' width (a polytope
-// 2e-9 of its size from a box's face: lower bound 0, uncertified, where a signed distance was
-// certified).
+// Wolfe's answer from `start`, its corral in `nearest`. Where it leaves the value unproven, the
+// planes of its corral are tried (settles_value): a pair a hair apart face to face has a nearest
+// point whose direction is off by the rounding of unit points over its norm, and the separation
+// along it loses that angle times the faces' width (a polytope 2e-9 of its size from a box's
+// face: lower bound 0, uncertified, where a signed distance was certified).
 template <class Start>
 Answer nearest_points(const FramedPair& pair, int max_iterations, const Start& start, int hint_a,
                       int hint_b, MinNormPoint& nearest) {
@@ -163,7 +162,7 @@ namespace {
 // answer's direction, the lower bound is its separation along n, and `point_b - point_a =
 // distance * direction` must still hold to the tolerance. Bodies a hair apart (upper within a few
 // tolerances) always keep it; a pair farther apart whose plane proves the value from a direction
-// some 1e-9 off the witnesses' would not (a robot's links 1.9e-9 off).
+// an angle off the witnesses' moves them by the distance times that angle.
 bool keeps_witnesses(const FramedPair& pair, const Answer& answer, const Vector3& n) {
   return (answer.point_b - answer.point_a - answer.upper * n).norm() <= pair.tolerance;
 }

@@ -49,9 +49,8 @@ Answer settled_distance(const FramedPair& pair, int max_iterations, const Vector
 bool settles_signed_distance(const FramedPair& pair, const MinNormPoint& corral, Answer& answer);
 
 /// The same for any pair, curved ones too, where only the value is asked (a distance): the lower
-/// bound a plane of the corral proves is the separation along its normal, and a normal a square
-/// root of the tolerance off moves the witnesses' relation by that angle times a distance within
-/// the tolerance of zero.
+/// bound a plane of the corral proves is the separation along its normal, taken where the
+/// witnesses stay within the tolerance of `upper` times that normal.
 bool settles_value(const FramedPair& pair, const MinNormPoint& corral, Answer& answer);
 
 /// The certified penetration depth of touching or overlapping bodies, from the direction `hint`
