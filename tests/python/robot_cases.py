@@ -155,7 +155,8 @@ def random_axis(rng: np.random.Generator) -> np.ndarray:
     return axis * float(rng.choice([1e-3, 0.5, 1.0, 2.0, 1e3]))
 
 
-def random_joint(rng: np.random.Generator, child: int, parent: int, kinds: Tuple[str, ...]) -> JointSpec:
+def random_joint(rng: np.random.Generator, child: int, parent: int,
+                 kinds: Tuple[str, ...]) -> JointSpec:
     kind = str(rng.choice(kinds))
     joint = JointSpec(f"j{child}", kind, parent, child, rng.uniform(-0.5, 0.5, 3),
                       rng.uniform(-np.pi, np.pi, 3), random_axis(rng))  # fmt: skip
@@ -588,8 +589,9 @@ class World:
         return 2 * (self.reaches[a] + self.reaches[b])
 
     def rounding(self, poses: Dict[str, np.ndarray]) -> float:
-        coordinates = max((float(np.abs(p[:3, 3]).max()) + self.reaches[n] for n, p in poses.items()),
-                          default=0.0)
+        coordinates = max(
+            (float(np.abs(p[:3, 3]).max()) + self.reaches[n] for n, p in poses.items()),
+            default=0.0)
         return ROUNDING * max(coordinates, self.model.scale)
 
     def exact(self, a: str, b: str, poses: Dict[str, np.ndarray]) -> Tuple[float, float]:
@@ -702,7 +704,8 @@ def judge_check(check: sc.RobotCheck, distances: np.ndarray, truth: List[Dict[st
         expect(0 <= p < len(robot.pairs), f"{where}: pair {p} is not a pair")
         expect(tuple(check.pair_names[i]) == robot.pairs[p], f"{where}: pair names "
                f"{tuple(check.pair_names[i])} for pair {robot.pairs[p]}")
-        expect(lower[p] <= d + slack, f"{where}: pair {robot.pairs[p]} is at least {lower[p]!r}, not {d!r}")
+        expect(lower[p] <= d + slack,
+               f"{where}: pair {robot.pairs[p]} is at least {lower[p]!r}, not {d!r}")
         expect(d == distances[i].min(), f"{where}: check's min_distance {d!r} is not the least "
                f"of distances, {distances[i].min()!r}")
         gap = np.linalg.norm(check.point_b[i] - check.point_a[i] - d * check.normal[i])
