@@ -248,7 +248,7 @@ class Advancement {
   // The union stays apart while every pair does. (Without it, a tetrahedron grazing a compound
   // body of an ellipsoid and a cone took 25,968 queries and 149 s; alone, the ellipsoid 16.)
   void reach_along(Scalar t, const Result& result, const Vector3& n, Scalar apart,
-                   Sample& s) const {
+                   Sample& s) {
     detail::MotionBound::Reaches reaches{0, 0};
     if constexpr (std::is_same<Body, ConvexPolyhedron>::value) {
       reaches = bound_.reaches_along(a_, b_, t, n, apart);
@@ -259,7 +259,8 @@ class Advancement {
                                      b_.parts()[static_cast<std::size_t>(result.part_b)], t, n,
                                      apart);
       const Scalar others = detail::reach_over(
-          std::max(apart, other_pairs_apart(t, result.part_a, result.part_b, n)), bound_.full());
+          std::max(apart, other_pairs_apart(t, result.part_a, result.part_b, n, apart)),
+          bound_.full());
       reaches.forward = std::min(reaches.forward, others);
       reaches.backward = std::min(reaches.backward, others);
     }
@@ -270,8 +271,11 @@ class Advancement {
   // A lower bound at t on the distance between every pair of parts but (`skip_a`, `skip_b`):
   // the best of their bounding balls' separation and their separations along `n` (the realising
   // pair's direction, which often separates its neighbours too) and along their centres'
-  // difference, less the poses' rounding (the margin).
-  Scalar other_pairs_apart(Scalar t, int skip_a, int skip_b, const Vector3& n) const {
+  // difference, less the poses' rounding (the margin); where these prove no more than `floor`
+  // (the compound's own bound), the pair's distance query's lower bound, counted as a query (a
+  // box sliding past an ellipsoid part near a cylinder part whose ball its own overlaps took
+  // 63,082 queries, stepping by the ellipsoid's gap).
+  Scalar other_pairs_apart(Scalar t, int skip_a, int skip_b, const Vector3& n, Scalar floor) {
     const Pose pose_a = motion_a_.at(t);
     const Pose pose_b = motion_b_.at(t);
     Scalar least = std::numeric_limits<Scalar>::infinity();
@@ -290,6 +294,10 @@ class Advancement {
         const Scalar length = between.norm();
         if (length > 0) {
           apart = std::max(apart, separation(part_a, pose_a, part_b, pose_b, between / length));
+        }
+        if (!(apart - margin_ > floor)) {
+          ++iterations_;
+          apart = std::max(apart, query_.distance(part_a, pose_a, part_b, pose_b).lower_bound);
         }
         least = std::min(least, apart - margin_);
       }
