@@ -287,11 +287,11 @@ class Advancement {
         const ConvexPolyhedron& part_b = b_.parts()[j];
         const Vector3 centre_b = pose_b.rotation * part_b.bounds().centre + pose_b.translation;
         const Vector3 between = centre_b - centre_a;
+        const Scalar length = between.norm();
         const Scalar rounding = 16 * kUnit *
             (centre_a.norm() + centre_b.norm() + part_a.bounds().radius + part_b.bounds().radius);
-        Scalar apart = between.norm() - part_a.bounds().radius - part_b.bounds().radius - rounding;
+        Scalar apart = length - part_a.bounds().radius - part_b.bounds().radius - rounding;
         apart = std::max(apart, separation(part_a, pose_a, part_b, pose_b, n));
-        const Scalar length = between.norm();
         if (length > 0) {
           apart = std::max(apart, separation(part_a, pose_a, part_b, pose_b, between / length));
         }

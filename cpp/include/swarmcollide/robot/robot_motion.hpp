@@ -56,7 +56,8 @@ struct RobotMotionCheck {
 /// order of their first possible contact from their bounding boxes and balls at t = 0, each
 /// advanced only up to the earliest contact found so far. Each motion is answered whole by one of
 /// `settings.threads` threads, its queries seeded by options.query.seed, so answers depend
-/// neither on the threads nor on the other rows (a row answers as the same motion alone). `options.max_iterations` caps the queries per motion.
+/// neither on the threads nor on the other rows (a row answers as the same motion alone).
+/// `options.max_iterations` caps the queries per motion.
 /// Throws std::invalid_argument for invalid options, pairs or threads, rows of q0 and q1 that
 /// are neither equal in number nor one, a wrong number of values per row, or a curved geometry
 /// that `options.query.method` cannot answer.
