@@ -75,7 +75,8 @@ namespace {
   // A distance or a signed distance is certified only when its bounds also enclose it to the
   // tolerance: a proven verdict alone leaves the value of a swarm stopped early unproven.
   r.certified = (apart || close) &&
-                reached(pair, goal, answer.lower, answer.upper, answer.intersection_proven);
+                reached(pair, goal, answer.lower, answer.upper, answer.intersection_proven) &&
+                answer.witnesses_along_direction;
   // For a signed distance, contact alone does not settle the depth.
   r.settled = exact || (close && goal != Goal::signed_distance);
   return r;

@@ -62,6 +62,10 @@ struct Answer {
   /// A proof that the bodies share a point: a simplex of their difference that encloses the
   /// origin by a margin above rounding, or exactly equal points.
   bool intersection_proven = false;
+  /// False where the witnesses lie farther than the tolerance from `upper * direction` (an
+  /// overlap the expanding polytope left so: PenetrationBounds::witnesses_along_normal): the
+  /// bounds stay proven, the answer is not certified.
+  bool witnesses_along_direction = true;
   /// Set when a method other than the requested one produced the answer.
   std::optional<Method> answered_by;
   /// `lower` and `upper` rounded already, where a closed form rounded them (see RoundedBounds).

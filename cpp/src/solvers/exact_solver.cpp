@@ -247,6 +247,7 @@ Answer exact_penetration(const FramedPair& pair, int max_iterations, const Vecto
   answer.weights_a = std::move(bounds.weights_a);
   answer.weights_b = std::move(bounds.weights_b);
   answer.iterations = bounds.iterations;
+  answer.witnesses_along_direction = bounds.witnesses_along_normal;
   // The witnesses are points of the bodies, so their distance bounds the signed distance above
   // too. Where the solver stopped before its bounds met on a pair it did not show overlapping (an
   // iteration budget of 1 or 2, say), the witnesses of its best separation may lie nearer than
@@ -264,6 +265,7 @@ Answer exact_penetration(const FramedPair& pair, int max_iterations, const Vecto
       answer.upper = apart;
       answer.lower = lower;
       answer.direction = direction;
+      answer.witnesses_along_direction = true;
     }
   }
   return answer;

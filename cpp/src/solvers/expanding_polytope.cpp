@@ -379,6 +379,12 @@ ExpansionResult ExpandingPolytope::run(const FramedBody& a, const FramedBody& b,
   return expand_surface(a, b, stop_gap, max_iterations, true);
 }
 
+ExpansionResult ExpandingPolytope::resume(const FramedBody& a, const FramedBody& b,
+                                          Scalar stop_gap, int max_iterations) {
+  // The vertices' points kept in the frame (points_a_, points_b_) are still the surface's.
+  return expand_surface(a, b, stop_gap, max_iterations, true);
+}
+
 void ExpandingPolytope::keep(const ExpansionResult& last, int most_corners, KeptSurface& out) {
   // A run from `out` that added no face (faces are only ever added: face_count_ counts the
   // replaced ones too) ends on the very surface `out` holds, faces and corners in its order.

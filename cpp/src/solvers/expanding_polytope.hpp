@@ -101,6 +101,12 @@ class ExpandingPolytope {
   /// with the origin inside there.
   ExpansionResult run(const FramedBody& a, const FramedBody& b, const KeptSurface& kept,
                       Scalar stop_gap, int max_iterations, bool& started);
+  /// Goes on expanding the last run's surface, as it was left, until the gap falls to
+  /// `stop_gap` (smaller than that run's), with what a run returns: a curved pair's polytope
+  /// closes on the surface a chord at a time, and its best normal may be too far off the optimal
+  /// one for the witnesses along it (Solver::witnesses in penetration.cpp).
+  ExpansionResult resume(const FramedBody& a, const FramedBody& b, Scalar stop_gap,
+                         int max_iterations);
   /// The last run's surface into `out` when it was verified and has at most `most_corners`
   /// corners; `out` emptied otherwise.
   void keep(const ExpansionResult& last, int most_corners, KeptSurface& out);

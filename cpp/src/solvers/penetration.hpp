@@ -58,6 +58,10 @@ struct PenetrationBounds {
   ConvexWeights weights_b;
   /// `|point_b - point_a - separation * normal|`, as computed.
   Scalar witness_residual = 0;
+  /// `witness_residual` is within the tolerance (or 4 margins): false where a curved pair's
+  /// expansion stopped at the rounding's floor with its normal still too far off the optimal one
+  /// for any witnesses along it (at tolerances near 1e-12), whose answer is then not certified.
+  bool witnesses_along_normal = true;
   /// The slack within which the witnesses' supporting features were collected.
   Scalar feature_slack = 0;
   /// Iterations of the nearest-point and polytope-expansion loops, added up.
