@@ -35,17 +35,20 @@ MinNormPoint wolfe_corral(const FramedPair& pair, int max_iterations, const Star
 constexpr int kCurvedRestarts = 8;
 
 // The same; for curved bodies, restarted from its nearest point's direction while it leaves an
-// apart pair's distance unproven. On a curved difference every oracle point is new, and the
-// squared norm's decrease falls below rounding (Wolfe's stop) while the separation along the
-// corral's direction still lags the distance by more than the tolerance; a corral built afresh
-// from points near the optimum goes on from there. Kept while the gap shrinks.
+// apart pair's distance or verdict unproven. On a curved difference every oracle point is new,
+// and the squared norm's decrease falls below rounding (Wolfe's stop) while the separation along
+// the corral's direction still lags the distance by more than the tolerance; a corral built
+// afresh from points near the optimum goes on from there. Kept while the gap shrinks. A pair
+// apart by a hair more than the tolerance has its value proven long before the separation
+// passes the tolerance (a polytope 1.0001 tolerances from a cylinder: 2e-10 short of it).
 template <class Start>
 MinNormPoint nearest_corral(const FramedPair& pair, int max_iterations, const Start& start,
                             int hint_a, int hint_b, long& evaluations) {
   MinNormPoint nearest = wolfe_corral(pair, max_iterations, start, hint_a, hint_b, evaluations);
   if (!pair.a.curved() && !pair.b.curved()) return nearest;
   Answer best = answer_from_corral(pair, nearest);
-  for (int k = 0; k < kCurvedRestarts && best.lower > kFrameRounding && !value_proven(pair, best);
+  for (int k = 0; k < kCurvedRestarts && best.upper > pair.tolerance &&
+                  !(value_proven(pair, best) && verdict_proven(pair, best));
        ++k) {
     const MinNormPoint again =
         wolfe_corral(pair, max_iterations, Vector3(nearest.x), -1, -1, evaluations);
