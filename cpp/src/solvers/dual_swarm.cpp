@@ -84,13 +84,22 @@ class DualSearch {
     // search (Wolfe's restarts, its corral's planes) settles it, where the swarm's rounds search
     // directions until max_rounds and then hand over all the same (sc.collide of a polytope 1.1
     // tolerances from a cylinder: 0.75 s, 45 of 210 bisection steps to such borders over 20 s).
+    // A value proven is not enough: certified needs the verdict too, which a pair a hair beyond
+    // the tolerance has only from a direction a hair off the optimum, so the search from the
+    // centres' direction is tried as well (as the exact method's).
     if (!done && (pair_.a.curved() || pair_.b.curved())) {
-      // A verdict needs the lower bound beyond the tolerance, which a value proven to it need
-      // not have: the whole search, with its restarts.
-      Answer exact = goal_ == Goal::verdict
-                         ? exact_distance(pair_, exact_iterations_, bounds_.normal())
-                         : settled_distance(pair_, exact_iterations_, bounds_.normal());
-      if (goal_reached(pair_, goal_, exact.lower, exact.upper, exact.intersection_proven)) {
+      const auto settles = [this](const Answer& a) {
+        return goal_reached(pair_, goal_, a.lower, a.upper, a.intersection_proven) &&
+               verdict_proven(pair_, a);
+      };
+      Answer exact = exact_distance(pair_, exact_iterations_, bounds_.normal());
+      if (!settles(exact)) {
+        Answer again = exact_distance(pair_, exact_iterations_, Vector3::Zero());
+        again.iterations += exact.iterations;
+        again.evaluations += exact.evaluations;
+        exact = std::move(again);
+      }
+      if (settles(exact)) {
         exact.iterations += iterations_;
         exact.evaluations += finish_.evaluations();
         if (goal_ != Goal::verdict && options_.record_history) history_.push_back(exact.upper);
