@@ -47,6 +47,17 @@ int nearest_start(const FramedBody& body, const Vector3& n, const std::vector<in
   return start;
 }
 
+// A particle's support point on `body` along `d`: a polyhedron's by its index, climbing from
+// `hint` and returned there; a curved body's computed without numbering it among the body's
+// support points (the same coordinates), `hint` untouched. Numbered, every particle's point
+// joined them, and the finish's features, which scan them all, grew with every iteration: 7,800
+// points after a round of 600 iterations on a cone, 85% of a 0.3 s sc.collide in those scans.
+Vector3 particle_support(const FramedBody& body, const Vector3& d, int& hint) {
+  if (body.curved()) return body.placed_point(body.curved_local_support(body.local_direction(d)));
+  hint = body.support_index(d, hint);
+  return body.vertex(hint);
+}
+
 }  // namespace
 
 Vector3 DirectionSwarm::Chart::direction(const Point2& w) const {
@@ -62,12 +73,20 @@ DirectionSwarm::DirectionSwarm(const FramedPair& pair, const DualOptions& option
 const std::vector<Scalar>& DirectionSwarm::personal_value() const { return particles().fp; }
 
 Vector3 DirectionSwarm::best_direction() const { return chart_.direction(particles().p[best_]); }
-int DirectionSwarm::best_support_a() const { return particles().ha[best_]; }
-int DirectionSwarm::best_support_b() const { return particles().hb[best_]; }
+// A curved body's point is numbered here, for the global best alone.
+int DirectionSwarm::best_support_a() const {
+  return pair_.a.curved() ? pair_.a.support_index(best_direction()) : particles().ha[best_];
+}
+int DirectionSwarm::best_support_b() const {
+  return pair_.b.curved() ? pair_.b.support_index(-best_direction()) : particles().hb[best_];
+}
 
 Scalar DirectionSwarm::evaluate(const Vector3& n, int& ia, int& ib) {
   ++evaluations_;
-  return separation(pair_.a, pair_.b, n, ia, ib);
+  // As separation() computes it, from the same points.
+  const Vector3 x = particle_support(pair_.a, n, ia);
+  const Vector3 y = particle_support(pair_.b, -n, ib);
+  return n.dot(y - x);
 }
 
 // By rejection from the square: no trigonometry, 2.5 draws on average.
