@@ -26,6 +26,14 @@ constexpr int kFinishSteps = 10;
 // 8 points: 5.55 -> 5.9), and natively their queries longer.
 constexpr int kMomentumSize = 8;
 
+// A curved body's feature keeps its highest points, up to this many. Its points are the support
+// points asked so far, hundreds near one plane once a swarm's rounds have run, and a subset of
+// them still bounds the distance above. Fewer points made the finishes cheaper and, for reasons
+// not looked into, settled more verdicts: of 94 sc.collide calls at a verdict's border (C++, one
+// run each, the proven counts deterministic), all kept 60 proven in 0.94 s; the highest 16: 51,
+// 0.70 s; 32: 69, 0.75 s; 64: 71, 0.71 s; 128: 69, 1.08 s; 256: 71, 1.20 s.
+constexpr std::size_t kCurvedFeaturePoints = 64;
+
 struct Buffers {
   std::vector<char> visited;  // all zero between uses
   std::vector<int> feature_a;
@@ -86,8 +94,18 @@ void DistanceFinish::feature(const FramedBody& body, const Vector3& n, int& hint
   for (int i : found) ranked.emplace_back(body.height(i, n), i);
   // Highest first; equal heights in the order found, as the comparison of heights alone kept
   // them (a stable sort).
-  std::stable_sort(ranked.begin(), ranked.end(),
-                   [](const auto& p, const auto& q) { return p.first > q.first; });
+  const auto higher = [](const auto& p, const auto& q) { return p.first > q.first; };
+  if (body.curved() && ranked.size() > kCurvedFeaturePoints) {
+    // The order found is the order of the points' numbers (supporting_feature scans them).
+    const auto higher_first = [](const auto& p, const auto& q) {
+      return p.first > q.first || (p.first == q.first && p.second < q.second);
+    };
+    std::nth_element(ranked.begin(), ranked.begin() + kCurvedFeaturePoints, ranked.end(),
+                     higher_first);
+    ranked.resize(kCurvedFeaturePoints);
+    found.resize(kCurvedFeaturePoints);
+  }
+  std::stable_sort(ranked.begin(), ranked.end(), higher);
   for (std::size_t k = 0; k < ranked.size(); ++k) found[k] = ranked[k].second;
 }
 
