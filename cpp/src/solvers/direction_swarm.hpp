@@ -47,8 +47,6 @@ class DirectionSwarm {
   };
 
   Scalar evaluate(const Vector3& n, int& ia, int& ib);
-  // Numbers a curved body's support points along `n` among the body's points.
-  void number_curved_supports(const Vector3& n) const;
   Eigen::Vector2d uniform_in_disc(Scalar radius);
   const std::vector<Scalar>& personal_value() const;
 
