@@ -30,7 +30,8 @@ class DirectionSwarm {
   /// the global best improved.
   bool step();
 
-  /// The global best: its direction, its separation and its support points.
+  /// The global best: its direction, its separation and its support points (a curved body's
+  /// numbered among its points when asked: the particles' own are not).
   Vector3 best_direction() const;
   Scalar best_value() const { return personal_value()[best_]; }
   int best_support_a() const;
