@@ -47,16 +47,14 @@ Buffers& buffers() {
   return b;
 }
 
-// Adds the points of `more` missing from `into`; returns whether any was. `marks` (all zero
-// between uses) holds a mark per point of the body: a curved body's features are its support
-// points near the plane, thousands once a swarm's rounds have asked for them, where a search of
-// `into` for each point made every merge quadratic (a polytope 1.1 tolerances from a cylinder:
-// sc.collide spent 0.5 s, 59% of it here).
-bool merge(std::vector<int>& into, const std::vector<int>& more, std::vector<char>& marks) {
-  std::size_t largest = 0;
-  for (int i : into) largest = std::max(largest, static_cast<std::size_t>(i) + 1);
-  for (int i : more) largest = std::max(largest, static_cast<std::size_t>(i) + 1);
-  if (marks.size() < largest) marks.resize(largest, 0);
+// Adds the points of `more` missing from `into`, both numbers among a body's `points`; returns
+// whether any was. `marks` (all zero between uses) holds a mark per point of the body: a curved
+// body's features are its support points near the plane, hundreds once a swarm's rounds have
+// run, where a search of `into` for each point made every merge quadratic (a polytope 1.1
+// tolerances from a cylinder: sc.collide spent 0.5 s, 59% of it here).
+bool merge(std::vector<int>& into, const std::vector<int>& more, int points,
+           std::vector<char>& marks) {
+  if (marks.size() < static_cast<std::size_t>(points)) marks.resize(points, 0);
   for (int i : into) marks[i] = 1;
   const std::size_t before = into.size();
   for (int i : more) {
@@ -93,10 +91,11 @@ void DistanceFinish::feature(const FramedBody& body, const Vector3& n, int& hint
   ranked.clear();
   for (int i : found) ranked.emplace_back(body.height(i, n), i);
   // Highest first; equal heights in the order found, as the comparison of heights alone kept
-  // them (a stable sort).
+  // them (a stable sort). Past kCurvedFeaturePoints, a curved body's highest are selected first
+  // (ties by number: supporting_feature finds a curved body's points in their order), and the
+  // sort then keeps the selection's order of equal heights.
   const auto higher = [](const auto& p, const auto& q) { return p.first > q.first; };
   if (body.curved() && ranked.size() > kCurvedFeaturePoints) {
-    // The order found is the order of the points' numbers (supporting_feature scans them).
     const auto higher_first = [](const auto& p, const auto& q) {
       return p.first > q.first || (p.first == q.first && p.second < q.second);
     };
@@ -143,9 +142,9 @@ bool DistanceFinish::from(const Vector3& n, int& hint_a, int& hint_b, BestBounds
     bounds.offer_lower(next, separation(pair_.a, pair_.b, next, ia, ib));
     if (bounds.reached(pair_, goal)) return true;
     feature(pair_.a, next, ia, buf.grown);
-    const bool grew_a = merge(fa, buf.grown, buf.visited);
+    const bool grew_a = merge(fa, buf.grown, pair_.a.size(), buf.visited);
     feature(pair_.b, -next, ib, buf.grown);
-    const bool grew_b = merge(fb, buf.grown, buf.visited);
+    const bool grew_b = merge(fb, buf.grown, pair_.b.size(), buf.visited);
     if (!grew_a && !grew_b) return false;  // rounding: nothing left to add
   }
   return false;
