@@ -328,7 +328,9 @@ def collide(
     """True when the bodies are within ``tolerance`` of each other (they touch or overlap).
 
     A verdict that ``method``'s bounds do not prove is handed to the exact method at the same
-    tolerance, unless ``escalate=False``; ``collision`` tells which method decided. Takes the
+    tolerance, unless ``escalate=False``; ``collision`` tells which method decided. Bodies whose
+    bounding balls (about their boxes' centres) are proven farther apart than the tolerance are
+    answered apart from the balls alone, before any solver runs, whatever the method. Takes the
     keywords of ``distance``.
 
     Examples

@@ -15,6 +15,7 @@
 #include "paper_cases.hpp"
 #include "queries/ball_screen.hpp"
 #include "shapes.hpp"
+#include "swarmcollide/geometry/shapes.hpp"
 #include "swarmcollide/queries/batch.hpp"
 #include "swarmcollide/queries/methods.hpp"
 #include "swarmcollide/queries/query.hpp"
@@ -354,6 +355,96 @@ Scalar largest_inner_radius(const ConvexPolyhedron& body, const Vector3& centre)
     radius = std::min(radius, n.dot(body.support(n)) - n.dot(centre));
   }
   return radius;
+}
+
+// Query::collide settles a pair whose outer balls are proven apart before framing it. Spheres are
+// their balls, so pairs of them (and of capsules and cylinders, whose balls they nearly fill) at
+// gaps across the balls' border, far from the origin and at every scale, with turned, unturned and
+// shared poses, test the screen's rounding: a pair it calls apart is apart beyond the tolerance,
+// and away from the tolerance's band every verdict is the exact one.
+TEST(BallScreen, CollideAnswersPairsAcrossTheBallsBorderAsTheExactMethod) {
+  Random rng(61);
+  QueryOptions exact;
+  exact.method = Method::exact;
+  const Query ours{QueryOptions{}};
+  const Query exact_query(exact);
+  int apart = 0;
+  int colliding = 0;
+  for (const Scalar scale : {1e-150, 1e-3, 1.0, 1e150}) {
+    for (int trial = 0; trial < 120; ++trial) {
+      const Scalar ra = rng.uniform(0.2, 1) * scale;
+      const Scalar rb = rng.uniform(0.2, 1) * scale;
+      const ConvexPolyhedron a = trial % 3 == 0 ? ConvexPolyhedron(Cylinder(ra, ra / 2))
+                                                : ConvexPolyhedron(Sphere(ra));
+      ConvexPolyhedron b = trial % 3 == 1 ? ConvexPolyhedron(Capsule(rb, rb / 3))
+                                          : ConvexPolyhedron(Sphere(rb));
+      const Scalar size = a.outer_radius() + b.outer_radius() +
+                          2 * std::max(a.bounds().radius, b.bounds().radius);
+      const Scalar gap = rng.uniform(-4, 4) * kDefaultTolerance * size;
+      const Vector3 offset = (a.outer_radius() + b.outer_radius() + gap) * rng.unit();
+      // Both turned alike, turned apart, neither turned, or one pose shared by both (B's points
+      // offset instead): each is a path of its own through the poses' identity tests.
+      const int poses_case = trial % 4;
+      Pose pose_a;
+      pose_a.translation = rng.vector(1000 * scale);
+      if (poses_case < 2 || trial % 8 == 3) pose_a.rotation = rng.rotation();
+      Pose pose_b = pose_a;
+      if (poses_case == 3) {
+        b = ConvexPolyhedron(b.vertices().rowwise() + offset.transpose(), b.radius());
+      } else {
+        pose_b.translation += offset;
+        if (poses_case == 1) pose_b.rotation = rng.rotation();
+      }
+      const bool verdict = ours.collide(a, pose_a, b, pose_b);
+      const DistanceResult truth = exact_query.collision(a, pose_a, b, pose_b);
+      ASSERT_TRUE(truth.certified) << scale << " " << trial;
+      if (!verdict) {
+        ++apart;
+        EXPECT_GT(truth.distance, 0) << scale << " " << trial;
+        EXPECT_FALSE(truth.colliding) << scale << " " << trial;
+      } else {
+        ++colliding;
+      }
+      const Scalar tolerance = kDefaultTolerance * size_of(a, pose_a, b, pose_b);
+      if (truth.lower_bound > 2 * tolerance || truth.distance <= 0) {
+        EXPECT_EQ(verdict, truth.colliding) << scale << " " << trial;
+      }
+      // The overload without poses, on the bodies placed, where neither is turned.
+      if (poses_case == 2 && a.curved() == nullptr) {
+        const ConvexPolyhedron placed_a(a.vertices().rowwise() + pose_a.translation.transpose(),
+                                        a.radius());
+        const ConvexPolyhedron placed_b(b.vertices().rowwise() + pose_b.translation.transpose(),
+                                        b.radius());
+        EXPECT_EQ(ours.collide(placed_a, placed_b), exact_query.collide(placed_a, placed_b))
+            << scale << " " << trial;
+      }
+    }
+  }
+  EXPECT_GT(apart, 100);
+  EXPECT_GT(colliding, 100);
+}
+
+// Query::collide raises the pair's errors whether or not its balls are apart: a pose that is not
+// rigid or not finite, and a curved body asked of a method that cannot answer it.
+TEST(BallScreen, CollideRaisesThePairsErrorsBeforeReadingItsBalls) {
+  const ConvexPolyhedron a = Sphere(1);
+  const ConvexPolyhedron b = Sphere(1);
+  Pose far;
+  far.translation = Vector3(100, 0, 0);
+  Pose stretched = far;
+  stretched.rotation(0, 0) = 1.5;
+  Pose lost = far;
+  lost.translation(1) = std::numeric_limits<Scalar>::quiet_NaN();
+  const Query query{QueryOptions{}};
+  EXPECT_FALSE(query.collide(a, {}, b, far));
+  EXPECT_THROW(query.collide(a, {}, b, stretched), std::invalid_argument);
+  EXPECT_THROW(query.collide(a, stretched, b, far), std::invalid_argument);
+  EXPECT_THROW(query.collide(a, {}, b, lost), std::invalid_argument);
+  QueryOptions swarm;
+  swarm.method = Method::ipso;
+  const Cylinder cylinder(1, 1);
+  EXPECT_THROW(Query(swarm).collide(cylinder, {}, b, far), std::invalid_argument);
+  EXPECT_THROW(Query(swarm).collide(cylinder, moved(b, far.translation)), std::invalid_argument);
 }
 
 // The inner ball about a body's box centre lies inside the body and is nearly the largest there:

@@ -15,6 +15,7 @@
 #include "geometry/support_tree.hpp"
 #include "paper_cases.hpp"
 #include "swarmcollide/geometry/convex_polyhedron.hpp"
+#include "swarmcollide/geometry/shapes.hpp"
 
 namespace swarmcollide {
 namespace {
@@ -118,6 +119,53 @@ TEST(ConvexPolyhedron, BoundsAreTheBoxItsCentreAndHalfDiagonal) {
   const BodyBounds huge = ConvexPolyhedron(points * 3e307).bounds();
   EXPECT_TRUE(huge.centre.isApprox(Vector3(3e307, 3e307, 1.2e308), 1e-15));
   EXPECT_DOUBLE_EQ(huge.radius, 3e307 * std::sqrt(6.0));
+}
+
+// The outer ball (Query::collide's screen) holds every point of the body, rounding radius
+// included, at every scale, and is the points' own ball (tighter than the box's), not a looser
+// bound; a curved shape's is its own outer radius, which holds its support points.
+TEST(ConvexPolyhedron, OuterRadiusHoldsTheBodyAboutItsBoxCentre) {
+  std::mt19937_64 rng(41);
+  std::uniform_real_distribution<Scalar> uniform(-1, 1);
+  for (const Scalar scale : {1e-200, 1e-8, 1.0, 3e5, 1e200}) {
+    for (const Scalar rounding : {0.0, 0.3}) {
+      VertexMatrix points(12, 3);
+      for (Eigen::Index i = 0; i < points.rows(); ++i) {
+        for (int k = 0; k < 3; ++k) points(i, k) = (uniform(rng) + 5) * scale;
+      }
+      const ConvexPolyhedron body(points, rounding * scale);
+      long double farthest = 0;
+      for (Eigen::Index i = 0; i < points.rows(); ++i) {
+        long double squares = 0;
+        for (int k = 0; k < 3; ++k) {
+          const long double d = static_cast<long double>(points(i, k)) /
+                                    static_cast<long double>(scale) -
+                                static_cast<long double>(body.bounds().centre(k)) /
+                                    static_cast<long double>(scale);
+          squares += d * d;
+        }
+        farthest = std::max(farthest, std::sqrt(squares));
+      }
+      const long double reach = (farthest + rounding) * static_cast<long double>(scale);
+      EXPECT_GE(static_cast<long double>(body.outer_radius()), reach) << scale << " " << rounding;
+      EXPECT_LE(static_cast<long double>(body.outer_radius()), reach * (1 + 1e-11L))
+          << scale << " " << rounding;
+      EXPECT_LE(body.outer_radius(), body.bounds().radius) << scale << " " << rounding;
+    }
+  }
+  const Cylinder cylinder(0.5, 2);
+  EXPECT_GE(cylinder.outer_radius(), std::hypot(0.5, 2.0));
+  EXPECT_LE(cylinder.outer_radius(), std::hypot(0.5, 2.0) * (1 + 1e-11));
+  const Sphere sphere(0.7);
+  EXPECT_GE(sphere.outer_radius(), 0.7);
+  EXPECT_LE(sphere.outer_radius(), 0.7 * (1 + 1e-11));
+  const Ellipsoid ellipsoid(Vector3(0.2, 3, 1));
+  for (int i = 0; i < 200; ++i) {
+    const Vector3 d(uniform(rng), uniform(rng), uniform(rng));
+    EXPECT_LE((ellipsoid.support(d) - ellipsoid.bounds().centre).norm(),
+              ellipsoid.outer_radius());
+  }
+  EXPECT_LE(ellipsoid.outer_radius(), 3 * (1 + 1e-11));
 }
 
 TEST(ConvexPolyhedron, SupportIsTheFarthestPoint) {

@@ -102,6 +102,26 @@ BodyBounds bounds_of(const VertexMatrix& points, Scalar radius) {
   return bounds;
 }
 
+// The largest distance of `centred`'s points from their origin, rounded up: in the unit ball
+// (exactly, by a power of two), where no square underflows. Each norm is within a few roundoffs
+// of the exact distance of its point from the box centre (the centred points are themselves
+// rounded relative to it); 2^-40 is far more.
+Scalar largest_distance(const VertexMatrix& centred) {
+  const int exponent = detail::exponent_above(centred.cwiseAbs().maxCoeff());
+  Scalar largest = 0;
+  for (Eigen::Index i = 0; i < centred.rows(); ++i) {
+    Vector3 unit;
+    for (int k = 0; k < 3; ++k) unit(k) = detail::times_power_of_two(centred(i, k), -exponent);
+    largest = std::max(largest, unit.norm());
+  }
+  return detail::times_power_of_two(largest * (1 + 0x1p-40), exponent);
+}
+
+// A core's outer radius `core` grown by the rounding radius, rounded up.
+Scalar rounded_outer_radius(Scalar core, Scalar radius) {
+  return radius > 0 ? (core + radius) * (1 + 0x1p-40) : core;
+}
+
 // Centre of mass of a closed, outward-oriented triangle mesh, from the signed tetrahedra it forms
 // with a reference point inside the hull.
 Vector3 solid_centroid(const VertexMatrix& points, const FaceMatrix& faces, const Vector3& origin) {
@@ -143,6 +163,7 @@ ConvexPolyhedron::ConvexPolyhedron(VertexMatrix points, Scalar radius)
   check_radius(radius_);
   bounds_ = bounds_of(vertices_, radius_);
   centred_ = vertices_.rowwise() - bounds_.centre.transpose();
+  outer_radius_ = rounded_outer_radius(largest_distance(centred_), radius_);
   static_assert(kHillClimbingThreshold <= detail::PointColumns::kCapacity);
   if (centred_.rows() <= kHillClimbingThreshold) {
     hull_cache_->columns.assign(centred_);
@@ -155,6 +176,8 @@ ConvexPolyhedron::ConvexPolyhedron(VertexMatrix points, Scalar radius,
     : ConvexPolyhedron(std::move(points), radius) {
   curved_ = std::move(shape);
   support_error_per_radius_ = curved_->support_error_roundoffs() * detail::kRoundoff;
+  // A curved shape reaches beyond its points (a few on its surface); its own bound holds it.
+  outer_radius_ = rounded_outer_radius(curved_->outer_radius() * (1 + 0x1p-40), radius);
   // The points' box is the shape's, but their ball is not: the shape's outer radius bounds it.
   const Scalar huge = std::numeric_limits<Scalar>::infinity();
   bounds_.radius =

@@ -18,15 +18,7 @@ namespace {
 // relative to its permanent (o3derrboundA = (7 + 56 u) u, rounded up to 8 u), as hull_points.cpp
 // uses it; the absolute term covers products that underflow.
 constexpr Scalar kOrientationBound = 8 * kRoundoff;
-constexpr Scalar kUnderflow = std::numeric_limits<Scalar>::min();
 
-// A validated rotation has |R^T R - I| <= kRotationTolerance entrywise, so it stretches or shrinks
-// a vector's length by less than 1.5 of those (Gershgorin on R^T R); 2 covers it.
-constexpr Scalar kStretch = 2 * kRotationTolerance;
-
-struct OuterRadius {
-  Scalar radius;
-};
 
 // |v|, without the squares of tiny or huge components underflowing or overflowing: for bodies
 // 1e-200 across, the plain norm is 0. Where the sum of squares is far from both ends of the
@@ -40,10 +32,9 @@ Scalar length(const Vector3& v) {
   return largest > 0 ? largest * (v / largest).norm() : 0;
 }
 
-// The outer and inner radii and the face normals, kept together: one lookup among the body's
-// derived data for a batch row whose body changed, not three.
+// The inner radius and the face normals, kept together: one lookup among the body's derived data
+// for a batch row whose body changed, not two.
 struct ScreenData {
-  Scalar outer;
   Scalar inner;
   std::vector<Vector3> normals;
   PointColumns normal_columns;  // held when there are normals, at most kCapacity of them
@@ -79,23 +70,6 @@ std::vector<Vector3> face_normals(const ConvexPolyhedron& body) {
     normals.push_back(normal / size);
   }
   return normals;
-}
-
-Scalar outer_radius(const ConvexPolyhedron& body) {
-  // A curved shape reaches beyond its points (a few on its surface); its own bound holds it.
-  if (const SupportFunction* shape = body.curved()) return shape->outer_radius() * (1 + 0x1p-40);
-  const VertexMatrix& centred = body.centred_vertices();
-  // In the unit ball (exactly, by a power of two), where no square underflows. Each norm is
-  // within a few roundoffs of the exact distance of its point from the box centre (the centred
-  // points are themselves rounded relative to it); 2^-40 is far more.
-  const int exponent = exponent_above(centred.cwiseAbs().maxCoeff());
-  Scalar largest = 0;
-  for (Eigen::Index i = 0; i < centred.rows(); ++i) {
-    Vector3 unit;
-    for (int k = 0; k < 3; ++k) unit(k) = times_power_of_two(centred(i, k), -exponent);
-    largest = std::max(largest, unit.norm());
-  }
-  return times_power_of_two(largest * (1 + 0x1p-40), exponent);
 }
 
 // The radius of a ball about the box centre (the origin of the centred points) inside the hull of
@@ -145,39 +119,28 @@ Scalar inner_radius(const ConvexPolyhedron& body) {
   return times_power_of_two(nearest * (1 - 4 * kRoundoff), exponent);
 }
 
-// The tolerance in world units of a pair whose centres are `centres` apart: relative to the
-// pair's size, the diameter of a ball about both bodies as frame_pair measures it (a hair more,
-// for its rounding).
-Scalar world_tolerance(const ConvexPolyhedron& a, const ConvexPolyhedron& b, Scalar centres,
-                       Scalar relative_tolerance) {
-  const Scalar size = centres + 2 * std::max(a.bounds().radius, b.bounds().radius);
-  return relative_tolerance * size * (1 + 0x1p-40);
-}
 
 }  // namespace
 
 BodyBalls body_balls(const ConvexPolyhedron& body, bool with_inner) {
   BodyBalls balls;
   balls.columns = body.centred_columns();
+  balls.outer = body.outer_radius();
   if (with_inner) {
     const ScreenData& data = body.derived<ScreenData>([&body] {
       std::vector<Vector3> normals = face_normals(body);
       PointColumns columns = normal_columns(normals);
-      return ScreenData{outer_radius(body), inner_radius(body), std::move(normals), columns};
+      return ScreenData{inner_radius(body), std::move(normals), columns};
     });
-    balls.outer = data.outer;
     balls.inner = data.inner;
     balls.face_normals = &data.normals;
     if (data.normal_columns.held()) balls.normal_columns = &data.normal_columns;
-  } else {
-    balls.outer =
-        body.derived<OuterRadius>([&body] { return OuterRadius{outer_radius(body)}; }).radius;
   }
-  // A rounded body's balls grow by its radius; its inner ball is the radius alone when its core
-  // is one point or a segment, whose box centre is on it (the point, the segment's midpoint).
+  // A rounded body's inner ball grows by its radius (its outer one has: outer_radius), and is the
+  // radius alone when its core is one point or a segment, whose box centre is on it (the point,
+  // the segment's midpoint).
   const Scalar r = body.radius();
   if (r > 0) {
-    balls.outer = (balls.outer + r) * (1 + 0x1p-40);
     if (balls.inner > 0) {
       balls.inner = (balls.inner + r) * (1 - 0x1p-40);
     } else if (with_inner && body.size() <= 2) {
@@ -241,17 +204,11 @@ std::optional<ScreenVerdict> by_balls(const ConvexPolyhedron& a, const Pose& pos
   const Vector3& centre_a = at.a;
   const Vector3& between = at.between;
   const Scalar centres = at.length;
-  const Scalar outer = (balls_a.outer + balls_b.outer) * (1 + kStretch);
-  // Each centre's coordinates are rounded by at most 7 u of |c| + |t| (c the box centre), their
-  // distance by another 5 u of itself, and the sums below by a few u of their terms: 16 u of it
-  // all is more than twice that (the 1-norms bound the lengths and do not underflow; the last
-  // term covers products that do).
-  const Scalar margin =
-      16 * kRoundoff * (at.reach + centres + outer) + 16 * kUnderflow;
-  if (!std::isfinite(margin)) return std::nullopt;
-  const Scalar lower = centres - outer - margin;
-  if (lower > world_tolerance(a, b, centres, relative_tolerance)) {
-    return apart(lower, between / centres, a, pose_a, 0, b, pose_b, 0);
+  const BallsGap gap = balls_gap(balls_a.outer, balls_b.outer, at.reach, at.length);
+  if (!std::isfinite(gap.margin)) return std::nullopt;
+  const Scalar margin = gap.margin;
+  if (gap.lower > world_tolerance(a, b, centres, relative_tolerance)) {
+    return apart(gap.lower, between / centres, a, pose_a, 0, b, pose_b, 0);
   }
   const Scalar inner_a = balls_a.inner * (1 - kStretch);
   const Scalar inner_b = balls_b.inner * (1 - kStretch);
@@ -390,6 +347,13 @@ std::optional<ScreenVerdict> collision_by_balls(const ConvexPolyhedron& a, const
                                               Scalar relative_tolerance) {
   return by_balls(a, pose_a, balls_a, b, pose_b, balls_b, centres_of(a, pose_a, b, pose_b),
                   relative_tolerance);
+}
+
+bool apart_by_outer_balls(const ConvexPolyhedron& a, const Pose& pose_a, const ConvexPolyhedron& b,
+                          const Pose& pose_b, Scalar relative_tolerance) {
+  const Centres at = centres_of(a, pose_a, b, pose_b);
+  const BallsGap gap = balls_gap(a.outer_radius(), b.outer_radius(), at.reach, at.length);
+  return gap.lower > world_tolerance(a, b, at.length, relative_tolerance);
 }
 
 std::optional<ScreenVerdict> apart_along_centres(const ConvexPolyhedron& a, const Pose& pose_a,

@@ -2,9 +2,13 @@
 // up or any solver runs; private to the library's sources.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
 #include <optional>
 #include <vector>
 
+#include "../geometry/normalise.hpp"
 #include "swarmcollide/geometry/convex_polyhedron.hpp"
 #include "swarmcollide/geometry/pose.hpp"
 #include "swarmcollide/types.hpp"
@@ -59,6 +63,76 @@ std::optional<ScreenVerdict> collision_by_balls(const ConvexPolyhedron& a, const
                                               const BodyBalls& balls_a, const ConvexPolyhedron& b,
                                               const Pose& pose_b, const BodyBalls& balls_b,
                                               Scalar relative_tolerance);
+
+/// True when `a` and `b`, under validated poses, are proven apart by their outer balls
+/// (ConvexPolyhedron::outer_radius) as collision_by_balls proves it: a collision verdict without
+/// the balls' witnesses, and without the inner balls, whose hull `collide` does not build.
+bool apart_by_outer_balls(const ConvexPolyhedron& a, const Pose& pose_a, const ConvexPolyhedron& b,
+                          const Pose& pose_b, Scalar relative_tolerance);
+
+/// The smallest double above 0 that keeps full precision: the screens' margins add a multiple of
+/// it for products that underflow.
+inline constexpr Scalar kUnderflow = std::numeric_limits<Scalar>::min();
+
+// A validated rotation has |R^T R - I| <= kRotationTolerance entrywise, so it stretches or shrinks
+// a vector's length by less than 1.5 of those (Gershgorin on R^T R); 2 covers it.
+inline constexpr Scalar kStretch = 2 * kRotationTolerance;
+
+// The tolerance in world units of a pair whose centres are `centres` apart: relative to the
+// pair's size, the diameter of a ball about both bodies as frame_pair measures it (a hair more,
+// for its rounding).
+inline Scalar world_tolerance(const ConvexPolyhedron& a, const ConvexPolyhedron& b, Scalar centres,
+                       Scalar relative_tolerance) {
+  const Scalar size = centres + 2 * std::max(a.bounds().radius, b.bounds().radius);
+  return relative_tolerance * size * (1 + 0x1p-40);
+}
+
+/// How far apart two outer balls of radii `outer_a` and `outer_b` are proven (`lower`) whose
+/// centres are computed `centres` apart from box centres c and translations t (a rotation R
+/// applied, `R c + t`) with `reach` = |c_a|_1 + |t_a|_1 + |c_b|_1 + |t_b|_1, and the bound on
+/// the rounding taken off for it (`margin`: not finite, and `lower` not above any tolerance, where
+/// the world coordinates leave the double range).
+struct BallsGap {
+  Scalar lower;
+  Scalar margin;
+};
+
+inline BallsGap balls_gap(Scalar outer_a, Scalar outer_b, Scalar reach, Scalar centres) {
+  const Scalar outer = (outer_a + outer_b) * (1 + kStretch);
+  // Each centre's coordinates are rounded by at most 7 u of |c| + |t| (c the box centre), their
+  // distance by another 5 u of itself, and the sums below by a few u of their terms: 16 u of it
+  // all is more than twice that (the 1-norms bound the lengths and do not underflow; the last
+  // term covers products that do).
+  const Scalar margin = 16 * kRoundoff * (reach + centres + outer) + 16 * kUnderflow;
+  return {centres - outer - margin, margin};
+}
+
+/// apart_by_outer_balls for poses whose identity tests are known (`turned_a` is
+/// `!pose_a.has_identity_rotation()`, as framing needs them), inline: Query::collide asks it of
+/// every pair before framing it, and the pairs it does not settle pay for it (out of line, it was
+/// some 200 instructions of a 4-vertex overlapping verdict, 5%). The same centres (a rotation
+/// that is the identity adds exact zeros), their distance from the plain norm where its squares
+/// are far from both ends of the double range (as the screens' `length`), the general form
+/// otherwise.
+inline bool outer_balls_apart(const ConvexPolyhedron& a, const Pose& pose_a, bool turned_a,
+                              const ConvexPolyhedron& b, const Pose& pose_b, bool turned_b,
+                              Scalar relative_tolerance) {
+  const Vector3 centre_a = turned_a ? Vector3(pose_a.rotation * a.bounds().centre +
+                                              pose_a.translation)
+                                    : Vector3(a.bounds().centre + pose_a.translation);
+  const Vector3 centre_b = turned_b ? Vector3(pose_b.rotation * b.bounds().centre +
+                                              pose_b.translation)
+                                    : Vector3(b.bounds().centre + pose_b.translation);
+  const Scalar squares = (centre_b - centre_a).squaredNorm();
+  if (!(squares > 0x1p-1000 && squares < 0x1p1000)) {
+    return apart_by_outer_balls(a, pose_a, b, pose_b, relative_tolerance);
+  }
+  const Scalar centres = std::sqrt(squares);
+  const Scalar reach = a.bounds().centre.lpNorm<1>() + pose_a.translation.lpNorm<1>() +
+                       b.bounds().centre.lpNorm<1>() + pose_b.translation.lpNorm<1>();
+  return balls_gap(a.outer_radius(), b.outer_radius(), reach, centres).lower >
+         world_tolerance(a, b, centres, relative_tolerance);
+}
 
 /// The bodies proven apart along the axis through their boxes' centres, for bodies of at most
 /// kHillClimbingThreshold points (scanned whole, as the solvers scan them): the separation of

@@ -6,6 +6,8 @@
 #include <utility>
 
 #include "../geometry/framed_body.hpp"
+#include "../geometry/pose_check.hpp"
+#include "ball_screen.hpp"
 #include "dispatch.hpp"
 #include "row_answer.hpp"
 #include "swarmcollide/queries/methods.hpp"
@@ -166,6 +168,10 @@ DistanceResult Query::collision(const ConvexPolyhedron& a, const Pose& pose_a,
 
 bool Query::collide(const ConvexPolyhedron& a, const ConvexPolyhedron& b, bool escalate) const {
   require(options_.method, kCollide, "collide");
+  detail::require_shapes(options_.method, a, b);
+  if (detail::outer_balls_apart(a, kIdentity, false, b, kIdentity, false, options_.tolerance)) {
+    return false;
+  }
   return verdict_of(options_,
                     detail::frame_validated_pair(a, kIdentity, b, kIdentity, options_.tolerance),
                     escalate);
@@ -174,7 +180,19 @@ bool Query::collide(const ConvexPolyhedron& a, const ConvexPolyhedron& b, bool e
 bool Query::collide(const ConvexPolyhedron& a, const Pose& pose_a, const ConvexPolyhedron& b,
                     const Pose& pose_b, bool escalate) const {
   require(options_.method, kCollide, "collide");
-  return verdict_of(options_, detail::frame_pair(a, pose_a, b, pose_b, options_.tolerance),
+  // frame_pair's checks, made before the balls read the poses.
+  const bool turned_a = !pose_a.has_identity_rotation();
+  if (!detail::valid_pose(pose_a, turned_a)) validate_pose(pose_a, "pose_a");
+  const bool shared = detail::same_pose(pose_a, pose_b);
+  const bool turned_b = shared ? turned_a : !pose_b.has_identity_rotation();
+  if (!shared && !detail::valid_pose(pose_b, turned_b)) validate_pose(pose_b, "pose_b");
+  detail::require_shapes(options_.method, a, b);
+  if (detail::outer_balls_apart(a, pose_a, turned_a, b, pose_b, turned_b, options_.tolerance)) {
+    return false;
+  }
+  return verdict_of(options_,
+                    detail::frame_turned_pair(a, pose_a, turned_a, b, pose_b, turned_b,
+                                              options_.tolerance),
                     escalate);
 }
 

@@ -113,6 +113,11 @@ class ConvexPolyhedron {
   const Aabb& aabb() const { return bounds_.box; }
   /// The box, its centre and the radius of the ball around that centre holding the body.
   const BodyBounds& bounds() const { return bounds_; }
+  /// The radius of a ball about `bounds().centre` holding the body, rounded up: the largest
+  /// distance of a point from the centre (a curved shape's own outer radius) plus `radius()`.
+  /// Tighter than `bounds().radius`, which the box's diagonal gives: a collision verdict between
+  /// bodies whose balls are apart needs nothing else (Query::collide).
+  Scalar outer_radius() const { return outer_radius_; }
   /// Centre of mass of the solid (a curved shape's own); for flat, collinear and single-point
   /// bodies, of the polygon, segment or point they are.
   Vector3 centroid() const;
@@ -164,6 +169,7 @@ class ConvexPolyhedron {
   std::shared_ptr<detail::HullCache> hull_cache_;
   std::shared_ptr<const SupportFunction> curved_;
   Scalar support_error_per_radius_ = 0;
+  Scalar outer_radius_ = 0;
   // The columns held in hull_cache_ (which every copy shares), null for a large body.
   const detail::PointColumns* columns_ = nullptr;
 };
