@@ -1167,6 +1167,51 @@ TEST(Curved, TheDualRoundsProveAVerdictAHairFromTheBorderWithACylinder) {
   EXPECT_GT((lowest_b - highest_a) / norm, Long(tolerance));
 }
 
+// A verdict whose bounds lie within rounding of the tolerance on both sides can be proven by no
+// bound, however many rounds the swarm runs: bisecting polytopes towards the verdict's border
+// with a cylinder and a cone meets such pairs, and the search stops on them before its rounds are
+// spent (it ran all 20 of 30 iterations, milliseconds a call, before). Every verdict proven is
+// the exact method's where that one proves its own.
+TEST(Curved, TheDualRoundsStopWhereNoBoundCanProveTheVerdict) {
+  Random rng(57);
+  const Query dual = query_of(Method::dual);
+  const Query exact = query_of(Method::exact);
+  const DualOptions rounds;
+  const Scalar u = std::numeric_limits<Scalar>::epsilon() / 2;
+  int out_of_reach = 0;
+  for (int body = 0; body < 16; ++body) {
+    VertexMatrix points(21, 3);
+    for (int i = 0; i < points.rows(); ++i) points.row(i) = 0.5 * rng.unit().transpose();
+    const ConvexPolyhedron polytope(points);
+    const ConvexPolyhedron curved = body % 2 == 0 ? ConvexPolyhedron(Cylinder(0.4, 0.6))
+                                                  : ConvexPolyhedron(Cone(0.4, 0.6));
+    const Vector3 direction = rng.unit();
+    Scalar near = 0;
+    Scalar far = 3;
+    for (int step = 0; step < 48; ++step) {
+      const Pose pose = at(0.5 * (near + far) * direction, Matrix3::Identity());
+      const DistanceResult verdict = dual.collision(polytope, Pose{}, curved, pose, false);
+      (verdict.colliding ? near : far) = 0.5 * (near + far);
+      if (verdict.certified) {
+        const DistanceResult decided = exact.collision(polytope, Pose{}, curved, pose, false);
+        if (decided.certified) EXPECT_EQ(verdict.colliding, decided.colliding) << body;
+        continue;
+      }
+      // Within three quarters of the frame's rounding on either side of the tolerance (that
+      // rounding is 128 u of a power of two above half the size, so at least 64 u of the size):
+      // out of reach, however the world's bounds were rounded.
+      const Scalar size = size_of(polytope, Pose{}, curved, pose);
+      const Scalar tolerance = kDefaultTolerance * size;
+      if (verdict.lower_bound > tolerance - 48 * u * size &&
+          verdict.distance < tolerance + 48 * u * size) {
+        ++out_of_reach;
+        EXPECT_LT(verdict.iterations, rounds.max_rounds * rounds.max_iterations) << body;
+      }
+    }
+  }
+  EXPECT_GT(out_of_reach, 0);
+}
+
 TEST(Curved, MethodsThatReadPointsRefuseCurvedShapes) {
   const Cylinder cylinder(1, 1);
   const ConvexPolyhedron cube = unit_cube();

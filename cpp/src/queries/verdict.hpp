@@ -98,6 +98,20 @@ inline bool goal_reached(const FramedPair& pair, Goal goal, Scalar lower, Scalar
                                  rounded_upper(pair, upper), intersection_proven);
 }
 
+/// True when no search can prove the verdict of a pair with bounds `lower` and `upper` (on the
+/// cores, as goal_reached takes them), however long it runs. Read as the rounded bodies' (L and
+/// U), they hold the distance d, as every later pair of bounds L' <= d <= U' will. Apart needs
+/// L' - kFrameRounding > tolerance (rounded), which L' <= d <= U < (tolerance + kFrameRounding)
+/// (1 - 4u) rules out; contact needs U' + kFrameRounding <= tolerance, which U' >= d >= L with
+/// L + kFrameRounding > tolerance (1 + 4u) rules out, or an intersection proof, which L > 0
+/// rules out. The factors cover the comparisons' own roundings (u = 2^-53).
+inline bool verdict_out_of_reach(const FramedPair& pair, Scalar lower, Scalar upper) {
+  const Scalar at_least = rounded_lower(pair, lower);
+  const Scalar at_most = rounded_upper(pair, upper);
+  return at_least > 0 && at_least + kFrameRounding > pair.tolerance * (1 + 4 * kRoundoff) &&
+         at_most < (pair.tolerance + kFrameRounding) * (1 - 4 * kRoundoff);
+}
+
 /// goal_reached for bounds rounded already (rounded_bounds).
 inline bool goal_reached(const FramedPair& pair, Goal goal, const RoundedBounds& bounds,
                          bool intersection_proven) {

@@ -48,6 +48,10 @@ class BestBounds {
   bool reached(const FramedPair& pair, Goal goal) const {
     return goal_reached(pair, goal, lower_, upper_.distance, upper_.encloses_origin);
   }
+  /// A verdict is asked and no search can prove it (verdict_out_of_reach).
+  bool out_of_reach(const FramedPair& pair, Goal goal) const {
+    return goal == Goal::verdict && verdict_out_of_reach(pair, lower_, upper_.distance);
+  }
   /// Contact is proven (the bodies are within the tolerance, or share a point).
   bool touching(const FramedPair& pair) const {
     return upper_.encloses_origin || upper_.distance + kFrameRounding <= pair.tolerance;

@@ -79,6 +79,8 @@ class DualSearch {
                                     first_);
     record();
     if (!done) done = finish_.from(bounds_.normal(), hint_a_, hint_b_, bounds_, goal_);
+    // A verdict within a hair of the tolerance stays unproven, whatever follows.
+    if (!done) done = bounds_.out_of_reach(pair_, goal_);
     // A curved pair the finish leaves unsettled lies within a few tolerances of the verdict's
     // border, or its supports' rounding hides the last digits of the value: the exact method's
     // search (Wolfe's restarts, its corral's planes) settles it, where the swarm's rounds search
@@ -155,15 +157,18 @@ class DualSearch {
     swarm_->seed(centre, radius, hint_a_, hint_b_);
     finished_ = {-1, -1};
     improve(false);
-    for (int iteration = 0; iteration < options_.max_iterations && !reached(); ++iteration) {
+    for (int iteration = 0; iteration < options_.max_iterations && !stop(); ++iteration) {
       if (swarm_->step()) improve(false);
       ++iterations_;
       record();
     }
-    if (reached()) return true;
+    if (stop()) return true;
     improve(true);
-    return reached();
+    return stop();
   }
+
+  // The goal is reached, or it is a verdict that no search can prove.
+  bool stop() const { return reached() || bounds_.out_of_reach(pair_, goal_); }
 
   const FramedPair& pair_;
   const DualStart* start_;
