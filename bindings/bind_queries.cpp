@@ -124,15 +124,19 @@ using AnyResult = py::typing::Union<DistanceResult, CompoundResult>;
 // The pair queries of Query and of the module's functions (swarmcollide.queries).
 enum class PairQuery { distance, signed_distance, collision, collide };
 
-// Above this many given points in a pair, an exact method's query releases the GIL while it
-// runs. Below, a query takes microseconds (a first one on a body also finds its hull, in
+// Above this many points read in a pair (read_point_count), an exact method's query releases
+// the GIL while it runs. Below, a query takes microseconds (a first one on a body also finds its hull, in
 // milliseconds only for bodies of thousands of points): releasing the GIL and taking it back
 // (0.1-0.2 us, a quarter of a query between 64-vertex hulls) would cost more than another thread
 // could gain in that time. python-fcl and coal never release it.
 constexpr int kReleaseAbovePoints = 1024;
 
-// Whether a query of `options` between bodies of `points` given points in all releases the GIL:
-// the swarms (the methods not always certified) run hundreds of iterations whatever the size.
+// Whether a query of `options` between bodies of `points` points in all releases the GIL: the
+// swarms (the methods not always certified) run hundreds of iterations whatever the size. The
+// points are those the solvers read (ConvexPolyhedron::read_point_count): a body of 2,000 points
+// whose hull has 45 vertices answers as fast as that hull, and the release and retake, counted
+// by its given points, cost its collision verdicts that the bodies' balls settle (25 ns in C++)
+// a fifth more than its hull's (bench/hull_points.py).
 bool releases_gil(const QueryOptions& options, int points) {
   return points > kReleaseAbovePoints || !method_info(options.method).always_certified;
 }
@@ -200,7 +204,8 @@ py::object answer(const Query& query, PairQuery kind, const py::handle& a, const
     polyhedron_a = &body_a.emplace(a, "a").get();
     polyhedron_b = &body_b.emplace(b, "b").get();
   }
-  const bool release = releases_gil(query.options(), polyhedron_a->size() + polyhedron_b->size());
+  const bool release = releases_gil(
+      query.options(), polyhedron_a->read_point_count() + polyhedron_b->read_point_count());
   if (kind == PairQuery::collide) {
     // The verdict alone: Query::collide builds no DistanceResult.
     const auto decide = [&] {

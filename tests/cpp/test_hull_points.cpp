@@ -104,7 +104,11 @@ void expect_weights_over_given_points(const DistanceResult& r, const DenseBody& 
 TEST(HullPoints, ADenseSamplingKeepsOnlyTheFirstCopiesOfTheHullVertices) {
   const DenseBody dense = dense_body(3);
   const ConvexPolyhedron body(dense.points);
+  // Every given point until the hull is found (asking does not find it), its 45 vertices after.
+  EXPECT_EQ(body.read_point_count(), body.size());
+  EXPECT_EQ(body.read_point_count(), body.size());
   const HullPoints& read = body.hull_points();
+  EXPECT_EQ(body.read_point_count(), 45);
   ASSERT_FALSE(read.every_point);
   EXPECT_EQ(read.indices, dense.hull_rows);
   EXPECT_EQ(read.hull.vertex_indices.size(), 45u);

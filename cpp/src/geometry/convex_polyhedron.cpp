@@ -288,4 +288,13 @@ const HullPoints& ConvexPolyhedron::hull_points() const {
   return hull_cache_->hull_points;
 }
 
+int ConvexPolyhedron::read_point_count() const {
+  if (size() <= kHillClimbingThreshold ||
+      !hull_cache_->hull_ready.load(std::memory_order_acquire)) {
+    return size();
+  }
+  const HullPoints& read = hull_cache_->hull_points;
+  return read.every_point ? size() : static_cast<int>(read.indices.size());
+}
+
 }  // namespace swarmcollide

@@ -127,6 +127,10 @@ class ConvexPolyhedron {
   /// hull (see HullPoints), found with the hull for bodies of more than `kHillClimbingThreshold`
   /// points; smaller bodies read every point.
   const HullPoints& hull_points() const;
+  /// How many points the exact solvers read (`hull_points()`'s) once the hull is found, and
+  /// `size()` until then: what a query on the body costs grows with it, and asking it never
+  /// finds the hull.
+  int read_point_count() const;
 
   /// Data a solver derives from the body (an FCL shape at some scale, say): made by `make()` on
   /// the first call for type `T` and `key`, then shared by every copy of the body, and kept as
