@@ -125,10 +125,10 @@ using AnyResult = py::typing::Union<DistanceResult, CompoundResult>;
 enum class PairQuery { distance, signed_distance, collision, collide };
 
 // Above this many points read in a pair (read_point_count), an exact method's query releases
-// the GIL while it runs. Below, a query takes microseconds (a first one on a body also finds its hull, in
-// milliseconds only for bodies of thousands of points): releasing the GIL and taking it back
-// (0.1-0.2 us, a quarter of a query between 64-vertex hulls) would cost more than another thread
-// could gain in that time. python-fcl and coal never release it.
+// the GIL while it runs. Below, a query takes microseconds (a first one on a body also finds its
+// hull, in milliseconds only for bodies of thousands of points): releasing the GIL and taking it
+// back (0.1-0.2 us, a quarter of a query between 64-vertex hulls) would cost more than another
+// thread could gain in that time. python-fcl and coal never release it.
 constexpr int kReleaseAbovePoints = 1024;
 
 // Whether a query of `options` between bodies of `points` points in all releases the GIL: the

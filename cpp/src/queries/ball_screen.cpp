@@ -19,7 +19,6 @@ namespace {
 // uses it; the absolute term covers products that underflow.
 constexpr Scalar kOrientationBound = 8 * kRoundoff;
 
-
 // |v|, without the squares of tiny or huge components underflowing or overflowing: for bodies
 // 1e-200 across, the plain norm is 0. Where the sum of squares is far from both ends of the
 // double range, the largest square is a normal number and the plain norm is as close (a squared
@@ -118,7 +117,6 @@ Scalar inner_radius(const ConvexPolyhedron& body) {
   }
   return times_power_of_two(nearest * (1 - 4 * kRoundoff), exponent);
 }
-
 
 }  // namespace
 

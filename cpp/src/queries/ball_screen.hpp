@@ -74,15 +74,15 @@ bool apart_by_outer_balls(const ConvexPolyhedron& a, const Pose& pose_a, const C
 /// it for products that underflow.
 inline constexpr Scalar kUnderflow = std::numeric_limits<Scalar>::min();
 
-// A validated rotation has |R^T R - I| <= kRotationTolerance entrywise, so it stretches or shrinks
-// a vector's length by less than 1.5 of those (Gershgorin on R^T R); 2 covers it.
+/// A validated rotation has |R^T R - I| <= kRotationTolerance entrywise, so it stretches or
+/// shrinks a vector's length by less than 1.5 of those (Gershgorin on R^T R); 2 covers it.
 inline constexpr Scalar kStretch = 2 * kRotationTolerance;
 
-// The tolerance in world units of a pair whose centres are `centres` apart: relative to the
-// pair's size, the diameter of a ball about both bodies as frame_pair measures it (a hair more,
-// for its rounding).
+/// The tolerance in world units of a pair whose centres are `centres` apart: relative to the
+/// pair's size, the diameter of a ball about both bodies as frame_pair measures it (a hair more,
+/// for its rounding).
 inline Scalar world_tolerance(const ConvexPolyhedron& a, const ConvexPolyhedron& b, Scalar centres,
-                       Scalar relative_tolerance) {
+                              Scalar relative_tolerance) {
   const Scalar size = centres + 2 * std::max(a.bounds().radius, b.bounds().radius);
   return relative_tolerance * size * (1 + 0x1p-40);
 }
