@@ -1170,8 +1170,8 @@ TEST(Curved, TheDualRoundsProveAVerdictAHairFromTheBorderWithACylinder) {
 // A verdict whose bounds lie within rounding of the tolerance on both sides can be proven by no
 // bound, however many rounds the swarm runs: bisecting polytopes towards the verdict's border
 // with a cylinder and a cone meets such pairs, and the search stops on them before its rounds are
-// spent (it ran all 20 of 30 iterations, milliseconds a call, before). Every verdict proven is
-// the exact method's where that one proves its own.
+// spent (it ran all 20 rounds of 30 iterations, milliseconds a call, before). Every verdict
+// proven is the exact method's where that one proves its own.
 TEST(Curved, TheDualRoundsStopWhereNoBoundCanProveTheVerdict) {
   Random rng(57);
   const Query dual = query_of(Method::dual);
