@@ -21,6 +21,8 @@ namespace detail {
 // pthread_once wakes waiters with a futex system call every time it runs, a measurable cost for
 // bodies that are built, queried once and dropped by the hundred thousand.
 struct HullCache {
+  // ConvexPolyhedron::outer_radius once found (negative before: a radius is not).
+  std::atomic<Scalar> outer_radius{-1};
   std::atomic<bool> hull_ready{false};
   std::mutex hull_mutex;
   Hull hull;
@@ -105,16 +107,18 @@ BodyBounds bounds_of(const VertexMatrix& points, Scalar radius) {
 // The largest distance of `centred`'s points from their origin, rounded up: in the unit ball
 // (exactly, by a power of two), where no square underflows. Each norm is within a few roundoffs
 // of the exact distance of its point from the box centre (the centred points are themselves
-// rounded relative to it); 2^-40 is far more.
+// rounded relative to it); 2^-40 is far more. One square root, of the largest sum of squares:
+// the square root is monotone, so it is the largest of the norms, bit for bit (every body pays
+// for this when it is built, and a batch of point arrays builds one a row).
 Scalar largest_distance(const VertexMatrix& centred) {
   const int exponent = detail::exponent_above(centred.cwiseAbs().maxCoeff());
   Scalar largest = 0;
   for (Eigen::Index i = 0; i < centred.rows(); ++i) {
     Vector3 unit;
     for (int k = 0; k < 3; ++k) unit(k) = detail::times_power_of_two(centred(i, k), -exponent);
-    largest = std::max(largest, unit.norm());
+    largest = std::max(largest, unit.squaredNorm());
   }
-  return detail::times_power_of_two(largest * (1 + 0x1p-40), exponent);
+  return detail::times_power_of_two(std::sqrt(largest) * (1 + 0x1p-40), exponent);
 }
 
 // A core's outer radius `core` grown by the rounding radius, rounded up.
@@ -158,12 +162,12 @@ Vector3 flat_centroid(const VertexMatrix& points, const FaceMatrix& faces) {
 ConvexPolyhedron::ConvexPolyhedron(VertexMatrix points, Scalar radius)
     : vertices_(std::move(points)),
       radius_(radius),
-      hull_cache_(std::make_shared<detail::HullCache>()) {
+      hull_cache_(std::make_shared<detail::HullCache>()),
+      outer_radius_(&hull_cache_->outer_radius) {
   check_points(vertices_);
   check_radius(radius_);
   bounds_ = bounds_of(vertices_, radius_);
   centred_ = vertices_.rowwise() - bounds_.centre.transpose();
-  outer_radius_ = rounded_outer_radius(largest_distance(centred_), radius_);
   static_assert(kHillClimbingThreshold <= detail::PointColumns::kCapacity);
   if (centred_.rows() <= kHillClimbingThreshold) {
     hull_cache_->columns.assign(centred_);
@@ -176,8 +180,6 @@ ConvexPolyhedron::ConvexPolyhedron(VertexMatrix points, Scalar radius,
     : ConvexPolyhedron(std::move(points), radius) {
   curved_ = std::move(shape);
   support_error_per_radius_ = curved_->support_error_roundoffs() * detail::kRoundoff;
-  // A curved shape reaches beyond its points (a few on its surface); its own bound holds it.
-  outer_radius_ = rounded_outer_radius(curved_->outer_radius() * (1 + 0x1p-40), radius);
   // The points' box is the shape's, but their ball is not: the shape's outer radius bounds it.
   const Scalar huge = std::numeric_limits<Scalar>::infinity();
   bounds_.radius =
@@ -286,6 +288,15 @@ const HullPoints& ConvexPolyhedron::hull_points() const {
   if (size() <= kHillClimbingThreshold) return kEveryPoint;
   hull();
   return hull_cache_->hull_points;
+}
+
+Scalar ConvexPolyhedron::find_outer_radius() const {
+  // A curved shape reaches beyond its points (a few on its surface); its own bound holds it.
+  // Threads that find it at once store the same value.
+  const Scalar radius = rounded_outer_radius(
+      curved_ ? curved_->outer_radius() * (1 + 0x1p-40) : largest_distance(centred_), radius_);
+  hull_cache_->outer_radius.store(radius, std::memory_order_relaxed);
+  return radius;
 }
 
 int ConvexPolyhedron::read_point_count() const {

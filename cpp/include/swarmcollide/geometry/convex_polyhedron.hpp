@@ -1,6 +1,7 @@
 #pragma once
 
 #include <functional>
+#include <atomic>
 #include <memory>
 #include <typeindex>
 
@@ -116,8 +117,12 @@ class ConvexPolyhedron {
   /// The radius of a ball about `bounds().centre` holding the body, rounded up: the largest
   /// distance of a point from the centre (a curved shape's own outer radius) plus `radius()`.
   /// Tighter than `bounds().radius`, which the box's diagonal gives: a collision verdict between
-  /// bodies whose balls are apart needs nothing else (Query::collide).
-  Scalar outer_radius() const { return outer_radius_; }
+  /// bodies whose balls are apart needs nothing else (Query::collide). Computed on first use and
+  /// shared by the body's copies (a body built for one distance query never pays for it).
+  Scalar outer_radius() const {
+    const Scalar found = outer_radius_->load(std::memory_order_relaxed);
+    return found >= 0 ? found : find_outer_radius();
+  }
   /// Centre of mass of the solid (a curved shape's own); for flat, collinear and single-point
   /// bodies, of the polygon, segment or point they are.
   Vector3 centroid() const;
@@ -160,6 +165,8 @@ class ConvexPolyhedron {
                    const Aabb& box);
 
  private:
+  // outer_radius() the first time, kept where outer_radius_ points.
+  Scalar find_outer_radius() const;
   // The data kept for (type, key), null when there is none yet.
   const void* find_derived(std::type_index type, int key) const;
   // The data for (type, key), made by `make` unless another thread made it first.
@@ -173,7 +180,8 @@ class ConvexPolyhedron {
   std::shared_ptr<detail::HullCache> hull_cache_;
   std::shared_ptr<const SupportFunction> curved_;
   Scalar support_error_per_radius_ = 0;
-  Scalar outer_radius_ = 0;
+  // outer_radius() where hull_cache_ (which every copy shares) keeps it, negative until found.
+  const std::atomic<Scalar>* outer_radius_ = nullptr;
   // The columns held in hull_cache_ (which every copy shares), null for a large body.
   const detail::PointColumns* columns_ = nullptr;
 };
