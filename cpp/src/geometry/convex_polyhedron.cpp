@@ -108,8 +108,7 @@ BodyBounds bounds_of(const VertexMatrix& points, Scalar radius) {
 // (exactly, by a power of two), where no square underflows. Each norm is within a few roundoffs
 // of the exact distance of its point from the box centre (the centred points are themselves
 // rounded relative to it); 2^-40 is far more. One square root, of the largest sum of squares:
-// the square root is monotone, so it is the largest of the norms, bit for bit (every body pays
-// for this when it is built, and a batch of point arrays builds one a row).
+// the square root is monotone, so it is the largest of the norms, bit for bit.
 Scalar largest_distance(const VertexMatrix& centred) {
   const int exponent = detail::exponent_above(centred.cwiseAbs().maxCoeff());
   Scalar largest = 0;
