@@ -359,14 +359,8 @@ const FramedPair& KeptPair::frame(const ConvexPolyhedron& a, const Pose& pose_a,
 
 FramedPair frame_pair(const ConvexPolyhedron& a, const Pose& pose_a, const ConvexPolyhedron& b,
                       const Pose& pose_b, Scalar relative_tolerance) {
-  // The identity tests framing needs, made once for the validation too; a pose B shares with A
-  // (both bodies in one rigid frame) is A's, checked already.
-  const bool turned_a = !pose_a.has_identity_rotation();
-  if (!valid_pose(pose_a, turned_a)) validate_pose(pose_a, "pose_a");
-  const bool shared = same_pose(pose_a, pose_b);
-  const bool turned_b = shared ? turned_a : !pose_b.has_identity_rotation();
-  if (!shared && !valid_pose(pose_b, turned_b)) validate_pose(pose_b, "pose_b");
-  return framed_pair(a, pose_a, turned_a, b, pose_b, turned_b, relative_tolerance);
+  const PoseTurns turned = validated_turns(pose_a, pose_b);
+  return framed_pair(a, pose_a, turned.a, b, pose_b, turned.b, relative_tolerance);
 }
 
 FramedPair frame_validated_pair(const ConvexPolyhedron& a, const Pose& pose_a,

@@ -77,4 +77,22 @@ inline bool same_pose(const Pose& x, const Pose& y) {
          same(x.translation.data(), y.translation.data(), 3);
 }
 
+/// Whether each pose of a pair turns its body (`!has_identity_rotation()`), both validated first
+/// (validate_pose's errors, named "pose_a" and "pose_b"); a pose B shares with A (both bodies in
+/// one rigid frame) is A's, checked already. What framing a posed pair needs of its poses, made
+/// once for the validation too.
+struct PoseTurns {
+  bool a;
+  bool b;
+};
+
+inline PoseTurns validated_turns(const Pose& pose_a, const Pose& pose_b) {
+  const bool turned_a = !pose_a.has_identity_rotation();
+  if (!valid_pose(pose_a, turned_a)) validate_pose(pose_a, "pose_a");
+  const bool shared = same_pose(pose_a, pose_b);
+  const bool turned_b = shared ? turned_a : !pose_b.has_identity_rotation();
+  if (!shared && !valid_pose(pose_b, turned_b)) validate_pose(pose_b, "pose_b");
+  return {turned_a, turned_b};
+}
+
 }  // namespace swarmcollide::detail

@@ -347,13 +347,6 @@ std::optional<ScreenVerdict> collision_by_balls(const ConvexPolyhedron& a, const
                   relative_tolerance);
 }
 
-bool apart_by_outer_balls(const ConvexPolyhedron& a, const Pose& pose_a, const ConvexPolyhedron& b,
-                          const Pose& pose_b, Scalar relative_tolerance) {
-  const Centres at = centres_of(a, pose_a, b, pose_b);
-  const BallsGap gap = balls_gap(a.outer_radius(), b.outer_radius(), at.reach, at.length);
-  return gap.lower > world_tolerance(a, b, at.length, relative_tolerance);
-}
-
 std::optional<ScreenVerdict> apart_along_centres(const ConvexPolyhedron& a, const Pose& pose_a,
                                                  const BodyBalls& balls_a,
                                                  const ConvexPolyhedron& b, const Pose& pose_b,

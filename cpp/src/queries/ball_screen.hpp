@@ -64,12 +64,6 @@ std::optional<ScreenVerdict> collision_by_balls(const ConvexPolyhedron& a, const
                                               const Pose& pose_b, const BodyBalls& balls_b,
                                               Scalar relative_tolerance);
 
-/// True when `a` and `b`, under validated poses, are proven apart by their outer balls
-/// (ConvexPolyhedron::outer_radius) as collision_by_balls proves it: a collision verdict without
-/// the balls' witnesses, and without the inner balls, whose hull `collide` does not build.
-bool apart_by_outer_balls(const ConvexPolyhedron& a, const Pose& pose_a, const ConvexPolyhedron& b,
-                          const Pose& pose_b, Scalar relative_tolerance);
-
 /// The smallest double above 0 that keeps full precision: the screens' margins add a multiple of
 /// it for products that underflow.
 inline constexpr Scalar kUnderflow = std::numeric_limits<Scalar>::min();
@@ -107,13 +101,15 @@ inline BallsGap balls_gap(Scalar outer_a, Scalar outer_b, Scalar reach, Scalar c
   return {centres - outer - margin, margin};
 }
 
-/// apart_by_outer_balls for poses whose identity tests are known (`turned_a` is
-/// `!pose_a.has_identity_rotation()`, as framing needs them), inline: Query::collide asks it of
-/// every pair before framing it, and the pairs it does not settle pay for it (out of line, with
-/// the general centres and no first comparison, it was some 200 instructions of a 4-vertex
+/// True when `a` and `b`, under validated poses whose identity tests are known (`turned_a` is
+/// `!pose_a.has_identity_rotation()`, as framing needs them), are proven apart by their outer
+/// balls (ConvexPolyhedron::outer_radius) as collision_by_balls proves it, without the balls'
+/// witnesses or the inner balls, whose hull `collide` does not build. Inline: Query::collide asks
+/// it of every pair before framing it, and the pairs it does not settle pay for it (out of line,
+/// with the general centres and no first comparison, it was some 200 instructions of a 4-vertex
 /// overlapping verdict, 5%; now about 100). The same centres (a rotation that is the identity
 /// adds exact zeros), their distance from the plain norm where its squares are far from both ends
-/// of the double range (as the screens' `length`), the general form otherwise.
+/// of the double range (as the screens' `length`), and collision_by_balls itself otherwise.
 [[gnu::always_inline]] inline bool outer_balls_apart(const ConvexPolyhedron& a, const Pose& pose_a,
                                                      bool turned_a, const ConvexPolyhedron& b,
                                                      const Pose& pose_b, bool turned_b,
@@ -130,7 +126,9 @@ inline BallsGap balls_gap(Scalar outer_a, Scalar outer_b, Scalar reach, Scalar c
   const Scalar outer = a.outer_radius() + b.outer_radius();
   if (!(squares > outer * outer)) return false;
   if (!(squares > 0x1p-1000 && squares < 0x1p1000)) {
-    return apart_by_outer_balls(a, pose_a, b, pose_b, relative_tolerance);
+    return collision_by_balls(a, pose_a, body_balls(a, false), b, pose_b, body_balls(b, false),
+                              relative_tolerance)
+        .has_value();
   }
   const Scalar centres = std::sqrt(squares);
   const Scalar reach = a.bounds().centre.lpNorm<1>() + pose_a.translation.lpNorm<1>() +

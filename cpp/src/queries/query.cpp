@@ -104,11 +104,9 @@ QueryOptions escalation(const QueryOptions& options) {
 // Whether `pair` collides, as collision() decides it: collide returns only the verdict, so it
 // is taken from the values a batch row keeps, without the DistanceResult (weights over the
 // given points, history) that collision() builds, a tenth of an overlapping verdict's cost
-// between small bodies.
+// between small bodies. Its callers have required the method to answer the pair's shapes
+// (before the balls, which would settle a curved pair for a method that cannot answer it).
 bool verdict_of(const QueryOptions& options, const detail::FramedPair& pair, bool escalate) {
-  if (pair.a.curved() || pair.b.curved()) {
-    detail::require_shapes(options.method, pair.a.body(), pair.b.body());
-  }
   return answered_row(options, detail::solver_for(options.method), detail::Goal::verdict, pair,
                       escalate)
       .values.colliding;
@@ -181,17 +179,13 @@ bool Query::collide(const ConvexPolyhedron& a, const Pose& pose_a, const ConvexP
                     const Pose& pose_b, bool escalate) const {
   require(options_.method, kCollide, "collide");
   // frame_pair's checks, made before the balls read the poses.
-  const bool turned_a = !pose_a.has_identity_rotation();
-  if (!detail::valid_pose(pose_a, turned_a)) validate_pose(pose_a, "pose_a");
-  const bool shared = detail::same_pose(pose_a, pose_b);
-  const bool turned_b = shared ? turned_a : !pose_b.has_identity_rotation();
-  if (!shared && !detail::valid_pose(pose_b, turned_b)) validate_pose(pose_b, "pose_b");
+  const detail::PoseTurns turned = detail::validated_turns(pose_a, pose_b);
   detail::require_shapes(options_.method, a, b);
-  if (detail::outer_balls_apart(a, pose_a, turned_a, b, pose_b, turned_b, options_.tolerance)) {
+  if (detail::outer_balls_apart(a, pose_a, turned.a, b, pose_b, turned.b, options_.tolerance)) {
     return false;
   }
   return verdict_of(options_,
-                    detail::frame_turned_pair(a, pose_a, turned_a, b, pose_b, turned_b,
+                    detail::frame_turned_pair(a, pose_a, turned.a, b, pose_b, turned.b,
                                               options_.tolerance),
                     escalate);
 }
