@@ -11,8 +11,9 @@
 // signed_distance; distance_many and collide_many over lists of the bodies with pose lists, one
 // thread), coal's GJKSolver (distance, a collision verdict stopping at the first separating plane,
 // and the signed distance by GJK + EPA), its support hint cleared before each call as in
-// narrowphase_coal.cpp; and the fcl method's distance beside the FCL call it wraps (`fcl::distance`
-// with FCL's own GJK, GST_INDEP, on prebuilt fcl::Convexd, request reused). Natively coal's
+// narrowphase_coal.cpp; and the fcl method's distance and verdict beside the FCL calls it wraps
+// (`fcl::distance` and `fcl::collide` with FCL's own GJK, GST_INDEP, on prebuilt fcl::Convexd,
+// requests reused). Natively coal's
 // fastest is often not its default GJK but one of narrowphase_coal.cpp's other variants: the
 // bounding boxes' centres as the initial guess ("coal_box"), Nesterov's acceleration
 // ("coal_nesterov"), or both ("coal_nesterov_box"); their distances and verdicts are counted
@@ -238,6 +239,25 @@ int main(int argc, char** argv) {
       if (uncertified) std::printf("n=%d %s: %d uncertified\n", n, proximity.name, uncertified);
       std::vector<Contender> variants;
       std::vector<std::unique_ptr<coal::GJKSolver>> variant_solvers;
+      // The fcl method's verdict beside FCL's own collide (GST_INDEP, no contacts, request
+      // reused), kept out of the checksum as coal's variants are.
+      const fcl::CollisionRequestd fcl_collide_request(1, false, 1, false, true, fcl::GST_INDEP);
+      variants.push_back({"collide", "ours_fcl", [&] {
+                            double sum = 0;
+                            for (std::size_t i = 0; i < w.a.size(); ++i)
+                              sum += fcl_query.collide(w.a[i], w.pose, w.b[i], w.pose);
+                            return sum;
+                          }});
+      variants.push_back({"collide", "fcl", [&] {
+                            double sum = 0;
+                            fcl::CollisionResultd result;
+                            for (std::size_t i = 0; i < w.a.size(); ++i) {
+                              result.clear();
+                              sum += fcl::collide(w.fcl_a[i].get(), w.fcl_pose, w.fcl_b[i].get(),
+                                                  w.fcl_pose, fcl_collide_request, result);
+                            }
+                            return sum;
+                          }});
       for (const CoalVariant& v : kCoalVariants) {
         variant_solvers.push_back(
             std::make_unique<coal::GJKSolver>(distance_request(false, v.variant, v.guess)));

@@ -2,6 +2,9 @@
 
 #include <fcl/narrowphase/detail/convexity_based_algorithm/gjk.h>
 
+#include <limits>
+#include <optional>
+
 #include "../queries/verdict.hpp"
 #include "exact_solver.hpp"
 #include "fcl_shape.hpp"
@@ -15,6 +18,10 @@ namespace {
 // GJK's stopping threshold in frame units (the bodies lie in the unit ball): relative precision
 // near double's; whatever GJK leaves unproven goes to the exact solver.
 constexpr Scalar kGjkTolerance = 1e-14;
+// A verdict's: fcl::CollisionRequest's default gjk_tolerance, at which FCL's own collide runs its
+// GJK. A verdict needs only a direction that separates the pair beyond the tolerance, or an
+// enclosing simplex; where FCL's coarser answer proves neither, the exact solver goes on from it.
+constexpr Scalar kVerdictGjkTolerance = 1e-6;
 // FCL's GJK on the pair; on return `gjk` holds its final simplex in A's shape frame, and
 // `gjk.shape` the pair's Minkowski difference. That difference is set up in `gjk.shape` itself,
 // which `evaluate` copies onto itself: a difference of its own cost a constructor's call more.
@@ -44,14 +51,17 @@ fcl::detail::GJK<Scalar>::Status run_gjk(const FramedPair& pair, const fcl::Shap
                         : body.local_support_index(local, -1);
 }
 
-// The answer along the line between the bodies' centres: its separation (the lower bound) and
-// the two support points (the upper bound).
-Answer along_centres(const FramedPair& pair) {
+// The verdict along the line between the bodies' centres, where their separation there proves
+// them apart: that separation (the lower bound) and the two support points found with it (the
+// upper bound). Without the proof, nothing: an answer's witness made for every pair cost a verdict
+// GJK goes on to settle 300 instructions more at 4 vertices.
+std::optional<Answer> apart_along_centres(const FramedPair& pair) {
   const Vector3 between = pair.b.offset() - pair.a.offset();
   const Vector3 n = between.norm() > 0 ? Vector3(between.normalized()) : Vector3::UnitX();
   int ia = -1;  // large bodies climb from their hulls' cube maps of starts
   int ib = -1;
   const Scalar lower = separation(pair.a, pair.b, n, ia, ib);
+  if (!verdict_proven(pair, lower, std::numeric_limits<Scalar>::infinity(), false)) return {};
   Answer answer = answer_from_witness(pair, vertex_witness(pair, ia, ib));
   answer.lower = lower;
   answer.direction = n;
@@ -74,12 +84,12 @@ Answer solve_fcl(const FramedPair& pair, const QueryOptions& options, Goal goal)
   const fcl::ShapeBased& shape_a = fcl_shape(pair.a);
   const fcl::ShapeBased& shape_b = fcl_shape(pair.b);
   if (goal == Goal::verdict) {
-    Answer screened = along_centres(pair);
-    if (verdict_proven(pair, screened)) return screened;
+    if (std::optional<Answer> screened = apart_along_centres(pair)) return *screened;
   }
   using Gjk = fcl::detail::GJK<Scalar>;
   const int max_iterations = options.exact.max_iterations;
-  Gjk gjk(static_cast<unsigned int>(max_iterations), kGjkTolerance);
+  Gjk gjk(static_cast<unsigned int>(max_iterations),
+          goal == Goal::verdict ? kVerdictGjkTolerance : kGjkTolerance);
   const Gjk::Status status = run_gjk(pair, shape_a, shape_b, gjk);
   // FCL's simplex as the bodies' own points: the support indices along each simplex vertex's
   // direction, found in the bodies' own frames as the solvers find them: on a small body a scan
