@@ -513,6 +513,41 @@ TEST(Curved, NewtonStepsAlongCreasesKeepCylinderAndConePairsProven) {
   }
 }
 
+// Cylinders and cones among themselves search along their creases only below a frame tolerance
+// of 1e-7 (curved_search.cpp's kCreaseStepsBelow), and without the steps above it: at relative
+// tolerances on both sides every answer apart is certified and encloses the exact method's at
+// 1e-12.
+TEST(Curved, CylinderAndConePairsStayProvenWithAndWithoutCreaseSteps) {
+  Random rng(52);
+  const Query exact = query_of(Method::exact, 1e-12);
+  int apart = 0;
+  for (const Scalar tolerance : {1e-9, 3e-8, 3e-7, 1e-6}) {
+    SCOPED_TRACE(tolerance);
+    const Query dual = query_of(Method::dual, tolerance);
+    for (int i = 0; i < 60; ++i) {
+      SCOPED_TRACE(i);
+      const Cylinder cylinder(rng.uniform(0.1, 1), rng.uniform(0.1, 1));
+      const Cone cone(rng.uniform(0.1, 1), rng.uniform(0.1, 1));
+      const ConvexPolyhedron& a = i % 2 == 0 ? static_cast<const ConvexPolyhedron&>(cylinder)
+                                             : static_cast<const ConvexPolyhedron&>(cone);
+      const ConvexPolyhedron& b = i % 3 == 0 ? static_cast<const ConvexPolyhedron&>(cylinder)
+                                             : static_cast<const ConvexPolyhedron&>(cone);
+      const Pose pa = at(rng.vector(0.2), rng.rotation());
+      const Pose pb = at(rng.vector(1.6), rng.rotation());
+      const DistanceResult d = dual.signed_distance(a, pa, b, pb);
+      const DistanceResult e = exact.signed_distance(a, pa, b, pb);
+      const Scalar size = size_of(a, pa, b, pb);
+      if (e.lower_bound > 0) {
+        ++apart;
+        EXPECT_TRUE(d.certified);
+      }
+      EXPECT_LE(d.lower_bound, e.distance + 1e-14 * size);
+      EXPECT_LE(e.lower_bound, d.distance + 1e-14 * size);
+    }
+  }
+  EXPECT_GT(apart, 60);
+}
+
 // Ellipsoids beside cylinders, cones and boxes search with Newton's steps on the separating
 // direction (NewtonDirection): every answer apart is proven, and encloses the exact method's at
 // a tolerance far below the default. An overlap's expanding polytope may reach the rounding's
