@@ -193,6 +193,32 @@ TEST(Fcl, ItsEnclosingSimplexProvesAnOverlap) {
   EXPECT_TRUE(r.certified && r.colliding);
 }
 
+// A verdict runs FCL's GJK at fcl::collide's own tolerance (1e-6 in the frame), far coarser than
+// ours: on faces 1e-5 to 1e-8 apart (which that GJK may call touching below 1e-6), within our
+// tolerance and overlapping, under random turns, the verdict is certified and the exact method's.
+TEST(Fcl, AVerdictNearContactIsTheExactMethods) {
+  Random rng(52);
+  const Query fcl = query_of(Method::fcl);
+  const Query exact = query_of(Method::exact);
+  const ConvexPolyhedron cube = unit_cube();
+  for (int trial = 0; trial < 20; ++trial) {
+    const Matrix3 turn = rng.rotation();
+    for (const Scalar gap : {1e-5, 1e-6, 1e-7, 1e-8, 1e-11, -1e-8, -1e-6}) {
+      SCOPED_TRACE("trial " + std::to_string(trial) + ", gap " + std::to_string(gap));
+      const Pose pose_a{turn, Vector3::Zero()};
+      const Pose pose_b{turn, turn * Vector3(1 + gap, rng.uniform(-0.5, 0.5),
+                                             rng.uniform(-0.5, 0.5))};
+      const DistanceResult f = fcl.collision(cube, pose_a, cube, pose_b);
+      const DistanceResult e = exact.collision(cube, pose_a, cube, pose_b);
+      ASSERT_TRUE(f.certified);
+      ASSERT_TRUE(e.certified);
+      EXPECT_EQ(f.colliding, gap < 1e-9);
+      EXPECT_EQ(e.colliding, gap < 1e-9);
+      EXPECT_EQ(fcl.collide(cube, pose_a, cube, pose_b), gap < 1e-9);
+    }
+  }
+}
+
 // libccd's EPA depth stands when the certificate proves it.
 TEST(Libccd, ItsDepthStandsWhenProven) {
   const DistanceResult r =
