@@ -17,6 +17,10 @@ bool verdict_proven(const FramedPair& pair, Scalar lower, Scalar upper, bool int
                         intersection_proven);
 }
 
+bool separation_proves_apart(const FramedPair& pair, Scalar lower) {
+  return apart_proven(pair, rounded_lower(pair, lower));
+}
+
 bool verdict_proven(const FramedPair& pair, const Answer& answer) {
   return verdict_proven(pair, answer.lower, answer.upper, answer.intersection_proven);
 }

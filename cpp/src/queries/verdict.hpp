@@ -32,6 +32,8 @@ DistanceResult finish_result(const FramedPair& pair, Answer&& answer, Method req
 /// proof, each beyond rounding.
 bool verdict_proven(const FramedPair& pair, Scalar lower, Scalar upper, bool intersection_proven);
 bool verdict_proven(const FramedPair& pair, const Answer& answer);
+/// True when a separation `lower` alone proves the pair apart (verdict_proven's first case).
+bool separation_proves_apart(const FramedPair& pair, Scalar lower);
 
 /// True when the bounds enclose the value to within the pair's tolerance.
 bool value_proven(const FramedPair& pair, Scalar lower, Scalar upper);

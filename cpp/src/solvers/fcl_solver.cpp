@@ -2,7 +2,6 @@
 
 #include <fcl/narrowphase/detail/convexity_based_algorithm/gjk.h>
 
-#include <limits>
 #include <optional>
 
 #include "../queries/verdict.hpp"
@@ -61,7 +60,7 @@ std::optional<Answer> apart_along_centres(const FramedPair& pair) {
   int ia = -1;  // large bodies climb from their hulls' cube maps of starts
   int ib = -1;
   const Scalar lower = separation(pair.a, pair.b, n, ia, ib);
-  if (!verdict_proven(pair, lower, std::numeric_limits<Scalar>::infinity(), false)) return {};
+  if (!separation_proves_apart(pair, lower)) return {};
   Answer answer = answer_from_witness(pair, vertex_witness(pair, ia, ib));
   answer.lower = lower;
   answer.direction = n;
