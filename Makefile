@@ -85,6 +85,9 @@ bench: install $(VENV)/.bench-installed bench-scene bench-compound
 	mkdir -p bench/results bench/plots
 	$(PY) bench/record.py --bench narrowphase_coal --json bench/results/narrowphase_coal.json -- \
 	  $(BENCH_BUILD)/bench/swarmcollide-narrowphase-coal $(BENCH_ARGS)
+	$(PY) bench/record.py --bench narrowphase_coal_poses \
+	  --json bench/results/narrowphase_coal_poses.json -- \
+	  $(BENCH_BUILD)/bench/swarmcollide-narrowphase-coal --poses 50 $(BENCH_ARGS)
 	$(PY) bench/record.py --bench penetration_coal --json bench/results/penetration_coal.json -- \
 	  $(BENCH_BUILD)/bench/swarmcollide-penetration-coal $(BENCH_ARGS)
 	$(PY) bench/record.py --bench cpp --json bench/results/cpp.json -- \

@@ -13,7 +13,8 @@ import os
 import sys
 from typing import Callable, List, Optional, Tuple
 
-from coal_report import NARROWPHASE, PENETRATION, narrowphase_section, penetration_section
+from coal_report import (NARROWPHASE, NARROWPHASE_POSES, PENETRATION, narrowphase_section,
+                         penetration_section)
 from compound import compound_section
 from curved_coal import section as curved_coal_section
 from curved_scene import section as curved_scene_section
@@ -98,6 +99,8 @@ SECTIONS: List[Section] = [
      "and coal", "", python_section, PYTHON_COMPARISON),
     ("narrowphase_coal.json", "Distance and verdicts against coal's GJK (C++)", NARROWPHASE,
      narrowphase_section, ""),
+    ("narrowphase_coal_poses.json", "Distance and verdicts against coal's GJK at many poses "
+     "(C++)", NARROWPHASE_POSES, narrowphase_section, ""),
     ("penetration_coal.json", "Penetration against coal's EPA (C++)", PENETRATION,
      penetration_section, ""),
     ("per_call.json", "Per call from Python", PER_CALL, per_call_section, ""),
