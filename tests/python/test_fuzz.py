@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 from fuzz_api import METHODS
 from fuzz_cases import CORPUS_METHODS, Case, corpus, pair
-from fuzz_judge import category_of, judge_single, run_case, scale_problems
+from fuzz_judge import category_of, compare_scales, judge_single, run_case, scale_problems
 from hypothesis import Phase, given, settings
 from hypothesis import strategies as st
 from sandbox import CRASHED, HUNG, RAISED, Sandbox
@@ -74,6 +74,29 @@ def test_the_judge_finds_what_is_wrong(fields, problem):
         assert problems == []
     else:
         assert any(problem in p for p in problems), problems
+
+
+def test_the_judge_compares_a_swarms_proven_verdicts_across_scales():
+    # The cubes 2 apart, the second call 4 times larger: a swarm that proved them apart at one
+    # scale and nothing at the other (colliding, its upper bound far above the tolerance) is
+    # consistent; one that proved contact (an upper bound of 0) against apart is not.
+    far = CUBE + [3, 0, 0]
+    case = Case("judge", "invariance", "distance", "penalty", CUBE, far, scale=4.0)
+    apart = answer_like(method="penalty", certified=False, status="max_iterations",
+                        lower_bound=1.5, distance=2.5)  # fmt: skip
+    unproven = dict(apart, colliding=True, lower_bound=0.0)
+    contact = dict(unproven, distance=0.0)
+
+    def scaled(answer):
+        return dict(answer, distance=4 * answer["distance"], lower_bound=4 * answer["lower_bound"])
+
+    assert compare_scales(case, CUBE, far, [unproven, scaled(apart)]) == []
+    assert compare_scales(case, CUBE, far, [apart, scaled(unproven)]) == []
+    assert any("colliding" in p for p in compare_scales(case, CUBE, far, [contact, scaled(apart)]))
+    precise = Case("judge", "invariance", "distance", "exact", CUBE, far, scale=4.0)
+    exact = dict(apart, method="exact", certified=True)
+    assert any("colliding" in p for p in compare_scales(
+        precise, CUBE, far, [dict(exact, colliding=True), scaled(exact)]))
 
 
 def segfault() -> None:
