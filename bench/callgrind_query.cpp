@@ -13,11 +13,11 @@
 // and the signed distance by GJK + EPA), its support hint cleared before each call as in
 // narrowphase_coal.cpp; and the fcl method's distance and verdict beside the FCL calls it wraps
 // (`fcl::distance` and `fcl::collide` with FCL's own GJK, GST_INDEP, on prebuilt fcl::Convexd,
-// requests reused). Natively coal's
-// fastest is often not its default GJK but one of narrowphase_coal.cpp's other variants: the
-// bounding boxes' centres as the initial guess ("coal_box"), Nesterov's acceleration
-// ("coal_nesterov"), or both ("coal_nesterov_box"); their distances and verdicts are counted
-// too, their answers summed apart from the checksum "sum" (which stays that of the rows above).
+// requests reused). Natively coal's fastest is often not its default GJK but one of
+// narrowphase_coal.cpp's other variants: the bounding boxes' centres as the initial guess
+// ("coal_box"), Nesterov's acceleration ("coal_nesterov"), or both ("coal_nesterov_box"); their
+// distances and verdicts are counted too, their answers summed apart from the checksum "sum"
+// (which stays that of the rows above).
 #include <coal/collision_data.h>
 #include <coal/narrowphase/narrowphase.h>
 #include <coal/shape/convex.h>

@@ -372,7 +372,8 @@ int main(int argc, char** argv) {
           }
           const double seconds =
               std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-          per_call[c].push_back(1e6 * seconds / (repeats[c] * static_cast<double>(placements.size())));
+          const double calls = repeats[c] * static_cast<double>(placements.size());
+          per_call[c].push_back(1e6 * seconds / calls);
         }
       }
       if (sink == 42.4242) std::puts("");
