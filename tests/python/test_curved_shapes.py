@@ -68,6 +68,48 @@ def test_a_cone_stands_on_its_base():
     assert_encloses(sc.distance(cone, floor, pose_b=at(0, 0, -3)), 0.5, 9)
 
 
+THIN = 1e-6
+# Bodies a million times thinner than they are long (a wire, plates, a pancake, a needle), each
+# pair with its signed distance in closed form: (A, B, B's place in A's frame, signed distance).
+THIN_PAIRS = {
+    "ball beside a wire": (sc.Cylinder(THIN, 1.0), sc.Sphere(0.1), [0.3, 0.0, 0.5],
+                           0.3 - THIN - 0.1),
+    "ball through a wire": (sc.Cylinder(THIN, 1.0), sc.Sphere(0.1), [0.05, 0.0, 0.2],
+                            0.05 - THIN - 0.1),
+    "plate above a plate": (sc.Box([1.0, 1.0, THIN]), sc.Box([0.5, 0.5, THIN]),
+                            [0.2, -0.1, 2 * THIN + 1e-3], 1e-3),
+    "plates pressed together": (sc.Box([1.0, 1.0, THIN]), sc.Box([0.5, 0.5, THIN]),
+                                [0.2, -0.1, 1.5 * THIN], -0.5 * THIN),
+    "pancake above a plate": (sc.Box([2.0, 2.0, THIN]), sc.Ellipsoid([1.0, 1.0, THIN]),
+                              [0.0, 0.0, 2 * THIN + 0.01], 0.01),
+    "needle below a block": (sc.Cone(THIN, 1.0), sc.Box([1.0, 1.0, 0.5]), [0.0, 0.0, 1.52], 0.02),
+    "needle into a block": (sc.Cone(THIN, 1.0), sc.Box([1.0, 1.0, 0.5]), [0.0, 0.0, 1.499],
+                            -1e-3),
+}
+
+
+@pytest.mark.parametrize("method", SIGNED_METHODS)
+@pytest.mark.parametrize("name", THIN_PAIRS)
+def test_thin_bodies_are_answered_to_their_closed_forms(name, method):
+    """Aspect ratios of a million, the pair moved and turned as one: every method proves the
+    closed form, and the verdict follows it (tests/fuzz/curved_census.py --extreme draws such
+    shapes at random)."""
+    a, b, offset, expected = THIN_PAIRS[name]
+    rng = np.random.default_rng(11)
+    # The pair's size as the tolerance measures it (the centres apart, the larger radius twice).
+    size = np.linalg.norm(offset) + 2 * max(a.bounding_radius, b.bounding_radius)
+    for _ in range(3):
+        turn, shift = random_rotation(rng), rng.uniform(-2, 2, 3)
+        pose_a, pose_b = (turn, shift), (turn, turn @ np.array(offset) + shift)
+        result = sc.signed_distance(a, b, pose_a=pose_a, pose_b=pose_b, method=method)
+        assert_encloses(result, expected, size)
+        verdict = sc.collision(a, b, pose_a=pose_a, pose_b=pose_b, method=method)
+        assert verdict.certified and verdict.colliding == (expected < 0)
+        if "distance" in sc.METHODS[method].queries:
+            assert_encloses(sc.distance(a, b, pose_a=pose_a, pose_b=pose_b, method=method),
+                            max(expected, 0.0), size)
+
+
 @pytest.mark.parametrize("exponent", [-100, -30, 0, 30, 100])
 def test_answers_are_the_same_in_any_unit(exponent):
     scale = 10.0**exponent
