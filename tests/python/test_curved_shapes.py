@@ -189,6 +189,53 @@ def test_scenes_of_curved_shapes_agree_with_the_pair_queries():
         assert scene.colliding_pairs().pairs.tolist() == colliding.pairs.tolist()
 
 
+@pytest.mark.parametrize("spread, far", [(1e-3, 0.0), (1.0, 0.0), (1.0, 1e6)])
+def test_scenes_of_bodies_over_six_decades_of_size_agree_with_the_pair_queries(spread, far):
+    """Wires, plates, needles and grains beside bodies a million times larger (each dimension
+    drawn over six decades), within a thousandth or a unit of each other, at the origin or a
+    million units from it: the scene's colliding pairs, pairs within a distance and contacts are
+    the pair queries'."""
+    rng = np.random.default_rng(int(np.log10(spread)) + 10)
+    n = 20
+
+    def sizes(k):
+        return 10.0 ** rng.uniform(-6, 0.3, k)
+
+    makers = [lambda: sc.Cylinder(*sizes(2)), lambda: sc.Cone(*sizes(2)),
+              lambda: sc.Ellipsoid(sizes(3)), lambda: sc.Box(sizes(3)),
+              lambda: sc.Capsule(*sizes(2)), lambda: sc.Sphere(*sizes(1)),
+              lambda: sc.ConvexPolyhedron(rng.normal(size=(8, 3)) * sizes(3))]
+    bodies = [makers[i % len(makers)]() for i in range(n)]
+    poses = np.tile(np.eye(4), (n, 1, 1))
+    for k in range(n):
+        poses[k, :3, :3] = random_rotation(rng)
+    poses[:, :3, 3] = rng.uniform(-1, 1, (n, 3)) * spread + far
+    within = 0.1 * spread
+    pairs = [(i, j) for i in range(n) for j in range(i + 1, n)]
+    verdicts = {p: sc.collision(bodies[p[0]], bodies[p[1]], pose_a=poses[p[0]],
+                                pose_b=poses[p[1]]) for p in pairs}
+    distances = {p: sc.distance(bodies[p[0]], bodies[p[1]], pose_a=poses[p[0]],
+                                pose_b=poses[p[1]]) for p in pairs}
+    assert all(v.certified for v in verdicts.values())
+    assert all(d.certified for d in distances.values())
+    # A distance within the tolerance of the threshold may fall either side of it.
+    borderline = {p for p, d in distances.items()
+                  if abs(d.distance - within) <= 1e-9 * (d.distance + within)}
+    for warm in (False, True):
+        scene = sc.Scene(warm_start=warm)
+        scene.add(bodies, poses=poses)
+        colliding = scene.colliding_pairs()
+        assert colliding.certified.all()
+        assert set(map(tuple, colliding.pairs.tolist())) == {p for p in pairs
+                                                             if verdicts[p].colliding}
+        near = set(map(tuple, scene.pairs_within(within).pairs.tolist()))
+        assert near - borderline == {p for p in pairs
+                                     if distances[p].distance <= within} - borderline
+        contacts = scene.contacts()
+        assert contacts.certified.all()
+        assert len(contacts.pairs) == len(colliding.pairs)
+
+
 @pytest.mark.parametrize("method", ["ipso", "pso", "penalty"])
 def test_methods_that_read_points_refuse_curved_shapes(method):
     with pytest.raises(ValueError, match=r"cylinder.*'dual', 'exact', 'fcl', 'libccd'"):
