@@ -162,6 +162,8 @@ FILES_CENSUS_ARGS ?=
 SCENE_CENSUS_ARGS ?= --count 200
 # The curved shapes against coal's primitives (needs the bench extra): every pair of shape kinds.
 CURVED_CENSUS_ARGS ?= --pairs 200
+# The same at extreme sizes (wires, plates, needles; sizes over six decades) and offsets.
+CURVED_EXTREME_CENSUS_ARGS ?= --pairs 100
 
 census: install $(VENV)/.bench-installed
 	$(PY) tests/fuzz/census.py --json build/fuzz/census.jsonl $(CENSUS_ARGS)
@@ -169,6 +171,8 @@ census: install $(VENV)/.bench-installed
 	  --json build/fuzz/files.jsonl $(FILES_CENSUS_ARGS)
 	$(PY) tests/fuzz/census.py --corpus scene --json build/fuzz/scene.jsonl $(SCENE_CENSUS_ARGS)
 	$(PY) tests/fuzz/curved_census.py --json build/fuzz/curved.jsonl $(CURVED_CENSUS_ARGS)
+	$(PY) tests/fuzz/curved_census.py --extreme --json build/fuzz/curved_extreme.jsonl \
+	  $(CURVED_EXTREME_CENSUS_ARGS)
 	$(PY) tests/fuzz/census.py --corpus motions --count 3000 --json build/fuzz/motions.jsonl \
 	  $(MOTIONS_CENSUS_ARGS)
 	$(PY) tests/fuzz/census.py --corpus robots --count 4000 --json build/fuzz/robots.jsonl \

@@ -6,10 +6,17 @@ Counts per pair of kinds and method, at tolerance 1e-12 (``--tolerance``):
 
 - ``unproven``: a distance, signed distance or verdict not certified;
 - ``outside``: coal's signed distance outside our bounds by more than coal's own precision
-  (1e-6 of the pair's size: coal stops there) — one of the two libraries is wrong;
-- ``wrong verdict``: our certified verdict against coal's where coal is sure (|sd| > 1e-6 size);
+  (1e-6 (1 + |distance|), its GJK's default convergence test, or 1e-6 of the pair's size if that
+  is larger: coal stops there) — one of the two libraries is wrong;
+- ``wrong verdict``: our certified verdict against coal's where coal is sure (|sd| beyond that
+  precision);
 - ``scale``: at a scale 10^k (k = -100..100), an answer not certified, or its distance over the
   scale off the unit pair's by more than the tolerance.
+
+With ``--extreme`` the shapes' sizes are drawn log-uniformly over six and a half decades
+(1e-6..3, each dimension apart: wires, plates, needles and pancakes, aspect ratios up to 3e6) and
+B's offset is the larger body's size times 0.1, 0.5, 1, 2, 1e3 or 1e8 (touching to far apart); the
+default draws sizes in [0.1, 1.1] and offsets within 1.6.
 
 Writes every case that is not fine as JSON Lines (``--json``), so a fix can be checked case by
 case. Needs coal (``pip install swarmcollide[bench]``); behind ``make census``, not the fast suite:
@@ -69,13 +76,25 @@ def coal_signed_distance(ca, pa, cb, pb) -> float:
                          coal.Transform3s(pb[:3, :3], pb[:3, 3]), request, result)
 
 
+# --extreme: the decades sizes span, and B's offset in units of the larger body's size.
+EXTREME_SIZE_DECADES = (-6.0, 0.5)
+EXTREME_OFFSETS = (0.1, 0.5, 1.0, 2.0, 1e3, 1e8)
+
+
 def one_pair(kinds, rng: np.random.Generator, methods: List[str], tolerance: float,
-             sweep: bool) -> List[dict]:
+             sweep: bool, extreme: bool = False) -> List[dict]:
     """The findings (dicts) of one random posed pair: empty when every answer is fine."""
-    sizes_a, sizes_b = rng.uniform(0.1, 1.1, 3), rng.uniform(0.1, 1.1, 3)
+    if extreme:
+        sizes_a, sizes_b = (10.0 ** rng.uniform(*EXTREME_SIZE_DECADES, 3) for _ in range(2))
+    else:
+        sizes_a, sizes_b = rng.uniform(0.1, 1.1, 3), rng.uniform(0.1, 1.1, 3)
     pa, pb = np.eye(4), np.eye(4)
     pa[:3, :3], pb[:3, :3] = random_rotation(rng), random_rotation(rng)
-    pb[:3, 3] = rng.uniform(-1.6, 1.6, 3)
+    if extreme:
+        largest = max(sizes_a.max(), sizes_b.max())
+        pb[:3, 3] = rng.uniform(-1, 1, 3) * largest * rng.choice(EXTREME_OFFSETS)
+    else:
+        pb[:3, 3] = rng.uniform(-1.6, 1.6, 3)
     (a, ca), (b, cb) = make(kinds[0], sizes_a), make(kinds[1], sizes_b)
     size = np.linalg.norm(pb[:3, 3]) + 2 * max(a.bounding_radius, b.bounding_radius)
     theirs = coal_signed_distance(ca, pa, cb, pb)
@@ -96,7 +115,9 @@ def one_pair(kinds, rng: np.random.Generator, methods: List[str], tolerance: flo
         for query, r in answers:
             if not r.certified:
                 found(method, "unproven", query=query, lower=r.lower_bound, upper=r.distance)
-        slack = COAL_PRECISION * size
+        # coal's GJK stops within 1e-6 (1 + |distance|) (GJK::checkConvergence, its default),
+        # which on pairs smaller than a unit is looser than 1e-6 of their size.
+        slack = COAL_PRECISION * max(size, 1 + abs(theirs))
         if not signed.lower_bound - slack <= theirs <= signed.distance + slack:
             found(method, "outside", coal=theirs, lower=signed.lower_bound, upper=signed.distance)
         if verdict.certified and abs(theirs) > slack and verdict.colliding != (theirs < 0):
@@ -123,6 +144,8 @@ def main(argv=None) -> int:
     parser.add_argument("--sweep-every", type=int, default=10,
                         help="run the scale sweep on every n-th pair (0: never)")
     parser.add_argument("--seed", type=int, default=26)
+    parser.add_argument("--extreme", action="store_true",
+                        help="sizes over six decades and offsets up to 1e8 sizes (see above)")
     parser.add_argument("--json", help="write the findings here (JSON Lines)")
     args = parser.parse_args(argv)
     methods = args.methods.split(",")
@@ -133,12 +156,13 @@ def main(argv=None) -> int:
     for kinds in pairs:
         for index in range(args.pairs):
             sweep = args.sweep_every > 0 and index % args.sweep_every == 0
-            for finding in one_pair(kinds, rng, methods, args.tolerance, sweep):
+            for finding in one_pair(kinds, rng, methods, args.tolerance, sweep, args.extreme):
                 finding["index"] = index
                 findings.append(finding)
                 counts.setdefault(kinds, Counter())[(finding["method"], finding["category"])] += 1
     categories = ("unproven", "outside", "wrong verdict", "scale")
-    print(f"{args.pairs} random posed pairs per pair of kinds ({len(pairs) * args.pairs} in all), "
+    print(f"{args.pairs} random posed pairs per pair of kinds ({len(pairs) * args.pairs} in all"
+          f"{', extreme sizes and offsets' if args.extreme else ''}), "
           f"tolerance {args.tolerance:g}, methods {', '.join(methods)}; scale sweep "
           f"{SCALES[0]:g}..{SCALES[-1]:g} on every {args.sweep_every}th pair")
     print()
