@@ -7,8 +7,9 @@ dumps and prints instructions per query and ours / coal (and the fcl method's di
 verdict over the raw FCL calls it wraps, `fcl::distance` and `fcl::collide`). A second table sets
 ours beside each of coal's GJK variants for distance and collide (its default, the bounding boxes'
 centres as initial guess, Nesterov's acceleration, both: narrowphase_coal.cpp's, natively the
-fastest is often one of the others) and over the variant counted fewest. Instruction counts do not depend on the machine's load, so they compare
-contenders on a shared machine where wall-clock cannot.
+fastest is often one of the others) and over the variant counted fewest. Instruction counts do
+not depend on the machine's load, so they compare contenders on a shared machine where
+wall-clock cannot.
 
     .venv/bin/python bench/callgrind_query.py --binary build/bench/bench/swarmcollide-callgrind-query
 
