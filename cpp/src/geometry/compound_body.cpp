@@ -94,7 +94,9 @@ void build(const std::vector<ConvexPolyhedron>& parts, std::vector<int>& order, 
   for (int i = begin; i < end; ++i) {
     const ConvexPolyhedron& part = parts[order[i]];
     const VertexMatrix points = outer_points(part);
-    const Scalar reach = (points.rowwise() - node.centre.transpose()).rowwise().norm().maxCoeff();
+    // stableNorm: parts over 1e154 apart have squared distances beyond the double range.
+    const Scalar reach =
+        (points.rowwise() - node.centre.transpose()).rowwise().stableNorm().maxCoeff();
     radius = std::max(radius, part.radius() > 0 ? (reach + part.radius()) * (1 + 1e-15) : reach);
   }
   node.radius = radius;

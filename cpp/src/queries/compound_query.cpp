@@ -11,6 +11,7 @@
 
 #include "../geometry/framed_body.hpp"
 #include "../geometry/normalise.hpp"
+#include "../geometry/unit_direction.hpp"
 #include "../solvers/dual_swarm.hpp"
 #include "../solvers/minkowski.hpp"
 #include "dispatch.hpp"
@@ -26,7 +27,10 @@ namespace {
 using detail::Answer;
 using detail::FramedPair;
 using detail::Goal;
+using detail::robust_length;
 using detail::times_power_of_two;
+using detail::unit_direction;
+using detail::unit_direction_or;
 
 constexpr Scalar kInfinity = std::numeric_limits<Scalar>::infinity();
 // Rounding of the world-unit bounds computed here (placed volumes, sums of bounds), relative to
@@ -67,12 +71,13 @@ std::vector<PlacedVolume> place(const CompoundBody& body, const Pose& pose) {
 // A lower bound on the signed distance (so on the distance) between any convex set in `a` and
 // any in `b`: the larger of the balls' signed distance and the boxes'. Both volumes hold their
 // parts, so a translation separating the volumes separates the parts, and the parts are at
-// least as far apart as the volumes.
+// least as far apart as the volumes. Lengths are robust_length's: volumes 1e154 apart have
+// squared distances beyond the double range (their bound was infinite, and pruned every pair).
 Scalar volume_bound(const PlacedVolume& a, const PlacedVolume& b) {
-  const Scalar balls = (b.centre - a.centre).norm() - a.radius - b.radius;
+  const Scalar balls = robust_length(b.centre - a.centre) - a.radius - b.radius;
   const Vector3 gaps = (a.low - b.high).cwiseMax(b.low - a.high);
-  const Scalar boxes =
-      gaps.maxCoeff() > 0 ? gaps.cwiseMax(0.0).norm() : gaps.maxCoeff();  // -overlap when inside
+  // -overlap when inside
+  const Scalar boxes = gaps.maxCoeff() > 0 ? robust_length(gaps.cwiseMax(0.0)) : gaps.maxCoeff();
   return std::max(balls, boxes) - kWorldRounding * (a.scale + b.scale);
 }
 
@@ -165,7 +170,7 @@ class CompoundSearch {
     // the direction that separates the best pair found so far: the convex BVH's own bound,
     // far tighter than the balls for the slabs a decomposition makes.
     const Vector3 between = vb.centre - va.centre;
-    if (between.norm() > 0) lower = std::max(lower, separation(na, nb, between.normalized()));
+    if (const auto n = unit_direction(between)) lower = std::max(lower, separation(na, nb, *n));
     if (best_ && best_->result.direction.squaredNorm() > 0 && !cut(lower)) {
       lower = std::max(lower, separation(na, nb, best_->result.direction));
     }
@@ -234,7 +239,7 @@ class CompoundSearch {
     FramedPair pair = frame(i, j);
     // The line between the parts' centres settles most pairs in two support evaluations.
     const Vector3 between = pair.b.offset() - pair.a.offset();
-    Vector3 n = between.norm() > 0 ? Vector3(between.normalized()) : Vector3::UnitX();
+    Vector3 n = unit_direction_or(between, Vector3::UnitX());
     int ia = -1;
     int ib = -1;
     Scalar s = detail::separation(pair.a, pair.b, n, ia, ib);
@@ -337,11 +342,11 @@ class CompoundSearch {
     Answer core;
     core.point_a = pair.a.vertex(ia);
     core.point_b = pair.b.vertex(ib);
-    core.upper = (core.point_b - core.point_a).norm();
+    core.upper = robust_length(core.point_b - core.point_a);
     detail::round_answer(pair, Goal::distance, core);
     r.point_a = pair.frame.point_to_world(core.point_a);
     r.point_b = pair.frame.point_to_world(core.point_b);
-    r.distance = (r.point_b - r.point_a).norm() * (1 + kWorldRounding);
+    r.distance = robust_length(r.point_b - r.point_a) * (1 + kWorldRounding);
     r.lower_bound = s_world;
     r.weights_a =
         pair.a.given_weights(ConvexWeights(pair.a.size(), {ia, 0, 0, 0}, {1, 0, 0, 0}, 1));
@@ -375,7 +380,7 @@ class CompoundSearch {
     const int j = b_.tree()[nb].part;
     const FramedPair pair = frame(i, j);
     const Vector3 between = pair.b.offset() - pair.a.offset();
-    const Vector3 n = between.norm() > 0 ? Vector3(between.normalized()) : Vector3::UnitX();
+    const Vector3 n = unit_direction_or(between, Vector3::UnitX());
     int ia = -1;
     int ib = -1;
     const Scalar s = detail::separation(pair.a, pair.b, n, ia, ib);

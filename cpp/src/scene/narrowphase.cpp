@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "../geometry/normalise.hpp"
+#include "../geometry/unit_direction.hpp"
 #include "../queries/dispatch.hpp"
 #include "../queries/rounded.hpp"
 #include "../queries/verdict.hpp"
@@ -360,7 +361,7 @@ void answer_pair(const PlacedBody& a, const PlacedBody& b, PairProof& proof,
       ib = last.support_b;
     } else {
       const Vector3 between = pair.b.offset() - pair.a.offset();
-      n = between.norm() > 0 ? Vector3(between.normalized()) : Vector3::UnitX();
+      n = unit_direction_or(between, Vector3::UnitX());
     }
     const Scalar s = separation(pair.a, pair.b, n, ia, ib);
     if (verdict_proven(gate, s, kInfinity, false)) {

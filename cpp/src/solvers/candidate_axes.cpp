@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "../geometry/unit_direction.hpp"
 #include "minkowski.hpp"
 
 namespace swarmcollide::detail {
@@ -25,20 +26,23 @@ constexpr Scalar kSqrt3 = 1.7320508075688772;
 
 // A unit normal of the triangle (p, q, r) and a bound on its angle to the exact one: the edge
 // vectors carry one roundoff per coordinate and the cross product two more, so the error of the
-// unnormalised normal is within 8 u |q - p| |r - p|; doubled, plus normalisation.
+// unnormalised normal is within 8 u |q - p| |r - p|; doubled, plus normalisation. The lengths
+// are taken without squaring tiny entries (robust_length): a body far smaller than its pair has
+// edges whose squares vanish. Where the cross product itself underflows (its entries lose their
+// digits below 2^-1022), the normal is not trusted.
 void triangle_normal(const Vector3& p, const Vector3& q, const Vector3& r, Vector3& normal,
                      Scalar& error) {
   const Vector3 e1 = q - p;
   const Vector3 e2 = r - p;
   const Vector3 c = e1.cross(e2);
-  const Scalar length = c.norm();
-  if (!(length > 0)) {
+  const Scalar length = robust_length(c);
+  if (!(length >= std::numeric_limits<Scalar>::min())) {
     normal = Vector3::UnitZ();
     error = 4;  // useless, and so safe: any direction is within angle pi
     return;
   }
-  normal = c / length;
-  error = 16 * kRoundoff * e1.norm() * e2.norm() / length + 4 * kRoundoff;
+  normal = unit_direction_or(c, Vector3::UnitZ());
+  error = 16 * kRoundoff * robust_length(e1) * robust_length(e2) / length + 4 * kRoundoff;
 }
 
 }  // namespace
@@ -56,7 +60,11 @@ void CandidateAxes::collect(const FramedBody& body, bool negate, std::vector<Arc
     Arc arc;
     arc.p = p;
     arc.q = q;
-    arc.t = (body.vertex(q) - body.vertex(p)).normalized();
+    // An edge too short to have a direction in this frame leaves the Gauss map unknown: the
+    // hulls then stray from the polytopes described by an unknown distance (no bound).
+    const std::optional<Vector3> t = unit_direction(body.vertex(q) - body.vertex(p));
+    if (!t) hull_error = std::numeric_limits<Scalar>::infinity();
+    arc.t = t ? *t : Vector3::UnitX();
     arc.u = sign * u;
     arc.v = sign * v;
     arc.P = arc.t.cross(arc.u);
@@ -243,9 +251,9 @@ AxesBound CandidateAxes::run(const FramedBody& a, const FramedBody& b, Scalar co
         } else {
           // Nearly parallel: the facet normal lies on ea's great circle, on both arcs. Bound
           // n.w over that set: its maximum is at the direction of w or at a boundary point.
-          const Vector3 e1 =
-              (ea.full ? ea.t.unitOrthogonal() : Vector3(ea.u - ea.u.dot(ea.t) * ea.t))
-                  .normalized();
+          const Vector3 e1 = unit_direction_or(
+              ea.full ? ea.t.unitOrthogonal() : Vector3(ea.u - ea.u.dot(ea.t) * ea.t),
+              ea.t.unitOrthogonal());
           const Vector3 e2 = ea.t.cross(e1);
           std::array<std::pair<Vector3, Scalar>, 6> constraints;
           int used = 0;
@@ -258,7 +266,7 @@ AxesBound CandidateAxes::run(const FramedBody& a, const FramedBody& b, Scalar co
           std::array<Vector3, 13> points;
           int count = 0;
           const Vector3 toward = w.dot(e1) * e1 + w.dot(e2) * e2;
-          points[count++] = toward.norm() > 0 ? Vector3(toward.normalized()) : e1;
+          points[count++] = unit_direction_or(toward, e1);
           for (int c = 0; c < used; ++c) {
             const Vector3& v = constraints[c].first;
             const Scalar c1 = v.dot(e1);
@@ -292,7 +300,9 @@ AxesBound CandidateAxes::run(const FramedBody& a, const FramedBody& b, Scalar co
           continue;
         }
       }
-      k.normalize();
+      const std::optional<Vector3> unit = unit_direction(k);
+      if (!unit) continue;  // sine >= 1e-9 of unit vectors' cross product: never zero
+      k = *unit;
       if (ea.full && eb.full)
         flat_slack = std::max(flat_slack, 2 * (error + 8 * kRoundoff) * reach);
       for (const Scalar side : {1.0, -1.0}) {

@@ -4,6 +4,7 @@
 
 #include <optional>
 
+#include "../geometry/unit_direction.hpp"
 #include "../queries/verdict.hpp"
 #include "exact_solver.hpp"
 #include "fcl_shape.hpp"
@@ -56,7 +57,7 @@ fcl::detail::GJK<Scalar>::Status run_gjk(const FramedPair& pair, const fcl::Shap
 // GJK goes on to settle some 200 instructions more at 4 to 64 vertices (callgrind_query.py --gap).
 std::optional<Answer> apart_along_centres(const FramedPair& pair) {
   const Vector3 between = pair.b.offset() - pair.a.offset();
-  const Vector3 n = between.norm() > 0 ? Vector3(between.normalized()) : Vector3::UnitX();
+  const Vector3 n = unit_direction_or(between, Vector3::UnitX());
   int ia = -1;  // large bodies climb from their hulls' cube maps of starts
   int ib = -1;
   const Scalar lower = separation(pair.a, pair.b, n, ia, ib);

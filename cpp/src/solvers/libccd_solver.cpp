@@ -3,7 +3,9 @@
 #include <ccd/ccd.h>
 
 #include <array>
+#include <optional>
 
+#include "../geometry/unit_direction.hpp"
 #include "../queries/verdict.hpp"
 #include "exact_solver.hpp"
 #include "minkowski.hpp"
@@ -120,10 +122,12 @@ Answer verdict(const FramedPair& pair, int max_iterations) {
   Answer answer;
   if (ccdGJKIntersect(&call.a, &call.b, &call.ccd)) {
     if (!q.exhausted && enclosing_tetrahedron(pair, q, answer)) return answer;
-  } else if (!q.exhausted && q.last_direction.norm() > 0) {
+  } else if (const std::optional<Vector3> unit = unit_direction(q.last_direction);
+             !q.exhausted && unit) {
     // libccd's "no" comes from a direction along which the whole difference lies beyond the
-    // origin: a separating direction from A to B.
-    const Vector3 n = q.last_direction.normalized();
+    // origin: a separating direction from A to B (at a gap of 1e-160, tolerance 0, one whose
+    // squares underflow: unit_direction).
+    const Vector3 n = *unit;
     answer.lower = separation(pair.a, pair.b, n);
     answer.direction = n;
     if (answer.lower - kFrameRounding > pair.tolerance) {
@@ -153,12 +157,13 @@ Answer signed_distance(const FramedPair& pair, int max_iterations) {
   // libccd: translating B by depth * direction brings the bodies into touching contact, so the
   // direction is the contact normal from A to B.
   const Vector3 n(direction.v[0], direction.v[1], direction.v[2]);
-  if (status != 0 || q.exhausted || !(depth > 0) || !(n.norm() > 0) || !n.allFinite()) {
+  const std::optional<Vector3> unit = unit_direction(n);
+  if (status != 0 || q.exhausted || !(depth > 0) || !unit) {
     Answer exact = exact_signed_distance(pair, max_iterations, Vector3::Zero());
     exact.answered_by = Method::exact;
     return exact;
   }
-  const Vector3 normal = n.normalized();
+  const Vector3 normal = *unit;
   const Scalar libccd_separation = separation(pair.a, pair.b, normal);
   // The exact solver, started from libccd's normal, proves the depth; libccd's answer stands
   // when nothing separates better by more than the tolerance.

@@ -11,6 +11,7 @@
 #include "../geometry/normalise.hpp"
 #include "../geometry/support.hpp"
 #include "../geometry/support_tree.hpp"
+#include "../geometry/unit_direction.hpp"
 #include "candidate_axes.hpp"
 #include "expanding_polytope.hpp"
 #include "minkowski.hpp"
@@ -208,22 +209,26 @@ class Solver {
       if (h.dimension == 2) {
         const Vector3 p = body->vertex(h.faces(0, 0));
         const Vector3 n = (body->vertex(h.faces(0, 1)) - p).cross(body->vertex(h.faces(0, 2)) - p);
-        offer(n.normalized());
-        offer(-n.normalized());
+        offer(n);
+        offer(-n);
       } else if (h.dimension == 1) {
         axis[segments++] = body->vertex(h.vertex_indices[1]) - body->vertex(h.vertex_indices[0]);
       }
     }
-    if (segments == 2 && axis[0].cross(axis[1]).norm() > 0) {
-      offer(axis[0].cross(axis[1]).normalized());
-      offer(-axis[0].cross(axis[1]).normalized());
+    if (segments == 2) {
+      offer(axis[0].cross(axis[1]));
+      offer(-axis[0].cross(axis[1]));
     }
   }
 
-  // A direction to try: its separation from climbed supports ranks it; the best one is measured
-  // exactly by `finish`. True when it became the candidate.
-  bool offer(const Vector3& n) {
-    if (!n.allFinite()) return false;
+  // A direction to try, of any length (none for the zero vector): its separation from climbed
+  // supports ranks it; the best one is measured exactly by `finish`. True when it became the
+  // candidate. The unit vector is made here (unit_direction), where every bound along it is
+  // taken: normals of a body's tiny features, made unit by their callers, were not.
+  bool offer(const Vector3& direction) {
+    const std::optional<Vector3> unit = unit_direction(direction);
+    if (!unit) return false;
+    const Vector3& n = *unit;
     const Scalar estimate = separation(a_, b_, n, climb_a_, climb_b_);
     const bool taken = offer(n, estimate);
     climbs_along_candidate_ = taken;
@@ -237,7 +242,7 @@ class Solver {
     return true;
   }
   bool offer_hint(const Vector3& hint) {
-    return hint.allFinite() && hint.norm() > 0 && offer(hint.normalized());
+    return offer(hint);
   }
 
   // The candidate's separation by scanning every point, which a proven lower bound needs (a climb
@@ -296,17 +301,15 @@ class Solver {
     Vector3 p = Vector3::Zero();
     for (int k = 0; k < m.size; ++k) p += m.weights[k] / total * m.corral[k].p;
     if (p.norm() < nearest_length_) nearest_length_ = p.norm();
-    if (p.norm() > 0) offer(p.normalized());
+    offer(p);
     // Touching bodies: the origin is on the boundary of B - A and on the corral's triangles, which
     // then lie in the supporting plane there, so their normals are the contact normal.
     for (int k = 0; m.size >= 3 && k < m.size; ++k) {
       const Vector3& p0 = m.corral[k].p;
       const Vector3 n =
           (m.corral[(k + 1) % m.size].p - p0).cross(m.corral[(k + 2) % m.size].p - p0);
-      if (n.norm() > 0) {
-        offer(n.normalized());
-        offer(-n.normalized());
-      }
+      offer(n);
+      offer(-n);
       if (m.size == 3) break;
     }
   }
@@ -411,8 +414,7 @@ class Solver {
     std::array<OraclePoint, MinNormPoint::kCapacity + kDirections> points;
     int count = 0;
     for (int k = 0; k < last_corral_.size; ++k) points[count++] = last_corral_.corral[k];
-    const Vector3 w = candidate_.allFinite() && candidate_.norm() > 0 ? candidate_.normalized()
-                                                                       : Vector3::UnitX();
+    const Vector3 w = unit_direction_or(candidate_, Vector3::UnitX());
     const Vector3 helper = std::abs(w.x()) < 0.6 ? Vector3::UnitX() : Vector3::UnitY();
     const Vector3 u = w.cross(helper).normalized();
     const Vector3 v = w.cross(u);
