@@ -289,7 +289,10 @@ ValueError
           "or 'wrap').")
       .def(
           "forward_kinematics",
-          [](const RobotModel& model, const Configurations& q) {
+          [](const RobotModel& model, const Configurations& given) {
+            // Admitted here too: this model's methods are public (Robot.model), and a NaN or an
+            // angle beyond its limits would otherwise give poses without a word.
+            const Configurations q = admit_configurations(model, given, LimitMode::raise);
             py::array_t<Scalar> transforms({static_cast<py::ssize_t>(q.rows()),
                                             static_cast<py::ssize_t>(model.links().size()),
                                             py::ssize_t{4}, py::ssize_t{4}});
@@ -304,7 +307,10 @@ ValueError
           "Every link's (4, 4) world transform at admitted configurations, (m, links, 4, 4).")
       .def(
           "geometry_poses",
-          [](const RobotModel& model, const Configurations& q) {
+          [](const RobotModel& model, const Configurations& given) {
+            // Admitted here too: this model's methods are public (Robot.model), and a NaN or an
+            // angle beyond its limits would otherwise give poses without a word.
+            const Configurations q = admit_configurations(model, given, LimitMode::raise);
             py::array_t<Scalar> transforms({static_cast<py::ssize_t>(q.rows()),
                                             static_cast<py::ssize_t>(model.geometries().size()),
                                             py::ssize_t{4}, py::ssize_t{4}});

@@ -150,13 +150,22 @@ Pose compose(const Pose& outer, const Pose& inner) {
   return pose;
 }
 
-Configurations admit_configurations(const RobotModel& model, const Configurations& q,
-                                    LimitMode mode) {
+namespace {
+
+// The poses read dof values a row: a row of another length would be read past its end.
+void require_dof_columns(const RobotModel& model, const Configurations& q) {
   if (q.cols() != model.dof()) {
     throw std::invalid_argument("q must have " + std::to_string(model.dof()) +
                                 " values per configuration (one per moving joint), got " +
                                 std::to_string(q.cols()));
   }
+}
+
+}  // namespace
+
+Configurations admit_configurations(const RobotModel& model, const Configurations& q,
+                                    LimitMode mode) {
+  require_dof_columns(model, q);
   Configurations result(q.rows(), q.cols());
   for (Eigen::Index i = 0; i < q.rows(); ++i) {
     for (int d = 0; d < model.dof(); ++d) {
@@ -219,6 +228,7 @@ Pose geometry_pose(const RobotModel& model, const std::vector<Pose>& links, int 
 }
 
 void forward_kinematics(const RobotModel& model, const Configurations& q, Scalar* transforms) {
+  require_dof_columns(model, q);
   std::vector<Pose> links;
   for (Eigen::Index i = 0; i < q.rows(); ++i) {
     link_poses(model, q.row(i).data(), links);
@@ -230,6 +240,7 @@ void forward_kinematics(const RobotModel& model, const Configurations& q, Scalar
 }
 
 void geometry_poses(const RobotModel& model, const Configurations& q, Scalar* transforms) {
+  require_dof_columns(model, q);
   std::vector<Pose> links;
   for (Eigen::Index i = 0; i < q.rows(); ++i) {
     link_poses(model, q.row(i).data(), links);

@@ -21,6 +21,8 @@ using detail::padded;
 using detail::SceneBody;
 
 Scalar Scene::Impl::extent() const {
+  // nearest([]) asks it of an empty scene, which has no extent.
+  if (bodies.empty()) return 0;
   Aabb all = bodies.front()->box;
   for (const auto& b : bodies) {
     all.min = all.min.cwiseMin(b->box.min);
