@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any, Callable, List, Tuple
+from typing import Any, Callable, List, Optional, Tuple
 
 from . import _core
 from .mesh import CompoundBody
@@ -18,11 +18,13 @@ convex decomposition (``CompoundBody.from_mesh(mesh)``, cached on disk)."""
 @dataclass
 class ModelTables:
     """Links (names), joints (``_core.Joint``) and geometries (``(name, link, origin, body)``,
-    link -1 for the world) of a model."""
+    link -1 for the world) of a model, and the pairs of geometries (by name) its file says to
+    check, or None where the file says nothing (the links that are not adjacent are checked)."""
 
     links: List[str]
     joints: List[Any]
     geometries: List[Tuple[str, int, Any, Any]]
+    pairs: Optional[List[Tuple[str, str]]] = None
 
 
 def geometry_names(link: str, count: int) -> List[str]:

@@ -319,10 +319,12 @@ def test_mjcf_forward_kinematics_is_mujocos(mjcf):
                                        rtol=0, atol=1e-12)
     assert [type(g[3]).__name__ for g in robot._robot_geometries] == [
         "Box", "Cylinder", "Capsule", "Ellipsoid", "ConvexPolyhedron", "Box"]
-    # The links between arm's two joints are looked through: arm is base's child, hand arm's;
-    # the finger is fixed to the hand.
-    assert robot.pairs == (("floor", "arm/0"), ("floor", "arm/1"), ("floor", "hand"),
-                           ("floor", "finger"), ("base", "hand"), ("base", "finger"))
+    # MuJoCo's filter: the links between arm's two joints are looked through (arm is base's
+    # child, hand arm's), the finger is welded to the hand, and a child of the world (base) is
+    # checked against the world's floor.
+    assert robot.pairs == (("floor", "base"), ("floor", "arm/0"), ("floor", "arm/1"),
+                           ("floor", "hand"), ("floor", "finger"), ("base", "hand"),
+                           ("base", "finger"))
     assert robot.check(q).certified.all()
 
 
