@@ -6,7 +6,7 @@ from dataclasses import dataclass
 from typing import Any, Callable, List, Optional, Tuple
 
 from . import _core
-from .mesh import CompoundBody
+from .mesh import CompoundBody, NotConvexError
 
 COLLISION_MODES = ("hull", "mesh", "decompose")
 """How a mesh becomes a collision body: its convex hull (the planners' default); a compound body
@@ -40,8 +40,18 @@ def collision_bodies(collision: str) -> Callable[[Any, str], Any]:
     if collision == "hull":
         return lambda mesh, name: _core.ConvexPolyhedron(mesh.vertices)
     if collision == "mesh":
-        return lambda mesh, name: CompoundBody.from_mesh(mesh, decompose=None, cache=False,
-                                                         progress=False)
+        return _convex_pieces
     if collision == "decompose":
         return lambda mesh, name: CompoundBody.from_mesh(mesh, progress=False)
     raise ValueError(f"collision must be one of {COLLISION_MODES}, got {collision!r}")
+
+
+def _convex_pieces(mesh, name: str):
+    try:
+        return CompoundBody.from_mesh(mesh, decompose=None, cache=False, progress=False)
+    except NotConvexError as error:  # name the robot's options, not CompoundBody's
+        raise ValueError(
+            f"collision='mesh' needs convex pieces, but {error.piece}, with {error.triangles} "
+            f"triangles, is not convex ({error.defect}); pass collision='decompose' to split "
+            "each mesh into CoACD's convex parts, or collision='hull' for each mesh's hull"
+        ) from None

@@ -158,5 +158,9 @@ def _body(geometry, name: str, link: str, urdf_path: Path, dirs, collision: str)
                 raise ValueError(f"link '{link}': mesh scale must be finite and non-zero, got "
                                  f"{scale.tolist()}")
             mesh.apply_scale(scale)
-        return collision_bodies(collision)(mesh, name)
+        try:
+            return collision_bodies(collision)(mesh, name)
+        except ValueError as error:  # say whose mesh, and which file
+            raise ValueError(f"link '{link}': mesh '{geometry.mesh.filename}' ({mesh_path}): "
+                             f"{error}") from error
     raise ValueError(f"link '{link}': a <collision> geometry has no box, sphere, cylinder or mesh")

@@ -504,6 +504,25 @@ def test_collision_mesh_makes_compound_bodies_of_the_meshes_convex_pieces(urdf, 
     assert (hull_distances < distances - 1e-6).any()
 
 
+def test_collision_mesh_names_the_link_the_file_and_the_option_for_a_concave_piece(urdf,
+                                                                                    tmp_path):
+    # One connected piece with a dent: a sphere with a vertex pushed to half its radius.
+    dented = trimesh.creation.icosphere(1, radius=0.05)
+    vertices = dented.vertices.copy()
+    vertices[0] *= 0.5
+    trimesh.Trimesh(vertices, dented.faces).export(tmp_path / "pkg" / "meshes" / "fore.stl")
+    with pytest.raises(ValueError) as raised:
+        sc.Robot.from_urdf(urdf, [tmp_path], collision="mesh")
+    message = str(raised.value)
+    assert message.startswith("link 'fore': mesh 'package://pkg/meshes/fore.stl' (")
+    assert str(tmp_path / "pkg" / "meshes" / "fore.stl") in message
+    assert "the connected component 0 of 1" in message and "is not convex" in message
+    assert "collision='decompose'" in message and "collision='hull'" in message
+    assert "decompose=None" not in message and "decompose='coacd'" not in message
+    # The hull of the same mesh is taken as it is.
+    assert len(sc.Robot.from_urdf(urdf, [tmp_path]).pairs) > 0
+
+
 def test_collision_decompose_makes_coacds_parts(urdf, tmp_path, monkeypatch):
     monkeypatch.setenv("SWARMCOLLIDE_CACHE_DIR", str(tmp_path / "cache"))
     pieces = [trimesh.creation.box((0.06, 0.08, 0.1)), trimesh.creation.box((0.06, 0.08, 0.1))]
