@@ -188,8 +188,9 @@ class Robot:
     to check, in place of every pair of geometries on links that are not adjacent). The model is immutable and shared across threads;
     ``add_obstacle`` and ``disable_pairs`` make a new model. Curved shapes (``Cylinder``,
     ``Ellipsoid``, ...) are exact and answered through their support functions, by the methods
-    ``"dual"`` (the default) and ``"exact"``; a method that reads a body's points refuses them
-    with ``ValueError`` naming the geometry.
+    ``"dual"`` (the default), ``"exact"``, ``"fcl"`` and ``"libccd"``; a method that reads a
+    body's points (``"ipso"``, ``"pso"``, ``"penalty"``) refuses them with ``ValueError``
+    naming the geometry.
 
     Examples
     --------
@@ -278,7 +279,8 @@ class Robot:
         ValueError
             For a missing file, an unknown or unsupported joint type (naming the joint), a mesh
             file that is missing or a ``package://`` path that cannot be resolved (naming the
-            link), or an unknown ``collision`` mode.
+            link), a mesh whose pieces are not convex under ``collision="mesh"`` (naming the
+            link, the file and the modes that take it), or an unknown ``collision`` mode.
         """
         from .robot_urdf import load_urdf
 
