@@ -277,7 +277,9 @@ class Robot:
         Raises
         ------
         ValueError
-            For a missing file, an unknown or unsupported joint type (naming the joint), a mesh
+            For a missing file, a file that is not a URDF (its root element is not
+            ``<robot>``: an MJCF file is pointed to ``from_mjcf``), an unknown or unsupported
+            joint type (naming the joint), a mesh
             file that is missing or a ``package://`` path that cannot be resolved (naming the
             link), a mesh whose pieces are not convex under ``collision="mesh"`` (naming the
             link, the file and the modes that take it), or an unknown ``collision`` mode.
@@ -402,6 +404,9 @@ class Robot:
             Where it is: a ``(4, 4)`` rigid transform or ``(rotation, translation)``.
         name : str, optional
             Its name in ``pairs`` (default ``obstacle{k}``); must differ from every geometry's.
+
+        A pose that is not a rigid transform raises ``ValueError`` (``TypeError`` for one of
+        the wrong type) naming ``pose``, and leaves the robot as it was.
         """
         name = f"obstacle{len(self._obstacles)}" if name is None else name
         if not isinstance(name, str):
@@ -411,8 +416,13 @@ class Robot:
         self._obstacles.append((name, -1, pose, body))
         try:
             self._rebuild()
-        except Exception:
+        except Exception as error:
             self._obstacles.pop()
+            # The core checks an obstacle's pose as its geometry's origin: name the argument.
+            origin = f"geometry '{name}' origin"
+            if isinstance(error, (ValueError, TypeError)) and str(error).startswith(origin):
+                raise type(error)(f"pose (of obstacle '{name}')" + str(error)[len(origin):]
+                                  ) from None
             raise
         return self
 

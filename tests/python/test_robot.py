@@ -456,6 +456,32 @@ def test_obstacle_names_must_be_new(arm):
     assert arm.geometry_names[-1] == "obstacle0"
 
 
+def test_bad_obstacle_poses_name_the_pose_and_leave_the_robot_as_it_was(arm):
+    pairs = arm.pairs
+    sheared = np.eye(4)
+    sheared[3, 0] = 1.0
+    for pose, error, message in [(sheared, ValueError, "last row must be"),
+                                 (np.eye(3), ValueError, r"got shape \(3, 3\)"),
+                                 ("up", TypeError, "got str")]:
+        with pytest.raises(error, match=r"^pose \(of obstacle 'table'\) must be .*" + message):
+            arm.add_obstacle(sc.Box([0.5, 0.5, 0.02]), pose, name="table")
+    assert arm.pairs == pairs
+
+
+def test_files_that_are_not_urdf_say_so(tmp_path):
+    path = tmp_path / "arm.xml"
+    path.write_text('<mujoco><worldbody><body name="b"><joint type="slide"/>'
+                    '<geom type="sphere" size="0.1"/></body></worldbody></mujoco>')
+    with pytest.raises(ValueError, match=r"does not look like a URDF file: its root element is "
+                                         r"<mujoco>.*Robot.from_mjcf"):
+        sc.Robot.from_urdf(path)
+    assert sc.Robot.from_mjcf(path).dof == 1
+    path = tmp_path / "gripper.sdf"
+    path.write_text('<sdf version="1.6"><model name="gripper"><link name="palm"/></model></sdf>')
+    with pytest.raises(ValueError, match="root element is <sdf>.*convert it to URDF"):
+        sc.Robot.from_urdf(path)
+
+
 def test_proposed_pairs_are_those_that_always_or_never_collided(arm):
     # A stake through the base always meets it; the sampled rows say which pairs never meet.
     arm.add_obstacle(sc.Box([0.05, 0.05, 0.05]), None, name="stake")
