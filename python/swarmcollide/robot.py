@@ -185,12 +185,12 @@ class Robot:
     ``Joint``, ``geometries`` as ``(name, link index, origin, body)``, the body a
     ``ConvexPolyhedron``, a shape such as ``Box``, ``Sphere``, ``Capsule``, ``Cylinder`` or
     ``Ellipsoid``, or a ``CompoundBody``, and optionally ``pairs``, the pairs of geometry names
-    to check, in place of every pair of geometries on links that are not adjacent). The model is immutable and shared across threads;
-    ``add_obstacle`` and ``disable_pairs`` make a new model. Curved shapes (``Cylinder``,
-    ``Ellipsoid``, ...) are exact and answered through their support functions, by the methods
-    ``"dual"`` (the default), ``"exact"``, ``"fcl"`` and ``"libccd"``; a method that reads a
-    body's points (``"ipso"``, ``"pso"``, ``"penalty"``) refuses them with ``ValueError``
-    naming the geometry.
+    to check, in place of every pair of geometries on links that are not adjacent). The model
+    is immutable and shared across threads; ``add_obstacle`` and ``disable_pairs`` make a new
+    model. Curved shapes (``Cylinder``, ``Ellipsoid``, ...) are exact and answered through
+    their support functions, by the methods ``"dual"`` (the default), ``"exact"``, ``"fcl"``
+    and ``"libccd"``; a method that reads a body's points (``"ipso"``, ``"pso"``,
+    ``"penalty"``) refuses them with ``ValueError`` naming the geometry.
 
     Examples
     --------
@@ -279,10 +279,10 @@ class Robot:
         ValueError
             For a missing file, a file that is not a URDF (its root element is not
             ``<robot>``: an MJCF file is pointed to ``from_mjcf``), an unknown or unsupported
-            joint type (naming the joint), a mesh
-            file that is missing or a ``package://`` path that cannot be resolved (naming the
-            link), a mesh whose pieces are not convex under ``collision="mesh"`` (naming the
-            link, the file and the modes that take it), or an unknown ``collision`` mode.
+            joint type (naming the joint), a mesh file that is missing or a ``package://`` path
+            that cannot be resolved (naming the link), a mesh whose pieces are not convex under
+            ``collision="mesh"`` (naming the link, the file and the modes that take it), or an
+            unknown ``collision`` mode.
         """
         from .robot_urdf import load_urdf
 
