@@ -272,6 +272,23 @@ def mesh_hash(mesh) -> str:
     return hashlib.sha256(np.ascontiguousarray(points[ordered]).tobytes()).hexdigest()
 
 
+class NotConvexError(ValueError):
+    """A piece that ``CompoundBody.from_mesh(mesh, decompose=None)`` would take as a part as it
+    is, but which is not convex: ``piece`` names it (a group of the file, or a connected
+    component), ``triangles`` counts its faces and ``defect`` says what makes it not convex, so
+    a caller with options of its own (``Robot.from_urdf``'s ``collision``) can name those."""
+
+    def __init__(self, piece: str, triangles: int, defect: str) -> None:
+        super().__init__(
+            f"decompose=None needs convex parts, but {piece}, with {triangles} triangles, is not "
+            f"convex ({defect}); use decompose='coacd' or 'vhacd' to split it, or 'hull' for its "
+            "hull"
+        )
+        self.piece = piece
+        self.triangles = triangles
+        self.defect = defect
+
+
 @dataclass(frozen=True)
 class Decomposition:
     """How a compound body was made from a mesh, and how far its parts are from the mesh.
@@ -776,11 +793,7 @@ def _ready_made_parts(source, mesh) -> List[np.ndarray]:
     for name, piece in pieces:
         defect = _convexity_defect(piece)
         if defect is not None:
-            raise ValueError(
-                f"decompose=None needs convex parts, but {name}, with {len(piece.faces)} "
-                f"triangles, is not convex ({defect}); use decompose='coacd' or 'vhacd' to "
-                "split it, or 'hull' for its hull"
-            )
+            raise NotConvexError(name, len(piece.faces), defect)
         parts.append(np.asarray(piece.vertices, dtype=float))
     return parts
 

@@ -184,11 +184,13 @@ class Robot:
     Build one with ``from_urdf`` or ``from_mjcf`` (or from tables: ``links``, ``joints`` as
     ``Joint``, ``geometries`` as ``(name, link index, origin, body)``, the body a
     ``ConvexPolyhedron``, a shape such as ``Box``, ``Sphere``, ``Capsule``, ``Cylinder`` or
-    ``Ellipsoid``, or a ``CompoundBody``). The model is immutable and shared across threads;
-    ``add_obstacle`` and ``disable_pairs`` make a new model. Curved shapes (``Cylinder``,
-    ``Ellipsoid``, ...) are exact and answered through their support functions, by the methods
-    ``"dual"`` (the default) and ``"exact"``; a method that reads a body's points refuses them
-    with ``ValueError`` naming the geometry.
+    ``Ellipsoid``, or a ``CompoundBody``, and optionally ``pairs``, the pairs of geometry names
+    to check, in place of every pair of geometries on links that are not adjacent). The model
+    is immutable and shared across threads; ``add_obstacle`` and ``disable_pairs`` make a new
+    model. Curved shapes (``Cylinder``, ``Ellipsoid``, ...) are exact and answered through
+    their support functions, by the methods ``"dual"`` (the default), ``"exact"``, ``"fcl"``
+    and ``"libccd"``; a method that reads a body's points (``"ipso"``, ``"pso"``,
+    ``"penalty"``) refuses them with ``ValueError`` naming the geometry.
 
     Examples
     --------
@@ -210,17 +212,43 @@ class Robot:
     """
 
     def __init__(self, links: Sequence[str], joints: Sequence[Any],
-                 geometries: Sequence[Tuple[str, int, PoseLike, Any]]) -> None:
+                 geometries: Sequence[Tuple[str, int, PoseLike, Any]], *,
+                 pairs: Optional[Sequence[Tuple[str, str]]] = None) -> None:
         self._links = list(links)
         self._joints = list(joints)
         self._robot_geometries = list(geometries)
         self._obstacles: List[Tuple[str, int, PoseLike, Any]] = []
         self._disabled: FrozenSet[FrozenSet[str]] = frozenset()
+        self._own_pairs = None if pairs is None else self._geometry_pairs(pairs)
         self._rebuild()
 
     @classmethod
     def _from_tables(cls, tables: ModelTables) -> "Robot":
-        return cls(tables.links, tables.joints, tables.geometries)
+        return cls(tables.links, tables.joints, tables.geometries, pairs=tables.pairs)
+
+    def _geometry_pairs(self, pairs: Sequence[Tuple[str, str]]) -> List[Tuple[int, int]]:
+        """``pairs`` of geometry names as index pairs ``(a, b)``, ``a < b``.
+
+        Raises ``TypeError`` for an entry that is not two names, ``ValueError`` for a name that
+        is no geometry of the robot or a geometry paired with itself.
+        """
+        if isinstance(pairs, (str, bytes)):
+            raise TypeError(f"pairs must be a sequence of (name, name) pairs, got the string "
+                            f"{pairs!r}")
+        index = {geometry[0]: g for g, geometry in enumerate(self._robot_geometries)}
+        table = set()
+        for i, pair in enumerate(pairs):
+            if isinstance(pair, (str, bytes)) or len(pair) != 2:
+                raise TypeError(f"pairs[{i}] must be a pair of geometry names, got {pair!r}")
+            for end in pair:
+                if end not in index:
+                    raise ValueError(f"pairs[{i}] = {tuple(pair)!r}: '{end}' is not a geometry "
+                                     "of the robot")
+            a, b = sorted(index[end] for end in pair)
+            if a == b:
+                raise ValueError(f"pairs[{i}] pairs geometry '{pair[0]}' with itself")
+            table.add((a, b))
+        return sorted(table)
 
     @classmethod
     def from_urdf(cls, path: PathLike, package_dirs: Optional[Sequence[PathLike]] = None,
@@ -249,9 +277,12 @@ class Robot:
         Raises
         ------
         ValueError
-            For a missing file, an unknown or unsupported joint type (naming the joint), a mesh
-            file that is missing or a ``package://`` path that cannot be resolved (naming the
-            link), or an unknown ``collision`` mode.
+            For a missing file, a file that is not a URDF (its root element is not
+            ``<robot>``: an MJCF file is pointed to ``from_mjcf``), an unknown or unsupported
+            joint type (naming the joint), a mesh file that is missing or a ``package://`` path
+            that cannot be resolved (naming the link), a mesh whose pieces are not convex under
+            ``collision="mesh"`` (naming the link, the file and the modes that take it), or an
+            unknown ``collision`` mode.
         """
         from .robot_urdf import load_urdf
 
@@ -266,10 +297,25 @@ class Robot:
         Each body is a link (the world body is the root, ``"world"``); hinge joints are revolute
         (continuous when unlimited), slide joints prismatic, and a body with several joints or an
         off-origin hinge anchor gets a link per joint (named ``body/joint``). The collision geoms
-        (``contype`` or ``conaffinity`` nonzero) are the geometries: meshes (the hull of the
-        compiled mesh's vertices), and boxes, spheres, capsules, cylinders and ellipsoids exactly
-        (``Box``, ``Sphere``, ``Capsule``, ``Cylinder``, ``Ellipsoid`` at the geom's pose). The
-        degrees of freedom are MuJoCo's ``qpos``.
+        (``contype`` or ``conaffinity`` nonzero, or named by a ``<contact><pair>``) are the
+        geometries: meshes (the hull of the compiled mesh's vertices), and boxes, spheres,
+        capsules, cylinders and ellipsoids exactly (``Box``, ``Sphere``, ``Capsule``,
+        ``Cylinder``, ``Ellipsoid`` at the geom's pose). The degrees of freedom are MuJoCo's
+        ``qpos``.
+
+        The pairs checked are those MuJoCo's own contact filter lets through (``pairs``):
+
+        - each ``<contact><pair>``, whatever its geoms' masks and bodies;
+        - any other two geoms whose masks match, ``(contype1 & conaffinity2) or (contype2 &
+          conaffinity1)``, except geoms of one body or of bodies welded together (no joint
+          between them), geoms of a parent body and its child (unless the parent is the world
+          body, or the model has ``<option><flag filterparent="disable"/>``), and geoms of a
+          ``<contact><exclude body1 body2>`` pair of bodies.
+
+        So a model whose geoms all have ``contype="0"`` checks no pair of its own. The geoms
+        are checked against every obstacle (``add_obstacle``) whatever their masks, and
+        ``srdf`` or ``disable_pairs`` removes pairs from MuJoCo's. MuJoCo's switch for all
+        contacts (``<flag contact="disable"/>``) is not read.
 
         Parameters
         ----------
@@ -290,10 +336,15 @@ class Robot:
         names = self.geometry_names
         owners = [self._links[link] if link >= 0 else names[g]
                   for g, link in enumerate(self._model.geometry_links)]
-        table = [
-            (a, b) for a, b in np.asarray(self._model.default_pairs()).reshape(-1, 2)
-            if frozenset((owners[a], owners[b])) not in self._disabled
-        ]
+        default = np.asarray(self._model.default_pairs()).reshape(-1, 2)
+        candidates = [(int(a), int(b)) for a, b in default]
+        if self._own_pairs is not None:
+            # The model's own pairs replace the adjacency rule between its geometries; each
+            # obstacle (after them in the table) stays checked against every one of them.
+            robot = len(self._robot_geometries)
+            candidates = sorted(self._own_pairs + [(a, b) for a, b in candidates if b >= robot])
+        table = [(a, b) for a, b in candidates
+                 if frozenset((owners[a], owners[b])) not in self._disabled]
         self._pair_table = np.asarray(table, dtype=np.int32).reshape(-1, 2)
         # Each answer's pair names, indexed by its pair (-1, nothing checked, reads the last row):
         # made here once, as building it took longer than a configuration's verdict.
@@ -335,8 +386,9 @@ class Robot:
     def pairs(self) -> Tuple[Tuple[str, str], ...]:
         """The checked pairs by geometry name (a link's name when it has one geometry), in the
         order of ``distances``' columns: geometries of links that are not adjacent (parent and
-        child, or joined by fixed joints), less the disabled pairs, and every obstacle against
-        every link's geometry."""
+        child, or joined by fixed joints), or the model's own pairs (``pairs``; an MJCF file's
+        contact filter), less the disabled pairs, and every obstacle against every link's
+        geometry."""
         names = self.geometry_names
         return tuple((names[a], names[b]) for a, b in self._pair_table)
 
@@ -352,6 +404,9 @@ class Robot:
             Where it is: a ``(4, 4)`` rigid transform or ``(rotation, translation)``.
         name : str, optional
             Its name in ``pairs`` (default ``obstacle{k}``); must differ from every geometry's.
+
+        A pose that is not a rigid transform raises ``ValueError`` (``TypeError`` for one of
+        the wrong type) naming ``pose``, and leaves the robot as it was.
         """
         name = f"obstacle{len(self._obstacles)}" if name is None else name
         if not isinstance(name, str):
@@ -361,8 +416,13 @@ class Robot:
         self._obstacles.append((name, -1, pose, body))
         try:
             self._rebuild()
-        except Exception:
+        except Exception as error:
             self._obstacles.pop()
+            # The core checks an obstacle's pose as its geometry's origin: name the argument.
+            origin = f"geometry '{name}' origin"
+            if isinstance(error, (ValueError, TypeError)) and str(error).startswith(origin):
+                raise type(error)(f"pose (of obstacle '{name}')" + str(error)[len(origin):]
+                                  ) from None
             raise
         return self
 

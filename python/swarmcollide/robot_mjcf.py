@@ -9,6 +9,7 @@ from typing import Union
 import numpy as np
 
 from . import _core
+from .robot_mjcf_pairs import checked_geom_pairs
 from .robot_tables import ModelTables, geometry_names
 
 PathLike = Union[str, "os.PathLike[str]"]
@@ -96,17 +97,24 @@ def tables_of(model, skip_planes: bool = False) -> ModelTables:
         if parent != b:
             joints.append(_core.Joint(f"{links[b]}/fixed", "fixed", parent, b, origin=offset))
     geometries = []
+    geom_pairs = checked_geom_pairs(model)
+    # A geom in a <contact><pair> collides whatever its masks say.
+    paired = {g for pair in geom_pairs for g in pair}
     collision = [g for g in range(model.ngeom)
-                 if model.geom_contype[g] != 0 or model.geom_conaffinity[g] != 0]
+                 if model.geom_contype[g] != 0 or model.geom_conaffinity[g] != 0 or g in paired]
+    geometry_of = {}
     for b in range(model.nbody):
         own = [g for g in collision if model.geom_bodyid[g] == b]
         for name, g in zip(geometry_names(links[b], len(own)), own):
             name = model.geom(g).name or name
             body = _geom_body(model, g, name, skip_planes)
             if body is not None:
+                geometry_of[g] = name
                 geometries.append(
                     (name, b, _transform(model.geom_pos[g], model.geom_quat[g]), body))
-    return ModelTables(links, joints, geometries)
+    pairs = [(geometry_of[g1], geometry_of[g2]) for g1, g2 in geom_pairs
+             if g1 in geometry_of and g2 in geometry_of]
+    return ModelTables(links, joints, geometries, pairs)
 
 
 def _geom_body(model, g: int, name: str, skip_planes: bool):

@@ -3,10 +3,10 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any, Callable, List, Tuple
+from typing import Any, Callable, List, Optional, Tuple
 
 from . import _core
-from .mesh import CompoundBody
+from .mesh import CompoundBody, NotConvexError
 
 COLLISION_MODES = ("hull", "mesh", "decompose")
 """How a mesh becomes a collision body: its convex hull (the planners' default); a compound body
@@ -18,11 +18,13 @@ convex decomposition (``CompoundBody.from_mesh(mesh)``, cached on disk)."""
 @dataclass
 class ModelTables:
     """Links (names), joints (``_core.Joint``) and geometries (``(name, link, origin, body)``,
-    link -1 for the world) of a model."""
+    link -1 for the world) of a model, and the pairs of geometries (by name) its file says to
+    check, or None where the file says nothing (the links that are not adjacent are checked)."""
 
     links: List[str]
     joints: List[Any]
     geometries: List[Tuple[str, int, Any, Any]]
+    pairs: Optional[List[Tuple[str, str]]] = None
 
 
 def geometry_names(link: str, count: int) -> List[str]:
@@ -38,8 +40,18 @@ def collision_bodies(collision: str) -> Callable[[Any, str], Any]:
     if collision == "hull":
         return lambda mesh, name: _core.ConvexPolyhedron(mesh.vertices)
     if collision == "mesh":
-        return lambda mesh, name: CompoundBody.from_mesh(mesh, decompose=None, cache=False,
-                                                         progress=False)
+        return _convex_pieces
     if collision == "decompose":
         return lambda mesh, name: CompoundBody.from_mesh(mesh, progress=False)
     raise ValueError(f"collision must be one of {COLLISION_MODES}, got {collision!r}")
+
+
+def _convex_pieces(mesh, name: str):
+    try:
+        return CompoundBody.from_mesh(mesh, decompose=None, cache=False, progress=False)
+    except NotConvexError as error:  # name the robot's options, not CompoundBody's
+        raise ValueError(
+            f"collision='mesh' needs convex pieces, but {error.piece}, with {error.triangles} "
+            f"triangles, is not convex ({error.defect}); pass collision='decompose' to split "
+            "each mesh into CoACD's convex parts, or collision='hull' for each mesh's hull"
+        ) from None

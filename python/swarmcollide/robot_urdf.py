@@ -70,6 +70,9 @@ def load_urdf(path: PathLike, package_dirs: Optional[Sequence[PathLike]] = None,
     if not urdf_path.is_file():
         raise ValueError(f"URDF file '{path}' not found")
     collision_bodies(collision)  # the mode is checked before anything is read
+    not_urdf = _not_urdf(urdf_path)
+    if not_urdf:
+        raise ValueError(f"'{path}' does not look like a URDF file: {not_urdf}")
     if isinstance(package_dirs, (str, os.PathLike)):
         package_dirs = [package_dirs]
     dirs = list(package_dirs or [])
@@ -118,6 +121,21 @@ def load_urdf(path: PathLike, package_dirs: Optional[Sequence[PathLike]] = None,
     return ModelTables(links, joints, geometries)
 
 
+def _not_urdf(urdf_path: Path) -> Optional[str]:
+    """What says a file is no URDF (yourdfpy fails on one with a bare KeyError), or None: its
+    root element, unless it is ``<robot>``. A file that is not XML is left to yourdfpy."""
+    try:
+        root = ElementTree.parse(urdf_path).getroot()
+    except (ElementTree.ParseError, OSError):
+        return None
+    tag = root.tag.rpartition("}")[2]  # without a namespace
+    if tag == "robot":
+        return None
+    hint = {"mujoco": "; it is an MJCF model: read it with Robot.from_mjcf",
+            "sdf": "; SDF is not read: convert it to URDF (or MJCF)"}
+    return f"its root element is <{tag}>, where a URDF's is <robot>{hint.get(tag, '')}"
+
+
 def _empty_geometry(urdf_path: Path) -> Optional[str]:
     """What yourdfpy fails on without saying so (an IndexError): a link's empty ``<geometry>``."""
     try:
@@ -158,5 +176,9 @@ def _body(geometry, name: str, link: str, urdf_path: Path, dirs, collision: str)
                 raise ValueError(f"link '{link}': mesh scale must be finite and non-zero, got "
                                  f"{scale.tolist()}")
             mesh.apply_scale(scale)
-        return collision_bodies(collision)(mesh, name)
+        try:
+            return collision_bodies(collision)(mesh, name)
+        except ValueError as error:  # say whose mesh, and which file
+            raise ValueError(f"link '{link}': mesh '{geometry.mesh.filename}' ({mesh_path}): "
+                             f"{error}") from error
     raise ValueError(f"link '{link}': a <collision> geometry has no box, sphere, cylinder or mesh")

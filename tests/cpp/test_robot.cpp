@@ -160,6 +160,17 @@ TEST(Robot, LimitsRaiseClampOrWrapNamingTheJoint) {
   } catch (const std::invalid_argument& error) {
     EXPECT_NE(std::string(error.what()).find("q[0], joint 'shoulder'"), std::string::npos);
   }
+  // Values as their shortest exact text: 2.1, not 2.1000000000000001.
+  q << 2.1, 7, 0;
+  try {
+    admit_configurations(arm, q, LimitMode::raise);
+    FAIL() << "accepted a shoulder angle outside its limits";
+  } catch (const std::invalid_argument& error) {
+    EXPECT_NE(std::string(error.what()).find(": 2.1 is outside its limits [-2, 2]"),
+              std::string::npos)
+        << error.what();
+  }
+  q << 4.5, 7, 0;
   EXPECT_EQ(admit_configurations(arm, q, LimitMode::clamp)(0, 0), 2);
   // 4.5 - 2 pi is within [-2, 2]; the continuous elbow is left as it is.
   EXPECT_NEAR(admit_configurations(arm, q, LimitMode::wrap)(0, 0), 4.5 - 2 * M_PI, 1e-15);

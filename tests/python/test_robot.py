@@ -319,10 +319,12 @@ def test_mjcf_forward_kinematics_is_mujocos(mjcf):
                                        rtol=0, atol=1e-12)
     assert [type(g[3]).__name__ for g in robot._robot_geometries] == [
         "Box", "Cylinder", "Capsule", "Ellipsoid", "ConvexPolyhedron", "Box"]
-    # The links between arm's two joints are looked through: arm is base's child, hand arm's;
-    # the finger is fixed to the hand.
-    assert robot.pairs == (("floor", "arm/0"), ("floor", "arm/1"), ("floor", "hand"),
-                           ("floor", "finger"), ("base", "hand"), ("base", "finger"))
+    # MuJoCo's filter: the links between arm's two joints are looked through (arm is base's
+    # child, hand arm's), the finger is welded to the hand, and a child of the world (base) is
+    # checked against the world's floor.
+    assert robot.pairs == (("floor", "base"), ("floor", "arm/0"), ("floor", "arm/1"),
+                           ("floor", "hand"), ("floor", "finger"), ("base", "hand"),
+                           ("base", "finger"))
     assert robot.check(q).certified.all()
 
 
@@ -454,6 +456,32 @@ def test_obstacle_names_must_be_new(arm):
     assert arm.geometry_names[-1] == "obstacle0"
 
 
+def test_bad_obstacle_poses_name_the_pose_and_leave_the_robot_as_it_was(arm):
+    pairs = arm.pairs
+    sheared = np.eye(4)
+    sheared[3, 0] = 1.0
+    for pose, error, message in [(sheared, ValueError, "last row must be"),
+                                 (np.eye(3), ValueError, r"got shape \(3, 3\)"),
+                                 ("up", TypeError, "got str")]:
+        with pytest.raises(error, match=r"^pose \(of obstacle 'table'\) must be .*" + message):
+            arm.add_obstacle(sc.Box([0.5, 0.5, 0.02]), pose, name="table")
+    assert arm.pairs == pairs
+
+
+def test_files_that_are_not_urdf_say_so(tmp_path):
+    path = tmp_path / "arm.xml"
+    path.write_text('<mujoco><worldbody><body name="b"><joint type="slide"/>'
+                    '<geom type="sphere" size="0.1"/></body></worldbody></mujoco>')
+    with pytest.raises(ValueError, match=r"does not look like a URDF file: its root element is "
+                                         r"<mujoco>.*Robot.from_mjcf"):
+        sc.Robot.from_urdf(path)
+    assert sc.Robot.from_mjcf(path).dof == 1
+    path = tmp_path / "gripper.sdf"
+    path.write_text('<sdf version="1.6"><model name="gripper"><link name="palm"/></model></sdf>')
+    with pytest.raises(ValueError, match="root element is <sdf>.*convert it to URDF"):
+        sc.Robot.from_urdf(path)
+
+
 def test_proposed_pairs_are_those_that_always_or_never_collided(arm):
     # A stake through the base always meets it; the sampled rows say which pairs never meet.
     arm.add_obstacle(sc.Box([0.05, 0.05, 0.05]), None, name="stake")
@@ -500,6 +528,25 @@ def test_collision_mesh_makes_compound_bodies_of_the_meshes_convex_pieces(urdf, 
     hull_distances = hull.distances(q)
     assert (hull_distances <= distances + 1e-12).all()
     assert (hull_distances < distances - 1e-6).any()
+
+
+def test_collision_mesh_names_the_link_the_file_and_the_option_for_a_concave_piece(urdf,
+                                                                                    tmp_path):
+    # One connected piece with a dent: a sphere with a vertex pushed to half its radius.
+    dented = trimesh.creation.icosphere(1, radius=0.05)
+    vertices = dented.vertices.copy()
+    vertices[0] *= 0.5
+    trimesh.Trimesh(vertices, dented.faces).export(tmp_path / "pkg" / "meshes" / "fore.stl")
+    with pytest.raises(ValueError) as raised:
+        sc.Robot.from_urdf(urdf, [tmp_path], collision="mesh")
+    message = str(raised.value)
+    assert message.startswith("link 'fore': mesh 'package://pkg/meshes/fore.stl' (")
+    assert str(tmp_path / "pkg" / "meshes" / "fore.stl") in message
+    assert "the connected component 0 of 1" in message and "is not convex" in message
+    assert "collision='decompose'" in message and "collision='hull'" in message
+    assert "decompose=None" not in message and "decompose='coacd'" not in message
+    # The hull of the same mesh is taken as it is.
+    assert len(sc.Robot.from_urdf(urdf, [tmp_path]).pairs) > 0
 
 
 def test_collision_decompose_makes_coacds_parts(urdf, tmp_path, monkeypatch):

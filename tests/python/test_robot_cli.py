@@ -41,7 +41,7 @@ MJCF = """\
   <geom name="floor" type="box" size="1 1 0.1" pos="0 0 -1"/>
   <body name="arm"><joint name="turn" type="hinge" axis="0 1 0" range="-3 3"/>
     <geom name="stick" type="capsule" size="0.05 0.5" pos="0 0 0.5"/></body>
-</worldbody></mujoco>
+</worldbody><contact><exclude body1="world" body2="arm"/></contact></mujoco>
 """
 
 

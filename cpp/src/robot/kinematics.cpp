@@ -12,8 +12,8 @@ namespace {
 
 constexpr Scalar kTwoPi = 6.283185307179586476925286766559;
 
-// Joint values to the last digit: a limit missed by a roundoff must show.
-std::string number(Scalar x) { return detail::number_text(x, 17); }
+// Joint values to the last digit that tells them apart: a limit missed by a roundoff must show.
+std::string number(Scalar x) { return detail::shortest_number_text(x); }
 
 std::string where(std::size_t row, const Joint& joint) {
   return "q[" + std::to_string(row) + "], joint '" + joint.name + "'";
