@@ -941,11 +941,20 @@ def _write_parts(path: Path, parts: Sequence[np.ndarray],
     offsets = np.cumsum([0] + [len(p) for p in parts])
     meta = "" if decomposition is None else json.dumps(
         {k: v for k, v in asdict(decomposition).items() if k != "from_cache"})
-    path.parent.mkdir(parents=True, exist_ok=True)
-    # Written beside and renamed, so that a reader never sees half a file.
-    with tempfile.NamedTemporaryFile(dir=path.parent, suffix=".npz", delete=False) as handle:
-        np.savez(handle, points=points, offsets=offsets, decomposition=np.array(meta))
-    os.replace(handle.name, path)
+    # Written beside and renamed, so that a reader never sees half a file; a rename that fails
+    # (the path is a directory, say) leaves no file behind, and the error names the path given.
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        with tempfile.NamedTemporaryFile(dir=path.parent, suffix=".npz", delete=False) as handle:
+            np.savez(handle, points=points, offsets=offsets, decomposition=np.array(meta))
+        try:
+            os.replace(handle.name, path)
+        except OSError:
+            os.unlink(handle.name)
+            raise
+    except OSError as error:
+        raise type(error)(error.errno, f"cannot write the parts file {str(path)!r}: "
+                                       f"{error.strerror}") from None
 
 
 def _read_parts(path: Path):

@@ -635,6 +635,10 @@ class Robot:
                              "the same pose but another motion; use 'raise' or 'clamp'")
         if isinstance(max_iterations, bool) or not isinstance(max_iterations, (int, np.integer)):
             raise TypeError(f"max_iterations must be an int, got {max_iterations!r}")
+        # As time_of_impact reads it: a bool or a string is no tolerance.
+        if isinstance(time_tolerance, (bool, np.bool_)) or not isinstance(
+                time_tolerance, (int, float, np.integer, np.floating)):
+            raise TypeError(f"time_tolerance must be a real number, got {time_tolerance!r}")
         start, single_start = self._configurations(q0, limits, "q0")
         end, single_end = self._configurations(q1, limits, "q1")
         raw = self._model.check_motion(self._pair_table, start, end,

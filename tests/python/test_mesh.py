@@ -354,6 +354,11 @@ def test_parts_files_round_trip(tmp_path, decomposed):
     (tmp_path / "bad.npz").write_bytes(b"no")
     with pytest.raises(ValueError, match="not a parts file"):
         sc.CompoundBody.load(tmp_path / "bad.npz")
+    # A path that cannot be written names itself and leaves no temporary file behind.
+    (tmp_path / "folder").mkdir()
+    with pytest.raises(OSError, match="cannot write the parts file .*folder"):
+        body.save(tmp_path / "folder")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["bad.npz", "folder", "torus.npz"]
 
 
 # Queries against the exact triangle-mesh distance

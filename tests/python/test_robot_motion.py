@@ -249,6 +249,9 @@ def test_bad_input_names_the_argument():
     for bad in (0.0, -1e-3, np.nan, np.inf):
         with pytest.raises(ValueError, match="time_tolerance must be a positive"):
             robot.check_motion(q, q, time_tolerance=bad)
+    for bad in (True, "0.5", None):
+        with pytest.raises(TypeError, match="time_tolerance must be a real number"):
+            robot.check_motion(q, q, time_tolerance=bad)
     with pytest.raises(ValueError, match="tolerance must be positive"):
         robot.check_motion(q, q, tolerance=0.0)
     with pytest.raises(ValueError, match="max_iterations must be at least 1"):
