@@ -11,6 +11,11 @@
 
 namespace swarmcollide::bindings {
 
+bool is_rotation(const py::handle& value) {
+  return !py::isinstance<py::array>(value) && !PyList_Check(value.ptr()) &&
+         !PyTuple_Check(value.ptr()) && py::hasattr(value, "as_matrix");
+}
+
 namespace {
 
 std::string shape_of(const py::array& array) {
@@ -58,13 +63,9 @@ bool is_sequence_of(const py::handle& value, std::size_t length) {
          static_cast<std::size_t>(PyObject_Length(value.ptr())) == length;
 }
 
-// A rotation object from another library (SciPy's Rotation: anything with an `as_matrix()`
-// method that is not itself an array or a sequence), or nothing.
+// The matrices of a rotation object (is_rotation), or nothing.
 std::optional<py::object> rotation_matrices(const py::handle& rotation) {
-  if (py::isinstance<py::array>(rotation) || PyList_Check(rotation.ptr()) ||
-      PyTuple_Check(rotation.ptr()) || !py::hasattr(rotation, "as_matrix")) {
-    return std::nullopt;
-  }
+  if (!is_rotation(rotation)) return std::nullopt;
   return rotation.attr("as_matrix")();
 }
 

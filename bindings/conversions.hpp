@@ -51,6 +51,10 @@ class CompoundArgument {
   const CompoundBody* body_;
 };
 
+/// True for a rotation object from another library (SciPy's Rotation: anything with an
+/// `as_matrix()` method that is not itself an array, a list or a tuple).
+bool is_rotation(const py::handle& value);
+
 /// A pose argument: None (the identity), a `(4, 4)` homogeneous rigid transform, or a pair
 /// `(rotation (3, 3), translation (3,))`; TypeError or ValueError naming `name` otherwise.
 Pose to_pose(const py::handle& pose, const char* name);
