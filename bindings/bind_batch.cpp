@@ -107,20 +107,6 @@ BatchSettings settings_of(const py::object& threads, const py::object& first_ind
   return settings;
 }
 
-// The number of poses an argument holds when it is an array of them (or a pair of arrays of
-// rotations and translations), 1 otherwise (to_poses then checks it all).
-std::size_t pose_count(const py::handle& poses) {
-  if (poses.is_none()) return 0;
-  py::handle leading = poses;
-  if (py::isinstance<py::tuple>(poses) || py::isinstance<py::list>(poses)) {
-    const py::sequence parts = py::reinterpret_borrow<py::sequence>(poses);
-    if (parts.size() != 2) return 1;
-    leading = parts[0];
-  }
-  const py::array array = py::module_::import("numpy").attr("asarray")(leading);
-  return array.ndim() == 3 ? static_cast<std::size_t>(array.shape(0)) : 1;
-}
-
 // The rows of a batch whose sides hold `count_a` and `count_b` bodies (0 for a single body): the
 // length of a sequence, or with single bodies on both sides the number of poses (one without).
 std::size_t row_count(std::size_t count_a, std::size_t count_b, const py::object& poses_a,

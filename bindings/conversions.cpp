@@ -354,6 +354,19 @@ std::vector<Pose> to_poses(const py::handle& given, std::size_t count, const cha
   return result;
 }
 
+std::size_t pose_count(const py::handle& given) {
+  if (given.is_none()) return 0;
+  const py::object poses = with_rotation_matrices(given);
+  py::handle leading = poses;
+  if (PyTuple_Check(poses.ptr()) || PyList_Check(poses.ptr())) {
+    const py::sequence parts = py::reinterpret_borrow<py::sequence>(poses);
+    if (parts.size() != 2) return 1;
+    leading = parts[0];
+  }
+  const py::array array = py::module_::import("numpy").attr("asarray")(leading);
+  return array.ndim() == 3 ? static_cast<std::size_t>(array.shape(0)) : 1;
+}
+
 Vector3 finite_vector3(const py::handle& vector, const char* name) {
   const auto values = real_array(vector, {3}, name, "a 3-vector of real numbers");
   const Vector3 result = Eigen::Map<const Vector3>(values.data());

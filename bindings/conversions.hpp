@@ -68,6 +68,11 @@ Pose to_pose(const py::handle& pose, const char* name);
 /// checks it once.
 std::vector<Pose> to_poses(const py::handle& poses, std::size_t count, const char* name);
 
+/// The number of poses an argument of to_poses holds: 0 for None, the leading length of an array
+/// of transforms or of a pair (rotations, translations), a rotation object's length; 1 for
+/// anything else (to_poses then checks it all).
+std::size_t pose_count(const py::handle& poses);
+
 /// A 3-vector of real, finite numbers; TypeError (complex numbers, text, objects) or ValueError
 /// (a shape other than (3,), NaN or infinity) naming `name` otherwise.
 Vector3 finite_vector3(const py::handle& vector, const char* name);

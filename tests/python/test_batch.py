@@ -185,6 +185,17 @@ def test_a_single_body_serves_every_row(batch, posed):
     assert len(batch(a, b)) == 1
 
 
+def test_a_rotation_object_counts_the_rows_of_single_bodies(posed):
+    from scipy.spatial.transform import Rotation
+
+    a, b, _, poses_b = posed
+    turns, translations = Rotation.from_matrix(poses_b[:, :3, :3]), poses_b[:, :3, 3]
+    for poses in ((turns, translations), turns):
+        single = sc.distance_many(a, b, poses_b=poses)
+        assert len(single) == 60
+        assert_same(single, sc.distance_many([a] * 60, [b] * 60, poses_b=poses))
+
+
 def test_pose_arrays_read_in_place_answer_as_converted_poses(posed):
     # C-contiguous float64 arrays are read where they are; lists, other dtypes and strided views
     # are converted first: the rows are the same.
