@@ -175,19 +175,39 @@ std::optional<PoseArray> pose_array(const py::handle& given, std::size_t count,
   return std::nullopt;
 }
 
+// A single pose for all `count` rows, as a single body serves every row: stored once (held in
+// `keep`) and read by every row, its strides zero.
+PoseArray every_row(const py::handle& given, std::size_t count, const char* name,
+                    std::vector<py::object>& keep) {
+  const Pose pose = to_pose(given, name);
+  py::array_t<Scalar> stored(12);
+  Scalar* const data = stored.mutable_data();
+  Eigen::Map<Eigen::Matrix<Scalar, 3, 3, Eigen::RowMajor>> rotation(data);
+  Eigen::Map<Vector3> translation(data + 9);
+  rotation = pose.rotation;
+  translation = pose.translation;
+  keep.push_back(stored);
+  return PoseArray{data, data + 9, count, 0, 3, 0, 1};
+}
+
+// One side's poses for `count` rows: into `array` when read in place or given once for every
+// row, else converted into `list`.
+void read_poses(const py::object& given, std::size_t count, const char* name,
+                std::vector<py::object>& keep, PoseArray& array, std::vector<Pose>& list) {
+  if (const auto in_place = pose_array(given, count, keep)) {
+    array = *in_place;
+  } else if (count != 1 && is_single_pose(given)) {
+    array = every_row(given, count, name, keep);
+  } else {
+    list = to_poses(given, count, name);
+  }
+}
+
 BatchPoses poses_of(const py::object& poses_a, const py::object& poses_b, std::size_t count,
                     std::vector<py::object>& keep) {
   BatchPoses poses;
-  if (const auto array = pose_array(poses_a, count, keep)) {
-    poses.array_a = *array;
-  } else {
-    poses.a = to_poses(poses_a, count, "poses_a");
-  }
-  if (const auto array = pose_array(poses_b, count, keep)) {
-    poses.array_b = *array;
-  } else {
-    poses.b = to_poses(poses_b, count, "poses_b");
-  }
+  read_poses(poses_a, count, "poses_a", keep, poses.array_a, poses.a);
+  read_poses(poses_b, count, "poses_b", keep, poses.array_b, poses.b);
   return poses;
 }
 
@@ -254,7 +274,8 @@ every row (a ConvexPolyhedron, a CompoundBody or an ``(n, 3)`` NumPy array: neve
 sequence of bodies (polyhedra, compound bodies or ``(n, 3)`` arrays), or an ``(m, n, 3)`` array
 (each row's bodies then built and freed by the thread that answers it). ``poses_a`` and
 ``poses_b`` place them: None (the identity), an ``(m, 4, 4)`` or ``(m, 3, 4)`` array of rigid
-transforms or a pair ``(rotations (m, 3, 3), translations (m, 3))``. With a single body on both
+transforms or a pair ``(rotations (m, 3, 3), translations (m, 3))``; a single pose (as
+``distance`` takes it) serves every row, as a single body does. With a single body on both
 sides the poses set the number of rows: "A against B at these m poses" is one call.
 )doc";
 

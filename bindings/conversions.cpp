@@ -57,6 +57,21 @@ py::array_t<Scalar, py::array::c_style | py::array::forcecast> real_array(
   return py::array_t<Scalar, py::array::c_style | py::array::forcecast>::ensure(array);
 }
 
+// `value` as a NumPy array of real numbers; nothing for anything else (text, a ragged sequence,
+// objects).
+std::optional<py::array> real_numbers(const py::handle& value) {
+  if (py::isinstance<py::str>(value) || py::isinstance<py::bytes>(value)) return std::nullopt;
+  py::array array;
+  try {
+    array = py::module_::import("numpy").attr("asarray")(value);
+  } catch (py::error_already_set&) {
+    return std::nullopt;
+  }
+  const char kind = array.dtype().kind();
+  if (kind != 'f' && kind != 'i' && kind != 'u') return std::nullopt;
+  return array;
+}
+
 // A tuple or list of `length` items.
 bool is_sequence_of(const py::handle& value, std::size_t length) {
   return (PyTuple_Check(value.ptr()) || PyList_Check(value.ptr())) &&
@@ -352,6 +367,18 @@ std::vector<Pose> to_poses(const py::handle& given, std::size_t count, const cha
     }
   }
   return result;
+}
+
+bool is_single_pose(const py::handle& given) {
+  if (given.is_none()) return false;
+  const py::object pose = with_rotation_matrices(given);
+  if (const auto transform = real_numbers(pose)) {
+    return transform->ndim() == 2 && (transform->shape(0) == 3 || transform->shape(0) == 4) &&
+           transform->shape(1) == 4;
+  }
+  if (!is_sequence_of(pose, 2)) return false;
+  const auto rotation = real_numbers(py::reinterpret_borrow<py::sequence>(pose)[0]);
+  return rotation && rotation->ndim() == 2 && rotation->shape(0) == 3 && rotation->shape(1) == 3;
 }
 
 std::size_t pose_count(const py::handle& given) {

@@ -68,6 +68,11 @@ Pose to_pose(const py::handle& pose, const char* name);
 /// checks it once.
 std::vector<Pose> to_poses(const py::handle& poses, std::size_t count, const char* name);
 
+/// True when `poses` is one pose in a form to_pose reads (a `(4, 4)` or `(3, 4)` transform, a
+/// pair whose rotation is a `(3, 3)` matrix or a rotation object, or a rotation object alone)
+/// rather than poses for several bodies.
+bool is_single_pose(const py::handle& poses);
+
 /// The number of poses an argument of to_poses holds: 0 for None, the leading length of an array
 /// of transforms or of a pair (rotations, translations), a rotation object's length; 1 for
 /// anything else (to_poses then checks it all).

@@ -770,7 +770,8 @@ class Query:
         sequence of bodies (polyhedra, compound bodies or ``(n, 3)`` arrays), or an ``(m, n, 3)`` array
         (each row's bodies then built and freed by the thread that answers it). ``poses_a`` and
         ``poses_b`` place them: None (the identity), an ``(m, 4, 4)`` or ``(m, 3, 4)`` array of rigid
-        transforms or a pair ``(rotations (m, 3, 3), translations (m, 3))``. With a single body on both
+        transforms or a pair ``(rotations (m, 3, 3), translations (m, 3))``; a single pose (as
+        ``distance`` takes it) serves every row, as a single body does. With a single body on both
         sides the poses set the number of rows: "A against B at these m poses" is one call.
         """
     def collision(self, a: typing.Any, b: typing.Any, pose_a: typing.Any = None, pose_b: typing.Any = None, escalate: bool = True) -> swarmcollide._core.DistanceResult | swarmcollide._core.CompoundResult:
@@ -787,7 +788,8 @@ class Query:
         sequence of bodies (polyhedra, compound bodies or ``(n, 3)`` arrays), or an ``(m, n, 3)`` array
         (each row's bodies then built and freed by the thread that answers it). ``poses_a`` and
         ``poses_b`` place them: None (the identity), an ``(m, 4, 4)`` or ``(m, 3, 4)`` array of rigid
-        transforms or a pair ``(rotations (m, 3, 3), translations (m, 3))``. With a single body on both
+        transforms or a pair ``(rotations (m, 3, 3), translations (m, 3))``; a single pose (as
+        ``distance`` takes it) serves every row, as a single body does. With a single body on both
         sides the poses set the number of rows: "A against B at these m poses" is one call.
         """
     def signed_distance(self, a: typing.Any, b: typing.Any, pose_a: typing.Any = None, pose_b: typing.Any = None) -> swarmcollide._core.DistanceResult | swarmcollide._core.CompoundResult:
@@ -802,7 +804,8 @@ class Query:
         sequence of bodies (polyhedra, compound bodies or ``(n, 3)`` arrays), or an ``(m, n, 3)`` array
         (each row's bodies then built and freed by the thread that answers it). ``poses_a`` and
         ``poses_b`` place them: None (the identity), an ``(m, 4, 4)`` or ``(m, 3, 4)`` array of rigid
-        transforms or a pair ``(rotations (m, 3, 3), translations (m, 3))``. With a single body on both
+        transforms or a pair ``(rotations (m, 3, 3), translations (m, 3))``; a single pose (as
+        ``distance`` takes it) serves every row, as a single body does. With a single body on both
         sides the poses set the number of rows: "A against B at these m poses" is one call.
         """
     @property
