@@ -274,8 +274,8 @@ every row (a ConvexPolyhedron, a CompoundBody or an ``(n, 3)`` NumPy array: neve
 sequence of bodies (polyhedra, compound bodies or ``(n, 3)`` arrays), or an ``(m, n, 3)`` array
 (each row's bodies then built and freed by the thread that answers it). ``poses_a`` and
 ``poses_b`` place them: None (the identity), an ``(m, 4, 4)`` or ``(m, 3, 4)`` array of rigid
-transforms or a pair ``(rotations (m, 3, 3), translations (m, 3))``; a single pose (as
-``distance`` takes it) serves every row, as a single body does. With a single body on both
+transforms, a pair ``(rotations (m, 3, 3), translations (m, 3))`` or a list of m poses (each as
+``distance`` takes it); a single pose serves every row, as a single body does. With a single body on both
 sides the poses set the number of rows: "A against B at these m poses" is one call.
 )doc";
 

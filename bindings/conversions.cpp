@@ -98,6 +98,8 @@ py::object with_rotation_matrices(const py::handle& pose) {
   }
   if (is_sequence_of(pose, 2)) {
     const py::sequence parts = py::reinterpret_borrow<py::sequence>(pose);
+    // Two rotation objects are two poses, not a rotation and its translation.
+    if (is_rotation(parts[1])) return py::reinterpret_borrow<py::object>(pose);
     if (const auto matrices = rotation_matrices(parts[0])) {
       return py::make_tuple(*matrices, parts[1]);
     }
@@ -347,6 +349,13 @@ std::vector<Pose> to_poses(const py::handle& given, std::size_t count, const cha
       result[i].rotation = Eigen::Map<const RowMatrix3>(rotations.data() + 9 * i);
       result[i].translation = Eigen::Map<const Vector3>(translations.data() + 3 * i);
     }
+  } else if (is_sequence_of(given, count) && !real_numbers(poses)) {
+    // A pose per body, each in any form to_pose reads: (Rotation, translation) pairs, Rotations,
+    // transforms of both shapes mixed.
+    const py::sequence items = py::reinterpret_borrow<py::sequence>(given);
+    for (std::size_t i = 0; i < count; ++i) {
+      result[i] = to_pose(items[i], (arg + "[" + std::to_string(i) + "]").c_str());
+    }
   } else {
     py::array raw;
     try {
@@ -383,15 +392,17 @@ bool is_single_pose(const py::handle& given) {
 
 std::size_t pose_count(const py::handle& given) {
   if (given.is_none()) return 0;
+  if (is_single_pose(given)) return 1;
   const py::object poses = with_rotation_matrices(given);
-  py::handle leading = poses;
-  if (PyTuple_Check(poses.ptr()) || PyList_Check(poses.ptr())) {
-    const py::sequence parts = py::reinterpret_borrow<py::sequence>(poses);
-    if (parts.size() != 2) return 1;
-    leading = parts[0];
+  std::optional<py::array> leading;
+  if (is_pose_pair(poses)) {
+    leading = real_numbers(py::reinterpret_borrow<py::sequence>(poses)[0]);
+  } else {
+    leading = real_numbers(poses);
   }
-  const py::array array = py::module_::import("numpy").attr("asarray")(leading);
-  return array.ndim() == 3 ? static_cast<std::size_t>(array.shape(0)) : 1;
+  if (leading) return leading->ndim() == 3 ? static_cast<std::size_t>(leading->shape(0)) : 1;
+  if (PyTuple_Check(given.ptr()) || PyList_Check(given.ptr())) return py::len(given);
+  return 1;
 }
 
 Vector3 finite_vector3(const py::handle& vector, const char* name) {

@@ -60,12 +60,13 @@ bool is_rotation(const py::handle& value);
 Pose to_pose(const py::handle& pose, const char* name);
 
 /// Poses for `count` bodies: None (none: every body at the identity), a `(count, 4, 4)` array of
-/// homogeneous rigid transforms (or `(count, 3, 4)`, without their last row), or a pair
-/// `(rotations (count, 3, 3), translations (count, 3))`; for one body also a single `(4, 4)` or
-/// `(3, 4)` transform or `((3, 3), (3,))` pair. TypeError or ValueError naming `name` (and the
-/// offending `name[i]`) for another shape or a last row other than [0, 0, 0, 1]. Whether each
-/// pose is a rigid motion is left to the core (Scene, the batches), which names it alike and
-/// checks it once.
+/// homogeneous rigid transforms (or `(count, 3, 4)`, without their last row), a pair
+/// `(rotations (count, 3, 3), translations (count, 3))`, or a list or tuple of `count` poses that
+/// is not an array of numbers, each read by to_pose as `name[i]`; for one body also a single
+/// `(4, 4)` or `(3, 4)` transform or `((3, 3), (3,))` pair. TypeError or ValueError naming `name`
+/// (and the offending `name[i]`) for another shape or a last row other than [0, 0, 0, 1]. Whether
+/// each pose of an array is a rigid motion is left to the core (Scene, the batches), which names
+/// it alike and checks it once.
 std::vector<Pose> to_poses(const py::handle& poses, std::size_t count, const char* name);
 
 /// True when `poses` is one pose in a form to_pose reads (a `(4, 4)` or `(3, 4)` transform, a
@@ -73,9 +74,10 @@ std::vector<Pose> to_poses(const py::handle& poses, std::size_t count, const cha
 /// rather than poses for several bodies.
 bool is_single_pose(const py::handle& poses);
 
-/// The number of poses an argument of to_poses holds: 0 for None, the leading length of an array
-/// of transforms or of a pair (rotations, translations), a rotation object's length; 1 for
-/// anything else (to_poses then checks it all).
+/// The number of poses an argument of to_poses holds: 0 for None, 1 for a single pose, the
+/// leading length of an array of transforms or of a pair (rotations, translations) (a rotation
+/// object's length), the length of a list or tuple of poses; 1 for anything else (to_poses then
+/// checks it all).
 std::size_t pose_count(const py::handle& poses);
 
 /// A 3-vector of real, finite numbers; TypeError (complex numbers, text, objects) or ValueError

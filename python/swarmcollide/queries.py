@@ -42,8 +42,8 @@ PoseLike = Union[None, npt.ArrayLike, Tuple[Any, npt.ArrayLike], Any]
 PosesLike = Union[None, npt.ArrayLike, Tuple[Any, npt.ArrayLike], Any]
 """None (every body at the identity), an ``(m, 4, 4)`` or ``(m, 3, 4)`` array of rigid
 transforms, or a pair ``(rotations, translations (m, 3))`` whose rotations are an ``(m, 3, 3)``
-array or a SciPy ``Rotation`` of m rotations (alone: no translations). In a batch, a single pose
-(a ``PoseLike``) serves every row."""
+array or a SciPy ``Rotation`` of m rotations (alone: no translations), or a list of m poses
+(each a ``PoseLike``). In a batch, a single pose serves every row."""
 
 BodiesLike = Union[PolyhedronLike, Sequence[PolyhedronLike], npt.ArrayLike]
 """One body for every row (a ``ConvexPolyhedron``, a ``CompoundBody`` or an ``(n, 3)`` NumPy
@@ -415,8 +415,8 @@ def distance_many(
     poses_a, poses_b : array_like, optional
         Where the bodies are: an ``(m, 4, 4)`` or ``(m, 3, 4)`` array of rigid transforms or a
         pair ``(rotations, translations (m, 3))`` whose rotations are an ``(m, 3, 3)`` array or a
-        SciPy ``Rotation`` of m rotations; a single pose (as ``distance`` takes it) serves every
-        row, as a single body does. Results are in world coordinates.
+        SciPy ``Rotation`` of m rotations, or a list of m poses (each as ``distance`` takes it);
+        a single pose serves every row, as a single body does. Results are in world coordinates.
     method, tolerance, seed, **parameters
         As for ``distance``.
 

@@ -113,6 +113,29 @@ def test_batches_and_scenes_take_rotation_stacks_and_3x4_poses():
     assert np.allclose(scene.pose(int(ids[0]))[:3, 3], shifts[0] + 1)
 
 
+def test_a_list_of_poses_in_any_form_places_bodies_one_by_one():
+    turns = Rotation.from_rotvec([[0.3, -0.2, 0.9], [0, 0, 1.5]])
+    shifts = np.array([[3.0, 0, 0], [0, 4, 0]])
+    matrices = np.stack([homogeneous(turns[i], shifts[i]) for i in range(2)])
+    pairs = [(turns[i], shifts[i]) for i in range(2)]
+    expected = sc.distance_many([CUBE] * 2, [CUBE] * 2, poses_b=matrices).distance.tolist()
+    for poses in (pairs, tuple(pairs), [matrices[0], pairs[1]], [pairs[0], matrices[1][:3]]):
+        assert sc.distance_many([CUBE] * 2, [CUBE] * 2, poses_b=poses).distance.tolist() == expected
+        assert sc.distance_many(CUBE, CUBE, poses_b=poses).distance.tolist() == expected
+    assert sc.distance_many(CUBE, CUBE + [4, 0, 0], poses_b=[turns[0], turns[1]]).distance.tolist() \
+        == sc.distance_many(CUBE, CUBE + [4, 0, 0], poses_b=turns).distance.tolist()
+    scene = sc.Scene()
+    ids = scene.add([CUBE] * 2, pairs)
+    assert np.allclose(np.stack([scene.pose(int(i)) for i in ids]), matrices, atol=1e-15)
+    scene.set_poses(ids, [(Rotation.identity(), [0, 0, 0]), (Rotation.identity(), [2, 0, 0])])
+    assert scene.pose(int(ids[1]))[:3, 3].tolist() == [2, 0, 0]
+    compound = sc.CompoundBody([CUBE, CUBE], poses=[(Rotation.identity(), [0, 0, 0]),
+                                                    (Rotation.identity(), [2, 0, 0])])
+    assert compound.aabb().max.tolist() == [3, 1, 1]
+    with pytest.raises(ValueError, match=r"^poses\[1\] is not a rigid motion"):
+        sc.CompoundBody([CUBE, CUBE], poses=[(TURN, SHIFT), (TURN.as_matrix() * 2, SHIFT)])
+
+
 @pytest.mark.parametrize(
     ("pose", "error", "message"),
     [
