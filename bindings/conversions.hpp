@@ -56,7 +56,9 @@ class CompoundArgument {
 bool is_rotation(const py::handle& value);
 
 /// A pose argument: None (the identity), a `(4, 4)` homogeneous rigid transform, or a pair
-/// `(rotation (3, 3), translation (3,))`; TypeError or ValueError naming `name` otherwise.
+/// `(rotation (3, 3), translation (3,))`; TypeError or ValueError naming `name` otherwise. A
+/// rotation given in floats narrower than double (float32, float16) within 1e-5 of a rotation is
+/// taken for the nearest rotation, as to_poses takes it.
 Pose to_pose(const py::handle& pose, const char* name);
 
 /// Poses for `count` bodies: None (none: every body at the identity), a `(count, 4, 4)` array of

@@ -37,13 +37,16 @@ mesh such as a ``trimesh.Trimesh``, which stands for the convex hull of its ``ve
 PoseLike = Union[None, npt.ArrayLike, Tuple[Any, npt.ArrayLike], Any]
 """None (the identity), a ``(4, 4)`` rigid transform or its top ``(3, 4)`` rows, a pair
 ``(rotation, translation)`` whose rotation is a ``(3, 3)`` matrix or a SciPy ``Rotation``, or a
-``Rotation`` alone (no translation). ``pose_from_quaternion`` makes one from a quaternion."""
+``Rotation`` alone (no translation). ``pose_from_quaternion`` makes one from a quaternion. A
+float32 (or float16) rotation is its rounding of a rotation: within 1e-5 of one, it is read as
+the nearest rotation; anything farther (a scaling, a shear) is refused as in float64."""
 
 PosesLike = Union[None, npt.ArrayLike, Tuple[Any, npt.ArrayLike], Any]
 """None (every body at the identity), an ``(m, 4, 4)`` or ``(m, 3, 4)`` array of rigid
 transforms, or a pair ``(rotations, translations (m, 3))`` whose rotations are an ``(m, 3, 3)``
 array or a SciPy ``Rotation`` of m rotations (alone: no translations), or a list of m poses
-(each a ``PoseLike``). In a batch, a single pose serves every row."""
+(each a ``PoseLike``). In a batch, a single pose serves every row. Float32 rotations are read as
+for a ``PoseLike``."""
 
 BodiesLike = Union[PolyhedronLike, Sequence[PolyhedronLike], npt.ArrayLike]
 """One body for every row (a ``ConvexPolyhedron``, a ``CompoundBody`` or an ``(n, 3)`` NumPy

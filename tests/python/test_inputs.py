@@ -136,6 +136,32 @@ def test_a_list_of_poses_in_any_form_places_bodies_one_by_one():
         sc.CompoundBody([CUBE, CUBE], poses=[(TURN, SHIFT), (TURN.as_matrix() * 2, SHIFT)])
 
 
+def test_float32_poses_answer_as_the_rigid_motions_they_round():
+    """A float32 rotation is off its rotation by its rounding (|R^T R - I| near 1e-7, where a pose
+    may be off by 1e-9): it is read as the nearest rotation, and answers as its float64 original."""
+    pose = homogeneous(TURN, SHIFT)
+    narrow = pose.astype(np.float32)
+    expected = sc.distance(CUBE, CUBE, pose_b=pose).distance
+    for given in (narrow, narrow[:3], (narrow[:3, :3], SHIFT)):
+        got = sc.distance(CUBE, CUBE, pose_b=given)
+        assert got.certified and abs(got.distance - expected) <= 1e-6
+    many = np.stack([pose, homogeneous(TURN.inv(), -SHIFT)])
+    rows = sc.distance_many([CUBE] * 2, [CUBE] * 2, poses_b=many.astype(np.float32))
+    assert np.abs(rows.distance - sc.distance_many([CUBE] * 2, [CUBE] * 2, poses_b=many).distance
+                  ).max() <= 1e-6
+    scene = sc.Scene()
+    ids = scene.add([CUBE] * 2, (many[:, :3, :3].astype(np.float32), many[:, :3, 3]))
+    placed = np.stack([scene.pose(int(i)) for i in ids])
+    assert np.abs(placed - many).max() <= 1e-6
+    assert np.abs(placed[0, :3, :3].T @ placed[0, :3, :3] - np.eye(3)).max() <= 1e-15
+    scaled = pose.copy()
+    scaled[:3, :3] *= 1.01
+    with pytest.raises(ValueError, match="^pose_b is not a rigid motion"):
+        sc.distance(CUBE, CUBE, pose_b=scaled.astype(np.float32))
+    with pytest.raises(ValueError, match=r"^poses_b\[1\] is not a rigid motion"):
+        sc.distance_many([CUBE] * 2, [CUBE] * 2, poses_b=np.stack([pose, scaled]).astype(np.float32))
+
+
 @pytest.mark.parametrize(
     ("pose", "error", "message"),
     [
