@@ -38,11 +38,11 @@ std::optional<Stack> as_stack(const py::handle& bodies, const char* name) {
   return stack;
 }
 
-// True when `bodies` is one body for every row: a ConvexPolyhedron, a CompoundBody or an (n, 3)
-// NumPy array (a nested list stays a sequence of bodies).
+// True when `bodies` is one body for every row: a ConvexPolyhedron, a CompoundBody, an (n, 3)
+// NumPy array (a nested list stays a sequence of bodies) or a mesh such as a trimesh.Trimesh.
 bool is_single(const py::handle& bodies) {
   if (py::isinstance<py::array>(bodies)) return bodies.cast<py::array>().ndim() == 2;
-  return py::isinstance<ConvexPolyhedron>(bodies) || is_compound(bodies);
+  return py::isinstance<ConvexPolyhedron>(bodies) || is_compound(bodies) || is_mesh(bodies);
 }
 
 // One side of a batch as the core reads it: the bodies where Python holds them (kept alive here
@@ -270,13 +270,14 @@ The query for every row ``(As[i], Bs[i])``, in C++ threads without the GIL.
 
 Row i is seeded with ``pair_seed(seed, first_index + i)``, so answers do not depend on the
 number of threads or on how a batch is split. ``As`` and ``Bs`` are each a single body used in
-every row (a ConvexPolyhedron, a CompoundBody or an ``(n, 3)`` NumPy array: never copied), a
-sequence of bodies (polyhedra, compound bodies or ``(n, 3)`` arrays), or an ``(m, n, 3)`` array
-(each row's bodies then built and freed by the thread that answers it). ``poses_a`` and
-``poses_b`` place them: None (the identity), an ``(m, 4, 4)`` or ``(m, 3, 4)`` array of rigid
-transforms, a pair ``(rotations (m, 3, 3), translations (m, 3))`` or a list of m poses (each as
-``distance`` takes it); a single pose serves every row, as a single body does. With a single body on both
-sides the poses set the number of rows: "A against B at these m poses" is one call.
+every row (a ConvexPolyhedron, a CompoundBody or an ``(n, 3)`` NumPy array, never copied, or a
+mesh such as a ``trimesh.Trimesh``: its vertices' hull), a sequence of bodies (polyhedra,
+compound bodies or ``(n, 3)`` arrays), or an ``(m, n, 3)`` array (each row's bodies then built
+and freed by the thread that answers it). ``poses_a`` and ``poses_b`` place them: None (the
+identity), an ``(m, 4, 4)`` or ``(m, 3, 4)`` array of rigid transforms, a pair
+``(rotations (m, 3, 3), translations (m, 3))`` or a list of m poses (each as ``distance`` takes
+it); a single pose serves every row, as a single body does. With a single body on both sides the
+poses set the number of rows: "A against B at these m poses" is one call.
 )doc";
 
 }  // namespace

@@ -131,12 +131,14 @@ const char* status_name(MotionStatus status) {
 // its vertices; their convex hull is the body, as for the points of any array. Its faces are not
 // needed: the hull of the vertices is the hull of the mesh. Arrays and sequences are told apart
 // first, so that the usual arguments never pay for the attribute lookup.
+bool is_mesh(const py::handle& body) {
+  return !py::isinstance<py::array>(body) && !PyList_Check(body.ptr()) &&
+         !PyTuple_Check(body.ptr()) && !py::isinstance<ConvexPolyhedron>(body) &&
+         py::hasattr(body, "vertices");
+}
+
 py::object points_of(const py::handle& body) {
-  if (!py::isinstance<py::array>(body) && !PyList_Check(body.ptr()) &&
-      !PyTuple_Check(body.ptr()) && !py::isinstance<ConvexPolyhedron>(body) &&
-      py::hasattr(body, "vertices")) {
-    return body.attr("vertices");
-  }
+  if (is_mesh(body)) return body.attr("vertices");
   return py::reinterpret_borrow<py::object>(body);
 }
 

@@ -101,8 +101,11 @@ std::string to_name(const py::handle& value, const char* name);
 /// another name.
 MotionKind to_motion_kind(const py::handle& motion);
 
-/// `body`'s points when it is a mesh from another library (an object with a `vertices`
-/// attribute, such as trimesh's Trimesh, that is not an array or a sequence); else `body`.
+/// True for a mesh from another library (an object with a `vertices` attribute, such as
+/// trimesh's Trimesh, that is not an array, a sequence or a ConvexPolyhedron).
+bool is_mesh(const py::handle& body);
+
+/// `body`'s points when it is a mesh (is_mesh); else `body`.
 py::object points_of(const py::handle& body);
 
 /// True for a NumPy array of one or more dimensions, which Python's number protocols would turn

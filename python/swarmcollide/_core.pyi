@@ -767,13 +767,14 @@ class Query:
         
         Row i is seeded with ``pair_seed(seed, first_index + i)``, so answers do not depend on the
         number of threads or on how a batch is split. ``As`` and ``Bs`` are each a single body used in
-        every row (a ConvexPolyhedron, a CompoundBody or an ``(n, 3)`` NumPy array: never copied), a
-        sequence of bodies (polyhedra, compound bodies or ``(n, 3)`` arrays), or an ``(m, n, 3)`` array
-        (each row's bodies then built and freed by the thread that answers it). ``poses_a`` and
-        ``poses_b`` place them: None (the identity), an ``(m, 4, 4)`` or ``(m, 3, 4)`` array of rigid
-        transforms, a pair ``(rotations (m, 3, 3), translations (m, 3))`` or a list of m poses (each as
-        ``distance`` takes it); a single pose serves every row, as a single body does. With a single body on both
-        sides the poses set the number of rows: "A against B at these m poses" is one call.
+        every row (a ConvexPolyhedron, a CompoundBody or an ``(n, 3)`` NumPy array, never copied, or a
+        mesh such as a ``trimesh.Trimesh``: its vertices' hull), a sequence of bodies (polyhedra,
+        compound bodies or ``(n, 3)`` arrays), or an ``(m, n, 3)`` array (each row's bodies then built
+        and freed by the thread that answers it). ``poses_a`` and ``poses_b`` place them: None (the
+        identity), an ``(m, 4, 4)`` or ``(m, 3, 4)`` array of rigid transforms, a pair
+        ``(rotations (m, 3, 3), translations (m, 3))`` or a list of m poses (each as ``distance`` takes
+        it); a single pose serves every row, as a single body does. With a single body on both sides the
+        poses set the number of rows: "A against B at these m poses" is one call.
         """
     def collision(self, a: typing.Any, b: typing.Any, pose_a: typing.Any = None, pose_b: typing.Any = None, escalate: bool = True) -> swarmcollide._core.DistanceResult | swarmcollide._core.CompoundResult:
         ...
@@ -785,13 +786,14 @@ class Query:
         
         Row i is seeded with ``pair_seed(seed, first_index + i)``, so answers do not depend on the
         number of threads or on how a batch is split. ``As`` and ``Bs`` are each a single body used in
-        every row (a ConvexPolyhedron, a CompoundBody or an ``(n, 3)`` NumPy array: never copied), a
-        sequence of bodies (polyhedra, compound bodies or ``(n, 3)`` arrays), or an ``(m, n, 3)`` array
-        (each row's bodies then built and freed by the thread that answers it). ``poses_a`` and
-        ``poses_b`` place them: None (the identity), an ``(m, 4, 4)`` or ``(m, 3, 4)`` array of rigid
-        transforms, a pair ``(rotations (m, 3, 3), translations (m, 3))`` or a list of m poses (each as
-        ``distance`` takes it); a single pose serves every row, as a single body does. With a single body on both
-        sides the poses set the number of rows: "A against B at these m poses" is one call.
+        every row (a ConvexPolyhedron, a CompoundBody or an ``(n, 3)`` NumPy array, never copied, or a
+        mesh such as a ``trimesh.Trimesh``: its vertices' hull), a sequence of bodies (polyhedra,
+        compound bodies or ``(n, 3)`` arrays), or an ``(m, n, 3)`` array (each row's bodies then built
+        and freed by the thread that answers it). ``poses_a`` and ``poses_b`` place them: None (the
+        identity), an ``(m, 4, 4)`` or ``(m, 3, 4)`` array of rigid transforms, a pair
+        ``(rotations (m, 3, 3), translations (m, 3))`` or a list of m poses (each as ``distance`` takes
+        it); a single pose serves every row, as a single body does. With a single body on both sides the
+        poses set the number of rows: "A against B at these m poses" is one call.
         """
     def signed_distance(self, a: typing.Any, b: typing.Any, pose_a: typing.Any = None, pose_b: typing.Any = None) -> swarmcollide._core.DistanceResult | swarmcollide._core.CompoundResult:
         ...
@@ -801,13 +803,14 @@ class Query:
         
         Row i is seeded with ``pair_seed(seed, first_index + i)``, so answers do not depend on the
         number of threads or on how a batch is split. ``As`` and ``Bs`` are each a single body used in
-        every row (a ConvexPolyhedron, a CompoundBody or an ``(n, 3)`` NumPy array: never copied), a
-        sequence of bodies (polyhedra, compound bodies or ``(n, 3)`` arrays), or an ``(m, n, 3)`` array
-        (each row's bodies then built and freed by the thread that answers it). ``poses_a`` and
-        ``poses_b`` place them: None (the identity), an ``(m, 4, 4)`` or ``(m, 3, 4)`` array of rigid
-        transforms, a pair ``(rotations (m, 3, 3), translations (m, 3))`` or a list of m poses (each as
-        ``distance`` takes it); a single pose serves every row, as a single body does. With a single body on both
-        sides the poses set the number of rows: "A against B at these m poses" is one call.
+        every row (a ConvexPolyhedron, a CompoundBody or an ``(n, 3)`` NumPy array, never copied, or a
+        mesh such as a ``trimesh.Trimesh``: its vertices' hull), a sequence of bodies (polyhedra,
+        compound bodies or ``(n, 3)`` arrays), or an ``(m, n, 3)`` array (each row's bodies then built
+        and freed by the thread that answers it). ``poses_a`` and ``poses_b`` place them: None (the
+        identity), an ``(m, 4, 4)`` or ``(m, 3, 4)`` array of rigid transforms, a pair
+        ``(rotations (m, 3, 3), translations (m, 3))`` or a list of m poses (each as ``distance`` takes
+        it); a single pose serves every row, as a single body does. With a single body on both sides the
+        poses set the number of rows: "A against B at these m poses" is one call.
         """
     @property
     def method(self) -> str:

@@ -49,9 +49,9 @@ array or a SciPy ``Rotation`` of m rotations (alone: no translations), or a list
 for a ``PoseLike``."""
 
 BodiesLike = Union[PolyhedronLike, Sequence[PolyhedronLike], npt.ArrayLike]
-"""One body for every row (a ``ConvexPolyhedron``, a ``CompoundBody`` or an ``(n, 3)`` NumPy
-array), a sequence of polyhedra (or of ``(n, 3)`` point arrays, or of compound bodies), or an
-``(m, n, 3)`` array."""
+"""One body for every row (a ``ConvexPolyhedron``, a ``CompoundBody``, an ``(n, 3)`` NumPy array
+or a mesh such as a ``trimesh.Trimesh``), a sequence of polyhedra (or of ``(n, 3)`` point arrays,
+or of compound bodies), or an ``(m, n, 3)`` array."""
 
 DEFAULT_TOLERANCE = 1e-9
 """The default ``tolerance``, relative to the pair's size."""
@@ -404,8 +404,8 @@ def distance_many(
     Parameters
     ----------
     As, Bs : body, sequence of bodies, or array_like of shape (m, n, 3)
-        The bodies, row by row. A single body (a ConvexPolyhedron, a CompoundBody or an
-        ``(n, 3)`` NumPy array) is used in every row; with single bodies on both sides the poses
+        The bodies, row by row. A single body (a ConvexPolyhedron, a CompoundBody, an ``(n, 3)``
+        NumPy array or a mesh) is used in every row; with single bodies on both sides the poses
         set the number of rows (one without poses). ``(m, n, 3)`` arrays are built into bodies
         row by row on the threads.
     threads : int, optional

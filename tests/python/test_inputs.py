@@ -65,6 +65,19 @@ def test_a_trimesh_mesh_builds_polyhedra_compound_bodies_scenes_and_batches():
     assert len(found) == 3
 
 
+def test_a_single_mesh_serves_every_row_of_a_batch():
+    mesh, ball = box_mesh(), trimesh.creation.icosphere(radius=0.5)
+    poses = np.tile(np.eye(4), (3, 1, 1))
+    poses[:, 0, 3] = [2, 3, 4]
+    expected = sc.distance_many(CUBE, ball.vertices, poses_b=poses)
+    assert sc.distance_many(mesh, ball, poses_b=poses).distance.tolist() \
+        == expected.distance.tolist()
+    assert sc.collide_many(mesh, [ball] * 3, poses_b=poses).colliding.tolist() == [False] * 3
+    compound = sc.CompoundBody([CUBE])
+    assert sc.distance_many(compound, ball, poses_b=poses).distance.tolist() \
+        == expected.distance.tolist()
+
+
 def test_a_mesh_that_is_not_three_dimensional_points_is_refused_naming_the_argument():
     class Drawing:  # what trimesh's Path2D looks like to the queries: 2-D vertices
         vertices = np.zeros((4, 2))
