@@ -38,11 +38,11 @@ std::optional<Stack> as_stack(const py::handle& bodies, const char* name) {
   return stack;
 }
 
-// True when `bodies` is one body for every row: a ConvexPolyhedron, a CompoundBody or an (n, 3)
-// NumPy array (a nested list stays a sequence of bodies).
+// True when `bodies` is one body for every row: a ConvexPolyhedron, a CompoundBody, an (n, 3)
+// NumPy array (a nested list stays a sequence of bodies) or a mesh such as a trimesh.Trimesh.
 bool is_single(const py::handle& bodies) {
   if (py::isinstance<py::array>(bodies)) return bodies.cast<py::array>().ndim() == 2;
-  return py::isinstance<ConvexPolyhedron>(bodies) || is_compound(bodies);
+  return py::isinstance<ConvexPolyhedron>(bodies) || is_compound(bodies) || is_mesh(bodies);
 }
 
 // One side of a batch as the core reads it: the bodies where Python holds them (kept alive here
@@ -105,20 +105,6 @@ BatchSettings settings_of(const py::object& threads, const py::object& first_ind
   }
   settings.first_index = py::int_(first_index).cast<std::uint64_t>();
   return settings;
-}
-
-// The number of poses an argument holds when it is an array of them (or a pair of arrays of
-// rotations and translations), 1 otherwise (to_poses then checks it all).
-std::size_t pose_count(const py::handle& poses) {
-  if (poses.is_none()) return 0;
-  py::handle leading = poses;
-  if (py::isinstance<py::tuple>(poses) || py::isinstance<py::list>(poses)) {
-    const py::sequence parts = py::reinterpret_borrow<py::sequence>(poses);
-    if (parts.size() != 2) return 1;
-    leading = parts[0];
-  }
-  const py::array array = py::module_::import("numpy").attr("asarray")(leading);
-  return array.ndim() == 3 ? static_cast<std::size_t>(array.shape(0)) : 1;
 }
 
 // The rows of a batch whose sides hold `count_a` and `count_b` bodies (0 for a single body): the
@@ -189,19 +175,39 @@ std::optional<PoseArray> pose_array(const py::handle& given, std::size_t count,
   return std::nullopt;
 }
 
+// A single pose for all `count` rows, as a single body serves every row: stored once (held in
+// `keep`) and read by every row, its strides zero.
+PoseArray every_row(const py::handle& given, std::size_t count, const char* name,
+                    std::vector<py::object>& keep) {
+  const Pose pose = to_pose(given, name);
+  py::array_t<Scalar> stored(12);
+  Scalar* const data = stored.mutable_data();
+  Eigen::Map<Eigen::Matrix<Scalar, 3, 3, Eigen::RowMajor>> rotation(data);
+  Eigen::Map<Vector3> translation(data + 9);
+  rotation = pose.rotation;
+  translation = pose.translation;
+  keep.push_back(stored);
+  return PoseArray{data, data + 9, count, 0, 3, 0, 1};
+}
+
+// One side's poses for `count` rows: into `array` when read in place or given once for every
+// row, else converted into `list`.
+void read_poses(const py::object& given, std::size_t count, const char* name,
+                std::vector<py::object>& keep, PoseArray& array, std::vector<Pose>& list) {
+  if (const auto in_place = pose_array(given, count, keep)) {
+    array = *in_place;
+  } else if (count != 1 && is_single_pose(given)) {
+    array = every_row(given, count, name, keep);
+  } else {
+    list = to_poses(given, count, name);
+  }
+}
+
 BatchPoses poses_of(const py::object& poses_a, const py::object& poses_b, std::size_t count,
                     std::vector<py::object>& keep) {
   BatchPoses poses;
-  if (const auto array = pose_array(poses_a, count, keep)) {
-    poses.array_a = *array;
-  } else {
-    poses.a = to_poses(poses_a, count, "poses_a");
-  }
-  if (const auto array = pose_array(poses_b, count, keep)) {
-    poses.array_b = *array;
-  } else {
-    poses.b = to_poses(poses_b, count, "poses_b");
-  }
+  read_poses(poses_a, count, "poses_a", keep, poses.array_a, poses.a);
+  read_poses(poses_b, count, "poses_b", keep, poses.array_b, poses.b);
   return poses;
 }
 
@@ -264,12 +270,14 @@ The query for every row ``(As[i], Bs[i])``, in C++ threads without the GIL.
 
 Row i is seeded with ``pair_seed(seed, first_index + i)``, so answers do not depend on the
 number of threads or on how a batch is split. ``As`` and ``Bs`` are each a single body used in
-every row (a ConvexPolyhedron, a CompoundBody or an ``(n, 3)`` NumPy array: never copied), a
-sequence of bodies (polyhedra, compound bodies or ``(n, 3)`` arrays), or an ``(m, n, 3)`` array
-(each row's bodies then built and freed by the thread that answers it). ``poses_a`` and
-``poses_b`` place them: None (the identity), an ``(m, 4, 4)`` or ``(m, 3, 4)`` array of rigid
-transforms or a pair ``(rotations (m, 3, 3), translations (m, 3))``. With a single body on both
-sides the poses set the number of rows: "A against B at these m poses" is one call.
+every row (a ConvexPolyhedron, a CompoundBody or an ``(n, 3)`` NumPy array, never copied, or a
+mesh such as a ``trimesh.Trimesh``: its vertices' hull), a sequence of bodies (polyhedra,
+compound bodies or ``(n, 3)`` arrays), or an ``(m, n, 3)`` array (each row's bodies then built
+and freed by the thread that answers it). ``poses_a`` and ``poses_b`` place them: None (the
+identity), an ``(m, 4, 4)`` or ``(m, 3, 4)`` array of rigid transforms, a pair
+``(rotations (m, 3, 3), translations (m, 3))`` or a list of m poses (each as ``distance`` takes
+it); a single pose serves every row, as a single body does. With a single body on both sides the
+poses set the number of rows: "A against B at these m poses" is one call.
 )doc";
 
 }  // namespace

@@ -152,8 +152,9 @@ Parameters
 parts : sequence of ConvexPolyhedron or array_like of shape (n, 3)
     At least one convex part (or the points whose hull it is).
 poses : array_like of shape (len(parts), 4, 4), optional
-    Where each part sits in the body's frame (as ``Scene`` takes poses: also ``(n, 3, 4)`` or a
-    pair ``(rotations, translations)``): part ``i``'s points ``x`` are at ``R_i x + t_i``. None
+    Where each part sits in the body's frame (as ``Scene`` takes poses: also ``(n, 3, 4)``, a
+    pair ``(rotations, translations)`` or a list of poses such as ``(Rotation, translation)``
+    pairs): part ``i``'s points ``x`` are at ``R_i x + t_i``. None
     (default): every part is given in the body's frame. A curved part (Cylinder, Cone, Ellipsoid)
     keeps its exact support function under its pose; a polyhedron's points are moved.
 

@@ -51,10 +51,10 @@ bool is_one_pose(const py::sequence& given) {
     const py::array array = py::reinterpret_borrow<py::array>(first);
     return array.ndim() == 2 && array.shape(0) == 3 && array.shape(1) == 3;
   }
-  if (!py::isinstance<py::sequence>(first) || py::isinstance<py::str>(first)) {
-    // A SciPy Rotation and its translation; two Rotations are a start and an end.
-    return py::hasattr(first, "as_matrix") && !py::hasattr(given[1], "as_matrix");
-  }
+  // Told apart before the sequences: a SciPy Rotation has a length and items, so Python counts
+  // it as one. A Rotation and its translation are one pose; two Rotations a start and an end.
+  if (is_rotation(first)) return !is_rotation(given[1]);
+  if (!py::isinstance<py::sequence>(first) || py::isinstance<py::str>(first)) return false;
   try {
     const py::array array = py::module_::import("numpy").attr("asarray")(first);
     return array.ndim() == 2 && array.shape(0) == 3 && array.shape(1) == 3;

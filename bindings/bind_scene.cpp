@@ -449,8 +449,9 @@ A compound body is boxed and first screened by its envelope (the hull of its par
 envelopes do not settle are answered by the compound queries (branch and bound over the parts,
 certified for them), and its contacts are found between the deepest pair of parts.
 
-``poses`` is None (the identity), an ``(m, 4, 4)`` array of rigid transforms or a pair
-``(rotations (m, 3, 3), translations (m, 3))``; one body also takes a single ``(4, 4)`` transform.
+``poses`` is None (the identity), an ``(m, 4, 4)`` array of rigid transforms, a pair
+``(rotations (m, 3, 3), translations (m, 3))`` or a list of m poses (each as ``distance`` takes
+it); one body also takes a single ``(4, 4)`` transform.
 Bodies A and B are paired when ``A.group & B.mask`` and ``B.group & A.mask`` are both nonzero.
 )doc")
       .def(

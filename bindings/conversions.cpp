@@ -1,5 +1,6 @@
 #include "conversions.hpp"
 
+#include <cmath>
 #include <initializer_list>
 #include <limits>
 #include <optional>
@@ -10,6 +11,11 @@
 #include "swarmcollide/queries/batch.hpp"
 
 namespace swarmcollide::bindings {
+
+bool is_rotation(const py::handle& value) {
+  return !py::isinstance<py::array>(value) && !PyList_Check(value.ptr()) &&
+         !PyTuple_Check(value.ptr()) && py::hasattr(value, "as_matrix");
+}
 
 namespace {
 
@@ -52,19 +58,30 @@ py::array_t<Scalar, py::array::c_style | py::array::forcecast> real_array(
   return py::array_t<Scalar, py::array::c_style | py::array::forcecast>::ensure(array);
 }
 
+// `value` as a NumPy array of real numbers; nothing for anything else (text, a ragged sequence,
+// objects).
+std::optional<py::array> real_numbers(const py::handle& value) {
+  if (py::isinstance<py::str>(value) || py::isinstance<py::bytes>(value)) return std::nullopt;
+  py::array array;
+  try {
+    array = py::module_::import("numpy").attr("asarray")(value);
+  } catch (py::error_already_set&) {
+    return std::nullopt;
+  }
+  const char kind = array.dtype().kind();
+  if (kind != 'f' && kind != 'i' && kind != 'u') return std::nullopt;
+  return array;
+}
+
 // A tuple or list of `length` items.
 bool is_sequence_of(const py::handle& value, std::size_t length) {
   return (PyTuple_Check(value.ptr()) || PyList_Check(value.ptr())) &&
          static_cast<std::size_t>(PyObject_Length(value.ptr())) == length;
 }
 
-// A rotation object from another library (SciPy's Rotation: anything with an `as_matrix()`
-// method that is not itself an array or a sequence), or nothing.
+// The matrices of a rotation object (is_rotation), or nothing.
 std::optional<py::object> rotation_matrices(const py::handle& rotation) {
-  if (py::isinstance<py::array>(rotation) || PyList_Check(rotation.ptr()) ||
-      PyTuple_Check(rotation.ptr()) || !py::hasattr(rotation, "as_matrix")) {
-    return std::nullopt;
-  }
+  if (!is_rotation(rotation)) return std::nullopt;
   return rotation.attr("as_matrix")();
 }
 
@@ -82,6 +99,8 @@ py::object with_rotation_matrices(const py::handle& pose) {
   }
   if (is_sequence_of(pose, 2)) {
     const py::sequence parts = py::reinterpret_borrow<py::sequence>(pose);
+    // Two rotation objects are two poses, not a rotation and its translation.
+    if (is_rotation(parts[1])) return py::reinterpret_borrow<py::object>(pose);
     if (const auto matrices = rotation_matrices(parts[0])) {
       return py::make_tuple(*matrices, parts[1]);
     }
@@ -112,12 +131,14 @@ const char* status_name(MotionStatus status) {
 // its vertices; their convex hull is the body, as for the points of any array. Its faces are not
 // needed: the hull of the vertices is the hull of the mesh. Arrays and sequences are told apart
 // first, so that the usual arguments never pay for the attribute lookup.
+bool is_mesh(const py::handle& body) {
+  return !py::isinstance<py::array>(body) && !PyList_Check(body.ptr()) &&
+         !PyTuple_Check(body.ptr()) && !py::isinstance<ConvexPolyhedron>(body) &&
+         py::hasattr(body, "vertices");
+}
+
 py::object points_of(const py::handle& body) {
-  if (!py::isinstance<py::array>(body) && !PyList_Check(body.ptr()) &&
-      !PyTuple_Check(body.ptr()) && !py::isinstance<ConvexPolyhedron>(body) &&
-      py::hasattr(body, "vertices")) {
-    return body.attr("vertices");
-  }
+  if (is_mesh(body)) return body.attr("vertices");
   return py::reinterpret_borrow<py::object>(body);
 }
 
@@ -195,6 +216,36 @@ Pose from_rows(const Scalar* data, py::ssize_t rows, const Name& at) {
   return pose;
 }
 
+// How far from a rotation (|R^T R - I| and |det R - 1|) a rotation read from floats narrower
+// than double may be and still stand for the nearest rotation: float32 rounds a rotation's
+// entries by up to 6e-8, leaving |R^T R - I| near 1e-7, far beyond the 1e-9 a pose may be off.
+constexpr Scalar kNarrowRotationTolerance = 1e-5;
+
+// True when `value` holds floats narrower than double (float32, float16).
+bool holds_narrow_floats(const py::handle& value) {
+  const py::array array = py::module_::import("numpy").attr("asarray")(value);
+  return array.dtype().kind() == 'f' &&
+         array.dtype().itemsize() < static_cast<py::ssize_t>(sizeof(Scalar));
+}
+
+// A rotation read from narrow floats as the rotation it is a rounding of: within
+// kNarrowRotationTolerance of one, the nearest rotation, which two Newton-Schulz steps
+// R <- R (3I - R^T R) / 2 reach to double precision (each squares the error); anything farther
+// (a scaling, a shear) unchanged, for validate_pose to refuse with its usual message.
+Matrix3 rounded_rotation(const Matrix3& rotation) {
+  const Scalar orthogonality =
+      (rotation.transpose() * rotation - Matrix3::Identity()).cwiseAbs().maxCoeff();
+  if (!(orthogonality <= kNarrowRotationTolerance) ||
+      !(std::abs(rotation.determinant() - 1) <= kNarrowRotationTolerance)) {
+    return rotation;
+  }
+  Matrix3 nearest = rotation;
+  for (int step = 0; step < 2; ++step) {
+    nearest = nearest * (3 * Matrix3::Identity() - nearest.transpose() * nearest) / 2;
+  }
+  return nearest;
+}
+
 }  // namespace
 
 namespace {
@@ -264,6 +315,7 @@ Pose to_pose(const py::handle& given, const char* name) {
         real_array(parts[1], {3}, arg + "'s translation", "a (3,) translation");
     result.rotation = Eigen::Map<const RowMatrix3>(rotation.data());
     result.translation = Eigen::Map<const Vector3>(translation.data());
+    if (holds_narrow_floats(parts[0])) result.rotation = rounded_rotation(result.rotation);
   } else {
     // A sequence of 3 or 4 rows is a transform written as lists; no other length can be one.
     if ((PyTuple_Check(pose.ptr()) || PyList_Check(pose.ptr())) && !is_sequence_of(pose, 3) &&
@@ -276,6 +328,7 @@ Pose to_pose(const py::handle& given, const char* name) {
       throw py::value_error(arg + " must be " + forms + ", got shape " + shape_of(matrix));
     }
     result = from_rows(matrix.data(), matrix.shape(0), [&arg] { return arg; });
+    if (holds_narrow_floats(pose)) result.rotation = rounded_rotation(result.rotation);
   }
   try {
     validate_pose(result, name);
@@ -327,9 +380,18 @@ std::vector<Pose> to_poses(const py::handle& given, std::size_t count, const cha
     const auto translations =
         single ? real_array(parts[1], {3}, arg + "'s translation", "a (3,) translation")
                : real_array(parts[1], {n, 3}, arg + "'s translations", shapes);
+    const bool narrow = holds_narrow_floats(parts[0]);
     for (std::size_t i = 0; i < count; ++i) {
       result[i].rotation = Eigen::Map<const RowMatrix3>(rotations.data() + 9 * i);
       result[i].translation = Eigen::Map<const Vector3>(translations.data() + 3 * i);
+      if (narrow) result[i].rotation = rounded_rotation(result[i].rotation);
+    }
+  } else if (is_sequence_of(given, count) && !real_numbers(poses)) {
+    // A pose per body, each in any form to_pose reads: (Rotation, translation) pairs, Rotations,
+    // transforms of both shapes mixed.
+    const py::sequence items = py::reinterpret_borrow<py::sequence>(given);
+    for (std::size_t i = 0; i < count; ++i) {
+      result[i] = to_pose(items[i], (arg + "[" + std::to_string(i) + "]").c_str());
     }
   } else {
     py::array raw;
@@ -345,12 +407,41 @@ std::vector<Pose> to_poses(const py::handle& given, std::size_t count, const cha
     if (rows != 3 && rows != 4) {
       throw py::value_error(arg + " must be " + shapes + ", got shape " + shape_of(matrices));
     }
+    const bool narrow = holds_narrow_floats(poses);
     for (std::size_t i = 0; i < count; ++i) {
       result[i] = from_rows(matrices.data() + rows * 4 * i, rows,
                             [&arg, i] { return arg + "[" + std::to_string(i) + "]"; });
+      if (narrow) result[i].rotation = rounded_rotation(result[i].rotation);
     }
   }
   return result;
+}
+
+bool is_single_pose(const py::handle& given) {
+  if (given.is_none()) return false;
+  const py::object pose = with_rotation_matrices(given);
+  if (const auto transform = real_numbers(pose)) {
+    return transform->ndim() == 2 && (transform->shape(0) == 3 || transform->shape(0) == 4) &&
+           transform->shape(1) == 4;
+  }
+  if (!is_sequence_of(pose, 2)) return false;
+  const auto rotation = real_numbers(py::reinterpret_borrow<py::sequence>(pose)[0]);
+  return rotation && rotation->ndim() == 2 && rotation->shape(0) == 3 && rotation->shape(1) == 3;
+}
+
+std::size_t pose_count(const py::handle& given) {
+  if (given.is_none()) return 0;
+  if (is_single_pose(given)) return 1;
+  const py::object poses = with_rotation_matrices(given);
+  std::optional<py::array> leading;
+  if (is_pose_pair(poses)) {
+    leading = real_numbers(py::reinterpret_borrow<py::sequence>(poses)[0]);
+  } else {
+    leading = real_numbers(poses);
+  }
+  if (leading) return leading->ndim() == 3 ? static_cast<std::size_t>(leading->shape(0)) : 1;
+  if (PyTuple_Check(given.ptr()) || PyList_Check(given.ptr())) return py::len(given);
+  return 1;
 }
 
 Vector3 finite_vector3(const py::handle& vector, const char* name) {

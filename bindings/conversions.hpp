@@ -51,18 +51,36 @@ class CompoundArgument {
   const CompoundBody* body_;
 };
 
+/// True for a rotation object from another library (SciPy's Rotation: anything with an
+/// `as_matrix()` method that is not itself an array, a list or a tuple).
+bool is_rotation(const py::handle& value);
+
 /// A pose argument: None (the identity), a `(4, 4)` homogeneous rigid transform, or a pair
-/// `(rotation (3, 3), translation (3,))`; TypeError or ValueError naming `name` otherwise.
+/// `(rotation (3, 3), translation (3,))`; TypeError or ValueError naming `name` otherwise. A
+/// rotation given in floats narrower than double (float32, float16) within 1e-5 of a rotation is
+/// taken for the nearest rotation, as to_poses takes it.
 Pose to_pose(const py::handle& pose, const char* name);
 
 /// Poses for `count` bodies: None (none: every body at the identity), a `(count, 4, 4)` array of
-/// homogeneous rigid transforms (or `(count, 3, 4)`, without their last row), or a pair
-/// `(rotations (count, 3, 3), translations (count, 3))`; for one body also a single `(4, 4)` or
-/// `(3, 4)` transform or `((3, 3), (3,))` pair. TypeError or ValueError naming `name` (and the
-/// offending `name[i]`) for another shape or a last row other than [0, 0, 0, 1]. Whether each
-/// pose is a rigid motion is left to the core (Scene, the batches), which names it alike and
-/// checks it once.
+/// homogeneous rigid transforms (or `(count, 3, 4)`, without their last row), a pair
+/// `(rotations (count, 3, 3), translations (count, 3))`, or a list or tuple of `count` poses that
+/// is not an array of numbers, each read by to_pose as `name[i]`; for one body also a single
+/// `(4, 4)` or `(3, 4)` transform or `((3, 3), (3,))` pair. TypeError or ValueError naming `name`
+/// (and the offending `name[i]`) for another shape or a last row other than [0, 0, 0, 1]. Whether
+/// each pose of an array is a rigid motion is left to the core (Scene, the batches), which names
+/// it alike and checks it once.
 std::vector<Pose> to_poses(const py::handle& poses, std::size_t count, const char* name);
+
+/// True when `poses` is one pose in a form to_pose reads (a `(4, 4)` or `(3, 4)` transform, a
+/// pair whose rotation is a `(3, 3)` matrix or a rotation object, or a rotation object alone)
+/// rather than poses for several bodies.
+bool is_single_pose(const py::handle& poses);
+
+/// The number of poses an argument of to_poses holds: 0 for None, 1 for a single pose, the
+/// leading length of an array of transforms or of a pair (rotations, translations) (a rotation
+/// object's length), the length of a list or tuple of poses; 1 for anything else (to_poses then
+/// checks it all).
+std::size_t pose_count(const py::handle& poses);
 
 /// A 3-vector of real, finite numbers; TypeError (complex numbers, text, objects) or ValueError
 /// (a shape other than (3,), NaN or infinity) naming `name` otherwise.
@@ -83,8 +101,11 @@ std::string to_name(const py::handle& value, const char* name);
 /// another name.
 MotionKind to_motion_kind(const py::handle& motion);
 
-/// `body`'s points when it is a mesh from another library (an object with a `vertices`
-/// attribute, such as trimesh's Trimesh, that is not an array or a sequence); else `body`.
+/// True for a mesh from another library (an object with a `vertices` attribute, such as
+/// trimesh's Trimesh, that is not an array, a sequence or a ConvexPolyhedron).
+bool is_mesh(const py::handle& body);
+
+/// `body`'s points when it is a mesh (is_mesh); else `body`.
 py::object points_of(const py::handle& body);
 
 /// True for a NumPy array of one or more dimensions, which Python's number protocols would turn

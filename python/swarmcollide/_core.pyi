@@ -153,8 +153,9 @@ class CompoundBody:
     parts : sequence of ConvexPolyhedron or array_like of shape (n, 3)
         At least one convex part (or the points whose hull it is).
     poses : array_like of shape (len(parts), 4, 4), optional
-        Where each part sits in the body's frame (as ``Scene`` takes poses: also ``(n, 3, 4)`` or a
-        pair ``(rotations, translations)``): part ``i``'s points ``x`` are at ``R_i x + t_i``. None
+        Where each part sits in the body's frame (as ``Scene`` takes poses: also ``(n, 3, 4)``, a
+        pair ``(rotations, translations)`` or a list of poses such as ``(Rotation, translation)``
+        pairs): part ``i``'s points ``x`` are at ``R_i x + t_i``. None
         (default): every part is given in the body's frame. A curved part (Cylinder, Cone, Ellipsoid)
         keeps its exact support function under its pose; a polyhedron's points are moved.
     
@@ -766,12 +767,14 @@ class Query:
         
         Row i is seeded with ``pair_seed(seed, first_index + i)``, so answers do not depend on the
         number of threads or on how a batch is split. ``As`` and ``Bs`` are each a single body used in
-        every row (a ConvexPolyhedron, a CompoundBody or an ``(n, 3)`` NumPy array: never copied), a
-        sequence of bodies (polyhedra, compound bodies or ``(n, 3)`` arrays), or an ``(m, n, 3)`` array
-        (each row's bodies then built and freed by the thread that answers it). ``poses_a`` and
-        ``poses_b`` place them: None (the identity), an ``(m, 4, 4)`` or ``(m, 3, 4)`` array of rigid
-        transforms or a pair ``(rotations (m, 3, 3), translations (m, 3))``. With a single body on both
-        sides the poses set the number of rows: "A against B at these m poses" is one call.
+        every row (a ConvexPolyhedron, a CompoundBody or an ``(n, 3)`` NumPy array, never copied, or a
+        mesh such as a ``trimesh.Trimesh``: its vertices' hull), a sequence of bodies (polyhedra,
+        compound bodies or ``(n, 3)`` arrays), or an ``(m, n, 3)`` array (each row's bodies then built
+        and freed by the thread that answers it). ``poses_a`` and ``poses_b`` place them: None (the
+        identity), an ``(m, 4, 4)`` or ``(m, 3, 4)`` array of rigid transforms, a pair
+        ``(rotations (m, 3, 3), translations (m, 3))`` or a list of m poses (each as ``distance`` takes
+        it); a single pose serves every row, as a single body does. With a single body on both sides the
+        poses set the number of rows: "A against B at these m poses" is one call.
         """
     def collision(self, a: typing.Any, b: typing.Any, pose_a: typing.Any = None, pose_b: typing.Any = None, escalate: bool = True) -> swarmcollide._core.DistanceResult | swarmcollide._core.CompoundResult:
         ...
@@ -783,12 +786,14 @@ class Query:
         
         Row i is seeded with ``pair_seed(seed, first_index + i)``, so answers do not depend on the
         number of threads or on how a batch is split. ``As`` and ``Bs`` are each a single body used in
-        every row (a ConvexPolyhedron, a CompoundBody or an ``(n, 3)`` NumPy array: never copied), a
-        sequence of bodies (polyhedra, compound bodies or ``(n, 3)`` arrays), or an ``(m, n, 3)`` array
-        (each row's bodies then built and freed by the thread that answers it). ``poses_a`` and
-        ``poses_b`` place them: None (the identity), an ``(m, 4, 4)`` or ``(m, 3, 4)`` array of rigid
-        transforms or a pair ``(rotations (m, 3, 3), translations (m, 3))``. With a single body on both
-        sides the poses set the number of rows: "A against B at these m poses" is one call.
+        every row (a ConvexPolyhedron, a CompoundBody or an ``(n, 3)`` NumPy array, never copied, or a
+        mesh such as a ``trimesh.Trimesh``: its vertices' hull), a sequence of bodies (polyhedra,
+        compound bodies or ``(n, 3)`` arrays), or an ``(m, n, 3)`` array (each row's bodies then built
+        and freed by the thread that answers it). ``poses_a`` and ``poses_b`` place them: None (the
+        identity), an ``(m, 4, 4)`` or ``(m, 3, 4)`` array of rigid transforms, a pair
+        ``(rotations (m, 3, 3), translations (m, 3))`` or a list of m poses (each as ``distance`` takes
+        it); a single pose serves every row, as a single body does. With a single body on both sides the
+        poses set the number of rows: "A against B at these m poses" is one call.
         """
     def signed_distance(self, a: typing.Any, b: typing.Any, pose_a: typing.Any = None, pose_b: typing.Any = None) -> swarmcollide._core.DistanceResult | swarmcollide._core.CompoundResult:
         ...
@@ -798,12 +803,14 @@ class Query:
         
         Row i is seeded with ``pair_seed(seed, first_index + i)``, so answers do not depend on the
         number of threads or on how a batch is split. ``As`` and ``Bs`` are each a single body used in
-        every row (a ConvexPolyhedron, a CompoundBody or an ``(n, 3)`` NumPy array: never copied), a
-        sequence of bodies (polyhedra, compound bodies or ``(n, 3)`` arrays), or an ``(m, n, 3)`` array
-        (each row's bodies then built and freed by the thread that answers it). ``poses_a`` and
-        ``poses_b`` place them: None (the identity), an ``(m, 4, 4)`` or ``(m, 3, 4)`` array of rigid
-        transforms or a pair ``(rotations (m, 3, 3), translations (m, 3))``. With a single body on both
-        sides the poses set the number of rows: "A against B at these m poses" is one call.
+        every row (a ConvexPolyhedron, a CompoundBody or an ``(n, 3)`` NumPy array, never copied, or a
+        mesh such as a ``trimesh.Trimesh``: its vertices' hull), a sequence of bodies (polyhedra,
+        compound bodies or ``(n, 3)`` arrays), or an ``(m, n, 3)`` array (each row's bodies then built
+        and freed by the thread that answers it). ``poses_a`` and ``poses_b`` place them: None (the
+        identity), an ``(m, 4, 4)`` or ``(m, 3, 4)`` array of rigid transforms, a pair
+        ``(rotations (m, 3, 3), translations (m, 3))`` or a list of m poses (each as ``distance`` takes
+        it); a single pose serves every row, as a single body does. With a single body on both sides the
+        poses set the number of rows: "A against B at these m poses" is one call.
         """
     @property
     def method(self) -> str:
@@ -1060,8 +1067,9 @@ class Scene:
         envelopes do not settle are answered by the compound queries (branch and bound over the parts,
         certified for them), and its contacts are found between the deepest pair of parts.
         
-        ``poses`` is None (the identity), an ``(m, 4, 4)`` array of rigid transforms or a pair
-        ``(rotations (m, 3, 3), translations (m, 3))``; one body also takes a single ``(4, 4)`` transform.
+        ``poses`` is None (the identity), an ``(m, 4, 4)`` array of rigid transforms, a pair
+        ``(rotations (m, 3, 3), translations (m, 3))`` or a list of m poses (each as ``distance`` takes
+        it); one body also takes a single ``(4, 4)`` transform.
         Bodies A and B are paired when ``A.group & B.mask`` and ``B.group & A.mask`` are both nonzero.
         """
     def body(self, id: typing.SupportsInt | typing.SupportsIndex) -> typing.Any:

@@ -37,17 +37,21 @@ mesh such as a ``trimesh.Trimesh``, which stands for the convex hull of its ``ve
 PoseLike = Union[None, npt.ArrayLike, Tuple[Any, npt.ArrayLike], Any]
 """None (the identity), a ``(4, 4)`` rigid transform or its top ``(3, 4)`` rows, a pair
 ``(rotation, translation)`` whose rotation is a ``(3, 3)`` matrix or a SciPy ``Rotation``, or a
-``Rotation`` alone (no translation). ``pose_from_quaternion`` makes one from a quaternion."""
+``Rotation`` alone (no translation). ``pose_from_quaternion`` makes one from a quaternion. A
+float32 (or float16) rotation is its rounding of a rotation: within 1e-5 of one, it is read as
+the nearest rotation; anything farther (a scaling, a shear) is refused as in float64."""
 
 PosesLike = Union[None, npt.ArrayLike, Tuple[Any, npt.ArrayLike], Any]
 """None (every body at the identity), an ``(m, 4, 4)`` or ``(m, 3, 4)`` array of rigid
 transforms, or a pair ``(rotations, translations (m, 3))`` whose rotations are an ``(m, 3, 3)``
-array or a SciPy ``Rotation`` of m rotations (alone: no translations)."""
+array or a SciPy ``Rotation`` of m rotations (alone: no translations), or a list of m poses
+(each a ``PoseLike``). In a batch, a single pose serves every row. Float32 rotations are read as
+for a ``PoseLike``."""
 
 BodiesLike = Union[PolyhedronLike, Sequence[PolyhedronLike], npt.ArrayLike]
-"""One body for every row (a ``ConvexPolyhedron``, a ``CompoundBody`` or an ``(n, 3)`` NumPy
-array), a sequence of polyhedra (or of ``(n, 3)`` point arrays, or of compound bodies), or an
-``(m, n, 3)`` array."""
+"""One body for every row (a ``ConvexPolyhedron``, a ``CompoundBody``, an ``(n, 3)`` NumPy array
+or a mesh such as a ``trimesh.Trimesh``), a sequence of polyhedra (or of ``(n, 3)`` point arrays,
+or of compound bodies), or an ``(m, n, 3)`` array."""
 
 DEFAULT_TOLERANCE = 1e-9
 """The default ``tolerance``, relative to the pair's size."""
@@ -400,8 +404,8 @@ def distance_many(
     Parameters
     ----------
     As, Bs : body, sequence of bodies, or array_like of shape (m, n, 3)
-        The bodies, row by row. A single body (a ConvexPolyhedron, a CompoundBody or an
-        ``(n, 3)`` NumPy array) is used in every row; with single bodies on both sides the poses
+        The bodies, row by row. A single body (a ConvexPolyhedron, a CompoundBody, an ``(n, 3)``
+        NumPy array or a mesh) is used in every row; with single bodies on both sides the poses
         set the number of rows (one without poses). ``(m, n, 3)`` arrays are built into bodies
         row by row on the threads.
     threads : int, optional
@@ -414,7 +418,8 @@ def distance_many(
     poses_a, poses_b : array_like, optional
         Where the bodies are: an ``(m, 4, 4)`` or ``(m, 3, 4)`` array of rigid transforms or a
         pair ``(rotations, translations (m, 3))`` whose rotations are an ``(m, 3, 3)`` array or a
-        SciPy ``Rotation`` of m rotations; results are in world coordinates.
+        SciPy ``Rotation`` of m rotations, or a list of m poses (each as ``distance`` takes it);
+        a single pose serves every row, as a single body does. Results are in world coordinates.
     method, tolerance, seed, **parameters
         As for ``distance``.
 

@@ -185,6 +185,34 @@ def test_a_single_body_serves_every_row(batch, posed):
     assert len(batch(a, b)) == 1
 
 
+def test_a_rotation_object_counts_the_rows_of_single_bodies(posed):
+    from scipy.spatial.transform import Rotation
+
+    a, b, _, poses_b = posed
+    turns, translations = Rotation.from_matrix(poses_b[:, :3, :3]), poses_b[:, :3, 3]
+    for poses in ((turns, translations), turns):
+        single = sc.distance_many(a, b, poses_b=poses)
+        assert len(single) == 60
+        assert_same(single, sc.distance_many([a] * 60, [b] * 60, poses_b=poses))
+
+
+def test_a_single_pose_serves_every_row(posed):
+    from scipy.spatial.transform import Rotation
+
+    a, b, poses_a, poses_b = posed
+    one = poses_a[0]
+    listed = sc.distance_many(a, b, poses_a=np.stack([one] * 60), poses_b=poses_b)
+    for single in (one, one[:3], (one[:3, :3], one[:3, 3]), one.tolist()):
+        assert_same(sc.distance_many(a, b, poses_a=single, poses_b=poses_b), listed)
+        assert_same(sc.distance_many([a] * 60, b, poses_a=single, poses_b=poses_b), listed)
+    turn = Rotation.from_matrix(one[:3, :3])
+    turned = (np.tile(turn.as_matrix(), (60, 1, 1)), np.zeros((60, 3)))
+    assert_same(sc.collide_many(a, b, poses_a=turn, poses_b=poses_b),
+                sc.collide_many(a, b, poses_a=turned, poses_b=poses_b))
+    with pytest.raises(ValueError, match=r"^poses_a is not a rigid motion"):
+        sc.distance_many(a, b, poses_a=np.diag([2.0, 1, 1, 1]), poses_b=poses_b)
+
+
 def test_pose_arrays_read_in_place_answer_as_converted_poses(posed):
     # C-contiguous float64 arrays are read where they are; lists, other dtypes and strided views
     # are converted first: the rows are the same.

@@ -65,6 +65,19 @@ def test_a_trimesh_mesh_builds_polyhedra_compound_bodies_scenes_and_batches():
     assert len(found) == 3
 
 
+def test_a_single_mesh_serves_every_row_of_a_batch():
+    mesh, ball = box_mesh(), trimesh.creation.icosphere(radius=0.5)
+    poses = np.tile(np.eye(4), (3, 1, 1))
+    poses[:, 0, 3] = [2, 3, 4]
+    expected = sc.distance_many(CUBE, ball.vertices, poses_b=poses)
+    assert sc.distance_many(mesh, ball, poses_b=poses).distance.tolist() \
+        == expected.distance.tolist()
+    assert sc.collide_many(mesh, [ball] * 3, poses_b=poses).colliding.tolist() == [False] * 3
+    compound = sc.CompoundBody([CUBE])
+    assert sc.distance_many(compound, ball, poses_b=poses).distance.tolist() \
+        == expected.distance.tolist()
+
+
 def test_a_mesh_that_is_not_three_dimensional_points_is_refused_naming_the_argument():
     class Drawing:  # what trimesh's Path2D looks like to the queries: 2-D vertices
         vertices = np.zeros((4, 2))
@@ -111,6 +124,55 @@ def test_batches_and_scenes_take_rotation_stacks_and_3x4_poses():
     assert np.allclose(placed, matrices, atol=1e-15)
     scene.set_poses(ids, matrices[:, :3] + [0, 0, 0, 1])
     assert np.allclose(scene.pose(int(ids[0]))[:3, 3], shifts[0] + 1)
+
+
+def test_a_list_of_poses_in_any_form_places_bodies_one_by_one():
+    turns = Rotation.from_rotvec([[0.3, -0.2, 0.9], [0, 0, 1.5]])
+    shifts = np.array([[3.0, 0, 0], [0, 4, 0]])
+    matrices = np.stack([homogeneous(turns[i], shifts[i]) for i in range(2)])
+    pairs = [(turns[i], shifts[i]) for i in range(2)]
+    expected = sc.distance_many([CUBE] * 2, [CUBE] * 2, poses_b=matrices).distance.tolist()
+    for poses in (pairs, tuple(pairs), [matrices[0], pairs[1]], [pairs[0], matrices[1][:3]]):
+        assert sc.distance_many([CUBE] * 2, [CUBE] * 2, poses_b=poses).distance.tolist() == expected
+        assert sc.distance_many(CUBE, CUBE, poses_b=poses).distance.tolist() == expected
+    assert sc.distance_many(CUBE, CUBE + [4, 0, 0], poses_b=[turns[0], turns[1]]).distance.tolist() \
+        == sc.distance_many(CUBE, CUBE + [4, 0, 0], poses_b=turns).distance.tolist()
+    scene = sc.Scene()
+    ids = scene.add([CUBE] * 2, pairs)
+    assert np.allclose(np.stack([scene.pose(int(i)) for i in ids]), matrices, atol=1e-15)
+    scene.set_poses(ids, [(Rotation.identity(), [0, 0, 0]), (Rotation.identity(), [2, 0, 0])])
+    assert scene.pose(int(ids[1]))[:3, 3].tolist() == [2, 0, 0]
+    compound = sc.CompoundBody([CUBE, CUBE], poses=[(Rotation.identity(), [0, 0, 0]),
+                                                    (Rotation.identity(), [2, 0, 0])])
+    assert compound.aabb().max.tolist() == [3, 1, 1]
+    with pytest.raises(ValueError, match=r"^poses\[1\] is not a rigid motion"):
+        sc.CompoundBody([CUBE, CUBE], poses=[(TURN, SHIFT), (TURN.as_matrix() * 2, SHIFT)])
+
+
+def test_float32_poses_answer_as_the_rigid_motions_they_round():
+    """A float32 rotation is off its rotation by its rounding (|R^T R - I| near 1e-7, where a pose
+    may be off by 1e-9): it is read as the nearest rotation, and answers as its float64 original."""
+    pose = homogeneous(TURN, SHIFT)
+    narrow = pose.astype(np.float32)
+    expected = sc.distance(CUBE, CUBE, pose_b=pose).distance
+    for given in (narrow, narrow[:3], (narrow[:3, :3], SHIFT)):
+        got = sc.distance(CUBE, CUBE, pose_b=given)
+        assert got.certified and abs(got.distance - expected) <= 1e-6
+    many = np.stack([pose, homogeneous(TURN.inv(), -SHIFT)])
+    rows = sc.distance_many([CUBE] * 2, [CUBE] * 2, poses_b=many.astype(np.float32))
+    assert np.abs(rows.distance - sc.distance_many([CUBE] * 2, [CUBE] * 2, poses_b=many).distance
+                  ).max() <= 1e-6
+    scene = sc.Scene()
+    ids = scene.add([CUBE] * 2, (many[:, :3, :3].astype(np.float32), many[:, :3, 3]))
+    placed = np.stack([scene.pose(int(i)) for i in ids])
+    assert np.abs(placed - many).max() <= 1e-6
+    assert np.abs(placed[0, :3, :3].T @ placed[0, :3, :3] - np.eye(3)).max() <= 1e-15
+    scaled = pose.copy()
+    scaled[:3, :3] *= 1.01
+    with pytest.raises(ValueError, match="^pose_b is not a rigid motion"):
+        sc.distance(CUBE, CUBE, pose_b=scaled.astype(np.float32))
+    with pytest.raises(ValueError, match=r"^poses_b\[1\] is not a rigid motion"):
+        sc.distance_many([CUBE] * 2, [CUBE] * 2, poses_b=np.stack([pose, scaled]).astype(np.float32))
 
 
 @pytest.mark.parametrize(

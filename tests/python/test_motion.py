@@ -362,6 +362,18 @@ def test_motions_take_every_pose_form():
     assert r.touches and r.certified
 
 
+def test_a_rotation_object_and_its_translation_are_one_still_pose():
+    """A SciPy Rotation has a length and items, so Python counts it as a sequence: paired with a
+    translation it is still one pose (the body stays there), not a start and an end."""
+    cube, ball = sc.Box([0.5] * 3), sc.Sphere(0.5)
+    turn = Rotation.from_euler("z", 30, degrees=True)
+    for rotation in (Rotation.identity(), turn):
+        r = sc.time_of_impact(cube, ball, pose_b=(rotation, [3, 0, 0]))
+        expected = sc.time_of_impact(cube, ball, pose_b=(rotation.as_matrix(), [3, 0, 0]))
+        assert not r.touches and r.certified
+        assert (r.t_lower, r.t_upper) == (expected.t_lower, expected.t_upper)
+
+
 @pytest.mark.parametrize("offset", [1e6, 1e12])
 def test_answers_do_not_depend_on_where_the_motion_happens(offset):
     """Translations are taken relative to A's start, so their rounding is relative to the
