@@ -134,17 +134,6 @@ std::uint32_t to_bits(const py::handle& value, const char* name) {
   return bits.cast<std::uint32_t>();
 }
 
-py::array_t<Scalar> homogeneous(const Pose& pose) {
-  py::array_t<Scalar> out({4, 4});
-  auto m = out.mutable_unchecked<2>();
-  for (int r = 0; r < 4; ++r) {
-    for (int c = 0; c < 4; ++c) {
-      m(r, c) = r < 3 ? (c < 3 ? pose.rotation(r, c) : pose.translation(r)) : (c == 3 ? 1 : 0);
-    }
-  }
-  return out;
-}
-
 std::string result_repr(const char* type, const SceneResult& r) {
   std::ostringstream out;
   out.precision(6);

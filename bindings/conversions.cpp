@@ -338,6 +338,17 @@ Pose to_pose(const py::handle& given, const char* name) {
   return result;
 }
 
+py::array_t<Scalar> homogeneous(const Pose& pose) {
+  py::array_t<Scalar> out({4, 4});
+  auto m = out.mutable_unchecked<2>();
+  for (int r = 0; r < 4; ++r) {
+    for (int c = 0; c < 4; ++c) {
+      m(r, c) = r < 3 ? (c < 3 ? pose.rotation(r, c) : pose.translation(r)) : (c == 3 ? 1 : 0);
+    }
+  }
+  return out;
+}
+
 namespace {
 
 // A pair (rotations, translations) rather than one array of transforms.

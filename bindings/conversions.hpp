@@ -61,6 +61,9 @@ bool is_rotation(const py::handle& value);
 /// taken for the nearest rotation, as to_poses takes it.
 Pose to_pose(const py::handle& pose, const char* name);
 
+/// `pose` as a `(4, 4)` homogeneous transform.
+py::array_t<Scalar> homogeneous(const Pose& pose);
+
 /// Poses for `count` bodies: None (none: every body at the identity), a `(count, 4, 4)` array of
 /// homogeneous rigid transforms (or `(count, 3, 4)`, without their last row), a pair
 /// `(rotations (count, 3, 3), translations (count, 3))`, or a list or tuple of `count` poses that

@@ -191,6 +191,25 @@ def test_wrong_poses_are_refused_naming_the_argument(pose, error, message):
         sc.distance(CUBE, CUBE, pose_b=pose)
 
 
+def test_plots_read_poses_as_the_queries_do():
+    pytest.importorskip("matplotlib")
+    from swarmcollide.plot import plot_body, plot_pair
+
+    def frame(figure):
+        ax = figure.axes[0]
+        return ax.get_xlim(), ax.get_ylim(), ax.get_zlim(), ax.get_title()
+
+    capsule = sc.Capsule(0.3, 1)
+    assert frame(plot_body(capsule, pose=TURN)) == frame(plot_body(capsule, pose=homogeneous(
+        TURN, [0, 0, 0])))
+    assert frame(plot_pair(CUBE, CUBE, pose_b=(TURN, SHIFT))) == frame(
+        plot_pair(CUBE, CUBE, pose_b=homogeneous(TURN, SHIFT)))
+    with pytest.raises(ValueError, match="^pose is not a rigid motion"):
+        plot_body(capsule, pose=np.diag([2.0, 1, 1, 1]))
+    with pytest.raises(ValueError, match="^pose_a's translation must be"):
+        plot_pair(CUBE, CUBE, pose_a=(TURN, [1, 2]))
+
+
 # ----- quaternions -------------------------------------------------------------------------------
 
 
