@@ -8,6 +8,7 @@
 #include <string>
 
 #include "fast_calls.hpp"
+#include "swarmcollide/geometry/shapes.hpp"
 #include "swarmcollide/queries/batch.hpp"
 
 namespace swarmcollide::bindings {
@@ -140,6 +141,22 @@ bool is_mesh(const py::handle& body) {
 py::object points_of(const py::handle& body) {
   if (is_mesh(body)) return body.attr("vertices");
   return py::reinterpret_borrow<py::object>(body);
+}
+
+py::object typed_body(const ConvexPolyhedron& body) {
+  const SupportFunction* curved = body.curved();
+  if (!curved) return py::cast(body);
+  const CurvedShapeParameters shape = curved->parameters();
+  if (shape.placed) return py::cast(body);
+  switch (shape.kind) {
+    case CurvedShapeParameters::Kind::cylinder:
+      return py::cast(Cylinder(shape.radius, shape.half_length));
+    case CurvedShapeParameters::Kind::cone:
+      return py::cast(Cone(shape.radius, shape.half_length));
+    case CurvedShapeParameters::Kind::ellipsoid:
+      return py::cast(Ellipsoid(shape.radii));
+  }
+  return py::cast(body);
 }
 
 VertexMatrix to_vertex_matrix(const py::handle& points, const char* name) {

@@ -111,6 +111,11 @@ bool is_mesh(const py::handle& body);
 /// `body`'s points when it is a mesh (is_mesh); else `body`.
 py::object points_of(const py::handle& body);
 
+/// A body as Python sees it: a curved shape as its own Cylinder, Cone or Ellipsoid (a new one of
+/// its parameters: the same body, with its parameters and repr); any other body, and a curved
+/// shape placed by a pose, as the ConvexPolyhedron it is.
+py::object typed_body(const ConvexPolyhedron& body);
+
 /// True for a NumPy array of one or more dimensions, which Python's number protocols would turn
 /// into a scalar or refuse with NumPy's own message.
 bool is_array(const py::handle& value);

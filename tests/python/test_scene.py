@@ -334,6 +334,18 @@ def test_a_bad_pose_among_many_is_named_by_its_index():
         scene.set_poses(ids, poses)
 
 
+def test_a_curved_body_comes_back_as_its_own_shape():
+    from swarmcollide import shape_json
+
+    scene = sc.Scene()
+    shapes = [sc.Cylinder(1, 2), sc.Cone(0.5, 1), sc.Ellipsoid([1, 2, 3])]
+    ids = scene.add(shapes)
+    for shape, body_id in zip(shapes, ids):
+        body = scene.body(int(body_id))
+        assert type(body) is type(shape) and repr(body) == repr(shape)
+        assert shape_json.body_to_json(body) == shape_json.body_to_json(shape)
+
+
 def test_scene_errors_name_the_argument_and_the_fix():
     with pytest.raises(ValueError, match="unknown broadphase 'octree'; choose one of"):
         sc.Scene(broadphase="octree")
