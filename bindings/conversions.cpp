@@ -222,6 +222,10 @@ template <typename Name>
 Pose from_rows(const Scalar* data, py::ssize_t rows, const Name& at) {
   if (rows == 4 && !(Eigen::Map<const Eigen::RowVector4d>(data + 12) ==
                      Eigen::RowVector4d(0, 0, 0, 1))) {
+    // A NaN fails the last row's test too; named first, as validate_pose names it.
+    if (!Eigen::Map<const Eigen::Matrix<Scalar, 16, 1>>(data).allFinite()) {
+      throw py::value_error(at() + " has a NaN or infinite entry");
+    }
     throw py::value_error(at() +
                           " must be a homogeneous rigid transform: its last row must be "
                           "[0, 0, 0, 1]");

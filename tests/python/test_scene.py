@@ -320,6 +320,18 @@ def test_invalid_poses_are_value_errors_naming_the_argument(pose, message):
         sc.distance_many([CUBE], [CUBE], poses_a=pose[None])
 
 
+def test_a_pose_of_nans_is_named_for_its_nans_not_its_last_row():
+    nans = np.full((4, 4), np.nan)
+    scene = sc.Scene()
+    with pytest.raises(ValueError, match=r"^poses\[0\] has a NaN or infinite entry"):
+        scene.add([CUBE], nans[None])
+    body = scene.add(CUBE)
+    with pytest.raises(ValueError, match=r"^poses\[0\] has a NaN or infinite entry"):
+        scene.set_poses(body, nans)
+    with pytest.raises(ValueError, match="^pose_b has a NaN or infinite entry"):
+        sc.distance(CUBE, CUBE, pose_b=nans)
+
+
 def test_a_bad_pose_among_many_is_named_by_its_index():
     # The poses' names are made only for a message (a name per pose was 2.5% of a frame).
     scene = sc.Scene()
