@@ -462,8 +462,8 @@ Bodies A and B are paired when ``A.group & B.mask`` and ``B.group & A.mask`` are
             scene.set_poses(which, placed);
           },
           py::arg("ids"), py::arg("poses"),
-          "Move bodies (one id or an array of ids) to ``poses`` (as for ``add``); their hulls are "
-          "never recomputed.")
+          "Move bodies (one id or an array of ids, each at most once) to ``poses`` (as for "
+          "``add``); their hulls are never recomputed.")
       .def(
           "sweep",
           [](Scene& scene, const py::handle& ids, const py::handle& poses, const py::handle& motion,

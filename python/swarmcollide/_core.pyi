@@ -1120,7 +1120,7 @@ class Scene:
         """
     def set_poses(self, ids: typing.Any, poses: typing.Any) -> None:
         """
-        Move bodies (one id or an array of ids) to ``poses`` (as for ``add``); their hulls are never recomputed.
+        Move bodies (one id or an array of ids, each at most once) to ``poses`` (as for ``add``); their hulls are never recomputed.
         """
     def sweep(self, ids: typing.Any, poses: typing.Any, *, motion: typing.Any = 'linear', time_tolerance: typing.Any = 1e-06, max_iterations: typing.Any = 100000) -> SweepResult:
         """

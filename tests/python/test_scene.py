@@ -373,6 +373,11 @@ def test_scene_errors_name_the_argument_and_the_fix():
         scene.set_poses(5, np.eye(4))
     with pytest.raises(ValueError, match="twice"):
         scene.remove([0, 0])
+    moved = np.eye(4)
+    moved[0, 3] = 10
+    with pytest.raises(ValueError, match="^ids lists body 0 twice; give each body one pose"):
+        scene.set_poses([0, 0], np.stack([moved, np.eye(4)]))
+    assert scene.pose(0)[0, 3] == 0
     with pytest.raises(TypeError, match="bodies must be"):
         scene.add("cube")
     with pytest.raises(TypeError, match="ids must be"):
