@@ -8,7 +8,6 @@
 
 #include "conversions.hpp"
 #include "swarmcollide/geometry/compound_body.hpp"
-#include "swarmcollide/geometry/shapes.hpp"
 #include "swarmcollide/queries/compound_result.hpp"
 #include "swarmcollide/queries/methods.hpp"
 
@@ -37,25 +36,6 @@ std::vector<ConvexPolyhedron> to_parts(const py::handle& parts) {
     throw py::value_error("parts is empty: a compound body needs at least one convex part");
   }
   return result;
-}
-
-// A part as Python sees it: a curved part as its own shape (a new Cylinder, Cone or Ellipsoid of
-// its parameters: the same body, with its parameters and repr), any other, and a curved shape
-// placed by a pose, as the ConvexPolyhedron it is.
-py::object typed_part(const ConvexPolyhedron& part) {
-  const SupportFunction* curved = part.curved();
-  if (!curved) return py::cast(part);
-  const CurvedShapeParameters shape = curved->parameters();
-  if (shape.placed) return py::cast(part);
-  switch (shape.kind) {
-    case CurvedShapeParameters::Kind::cylinder:
-      return py::cast(Cylinder(shape.radius, shape.half_length));
-    case CurvedShapeParameters::Kind::cone:
-      return py::cast(Cone(shape.radius, shape.half_length));
-    case CurvedShapeParameters::Kind::ellipsoid:
-      return py::cast(Ellipsoid(shape.radii));
-  }
-  return py::cast(part);
 }
 
 // The parts' poses as a (count, 4, 4) array of homogeneous transforms.
@@ -195,7 +175,7 @@ CompoundBody(3 parts, 24 points, bounds [0, 0, 0] to [2, 2, 1])
           "parts",
           [](const CompoundBody& body) {
             py::typing::List<ConvexPolyhedron> parts;
-            for (const ConvexPolyhedron& part : body.parts()) parts.append(typed_part(part));
+            for (const ConvexPolyhedron& part : body.parts()) parts.append(typed_body(part));
             return parts;
           },
           "The convex parts in the body's frame, placed by their poses (copies that share the "
@@ -205,7 +185,7 @@ CompoundBody(3 parts, 24 points, bounds [0, 0, 0] to [2, 2, 1])
           "given_parts",
           [](const CompoundBody& body) {
             py::typing::List<ConvexPolyhedron> parts;
-            for (const ConvexPolyhedron& part : body.given_parts()) parts.append(typed_part(part));
+            for (const ConvexPolyhedron& part : body.given_parts()) parts.append(typed_body(part));
             return parts;
           },
           "The parts as given, each in its own frame (``parts`` for a body built without poses).")

@@ -391,6 +391,19 @@ Return ``body`` as a ConvexPolyhedron, building one from ``(n, 3)`` points if ne
 
 Errors name the argument as ``name``.
 )doc");
+
+  m.def(
+      "pose_matrix",
+      [](const py::object& pose, const py::object& name) {
+        return homogeneous(to_pose(pose, to_name(name, "name").c_str()));
+      },
+      py::arg("pose"), py::arg("name") = "pose",
+      R"doc(
+Return ``pose``, in any form the queries take (see ``swarmcollide.PoseLike``), as a ``(4, 4)``
+float64 homogeneous transform, read exactly as the queries read it.
+
+Errors name the argument as ``name``.
+)doc");
 }
 
 }  // namespace swarmcollide::bindings

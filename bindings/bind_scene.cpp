@@ -134,17 +134,6 @@ std::uint32_t to_bits(const py::handle& value, const char* name) {
   return bits.cast<std::uint32_t>();
 }
 
-py::array_t<Scalar> homogeneous(const Pose& pose) {
-  py::array_t<Scalar> out({4, 4});
-  auto m = out.mutable_unchecked<2>();
-  for (int r = 0; r < 4; ++r) {
-    for (int c = 0; c < 4; ++c) {
-      m(r, c) = r < 3 ? (c < 3 ? pose.rotation(r, c) : pose.translation(r)) : (c == 3 ? 1 : 0);
-    }
-  }
-  return out;
-}
-
 std::string result_repr(const char* type, const SceneResult& r) {
   std::ostringstream out;
   out.precision(6);
@@ -473,8 +462,8 @@ Bodies A and B are paired when ``A.group & B.mask`` and ``B.group & A.mask`` are
             scene.set_poses(which, placed);
           },
           py::arg("ids"), py::arg("poses"),
-          "Move bodies (one id or an array of ids) to ``poses`` (as for ``add``); their hulls are "
-          "never recomputed.")
+          "Move bodies (one id or an array of ids, each at most once) to ``poses`` (as for "
+          "``add``); their hulls are never recomputed.")
       .def(
           "sweep",
           [](Scene& scene, const py::handle& ids, const py::handle& poses, const py::handle& motion,
@@ -614,11 +603,12 @@ against each other: a box resting on a face gives its four corners.
           "body",
           [](const Scene& s, BodyId id) -> py::object {
             if (const CompoundBody* compound = s.compound(id)) return py::cast(*compound);
-            return py::cast(s.body(id));
+            return typed_body(s.body(id));
           },
           py::arg("id"),
-          "The body with this id, in its own frame: a ConvexPolyhedron or a CompoundBody (the "
-          "core's, without a decomposition record).")
+          "The body with this id, in its own frame: a ConvexPolyhedron (a curved shape as its own "
+          "Cylinder, Cone or Ellipsoid) or a CompoundBody (the core's, without a decomposition "
+          "record).")
       .def(
           "pose", [](const Scene& s, BodyId id) { return homogeneous(s.pose(id)); }, py::arg("id"),
           "The body's pose as a (4, 4) homogeneous transform.")

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "fast_calls.hpp"
+#include "swarmcollide/geometry/shapes.hpp"
 #include "swarmcollide/queries/batch.hpp"
 
 namespace swarmcollide::bindings {
@@ -142,6 +143,22 @@ py::object points_of(const py::handle& body) {
   return py::reinterpret_borrow<py::object>(body);
 }
 
+py::object typed_body(const ConvexPolyhedron& body) {
+  const SupportFunction* curved = body.curved();
+  if (!curved) return py::cast(body);
+  const CurvedShapeParameters shape = curved->parameters();
+  if (shape.placed) return py::cast(body);
+  switch (shape.kind) {
+    case CurvedShapeParameters::Kind::cylinder:
+      return py::cast(Cylinder(shape.radius, shape.half_length));
+    case CurvedShapeParameters::Kind::cone:
+      return py::cast(Cone(shape.radius, shape.half_length));
+    case CurvedShapeParameters::Kind::ellipsoid:
+      return py::cast(Ellipsoid(shape.radii));
+  }
+  return py::cast(body);
+}
+
 VertexMatrix to_vertex_matrix(const py::handle& points, const char* name) {
   const auto doubles = real_array(points_of(points), {-1, 3}, name, "an (n, 3) array of numbers");
   if (doubles.shape(0) == 0) {
@@ -205,6 +222,10 @@ template <typename Name>
 Pose from_rows(const Scalar* data, py::ssize_t rows, const Name& at) {
   if (rows == 4 && !(Eigen::Map<const Eigen::RowVector4d>(data + 12) ==
                      Eigen::RowVector4d(0, 0, 0, 1))) {
+    // A NaN fails the last row's test too; named first, as validate_pose names it.
+    if (!Eigen::Map<const Eigen::Matrix<Scalar, 16, 1>>(data).allFinite()) {
+      throw py::value_error(at() + " has a NaN or infinite entry");
+    }
     throw py::value_error(at() +
                           " must be a homogeneous rigid transform: its last row must be "
                           "[0, 0, 0, 1]");
@@ -336,6 +357,17 @@ Pose to_pose(const py::handle& given, const char* name) {
     throw py::value_error(error.what());
   }
   return result;
+}
+
+py::array_t<Scalar> homogeneous(const Pose& pose) {
+  py::array_t<Scalar> out({4, 4});
+  auto m = out.mutable_unchecked<2>();
+  for (int r = 0; r < 4; ++r) {
+    for (int c = 0; c < 4; ++c) {
+      m(r, c) = r < 3 ? (c < 3 ? pose.rotation(r, c) : pose.translation(r)) : (c == 3 ? 1 : 0);
+    }
+  }
+  return out;
 }
 
 namespace {

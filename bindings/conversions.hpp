@@ -61,6 +61,9 @@ bool is_rotation(const py::handle& value);
 /// taken for the nearest rotation, as to_poses takes it.
 Pose to_pose(const py::handle& pose, const char* name);
 
+/// `pose` as a `(4, 4)` homogeneous transform.
+py::array_t<Scalar> homogeneous(const Pose& pose);
+
 /// Poses for `count` bodies: None (none: every body at the identity), a `(count, 4, 4)` array of
 /// homogeneous rigid transforms (or `(count, 3, 4)`, without their last row), a pair
 /// `(rotations (count, 3, 3), translations (count, 3))`, or a list or tuple of `count` poses that
@@ -107,6 +110,11 @@ bool is_mesh(const py::handle& body);
 
 /// `body`'s points when it is a mesh (is_mesh); else `body`.
 py::object points_of(const py::handle& body);
+
+/// A body as Python sees it: a curved shape as its own Cylinder, Cone or Ellipsoid (a new one of
+/// its parameters: the same body, with its parameters and repr); any other body, and a curved
+/// shape placed by a pose, as the ConvexPolyhedron it is.
+py::object typed_body(const ConvexPolyhedron& body);
 
 /// True for a NumPy array of one or more dimensions, which Python's number protocols would turn
 /// into a scalar or refuse with NumPy's own message.

@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['Aabb', 'BatchResult', 'Box', 'Capsule', 'CompoundBody', 'CompoundResult', 'CompoundStats', 'Cone', 'ContactResult', 'ConvexPolyhedron', 'Cylinder', 'DistanceResult', 'Ellipsoid', 'Hull', 'Joint', 'PartNode', 'ParticleCoefficients', 'Query', 'RobotCheck', 'RobotDistances', 'RobotModel', 'RobotMotionCheck', 'Scene', 'SceneResult', 'SceneStats', 'Sphere', 'SweepResult', 'TimeOfImpactBatch', 'TimeOfImpactResult', 'as_polyhedron', 'broadphases', 'constraint_violation', 'is_feasible', 'linear_decreasing_inertia', 'method_table', 'motion_function', 'objective', 'pair_seed', 'project_onto_simplex', 'query_function', 'rank_adaptive_coefficients', 'separation', 'time_of_impact', 'time_of_impact_many']
+__all__: list[str] = ['Aabb', 'BatchResult', 'Box', 'Capsule', 'CompoundBody', 'CompoundResult', 'CompoundStats', 'Cone', 'ContactResult', 'ConvexPolyhedron', 'Cylinder', 'DistanceResult', 'Ellipsoid', 'Hull', 'Joint', 'PartNode', 'ParticleCoefficients', 'Query', 'RobotCheck', 'RobotDistances', 'RobotModel', 'RobotMotionCheck', 'Scene', 'SceneResult', 'SceneStats', 'Sphere', 'SweepResult', 'TimeOfImpactBatch', 'TimeOfImpactResult', 'as_polyhedron', 'broadphases', 'constraint_violation', 'is_feasible', 'linear_decreasing_inertia', 'method_table', 'motion_function', 'objective', 'pair_seed', 'pose_matrix', 'project_onto_simplex', 'query_function', 'rank_adaptive_coefficients', 'separation', 'time_of_impact', 'time_of_impact_many']
 class Aabb:
     """
     An axis-aligned bounding box with corners ``min`` and ``max``.
@@ -1074,7 +1074,7 @@ class Scene:
         """
     def body(self, id: typing.SupportsInt | typing.SupportsIndex) -> typing.Any:
         """
-        The body with this id, in its own frame: a ConvexPolyhedron or a CompoundBody (the core's, without a decomposition record).
+        The body with this id, in its own frame: a ConvexPolyhedron (a curved shape as its own Cylinder, Cone or Ellipsoid) or a CompoundBody (the core's, without a decomposition record).
         """
     def colliding_pairs(self) -> SceneResult:
         """
@@ -1120,7 +1120,7 @@ class Scene:
         """
     def set_poses(self, ids: typing.Any, poses: typing.Any) -> None:
         """
-        Move bodies (one id or an array of ids) to ``poses`` (as for ``add``); their hulls are never recomputed.
+        Move bodies (one id or an array of ids, each at most once) to ``poses`` (as for ``add``); their hulls are never recomputed.
         """
     def sweep(self, ids: typing.Any, poses: typing.Any, *, motion: typing.Any = 'linear', time_tolerance: typing.Any = 1e-06, max_iterations: typing.Any = 100000) -> SweepResult:
         """
@@ -1550,6 +1550,13 @@ def objective(a: typing.Any, b: typing.Any, weights_a: typing.Any, weights_b: ty
 def pair_seed(seed: typing.SupportsInt | typing.SupportsIndex, index: typing.SupportsInt | typing.SupportsIndex) -> int:
     """
     The seed of the pair with global index ``index`` in a batch seeded with ``seed``.
+    """
+def pose_matrix(pose: typing.Any, name: typing.Any = 'pose') -> numpy.typing.NDArray[numpy.float64]:
+    """
+    Return ``pose``, in any form the queries take (see ``swarmcollide.PoseLike``), as a ``(4, 4)``
+    float64 homogeneous transform, read exactly as the queries read it.
+    
+    Errors name the argument as ``name``.
     """
 def project_onto_simplex(weights: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
     """

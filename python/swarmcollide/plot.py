@@ -144,23 +144,12 @@ def _surface(part) -> tuple:
     return points, _core.ConvexPolyhedron(points).hull().faces
 
 
-def _pose_matrix(pose) -> np.ndarray:
-    if pose is None:
-        return np.eye(4)
-    if isinstance(pose, (tuple, list)) and len(pose) == 2:
-        matrix = np.eye(4)
-        matrix[:3, :3] = np.asarray(pose[0], dtype=float)
-        matrix[:3, 3] = np.asarray(pose[1], dtype=float)
-        return matrix
-    return np.asarray(pose, dtype=float)
-
-
-def _draw_parts(ax, body, pose, colours, start: int, alpha: float) -> list:
-    """Draw each part's hull at ``pose`` in its own colour; return the placed points."""
+def _draw_parts(ax, body, matrix: np.ndarray, colours, start: int, alpha: float) -> list:
+    """Draw each part's hull at the ``(4, 4)`` transform ``matrix`` in its own colour; return the
+    placed points."""
     from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
     placed = []
-    matrix = _pose_matrix(pose)
     for k, part in enumerate(_parts_of(body)):
         surface, faces = _surface(part)
         points = surface @ matrix[:3, :3].T + matrix[:3, 3]
@@ -228,8 +217,10 @@ def plot_body(body, pose=None, *, ax=None, path: Optional[str] = None, show: boo
     """
     from matplotlib import colormaps
 
+    # Read as the queries read a pose, with their errors.
+    matrix = _core.pose_matrix(pose, "pose")
     figure, ax = _figure(ax, show)
-    placed = _draw_parts(ax, body, pose, colormaps["tab20"], 0, 0.45)
+    placed = _draw_parts(ax, body, matrix, colormaps["tab20"], 0, 0.45)
     _frame_axes(ax, placed)
     parts = len(placed)
     ax.set_title(title if title is not None else f"{parts} part{'s' if parts != 1 else ''}")
@@ -249,7 +240,7 @@ def plot_pair(a, b, result=None, *, pose_a=None, pose_b=None, ax=None,
     result : DistanceResult or CompoundResult, optional
         The answer to draw; ``swarmcollide.distance(a, b, ...)`` when omitted.
     pose_a, pose_b : array_like, optional
-        ``(4, 4)`` transforms or ``(rotation, translation)`` pairs.
+        Where the bodies are, as ``distance`` takes them.
     ax, path, show, title
         As for ``plot_body``.
 
@@ -270,15 +261,16 @@ def plot_pair(a, b, result=None, *, pose_a=None, pose_b=None, ax=None,
 
     from .queries import distance
 
+    matrix_a, matrix_b = _core.pose_matrix(pose_a, "pose_a"), _core.pose_matrix(pose_b, "pose_b")
     if result is None:
         result = distance(a, b, pose_a=pose_a, pose_b=pose_b)
     figure, ax = _figure(ax, show)
     part_a = getattr(result, "part_a", 0)
     part_b = getattr(result, "part_b", 0)
-    placed = _draw_parts(ax, a, pose_a, colormaps["winter"].resampled(8), 0, 0.3)
-    placed += _draw_parts(ax, b, pose_b, colormaps["autumn"].resampled(8), 0, 0.3)
-    for body, pose, part, cmap in ((a, pose_a, part_a, "winter"), (b, pose_b, part_b, "autumn")):
-        matrix = _pose_matrix(pose)
+    placed = _draw_parts(ax, a, matrix_a, colormaps["winter"].resampled(8), 0, 0.3)
+    placed += _draw_parts(ax, b, matrix_b, colormaps["autumn"].resampled(8), 0, 0.3)
+    for body, matrix, part, cmap in ((a, matrix_a, part_a, "winter"),
+                                     (b, matrix_b, part_b, "autumn")):
         surface, faces = _surface(_parts_of(body)[part])
         points = surface @ matrix[:3, :3].T + matrix[:3, 3]
         if faces is not None:

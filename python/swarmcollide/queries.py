@@ -184,6 +184,19 @@ def _query_for(method: str, tolerance: float, seed: int, parameters: Mapping[str
     return query(method, tolerance=tolerance, seed=seed, **parameters)
 
 
+def _refuse_pose_keywords(function: str, parameters: Mapping[str, Any], batch: bool) -> None:
+    """Raise TypeError for the other kind of query's pose keyword (``pose_b`` to a batch,
+    ``poses_b`` to a pair query), which would otherwise reach ``Query`` as a solver parameter
+    and be answered with the method's parameters."""
+    if batch:
+        wrong, taken = ("pose_a", "pose_b"), "poses_a and poses_b (one pose per row)"
+    else:
+        wrong, taken = ("poses_a", "poses_b"), "pose_a and pose_b"
+    for name in wrong:
+        if name in parameters:
+            raise TypeError(f"{function} takes {taken}, not {name}")
+
+
 QueryFunction = TypeVar("QueryFunction", bound=Callable[..., Any])
 
 PYTHON_PATHS: Dict[str, Callable[..., Any]] = {}
@@ -272,6 +285,7 @@ def distance(
     >>> round(sc.distance(a, b, method="ipso", seed=0).distance, 6)
     1.0
     """
+    _refuse_pose_keywords("distance", parameters, batch=False)
     return _query_for(method, tolerance, seed, parameters).distance(
         a, b, pose_a, pose_b
     )
@@ -311,6 +325,7 @@ def signed_distance(
     >>> round(r.distance, 9), r.direction.round(9).tolist(), r.certified
     (-0.25, [1.0, 0.0, 0.0], True)
     """
+    _refuse_pose_keywords("signed_distance", parameters, batch=False)
     return _query_for(method, tolerance, seed, parameters).signed_distance(
         a, b, pose_a, pose_b
     )
@@ -344,6 +359,7 @@ def collide(
     >>> sc.collide(cube, [[x + 0.5, y, z] for x, y, z in cube])
     True
     """
+    _refuse_pose_keywords("collide", parameters, batch=False)
     return _query_for(method, tolerance, seed, parameters).collide(
         a, b, pose_a, pose_b, escalate
     )
@@ -376,6 +392,7 @@ def collision(
     >>> r.method, r.escalated_from, r.colliding, r.certified
     ('exact', 'ipso', True, True)
     """
+    _refuse_pose_keywords("collision", parameters, batch=False)
     return _query_for(method, tolerance, seed, parameters).collision(
         a, b, pose_a, pose_b, escalate
     )
@@ -442,6 +459,7 @@ def distance_many(
     >>> sc.distance_many(tetra, tetra, poses_b=moves).distance.round(9).tolist()
     [0.5, 1.5, 2.5]
     """
+    _refuse_pose_keywords("distance_many", parameters, batch=True)
     return _query_for(method, tolerance, seed, parameters).distance_many(
         As, Bs, threads, first_index, poses_a, poses_b
     )
@@ -481,6 +499,7 @@ def collide_many(
     >>> sc.collide_many([cube, cube], [cube + 0.5, cube + 2]).colliding.tolist()
     [True, False]
     """
+    _refuse_pose_keywords("collide_many", parameters, batch=True)
     return _query_for(method, tolerance, seed, parameters).collide_many(
         As, Bs, threads, first_index, escalate, poses_a, poses_b
     )
@@ -508,6 +527,7 @@ def signed_distance_many(
     >>> sc.signed_distance_many([cube], [cube + [0.75, 0, 0]]).distance.round(9).tolist()
     [-0.25]
     """
+    _refuse_pose_keywords("signed_distance_many", parameters, batch=True)
     return _query_for(method, tolerance, seed, parameters).signed_distance_many(
         As, Bs, threads, first_index, poses_a, poses_b
     )

@@ -275,6 +275,10 @@ TEST(TimeOfImpact, BatchesAnswerAsSingleCallsOnAnyThreads) {
   }
   EXPECT_THROW(time_of_impact_many(cube, motions, cube, std::vector<RigidMotion>(3), {}, 1),
                std::invalid_argument);
+  // No rows: no answers, as the other batches give.
+  EXPECT_TRUE(time_of_impact_many(cube, {}, cube, fixed, {}, 1).empty());
+  EXPECT_THROW(time_of_impact_many(cube, {}, cube, std::vector<RigidMotion>(2, still()), {}, 1),
+               std::invalid_argument);
 }
 
 }  // namespace

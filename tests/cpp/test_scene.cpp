@@ -727,6 +727,7 @@ TEST(Scene, RejectsWhatItCannotAnswer) {
   EXPECT_THROW(scene.add({box(Vector3::Zero(), Vector3::Ones())}, {Pose{}, Pose{}}),
                std::invalid_argument);
   EXPECT_THROW(scene.remove({id, id}), std::invalid_argument);
+  EXPECT_THROW(scene.set_poses({id, id}, {Pose{}, Pose{}}), std::invalid_argument);
   EXPECT_THROW(scene.pairs_within(-1), std::invalid_argument);
   EXPECT_THROW(scene.nearest({id}, 0), std::invalid_argument);
   EXPECT_THROW(scene.exclude({{id, id}}), std::invalid_argument);

@@ -302,7 +302,7 @@ ROTATION = np.eye(3)
         (np.stack([np.eye(4)] * 2 + [np.diag([1.0, 1, -1, 1])] * 2), ValueError,
          r"poses_b\[2\] is not a rigid motion"),
         (np.stack([np.eye(4)] + [np.full((4, 4), np.nan)] * 3), ValueError,
-         r"poses_b\[1\] must be a homogeneous"),
+         r"poses_b\[1\] has a NaN or infinite entry"),
         ((np.tile(ROTATION, (4, 1, 1)), np.array([[0, 0, 0]] * 3 + [[np.inf, 0, 0]])),
          ValueError, r"poses_b\[3\] has a NaN or infinite entry"),
         ((np.tile(ROTATION, (4, 1, 1)), np.zeros((3, 3))), ValueError,

@@ -135,8 +135,9 @@ def test_a_list_of_poses_in_any_form_places_bodies_one_by_one():
     for poses in (pairs, tuple(pairs), [matrices[0], pairs[1]], [pairs[0], matrices[1][:3]]):
         assert sc.distance_many([CUBE] * 2, [CUBE] * 2, poses_b=poses).distance.tolist() == expected
         assert sc.distance_many(CUBE, CUBE, poses_b=poses).distance.tolist() == expected
-    assert sc.distance_many(CUBE, CUBE + [4, 0, 0], poses_b=[turns[0], turns[1]]).distance.tolist() \
-        == sc.distance_many(CUBE, CUBE + [4, 0, 0], poses_b=turns).distance.tolist()
+    far = CUBE + [4, 0, 0]
+    assert sc.distance_many(CUBE, far, poses_b=[turns[0], turns[1]]).distance.tolist() \
+        == sc.distance_many(CUBE, far, poses_b=turns).distance.tolist()
     scene = sc.Scene()
     ids = scene.add([CUBE] * 2, pairs)
     assert np.allclose(np.stack([scene.pose(int(i)) for i in ids]), matrices, atol=1e-15)
@@ -172,7 +173,8 @@ def test_float32_poses_answer_as_the_rigid_motions_they_round():
     with pytest.raises(ValueError, match="^pose_b is not a rigid motion"):
         sc.distance(CUBE, CUBE, pose_b=scaled.astype(np.float32))
     with pytest.raises(ValueError, match=r"^poses_b\[1\] is not a rigid motion"):
-        sc.distance_many([CUBE] * 2, [CUBE] * 2, poses_b=np.stack([pose, scaled]).astype(np.float32))
+        sc.distance_many([CUBE] * 2, [CUBE] * 2,
+                         poses_b=np.stack([pose, scaled]).astype(np.float32))
 
 
 @pytest.mark.parametrize(
@@ -189,6 +191,37 @@ def test_float32_poses_answer_as_the_rigid_motions_they_round():
 def test_wrong_poses_are_refused_naming_the_argument(pose, error, message):
     with pytest.raises(error, match=message):
         sc.distance(CUBE, CUBE, pose_b=pose)
+
+
+def test_plots_read_poses_as_the_queries_do():
+    pytest.importorskip("matplotlib")
+    from swarmcollide.plot import plot_body, plot_pair
+
+    def frame(figure):
+        ax = figure.axes[0]
+        return ax.get_xlim(), ax.get_ylim(), ax.get_zlim(), ax.get_title()
+
+    capsule = sc.Capsule(0.3, 1)
+    assert frame(plot_body(capsule, pose=TURN)) == frame(plot_body(capsule, pose=homogeneous(
+        TURN, [0, 0, 0])))
+    assert frame(plot_pair(CUBE, CUBE, pose_b=(TURN, SHIFT))) == frame(
+        plot_pair(CUBE, CUBE, pose_b=homogeneous(TURN, SHIFT)))
+    with pytest.raises(ValueError, match="^pose is not a rigid motion"):
+        plot_body(capsule, pose=np.diag([2.0, 1, 1, 1]))
+    with pytest.raises(ValueError, match="^pose_a's translation must be"):
+        plot_pair(CUBE, CUBE, pose_a=(TURN, [1, 2]))
+
+
+def test_a_pose_keyword_of_the_other_kind_of_query_names_the_right_ones():
+    for batch in (sc.distance_many, sc.collide_many, sc.signed_distance_many):
+        for wrong in ("pose_a", "pose_b"):
+            taken = r"poses_a and poses_b \(one pose per row\)"
+            with pytest.raises(TypeError, match=f"^{batch.__name__} takes {taken}, not {wrong}$"):
+                batch(CUBE, CUBE, **{wrong: np.eye(4)})
+    for query in (sc.distance, sc.signed_distance, sc.collide, sc.collision):
+        message = f"^{query.__name__} takes pose_a and pose_b, not poses_b$"
+        with pytest.raises(TypeError, match=message):
+            query(CUBE, CUBE, poses_b=np.eye(4)[None])
 
 
 # ----- quaternions -------------------------------------------------------------------------------

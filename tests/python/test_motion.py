@@ -374,6 +374,17 @@ def test_a_rotation_object_and_its_translation_are_one_still_pose():
         assert (r.t_lower, r.t_upper) == (expected.t_lower, expected.t_upper)
 
 
+def test_a_batch_of_no_rows_has_no_answers():
+    cube = sc.Box([0.5] * 3)
+    none = np.zeros((0, 4, 4))
+    for batch in (sc.time_of_impact_many([], []),
+                  sc.time_of_impact_many(cube, cube, poses_a=(none, none)),
+                  sc.time_of_impact_many([], cube, poses_b=(none, none))):
+        assert len(batch) == 0 and batch.touches.shape == (0,) and batch.pose_a.shape == (0, 4, 4)
+    with pytest.raises(ValueError, match="^As has 0 entries where the other arguments have 2"):
+        sc.time_of_impact_many([], [cube, cube])
+
+
 @pytest.mark.parametrize("offset", [1e6, 1e12])
 def test_answers_do_not_depend_on_where_the_motion_happens(offset):
     """Translations are taken relative to A's start, so their rounding is relative to the

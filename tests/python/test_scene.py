@@ -320,6 +320,18 @@ def test_invalid_poses_are_value_errors_naming_the_argument(pose, message):
         sc.distance_many([CUBE], [CUBE], poses_a=pose[None])
 
 
+def test_a_pose_of_nans_is_named_for_its_nans_not_its_last_row():
+    nans = np.full((4, 4), np.nan)
+    scene = sc.Scene()
+    with pytest.raises(ValueError, match=r"^poses\[0\] has a NaN or infinite entry"):
+        scene.add([CUBE], nans[None])
+    body = scene.add(CUBE)
+    with pytest.raises(ValueError, match=r"^poses\[0\] has a NaN or infinite entry"):
+        scene.set_poses(body, nans)
+    with pytest.raises(ValueError, match="^pose_b has a NaN or infinite entry"):
+        sc.distance(CUBE, CUBE, pose_b=nans)
+
+
 def test_a_bad_pose_among_many_is_named_by_its_index():
     # The poses' names are made only for a message (a name per pose was 2.5% of a frame).
     scene = sc.Scene()
@@ -332,6 +344,18 @@ def test_a_bad_pose_among_many_is_named_by_its_index():
     poses[3, 0, 0] = 2.0
     with pytest.raises(ValueError, match=r"poses\[3\].*not a rigid motion"):
         scene.set_poses(ids, poses)
+
+
+def test_a_curved_body_comes_back_as_its_own_shape():
+    from swarmcollide import shape_json
+
+    scene = sc.Scene()
+    shapes = [sc.Cylinder(1, 2), sc.Cone(0.5, 1), sc.Ellipsoid([1, 2, 3])]
+    ids = scene.add(shapes)
+    for shape, body_id in zip(shapes, ids):
+        body = scene.body(int(body_id))
+        assert type(body) is type(shape) and repr(body) == repr(shape)
+        assert shape_json.body_to_json(body) == shape_json.body_to_json(shape)
 
 
 def test_scene_errors_name_the_argument_and_the_fix():
@@ -349,6 +373,11 @@ def test_scene_errors_name_the_argument_and_the_fix():
         scene.set_poses(5, np.eye(4))
     with pytest.raises(ValueError, match="twice"):
         scene.remove([0, 0])
+    moved = np.eye(4)
+    moved[0, 3] = 10
+    with pytest.raises(ValueError, match="^ids lists body 0 twice; give each body one pose"):
+        scene.set_poses([0, 0], np.stack([moved, np.eye(4)]))
+    assert scene.pose(0)[0, 3] == 0
     with pytest.raises(TypeError, match="bodies must be"):
         scene.add("cube")
     with pytest.raises(TypeError, match="ids must be"):

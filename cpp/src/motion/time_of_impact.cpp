@@ -432,14 +432,18 @@ std::vector<TimeOfImpactResult> solve_many(const BatchBodies<Body>& as,
                                            const std::vector<RigidMotion>& motions_b,
                                            const TimeOfImpactOptions& options, int threads) {
   options.validate();
+  // The rows: the longest list other than one for all, or none when every such list is empty.
   std::size_t rows = 1;
-  const auto count = [&rows](std::size_t n, bool single) {
+  bool none = false;
+  const auto count = [&rows, &none](std::size_t n, bool single) {
+    if (!single && n == 0) none = true;
     if (!single && n != 1) rows = std::max(rows, n);
   };
   count(as.size(), as.single());
   count(bs.size(), bs.single());
   count(motions_a.size(), false);
   count(motions_b.size(), false);
+  if (none && rows == 1) rows = 0;
   const auto check = [rows](std::size_t n, bool single, const char* name) {
     if (!single && n != 1 && n != rows) {
       throw std::invalid_argument(std::string(name) + " has " + std::to_string(n) +

@@ -89,8 +89,9 @@ struct Scene::Impl {
   std::vector<BodyId> add(std::vector<ConvexPolyhedron> bodies,
                           std::vector<std::shared_ptr<const CompoundBody>> compounds,
                           const std::vector<Pose>& poses, const BodyFilter& filter);
-  // The bodies `ids` names, for the new poses `poses` (one each), which are checked: rigid, and
-  // within the range the scene can place. Throws std::invalid_argument naming the first fault.
+  // The bodies `ids` names, each once, for the new poses `poses` (one each), which are checked:
+  // rigid, and within the range the scene can place. Throws std::invalid_argument naming the
+  // first fault.
   std::vector<detail::SceneBody*> bodies_to_move(const std::vector<BodyId>& ids,
                                                  const std::vector<Pose>& poses);
   // Puts `b` at `pose` (checked by the caller), adding its step to its odometer and listing it

@@ -129,10 +129,7 @@ SweepResult Scene::sweep(const std::vector<BodyId>& ids, const std::vector<Pose>
   std::unordered_map<BodyId, std::size_t> moving;
   std::vector<RigidMotion> motions;
   for (std::size_t i = 0; i < ids.size(); ++i) {
-    if (!moving.emplace(ids[i], i).second) {
-      throw std::invalid_argument("ids lists body " + std::to_string(ids[i]) +
-                                  " twice; give each body one end pose");
-    }
+    moving.emplace(ids[i], i);
     const std::string name = "poses[" + std::to_string(i) + "]";
     motions.emplace_back(targets[i]->pose, poses[i], sweep_options.motion, name.c_str());
   }

@@ -114,7 +114,8 @@ TimeOfImpactResult time_of_impact(const CompoundBody& a, const RigidMotion& moti
 
 /// `time_of_impact(as[i], motions_a[i], bs[i], motions_b[i])` for every row i, on `threads`
 /// threads (0: one per hardware thread); the answers do not depend on the number of threads. A
-/// single body or motion serves every row. Throws std::invalid_argument for mismatched lengths.
+/// single body or motion serves every row; empty lists (the others one for all) make no rows and
+/// no answers. Throws std::invalid_argument for mismatched lengths.
 std::vector<TimeOfImpactResult> time_of_impact_many(const BatchBodies<ConvexPolyhedron>& as,
                                                     const std::vector<RigidMotion>& motions_a,
                                                     const BatchBodies<ConvexPolyhedron>& bs,

@@ -53,7 +53,7 @@ class Scene {
                           const BodyFilter& filter = {});
   BodyId add(CompoundBody body, const Pose& pose = {}, const BodyFilter& filter = {});
   /// Moves bodies; their hulls are never recomputed. Throws std::invalid_argument, moving
-  /// nothing, for an unknown id, lengths that differ or an invalid pose.
+  /// nothing, for an unknown or repeated id, lengths that differ or an invalid pose.
   void set_poses(const std::vector<BodyId>& ids, const std::vector<Pose>& poses);
   /// Removes bodies, with every cached proof and exclusion that concerns them. Throws
   /// std::invalid_argument, removing nothing, for an unknown or repeated id.
