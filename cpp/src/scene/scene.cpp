@@ -361,20 +361,23 @@ std::vector<SceneBody*> Scene::Impl::bodies_to_move(const std::vector<BodyId>& i
   }
   std::vector<SceneBody*> targets;
   targets.reserve(ids.size());
-  std::unordered_set<BodyId> listed;
   for (std::size_t i = 0; i < ids.size(); ++i) {
     targets.push_back(&find(ids[i]));
-    // A body given two poses would end at whichever came last, silently.
-    if (!listed.insert(ids[i]).second) {
-      throw std::invalid_argument("ids lists body " + std::to_string(ids[i]) +
-                                  " twice; give each body one pose");
-    }
     validate_pose(poses[i], "poses", i);
     if (!within_range(poses[i])) {
       refuse_placement("poses[" + std::to_string(i) + "] moves body " + std::to_string(ids[i]) +
                            " along an axis by",
                        poses[i].translation.cwiseAbs().maxCoeff());
     }
+  }
+  // A body given two poses would end at whichever came last, silently. The bodies sorted: a set
+  // of ids allocated a node per body of every frame's set_poses.
+  std::vector<SceneBody*> sorted = targets;
+  std::sort(sorted.begin(), sorted.end());
+  const auto twice = std::adjacent_find(sorted.begin(), sorted.end());
+  if (twice != sorted.end()) {
+    throw std::invalid_argument("ids lists body " + std::to_string((*twice)->id) +
+                                " twice; give each body one pose");
   }
   return targets;
 }

@@ -246,7 +246,9 @@ AxesBound CandidateAxes::run(const FramedBody& a, const FramedBody& b, Scalar co
         const long double relative = kx.norm() / (da.norm() * db.norm());
         sine = static_cast<Scalar>(relative);
         if (sine >= kExtendedConditioned) {
-          k = kx.cast<Scalar>();
+          // Made unit before it is rounded to double: two edges of a body 1e-154 of its pair's
+          // size have a cross product whose entries underflow there.
+          k = (kx / kx.norm()).cast<Scalar>();
           error = static_cast<Scalar>(16 * kExtendedRoundoff / relative) + 4 * kRoundoff;
         } else {
           // Nearly parallel: the facet normal lies on ea's great circle, on both arcs. Bound
@@ -300,9 +302,7 @@ AxesBound CandidateAxes::run(const FramedBody& a, const FramedBody& b, Scalar co
           continue;
         }
       }
-      const std::optional<Vector3> unit = unit_direction(k);
-      if (!unit) continue;  // sine >= 1e-9 of unit vectors' cross product: never zero
-      k = *unit;
+      k.normalize();  // unit already, or the cross product of unit vectors at a sine >= 1e-4
       if (ea.full && eb.full)
         flat_slack = std::max(flat_slack, 2 * (error + 8 * kRoundoff) * reach);
       for (const Scalar side : {1.0, -1.0}) {
