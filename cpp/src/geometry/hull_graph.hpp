@@ -14,7 +14,8 @@ namespace swarmcollide::detail {
 bool closed_surface(const std::vector<Eigen::RowVector3i>& triangles);
 
 /// Sets `hull.neighbour_offsets` and `hull.neighbours` from its faces (or its segment), and
-/// `hull.climb_starts`, for the point set `points` whose hull it is.
+/// `hull.climb_starts`, for the point set `points` whose hull it is (every cell starting at the
+/// first vertex for a set of at most kHillClimbingThreshold points, which is scanned).
 void fill_adjacency(Hull& hull, const VertexMatrix& points);
 
 }  // namespace swarmcollide::detail

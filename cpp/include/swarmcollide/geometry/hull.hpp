@@ -23,7 +23,9 @@ struct Hull {
   std::vector<int> neighbours;
   /// Where hill climbs without a start begin: per cell of a cube map of directions (six faces of
   /// 8 x 8 cells, about 11 degrees wide), a vertex farthest along the cell's centre, so that a
-  /// climb from the cell of its direction is a step or two.
+  /// climb from the cell of its direction is a step or two. A set of at most
+  /// kHillClimbingThreshold points, which the library scans rather than climbs, has its first
+  /// vertex in every cell.
   std::vector<int> climb_starts;
 };
 
