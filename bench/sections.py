@@ -118,7 +118,8 @@ def batch_section(data: dict) -> str:
     rows = [[v["method"], str(v["pairs"]), f"{v['one_thread_seconds']:.3f} s",
              f"{v['two_threads_seconds']:.3f} s", f"**{v['speedup']:.2f}x**"]
             for v in data["rows"]]
-    lines += ["Threads (`threads=1` against `threads=2`, the machine's two cores):", "",
+    lines += ["Threads (`threads=1` against `threads=2`, the machine's two cores, in turn; the gain "
+              "is the median over rounds of each round's ratio):", "",
               table(["method", "pairs", "1 thread", "2 threads", "throughput gain"], rows), ""]
     memory = data["memory"]
     lines += [f"Peak memory for {memory['pairs']:,} pairs (`method=\"{memory['method']}\"`, "
