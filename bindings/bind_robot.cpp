@@ -77,6 +77,21 @@ py::array_t<Scalar> values(const Scalar* first, py::ssize_t count) {
   return py::array_t<Scalar>(count, first);
 }
 
+// Configuration i's answer as RobotCheck.row gives it (the tuple's type deduced: the stubs name each
+// element's).
+auto check_row_values(const RobotCheck& check, Eigen::Index i) {
+  check_row(i, check.colliding.size());
+  const py::object gradient =
+      check.gradient.rows() > i
+          ? py::object(values(check.gradient.row(i).data(), check.gradient.cols()))
+          : py::none();
+  return py::make_tuple(bool(check.colliding(i)), check.min_distance(i), check.lower_bound(i),
+                        bool(check.certified(i)), check.pair(i),
+                        values(check.point_a.row(i).data(), 3),
+                        values(check.point_b.row(i).data(), 3),
+                        values(check.normal.row(i).data(), 3), gradient);
+}
+
 }  // namespace
 
 void bind_robot(py::module_& m) {
@@ -162,18 +177,7 @@ multiplier, offset : float
       .def_readonly("gradient", &RobotCheck::gradient)
       .def(
           "row",
-          [](const RobotCheck& check, Eigen::Index i) {
-            check_row(i, check.colliding.size());
-            const py::object gradient =
-                check.gradient.rows() > i
-                    ? py::object(values(check.gradient.row(i).data(), check.gradient.cols()))
-                    : py::none();
-            return py::make_tuple(
-                bool(check.colliding(i)), check.min_distance(i), check.lower_bound(i),
-                bool(check.certified(i)), check.pair(i), values(check.point_a.row(i).data(), 3),
-                values(check.point_b.row(i).data(), 3), values(check.normal.row(i).data(), 3),
-                gradient);
-          },
+          &check_row_values,
           py::arg("i"),
           "Configuration i's (colliding, min_distance, lower_bound, certified, pair, point_a, "
           "point_b, normal, gradient or None), as Python values and (3,) or (dof,) arrays: "
@@ -348,6 +352,29 @@ ValueError
           py::arg("gradient") = false, py::arg("nearest") = true,
           "The nearest pair per admitted configuration (m, dof), with d min_distance / dq when "
           "``gradient``; without ``nearest``, the verdict alone.")
+      .def(
+          "check_one",
+          [](const RobotModel& model, const PairTable& pairs,
+             const Eigen::Matrix<Scalar, 1, Eigen::Dynamic>& q, const py::object& limits,
+             const Query& query, const py::object& threads, bool gradient, bool nearest) {
+            const LimitMode mode = limit_mode(limits);
+            const BatchSettings settings = settings_of(threads);
+            const std::vector<GeometryPair> list = to_pairs(pairs);
+            RobotCheck check;
+            {
+              py::gil_scoped_release release;
+              const Configurations admitted = admit_configurations(model, q, mode);
+              check = robot_check(model, list, admitted, query.options(), settings, gradient,
+                                  nearest);
+            }
+            return check_row_values(check, 0);
+          },
+          py::arg("pairs"), py::arg("q"), py::arg("limits"), py::arg("query"),
+          py::arg("threads") = py::none(), py::arg("gradient") = false,
+          py::arg("nearest") = true,
+          "``admit`` then ``check`` of one configuration (dof,), answered as ``RobotCheck.row`` "
+          "answers it: a planner's validity check in one call (the three calls and the result's "
+          "object cost a third of it from Python).")
       .def(
           "check_motion",
           [](const RobotModel& model, const PairTable& pairs, const Configurations& q0,

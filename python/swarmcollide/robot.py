@@ -551,19 +551,26 @@ class Robot:
         if gradient and not nearest:
             raise ValueError("gradient needs the nearest pair: pass nearest=True with "
                              "gradient=True")
-        table, single = self._configurations(q, limits)
-        raw = self._model.check(self._pair_table, table,
-                                query(method, tolerance=tolerance, seed=seed), threads, gradient,
-                                nearest)
-        # A planner's check of one state reads its row alone, without every field's array.
-        values = raw.row(0) if single else (
-            raw.colliding, raw.min_distance, raw.lower_bound, raw.certified, raw.pair,
-            raw.point_a, raw.point_b, raw.normal, raw.gradient if gradient else None)
+        configurations = np.asarray(q)
+        pair_query = query(method, tolerance=tolerance, seed=seed)
+        if (configurations.ndim == 1 and configurations.dtype.kind in "fiu"
+                and limits in LIMIT_MODES):
+            # A planner's check of one state: admitted, checked and read in one call.
+            values = self._model.check_one(self._pair_table, configurations, limits, pair_query,
+                                           threads, gradient, nearest)
+        else:
+            table, single = self._configurations(configurations, limits)
+            raw = self._model.check(self._pair_table, table, pair_query, threads, gradient,
+                                    nearest)
+            values = raw.row(0) if single else (
+                raw.colliding, raw.min_distance, raw.lower_bound, raw.certified, raw.pair,
+                raw.point_a, raw.point_b, raw.normal, raw.gradient if gradient else None)
         colliding, min_distance, lower_bound, certified, pair, point_a, point_b, normal, slope = (
             values)
-        return RobotCheck(colliding=colliding, min_distance=min_distance, lower_bound=lower_bound,
-                          certified=certified, pair=pair, pair_names=self._pair_names[pair],
-                          point_a=point_a, point_b=point_b, normal=normal, gradient=slope)
+        # Positional, in the fields' order: named, the ten fields cost a planner's check of one
+        # state 0.6 us more.
+        return RobotCheck(colliding, min_distance, lower_bound, certified, pair,
+                          self._pair_names[pair], point_a, point_b, normal, slope)
 
     def check_motion(self, q0: npt.ArrayLike, q1: npt.ArrayLike, *, limits: str = "raise",
                      threads: Optional[int] = None,
