@@ -603,12 +603,12 @@ against each other: a box resting on a face gives its four corners.
           "body",
           [](const Scene& s, BodyId id) -> py::object {
             if (const CompoundBody* compound = s.compound(id)) return py::cast(*compound);
-            return typed_body(s.body(id));
+            return added_body(s.body(id));
           },
           py::arg("id"),
-          "The body with this id, in its own frame: a ConvexPolyhedron (a curved shape as its own "
-          "Cylinder, Cone or Ellipsoid) or a CompoundBody (the core's, without a decomposition "
-          "record).")
+          "The body with this id, in its own frame: a ConvexPolyhedron (a Sphere, Capsule, Box, "
+          "Cylinder, Cone or Ellipsoid as its own class) or a CompoundBody (the core's, without a "
+          "decomposition record).")
       .def(
           "pose", [](const Scene& s, BodyId id) { return homogeneous(s.pose(id)); }, py::arg("id"),
           "The body's pose as a (4, 4) homogeneous transform.")

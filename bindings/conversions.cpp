@@ -159,6 +159,28 @@ py::object typed_body(const ConvexPolyhedron& body) {
   return py::cast(body);
 }
 
+py::object added_body(const ConvexPolyhedron& body) {
+  if (body.curved()) return typed_body(body);
+  const VertexMatrix& points = body.vertices();
+  const Scalar radius = body.radius();
+  try {
+    if (points.rows() == 1 && radius > 0 && (points.array() == 0).all()) {
+      return py::cast(Sphere(radius));
+    }
+    if (points.rows() == 2 && radius > 0) {
+      const Capsule capsule(radius, std::abs(points(0, 2)));
+      if (capsule.vertices() == points) return py::cast(capsule);
+    }
+    if (points.rows() == 8) {
+      const Box box(points.cwiseAbs().colwise().maxCoeff().transpose(), radius);
+      if (box.vertices() == points) return py::cast(box);
+    }
+  } catch (const std::invalid_argument&) {
+    // Points no such shape has (a zero extent, say): the polyhedron it is.
+  }
+  return py::cast(body);
+}
+
 VertexMatrix to_vertex_matrix(const py::handle& points, const char* name) {
   const auto doubles = real_array(points_of(points), {-1, 3}, name, "an (n, 3) array of numbers");
   if (doubles.shape(0) == 0) {

@@ -116,6 +116,13 @@ py::object points_of(const py::handle& body);
 /// shape placed by a pose, as the ConvexPolyhedron it is.
 py::object typed_body(const ConvexPolyhedron& body);
 
+/// A body as it was added to a scene: typed_body's, or a Sphere, Capsule or Box when its points
+/// and radius are exactly those that class builds. A scene keeps bodies as ConvexPolyhedron,
+/// which these shapes are with nothing of their own but their parameters, read back from the
+/// points; a polyhedron built from the very points of a box is the same body, and comes back a
+/// Box too.
+py::object added_body(const ConvexPolyhedron& body);
+
 /// True for a NumPy array of one or more dimensions, which Python's number protocols would turn
 /// into a scalar or refuse with NumPy's own message.
 bool is_array(const py::handle& value);
