@@ -57,8 +57,9 @@ bool is_rotation(const py::handle& value);
 
 /// A pose argument: None (the identity), a `(4, 4)` homogeneous rigid transform, or a pair
 /// `(rotation (3, 3), translation (3,))`; TypeError or ValueError naming `name` otherwise. A
-/// rotation given in floats narrower than double (float32, float16) within 1e-5 of a rotation is
-/// taken for the nearest rotation, as to_poses takes it.
+/// rotation given in floats narrower than double (float32, float16) within 84 of their epsilons
+/// of a rotation (1e-5 for float32, 0.08 for float16) is taken for the nearest rotation, as
+/// to_poses takes it.
 Pose to_pose(const py::handle& pose, const char* name);
 
 /// `pose` as a `(4, 4)` homogeneous transform.

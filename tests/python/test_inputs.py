@@ -177,6 +177,26 @@ def test_float32_poses_answer_as_the_rigid_motions_they_round():
                          poses_b=np.stack([pose, scaled]).astype(np.float32))
 
 
+def test_float16_poses_answer_as_the_rigid_motions_they_round():
+    """float16 rounds a rotation by up to 5e-4 an entry (|R^T R - I| up to about 2e-3, beyond
+    float32's 1e-5): within 84 of its epsilons, as float32 is within 84 of its, it is read as
+    the nearest rotation; a scaling of 5% is still refused."""
+    pose = homogeneous(TURN, SHIFT)
+    half = pose.astype(np.float16)
+    assert np.abs(half[:3, :3].astype(float).T @ half[:3, :3] - np.eye(3)).max() > 1e-4
+    expected = sc.distance(CUBE, CUBE, pose_b=pose).distance
+    for given in (half, (half[:3, :3], SHIFT)):
+        got = sc.distance(CUBE, CUBE, pose_b=given)
+        assert got.certified and abs(got.distance - expected) <= 5e-3
+    scene = sc.Scene()
+    placed = scene.pose(int(scene.add(CUBE, half)[0]))
+    assert np.abs(placed[:3, :3].T @ placed[:3, :3] - np.eye(3)).max() <= 1e-15
+    scaled = pose.copy()
+    scaled[:3, :3] *= 1.05
+    with pytest.raises(ValueError, match="^pose_b is not a rigid motion"):
+        sc.distance(CUBE, CUBE, pose_b=scaled.astype(np.float16))
+
+
 @pytest.mark.parametrize(
     ("pose", "error", "message"),
     [
