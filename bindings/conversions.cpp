@@ -580,6 +580,14 @@ int to_count(const py::handle& value, const char* name, int least) {
   return count.cast<int>();
 }
 
+bool to_bool(const py::handle& value, const char* name) {
+  if (PyBool_Check(value.ptr())) return value.ptr() == Py_True;
+  if (py::isinstance(value, py::module_::import("numpy").attr("bool_"))) {
+    return value.cast<bool>();
+  }
+  throw py::type_error(std::string(name) + " must be True or False, got " + type_name(value));
+}
+
 MotionKind to_motion_kind(const py::handle& motion) {
   const std::string name = to_name(motion, "motion");
   try {

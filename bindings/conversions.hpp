@@ -136,6 +136,18 @@ Scalar to_real(const py::handle& value, const char* name);
 /// (bool included), ValueError naming the range for a value outside it however large.
 int to_count(const py::handle& value, const char* name, int least);
 
+/// A flag (Python's bool or NumPy's) as `name`: TypeError for anything else.
+bool to_bool(const py::handle& value, const char* name);
+
+/// An argument as the caller gave it, for to_bool, to_count, to_real or to_name to check with a
+/// message naming it and what it accepts: pybind11's own conversion to `T` would take None or 2
+/// for a bool and 2.7 for an int without a word, and refuse "no" or 2**40 with a message naming
+/// neither. Signatures and stubs still show `T`.
+template <typename T>
+struct Given {
+  py::object value;
+};
+
 /// The name of the type of `object`, for messages.
 std::string type_name(const py::handle& object);
 
@@ -143,3 +155,19 @@ std::string type_name(const py::handle& object);
 const char* status_name(MotionStatus status);
 
 }  // namespace swarmcollide::bindings
+
+namespace pybind11::detail {
+
+template <typename T>
+struct type_caster<swarmcollide::bindings::Given<T>> {
+  PYBIND11_TYPE_CASTER(swarmcollide::bindings::Given<T>, make_caster<T>::name);
+  bool load(handle source, bool) {
+    value.value = reinterpret_borrow<object>(source);
+    return true;
+  }
+  static handle cast(const swarmcollide::bindings::Given<T>& given, return_value_policy, handle) {
+    return given.value.inc_ref();
+  }
+};
+
+}  // namespace pybind11::detail
