@@ -984,8 +984,8 @@ def _read_parts(path: Path):
 
 def _decomposition_of(meta: str) -> Optional[Decomposition]:
     """The decomposition record of a parts file (JSON; empty for none); ValueError naming the
-    field missing, unknown or not of its type (a record of another type would give a body whose
-    repr, or whose bounds, are wrong)."""
+    field missing, unknown or not of its type (with others, the body's repr raised, and its
+    deviation bounds were not numbers)."""
     if not meta:
         return None
     try:
