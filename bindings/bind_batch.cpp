@@ -329,9 +329,10 @@ part_a, part_b : numpy.ndarray of int, shape (m,)
       .def(
           "collide_many",
           [](const Query& q, const py::object& as, const py::object& bs, const py::object& threads,
-             const py::object& first_index, bool escalate, const py::object& poses_a,
-             const py::object& poses_b) {
-            const BatchSettings settings = settings_of(threads, first_index, escalate);
+             const py::object& first_index, const Given<bool>& escalate,
+             const py::object& poses_a, const py::object& poses_b) {
+            const BatchSettings settings =
+                settings_of(threads, first_index, to_bool(escalate.value, "escalate"));
             return run(as, bs, poses_a, poses_b, settings,
                        [&](const auto& a, const auto& b, const BatchPoses& poses) {
                          return collide_many(a, b, q.options(), settings, poses);

@@ -5,6 +5,7 @@
 #include <pybind11/stl.h>
 
 #include <cmath>
+#include <initializer_list>
 #include <memory>
 #include <optional>
 #include <sstream>
@@ -99,6 +100,35 @@ std::vector<RigidMotion> to_motions(const py::handle& given, std::size_t count, 
                          (arg + "[" + std::to_string(i) + "]").c_str());
   }
   return motions;
+}
+
+// The arguments of a batch, by name and entries (1: one for every row), hold one entry per row,
+// checked here rather than by the core, whose message names its own arguments (motions_a for
+// poses_a) and takes the longest for the rows: the rows are the count most arguments share (the
+// larger on a tie), so that the message names the argument that is the odd one out.
+void check_rows(std::initializer_list<std::pair<const char*, std::size_t>> arguments) {
+  std::size_t rows = 1;
+  std::size_t sharing = 0;
+  for (const auto& [name, count] : arguments) {
+    if (count == 1) continue;
+    std::size_t same = 0;
+    for (const auto& other : arguments) same += other.second == count;
+    if (same > sharing || (same == sharing && count > rows)) {
+      rows = count;
+      sharing = same;
+    }
+  }
+  for (const auto& [name, count] : arguments) {
+    if (count == 1 || count == rows) continue;
+    std::string others;
+    for (const auto& other : arguments) {
+      if (other.second != rows) continue;
+      others += (others.empty() ? "" : " and ") + std::string(other.first);
+    }
+    throw py::value_error(std::string(name) + " has " + std::to_string(count) + " entries where " +
+                          others + (sharing > 1 ? " have " : " has ") + std::to_string(rows) +
+                          "; give one per row, or one for all");
+  }
 }
 
 // Rows of motions given: the leading length of their start poses (1 for a single pose or None).
@@ -493,6 +523,10 @@ call (compound bodies, points, calls that raise) to ``python_path``.
         if (holds_compound(as) || holds_compound(bs) || is_compound(as) || is_compound(bs)) {
           const Side<CompoundBody, CompoundArgument> side_a(as, "As");
           const Side<CompoundBody, CompoundArgument> side_b(bs, "Bs");
+          check_rows({{"As", side_a.rows()},
+                      {"Bs", side_b.rows()},
+                      {"poses_a", motions_a.size()},
+                      {"poses_b", motions_b.size()}});
           py::gil_scoped_release release;
           batch.results = time_of_impact_many(side_a.bodies(), motions_a, side_b.bodies(),
                                               motions_b, options, thread_number);
@@ -500,6 +534,10 @@ call (compound bodies, points, calls that raise) to ``python_path``.
         }
         const Side<ConvexPolyhedron, BodyArgument> side_a(as, "As");
         const Side<ConvexPolyhedron, BodyArgument> side_b(bs, "Bs");
+        check_rows({{"As", side_a.rows()},
+                    {"Bs", side_b.rows()},
+                    {"poses_a", motions_a.size()},
+                    {"poses_b", motions_b.size()}});
         py::gil_scoped_release release;
         batch.results = time_of_impact_many(side_a.bodies(), motions_a, side_b.bodies(),
                                             motions_b, options, thread_number);

@@ -612,16 +612,19 @@ both bodies): it is the precision of every answer and the distance below which b
       .def(
           "collision",
           [](const Query& q, const py::handle& a, const py::handle& b, const py::handle& pose_a,
-             const py::handle& pose_b, bool escalate) {
-            return AnyResult(answer(q, PairQuery::collision, a, b, pose_a, pose_b, escalate));
+             const py::handle& pose_b, const Given<bool>& escalate) {
+            return AnyResult(answer(q, PairQuery::collision, a, b, pose_a, pose_b,
+                                    to_bool(escalate.value, "escalate")));
           },
           py::arg("a"), py::arg("b"), py::arg("pose_a") = py::none(),
           py::arg("pose_b") = py::none(), py::arg("escalate") = true)
       .def(
           "collide",
           [](const Query& q, const py::handle& a, const py::handle& b, const py::handle& pose_a,
-             const py::handle& pose_b, bool escalate) {
-            return answer(q, PairQuery::collide, a, b, pose_a, pose_b, escalate).ptr() == Py_True;
+             const py::handle& pose_b, const Given<bool>& escalate) {
+            return answer(q, PairQuery::collide, a, b, pose_a, pose_b,
+                          to_bool(escalate.value, "escalate"))
+                       .ptr() == Py_True;
           },
           py::arg("a"), py::arg("b"), py::arg("pose_a") = py::none(),
           py::arg("pose_b") = py::none(), py::arg("escalate") = true)

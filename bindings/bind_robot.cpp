@@ -1,6 +1,9 @@
 #include <pybind11/eigen.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
+#include <cstdint>
+#include <limits>
 #include <memory>
 #include <string>
 #include <utility>
@@ -37,9 +40,32 @@ JointType joint_type(const std::string& name, const std::string& joint) {
                         "' is not supported; use 'revolute', 'continuous', 'prismatic' or 'fixed'");
 }
 
-std::vector<GeometryPair> to_pairs(const PairTable& table) {
-  std::vector<GeometryPair> pairs(static_cast<std::size_t>(table.rows()));
-  for (Eigen::Index p = 0; p < table.rows(); ++p) pairs[p] = {table(p, 0), table(p, 1)};
+// Geometry pairs, an (n, 2) array-like of integer indices (none when empty). pybind11's own
+// conversion to an int matrix would read a pair of floats (0.9, 2.5) as (0, 2) without a word.
+std::vector<GeometryPair> to_pairs(const Given<PairTable>& given) {
+  const py::array array = py::module_::import("numpy").attr("asarray")(given.value);
+  if (array.size() == 0) return {};
+  if (array.dtype().kind() != 'i' && array.dtype().kind() != 'u') {
+    throw py::type_error("pairs must be an (n, 2) array of integer geometry indices, got " +
+                         std::string(py::str(array.dtype())) + " values");
+  }
+  if (array.ndim() != 2 || array.shape(1) != 2) {
+    throw py::value_error("pairs must be an (n, 2) array of integer geometry indices, got shape " +
+                          std::string(py::str(array.attr("shape"))));
+  }
+  const auto table =
+      py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(array);
+  std::vector<GeometryPair> pairs(static_cast<std::size_t>(table.shape(0)));
+  for (std::size_t p = 0; p < pairs.size(); ++p) {
+    const std::int64_t a = table.at(p, 0);
+    const std::int64_t b = table.at(p, 1);
+    // Refused before they are narrowed to int; the model checks the others against its count.
+    if (std::min(a, b) < 0 || std::max(a, b) > std::numeric_limits<int>::max()) {
+      throw py::value_error("pairs[" + std::to_string(p) + "] = (" + std::to_string(a) + ", " +
+                            std::to_string(b) + ") must name two geometries by index, from 0");
+    }
+    pairs[p] = {static_cast<int>(a), static_cast<int>(b)};
+  }
   return pairs;
 }
 
@@ -118,23 +144,28 @@ mimic : int
     value(mimicked) + offset`` and it is no degree of freedom.
 multiplier, offset : float
 )doc")
-      .def(py::init([](const std::string& name, const std::string& type, int parent, int child,
-                       const py::object& origin, const py::object& axis, Scalar lower,
-                       Scalar upper, Scalar reference, int mimic, Scalar multiplier,
-                       Scalar offset) {
+      .def(py::init([](const Given<std::string>& name, const Given<std::string>& type,
+                       const Given<int>& parent, const Given<int>& child,
+                       const py::object& origin, const py::object& axis,
+                       const Given<Scalar>& lower, const Given<Scalar>& upper,
+                       const Given<Scalar>& reference, const Given<int>& mimic,
+                       const Given<Scalar>& multiplier, const Given<Scalar>& offset) {
              Joint joint;
-             joint.name = name;
-             joint.type = joint_type(type, name);
-             joint.parent = parent;
-             joint.child = child;
-             joint.origin = to_pose(origin, ("joint '" + name + "' origin").c_str());
-             joint.axis = finite_vector3(axis, ("joint '" + name + "' axis").c_str());
-             joint.lower = lower;
-             joint.upper = upper;
-             joint.reference = reference;
-             joint.mimic = mimic;
-             joint.multiplier = multiplier;
-             joint.offset = offset;
+             joint.name = to_name(name.value, "name");
+             const std::string label = "joint '" + joint.name + "' ";
+             const auto named = [&label](const char* argument) { return label + argument; };
+             joint.type = joint_type(to_name(type.value, named("type").c_str()), joint.name);
+             joint.parent = to_count(parent.value, named("parent").c_str(), 0);
+             joint.child = to_count(child.value, named("child").c_str(), 0);
+             joint.origin = to_pose(origin, named("origin").c_str());
+             joint.axis = finite_vector3(axis, named("axis").c_str());
+             joint.lower = to_real(lower.value, named("lower").c_str());
+             joint.upper = to_real(upper.value, named("upper").c_str());
+             joint.reference = to_real(reference.value, named("reference").c_str());
+             // -1 alone stands for none: another negative index is a mistake, not "none".
+             joint.mimic = to_count(mimic.value, named("mimic (-1: none)").c_str(), -1);
+             joint.multiplier = to_real(multiplier.value, named("multiplier").c_str());
+             joint.offset = to_real(offset.value, named("offset").c_str());
              return joint;
            }),
            py::arg("name"), py::arg("type"), py::arg("parent"), py::arg("child"),
@@ -245,15 +276,16 @@ ValueError
                if (row.size() != 4) {
                  throw py::value_error("each geometry must be (name, link, origin, body)");
                }
-               const auto name = row[0].cast<std::string>();
+               const auto name = to_name(row[0], "a geometry's name");
                const Pose origin = to_pose(row[2], ("geometry '" + name + "' origin").c_str());
+               const int link =
+                   to_count(row[1], ("geometry '" + name + "' link (-1: the world)").c_str(), -1);
                if (is_compound(row[3])) {
                  const auto& parts = row[3].cast<const CompoundBody&>();
-                 geometries.push_back(
-                     Geometry{name, row[1].cast<int>(), origin, parts.envelope(), parts});
+                 geometries.push_back(Geometry{name, link, origin, parts.envelope(), parts});
                } else {
                  geometries.push_back(
-                     Geometry{name, row[1].cast<int>(), origin,
+                     Geometry{name, link, origin,
                               BodyArgument(row[3], ("geometry '" + name + "'").c_str()).get(),
                               std::nullopt});
                }
@@ -330,7 +362,7 @@ ValueError
           "4, 4).")
       .def(
           "distances",
-          [](const RobotModel& model, const PairTable& pairs, const Configurations& q,
+          [](const RobotModel& model, const Given<PairTable>& pairs, const Configurations& q,
              const Query& query, const py::object& threads) {
             const BatchSettings settings = settings_of(threads);
             const std::vector<GeometryPair> list = to_pairs(pairs);
@@ -341,12 +373,16 @@ ValueError
           "Signed distances of geometry pairs (pairs, 2) at admitted configurations (m, dof).")
       .def(
           "check",
-          [](const RobotModel& model, const PairTable& pairs, const Configurations& q,
-             const Query& query, const py::object& threads, bool gradient, bool nearest) {
+          [](const RobotModel& model, const Given<PairTable>& pairs, const Configurations& q,
+             const Query& query, const py::object& threads, const Given<bool>& gradient,
+             const Given<bool>& nearest) {
             const BatchSettings settings = settings_of(threads);
             const std::vector<GeometryPair> list = to_pairs(pairs);
+            const bool with_gradient = to_bool(gradient.value, "gradient");
+            const bool with_nearest = to_bool(nearest.value, "nearest");
             py::gil_scoped_release release;
-            return robot_check(model, list, q, query.options(), settings, gradient, nearest);
+            return robot_check(model, list, q, query.options(), settings, with_gradient,
+                               with_nearest);
           },
           py::arg("pairs"), py::arg("q"), py::arg("query"), py::arg("threads") = py::none(),
           py::arg("gradient") = false, py::arg("nearest") = true,
@@ -377,15 +413,15 @@ ValueError
           "object cost a third of it from Python).")
       .def(
           "check_motion",
-          [](const RobotModel& model, const PairTable& pairs, const Configurations& q0,
-             const Configurations& q1, const Query& query, Scalar time_tolerance,
-             int max_iterations, const py::object& threads) {
+          [](const RobotModel& model, const Given<PairTable>& pairs, const Configurations& q0,
+             const Configurations& q1, const Query& query, const Given<Scalar>& time_tolerance,
+             const Given<int>& max_iterations, const py::object& threads) {
             const BatchSettings settings = settings_of(threads);
             const std::vector<GeometryPair> list = to_pairs(pairs);
             TimeOfImpactOptions options;
             options.query = query.options();
-            options.time_tolerance = time_tolerance;
-            options.max_iterations = max_iterations;
+            options.time_tolerance = to_real(time_tolerance.value, "time_tolerance");
+            options.max_iterations = to_count(max_iterations.value, "max_iterations", 1);
             py::gil_scoped_release release;
             return robot_check_motion(model, list, q0, q1, options, settings);
           },

@@ -380,14 +380,14 @@ cached_pairs, cache_bytes : int
   py::class_<Scene>(m, "Scene", kSceneDoc)
       .def(py::init([](const py::object& method, const py::object& broadphase,
                        const py::object& threads, const py::object& tolerance,
-                       const py::object& seed, bool warm_start, bool escalate,
-                       const py::kwargs& parameters) {
+                       const py::object& seed, const Given<bool>& warm_start,
+                       const Given<bool>& escalate, const py::kwargs& parameters) {
              SceneOptions options;
              options.query = make_options(method, tolerance, seed, parameters);
              options.broadphase = broadphase_from_name(to_name(broadphase, "broadphase"));
              if (!threads.is_none()) options.threads = thread_count(threads);
-             options.warm_start = warm_start;
-             options.escalate = escalate;
+             options.warm_start = to_bool(warm_start.value, "warm_start");
+             options.escalate = to_bool(escalate.value, "escalate");
              return Scene(options);
            }),
            py::arg("method") = "dual", py::arg("broadphase") = "dynamic_aabb_tree",
@@ -601,16 +601,21 @@ against each other: a box resting on a face gives its four corners.
            })
       .def(
           "body",
-          [](const Scene& s, BodyId id) -> py::object {
+          [](const Scene& s, const Given<BodyId>& given) -> py::object {
+            const BodyId id = to_count(given.value, "id", 0);
             if (const CompoundBody* compound = s.compound(id)) return py::cast(*compound);
-            return typed_body(s.body(id));
+            return added_body(s.body(id));
           },
           py::arg("id"),
-          "The body with this id, in its own frame: a ConvexPolyhedron (a curved shape as its own "
-          "Cylinder, Cone or Ellipsoid) or a CompoundBody (the core's, without a decomposition "
-          "record).")
+          "The body with this id, in its own frame: a ConvexPolyhedron (a Sphere, Capsule, Box, "
+          "Cylinder, Cone or Ellipsoid as its own class) or a CompoundBody (the core's, without a "
+          "decomposition record).")
       .def(
-          "pose", [](const Scene& s, BodyId id) { return homogeneous(s.pose(id)); }, py::arg("id"),
+          "pose",
+          [](const Scene& s, const Given<BodyId>& id) {
+            return homogeneous(s.pose(to_count(id.value, "id", 0)));
+          },
+          py::arg("id"),
           "The body's pose as a (4, 4) homogeneous transform.")
       .def_property_readonly("method",
                              [](const Scene& s) { return method_name(s.options().query.method); })

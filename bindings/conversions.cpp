@@ -159,6 +159,28 @@ py::object typed_body(const ConvexPolyhedron& body) {
   return py::cast(body);
 }
 
+py::object added_body(const ConvexPolyhedron& body) {
+  if (body.curved()) return typed_body(body);
+  const VertexMatrix& points = body.vertices();
+  const Scalar radius = body.radius();
+  try {
+    if (points.rows() == 1 && radius > 0 && (points.array() == 0).all()) {
+      return py::cast(Sphere(radius));
+    }
+    if (points.rows() == 2 && radius > 0) {
+      const Capsule capsule(radius, std::abs(points(0, 2)));
+      if (capsule.vertices() == points) return py::cast(capsule);
+    }
+    if (points.rows() == 8) {
+      const Box box(points.cwiseAbs().colwise().maxCoeff().transpose(), radius);
+      if (box.vertices() == points) return py::cast(box);
+    }
+  } catch (const std::invalid_argument&) {
+    // Points no such shape has (a zero extent, say): the polyhedron it is.
+  }
+  return py::cast(body);
+}
+
 VertexMatrix to_vertex_matrix(const py::handle& points, const char* name) {
   const auto doubles = real_array(points_of(points), {-1, 3}, name, "an (n, 3) array of numbers");
   if (doubles.shape(0) == 0) {
@@ -237,31 +259,43 @@ Pose from_rows(const Scalar* data, py::ssize_t rows, const Name& at) {
   return pose;
 }
 
-// How far from a rotation (|R^T R - I| and |det R - 1|) a rotation read from floats narrower
-// than double may be and still stand for the nearest rotation: float32 rounds a rotation's
-// entries by up to 6e-8, leaving |R^T R - I| near 1e-7, far beyond the 1e-9 a pose may be off.
-constexpr Scalar kNarrowRotationTolerance = 1e-5;
+// How far from a rotation (|R^T R - I| and |det R - 1|), in units of the epsilon of the floats
+// it was read from, a rotation narrower than double may be and still stand for the nearest
+// rotation. Rounding a rotation leaves |R^T R - I| within about 2 epsilons, and computing one in
+// those floats (a quaternion turned into a matrix, a chain of products) a few dozen: 84 epsilons
+// are 1e-5 for float32 (whose rounding is near 1e-7, far beyond the 1e-9 a pose may be off) and
+// 0.08 for float16. float16 rotations are taken, not refused: a robot's poses in half precision
+// (a network's output, say) mean the rotations they round, no cast to float32 would make them
+// any closer to one, and a matrix off by more than its floats' own error is still refused.
+constexpr Scalar kNarrowRotationEpsilons = 84;
 
-// True when `value` holds floats narrower than double (float32, float16).
-bool holds_narrow_floats(const py::handle& value) {
-  const py::array array = py::module_::import("numpy").attr("asarray")(value);
-  return array.dtype().kind() == 'f' &&
-         array.dtype().itemsize() < static_cast<py::ssize_t>(sizeof(Scalar));
+// The epsilon of the floats `value` holds when they are narrower than double (float32,
+// float16); 0 for anything else.
+Scalar narrow_float_epsilon(const py::handle& value) {
+  const py::module_ numpy = py::module_::import("numpy");
+  const py::array array = numpy.attr("asarray")(value);
+  if (array.dtype().kind() != 'f' ||
+      array.dtype().itemsize() >= static_cast<py::ssize_t>(sizeof(Scalar))) {
+    return 0;
+  }
+  return numpy.attr("finfo")(array.dtype()).attr("eps").cast<Scalar>();
 }
 
-// A rotation read from narrow floats as the rotation it is a rounding of: within
-// kNarrowRotationTolerance of one, the nearest rotation, which two Newton-Schulz steps
-// R <- R (3I - R^T R) / 2 reach to double precision (each squares the error); anything farther
-// (a scaling, a shear) unchanged, for validate_pose to refuse with its usual message.
-Matrix3 rounded_rotation(const Matrix3& rotation) {
+// A rotation read from floats of epsilon `epsilon` (narrow_float_epsilon; 0 for doubles, left
+// as they are) as the rotation it is a rounding of: within kNarrowRotationEpsilons of one, the
+// nearest rotation, which Newton-Schulz steps R <- R (3I - R^T R) / 2 reach to double precision
+// (each about squares the error: four from 0.08, and one to spare); anything farther (a scaling,
+// a shear) unchanged, for validate_pose to refuse with its usual message.
+Matrix3 rounded_rotation(const Matrix3& rotation, Scalar epsilon) {
+  if (epsilon == 0) return rotation;
+  const Scalar tolerance = kNarrowRotationEpsilons * epsilon;
   const Scalar orthogonality =
       (rotation.transpose() * rotation - Matrix3::Identity()).cwiseAbs().maxCoeff();
-  if (!(orthogonality <= kNarrowRotationTolerance) ||
-      !(std::abs(rotation.determinant() - 1) <= kNarrowRotationTolerance)) {
+  if (!(orthogonality <= tolerance) || !(std::abs(rotation.determinant() - 1) <= tolerance)) {
     return rotation;
   }
   Matrix3 nearest = rotation;
-  for (int step = 0; step < 2; ++step) {
+  for (int step = 0; step < 5; ++step) {
     nearest = nearest * (3 * Matrix3::Identity() - nearest.transpose() * nearest) / 2;
   }
   return nearest;
@@ -336,7 +370,7 @@ Pose to_pose(const py::handle& given, const char* name) {
         real_array(parts[1], {3}, arg + "'s translation", "a (3,) translation");
     result.rotation = Eigen::Map<const RowMatrix3>(rotation.data());
     result.translation = Eigen::Map<const Vector3>(translation.data());
-    if (holds_narrow_floats(parts[0])) result.rotation = rounded_rotation(result.rotation);
+    result.rotation = rounded_rotation(result.rotation, narrow_float_epsilon(parts[0]));
   } else {
     // A sequence of 3 or 4 rows is a transform written as lists; no other length can be one.
     if ((PyTuple_Check(pose.ptr()) || PyList_Check(pose.ptr())) && !is_sequence_of(pose, 3) &&
@@ -349,7 +383,7 @@ Pose to_pose(const py::handle& given, const char* name) {
       throw py::value_error(arg + " must be " + forms + ", got shape " + shape_of(matrix));
     }
     result = from_rows(matrix.data(), matrix.shape(0), [&arg] { return arg; });
-    if (holds_narrow_floats(pose)) result.rotation = rounded_rotation(result.rotation);
+    result.rotation = rounded_rotation(result.rotation, narrow_float_epsilon(pose));
   }
   try {
     validate_pose(result, name);
@@ -412,11 +446,11 @@ std::vector<Pose> to_poses(const py::handle& given, std::size_t count, const cha
     const auto translations =
         single ? real_array(parts[1], {3}, arg + "'s translation", "a (3,) translation")
                : real_array(parts[1], {n, 3}, arg + "'s translations", shapes);
-    const bool narrow = holds_narrow_floats(parts[0]);
+    const Scalar epsilon = narrow_float_epsilon(parts[0]);
     for (std::size_t i = 0; i < count; ++i) {
       result[i].rotation = Eigen::Map<const RowMatrix3>(rotations.data() + 9 * i);
       result[i].translation = Eigen::Map<const Vector3>(translations.data() + 3 * i);
-      if (narrow) result[i].rotation = rounded_rotation(result[i].rotation);
+      result[i].rotation = rounded_rotation(result[i].rotation, epsilon);
     }
   } else if (is_sequence_of(given, count) && !real_numbers(poses)) {
     // A pose per body, each in any form to_pose reads: (Rotation, translation) pairs, Rotations,
@@ -439,11 +473,11 @@ std::vector<Pose> to_poses(const py::handle& given, std::size_t count, const cha
     if (rows != 3 && rows != 4) {
       throw py::value_error(arg + " must be " + shapes + ", got shape " + shape_of(matrices));
     }
-    const bool narrow = holds_narrow_floats(poses);
+    const Scalar epsilon = narrow_float_epsilon(poses);
     for (std::size_t i = 0; i < count; ++i) {
       result[i] = from_rows(matrices.data() + rows * 4 * i, rows,
                             [&arg, i] { return arg + "[" + std::to_string(i) + "]"; });
-      if (narrow) result[i].rotation = rounded_rotation(result[i].rotation);
+      result[i].rotation = rounded_rotation(result[i].rotation, epsilon);
     }
   }
   return result;
@@ -544,6 +578,14 @@ int to_count(const py::handle& value, const char* name, int least) {
                           std::string(py::str(count)));
   }
   return count.cast<int>();
+}
+
+bool to_bool(const py::handle& value, const char* name) {
+  if (PyBool_Check(value.ptr())) return value.ptr() == Py_True;
+  if (py::isinstance(value, py::module_::import("numpy").attr("bool_"))) {
+    return value.cast<bool>();
+  }
+  throw py::type_error(std::string(name) + " must be True or False, got " + type_name(value));
 }
 
 MotionKind to_motion_kind(const py::handle& motion) {

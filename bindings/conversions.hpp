@@ -57,8 +57,9 @@ bool is_rotation(const py::handle& value);
 
 /// A pose argument: None (the identity), a `(4, 4)` homogeneous rigid transform, or a pair
 /// `(rotation (3, 3), translation (3,))`; TypeError or ValueError naming `name` otherwise. A
-/// rotation given in floats narrower than double (float32, float16) within 1e-5 of a rotation is
-/// taken for the nearest rotation, as to_poses takes it.
+/// rotation given in floats narrower than double (float32, float16) within 84 of their epsilons
+/// of a rotation (1e-5 for float32, 0.08 for float16) is taken for the nearest rotation, as
+/// to_poses takes it.
 Pose to_pose(const py::handle& pose, const char* name);
 
 /// `pose` as a `(4, 4)` homogeneous transform.
@@ -116,6 +117,13 @@ py::object points_of(const py::handle& body);
 /// shape placed by a pose, as the ConvexPolyhedron it is.
 py::object typed_body(const ConvexPolyhedron& body);
 
+/// A body as it was added to a scene: typed_body's, or a Sphere, Capsule or Box when its points
+/// and radius are exactly those that class builds. A scene keeps bodies as ConvexPolyhedron,
+/// which these shapes are with nothing of their own but their parameters, read back from the
+/// points; a polyhedron built from the very points of a box is the same body, and comes back a
+/// Box too.
+py::object added_body(const ConvexPolyhedron& body);
+
 /// True for a NumPy array of one or more dimensions, which Python's number protocols would turn
 /// into a scalar or refuse with NumPy's own message.
 bool is_array(const py::handle& value);
@@ -128,6 +136,18 @@ Scalar to_real(const py::handle& value, const char* name);
 /// (bool included), ValueError naming the range for a value outside it however large.
 int to_count(const py::handle& value, const char* name, int least);
 
+/// A flag (Python's bool or NumPy's) as `name`: TypeError for anything else.
+bool to_bool(const py::handle& value, const char* name);
+
+/// An argument as the caller gave it, for to_bool, to_count, to_real or to_name to check with a
+/// message naming it and what it accepts: pybind11's own conversion to `T` would take None or 2
+/// for a bool and 2.7 for an int without a word, and refuse "no" or 2**40 with a message naming
+/// neither. Signatures and stubs still show `T`.
+template <typename T>
+struct Given {
+  py::object value;
+};
+
 /// The name of the type of `object`, for messages.
 std::string type_name(const py::handle& object);
 
@@ -135,3 +155,19 @@ std::string type_name(const py::handle& object);
 const char* status_name(MotionStatus status);
 
 }  // namespace swarmcollide::bindings
+
+namespace pybind11::detail {
+
+template <typename T>
+struct type_caster<swarmcollide::bindings::Given<T>> {
+  PYBIND11_TYPE_CASTER(swarmcollide::bindings::Given<T>, make_caster<T>::name);
+  bool load(handle source, bool) {
+    value.value = reinterpret_borrow<object>(source);
+    return true;
+  }
+  static handle cast(const swarmcollide::bindings::Given<T>& given, return_value_policy, handle) {
+    return given.value.inc_ref();
+  }
+};
+
+}  // namespace pybind11::detail

@@ -1078,7 +1078,7 @@ class Scene:
         """
     def body(self, id: typing.SupportsInt | typing.SupportsIndex) -> typing.Any:
         """
-        The body with this id, in its own frame: a ConvexPolyhedron (a curved shape as its own Cylinder, Cone or Ellipsoid) or a CompoundBody (the core's, without a decomposition record).
+        The body with this id, in its own frame: a ConvexPolyhedron (a Sphere, Capsule, Box, Cylinder, Cone or Ellipsoid as its own class) or a CompoundBody (the core's, without a decomposition record).
         """
     def colliding_pairs(self) -> SceneResult:
         """

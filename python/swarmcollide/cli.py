@@ -153,6 +153,12 @@ def _shape_parts(path: str) -> list:
         raise ValueError(f"cannot read the shape file {path!r}: {error.strerror}") from None
     except json.JSONDecodeError as error:
         raise ValueError(f"shape file {path!r} is not JSON: {error}") from None
+    except ValueError as error:  # an integer of more digits than Python converts (4,300)
+        raise ValueError(f"shape file {path!r} cannot be read: {error}") from None
+    except RecursionError:
+        raise ValueError(f"shape file {path!r} nests deeper than Python's JSON reader follows "
+                         f"(about {sys.getrecursionlimit()} levels); a shape file holds one "
+                         f"record, and a compound's parts are shapes, never compounds") from None
     try:
         body = body_from_json(record, name=path)
     except TypeError as error:

@@ -20,10 +20,11 @@ import tempfile
 import threading
 import time
 import zipfile
-from dataclasses import asdict, dataclass, field
+from dataclasses import MISSING, asdict, dataclass, field, fields
 from importlib.metadata import PackageNotFoundError, version
 from pathlib import Path
-from typing import Any, Callable, Dict, List, Optional, Sequence, Union
+from typing import (Any, Callable, Dict, List, Optional, Sequence, Union, get_origin,
+                    get_type_hints)
 
 import numpy as np
 
@@ -555,7 +556,10 @@ class CompoundBody(_core.CompoundBody):
             raise TypeError(
                 f"path must be a path to a parts file (.npz), got {type(path).__name__}"
             )
-        loaded = _read_parts(Path(path))
+        try:
+            loaded = _read_parts(Path(path))
+        except ValueError as error:  # its decomposition record: name the file and the field
+            raise ValueError(f"parts file {str(path)!r}: {error}") from None
         if loaded is None:
             raise ValueError(
                 f"{str(path)!r} is not a parts file (an .npz with 'points' and 'offsets', as "
@@ -968,15 +972,47 @@ def _read_parts(path: Path):
             with data:
                 points, offsets = data["points"], data["offsets"]
                 meta = str(data["decomposition"]) if "decomposition" in data else ""
-        decomposition = Decomposition(**json.loads(meta)) if meta else None
     except (OSError, ValueError, KeyError, EOFError, TypeError, zipfile.BadZipFile):
-        return None  # unreadable, not an .npz, or a record that is not a Decomposition's
+        return None  # unreadable, or not an .npz
     if (points.ndim != 2 or points.shape[1] != 3 or points.dtype.kind not in "fiu"
             or offsets.ndim != 1 or offsets.dtype.kind not in "iu" or len(offsets) < 2
             or offsets[0] != 0 or offsets[-1] != len(points) or np.any(np.diff(offsets) < 1)):
         return None  # each part's points, in order, and every point in one part
     parts = [points[offsets[k]:offsets[k + 1]] for k in range(len(offsets) - 1)]
-    return parts, decomposition
+    return parts, _decomposition_of(meta)
+
+
+def _decomposition_of(meta: str) -> Optional[Decomposition]:
+    """The decomposition record of a parts file (JSON; empty for none); ValueError naming the
+    field missing, unknown or not of its type (with others, the body's repr raised, and its
+    deviation bounds were not numbers)."""
+    if not meta:
+        return None
+    try:
+        record = json.loads(meta)
+    except (ValueError, RecursionError):
+        raise ValueError("its decomposition record is not JSON") from None
+    if not isinstance(record, dict):
+        raise ValueError(f"its decomposition record must be a JSON object, got "
+                         f"{type(record).__name__}")
+    types = get_type_hints(Decomposition)
+    missing = [f.name for f in fields(Decomposition)
+               if f.default is MISSING and f.default_factory is MISSING and f.name not in record]
+    unknown = sorted(set(record) - set(types))
+    if missing or unknown:
+        problem = (f"lacks {', '.join(map(repr, missing))}" if missing
+                   else f"has unknown fields {', '.join(map(repr, unknown))}")
+        raise ValueError(f"its decomposition record {problem}")
+    values = {}
+    for key, value in record.items():
+        kind = get_origin(types[key]) or types[key]
+        if kind is float and isinstance(value, int) and not isinstance(value, bool):
+            value = float(value)
+        if not isinstance(value, kind) or (isinstance(value, bool) and kind is not bool):
+            raise ValueError(f"its decomposition field '{key}' must be of type {kind.__name__}, "
+                             f"got {value!r}")
+        values[key] = value
+    return Decomposition(**values)
 
 
 def _write_cache(path: Path, parts, decomposition: Decomposition) -> None:
@@ -991,7 +1027,7 @@ def _read_cache(path: Path):
         return None
     try:
         loaded = _read_parts(path)
-    except TypeError:  # a file written by a version with other fields
+    except ValueError:  # a record written by a version with other fields
         return None
     if loaded is None or loaded[1] is None:
         return None

@@ -314,8 +314,9 @@ class Robot:
 
         So a model whose geoms all have ``contype="0"`` checks no pair of its own. The geoms
         are checked against every obstacle (``add_obstacle``) whatever their masks, and
-        ``srdf`` or ``disable_pairs`` removes pairs from MuJoCo's. MuJoCo's switch for all
-        contacts (``<flag contact="disable"/>``) is not read.
+        ``srdf`` or ``disable_pairs`` removes pairs from MuJoCo's. A model that switches
+        contacts off (``<option><flag contact="disable"/>``, or ``constraint="disable"``)
+        checks no pair of its own, as in MuJoCo, with a ``UserWarning`` that says so.
 
         Parameters
         ----------

@@ -3,13 +3,14 @@
 from __future__ import annotations
 
 import os
+import warnings
 from pathlib import Path
 from typing import Union
 
 import numpy as np
 
 from . import _core
-from .robot_mjcf_pairs import checked_geom_pairs
+from .robot_mjcf_pairs import checked_geom_pairs, contacts_switched_off
 from .robot_tables import ModelTables, geometry_names
 
 PathLike = Union[str, "os.PathLike[str]"]
@@ -46,6 +47,14 @@ def load_mjcf(path: PathLike, skip_planes: bool = False) -> ModelTables:
         model = mujoco.MjModel.from_xml_path(str(path))
     except Exception as error:  # MuJoCo's compiler raises ValueError with its own message
         raise ValueError(f"cannot compile MJCF file '{path}': {error}") from error
+    flag = contacts_switched_off(model)
+    if flag:
+        # Followed, as MuJoCo follows it, but said: a robot that never collides with itself is
+        # more often a model meant for another use than the user's intent.
+        warnings.warn(f"MJCF file '{path}' switches contacts off (<option><flag {flag}="
+                      f"\"disable\"/>): MuJoCo checks none of its geom pairs, and neither does "
+                      f"this robot; its geometries are checked only against obstacles "
+                      f"(add_obstacle)", UserWarning, stacklevel=3)
     return tables_of(model, skip_planes)
 
 

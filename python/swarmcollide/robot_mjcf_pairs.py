@@ -3,16 +3,30 @@ compiled model (``mj_collision`` in MuJoCo's ``engine_collision_driver.c``)."""
 
 from __future__ import annotations
 
-from typing import List, Tuple
+from typing import List, Optional, Tuple
 
 import numpy as np
+
+
+def contacts_switched_off(model) -> Optional[str]:
+    """The flag of a ``mujoco.MjModel`` that turns its collision detection off, ``"contact"`` or
+    ``"constraint"`` (``<option><flag contact="disable"/>``), or None: with either, MuJoCo's
+    ``mj_collision`` returns before it tests any pair, ``<contact><pair>`` included."""
+    import mujoco  # the model is MuJoCo's: its package is there
+
+    for flag, bit in (("contact", mujoco.mjtDisableBit.mjDSBL_CONTACT),
+                      ("constraint", mujoco.mjtDisableBit.mjDSBL_CONSTRAINT)):
+        if model.opt.disableflags & int(bit):
+            return flag
+    return None
 
 
 def checked_geom_pairs(model) -> List[Tuple[int, int]]:
     """The pairs ``(g1, g2)``, ``g1 < g2``, of a ``mujoco.MjModel``'s geoms that MuJoCo tests
     for contact, before its bounding-volume tests (which depend on the configuration).
 
-    A pair ``<contact><pair>`` names is always tested. Any other pair is tested when all hold:
+    None when the model switches contacts off (``contacts_switched_off``). Otherwise a pair
+    ``<contact><pair>`` names is always tested, and any other pair when all hold:
 
     - the geoms' bodies are not welded together (bodies without a joint between them move as
       one, MuJoCo's ``body_weldid``; so never two geoms of one body);
@@ -24,6 +38,8 @@ def checked_geom_pairs(model) -> List[Tuple[int, int]]:
     """
     import mujoco  # the model is MuJoCo's: its package is there
 
+    if contacts_switched_off(model):
+        return []
     body = np.asarray(model.geom_bodyid, dtype=np.int64)
     weld = np.asarray(model.body_weldid, dtype=np.int64)
     parent = np.asarray(model.body_parentid, dtype=np.int64)

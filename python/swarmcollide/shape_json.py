@@ -21,6 +21,8 @@ are written with Python's ``repr`` of floats, so a body read back is the same bo
 
 from __future__ import annotations
 
+import math
+import sys
 from typing import Any, Callable, Dict, List, Tuple
 
 import numpy as np
@@ -108,19 +110,33 @@ def body_from_json(record: Any, name: str = "record"):
         raise ValueError(message if message.startswith(name) else f"{name}: {message}") from None
 
 
-def _number(record: dict, key: str, name: str) -> float:
-    value = record[key]
+def _real(value: Any, where: str) -> float:
+    """``value`` as a finite float; ValueError naming ``where`` for anything else, a number
+    beyond a double's range included (JSON reads 1e400 as infinity, a 400-digit integer as an
+    int that float() cannot take)."""
     if isinstance(value, bool) or not isinstance(value, (int, float)):
-        raise ValueError(f"{name}['{key}'] must be a number, got {value!r}")
-    return float(value)
+        raise ValueError(f"{where} must be a number, got {value!r}")
+    try:
+        number = float(value)
+    except OverflowError:
+        number = math.inf
+    if not math.isfinite(number):
+        shown = (f"an integer of {len(str(abs(value)))} digits" if isinstance(value, int)
+                 else repr(value))
+        raise ValueError(f"{where} must be a finite number within a double's range (magnitude "
+                         f"at most {sys.float_info.max:.4g}), got {shown}")
+    return number
+
+
+def _number(record: dict, key: str, name: str) -> float:
+    return _real(record[key], f"{name}['{key}']")
 
 
 def _triple(record: dict, key: str, name: str) -> list:
     value = record[key]
-    if (not isinstance(value, list) or len(value) != 3
-            or any(isinstance(v, bool) or not isinstance(v, (int, float)) for v in value)):
+    if not isinstance(value, list) or len(value) != 3:
         raise ValueError(f"{name}['{key}'] must be a list of 3 numbers, got {value!r}")
-    return [float(v) for v in value]
+    return [_real(v, f"{name}['{key}'][{k}]") for k, v in enumerate(value)]
 
 
 def _compound(record: dict, name: str):
@@ -131,30 +147,37 @@ def _compound(record: dict, name: str):
         raise ValueError(f"{name}['parts'] must be a non-empty list of records")
     bodies = []
     for k, part in enumerate(parts):
-        body = body_from_json(part, f"{name}['parts'][{k}]")
-        if isinstance(body, _core.CompoundBody):
-            raise ValueError(f"{name}['parts'][{k}] is a compound; list its parts instead")
-        bodies.append(body)
+        # Refused before it is read: a compound nested 3,000 deep would exhaust the recursion.
+        if isinstance(part, dict) and part.get("shape") == "compound":
+            raise ValueError(f"{name}['parts'][{k}] is a compound; compounds do not nest (one "
+                             f"level at most): list its parts instead")
+        bodies.append(body_from_json(part, f"{name}['parts'][{k}]"))
     poses = record.get("poses")
     if poses is not None:
         if not isinstance(poses, list) or len(poses) != len(bodies):
             raise ValueError(f"{name}['poses'] must be a list of {len(bodies)} transforms (4 rows "
                              f"of 4 numbers), one per part")
         for k, pose in enumerate(poses):
-            if (not isinstance(pose, list) or len(pose) != 4 or any(
-                    not isinstance(row, list) or len(row) != 4
-                    or any(isinstance(v, bool) or not isinstance(v, (int, float)) for v in row)
-                    for row in pose)):
+            if (not isinstance(pose, list) or len(pose) != 4
+                    or any(not isinstance(row, list) or len(row) != 4 for row in pose)):
                 raise ValueError(f"{name}['poses'][{k}] must be a transform: 4 rows of 4 "
                                  f"numbers, got {pose!r}")
+        poses = [[[_real(v, f"{name}['poses'][{k}][{i}][{j}]") for j, v in enumerate(row)]
+                  for i, row in enumerate(pose)] for k, pose in enumerate(poses)]
     return CompoundBody(bodies, poses=poses)
 
 
 def _points(record: dict, name: str):
     try:
         points = np.asarray(record["points"], dtype=float)
+    except OverflowError:  # an integer beyond a double's range: found, and named, one by one
+        points = None
     except (TypeError, ValueError):
         raise ValueError(f"{name}['points'] must be a list of [x, y, z] points") from None
+    if points is None or not np.isfinite(points).all():
+        for i, point in enumerate(record["points"]):
+            for j, value in enumerate(point if isinstance(point, list) else [point]):
+                _real(value, f"{name}['points'][{i}][{j}]")
     return _core.ConvexPolyhedron(points, _number(record, "radius", name)
                                   if "radius" in record else 0.0)
 

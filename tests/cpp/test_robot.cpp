@@ -185,6 +185,20 @@ TEST(Robot, LimitsRaiseClampOrWrapNamingTheJoint) {
                std::invalid_argument);
 }
 
+TEST(Robot, AMimicIndexBelowMinusOneIsRefusedNotReadAsNone) {
+  Joint joint{"j", JointType::revolute, 0, 1, Pose{}, Vector3::UnitZ(), -1, 1, 0};
+  joint.mimic = -2;
+  try {
+    RobotModel({{"a"}, {"b"}}, {joint}, {});
+    FAIL() << "took mimic -2 for no mimic";
+  } catch (const std::invalid_argument& error) {
+    EXPECT_NE(std::string(error.what()).find("joint 'j': mimic must be a joint index, or -1 for "
+                                             "none, got -2"),
+              std::string::npos)
+        << error.what();
+  }
+}
+
 TEST(Robot, AdjacentLinksIncludeThoseJoinedByFixedJoints) {
   const RobotModel arm = planar_arm();
   EXPECT_TRUE(adjacent_links(arm, 0, 1));

@@ -177,6 +177,67 @@ def test_float32_poses_answer_as_the_rigid_motions_they_round():
                          poses_b=np.stack([pose, scaled]).astype(np.float32))
 
 
+def test_float16_poses_answer_as_the_rigid_motions_they_round():
+    """float16 rounds a rotation by up to 5e-4 an entry (|R^T R - I| up to about 2e-3, beyond
+    float32's 1e-5): within 84 of its epsilons, as float32 is within 84 of its, it is read as
+    the nearest rotation; a scaling of 5% is still refused."""
+    pose = homogeneous(TURN, SHIFT)
+    half = pose.astype(np.float16)
+    assert np.abs(half[:3, :3].astype(float).T @ half[:3, :3] - np.eye(3)).max() > 1e-4
+    expected = sc.distance(CUBE, CUBE, pose_b=pose).distance
+    for given in (half, (half[:3, :3], SHIFT)):
+        got = sc.distance(CUBE, CUBE, pose_b=given)
+        assert got.certified and abs(got.distance - expected) <= 5e-3
+    scene = sc.Scene()
+    placed = scene.pose(int(scene.add(CUBE, half)[0]))
+    assert np.abs(placed[:3, :3].T @ placed[:3, :3] - np.eye(3)).max() <= 1e-15
+    scaled = pose.copy()
+    scaled[:3, :3] *= 1.05
+    with pytest.raises(ValueError, match="^pose_b is not a rigid motion"):
+        sc.distance(CUBE, CUBE, pose_b=scaled.astype(np.float16))
+
+
+def test_flags_and_integers_of_the_wrong_type_or_range_name_the_argument():
+    """pybind11 took None or 2 for a flag without a word and refused "no" or 2**40 with a message
+    naming neither the argument nor what it takes."""
+    for keywords in ({"warm_start": "no"}, {"warm_start": None}, {"escalate": 2}):
+        (name, value), = keywords.items()
+        with pytest.raises(TypeError, match=f"^{name} must be True or False, got "
+                                            f"{type(value).__name__}$"):
+            sc.Scene(**keywords)
+    assert sc.Scene(warm_start=np.bool_(False)).warm_start is False
+    query = sc.Query("dual")
+    with pytest.raises(TypeError, match="^escalate must be True or False, got str$"):
+        query.collide(CUBE, CUBE, escalate="yes")
+    with pytest.raises(TypeError, match="^escalate must be True or False, got int$"):
+        query.collision(CUBE, CUBE, None, None, 1)
+    with pytest.raises(TypeError, match="^escalate must be True or False, got NoneType$"):
+        query.collide_many([CUBE], [CUBE], escalate=None)
+    with pytest.raises(ValueError, match=r"^joint 'j' child must be at most 2\*\*31 - 1, got "
+                                         r"1099511627776$"):
+        sc.Joint("j", "revolute", 0, 2 ** 40)
+    with pytest.raises(TypeError, match="^joint 'j' parent must be an integer, got float$"):
+        sc.Joint("j", "revolute", 0.0, 1)
+    with pytest.raises(TypeError, match="^joint 'j' lower must be a real number, got str$"):
+        sc.Joint("j", "revolute", 0, 1, lower="-1")
+    with pytest.raises(TypeError, match="^joint 'j' type must be a string, got int$"):
+        sc.Joint("j", 3, 0, 1)
+    robot = sc.Robot(["a", "b"], [sc.Joint("j", "revolute", 0, 1, lower=-1, upper=1)],
+                     [("ga", 0, None, sc.Sphere(0.1)), ("gb", 1, [[1, 0, 0, 3], [0, 1, 0, 0],
+                                                                  [0, 0, 1, 0]], sc.Sphere(0.1))])
+    model, pairs = robot.model, [[0, 1]]
+    with pytest.raises(TypeError, match="^gradient must be True or False, got str$"):
+        model.check(pairs, [[0.0]], query, gradient="no")
+    with pytest.raises(ValueError, match=r"^max_iterations must be at most 2\*\*31 - 1, got "):
+        model.check_motion(pairs, [[0.0]], [[0.5]], query, max_iterations=2 ** 31)
+    scene = sc.Scene()
+    scene.add(CUBE)
+    with pytest.raises(ValueError, match="^id must be at least 0, got -1$"):
+        scene.body(-1)
+    with pytest.raises(TypeError, match="^id must be an integer, got str$"):
+        scene.pose("0")
+
+
 @pytest.mark.parametrize(
     ("pose", "error", "message"),
     [

@@ -3,6 +3,7 @@ compound bodies against python-fcl's exact triangle-mesh distance."""
 
 from __future__ import annotations
 
+import json
 import subprocess
 import sys
 
@@ -104,8 +105,6 @@ def test_parts_files_that_are_not_parts_files_are_refused_naming_the_file(tmp_pa
     broken = {
         "zip.npz": b"PK\x03\x04 not a zip at all",
         "npy.npz": None,
-        "keys.npz": dict(good, decomposition=np.array('{"method": "hull", "bogus": 1}')),
-        "json.npz": dict(good, decomposition=np.array("{not json")),
         "beyond.npz": dict(good, offsets=np.array([0, 8, 40])),
         "short.npz": dict(good, offsets=np.array([0, 8])),
         "decreasing.npz": dict(good, offsets=np.array([0, 12, 4, 16])),
@@ -131,6 +130,32 @@ def test_parts_files_that_are_not_parts_files_are_refused_naming_the_file(tmp_pa
         sc.CompoundBody.load(None)
     np.savez(tmp_path / "good.npz", **good)
     assert len(sc.CompoundBody.load(tmp_path / "good.npz")) == 2
+
+
+def test_a_decomposition_record_of_wrong_types_is_refused_naming_the_file_and_the_field(tmp_path):
+    record = dict(method="hull", parameters={}, parts=2, seconds=0.5, parts_to_mesh=0.0,
+                  mesh_to_parts=0.0, samples=100, spacing=0.1, mesh_hash="ab", faces=12,
+                  decomposed_faces=12, simplification_error=0.0)
+    good = dict(points=np.vstack([CUBE, CUBE + 2]), offsets=np.array([0, 8, 16]))
+    np.savez(tmp_path / "good.npz", **good, decomposition=np.array(json.dumps(record)))
+    assert sc.CompoundBody.load(tmp_path / "good.npz").decomposition.parts == 2
+    for name, meta, message in [
+            ("parts", dict(record, parts="2"), "field 'parts' must be of type int, got '2'"),
+            ("seconds", dict(record, seconds=[1]), "field 'seconds' must be of type float"),
+            ("flag", dict(record, samples=True), "field 'samples' must be of type int, got True"),
+            ("method", dict(record, method=3), "field 'method' must be of type str, got 3"),
+            ("parameters", dict(record, parameters=[]), "field 'parameters' must be of type dict"),
+            ("keys", dict(record, bogus=1), "record has unknown fields 'bogus'"),
+            ("missing", {"method": "hull"}, "record lacks 'parameters', 'parts'"),
+            ("list", [1, 2], "record must be a JSON object, got list")]:
+        path = tmp_path / f"{name}.npz"
+        np.savez(path, **good, decomposition=np.array(json.dumps(meta)))
+        with pytest.raises(ValueError,
+                           match=f"^parts file '.*{name}.npz': its decomposition {message}"):
+            sc.CompoundBody.load(path)
+    np.savez(tmp_path / "text.npz", **good, decomposition=np.array("{not json"))
+    with pytest.raises(ValueError, match="text.npz': its decomposition record is not JSON"):
+        sc.CompoundBody.load(tmp_path / "text.npz")
 
 
 # Decomposition

@@ -381,8 +381,24 @@ def test_a_batch_of_no_rows_has_no_answers():
                   sc.time_of_impact_many(cube, cube, poses_a=(none, none)),
                   sc.time_of_impact_many([], cube, poses_b=(none, none))):
         assert len(batch) == 0 and batch.touches.shape == (0,) and batch.pose_a.shape == (0, 4, 4)
-    with pytest.raises(ValueError, match="^As has 0 entries where the other arguments have 2"):
+    with pytest.raises(ValueError, match="^As has 0 entries where Bs has 2; give one per row"):
         sc.time_of_impact_many([], [cube, cube])
+
+
+def test_rows_of_another_length_name_the_argument_that_has_them():
+    """The rows are the count most arguments share: the message names the odd one out, by its
+    Python name (the core calls poses_a motions_a, and took the longest for the rows)."""
+    cube = sc.Box([0.5] * 3)
+    starts = np.tile(np.eye(4), (3, 1, 1))
+    ends = starts.copy()
+    ends[:, 0, 3] = 2
+    with pytest.raises(ValueError, match="^poses_a has 2 entries where As and Bs have 3"):
+        sc.time_of_impact_many([cube] * 3, [cube] * 3, poses_a=(starts[:2], ends[:2]))
+    with pytest.raises(ValueError, match="^As has 5 entries where Bs and poses_a have 3"):
+        sc.time_of_impact_many([cube] * 5, [cube] * 3, poses_a=(starts, ends))
+    with pytest.raises(ValueError, match="^poses_b has 2 entries where Bs and poses_a have 3"):
+        sc.time_of_impact_many(cube, [cube] * 3, poses_a=(starts, ends),
+                               poses_b=(starts[:2], ends[:2]))
 
 
 @pytest.mark.parametrize("offset", [1e6, 1e12])

@@ -135,6 +135,7 @@ BAD_CALLS = [
     ((np.zeros((0, 3)), CUBE), {}),
     ((CUBE, "cube"), {}),
     ((CUBE, CUBE), {"escalate": "yes"}),
+    ((CUBE, CUBE), {"escalate": 1}),  # a flag is True or False: 2 or None would pass for one
     ((CUBE, CUBE), {"unknown": 1}),
     ((CUBE, CUBE * 1e300), {}),
     ((CUBE, CUBE), {"method": "libccd"}),
@@ -203,7 +204,7 @@ def test_the_usual_calls_stay_in_cpp_and_the_others_go_to_python():
     assert python_calls(lambda: sc.collision(a, b, tolerance=1e-6, pose_a=pose)) == 0
     assert python_calls(lambda: sc.distance(a, b, method="ipso", swarm_size=10)) == 1
     assert python_calls(lambda: sc.distance(a, b, tolerance=0)) == 1  # an int: Python keys it
-    assert python_calls(lambda: sc.collide(a, b, escalate=1)) == 1
+    assert python_calls(lambda: sc.collide(a, b, escalate=np.bool_(True))) == 1
     assert python_calls(lambda: sc.distance(a, b=b)) == 1
 
 

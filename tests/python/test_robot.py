@@ -577,3 +577,29 @@ def test_model_tables_are_checked_naming_the_joint():
     with pytest.raises(ValueError, match="joint 'm': a mimic joint must move and mimic"):
         sc.Robot(["a", "b", "c"], [sc.Joint("j", "fixed", 0, 1),
                                    sc.Joint("m", "revolute", 1, 2, mimic=0)], [])
+
+
+def test_a_raw_model_refuses_a_mimic_below_minus_one_and_pairs_that_are_not_indices():
+    """RobotModel is public (Robot.model): -2 is not 'no mimic' (-1 is), and pairs of floats
+    were truncated to other geometries' indices without a word."""
+    with pytest.raises(ValueError, match=r"^joint 'j' mimic \(-1: none\) must be at least -1, "
+                                         r"got -2$"):
+        sc.Joint("j", "revolute", 0, 1, mimic=-2)
+    joints = [sc.Joint("j", "revolute", 0, 1, lower=-1, upper=1)]
+    model = sc._core.RobotModel(["a", "b"], joints, [("ga", 0, None, sc.Sphere(0.1)),
+                                                     ("gb", 1, None, sc.Sphere(0.1))])
+    query = sc.Query("dual")
+    assert model.check([[0, 1]], [[0.0]], query).colliding.all()
+    for pairs in ([[0.0, 1.0]], [[0.4, 1.7]], np.array([[0, 1]], dtype=np.float32)):
+        with pytest.raises(TypeError, match=r"^pairs must be an \(n, 2\) array of integer "
+                                            r"geometry indices, got float"):
+            model.check(pairs, [[0.0]], query)
+    with pytest.raises(ValueError, match=r"^pairs\[0\] = \(0, 1099511627776\) must name two "):
+        model.distances([[0, 2 ** 40]], [[0.0]], query)
+    with pytest.raises(ValueError, match=r"pairs must be an \(n, 2\) array .* got shape \(3,\)"):
+        model.distances([0, 1, 2], [[0.0]], query)
+    with pytest.raises(ValueError, match=r"^geometry 'ga' link \(-1: the world\) must be at "):
+        sc._core.RobotModel(["a", "b"], joints, [("ga", -2, None, sc.Sphere(0.1))])
+    with pytest.raises(TypeError, match=r"^geometry 'ga' link \(-1: the world\) must be an "
+                                        r"integer, got float"):
+        sc._core.RobotModel(["a", "b"], joints, [("ga", 0.0, None, sc.Sphere(0.1))])

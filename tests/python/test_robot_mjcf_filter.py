@@ -166,3 +166,18 @@ def test_pairs_given_to_the_constructor_replace_the_adjacency_rule():
         sc.Robot(links, joints, geometries, pairs=[("g1", "g1")])
     with pytest.raises(TypeError, match=r"pairs\[0\] must be a pair"):
         sc.Robot(links, joints, geometries, pairs=[("g0", "g1", "g2")])
+
+
+@pytest.mark.parametrize("flag", ["contact", "constraint"])
+def test_a_model_that_switches_contacts_off_checks_no_pair_and_says_so(tmp_path, flag):
+    # Either flag stops MuJoCo's collision detection before any pair, explicit pairs included.
+    text = ARM.format(filterparent="enable").replace(
+        '<flag filterparent="enable"/>', f'<flag {flag}="disable"/>')
+    path = write(tmp_path, text)
+    with pytest.warns(UserWarning, match=f"switches contacts off .*{flag}=\"disable\".*MuJoCo "
+                                         "checks none of its geom pairs"):
+        robot = sc.Robot.from_mjcf(path)
+    assert robot.pairs == () and mujoco_filtered_pairs(path) == set()
+    assert "hand" in robot.geometry_names  # still checked against obstacles
+    robot.add_obstacle(sc.Box([0.05] * 3), np.eye(4), name="block")
+    assert ("base", "block") in robot.pairs

@@ -346,16 +346,24 @@ def test_a_bad_pose_among_many_is_named_by_its_index():
         scene.set_poses(ids, poses)
 
 
-def test_a_curved_body_comes_back_as_its_own_shape():
+@pytest.mark.parametrize("shapes", [
+    [sc.Cylinder(1, 2), sc.Cone(0.5, 1), sc.Ellipsoid([1, 2, 3])],
+    [sc.Sphere(0.5), sc.Capsule(0.25, 1.5), sc.Box([1, 2, 3]), sc.Box([0.5, 0.5, 1e-3], 0.1)],
+])
+def test_a_shape_comes_back_as_its_own_class(shapes):
     from swarmcollide import shape_json
 
     scene = sc.Scene()
-    shapes = [sc.Cylinder(1, 2), sc.Cone(0.5, 1), sc.Ellipsoid([1, 2, 3])]
     ids = scene.add(shapes)
     for shape, body_id in zip(shapes, ids):
         body = scene.body(int(body_id))
         assert type(body) is type(shape) and repr(body) == repr(shape)
         assert shape_json.body_to_json(body) == shape_json.body_to_json(shape)
+    # Other polyhedra stay polyhedra, however near a shape's points theirs are.
+    near = [sc.ConvexPolyhedron([[0, 0, -1], [0, 1e-9, 1]], 0.5),
+            sc.ConvexPolyhedron([[0, 0, 0]]), sc.ConvexPolyhedron(sc.Box([1, 2, 3]).vertices[:7])]
+    for body_id in scene.add(near):
+        assert type(scene.body(int(body_id))) is sc.ConvexPolyhedron
 
 
 def test_scene_errors_name_the_argument_and_the_fix():

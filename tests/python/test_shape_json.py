@@ -59,7 +59,8 @@ def test_compound_bodies_are_read_back_part_by_part():
     ({"shape": "sphere", "radius": -1}, ValueError, r"record: radius must be a finite number"),
     ({"shape": "ellipsoid", "radii": [1, 2]}, ValueError, r"radii'\] must be a list of 3"),
     ({"shape": "box", "half_extents": [1, 1, 0]}, ValueError, r"record: half_extents\[2\] must"),
-    ({"shape": "box", "half_extents": [1, 1, math.inf]}, ValueError, r"half_extents must be fin"),
+    ({"shape": "box", "half_extents": [1, 1, math.inf]}, ValueError,
+     r"record\['half_extents'\]\[2\] must be a finite number"),
     ({"shape": "compound", "parts": []}, ValueError, r"non-empty list"),
     ({"shape": "compound", "parts": [{"shape": "cone", "radius": 1}]}, ValueError,
      r"record\['parts'\]\[0\] \(a cone\) lacks 'half_length'"),
@@ -68,6 +69,52 @@ def test_compound_bodies_are_read_back_part_by_part():
 def test_bad_records_name_the_key(record, error, message):
     with pytest.raises(error, match=message):
         body_from_json(record)
+
+
+def nested_compound(depth: int) -> dict:
+    record = {"shape": "sphere", "radius": 1}
+    for _ in range(depth):
+        record = {"shape": "compound", "parts": [record]}
+    return record
+
+
+def test_numbers_beyond_a_double_and_nested_compounds_name_the_field_and_the_limit():
+    huge = 10 ** 400  # JSON's 400-digit integer: float() overflows on it
+    for record, where in [
+            ({"shape": "sphere", "radius": huge}, r"record\['radius'\]"),
+            ({"shape": "sphere", "radius": math.inf}, r"record\['radius'\]"),
+            ({"shape": "box", "half_extents": [1, huge, 1]}, r"record\['half_extents'\]\[1\]"),
+            ({"shape": "polyhedron", "points": [[0, 0, 0], [1, 0, huge]]},
+             r"record\['points'\]\[1\]\[2\]"),
+            ({"shape": "compound", "parts": [{"shape": "sphere", "radius": 1}],
+              "poses": [[[1, 0, 0, huge], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]]},
+             r"record\['poses'\]\[0\]\[0\]\[3\]")]:
+        with pytest.raises(ValueError, match=where + r" must be a finite number within a "
+                           r"double's range \(magnitude at most 1\.798e\+308\), got "):
+            body_from_json(record)
+    with pytest.raises(ValueError, match="got an integer of 401 digits$"):
+        body_from_json({"shape": "sphere", "radius": huge})
+    # Refused at the first nested compound, however deep the nesting (3,000 exhausted the
+    # recursion with a RecursionError).
+    with pytest.raises(ValueError, match=r"^record\['parts'\]\[0\] is a compound; compounds do "
+                                         r"not nest \(one level at most\)"):
+        body_from_json(nested_compound(3000))
+
+
+def test_the_cli_names_a_shape_file_too_deep_or_too_large_to_read(tmp_path, capsys):
+    deep = tmp_path / "deep.json"
+    # Written by hand: json.dumps recurses as deep as json.load.
+    deep.write_text('{"shape": "compound", "parts": [' * 3000 + '{"shape": "sphere", "radius": 1}'
+                    + "]}" * 3000)
+    plain = tmp_path / "ball.json"
+    plain.write_text(json.dumps({"shape": "sphere", "radius": 1}))
+    assert main(["distance", str(deep), str(plain)]) == 1
+    assert f"shape file '{deep}' nests deeper than Python's JSON reader follows" in (
+        capsys.readouterr().err)
+    large = tmp_path / "large.json"
+    large.write_text('{"shape": "sphere", "radius": 1' + "0" * 400 + "}")
+    assert main(["distance", str(large), str(plain)]) == 1
+    assert f"{large}['radius'] must be a finite number" in capsys.readouterr().err
 
 
 def test_the_cli_reads_and_writes_shape_files(tmp_path, capsys):

@@ -25,6 +25,12 @@ void check_joint(Joint& joint, int links) {
   check_link(joint.parent, links, joint, "parent");
   check_link(joint.child, links, joint, "child");
   validate_pose(joint.origin, (joint_label(joint) + " origin").c_str());
+  // -1 alone means none: another negative index is a mistake, which was read as none.
+  if (joint.mimic < -1) {
+    throw std::invalid_argument(joint_label(joint) +
+                                ": mimic must be a joint index, or -1 for none, got " +
+                                std::to_string(joint.mimic));
+  }
   if (joint.type == JointType::fixed) return;
   const Scalar norm = joint.axis.norm();
   if (!std::isfinite(norm) || norm == 0) {

@@ -80,8 +80,8 @@ class RobotModel {
   /// Throws std::invalid_argument naming the joint, link or geometry at fault: a link index out
   /// of range, a link with two parent joints, links that are not one tree (a cycle or two roots),
   /// a zero or non-finite axis, limits with lower > upper or NaN on a limited joint, an invalid
-  /// origin (not a rigid motion), a mimic of a fixed, mimic or missing joint, a non-finite
-  /// multiplier or offset, or duplicate names.
+  /// origin (not a rigid motion), a mimic index below -1, a mimic of a fixed, mimic or missing
+  /// joint, a non-finite multiplier or offset, or duplicate names.
   RobotModel(std::vector<Link> links, std::vector<Joint> joints, std::vector<Geometry> geometries);
 
   const std::vector<Link>& links() const { return links_; }
