@@ -43,7 +43,13 @@ JointType joint_type(const std::string& name, const std::string& joint) {
 // Geometry pairs, an (n, 2) array-like of integer indices (none when empty). pybind11's own
 // conversion to an int matrix would read a pair of floats (0.9, 2.5) as (0, 2) without a word.
 std::vector<GeometryPair> to_pairs(const Given<PairTable>& given) {
-  const py::array array = py::module_::import("numpy").attr("asarray")(given.value);
+  // NumPy's own conversion, without the import lookup of numpy.asarray (a planner's check of one
+  // state passes its table on every call).
+  const py::array array = py::array::ensure(given.value);
+  if (!array) {
+    throw py::type_error("pairs must be an (n, 2) array of integer geometry indices, got " +
+                         type_name(given.value));
+  }
   if (array.size() == 0) return {};
   if (array.dtype().kind() != 'i' && array.dtype().kind() != 'u') {
     throw py::type_error("pairs must be an (n, 2) array of integer geometry indices, got " +
@@ -390,18 +396,21 @@ ValueError
           "``gradient``; without ``nearest``, the verdict alone.")
       .def(
           "check_one",
-          [](const RobotModel& model, const PairTable& pairs,
+          [](const RobotModel& model, const Given<PairTable>& pairs,
              const Eigen::Matrix<Scalar, 1, Eigen::Dynamic>& q, const py::object& limits,
-             const Query& query, const py::object& threads, bool gradient, bool nearest) {
+             const Query& query, const py::object& threads, const Given<bool>& gradient,
+             const Given<bool>& nearest) {
             const LimitMode mode = limit_mode(limits);
             const BatchSettings settings = settings_of(threads);
             const std::vector<GeometryPair> list = to_pairs(pairs);
+            const bool with_gradient = to_bool(gradient.value, "gradient");
+            const bool with_nearest = to_bool(nearest.value, "nearest");
             RobotCheck check;
             {
               py::gil_scoped_release release;
               const Configurations admitted = admit_configurations(model, q, mode);
-              check = robot_check(model, list, admitted, query.options(), settings, gradient,
-                                  nearest);
+              check = robot_check(model, list, admitted, query.options(), settings, with_gradient,
+                                  with_nearest);
             }
             return check_row_values(check, 0);
           },
