@@ -111,14 +111,17 @@ Joint joint_from_state(const py::object& state) {
   j.type = items.next("type", [&j](const py::handle& item) {
     return joint_type(to_name(item, "type"), j.name);
   });
-  j.parent = items.next<int>("parent");
-  j.child = items.next<int>("child");
+  const auto index = [](const char* name, int least) {
+    return [name, least](const py::handle& item) { return to_count(item, name, least); };
+  };
+  j.parent = items.next("parent", index("parent", 0));
+  j.child = items.next("child", index("child", 0));
   j.origin = items.next("origin", [](const py::handle& item) { return to_pose(item, "origin"); });
   j.axis = items.next("axis", [](const py::handle& item) { return finite_vector3(item, "axis"); });
   j.lower = items.next<Scalar>("lower");
   j.upper = items.next<Scalar>("upper");
   j.reference = items.next<Scalar>("reference");
-  j.mimic = items.next<int>("mimic");
+  j.mimic = items.next("mimic", index("mimic (-1: none)", -1));
   j.multiplier = items.next<Scalar>("multiplier");
   j.offset = items.next<Scalar>("offset");
   return j;

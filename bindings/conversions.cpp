@@ -644,12 +644,6 @@ std::string PickledState::described(const py::handle& item) {
          std::string(py::str(array.dtype()));
 }
 
-bool PickledState::to_flag(const py::handle& item, const char* name) {
-  if (PyBool_Check(item.ptr())) return item.ptr() == Py_True;
-  if (py::isinstance(item, py::module_::import("numpy").attr("bool_"))) return item.cast<bool>();
-  throw py::type_error(std::string(name) + " must be a bool, got " + type_name(item));
-}
-
 py::int_ PickledState::to_integer(const py::handle& item, const char* name) {
   if (PyBool_Check(item.ptr()) || is_array(item) || !PyIndex_Check(item.ptr())) {
     throw py::type_error(std::string(name) + " must be an integer, got " + type_name(item));

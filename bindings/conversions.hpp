@@ -186,7 +186,7 @@ class PickledState {
   T next(const char* name) {
     return next(name, [name](const py::handle& item) -> T {
       if constexpr (std::is_same_v<T, bool>) {
-        return to_flag(item, name);
+        return to_bool(item, name);
       } else if constexpr (std::is_integral_v<T>) {
         return to_integer(item, name).cast<T>();
       } else if constexpr (std::is_floating_point_v<T>) {
@@ -265,7 +265,6 @@ class PickledState {
   // `item`'s type, with an array's shape and dtype or a sequence's length.
   static std::string described(const py::handle& item);
 
-  static bool to_flag(const py::handle& item, const char* name);
   static py::int_ to_integer(const py::handle& item, const char* name);
 
   py::tuple items_;
