@@ -265,6 +265,47 @@ py::cpp_function read_only(Map BatchResult::*field) {
       py::return_value_policy::reference_internal);
 }
 
+// A column of a BatchResult, copied out of its block (pickled as its own array).
+template <typename Map>
+typename Map::PlainObject copied(const Map& column) {
+  return column;
+}
+
+// Column `name` of a pickled BatchResult into `column`, which has `rows` rows like the others.
+template <typename Map>
+void read_column(PickledState& items, const char* name, Map& column) {
+  const auto values = items.next<typename Map::PlainObject>(name);
+  if (values.rows() != column.rows()) {
+    throw items.error(unequal_lengths({{"distance", column.rows()}, {name, values.rows()}}));
+  }
+  column = values;
+}
+
+py::tuple batch_state(const BatchResult& r) {
+  return py::make_tuple(kStateVersion, copied(r.distance), copied(r.lower_bound),
+                        copied(r.point_a), copied(r.point_b), copied(r.direction),
+                        copied(r.colliding), copied(r.certified), copied(r.iterations),
+                        copied(r.escalated), copied(r.part_a), copied(r.part_b));
+}
+
+BatchResult batch_from_state(const py::object& state) {
+  PickledState items(state, "BatchResult", 11);
+  const auto distance = items.next<VectorX>("distance");
+  BatchResult r(static_cast<std::size_t>(distance.size()));
+  r.distance = distance;
+  read_column(items, "lower_bound", r.lower_bound);
+  read_column(items, "point_a", r.point_a);
+  read_column(items, "point_b", r.point_b);
+  read_column(items, "direction", r.direction);
+  read_column(items, "colliding", r.colliding);
+  read_column(items, "certified", r.certified);
+  read_column(items, "iterations", r.iterations);
+  read_column(items, "escalated", r.escalated);
+  read_column(items, "part_a", r.part_a);
+  read_column(items, "part_b", r.part_b);
+  return r;
+}
+
 constexpr const char* kBatchDoc = R"doc(
 The query for every row ``(As[i], Bs[i])``, in C++ threads without the GIL.
 
@@ -307,6 +348,7 @@ part_a, part_b : numpy.ndarray of int, shape (m,)
       .def_property_readonly("part_a", read_only(&BatchResult::part_a))
       .def_property_readonly("part_b", read_only(&BatchResult::part_b))
       .def("__len__", &BatchResult::rows)
+      .def(py::pickle(&batch_state, &batch_from_state))
       .def("__repr__", [](const BatchResult& r) {
         return "BatchResult(" + std::to_string(r.distance.size()) + " pairs, " +
                std::to_string(r.colliding.count()) + " colliding, " +

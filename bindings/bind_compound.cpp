@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "conversions.hpp"
+#include "queries.hpp"
 #include "swarmcollide/geometry/compound_body.hpp"
 #include "swarmcollide/queries/compound_result.hpp"
 #include "swarmcollide/queries/methods.hpp"
@@ -52,6 +53,31 @@ py::array_t<Scalar> pose_matrices(const CompoundBody& body) {
     }
   }
   return out;
+}
+
+py::tuple compound_state(const py::object& self) {
+  const auto& body = self.cast<const CompoundBody&>();
+  py::list parts;
+  for (const ConvexPolyhedron& part : body.given_parts()) parts.append(typed_body(part));
+  // given_parts() is parts() itself for a body built without poses, which is rebuilt so: identity
+  // poses would give the same parts, but through a copy that could turn a -0 into a 0.
+  const bool posed = &body.given_parts() != &body.parts();
+  return py::make_tuple(kStateVersion, parts, posed ? py::object(pose_matrices(body)) : py::none(),
+                        instance_attributes(self));
+}
+
+std::pair<CompoundBody, py::dict> compound_from_state(const py::object& state) {
+  PickledState items(state, "CompoundBody", 3);
+  std::vector<ConvexPolyhedron> parts = items.next("parts", &to_parts);
+  const auto poses = items.next("poses", [&parts](const py::handle& item) {
+    return item.is_none() ? std::nullopt
+                          : std::optional<std::vector<Pose>>(to_poses(item, parts.size(), "poses"));
+  });
+  py::dict attributes = state_attributes(items);
+  return {items.build([&] {
+            return poses ? CompoundBody(std::move(parts), *poses) : CompoundBody(std::move(parts));
+          }),
+          attributes};
 }
 
 std::string repr(const CompoundBody& body) {
@@ -108,6 +134,10 @@ part : int
       .def_readonly("right", &PartNode::right)
       .def_readonly("part", &PartNode::part)
       .def_property_readonly("leaf", &PartNode::leaf)
+      .def(pickle_fields<PartNode>(
+          "PartNode", any_values, field("box", &PartNode::box), field("centre", &PartNode::centre),
+          field("radius", &PartNode::radius), field("left", &PartNode::left),
+          field("right", &PartNode::right), field("part", &PartNode::part)))
       .def("__repr__", [](const PartNode& n) {
         std::ostringstream out;
         out << "PartNode("
@@ -211,6 +241,7 @@ CompoundBody(3 parts, 24 points, bounds [0, 0, 0] to [2, 2, 1])
       .def_property_readonly(
           "bounding_radius", [](const CompoundBody& b) { return b.bounds().radius; },
           "Half the diagonal of the bounding box (as ConvexPolyhedron.bounding_radius).")
+      .def(py::pickle(&compound_state, &compound_from_state))
       .def("__repr__", &repr);
 
   py::class_<CompoundStats>(m, "CompoundStats", R"doc(
@@ -234,6 +265,10 @@ pruned : int
       .def_readonly("screened", &CompoundStats::screened)
       .def_readonly("solved", &CompoundStats::solved)
       .def_property_readonly("pruned", &CompoundStats::pruned)
+      .def(pickle_fields<CompoundStats>(
+          "CompoundStats", any_values, field("part_pairs", &CompoundStats::part_pairs),
+          field("volume_tests", &CompoundStats::volume_tests),
+          field("screened", &CompoundStats::screened), field("solved", &CompoundStats::solved)))
       .def("__repr__", &stats_repr);
 
   py::class_<CompoundResult, DistanceResult>(m, "CompoundResult", R"doc(
@@ -251,6 +286,20 @@ not in general the penetration depth of the non-convex union.
       .def_readonly("part_b", &CompoundResult::part_b,
                     "Index of B's part that realises the answer.")
       .def_readonly("stats", &CompoundResult::stats, "What the search did (a CompoundStats).")
+      .def(py::pickle(
+          [](const CompoundResult& r) {
+            return py::make_tuple(kStateVersion, distance_result_state(r), r.part_a, r.part_b,
+                                  r.stats);
+          },
+          [](const py::object& state) {
+            PickledState items(state, "CompoundResult", 4);
+            CompoundResult r;
+            static_cast<DistanceResult&>(r) = items.next("result", &distance_result_from_state);
+            r.part_a = items.next<int>("part_a");
+            r.part_b = items.next<int>("part_b");
+            r.stats = items.next<CompoundStats>("stats");
+            return r;
+          }))
       .def("__repr__", &result_repr);
 }
 

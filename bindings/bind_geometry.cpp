@@ -6,6 +6,7 @@
 
 #include "conversions.hpp"
 #include "swarmcollide/geometry/convex_polyhedron.hpp"
+#include "swarmcollide/geometry/placed_shape.hpp"
 #include "swarmcollide/geometry/shapes.hpp"
 
 namespace swarmcollide::bindings {
@@ -63,6 +64,102 @@ std::string ellipsoid_repr(const Ellipsoid& e) {
   return out.str();
 }
 
+// A shape pickled as `parameters(shape)` (a tuple of `count` items) and its instance's attributes
+// (a Python subclass's), rebuilt by `make(state)` from the parameters it reads back.
+template <typename Shape, typename Parameters, typename Make>
+auto pickle_shape(const char* type, std::size_t count, Parameters parameters, Make make) {
+  return py::pickle(
+      [parameters](const py::object& self) {
+        return py::tuple(py::make_tuple(kStateVersion) + parameters(self.cast<const Shape&>()) +
+                         py::make_tuple(instance_attributes(self)));
+      },
+      [type, count, make](const py::object& state) {
+        PickledState items(state, type, count + 1);
+        Shape shape = make(items);
+        return std::make_pair(std::move(shape), state_attributes(items));
+      });
+}
+
+// A curved shape (Cylinder, Cone, Ellipsoid) in its own frame, of its own type.
+py::object unplaced_shape(const CurvedShapeParameters& shape) {
+  switch (shape.kind) {
+    case CurvedShapeParameters::Kind::cylinder:
+      return py::cast(Cylinder(shape.radius, shape.half_length));
+    case CurvedShapeParameters::Kind::cone:
+      return py::cast(Cone(shape.radius, shape.half_length));
+    case CurvedShapeParameters::Kind::ellipsoid:
+      return py::cast(Ellipsoid(shape.radii));
+  }
+  throw std::logic_error("unknown curved shape");
+}
+
+// A ConvexPolyhedron's shape as pickled: None for the hull of its points, else its curved shape
+// in its own frame and the pose placing it (None in its own frame).
+py::object curved_state(const ConvexPolyhedron& body) {
+  if (!body.curved()) return py::none();
+  const CurvedShapeParameters shape = body.curved()->parameters();
+  return py::make_tuple(unplaced_shape(shape),
+                        shape.placed ? py::object(homogeneous(shape.pose)) : py::none());
+}
+
+// The curved body of `shape` placed by `pose` (none: in its own frame), as placed_shape.hpp
+// places a compound body's parts.
+ConvexPolyhedron curved_body(const ConvexPolyhedron& shape, const std::optional<Pose>& pose) {
+  return pose ? placed(shape, *pose) : shape;
+}
+
+// The curved body a ConvexPolyhedron's state names by its (shape, pose) item.
+ConvexPolyhedron curved_from_state(const py::handle& item) {
+  if (PyTuple_Check(item.ptr()) && PyTuple_Size(item.ptr()) == 2) {
+    const py::tuple pair = py::reinterpret_borrow<py::tuple>(item);
+    if (py::isinstance<Cylinder>(pair[0]) || py::isinstance<Cone>(pair[0]) ||
+        py::isinstance<Ellipsoid>(pair[0])) {
+      std::optional<Pose> pose;
+      if (!pair[1].is_none()) pose = to_pose(pair[1], "pose");
+      return curved_body(pair[0].cast<const ConvexPolyhedron&>(), pose);
+    }
+  }
+  throw py::type_error("must be None or a pair (Cylinder, Cone or Ellipsoid; pose or None), got " +
+                       std::string(py::repr(item)));
+}
+
+bool same_points(const VertexMatrix& a, const VertexMatrix& b) {
+  return a.rows() == b.rows() && (a.array() == b.array()).all();
+}
+
+py::tuple polyhedron_state(const py::object& self) {
+  const auto& body = self.cast<const ConvexPolyhedron&>();
+  const py::object shape = curved_state(body);
+  // A part placed by a pose and placed again keeps only the last pose in its parameters: rebuilt
+  // from them it would be another body.
+  if (!shape.is_none() && !same_points(curved_from_state(shape).vertices(), body.vertices())) {
+    throw py::type_error(
+        "cannot pickle this ConvexPolyhedron: it is a curved shape placed by two poses in turn (a "
+        "compound body's placed part placed again), which its parameters do not rebuild; pickle "
+        "the shape itself and the product of the poses");
+  }
+  return py::make_tuple(kStateVersion, body.vertices(), body.radius(), shape,
+                        instance_attributes(self));
+}
+
+std::pair<ConvexPolyhedron, py::dict> polyhedron_from_state(const py::object& state) {
+  PickledState items(state, "ConvexPolyhedron", 4);
+  VertexMatrix points =
+      items.next("points", [](const py::handle& item) { return to_vertex_matrix(item, "points"); });
+  const auto radius = items.next<Scalar>("radius");
+  const auto shape = items.next("shape", [](const py::handle& item) {
+    return item.is_none() ? std::nullopt : std::optional<ConvexPolyhedron>(curved_from_state(item));
+  });
+  py::dict attributes = state_attributes(items);
+  if (!shape) {
+    return {items.build([&] { return ConvexPolyhedron(std::move(points), radius); }), attributes};
+  }
+  if (!same_points(shape->vertices(), points) || radius != 0) {
+    throw items.error("points and radius are not those of its curved shape");
+  }
+  return {*shape, attributes};
+}
+
 // Every curved shape is answered the same way; each one's docstring says so.
 #define SWARMCOLLIDE_CURVED_NOTE                                                                   \
   "A curved shape, defined by its support function: methods ``'dual'`` (the default) and "         \
@@ -106,6 +203,9 @@ faces : numpy.ndarray
                                    h.vertex_indices.data());
                              })
       .def_readonly("faces", &Hull::faces)
+      .def(pickle_fields<Hull>(
+          "Hull", any_values, field("dimension", &Hull::dimension),
+          field("vertex_indices", &Hull::vertex_indices), field("faces", &Hull::faces)))
       .def("__repr__", [](const Hull& h) {
         return "Hull(dimension=" + std::to_string(h.dimension) + ", " +
                std::to_string(h.vertex_indices.size()) + " vertices, " +
@@ -115,6 +215,8 @@ faces : numpy.ndarray
   py::class_<Aabb>(m, "Aabb", "An axis-aligned bounding box with corners ``min`` and ``max``.")
       .def_readonly("min", &Aabb::min)
       .def_readonly("max", &Aabb::max)
+      .def(pickle_fields<Aabb>(
+          "Aabb", any_values, field("min", &Aabb::min), field("max", &Aabb::max)))
       .def("__repr__", [](const Aabb& box) {
         std::ostringstream out;
         out << "Aabb(min=[" << box.min.x() << ", " << box.min.y() << ", " << box.min.z()
@@ -210,6 +312,7 @@ Examples
            "bodies).")
       .def("hull", &ConvexPolyhedron::hull, py::return_value_policy::copy,
            "Convex hull through Qhull (an exact planar hull for flat bodies).")
+      .def(py::pickle(&polyhedron_state, &polyhedron_from_state))
       .def("__repr__", &repr);
 
   py::class_<Sphere, ConvexPolyhedron>(m, "Sphere", R"doc(
@@ -233,6 +336,12 @@ Examples
 -1.5
 )doc")
       .def(py::init<Scalar>(), py::arg("radius"))
+      .def(pickle_shape<Sphere>(
+          "Sphere", 1, [](const Sphere& s) { return py::make_tuple(s.radius()); },
+          [](PickledState& items) {
+            const auto radius = items.next<Scalar>("radius");
+            return items.build([&] { return Sphere(radius); });
+          }))
       .def("__repr__", &sphere_repr);
 
   py::class_<Capsule, ConvexPolyhedron>(m, "Capsule", R"doc(
@@ -260,6 +369,14 @@ Examples
       .def(py::init<Scalar, Scalar>(), py::arg("radius"), py::arg("half_length"))
       .def_property_readonly("half_length", &Capsule::half_length,
                              "Half the length of the core segment.")
+      .def(pickle_shape<Capsule>(
+          "Capsule", 2,
+          [](const Capsule& c) { return py::make_tuple(c.radius(), c.half_length()); },
+          [](PickledState& items) {
+            const auto radius = items.next<Scalar>("radius");
+            const auto half_length = items.next<Scalar>("half_length");
+            return items.build([&] { return Capsule(radius, half_length); });
+          }))
       .def("__repr__", &capsule_repr);
 
   py::class_<Box, ConvexPolyhedron>(m, "Box", R"doc(
@@ -290,6 +407,13 @@ Examples
            py::arg("half_extents"), py::arg("radius") = 0.0)
       .def_property_readonly("half_extents", &Box::half_extents,
                              "Half the box's size along x, y and z.")
+      .def(pickle_shape<Box>(
+          "Box", 2, [](const Box& b) { return py::make_tuple(b.half_extents(), b.radius()); },
+          [](PickledState& items) {
+            const auto half_extents = items.next<Vector3>("half_extents");
+            const auto radius = items.next<Scalar>("radius");
+            return items.build([&] { return Box(half_extents, radius); });
+          }))
       .def("__repr__", &box_repr);
 
   py::class_<Cylinder, ConvexPolyhedron>(m, "Cylinder", R"doc(
@@ -323,6 +447,14 @@ Examples
                              "rounding radius is 0).")
       .def_property_readonly("half_length", &Cylinder::half_length,
                              "Half the cylinder's length along z.")
+      .def(pickle_shape<Cylinder>(
+          "Cylinder", 2,
+          [](const Cylinder& c) { return py::make_tuple(c.cylinder_radius(), c.half_length()); },
+          [](PickledState& items) {
+            const auto radius = items.next<Scalar>("radius");
+            const auto half_length = items.next<Scalar>("half_length");
+            return items.build([&] { return Cylinder(radius, half_length); });
+          }))
       .def("__repr__", &cylinder_repr);
 
   py::class_<Cone, ConvexPolyhedron>(m, "Cone", R"doc(
@@ -352,6 +484,13 @@ Examples
                              "The radius of the base disk (a cone is not rounded: its rounding "
                              "radius is 0).")
       .def_property_readonly("half_length", &Cone::half_length, "Half the cone's height.")
+      .def(pickle_shape<Cone>(
+          "Cone", 2, [](const Cone& c) { return py::make_tuple(c.base_radius(), c.half_length()); },
+          [](PickledState& items) {
+            const auto radius = items.next<Scalar>("radius");
+            const auto half_length = items.next<Scalar>("half_length");
+            return items.build([&] { return Cone(radius, half_length); });
+          }))
       .def("__repr__", &cone_repr);
 
   py::class_<Ellipsoid, ConvexPolyhedron>(m, "Ellipsoid", R"doc(
@@ -378,6 +517,12 @@ Examples
            }),
            py::arg("radii"))
       .def_property_readonly("radii", &Ellipsoid::radii, "The semi-axes along x, y and z.")
+      .def(pickle_shape<Ellipsoid>(
+          "Ellipsoid", 1, [](const Ellipsoid& e) { return py::make_tuple(e.radii()); },
+          [](PickledState& items) {
+            const auto radii = items.next<Vector3>("radii");
+            return items.build([&] { return Ellipsoid(radii); });
+          }))
       .def("__repr__", &ellipsoid_repr);
 
   m.def(

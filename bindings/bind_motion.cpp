@@ -307,6 +307,35 @@ struct TimeOfImpactBatch {
   std::vector<TimeOfImpactResult> results;
 };
 
+py::tuple time_of_impact_state(const TimeOfImpactResult& r) {
+  return py::make_tuple(kStateVersion, r.touches, r.t_lower, r.t_upper, transform(r.pose_a),
+                        transform(r.pose_b), r.distance, r.point_a, r.point_b, r.normal,
+                        r.certified, r.iterations, status_name(r.status));
+}
+
+TimeOfImpactResult time_of_impact_from_state(const py::object& state) {
+  PickledState items(state, "TimeOfImpactResult", 12);
+  const auto pose = [](const char* name) {
+    return [name](const py::handle& item) { return to_pose(item, name); };
+  };
+  TimeOfImpactResult r;
+  r.touches = items.next<bool>("touches");
+  r.t_lower = items.next<Scalar>("t_lower");
+  r.t_upper = items.next<Scalar>("t_upper");
+  r.pose_a = items.next("pose_a", pose("pose_a"));
+  r.pose_b = items.next("pose_b", pose("pose_b"));
+  r.distance = items.next<Scalar>("distance");
+  r.point_a = items.next<Vector3>("point_a");
+  r.point_b = items.next<Vector3>("point_b");
+  r.normal = items.next<Vector3>("normal");
+  r.certified = items.next<bool>("certified");
+  r.iterations = items.next<int>("iterations");
+  r.status = items.next("status", [](const py::handle& item) {
+    return motion_status(item, "status");
+  });
+  return r;
+}
+
 template <typename Field>
 py::array_t<Scalar> column(const TimeOfImpactBatch& batch, Field field) {
   py::array_t<Scalar> out(static_cast<py::ssize_t>(batch.results.size()));
@@ -384,6 +413,7 @@ err on the side of contact: ``t_lower`` is still proven, ``touches`` is True.
       .def_property_readonly(
           "status", [](const TimeOfImpactResult& r) { return status_name(r.status); },
           "'converged', 'max_iterations' or 'unresolved'.")
+      .def(py::pickle(&time_of_impact_state, &time_of_impact_from_state))
       .def("__repr__", &repr);
 
   py::class_<TimeOfImpactBatch>(m, "TimeOfImpactBatch", R"doc(
@@ -457,6 +487,12 @@ and each row's ``TimeOfImpactResult`` by indexing.
           [](const TimeOfImpactBatch& b) {
             return transforms(b, [](const TimeOfImpactResult& r) { return r.pose_b; });
           })
+      .def(py::pickle(
+          [](const TimeOfImpactBatch& b) { return py::make_tuple(kStateVersion, b.results); },
+          [](const py::object& state) {
+            PickledState items(state, "TimeOfImpactBatch", 1);
+            return TimeOfImpactBatch{items.next<std::vector<TimeOfImpactResult>>("results")};
+          }))
       .def("__repr__", [](const TimeOfImpactBatch& b) {
         std::size_t touching = 0, certified = 0;
         for (const TimeOfImpactResult& r : b.results) {

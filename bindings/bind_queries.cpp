@@ -510,6 +510,69 @@ QueryOptions make_options(const py::handle& method, const py::handle& tolerance,
   return options;
 }
 
+py::tuple options_state(const QueryOptions& options) {
+  return py::make_tuple(method_name(options.method), options.tolerance, options.seed,
+                        parameters_of(options));
+}
+
+QueryOptions options_from_state(PickledState& state) {
+  const auto method = state.next<py::object>("method");
+  const auto tolerance = state.next<py::object>("tolerance");
+  const auto seed = state.next<py::object>("seed");
+  const auto parameters = state.next("parameters", [](const py::handle& item) {
+    if (!PyDict_Check(item.ptr())) throw py::type_error("must be a dict, got " + type_name(item));
+    return py::reinterpret_borrow<py::kwargs>(item);
+  });
+  return state.build([&] { return make_options(method, tolerance, seed, parameters); });
+}
+
+py::tuple distance_result_state(const DistanceResult& r) {
+  return py::make_tuple(
+      kStateVersion, r.distance, r.lower_bound, r.point_a, r.point_b, r.weights_a.dense(),
+      r.weights_b.dense(), r.direction, r.iterations, r.evaluations, as_array(r.history),
+      r.colliding, r.certified, method_name(r.method),
+      r.escalated_from ? py::object(py::str(method_name(*r.escalated_from))) : py::none(),
+      status_name(r.status));
+}
+
+DistanceResult distance_result_from_state(const py::handle& state) {
+  PickledState items(state, "DistanceResult", 15);
+  const auto weights = [](const char* name) {
+    return [name](const py::handle& item) {
+      const VectorX dense = finite_weights(item, name);
+      return dense.size() == 0 ? ConvexWeights() : ConvexWeights(dense);
+    };
+  };
+  const auto method = [](const py::handle& item) {
+    return method_from_name(to_name(item, "method"));
+  };
+  DistanceResult r;
+  r.distance = items.next<Scalar>("distance");
+  r.lower_bound = items.next<Scalar>("lower_bound");
+  r.point_a = items.next<Vector3>("point_a");
+  r.point_b = items.next<Vector3>("point_b");
+  r.weights_a = items.next("weights_a", weights("weights_a"));
+  r.weights_b = items.next("weights_b", weights("weights_b"));
+  r.direction = items.next<Vector3>("direction");
+  r.iterations = items.next<int>("iterations");
+  r.evaluations = items.next<long>("evaluations");
+  for (Scalar value : items.next<VectorX>("history")) r.history.push_back(value);
+  r.colliding = items.next<bool>("colliding");
+  r.certified = items.next<bool>("certified");
+  r.method = items.next("method", method);
+  r.escalated_from = items.next("escalated_from", [&](const py::handle& item) {
+    return item.is_none() ? std::nullopt : std::optional<Method>(method(item));
+  });
+  r.status = items.next("status", [](const py::handle& item) {
+    const std::string name = to_name(item, "status");
+    if (name != "converged" && name != "max_iterations") {
+      throw py::value_error("must be 'converged' or 'max_iterations', got '" + name + "'");
+    }
+    return name == "converged" ? SolverStatus::converged : SolverStatus::max_iterations;
+  });
+  return r;
+}
+
 void bind_distance_result(py::module_& m) {
   py::class_<DistanceResult>(m, "DistanceResult", R"doc(
 The answer of every query, whatever the method, in the units of the input.
@@ -561,6 +624,8 @@ depth when the bodies overlap, and ``point_b - point_a = distance * direction``.
       .def_property_readonly(
           "gap", [](const DistanceResult& r) { return r.distance - r.lower_bound; },
           "``distance - lower_bound``: how far from exact the answer can be.")
+      .def(py::pickle(&distance_result_state,
+                      [](const py::object& state) { return distance_result_from_state(state); }))
       .def("__repr__", &repr);
 }
 
@@ -636,6 +701,14 @@ both bodies): it is the precision of every answer and the distance below which b
           },
           py::arg("a"), py::arg("b"), py::arg("pose_a") = py::none(),
           py::arg("pose_b") = py::none())
+      .def(py::pickle(
+          [](const Query& q) {
+            return py::tuple(py::make_tuple(kStateVersion) + options_state(q.options()));
+          },
+          [](const py::object& state) {
+            PickledState items(state, "Query", 4);
+            return Query(options_from_state(items));
+          }))
       .def("__repr__", [](const Query& q) {
         std::string text = "Query(method='" + std::string(method_name(q.options().method)) + "'";
         std::ostringstream tol;

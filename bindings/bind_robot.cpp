@@ -40,6 +40,158 @@ JointType joint_type(const std::string& name, const std::string& joint) {
                         "' is not supported; use 'revolute', 'continuous', 'prismatic' or 'fixed'");
 }
 
+std::vector<std::string> status_names(const std::vector<MotionStatus>& statuses) {
+  std::vector<std::string> names;
+  names.reserve(statuses.size());
+  for (MotionStatus status : statuses) names.emplace_back(status_name(status));
+  return names;
+}
+
+std::string joint_type_name(JointType type) {
+  static const char* names[] = {"revolute", "continuous", "prismatic", "fixed"};
+  return names[static_cast<int>(type)];
+}
+
+// A robot model from its tables as Python gives them (RobotModel's constructor arguments).
+std::shared_ptr<RobotModel> make_model(const std::vector<std::string>& link_names,
+                                       std::vector<Joint> joints,
+                                       const std::vector<py::tuple>& geometry_rows) {
+  std::vector<Link> links;
+  for (const std::string& name : link_names) links.push_back({name});
+  std::vector<Geometry> geometries;
+  for (const py::tuple& row : geometry_rows) {
+    if (row.size() != 4) {
+      throw py::value_error("each geometry must be (name, link, origin, body)");
+    }
+    const auto name = to_name(row[0], "a geometry's name");
+    const Pose origin = to_pose(row[2], ("geometry '" + name + "' origin").c_str());
+    const int link =
+        to_count(row[1], ("geometry '" + name + "' link (-1: the world)").c_str(), -1);
+    if (is_compound(row[3])) {
+      const auto& parts = row[3].cast<const CompoundBody&>();
+      geometries.push_back(Geometry{name, link, origin, parts.envelope(), parts});
+    } else {
+      geometries.push_back(Geometry{name, link, origin,
+                                    BodyArgument(row[3], ("geometry '" + name + "'").c_str()).get(),
+                                    std::nullopt});
+    }
+  }
+  return std::make_shared<RobotModel>(std::move(links), std::move(joints), std::move(geometries));
+}
+
+py::tuple model_state(const RobotModel& model) {
+  std::vector<std::string> links;
+  for (const Link& link : model.links()) links.push_back(link.name);
+  py::list geometries;
+  for (const Geometry& g : model.geometries()) {
+    geometries.append(py::make_tuple(g.name, g.link, homogeneous(g.origin),
+                                     g.parts ? py::cast(*g.parts) : typed_body(g.body)));
+  }
+  return py::make_tuple(kStateVersion, links, model.joints(), geometries);
+}
+
+std::shared_ptr<RobotModel> model_from_state(const py::object& state) {
+  PickledState items(state, "RobotModel", 3);
+  const auto links = items.next<std::vector<std::string>>("links");
+  auto joints = items.next<std::vector<Joint>>("joints");
+  const auto geometries = items.next<std::vector<py::tuple>>("geometries");
+  return items.build([&] { return make_model(links, std::move(joints), geometries); });
+}
+
+py::tuple joint_state(const Joint& j) {
+  return py::make_tuple(kStateVersion, j.name, joint_type_name(j.type), j.parent, j.child,
+                        homogeneous(j.origin), j.axis, j.lower, j.upper, j.reference, j.mimic,
+                        j.multiplier, j.offset);
+}
+
+Joint joint_from_state(const py::object& state) {
+  PickledState items(state, "Joint", 12);
+  Joint j;
+  j.name = items.next("name", [](const py::handle& item) { return to_name(item, "name"); });
+  j.type = items.next("type", [&j](const py::handle& item) {
+    return joint_type(to_name(item, "type"), j.name);
+  });
+  const auto index = [](const char* name, int least) {
+    return [name, least](const py::handle& item) { return to_count(item, name, least); };
+  };
+  j.parent = items.next("parent", index("parent", 0));
+  j.child = items.next("child", index("child", 0));
+  j.origin = items.next("origin", [](const py::handle& item) { return to_pose(item, "origin"); });
+  j.axis = items.next("axis", [](const py::handle& item) { return finite_vector3(item, "axis"); });
+  j.lower = items.next<Scalar>("lower");
+  j.upper = items.next<Scalar>("upper");
+  j.reference = items.next<Scalar>("reference");
+  j.mimic = items.next("mimic", index("mimic (-1: none)", -1));
+  j.multiplier = items.next<Scalar>("multiplier");
+  j.offset = items.next<Scalar>("offset");
+  return j;
+}
+
+// What is inconsistent in robot results rebuilt from their states: columns of other lengths
+// (the `row` of a RobotCheck or a RobotMotionCheck reads every column at one index).
+std::string distances_error(const RobotDistances& r) {
+  std::string wrong = unequal_lengths({{"distance", r.distance.rows()},
+                                       {"lower_bound", r.lower_bound.rows()},
+                                       {"colliding", r.colliding.rows()},
+                                       {"certified", r.certified.rows()}});
+  if (wrong.empty()) {
+    wrong = unequal_lengths({{"distance columns", r.distance.cols()},
+                             {"lower_bound columns", r.lower_bound.cols()},
+                             {"colliding columns", r.colliding.cols()},
+                             {"certified columns", r.certified.cols()}});
+  }
+  return wrong;
+}
+
+std::string check_error(const RobotCheck& r) {
+  std::string wrong = unequal_lengths(
+      {{"colliding", r.colliding.rows()}, {"min_distance", r.min_distance.rows()},
+       {"lower_bound", r.lower_bound.rows()}, {"certified", r.certified.rows()},
+       {"pair", r.pair.rows()}, {"point_a", r.point_a.rows()}, {"point_b", r.point_b.rows()},
+       {"normal", r.normal.rows()}});
+  // No gradient is one of no rows.
+  if (wrong.empty() && r.gradient.rows() != 0) {
+    wrong = unequal_lengths({{"colliding", r.colliding.rows()}, {"gradient", r.gradient.rows()}});
+  }
+  return wrong;
+}
+
+py::tuple motion_check_state(const RobotMotionCheck& r) {
+  return py::make_tuple(kStateVersion, r.touches, r.t_lower, r.t_upper, r.configuration, r.pair,
+                        r.distance, r.point_a, r.point_b, r.normal, r.certified, r.iterations,
+                        status_names(r.status));
+}
+
+RobotMotionCheck motion_check_from_state(const py::object& state) {
+  PickledState items(state, "RobotMotionCheck", 12);
+  RobotMotionCheck r;
+  r.touches = items.next<Eigen::Array<bool, Eigen::Dynamic, 1>>("touches");
+  r.t_lower = items.next<VectorX>("t_lower");
+  r.t_upper = items.next<VectorX>("t_upper");
+  r.configuration = items.next<Configurations>("configuration");
+  r.pair = items.next<Eigen::VectorXi>("pair");
+  r.distance = items.next<VectorX>("distance");
+  r.point_a = items.next<VertexMatrix>("point_a");
+  r.point_b = items.next<VertexMatrix>("point_b");
+  r.normal = items.next<VertexMatrix>("normal");
+  r.certified = items.next<Eigen::Array<bool, Eigen::Dynamic, 1>>("certified");
+  r.iterations = items.next<Eigen::VectorXi>("iterations");
+  r.status = items.next("status", [](const py::handle& item) {
+    std::vector<MotionStatus> statuses;
+    for (const py::handle name : py::iter(item)) statuses.push_back(motion_status(name, "status"));
+    return statuses;
+  });
+  const std::string wrong = unequal_lengths(
+      {{"touches", r.touches.rows()}, {"t_lower", r.t_lower.rows()},
+       {"t_upper", r.t_upper.rows()}, {"configuration", r.configuration.rows()},
+       {"pair", r.pair.rows()}, {"distance", r.distance.rows()}, {"point_a", r.point_a.rows()},
+       {"point_b", r.point_b.rows()}, {"normal", r.normal.rows()},
+       {"certified", r.certified.rows()}, {"iterations", r.iterations.rows()},
+       {"status", static_cast<Eigen::Index>(r.status.size())}});
+  if (!wrong.empty()) throw items.error(wrong);
+  return r;
+}
+
 // Geometry pairs, an (n, 2) array-like of integer indices (none when empty). pybind11's own
 // conversion to an int matrix would read a pair of floats (0.9, 2.5) as (0, 2) without a word.
 std::vector<GeometryPair> to_pairs(const Given<PairTable>& given) {
@@ -87,12 +239,6 @@ BatchSettings settings_of(const py::object& threads) {
   return settings;
 }
 
-std::vector<std::string> status_names(const std::vector<MotionStatus>& statuses) {
-  std::vector<std::string> names;
-  names.reserve(statuses.size());
-  for (MotionStatus status : statuses) names.emplace_back(status_name(status));
-  return names;
-}
 
 // An IndexError unless row i is one of `rows`. A single configuration's (or motion's) answer is
 // read by row, as Python values and small arrays: cheaper than reading every field's array to
@@ -179,12 +325,7 @@ multiplier, offset : float
            py::arg("lower") = 0.0, py::arg("upper") = 0.0, py::arg("reference") = 0.0,
            py::arg("mimic") = -1, py::arg("multiplier") = 1.0, py::arg("offset") = 0.0)
       .def_readonly("name", &Joint::name)
-      .def_property_readonly("type",
-                             [](const Joint& joint) {
-                               static const char* names[] = {"revolute", "continuous", "prismatic",
-                                                             "fixed"};
-                               return std::string(names[static_cast<int>(joint.type)]);
-                             })
+      .def_property_readonly("type", [](const Joint& joint) { return joint_type_name(joint.type); })
       .def_readonly("parent", &Joint::parent)
       .def_readonly("child", &Joint::child)
       .def_readonly("axis", &Joint::axis)
@@ -193,14 +334,20 @@ multiplier, offset : float
       .def_readonly("reference", &Joint::reference)
       .def_readonly("mimic", &Joint::mimic)
       .def_readonly("multiplier", &Joint::multiplier)
-      .def_readonly("offset", &Joint::offset);
+      .def_readonly("offset", &Joint::offset)
+      .def(py::pickle(&joint_state, &joint_from_state));
 
   py::class_<RobotDistances>(m, "RobotDistances",
                              "Signed distances of every checked pair, (m, pairs) each.")
       .def_readonly("distance", &RobotDistances::distance)
       .def_readonly("lower_bound", &RobotDistances::lower_bound)
       .def_readonly("colliding", &RobotDistances::colliding)
-      .def_readonly("certified", &RobotDistances::certified);
+      .def_readonly("certified", &RobotDistances::certified)
+      .def(pickle_fields<RobotDistances>(
+          "RobotDistances", &distances_error, field("distance", &RobotDistances::distance),
+          field("lower_bound", &RobotDistances::lower_bound),
+          field("colliding", &RobotDistances::colliding),
+          field("certified", &RobotDistances::certified)));
 
   py::class_<RobotCheck>(m, "RobotCheck", "Per configuration: the verdict and the nearest pair.")
       .def_readonly("colliding", &RobotCheck::colliding)
@@ -212,6 +359,13 @@ multiplier, offset : float
       .def_readonly("point_b", &RobotCheck::point_b)
       .def_readonly("normal", &RobotCheck::normal)
       .def_readonly("gradient", &RobotCheck::gradient)
+      .def(pickle_fields<RobotCheck>(
+          "RobotCheck", &check_error, field("colliding", &RobotCheck::colliding),
+          field("min_distance", &RobotCheck::min_distance),
+          field("lower_bound", &RobotCheck::lower_bound),
+          field("certified", &RobotCheck::certified), field("pair", &RobotCheck::pair),
+          field("point_a", &RobotCheck::point_a), field("point_b", &RobotCheck::point_b),
+          field("normal", &RobotCheck::normal), field("gradient", &RobotCheck::gradient)))
       .def(
           "row",
           &check_row_values,
@@ -235,6 +389,7 @@ multiplier, offset : float
       .def_readonly("normal", &RobotMotionCheck::normal)
       .def_readonly("certified", &RobotMotionCheck::certified)
       .def_readonly("iterations", &RobotMotionCheck::iterations)
+      .def(py::pickle(&motion_check_state, &motion_check_from_state))
       .def_property_readonly(
           "status", [](const RobotMotionCheck& check) { return status_names(check.status); },
           "Per motion: 'converged', 'max_iterations' or 'unresolved'.")
@@ -273,33 +428,9 @@ Raises
 ValueError
     Naming the joint, link or geometry at fault.
 )doc")
-      .def(py::init([](const std::vector<std::string>& link_names, std::vector<Joint> joints,
-                       const std::vector<py::tuple>& geometry_rows) {
-             std::vector<Link> links;
-             for (const std::string& name : link_names) links.push_back({name});
-             std::vector<Geometry> geometries;
-             for (const py::tuple& row : geometry_rows) {
-               if (row.size() != 4) {
-                 throw py::value_error("each geometry must be (name, link, origin, body)");
-               }
-               const auto name = to_name(row[0], "a geometry's name");
-               const Pose origin = to_pose(row[2], ("geometry '" + name + "' origin").c_str());
-               const int link =
-                   to_count(row[1], ("geometry '" + name + "' link (-1: the world)").c_str(), -1);
-               if (is_compound(row[3])) {
-                 const auto& parts = row[3].cast<const CompoundBody&>();
-                 geometries.push_back(Geometry{name, link, origin, parts.envelope(), parts});
-               } else {
-                 geometries.push_back(
-                     Geometry{name, link, origin,
-                              BodyArgument(row[3], ("geometry '" + name + "'").c_str()).get(),
-                              std::nullopt});
-               }
-             }
-             return std::make_shared<RobotModel>(std::move(links), std::move(joints),
-                                                 std::move(geometries));
-           }),
+      .def(py::init(&make_model),
            py::arg("links"), py::arg("joints"), py::arg("geometries"))
+      .def(py::pickle(&model_state, &model_from_state))
       .def_property_readonly("dof", &RobotModel::dof)
       .def_property_readonly("joints", &RobotModel::joints)
       .def_property_readonly("moving_joints", &RobotModel::moving_joints)

@@ -162,6 +162,140 @@ py::array_t<Scalar> transforms(const std::vector<Pose>& poses) {
   return out;
 }
 
+using PairIds = Eigen::Matrix<std::int64_t, Eigen::Dynamic, 2, Eigen::RowMajor>;
+
+// What is inconsistent in a SceneResult rebuilt from its state: a column of another length.
+std::string scene_result_error(const SceneResult& r) {
+  return unequal_lengths({{"pairs", r.pairs.rows()},
+                          {"distance", r.distance.rows()},
+                          {"lower_bound", r.lower_bound.rows()},
+                          {"point_a", r.point_a.rows()},
+                          {"point_b", r.point_b.rows()},
+                          {"normal", r.normal.rows()},
+                          {"certified", r.certified.rows()}});
+}
+
+// The same for a ContactResult, whose contact points are rows of their own.
+std::string contact_result_error(const ContactResult& r) {
+  std::string wrong = scene_result_error(r);
+  if (wrong.empty()) {
+    wrong = unequal_lengths(
+        {{"pairs", r.pairs.rows()}, {"counts", r.counts.rows()}, {"offsets", r.offsets.rows()}});
+  }
+  if (wrong.empty()) {
+    wrong = unequal_lengths({{"points", r.points.rows()}, {"point_pair", r.point_pair.rows()}});
+  }
+  return wrong;
+}
+
+py::tuple sweep_state(const SweepResult& r) {
+  return py::make_tuple(kStateVersion, r.pairs, r.t_lower, r.t_upper, transforms(r.pose_a),
+                        transforms(r.pose_b), r.distance, r.point_a, r.point_b, r.normal,
+                        r.certified, r.iterations);
+}
+
+SweepResult sweep_from_state(const py::object& state) {
+  PickledState items(state, "SweepResult", 11);
+  SweepResult r;
+  r.pairs = items.next<PairIds>("pairs");
+  const auto rows = static_cast<std::size_t>(r.pairs.rows());
+  const auto poses = [rows](const char* name) {
+    return [rows, name](const py::handle& item) { return to_poses(item, rows, name); };
+  };
+  r.t_lower = items.next<VectorX>("t_lower");
+  r.t_upper = items.next<VectorX>("t_upper");
+  r.pose_a = items.next("pose_a", poses("pose_a"));
+  r.pose_b = items.next("pose_b", poses("pose_b"));
+  r.distance = items.next<VectorX>("distance");
+  r.point_a = items.next<VertexMatrix>("point_a");
+  r.point_b = items.next<VertexMatrix>("point_b");
+  r.normal = items.next<VertexMatrix>("normal");
+  r.certified = items.next<Eigen::Array<bool, Eigen::Dynamic, 1>>("certified");
+  r.iterations = items.next<Eigen::Array<int, Eigen::Dynamic, 1>>("iterations");
+  const std::string wrong = unequal_lengths(
+      {{"pairs", r.pairs.rows()}, {"t_lower", r.t_lower.rows()}, {"t_upper", r.t_upper.rows()},
+       {"distance", r.distance.rows()}, {"point_a", r.point_a.rows()},
+       {"point_b", r.point_b.rows()}, {"normal", r.normal.rows()},
+       {"certified", r.certified.rows()}, {"iterations", r.iterations.rows()}});
+  if (!wrong.empty()) throw items.error(wrong);
+  return r;
+}
+
+// A scene as pickled: its options, then its bodies by column (ids, bodies in their own frames,
+// poses, groups, masks), the excluded pairs and the next id. The proofs cached for warm starts are
+// left out: answers do not depend on them beyond the tolerance (docs/scene.md).
+py::tuple scene_state(const Scene& scene) {
+  const SceneOptions& options = scene.options();
+  const std::vector<BodyId> ids = scene.ids();
+  py::list bodies, groups, masks;
+  std::vector<Pose> poses;
+  for (BodyId id : ids) {
+    const CompoundBody* compound = scene.compound(id);
+    bodies.append(compound ? py::cast(*compound) : typed_body(scene.body(id)));
+    poses.push_back(scene.pose(id));
+    groups.append(scene.filter(id).group);
+    masks.append(scene.filter(id).mask);
+  }
+  std::vector<std::pair<BodyId, BodyId>> excluded = scene.excluded();
+  PairIds excluded_pairs(static_cast<Eigen::Index>(excluded.size()), 2);
+  for (std::size_t k = 0; k < excluded.size(); ++k) {
+    excluded_pairs.row(static_cast<Eigen::Index>(k)) << excluded[k].first, excluded[k].second;
+  }
+  return py::tuple(py::make_tuple(kStateVersion) + options_state(options.query) +
+                   py::make_tuple(broadphase_name(options.broadphase), options.threads,
+                                  options.warm_start, options.escalate, id_array(ids), bodies,
+                                  transforms(poses), groups, masks, excluded_pairs,
+                                  scene.next_id()));
+}
+
+Scene scene_from_state(const py::object& state) {
+  PickledState items(state, "Scene", 15);
+  SceneOptions options;
+  options.query = options_from_state(items);
+  options.broadphase = items.next("broadphase", [](const py::handle& item) {
+    return broadphase_from_name(to_name(item, "broadphase"));
+  });
+  options.threads = items.next<int>("threads");
+  options.warm_start = items.next<bool>("warm_start");
+  options.escalate = items.next<bool>("escalate");
+  const std::vector<BodyId> ids =
+      items.next("ids", [](const py::handle& item) { return to_ids(item, "ids"); });
+  const py::list bodies = items.next("bodies", [](const py::handle& item) {
+    return py::list(py::reinterpret_borrow<py::object>(item));
+  });
+  const std::vector<Pose> poses = items.next("poses", [&ids](const py::handle& item) {
+    return to_poses(item, ids.size(), "poses");
+  });
+  const auto groups = items.next<std::vector<std::uint32_t>>("groups");
+  const auto masks = items.next<std::vector<std::uint32_t>>("masks");
+  const auto excluded =
+      items.next("excluded", [](const py::handle& item) { return to_id_pairs(item, "excluded"); });
+  const auto next_id = items.next<BodyId>("next_id");
+  const std::string wrong = unequal_lengths(
+      {{"ids", static_cast<Eigen::Index>(ids.size())},
+       {"bodies", static_cast<Eigen::Index>(bodies.size())},
+       {"poses", static_cast<Eigen::Index>(poses.size())},
+       {"groups", static_cast<Eigen::Index>(groups.size())},
+       {"masks", static_cast<Eigen::Index>(masks.size())}});
+  if (!wrong.empty()) throw items.error(wrong);
+  return items.build([&] {
+    Scene scene(options);
+    for (std::size_t i = 0; i < ids.size(); ++i) {
+      const std::string item = "bodies[" + std::to_string(i) + "]";
+      const BodyFilter filter{groups[i], masks[i]};
+      scene.skip_ids(ids[i]);
+      if (is_compound(bodies[i])) {
+        scene.add(bodies[i].cast<const CompoundBody&>(), poses[i], filter);
+      } else {
+        scene.add(BodyArgument(bodies[i], item.c_str()).get(), poses[i], filter);
+      }
+    }
+    scene.exclude(excluded);
+    scene.skip_ids(next_id);
+    return scene;
+  });
+}
+
 std::string sweep_repr(const SweepResult& r) {
   std::ostringstream out;
   out.precision(6);
@@ -271,6 +405,12 @@ certified : numpy.ndarray of bool, shape (m,)
       .def_readonly("normal", &SceneResult::normal)
       .def_readonly("certified", &SceneResult::certified)
       .def("__len__", &SceneResult::size)
+      .def(pickle_fields<SceneResult>(
+          "SceneResult", &scene_result_error, field("pairs", &SceneResult::pairs),
+          field("distance", &SceneResult::distance),
+          field("lower_bound", &SceneResult::lower_bound), field("point_a", &SceneResult::point_a),
+          field("point_b", &SceneResult::point_b), field("normal", &SceneResult::normal),
+          field("certified", &SceneResult::certified)))
       .def("__repr__", [](const SceneResult& r) { return result_repr("SceneResult", r) + ")"; });
 
   py::class_<ContactResult, SceneResult>(m, "ContactResult", R"doc(
@@ -293,6 +433,14 @@ offsets : numpy.ndarray of int64, shape (m,)
       .def_readonly("points", &ContactResult::points)
       .def_readonly("point_pair", &ContactResult::point_pair)
       .def_readonly("offsets", &ContactResult::offsets)
+      .def(pickle_fields<ContactResult>(
+          "ContactResult", &contact_result_error, field("pairs", &SceneResult::pairs),
+          field("distance", &SceneResult::distance),
+          field("lower_bound", &SceneResult::lower_bound), field("point_a", &SceneResult::point_a),
+          field("point_b", &SceneResult::point_b), field("normal", &SceneResult::normal),
+          field("certified", &SceneResult::certified), field("counts", &ContactResult::counts),
+          field("points", &ContactResult::points), field("point_pair", &ContactResult::point_pair),
+          field("offsets", &ContactResult::offsets)))
       .def("__repr__", [](const ContactResult& r) {
         return result_repr("ContactResult", r) + ", " + std::to_string(r.points.rows()) +
                " contact points)";
@@ -333,6 +481,7 @@ iterations : numpy.ndarray of int, shape (m,)
       .def_readonly("certified", &SweepResult::certified)
       .def_readonly("iterations", &SweepResult::iterations)
       .def("__len__", &SweepResult::size)
+      .def(py::pickle(&sweep_state, &sweep_from_state))
       .def("__repr__", &sweep_repr);
 
   py::class_<SceneStats>(m, "SceneStats", R"doc(
@@ -373,6 +522,16 @@ cached_pairs, cache_bytes : int
       .def_readonly("certified", &SceneStats::certified)
       .def_readonly("cached_pairs", &SceneStats::cached_pairs)
       .def_readonly("cache_bytes", &SceneStats::cache_bytes)
+      .def(pickle_fields<SceneStats>(
+          "SceneStats", any_values, field("candidates", &SceneStats::candidates),
+          field("screened", &SceneStats::screened),
+          field("warm_bounded", &SceneStats::warm_bounded),
+          field("warm_rejected", &SceneStats::warm_rejected),
+          field("warm_proven", &SceneStats::warm_proven), field("solved", &SceneStats::solved),
+          field("escalations", &SceneStats::escalations),
+          field("certified", &SceneStats::certified),
+          field("cached_pairs", &SceneStats::cached_pairs),
+          field("cache_bytes", &SceneStats::cache_bytes)))
       .def("__repr__", &stats_repr);
 
   m.def("broadphases", &broadphase_names, "The names of the broadphase managers a Scene can use.");
@@ -625,6 +784,7 @@ against each other: a box resting on a face gives its four corners.
                              [](const Scene& s) { return s.options().query.tolerance; })
       .def_property_readonly("seed", [](const Scene& s) { return s.options().query.seed; })
       .def_property_readonly("warm_start", [](const Scene& s) { return s.options().warm_start; })
+      .def(py::pickle(&scene_state, &scene_from_state))
       .def("__repr__", [](const Scene& s) {
         const std::size_t n = s.size();
         return "Scene(" + std::to_string(n) + (n == 1 ? " body" : " bodies") + ", method='" +

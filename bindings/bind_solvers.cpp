@@ -12,6 +12,9 @@ void bind_solvers(py::module_& m) {
       .def_readonly("w", &ParticleCoefficients::w)
       .def_readonly("c1", &ParticleCoefficients::c1)
       .def_readonly("c2", &ParticleCoefficients::c2)
+      .def(pickle_fields<ParticleCoefficients>(
+          "ParticleCoefficients", any_values, field("w", &ParticleCoefficients::w),
+          field("c1", &ParticleCoefficients::c1), field("c2", &ParticleCoefficients::c2)))
       .def("__repr__", [](const ParticleCoefficients& c) {
         std::ostringstream out;
         out << "ParticleCoefficients(w=" << c.w << ", c1=" << c.c1 << ", c2=" << c.c2 << ")";

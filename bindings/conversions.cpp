@@ -597,4 +597,83 @@ MotionKind to_motion_kind(const py::handle& motion) {
   }
 }
 
+MotionStatus motion_status(const py::handle& value, const char* name) {
+  const std::string given = to_name(value, name);
+  for (MotionStatus status :
+       {MotionStatus::converged, MotionStatus::max_iterations, MotionStatus::unresolved}) {
+    if (given == status_name(status)) return status;
+  }
+  throw py::value_error(std::string(name) +
+                        " must be 'converged', 'max_iterations' or 'unresolved', got '" + given +
+                        "'");
+}
+
+PickledState::PickledState(const py::handle& state, std::string type, std::size_t items)
+    : type_(std::move(type)) {
+  if (!PyTuple_Check(state.ptr())) {
+    throw error("expected a tuple, got " + type_name(state));
+  }
+  items_ = py::reinterpret_borrow<py::tuple>(state);
+  const py::handle version = items_.size() > 0 ? items_[0] : py::handle(Py_None);
+  if (PyBool_Check(version.ptr()) || !PyLong_Check(version.ptr()) ||
+      !py::int_(kStateVersion).equal(version)) {
+    throw error("format version " + std::string(py::repr(version)) + " is not " +
+                std::to_string(kStateVersion) + " (pickled by another version of swarmcollide?)");
+  }
+  if (items_.size() != items + 1) {
+    throw error("expected " + std::to_string(items + 1) + " items (the version and " +
+                std::to_string(items) + " fields), got " + std::to_string(items_.size()));
+  }
+}
+
+py::value_error PickledState::error(const std::string& what) const {
+  return py::value_error("cannot unpickle " + type_ + ": " + what);
+}
+
+std::string PickledState::naming(const std::string& item, const std::string& message) {
+  return item.empty() || message.rfind(item, 0) == 0 ? message : item + ": " + message;
+}
+
+std::string PickledState::described(const py::handle& item) {
+  if (PyList_Check(item.ptr()) || PyTuple_Check(item.ptr())) {
+    return "a " + type_name(item) + " of length " + std::to_string(PyObject_Length(item.ptr()));
+  }
+  if (!py::isinstance<py::array>(item)) return type_name(item);
+  const auto array = py::reinterpret_borrow<py::array>(item);
+  return "an array of shape " + shape_of(array) + " and dtype " +
+         std::string(py::str(array.dtype()));
+}
+
+py::int_ PickledState::to_integer(const py::handle& item, const char* name) {
+  if (PyBool_Check(item.ptr()) || is_array(item) || !PyIndex_Check(item.ptr())) {
+    throw py::type_error(std::string(name) + " must be an integer, got " + type_name(item));
+  }
+  return py::reinterpret_steal<py::int_>(PyNumber_Index(item.ptr()));
+}
+
+std::string unequal_lengths(std::initializer_list<std::pair<const char*, Eigen::Index>> columns) {
+  const auto& [first, length] = *columns.begin();
+  for (const auto& [name, rows] : columns) {
+    if (rows != length) {
+      return std::string(name) + " has " + std::to_string(rows) + " rows where " + first +
+             " has " + std::to_string(length);
+    }
+  }
+  return {};
+}
+
+py::dict instance_attributes(const py::handle& instance) {
+  const py::object attributes = py::getattr(instance, "__dict__", py::none());
+  return attributes.is_none() ? py::dict() : py::dict(attributes);
+}
+
+py::dict state_attributes(PickledState& state) {
+  return state.next("attributes", [](const py::handle& item) {
+    if (!PyDict_Check(item.ptr())) {
+      throw py::type_error("must be a dict, got " + type_name(item));
+    }
+    return py::reinterpret_borrow<py::dict>(item);
+  });
+}
+
 }  // namespace swarmcollide::bindings

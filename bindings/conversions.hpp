@@ -4,6 +4,9 @@
 #include <pybind11/pybind11.h>
 
 #include <optional>
+#include <string>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "swarmcollide/geometry/compound_body.hpp"
@@ -153,6 +156,166 @@ std::string type_name(const py::handle& object);
 
 /// A motion's status as Python reads it: 'converged', 'max_iterations' or 'unresolved'.
 const char* status_name(MotionStatus status);
+
+/// A motion's status from status_name's name; ValueError naming `name` for another.
+MotionStatus motion_status(const py::handle& value, const char* name);
+
+/// The first item of every pickled state (a tuple: this number, then the object's fields). A
+/// state whose first item differs was written by a version of the library that pickled
+/// differently, and is refused.
+inline constexpr int kStateVersion = 1;
+
+/// True for a std::vector (which Python gives as a list).
+template <typename T>
+struct IsVector : std::false_type {};
+template <typename T>
+struct IsVector<std::vector<T>> : std::true_type {};
+
+/// The state given to a class's `__setstate__`, read item by item: a tuple of kStateVersion and
+/// `items` more items. Whatever is wrong with it (not a tuple, another version or length, an item
+/// of the wrong type, shape or value) is a ValueError naming the class and the item, never a
+/// crash: a state may be corrupted, or come from another program.
+class PickledState {
+ public:
+  PickledState(const py::handle& state, std::string type, std::size_t items);
+
+  /// The next item as `T`: a bool, an integer or a real number (Python's or NumPy's), the
+  /// object itself (py::object), else anything pybind11 casts to `T` (an Eigen matrix, a
+  /// std::vector, a bound class).
+  template <typename T>
+  T next(const char* name) {
+    return next(name, [name](const py::handle& item) -> T {
+      if constexpr (std::is_same_v<T, bool>) {
+        return to_bool(item, name);
+      } else if constexpr (std::is_integral_v<T>) {
+        return to_integer(item, name).cast<T>();
+      } else if constexpr (std::is_floating_point_v<T>) {
+        return to_real(item, name);
+      } else if constexpr (std::is_same_v<T, py::object>) {
+        return py::reinterpret_borrow<py::object>(item);
+      } else {
+        try {
+          return item.cast<T>();
+        } catch (const py::cast_error&) {
+          throw py::type_error(std::string(name) + " must be " + expected<T>() + ", got " +
+                               described(item));
+        }
+      }
+    });
+  }
+
+  /// The next item through `read` (a conversion of this file, say), whose errors become this
+  /// state's, naming the item.
+  template <typename Read>
+  auto next(const char* name, const Read& read) {
+    const py::handle item = items_[position_++];
+    return guarded(name, [&] { return read(item); });
+  }
+
+  /// `make()` (a constructor, which validates the values read), its errors this state's.
+  template <typename Make>
+  auto build(const Make& make) const {
+    return guarded("", make);
+  }
+
+  /// A ValueError naming the class and `what`.
+  py::value_error error(const std::string& what) const;
+
+ private:
+  // `run()`, with what it raises for a wrong value (TypeError, ValueError, a constructor's
+  // std::invalid_argument) raised as error() naming `item` (unless the message does); other
+  // errors pass.
+  template <typename Run>
+  auto guarded(const std::string& item, const Run& run) const {
+    try {
+      return run();
+    } catch (const py::builtin_exception& wrong) {
+      throw error(naming(item, wrong.what()));
+    } catch (const std::invalid_argument& wrong) {
+      throw error(naming(item, wrong.what()));
+    } catch (py::error_already_set& raised) {
+      if (!raised.matches(PyExc_TypeError) && !raised.matches(PyExc_ValueError)) throw;
+      throw error(naming(item, py::str(raised.value())));
+    }
+  }
+  // `message`, preceded by `item: ` unless it starts with the item's name.
+  static std::string naming(const std::string& item, const std::string& message);
+
+  // What an item read as `T` must be, for messages: an array's shape, a list of what, a type.
+  template <typename T>
+  static std::string expected() {
+    if constexpr (std::is_base_of_v<Eigen::EigenBase<T>, T>) {
+      const auto length = [](int n) {
+        return n == Eigen::Dynamic ? std::string("n") : std::to_string(n);
+      };
+      return "an array of shape (" + length(T::RowsAtCompileTime) +
+             (T::ColsAtCompileTime == 1 ? ",)" : ", " + length(T::ColsAtCompileTime) + ")");
+    } else if constexpr (IsVector<T>::value) {
+      return "a list, each item " + expected<typename T::value_type>();
+    } else if constexpr (std::is_same_v<T, std::string>) {
+      return "a str";
+    } else if constexpr (std::is_arithmetic_v<T>) {
+      return "a number";
+    } else if constexpr (std::is_same_v<T, py::tuple>) {
+      return "a tuple";
+    } else {
+      return "a " + std::string(py::str(py::type::of<T>().attr("__name__")));
+    }
+  }
+  // `item`'s type, with an array's shape and dtype or a sequence's length.
+  static std::string described(const py::handle& item);
+
+  static py::int_ to_integer(const py::handle& item, const char* name);
+
+  py::tuple items_;
+  std::string type_;
+  std::size_t position_ = 1;
+};
+
+/// A member of a struct pickled as it is, with its name for messages.
+template <typename Owner, typename Type>
+struct Field {
+  const char* name;
+  Type Owner::*member;
+};
+
+/// `member` of an `Owner`, named `name`: pickle_fields' argument.
+template <typename Owner, typename Type>
+Field<Owner, Type> field(const char* name, Type Owner::*member) {
+  return {name, member};
+}
+
+/// A struct pickled as its fields, in the order given: the state is (kStateVersion, fields...).
+/// `consistent(value)` says what is wrong with a rebuilt value (columns of different lengths,
+/// say), or nothing.
+template <typename T, typename Consistent, typename... Owners, typename... Types>
+auto pickle_fields(const char* type, Consistent consistent, Field<Owners, Types>... fields) {
+  return py::pickle(
+      [fields...](const T& value) {
+        return py::make_tuple(kStateVersion, value.*(fields.member)...);
+      },
+      [type, consistent, fields...](const py::object& state) {
+        PickledState items(state, type, sizeof...(Types));
+        T value;
+        ((value.*(fields.member) = items.next<Types>(fields.name)), ...);
+        if (const std::string wrong = consistent(value); !wrong.empty()) throw items.error(wrong);
+        return value;
+      });
+}
+
+/// pickle_fields' `consistent` for a struct whose fields take any values of their types.
+inline constexpr auto any_values = [](const auto&) { return std::string(); };
+
+/// The first column whose length differs from the first's, as a message; nothing when all are
+/// alike. Each column is its name and its length.
+std::string unequal_lengths(std::initializer_list<std::pair<const char*, Eigen::Index>> columns);
+
+/// An instance's own attributes (its `__dict__`: a Python subclass's), empty for an instance of
+/// a bound class: pickled with the C++ state, so that a subclass keeps them.
+py::dict instance_attributes(const py::handle& instance);
+
+/// The next item of `state` as instance_attributes' dictionary.
+py::dict state_attributes(PickledState& state);
 
 }  // namespace swarmcollide::bindings
 

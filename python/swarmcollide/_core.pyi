@@ -11,7 +11,11 @@ class Aabb:
     """
     An axis-aligned bounding box with corners ``min`` and ``max``.
     """
+    def __getstate__(self) -> tuple[int, typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]]:
+        ...
     def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: typing.Any) -> None:
         ...
     @property
     def max(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
@@ -33,9 +37,13 @@ class BatchResult:
     part_a, part_b : numpy.ndarray of int, shape (m,)
         The parts of compound bodies that realise each answer (0 for convex bodies).
     """
+    def __getstate__(self) -> tuple:
+        ...
     def __len__(self) -> int:
         ...
     def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: typing.Any) -> None:
         ...
     @property
     def certified(self) -> typing.Annotated[numpy.typing.NDArray[numpy.bool], "[m, 1]"]:
@@ -94,9 +102,13 @@ class Box(ConvexPolyhedron):
     >>> sc.distance(box, sc.Sphere(1), pose_b=(identity, [3, 0, 0])).distance
     1.0
     """
+    def __getstate__(self) -> tuple:
+        ...
     def __init__(self, half_extents: typing.Any, radius: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> None:
         ...
     def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: typing.Any) -> None:
         ...
     @property
     def half_extents(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
@@ -127,9 +139,13 @@ class Capsule(ConvexPolyhedron):
     >>> sc.distance(upright, upright, pose_b=(identity, [2, 0, 0.5])).distance
     1.0
     """
+    def __getstate__(self) -> tuple:
+        ...
     def __init__(self, radius: typing.SupportsFloat | typing.SupportsIndex, half_length: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: typing.Any) -> None:
         ...
     @property
     def half_length(self) -> float:
@@ -177,11 +193,15 @@ class CompoundBody:
     >>> round(r.distance, 9), r.part_a, r.certified  # the cylinder's side: 3 - 2 - 0.1 - 0.5
     (0.4, 1, True)
     """
+    def __getstate__(self) -> tuple:
+        ...
     def __init__(self, parts: typing.Any, *, poses: typing.Any = None) -> None:
         ...
     def __len__(self) -> int:
         ...
     def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: typing.Any) -> None:
         ...
     def aabb(self) -> Aabb:
         """
@@ -244,7 +264,11 @@ class CompoundResult(DistanceResult):
     the smallest signed distance over part pairs: minus the deepest part-pair penetration, which is
     not in general the penetration depth of the non-convex union.
     """
+    def __getstate__(self) -> tuple[int, tuple, int, int, CompoundStats]:
+        ...
     def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: typing.Any) -> None:
         ...
     @property
     def part_a(self) -> int:
@@ -279,7 +303,11 @@ class CompoundStats:
     pruned : int
         Part pairs never looked at: ruled out by the tree's certified lower bounds.
     """
+    def __getstate__(self) -> tuple[int, int, int, int, int]:
+        ...
     def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: typing.Any) -> None:
         ...
     @property
     def part_pairs(self) -> int:
@@ -320,9 +348,13 @@ class Cone(ConvexPolyhedron):
     >>> round(sc.distance(cone, sc.Sphere(0.5), pose_b=(identity, [0, 0, 3])).distance, 9)
     1.5
     """
+    def __getstate__(self) -> tuple:
+        ...
     def __init__(self, radius: typing.SupportsFloat | typing.SupportsIndex, half_length: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: typing.Any) -> None:
         ...
     @property
     def half_length(self) -> float:
@@ -352,7 +384,11 @@ class ContactResult(SceneResult):
     offsets : numpy.ndarray of int64, shape (m,)
         Index in ``points`` of each pair's first contact point.
     """
+    def __getstate__(self) -> tuple[int, typing.Annotated[numpy.typing.NDArray[numpy.int64], "[m, 2]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"], typing.Annotated[numpy.typing.NDArray[numpy.bool], "[m, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.int32], "[m, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"], typing.Annotated[numpy.typing.NDArray[numpy.int64], "[m, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.int64], "[m, 1]"]]:
+        ...
     def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: typing.Any) -> None:
         ...
     @property
     def counts(self) -> typing.Annotated[numpy.typing.NDArray[numpy.int32], "[m, 1]"]:
@@ -395,11 +431,15 @@ class ConvexPolyhedron:
     >>> sc.distance(sc.ConvexPolyhedron([[0, 0, 0]], radius=1), [[3, 0, 0]]).distance
     2.0
     """
+    def __getstate__(self) -> tuple:
+        ...
     def __init__(self, points: typing.Any, radius: typing.SupportsFloat | typing.SupportsIndex | None = None) -> None:
         ...
     def __len__(self) -> int:
         ...
     def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: typing.Any) -> None:
         ...
     def aabb(self) -> Aabb:
         """
@@ -473,9 +513,13 @@ class Cylinder(ConvexPolyhedron):
     >>> round(sc.signed_distance(can, can, pose_b=(identity, [0, 0, 1.5])).distance, 9)
     -0.5
     """
+    def __getstate__(self) -> tuple:
+        ...
     def __init__(self, radius: typing.SupportsFloat | typing.SupportsIndex, half_length: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: typing.Any) -> None:
         ...
     @property
     def half_length(self) -> float:
@@ -498,7 +542,11 @@ class DistanceResult:
     the separation along ``direction``. For signed distances the true value is minus the penetration
     depth when the bodies overlap, and ``point_b - point_a = distance * direction``.
     """
+    def __getstate__(self) -> tuple:
+        ...
     def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: typing.Any) -> None:
         ...
     @property
     def certified(self) -> bool:
@@ -597,9 +645,13 @@ class Ellipsoid(ConvexPolyhedron):
     >>> round(sc.distance(egg, sc.Sphere(1), pose_b=(identity, [0, 0, 5])).distance, 9)
     1.0
     """
+    def __getstate__(self) -> tuple:
+        ...
     def __init__(self, radii: typing.Any) -> None:
         ...
     def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: typing.Any) -> None:
         ...
     @property
     def radii(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
@@ -621,7 +673,11 @@ class Hull:
         ``(m, 3)`` triangles indexing the polyhedron's points, outward by the right-hand rule. A flat
         polygon is listed once facing each side; segments and points have no faces.
     """
+    def __getstate__(self) -> tuple[int, int, list[int], typing.Annotated[numpy.typing.NDArray[numpy.int32], "[m, 3]"]]:
+        ...
     def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: typing.Any) -> None:
         ...
     @property
     def dimension(self) -> int:
@@ -657,7 +713,11 @@ class Joint:
         value(mimicked) + offset`` and it is no degree of freedom.
     multiplier, offset : float
     """
+    def __getstate__(self) -> tuple:
+        ...
     def __init__(self, name: str, type: str, parent: typing.SupportsInt | typing.SupportsIndex, child: typing.SupportsInt | typing.SupportsIndex, origin: typing.Any = None, axis: typing.Any = ..., lower: typing.SupportsFloat | typing.SupportsIndex = 0.0, upper: typing.SupportsFloat | typing.SupportsIndex = 0.0, reference: typing.SupportsFloat | typing.SupportsIndex = 0.0, mimic: typing.SupportsInt | typing.SupportsIndex = -1, multiplier: typing.SupportsFloat | typing.SupportsIndex = 1.0, offset: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> None:
+        ...
+    def __setstate__(self, arg0: typing.Any) -> None:
         ...
     @property
     def axis(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
@@ -708,7 +768,11 @@ class PartNode:
     part : int
         The part a leaf holds; -1 for an inner node.
     """
+    def __getstate__(self) -> tuple[int, Aabb, typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"], float, int, int, int]:
+        ...
     def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: typing.Any) -> None:
         ...
     @property
     def box(self) -> Aabb:
@@ -735,7 +799,11 @@ class ParticleCoefficients:
     """
     Inertia weight ``w`` and accelerations ``c1``, ``c2`` of one particle.
     """
+    def __getstate__(self) -> tuple[int, float, float, float]:
+        ...
     def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: typing.Any) -> None:
         ...
     @property
     def c1(self) -> float:
@@ -755,9 +823,13 @@ class Query:
     the unit of length. ``tolerance`` is relative to the pair's size (the diameter of a ball around
     both bodies): it is the precision of every answer and the distance below which bodies collide.
     """
+    def __getstate__(self) -> tuple:
+        ...
     def __init__(self, method: typing.Any = 'dual', tolerance: typing.Any = 1e-09, seed: typing.Any = 0, **kwargs) -> None:
         ...
     def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: typing.Any) -> None:
         ...
     def collide(self, a: typing.Any, b: typing.Any, pose_a: typing.Any = None, pose_b: typing.Any = None, escalate: bool = True) -> bool:
         ...
@@ -830,6 +902,10 @@ class RobotCheck:
     """
     Per configuration: the verdict and the nearest pair.
     """
+    def __getstate__(self) -> tuple[int, typing.Annotated[numpy.typing.NDArray[numpy.bool], "[m, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.bool], "[m, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.int32], "[m, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]]:
+        ...
+    def __setstate__(self, arg0: typing.Any) -> None:
+        ...
     def row(self, i: typing.SupportsInt | typing.SupportsIndex) -> tuple[bool, float, float, bool, int, numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64], typing.Any]:
         """
         Configuration i's (colliding, min_distance, lower_bound, certified, pair, point_a, point_b, normal, gradient or None), as Python values and (3,) or (dof,) arrays: cheaper than reading every field's array to index it, for a check of one configuration.
@@ -865,6 +941,10 @@ class RobotDistances:
     """
     Signed distances of every checked pair, (m, pairs) each.
     """
+    def __getstate__(self) -> tuple[int, typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"], typing.Annotated[numpy.typing.NDArray[numpy.bool], "[m, n]"], typing.Annotated[numpy.typing.NDArray[numpy.bool], "[m, n]"]]:
+        ...
+    def __setstate__(self, arg0: typing.Any) -> None:
+        ...
     @property
     def certified(self) -> typing.Annotated[numpy.typing.NDArray[numpy.bool], "[m, n]"]:
         ...
@@ -898,7 +978,11 @@ class RobotModel:
     ValueError
         Naming the joint, link or geometry at fault.
     """
+    def __getstate__(self) -> tuple:
+        ...
     def __init__(self, links: collections.abc.Sequence[str], joints: collections.abc.Sequence[Joint], geometries: collections.abc.Sequence[tuple]) -> None:
+        ...
+    def __setstate__(self, arg0: typing.Any) -> None:
         ...
     def adjacent_links(self, a: typing.SupportsInt | typing.SupportsIndex, b: typing.SupportsInt | typing.SupportsIndex) -> bool:
         """
@@ -955,6 +1039,10 @@ class RobotMotionCheck:
     """
     Per motion: free, or the first contact bracketed (see Robot.check_motion).
     """
+    def __getstate__(self) -> tuple:
+        ...
+    def __setstate__(self, arg0: typing.Any) -> None:
+        ...
     def row(self, i: typing.SupportsInt | typing.SupportsIndex) -> tuple[bool, float, float, numpy.typing.NDArray[numpy.float64], int, float, numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64], bool, int, str]:
         """
         Motion i's (touches, t_lower, t_upper, configuration, pair, distance, point_a, point_b, normal, certified, iterations, status), as Python values and arrays.
@@ -1056,11 +1144,15 @@ class Scene:
     """
     def __contains__(self, arg0: typing.Any) -> bool:
         ...
+    def __getstate__(self) -> tuple:
+        ...
     def __init__(self, method: typing.Any = 'dual', broadphase: typing.Any = 'dynamic_aabb_tree', threads: typing.Any = None, tolerance: typing.Any = 1e-09, seed: typing.Any = 0, warm_start: bool = True, escalate: bool = True, **kwargs) -> None:
         ...
     def __len__(self) -> int:
         ...
     def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: typing.Any) -> None:
         ...
     def add(self, bodies: typing.Any, poses: typing.Any = None, group: typing.Any = 1, mask: typing.Any = 4294967295) -> numpy.typing.NDArray[numpy.int64]:
         """
@@ -1220,9 +1312,13 @@ class SceneResult:
     certified : numpy.ndarray of bool, shape (m,)
         The pair's membership (and value, for distances and contacts) is proven.
     """
+    def __getstate__(self) -> tuple[int, typing.Annotated[numpy.typing.NDArray[numpy.int64], "[m, 2]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"], typing.Annotated[numpy.typing.NDArray[numpy.bool], "[m, 1]"]]:
+        ...
     def __len__(self) -> int:
         ...
     def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: typing.Any) -> None:
         ...
     @property
     def certified(self) -> typing.Annotated[numpy.typing.NDArray[numpy.bool], "[m, 1]"]:
@@ -1275,7 +1371,11 @@ class SceneStats:
         corners). cache_bytes is summed when ``scene.stats`` is read (the storage then), not by
         every query: the sum reads every pair's record.
     """
+    def __getstate__(self) -> tuple[int, int, int, int, int, int, int, int, int, int, int]:
+        ...
     def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: typing.Any) -> None:
         ...
     @property
     def cache_bytes(self) -> int:
@@ -1329,9 +1429,13 @@ class Sphere(ConvexPolyhedron):
     >>> sc.signed_distance(a, b).distance
     -1.5
     """
+    def __getstate__(self) -> tuple:
+        ...
     def __init__(self, radius: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: typing.Any) -> None:
         ...
 class SweepResult:
     """
@@ -1358,9 +1462,13 @@ class SweepResult:
     iterations : numpy.ndarray of int, shape (m,)
         Distance queries each pair ran.
     """
+    def __getstate__(self) -> tuple:
+        ...
     def __len__(self) -> int:
         ...
     def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: typing.Any) -> None:
         ...
     @property
     def certified(self) -> typing.Annotated[numpy.typing.NDArray[numpy.bool], "[m, 1]"]:
@@ -1403,9 +1511,13 @@ class TimeOfImpactBatch:
     """
     def __getitem__(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> TimeOfImpactResult:
         ...
+    def __getstate__(self) -> tuple[int, list[TimeOfImpactResult]]:
+        ...
     def __len__(self) -> int:
         ...
     def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: typing.Any) -> None:
         ...
     @property
     def certified(self) -> numpy.typing.NDArray[numpy.bool]:
@@ -1450,7 +1562,11 @@ class TimeOfImpactResult:
     of each other at ``t_upper``, with ``t_upper - t_lower <= time_tolerance``. Uncertified answers
     err on the side of contact: ``t_lower`` is still proven, ``touches`` is True.
     """
+    def __getstate__(self) -> tuple:
+        ...
     def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: typing.Any) -> None:
         ...
     @property
     def certified(self) -> bool:

@@ -426,6 +426,26 @@ TEST(Scene, FiltersAndExclusionsRemovePairs) {
   expect_matches_oracle(scene, world, "one exclusion lifted");
 }
 
+TEST(Scene, ExclusionsAndIdsCanBeReadAndIdsSkipped) {
+  std::mt19937_64 rng(5);
+  Scene scene;
+  for (int i = 0; i < 6; ++i) scene.add(random_body(rng), random_pose(rng, 2));
+  EXPECT_EQ(scene.next_id(), 6u);
+  scene.exclude({{4, 1}, {0, 5}, {2, 3}});
+  scene.include({{3, 2}});
+  EXPECT_EQ(scene.excluded(), (std::vector<Pair>{{0, 5}, {1, 4}}));
+  // Removing a body drops its exclusions, and its id is not given again.
+  scene.remove({5});
+  EXPECT_EQ(scene.excluded(), (std::vector<Pair>{{1, 4}}));
+  EXPECT_EQ(scene.next_id(), 6u);
+  scene.skip_ids(9);
+  EXPECT_EQ(scene.add(random_body(rng)), 9u);
+  EXPECT_FALSE(scene.contains(6) || scene.contains(7) || scene.contains(8));
+  EXPECT_EQ(scene.ids(), (std::vector<BodyId>{0, 1, 2, 3, 4, 9}));
+  EXPECT_THROW(scene.skip_ids(9), std::invalid_argument);
+  EXPECT_THROW(scene.set_poses({7}, {Pose{}}), std::invalid_argument);
+}
+
 TEST(Scene, WithoutWarmStartsAnswersDoNotDependOnHistoryOrThreads) {
   std::mt19937_64 rng(11);
   std::vector<ConvexPolyhedron> bodies;

@@ -8,20 +8,9 @@ import numpy as np
 import pytest
 
 import swarmcollide as sc
-from shape_checks import at
+from shape_checks import SHAPES, at
 from swarmcollide.cli import main
 from swarmcollide.shape_json import body_from_json, body_to_json
-
-SHAPES = [
-    sc.Sphere(0.5),
-    sc.Capsule(0.25, 1.5),
-    sc.Box([1.0, 2.0, 0.5]),
-    sc.Box([1.0, 2.0, 0.5], radius=0.125),
-    sc.Cylinder(0.3, 1.1),
-    sc.Cone(0.7, 0.4),
-    sc.Ellipsoid([0.1, 0.2, 0.3]),
-    sc.ConvexPolyhedron([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], radius=0.05),
-]
 
 
 @pytest.mark.parametrize("body", SHAPES, ids=lambda b: repr(b)[:20])

@@ -16,6 +16,15 @@ void PairTable::include(BodyId a, BodyId b) {
   stale_ = true;
 }
 
+std::vector<std::pair<BodyId, BodyId>> PairTable::excluded() const {
+  std::vector<std::uint64_t> keys(excluded_.begin(), excluded_.end());
+  std::sort(keys.begin(), keys.end());
+  std::vector<std::pair<BodyId, BodyId>> pairs;
+  pairs.reserve(keys.size());
+  for (std::uint64_t key : keys) pairs.emplace_back(key_first(key), key_second(key));
+  return pairs;
+}
+
 void PairTable::add_body(SceneBody* body) {
   if (requeried_.size() <= body->id) requeried_.resize(body->id + std::size_t{1}, 0);
   requery(body);

@@ -50,6 +50,8 @@ class PairTable {
   /// Never pair `a` and `b` (exclude), or pair them again (include); either remakes the table.
   void exclude(BodyId a, BodyId b);
   void include(BodyId a, BodyId b);
+  /// The excluded pairs, the smaller id first, in increasing order.
+  std::vector<std::pair<BodyId, BodyId>> excluded() const;
 
   /// A body just added (ids are handed out in order, from 0): its pairs join at the next update.
   void add_body(SceneBody* body);

@@ -454,6 +454,28 @@ void Scene::include(const std::vector<std::pair<BodyId, BodyId>>& pairs) {
   for (const auto& [a, b] : pairs) s.table.include(a, b);
 }
 
+std::vector<std::pair<BodyId, BodyId>> Scene::excluded() const {
+  const std::lock_guard<std::mutex> lock(impl_->mutex);
+  return impl_->table.excluded();
+}
+
+BodyId Scene::next_id() const {
+  const std::lock_guard<std::mutex> lock(impl_->mutex);
+  return impl_->next_id;
+}
+
+void Scene::skip_ids(BodyId id) {
+  Impl& s = *impl_;
+  const std::lock_guard<std::mutex> lock(s.mutex);
+  if (id < s.next_id) {
+    throw std::invalid_argument("skip_ids: id " + std::to_string(id) + " was given out already (" +
+                                "the next id is " + std::to_string(s.next_id) + ")");
+  }
+  // The skipped ids were never given: no slot holds them.
+  s.slot.resize(id, Impl::kNoSlot);
+  s.next_id = id;
+}
+
 std::size_t Scene::size() const {
   const std::lock_guard<std::mutex> lock(impl_->mutex);
   return impl_->bodies.size();

@@ -64,6 +64,14 @@ class Scene {
   /// changing nothing, for an unknown id or a body paired with itself.
   void exclude(const std::vector<std::pair<BodyId, BodyId>>& pairs);
   void include(const std::vector<std::pair<BodyId, BodyId>>& pairs);
+  /// The pairs excluded (and not included again), the smaller id first, in increasing order.
+  std::vector<std::pair<BodyId, BodyId>> excluded() const;
+  /// The id the next body added gets: ids are handed out in increasing order, never reused.
+  BodyId next_id() const;
+  /// Hands out no id below `id`: the next body added gets it. With the accessors above, a scene
+  /// rebuilt from another's bodies gives them the same ids (Python's pickling). Throws
+  /// std::invalid_argument for an id below next_id().
+  void skip_ids(BodyId id);
 
   /// Number of bodies.
   std::size_t size() const;
