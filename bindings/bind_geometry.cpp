@@ -80,19 +80,6 @@ auto pickle_shape(const char* type, std::size_t count, Parameters parameters, Ma
       });
 }
 
-// A curved shape (Cylinder, Cone, Ellipsoid) in its own frame, of its own type.
-py::object unplaced_shape(const CurvedShapeParameters& shape) {
-  switch (shape.kind) {
-    case CurvedShapeParameters::Kind::cylinder:
-      return py::cast(Cylinder(shape.radius, shape.half_length));
-    case CurvedShapeParameters::Kind::cone:
-      return py::cast(Cone(shape.radius, shape.half_length));
-    case CurvedShapeParameters::Kind::ellipsoid:
-      return py::cast(Ellipsoid(shape.radii));
-  }
-  throw std::logic_error("unknown curved shape");
-}
-
 // A ConvexPolyhedron's shape as pickled: None for the hull of its points, else its curved shape
 // in its own frame and the pose placing it (None in its own frame).
 py::object curved_state(const ConvexPolyhedron& body) {

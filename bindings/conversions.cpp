@@ -143,11 +143,7 @@ py::object points_of(const py::handle& body) {
   return py::reinterpret_borrow<py::object>(body);
 }
 
-py::object typed_body(const ConvexPolyhedron& body) {
-  const SupportFunction* curved = body.curved();
-  if (!curved) return py::cast(body);
-  const CurvedShapeParameters shape = curved->parameters();
-  if (shape.placed) return py::cast(body);
+py::object unplaced_shape(const CurvedShapeParameters& shape) {
   switch (shape.kind) {
     case CurvedShapeParameters::Kind::cylinder:
       return py::cast(Cylinder(shape.radius, shape.half_length));
@@ -156,7 +152,14 @@ py::object typed_body(const ConvexPolyhedron& body) {
     case CurvedShapeParameters::Kind::ellipsoid:
       return py::cast(Ellipsoid(shape.radii));
   }
-  return py::cast(body);
+  throw std::logic_error("unknown curved shape");
+}
+
+py::object typed_body(const ConvexPolyhedron& body) {
+  const SupportFunction* curved = body.curved();
+  if (!curved) return py::cast(body);
+  const CurvedShapeParameters shape = curved->parameters();
+  return shape.placed ? py::cast(body) : unplaced_shape(shape);
 }
 
 py::object added_body(const ConvexPolyhedron& body) {

@@ -115,6 +115,9 @@ bool is_mesh(const py::handle& body);
 /// `body`'s points when it is a mesh (is_mesh); else `body`.
 py::object points_of(const py::handle& body);
 
+/// A curved shape (Cylinder, Cone, Ellipsoid) in its own frame, of its own type.
+py::object unplaced_shape(const CurvedShapeParameters& shape);
+
 /// A body as Python sees it: a curved shape as its own Cylinder, Cone or Ellipsoid (a new one of
 /// its parameters: the same body, with its parameters and repr); any other body, and a curved
 /// shape placed by a pose, as the ConvexPolyhedron it is.
