@@ -236,6 +236,16 @@ def test_one_configuration_is_its_row_of_the_batch(arm):
                 assert np.shape(mine) == np.shape(theirs[i]), field
     with pytest.raises(IndexError, match="row 1 is not in"):
         arm.model.check(arm._pair_table, arm.model.admit(q[:1]), sc.query()).row(1)
+    # Outside the limits, one configuration is brought within them as the batch brings its rows
+    # (a single configuration is admitted and checked in one call, RobotModel.check_one).
+    beyond = q + 7.0
+    batch = arm.check(beyond, limits="clamp")
+    for i in range(len(q)):
+        one = arm.check(beyond[i], limits="clamp")
+        assert one.min_distance == batch.min_distance[i]
+        assert one.pair == batch.pair[i]
+    with pytest.raises(ValueError, match=r"q\[0\], joint"):
+        arm.check(beyond[0])
 
 
 def test_the_gradient_matches_finite_differences_where_the_nearest_pair_is_unique(arm):
