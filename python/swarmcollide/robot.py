@@ -560,12 +560,13 @@ class Robot:
             values = self._model.check_one(self._pair_table, configurations, limits, pair_query,
                                            threads, gradient, nearest)
         else:
-            table, single = self._configurations(configurations, limits)
+            # Many configurations (a single one of another kind or with unknown limits is refused
+            # here, by name).
+            table, _ = self._configurations(configurations, limits)
             raw = self._model.check(self._pair_table, table, pair_query, threads, gradient,
                                     nearest)
-            values = raw.row(0) if single else (
-                raw.colliding, raw.min_distance, raw.lower_bound, raw.certified, raw.pair,
-                raw.point_a, raw.point_b, raw.normal, raw.gradient if gradient else None)
+            values = (raw.colliding, raw.min_distance, raw.lower_bound, raw.certified, raw.pair,
+                      raw.point_a, raw.point_b, raw.normal, raw.gradient if gradient else None)
         colliding, min_distance, lower_bound, certified, pair, point_a, point_b, normal, slope = (
             values)
         # Positional, in the fields' order: named, the ten fields cost a planner's check of one
