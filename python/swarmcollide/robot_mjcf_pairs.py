@@ -25,7 +25,7 @@ def checked_geom_pairs(model) -> List[Tuple[int, int]]:
     """The pairs ``(g1, g2)``, ``g1 < g2``, of a ``mujoco.MjModel``'s geoms that MuJoCo tests
     for contact, before its bounding-volume tests (which depend on the configuration).
 
-    None when the model switches contacts off (``contacts_switched_off``). Otherwise a pair
+    No pair when the model switches contacts off (``contacts_switched_off``). Otherwise a pair
     ``<contact><pair>`` names is always tested, and any other pair when all hold:
 
     - the geoms' bodies are not welded together (bodies without a joint between them move as
