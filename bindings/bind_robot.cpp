@@ -13,6 +13,7 @@
 #include "swarmcollide/queries/query.hpp"
 #include "swarmcollide/robot/kinematics.hpp"
 #include "swarmcollide/robot/pair_filter.hpp"
+#include "swarmcollide/robot/robot_checker.hpp"
 #include "swarmcollide/robot/robot_model.hpp"
 #include "swarmcollide/robot/robot_motion.hpp"
 #include "swarmcollide/robot/robot_queries.hpp"
@@ -268,6 +269,26 @@ auto check_row_values(const RobotCheck& check, Eigen::Index i) {
                         values(check.point_a.row(i).data(), 3),
                         values(check.point_b.row(i).data(), 3),
                         values(check.normal.row(i).data(), 3), gradient);
+}
+
+// A checker's answer as RobotCheck.row gives a row.
+auto checker_row_values(const RobotCheckRow& row) {
+  const py::object gradient = row.gradient.size() > 0
+                                  ? py::object(values(row.gradient.data(), row.gradient.size()))
+                                  : py::none();
+  return py::make_tuple(row.colliding, row.min_distance, row.lower_bound, row.certified, row.pair,
+                        values(row.point_a.data(), 3), values(row.point_b.data(), 3),
+                        values(row.normal.data(), 3), gradient);
+}
+
+using ConfigurationRef = Eigen::Ref<const Eigen::Matrix<Scalar, 1, Eigen::Dynamic>>;
+
+// One configuration admitted and checked without the GIL.
+const RobotCheckRow& checked(RobotChecker& checker, const ConfigurationRef& q,
+                             const py::object& limits) {
+  const LimitMode mode = limit_mode(limits);
+  py::gil_scoped_release release;
+  return checker.admit_and_check(q.data(), q.size(), mode);
 }
 
 }  // namespace
@@ -526,32 +547,6 @@ ValueError
           "The nearest pair per admitted configuration (m, dof), with d min_distance / dq when "
           "``gradient``; without ``nearest``, the verdict alone.")
       .def(
-          "check_one",
-          [](const RobotModel& model, const Given<PairTable>& pairs,
-             const Eigen::Matrix<Scalar, 1, Eigen::Dynamic>& q, const py::object& limits,
-             const Query& query, const py::object& threads, const Given<bool>& gradient,
-             const Given<bool>& nearest) {
-            const LimitMode mode = limit_mode(limits);
-            const BatchSettings settings = settings_of(threads);
-            const std::vector<GeometryPair> list = to_pairs(pairs);
-            const bool with_gradient = to_bool(gradient.value, "gradient");
-            const bool with_nearest = to_bool(nearest.value, "nearest");
-            RobotCheck check;
-            {
-              py::gil_scoped_release release;
-              const Configurations admitted = admit_configurations(model, q, mode);
-              check = robot_check(model, list, admitted, query.options(), settings, with_gradient,
-                                  with_nearest);
-            }
-            return check_row_values(check, 0);
-          },
-          py::arg("pairs"), py::arg("q"), py::arg("limits"), py::arg("query"),
-          py::arg("threads") = py::none(), py::arg("gradient") = false,
-          py::arg("nearest") = true,
-          "``admit`` then ``check`` of one configuration (dof,), answered as ``RobotCheck.row`` "
-          "answers it: a planner's validity check in one call (the three calls and the result's "
-          "object cost a third of it from Python).")
-      .def(
           "check_motion",
           [](const RobotModel& model, const Given<PairTable>& pairs, const Configurations& q0,
              const Configurations& q1, const Query& query, const Given<Scalar>& time_tolerance,
@@ -570,6 +565,52 @@ ValueError
           py::arg("max_iterations") = kDefaultMotionIterations, py::arg("threads") = py::none(),
           "The first contact of each straight joint-space motion from admitted q0 to q1 rows "
           "(m, dof; one row of either serves every motion), or a proof that there is none.");
+
+  py::class_<RobotChecker>(m, "RobotChecker", R"doc(
+A check of one configuration at a time with the pairs and options validated once (Robot.checker
+wraps it): its buffers are kept from one call to the next. Keeps its model alive; one thread at a
+time (the GIL is released while it checks, so share it between Python threads only with a lock).
+
+Parameters
+----------
+model : RobotModel
+pairs : int array, (pairs, 2)
+    Geometry index pairs, as RobotModel.check takes them.
+query : Query
+    The pair queries' method and options.
+nearest, gradient : bool
+    As RobotModel.check.
+)doc")
+      .def(py::init([](const RobotModel& model, const Given<PairTable>& pairs, const Query& query,
+                       const Given<bool>& nearest, const Given<bool>& gradient) {
+             return RobotChecker(model, to_pairs(pairs), query.options(),
+                                 to_bool(nearest.value, "nearest"),
+                                 to_bool(gradient.value, "gradient"));
+           }),
+           py::keep_alive<1, 2>(), py::arg("model"), py::arg("pairs"), py::arg("query"),
+           py::arg("nearest") = true, py::arg("gradient") = false)
+      .def(
+          "check",
+          [](RobotChecker& checker, const ConfigurationRef& q, const py::object& limits) {
+            return checker_row_values(checked(checker, q, limits));
+          },
+          py::arg("q"), py::arg("limits") = "raise",
+          "The configuration q (dof,) admitted ('raise', 'clamp' or 'wrap') and checked, "
+          "answered as RobotCheck.row answers a row: (colliding, min_distance, lower_bound, "
+          "certified, pair, point_a, point_b, normal, gradient or None).")
+      .def(
+          "collision_free",
+          [](RobotChecker& checker, const ConfigurationRef& q, const py::object& limits) {
+            const RobotCheckRow& row = checked(checker, q, limits);
+            return row.certified && !row.colliding;
+          },
+          py::arg("q"), py::arg("limits") = "raise",
+          "True when q (dof,) is proven free of contact: no pair collides and the verdict is "
+          "certified.")
+      .def_property_readonly("pair_count",
+                             [](const RobotChecker& checker) { return checker.pairs().size(); })
+      .def_property_readonly("nearest", &RobotChecker::nearest)
+      .def_property_readonly("gradient", &RobotChecker::gradient);
 }
 
 }  // namespace swarmcollide::bindings

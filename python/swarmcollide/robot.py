@@ -94,6 +94,58 @@ class RobotCheck:
                 f"{int(certified.sum())} certified{shown})")
 
 
+class RobotChecker:
+    """A planner's check of one configuration at a time, prepared once (``Robot.checker``).
+
+    The pairs, the method and its options and the limit mode are validated when it is made, and
+    its buffers kept from one call to the next, so each call pays for the configuration alone:
+    ``checker(q)`` answers as ``robot.check(q, ...)`` does with the same options, and
+    ``checker.collision_free(q)`` is the bare validity test a sampling planner asks of every
+    state (OMPL's ``isValid``). It answers the robot as it was when made: make another after
+    ``add_obstacle`` or ``disable_pairs``. One thread at a time (the GIL is released while it
+    checks); each Python thread should have its own.
+    """
+
+    __slots__ = ("_core", "_limits", "_pair_names", "_dof", "_description")
+
+    def __init__(self, core: _core.RobotChecker, limits: str, pair_names: np.ndarray, dof: int,
+                 description: str) -> None:
+        self._core = core
+        self._limits = limits
+        self._pair_names = pair_names
+        self._dof = dof
+        self._description = description
+
+    def _configuration(self, q: npt.ArrayLike) -> np.ndarray:
+        values = q if type(q) is np.ndarray else np.asarray(q)
+        if values.ndim != 1 or values.dtype.kind not in "fiu":
+            if values.dtype.kind not in "fiu":
+                raise TypeError(f"q must hold real numbers, got an array of dtype {values.dtype}")
+            raise ValueError(f"q must have shape ({self._dof},), one value per moving joint, got "
+                             f"shape {values.shape}; Robot.check takes (m, dof) tables")
+        return values
+
+    def __call__(self, q: npt.ArrayLike) -> RobotCheck:
+        """The check of the configuration ``q`` (dof,): a ``RobotCheck`` of one configuration.
+
+        Raises ``ValueError`` naming the joint for a NaN or a value beyond the limits (under
+        ``limits="raise"``), or for a wrong shape; ``TypeError`` for values that are not real.
+        """
+        colliding, min_distance, lower_bound, certified, pair, point_a, point_b, normal, slope = (
+            self._core.check(self._configuration(q), self._limits))
+        return RobotCheck(colliding, min_distance, lower_bound, certified, pair,
+                          self._pair_names[pair], point_a, point_b, normal, slope)
+
+    def collision_free(self, q: npt.ArrayLike) -> bool:
+        """True when the configuration ``q`` (dof,) is proven free of contact: no checked pair
+        within the tolerance of contact, and the verdict certified. An unproven verdict gives
+        False, so a planner that trusts True never accepts a state in contact."""
+        return self._core.collision_free(self._configuration(q), self._limits)
+
+    def __repr__(self) -> str:
+        return f"RobotChecker({self._description})"
+
+
 @dataclass(frozen=True)
 class RobotMotion:
     """Per straight joint-space motion q(t) = q0 + t (q1 - q0), t in [0, 1]: proven free, or its
@@ -331,7 +383,15 @@ class Robot:
         robot = cls._from_tables(load_mjcf(path, skip_planes))
         return robot.disable_pairs(read_srdf(srdf)) if srdf is not None else robot
 
+    def __getstate__(self) -> Dict[str, Any]:
+        # The kept checker is a cache of the model's (made again on the first check).
+        state = self.__dict__.copy()
+        state["_last_checker"] = None
+        return state
+
     def _rebuild(self) -> None:
+        # Robot.check's checker of one configuration answers the model it was made for.
+        self._last_checker: Optional[Tuple[tuple, RobotChecker]] = None
         self._model = _core.RobotModel(self._links, self._joints,
                                        self._robot_geometries + self._obstacles)
         names = self.geometry_names
@@ -553,26 +613,58 @@ class Robot:
             raise ValueError("gradient needs the nearest pair: pass nearest=True with "
                              "gradient=True")
         configurations = np.asarray(q)
-        pair_query = query(method, tolerance=tolerance, seed=seed)
         if (configurations.ndim == 1 and configurations.dtype.kind in "fiu"
                 and limits in LIMIT_MODES):
-            # A planner's check of one state: admitted, checked and read in one call.
-            values = self._model.check_one(self._pair_table, configurations, limits, pair_query,
-                                           threads, gradient, nearest)
-        else:
-            # Many configurations (a single one of another kind or with unknown limits is refused
-            # here, by name).
-            table, _ = self._configurations(configurations, limits)
-            raw = self._model.check(self._pair_table, table, pair_query, threads, gradient,
-                                    nearest)
-            values = (raw.colliding, raw.min_distance, raw.lower_bound, raw.certified, raw.pair,
-                      raw.point_a, raw.point_b, raw.normal, raw.gradient if gradient else None)
-        colliding, min_distance, lower_bound, certified, pair, point_a, point_b, normal, slope = (
-            values)
-        # Positional, in the fields' order: named, the ten fields cost a planner's check of one
-        # state 0.6 us more.
-        return RobotCheck(colliding, min_distance, lower_bound, certified, pair,
-                          self._pair_names[pair], point_a, point_b, normal, slope)
+            # A planner's check of one state, by the checker of these options (kept for the
+            # next call with the same ones), on the calling thread whatever `threads` says.
+            # The types too: 1 == True, and a flag given as 1 must be refused as before.
+            key = (limits, nearest, gradient, method, tolerance, seed, threads, type(nearest),
+                   type(gradient), type(tolerance), type(seed), type(threads))
+            if self._last_checker is None or self._last_checker[0] != key:
+                checker = self.checker(limits=limits, nearest=nearest, gradient=gradient,
+                                       method=method, tolerance=tolerance, seed=seed)
+                if threads is not None:
+                    # Refused by name as a batch refuses it: a table of no configuration.
+                    self._model.check(self._pair_table, np.empty((0, self.dof)),
+                                      query(method, tolerance=tolerance, seed=seed), threads,
+                                      gradient, nearest)
+                self._last_checker = (key, checker)
+            return self._last_checker[1](configurations)
+        # Many configurations (a single one of another kind or with unknown limits is refused
+        # here, by name).
+        table, _ = self._configurations(configurations, limits)
+        raw = self._model.check(self._pair_table, table, query(method, tolerance=tolerance,
+                                                              seed=seed), threads, gradient,
+                                nearest)
+        return RobotCheck(raw.colliding, raw.min_distance, raw.lower_bound, raw.certified,
+                          raw.pair, self._pair_names[raw.pair], raw.point_a, raw.point_b,
+                          raw.normal, raw.gradient if gradient else None)
+
+    def checker(self, *, limits: str = "raise", nearest: bool = True, gradient: bool = False,
+                method: str = "dual", tolerance: float = DEFAULT_TOLERANCE,
+                seed: int = 0) -> RobotChecker:
+        """A check of one configuration at a time with these options validated once: what a
+        sampling planner calls for every state. ``checker(q)`` answers as ``check(q, ...)``
+        with the same options; ``checker.collision_free(q)`` is the bare validity test.
+
+        >>> free = robot.checker(nearest=False).collision_free
+        >>> free(q)   # True only when q is proven free of contact
+
+        Parameters are ``check``'s (``limits``, ``nearest``, ``gradient``, ``method``,
+        ``tolerance``, ``seed``), refused here, by name, when invalid. The checker answers the
+        robot as it is now (its obstacles and pairs).
+        """
+        if limits not in LIMIT_MODES:
+            raise ValueError(f"limits must be one of {LIMIT_MODES}, got {limits!r}")
+        if gradient and not nearest:
+            raise ValueError("gradient needs the nearest pair: pass nearest=True with "
+                             "gradient=True")
+        core = _core.RobotChecker(self._model, self._pair_table,
+                                  query(method, tolerance=tolerance, seed=seed), nearest, gradient)
+        description = (f"{len(self._pair_table)} pairs, dof {self.dof}, limits={limits!r}, "
+                       f"nearest={nearest}, gradient={gradient}, method={method!r}, "
+                       f"tolerance={tolerance:g}, seed={seed}")
+        return RobotChecker(core, limits, self._pair_names, self.dof, description)
 
     def check_motion(self, q0: npt.ArrayLike, q1: npt.ArrayLike, *, limits: str = "raise",
                      threads: Optional[int] = None,

@@ -16,6 +16,7 @@
 #include "swarmcollide/queries/query.hpp"
 #include "swarmcollide/robot/kinematics.hpp"
 #include "swarmcollide/robot/pair_filter.hpp"
+#include "swarmcollide/robot/robot_checker.hpp"
 #include "swarmcollide/robot/robot_model.hpp"
 #include "swarmcollide/robot/robot_queries.hpp"
 
@@ -247,6 +248,39 @@ TEST(Robot, ChecksEqualTheSingleQueriesOnThePosedBodiesWhateverTheThreads) {
   }
   EXPECT_GT(colliding, 0);
   EXPECT_LT(colliding, 40);
+}
+
+TEST(Robot, ACheckerAnswersEachConfigurationAsItsRowOfTheBatch) {
+  const RobotModel arm = planar_arm();
+  const std::vector<GeometryPair> pairs = default_pairs(arm);
+  Configurations q(20, 3);
+  for (int i = 0; i < 20; ++i) q.row(i) << -1.9 + 0.2 * i, 3.1 - 0.3 * i, -0.9 + 0.09 * i;
+  for (const bool nearest : {true, false}) {
+    const RobotCheck batch = robot_check(arm, pairs, q, {}, {}, nearest, nearest);
+    RobotChecker checker(arm, pairs, {}, nearest, nearest);
+    for (int i = 0; i < 20; ++i) {
+      // Row i's seed, and row 0's as a single configuration's: the same answers here.
+      const RobotCheckRow row = checker.check(q.row(i).data(), static_cast<std::size_t>(i));
+      const RobotCheckRow& single = checker.admit_and_check(q.row(i).data(), 3, LimitMode::raise);
+      for (const RobotCheckRow* answer : {&row, &single}) {
+        EXPECT_EQ(answer->colliding, batch.colliding(i));
+        EXPECT_EQ(answer->certified, batch.certified(i));
+        EXPECT_EQ(answer->pair, batch.pair(i));
+        if (nearest) {
+          EXPECT_EQ(answer->min_distance, batch.min_distance(i));
+          EXPECT_EQ(answer->lower_bound, batch.lower_bound(i));
+          EXPECT_TRUE(answer->point_a == batch.point_a.row(i).transpose());
+          EXPECT_TRUE(answer->gradient == batch.gradient.row(i).transpose());
+        } else {
+          EXPECT_TRUE(std::isnan(answer->min_distance));
+        }
+      }
+    }
+  }
+  EXPECT_THROW(RobotChecker(arm, pairs, {}, false, true), std::invalid_argument);
+  RobotChecker checker(arm, pairs, {}, true, false);
+  const Scalar short_q[2] = {0, 0};
+  EXPECT_THROW(checker.admit_and_check(short_q, 2, LimitMode::raise), std::invalid_argument);
 }
 
 // On a slide along x, a link with a sphere (radius 0.1) and a compound of two boxes 0.1 across

@@ -237,7 +237,7 @@ def test_one_configuration_is_its_row_of_the_batch(arm):
     with pytest.raises(IndexError, match="row 1 is not in"):
         arm.model.check(arm._pair_table, arm.model.admit(q[:1]), sc.query()).row(1)
     # Outside the limits, one configuration is brought within them as the batch brings its rows
-    # (a single configuration is admitted and checked in one call, RobotModel.check_one).
+    # (a single configuration is admitted and checked by the checker Robot.check keeps).
     beyond = q + 7.0
     batch = arm.check(beyond, limits="clamp")
     for i in range(len(q)):
@@ -246,6 +246,71 @@ def test_one_configuration_is_its_row_of_the_batch(arm):
         assert one.pair == batch.pair[i]
     with pytest.raises(ValueError, match=r"q\[0\], joint"):
         arm.check(beyond[0])
+
+
+def test_a_checker_answers_as_check_and_its_validity_test_is_the_proven_verdict(arm):
+    q = random_configurations(arm, 30, seed=8)
+    for kinds in ({"gradient": True}, {"nearest": False}, {"tolerance": 1e-6, "seed": 3}, {}):
+        checker = arm.checker(**kinds)
+        batch = arm.check(q, **kinds)
+        for i in range(len(q)):
+            one = checker(q[i])
+            for field in ("colliding", "min_distance", "lower_bound", "certified", "pair",
+                          "pair_names", "point_a", "point_b", "normal", "gradient"):
+                mine, theirs = getattr(one, field), getattr(batch, field)
+                if theirs is None:
+                    assert mine is None
+                    continue
+                np.testing.assert_array_equal(mine, theirs[i])
+            assert checker.collision_free(q[i]) == bool(batch.certified[i] and
+                                                        not batch.colliding[i])
+    # Both verdicts occur in these configurations, so the test above tells them apart.
+    assert 0 < arm.check(q, nearest=False).colliding.sum() < len(q)
+    # A configuration given with threads is checked on the calling thread, the same answer.
+    assert arm.check(q[0], threads=2).min_distance == arm.check(q[0]).min_distance
+    assert "limits='clamp'" in repr(arm.checker(limits="clamp"))
+    assert f"{len(arm.pairs)} pairs" in repr(arm.checker())
+
+
+def test_a_checker_refuses_bad_options_and_configurations_by_name(arm):
+    with pytest.raises(ValueError, match="limits must be one of"):
+        arm.checker(limits="bounce")
+    with pytest.raises(ValueError, match="gradient needs the nearest pair"):
+        arm.checker(nearest=False, gradient=True)
+    with pytest.raises(TypeError, match="nearest must be True or False"):
+        arm.checker(nearest=1)
+    with pytest.raises(ValueError, match="tolerance"):
+        arm.checker(tolerance=-1.0)
+    with pytest.raises(ValueError, match="method"):
+        arm.checker(method="bogus")
+    checker = arm.checker(nearest=False)
+    with pytest.raises(ValueError, match=r"shape \(3,\)"):
+        checker(np.zeros((2, 3)))
+    with pytest.raises(ValueError, match="3 values per configuration.*got 2"):
+        checker.collision_free([0.0, 0.0])
+    with pytest.raises(ValueError, match=r"q\[0\], joint 'elbow': nan"):
+        checker([0.0, np.nan, 0.0])
+    with pytest.raises(ValueError, match=r"q\[0\], joint .*limits='clamp'"):
+        checker(np.full(3, 7.0))
+    with pytest.raises(TypeError, match="real numbers"):
+        checker.collision_free(["a", "b", "c"])
+    # Robot.check's kept checker refuses what a fresh one refuses, after a call that made it.
+    q = random_configurations(arm, 1, seed=1)[0]
+    arm.check(q)
+    with pytest.raises(TypeError, match="nearest must be True or False"):
+        arm.check(q, nearest=1)
+    with pytest.raises(ValueError, match="threads"):
+        arm.check(q, threads=-1)
+
+
+def test_robot_check_answers_the_robot_as_it_is_now(arm):
+    # Robot.check keeps a checker from one call to the next; a change of pairs makes a new one.
+    q = random_configurations(arm, 1, seed=3)[0]
+    before = arm.checker()
+    arm.check(q)
+    arm.add_obstacle(sc.Sphere(0.3), None, name="blob")  # deep into the base
+    assert arm.check(q).pair_names.tolist() == ["base", "blob"]
+    assert "blob" not in before(q).pair_names  # a checker answers the robot it was made for
 
 
 def test_the_gradient_matches_finite_differences_where_the_nearest_pair_is_unique(arm):

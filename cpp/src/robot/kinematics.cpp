@@ -153,25 +153,32 @@ Pose compose(const Pose& outer, const Pose& inner) {
 namespace {
 
 // The poses read dof values a row: a row of another length would be read past its end.
-void require_dof_columns(const RobotModel& model, const Configurations& q) {
-  if (q.cols() != model.dof()) {
+void require_dof_values(const RobotModel& model, Eigen::Index count) {
+  if (count != model.dof()) {
     throw std::invalid_argument("q must have " + std::to_string(model.dof()) +
                                 " values per configuration (one per moving joint), got " +
-                                std::to_string(q.cols()));
+                                std::to_string(count));
   }
 }
 
 }  // namespace
 
+void admit_configuration(const RobotModel& model, const Scalar* q, Eigen::Index count,
+                         LimitMode mode, std::size_t row, Scalar* admitted_q) {
+  require_dof_values(model, count);
+  for (int d = 0; d < model.dof(); ++d) {
+    const Joint& joint = model.joints()[model.moving_joints()[d]];
+    admitted_q[d] = admitted(q[d], joint, mode, row);
+  }
+}
+
 Configurations admit_configurations(const RobotModel& model, const Configurations& q,
                                     LimitMode mode) {
-  require_dof_columns(model, q);
+  require_dof_values(model, q.cols());
   Configurations result(q.rows(), q.cols());
   for (Eigen::Index i = 0; i < q.rows(); ++i) {
-    for (int d = 0; d < model.dof(); ++d) {
-      const Joint& joint = model.joints()[model.moving_joints()[d]];
-      result(i, d) = admitted(q(i, d), joint, mode, static_cast<std::size_t>(i));
-    }
+    admit_configuration(model, q.row(i).data(), q.cols(), mode, static_cast<std::size_t>(i),
+                        result.row(i).data());
   }
   return result;
 }
@@ -228,7 +235,7 @@ Pose geometry_pose(const RobotModel& model, const std::vector<Pose>& links, int 
 }
 
 void forward_kinematics(const RobotModel& model, const Configurations& q, Scalar* transforms) {
-  require_dof_columns(model, q);
+  require_dof_values(model, q.cols());
   std::vector<Pose> links;
   for (Eigen::Index i = 0; i < q.rows(); ++i) {
     link_poses(model, q.row(i).data(), links);
@@ -240,7 +247,7 @@ void forward_kinematics(const RobotModel& model, const Configurations& q, Scalar
 }
 
 void geometry_poses(const RobotModel& model, const Configurations& q, Scalar* transforms) {
-  require_dof_columns(model, q);
+  require_dof_values(model, q.cols());
   std::vector<Pose> links;
   for (Eigen::Index i = 0; i < q.rows(); ++i) {
     link_poses(model, q.row(i).data(), links);

@@ -32,6 +32,11 @@ Pose compose(const Pose& outer, const Pose& inner);
 Configurations admit_configurations(const RobotModel& model, const Configurations& q,
                                     LimitMode mode);
 
+/// One configuration, `count` values at `q`, admitted as admit_configurations admits row `row`
+/// (the row its messages name), into `admitted_q` (dof values; it may be `q`).
+void admit_configuration(const RobotModel& model, const Scalar* q, Eigen::Index count,
+                         LimitMode mode, std::size_t row, Scalar* admitted_q);
+
 /// The world pose of every link at the configuration `q` (`dof` values, already admitted), into
 /// `links` (one pose per link, in the model's order). The root is at the identity.
 void link_poses(const RobotModel& model, const Scalar* q, std::vector<Pose>& links);
