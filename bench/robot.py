@@ -12,6 +12,9 @@ contender gets the same bodies at the same poses and the same pairs:
 - ``verdict per call``: the same, one configuration per call from a Python loop
   (``robot.check(q[i], threads=1, nearest=False)``), as a planner's validity check asks it and as
   the MuJoCo contender below is called;
+- ``checker per call``: a planner's prepared validity test, ``free =
+  robot.checker(nearest=False).collision_free`` made once, then ``free(q[i])`` from a Python loop
+  (colliding where it is not proven free);
 - ``pinocchio computeCollisions``: ``pin.computeCollisionsInParallel(1, pool, q)`` (Pinocchio's
   C++ loop over the configurations on one thread; a verdict per configuration), with a
   ``GeometryModel`` of ``coal.Convex`` hulls of our hulls' points placed as our geometries are;
@@ -278,12 +281,14 @@ def run_model(name: str, count: int, rounds: int) -> dict:
     pin_q = pinocchio.configurations(q)
     qpos = mujoco.configurations(q)
     robot.check(q[:50], threads=1)  # the hulls are built on first use: not timed
+    free = robot.checker(nearest=False).collision_free
     contenders: Dict[str, Callable[[], np.ndarray]] = {
         "check 1 thread": lambda: robot.check(q, threads=1),
         "check 2 threads": lambda: robot.check(q, threads=2),
         "verdict 1 thread": lambda: robot.check(q, threads=1, nearest=False),
         "verdict per call": lambda: np.array([robot.check(row, threads=1, nearest=False).colliding
                                               for row in q]),
+        "checker per call": lambda: np.array([not free(row) for row in q]),
         "pinocchio computeCollisions": lambda: pinocchio.collisions(pin_q),
         "pinocchio computeDistances": lambda: pinocchio.distances(pin_q),
         "mujoco mj_collision": lambda: mujoco.collisions(qpos),
@@ -305,6 +310,7 @@ def run_model(name: str, count: int, rounds: int) -> dict:
         "check 2 threads": answers["check 2 threads"].colliding,
         "verdict 1 thread": answers["verdict 1 thread"].colliding,
         "verdict per call": answers["verdict per call"],
+        "checker per call": answers["checker per call"],
         "pinocchio computeCollisions": answers["pinocchio computeCollisions"],
         "pinocchio computeDistances": answers["pinocchio computeDistances"] <= 0,
         "mujoco mj_collision": answers["mujoco mj_collision"],
@@ -339,6 +345,9 @@ def run_model(name: str, count: int, rounds: int) -> dict:
         "verdict_per_call_over_mj_collision": round(
             statistics.median(times["mujoco mj_collision"])
             / statistics.median(times["verdict per call"]), 2),
+        "checker_per_call_over_mj_collision": round(
+            statistics.median(times["mujoco mj_collision"])
+            / statistics.median(times["checker per call"]), 2),
         "check_over_compute_distances": round(
             statistics.median(times["pinocchio computeDistances"]) / base, 2),
         "coal_disagreements": disagreements(robot, pinocchio, q,
@@ -372,7 +381,9 @@ def section(data: dict) -> str:
             f"verdict 1 thread over computeCollisions (speed): "
             f"{model.get('verdict_over_compute_collisions', float('nan'))}x (target 5x); "
             f"verdict per call over mj_collision's loop (speed): "
-            f"{model.get('verdict_per_call_over_mj_collision', float('nan'))}x; check "
+            f"{model.get('verdict_per_call_over_mj_collision', float('nan'))}x, checker per "
+            f"call over it: {model.get('checker_per_call_over_mj_collision', float('nan'))}x; "
+            f"check "
             f"1 thread over computeDistances: "
             f"{model.get('check_over_compute_distances', float('nan'))}x (target 5x); "
             f"exact reference {model['exact_us_per_configuration']:.1f} us; largest minimum "

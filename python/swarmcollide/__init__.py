@@ -75,7 +75,7 @@ from .motion import (
     SweepResult,
 )
 from .poses import QUATERNION_ORDERS, pose_from_quaternion
-from .robot import LIMIT_MODES, PairProposal, Robot, RobotCheck, RobotMotion
+from .robot import LIMIT_MODES, PairProposal, Robot, RobotCheck, RobotChecker, RobotMotion
 from .queries import (
     DEFAULT_TOLERANCE,
     METHODS,
@@ -137,6 +137,7 @@ __all__ = [
     "Query",
     "Robot",
     "RobotCheck",
+    "RobotChecker",
     "RobotMotion",
     "Scene",
     "SceneResult",

@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['Aabb', 'BatchResult', 'Box', 'Capsule', 'CompoundBody', 'CompoundResult', 'CompoundStats', 'Cone', 'ContactResult', 'ConvexPolyhedron', 'Cylinder', 'DistanceResult', 'Ellipsoid', 'Hull', 'Joint', 'PartNode', 'ParticleCoefficients', 'Query', 'RobotCheck', 'RobotDistances', 'RobotModel', 'RobotMotionCheck', 'Scene', 'SceneResult', 'SceneStats', 'Sphere', 'SweepResult', 'TimeOfImpactBatch', 'TimeOfImpactResult', 'as_polyhedron', 'broadphases', 'constraint_violation', 'is_feasible', 'linear_decreasing_inertia', 'method_table', 'motion_function', 'objective', 'pair_seed', 'pose_matrix', 'project_onto_simplex', 'query_function', 'rank_adaptive_coefficients', 'separation', 'time_of_impact', 'time_of_impact_many']
+__all__: list[str] = ['Aabb', 'BatchResult', 'Box', 'Capsule', 'CompoundBody', 'CompoundResult', 'CompoundStats', 'Cone', 'ContactResult', 'ConvexPolyhedron', 'Cylinder', 'DistanceResult', 'Ellipsoid', 'Hull', 'Joint', 'PartNode', 'ParticleCoefficients', 'Query', 'RobotCheck', 'RobotChecker', 'RobotDistances', 'RobotModel', 'RobotMotionCheck', 'Scene', 'SceneResult', 'SceneStats', 'Sphere', 'SweepResult', 'TimeOfImpactBatch', 'TimeOfImpactResult', 'as_polyhedron', 'broadphases', 'constraint_violation', 'is_feasible', 'linear_decreasing_inertia', 'method_table', 'motion_function', 'objective', 'pair_seed', 'pose_matrix', 'project_onto_simplex', 'query_function', 'rank_adaptive_coefficients', 'separation', 'time_of_impact', 'time_of_impact_many']
 class Aabb:
     """
     An axis-aligned bounding box with corners ``min`` and ``max``.
@@ -937,6 +937,42 @@ class RobotCheck:
     @property
     def point_b(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
         ...
+class RobotChecker:
+    """
+    
+    A check of one configuration at a time with the pairs and options validated once (Robot.checker
+    wraps it): its buffers are kept from one call to the next. Keeps its model alive; one thread at a
+    time (the GIL is released while it checks, so share it between Python threads only with a lock).
+    
+    Parameters
+    ----------
+    model : RobotModel
+    pairs : int array, (pairs, 2)
+        Geometry index pairs, as RobotModel.check takes them.
+    query : Query
+        The pair queries' method and options.
+    nearest, gradient : bool
+        As RobotModel.check.
+    """
+    def __init__(self, model: RobotModel, pairs: typing.Annotated[numpy.typing.ArrayLike, numpy.int32, "[m, 2]"], query: Query, nearest: bool = True, gradient: bool = False) -> None:
+        ...
+    def check(self, q: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[1, n]"], limits: typing.Any = 'raise') -> tuple[bool, float, float, bool, int, numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64], typing.Any]:
+        """
+        The configuration q (dof,) admitted ('raise', 'clamp' or 'wrap') and checked, answered as RobotCheck.row answers a row: (colliding, min_distance, lower_bound, certified, pair, point_a, point_b, normal, gradient or None).
+        """
+    def collision_free(self, q: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[1, n]"], limits: typing.Any = 'raise') -> bool:
+        """
+        True when q (dof,) is proven free of contact: no pair collides and the verdict is certified.
+        """
+    @property
+    def gradient(self) -> bool:
+        ...
+    @property
+    def nearest(self) -> bool:
+        ...
+    @property
+    def pair_count(self) -> int:
+        ...
 class RobotDistances:
     """
     Signed distances of every checked pair, (m, pairs) each.
@@ -999,10 +1035,6 @@ class RobotModel:
     def check_motion(self, pairs: typing.Annotated[numpy.typing.ArrayLike, numpy.int32, "[m, 2]"], q0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, n]"], q1: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, n]"], query: Query, time_tolerance: typing.SupportsFloat | typing.SupportsIndex = 1e-06, max_iterations: typing.SupportsInt | typing.SupportsIndex = 100000, threads: typing.Any = None) -> RobotMotionCheck:
         """
         The first contact of each straight joint-space motion from admitted q0 to q1 rows (m, dof; one row of either serves every motion), or a proof that there is none.
-        """
-    def check_one(self, pairs: typing.Annotated[numpy.typing.ArrayLike, numpy.int32, "[m, 2]"], q: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[1, n]"], limits: typing.Any, query: Query, threads: typing.Any = None, gradient: bool = False, nearest: bool = True) -> tuple[bool, float, float, bool, int, numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64], typing.Any]:
-        """
-        ``admit`` then ``check`` of one configuration (dof,), answered as ``RobotCheck.row`` answers it: a planner's validity check in one call (the three calls and the result's object cost a third of it from Python).
         """
     def default_pairs(self) -> typing.Annotated[numpy.typing.NDArray[numpy.int32], "[m, 2]"]:
         """
