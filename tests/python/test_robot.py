@@ -219,21 +219,25 @@ def test_answers_do_not_depend_on_the_threads(arm):
     np.testing.assert_array_equal(arm.distances(q, threads=1), arm.distances(q, threads=2))
 
 
+def assert_is_row(one, batch, i):
+    """The check of one configuration holds row i of the batch's, value and shape."""
+    for field in ("colliding", "min_distance", "lower_bound", "certified", "pair", "pair_names",
+                  "point_a", "point_b", "normal", "gradient"):
+        mine, theirs = getattr(one, field), getattr(batch, field)
+        if theirs is None:
+            assert mine is None
+            continue
+        np.testing.assert_array_equal(mine, theirs[i])
+        assert np.shape(mine) == np.shape(theirs[i]), field
+
+
 def test_one_configuration_is_its_row_of_the_batch(arm):
     # A check of one configuration reads its row alone (RobotCheck.row): the same values.
     q = random_configurations(arm, 12, seed=5)
     for kinds in ({"gradient": True}, {"nearest": False}, {}):
         batch = arm.check(q, **kinds)
         for i in range(len(q)):
-            one = arm.check(q[i], **kinds)
-            for field in ("colliding", "min_distance", "lower_bound", "certified", "pair",
-                          "pair_names", "point_a", "point_b", "normal", "gradient"):
-                mine, theirs = getattr(one, field), getattr(batch, field)
-                if theirs is None:
-                    assert mine is None
-                    continue
-                np.testing.assert_array_equal(mine, theirs[i])
-                assert np.shape(mine) == np.shape(theirs[i]), field
+            assert_is_row(arm.check(q[i], **kinds), batch, i)
     with pytest.raises(IndexError, match="row 1 is not in"):
         arm.model.check(arm._pair_table, arm.model.admit(q[:1]), sc.query()).row(1)
     # Outside the limits, one configuration is brought within them as the batch brings its rows
@@ -254,14 +258,7 @@ def test_a_checker_answers_as_check_and_its_validity_test_is_the_proven_verdict(
         checker = arm.checker(**kinds)
         batch = arm.check(q, **kinds)
         for i in range(len(q)):
-            one = checker(q[i])
-            for field in ("colliding", "min_distance", "lower_bound", "certified", "pair",
-                          "pair_names", "point_a", "point_b", "normal", "gradient"):
-                mine, theirs = getattr(one, field), getattr(batch, field)
-                if theirs is None:
-                    assert mine is None
-                    continue
-                np.testing.assert_array_equal(mine, theirs[i])
+            assert_is_row(checker(q[i]), batch, i)
             assert checker.collision_free(q[i]) == bool(batch.certified[i] and
                                                         not batch.colliding[i])
     # Both verdicts occur in these configurations, so the test above tells them apart.
