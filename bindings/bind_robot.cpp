@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <utility>
 #include <vector>
@@ -283,12 +284,22 @@ auto checker_row_values(const RobotCheckRow& row) {
 
 using ConfigurationRef = Eigen::Ref<const Eigen::Matrix<Scalar, 1, Eigen::Dynamic>>;
 
-// One configuration admitted and checked without the GIL.
-const RobotCheckRow& checked(RobotChecker& checker, const ConfigurationRef& q,
-                             const py::object& limits) {
+// A RobotChecker that Python threads may share: its buffers serve one check at a time, and a
+// check that finds them busy (another thread's, the GIL being released while it runs) uses a copy
+// of its own rather than wait.
+struct SharedChecker {
+  RobotChecker checker;
+  std::mutex busy;
+};
+
+// One configuration admitted and checked without the GIL: the answer, copied out of the buffers.
+RobotCheckRow checked(SharedChecker& shared, const ConfigurationRef& q, const py::object& limits) {
   const LimitMode mode = limit_mode(limits);
   py::gil_scoped_release release;
-  return checker.admit_and_check(q.data(), q.size(), mode);
+  std::unique_lock<std::mutex> lock(shared.busy, std::try_to_lock);
+  if (lock.owns_lock()) return shared.checker.admit_and_check(q.data(), q.size(), mode);
+  RobotChecker spare(shared.checker);
+  return spare.admit_and_check(q.data(), q.size(), mode);
 }
 
 }  // namespace
@@ -566,10 +577,10 @@ ValueError
           "The first contact of each straight joint-space motion from admitted q0 to q1 rows "
           "(m, dof; one row of either serves every motion), or a proof that there is none.");
 
-  py::class_<RobotChecker>(m, "RobotChecker", R"doc(
+  py::class_<SharedChecker>(m, "RobotChecker", R"doc(
 A check of one configuration at a time with the pairs and options validated once (Robot.checker
-wraps it): its buffers are kept from one call to the next. Keeps its model alive; one thread at a
-time (the GIL is released while it checks, so share it between Python threads only with a lock).
+wraps it): its buffers are kept from one call to the next. Keeps its model alive. Threads may
+share it (the GIL is released while it checks): a call that finds its buffers busy uses its own.
 
 Parameters
 ----------
@@ -583,16 +594,17 @@ nearest, gradient : bool
 )doc")
       .def(py::init([](const RobotModel& model, const Given<PairTable>& pairs, const Query& query,
                        const Given<bool>& nearest, const Given<bool>& gradient) {
-             return RobotChecker(model, to_pairs(pairs), query.options(),
-                                 to_bool(nearest.value, "nearest"),
-                                 to_bool(gradient.value, "gradient"));
+             return new SharedChecker{RobotChecker(model, to_pairs(pairs), query.options(),
+                                                   to_bool(nearest.value, "nearest"),
+                                                   to_bool(gradient.value, "gradient")),
+                                      {}};
            }),
            py::keep_alive<1, 2>(), py::arg("model"), py::arg("pairs"), py::arg("query"),
            py::arg("nearest") = true, py::arg("gradient") = false)
       .def(
           "check",
-          [](RobotChecker& checker, const ConfigurationRef& q, const py::object& limits) {
-            return checker_row_values(checked(checker, q, limits));
+          [](SharedChecker& shared, const ConfigurationRef& q, const py::object& limits) {
+            return checker_row_values(checked(shared, q, limits));
           },
           py::arg("q"), py::arg("limits") = "raise",
           "The configuration q (dof,) admitted ('raise', 'clamp' or 'wrap') and checked, "
@@ -600,17 +612,19 @@ nearest, gradient : bool
           "certified, pair, point_a, point_b, normal, gradient or None).")
       .def(
           "collision_free",
-          [](RobotChecker& checker, const ConfigurationRef& q, const py::object& limits) {
-            const RobotCheckRow& row = checked(checker, q, limits);
+          [](SharedChecker& shared, const ConfigurationRef& q, const py::object& limits) {
+            const RobotCheckRow row = checked(shared, q, limits);
             return row.certified && !row.colliding;
           },
           py::arg("q"), py::arg("limits") = "raise",
           "True when q (dof,) is proven free of contact: no pair collides and the verdict is "
           "certified.")
-      .def_property_readonly("pair_count",
-                             [](const RobotChecker& checker) { return checker.pairs().size(); })
-      .def_property_readonly("nearest", &RobotChecker::nearest)
-      .def_property_readonly("gradient", &RobotChecker::gradient);
+      .def_property_readonly(
+          "pair_count", [](const SharedChecker& shared) { return shared.checker.pairs().size(); })
+      .def_property_readonly("nearest",
+                             [](const SharedChecker& shared) { return shared.checker.nearest(); })
+      .def_property_readonly(
+          "gradient", [](const SharedChecker& shared) { return shared.checker.gradient(); });
 }
 
 }  // namespace swarmcollide::bindings

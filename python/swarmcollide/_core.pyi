@@ -941,8 +941,8 @@ class RobotChecker:
     """
     
     A check of one configuration at a time with the pairs and options validated once (Robot.checker
-    wraps it): its buffers are kept from one call to the next. Keeps its model alive; one thread at a
-    time (the GIL is released while it checks, so share it between Python threads only with a lock).
+    wraps it): its buffers are kept from one call to the next. Keeps its model alive. Threads may
+    share it (the GIL is released while it checks): a call that finds its buffers busy uses its own.
     
     Parameters
     ----------

@@ -102,8 +102,8 @@ class RobotChecker:
     ``checker(q)`` answers as ``robot.check(q, ...)`` does with the same options, and
     ``checker.collision_free(q)`` is the bare validity test a sampling planner asks of every
     state (OMPL's ``isValid``). It answers the robot as it was when made: make another after
-    ``add_obstacle`` or ``disable_pairs``. One thread at a time (the GIL is released while it
-    checks); each Python thread should have its own.
+    ``add_obstacle`` or ``disable_pairs``. Threads may share it (the GIL is released while it
+    checks; a call that finds its buffers in use by another thread takes a copy of its own).
     """
 
     __slots__ = ("_core", "_limits", "_pair_names", "_dof", "_description")

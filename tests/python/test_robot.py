@@ -269,6 +269,22 @@ def test_a_checker_answers_as_check_and_its_validity_test_is_the_proven_verdict(
     assert f"{len(arm.pairs)} pairs" in repr(arm.checker())
 
 
+def test_threads_sharing_a_checker_get_their_own_answers(arm):
+    # The GIL is released while a checker checks: threads calling one checker (and Robot.check's
+    # kept one) at once must each get the answer of their own configuration.
+    from concurrent.futures import ThreadPoolExecutor
+
+    q = random_configurations(arm, 400, seed=9)
+    batch = arm.check(q, gradient=True)
+    checker = arm.checker(gradient=True)
+    with ThreadPoolExecutor(4) as pool:
+        shared = list(pool.map(checker, q))
+        kept = list(pool.map(lambda row: arm.check(row, gradient=True), q))
+    for i in range(len(q)):
+        assert_is_row(shared[i], batch, i)
+        assert_is_row(kept[i], batch, i)
+
+
 def test_a_checker_refuses_bad_options_and_configurations_by_name(arm):
     with pytest.raises(ValueError, match="limits must be one of"):
         arm.checker(limits="bounce")
