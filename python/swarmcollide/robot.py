@@ -261,6 +261,9 @@ class Robot:
     RobotCheck(colliding=True, min_distance=-0.0..., pair=('base', 'fore'), certified=True)
     >>> robot.check([[0.0, 0.0], [0.0, 3.0]], threads=1).colliding
     array([False,  True])
+    >>> free = robot.checker(nearest=False).collision_free  # a planner's validity test
+    >>> free([0.0, 0.0]), free([0.0, 3.0])
+    (True, False)
     """
 
     def __init__(self, links: Sequence[str], joints: Sequence[Any],
@@ -645,10 +648,8 @@ class Robot:
                 seed: int = 0) -> RobotChecker:
         """A check of one configuration at a time with these options validated once: what a
         sampling planner calls for every state. ``checker(q)`` answers as ``check(q, ...)``
-        with the same options; ``checker.collision_free(q)`` is the bare validity test.
-
-        >>> free = robot.checker(nearest=False).collision_free
-        >>> free(q)   # True only when q is proven free of contact
+        with the same options; ``checker.collision_free(q)`` is the bare validity test, True
+        only when q is proven free of contact (``Robot``'s example shows one).
 
         Parameters are ``check``'s (``limits``, ``nearest``, ``gradient``, ``method``,
         ``tolerance``, ``seed``), refused here, by name, when invalid. The checker answers the
