@@ -118,9 +118,9 @@ class RobotChecker:
 
     def _configuration(self, q: npt.ArrayLike) -> np.ndarray:
         values = q if type(q) is np.ndarray else np.asarray(q)
-        if values.ndim != 1 or values.dtype.kind not in "fiu":
-            if values.dtype.kind not in "fiu":
-                raise TypeError(f"q must hold real numbers, got an array of dtype {values.dtype}")
+        if values.dtype.kind not in "fiu":
+            raise TypeError(f"q must hold real numbers, got an array of dtype {values.dtype}")
+        if values.ndim != 1:
             raise ValueError(f"q must have shape ({self._dof},), one value per moving joint, got "
                              f"shape {values.shape}; Robot.check takes (m, dof) tables")
         return values

@@ -1,16 +1,11 @@
 #include "swarmcollide/robot/robot_queries.hpp"
 
-#include <algorithm>
-#include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <string>
-#include <utility>
 
 #include "../detail/row_threads.hpp"
-#include "box_screen.hpp"
 #include "geometry_pairs.hpp"
-#include "swarmcollide/queries/query.hpp"
 #include "swarmcollide/robot/robot_checker.hpp"
 
 namespace swarmcollide {

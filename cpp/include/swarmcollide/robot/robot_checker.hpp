@@ -12,6 +12,8 @@
 
 namespace swarmcollide {
 
+class Query;
+
 /// One configuration's answer of a check: a row of RobotCheck (robot_queries.hpp says what each
 /// field holds).
 struct RobotCheckRow {
@@ -63,8 +65,8 @@ class RobotChecker {
     int pair;
   };
 
-  void nearest_pair(const class Query& query);
-  void verdict(const class Query& query);
+  void nearest_pair(const Query& query);
+  void verdict(const Query& query);
   Scalar box_separation(const GeometryPair& pair) const;
   void place_geometries();
   void order_pairs();
