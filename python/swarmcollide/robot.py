@@ -94,6 +94,22 @@ class RobotCheck:
                 f"{int(certified.sum())} certified{shown})")
 
 
+def _robot_check(colliding: np.ndarray, min_distance: np.ndarray, lower_bound: np.ndarray,
+                 certified: np.ndarray, pair: np.ndarray, pair_names: np.ndarray,
+                 point_a: np.ndarray, point_b: np.ndarray, normal: np.ndarray,
+                 gradient: Optional[np.ndarray]) -> RobotCheck:
+    """``RobotCheck(colliding, ..., gradient)``, the same object (fields, equality, pickling),
+    its attribute dict given whole: the frozen dataclass's constructor sets each field through
+    ``object.__setattr__``, 1.08 us a check against 0.50 us here (timeit, 10 fields), of the 16.5
+    us a planner's ``checker(q)`` takes on the Panda with obstacles."""
+    check = object.__new__(RobotCheck)
+    check.__dict__.update({"colliding": colliding, "min_distance": min_distance,
+                           "lower_bound": lower_bound, "certified": certified, "pair": pair,
+                           "pair_names": pair_names, "point_a": point_a, "point_b": point_b,
+                           "normal": normal, "gradient": gradient})
+    return check
+
+
 class RobotChecker:
     """A planner's check of one configuration at a time, prepared once (``Robot.checker``).
 
@@ -133,8 +149,8 @@ class RobotChecker:
         """
         colliding, min_distance, lower_bound, certified, pair, point_a, point_b, normal, slope = (
             self._core.check(self._configuration(q), self._limits))
-        return RobotCheck(colliding, min_distance, lower_bound, certified, pair,
-                          self._pair_names[pair], point_a, point_b, normal, slope)
+        return _robot_check(colliding, min_distance, lower_bound, certified, pair,
+                            self._pair_names[pair], point_a, point_b, normal, slope)
 
     def collision_free(self, q: npt.ArrayLike) -> bool:
         """True when the configuration ``q`` (dof,) is proven free of contact: no checked pair
@@ -639,9 +655,9 @@ class Robot:
         raw = self._model.check(self._pair_table, table, query(method, tolerance=tolerance,
                                                               seed=seed), threads, gradient,
                                 nearest)
-        return RobotCheck(raw.colliding, raw.min_distance, raw.lower_bound, raw.certified,
-                          raw.pair, self._pair_names[raw.pair], raw.point_a, raw.point_b,
-                          raw.normal, raw.gradient if gradient else None)
+        return _robot_check(raw.colliding, raw.min_distance, raw.lower_bound, raw.certified,
+                            raw.pair, self._pair_names[raw.pair], raw.point_a, raw.point_b,
+                            raw.normal, raw.gradient if gradient else None)
 
     def checker(self, *, limits: str = "raise", nearest: bool = True, gradient: bool = False,
                 method: str = "dual", tolerance: float = DEFAULT_TOLERANCE,

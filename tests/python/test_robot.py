@@ -1,6 +1,7 @@
 """Robots: models from URDF and MJCF, forward kinematics against yourdfpy's and MuJoCo's, the
 pair filter, SRDF, obstacles, and queries over configurations against the single queries."""
 
+import dataclasses
 import textwrap
 
 import numpy as np
@@ -263,6 +264,13 @@ def test_a_checker_answers_as_check_and_its_validity_test_is_the_proven_verdict(
                                                         not batch.colliding[i])
     # Both verdicts occur in these configurations, so the test above tells them apart.
     assert 0 < arm.check(q, nearest=False).colliding.sum() < len(q)
+    # The checks are built without the dataclass's constructor: every field is there, and the
+    # object is what the constructor makes (a frozen RobotCheck equal to one built from them).
+    check = arm.checker()(q[0])
+    assert list(vars(check)) == [field.name for field in dataclasses.fields(sc.RobotCheck)]
+    assert check == dataclasses.replace(check)
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        check.pair = 0
     # A configuration given with threads is checked on the calling thread, the same answer.
     assert arm.check(q[0], threads=2).min_distance == arm.check(q[0]).min_distance
     assert "limits='clamp'" in repr(arm.checker(limits="clamp"))
