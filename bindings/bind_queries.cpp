@@ -1,6 +1,5 @@
 #include <pybind11/eigen.h>
 #include <pybind11/stl.h>
-#include <pybind11/typing.h>
 
 #include <algorithm>
 #include <cmath>
@@ -15,6 +14,29 @@
 #include "fast_calls.hpp"
 #include "queries.hpp"
 #include "swarmcollide/queries/methods.hpp"
+
+namespace swarmcollide::bindings {
+
+/// What the pair queries return: a DistanceResult, or for compound bodies a CompoundResult (a
+/// DistanceResult naming parts), typed in signatures as the base class both are. A union there
+/// reads `A | B`, which the stubs' generator (pybind11-stubgen 2.5.5) copies unparsed, with
+/// module paths the stubs never import: type checkers read those returns as errors.
+class AnyResult : public py::object {
+ public:
+  AnyResult() = default;
+  explicit AnyResult(py::object result) : py::object(std::move(result)) {}
+};
+
+}  // namespace swarmcollide::bindings
+
+namespace pybind11::detail {
+
+template <>
+struct handle_type_name<swarmcollide::bindings::AnyResult> {
+  static constexpr auto name = const_name<swarmcollide::DistanceResult>();
+};
+
+}  // namespace pybind11::detail
 
 namespace swarmcollide::bindings {
 
@@ -117,9 +139,6 @@ py::dict parameters_of(const QueryOptions& options) {
   }
   return values;
 }
-
-// What the queries return: a CompoundResult (a DistanceResult naming parts) for compound bodies.
-using AnyResult = py::typing::Union<DistanceResult, CompoundResult>;
 
 // The pair queries of Query and of the module's functions (swarmcollide.queries).
 enum class PairQuery { distance, signed_distance, collision, collide };

@@ -294,8 +294,10 @@ Field<Owner, Type> field(const char* name, Type Owner::*member) {
 template <typename T, typename Consistent, typename... Owners, typename... Types>
 auto pickle_fields(const char* type, Consistent consistent, Field<Owners, Types>... fields) {
   return py::pickle(
+      // A plain tuple in the signature: typed by its items, a subclass's state (ContactResult's,
+      // SceneResult's and more) contradicts its base's in the stubs.
       [fields...](const T& value) {
-        return py::make_tuple(kStateVersion, value.*(fields.member)...);
+        return py::tuple(py::make_tuple(kStateVersion, value.*(fields.member)...));
       },
       [type, consistent, fields...](const py::object& state) {
         PickledState items(state, type, sizeof...(Types));

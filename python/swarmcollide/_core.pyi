@@ -11,7 +11,7 @@ class Aabb:
     """
     An axis-aligned bounding box with corners ``min`` and ``max``.
     """
-    def __getstate__(self) -> tuple[int, typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]]:
+    def __getstate__(self) -> tuple:
         ...
     def __repr__(self) -> str:
         ...
@@ -303,7 +303,7 @@ class CompoundStats:
     pruned : int
         Part pairs never looked at: ruled out by the tree's certified lower bounds.
     """
-    def __getstate__(self) -> tuple[int, int, int, int, int]:
+    def __getstate__(self) -> tuple:
         ...
     def __repr__(self) -> str:
         ...
@@ -384,7 +384,7 @@ class ContactResult(SceneResult):
     offsets : numpy.ndarray of int64, shape (m,)
         Index in ``points`` of each pair's first contact point.
     """
-    def __getstate__(self) -> tuple[int, typing.Annotated[numpy.typing.NDArray[numpy.int64], "[m, 2]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"], typing.Annotated[numpy.typing.NDArray[numpy.bool], "[m, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.int32], "[m, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"], typing.Annotated[numpy.typing.NDArray[numpy.int64], "[m, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.int64], "[m, 1]"]]:
+    def __getstate__(self) -> tuple:
         ...
     def __repr__(self) -> str:
         ...
@@ -673,7 +673,7 @@ class Hull:
         ``(m, 3)`` triangles indexing the polyhedron's points, outward by the right-hand rule. A flat
         polygon is listed once facing each side; segments and points have no faces.
     """
-    def __getstate__(self) -> tuple[int, int, list[int], typing.Annotated[numpy.typing.NDArray[numpy.int32], "[m, 3]"]]:
+    def __getstate__(self) -> tuple:
         ...
     def __repr__(self) -> str:
         ...
@@ -768,7 +768,7 @@ class PartNode:
     part : int
         The part a leaf holds; -1 for an inner node.
     """
-    def __getstate__(self) -> tuple[int, Aabb, typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"], float, int, int, int]:
+    def __getstate__(self) -> tuple:
         ...
     def __repr__(self) -> str:
         ...
@@ -799,7 +799,7 @@ class ParticleCoefficients:
     """
     Inertia weight ``w`` and accelerations ``c1``, ``c2`` of one particle.
     """
-    def __getstate__(self) -> tuple[int, float, float, float]:
+    def __getstate__(self) -> tuple:
         ...
     def __repr__(self) -> str:
         ...
@@ -848,9 +848,9 @@ class Query:
         it); a single pose serves every row, as a single body does. With a single body on both sides the
         poses set the number of rows: "A against B at these m poses" is one call.
         """
-    def collision(self, a: typing.Any, b: typing.Any, pose_a: typing.Any = None, pose_b: typing.Any = None, escalate: bool = True) -> swarmcollide._core.DistanceResult | swarmcollide._core.CompoundResult:
+    def collision(self, a: typing.Any, b: typing.Any, pose_a: typing.Any = None, pose_b: typing.Any = None, escalate: bool = True) -> DistanceResult:
         ...
-    def distance(self, a: typing.Any, b: typing.Any, pose_a: typing.Any = None, pose_b: typing.Any = None) -> swarmcollide._core.DistanceResult | swarmcollide._core.CompoundResult:
+    def distance(self, a: typing.Any, b: typing.Any, pose_a: typing.Any = None, pose_b: typing.Any = None) -> DistanceResult:
         ...
     def distance_many(self, As: typing.Any, Bs: typing.Any, threads: typing.Any = None, first_index: typing.Any = 0, poses_a: typing.Any = None, poses_b: typing.Any = None) -> BatchResult:
         """
@@ -867,7 +867,7 @@ class Query:
         it); a single pose serves every row, as a single body does. With a single body on both sides the
         poses set the number of rows: "A against B at these m poses" is one call.
         """
-    def signed_distance(self, a: typing.Any, b: typing.Any, pose_a: typing.Any = None, pose_b: typing.Any = None) -> swarmcollide._core.DistanceResult | swarmcollide._core.CompoundResult:
+    def signed_distance(self, a: typing.Any, b: typing.Any, pose_a: typing.Any = None, pose_b: typing.Any = None) -> DistanceResult:
         ...
     def signed_distance_many(self, As: typing.Any, Bs: typing.Any, threads: typing.Any = None, first_index: typing.Any = 0, poses_a: typing.Any = None, poses_b: typing.Any = None) -> BatchResult:
         """
@@ -902,7 +902,7 @@ class RobotCheck:
     """
     Per configuration: the verdict and the nearest pair.
     """
-    def __getstate__(self) -> tuple[int, typing.Annotated[numpy.typing.NDArray[numpy.bool], "[m, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.bool], "[m, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.int32], "[m, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]]:
+    def __getstate__(self) -> tuple:
         ...
     def __setstate__(self, arg0: typing.Any) -> None:
         ...
@@ -977,7 +977,7 @@ class RobotDistances:
     """
     Signed distances of every checked pair, (m, pairs) each.
     """
-    def __getstate__(self) -> tuple[int, typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"], typing.Annotated[numpy.typing.NDArray[numpy.bool], "[m, n]"], typing.Annotated[numpy.typing.NDArray[numpy.bool], "[m, n]"]]:
+    def __getstate__(self) -> tuple:
         ...
     def __setstate__(self, arg0: typing.Any) -> None:
         ...
@@ -1344,7 +1344,7 @@ class SceneResult:
     certified : numpy.ndarray of bool, shape (m,)
         The pair's membership (and value, for distances and contacts) is proven.
     """
-    def __getstate__(self) -> tuple[int, typing.Annotated[numpy.typing.NDArray[numpy.int64], "[m, 2]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"], typing.Annotated[numpy.typing.NDArray[numpy.bool], "[m, 1]"]]:
+    def __getstate__(self) -> tuple:
         ...
     def __len__(self) -> int:
         ...
@@ -1403,7 +1403,7 @@ class SceneStats:
         corners). cache_bytes is summed when ``scene.stats`` is read (the storage then), not by
         every query: the sum reads every pair's record.
     """
-    def __getstate__(self) -> tuple[int, int, int, int, int, int, int, int, int, int, int]:
+    def __getstate__(self) -> tuple:
         ...
     def __repr__(self) -> str:
         ...

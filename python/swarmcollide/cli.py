@@ -189,6 +189,7 @@ def _distance(arguments: argparse.Namespace) -> int:
     q = query(arguments.method, tolerance=arguments.tolerance)
     ask = {"distance": q.distance, "signed": q.signed_distance, "collide": q.collision}
     r = ask[arguments.query](a, b, arguments.pose_a, arguments.pose_b)
+    assert isinstance(r, _core.CompoundResult)  # the files' bodies are compound: parts named
     if arguments.plot:
         from .plot import plot_pair
 
@@ -250,8 +251,10 @@ def _decompose(arguments: argparse.Namespace) -> int:
     body.save(arguments.output)
     d = body.decomposition
     if arguments.json:
-        print(json.dumps({"mesh": arguments.mesh, "output": arguments.output,
-                          **_decomposition(body)}, indent=2))
+        summary = _decomposition(body)
+        assert summary is not None  # a body made by decomposing has its decomposition
+        print(json.dumps({"mesh": arguments.mesh, "output": arguments.output, **summary},
+                         indent=2))
         return 0
     print(f"{arguments.output}: {d.parts} convex parts ({d.method}"
           f"{', from the cache' if d.from_cache else ''}, {d.seconds:.2f} s)")

@@ -211,8 +211,8 @@ class BatchArrays(Generic[ArrayT]):
         if isinstance(self.distance, da.Array):
             return f"BatchArrays({len(self)} pairs in {self.distance.numblocks[0]} chunks, lazy)"
         return (
-            f"BatchArrays({len(self)} pairs, {np.count_nonzero(self.colliding)} colliding, "
-            f"{np.count_nonzero(self.certified)} certified)"
+            f"BatchArrays({len(self)} pairs, {np.count_nonzero(np.asarray(self.colliding))} "
+            f"colliding, {np.count_nonzero(np.asarray(self.certified))} certified)"
         )
 
 

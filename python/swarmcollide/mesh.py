@@ -755,7 +755,7 @@ def _decompose(mesh, decompose, parameters, preset, progress) -> List[np.ndarray
 
         coacd.set_log_level("error")
 
-        def run() -> List[np.ndarray]:
+        def run_coacd() -> List[np.ndarray]:
             hulls = coacd.run_coacd(coacd.Mesh(mesh.vertices, mesh.faces), **parameters)
             return [np.asarray(v, dtype=float) for v, _ in hulls]
 
@@ -766,15 +766,15 @@ def _decompose(mesh, decompose, parameters, preset, progress) -> List[np.ndarray
             note = f"preset={preset!r}, typically ~{estimate:.0f} s"
             if preset != "fast":
                 note += f"; preset='fast' ~{_TYPICAL_SECONDS['fast']:.0f} s"
-        return _with_progress("CoACD", run, progress, estimate, note)
+        return _with_progress("CoACD", run_coacd, progress, estimate, note)
     import vhacdx
 
-    def run() -> List[np.ndarray]:
+    def run_vhacd() -> List[np.ndarray]:
         hulls = vhacdx.compute_vhacd(np.asarray(mesh.vertices, dtype=np.float64),
                                      np.asarray(mesh.faces, dtype=np.uint32), **parameters)
         return [np.asarray(v, dtype=float) for v, _ in hulls]
 
-    return _with_progress("V-HACD", run, progress)
+    return _with_progress("V-HACD", run_vhacd, progress)
 
 
 # CoACD's typical time per preset (seconds): the median of the runs of

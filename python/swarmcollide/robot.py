@@ -28,6 +28,12 @@ LIMIT_MODES = ("raise", "clamp", "wrap")
 """What a configuration outside the joint limits does: raise ValueError naming the joint, clamp
 it to the nearest limit, or wrap a revolute joint's angle by a multiple of 2 pi."""
 
+# A field of the answer for one configuration or motion is a Python scalar (bool, float, int);
+# for many, an array. Typed as either (Any): a union would make every reader narrow it first.
+Bools = Any
+Reals = Any
+Ints = Any
+
 
 @dataclass(frozen=True)
 class RobotCheck:
@@ -66,11 +72,11 @@ class RobotCheck:
         features are unique; where they are not, it is one of the one-sided derivatives.
     """
 
-    colliding: np.ndarray
-    min_distance: np.ndarray
-    lower_bound: np.ndarray
-    certified: np.ndarray
-    pair: np.ndarray
+    colliding: Bools
+    min_distance: Reals
+    lower_bound: Reals
+    certified: Bools
+    pair: Ints
     pair_names: np.ndarray
     point_a: np.ndarray
     point_b: np.ndarray
@@ -94,8 +100,8 @@ class RobotCheck:
                 f"{int(certified.sum())} certified{shown})")
 
 
-def _robot_check(colliding: np.ndarray, min_distance: np.ndarray, lower_bound: np.ndarray,
-                 certified: np.ndarray, pair: np.ndarray, pair_names: np.ndarray,
+def _robot_check(colliding: Bools, min_distance: Reals, lower_bound: Reals,
+                 certified: Bools, pair: Ints, pair_names: np.ndarray,
                  point_a: np.ndarray, point_b: np.ndarray, normal: np.ndarray,
                  gradient: Optional[np.ndarray]) -> RobotCheck:
     """``RobotCheck(colliding, ..., gradient)``, the same object (fields, equality, pickling),
@@ -201,18 +207,18 @@ class RobotMotion:
         stayed unproven where the times could no longer be split).
     """
 
-    touches: np.ndarray
-    t_lower: np.ndarray
-    t_upper: np.ndarray
+    touches: Bools
+    t_lower: Reals
+    t_upper: Reals
     q: np.ndarray
-    pair: np.ndarray
+    pair: Ints
     pair_names: np.ndarray
-    distance: np.ndarray
+    distance: Reals
     point_a: np.ndarray
     point_b: np.ndarray
     normal: np.ndarray
-    certified: np.ndarray
-    iterations: np.ndarray
+    certified: Bools
+    iterations: Ints
     status: Union[str, Tuple[str, ...]]
 
     def __repr__(self) -> str:
