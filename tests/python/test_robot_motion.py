@@ -199,6 +199,22 @@ def test_a_robot_far_from_the_world_origin_is_still_certified(far):
     assert start.touches and start.certified and start.t_upper == 0
 
 
+@pytest.mark.parametrize("travel", [1.35e154, 1e200])
+def test_a_slide_too_long_to_resolve_is_never_proven_free(travel):
+    # Centres more than sqrt(DBL_MAX) apart once squared their difference to infinity, and that
+    # infinite ball separation proved motions that end in contact free.
+    box = sc.Box([0.1, 0.1, 0.1])
+    robot = sc.Robot(["base", "slider"],
+                     [sc.Joint("slide", "prismatic", 0, 1, axis=[1, 0, 0], lower=-1e300,
+                               upper=1e300)],
+                     [("slider", 1, None, box)])
+    robot.add_obstacle(box, np.eye(4), name="post")
+    assert robot.check([0.0]).colliding
+    for q0, q1 in (([-travel], [0.0]), ([-travel], [travel])):
+        motion = robot.check_motion(q0, q1)
+        assert motion.touches, (q0, q1, motion)
+
+
 def test_the_exact_method_is_the_default_and_agrees_with_the_dual_one():
     robot = small_arm()
     rng = np.random.default_rng(3)

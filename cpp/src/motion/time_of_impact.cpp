@@ -11,6 +11,7 @@
 
 #include "../detail/number_text.hpp"
 #include "../detail/row_threads.hpp"
+#include "../geometry/unit_direction.hpp"
 #include "advancement_steps.hpp"
 #include "motion_bound.hpp"
 #include "swarmcollide/queries/methods.hpp"
@@ -287,7 +288,8 @@ class Advancement {
         const ConvexPolyhedron& part_b = b_.parts()[j];
         const Vector3 centre_b = pose_b.rotation * part_b.bounds().centre + pose_b.translation;
         const Vector3 between = centre_b - centre_a;
-        const Scalar length = between.norm();
+        // Without overflow (an infinite length would prove the parts apart).
+        const Scalar length = detail::robust_length(between);
         const Scalar rounding = 16 * kUnit *
             (centre_a.norm() + centre_b.norm() + part_a.bounds().radius + part_b.bounds().radius);
         Scalar apart = length - part_a.bounds().radius - part_b.bounds().radius - rounding;

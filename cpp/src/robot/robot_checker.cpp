@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "../geometry/unit_direction.hpp"
 #include "box_screen.hpp"
 #include "geometry_pairs.hpp"
 #include "swarmcollide/queries/batch.hpp"
@@ -193,7 +194,9 @@ void RobotChecker::order_pairs() {
     const Scalar margin =
         1e-12 * (ca.lpNorm<Eigen::Infinity>() + cb.lpNorm<Eigen::Infinity>() + a.radius +
                  b.radius);
-    const Scalar apart = (ca - cb).norm();
+    // Without overflow: the plain norm of centres 1.4e154 apart is infinite, a bound above
+    // every pair's that could put this one after a nearer one.
+    const Scalar apart = detail::robust_length(ca - cb);
     // Twice the threshold: a margin for the rounding of both.
     const Scalar contact = 2 * options_.tolerance * (apart + 2 * std::max(a.radius, b.radius));
     bounds_[p] = {apart - a.radius - b.radius - margin, contact, static_cast<int>(p)};

@@ -10,6 +10,7 @@
 
 #include "../detail/row_threads.hpp"
 #include "../geometry/framed_body.hpp"
+#include "../geometry/unit_direction.hpp"
 #include "../motion/advancement_steps.hpp"
 #include "../queries/rounded.hpp"
 #include "../queries/verdict.hpp"
@@ -735,7 +736,9 @@ class MotionCheck {
     const BodyBounds& a = model_.geometries()[pair.a].body.bounds();
     const BodyBounds& b = model_.geometries()[pair.b].body.bounds();
     const Scalar margin = 1e-12 * (size_a + size_b + a.radius + b.radius);
-    return (ca - cb).norm() - a.radius - b.radius - margin;
+    // Without overflow: centres 1.4e154 apart made the plain norm's squares infinite, and that
+    // infinite separation proved a pair apart over motions ending in contact.
+    return detail::robust_length(ca - cb) - a.radius - b.radius - margin;
   }
 
   // The better of `balls`, the pair's ball separation, and its boxes' over their face axes (-inf
