@@ -58,6 +58,21 @@ def test_ellipsoids_along_their_axes(method):
         assert_encloses(sc.distance(b, a, pose_a=pose, method=method), max(gap, 0.0), 4.2)
 
 
+@pytest.mark.parametrize("method", CURVED_METHODS)
+def test_bodies_sharing_their_centre(method):
+    # With the origin at the centre of B - A every support point has its opposite, and no
+    # tetrahedron of the axes' points held the origin inside: the depth was never bounded
+    # (upper bound 0).
+    crossed = sc.signed_distance(sc.Ellipsoid([0.1, 0.1, 1.0]), sc.Ellipsoid([1.0, 0.1, 0.1]),
+                                 method=method)
+    assert_encloses(crossed, -0.2, 2.0)
+    # Coaxial cylinders are deepest along a whole circle of directions, which no polytope of
+    # support points closes on to the tolerance: bounds short of it, but proven, and uncertified.
+    coaxial = sc.signed_distance(sc.Cylinder(1.0, 1.0), sc.Cylinder(1.0, 1.0), method=method)
+    assert coaxial.lower_bound <= -2.0 <= coaxial.distance < -1.99
+    assert coaxial.colliding
+
+
 def test_a_cone_stands_on_its_base():
     """The base at z = -half_length, the apex at +half_length (FCL's and coal's convention)."""
     cone = sc.Cone(1.0, 2.0)

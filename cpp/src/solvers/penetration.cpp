@@ -406,11 +406,15 @@ class Solver {
 
   // Curved bodies have no candidate axes to fall back on. Where Wolfe's corral stops short of a
   // tetrahedron around the origin (touching bodies, or coaxial ones whose supports along the
-  // axis line up through it), points of B - A along the axes of the best direction's frame and
-  // their diagonals, with the corral's, make tetrahedra: the one that encloses the origin deepest
-  // (its least barycentric weight largest) starts the expanding polytope. True when one did.
+  // axis line up through it), points of B - A along the axes of the best direction's frame, their
+  // diagonals and the corners of a regular tetrahedron around them, with the corral's, make
+  // tetrahedra: the one that encloses the origin deepest (its least barycentric weight largest)
+  // starts the expanding polytope. True when one did. (Without the corners, bodies sharing a
+  // centre and an axis were never certified: with the origin at the centre of B - A, each point
+  // along a direction has its opposite along the opposite one, and every tetrahedron of the axes
+  // and diagonals held the origin on a face or an edge, not inside.)
   bool complete_tetrahedron() {
-    constexpr int kDirections = 10;
+    constexpr int kDirections = 14;
     std::array<OraclePoint, MinNormPoint::kCapacity + kDirections> points;
     int count = 0;
     for (int k = 0; k < last_corral_.size; ++k) points[count++] = last_corral_.corral[k];
@@ -418,8 +422,9 @@ class Solver {
     const Vector3 helper = std::abs(w.x()) < 0.6 ? Vector3::UnitX() : Vector3::UnitY();
     const Vector3 u = w.cross(helper).normalized();
     const Vector3 v = w.cross(u);
-    const Vector3 directions[kDirections] = {w,  -w, u,       -u,       v,
-                                             -v, u + v, -u - v, u - v, v - u};
+    const Vector3 directions[kDirections] = {w,         -w,        u,          -u,        v,
+                                             -v,        u + v,     -u - v,     u - v,     v - u,
+                                             w + u + v, w - u - v, -w + u - v, -w - u + v};
     for (const Vector3& d : directions) {
       int ia = -1;
       int ib = -1;
