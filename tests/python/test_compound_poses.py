@@ -80,6 +80,12 @@ def test_bad_poses_are_refused_by_name():
         sc.CompoundBody(parts, poses=[np.eye(4), skewed])
     with pytest.raises(TypeError, match="poses must be None when parts is a CompoundBody"):
         sc.CompoundBody(sc.CompoundBody(parts), poses=[np.eye(4), np.eye(4)])
+    # Parts each representable but together spanning more than the double range: their size
+    # (and the tolerances relative to it) would be infinite.
+    far = [transform(np.eye(3), [-1e308, 0, 0]), transform(np.eye(3), [1e308, 0, 0])]
+    with pytest.raises(ValueError, match="span more than the largest double"):
+        sc.CompoundBody([sc.Sphere(1.0), sc.Sphere(1.0)], poses=far)
+    assert sc.CompoundBody([sc.Sphere(1.0), sc.Sphere(1.0)], poses=far[:1] + [np.eye(4)])
 
 
 def test_json_keeps_the_poses_and_save_writes_placed_points(tmp_path):

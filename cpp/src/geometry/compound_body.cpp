@@ -136,6 +136,15 @@ CompoundBody::CompoundBody(std::vector<ConvexPolyhedron> parts)
   // Placeholders, each replaced by its node's envelope as the tree is built.
   node_envelopes_.assign(tree_.size(), parts_.front());
   build(parts_, order, 0, size(), tree_, node_envelopes_, 0);
+  // Each part's own span is checked where it is made; together they may span more, and the
+  // queries' tolerances (relative to the body's size) were then infinite: bodies 1e308 apart
+  // were answered colliding.
+  const Aabb& box = tree_.front().box;
+  if (!(box.max - box.min).allFinite()) {
+    throw std::invalid_argument(
+        "parts span more than the largest double (1.8e308): the compound body's size is not "
+        "representable; use a unit of length in which the coordinates are smaller");
+  }
   for (int i = 0; i < size() && curved_part_ < 0; ++i) {
     if (parts_[i].curved()) curved_part_ = i;
   }
