@@ -322,7 +322,10 @@ Examples
 >>> sc.signed_distance(a, b).distance
 -1.5
 )doc")
-      .def(py::init<Scalar>(), py::arg("radius"))
+      .def(py::init([](const Given<Scalar>& radius) {
+             return Sphere(to_real(radius.value, "radius"));
+           }),
+           py::arg("radius"))
       .def(pickle_shape<Sphere>(
           "Sphere", 1, [](const Sphere& s) { return py::make_tuple(s.radius()); },
           [](PickledState& items) {
@@ -353,7 +356,11 @@ Examples
 >>> sc.distance(upright, upright, pose_b=(identity, [2, 0, 0.5])).distance
 1.0
 )doc")
-      .def(py::init<Scalar, Scalar>(), py::arg("radius"), py::arg("half_length"))
+      .def(py::init([](const Given<Scalar>& radius, const Given<Scalar>& half_length) {
+             return Capsule(to_real(radius.value, "radius"),
+                          to_real(half_length.value, "half_length"));
+           }),
+           py::arg("radius"), py::arg("half_length"))
       .def_property_readonly("half_length", &Capsule::half_length,
                              "Half the length of the core segment.")
       .def(pickle_shape<Capsule>(
@@ -388,8 +395,9 @@ Examples
 >>> sc.distance(box, sc.Sphere(1), pose_b=(identity, [3, 0, 0])).distance
 1.0
 )doc")
-      .def(py::init([](const py::object& half_extents, Scalar radius) {
-             return Box(finite_vector3(half_extents, "half_extents"), radius);
+      .def(py::init([](const py::object& half_extents, const Given<Scalar>& radius) {
+             return Box(finite_vector3(half_extents, "half_extents"),
+                        to_real(radius.value, "radius"));
            }),
            py::arg("half_extents"), py::arg("radius") = 0.0)
       .def_property_readonly("half_extents", &Box::half_extents,
@@ -428,7 +436,11 @@ Examples
 >>> round(sc.signed_distance(can, can, pose_b=(identity, [0, 0, 1.5])).distance, 9)
 -0.5
 )doc")
-      .def(py::init<Scalar, Scalar>(), py::arg("radius"), py::arg("half_length"))
+      .def(py::init([](const Given<Scalar>& radius, const Given<Scalar>& half_length) {
+             return Cylinder(to_real(radius.value, "radius"),
+                          to_real(half_length.value, "half_length"));
+           }),
+           py::arg("radius"), py::arg("half_length"))
       .def_property_readonly("radius", &Cylinder::cylinder_radius,
                              "The radius of the circular section (a cylinder is not rounded: its "
                              "rounding radius is 0).")
@@ -466,7 +478,11 @@ Examples
 >>> round(sc.distance(cone, sc.Sphere(0.5), pose_b=(identity, [0, 0, 3])).distance, 9)
 1.5
 )doc")
-      .def(py::init<Scalar, Scalar>(), py::arg("radius"), py::arg("half_length"))
+      .def(py::init([](const Given<Scalar>& radius, const Given<Scalar>& half_length) {
+             return Cone(to_real(radius.value, "radius"),
+                          to_real(half_length.value, "half_length"));
+           }),
+           py::arg("radius"), py::arg("half_length"))
       .def_property_readonly("radius", &Cone::base_radius,
                              "The radius of the base disk (a cone is not rounded: its rounding "
                              "radius is 0).")

@@ -351,6 +351,19 @@ def test_bad_parameters_are_refused_by_name(bad):
         sc.Ellipsoid([1.0, bad, 1.0])
 
 
+@pytest.mark.parametrize("bad", ["1", None, 1j, True])
+def test_parameters_that_are_not_real_numbers_are_refused_by_name(bad):
+    makers = {"radius": [lambda x: sc.Sphere(x), lambda x: sc.Capsule(x, 1.0),
+                         lambda x: sc.Cylinder(x, 1.0), lambda x: sc.Cone(x, 1.0),
+                         lambda x: sc.Box([1.0, 1.0, 1.0], x)],
+              "half_length": [lambda x: sc.Capsule(1.0, x), lambda x: sc.Cylinder(1.0, x),
+                              lambda x: sc.Cone(1.0, x)]}
+    for name, made in makers.items():
+        for make in made:
+            with pytest.raises(TypeError, match=f"{name} must be a real number, got"):
+                make(bad)
+
+
 def test_curved_shapes_describe_themselves():
     cylinder, cone, egg = sc.Cylinder(0.5, 1.5), sc.Cone(1, 2), sc.Ellipsoid([1, 2, 3])
     assert repr(cylinder) == "Cylinder(radius=0.5, half_length=1.5)"
