@@ -668,6 +668,12 @@ def test_model_tables_are_checked_naming_the_joint():
         sc.Robot(["a", "b"], [sc.Joint("j", "fixed", 0, 1), sc.Joint("k", "fixed", 1, 0)], [])
     with pytest.raises(ValueError, match="joint 'j': the axis must be finite and nonzero"):
         sc.Robot(["a", "b"], [sc.Joint("j", "revolute", 0, 1, axis=[0, 0, 0])], [])
+    # Finite and nonzero however large or small (the plain norm's squares overflow or vanish).
+    for axis in ([1e300, 1e300, 0], [1e-300, 0, 0]):
+        turned = sc.Robot(["a", "b"], [sc.Joint("j", "revolute", 0, 1, axis=axis)], [])
+        expected = np.array(axis) / np.array(axis).max()
+        np.testing.assert_allclose(turned.model.joints[0].axis, expected / np.linalg.norm(expected),
+                                   rtol=0, atol=1e-15)
     with pytest.raises(ValueError, match="joint 'j': limits must satisfy lower <= upper"):
         sc.Robot(["a", "b"], [sc.Joint("j", "prismatic", 0, 1, lower=1, upper=0)], [])
     with pytest.raises(ValueError, match="joint 'm': a mimic joint must move and mimic"):

@@ -7,6 +7,8 @@
 #include <unordered_set>
 #include <utility>
 
+#include "../geometry/unit_direction.hpp"
+
 namespace swarmcollide {
 
 namespace {
@@ -32,7 +34,8 @@ void check_joint(Joint& joint, int links) {
                                 std::to_string(joint.mimic));
   }
   if (joint.type == JointType::fixed) return;
-  const Scalar norm = joint.axis.norm();
+  // Without overflow or underflow in the squares: axes of 1e300 or 1e-300 are finite and nonzero.
+  const Scalar norm = detail::robust_length(joint.axis);
   if (!std::isfinite(norm) || norm == 0) {
     throw std::invalid_argument(joint_label(joint) + ": the axis must be finite and nonzero");
   }
