@@ -358,7 +358,7 @@ Examples
 )doc")
       .def(py::init([](const Given<Scalar>& radius, const Given<Scalar>& half_length) {
              return Capsule(to_real(radius.value, "radius"),
-                          to_real(half_length.value, "half_length"));
+                            to_real(half_length.value, "half_length"));
            }),
            py::arg("radius"), py::arg("half_length"))
       .def_property_readonly("half_length", &Capsule::half_length,
@@ -438,7 +438,7 @@ Examples
 )doc")
       .def(py::init([](const Given<Scalar>& radius, const Given<Scalar>& half_length) {
              return Cylinder(to_real(radius.value, "radius"),
-                          to_real(half_length.value, "half_length"));
+                             to_real(half_length.value, "half_length"));
            }),
            py::arg("radius"), py::arg("half_length"))
       .def_property_readonly("radius", &Cylinder::cylinder_radius,
@@ -480,7 +480,7 @@ Examples
 )doc")
       .def(py::init([](const Given<Scalar>& radius, const Given<Scalar>& half_length) {
              return Cone(to_real(radius.value, "radius"),
-                          to_real(half_length.value, "half_length"));
+                         to_real(half_length.value, "half_length"));
            }),
            py::arg("radius"), py::arg("half_length"))
       .def_property_readonly("radius", &Cone::base_radius,
