@@ -5,6 +5,7 @@ import math
 
 import numpy as np
 import pytest
+from scipy.spatial.transform import Rotation
 
 import swarmcollide as sc
 from shape_checks import assert_encloses, at
@@ -66,11 +67,39 @@ def test_bodies_sharing_their_centre(method):
     crossed = sc.signed_distance(sc.Ellipsoid([0.1, 0.1, 1.0]), sc.Ellipsoid([1.0, 0.1, 0.1]),
                                  method=method)
     assert_encloses(crossed, -0.2, 2.0)
-    # Coaxial cylinders are deepest along a whole circle of directions, which no polytope of
-    # support points closes on to the tolerance: bounds short of it, but proven, and uncertified.
-    coaxial = sc.signed_distance(sc.Cylinder(1.0, 1.0), sc.Cylinder(1.0, 1.0), method=method)
-    assert coaxial.lower_bound <= -2.0 <= coaxial.distance < -1.99
-    assert coaxial.colliding
+    # Coaxial cones are deepest along a whole circle of directions, which no polytope of support
+    # points closes on to the tolerance: bounds short of it, but proven, and uncertified.
+    cones = sc.signed_distance(sc.Cone(1.0, 1.0), sc.Cone(0.5, 1.0), pose_b=at(0, 0, 0.3),
+                               method=method)
+    assert cones.lower_bound <= cones.distance < -1.2
+    assert cones.colliding
+
+
+@pytest.mark.parametrize("method", CURVED_METHODS)
+@pytest.mark.parametrize("exponent", [-100, 0, 100])
+def test_cylinders_with_parallel_axes_get_their_closed_form(method, exponent):
+    # B - A is then a cylinder of the radii's and half-lengths' sums: a coaxial pair (a shaft in
+    # a bore) is deepest along a whole circle of directions, which only the closed form proves.
+    rng = np.random.default_rng(abs(exponent) + 7)
+    unit = 10.0 ** exponent
+    for k in range(12):
+        turn = Rotation.random(random_state=rng).as_matrix()
+        ra, ha, rb, hb = rng.uniform(0.1, 1.0, size=4)
+        # Coaxial for the first half, axes a little apart for the rest; along or across the axis.
+        offset = rng.uniform(-0.5, 0.5, size=3) * [k >= 6, k >= 6, 1]
+        flip = np.diag([1.0, -1.0, -1.0]) if k % 2 else np.eye(3)  # B's axis the other way
+        along = abs(offset[2])
+        across = math.hypot(offset[0], offset[1])
+        depth = min(ra + rb - across, ha + hb - along)
+        if depth <= 0:
+            continue
+        a, b = sc.Cylinder(ra * unit, ha * unit), sc.Cylinder(rb * unit, hb * unit)
+        result = sc.signed_distance(a, b, pose_a=(turn, [0.0, 0.0, 0.0]),
+                                    pose_b=(turn @ flip, turn @ offset * unit), method=method)
+        size = 2 * (math.hypot(max(ra, rb), max(ha, hb)) + np.linalg.norm(offset)) * unit
+        assert_encloses(result, -depth * unit, size)
+        np.testing.assert_allclose(result.point_b - result.point_a,
+                                   result.distance * result.direction, atol=1e-9 * size)
 
 
 def test_a_cone_stands_on_its_base():
