@@ -77,29 +77,39 @@ def test_bodies_sharing_their_centre(method):
 
 @pytest.mark.parametrize("method", CURVED_METHODS)
 @pytest.mark.parametrize("exponent", [-100, 0, 100])
-def test_cylinders_with_parallel_axes_get_their_closed_form(method, exponent):
-    # B - A is then a cylinder of the radii's and half-lengths' sums: a coaxial pair (a shaft in
-    # a bore) is deepest along a whole circle of directions, which only the closed form proves.
+def test_cylinders_and_capsules_with_parallel_axes_get_their_closed_form(method, exponent):
+    # B - A is then a cylinder of the radii's and half-lengths' sums (a capsule's core being one
+    # of radius 0, rounded by its radius): a coaxial pair (a shaft in a bore) is deepest along a
+    # whole circle of directions, which only the closed form proves.
     rng = np.random.default_rng(abs(exponent) + 7)
     unit = 10.0 ** exponent
-    for k in range(12):
+    checked = 0
+    for k in range(24):
         turn = Rotation.random(random_state=rng).as_matrix()
         ra, ha, rb, hb = rng.uniform(0.1, 1.0, size=4)
         # Coaxial for the first half, axes a little apart for the rest; along or across the axis.
-        offset = rng.uniform(-0.5, 0.5, size=3) * [k >= 6, k >= 6, 1]
+        offset = rng.uniform(-0.5, 0.5, size=3) * [k >= 12, k >= 12, 1]
         flip = np.diag([1.0, -1.0, -1.0]) if k % 2 else np.eye(3)  # B's axis the other way
         along = abs(offset[2])
         across = math.hypot(offset[0], offset[1])
-        depth = min(ra + rb - across, ha + hb - along)
-        if depth <= 0:
+        capsule = k % 3 != 0  # B a capsule (k % 3 == 1), or A one (k % 3 == 2)
+        core = min(ra + (0 if capsule else rb) - across, ha + hb - along)
+        if core <= 0:
             continue
-        a, b = sc.Cylinder(ra * unit, ha * unit), sc.Cylinder(rb * unit, hb * unit)
-        result = sc.signed_distance(a, b, pose_a=(turn, [0.0, 0.0, 0.0]),
-                                    pose_b=(turn @ flip, turn @ offset * unit), method=method)
-        size = 2 * (math.hypot(max(ra, rb), max(ha, hb)) + np.linalg.norm(offset)) * unit
+        depth = core + (rb if capsule else 0)
+        a = sc.Cylinder(ra * unit, ha * unit)
+        b = (sc.Capsule if capsule else sc.Cylinder)(rb * unit, hb * unit)
+        pose_a = (turn, [0.0, 0.0, 0.0])
+        pose_b = (turn @ flip, turn @ offset * unit)
+        if k % 3 == 2:
+            a, b, pose_a, pose_b = b, a, pose_b, pose_a
+        result = sc.signed_distance(a, b, pose_a=pose_a, pose_b=pose_b, method=method)
+        size = 2 * (math.hypot(max(ra, rb), max(ha, hb) + rb) + np.linalg.norm(offset)) * unit
         assert_encloses(result, -depth * unit, size)
         np.testing.assert_allclose(result.point_b - result.point_a,
                                    result.distance * result.direction, atol=1e-9 * size)
+        checked += 1
+    assert checked >= 12
 
 
 def test_a_cone_stands_on_its_base():

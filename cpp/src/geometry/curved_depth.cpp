@@ -1,6 +1,8 @@
 #include "curved_depth.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 
 #include "curved_supports.hpp"
 #include "normalise.hpp"
@@ -41,57 +43,80 @@ ClosedFormDepth points_inside(const FramedBody& curved, const FramedBody& inner)
   return least;
 }
 
-// The axis of a framed cylinder in the frame: its rotation's last column.
+// The axis of a framed body in the frame: its rotation's last column.
 Vector3 frame_axis(const FramedBody& body) {
   return body.rotated() ? Vector3(body.rotation().col(2)) : Vector3::UnitZ();
 }
 
-// Two cylinders whose axes are parallel as placed (the same axis column up to its sign, as
-// bodies turned by one rotation, or by none, have them): B - A is then a cylinder, of the radii's
-// and the half-lengths' sums, about the line between their centres, and the origin's depth in it
-// is the pair's. Where the origin lies on that line (coaxial cylinders) a whole circle of
-// directions is deepest, which the expanding polytope cannot close on.
-ClosedFormDepth parallel_cylinders(const FramedBody& a, const FramedBody& b) {
-  ClosedFormDepth none;
-  if (a.curved_kind() != CurvedKind::cylinder || b.curved_kind() != CurvedKind::cylinder) {
-    return none;
+// A body symmetric about its own z axis as a cylinder (radius and half-length, in its units): a
+// cylinder, or the core of a capsule, two points on that axis (a cylinder of radius 0, which the
+// pair's radius then rounds).
+struct AxialCylinder {
+  bool found = false;
+  Scalar radius = 0;
+  Scalar half_length = 0;
+};
+
+AxialCylinder axial_cylinder(const FramedBody& body) {
+  if (body.curved_kind() == CurvedKind::cylinder) {
+    const auto& shape = static_cast<const CylinderSupport&>(*body.body().curved());
+    return {true, shape.radius(), shape.half_length()};
   }
-  const Vector3 axis = frame_axis(a);
-  const Vector3 axis_b = frame_axis(b);
-  if (!(axis == axis_b || axis == -axis_b)) return none;
-  const auto& shape_a = static_cast<const CylinderSupport&>(*a.body().curved());
-  const auto& shape_b = static_cast<const CylinderSupport&>(*b.body().curved());
-  // In A's own frame (its units, its axis z): B's axis is z too, up to the rotations' skew.
-  const CylinderSupport difference(shape_a.radius() + shape_b.radius(),
-                                   shape_a.half_length() + shape_b.half_length());
-  // The origin seen from the centre of B - A.
-  const Vector3 from_centre = a.offset() - b.offset();
+  if (body.curved() || body.size() != 2) return {};
+  const VertexMatrix& points = body.body().centred_vertices();
+  if (points.rows() != 2 || points(0, 0) != 0 || points(0, 1) != 0 || points(1, 0) != 0 ||
+      points(1, 1) != 0) {
+    return {};
+  }
+  return {true, 0, std::max(std::abs(points(0, 2)), std::abs(points(1, 2)))};
+}
+
+// A cylinder `c` and a body `o` symmetric about an axis parallel to the cylinder's as placed (the
+// same axis column up to its sign, as bodies turned by one rotation, or by none, have them): a
+// cylinder, or a capsule's core. O - C is then a cylinder, of the radii's and the half-lengths'
+// sums, about the line between their centres, and the origin's depth in it is the pair's (the
+// normal is the direction O leaves C along). Where the origin lies on that line (coaxial bodies:
+// a shaft in a bore) a whole circle of directions is deepest, which the expanding polytope
+// cannot close on.
+ClosedFormDepth parallel_axes(const FramedBody& c, const FramedBody& o) {
+  ClosedFormDepth none;
+  if (c.curved_kind() != CurvedKind::cylinder) return none;
+  const AxialCylinder other = axial_cylinder(o);
+  if (!other.found) return none;
+  const Vector3 axis = frame_axis(c);
+  const Vector3 axis_o = frame_axis(o);
+  if (!(axis == axis_o || axis == -axis_o)) return none;
+  const auto& shape = static_cast<const CylinderSupport&>(*c.body().curved());
+  // In C's own frame (its units, its axis z): O's axis is z too, up to the rotations' skew.
+  const CylinderSupport difference(shape.radius() + other.radius,
+                                   shape.half_length() + other.half_length);
+  // The origin seen from the centre of O - C.
+  const Vector3 from_centre = c.offset() - o.offset();
   Vector3 away;
-  const Scalar depth = difference.depth_of(in_own_frame(a, from_centre), away);
-  const Scalar framed = times_power_of_two(depth, -a.exponent());
+  const Scalar depth = difference.depth_of(in_own_frame(c, from_centre), away);
+  const Scalar framed = times_power_of_two(depth, -c.exponent());
   if (!(framed > 0)) return none;
   // Both placements round: each body's shortfall, and the larger skew over every length read.
-  const Scalar skew = std::max(rotation_skew(a), rotation_skew(b));
+  const Scalar skew = std::max(rotation_skew(c), rotation_skew(o));
   const Scalar farthest =
       from_centre.norm() +
-      times_power_of_two(difference.radius() + difference.half_length(), -a.exponent());
+      times_power_of_two(difference.radius() + difference.half_length(), -c.exponent());
   ClosedFormDepth least;
-  least.depth = depth_in_frame(framed, skew, farthest, a.scan_shortfall() + b.scan_shortfall());
+  least.depth = depth_in_frame(framed, skew, farthest, c.scan_shortfall() + o.scan_shortfall());
   if (!(least.depth > 0)) return none;
-  // The origin leaves B - A along `away`, so B leaves A the other way.
-  const Vector3 outward = a.rotated() ? Vector3(a.rotation() * away) : away;
+  // The origin leaves O - C along `away`, so O leaves C the other way.
+  const Vector3 outward = c.rotated() ? Vector3(c.rotation() * away) : away;
   least.normal = -outward.normalized();
-  // A's witness: its own support point along the normal, a point of A.
-  least.surface = a.support(least.normal);
-  least.curved_a = true;
+  // C's witness: its own support point along the normal, a point of C.
+  least.surface = c.support(least.normal);
   if (away.z() == 0) {
     // Across the axes the supporting features are the sides, segments between the rims, and
-    // the witnesses lie at a height both share: both rims of each side among the support points
+    // the witnesses lie at a height both share: both ends of each side among the support points
     // let the witnesses find it. (Along the normal alone, rounded a little off the normal to
     // the axes, each body's support was a rim of its own choosing: witnesses a height apart.)
     for (const Scalar tilt : {Scalar(-1e-3), Scalar(1e-3)}) {
-      a.support(least.normal + tilt * axis);
-      b.support(-least.normal + tilt * axis);
+      c.support(least.normal + tilt * axis);
+      o.support(-least.normal + tilt * axis);
     }
   }
   return least;
@@ -107,7 +132,14 @@ ClosedFormDepth closed_form_depth(const FramedBody& a, const FramedBody& b) {
   ClosedFormDepth a_in_b = points_inside(b, a);
   a_in_b.normal = -a_in_b.normal;
   const ClosedFormDepth& inside = b_in_a.depth >= a_in_b.depth ? b_in_a : a_in_b;
-  ClosedFormDepth parallel = parallel_cylinders(a, b);
+  // A cylinder beside a body on a parallel axis: as A, or as B (A then leaves along the normal,
+  // so B moves the other way).
+  ClosedFormDepth parallel = parallel_axes(a, b);
+  parallel.curved_a = true;
+  if (!(parallel.depth > -std::numeric_limits<Scalar>::infinity())) {
+    parallel = parallel_axes(b, a);
+    parallel.normal = -parallel.normal;
+  }
   return parallel.depth > inside.depth ? parallel : inside;
 }
 
