@@ -62,7 +62,7 @@ AxialCylinder axial_cylinder(const FramedBody& body) {
     const auto& shape = static_cast<const CylinderSupport&>(*body.body().curved());
     return {true, shape.radius(), shape.half_length()};
   }
-  if (body.curved() || body.size() != 2) return {};
+  if (body.curved()) return {};
   const VertexMatrix& points = body.body().centred_vertices();
   if (points.rows() != 2 || points(0, 0) != 0 || points(0, 1) != 0 || points(1, 0) != 0 ||
       points(1, 1) != 0) {
@@ -81,15 +81,15 @@ AxialCylinder axial_cylinder(const FramedBody& body) {
 ClosedFormDepth parallel_axes(const FramedBody& c, const FramedBody& o) {
   ClosedFormDepth none;
   if (c.curved_kind() != CurvedKind::cylinder) return none;
+  const AxialCylinder own = axial_cylinder(c);
   const AxialCylinder other = axial_cylinder(o);
   if (!other.found) return none;
   const Vector3 axis = frame_axis(c);
   const Vector3 axis_o = frame_axis(o);
   if (!(axis == axis_o || axis == -axis_o)) return none;
-  const auto& shape = static_cast<const CylinderSupport&>(*c.body().curved());
   // In C's own frame (its units, its axis z): O's axis is z too, up to the rotations' skew.
-  const CylinderSupport difference(shape.radius() + other.radius,
-                                   shape.half_length() + other.half_length);
+  const CylinderSupport difference(own.radius + other.radius,
+                                   own.half_length + other.half_length);
   // The origin seen from the centre of O - C.
   const Vector3 from_centre = c.offset() - o.offset();
   Vector3 away;
@@ -134,13 +134,16 @@ ClosedFormDepth closed_form_depth(const FramedBody& a, const FramedBody& b) {
   const ClosedFormDepth& inside = b_in_a.depth >= a_in_b.depth ? b_in_a : a_in_b;
   // A cylinder beside a body on a parallel axis: as A, or as B (A then leaves along the normal,
   // so B moves the other way).
-  ClosedFormDepth parallel = parallel_axes(a, b);
-  parallel.curved_a = true;
-  if (!(parallel.depth > -std::numeric_limits<Scalar>::infinity())) {
-    parallel = parallel_axes(b, a);
+  if (a.curved_kind() == CurvedKind::cylinder) {
+    ClosedFormDepth parallel = parallel_axes(a, b);
+    parallel.curved_a = true;
+    if (parallel.depth > inside.depth) return parallel;
+  } else if (b.curved_kind() == CurvedKind::cylinder) {
+    ClosedFormDepth parallel = parallel_axes(b, a);
     parallel.normal = -parallel.normal;
+    if (parallel.depth > inside.depth) return parallel;
   }
-  return parallel.depth > inside.depth ? parallel : inside;
+  return inside;
 }
 
 }  // namespace swarmcollide::detail
