@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "curved_supports.hpp"
+#include "meridian_depth.hpp"
 #include "normalise.hpp"
 
 namespace swarmcollide::detail {
@@ -41,11 +42,6 @@ ClosedFormDepth points_inside(const FramedBody& curved, const FramedBody& inner)
   // Inside the ball about the point that the bound proves the shape holds.
   least.surface = deepest_point + least.depth * least.normal;
   return least;
-}
-
-// The axis of a framed body in the frame: its rotation's last column.
-Vector3 frame_axis(const FramedBody& body) {
-  return body.rotated() ? Vector3(body.rotation().col(2)) : Vector3::UnitZ();
 }
 
 // A body symmetric about its own z axis as a cylinder (radius and half-length, in its units): a
@@ -137,13 +133,16 @@ ClosedFormDepth closed_form_depth(const FramedBody& a, const FramedBody& b) {
   if (a.curved_kind() == CurvedKind::cylinder) {
     ClosedFormDepth parallel = parallel_axes(a, b);
     parallel.curved_a = true;
-    if (parallel.depth > inside.depth) return parallel;
+    if (parallel.depth > 0) return parallel.depth > inside.depth ? parallel : inside;
   } else if (b.curved_kind() == CurvedKind::cylinder) {
     ClosedFormDepth parallel = parallel_axes(b, a);
     parallel.normal = -parallel.normal;
-    if (parallel.depth > inside.depth) return parallel;
+    if (parallel.depth > 0) return parallel.depth > inside.depth ? parallel : inside;
   }
-  return inside;
+  // Other bodies of revolution on parallel axes: their meridian sections.
+  if (!may_share_an_axis(a, b)) return inside;
+  ClosedFormDepth revolution = meridian_depth(a, b);
+  return revolution.depth > inside.depth ? revolution : inside;
 }
 
 }  // namespace swarmcollide::detail

@@ -59,6 +59,11 @@ inline Scalar depth_in_frame(Scalar framed, Scalar skew, Scalar farthest, Scalar
   return framed * (1 - skew) - 2 * skew * farthest - 2 * shortfall - kFrameRounding;
 }
 
+/// The axis of a framed body in the frame: its rotation's last column.
+inline Vector3 frame_axis(const FramedBody& body) {
+  return body.rotated() ? Vector3(body.rotation().col(2)) : Vector3::UnitZ();
+}
+
 /// The most points a polyhedron may have for closed_form_depth to read them (points and
 /// segments, the cores of spheres and capsules, boxes).
 inline constexpr int kClosedFormPoints = 64;
