@@ -661,7 +661,7 @@ motion : str
     constant rate about a fixed axis through it; ``"screw"``: the pose follows
     ``G(t) = G0 exp(t xi)``, xi the twist of ``G0^-1 G1`` (see ``time_of_impact``).
 time_tolerance : float
-    Largest width (> 0) of a first contact's bracket, as a fraction of the motion.
+    Largest width of a first contact's bracket, as a fraction of the motion, in (0, 1].
 max_iterations : int
     Distance queries at most per pair; past them the pair is reported uncertified.
 
@@ -676,7 +676,7 @@ SweepResult
 
 The bodies are left at ``poses`` whatever is found (``set_poses`` puts them back at the poses a
 row gives). Raises ValueError, moving nothing, for an unknown or repeated id, a pose that is not
-rigid or holds a NaN, lengths that differ, a non-positive ``time_tolerance`` or a method without
+rigid or holds a NaN, lengths that differ, a ``time_tolerance`` outside (0, 1] or a method without
 signed distances.
 
 Examples

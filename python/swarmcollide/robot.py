@@ -721,7 +721,8 @@ class Robot:
             C++ threads (default one per hardware thread, woken once the configurations left
             would take the calling thread over about 200 us alone); answers do not depend on it.
         time_tolerance : float
-            The largest width of a first contact's bracket, as a fraction of the motion (> 0).
+            The largest width of a first contact's bracket, as a fraction of the motion, in
+            (0, 1].
         max_iterations : int
             Distance queries per motion at most; past it the motion is answered uncertified.
         method, tolerance, seed

@@ -265,6 +265,9 @@ def test_bad_input_names_the_argument():
     for bad in (0.0, -1e-3, np.nan, np.inf):
         with pytest.raises(ValueError, match="time_tolerance must be a positive"):
             robot.check_motion(q, q, time_tolerance=bad)
+    for bad in (1.5, 2, 1e300):
+        with pytest.raises(ValueError, match="time_tolerance must be .* at most 1 "):
+            robot.check_motion(q, q, time_tolerance=bad)
     for bad in (True, "0.5", None):
         with pytest.raises(TypeError, match="time_tolerance must be a real number"):
             robot.check_motion(q, q, time_tolerance=bad)
