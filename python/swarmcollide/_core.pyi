@@ -1202,7 +1202,7 @@ class Scene:
         """
     def body(self, id: typing.SupportsInt | typing.SupportsIndex) -> typing.Any:
         """
-        The body with this id, in its own frame: a ConvexPolyhedron (a Sphere, Capsule, Box, Cylinder, Cone or Ellipsoid as its own class) or a CompoundBody (the core's, without a decomposition record).
+        The body with this id (an integer or the array of one id ``add`` returns for one body), in its own frame: a ConvexPolyhedron (a Sphere, Capsule, Box, Cylinder, Cone or Ellipsoid as its own class) or a CompoundBody (the core's, without a decomposition record).
         """
     def colliding_pairs(self) -> SceneResult:
         """
@@ -1236,7 +1236,7 @@ class Scene:
         """
     def pose(self, id: typing.SupportsInt | typing.SupportsIndex) -> numpy.typing.NDArray[numpy.float64]:
         """
-        The body's pose as a (4, 4) homogeneous transform.
+        The body's pose as a (4, 4) homogeneous transform; ``id`` an integer or the array of one id ``add`` returns for one body.
         """
     def remove(self, ids: typing.Any) -> None:
         """
