@@ -92,6 +92,7 @@ std::vector<ConvexPolyhedron> to_bodies(const py::handle& given) {
         "(m, n, 3) array, got " +
         type_name(bodies));
   }
+  refuse_masked(bodies, "bodies");
   py::object array;
   try {
     array = py::module_::import("numpy").attr("asarray")(bodies);

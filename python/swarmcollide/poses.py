@@ -107,6 +107,10 @@ def _real(value: npt.ArrayLike, name: str) -> np.ndarray:
     """``value`` as a float64 array; TypeError naming ``name`` unless it holds real numbers."""
     if isinstance(value, (str, bytes)):
         raise TypeError(f"{name} must be an array of real numbers, got {type(value).__name__}")
+    if isinstance(value, np.ma.MaskedArray):  # NumPy's conversion would drop its mask
+        raise TypeError(f"{name} is a NumPy masked array, whose mask would be ignored: pass "
+                        f"{name}.filled(value) with the value the masked entries should take, "
+                        "or a plain array")
     try:
         array = np.asarray(value)
     except ValueError as error:  # a ragged sequence
