@@ -1024,9 +1024,9 @@ class RobotModel:
         """
         True when links ``a`` and ``b`` are one rigid group or joined by one moving joint.
         """
-    def admit(self, q: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, n]"], limits: typing.Any = 'raise') -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
+    def admit(self, q: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, n]"], limits: typing.Any = 'raise', single: bool = False) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
         """
-        The configurations (m, dof) checked and brought within the limits ('raise', 'clamp' or 'wrap').
+        The configurations (m, dof) checked and brought within the limits ('raise', 'clamp' or 'wrap'); ``single``: q's one row is a configuration given alone, whose messages name its values (q[j]) rather than its row.
         """
     def check(self, pairs: typing.Annotated[numpy.typing.ArrayLike, numpy.int32, "[m, 2]"], q: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, n]"], query: Query, threads: typing.Any = None, gradient: bool = False, nearest: bool = True) -> RobotCheck:
         """

@@ -552,7 +552,7 @@ class Robot:
         if limits not in LIMIT_MODES:
             raise ValueError(f"limits must be one of {LIMIT_MODES}, got {limits!r}")
         try:
-            return self._model.admit(table, limits), single
+            return self._model.admit(table, limits, single), single
         except ValueError as error:
             # The core names the configurations q ("q[3], joint 'elbow': ..."); say which.
             message = str(error)

@@ -309,7 +309,7 @@ def test_a_checker_refuses_bad_options_and_configurations_by_name(arm):
         checker(np.zeros((2, 3)))
     with pytest.raises(ValueError, match="3 values per configuration.*got 2"):
         checker.collision_free([0.0, 0.0])
-    with pytest.raises(ValueError, match=r"q\[0\], joint 'elbow': nan"):
+    with pytest.raises(ValueError, match=r"q\[1\], joint 'elbow': nan"):
         checker([0.0, np.nan, 0.0])
     with pytest.raises(ValueError, match=r"q\[0\], joint .*limits='clamp'"):
         checker(np.full(3, 7.0))
