@@ -463,8 +463,29 @@ def test_bad_configurations_name_what_is_wrong(arm):
         arm.check([0.0, 0.0])
     with pytest.raises(ValueError, match=r"q\[1\], joint 'elbow': nan"):
         arm.distances([[0.0, 0.0, 0.0], [0.0, np.nan, 0.0]])
-    with pytest.raises(ValueError, match=r"q\[0\], joint 'slide': -inf is not a finite"):
+    # A configuration alone is named by its value's index, one of a table by its row.
+    with pytest.raises(ValueError, match=r"q\[2\], joint 'slide': -inf is not a finite"):
         arm.check([0.0, 0.0, -np.inf], limits="clamp")
+    for call in (arm.forward_kinematics, arm.geometry_poses, arm.distances, arm.checker()):
+        with pytest.raises(ValueError, match=r"^q\[2\], joint 'slide': 0.7 is outside"):
+            call([0.0, 0.0, 0.7])
+    with pytest.raises(ValueError, match=r"^q\[3\], joint 'slide': 0.7 is outside"):
+        arm.check(np.array([[0.0, 0.0, 0.0]] * 3 + [[0.0, 0.0, 0.7]]))
+    with pytest.raises(ValueError, match=r"^q must be an array of real numbers, \(dof,\) or "
+                       r"\(m, dof\): setting an array element with a sequence"):
+        arm.check([[0.0, 0.0, 0.0], [0.0]])
+    with pytest.raises(ValueError, match=r"^q must be an array of real numbers"):
+        arm.checker()([[0.0, 0.0], 0.0])
+    with pytest.raises(ValueError, match=r"^q1 must be an array of real numbers"):
+        arm.check_motion([0.0, 0.0, 0.0], [[0.0, 0.0, 0.0], [0.0]])
+    masked = np.ma.masked_array([0.0, 7.0, 0.0], mask=[False, True, False])
+    for call in (arm.check, arm.checker(), arm.checker().collision_free, arm.distances,
+                 arm.forward_kinematics, lambda q: arm.check_motion(np.zeros(3), q)):
+        with pytest.raises(TypeError, match=r"^q1? is a NumPy masked array, whose mask would be "
+                           r"ignored: pass q1?\.filled\(value\)"):
+            call(masked)
+    # Filled, it is a configuration like any other.
+    assert arm.check(masked.filled(0.0)).min_distance == arm.check(np.zeros(3)).min_distance
     with pytest.raises(ValueError, match=r"shape \(dof,\) or \(m, dof\)"):
         arm.check(np.zeros((2, 2, 3)))
     with pytest.raises(TypeError, match="real numbers"):
@@ -592,6 +613,13 @@ def test_proposed_pairs_are_those_that_always_or_never_collided(arm):
     assert proposal.never and set(proposal.never).isdisjoint(proposal.always)
     with pytest.raises(ValueError, match="samples must be a positive integer"):
         arm.propose_disabled_pairs(0)
+    # Refused before any memory is asked for (the configurations alone would take 24 TB).
+    with pytest.raises(ValueError, match="samples must be at most 1,000,000, got 1,000,000,000,000"):
+        arm.propose_disabled_pairs(10**12)
+    with pytest.raises(ValueError, match="seed must be a non-negative integer, got -1"):
+        arm.propose_disabled_pairs(10, seed=-1)
+    with pytest.raises(TypeError, match="seed must be an integer, got str"):
+        arm.propose_disabled_pairs(10, seed="1")
 
 
 def test_collision_mesh_makes_compound_bodies_of_the_meshes_convex_pieces(urdf, tmp_path):
