@@ -433,6 +433,10 @@ def test_mjcf_planes_raise_unless_skipped(tmp_path):
         sc.Robot.from_mjcf(path)
     robot = sc.Robot.from_mjcf(path, skip_planes=True)
     assert robot.pairs == ()
+    assert sc.Robot.from_mjcf(path, skip_planes=np.True_).pairs == ()
+    for flag in ("yes", "no", 1, None):
+        with pytest.raises(TypeError, match="skip_planes must be True or False, got"):
+            sc.Robot.from_mjcf(path, skip_planes=flag)
     path.write_text('<mujoco><worldbody><body name="b"><joint name="loose" type="ball"/>'
                     '<geom type="sphere" size="0.1"/></body></worldbody></mujoco>')
     with pytest.raises(ValueError, match="joint 'loose'"):
@@ -522,6 +526,11 @@ def test_bad_files_name_the_link_or_joint(tmp_path):
         sc.Robot.from_urdf(urdf, package_dirs=[tmp_path], collision="hulls")
     with pytest.raises(ValueError, match="not found"):
         sc.Robot.from_urdf(tmp_path / "none.urdf")
+    (tmp_path / "folder.urdf").mkdir()
+    with pytest.raises(ValueError, match="URDF file .*folder.urdf' is a directory; pass the "):
+        sc.Robot.from_urdf(tmp_path / "folder.urdf")
+    with pytest.raises(ValueError, match="MJCF file .*folder.urdf' is a directory; pass the "):
+        sc.Robot.from_mjcf(tmp_path / "folder.urdf")
     # A shape's own refusal, an empty <geometry> (yourdfpy fails on it without saying where) and
     # a mesh scale that is not finite name their link.
     for bad, message in [('<sphere radius="-0.1"/>', "link 'arm': radius must be"),
