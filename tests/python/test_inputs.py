@@ -431,3 +431,11 @@ def test_a_sample_count_that_is_not_an_integer_is_refused_by_name():
     with pytest.raises(TypeError, match="samples must be an integer, got float"):
         sc.CompoundBody.from_mesh(box_mesh(), decompose="hull", samples=2.5, cache=False,
                                   progress=False)
+    # Refused before trimesh asks for the memory (a point per sample: 24 TB here).
+    with pytest.raises(ValueError, match="samples must be at most 10,000,000 .* got "
+                       "1,000,000,000,000"):
+        sc.CompoundBody.from_mesh(box_mesh(), decompose="hull", samples=10**12, cache=False,
+                                  progress=False)
+    with pytest.raises(ValueError, match="samples must be at most 10,000,000"):
+        sc.measure_deviation(box_mesh(), sc.CompoundBody([box_mesh().vertices]),
+                             samples=10**12)
