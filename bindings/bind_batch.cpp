@@ -25,6 +25,7 @@ std::optional<Stack> as_stack(const py::handle& bodies, const char* name) {
   if (!py::isinstance<py::array>(bodies) || bodies.cast<py::array>().ndim() != 3) {
     return std::nullopt;
   }
+  refuse_masked(bodies, name);
   const py::array array = bodies.cast<py::array>();
   const char kind = array.dtype().kind();
   if (kind != 'f' && kind != 'i' && kind != 'u') {
@@ -125,7 +126,8 @@ std::size_t rows_given(const Side& side) {
 // in place.
 std::optional<py::array> doubles_in_place(const py::handle& value,
                                           std::initializer_list<py::ssize_t> shape) {
-  if (!py::isinstance<py::array>(value)) return std::nullopt;
+  // A masked array goes the general way (to_poses), which refuses it.
+  if (!py::isinstance<py::array>(value) || is_masked(value)) return std::nullopt;
   const py::array array = py::reinterpret_borrow<py::array>(value);
   if (!array.dtype().is(py::dtype::of<Scalar>()) || !(array.flags() & py::array::c_style) ||
       array.ndim() != static_cast<py::ssize_t>(shape.size()) ||

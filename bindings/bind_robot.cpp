@@ -486,12 +486,24 @@ ValueError
           "adjacent, and each obstacle against each link's geometry.")
       .def(
           "admit",
-          [](const RobotModel& model, const Configurations& q, const py::object& limits) {
-            return admit_configurations(model, q, limit_mode(limits));
+          [](const RobotModel& model, const Configurations& q, const py::object& limits,
+             const Given<bool>& single) {
+            if (!to_bool(single.value, "single")) {
+              return admit_configurations(model, q, limit_mode(limits));
+            }
+            if (q.rows() != 1) {
+              throw py::value_error("single=True takes one configuration, a (1, dof) table; got " +
+                                    std::to_string(q.rows()) + " rows");
+            }
+            Configurations admitted(1, q.cols());
+            admit_configuration(model, q.data(), q.cols(), limit_mode(limits), kSingleConfiguration,
+                                admitted.data());
+            return admitted;
           },
-          py::arg("q"), py::arg("limits") = "raise",
+          py::arg("q"), py::arg("limits") = "raise", py::arg("single") = false,
           "The configurations (m, dof) checked and brought within the limits ('raise', 'clamp' "
-          "or 'wrap').")
+          "or 'wrap'); ``single``: q's one row is a configuration given alone, whose messages "
+          "name its values (q[j]) rather than its row.")
       .def(
           "forward_kinematics",
           [](const RobotModel& model, const Configurations& given) {

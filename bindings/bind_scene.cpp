@@ -49,6 +49,21 @@ std::vector<BodyId> to_ids(const py::handle& ids, const char* name) {
   return result;
 }
 
+// One id as `name`: an integer (Python's or NumPy's), or an integer array holding one, as `add`
+// returns the id of one body; TypeError for another array or type, ValueError for a negative id.
+BodyId to_id(const py::handle& value, const char* name) {
+  if (!is_array(value)) return to_count(value, name, 0);
+  const auto array = py::reinterpret_borrow<py::array>(value);
+  const char kind = array.dtype().kind();
+  if ((kind == 'i' || kind == 'u') && array.size() == 1) {
+    return to_count(array.attr("item")(), name, 0);
+  }
+  throw py::type_error(std::string(name) + " must be one id (an integer, or an array of one id as "
+                       "add returns for one body), got an array of " +
+                       std::to_string(array.size()) + " " +
+                       std::string(py::str(array.dtype())) + " values; pass one of its items");
+}
+
 // Pairs of ids: one pair (a, b) or an (m, 2) array-like.
 std::vector<std::pair<BodyId, BodyId>> to_id_pairs(const py::handle& pairs, const char* name) {
   const py::array array = py::module_::import("numpy").attr("asarray")(pairs);
@@ -77,6 +92,7 @@ std::vector<ConvexPolyhedron> to_bodies(const py::handle& given) {
         "(m, n, 3) array, got " +
         type_name(bodies));
   }
+  refuse_masked(bodies, "bodies");
   py::object array;
   try {
     array = py::module_::import("numpy").attr("asarray")(bodies);
@@ -661,7 +677,7 @@ motion : str
     constant rate about a fixed axis through it; ``"screw"``: the pose follows
     ``G(t) = G0 exp(t xi)``, xi the twist of ``G0^-1 G1`` (see ``time_of_impact``).
 time_tolerance : float
-    Largest width (> 0) of a first contact's bracket, as a fraction of the motion.
+    Largest width of a first contact's bracket, as a fraction of the motion, in (0, 1].
 max_iterations : int
     Distance queries at most per pair; past them the pair is reported uncertified.
 
@@ -676,7 +692,7 @@ SweepResult
 
 The bodies are left at ``poses`` whatever is found (``set_poses`` puts them back at the poses a
 row gives). Raises ValueError, moving nothing, for an unknown or repeated id, a pose that is not
-rigid or holds a NaN, lengths that differ, a non-positive ``time_tolerance`` or a method without
+rigid or holds a NaN, lengths that differ, a ``time_tolerance`` outside (0, 1] or a method without
 signed distances.
 
 Examples
@@ -752,7 +768,16 @@ against each other: a box resting on a face gives its four corners.
           "ids", [](const Scene& s) { return id_array(s.ids()); }, "The bodies' ids, ascending.")
       .def("__len__", &Scene::size)
       .def("__contains__",
-           [](const Scene& s, const py::object& id) {
+           [](const Scene& s, const py::object& given) {
+             // An id as body and pose take it (an array of one id too); anything else, an
+             // array of several ids included, is no body of the scene.
+             py::object id = given;
+             if (is_array(given)) {
+               const auto array = py::reinterpret_borrow<py::array>(given);
+               const char kind = array.dtype().kind();
+               if ((kind != 'i' && kind != 'u') || array.size() != 1) return false;
+               id = array.attr("item")();
+             }
              return PyIndex_Check(id.ptr()) && !PyBool_Check(id.ptr()) &&
                     py::int_(id) >= py::int_(0) &&
                     py::int_(id) <= py::int_(std::numeric_limits<BodyId>::max()) &&
@@ -761,21 +786,23 @@ against each other: a box resting on a face gives its four corners.
       .def(
           "body",
           [](const Scene& s, const Given<BodyId>& given) -> py::object {
-            const BodyId id = to_count(given.value, "id", 0);
+            const BodyId id = to_id(given.value, "id");
             if (const CompoundBody* compound = s.compound(id)) return py::cast(*compound);
             return added_body(s.body(id));
           },
           py::arg("id"),
-          "The body with this id, in its own frame: a ConvexPolyhedron (a Sphere, Capsule, Box, "
+          "The body with this id (an integer or the array of one id ``add`` returns for one "
+          "body), in its own frame: a ConvexPolyhedron (a Sphere, Capsule, Box, "
           "Cylinder, Cone or Ellipsoid as its own class) or a CompoundBody (the core's, without a "
           "decomposition record).")
       .def(
           "pose",
           [](const Scene& s, const Given<BodyId>& id) {
-            return homogeneous(s.pose(to_count(id.value, "id", 0)));
+            return homogeneous(s.pose(to_id(id.value, "id")));
           },
           py::arg("id"),
-          "The body's pose as a (4, 4) homogeneous transform.")
+          "The body's pose as a (4, 4) homogeneous transform; ``id`` an integer or the array "
+          "of one id ``add`` returns for one body.")
       .def_property_readonly("method",
                              [](const Scene& s) { return method_name(s.options().query.method); })
       .def_property_readonly("broadphase",

@@ -18,6 +18,27 @@ bool is_rotation(const py::handle& value) {
          !PyTuple_Check(value.ptr()) && py::hasattr(value, "as_matrix");
 }
 
+bool is_masked(const py::handle& value) {
+  // A plain ndarray, the usual argument, is told apart by its type alone: only a subclass pays
+  // for the lookup.
+  if (!py::isinstance<py::array>(value) ||
+      Py_TYPE(value.ptr()) == reinterpret_cast<PyTypeObject*>(
+                                  py::detail::npy_api::get().PyArray_Type_)) {
+    return false;
+  }
+  static PyObject* const masked =
+      py::object(py::module_::import("numpy.ma").attr("MaskedArray")).release().ptr();
+  return PyObject_IsInstance(value.ptr(), masked) == 1;
+}
+
+void refuse_masked(const py::handle& value, const std::string& name) {
+  if (is_masked(value)) {
+    throw py::type_error(name + " is a NumPy masked array, whose mask would be ignored: pass " +
+                         name + ".filled(value) with the value the masked entries should take, "
+                         "or a plain array");
+  }
+}
+
 namespace {
 
 std::string shape_of(const py::array& array) {
@@ -36,6 +57,7 @@ py::array_t<Scalar, py::array::c_style | py::array::forcecast> real_array(
   if (py::isinstance<py::str>(value) || py::isinstance<py::bytes>(value)) {
     throw py::type_error(name + " must be " + expected + ", got " + type_name(value));
   }
+  refuse_masked(value, name);
   py::array array;
   try {
     array = py::module_::import("numpy").attr("asarray")(value);
@@ -310,7 +332,10 @@ namespace {
 
 // `given` when it is a C-contiguous float64 array of exactly this shape, else null.
 const Scalar* float64_data(const py::handle& given, std::initializer_list<py::ssize_t> shape) {
-  if (!py::isinstance<py::array_t<Scalar, py::array::c_style>>(given)) return nullptr;
+  // A masked array goes the general way, which refuses it.
+  if (!py::isinstance<py::array_t<Scalar, py::array::c_style>>(given) || is_masked(given)) {
+    return nullptr;
+  }
   const auto array = py::reinterpret_borrow<py::array>(given);
   if (array.ndim() != static_cast<py::ssize_t>(shape.size())) return nullptr;
   py::ssize_t axis = 0;

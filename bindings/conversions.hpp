@@ -20,6 +20,14 @@ namespace swarmcollide::bindings {
 
 namespace py = pybind11;
 
+/// True for a NumPy masked array (numpy.ma.MaskedArray): an ndarray whose mask NumPy's
+/// conversions drop, so that its masked entries would be read as numbers.
+bool is_masked(const py::handle& value);
+
+/// TypeError naming `name` for a masked array (is_masked), saying to pass `name.filled(...)` or a
+/// plain array.
+void refuse_masked(const py::handle& value, const std::string& name);
+
 /// An `(n, 3)` array-like as a vertex matrix; TypeError for non-numeric input, ValueError for a
 /// wrong shape. `name` is the argument's name in the messages.
 VertexMatrix to_vertex_matrix(const py::handle& points, const char* name);

@@ -1024,9 +1024,9 @@ class RobotModel:
         """
         True when links ``a`` and ``b`` are one rigid group or joined by one moving joint.
         """
-    def admit(self, q: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, n]"], limits: typing.Any = 'raise') -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
+    def admit(self, q: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, n]"], limits: typing.Any = 'raise', single: bool = False) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
         """
-        The configurations (m, dof) checked and brought within the limits ('raise', 'clamp' or 'wrap').
+        The configurations (m, dof) checked and brought within the limits ('raise', 'clamp' or 'wrap'); ``single``: q's one row is a configuration given alone, whose messages name its values (q[j]) rather than its row.
         """
     def check(self, pairs: typing.Annotated[numpy.typing.ArrayLike, numpy.int32, "[m, 2]"], q: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, n]"], query: Query, threads: typing.Any = None, gradient: bool = False, nearest: bool = True) -> RobotCheck:
         """
@@ -1202,7 +1202,7 @@ class Scene:
         """
     def body(self, id: typing.SupportsInt | typing.SupportsIndex) -> typing.Any:
         """
-        The body with this id, in its own frame: a ConvexPolyhedron (a Sphere, Capsule, Box, Cylinder, Cone or Ellipsoid as its own class) or a CompoundBody (the core's, without a decomposition record).
+        The body with this id (an integer or the array of one id ``add`` returns for one body), in its own frame: a ConvexPolyhedron (a Sphere, Capsule, Box, Cylinder, Cone or Ellipsoid as its own class) or a CompoundBody (the core's, without a decomposition record).
         """
     def colliding_pairs(self) -> SceneResult:
         """
@@ -1236,7 +1236,7 @@ class Scene:
         """
     def pose(self, id: typing.SupportsInt | typing.SupportsIndex) -> numpy.typing.NDArray[numpy.float64]:
         """
-        The body's pose as a (4, 4) homogeneous transform.
+        The body's pose as a (4, 4) homogeneous transform; ``id`` an integer or the array of one id ``add`` returns for one body.
         """
     def remove(self, ids: typing.Any) -> None:
         """
@@ -1265,7 +1265,7 @@ class Scene:
             constant rate about a fixed axis through it; ``"screw"``: the pose follows
             ``G(t) = G0 exp(t xi)``, xi the twist of ``G0^-1 G1`` (see ``time_of_impact``).
         time_tolerance : float
-            Largest width (> 0) of a first contact's bracket, as a fraction of the motion.
+            Largest width of a first contact's bracket, as a fraction of the motion, in (0, 1].
         max_iterations : int
             Distance queries at most per pair; past them the pair is reported uncertified.
         
@@ -1280,7 +1280,7 @@ class Scene:
         
         The bodies are left at ``poses`` whatever is found (``set_poses`` puts them back at the poses a
         row gives). Raises ValueError, moving nothing, for an unknown or repeated id, a pose that is not
-        rigid or holds a NaN, lengths that differ, a non-positive ``time_tolerance`` or a method without
+        rigid or holds a NaN, lengths that differ, a ``time_tolerance`` outside (0, 1] or a method without
         signed distances.
         
         Examples

@@ -15,7 +15,7 @@ import argparse
 import json
 import sys
 from pathlib import Path
-from typing import Callable, Optional, Sequence
+from typing import Callable, Dict, Optional, Sequence, Tuple
 
 import numpy as np
 
@@ -264,7 +264,8 @@ def _decompose(arguments: argparse.Namespace) -> int:
     return 0
 
 
-def _parser() -> argparse.ArgumentParser:
+def _parser() -> Tuple[argparse.ArgumentParser, Dict[str, argparse.ArgumentParser]]:
+    """The command line's parser, and each verb's own (whose errors show that verb's usage)."""
     from .queries import METHODS
 
     parser = argparse.ArgumentParser(prog="swarmcollide", description=__doc__,
@@ -329,7 +330,7 @@ def _parser() -> argparse.ArgumentParser:
         "--plot", metavar="FILE", help="save a picture of the last frame there (needs matplotlib)"
     )
     robot_cli.add_parser(commands, _integer, _SEED)
-    return parser
+    return parser, commands.choices
 
 
 def _check_picture(parser: argparse.ArgumentParser, path: Optional[str]) -> None:
@@ -367,8 +368,10 @@ def _check_core(parser: argparse.ArgumentParser, check: Callable[[], object]) ->
 
 
 def main(argv: Optional[Sequence[str]] = None) -> int:
-    parser = _parser()
-    arguments = parser.parse_args(argv)
+    top, verbs = _parser()
+    arguments = top.parse_args(argv)
+    # Errors found after parsing are the verb's: its usage, not the list of verbs.
+    parser = verbs[arguments.command]
     if arguments.command in ("distance", "scene", "robot"):
         _check_picture(parser, arguments.plot)
     if arguments.command == "robot":

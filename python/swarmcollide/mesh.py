@@ -37,6 +37,10 @@ coarser), one convex hull, or None for a mesh whose connected components are con
 DEFAULT_SAMPLES = 4000
 """Surface points sampled on each side when the parts' distance from the mesh is measured."""
 
+MAX_SAMPLES = 10_000_000
+"""The most surface points sampled on each side: each is held (a point, a distance) at once, a
+few hundred bytes with trimesh's sampling, so more would ask for gigabytes."""
+
 PRESETS: Dict[str, Dict[str, Any]] = {
     "fast": {"threshold": 0.1, "resolution": 1000, "preprocess_resolution": 30,
              "mcts_nodes": 8, "mcts_iterations": 30, "mcts_max_depth": 2},
@@ -172,6 +176,8 @@ def load_mesh(source: MeshLike):
     if isinstance(source, (str, os.PathLike)):
         path = Path(source)
         name = f"mesh file {str(source)!r}"
+        if path.is_dir():
+            raise ValueError(f"cannot read {name}: it is a directory; pass a mesh file")
         if not path.is_file():
             raise ValueError(f"cannot read {name}: no such file")
         try:
@@ -182,6 +188,13 @@ def load_mesh(source: MeshLike):
                 f"cannot read {name}: {error or type(error).__name__} (is it a mesh file? "
                 "OBJ, STL, PLY, GLB and OFF are read)"
             ) from error
+        if isinstance(loaded, trimesh.Trimesh) and len(loaded.faces) == 0:
+            # trimesh reads bytes that are no mesh (random, or another format under a mesh's
+            # suffix) as a mesh of no triangles, without an error.
+            raise ValueError(
+                f"{name} cannot be read as a mesh: no triangles could be read from it (is it a "
+                "mesh file? OBJ, STL, PLY, GLB and OFF are read; an empty one holds none)"
+            )
         checked = _checked(loaded, name)
         # STL and others repeat each triangle's corners: merged, the mesh's edges are shared.
         checked.merge_vertices()
@@ -480,6 +493,7 @@ class CompoundBody(_core.CompoundBody):
                                  resolution, seed)
         if not (isinstance(max_faces, int) and max_faces >= 4):
             raise ValueError(f"max_faces must be an integer >= 4, got {max_faces!r}")
+        _check_samples(samples)  # before a decomposition that can take minutes
         settings = [decompose, parameters, samples,
                     max_faces if decompose is not None else None]
         folder = _cache_folder(cache)
@@ -556,6 +570,8 @@ class CompoundBody(_core.CompoundBody):
             raise TypeError(
                 f"path must be a path to a parts file (.npz), got {type(path).__name__}"
             )
+        if Path(path).is_dir():
+            raise ValueError(f"parts file {str(path)!r} is a directory; pass an .npz file")
         try:
             loaded = _read_parts(Path(path))
         except ValueError as error:  # its decomposition record: name the file and the field
@@ -601,10 +617,7 @@ def measure_deviation(mesh, body: _core.CompoundBody, *, samples: int = DEFAULT_
     (True, 0.0)
     """
     trimesh = _trimesh()
-    if isinstance(samples, bool) or not isinstance(samples, (int, np.integer)):
-        raise TypeError(f"samples must be an integer, got {type(samples).__name__}")
-    if samples < 1:
-        raise ValueError(f"samples must be at least 1, got {samples}")
+    _check_samples(samples)
     parts = body.parts
     # Points on the mesh's surface, and their exact distance to the union of the parts.
     on_mesh, _ = trimesh.sample.sample_surface(mesh, samples, seed=seed)
@@ -641,6 +654,17 @@ def measure_deviation(mesh, body: _core.CompoundBody, *, samples: int = DEFAULT_
         "samples": int(samples),
         "spacing": float(np.sqrt(area / samples)),
     }
+
+
+def _check_samples(samples: int) -> None:
+    """TypeError or ValueError naming ``samples`` unless it is an integer in [1, MAX_SAMPLES]."""
+    if isinstance(samples, bool) or not isinstance(samples, (int, np.integer)):
+        raise TypeError(f"samples must be an integer, got {type(samples).__name__}")
+    if samples < 1:
+        raise ValueError(f"samples must be at least 1, got {samples}")
+    if samples > MAX_SAMPLES:
+        raise ValueError(f"samples must be at most {MAX_SAMPLES:,} (points on each surface), got "
+                         f"{samples:,}")
 
 
 def _in_chunks(distance: Callable[[Any, np.ndarray], np.ndarray], mesh,

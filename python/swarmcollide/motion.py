@@ -83,7 +83,8 @@ def time_of_impact(
         bounding-ball diameters (between 2/3 and 2 times the pair's size where they touch):
         bodies within ``tolerance x size`` of each other touch.
     time_tolerance : float
-        Largest width (> 0) of the bracket ``[t_lower, t_upper]`` of a first contact.
+        Largest width of the bracket ``[t_lower, t_upper]`` of a first contact, a fraction of
+        the motion in (0, 1].
     max_iterations : int
         Distance queries at most; past them the answer is uncertified (and errs on the side of
         contact).
@@ -106,7 +107,8 @@ def time_of_impact(
     ------
     ValueError
         For a pose that is not rigid or holds a NaN (naming ``pose_a start``, ...), a
-        ``tolerance`` or ``time_tolerance`` that is not positive, or a method without distances.
+        ``tolerance`` that is not positive, a ``time_tolerance`` outside (0, 1], or a method
+        without distances.
 
     Examples
     --------

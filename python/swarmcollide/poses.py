@@ -73,12 +73,19 @@ def pose_from_quaternion(
         raise ValueError(f"quaternion must have shape (4,) or (m, 4), got {q.shape}")
     if not np.isfinite(q).all():
         raise ValueError("quaternion has a NaN or infinite component")
-    norm = np.linalg.norm(q, axis=-1, keepdims=True)
+    # Scaled by the largest component first: the squares of a component of 1e300 overflow, and
+    # its norm would be said as inf.
+    scale = np.abs(q).max(axis=-1, keepdims=True)
+    scale[scale == 0] = 1
+    with np.errstate(over="ignore"):  # a norm beyond the largest double is inf, said below
+        norm = scale * np.linalg.norm(q / scale, axis=-1, keepdims=True)
     off = np.abs(norm - 1) > UNIT_TOLERANCE
     if off.any():
         at = "" if q.ndim == 1 else f"[{int(np.flatnonzero(off)[0])}]"
+        value = float(norm.flat[np.flatnonzero(off)[0]])
+        shown = f"{value:.6g}" if np.isfinite(value) else "above the largest double (1.8e308)"
         raise ValueError(
-            f"quaternion{at} has norm {float(norm.flat[np.flatnonzero(off)[0]]):.6g}: a rotation's "
+            f"quaternion{at} has norm {shown}: a rotation's "
             f"quaternion has norm 1 (within {UNIT_TOLERANCE:g}); divide it by its norm yourself "
             "if it is a rotation"
         )
@@ -107,6 +114,10 @@ def _real(value: npt.ArrayLike, name: str) -> np.ndarray:
     """``value`` as a float64 array; TypeError naming ``name`` unless it holds real numbers."""
     if isinstance(value, (str, bytes)):
         raise TypeError(f"{name} must be an array of real numbers, got {type(value).__name__}")
+    if isinstance(value, np.ma.MaskedArray):  # NumPy's conversion would drop its mask
+        raise TypeError(f"{name} is a NumPy masked array, whose mask would be ignored: pass "
+                        f"{name}.filled(value) with the value the masked entries should take, "
+                        "or a plain array")
     try:
         array = np.asarray(value)
     except ValueError as error:  # a ragged sequence

@@ -34,6 +34,26 @@ Bools = Any
 Reals = Any
 Ints = Any
 
+MAX_SAMPLES = 1_000_000
+"""The most configurations ``propose_disabled_pairs`` samples and the ``robot`` verb checks
+(``--samples``): a hundred times MoveIt's default of 10,000; more would ask for memory (a value
+per sample and pair, or per sample) that neither needs."""
+
+
+def _array(q: npt.ArrayLike, name: str) -> np.ndarray:
+    """``q`` as a NumPy array. Raises ``TypeError`` for a masked array (NumPy's conversion drops
+    its mask, so its masked entries would be read as joint values) and ``ValueError`` naming
+    ``name`` for a sequence NumPy cannot make an array of (rows of different lengths)."""
+    if isinstance(q, np.ma.MaskedArray):
+        raise TypeError(f"{name} is a NumPy masked array, whose mask would be ignored: pass "
+                        f"{name}.filled(value) with the value the masked entries should take, "
+                        "or a plain array")
+    try:
+        return np.asarray(q)
+    except ValueError as error:  # a ragged sequence
+        raise ValueError(f"{name} must be an array of real numbers, (dof,) or (m, dof): "
+                         f"{error}") from None
+
 
 @dataclass(frozen=True)
 class RobotCheck:
@@ -128,18 +148,28 @@ class RobotChecker:
     checks; a call that finds its buffers in use by another thread takes a copy of its own).
     """
 
-    __slots__ = ("_core", "_limits", "_pair_names", "_dof", "_description")
+    __slots__ = ("_core", "_limits", "_pair_names", "_dof", "_description", "_made_of")
 
     def __init__(self, core: _core.RobotChecker, limits: str, pair_names: np.ndarray, dof: int,
-                 description: str) -> None:
+                 description: str, made_of: Tuple[_core.RobotModel, np.ndarray, _core.Query]
+                 ) -> None:
         self._core = core
         self._limits = limits
         self._pair_names = pair_names
         self._dof = dof
         self._description = description
+        self._made_of = made_of  # the model, pairs and query the core was made of, to pickle
+
+    def __reduce__(self):
+        # The core's checker holds buffers and refers to its model: it travels as what it was
+        # made of (each of which pickles) and is made again, validated as when it was first.
+        model, pairs, query = self._made_of
+        return (_unpickled_checker, (model, pairs, query, self._core.nearest, self._core.gradient,
+                                     self._limits, self._pair_names, self._dof,
+                                     self._description))
 
     def _configuration(self, q: npt.ArrayLike) -> np.ndarray:
-        values = q if type(q) is np.ndarray else np.asarray(q)
+        values = q if type(q) is np.ndarray else _array(q, "q")
         if values.dtype.kind not in "fiu":
             raise TypeError(f"q must hold real numbers, got an array of dtype {values.dtype}")
         if values.ndim != 1:
@@ -166,6 +196,17 @@ class RobotChecker:
 
     def __repr__(self) -> str:
         return f"RobotChecker({self._description})"
+
+
+def _unpickled_checker(model: _core.RobotModel, pairs: np.ndarray, query: _core.Query,
+                       nearest: bool, gradient: bool, limits: str, pair_names: np.ndarray,
+                       dof: int, description: str) -> RobotChecker:
+    """A pickled ``RobotChecker`` made again (``RobotChecker.__reduce__``)."""
+    if limits not in LIMIT_MODES:
+        raise ValueError(f"RobotChecker state: limits must be one of {LIMIT_MODES}, got "
+                         f"{limits!r}")
+    core = _core.RobotChecker(model, pairs, query, nearest, gradient)
+    return RobotChecker(core, limits, pair_names, dof, description, (model, pairs, query))
 
 
 @dataclass(frozen=True)
@@ -540,7 +581,7 @@ class Robot:
 
     def _configurations(self, q: npt.ArrayLike, limits: str,
                         name: str = "q") -> Tuple[np.ndarray, bool]:
-        values = np.asarray(q)
+        values = _array(q, name)
         if values.dtype.kind not in "fiu":
             raise TypeError(f"{name} must hold real numbers, got an array of dtype "
                             f"{values.dtype}")
@@ -552,7 +593,7 @@ class Robot:
         if limits not in LIMIT_MODES:
             raise ValueError(f"limits must be one of {LIMIT_MODES}, got {limits!r}")
         try:
-            return self._model.admit(table, limits), single
+            return self._model.admit(table, limits, single), single
         except ValueError as error:
             # The core names the configurations q ("q[3], joint 'elbow': ..."); say which.
             message = str(error)
@@ -637,7 +678,7 @@ class Robot:
         if gradient and not nearest:
             raise ValueError("gradient needs the nearest pair: pass nearest=True with "
                              "gradient=True")
-        configurations = np.asarray(q)
+        configurations = _array(q, "q")
         if (configurations.ndim == 1 and configurations.dtype.kind in "fiu"
                 and limits in LIMIT_MODES):
             # A planner's check of one state, by the checker of these options (kept for the
@@ -682,12 +723,13 @@ class Robot:
         if gradient and not nearest:
             raise ValueError("gradient needs the nearest pair: pass nearest=True with "
                              "gradient=True")
-        core = _core.RobotChecker(self._model, self._pair_table,
-                                  query(method, tolerance=tolerance, seed=seed), nearest, gradient)
+        queries = query(method, tolerance=tolerance, seed=seed)
+        core = _core.RobotChecker(self._model, self._pair_table, queries, nearest, gradient)
         description = (f"{len(self._pair_table)} pairs, dof {self.dof}, limits={limits!r}, "
                        f"nearest={nearest}, gradient={gradient}, method={method!r}, "
                        f"tolerance={tolerance:g}, seed={seed}")
-        return RobotChecker(core, limits, self._pair_names, self.dof, description)
+        return RobotChecker(core, limits, self._pair_names, self.dof, description,
+                            (self._model, self._pair_table, queries))
 
     def check_motion(self, q0: npt.ArrayLike, q1: npt.ArrayLike, *, limits: str = "raise",
                      threads: Optional[int] = None,
@@ -721,7 +763,8 @@ class Robot:
             C++ threads (default one per hardware thread, woken once the configurations left
             would take the calling thread over about 200 us alone); answers do not depend on it.
         time_tolerance : float
-            The largest width of a first contact's bracket, as a fraction of the motion (> 0).
+            The largest width of a first contact's bracket, as a fraction of the motion, in
+            (0, 1].
         max_iterations : int
             Distance queries per motion at most; past it the motion is answered uncertified.
         method, tolerance, seed
@@ -801,6 +844,14 @@ class Robot:
         """
         if isinstance(samples, bool) or not isinstance(samples, int) or samples < 1:
             raise ValueError(f"samples must be a positive integer, got {samples!r}")
+        if samples > MAX_SAMPLES:
+            raise ValueError(f"samples must be at most {MAX_SAMPLES:,}, got {samples:,}: each "
+                             "sample holds a value per checked pair")
+        # NumPy's message for a negative seed names no argument.
+        if isinstance(seed, (bool, np.bool_)) or not isinstance(seed, (int, np.integer)):
+            raise TypeError(f"seed must be an integer, got {type(seed).__name__}")
+        if seed < 0:
+            raise ValueError(f"seed must be a non-negative integer, got {seed}")
         lower, upper = np.clip(self.limits, -np.pi, np.pi).T
         q = np.random.default_rng(seed).uniform(lower, upper, size=(samples, self.dof))
         colliding = self._model.distances(self._pair_table, self._model.admit(q, "raise"),

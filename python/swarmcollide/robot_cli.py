@@ -12,6 +12,8 @@ from typing import Any, Callable, Dict, Optional
 
 import numpy as np
 
+from .robot import MAX_SAMPLES
+
 URDF_SUFFIXES = (".urdf",)
 MJCF_SUFFIXES = (".xml", ".mjcf")
 
@@ -29,7 +31,8 @@ def add_parser(commands, integer: Callable[..., Callable[[str], int]], seed) -> 
         "distances, how many answers are certified and the time per configuration.")
     robot.add_argument("model", help="a URDF file (.urdf) or an MJCF file (.xml, .mjcf)")
     robot.add_argument("--samples", type=integer(1), default=1000,
-                       help="random configurations to check (default 1000)")
+                       help=f"random configurations to check (default 1000, at most "
+                       f"{MAX_SAMPLES:,})")
     robot.add_argument("--seed", type=seed, default=0, help="seed of the configurations")
     robot.add_argument("--threads", type=integer(1, 1024), default=None,
                        help="C++ threads (default: one per hardware thread)")
@@ -48,6 +51,11 @@ def add_parser(commands, integer: Callable[..., Callable[[str], int]], seed) -> 
 
 def check_arguments(parser: argparse.ArgumentParser, arguments: argparse.Namespace) -> None:
     """Usage errors found before any file is read."""
+    if arguments.samples > MAX_SAMPLES:
+        # Each configuration and its answer are kept for the report: more would ask for memory
+        # (gigabytes) before the first check.
+        parser.error(f"argument --samples: must be at most {MAX_SAMPLES:,}, got "
+                     f"{arguments.samples:,}")
     suffix = Path(arguments.model).suffix.lower()
     if suffix not in URDF_SUFFIXES + MJCF_SUFFIXES:
         parser.error(f"argument model: {arguments.model!r} must end in .urdf (URDF) or .xml or "

@@ -40,7 +40,12 @@ def load_mjcf(path: PathLike, skip_planes: bool = False) -> ModelTables:
 
     See ``Robot.from_mjcf`` for the parameters.
     """
+    # As the core checks its flags (to_bool): "no" or 0 is no answer to a yes-or-no question.
+    if not isinstance(skip_planes, (bool, np.bool_)):
+        raise TypeError(f"skip_planes must be True or False, got {type(skip_planes).__name__}")
     mujoco = _mujoco()
+    if Path(path).is_dir():
+        raise ValueError(f"MJCF file '{path}' is a directory; pass the model's .xml file")
     if not Path(path).is_file():
         raise ValueError(f"MJCF file '{path}' not found")
     try:

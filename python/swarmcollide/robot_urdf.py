@@ -67,6 +67,8 @@ def load_urdf(path: PathLike, package_dirs: Optional[Sequence[PathLike]] = None,
     """
     yourdfpy = _yourdfpy()
     urdf_path = Path(path)
+    if urdf_path.is_dir():
+        raise ValueError(f"URDF file '{path}' is a directory; pass the robot's .urdf file")
     if not urdf_path.is_file():
         raise ValueError(f"URDF file '{path}' not found")
     collision_bodies(collision)  # the mode is checked before anything is read

@@ -156,6 +156,14 @@ def test_wrong_options_are_usage_errors_before_any_work(mesh_files, capsys):
         assert usage.value.code == 2, argv
         last = capsys.readouterr().err.strip().splitlines()[-1]
         assert re.search(message, last), (argv, last)
+    # An option's value refused after parsing is the verb's error, shown with the verb's usage.
+    with pytest.raises(SystemExit) as usage:
+        main(["distance", box, box, "--tolerance", "-1"])
+    assert usage.value.code == 2
+    err = capsys.readouterr().err
+    assert err.startswith("usage: swarmcollide distance ")
+    assert err.strip().splitlines()[-1].startswith(
+        "swarmcollide distance: error: argument --tolerance: tolerance must")
 
 
 def test_an_unusable_parts_file_is_one_line_and_exit_1(mesh_files, capsys):

@@ -312,6 +312,14 @@ def test_quaternions_in_either_order_give_scipys_rotation():
         (([1, 0, 0, 0],), {"order": b"wxyz"}, TypeError, "order must be a string"),
         (([0, 0, 0, 0],), {"order": "wxyz"}, ValueError, "quaternion has norm 0"),
         (([2, 0, 0, 0],), {"order": "wxyz"}, ValueError, "quaternion has norm 2"),
+        (([1e300, 0, 0, 0],), {"order": "wxyz"}, ValueError, "quaternion has norm 1e.300: "),
+        (([1e300, 1e300, 1e300, 1e-300],), {"order": "xyzw"}, ValueError,
+         "quaternion has norm 1.73205e.300: "),
+        (([1e308] * 4,), {"order": "wxyz"}, ValueError,
+         r"quaternion has norm above the largest double \(1.8e308\)"),
+        ((np.ma.masked_array([1.0, 0, 0, 0], mask=[0, 0, 0, 1]),), {"order": "wxyz"}, TypeError,
+         r"quaternion is a NumPy masked array, whose mask would be ignored: pass "
+         r"quaternion.filled\(value\)"),
         (([[1, 0, 0, 0], [0, 0, 0, 0]],), {"order": "xyzw"}, ValueError, r"quaternion\[1\]"),
         (([1, 0, 0, np.nan],), {"order": "wxyz"}, ValueError, "NaN or infinite"),
         (([1, 0, 0],), {"order": "wxyz"}, ValueError, r"shape \(4,\) or \(m, 4\)"),
@@ -379,6 +387,41 @@ def test_complex_directions_and_weights_are_type_errors_naming_the_argument():
     assert body.support(np.array([1, 1, 1], dtype=np.float32)).tolist() == [1, 1, 1]
 
 
+def test_masked_arrays_are_refused_naming_the_argument_and_the_fix():
+    # NumPy's conversions drop a mask: the masked entries (here a far point, and a pose's
+    # scaling) would be read as numbers without a word.
+    cube = np.ma.masked_array(np.vstack([CUBE, [[100.0, 0, 0]]]))
+    cube[-1] = np.ma.masked
+    shifted = np.ma.masked_array(np.eye(4), mask=np.eye(4, dtype=bool) & False)
+    shifted[0, 3] = 3.0
+    shifted[0, 0] = np.ma.masked
+    stack = np.ma.masked_array(np.stack([CUBE, CUBE]))
+    poses = np.ma.masked_array(np.tile(np.eye(4), (2, 1, 1)))
+    scene = sc.Scene()
+    for call, name in (
+        (lambda: sc.distance(cube, CUBE + 3), "a"),
+        (lambda: sc.collide(CUBE, cube), "b"),
+        (lambda: sc.Query("exact").distance(CUBE, cube), "b"),
+        (lambda: sc.ConvexPolyhedron(cube), "points"),
+        (lambda: sc.distance(CUBE, CUBE, pose_b=shifted), "pose_b"),
+        (lambda: sc.distance(CUBE, CUBE, pose_b=(shifted[:3, :3], [3.0, 0, 0])),
+         "pose_b's rotation"),
+        (lambda: sc.distance_many(stack, [CUBE, CUBE]), "As"),
+        (lambda: sc.distance_many([cube, CUBE], [CUBE, CUBE]), r"As\[0\]"),
+        (lambda: sc.distance_many(CUBE, CUBE, poses_b=poses), "poses_b"),
+        (lambda: scene.add(cube), "bodies"),
+        (lambda: scene.add(CUBE, shifted), "poses"),
+        (lambda: sc.time_of_impact(CUBE, CUBE, pose_b=(np.eye(4), shifted)), "pose_b end"),
+    ):
+        with pytest.raises(TypeError, match=f"^{name} is a NumPy masked array, whose mask would be "
+                           f"ignored: pass {name}.filled"):
+            call()
+    assert len(scene) == 0
+    # Filled (or given as its data), it is an array like any other.
+    assert sc.distance(cube.filled(0.0), CUBE + [3, 0, 0]).distance == 2.0
+    assert sc.distance(CUBE, CUBE + [3, 0, 0], pose_b=np.asarray(np.eye(4))).distance == 2.0
+
+
 def test_a_mesh_given_whole_as_parts_points_to_from_mesh():
     with pytest.raises(TypeError, match="CompoundBody.from_mesh decomposes a mesh into parts"):
         sc.CompoundBody(box_mesh())
@@ -388,3 +431,11 @@ def test_a_sample_count_that_is_not_an_integer_is_refused_by_name():
     with pytest.raises(TypeError, match="samples must be an integer, got float"):
         sc.CompoundBody.from_mesh(box_mesh(), decompose="hull", samples=2.5, cache=False,
                                   progress=False)
+    # Refused before trimesh asks for the memory (a point per sample: 24 TB here).
+    with pytest.raises(ValueError, match="samples must be at most 10,000,000 .* got "
+                       "1,000,000,000,000"):
+        sc.CompoundBody.from_mesh(box_mesh(), decompose="hull", samples=10**12, cache=False,
+                                  progress=False)
+    with pytest.raises(ValueError, match="samples must be at most 10,000,000"):
+        sc.measure_deviation(box_mesh(), sc.CompoundBody([box_mesh().vertices]),
+                             samples=10**12)

@@ -61,6 +61,16 @@ def test_unreadable_empty_non_finite_and_flat_meshes_are_refused(tmp_path):
     # trimesh reads some garbage as a mesh of no triangles.
     with pytest.raises(ValueError, match="garbage.stl' (is empty|cannot)|cannot read mesh file"):
         sc.load_mesh(garbage)
+    # Random bytes under a mesh's suffix are a file that is no mesh, not an empty mesh.
+    noise = tmp_path / "noise.stl"
+    noise.write_bytes(np.random.default_rng(0).bytes(2000))
+    with pytest.raises(ValueError, match=r"^mesh file .*noise.stl' cannot be read as a mesh: no "
+                       r"triangles could be read from it \(is it a mesh file\?"):
+        sc.load_mesh(noise)
+    (tmp_path / "folder.stl").mkdir()
+    with pytest.raises(ValueError, match=r"^cannot read mesh file .*folder.stl': it is a "
+                       "directory"):
+        sc.load_mesh(tmp_path / "folder.stl")
     empty = tmp_path / "empty.obj"
     empty.write_text("# nothing\n")
     with pytest.raises(ValueError, match="empty|not a 3-D"):
@@ -128,6 +138,9 @@ def test_parts_files_that_are_not_parts_files_are_refused_naming_the_file(tmp_pa
         sc.CompoundBody.load(nan)
     with pytest.raises(TypeError, match="path must be a path to a parts file"):
         sc.CompoundBody.load(None)
+    (tmp_path / "folder.npz").mkdir()
+    with pytest.raises(ValueError, match="parts file .*folder.npz' is a directory"):
+        sc.CompoundBody.load(tmp_path / "folder.npz")
     np.savez(tmp_path / "good.npz", **good)
     assert len(sc.CompoundBody.load(tmp_path / "good.npz")) == 2
 

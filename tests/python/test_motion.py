@@ -316,6 +316,13 @@ def test_bad_input_names_the_argument():
         sc.time_of_impact(cube, cube, pose_b=(nan, np.eye(4)))
     with pytest.raises(ValueError, match="time_tolerance"):
         sc.time_of_impact(cube, cube, time_tolerance=0)
+    # A fraction of the motion: a bracket is never wider than 1, so more is a mistaken unit.
+    for beyond in (1 + 1e-12, 2, 1e300):
+        for call in (sc.time_of_impact, sc.time_of_impact_many):
+            with pytest.raises(ValueError, match="time_tolerance must be a positive fraction of "
+                               "the motion's duration, at most 1"):
+                call(cube, cube, time_tolerance=beyond)
+    assert sc.time_of_impact(cube, cube, time_tolerance=1).certified
     with pytest.raises(ValueError, match="tolerance"):
         sc.time_of_impact(cube, cube, tolerance=0)
     with pytest.raises(ValueError, match="'dual'"):

@@ -264,6 +264,26 @@ def test_a_robot_answers_alike_after_pickling():
     assert model.link_names == robot.model.link_names
 
 
+@pytest.mark.parametrize("options", [{}, {"nearest": False}, {"gradient": True, "limits": "clamp",
+                                                                "method": "exact", "seed": 3}])
+def test_a_robot_checker_answers_alike_after_pickling_or_copying(options):
+    robot = two_link_robot().add_obstacle(sc.Sphere(0.2), at(0.0, 1.5), name="ball")
+    checker = robot.checker(**options)
+    q = np.random.default_rng(7).uniform(-3, 3, size=(10, 2))
+    for again in (round_trip(checker), copy.copy(checker), copy.deepcopy(checker)):
+        assert type(again) is sc.RobotChecker and repr(again) == repr(checker)
+        for row in q:
+            mine, theirs = again(row), checker(row)
+            for field, value in vars(theirs).items():
+                np.testing.assert_array_equal(getattr(mine, field), value, err_msg=field)
+            assert again.collision_free(row) == checker.collision_free(row)
+    # It answers the robot it was made for, not one changed after: as the original does.
+    robot.disable_pairs([("upper", "ball")])
+    mine, theirs = round_trip(checker)([0.0, 1.5]), checker([0.0, 1.5])
+    for field, value in vars(theirs).items():
+        np.testing.assert_array_equal(getattr(mine, field), value, err_msg=field)
+
+
 def busy_scene(warm_start):
     """A scene that has lived: bodies added and removed, moved, filtered and excluded."""
     rng = np.random.default_rng(6)

@@ -309,7 +309,7 @@ def test_a_checker_refuses_bad_options_and_configurations_by_name(arm):
         checker(np.zeros((2, 3)))
     with pytest.raises(ValueError, match="3 values per configuration.*got 2"):
         checker.collision_free([0.0, 0.0])
-    with pytest.raises(ValueError, match=r"q\[0\], joint 'elbow': nan"):
+    with pytest.raises(ValueError, match=r"q\[1\], joint 'elbow': nan"):
         checker([0.0, np.nan, 0.0])
     with pytest.raises(ValueError, match=r"q\[0\], joint .*limits='clamp'"):
         checker(np.full(3, 7.0))
@@ -433,6 +433,10 @@ def test_mjcf_planes_raise_unless_skipped(tmp_path):
         sc.Robot.from_mjcf(path)
     robot = sc.Robot.from_mjcf(path, skip_planes=True)
     assert robot.pairs == ()
+    assert sc.Robot.from_mjcf(path, skip_planes=np.True_).pairs == ()
+    for flag in ("yes", "no", 1, None):
+        with pytest.raises(TypeError, match="skip_planes must be True or False, got"):
+            sc.Robot.from_mjcf(path, skip_planes=flag)
     path.write_text('<mujoco><worldbody><body name="b"><joint name="loose" type="ball"/>'
                     '<geom type="sphere" size="0.1"/></body></worldbody></mujoco>')
     with pytest.raises(ValueError, match="joint 'loose'"):
@@ -463,8 +467,29 @@ def test_bad_configurations_name_what_is_wrong(arm):
         arm.check([0.0, 0.0])
     with pytest.raises(ValueError, match=r"q\[1\], joint 'elbow': nan"):
         arm.distances([[0.0, 0.0, 0.0], [0.0, np.nan, 0.0]])
-    with pytest.raises(ValueError, match=r"q\[0\], joint 'slide': -inf is not a finite"):
+    # A configuration alone is named by its value's index, one of a table by its row.
+    with pytest.raises(ValueError, match=r"q\[2\], joint 'slide': -inf is not a finite"):
         arm.check([0.0, 0.0, -np.inf], limits="clamp")
+    for call in (arm.forward_kinematics, arm.geometry_poses, arm.distances, arm.checker()):
+        with pytest.raises(ValueError, match=r"^q\[2\], joint 'slide': 0.7 is outside"):
+            call([0.0, 0.0, 0.7])
+    with pytest.raises(ValueError, match=r"^q\[3\], joint 'slide': 0.7 is outside"):
+        arm.check(np.array([[0.0, 0.0, 0.0]] * 3 + [[0.0, 0.0, 0.7]]))
+    with pytest.raises(ValueError, match=r"^q must be an array of real numbers, \(dof,\) or "
+                       r"\(m, dof\): setting an array element with a sequence"):
+        arm.check([[0.0, 0.0, 0.0], [0.0]])
+    with pytest.raises(ValueError, match=r"^q must be an array of real numbers"):
+        arm.checker()([[0.0, 0.0], 0.0])
+    with pytest.raises(ValueError, match=r"^q1 must be an array of real numbers"):
+        arm.check_motion([0.0, 0.0, 0.0], [[0.0, 0.0, 0.0], [0.0]])
+    masked = np.ma.masked_array([0.0, 7.0, 0.0], mask=[False, True, False])
+    for call in (arm.check, arm.checker(), arm.checker().collision_free, arm.distances,
+                 arm.forward_kinematics, lambda q: arm.check_motion(np.zeros(3), q)):
+        with pytest.raises(TypeError, match=r"^q1? is a NumPy masked array, whose mask would be "
+                           r"ignored: pass q1?\.filled\(value\)"):
+            call(masked)
+    # Filled, it is a configuration like any other.
+    assert arm.check(masked.filled(0.0)).min_distance == arm.check(np.zeros(3)).min_distance
     with pytest.raises(ValueError, match=r"shape \(dof,\) or \(m, dof\)"):
         arm.check(np.zeros((2, 2, 3)))
     with pytest.raises(TypeError, match="real numbers"):
@@ -501,6 +526,11 @@ def test_bad_files_name_the_link_or_joint(tmp_path):
         sc.Robot.from_urdf(urdf, package_dirs=[tmp_path], collision="hulls")
     with pytest.raises(ValueError, match="not found"):
         sc.Robot.from_urdf(tmp_path / "none.urdf")
+    (tmp_path / "folder.urdf").mkdir()
+    with pytest.raises(ValueError, match="URDF file .*folder.urdf' is a directory; pass the "):
+        sc.Robot.from_urdf(tmp_path / "folder.urdf")
+    with pytest.raises(ValueError, match="MJCF file .*folder.urdf' is a directory; pass the "):
+        sc.Robot.from_mjcf(tmp_path / "folder.urdf")
     # A shape's own refusal, an empty <geometry> (yourdfpy fails on it without saying where) and
     # a mesh scale that is not finite name their link.
     for bad, message in [('<sphere radius="-0.1"/>', "link 'arm': radius must be"),
@@ -592,6 +622,13 @@ def test_proposed_pairs_are_those_that_always_or_never_collided(arm):
     assert proposal.never and set(proposal.never).isdisjoint(proposal.always)
     with pytest.raises(ValueError, match="samples must be a positive integer"):
         arm.propose_disabled_pairs(0)
+    # Refused before any memory is asked for (the configurations alone would take 24 TB).
+    with pytest.raises(ValueError, match="samples must be at most 1,000,000, got 1,000,000,000,000"):
+        arm.propose_disabled_pairs(10**12)
+    with pytest.raises(ValueError, match="seed must be a non-negative integer, got -1"):
+        arm.propose_disabled_pairs(10, seed=-1)
+    with pytest.raises(TypeError, match="seed must be an integer, got str"):
+        arm.propose_disabled_pairs(10, seed="1")
 
 
 def test_collision_mesh_makes_compound_bodies_of_the_meshes_convex_pieces(urdf, tmp_path):

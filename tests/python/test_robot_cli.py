@@ -107,6 +107,8 @@ def test_a_missing_model_is_one_line_and_exit_1(tmp_path, capsys):
 @pytest.mark.parametrize("arguments,message", [
     (["model.obj"], "must end in .urdf (URDF) or .xml or .mjcf (MJCF)"),
     (["model.urdf", "--samples", "0"], "argument --samples: must be an integer at least 1"),
+    (["model.urdf", "--samples", str(10**12)],
+     "argument --samples: must be at most 1,000,000, got 1,000,000,000,000"),
     (["model.xml", "--collision", "mesh"], "--collision and --package-dir apply to URDF files"),
     (["model.urdf", "--collision", "hulls"], "argument --collision: invalid choice"),
     (["model.urdf", "--plot", "/no/such/folder/x.png"], "does not exist"),

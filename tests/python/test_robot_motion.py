@@ -254,7 +254,8 @@ def test_bad_input_names_the_argument():
         robot.check_motion(np.zeros((2, 4)), np.zeros((3, 4)))
     with pytest.raises(ValueError, match=r"q1\[1\], joint 'slide': nan is not a finite number"):
         robot.check_motion(q, [q, [0, 0, np.nan, 0]])
-    with pytest.raises(ValueError, match=r"q0\[0\], joint 'shoulder': -2 is outside its limits"):
+    # A configuration given alone is named by the value's index: -2 is q0[1].
+    with pytest.raises(ValueError, match=r"q0\[1\], joint 'shoulder': -2 is outside its limits"):
         robot.check_motion([0, -2, 0, 0], q)
     clamped = robot.check_motion([0, -2, 0, 0], q, limits="clamp")
     assert clamped.certified
@@ -264,6 +265,9 @@ def test_bad_input_names_the_argument():
         robot.check_motion(["a"] * 4, q)
     for bad in (0.0, -1e-3, np.nan, np.inf):
         with pytest.raises(ValueError, match="time_tolerance must be a positive"):
+            robot.check_motion(q, q, time_tolerance=bad)
+    for bad in (1.5, 2, 1e300):
+        with pytest.raises(ValueError, match="time_tolerance must be .* at most 1 "):
             robot.check_motion(q, q, time_tolerance=bad)
     for bad in (True, "0.5", None):
         with pytest.raises(TypeError, match="time_tolerance must be a real number"):

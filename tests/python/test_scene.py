@@ -233,6 +233,30 @@ def test_results_are_numpy_arrays_with_a_repr():
     assert scene.ids.tolist() == [0, 1, 2]
 
 
+def test_the_id_add_returns_for_one_body_is_taken_wherever_one_id_is():
+    scene = sc.Scene()
+    scene.add(CUBE)
+    placed = transform(np.eye(3), [4, 0, 0])
+    ids = scene.add(sc.Box([0.5] * 3), placed)  # an array of one id
+    assert ids.shape == (1,)
+    for given in (ids, ids.astype(np.int32), ids.reshape(1, 1), ids[0], int(ids[0])):
+        np.testing.assert_array_equal(scene.pose(given), placed)
+        assert type(scene.body(given)) is sc.Box
+        assert given in scene
+    assert np.array([7]) not in scene and np.array([0, 1]) not in scene
+    for name, call in (("id", scene.pose), ("id", scene.body)):
+        with pytest.raises(TypeError, match=f"^{name} must be one id .* got an array of 2 int64 "
+                           "values; pass one of its items"):
+            call(np.array([0, 1]))
+        with pytest.raises(TypeError, match=f"^{name} must be one id .* got an array of 1 "
+                           "float64 values"):
+            call(np.array([1.0]))
+        with pytest.raises(ValueError, match="no body with id 7"):
+            call(np.array([7]))
+        with pytest.raises(ValueError, match="id must be at least 0"):
+            call(np.array([-1]))
+
+
 def contacts_of(b, pose):
     """Contacts of the unit cube A and B at ``pose``, asked both ways round."""
     forward, backward = sc.Scene(), sc.Scene()

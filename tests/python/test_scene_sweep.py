@@ -182,6 +182,8 @@ def test_bad_input_moves_nothing_and_says_why():
         scene.sweep(ball, scaled)
     with pytest.raises(ValueError, match="time_tolerance"):
         scene.sweep(ball, end, time_tolerance=0)
+    with pytest.raises(ValueError, match="time_tolerance must be .* at most 1 "):
+        scene.sweep(ball, end, time_tolerance=2)
     with pytest.raises(ValueError, match="'linear' or 'screw'"):
         scene.sweep(ball, end, motion="helix")
     with pytest.raises(TypeError, match="max_iterations must be an integer"):

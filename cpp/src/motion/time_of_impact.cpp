@@ -491,9 +491,12 @@ void TimeOfImpactOptions::validate() const {
         "tolerance must be positive for a motion: the poses between its ends are rounded, so "
         "contact can only be proven to within a tolerance (got 0)");
   }
-  if (!(time_tolerance > 0) || !std::isfinite(time_tolerance)) {
-    throw std::invalid_argument("time_tolerance must be a positive, finite fraction of the "
-                                "motion's duration (got " + detail::number_text(time_tolerance) + ")");
+  // A bracket within [0, 1] is never wider than the whole motion: a width above 1 would ask for
+  // nothing and read as a mistaken unit (seconds, a percentage).
+  if (!(time_tolerance > 0 && time_tolerance <= 1)) {
+    throw std::invalid_argument("time_tolerance must be a positive fraction of the motion's "
+                                "duration, at most 1 (got " + detail::number_text(time_tolerance) +
+                                ")");
   }
   if (max_iterations < 1) {
     throw std::invalid_argument("max_iterations must be at least 1 (got " +

@@ -15,18 +15,28 @@ constexpr Scalar kTwoPi = 6.283185307179586476925286766559;
 // Joint values to the last digit that tells them apart: a limit missed by a roundoff must show.
 std::string number(Scalar x) { return detail::shortest_number_text(x); }
 
-std::string where(std::size_t row, const Joint& joint) {
-  return "q[" + std::to_string(row) + "], joint '" + joint.name + "'";
+// Where a value is, as the caller indexes what they gave: a table's row (its joint named), or a
+// configuration given alone's own index (q[0] of a single configuration is its first value, not
+// the row it was copied to).
+struct Place {
+  std::size_t row;
+  int value;
+};
+
+std::string where(Place place, const Joint& joint) {
+  const std::size_t index =
+      place.row == kSingleConfiguration ? static_cast<std::size_t>(place.value) : place.row;
+  return "q[" + std::to_string(index) + "], joint '" + joint.name + "'";
 }
 
-[[noreturn]] void outside(std::size_t row, const Joint& joint, Scalar value, const char* fix) {
-  throw std::invalid_argument(where(row, joint) + ": " + number(value) +
+[[noreturn]] void outside(Place place, const Joint& joint, Scalar value, const char* fix) {
+  throw std::invalid_argument(where(place, joint) + ": " + number(value) +
                               " is outside its limits [" + number(joint.lower) + ", " +
                               number(joint.upper) + "]; " + fix);
 }
 
 // `value` within the joint's limits as `mode` says.
-Scalar admitted(Scalar value, const Joint& joint, LimitMode mode, std::size_t row) {
+Scalar admitted(Scalar value, const Joint& joint, LimitMode mode, Place row) {
   if (!std::isfinite(value)) {
     throw std::invalid_argument(where(row, joint) + ": " + number(value) +
                                 " is not a finite number");
@@ -168,7 +178,7 @@ void admit_configuration(const RobotModel& model, const Scalar* q, Eigen::Index 
   require_dof_values(model, count);
   for (int d = 0; d < model.dof(); ++d) {
     const Joint& joint = model.joints()[model.moving_joints()[d]];
-    admitted_q[d] = admitted(q[d], joint, mode, row);
+    admitted_q[d] = admitted(q[d], joint, mode, {row, d});
   }
 }
 

@@ -61,7 +61,7 @@ RobotChecker::RobotChecker(const RobotModel& model, std::vector<GeometryPair> pa
 
 const RobotCheckRow& RobotChecker::admit_and_check(const Scalar* q, Eigen::Index count,
                                                    LimitMode mode) {
-  admit_configuration(model_, q, count, mode, 0, admitted_.data());
+  admit_configuration(model_, q, count, mode, kSingleConfiguration, admitted_.data());
   return check(admitted_.data());
 }
 

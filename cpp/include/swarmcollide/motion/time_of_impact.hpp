@@ -42,7 +42,7 @@ struct TimeOfImpactOptions {
   /// over the motion, and between 2/3 and 2 times the pair's size (the queries' measure) at any
   /// pose where they touch.
   QueryOptions query = exact_queries();
-  /// Largest width of the bracket [t_lower, t_upper] of a first contact, > 0.
+  /// Largest width of the bracket [t_lower, t_upper] of a first contact, in (0, 1].
   Scalar time_tolerance = kDefaultTimeTolerance;
   /// Distance queries at most; past it the answer is returned uncertified.
   int max_iterations = kDefaultMotionIterations;

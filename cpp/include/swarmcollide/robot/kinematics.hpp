@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstddef>
 #include <vector>
 
 #include "swarmcollide/geometry/pose.hpp"
@@ -32,8 +33,13 @@ Pose compose(const Pose& outer, const Pose& inner);
 Configurations admit_configurations(const RobotModel& model, const Configurations& q,
                                     LimitMode mode);
 
+/// admit_configuration's `row` for a configuration given alone (`(dof,)`, not a table's row): its
+/// messages then name the value's own index, "q[2], joint 'elbow'".
+inline constexpr std::size_t kSingleConfiguration = static_cast<std::size_t>(-1);
+
 /// One configuration, `count` values at `q`, admitted as admit_configurations admits row `row`
-/// (the row its messages name), into `admitted_q` (dof values; it may be `q`).
+/// (the row its messages name; kSingleConfiguration: a configuration given alone), into
+/// `admitted_q` (dof values; it may be `q`).
 void admit_configuration(const RobotModel& model, const Scalar* q, Eigen::Index count,
                          LimitMode mode, std::size_t row, Scalar* admitted_q);
 

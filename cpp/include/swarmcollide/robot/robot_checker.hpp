@@ -47,7 +47,7 @@ class RobotChecker {
 
   /// The same for `count` values at `q`, admitted first as `mode` says; throws as
   /// admit_configurations does (a wrong count, a value not finite or beyond the limits), naming
-  /// the configuration q[0].
+  /// the value q[j] and its joint (kSingleConfiguration).
   const RobotCheckRow& admit_and_check(const Scalar* q, Eigen::Index count, LimitMode mode);
 
   const std::vector<GeometryPair>& pairs() const { return pairs_; }
