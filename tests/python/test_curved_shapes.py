@@ -132,7 +132,8 @@ def test_bodies_of_revolution_on_parallel_axes_are_certified(method, exponent):
     # A cone in a bore, a ball on an ellipsoid's axis, coaxial capsules and cones: B - A is a body
     # of revolution, deepest along a whole circle of directions where the axes coincide, which
     # only its meridian section proves (before, 1-10 ms a query and bounds 1e-7 to 2e-5 of the
-    # size apart, uncertified). Axes a roundoff apart (poses along a robot's chain) as well.
+    # size apart, uncertified), here to 1e-12. Axes a roundoff apart (poses along a robot's
+    # chain) as well.
     rng = np.random.default_rng(abs(exponent) + 26)
     unit = 10.0 ** exponent
     kinds = list(REVOLUTIONS)
@@ -150,10 +151,11 @@ def test_bodies_of_revolution_on_parallel_axes_are_certified(method, exponent):
         pose_a = (turn, [0.0, 0.0, 0.0])
         pose_b = (wobble @ turn @ np.diag([1.0, flip, flip]), turn @ offset * unit)
         a, b = REVOLUTIONS[kind_a](size_a * unit), REVOLUTIONS[kind_b](size_b * unit)
-        result = sc.signed_distance(a, b, pose_a=pose_a, pose_b=pose_b, method=method)
-        assert_encloses(result, expected * unit, 4 * unit)
+        result = sc.signed_distance(a, b, pose_a=pose_a, pose_b=pose_b, method=method,
+                                    tolerance=1e-12)
+        assert_encloses(result, expected * unit, 4 * unit, tolerance=1e-12)
         np.testing.assert_allclose(result.point_b - result.point_a,
-                                   result.distance * result.direction, atol=4e-9 * unit)
+                                   result.distance * result.direction, atol=4e-12 * unit)
 
 
 @pytest.mark.parametrize("method", CURVED_METHODS)

@@ -16,12 +16,10 @@ namespace {
 using Vector2 = Eigen::Matrix<Scalar, 2, 1>;
 
 // The most corners of a section's polygon, and the gap (frame units, where the pair's size is 1
-// to 2) below which an edge's own support point settles the edge. Near the deepest direction of
-// a curved section the edges are then some 1e-5 long, where the rounding of the distance to the
-// edge's line (growing as its length shrinks) is about the gap: together some 3e-11, a thirtieth
-// of the default tolerance.
+// to 2) below which an edge's own support point settles the edge: some 1e-14, so that a curved
+// section's bound is proven to a hundredth of the finest tolerance worth asking (1e-12).
 constexpr int kMostCorners = 96;
-constexpr Scalar kSettledGap = 0x1p-36;
+constexpr Scalar kSettledGap = 0x1p-46;
 
 Scalar sign_of(Scalar x) { return static_cast<Scalar>((x > 0) - (x < 0)); }
 
@@ -193,15 +191,14 @@ SectionDepth section_depth(const Support& support, const Vector2& q, Scalar erro
       return;
     }
     const Vector2 from = corner.point - q;
-    const Vector2 to = next - q;
     corner.normal = Vector2(edge.y(), -edge.x()) / length;
-    // Twice the triangle's area over its base. The differences from q, the products and the
-    // quotient round by some 6u of |from| |to| / length and 3u of the distance; the line of two
-    // near corners is the less determined the nearer they are.
-    corner.distance = (from.x() * to.y() - from.y() * to.x()) / length;
-    const Scalar far = from.norm();
-    const Scalar other = to.norm();
-    corner.rounding = 16 * kRoundoff * (far * other / length + far + other);
+    // The edge's cross product with the corner seen from q, over its length. The edge is taken
+    // between the corners themselves, within a roundoff of its own length (from q, as the
+    // difference of the corners' vectors from q, it was within a roundoff of their lengths, and
+    // the bound of a corner a millionth of the size from the next some 1e-10 short): the
+    // differences, the products and the quotient round by some 7u of |from|.
+    corner.distance = (from.x() * edge.y() - from.y() * edge.x()) / length;
+    corner.rounding = 12 * kRoundoff * from.norm();
   };
   for (int i = 0; i + 1 < count; ++i) measure(i);
   const auto nearest = [&] {
