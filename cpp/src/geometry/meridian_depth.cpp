@@ -7,7 +7,6 @@
 
 #include "curved_supports.hpp"
 #include "normalise.hpp"
-#include "unit_direction.hpp"
 
 namespace swarmcollide::detail {
 
