@@ -162,14 +162,16 @@ struct SectionDepth {
 // kSettledGap.
 template <typename Support>
 SectionDepth section_depth(const Support& support, const Vector2& q, Scalar error) {
-  // Corner i and the edge from it to the next corner (none from the last).
+  // Corner i and the edge from it to the next corner (none from the last, whose edge fields
+  // keep these values: it is copied as the corners shift).
   struct Corner {
     Vector2 direction;  // the one the point is the support point along
     Vector2 point;
-    Vector2 normal;     // the edge's outward unit normal
-    Scalar distance;    // from q to the edge's line, positive inside; infinite for no edge
-    Scalar rounding;    // a bound on the rounding of `distance`
-    bool settled;
+    Vector2 normal = Vector2::Zero();  // the edge's outward unit normal
+    // From q to the edge's line, positive inside; infinite for no edge.
+    Scalar distance = std::numeric_limits<Scalar>::infinity();
+    Scalar rounding = 0;  // a bound on the rounding of `distance`
+    bool settled = false;
   };
   std::array<Corner, kMostCorners> corners;
   int count = 0;
