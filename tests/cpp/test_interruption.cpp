@@ -4,10 +4,12 @@
 #include <gtest/gtest.h>
 
 #include <thread>
+#include <vector>
 
 #include "contract.hpp"
 #include "paper_cases.hpp"
 #include "swarmcollide/interruption.hpp"
+#include "swarmcollide/queries/batch.hpp"
 
 namespace swarmcollide::testing {
 namespace {
@@ -116,6 +118,38 @@ TEST(Interruption, GuardsNestAndStayOnTheirThread) {
   EXPECT_EQ(outer.calls, 0);
   query.distance(paper_a(), paper_b_separate());
   EXPECT_GT(outer.calls, 0);
+}
+
+// A batch's rows check too: the caller's check alone is called, and when it says to stop, the
+// other threads' rows stop at their next poll (each of these rows would run for minutes).
+TEST(Interruption, ABatchStopsOnEveryThread) {
+  const std::vector<ConvexPolyhedron> as(8, paper_a());
+  const std::vector<ConvexPolyhedron> bs(8, paper_b_separate());
+  QueryOptions ipso = with_method(Method::ipso);
+  ipso.swarm.swarm_size = 20000;
+  ipso.swarm.max_iterations = 1000000;
+  CountingCheck stopping;
+  stopping.stop_at = 3;
+  const InterruptionGuard guard(&CountingCheck::check, &stopping);
+  EXPECT_THROW(distance_many(as, bs, ipso, {2}), Interrupted);
+  EXPECT_EQ(stopping.calls, 3);
+}
+
+// A check that never stops changes no row of a batch.
+TEST(Interruption, ABatchAnswersAsWithoutACheck) {
+  const std::vector<ConvexPolyhedron> as(40, paper_a());
+  const std::vector<ConvexPolyhedron> bs(40, paper_b_separate());
+  const QueryOptions ipso = with_method(Method::ipso);
+  const BatchResult plain = distance_many(as, bs, ipso, {2});
+  CountingCheck counting;
+  const InterruptionGuard guard(&CountingCheck::check, &counting);
+  const BatchResult checked = distance_many(as, bs, ipso, {2});
+  EXPECT_GT(counting.calls, 0);
+  EXPECT_EQ(plain.distance, checked.distance);
+  EXPECT_EQ(plain.lower_bound, checked.lower_bound);
+  EXPECT_EQ(plain.point_a, checked.point_a);
+  EXPECT_EQ(plain.point_b, checked.point_b);
+  EXPECT_TRUE((plain.iterations == checked.iterations).all());
 }
 
 }  // namespace

@@ -15,7 +15,7 @@ import pytest
 # million iterations; a hundred penalty subproblems of a million L-BFGS iterations, 4 s each),
 # through each path into the core (the module's
 # functions through Python, a Query's methods in C++, the pybind11 methods a subclass reaches,
-# a compound body's branch and bound).
+# a compound body's branch and bound, batches on two threads).
 _SCENARIO = """
 import os, signal, threading, time
 import numpy as np
@@ -40,6 +40,9 @@ calls = {
     "Query.collision": lambda: ipso.collision(a, b, escalate=False),
     "subclass": lambda: Subclass("ipso", tolerance=0.0, **hours).distance(a, b),
     "compound": lambda: ipso.distance(sc.CompoundBody([a]), sc.CompoundBody([b])),
+    "batch": lambda: ipso.distance_many([a] * 8, [b] * 8, threads=2),
+    "batch of stacks": lambda: sc.distance_many(np.array([a] * 8, float), np.array([b] * 8, float),
+                                                method="pso", tolerance=0.0, threads=2, **hours),
 }
 quick = sc.Query("ipso", seed=3)
 expected = quick.distance(a, b)
@@ -87,7 +90,7 @@ def test_long_solves_stop_at_ctrl_c():
         pytest.fail(f"a solve ignored the signal; the child printed: {expired.stdout!r}")
     assert done.returncode == 0, done.stderr
     lines = done.stdout.splitlines()
-    assert len(lines) == 8, done.stdout
+    assert len(lines) == 10, done.stdout
     for line in lines:
         assert "interrupted after" in line, done.stdout
         # The signal comes at 0.3 s; the solvers look at it every 20 ms of their iterations

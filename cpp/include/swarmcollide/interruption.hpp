@@ -20,8 +20,9 @@ class Interrupted : public std::exception {
 using InterruptionCheck = bool (*)(void* context);
 
 /// Installs `check` as the calling thread's interruption check while it lives, and restores the
-/// one before when it goes (guards nest). Only the installing thread's solves call it: the
-/// threads of a batch run without one. Without a guard, solves check nothing (one branch).
+/// one before when it goes (guards nest). Only the installing thread calls it: the other threads
+/// of its batches stop when it says so (they read a flag), those of scenes, robots and motions
+/// run without a check. Without a guard, solves check nothing (one branch).
 class InterruptionGuard {
  public:
   /// Installs `check` (null: none) with `context` for the calling thread.

@@ -2,6 +2,8 @@
 // sources.
 #pragma once
 
+#include <atomic>
+
 #include "swarmcollide/interruption.hpp"
 
 namespace swarmcollide::detail {
@@ -30,6 +32,38 @@ class InterruptionPoll {
 
  private:
   InterruptionHook hook_;
+};
+
+/// The calling thread's check spread over the threads that share its work (a batch's rows): the
+/// caller's check raises a flag when it says to stop, and every thread's check reads the flag,
+/// so each thread stops at its next poll. Only the caller calls its own check (the bindings'
+/// runs Python, which only the calling thread may). Without a check, the threads get none.
+class SharedInterruption {
+ public:
+  /// Reads the calling thread's check.
+  SharedInterruption() noexcept : caller_(current_interruption_hook()) {}
+
+  /// A guard installing, for the thread it is made on, the check for the caller (`on_caller`)
+  /// or for a thread helping it.
+  InterruptionGuard install(bool on_caller) {
+    if (caller_.check == nullptr) return InterruptionGuard(nullptr, nullptr);
+    return InterruptionGuard(on_caller ? &check_caller : &check_helper, this);
+  }
+
+ private:
+  static bool check_caller(void* self) {
+    auto& shared = *static_cast<SharedInterruption*>(self);
+    if (shared.stopped_.load(std::memory_order_relaxed)) return true;
+    if (!shared.caller_.check(shared.caller_.context)) return false;
+    shared.stopped_.store(true, std::memory_order_relaxed);
+    return true;
+  }
+  static bool check_helper(void* self) {
+    return static_cast<SharedInterruption*>(self)->stopped_.load(std::memory_order_relaxed);
+  }
+
+  InterruptionHook caller_;
+  std::atomic<bool> stopped_{false};
 };
 
 }  // namespace swarmcollide::detail
