@@ -3,7 +3,7 @@
 
 #include <pybind11/pybind11.h>
 
-#include <chrono>
+#include <cstdint>
 #include <optional>
 
 #include "swarmcollide/interruption.hpp"
@@ -37,7 +37,7 @@ class SignalCheck {
  private:
   static bool check(void* self);
 
-  std::chrono::steady_clock::time_point next_{};  // the epoch: the first check calls Python
+  std::int64_t next_ = 0;  // ms of a monotonic clock: the first check calls Python
   std::optional<py::error_already_set> error_;
   InterruptionGuard guard_;  // last: installed once the rest is ready, uninstalled first
 };

@@ -20,7 +20,7 @@ InterruptionHook current_interruption_hook() noexcept;
 
 /// The calling thread's check as it was when the solve began: calling it costs one predictable
 /// branch when there is none. Poll only in loops whose iterations take a microsecond or more: a
-/// check may read a clock (the bindings' does, about 25 ns).
+/// check may read a clock (the bindings' does, in 5 ns).
 class InterruptionPoll {
  public:
   InterruptionPoll() noexcept : hook_(current_interruption_hook()) {}
