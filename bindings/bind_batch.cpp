@@ -11,6 +11,7 @@
 
 #include "conversions.hpp"
 #include "queries.hpp"
+#include "signals.hpp"
 #include "swarmcollide/queries/batch.hpp"
 
 namespace swarmcollide::bindings {
@@ -218,11 +219,13 @@ bool compound_side(const py::handle& bodies) {
   return is_compound(bodies) || holds_compound(bodies);
 }
 
-// `query(as, bs, poses)` without the GIL. A CompoundBody on either side (alone or in a sequence)
-// makes it a compound batch. Two (m, n, 3) arrays are passed as vertex stacks, so that the threads
-// build and free the bodies; other bodies are read where they are, and points converted to bodies
-// here first. A single body on a side serves every row. When the sequences of the two sides
-// differ in length the core names both lengths; the poses are converted for the sides' rows.
+// `query(as, bs, poses)` without the GIL, stopped by Ctrl-C (interruptible: the calling thread's
+// rows check for it, and the other threads' rows stop with them). A CompoundBody on either side
+// (alone or in a sequence) makes it a compound batch. Two (m, n, 3) arrays are passed as vertex
+// stacks, so that the threads build and free the bodies; other bodies are read where they are,
+// and points converted to bodies here first. A single body on a side serves every row. When the
+// sequences of the two sides differ in length the core names both lengths; the poses are
+// converted for the sides' rows.
 template <typename Ask>
 BatchResult run(const py::object& as, const py::object& bs, const py::object& poses_a,
                 const py::object& poses_b, const BatchSettings& settings, const Ask& ask) {
@@ -234,23 +237,29 @@ BatchResult run(const py::object& as, const py::object& bs, const py::object& po
     const BatchPoses poses =
         poses_of(poses_a, poses_b,
                  row_count(rows_given(side_a), rows_given(side_b), poses_a, poses_b), keep);
-    py::gil_scoped_release release;
-    return ask(side_a.get(), side_b.get(), poses);
+    return interruptible([&] {
+      py::gil_scoped_release release;
+      return ask(side_a.get(), side_b.get(), poses);
+    });
   }
   const std::optional<Stack> stack_a = as_stack(as, "As");
   const std::optional<Stack> stack_b = as_stack(bs, "Bs");
   if (stack_a && stack_b) {
     const BatchPoses poses =
         poses_of(poses_a, poses_b, static_cast<std::size_t>(stack_a->shape(0)), keep);
-    py::gil_scoped_release release;
-    return ask(view(*stack_a, "As"), view(*stack_b, "Bs"), poses);
+    return interruptible([&] {
+      py::gil_scoped_release release;
+      return ask(view(*stack_a, "As"), view(*stack_b, "Bs"), poses);
+    });
   }
   const ConvexSide side_a(as, "As", settings.first_index);
   const ConvexSide side_b(bs, "Bs", settings.first_index);
   const BatchPoses poses = poses_of(
       poses_a, poses_b, row_count(rows_given(side_a), rows_given(side_b), poses_a, poses_b), keep);
-  py::gil_scoped_release release;
-  return ask(side_a.get(), side_b.get(), poses);
+  return interruptible([&] {
+    py::gil_scoped_release release;
+    return ask(side_a.get(), side_b.get(), poses);
+  });
 }
 
 // A getter of one of a BatchResult's arrays as a read-only NumPy view of it, which keeps the

@@ -13,6 +13,7 @@
 #include "conversions.hpp"
 #include "fast_calls.hpp"
 #include "queries.hpp"
+#include "signals.hpp"
 #include "swarmcollide/queries/methods.hpp"
 
 namespace swarmcollide::bindings {
@@ -199,7 +200,8 @@ auto answer_bodies(const Query& query, PairQuery kind, const Body& a, const Pose
 
 // `kind` between `a` and `b` as Python sees it: a bool for collide, else a DistanceResult (a
 // CompoundResult when either body is a CompoundBody). The arguments are converted while holding
-// the GIL, which the query itself releases unless it is a small one (releases_gil).
+// the GIL, which the query itself releases unless it is a small one (releases_gil). Python's
+// signal handlers run while it solves (interruptible): Ctrl-C raises KeyboardInterrupt.
 py::object answer(const Query& query, PairQuery kind, const py::handle& a, const py::handle& b,
                   const py::handle& pose_a, const py::handle& pose_b, bool escalate) {
   const Pose place_a = to_pose(pose_a, "pose_a");
@@ -208,11 +210,11 @@ py::object answer(const Query& query, PairQuery kind, const py::handle& a, const
   if (is_compound(a) || is_compound(b)) {
     const CompoundArgument body_a(a, "a");
     const CompoundArgument body_b(b, "b");
-    CompoundResult result = [&] {
+    CompoundResult result = interruptible([&] {
       py::gil_scoped_release release;
       return answer_bodies(query, kind, body_a.get(), place_a, body_b.get(), place_b, escalate,
                            placed);
-    }();
+    });
     if (kind == PairQuery::collide) return py::bool_(result.colliding);
     return py::cast(std::move(result));
   }
@@ -231,13 +233,13 @@ py::object answer(const Query& query, PairQuery kind, const py::handle& a, const
       return placed ? query.collide(*polyhedron_a, place_a, *polyhedron_b, place_b, escalate)
                     : query.collide(*polyhedron_a, *polyhedron_b, escalate);
     };
-    return py::bool_(released_if(release, decide));
+    return py::bool_(interruptible([&] { return released_if(release, decide); }));
   }
   const auto solve = [&] {
     return answer_bodies(query, kind, *polyhedron_a, place_a, *polyhedron_b, place_b, escalate,
                          placed);
   };
-  return py::cast(released_if(release, solve));
+  return py::cast(interruptible([&] { return released_if(release, solve); }));
 }
 
 // The module's query functions (swarmcollide.queries) as written in Python, by PairQuery: their
@@ -364,6 +366,9 @@ PyObject* query_function(PyObject*, PyObject* const* arguments, Py_ssize_t count
             .release()
             .ptr();
       }
+    } catch (SignalRaised& raised) {
+      raised.restore();  // a KeyboardInterrupt: the call is not retried
+      return nullptr;
     } catch (...) {
       // The Python path raises it again, with the message it has always given.
     }
@@ -449,6 +454,9 @@ PyObject* query_method(PyObject* self, PyObject* const* arguments, Py_ssize_t co
                     call.escalate)
           .release()
           .ptr();
+    } catch (SignalRaised& raised) {
+      raised.restore();  // a KeyboardInterrupt: the call is not retried
+      return nullptr;
     } catch (...) {
       // The pybind11 method raises it again, with the message it has always given.
     }

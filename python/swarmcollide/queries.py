@@ -261,7 +261,9 @@ def distance(
         or a ``Rotation`` alone; ``pose_from_quaternion`` turns a quaternion into one. Results
         are in world coordinates. Moving a body never recomputes its hull.
     **parameters
-        Solver parameters of ``method`` (see ``METHODS[method].parameters``).
+        Solver parameters of ``method`` (see ``METHODS[method].parameters``). The largest budgets
+        of ``"ipso"``, ``"pso"`` and ``"penalty"`` run for hours; Ctrl-C stops them
+        (``KeyboardInterrupt``, within 20 ms of the solver's iterations).
 
     Returns
     -------

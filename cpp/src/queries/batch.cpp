@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "../detail/hardware_threads.hpp"
+#include "../detail/interruption.hpp"
 #include "../detail/kept_threads.hpp"
 #include "../detail/waking_pace.hpp"
 #include "../geometry/framed_body.hpp"
@@ -455,13 +456,17 @@ BatchResult run_batch(Kind kind, std::size_t count, const QueryOptions& options,
   // they start.
   const std::thread::id caller = std::this_thread::get_id();
   std::atomic<std::size_t> homes{1};
+  // A row stopped by the caller's check (Ctrl-C) stops every thread's rows at their next poll;
+  // it fails as a row does, so no chunk after it is taken.
+  detail::SharedInterruption interruption;
   // `alone`: the calling thread answers rows up to a cache line at a time, before any other
   // thread is woken, until the rows are done or worth waking the others for (WakingPace).
   const detail::WakingPace pace(count);
   const auto work = [&](bool alone) {
-    const std::size_t home = std::this_thread::get_id() == caller
-                                 ? 0
-                                 : homes.fetch_add(1, std::memory_order_relaxed) % workers;
+    const bool on_caller = std::this_thread::get_id() == caller;
+    const std::size_t home =
+        on_caller ? 0 : homes.fetch_add(1, std::memory_order_relaxed) % workers;
+    const InterruptionGuard stop_with_caller = interruption.install(on_caller);
     PosesAhead ahead(poses_a, poses_b);
     const bool posed_a = !poses_a.empty();
     const bool posed_b = !poses_b.empty();

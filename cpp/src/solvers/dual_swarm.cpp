@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "../detail/interruption.hpp"
 #include "../queries/verdict.hpp"
 #include "best_bounds.hpp"
 #include "closed_forms.hpp"
@@ -157,7 +158,10 @@ class DualSearch {
     swarm_->seed(centre, radius, hint_a_, hint_b_);
     finished_ = {-1, -1};
     improve(false);
+    // Rounds of the largest swarm for the largest budget run for hours.
+    const InterruptionPoll stop_if_interrupted;
     for (int iteration = 0; iteration < options_.max_iterations && !stop(); ++iteration) {
+      stop_if_interrupted();
       if (swarm_->step()) improve(false);
       ++iterations_;
       record();

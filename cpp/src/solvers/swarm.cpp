@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "../detail/interruption.hpp"
 #include "minkowski.hpp"
 #include "primal_swarm.hpp"
 #include "swarm_kernels.hpp"
@@ -136,7 +137,9 @@ class SwarmSolver {
     find_global_best();
     record_best();
     int iteration = 0;
+    const detail::InterruptionPoll stop_if_interrupted;
     while (iteration < options_.max_iterations && !precision_reached()) {
+      stop_if_interrupted();
       assign_coefficients(iteration);
       const bool improved = advance();
       ++iteration;
