@@ -162,11 +162,20 @@ void order_by_personal_best(int particles, const std::int64_t* key, const std::i
     kept_count += !marked;
     moved_count += marked;
   }
-  for (int i = 1; i < moved_count; ++i) {
-    const RankedParticle item = moved[i];
-    int k = i;
-    for (; k > 0 && before(item, moved[k - 1]); --k) moved[k] = moved[k - 1];
-    moved[k] = item;
+  // Few improve in a step once a swarm settles, and an insertion sort of them is the quickest;
+  // in the first steps all may, which for 100,000 particles made the insertion sort's quadratic
+  // time most of a second. `before` orders every pair (no two particles share an index), so
+  // either sort gives the same order.
+  constexpr int kInsertionSortLimit = 64;
+  if (moved_count > kInsertionSortLimit) {
+    std::sort(moved, moved + moved_count, before);
+  } else {
+    for (int i = 1; i < moved_count; ++i) {
+      const RankedParticle item = moved[i];
+      int k = i;
+      for (; k > 0 && before(item, moved[k - 1]); --k) moved[k] = moved[k - 1];
+      moved[k] = item;
+    }
   }
   constexpr RankedParticle kLast{std::numeric_limits<std::int64_t>::max(),
                                  std::numeric_limits<int>::max()};
