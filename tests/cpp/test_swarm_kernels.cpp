@@ -248,57 +248,60 @@ TEST(SwarmKernels, ProjectedMoveDrawsBothRandomFactorsPerWeightAsEquation3Does) 
 
 TEST(SwarmKernels, OrderIsByPersonalBestWithTiesToTheLowerIndexFromTheOrderAndTheMarkedParticles) {
   std::mt19937_64 rng(5);
-  const int particles = 29;
-  std::vector<double> feasible(particles), value(particles);
-  for (int j = 0; j < particles; ++j) {
-    feasible[j] = rng() % 3 ? 1.0 : 0.0;
-    value[j] = static_cast<double>(rng() % 6) * 0.25;  // many exact ties
-  }
-  value[4] = 1e300;
-  value[7] = 0.0;
-  std::vector<int> order(particles);
-  std::iota(order.begin(), order.end(), 0);
-  // Every particle is marked at first, as after the initial scoring.
-  std::vector<std::int64_t> improved(particles, 1);
-  std::vector<detail::RankedParticle> scratch(2 * (particles + 1));
-  // Generations: some particles' scores fall, as personal bests do, and are marked; the order is
-  // kept. Once the order is shuffled, with every particle marked.
-  for (int generation = 0; generation < 8; ++generation) {
-    std::vector<std::int64_t> key(particles);
+  // More marked particles than the insertion sort takes (64) as well.
+  for (const int particles : {29, 300}) {
+    std::vector<double> feasible(particles), value(particles);
     for (int j = 0; j < particles; ++j) {
-      key[j] =
-          feasible[j] != 0 ? feasible_key(value[j]) : __builtin_bit_cast(std::int64_t, value[j]);
+      feasible[j] = rng() % 3 ? 1.0 : 0.0;
+      value[j] = static_cast<double>(rng() % 6) * 0.25;  // many exact ties
     }
-    if (generation == 3) {
-      std::shuffle(order.begin(), order.end(), rng);
-      std::fill(improved.begin(), improved.end(), 1);
-    }
-    detail::order_by_personal_best(particles, key.data(), improved.data(), order.data(),
-                                   scratch.data());
+    value[4] = 1e300;
+    value[7] = 0.0;
+    std::vector<int> order(particles);
+    std::iota(order.begin(), order.end(), 0);
+    // Every particle is marked at first, as after the initial scoring.
+    std::vector<std::int64_t> improved(particles, 1);
+    std::vector<detail::RankedParticle> scratch(2 * (particles + 1));
+    // Generations: some particles' scores fall, as personal bests do, and are marked; the order is
+    // kept. Once the order is shuffled, with every particle marked.
+    for (int generation = 0; generation < 8; ++generation) {
+      std::vector<std::int64_t> key(particles);
+      for (int j = 0; j < particles; ++j) {
+        key[j] =
+            feasible[j] != 0 ? feasible_key(value[j]) : __builtin_bit_cast(std::int64_t, value[j]);
+      }
+      if (generation == 3) {
+        std::shuffle(order.begin(), order.end(), rng);
+        std::fill(improved.begin(), improved.end(), 1);
+      }
+      detail::order_by_personal_best(particles, key.data(), improved.data(), order.data(),
+                                     scratch.data());
 
-    std::vector<int> expected(particles);
-    std::iota(expected.begin(), expected.end(), 0);
-    std::stable_sort(expected.begin(), expected.end(), [&](int a, int b) {
-      if (feasible[a] != feasible[b]) return feasible[a] > feasible[b];
-      return value[a] < value[b];
-    });
-    EXPECT_EQ(order, expected) << "generation " << generation;
-    // Next: a third of the particles fall; after generation 4 none changes; after generation 5
-    // every particle falls but the best, which is marked and goes to the end (any change of a
-    // marked particle is allowed).
-    std::fill(improved.begin(), improved.end(), 0);
-    for (int j = 0; j < particles; ++j) {
-      if (generation == 4 || (generation != 5 && j % 3 != 0)) continue;
-      improved[j] = 1;
-      if (generation == 5 && j == order[0]) {
-        feasible[j] = 0;
-        value[j] = 1e308;
-      } else if (feasible[j] == 0 && rng() % 2) {
-        feasible[j] = 1;
-      } else {
-        value[j] *= 0.5;
+      std::vector<int> expected(particles);
+      std::iota(expected.begin(), expected.end(), 0);
+      std::stable_sort(expected.begin(), expected.end(), [&](int a, int b) {
+        if (feasible[a] != feasible[b]) return feasible[a] > feasible[b];
+        return value[a] < value[b];
+      });
+      EXPECT_EQ(order, expected) << "generation " << generation;
+      // Next: a third of the particles fall; after generation 4 none changes; after generation 5
+      // every particle falls but the best, which is marked and goes to the end (any change of a
+      // marked particle is allowed).
+      std::fill(improved.begin(), improved.end(), 0);
+      for (int j = 0; j < particles; ++j) {
+        if (generation == 4 || (generation != 5 && j % 3 != 0)) continue;
+        improved[j] = 1;
+        if (generation == 5 && j == order[0]) {
+          feasible[j] = 0;
+          value[j] = 1e308;
+        } else if (feasible[j] == 0 && rng() % 2) {
+          feasible[j] = 1;
+        } else {
+          value[j] *= 0.5;
+        }
       }
     }
+
   }
 }
 
