@@ -3,10 +3,13 @@
 // interrupted query stays behind.
 #include <gtest/gtest.h>
 
+#include <atomic>
+#include <chrono>
 #include <thread>
 #include <vector>
 
 #include "contract.hpp"
+#include "detail/thread_pool.hpp"
 #include "paper_cases.hpp"
 #include "swarmcollide/interruption.hpp"
 #include "swarmcollide/queries/batch.hpp"
@@ -150,6 +153,43 @@ TEST(Interruption, ABatchAnswersAsWithoutACheck) {
   EXPECT_EQ(plain.point_a, checked.point_a);
   EXPECT_EQ(plain.point_b, checked.point_b);
   EXPECT_TRUE((plain.iterations == checked.iterations).all());
+}
+
+// A pool's caller, its own chunks done, keeps calling its check while it waits for the workers':
+// a worker's chunk that runs until the check is called ends (a batch's last row on a worker, of
+// a swarm budget of hours, stops at Ctrl-C; before, nothing asked the check once the caller's
+// rows were done).
+TEST(Interruption, APoolsCallerKeepsCheckingWhileItWaits) {
+  struct Raising {
+    std::atomic<bool> called{false};
+    static bool check(void* self) {
+      static_cast<Raising*>(self)->called = true;
+      return true;
+    }
+  };
+  Raising raising;
+  const InterruptionGuard guard(&Raising::check, &raising);
+  detail::ThreadPool pool(2);
+  const std::thread::id caller = std::this_thread::get_id();
+  std::atomic<bool> worker_started{false};
+  std::atomic<bool> worker_saw_check{false};
+  pool.for_each_chunk(2, 1, [&](std::size_t, std::size_t) {
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+    if (std::this_thread::get_id() == caller) {
+      // The caller's chunk ends once a worker holds the other: the caller then waits.
+      while (!worker_started && std::chrono::steady_clock::now() < deadline) {
+        std::this_thread::yield();
+      }
+      return;
+    }
+    worker_started = true;
+    while (!raising.called && std::chrono::steady_clock::now() < deadline) {
+      std::this_thread::yield();
+    }
+    worker_saw_check = raising.called.load();
+  });
+  EXPECT_TRUE(worker_started);
+  EXPECT_TRUE(worker_saw_check);
 }
 
 }  // namespace

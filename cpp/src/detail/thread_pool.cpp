@@ -13,6 +13,7 @@
 #include <thread>
 #include <vector>
 
+#include "interruption.hpp"
 #include "waking_pace.hpp"
 
 namespace swarmcollide::detail {
@@ -33,6 +34,10 @@ std::size_t forks_so_far() {
 
 // How long a caller whose chunks are done spins for the workers' last ones before it sleeps.
 constexpr std::chrono::microseconds kSpinBeforeSleeping{50};
+
+// How often a caller waiting for the workers calls its interruption check (the bindings' calls
+// Python's signal handlers at most every 20 ms).
+constexpr std::chrono::milliseconds kInterruptionPollInterval{10};
 
 }  // namespace
 
@@ -150,7 +155,21 @@ void ThreadPool::Crew::for_each_chunk(std::size_t items, std::size_t chunk_size,
          std::chrono::steady_clock::now() < spin_until) {
   }
   std::unique_lock<std::mutex> lock(mutex);
-  done.wait(lock, [&] { return busy == 0 && next >= count; });
+  const auto finished = [&] { return busy == 0 && next >= count; };
+  // While it waits, the caller keeps calling its thread's interruption check: a batch's rows on
+  // the workers stop when it says so (SharedInterruption), which, once the caller's own rows were
+  // done, nothing else would ask (a worker's last row of a large swarm budget ran on for hours
+  // past Ctrl-C). What it answers changes nothing here: the workers' rows read it.
+  const InterruptionHook hook = current_interruption_hook();
+  if (hook.check == nullptr) {
+    done.wait(lock, finished);
+  } else {
+    while (!done.wait_for(lock, kInterruptionPollInterval, finished)) {
+      lock.unlock();
+      hook.check(hook.context);
+      lock.lock();
+    }
+  }
   work = nullptr;
   count = 0;
   next = 0;

@@ -459,6 +459,9 @@ BatchResult run_batch(Kind kind, std::size_t count, const QueryOptions& options,
   // A row stopped by the caller's check (Ctrl-C) stops every thread's rows at their next poll;
   // it fails as a row does, so no chunk after it is taken.
   detail::SharedInterruption interruption;
+  // The caller's for the whole batch, as its rows install it: the pool's wait for the workers'
+  // last rows keeps calling it (thread_pool.cpp).
+  const InterruptionGuard caller_check = interruption.install(true);
   // `alone`: the calling thread answers rows up to a cache line at a time, before any other
   // thread is woken, until the rows are done or worth waking the others for (WakingPace).
   const detail::WakingPace pace(count);
