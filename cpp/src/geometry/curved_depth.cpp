@@ -121,28 +121,36 @@ ClosedFormDepth parallel_axes(const FramedBody& c, const FramedBody& o) {
 }  // namespace
 
 ClosedFormDepth closed_form_depth(const FramedBody& a, const FramedBody& b) {
+  // Bodies on parallel axes first: their pair's closed form is the pair's depth but for rounding
+  // (the meridian sections' to some 1e-14), where one body's points inside the other's shape
+  // bound it only (below by their least depth, which is the pair's only where the other body has
+  // no width along the deepest direction). Taken only where it proved more, the points' bound won
+  // the ties, and with it the normal of its least deep point: a capsule's core on a cylinder's
+  // axis, its end as near a cap as the side, went to the expanding polytope along the cap's normal
+  // (1,002 iterations, 0.3 ms, where the closed form settles it in microseconds).
+  // A cylinder beside a body on a parallel axis: as A, or as B (A then leaves along the normal,
+  // so B moves the other way).
+  if (a.curved_kind() == CurvedKind::cylinder) {
+    ClosedFormDepth parallel = parallel_axes(a, b);
+    parallel.curved_a = true;
+    if (parallel.depth > 0) return parallel;
+  } else if (b.curved_kind() == CurvedKind::cylinder) {
+    ClosedFormDepth parallel = parallel_axes(b, a);
+    parallel.normal = -parallel.normal;
+    if (parallel.depth > 0) return parallel;
+  }
+  // Other bodies of revolution on parallel axes: their meridian sections.
+  if (may_share_an_axis(a, b)) {
+    ClosedFormDepth revolution = meridian_depth(a, b);
+    if (revolution.depth > 0) return revolution;
+  }
   // B's points inside A: B leaves along A's outward direction; A's inside B: A leaves along B's,
   // so B moves the other way.
   ClosedFormDepth b_in_a = points_inside(a, b);
   b_in_a.curved_a = true;
   ClosedFormDepth a_in_b = points_inside(b, a);
   a_in_b.normal = -a_in_b.normal;
-  const ClosedFormDepth& inside = b_in_a.depth >= a_in_b.depth ? b_in_a : a_in_b;
-  // A cylinder beside a body on a parallel axis: as A, or as B (A then leaves along the normal,
-  // so B moves the other way).
-  if (a.curved_kind() == CurvedKind::cylinder) {
-    ClosedFormDepth parallel = parallel_axes(a, b);
-    parallel.curved_a = true;
-    if (parallel.depth > 0) return parallel.depth > inside.depth ? parallel : inside;
-  } else if (b.curved_kind() == CurvedKind::cylinder) {
-    ClosedFormDepth parallel = parallel_axes(b, a);
-    parallel.normal = -parallel.normal;
-    if (parallel.depth > 0) return parallel.depth > inside.depth ? parallel : inside;
-  }
-  // Other bodies of revolution on parallel axes: their meridian sections.
-  if (!may_share_an_axis(a, b)) return inside;
-  ClosedFormDepth revolution = meridian_depth(a, b);
-  return revolution.depth > inside.depth ? revolution : inside;
+  return b_in_a.depth >= a_in_b.depth ? b_in_a : a_in_b;
 }
 
 }  // namespace swarmcollide::detail
