@@ -117,6 +117,23 @@ def test_bodies_sharing_their_centre(method):
     assert_encloses(cones, expected, 4.6)
 
 
+@pytest.mark.parametrize("method", CURVED_METHODS)
+def test_a_ball_near_a_curvature_centre_on_an_ellipsoid_axis(method):
+    # Below the centre of curvature of the ellipsoid's tip, on its axis, the nearest points lie on
+    # a small circle about the tip, and the depth over the directions is flat to the fourth
+    # order: the meridian polygon needs hundreds of short edges (with 96 corners, bounds 1.9e-8
+    # apart, uncertified). Nearest points at sin t = c z / (c^2 - a^2) of the meridian ellipse.
+    a, c, ball = 0.4, 0.9, 0.05
+    centre = c - a * a / c
+    for below in (1e-3, 1e-5, 1e-7):
+        z = centre - below
+        s = c * z / (c * c - a * a)
+        depth = math.hypot(a * math.sqrt(1 - s * s), c * s - z)
+        result = sc.signed_distance(sc.Ellipsoid([a, a, c]), sc.Sphere(ball), pose_b=at(0, 0, z),
+                                    method=method)
+        assert_encloses(result, -(depth + ball), 2 * c)
+
+
 REVOLUTIONS = {
     "cylinder": lambda size: sc.Cylinder(*size),
     "cone": lambda size: sc.Cone(*size),
