@@ -319,7 +319,7 @@ ClosedFormDepth meridian_depth(const FramedBody& a, const FramedBody& b) {
   // Where sides of the sections face each other (segments in space: a cylinder's between its
   // rims, a cone's from its apex to its rim, a cap's diameter), each support along the normal is
   // one end of its side. Both ends of each, asked a little off the normal within the section's
-  // plane, let the witnesses find a point both sides share, as parallel_axes asks. (Along a
+  // plane, let the witnesses find a point both sides share. (Along a
   // curved part they lie below the supporting plane, out of the witnesses' features.)
   const Vector2 tangent(-found.normal.y(), found.normal.x());
   const Vector3 local(tangent.x() * across.x(), tangent.x() * across.y(), tangent.y());
