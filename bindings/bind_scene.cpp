@@ -49,15 +49,21 @@ std::vector<BodyId> to_ids(const py::handle& ids, const char* name) {
   return result;
 }
 
+// `value` as one id would be read: itself unless it is an array; the item of an integer array
+// holding one (as `add` returns the id of one body); nothing (a null object) for another array.
+py::object id_item(const py::handle& value) {
+  if (!is_array(value)) return py::reinterpret_borrow<py::object>(value);
+  const auto array = py::reinterpret_borrow<py::array>(value);
+  const char kind = array.dtype().kind();
+  if ((kind == 'i' || kind == 'u') && array.size() == 1) return array.attr("item")();
+  return py::object();
+}
+
 // One id as `name`: an integer (Python's or NumPy's), or an integer array holding one, as `add`
 // returns the id of one body; TypeError for another array or type, ValueError for a negative id.
 BodyId to_id(const py::handle& value, const char* name) {
-  if (!is_array(value)) return to_count(value, name, 0);
+  if (const py::object item = id_item(value)) return to_count(item, name, 0);
   const auto array = py::reinterpret_borrow<py::array>(value);
-  const char kind = array.dtype().kind();
-  if ((kind == 'i' || kind == 'u') && array.size() == 1) {
-    return to_count(array.attr("item")(), name, 0);
-  }
   throw py::type_error(std::string(name) + " must be one id (an integer, or an array of one id as "
                        "add returns for one body), got an array of " +
                        std::to_string(array.size()) + " " +
@@ -771,13 +777,8 @@ against each other: a box resting on a face gives its four corners.
            [](const Scene& s, const py::object& given) {
              // An id as body and pose take it (an array of one id too); anything else, an
              // array of several ids included, is no body of the scene.
-             py::object id = given;
-             if (is_array(given)) {
-               const auto array = py::reinterpret_borrow<py::array>(given);
-               const char kind = array.dtype().kind();
-               if ((kind != 'i' && kind != 'u') || array.size() != 1) return false;
-               id = array.attr("item")();
-             }
+             const py::object id = id_item(given);
+             if (!id) return false;
              return PyIndex_Check(id.ptr()) && !PyBool_Check(id.ptr()) &&
                     py::int_(id) >= py::int_(0) &&
                     py::int_(id) <= py::int_(std::numeric_limits<BodyId>::max()) &&
