@@ -25,15 +25,21 @@ namespace {
 constexpr Scalar kCreaseStepsBelow = 1e-7;
 
 // Whether a pair's searches ask along Newton's steps (NewtonDirection says where they paid): a
-// pair with an ellipsoid, or two cylinders or cones at a fine tolerance.
-bool newton_steps(const FramedPair& pair) {
+// pair with an ellipsoid, or two cylinders or cones at a fine tolerance; and whether the steps
+// follow a polyhedron's edges too (an ellipsoid beside one, NewtonDirection<true>).
+enum class Steps : unsigned char { wolfe, newton, newton_on_edges };
+
+Steps newton_steps(const FramedPair& pair) {
   const CurvedKind a = pair.a.curved_kind();
   const CurvedKind b = pair.b.curved_kind();
   const auto creased = [](CurvedKind kind) {
     return kind == CurvedKind::cylinder || kind == CurvedKind::cone;
   };
-  return a == CurvedKind::ellipsoid || b == CurvedKind::ellipsoid ||
-         (creased(a) && creased(b) && pair.tolerance < kCreaseStepsBelow);
+  if (a == CurvedKind::ellipsoid || b == CurvedKind::ellipsoid) {
+    return pair.a.curved() && pair.b.curved() ? Steps::newton : Steps::newton_on_edges;
+  }
+  return creased(a) && creased(b) && pair.tolerance < kCreaseStepsBelow ? Steps::newton
+                                                                          : Steps::wolfe;
 }
 
 }  // namespace
@@ -65,7 +71,14 @@ bool DistanceFinish::whole_curved(const Vector3& start, int& hint_a, int& hint_b
   // The pairs newton_steps names ask along Newton's steps; the others compile as the search did
   // without them. (The oracle and measure above are walk_from_corral's too: made by one helper
   // returning both lambdas, they cost the searched rows 40 to 166 more instructions.)
-  if (newton_steps(pair_)) return search(NewtonDirection(pair_));
+  switch (newton_steps(pair_)) {
+    case Steps::newton:
+      return search(NewtonDirection<false>(pair_));
+    case Steps::newton_on_edges:
+      return search(NewtonDirection<true>(pair_));
+    case Steps::wolfe:
+      break;
+  }
   return search(AlongCorral());
 }
 
@@ -90,7 +103,14 @@ bool DistanceFinish::walk_from_corral(const Vector3& start, const MinNormPoint& 
     return whole_search(pair_, start, &corral, hint_a, hint_b, bounds, goal, enclosure,
                         max_iterations_, evaluations_, oracle, along, PlacedByBodies{pair_});
   };
-  if (newton_steps(pair_)) return search(NewtonDirection(pair_));
+  switch (newton_steps(pair_)) {
+    case Steps::newton:
+      return search(NewtonDirection<false>(pair_));
+    case Steps::newton_on_edges:
+      return search(NewtonDirection<true>(pair_));
+    case Steps::wolfe:
+      break;
+  }
   return search(AlongCorral());
 }
 
