@@ -211,8 +211,9 @@ auto answer_bodies(const Query& query, PairQuery kind, const Body& a, const Pose
 // KeyboardInterrupt.
 py::object answer(const Query& query, PairQuery kind, const py::handle& a, const py::handle& b,
                   const py::handle& pose_a, const py::handle& pose_b, bool escalate) {
-  const Pose place_a = to_pose(pose_a, "pose_a");
-  const Pose place_b = to_pose(pose_b, "pose_b");
+  // The query checks both poses (as "pose_a" and "pose_b") before anything reads them.
+  const Pose place_a = read_pose(pose_a, "pose_a");
+  const Pose place_b = read_pose(pose_b, "pose_b");
   const bool placed = !pose_a.is_none() || !pose_b.is_none();
   if (is_compound(a) || is_compound(b)) {
     const CompoundArgument body_a(a, "a");

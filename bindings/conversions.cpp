@@ -375,17 +375,10 @@ std::optional<Pose> read_in_place(const py::handle& given, const char* name) {
 
 }  // namespace
 
-Pose to_pose(const py::handle& given, const char* name) {
+Pose read_pose(const py::handle& given, const char* name) {
   Pose result;
   if (given.is_none()) return result;
-  if (const std::optional<Pose> read = read_in_place(given, name)) {
-    try {
-      validate_pose(*read, name);
-    } catch (const std::invalid_argument& error) {
-      throw py::value_error(error.what());
-    }
-    return *read;
-  }
+  if (const std::optional<Pose> read = read_in_place(given, name)) return *read;
   const std::string arg(name);
   const py::object pose = with_rotation_matrices(given);
   const std::string forms =
@@ -413,6 +406,11 @@ Pose to_pose(const py::handle& given, const char* name) {
     result = from_rows(matrix.data(), matrix.shape(0), [&arg] { return arg; });
     result.rotation = rounded_rotation(result.rotation, narrow_float_epsilon(pose));
   }
+  return result;
+}
+
+Pose to_pose(const py::handle& given, const char* name) {
+  const Pose result = read_pose(given, name);
   try {
     validate_pose(result, name);
   } catch (const std::invalid_argument& error) {
