@@ -42,6 +42,20 @@ Steps newton_steps(const FramedPair& pair) {
                                                                           : Steps::wolfe;
 }
 
+// `search` run with the directions newton_steps names for the pair.
+template <typename Search>
+bool with_directions(const FramedPair& pair, const Search& search) {
+  switch (newton_steps(pair)) {
+    case Steps::newton:
+      return search(NewtonDirection<false>(pair));
+    case Steps::newton_on_edges:
+      return search(NewtonDirection<true>(pair));
+    case Steps::wolfe:
+      break;
+  }
+  return search(AlongCorral());
+}
+
 }  // namespace
 
 bool DistanceFinish::whole_curved(const Vector3& start, int& hint_a, int& hint_b,
@@ -71,15 +85,7 @@ bool DistanceFinish::whole_curved(const Vector3& start, int& hint_a, int& hint_b
   // The pairs newton_steps names ask along Newton's steps; the others compile as the search did
   // without them. (The oracle and measure above are walk_from_corral's too: made by one helper
   // returning both lambdas, they cost the searched rows 40 to 166 more instructions.)
-  switch (newton_steps(pair_)) {
-    case Steps::newton:
-      return search(NewtonDirection<false>(pair_));
-    case Steps::newton_on_edges:
-      return search(NewtonDirection<true>(pair_));
-    case Steps::wolfe:
-      break;
-  }
-  return search(AlongCorral());
+  return with_directions(pair_, search);
 }
 
 bool DistanceFinish::walk_from_corral(const Vector3& start, const MinNormPoint& corral,
@@ -103,15 +109,7 @@ bool DistanceFinish::walk_from_corral(const Vector3& start, const MinNormPoint& 
     return whole_search(pair_, start, &corral, hint_a, hint_b, bounds, goal, enclosure,
                         max_iterations_, evaluations_, oracle, along, PlacedByBodies{pair_});
   };
-  switch (newton_steps(pair_)) {
-    case Steps::newton:
-      return search(NewtonDirection<false>(pair_));
-    case Steps::newton_on_edges:
-      return search(NewtonDirection<true>(pair_));
-    case Steps::wolfe:
-      break;
-  }
-  return search(AlongCorral());
+  return with_directions(pair_, search);
 }
 
 }  // namespace swarmcollide::detail
