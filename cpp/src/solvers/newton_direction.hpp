@@ -129,7 +129,8 @@ class NewtonDirection {
       on_ = false;
       if (edges()) {
         if (index != vertex_ && index >= 0) {
-          // Back to the vertex before: the directions cross the edge between the two.
+          // A move to another vertex ends a crossing; a move back to the vertex before crosses
+          // the edge between the two.
           crossed_ = false;
           if (index == before_ && vertex_ >= 0) {
             const Vector3 edge = body.vertex(index) - body.vertex(vertex_);
@@ -356,7 +357,7 @@ class NewtonDirection {
   }
 
   // Whether the point `q`, asked along direction(x), is kept (nearer_than_corral);
-  // a point refused ends the steps, and ask() asks again along x.
+  // a point refused ends the steps (along an edge, forgets the edge), and ask() asks again.
   bool keep(const Vector3& x, const OraclePoint& q) {
     if (!extrapolated_ || nearer_than_corral(x, x.dot(q.p))) return true;
     if (edge_step_) {
