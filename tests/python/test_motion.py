@@ -174,8 +174,10 @@ def test_curved_pairs_the_exact_queries_leave_unproven_are_asked_of_dual():
     """An ellipsoid leaving a polytope from a micrometre away: "exact" alone proves no lower bound
     above the threshold there (uncertified), so the advancement could not step; the motion's
     exact queries ask "dual" again at such times, and the motion is proven free. (An ellipsoid
-    and a cylinder stalled so until the exact distance tried its corral's planes.)"""
-    rng = np.random.default_rng(15)
+    and a cylinder stalled so until the exact distance tried its corral's planes. Since Newton's
+    steps follow a polytope's edges beside an ellipsoid, "exact" stalls so far more rarely: the
+    five pairs of 2 seeds in 400 hold such a case, seed 15's no longer.)"""
+    rng = np.random.default_rng(0)
     egg = sc.Ellipsoid([0.3, 0.2, 0.1])
     stalled = 0
     for _ in range(5):
