@@ -75,7 +75,7 @@ Pose to_pose(const py::handle& pose, const char* name);
 
 /// to_pose without its check that the pose is rigid and finite, for a caller that hands it to a
 /// query of the core, which checks it under the same name (validate_pose's message) before it
-/// reads it: checked twice, a posed pair's call from Python paid some 200 instructions more.
+/// reads it: checked twice, a posed sphere-box call from Python took 491 ns where it takes 481.
 Pose read_pose(const py::handle& pose, const char* name);
 
 /// `pose` as a `(4, 4)` homogeneous transform.

@@ -109,7 +109,7 @@ class NewtonDirection {
   class Crease {
    public:
     Crease(const FramedBody& body, Scalar side)
-        : side_(side), tracked_(body.crease_shape(shape_)), edges_(kEdges && !body.curved()) {
+        : side_(side), tracked_(body.crease_shape(shape_)), edges_(!body.curved()) {
       slant_ = std::sqrt(shape_.radius * shape_.radius +
                          4 * shape_.half_length * shape_.half_length);
     }
@@ -208,7 +208,8 @@ class NewtonDirection {
     CreaseShape shape_;
     Scalar side_;
     bool tracked_;
-    // A polyhedron's edges are tracked (kEdges): its last support point and the one before.
+    // A polyhedron's edges are tracked where kEdges allows (edges()): its last support point and
+    // the one before.
     bool edges_;
     int vertex_ = -1;
     int before_ = -1;
