@@ -289,6 +289,7 @@ ExpansionResult ExpandingPolytope::run(const FramedBody& a, const FramedBody& b,
                                        int max_iterations) {
   ExpansionResult result;
   kept_depth_ = -1;
+  closed_ = false;
   started_from_ = nullptr;
   vertices_.assign(start.begin(), start.end());
   norms_.clear();
@@ -341,6 +342,7 @@ ExpansionResult ExpandingPolytope::run(const FramedBody& a, const FramedBody& b,
   started_from_ = nullptr;
   if (kept.faces.size() < 4) return result;
   kept_depth_ = -1;
+  closed_ = false;
   vertices_.clear();
   norms_.clear();
   points_a_.clear();
@@ -650,6 +652,7 @@ ExpansionResult ExpandingPolytope::expand_surface(const FramedBody& a, const Fra
     }
   }
   result.verified = verify(result.depth_lower);
+  closed_ = result.verified;
   if (kept_depth_ >= 0) {
     result.depth_lower = result.verified ? std::max(result.depth_lower, kept_depth_) : kept_depth_;
     result.verified = true;

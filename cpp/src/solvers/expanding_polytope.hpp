@@ -126,6 +126,25 @@ class ExpandingPolytope {
   /// slightly tilted faces, and the origin's foot may lie just beyond the one the best normal
   /// came from: a combination of these corners reaches it (nothing here is proven either).
   int corners_around(int from, std::array<DifferencePoint, kMostNearbyCorners>& corners) const;
+  /// Whether the last run's surface, as it stands, was closed as `verify` proves it, and every
+  /// live face whose proven plane distance `low` is below `depth` passes `test(normal, low, w0,
+  /// w1, w2)` (its outward unit normal, that bound, its corners). Every ray from the origin
+  /// crosses a face, whose points are points of `A - B` at least `low` along its normal: along a
+  /// direction u through a face, `A - B` reaches at least `low / (u . normal)`; the directions
+  /// where that is short of `depth` must be bounded otherwise (cylinder_side.hpp).
+  template <typename Test>
+  bool nearer_faces_pass(Scalar depth, const Test& test) const {
+    if (!closed_) return false;
+    for (int i = 0; i < face_count_; ++i) {
+      const Face& f = faces_[i];
+      if (!f.alive || f.low * (1 - 8 * kRoundoff) >= depth) continue;
+      if (!test(f.normal, f.low, vertices_[f.v[0]].w, vertices_[f.v[1]].w,
+                vertices_[f.v[2]].w)) {
+        return false;
+      }
+    }
+    return true;
+  }
 
  private:
   // The expansion from the surface in vertices_, faces_ and heap_.
@@ -201,6 +220,8 @@ class ExpandingPolytope {
   std::vector<int> start_face_;   // per vertex: the new face whose horizon edge starts there
   int stamp_ = 0;
   int vertex_stamp_ = 0;
+  // Whether the last run's surface as it stands passed `verify`.
+  bool closed_ = false;
   // The best depth bound of a surface verified before a step that dipped below it (see expand);
   // negative when none was.
   Scalar kept_depth_ = -1;

@@ -24,6 +24,8 @@ enum class PenetrationProof {
   closed_form,
   /// Balls that roll inside curved bodies, around a nearest point (rolling_ball.hpp).
   rolling_ball,
+  /// A cylinder's side, with the expanding polytope's faces (cylinder_side.hpp).
+  cylinder_side,
 };
 
 /// Proven bounds on the signed distance `sd` of two convex hulls of point sets, with the best
