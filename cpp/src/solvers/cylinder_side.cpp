@@ -15,10 +15,12 @@ namespace {
 
 using Vector2 = Eigen::Matrix<Scalar, 2, 1>;
 
-// The chain's first corners lie this far (rad) either side of the best normal's azimuth: the
-// faces nearer than the bound of a polytope expanded to some 1e-3 reach a few hundredths of a
-// radian from it.
+// The chain's first corners lie this far (rad) either side of the best normal's azimuth: far,
+// for the wedge (the faces nearer than the bound of a polytope expanded to 2^-12 reach a few
+// hundredths of a radian from it), and near, where the expansion so far puts the deepest
+// azimuth, which spares the chain the steps down to it.
 constexpr Scalar kHalfSpread = 0.35;
+constexpr Scalar kNearSpread = 0x1p-5;
 // The most the best normal may rise out of the cylinder's plane (as a sine) for the chain to be
 // tried: a rim's contact lies off it by tenths.
 constexpr Scalar kMostRise = 0.05;
@@ -97,8 +99,9 @@ Edge measure(const Corner& from, const Corner& to) {
     edge.distance = edge.bound = std::numeric_limits<Scalar>::infinity();
     return edge;
   }
-  edge.normal = Vector2(along.y(), -along.x()) / length;
-  edge.distance = cross(from.point, along) / length;
+  const Scalar inverse = 1 / length;
+  edge.normal = Vector2(along.y() * inverse, -along.x() * inverse);
+  edge.distance = cross(from.point, along) * inverse;
   // The normal is perpendicular to the rounded difference within some 4u, so its products with
   // the two ends differ from the distance by 16u of their lengths (section_depth's analysis
   // gives 12u for the quotient).
@@ -167,19 +170,26 @@ SideDepth side_depth(Section& section, const FramedBody& a, const FramedBody& b,
   const Scalar across_axis = std::hypot(local_best.x(), local_best.y());
   if (!(std::abs(local_best.z()) <= kMostRise * across_axis)) return none;
   const Vector2 middle(local_best.x() / across_axis, local_best.y() / across_axis);
-  const Scalar c = std::cos(kHalfSpread);
-  const Scalar s = std::sin(kHalfSpread);
+  // The chain starts at the best normal's azimuth and either side of it, near (where the
+  // expansion so far puts the deepest one: the first steps are the chain's nearest) and far
+  // (the wedge its bound may cover).
+  const auto turned = [&](Scalar angle) {
+    const Scalar c = std::cos(angle);
+    const Scalar s = std::sin(angle);
+    return Vector2(c * middle.x() - s * middle.y(), c * middle.y() + s * middle.x());
+  };
   std::array<Corner, kMostCorners> corners;
   std::array<Edge, kMostCorners> edges;
-  corners[0] = section.support({c * middle.x() + s * middle.y(), c * middle.y() - s * middle.x()});
-  corners[1] = section.support(middle);
-  corners[2] = section.support({c * middle.x() - s * middle.y(), c * middle.y() + s * middle.x()});
+  corners[2] = section.support(middle);
   // The other body's support along the best normal lies off the side (a rim's or a cap's
   // contact): no run of corners will be found.
-  if (!(std::abs(corners[1].height) + 2 * kCornerError < section.half_length())) return none;
-  int count = 3;
-  edges[0] = measure(corners[0], corners[1]);
-  edges[1] = measure(corners[1], corners[2]);
+  if (!(std::abs(corners[2].height) + 2 * kCornerError < section.half_length())) return none;
+  corners[0] = section.support(turned(-kHalfSpread));
+  corners[1] = section.support(turned(-kNearSpread));
+  corners[3] = section.support(turned(kNearSpread));
+  corners[4] = section.support(turned(kHalfSpread));
+  int count = 5;
+  for (int k = 0; k + 1 < count; ++k) edges[k] = measure(corners[k], corners[k + 1]);
   // The expanding chain: the nearest edge grows by the support point along its normal until
   // that point lies within `gap` of it.
   int nearest = 0;
