@@ -184,9 +184,13 @@ SideDepth side_depth(Section& section, const FramedBody& a, const FramedBody& b,
   // The other body's support along the best normal lies off the side (a rim's or a cap's
   // contact): no run of corners will be found.
   if (!(std::abs(corners[2].height) + 2 * kCornerError < section.half_length())) return none;
-  corners[0] = section.support(turned(-kHalfSpread));
   corners[1] = section.support(turned(-kNearSpread));
   corners[3] = section.support(turned(kNearSpread));
+  // Nor where the near corners leave it, as they do where the deepest point is a rim's.
+  for (const int k : {1, 3}) {
+    if (!(std::abs(corners[k].height) + 2 * kCornerError < section.half_length())) return none;
+  }
+  corners[0] = section.support(turned(-kHalfSpread));
   corners[4] = section.support(turned(kHalfSpread));
   int count = 5;
   for (int k = 0; k + 1 < count; ++k) edges[k] = measure(corners[k], corners[k + 1]);

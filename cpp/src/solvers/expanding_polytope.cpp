@@ -286,10 +286,10 @@ bool ExpandingPolytope::verify(Scalar& depth_lower) const {
 
 ExpansionResult ExpandingPolytope::run(const FramedBody& a, const FramedBody& b,
                                        const std::array<DifferencePoint, 4>& start, Scalar stop_gap,
-                                       int max_iterations) {
+                                       int max_iterations, bool verify_end) {
   ExpansionResult result;
   kept_depth_ = -1;
-  closed_ = false;
+  closed_.reset();
   started_from_ = nullptr;
   vertices_.assign(start.begin(), start.end());
   norms_.clear();
@@ -331,7 +331,7 @@ ExpansionResult ExpandingPolytope::run(const FramedBody& a, const FramedBody& b,
       std::swap(heap_[j], heap_[j - 1]);
     }
   }
-  return expand_surface(a, b, stop_gap, max_iterations, false);
+  return expand_surface(a, b, stop_gap, max_iterations, false, verify_end);
 }
 
 ExpansionResult ExpandingPolytope::run(const FramedBody& a, const FramedBody& b,
@@ -342,7 +342,7 @@ ExpansionResult ExpandingPolytope::run(const FramedBody& a, const FramedBody& b,
   started_from_ = nullptr;
   if (kept.faces.size() < 4) return result;
   kept_depth_ = -1;
-  closed_ = false;
+  closed_.reset();
   vertices_.clear();
   norms_.clear();
   points_a_.clear();
@@ -490,7 +490,7 @@ int ExpandingPolytope::corners_around(
 
 ExpansionResult ExpandingPolytope::expand_surface(const FramedBody& a, const FramedBody& b,
                                                   Scalar stop_gap, int max_iterations,
-                                                  bool placed) {
+                                                  bool placed, bool verify_end) {
   ExpansionResult result;
   // Climbs start from a corner on large polytopes only: a curved body's support ignores starts.
   const bool climb_a = !a.curved() && a.size() > kHillClimbingThreshold;
@@ -651,8 +651,11 @@ ExpansionResult ExpandingPolytope::expand_surface(const FramedBody& a, const Fra
       }
     }
   }
-  result.verified = verify(result.depth_lower);
-  closed_ = result.verified;
+  closed_.reset();
+  if (verify_end) {
+    result.verified = verify(result.depth_lower);
+    closed_ = result.verified;
+  }
   if (kept_depth_ >= 0) {
     result.depth_lower = result.verified ? std::max(result.depth_lower, kept_depth_) : kept_depth_;
     result.verified = true;

@@ -4,6 +4,7 @@
 #include <array>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <vector>
 
 #include "../geometry/framed_body.hpp"
@@ -91,11 +92,12 @@ class ExpandingPolytope {
  public:
   /// Expands from the tetrahedron `start` until the least support met along a triangle's normal
   /// is within `stop_gap` of the nearest triangle's plane, the expansion cannot proceed safely,
-  /// or after `max_iterations` steps; then verifies. Returns verified = false when the
-  /// tetrahedron does not enclose the origin provably.
+  /// or after `max_iterations` steps; then verifies (unless `verify_end` is false: a run that
+  /// will be resumed, whose bound the resumed run proves, proves only what a step that dipped
+  /// kept). Returns verified = false when the tetrahedron does not enclose the origin provably.
   ExpansionResult run(const FramedBody& a, const FramedBody& b,
                       const std::array<DifferencePoint, 4>& start, Scalar stop_gap,
-                      int max_iterations);
+                      int max_iterations, bool verify_end = true);
   /// The same from the surface `kept` at the bodies' present poses: `started` is false (and
   /// nothing run) when a corner's indices are out of range or a face cannot be proven oriented
   /// with the origin inside there.
@@ -126,7 +128,7 @@ class ExpandingPolytope {
   /// slightly tilted faces, and the origin's foot may lie just beyond the one the best normal
   /// came from: a combination of these corners reaches it (nothing here is proven either).
   int corners_around(int from, std::array<DifferencePoint, kMostNearbyCorners>& corners) const;
-  /// Whether the last run's surface, as it stands, was closed as `verify` proves it, and every
+  /// Whether the last run's surface, as it stands, is closed as `verify` proves it, and every
   /// live face whose proven plane distance `low` is below `depth` passes `test(normal, low, w0,
   /// w1, w2)` (its outward unit normal, that bound, its corners). Every ray from the origin
   /// crosses a face, whose points are points of `A - B` at least `low` along its normal: along a
@@ -134,7 +136,8 @@ class ExpandingPolytope {
   /// where that is short of `depth` must be bounded otherwise (cylinder_side.hpp).
   template <typename Test>
   bool nearer_faces_pass(Scalar depth, const Test& test) const {
-    if (!closed_) return false;
+    Scalar closest = 0;
+    if (!(closed_ ? *closed_ : verify(closest))) return false;
     for (int i = 0; i < face_count_; ++i) {
       const Face& f = faces_[i];
       if (!f.alive || f.low * (1 - 8 * kRoundoff) >= depth) continue;
@@ -150,7 +153,7 @@ class ExpandingPolytope {
   // The expansion from the surface in vertices_, faces_ and heap_.
   // `placed`: points_a_ and points_b_ already hold every vertex's points.
   ExpansionResult expand_surface(const FramedBody& a, const FramedBody& b, Scalar stop_gap,
-                                 int max_iterations, bool placed);
+                                 int max_iterations, bool placed, bool verify_end = true);
   struct Face {
     std::array<int, 3> v;         // vertices, counter-clockwise seen from outside
     std::array<int, 3> adj;       // the face across edge k (v[k] -> v[k + 1])
@@ -220,8 +223,8 @@ class ExpandingPolytope {
   std::vector<int> start_face_;   // per vertex: the new face whose horizon edge starts there
   int stamp_ = 0;
   int vertex_stamp_ = 0;
-  // Whether the last run's surface as it stands passed `verify`.
-  bool closed_ = false;
+  // Whether the last run's surface as it stands passed `verify` (none: not verified yet).
+  std::optional<bool> closed_;
   // The best depth bound of a surface verified before a step that dipped below it (see expand);
   // negative when none was.
   Scalar kept_depth_ = -1;

@@ -331,10 +331,11 @@ class Solver {
     }
     expanded_from_kept_ = false;
     if (has_cylinder() && stop_gap() < kSideGap) {
-      const bool proven =
-          use_expansion(ws_.polytope.run(a_, b_, start_tetrahedron, kSideGap, max_iterations_));
-      if (proven && use_cylinder_side()) return true;
-      return use_expansion(ws_.polytope.resume(a_, b_, stop_gap(), max_iterations_)) || proven;
+      // Verified only where the side needs its faces (cylinder_side.hpp), or at the end.
+      const bool dipped = use_expansion(
+          ws_.polytope.run(a_, b_, start_tetrahedron, kSideGap, max_iterations_, false));
+      if (use_cylinder_side()) return true;
+      return use_expansion(ws_.polytope.resume(a_, b_, stop_gap(), max_iterations_)) || dipped;
     }
     return use_expansion(
         ws_.polytope.run(a_, b_, start_tetrahedron, stop_gap(), max_iterations_));
@@ -348,6 +349,7 @@ class Solver {
   // (cylinder_side.hpp) from the polytope expanded so far, to a gap that takes it half the
   // steps; the direction it gives is measured as any other. True when that settles the answer.
   bool use_cylinder_side() {
+    if (!(expansion_.best_separation > -kInfinity)) return false;  // no face was made
     for (const bool cylinder_is_a : {false, true}) {
       const FramedBody& cylinder = cylinder_is_a ? a_ : b_;
       if (cylinder.curved_kind() != CurvedKind::cylinder) continue;
