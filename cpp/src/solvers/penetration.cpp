@@ -51,7 +51,7 @@ constexpr int kKeptFromSteps = 4;
 // its side is tried (cylinder_side.hpp), where the faces nearer than the side's bound lie within
 // its wedge on most pairs whose side holds the deepest point. Overlapping cylinders took 65,242
 // instructions a query at 2^-10, 63,138 at 2^-12, 66,014 at 2^-14, 77,267 at 2^-8 (72,061 with
-// the expansion alone; callgrind_query.py --curved --pairs 100).
+// the expansion alone; callgrind_query.py --curved --pairs 100, the chain as first built).
 constexpr Scalar kSideGap = 0x1p-12;
 
 // Buffers a solve reuses from the previous one on the same thread.
