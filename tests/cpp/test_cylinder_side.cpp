@@ -74,8 +74,8 @@ TEST(CylinderSide, OverlapsOnASideAreProvenAndBracketTheDepth) {
       const detail::PenetrationBounds found = solve(pair);
       if (!(found.upper < 0)) continue;  // apart or touching
       ++pairs;
-      SCOPED_TRACE(::testing::Message() << "trial " << trial << " proof "
-                                        << static_cast<int>(found.proof));
+      SCOPED_TRACE(::testing::Message()
+                   << "trial " << trial << " proof " << static_cast<int>(found.proof));
       EXPECT_LE(found.lower, found.upper);
       expect_depth_below_the_bound(pair, found, search);
       const bool side = found.proof == detail::PenetrationProof::cylinder_side;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 
 #include "../geometry/curved_depth.hpp"
 #include "../geometry/curved_supports.hpp"
@@ -76,8 +77,8 @@ class Section {
   Corner support(const Vector2& w) {
     ++steps_;
     const Vector3 p = other_.inline_support(sign_ * frame_direction(w), hint_);
-    const Vector3 e =
-        sign_ * cylinder_.local_direction(p - cylinder_.offset()) + radius_ * Vector3(w.x(), w.y(), 0);
+    const Vector3 e = sign_ * cylinder_.local_direction(p - cylinder_.offset()) +
+                      radius_ * Vector3(w.x(), w.y(), 0);
     return {w, {e.x(), e.y()}, e.z()};
   }
 
@@ -105,8 +106,7 @@ Edge measure(const Corner& from, const Corner& to) {
   // The normal is perpendicular to the rounded difference within some 4u, so its products with
   // the two ends differ from the distance by 16u of their lengths (section_depth's analysis
   // gives 12u for the quotient).
-  const Scalar rounding =
-      24 * kRoundoff * (from.point.norm() + to.point.norm() + length);
+  const Scalar rounding = 24 * kRoundoff * (from.point.norm() + to.point.norm() + length);
   edge.bound = std::min(edge.normal.dot(from.point), edge.normal.dot(to.point));
   edge.bound = std::min(edge.bound, edge.distance) - rounding;
   return edge;
@@ -254,8 +254,8 @@ SideDepth side_depth(Section& section, const FramedBody& a, const FramedBody& b,
   if (!(d > 0 && rise > 0)) return none;
   const Scalar steepest = rise >= 1 ? std::numeric_limits<Scalar>::infinity()
                                     : 2 * rise / (1 - rise * rise) * (1 - 0x1p-20);
-  const Scalar lower = depth_in_frame(d, rotation_skew(cylinder), 2,
-                                      a.scan_shortfall() + b.scan_shortfall());
+  const Scalar lower =
+      depth_in_frame(d, rotation_skew(cylinder), 2, a.scan_shortfall() + b.scan_shortfall());
   if (!(lower > 0)) return none;
   // The directions the side's bound holds along contain the cone of the wedge's planes and the
   // planes at the slope `steepest` from the cylinder's plane (measured along the wedge's middle,
@@ -292,9 +292,8 @@ SideDepth side_depth(Section& section, const FramedBody& a, const FramedBody& b,
   // curved boundary off the line from the origin by far more: the witnesses need the azimuth
   // where the support point lies on that line.
   const Edge& edge = edges[nearest];
-  const Vector2 azimuth =
-      deepest_azimuth(section, corners[nearest].direction, corners[nearest + 1].direction,
-                      edge.normal);
+  const Vector2 azimuth = deepest_azimuth(section, corners[nearest].direction,
+                                          corners[nearest + 1].direction, edge.normal);
   found.normal = section.frame_direction(azimuth).normalized();
   return found;
 }

@@ -141,8 +141,7 @@ class ExpandingPolytope {
     for (int i = 0; i < face_count_; ++i) {
       const Face& f = faces_[i];
       if (!f.alive || f.low * (1 - 8 * kRoundoff) >= depth) continue;
-      if (!test(f.normal, f.low, vertices_[f.v[0]].w, vertices_[f.v[1]].w,
-                vertices_[f.v[2]].w)) {
+      if (!test(f.normal, f.low, vertices_[f.v[0]].w, vertices_[f.v[1]].w, vertices_[f.v[2]].w)) {
         return false;
       }
     }
