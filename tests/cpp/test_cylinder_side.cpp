@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "geometry/framed_body.hpp"
+#include "separation_search.hpp"
 #include "shapes.hpp"
 #include "solvers/minkowski.hpp"
 #include "solvers/penetration.hpp"
@@ -19,25 +20,6 @@ namespace {
 detail::PenetrationBounds solve(const detail::FramedPair& pair) {
   return detail::penetration(pair.a, pair.b, pair.b.offset() - pair.a.offset(), nullptr,
                              pair.tolerance, ExactOptions().max_iterations);
-}
-
-// The best separation a search of directions around `r`'s normal finds is a lower bound on sd,
-// so at most the proven upper bound: a depth claimed too large would put it below.
-void expect_depth_below_the_bound(const detail::FramedPair& pair,
-                                  const detail::PenetrationBounds& r, Random& rng) {
-  Vector3 best = r.normal;
-  Scalar best_separation = detail::exact_separation(pair.a, pair.b, best);
-  for (Scalar spread = 0.3; spread > 1e-8; spread /= 2) {
-    for (int k = 0; k < 40; ++k) {
-      const Vector3 n = (best + spread * rng.unit()).normalized();
-      const Scalar s = detail::exact_separation(pair.a, pair.b, n);
-      if (s > best_separation) {
-        best_separation = s;
-        best = n;
-      }
-    }
-  }
-  EXPECT_LE(best_separation, r.upper + 1e-13);
 }
 
 // A cylinder against another cylinder, a cone, an ellipsoid and a box, the sizes and places as
@@ -77,7 +59,7 @@ TEST(CylinderSide, OverlapsOnASideAreProvenAndBracketTheDepth) {
       SCOPED_TRACE(::testing::Message()
                    << "trial " << trial << " proof " << static_cast<int>(found.proof));
       EXPECT_LE(found.lower, found.upper);
-      expect_depth_below_the_bound(pair, found, search);
+      EXPECT_LE(best_separation_near(pair, found.normal, 0.3, 1e-8, search), found.upper + 1e-13);
       const bool side = found.proof == detail::PenetrationProof::cylinder_side;
       sides += side;
       if (side || coarse) {

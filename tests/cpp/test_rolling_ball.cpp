@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "geometry/framed_body.hpp"
+#include "separation_search.hpp"
 #include "shapes.hpp"
 #include "solvers/minkowski.hpp"
 #include "solvers/penetration.hpp"
@@ -74,20 +75,8 @@ TEST(RollingBall, TheEllipsoidsBallLiesInsideItAndALargerOneDoesNot) {
 void expect_rolling_proof_brackets_the_depth(const detail::FramedPair& pair,
                                              const detail::PenetrationBounds& r,
                                              const Vector3& radii_a, Random& rng) {
-  Vector3 best = r.normal;
-  Scalar best_separation = detail::exact_separation(pair.a, pair.b, best);
-  for (Scalar spread = 0.1; spread > 1e-7; spread /= 2) {
-    for (int k = 0; k < 40; ++k) {
-      const Vector3 n = (best + spread * rng.unit()).normalized();
-      const Scalar s = detail::exact_separation(pair.a, pair.b, n);
-      if (s > best_separation) {
-        best_separation = s;
-        best = n;
-      }
-    }
-  }
   // (The computed separations may exceed the true ones by the support points' shortfall.)
-  EXPECT_LE(best_separation, r.upper + 1e-13);
+  EXPECT_LE(best_separation_near(pair, r.normal, 0.1, 1e-7, rng), r.upper + 1e-13);
   EXPECT_LE((r.point_b - r.point_a - r.upper * r.normal).norm(), r.upper - r.lower + 1e-14);
   const Vector3 local_a = pair.a.rotation().transpose() * (r.point_a - pair.a.offset()) *
                           std::ldexp(1.0, pair.a.exponent());
