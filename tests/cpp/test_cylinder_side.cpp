@@ -1,6 +1,7 @@
-// Depths proven on a cylinder's side (solvers/cylinder_side.hpp): overlapping pairs where the
-// side holds the deepest point are proven by its section in fewer steps than the expanding
-// polytope alone took, and every bound brackets the depth a dense search of directions finds.
+// Depths proven on a cylinder's side (solvers/cylinder_side.hpp): many overlapping pairs where
+// the side holds the deepest point are proven by its section, and every depth claimed, the
+// side's or the expanding polytope's, lies within the best separation a search of directions
+// finds and the separation along the answer's own normal.
 #include <gtest/gtest.h>
 
 #include <algorithm>
