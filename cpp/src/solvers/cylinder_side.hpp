@@ -31,14 +31,16 @@ struct SideDepth {
 /// by a chain of support points (a polygon of a dozen or two corners) where the expanding
 /// polytope needs thirty steps along the curved side of a rim against the flat side of the
 /// cylinder. For every azimuth between the chain's edge normals its corners give
-/// `cos t d + |sin t| (h - H)`, at least `min(d, h - H)` for every elevation (d the least of the
-/// chain's edge distances, H the most of its corners' heights): that bounds every direction of
-/// that wedge. Every other direction crosses a face of `polytope` (the expansion's surface so
-/// far, closed around the origin) that bounds it from its corners; the bound holds where every
-/// face nearer than it projects into the wedge. `cylinder_is_a` names the cylinder; `best` is the
-/// expansion's best normal, near which the chain starts; `gap` is where the chain's nearest edge
-/// settles. Proves nothing where the best normal is off the plane, the corners along the chain
-/// leave the side, or a near face leaves the wedge.
+/// `cos t d + |sin t| (h - H)` (d the least of the chain's edge distances, H the most of its
+/// corners' heights), at least d up to the elevation where it falls back to d (everywhere if
+/// `h - H >= d`): a wedge of directions about the plane. Every other direction crosses a face of
+/// `polytope` (the expansion's surface so far, closed around the origin), which bounds the depth
+/// along it by its plane's distance over the cosine to its normal; the bound holds where, for
+/// every face nearer than it, the directions that face bounds by less lie in the wedge.
+/// `cylinder_is_a` names the cylinder; `best` is the expansion's best normal, near which the
+/// chain starts; `gap` is where the chain's nearest edge settles. Proves nothing where the best
+/// normal is off the plane, the corners along the chain leave the side, or a near face leaves
+/// the wedge.
 SideDepth cylinder_side_depth(const FramedBody& a, const FramedBody& b, bool cylinder_is_a,
                               const ExpandingPolytope& polytope, const Vector3& best, Scalar gap);
 

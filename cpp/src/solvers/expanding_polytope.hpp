@@ -92,9 +92,9 @@ class ExpandingPolytope {
  public:
   /// Expands from the tetrahedron `start` until the least support met along a triangle's normal
   /// is within `stop_gap` of the nearest triangle's plane, the expansion cannot proceed safely,
-  /// or after `max_iterations` steps; then verifies (unless `verify_end` is false: a run that
-  /// will be resumed, whose bound the resumed run proves, proves only what a step that dipped
-  /// kept). Returns verified = false when the tetrahedron does not enclose the origin provably.
+  /// or after `max_iterations` steps; then verifies (unless `verify_end` is false, for a run to
+  /// be resumed: it then proves only a bound a step that dipped kept). Returns verified = false
+  /// when the tetrahedron does not enclose the origin provably.
   ExpansionResult run(const FramedBody& a, const FramedBody& b,
                       const std::array<DifferencePoint, 4>& start, Scalar stop_gap,
                       int max_iterations, bool verify_end = true);
