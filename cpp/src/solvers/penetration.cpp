@@ -258,6 +258,9 @@ class Solver {
   // own frame, within its `scan_shortfall` (in margin()) of the frame's highest.
   void finish() {
     if (!(estimate_ > -kInfinity)) offer(Vector3::UnitX());
+    // Measured already (a cylinder's side measures its normal to know whether it settled the
+    // answer, before solve's own finish).
+    if (normal_ == candidate_ && separation_ > -kInfinity) return;
     normal_ = candidate_;
     // A polytope that support_index scans whole has its scan's support in the climb start
     // already when that start was found along the candidate (scanned_support would repeat it).
