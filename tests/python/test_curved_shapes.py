@@ -548,3 +548,19 @@ def test_every_body_names_its_rounding_radius_and_is_drawn_its_own_size(body, ro
     assert body.rounding_radius == rounding
     drawn = drawn_body(body)
     assert np.asarray(drawn.vertices)[:, 0].max() == pytest.approx(reach, rel=1e-2)
+
+
+@pytest.mark.parametrize("method", SIGNED_METHODS)
+def test_a_depth_counts_the_expanding_polytopes_steps(method):
+    """`iterations` and `evaluations` count the penetration solver's steps as well: a curved
+    pair's depth closes a ring of faces per digit, so a finer tolerance takes more of both. (The
+    exact method's answer, and every method's evaluations, counted only the walk before the
+    expanding polytope: 4 at either tolerance.)"""
+    a, b = sc.Cylinder(0.5, 0.5), sc.Cone(0.5, 0.6)
+    pose_b = (Rotation.from_rotvec([0.3, 0.7, 0.2]).as_matrix(), [0.7, 0.1, 0.3])
+    coarse, fine = (sc.signed_distance(a, b, pose_b=pose_b, method=method, tolerance=tolerance)
+                    for tolerance in (1e-3, 1e-10))
+    assert coarse.certified and fine.certified and fine.distance < -0.5
+    assert fine.iterations > coarse.iterations + 5
+    assert fine.evaluations > coarse.evaluations + 5
+    assert fine.evaluations >= fine.iterations

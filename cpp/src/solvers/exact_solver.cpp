@@ -250,6 +250,10 @@ Answer exact_penetration(const FramedPair& pair, int max_iterations, const Vecto
   answer.weights_a = std::move(bounds.weights_a);
   answer.weights_b = std::move(bounds.weights_b);
   answer.iterations = bounds.iterations;
+  // Each step of the solver's loops (Wolfe's, the expanding polytope's, a cylinder's side chain,
+  // a rolling ball's) asks one support point of B - A; the searches for witnesses and the scans
+  // that measure a separation are not counted.
+  answer.evaluations = bounds.iterations;
   answer.witnesses_along_direction = bounds.witnesses_along_normal;
   // The witnesses are points of the bodies, so their distance bounds the signed distance above
   // too. Where the solver stopped before its bounds met on a pair it did not show overlapping (an
@@ -286,7 +290,7 @@ Answer exact_signed_distance(const FramedPair& pair, int max_iterations, const V
   const Vector3 start = hint.norm() > 0 ? hint : apart.direction;
   // Wolfe's corral is not computed again; around the origin it starts the expanding polytope.
   Answer overlap = exact_penetration(pair, max_iterations, start, apart.upper, &nearest);
-  overlap.iterations = apart.iterations;
+  overlap.iterations += apart.iterations;
   overlap.evaluations += apart.evaluations;
   overlap.intersection_proven = apart.intersection_proven;
   return overlap;
