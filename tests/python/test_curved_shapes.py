@@ -564,3 +564,57 @@ def test_a_depth_counts_the_expanding_polytopes_steps(method):
     assert fine.iterations > coarse.iterations + 5
     assert fine.evaluations > coarse.evaluations + 5
     assert fine.evaluations >= fine.iterations
+
+
+@pytest.mark.parametrize("method", SIGNED_METHODS)
+def test_a_needle_of_an_ellipsoid_a_hair_from_a_cone_is_proven(method):
+    """Found by `curved_census.py --extreme --seed 65`: an ellipsoid 1e-4 thin, 8.2e-7 from a
+    cone. The fcl method's exact finish, started from FCL's simplex, stalled 1.5e-7 short of the
+    tolerance (uncertified) where the exact method's start settles it; it now tries that start
+    too."""
+    cone = sc.Cone(0.059063323199935236, 0.31835910217387436)
+    needle = sc.Ellipsoid([0.00010910813496717425, 0.027066106644189996, 0.39138806169223045])
+    pose_a = np.array([[0.2213350697785903, -0.9365965158251711, -0.2716574192439009, 0.0],
+                       [0.21880358937543523, -0.22376937330018398, 0.9497643164750236, 0.0],
+                       [-0.9503345601221355, -0.26965576967124727, 0.1554026696053664, 0.0],
+                       [0.0, 0.0, 0.0, 1.0]])
+    pose_b = np.array([[0.6222805970654846, -0.03620967530942869, 0.7819563401685609,
+                        -0.13087665830248207],
+                       [0.7578083663102272, 0.2782347199018148, -0.5901795663960108,
+                        0.10719776729322311],
+                       [-0.19619719280878883, 0.9598303496218195, 0.2005800625157112,
+                        0.022982715410659767],
+                       [0.0, 0.0, 0.0, 1.0]])
+    result = sc.signed_distance(cone, needle, pose_a=pose_a, pose_b=pose_b, method=method)
+    exact = sc.signed_distance(cone, needle, pose_a=pose_a, pose_b=pose_b, method="exact",
+                               tolerance=1e-12)
+    assert result.certified
+    assert result.lower_bound <= exact.distance and exact.lower_bound <= result.distance
+    assert 8.1e-7 < result.lower_bound <= result.distance < 8.3e-7
+
+
+@pytest.mark.parametrize("method", SIGNED_METHODS)
+def test_a_signed_distance_apart_is_settled_as_the_distance_is(method):
+    """Found by `curved_census.py --extreme --seed 67`: a capsule 3.5e-5 from a flat ellipsoid.
+    The exact method certified the distance but not the signed distance (2.8e-9 between the
+    bounds): apart, the signed distance skipped the corral's planes that settle the distance."""
+    capsule = sc.Capsule(3.715273865800954e-05, 0.030799776886118777)
+    plate = sc.Ellipsoid([0.0004474977434129657, 0.002246721544449453, 1.1865358179247335e-05])
+    pose_a = np.array([[-0.44447701572106113, 0.7486252666181487, -0.4919353541641482, 0.0],
+                       [0.7913454484849931, 0.5854899417507373, 0.17599406032819256, 0.0],
+                       [0.41977680219109914, -0.3110654887473443, -0.8526580194032016, 0.0],
+                       [0.0, 0.0, 0.0, 1.0]])
+    pose_b = np.array([[0.05161434481046512, -0.6479764111213302, -0.7599095538550016,
+                        0.00010391035738854711],
+                       [0.4229557644731802, 0.7034941770369703, -0.5711430330258646,
+                        -0.0008708210353066276],
+                       [0.9046791589888066, -0.2919289528385237, 0.3103757493521502,
+                        -0.0015393053516251044],
+                       [0.0, 0.0, 0.0, 1.0]])
+    signed = sc.signed_distance(capsule, plate, pose_a=pose_a, pose_b=pose_b, method=method)
+    assert signed.certified
+    if method != "libccd":  # libccd has no distance
+        distance = sc.distance(capsule, plate, pose_a=pose_a, pose_b=pose_b, method=method)
+        assert distance.certified
+        assert signed.lower_bound <= distance.distance and distance.lower_bound <= signed.distance
+    assert 3.5276e-5 < signed.lower_bound <= signed.distance < 3.5278e-5

@@ -283,10 +283,16 @@ Answer exact_signed_distance(const FramedPair& pair, int max_iterations, const V
   const MinNormPoint nearest =
       nearest_corral(pair, max_iterations, start_direction(pair, hint), -1, -1, evaluations);
   Answer apart = corral_answer(pair, nearest, evaluations);
-  // A positive separation proves the bodies apart, and their distance is the signed distance;
-  // a touching pair's may be settled without the expanding polytope, and an apart pair's value
-  // left unproven by rounding is settled the same way (as exact_distance's).
-  if (settles_signed_distance(pair, nearest, apart) || apart.lower > kFrameRounding) return apart;
+  // A positive separation proves the bodies apart, and their distance is the signed distance,
+  // its value settled as exact_distance settles it, curved bodies' too (the corral's planes, where
+  // Wolfe's restarts leave its direction short: a capsule 3.5e-5 from a flat ellipsoid, 2.8e-9
+  // between the bounds, uncertified where the distance was certified); a touching pair's may be
+  // settled without the expanding polytope (polytopes only: settles_signed_distance).
+  if (apart.lower > kFrameRounding) {
+    settles_value(pair, nearest, apart);
+    return apart;
+  }
+  if (settles_signed_distance(pair, nearest, apart)) return apart;
   const Vector3 start = hint.norm() > 0 ? hint : apart.direction;
   // Wolfe's corral is not computed again; around the origin it starts the expanding polytope.
   Answer overlap = exact_penetration(pair, max_iterations, start, apart.upper, &nearest);
