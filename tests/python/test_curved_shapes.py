@@ -618,3 +618,29 @@ def test_a_signed_distance_apart_is_settled_as_the_distance_is(method):
         assert distance.certified
         assert signed.lower_bound <= distance.distance and distance.lower_bound <= signed.distance
     assert 3.5276e-5 < signed.lower_bound <= signed.distance < 3.5278e-5
+
+
+@pytest.mark.parametrize("method", SIGNED_METHODS)
+def test_rolling_balls_go_on_until_the_witnesses_lie_along_the_normal(method):
+    """Found by `curved_census.py --seed 32 --tolerance 1e-9`: two ellipsoids overlapping by
+    0.1, whose rolling balls proved the depth to 0.96 tolerances while the witnesses lay 1.5
+    tolerances off the normal, so the default method's answer was not certified. The balls' search
+    now goes on to a finer gap, as the expanding polytope's does."""
+    a = sc.Ellipsoid([1.012063783776474, 0.15180358920463224, 0.8061783696143398])
+    b = sc.Ellipsoid([0.4769266079494664, 0.8886319575640572, 0.71773396736733])
+    pose_a = np.array([[-0.5208722934614409, 0.3684434802938314, 0.7700269188367297, 0.0],
+                       [0.2655408389572503, -0.7873686520073695, 0.5563619942824795, 0.0],
+                       [0.8112830065705174, 0.4942671420042678, 0.3122817247051687, 0.0],
+                       [0.0, 0.0, 0.0, 1.0]])
+    pose_b = np.array([[0.6753029026687165, 0.5577800148938696, 0.4825426868497755,
+                        0.9608401100275903],
+                       [-0.24090115282790556, 0.7851876777442138, -0.5704795748182705,
+                        -0.6119571188151653],
+                       [-0.697088677438812, 0.2690014232372074, 0.6646093665326759,
+                        -0.3852970948477914],
+                       [0.0, 0.0, 0.0, 1.0]])
+    result = sc.signed_distance(a, b, pose_a=pose_a, pose_b=pose_b, method=method)
+    assert result.certified
+    np.testing.assert_allclose(result.point_b - result.point_a,
+                               result.distance * result.direction, rtol=0, atol=3e-9)
+    assert -0.09858915 < result.lower_bound <= result.distance < -0.09858914
