@@ -173,6 +173,12 @@ census: install $(VENV)/.bench-installed
 	$(PY) tests/fuzz/curved_census.py --json build/fuzz/curved.jsonl $(CURVED_CENSUS_ARGS)
 	$(PY) tests/fuzz/curved_census.py --extreme --json build/fuzz/curved_extreme.jsonl \
 	  $(CURVED_EXTREME_CENSUS_ARGS)
+	# At the library's default tolerance, where every unproven answer is a finding (at 1e-12 some
+	# are rounding's floor): two seeds that held one before session 65's fixes (tests/fuzz/AFTER.md).
+	$(PY) tests/fuzz/curved_census.py --tolerance 1e-9 --seed 32 --pairs 300 \
+	  --json build/fuzz/curved_default.jsonl
+	$(PY) tests/fuzz/curved_census.py --extreme --tolerance 1e-9 --seed 67 --pairs 300 \
+	  --json build/fuzz/curved_extreme_default.jsonl
 	$(PY) tests/fuzz/census.py --corpus motions --count 3000 --json build/fuzz/motions.jsonl \
 	  $(MOTIONS_CENSUS_ARGS)
 	$(PY) tests/fuzz/census.py --corpus robots --count 4000 --json build/fuzz/robots.jsonl \
