@@ -443,8 +443,14 @@ class Solver {
     if (!rolls(a_) && !rolls(b_)) return false;
     const Vector3 start =
         hint.allFinite() && hint.norm() > 0 ? hint : Vector3(b_.offset() - a_.offset());
+    return roll(start, polytope_gap()) && done();
+  }
+
+  // The balls' search from the direction `start` to `gap`, its bound and normal taken as the
+  // solver's: true when it proved a bound.
+  bool roll(const Vector3& start, Scalar gap) {
     const RollingBallDepth& rolling =
-        rolling_.emplace(rolling_ball_depth(a_, b_, start, polytope_gap(), max_iterations_));
+        rolling_.emplace(rolling_ball_depth(a_, b_, start, gap, max_iterations_));
     iterations_ += rolling.iterations;
     if (!rolling.proven) return false;
     set_upper(-rolling.depth_lower, PenetrationProof::rolling_ball);
@@ -456,7 +462,7 @@ class Solver {
       offer(rolling.measured);
       finish();
     }
-    return done();
+    return true;
   }
 
   // Curved bodies have no candidate axes to fall back on. Where Wolfe's corral stops short of a
@@ -787,19 +793,7 @@ class Solver {
   bool resume_rolling() {
     if (!rolling_ || !rolling_->proven || proof_ != PenetrationProof::rolling_ball) return false;
     const Scalar gap = (upper() - lower()) / 16;
-    if (!(gap > floor() / 4)) return false;
-    const RollingBallDepth& rolling =
-        rolling_.emplace(rolling_ball_depth(a_, b_, normal_, gap, max_iterations_));
-    iterations_ += rolling.iterations;
-    if (!rolling.proven) return false;
-    set_upper(-rolling.depth_lower, PenetrationProof::rolling_ball);
-    offer(rolling.normal);
-    finish();
-    if (rolling.measured != rolling.normal) {
-      offer(rolling.measured);
-      finish();
-    }
-    return true;
+    return gap > floor() / 4 && roll(normal_, gap);
   }
 
   // The bounds and normal as they stand, without witnesses.
