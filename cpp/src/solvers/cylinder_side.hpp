@@ -2,25 +2,12 @@
 // sources.
 #pragma once
 
-#include <limits>
-
 #include "../geometry/framed_body.hpp"
 #include "expanding_polytope.hpp"
+#include "side_chain.hpp"
 #include "swarmcollide/types.hpp"
 
 namespace swarmcollide::detail {
-
-/// What cylinder_side_depth proved.
-struct SideDepth {
-  /// Proven: the origin lies at least this deep in `A - B` (frame units); -infinity where
-  /// nothing was proven.
-  Scalar lower = -std::numeric_limits<Scalar>::infinity();
-  /// The unit direction, normal to the cylinder's axis, along which `A - B`'s support was least
-  /// in the section (the penetration's normal, from A to B).
-  Vector3 normal = Vector3::UnitX();
-  /// The support points of the other body it asked for.
-  int steps = 0;
-};
 
 /// A cylinder is a disc plus a segment along its axis z, so `A - B` is `E + [-h, h] z` for the
 /// convex set E that the other body minus the cylinder's disc makes. Along a direction u at

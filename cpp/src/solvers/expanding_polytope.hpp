@@ -137,7 +137,8 @@ class ExpandingPolytope {
   template <typename Test>
   bool nearer_faces_pass(Scalar depth, const Test& test) const {
     Scalar closest = 0;
-    if (!(closed_ ? *closed_ : verify(closest))) return false;
+    if (!closed_) closed_ = verify(closest);
+    if (!*closed_) return false;
     for (int i = 0; i < face_count_; ++i) {
       const Face& f = faces_[i];
       if (!f.alive || f.low * (1 - 8 * kRoundoff) >= depth) continue;
@@ -222,8 +223,9 @@ class ExpandingPolytope {
   std::vector<int> start_face_;   // per vertex: the new face whose horizon edge starts there
   int stamp_ = 0;
   int vertex_stamp_ = 0;
-  // Whether the last run's surface as it stands passed `verify` (none: not verified yet).
-  std::optional<bool> closed_;
+  // Whether the last run's surface as it stands passed `verify` (none: not verified yet), from
+  // the run's end or the first nearer_faces_pass after it (the surface stands until the next run).
+  mutable std::optional<bool> closed_;
   // The best depth bound of a surface verified before a step that dipped below it (see expand);
   // negative when none was.
   Scalar kept_depth_ = -1;

@@ -14,6 +14,7 @@
 #include "../geometry/support_tree.hpp"
 #include "../geometry/unit_direction.hpp"
 #include "candidate_axes.hpp"
+#include "cone_side.hpp"
 #include "cylinder_side.hpp"
 #include "expanding_polytope.hpp"
 #include "minkowski.hpp"
@@ -47,11 +48,12 @@ constexpr int kMostKeptCorners = 16;
 // Steps from a tetrahedron from which its surface is kept: a resting contact's tetrahedron on
 // its face takes one or two, fewer than placing a surface's faces again costs.
 constexpr int kKeptFromSteps = 4;
-// The gap (frame units, the pair's size 1 to 2) to which a pair with a cylinder expands before
-// its side is tried (cylinder_side.hpp), where the faces nearer than the side's bound lie within
-// its wedge on most pairs whose side holds the deepest point. Overlapping cylinders took 65,242
-// instructions a query at 2^-10, 63,138 at 2^-12, 66,014 at 2^-14, 77,267 at 2^-8 (72,061 with
-// the expansion alone; callgrind_query.py --curved --pairs 100, the chain as first built).
+// The gap (frame units, the pair's size 1 to 2) to which a pair with a cylinder or a cone
+// expands before its side is tried (cylinder_side.hpp, cone_side.hpp), where the faces nearer
+// than the side's bound lie within its wedge on most pairs whose side holds the deepest point.
+// Overlapping cylinders took 65,242 instructions a query at 2^-10, 63,138 at 2^-12, 66,014 at
+// 2^-14, 77,267 at 2^-8 (72,061 with the expansion alone; callgrind_query.py --curved --pairs
+// 100, the chain as first built).
 constexpr Scalar kSideGap = 0x1p-12;
 
 // Buffers a solve reuses from the previous one on the same thread.
@@ -333,34 +335,45 @@ class Solver {
       start_tetrahedron[k] = {-m.corral[k].p, m.corral[k].ia, m.corral[k].ib};
     }
     expanded_from_kept_ = false;
-    if (has_cylinder() && stop_gap() < kSideGap) {
-      // Verified only where the side needs its faces (cylinder_side.hpp), or at the end.
+    if (has_side() && stop_gap() < kSideGap) {
+      // Verified only where the side needs its faces (side_chain.hpp), or at the end.
       const bool dipped = use_expansion(
           ws_.polytope.run(a_, b_, start_tetrahedron, kSideGap, max_iterations_, false));
-      if (use_cylinder_side()) return true;
+      if (use_side()) return true;
       return use_expansion(ws_.polytope.resume(a_, b_, stop_gap(), max_iterations_)) || dipped;
     }
     return use_expansion(
         ws_.polytope.run(a_, b_, start_tetrahedron, stop_gap(), max_iterations_));
   }
 
-  bool has_cylinder() const {
-    return a_.curved_kind() == CurvedKind::cylinder || b_.curved_kind() == CurvedKind::cylinder;
+  // A cone's side is tried beside curved bodies only: beside a box, whose flat faces the
+  // expansion closes on in few steps past 2^-12, its chain cost more than the steps it saved
+  // (overlapping cone-box pairs 36,930 -> 40,320 instructions a query; a cylinder's side still
+  // pays there, cylinder-box 46,759 -> 45,101).
+  static bool has_side(const FramedBody& body, const FramedBody& other) {
+    return body.curved_kind() == CurvedKind::cylinder ||
+           (body.curved_kind() == CurvedKind::cone && other.curved());
   }
+  bool has_side() const { return has_side(a_, b_) || has_side(b_, a_); }
 
-  // Where a cylinder's side holds the deepest point, its section proves the depth
-  // (cylinder_side.hpp) from the polytope expanded so far, to a gap that takes it half the
-  // steps; the direction it gives is measured as any other. True when that settles the answer.
-  bool use_cylinder_side() {
+  // Where a cylinder's or a cone's side holds the deepest point, its section proves the depth
+  // (cylinder_side.hpp, cone_side.hpp) from the polytope expanded so far, to a gap that takes
+  // it half the steps; the direction it gives is measured as any other. True when that settles
+  // the answer.
+  bool use_side() {
     if (!(expansion_.best_separation > -kInfinity)) return false;  // no face was made
-    for (const bool cylinder_is_a : {false, true}) {
-      const FramedBody& cylinder = cylinder_is_a ? a_ : b_;
-      if (cylinder.curved_kind() != CurvedKind::cylinder) continue;
-      const SideDepth side = cylinder_side_depth(a_, b_, cylinder_is_a, ws_.polytope,
-                                                 expansion_.best_normal, stop_gap());
+    for (const bool side_of_a : {false, true}) {
+      const FramedBody& body = side_of_a ? a_ : b_;
+      if (!has_side(body, side_of_a ? b_ : a_)) continue;
+      const bool cylinder = body.curved_kind() == CurvedKind::cylinder;
+      const SideDepth side = cylinder ? cylinder_side_depth(a_, b_, side_of_a, ws_.polytope,
+                                                            expansion_.best_normal, stop_gap())
+                                      : cone_side_depth(a_, b_, side_of_a, ws_.polytope,
+                                                        expansion_.best_normal, stop_gap());
       iterations_ += side.steps;
       if (!(side.lower > expansion_.depth_lower)) continue;
-      set_upper(-side.lower, PenetrationProof::cylinder_side);
+      set_upper(-side.lower,
+                cylinder ? PenetrationProof::cylinder_side : PenetrationProof::cone_side);
       // The witnesses: along the normal a cylinder's or a cone's support may be a whole segment
       // of its side (the cylinder's is, the normal being across its axis), whose ends the
       // supports a little off the normal towards either end of the axis give.
@@ -679,7 +692,7 @@ class Solver {
     return true;
   }
 
-  // The witnesses of a cylinder's side (use_cylinder_side): each body's support along the
+  // The witnesses of a cylinder's or a cone's side (use_side): each body's support along the
   // normal, or for a cylinder or a cone the segment of its side between the supports a little
   // off the normal, and the nearest points of the two once one is moved by the separation along
   // the normal. False, leaving `r` alone, where they are off `separation * normal` by more than
@@ -850,7 +863,7 @@ class Solver {
   int iterations_ = 0;
   // Wolfe's last corral on B - A (none yet: size 0).
   MinNormPoint last_corral_;
-  // The normal a cylinder's side proved its bound along (use_cylinder_side; NaN until then),
+  // The normal a side proved its bound along (use_side; NaN until then),
   // and the ends of each body's side segment along it (-1 for a body with no side).
   Vector3 side_normal_ = Vector3::Constant(std::numeric_limits<Scalar>::quiet_NaN());
   std::array<int, 2> side_ends_a_{-1, -1};

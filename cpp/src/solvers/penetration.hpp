@@ -26,6 +26,8 @@ enum class PenetrationProof {
   rolling_ball,
   /// A cylinder's side, with the expanding polytope's faces (cylinder_side.hpp).
   cylinder_side,
+  /// A cone's side, with the expanding polytope's faces (cone_side.hpp).
+  cone_side,
 };
 
 /// Proven bounds on the signed distance `sd` of two convex hulls of point sets, with the best
