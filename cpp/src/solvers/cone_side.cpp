@@ -120,22 +120,13 @@ SideDepth side_depth(Section& section, const FramedBody& a, const FramedBody& b,
   const Scalar toward = local_best.z() * section.sine() + across_axis * section.cosine();
   if (!(across_axis > 0 && toward > 0 && std::abs(tilt) <= kMostTilt * toward)) return none;
   const Vector2 middle(local_best.x() / across_axis, local_best.y() / across_axis);
-  const auto turned = [&](Scalar angle) { return side_chain::turned(middle, angle); };
   const auto support = [&](const Vector2& w) { return section.support(w); };
+  const auto on_side = [&](const Corner& c) { return section.on_side(c); };
   std::array<Corner, kMostCorners> corners;
   std::array<side_chain::Edge, kMostCorners> edges;
-  // As the cylinder's chain starts (cylinder_side.cpp), and refused as early where the deepest
-  // point is not on the side.
-  corners[2] = section.support(middle);
-  if (!section.on_side(corners[2])) return none;
-  corners[1] = section.support(turned(-side_chain::kNearSpread));
-  corners[3] = section.support(turned(side_chain::kNearSpread));
-  if (!section.on_side(corners[1]) || !section.on_side(corners[3])) return none;
-  corners[0] = section.support(turned(-side_chain::kHalfSpread));
-  corners[4] = section.support(turned(side_chain::kHalfSpread));
-  int count = 5;
-  const int nearest = side_chain::close_chain(corners, edges, count, gap, support);
-  if (!std::isfinite(edges[nearest].distance)) return none;
+  int count = 0;
+  const int nearest = side_chain::open_chain(middle, gap, support, on_side, corners, edges, count);
+  if (nearest < 0) return none;
   // The run of corners around the nearest edge at least half as far from the apex and from the
   // rim as its corners are: the farther, the farther off the side's normals the bound holds.
   const auto along = [&](int k) { return corners[k].direction.dot(corners[k].other.head<2>()); };

@@ -79,28 +79,16 @@ SideDepth side_depth(Section& section, const FramedBody& a, const FramedBody& b,
   const Scalar across_axis = std::hypot(local_best.x(), local_best.y());
   if (!(std::abs(local_best.z()) <= kMostRise * across_axis)) return none;
   const Vector2 middle(local_best.x() / across_axis, local_best.y() / across_axis);
-  // The chain starts at the best normal's azimuth and either side of it, near (where the
-  // expansion so far puts the deepest one: the first steps are the chain's nearest) and far
-  // (the wedge its bound may cover).
-  const auto turned = [&](Scalar angle) { return side_chain::turned(middle, angle); };
   const auto support = [&](const Vector2& w) { return section.support(w); };
+  // A corner on the side: below its rims.
+  const auto on_side = [&](const Corner& c) {
+    return std::abs(c.height) + 2 * kCornerError < section.half_length();
+  };
   std::array<Corner, kMostCorners> corners;
   std::array<side_chain::Edge, kMostCorners> edges;
-  corners[2] = section.support(middle);
-  // The other body's support along the best normal lies off the side (a rim's or a cap's
-  // contact): no run of corners will be found.
-  if (!(std::abs(corners[2].height) + 2 * kCornerError < section.half_length())) return none;
-  corners[1] = section.support(turned(-side_chain::kNearSpread));
-  corners[3] = section.support(turned(side_chain::kNearSpread));
-  // Nor where the near corners leave it, as they do where the deepest point is a rim's.
-  for (const int k : {1, 3}) {
-    if (!(std::abs(corners[k].height) + 2 * kCornerError < section.half_length())) return none;
-  }
-  corners[0] = section.support(turned(-side_chain::kHalfSpread));
-  corners[4] = section.support(turned(side_chain::kHalfSpread));
-  int count = 5;
-  const int nearest = side_chain::close_chain(corners, edges, count, gap, support);
-  if (!std::isfinite(edges[nearest].distance)) return none;
+  int count = 0;
+  const int nearest = side_chain::open_chain(middle, gap, support, on_side, corners, edges, count);
+  if (nearest < 0) return none;
   // The run of corners around the nearest edge no higher than halfway from its corners to the
   // rims: the lower its corners, the farther out of the plane the run's bound holds.
   const Scalar h = section.half_length();

@@ -114,6 +114,28 @@ int close_chain(std::array<Corner, kMostCorners>& corners, std::array<Edge, kMos
   return nearest;
 }
 
+/// The chain around the plane direction `middle` (the expansion's best normal's), closed as
+/// close_chain closes it; its nearest edge, or -1 where `on_side(corner)` refuses the corner
+/// along `middle` or one near it. It starts at `middle` and either side of it, near (where the
+/// expansion so far puts the deepest direction: the first steps are the chain's nearest) and far
+/// (the wedge its bound may cover); the other body's support along the best normal lies off
+/// the side where the deepest point is a rim's or a cap's, and no run of corners would be found.
+template <class Corner, class Support, class OnSide>
+int open_chain(const Vector2& middle, Scalar gap, const Support& support, const OnSide& on_side,
+               std::array<Corner, kMostCorners>& corners, std::array<Edge, kMostCorners>& edges,
+               int& count) {
+  corners[2] = support(middle);
+  if (!on_side(corners[2])) return -1;
+  corners[1] = support(turned(middle, -kNearSpread));
+  corners[3] = support(turned(middle, kNearSpread));
+  if (!on_side(corners[1]) || !on_side(corners[3])) return -1;
+  corners[0] = support(turned(middle, -kHalfSpread));
+  corners[4] = support(turned(middle, kHalfSpread));
+  count = 5;
+  const int nearest = close_chain(corners, edges, count, gap, support);
+  return std::isfinite(edges[nearest].distance) ? nearest : -1;
+}
+
 /// The plane direction along which the section is least deep, between the directions `from`
 /// and `to` (counterclockwise, less than a half-turn apart): where the support point's offset
 /// across the direction, `s(w) . t(w)` for the counterclockwise tangent t, changes sign
