@@ -17,6 +17,8 @@
 namespace swarmcollide::testing {
 namespace {
 
+constexpr Scalar kHalfPi = 1.5707963267948966;
+
 detail::PenetrationBounds solve(const detail::FramedPair& pair) {
   return detail::penetration(pair.a, pair.b, pair.b.offset() - pair.a.offset(), nullptr,
                              pair.tolerance, ExactOptions().max_iterations);
@@ -148,6 +150,63 @@ TEST(ConeSide, ANearerBaseRefusesTheSidesBound) {
     }
   }
   // The side's proof still proves pairs whose side is the nearer.
+  EXPECT_GT(sides, 0);
+}
+
+// A small cylinder over a cone's apex, the apex just inside its top cap, its axis tilted towards
+// the side's normal at the same azimuth: the apex's contact, along the cap's normal, is a
+// tolerance-sized step from being as deep as the side's. The cap's normal lies at the side's
+// azimuth, above the elevations the side's wedge reaches (where the apex and the small
+// cylinder's points bound the support by less than the side's bound), so there only the wedge's
+// upper limit keeps the faces about it out: no depth claimed lies beyond the separation along
+// the cap's normal or the side's.
+TEST(ConeSide, ANearerApexRefusesTheSidesBound) {
+  const Scalar r = 0.5;
+  const Scalar h = 0.5;
+  const Cone cone(r, h);
+  const Vector3 apex(0, 0, h);
+  const Vector3 side_normal = Vector3(2 * h, 0, r).normalized();
+  const Scalar radius = 0.04;
+  const Scalar half_length = 0.03;
+  const Cylinder small(radius, half_length);
+  const Scalar elevation = 1.0;  // rad: the cap's normal, above the side's (0.46)
+  const Vector3 axis(std::cos(elevation), 0, std::sin(elevation));
+  // Turns z onto the axis, about y.
+  const Matrix3 onto_axis =
+      Eigen::AngleAxis<Scalar>(kHalfPi - elevation, Vector3::UnitY()).toRotationMatrix();
+  const Vector3 across(-std::sin(elevation), 0, std::cos(elevation));
+  const Scalar along = axis.dot(side_normal);
+  const Scalar small_support =  // the small cylinder's along -side_normal, about its centre
+      half_length * std::abs(along) + radius * std::sqrt(1 - along * along);
+  Random rng(69);
+  int sides = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    // The apex 0.01 below the top cap: the support of A - B along the axis is 2 half-lengths
+    // less that; the centre moved across the axis until the side's support exceeds it by `gap`.
+    const Scalar gap = (trial % 2 == 0 ? 1 : -1) * 1e-7 * (1 + trial / 2 % 10);
+    const Vector3 start = apex - (half_length - 0.01) * axis;
+    const Scalar apex_depth = 2 * half_length - 0.01;
+    const Scalar side_depth = side_normal.dot(apex - start) + small_support;
+    const Vector3 centre =
+        start + (side_depth - apex_depth - gap) / side_normal.dot(across) * across;
+    const Matrix3 turn = rng.rotation();
+    const Vector3 shift = rng.vector(0.2);
+    const Pose pose_cone = at(shift, turn);
+    const Pose pose_small = at(shift + turn * centre, turn * onto_axis);
+    const bool swapped = trial % 4 >= 2;
+    const detail::FramedPair pair =
+        swapped ? detail::frame_pair(small, pose_small, cone, pose_cone, 1e-9)
+                : detail::frame_pair(cone, pose_cone, small, pose_small, 1e-9);
+    const detail::PenetrationBounds found = solve(pair);
+    SCOPED_TRACE(::testing::Message() << "trial " << trial << " gap " << gap << " proof "
+                                      << static_cast<int>(found.proof));
+    ASSERT_LT(found.upper, 0);
+    sides += found.proof == detail::PenetrationProof::cone_side;
+    const Scalar toward = swapped ? -1 : 1;
+    for (const Vector3& normal : {Vector3(turn * axis), Vector3(turn * side_normal)}) {
+      EXPECT_LE(detail::exact_separation(pair.a, pair.b, toward * normal), found.upper + 1e-13);
+    }
+  }
   EXPECT_GT(sides, 0);
 }
 
