@@ -1,11 +1,14 @@
 // A random search of directions for a framed pair's largest separation near a given direction:
 // every separation is a lower bound on the signed distance, so a proven upper bound may not lie
-// below the best one found (a depth claimed too large would put it there).
+// below the best one found (a depth claimed too large would put it there). And the penetration
+// solver's answer those searches check.
 #pragma once
 
 #include "geometry/framed_body.hpp"
 #include "shapes.hpp"
 #include "solvers/minkowski.hpp"
+#include "solvers/penetration.hpp"
+#include "swarmcollide/solvers/exact_options.hpp"
 
 namespace swarmcollide::testing {
 
@@ -26,6 +29,13 @@ inline Scalar best_separation_near(const detail::FramedPair& pair, const Vector3
     }
   }
   return best_separation;
+}
+
+/// The penetration solver's bounds on a framed pair, from the direction between the bodies'
+/// offsets, at the pair's tolerance and the exact method's iteration cap.
+inline detail::PenetrationBounds solve_penetration(const detail::FramedPair& pair) {
+  return detail::penetration(pair.a, pair.b, pair.b.offset() - pair.a.offset(), nullptr,
+                             pair.tolerance, ExactOptions().max_iterations);
 }
 
 }  // namespace swarmcollide::testing

@@ -5,24 +5,18 @@
 
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
 
 #include "geometry/framed_body.hpp"
 #include "separation_search.hpp"
 #include "shapes.hpp"
 #include "solvers/minkowski.hpp"
-#include "solvers/penetration.hpp"
 #include "swarmcollide/geometry/shapes.hpp"
-#include "swarmcollide/solvers/exact_options.hpp"
 
 namespace swarmcollide::testing {
 namespace {
 
 constexpr Scalar kHalfPi = 1.5707963267948966;
-
-detail::PenetrationBounds solve(const detail::FramedPair& pair) {
-  return detail::penetration(pair.a, pair.b, pair.b.offset() - pair.a.offset(), nullptr,
-                             pair.tolerance, ExactOptions().max_iterations);
-}
 
 // A cone against another cone, a cylinder and an ellipsoid, the sizes and places as
 // bench/curved_coal.py draws them, the cone first or second, at the default tolerance and at
@@ -53,7 +47,7 @@ TEST(ConeSide, OverlapsOnASideAreProvenAndBracketTheDepth) {
       const Pose pb = at(rng.vector(0.8), rng.rotation());
       const detail::FramedPair pair = swapped ? detail::frame_pair(b, pb, a, pa, tolerance)
                                               : detail::frame_pair(a, pa, b, pb, tolerance);
-      const detail::PenetrationBounds found = solve(pair);
+      const detail::PenetrationBounds found = solve_penetration(pair);
       if (!(found.upper < 0)) continue;  // apart or touching
       ++pairs;
       SCOPED_TRACE(::testing::Message()
@@ -98,6 +92,26 @@ TEST(ConeSide, OverlapsOnASideAreProvenAndBracketTheDepth) {
   }
 }
 
+// The pair of `cone` and `small` (in that order, or turned over where `swapped`), at the
+// default tolerance: overlapping, and no depth claimed beyond the separation along any of the
+// cone's outward `normals` (in the world; the opposite ones where the cone is B). `sides` counts
+// the answers the cone's side proved.
+void expect_no_claim_beyond(const Cone& cone, const Pose& pose_cone, const Cylinder& small,
+                            const Pose& pose_small, bool swapped,
+                            std::initializer_list<Vector3> normals, int& sides) {
+  const detail::FramedPair pair =
+      swapped ? detail::frame_pair(small, pose_small, cone, pose_cone, 1e-9)
+              : detail::frame_pair(cone, pose_cone, small, pose_small, 1e-9);
+  const detail::PenetrationBounds found = solve_penetration(pair);
+  SCOPED_TRACE(::testing::Message() << "proof " << static_cast<int>(found.proof));
+  ASSERT_LT(found.upper, 0);
+  sides += found.proof == detail::PenetrationProof::cone_side;
+  const Scalar toward = swapped ? -1 : 1;
+  for (const Vector3& normal : normals) {
+    EXPECT_LE(detail::exact_separation(pair.a, pair.b, toward * normal), found.upper + 1e-13);
+  }
+}
+
 // A small cylinder inside a cone near its rim, almost as deep below the side as below the base:
 // the expansion to 2^-12 cannot tell which is the deeper, and where its best normal is the
 // side's while the base is nearer by up to 1e-6, the side's chain would claim the side's depth.
@@ -133,21 +147,10 @@ TEST(ConeSide, ANearerBaseRefusesTheSidesBound) {
     const Vector3 shift = rng.vector(0.2);
     const Pose pose_cone = at(shift, turn);
     const Pose pose_small = at(shift + turn * Vector3(x, 0, z), turn * turn_small);
-    const bool swapped = trial % 4 >= 2;
-    const detail::FramedPair pair =
-        swapped ? detail::frame_pair(small, pose_small, cone, pose_cone, 1e-9)
-                : detail::frame_pair(cone, pose_cone, small, pose_small, 1e-9);
-    const detail::PenetrationBounds found = solve(pair);
-    SCOPED_TRACE(::testing::Message() << "trial " << trial << " gap " << gap << " proof "
-                                      << static_cast<int>(found.proof));
-    ASSERT_LT(found.upper, 0);
-    sides += found.proof == detail::PenetrationProof::cone_side;
-    // The cone's outward normals towards the other body, the base's and the side's (the
-    // opposite ones where the cone is B).
-    const Scalar toward = swapped ? -1 : 1;
-    for (const Vector3& normal : {Vector3(turn * -Vector3::UnitZ()), Vector3(turn * side_normal)}) {
-      EXPECT_LE(detail::exact_separation(pair.a, pair.b, toward * normal), found.upper + 1e-13);
-    }
+    SCOPED_TRACE(::testing::Message() << "trial " << trial << " gap " << gap);
+    // The base's and the side's normals.
+    expect_no_claim_beyond(cone, pose_cone, small, pose_small, trial % 4 >= 2,
+                           {Vector3(turn * -Vector3::UnitZ()), Vector3(turn * side_normal)}, sides);
   }
   // The side's proof still proves pairs whose side is the nearer.
   EXPECT_GT(sides, 0);
@@ -193,19 +196,10 @@ TEST(ConeSide, ANearerApexRefusesTheSidesBound) {
     const Vector3 shift = rng.vector(0.2);
     const Pose pose_cone = at(shift, turn);
     const Pose pose_small = at(shift + turn * centre, turn * onto_axis);
-    const bool swapped = trial % 4 >= 2;
-    const detail::FramedPair pair =
-        swapped ? detail::frame_pair(small, pose_small, cone, pose_cone, 1e-9)
-                : detail::frame_pair(cone, pose_cone, small, pose_small, 1e-9);
-    const detail::PenetrationBounds found = solve(pair);
-    SCOPED_TRACE(::testing::Message() << "trial " << trial << " gap " << gap << " proof "
-                                      << static_cast<int>(found.proof));
-    ASSERT_LT(found.upper, 0);
-    sides += found.proof == detail::PenetrationProof::cone_side;
-    const Scalar toward = swapped ? -1 : 1;
-    for (const Vector3& normal : {Vector3(turn * axis), Vector3(turn * side_normal)}) {
-      EXPECT_LE(detail::exact_separation(pair.a, pair.b, toward * normal), found.upper + 1e-13);
-    }
+    SCOPED_TRACE(::testing::Message() << "trial " << trial << " gap " << gap);
+    // The cap's and the side's normals.
+    expect_no_claim_beyond(cone, pose_cone, small, pose_small, trial % 4 >= 2,
+                           {Vector3(turn * axis), Vector3(turn * side_normal)}, sides);
   }
   EXPECT_GT(sides, 0);
 }

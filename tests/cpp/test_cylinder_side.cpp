@@ -11,17 +11,10 @@
 #include "separation_search.hpp"
 #include "shapes.hpp"
 #include "solvers/minkowski.hpp"
-#include "solvers/penetration.hpp"
 #include "swarmcollide/geometry/shapes.hpp"
-#include "swarmcollide/solvers/exact_options.hpp"
 
 namespace swarmcollide::testing {
 namespace {
-
-detail::PenetrationBounds solve(const detail::FramedPair& pair) {
-  return detail::penetration(pair.a, pair.b, pair.b.offset() - pair.a.offset(), nullptr,
-                             pair.tolerance, ExactOptions().max_iterations);
-}
 
 // A cylinder against another cylinder, a cone, an ellipsoid and a box, the sizes and places as
 // bench/curved_coal.py draws them, at the default tolerance and at 1e-12. Every depth claimed
@@ -54,7 +47,7 @@ TEST(CylinderSide, OverlapsOnASideAreProvenAndBracketTheDepth) {
       const Pose pb = at(rng.vector(0.8), rng.rotation());
       const detail::FramedPair pair = swapped ? detail::frame_pair(b, pb, a, pa, tolerance)
                                               : detail::frame_pair(a, pa, b, pb, tolerance);
-      const detail::PenetrationBounds found = solve(pair);
+      const detail::PenetrationBounds found = solve_penetration(pair);
       if (!(found.upper < 0)) continue;  // apart or touching
       ++pairs;
       SCOPED_TRACE(::testing::Message()

@@ -46,8 +46,6 @@ class Section {
     sine_ = radius_ / slant;
   }
 
-  Scalar radius() const { return radius_; }
-  Scalar half_length() const { return half_length_; }
   Scalar cosine() const { return cosine_; }
   Scalar sine() const { return sine_; }
   int steps() const { return steps_; }
