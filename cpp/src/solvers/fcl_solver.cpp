@@ -52,13 +52,13 @@ fcl::detail::GJK<Scalar>::Status run_gjk(const FramedPair& pair, const fcl::Shap
                         : body.local_support_index(local, -1);
 }
 
-// The verdict along the line between the bodies' centres, where their separation there proves
-// them apart: that separation (the lower bound) and the two support points found with it (the
-// upper bound). Without the proof, nothing: the witness made for every pair cost each verdict that
-// GJK goes on to settle some 200 instructions more at 4 to 64 vertices (callgrind_query.py --gap).
-std::optional<Answer> apart_along_centres(const FramedPair& pair) {
-  const Vector3 between = pair.b.offset() - pair.a.offset();
-  const Vector3 n = unit_direction_or(between, Vector3::UnitX());
+// The verdict along `towards_b` (from A towards B, any length), where the pair's separation
+// along it proves them apart: that separation (the lower bound) and the two support points found
+// with it (the upper bound). Without the proof, nothing: the witness made for every pair cost each
+// verdict that GJK goes on to settle some 200 instructions more at 4 to 64 vertices
+// (callgrind_query.py --gap).
+std::optional<Answer> apart_along(const FramedPair& pair, const Vector3& towards_b) {
+  const Vector3 n = unit_direction_or(towards_b, Vector3::UnitX());
   int ia = -1;  // large bodies climb from their hulls' cube maps of starts
   int ib = -1;
   const Scalar lower = separation(pair.a, pair.b, n, ia, ib);
@@ -85,13 +85,22 @@ Answer solve_fcl(const FramedPair& pair, const QueryOptions& options, Goal goal)
   const fcl::ShapeBased& shape_a = fcl_shape(pair.a);
   const fcl::ShapeBased& shape_b = fcl_shape(pair.b);
   if (goal == Goal::verdict) {
-    if (std::optional<Answer> screened = apart_along_centres(pair)) return *screened;
+    const Vector3 between = pair.b.offset() - pair.a.offset();
+    if (std::optional<Answer> screened = apart_along(pair, between)) return *screened;
   }
   using Gjk = fcl::detail::GJK<Scalar>;
   const int max_iterations = options.exact.max_iterations;
   Gjk gjk(static_cast<unsigned int>(max_iterations),
           goal == Goal::verdict ? kVerdictGjkTolerance : kGjkTolerance);
   const Gjk::Status status = run_gjk(pair, shape_a, shape_b, gjk);
+  // A verdict FCL finds apart is proven by the separation along its last direction, in two
+  // scans: its ray, the nearest point of A - B in A's frame, points from B towards A. The corral
+  // of its simplex's points below costs a scan per point and a witness more.
+  if (goal == Goal::verdict && status == Gjk::Valid) {
+    if (std::optional<Answer> apart = apart_along(pair, pair.a.rotation() * -gjk.ray)) {
+      return *apart;
+    }
+  }
   // FCL's simplex as the bodies' own points: the support indices along each simplex vertex's
   // direction, found in the bodies' own frames as the solvers find them: on a small body a scan
   // of its points by coordinate, two heights at a time (a single pass for all the directions, one
