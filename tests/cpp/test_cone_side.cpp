@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <initializer_list>
 
 #include "geometry/framed_body.hpp"
@@ -92,20 +93,28 @@ TEST(ConeSide, OverlapsOnASideAreProvenAndBracketTheDepth) {
   }
 }
 
+// Of the answers expect_no_claim_beyond checked: those the cone's side proved, and those proven
+// to the tolerance (by any proof).
+struct Proofs {
+  int sides = 0;
+  int proven = 0;
+};
+
 // The pair of `cone` and `small` (in that order, or turned over where `swapped`), at the
 // default tolerance: overlapping, and no depth claimed beyond the separation along any of the
-// cone's outward `normals` (in the world; the opposite ones where the cone is B). `sides` counts
-// the answers the cone's side proved.
+// cone's outward `normals` (in the world; the opposite ones where the cone is B); `proofs`
+// counts the answer.
 void expect_no_claim_beyond(const Cone& cone, const Pose& pose_cone, const Cylinder& small,
                             const Pose& pose_small, bool swapped,
-                            std::initializer_list<Vector3> normals, int& sides) {
+                            std::initializer_list<Vector3> normals, Proofs& proofs) {
   const detail::FramedPair pair =
       swapped ? detail::frame_pair(small, pose_small, cone, pose_cone, 1e-9)
               : detail::frame_pair(cone, pose_cone, small, pose_small, 1e-9);
   const detail::PenetrationBounds found = solve_penetration(pair);
   SCOPED_TRACE(::testing::Message() << "proof " << static_cast<int>(found.proof));
   ASSERT_LT(found.upper, 0);
-  sides += found.proof == detail::PenetrationProof::cone_side;
+  proofs.sides += found.proof == detail::PenetrationProof::cone_side;
+  proofs.proven += found.proven;
   const Scalar toward = swapped ? -1 : 1;
   for (const Vector3& normal : normals) {
     EXPECT_LE(detail::exact_separation(pair.a, pair.b, toward * normal), found.upper + 1e-13);
@@ -128,7 +137,7 @@ TEST(ConeSide, ANearerBaseRefusesTheSidesBound) {
   const Scalar half_length = 0.03;
   const Cylinder small(radius, half_length);
   Random rng(68);
-  int sides = 0;
+  Proofs proofs;
   for (int trial = 0; trial < 400; ++trial) {
     const Matrix3 turn = rng.rotation();
     const Matrix3 turn_small = rng.rotation();  // in the cone's axes
@@ -150,29 +159,28 @@ TEST(ConeSide, ANearerBaseRefusesTheSidesBound) {
     SCOPED_TRACE(::testing::Message() << "trial " << trial << " gap " << gap);
     // The base's and the side's normals.
     expect_no_claim_beyond(cone, pose_cone, small, pose_small, trial % 4 >= 2,
-                           {Vector3(turn * -Vector3::UnitZ()), Vector3(turn * side_normal)}, sides);
+                           {Vector3(turn * -Vector3::UnitZ()), Vector3(turn * side_normal)},
+                           proofs);
   }
   // The side's proof still proves pairs whose side is the nearer.
-  EXPECT_GT(sides, 0);
+  EXPECT_GT(proofs.sides, 0);
 }
 
-// A small cylinder over a cone's apex, the apex just inside its top cap, its axis tilted towards
-// the side's normal at the same azimuth: the apex's contact, along the cap's normal, is a
-// tolerance-sized step from being as deep as the side's. The cap's normal lies at the side's
-// azimuth, above the elevations the side's wedge reaches (where the apex and the small
-// cylinder's points bound the support by less than the side's bound), so there only the wedge's
-// upper limit keeps the faces about it out: no depth claimed lies beyond the separation along
-// the cap's normal or the side's.
-TEST(ConeSide, ANearerApexRefusesTheSidesBound) {
+// A small cylinder on one of a cone's points (`point`: the apex or a rim point at azimuth 0), the
+// point just inside its cap, its axis at `elevation` (rad) in the plane of azimuth 0: the point's
+// contact, along the cap's normal, is a tolerance-sized step from being as deep as the side's.
+// Where that normal lies above the elevations the side's wedge reaches (the apex's), or below
+// them (a rim point's), only the wedge's upper or lower limit keeps the faces about it out: no
+// depth claimed lies beyond the separation along the cap's normal or the side's. 400 poses drawn
+// from `seed`; returns how they were proven.
+Proofs expect_point_contact_refused(const Vector3& point, Scalar elevation, std::uint64_t seed) {
   const Scalar r = 0.5;
   const Scalar h = 0.5;
   const Cone cone(r, h);
-  const Vector3 apex(0, 0, h);
   const Vector3 side_normal = Vector3(2 * h, 0, r).normalized();
   const Scalar radius = 0.04;
   const Scalar half_length = 0.03;
   const Cylinder small(radius, half_length);
-  const Scalar elevation = 1.0;  // rad: the cap's normal, above the side's (0.46)
   const Vector3 axis(std::cos(elevation), 0, std::sin(elevation));
   // Turns z onto the axis, about y.
   const Matrix3 onto_axis =
@@ -181,17 +189,17 @@ TEST(ConeSide, ANearerApexRefusesTheSidesBound) {
   const Scalar along = axis.dot(side_normal);
   const Scalar small_support =  // the small cylinder's along -side_normal, about its centre
       half_length * std::abs(along) + radius * std::sqrt(1 - along * along);
-  Random rng(69);
-  int sides = 0;
+  Random rng(seed);
+  Proofs proofs;
   for (int trial = 0; trial < 400; ++trial) {
-    // The apex 0.01 below the top cap: the support of A - B along the axis is 2 half-lengths
-    // less that; the centre moved across the axis until the side's support exceeds it by `gap`.
+    // The point 0.01 below the cap: the support of A - B along the axis is 2 half-lengths less
+    // that; the centre moved across the axis until the side's support exceeds it by `gap`.
     const Scalar gap = (trial % 2 == 0 ? 1 : -1) * 1e-7 * (1 + trial / 2 % 10);
-    const Vector3 start = apex - (half_length - 0.01) * axis;
-    const Scalar apex_depth = 2 * half_length - 0.01;
-    const Scalar side_depth = side_normal.dot(apex - start) + small_support;
+    const Vector3 start = point - (half_length - 0.01) * axis;
+    const Scalar point_depth = 2 * half_length - 0.01;
+    const Scalar side_depth = side_normal.dot(point - start) + small_support;
     const Vector3 centre =
-        start + (side_depth - apex_depth - gap) / side_normal.dot(across) * across;
+        start + (side_depth - point_depth - gap) / side_normal.dot(across) * across;
     const Matrix3 turn = rng.rotation();
     const Vector3 shift = rng.vector(0.2);
     const Pose pose_cone = at(shift, turn);
@@ -199,9 +207,26 @@ TEST(ConeSide, ANearerApexRefusesTheSidesBound) {
     SCOPED_TRACE(::testing::Message() << "trial " << trial << " gap " << gap);
     // The cap's and the side's normals.
     expect_no_claim_beyond(cone, pose_cone, small, pose_small, trial % 4 >= 2,
-                           {Vector3(turn * axis), Vector3(turn * side_normal)}, sides);
+                           {Vector3(turn * axis), Vector3(turn * side_normal)}, proofs);
   }
-  EXPECT_GT(sides, 0);
+  return proofs;
+}
+
+// Over the apex, the cap's normal at 1 rad, above the side's (0.46): the wedge's upper limit.
+// The side's proof still proves pairs whose side is the nearer.
+TEST(ConeSide, ANearerApexRefusesTheSidesBound) {
+  const Proofs proofs = expect_point_contact_refused(Vector3(0, 0, 0.5), 1.0, 69);
+  EXPECT_GT(proofs.sides, 0);
+}
+
+// On the rim, the cap's normal at -0.2 rad, between the base's and the side's: the wedge's lower
+// limit (without it, 183 of the 400 answers claim a depth beyond the separation along the cap's
+// normal). The cap's edge point is the small cylinder's support both along the side's normal and
+// along the cap's, so the wedge's lower limit lies at the cap's normal (to within the step): the
+// faces about it straddle it, and the other proofs prove every pair.
+TEST(ConeSide, ANearerRimRefusesTheSidesBound) {
+  const Proofs proofs = expect_point_contact_refused(Vector3(0.5, 0, -0.5), -0.2, 70);
+  EXPECT_EQ(proofs.proven, 400);
 }
 
 }  // namespace
