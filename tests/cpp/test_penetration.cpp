@@ -336,6 +336,32 @@ TEST(Penetration, BoxContacts) {
 // need not hold a given ray's crossing. The walk from it (face_crossed) must end on a face the ray
 // crosses, on that facet, and the solver's witnesses (found on such a face when the best one
 // does not hold the origin's foot) must satisfy the contract.
+// A tetrahedron of points of A - B (differences of the two bodies' points) around the origin,
+// to start an expansion; false where none is found.
+bool enclosing_start(const detail::FramedPair& pair,
+                     std::array<detail::DifferencePoint, 4>& start) {
+  std::vector<detail::DifferencePoint> points;
+  for (int i = 0; i < pair.a.size(); ++i) {
+    for (int j = 0; j < pair.b.size(); ++j) {
+      points.push_back({pair.a.vertex(i) - pair.b.vertex(j), i, j});
+    }
+  }
+  const int n = static_cast<int>(points.size());
+  for (int i = 0; i < n; ++i) {
+    for (int j = i + 1; j < n; ++j) {
+      for (int k = j + 1; k < n; ++k) {
+        for (int l = k + 1; l < n; ++l) {
+          if (detail::encloses_origin({points[i].w, points[j].w, points[k].w, points[l].w})) {
+            start = {points[i], points[j], points[k], points[l]};
+            return true;
+          }
+        }
+      }
+    }
+  }
+  return false;
+}
+
 TEST(Penetration, FaceCrossedFindsTheFaceOfASplitFacetThatARayCrosses) {
   const VertexMatrix base = box({0, 0, 0}, {1, 1, 1});
   const VertexMatrix top = box({0.1, 0.2, 0.99}, {0.7, 0.7, 1.39});
@@ -344,25 +370,8 @@ TEST(Penetration, FaceCrossedFindsTheFaceOfASplitFacetThatARayCrosses) {
   const ConvexPolyhedron body_b(top);
   const detail::FramedPair pair =
       detail::frame_validated_pair(body_a, Pose(), body_b, Pose(), 1e-9);
-  // A tetrahedron of points of A - B around the origin starts the expansion.
-  std::vector<detail::DifferencePoint> points;
-  for (int i = 0; i < 8; ++i) {
-    for (int j = 0; j < 8; ++j) points.push_back({pair.a.vertex(i) - pair.b.vertex(j), i, j});
-  }
   std::array<detail::DifferencePoint, 4> start;
-  bool found = false;
-  const int n = static_cast<int>(points.size());
-  for (int i = 0; i < n && !found; ++i) {
-    for (int j = i + 1; j < n && !found; ++j) {
-      for (int k = j + 1; k < n && !found; ++k) {
-        for (int l = k + 1; l < n && !found; ++l) {
-          found = detail::encloses_origin({points[i].w, points[j].w, points[k].w, points[l].w});
-          if (found) start = {points[i], points[j], points[k], points[l]};
-        }
-      }
-    }
-  }
-  ASSERT_TRUE(found);
+  ASSERT_TRUE(enclosing_start(pair, start));
   detail::ExpandingPolytope polytope;
   const detail::ExpansionResult e = polytope.run(pair.a, pair.b, start, 1e-12, kIterations);
   ASSERT_TRUE(e.verified);
@@ -400,6 +409,35 @@ TEST(Penetration, FaceCrossedFindsTheFaceOfASplitFacetThatARayCrosses) {
   // The facet's faces are where most of these rays cross (200, 133 and 134 when written).
   EXPECT_GT(elsewhere, 0);
   EXPECT_GT(on_facet, 100);
+}
+
+// A start too flat to make a surface (four copies of one point of A - B) proves nothing and
+// leaves nothing to resume, in a new polytope and in one that expanded a surface before. The
+// penetration solver resumes the expansion it stopped at 2^-12 for a cylinder's or a cone's side
+// (penetration.cpp): a resume after a flat start read an empty heap, or went on from the earlier
+// surface's faces, and met a support along a zero normal, which the solver measured as a
+// separation of 0 and certified (a cone's rim 0.05 deep in a small cylinder,
+// ConeSide.ANearerRimRefusesTheSidesBound, in a new process).
+TEST(Penetration, AStartTooFlatForASurfaceLeavesNothingToResume) {
+  const ConvexPolyhedron body_a(box({0, 0, 0}, {1, 1, 1}));
+  const ConvexPolyhedron body_b(box({0.5, 0.2, 0.4}, {1.3, 0.9, 1.2}));
+  const detail::FramedPair pair =
+      detail::frame_validated_pair(body_a, Pose(), body_b, Pose(), 1e-9);
+  const detail::DifferencePoint point{pair.a.vertex(0) - pair.b.vertex(0), 0, 0};
+  const std::array<detail::DifferencePoint, 4> flat = {point, point, point, point};
+  const auto expect_nothing = [](const detail::ExpansionResult& e) {
+    EXPECT_FALSE(e.verified);
+    EXPECT_EQ(e.best_separation, -std::numeric_limits<Scalar>::infinity());
+  };
+  detail::ExpandingPolytope fresh;
+  expect_nothing(fresh.run(pair.a, pair.b, flat, 1e-9, kIterations));
+  expect_nothing(fresh.resume(pair.a, pair.b, 1e-9, kIterations));
+  std::array<detail::DifferencePoint, 4> start;
+  ASSERT_TRUE(enclosing_start(pair, start));
+  detail::ExpandingPolytope used;
+  ASSERT_TRUE(used.run(pair.a, pair.b, start, 1e-12, kIterations).verified);
+  expect_nothing(used.run(pair.a, pair.b, flat, 1e-9, kIterations));
+  expect_nothing(used.resume(pair.a, pair.b, 1e-9, kIterations));
 }
 
 // Two overlapping cylinders: the expansion converges on a patch of faces a little tilted from

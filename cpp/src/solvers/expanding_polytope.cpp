@@ -310,12 +310,15 @@ ExpansionResult ExpandingPolytope::run(const FramedBody& a, const FramedBody& b,
   constexpr int kAcross[4][3] = {{1, 3, 2}, {2, 3, 0}, {0, 3, 1}, {1, 2, 0}};
   constexpr int kAcrossEdge[4][3] = {{2, 2, 0}, {2, 0, 0}, {2, 1, 0}, {1, 1, 1}};
   if (faces_.size() < 4) faces_.resize(64);
-  face_count_ = 4;
   for (int f = 0; f < 4; ++f) {
     if (!make_face(kTetrahedron[f][0], kTetrahedron[f][1], kTetrahedron[f][2], faces_[f])) {
+      // Too flat to start: no surface, which a resume finds empty (with the four counted, it
+      // went on from faces of earlier runs, or from none at all, and met a support along a zero
+      // normal: a certified depth of 0 for a cone's rim 0.05 deep in a cylinder).
       return result;
     }
   }
+  face_count_ = 4;
   for (int f = 0; f < 4; ++f) {
     for (int k = 0; k < 3; ++k) {
       faces_[f].adj[k] = kAcross[f][k];
@@ -343,6 +346,7 @@ ExpansionResult ExpandingPolytope::run(const FramedBody& a, const FramedBody& b,
   if (kept.faces.size() < 4) return result;
   kept_depth_ = -1;
   closed_.reset();
+  face_count_ = 0;  // until every face is made: a failed start leaves no surface to resume
   vertices_.clear();
   norms_.clear();
   points_a_.clear();
@@ -543,6 +547,7 @@ ExpansionResult ExpandingPolytope::expand_surface(const FramedBody& a, const Fra
         break;
       }
       heap_live_faces();
+      if (heap_.empty()) break;  // no surface (a start too flat to make one)
     }
     const int closest = heap_.front().second;
     const Face& face = faces_[closest];

@@ -106,7 +106,9 @@ class ExpandingPolytope {
   /// Goes on expanding the last run's surface, as it was left, until the gap falls to
   /// `stop_gap` (smaller than that run's), with what a run returns: a curved pair's polytope
   /// closes on the surface a chord at a time, and its best normal may be too far off the optimal
-  /// one for the witnesses along it (Solver::witnesses in penetration.cpp).
+  /// one for the witnesses along it (Solver::witnesses in penetration.cpp). Where that run made
+  /// no surface (a start too flat, or a kept surface not started), nothing: what a run that
+  /// made no face returns.
   ExpansionResult resume(const FramedBody& a, const FramedBody& b, Scalar stop_gap,
                          int max_iterations);
   /// The last run's surface into `out` when it was verified and has at most `most_corners`
