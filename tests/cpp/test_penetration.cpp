@@ -331,11 +331,6 @@ TEST(Penetration, BoxContacts) {
         transformed(unit, turn, turn * Vector3(0.6, 0.2, 0.1)), "rotated parallel boxes");
 }
 
-// A box resting on a larger one, 0.01 into it: the facet of A - B along their normal is a
-// rectangle that the expansion splits into several faces, and the one its best normal came from
-// need not hold a given ray's crossing. The walk from it (face_crossed) must end on a face the ray
-// crosses, on that facet, and the solver's witnesses (found on such a face when the best one
-// does not hold the origin's foot) must satisfy the contract.
 // A tetrahedron of points of A - B (differences of the two bodies' points) around the origin,
 // to start an expansion; false where none is found.
 bool enclosing_start(const detail::FramedPair& pair,
@@ -362,6 +357,11 @@ bool enclosing_start(const detail::FramedPair& pair,
   return false;
 }
 
+// A box resting on a larger one, 0.01 into it: the facet of A - B along their normal is a
+// rectangle that the expansion splits into several faces, and the one its best normal came from
+// need not hold a given ray's crossing. The walk from it (face_crossed) must end on a face the ray
+// crosses, on that facet, and the solver's witnesses (found on such a face when the best one
+// does not hold the origin's foot) must satisfy the contract.
 TEST(Penetration, FaceCrossedFindsTheFaceOfASplitFacetThatARayCrosses) {
   const VertexMatrix base = box({0, 0, 0}, {1, 1, 1});
   const VertexMatrix top = box({0.1, 0.2, 0.99}, {0.7, 0.7, 1.39});
