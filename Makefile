@@ -87,9 +87,9 @@ bench: install $(VENV)/.bench-installed bench-scene bench-compound
 	cmake -S . -B $(BENCH_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release \
 	  -DSWARMCOLLIDE_BUILD_BENCH=ON -DSWARMCOLLIDE_BUILD_PYTHON=OFF \
 	  -DSWARMCOLLIDE_COAL_PREFIX="$(COAL_PREFIX)"
-	cmake --build $(BENCH_BUILD) -j $(JOBS) --target swarmcollide-bench swarmcollide-batch-loop \
-	  swarmcollide-swarm-speed swarmcollide-swarm-targets swarmcollide-narrowphase-coal \
-	  swarmcollide-penetration-coal
+	cmake --build $(BENCH_BUILD) -j $(JOBS) --target swarmcollide-bench swarmcollide-fcl-ratio \
+	  swarmcollide-batch-loop swarmcollide-swarm-speed swarmcollide-swarm-targets \
+	  swarmcollide-narrowphase-coal swarmcollide-penetration-coal
 	mkdir -p bench/results bench/plots
 	$(PY) bench/record.py --bench narrowphase_coal --json bench/results/narrowphase_coal.json -- \
 	  $(BENCH_BUILD)/bench/swarmcollide-narrowphase-coal $(BENCH_ARGS)
@@ -100,6 +100,8 @@ bench: install $(VENV)/.bench-installed bench-scene bench-compound
 	  $(BENCH_BUILD)/bench/swarmcollide-penetration-coal $(BENCH_ARGS)
 	$(PY) bench/record.py --bench cpp --json bench/results/cpp.json -- \
 	  $(BENCH_BUILD)/bench/swarmcollide-bench $(BENCH_ARGS) > $(BENCH_BUILD)/console.txt
+	$(PY) bench/record.py --bench fcl_ratio --json bench/results/fcl_ratio.json -- \
+	  $(BENCH_BUILD)/bench/swarmcollide-fcl-ratio $(BENCH_ARGS)
 	$(PY) bench/compare_python.py $(BENCH_ARGS) --json bench/results/python_comparison.json
 	$(PY) bench/per_call.py $(BENCH_ARGS) --json bench/results/per_call.json
 	$(PY) bench/hull_points.py $(BENCH_ARGS) --json bench/results/hull_points.json

@@ -200,6 +200,41 @@ def fcl_wrap_section(names: "RowNames", cells, sizes, proximities) -> str:
     return table(["proximity \\ vertices per body"] + [str(n) for n in sizes], rows)
 
 
+FCL_RATIO = (
+    "`swarmcollide-fcl-ratio` (bench/fcl_ratio.cpp): the same three ratios as the last table of "
+    "the time section, on the same pairs and FCL calls, but timed in turns: each round times "
+    "the fcl method's call and the FCL call it wraps back to back over the workload's 20 pairs "
+    "(a turn lasts at least 2 ms; the order alternates from round to round), and a cell is the "
+    "median over 21 rounds of each round's ratio. swarmcollide-bench times every row on its own, one after another, so that "
+    "its ratios divide medians taken minutes apart on a shared machine (cells moved by up to a "
+    "third between two of its runs, bench/README.md session 67); these are issue 25's figures "
+    "for its third item (at most 1.1x).")
+
+
+def fcl_ratio_section(data: dict) -> str:
+    """The fcl method over the FCL calls it wraps, timed in turns (fcl_ratio.cpp)."""
+    rows = data["rows"]
+    sizes = sorted({r["vertices"] for r in rows})
+    proximities = list(dict.fromkeys(r["proximity"] for r in rows))
+    cell = {(r["vertices"], r["proximity"], r["query"]): r for r in rows}
+    queries = ("distance", "collide", "signed distance")
+    body = [[proximity] + [" / ".join("–" if (n, proximity, q) not in cell else
+                                      f"{cell[n, proximity, q]['ratio']:.2f}" for q in queries)
+                           for n in sizes]
+            for proximity in proximities]
+    above = [f"{r['vertices']} vertices {r['proximity']} {r['query']} {r['ratio']:.2f} "
+             f"({r['ratio_min']:.2f}-{r['ratio_max']:.2f})" for r in rows if r["ratio"] > 1.1]
+    return "\n".join([
+        machine_line(data), "",
+        "The fcl method over FCL's call, distance / verdict / signed distance (the signed "
+        "distance on pairs apart only), the median over rounds of each round's ratio:", "",
+        table(["proximity \\ vertices per body"] + [str(n) for n in sizes], body), "",
+        "Above 1.1x (the least and the largest round's ratio in brackets): "
+        + ("; ".join(above) if above else "none") + ".", "",
+        f"Uncertified answers of the fcl method over all pairs (distance, verdict and signed "
+        f"distance of each): {data.get('uncertified', 'not recorded')}."])
+
+
 def measured(cells, row: str, n: int, proximities) -> List[dict]:
     """The cells of a row that ran, over the workloads of size n at these proximities."""
     found = (cells.get((row, workload_name(n, p))) for p in proximities)
@@ -357,7 +392,10 @@ def cpp_sections(data: dict, plots: str, plots_rel: str) -> List[str]:
         "GST_INDEP, which runs FCL's EPA on overlapping pairs, contacts or not), signed distance "
         "over `FCL signed distance direct` (timed on separated pairs only: FCL's EPA asserts on "
         "some overlapping ones). Our verdict first tests the bodies' outer balls and the centres' "
-        "line, which settle most pairs apart without FCL's GJK.", "",
+        "line, which settle most pairs apart without FCL's GJK. The rows are timed one after "
+        "another, minutes apart: the section \"The fcl method against the FCL calls it wraps, in "
+        "turns\" below times the same ratios in turns, round by round, and is the one to read.",
+        "",
         fcl_wrap_section(names, cells, sizes, proximities), "",
         "## Accuracy at the paper's budget (all separated workloads of each size)", "",
         accuracy_section(names, cells, sizes, separated), "",

@@ -23,7 +23,7 @@ from pose_batch import section as pose_batch_section
 from robot import section as robot_section
 from motion import section as motion_section
 from robot_motion import section as robot_motion_section
-from cpp_report import cpp_sections, every_workload_section
+from cpp_report import FCL_RATIO, cpp_sections, every_workload_section, fcl_ratio_section
 from record import load
 from scene_report import CONTACTS, CONTACTS_PILE, contacts_section, scene_section
 from sections import (
@@ -95,6 +95,8 @@ PER_CALL = (
 # (results file, heading, text before, the section's renderer, text after), in document order.
 Section = Tuple[str, str, str, Callable[[dict], str], str]
 SECTIONS: List[Section] = [
+    ("fcl_ratio.json", "The fcl method against the FCL calls it wraps, in turns (C++)",
+     FCL_RATIO, fcl_ratio_section, ""),
     ("python_comparison.json", "From Python: swarmcollide against pyswarms, SciPy, python-fcl "
      "and coal", "", python_section, PYTHON_COMPARISON),
     ("narrowphase_coal.json", "Distance and verdicts against coal's GJK (C++)", NARROWPHASE,
@@ -117,6 +119,8 @@ SECTIONS: List[Section] = [
      pose_batch_section, ""),
 ]
 LATE_SECTIONS: List[Section] = [
+    ("fcl_ratio.json", "The fcl method against the FCL calls it wraps, in turns (C++)",
+     FCL_RATIO, fcl_ratio_section, ""),
     ("swarm_speed.json", "The swarm's speed and accuracy at the paper's budget", SWARM_SPEED,
      swarm_speed_section, ""),
     ("dask_batch.json", "Batches on Dask (bench/dask_batch.py)", "", dask_section, ""),
