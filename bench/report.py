@@ -119,8 +119,6 @@ SECTIONS: List[Section] = [
      pose_batch_section, ""),
 ]
 LATE_SECTIONS: List[Section] = [
-    ("fcl_ratio.json", "The fcl method against the FCL calls it wraps, in turns (C++)",
-     FCL_RATIO, fcl_ratio_section, ""),
     ("swarm_speed.json", "The swarm's speed and accuracy at the paper's budget", SWARM_SPEED,
      swarm_speed_section, ""),
     ("dask_batch.json", "Batches on Dask (bench/dask_batch.py)", "", dask_section, ""),
