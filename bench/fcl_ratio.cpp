@@ -36,17 +36,6 @@ namespace {
 constexpr double kTurnSeconds = 2e-3;
 constexpr fcl::GJKSolverType kFclOwnGjk = fcl::GST_INDEP;
 
-struct Proximity {
-  const char* name;
-  double target;
-};
-
-// swarmcollide_bench.cpp's proximities, in its order: a proximity's index seeds its pairs.
-const std::vector<Proximity> kProximities = {
-    {"apart", 1.0},          {"gap 1e-1", 1e-1},      {"gap 1e-2", 1e-2},
-    {"gap 1e-3", 1e-3},      {"gap 1e-4", 1e-4},      {"overlap 1e-4", -1e-4},
-    {"overlap 1e-3", -1e-3}, {"overlap 1e-2", -1e-2}, {"overlap 1e-1", -1e-1}};
-
 struct Pair {
   sc::ConvexPolyhedron a;
   sc::ConvexPolyhedron b;
@@ -144,8 +133,8 @@ int main(int argc, char** argv) {
   int uncertified = 0;
   double sink = 0;
   for (int n : options.sizes) {
-    for (std::size_t k = 0; k < kProximities.size(); ++k) {
-      const Proximity& proximity = kProximities[k];
+    for (std::size_t k = 0; k < bench_proximities().size(); ++k) {
+      const BenchProximity& proximity = bench_proximities()[k];
       std::vector<Pair> pairs;
       for (int i = 0; i < options.pairs; ++i) {
         auto [a_points, b_points] =

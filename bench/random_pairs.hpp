@@ -91,6 +91,22 @@ inline std::pair<swarmcollide::VertexMatrix, swarmcollide::VertexMatrix> random_
   }
 }
 
+// A proximity of the random workloads: its name and the pairs' signed distance.
+struct BenchProximity {
+  const char* name;
+  double target;
+};
+
+// swarmcollide_bench.cpp's proximities, in its order: a proximity's index in this list seeds its
+// pairs (random_pair_seed).
+inline const std::vector<BenchProximity>& bench_proximities() {
+  static const std::vector<BenchProximity> proximities = {
+      {"apart", 1.0},          {"gap 1e-1", 1e-1},      {"gap 1e-2", 1e-2},
+      {"gap 1e-3", 1e-3},      {"gap 1e-4", 1e-4},      {"overlap 1e-4", -1e-4},
+      {"overlap 1e-3", -1e-3}, {"overlap 1e-2", -1e-2}, {"overlap 1e-1", -1e-1}};
+  return proximities;
+}
+
 // The seed of pair `index` of a workload of `n`-vertex bodies at proximity number `proximity`
 // (in swarmcollide_bench.cpp's full list): it depends on the size, proximity and index only.
 inline std::uint64_t random_pair_seed(int n, int proximity, int index) {

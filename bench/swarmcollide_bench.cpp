@@ -368,15 +368,8 @@ std::vector<Workload> make_workloads(bool quick, const std::vector<int>& only_si
   workloads.push_back(std::move(touching));
   workloads.push_back(std::move(separate));
 
-  struct Proximity {
-    const char* name;
-    double target;
-  };
-  const std::vector<Proximity> all_proximities = {
-      {"apart", 1.0},          {"gap 1e-1", 1e-1},      {"gap 1e-2", 1e-2},
-      {"gap 1e-3", 1e-3},      {"gap 1e-4", 1e-4},      {"overlap 1e-4", -1e-4},
-      {"overlap 1e-3", -1e-3}, {"overlap 1e-2", -1e-2}, {"overlap 1e-1", -1e-1}};
-  const std::vector<Proximity> quick_proximities = {
+  const std::vector<BenchProximity>& all_proximities = bench_proximities();
+  const std::vector<BenchProximity> quick_proximities = {
       {"apart", 1.0}, {"gap 1e-3", 1e-3}, {"overlap 1e-2", -1e-2}};
   std::vector<int> sizes =
       quick ? std::vector<int>{8, 64} : std::vector<int>{4, 8, 16, 64, 512, 4096};
