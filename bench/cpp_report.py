@@ -205,10 +205,10 @@ FCL_RATIO = (
     "the time section, on the same pairs and FCL calls, but timed in turns: each round times "
     "the fcl method's call and the FCL call it wraps back to back over the workload's 20 pairs "
     "(a turn lasts at least 2 ms; the order alternates from round to round), and a cell is the "
-    "median over 21 rounds of each round's ratio. swarmcollide-bench times every row on its own, one after another, so that "
-    "its ratios divide medians taken minutes apart on a shared machine (cells moved by up to a "
-    "third between two of its runs, bench/README.md session 67); these are issue 25's figures "
-    "for its third item (at most 1.1x).")
+    "median over 21 rounds of each round's ratio. swarmcollide-bench times every row on its "
+    "own, one after another, so that its ratios divide medians taken minutes apart on a shared "
+    "machine (cells moved by up to a third between two of its runs, bench/README.md session "
+    "67); these are issue 25's figures for its third item (at most 1.1x).")
 
 
 def fcl_ratio_section(data: dict) -> str:
