@@ -17,9 +17,13 @@ import pytest
 # functions through Python, a Query's methods in C++, the pybind11 methods a subclass reaches,
 # a compound body's branch and bound, batches on two threads).
 _SCENARIO = """
-import os, signal, threading, time
+import faulthandler, os, signal, threading, time
 import numpy as np
 import swarmcollide as sc
+
+# A call that ignores the signal shows where it hangs: every thread's Python stack on stderr, and
+# the child exits, before the test's timeout would kill it (output unbuffered: python -u).
+faulthandler.dump_traceback_later(50, exit=True)
 
 a = [[0, 1, 0], [1, 0, 0], [0, 0, 1], [0, 0, 0]]
 b = [[1, -1, 0], [2, -2, 0], [0, -2, 2], [0, -2, 0]]
@@ -81,13 +85,14 @@ except TimeoutError:
 def test_long_solves_stop_at_ctrl_c():
     try:
         done = subprocess.run(
-            [sys.executable, "-c", textwrap.dedent(_SCENARIO)],
+            [sys.executable, "-u", "-c", textwrap.dedent(_SCENARIO)],
             capture_output=True,
             text=True,
             timeout=60,
         )
     except subprocess.TimeoutExpired as expired:
-        pytest.fail(f"a solve ignored the signal; the child printed: {expired.stdout!r}")
+        pytest.fail(f"a solve ignored the signal; the child printed: {expired.stdout!r}, "
+                    f"{expired.stderr!r}")
     assert done.returncode == 0, done.stderr
     lines = done.stdout.splitlines()
     assert len(lines) == 10, done.stdout
