@@ -24,6 +24,10 @@ import swarmcollide as sc
 # A call that ignores the signal shows where it hangs: every thread's Python stack on stderr, and
 # the child exits, before the test's timeout would kill it (output unbuffered: python -u).
 faulthandler.dump_traceback_later(50, exit=True)
+# Python's own Ctrl-C handler, which Python installs only where SIGINT is not ignored: a job
+# started with & by a shell without job control (a CI script's background step) starts with
+# SIGINT ignored, and its children inherit that; every call then ran its whole budget.
+signal.signal(signal.SIGINT, signal.default_int_handler)
 
 a = [[0, 1, 0], [1, 0, 0], [0, 0, 1], [0, 0, 0]]
 b = [[1, -1, 0], [2, -2, 0], [0, -2, 2], [0, -2, 0]]
