@@ -112,7 +112,11 @@ Options parse(int argc, char** argv) {
       usage(argv[0]);
     }
   }
-  if (o.rounds < 1 || o.sizes.empty()) usage(argv[0]);
+  // Hulls of fewer than four points on the sphere are not bodies of three dimensions.
+  if (o.rounds < 1 || o.sizes.empty() ||
+      *std::min_element(o.sizes.begin(), o.sizes.end()) < 4) {
+    usage(argv[0]);
+  }
   return o;
 }
 
