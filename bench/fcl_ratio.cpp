@@ -44,7 +44,7 @@ struct Pair {
 };
 
 // The method's call and FCL's, each answering pair i (summed, so no call is optimised away).
-struct Query {
+struct CallPair {
   const char* name;
   std::function<double(std::size_t)> ours;
   std::function<double(std::size_t)> fcl;
@@ -150,7 +150,7 @@ int main(int argc, char** argv) {
         pairs.push_back({a, b, to_fcl(a, origin), to_fcl(b, origin)});
       }
       const fcl::Vector3d zero = fcl::Vector3d::Zero();
-      std::vector<Query> asked = {
+      std::vector<CallPair> asked = {
           {"distance",
            [&](std::size_t i) { return queries[i].distance(pairs[i].a, pairs[i].b).distance; },
            [&](std::size_t i) {
@@ -183,7 +183,7 @@ int main(int argc, char** argv) {
         uncertified += !queries[i].collision(pairs[i].a, pairs[i].b).certified;
         uncertified += !queries[i].signed_distance(pairs[i].a, pairs[i].b).certified;
       }
-      for (const Query& query : asked) {
+      for (const CallPair& query : asked) {
         const int ours_repeats = repeats_for(query.ours, pairs.size(), sink);
         const int fcl_repeats = repeats_for(query.fcl, pairs.size(), sink);
         std::vector<double> ours_us, fcl_us, ratios;
