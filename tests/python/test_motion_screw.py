@@ -132,3 +132,24 @@ def test_bad_motion_names():
         sc.time_of_impact(cube, cube, motion="helix")
     with pytest.raises(TypeError, match="motion must be a string"):
         sc.time_of_impact(cube, cube, motion=1)
+
+
+@pytest.mark.parametrize("scale", [1e-300, 1e-200, 1e-170, 1e-150, 1e150, 1e250])
+def test_a_screw_brackets_the_same_contact_at_every_scale(scale):
+    """A box screwing past another: the screw's translation across its axis is a length, whose
+    squares vanished below 1e-162, so the slide's growth was left out of the motion's bound and
+    a box of 1e-170 was certified apart until 0.3123, past its contact at 0.2933 (signed distance
+    -0.04 of its size at 0.30). Both brackets are proven, so they share the true first contact;
+    the screw poses of the scaled motion are the unit one's scaled."""
+
+    def bracket(s):
+        start = transform(np.eye(3), [-3 * s, -1.0 * s, 0])
+        turn = Rotation.from_euler("xyz", [-151, -158, 94], degrees=True).as_matrix()
+        a, b = sc.Box(np.array([0.8, 0.6, 0.2]) * s), sc.Box([0.5 * s] * 3)
+        r = sc.time_of_impact(a, b, pose_a=(start, transform(turn, [3 * s, 0, 0])), motion="screw")
+        assert r.touches and r.certified
+        return r.t_lower, r.t_upper
+
+    lower, upper = bracket(1.0)
+    scaled_lower, scaled_upper = bracket(scale)
+    assert scaled_lower <= upper and lower <= scaled_upper

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "../geometry/unit_direction.hpp"
 #include "advancement_steps.hpp"
 
 namespace swarmcollide::detail {
@@ -212,14 +213,17 @@ MotionBound::TurnRates MotionBound::turn_rates(const RigidMotion& motion,
     const Vector3 axis = motion.rotation_vector() / motion.angle();
     const Vector3& v = motion.twist_translation();
     const Vector3 across = v - axis.dot(v) * axis;
+    // A length: its squares vanish below 1e-162 (a screw of that size then lost its slide's
+    // growth, and its time of impact was certified past the contact) and overflow above 1e154.
+    const Scalar across_length = robust_length(across);
     const Scalar slide = (turn.transpose() * m).dot(across);
     const Scalar slide_slack =
-        kUnit * across.norm() * (512 * motion.start_rotation_norm() + 4 * std::abs(slide));
+        kUnit * across_length * (512 * motion.start_rotation_norm() + 4 * std::abs(slide));
     rates.forward += slide + slide_slack;
     rates.backward += slide_slack - slide;
     rates.shared_forward += slide + slide_slack;
     rates.shared_backward += slide_slack - slide;
-    rates.growth += u.norm() * across.norm() * (1 + 16 * kUnit);
+    rates.growth += u.norm() * across_length * (1 + 16 * kUnit);
   }
   return rates;
 }
@@ -282,7 +286,7 @@ MotionBound::Reaches MotionBound::depth_reaches(const ConvexPolyhedron& a, const
   // higher at every time, 0 included.
   const auto depth_error = [](const RigidMotion& motion, const ConvexPolyhedron& body) {
     // An overflow to infinity only drops the bound (below).
-    const Scalar size = body.bounds().centre.norm() + body.bounds().radius;
+    const Scalar size = robust_length(body.bounds().centre) + body.bounds().radius;
     return 2 * kUnit * size * (512 * motion.start_rotation_norm() + 16);
   };
   const Scalar offset = depth_error(*motion_a_, a) + depth_error(*motion_b_, b);

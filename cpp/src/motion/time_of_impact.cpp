@@ -291,7 +291,8 @@ class Advancement {
         // Without overflow (an infinite length would prove the parts apart).
         const Scalar length = detail::robust_length(between);
         const Scalar rounding = 16 * kUnit *
-            (centre_a.norm() + centre_b.norm() + part_a.bounds().radius + part_b.bounds().radius);
+            (detail::robust_length(centre_a) + detail::robust_length(centre_b) +
+             part_a.bounds().radius + part_b.bounds().radius);
         Scalar apart = length - part_a.bounds().radius - part_b.bounds().radius - rounding;
         apart = std::max(apart, separation(part_a, pose_a, part_b, pose_b, n));
         if (length > 0) {
@@ -318,7 +319,8 @@ class Advancement {
                            pose_b.translation;
     const Scalar error = a.support_error_per_radius() * a.bounds().radius +
                          b.support_error_per_radius() * b.bounds().radius +
-                         32 * kUnit * (top.norm() + bottom.norm() + a.radius() + b.radius());
+                         32 * kUnit * (detail::robust_length(top) + detail::robust_length(bottom) +
+                                       a.radius() + b.radius());
     return n.dot(bottom) - n.dot(top) - a.radius() - b.radius() - error;
   }
 
