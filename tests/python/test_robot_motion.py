@@ -280,3 +280,25 @@ def test_bad_input_names_the_argument():
         robot.check_motion(q, q, max_iterations=1.5)
     with pytest.raises(ValueError, match="threads"):
         robot.check_motion(q, q, threads=-1)
+
+
+@pytest.mark.parametrize("scale", [1e-300, 1e-200, 1e-170, 1e-150, 1e100, 1e200])
+def test_a_folding_arm_hits_itself_at_every_scale(scale):
+    """Three boxes on two pitch joints folding onto each other: the links' reaches about the
+    joints' axes are lengths, whose squares vanished below 1e-162, so a robot that small moved
+    nowhere by the motion's bound and its colliding motion was certified free; above 1e154 they
+    overflowed, and a free motion was left unresolved."""
+
+    def motion(s, q0=(1.19409338, -1.83584714), q1=(-1.83741193, -2.66206451)):
+        joints = [sc.Joint(f"j{k}", "revolute", k, k + 1, origin=transform([0, 0, s]),
+                           axis=[0, 1, 0], lower=-3, upper=3) for k in range(2)]
+        boxes = [(f"box{k}", k, transform([0, 0, s / 2]), sc.Box([s / 10, s / 10, s / 2]))
+                 for k in range(3)]
+        robot = sc.Robot(["base", "l1", "l2"], joints, boxes)
+        return robot.check_motion(q0, q1)
+
+    unit, scaled = motion(1.0), motion(scale)
+    assert unit.touches and unit.certified and scaled.touches and scaled.certified
+    assert scaled.t_lower <= unit.t_upper and unit.t_lower <= scaled.t_upper
+    free = motion(scale, (0.27392337, -0.46042657), (-0.91805295, -0.96694473))
+    assert not free.touches and free.certified

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
+#include "../geometry/unit_direction.hpp"
 #include "swarmcollide/robot/kinematics.hpp"
 
 namespace swarmcollide::detail {
@@ -23,8 +25,12 @@ Scalar rigid_deviation(const Matrix3& rotation) {
 // A bound on the spectral norm of a rotation R with R^T R - I of norm at most `deviation`.
 Scalar rotation_norm(Scalar deviation) { return std::sqrt(1 + deviation) * kRoundUp; }
 
-// The distance of `p` from the line through the origin along the unit `axis`.
-Scalar off_axis(const Vector3& p, const Vector3& axis) { return (p - p.dot(axis) * axis).norm(); }
+// The distance of `p` from the line through the origin along the unit `axis`. Lengths here are
+// robust_length's: the squares of a robot's coordinates vanish below 1e-162 (a link of that size
+// then reached nowhere, and a colliding motion was certified free) and overflow above 1e154.
+Scalar off_axis(const Vector3& p, const Vector3& axis) {
+  return robust_length(p - p.dot(axis) * axis);
+}
 
 // Raises `about_origin` and `about_axis` to bounds on the distance of the core points of `body`,
 // placed by `origin`, from the origin and from the line along `axis`. A rounded body's ball turns
@@ -35,13 +41,13 @@ void core_reach(const ConvexPolyhedron& body, const Pose& origin, const Vector3&
     // The shape lies within its outer radius of its centre, the body's box centre.
     const Vector3 centre = origin.rotation * body.bounds().centre + origin.translation;
     const Scalar radius = shape->outer_radius() * rotation_norm(rigid_deviation(origin.rotation));
-    about_origin = std::max(about_origin, centre.norm() + radius);
+    about_origin = std::max(about_origin, robust_length(centre) + radius);
     about_axis = std::max(about_axis, off_axis(centre, axis) + radius);
     return;
   }
   for (int i = 0; i < body.size(); ++i) {
     const Vector3 p = origin.rotation * body.vertices().row(i).transpose() + origin.translation;
-    about_origin = std::max(about_origin, p.norm());
+    about_origin = std::max(about_origin, robust_length(p));
     about_axis = std::max(about_axis, off_axis(p, axis));
   }
 }
@@ -81,7 +87,17 @@ Scalar LinkMotionBound::BoxCorners::farthest_off_axis(const Vector3& origin,
   const Corners qx = px - along * axis.x();
   const Corners qy = py - along * axis.y();
   const Corners qz = pz - along * axis.z();
-  return std::sqrt((qx * qx + qy * qy + qz * qz).maxCoeff());
+  const Scalar largest_square = (qx * qx + qy * qy + qz * qz).maxCoeff();
+  if (std::isnan(largest_square) || (largest_square >= kFullSquaredLength &&
+                                      largest_square < std::numeric_limits<Scalar>::infinity())) {
+    return std::sqrt(largest_square);
+  }
+  // Squares that lost their digits or overflowed: each corner's length as off_axis takes it.
+  Scalar farthest = 0;
+  for (int c = 0; c < 8; ++c) {
+    farthest = std::max(farthest, robust_length(Vector3(qx[c], qy[c], qz[c])));
+  }
+  return farthest;
 }
 
 LinkMotionBound::LinkMotionBound(const RobotModel& model) : model_(model) {
@@ -132,7 +148,7 @@ LinkMotionBound::LinkMotionBound(const RobotModel& model) : model_(model) {
   for (std::size_t j = 0; j < joints.size(); ++j) {
     origin_norm_[j] = rotation_norm(origin_sigma_[j]);
     chain_norm_[j] = rotation_norm(chain_sigma_[j]);
-    origin_length_[j] = joints[j].origin.translation.norm();
+    origin_length_[j] = robust_length(joints[j].origin.translation);
     const int above = model.parent_joint(joints[j].parent);
     if (above >= 0) {
       origin_off_axis_[j] = off_axis(joints[j].origin.translation, joints[above].axis.normalized());
@@ -512,7 +528,7 @@ LinkMotionBound::TwistSpeed LinkMotionBound::twist_speed(const GeometryPair& pai
         const Vector3 offset = placed.centre - placed.origin[term.k];
         along += term.velocity * n.dot(axis.cross(offset));
         w += term.velocity * axis;
-        error += m * ((64 * kUnit + 8 * sigma) * offset.norm() +
+        error += m * ((64 * kUnit + 8 * sigma) * robust_length(offset) +
                       (8 * kUnit + 4.01 * sigma) * placed.reach[term.k]);
         spread_error += m;
         const Scalar across = n.cross(axis).norm() + 8 * kUnit + 4.01 * sigma;
