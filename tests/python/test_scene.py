@@ -498,3 +498,32 @@ def test_a_sinking_turning_box_keeps_four_contact_points_warm_or_cold():
             assert c.distance[0] == pytest.approx(-1e-3 * frame, abs=1e-9)
         same_points(warm.points, cold.points)
     assert scenes[0].stats.warm_proven == 1
+
+
+@pytest.mark.parametrize("scale", [1e-300, 1e-200, 1e-170, 1e100])
+def test_a_scene_answers_alike_at_every_scale(scale):
+    """A scene's lengths (its extent, a body's reach, how far a new pose moves a body) and a
+    large body's support tree are taken without squares, which vanished below 1e-162: there
+    min_distance of two boxes 3e-170 apart found no pair at all."""
+    cloud = np.random.default_rng(3).normal(size=(60, 3)) * 0.5
+
+    def frames(s):
+        scene = sc.Scene(seed=1)
+        poses = np.tile(np.eye(4), (3, 1, 1))
+        poses[:, 0, 3] = [0, 3 * s, 6 * s]
+        scene.add([sc.Box([s, s, s]), sc.ConvexPolyhedron(cloud * s), sc.Cylinder(0.5 * s, s)],
+                  poses)
+        answers = []
+        for _ in range(3):
+            poses[:, 0, 3] -= [0, 0.8 * s, 1.6 * s]
+            scene.set_poses(scene.ids, poses)
+            answers += [scene.min_distance(), scene.colliding_pairs(), scene.contacts()]
+        return answers
+
+    for k, (unit, scaled) in enumerate(zip(frames(1.0), frames(scale))):
+        # min_distance's pair is any of those at the least distance (here touching: 0).
+        if k % 3 != 0:
+            np.testing.assert_array_equal(scaled.pairs, unit.pairs)
+        assert len(scaled) == len(unit) and np.all(scaled.certified)
+        np.testing.assert_allclose(np.asarray(scaled.distance) / scale, unit.distance, rtol=1e-6,
+                                   atol=1e-6)

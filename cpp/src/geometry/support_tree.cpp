@@ -7,6 +7,7 @@
 
 #include "framed_body.hpp"
 #include "support.hpp"
+#include "unit_direction.hpp"
 
 namespace swarmcollide::detail {
 
@@ -37,12 +38,15 @@ void SupportTree::build(const VertexMatrix& points, int index, int begin, int en
   // |x - centre| as computed is within 4 roundoffs of the exact distance (one rounding per
   // difference, then the norm); d . x <= d . centre + |d| |x - centre|, and d . centre as
   // computed is within 3.01u |d| |centre|, the final product and sum within 2u of their terms.
+  // The lengths without their squares, which vanish for bodies below 1e-162 (whose balls then
+  // shrank to their centres and cut off the supports) and overflow above 1e154.
   Scalar radius = 0;
   for (int k = begin; k < end; ++k) {
-    radius = std::max(radius, (points.row(order_[k]).transpose() - centre).norm());
+    radius = std::max(radius, robust_length(points.row(order_[k]).transpose() - centre));
   }
   radius *= 1 + 8 * kRoundoff;
-  nodes_[index] = {centre, radius + 8 * kRoundoff * (centre.norm() + radius), begin, end, -1};
+  nodes_[index] = {centre, radius + 8 * kRoundoff * (robust_length(centre) + radius), begin, end,
+                   -1};
   if (end - begin <= kLeafSize) return;
   int axis = 0;
   (high - low).maxCoeff(&axis);

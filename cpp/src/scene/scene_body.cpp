@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "../geometry/support.hpp"
+#include "../geometry/unit_direction.hpp"
 
 namespace swarmcollide::detail {
 
@@ -33,14 +34,22 @@ constexpr Scalar kMarginOfRadius = 0.25;
 Scalar reach_about_centre(const ConvexPolyhedron& body) {
   // A curved shape's points are a few on its surface; its outer radius holds all of it.
   if (body.curved()) return body.curved()->outer_radius();
-  return body.centred_vertices().rowwise().norm().maxCoeff();
+  // Lengths without their squares, which vanish for bodies below 1e-162 (whose turns then moved
+  // them nowhere) and overflow above 1e154.
+  const VertexMatrix& points = body.centred_vertices();
+  Scalar reach = 0;
+  for (Eigen::Index i = 0; i < points.rows(); ++i) {
+    reach = std::max(reach, robust_length(points.row(i).transpose()));
+  }
+  return reach;
 }
 
 Scalar displacement(const ConvexPolyhedron& body, Scalar reach, const Pose& from, const Pose& to) {
   const Vector3& c = body.bounds().centre;
   const Vector3 old_centre = from.rotation * c + from.translation;
   const Vector3 new_centre = to.rotation * c + to.translation;
-  const Scalar moved = (new_centre - old_centre).norm() + turn(from.rotation, to.rotation) * reach;
+  const Scalar moved =
+      robust_length(new_centre - old_centre) + turn(from.rotation, to.rotation) * reach;
   const Scalar magnitude = old_centre.cwiseAbs().maxCoeff() + new_centre.cwiseAbs().maxCoeff() +
                            c.cwiseAbs().maxCoeff() + reach;
   return moved * (1 + 1e-12) + 16 * kEpsilon * magnitude;

@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include "../geometry/unit_direction.hpp"
 #include "scene_impl.hpp"
 #include "swarmcollide/queries/batch.hpp"
 
@@ -28,7 +29,8 @@ Scalar Scene::Impl::extent() const {
     all.min = all.min.cwiseMin(b->box.min);
     all.max = all.max.cwiseMax(b->box.max);
   }
-  return (all.max - all.min).norm();
+  // Without squares, which vanish for scenes below 1e-162 (min_distance then found no pair).
+  return detail::robust_length(all.max - all.min);
 }
 
 Scalar Scene::Impl::next_threshold(Scalar threshold) const {
