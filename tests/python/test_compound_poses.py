@@ -137,3 +137,24 @@ def test_a_point_on_an_axis_of_symmetry_gets_a_certified_depth(method, shape, de
         assert r.certified
         assert r.distance == pytest.approx(-depth, abs=tolerance * 4 + 1e-13)
         assert r.lower_bound <= -depth + 1e-13
+
+
+@pytest.mark.parametrize("scale", [1e-300, 1e-200, 1e-170, 1e155, 1e170])
+@pytest.mark.parametrize("shape", [sc.Cylinder, sc.Cone], ids=lambda kind: kind.__name__)
+def test_a_posed_curved_part_answers_alike_at_every_scale(shape, scale):
+    """A posed part's ball holds its offset's length, which squared overflowed above 1e154 (the
+    part was refused as spanning more than the largest double) and vanished below 1e-162."""
+    turn = transform(random_rotation(np.random.default_rng(4)), [0.7, -0.2, 0.4])
+
+    def distance(s):
+        posed = turn.copy()
+        posed[:3, 3] *= s
+        body = sc.CompoundBody([shape(0.5 * s, 0.8 * s)], poses=[posed])
+        probe = sc.Box([0.3 * s] * 3)
+        at = np.eye(4)
+        at[:3, 3] = [2.0 * s, 0.5 * s, 0.0]
+        r = sc.signed_distance(body, probe, pose_b=at)
+        assert r.certified and sc.collide(body, probe, pose_b=transform(np.eye(3), [0.8 * s, 0, 0]))
+        return r.distance / s
+
+    assert distance(scale) == pytest.approx(distance(1.0), rel=1e-6, abs=1e-6)

@@ -5,6 +5,8 @@
 #include <memory>
 #include <utility>
 
+#include "unit_direction.hpp"
+
 namespace swarmcollide {
 
 namespace {
@@ -46,8 +48,11 @@ class PlacedSupport final : public SupportFunction {
   Vector3 support(const Vector3& direction) const override {
     return turned_support(direction) + offset_;
   }
+  // The offset's length without its squares, which overflow for offsets above 1e154 (a shape
+  // of that size, posed, was refused as spanning more than the largest double) and vanish below
+  // 1e-162 (the ball then left the offset out).
   Scalar outer_radius() const override {
-    return (offset_.norm() + shape_->outer_radius() * kStretch) * kStretch;
+    return (detail::robust_length(offset_) + shape_->outer_radius() * kStretch) * kStretch;
   }
   Scalar support_error_roundoffs() const override { return shape_->support_error_roundoffs() + 32; }
   Vector3 centroid() const override { return pose_.rotation * shape_->centroid() + offset_; }
@@ -59,7 +64,7 @@ class PlacedSupport final : public SupportFunction {
     const Scalar depth = shape_->depth_of(pose_.rotation.transpose() * from_origin, local_outward);
     const Vector3 turned = pose_.rotation * local_outward;
     outward = turned / turned.norm();
-    const Scalar margin = 2 * skew_ * (from_origin.norm() + shape_->outer_radius());
+    const Scalar margin = 2 * skew_ * (detail::robust_length(from_origin) + shape_->outer_radius());
     return depth * (1 - skew_) - margin;
   }
   const char* name() const override { return shape_->name(); }
