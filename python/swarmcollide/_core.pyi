@@ -13,6 +13,10 @@ class Aabb:
     """
     def __getstate__(self) -> tuple:
         ...
+    def __reduce_ex__(self, protocol: typing.Any) -> typing.Any:
+        """
+        Reduction for pickle, as protocol 2's in every protocol (copyreg.__newobj__ and __getstate__).
+        """
     def __repr__(self) -> str:
         ...
     def __setstate__(self, arg0: typing.Any) -> None:
@@ -41,6 +45,10 @@ class BatchResult:
         ...
     def __len__(self) -> int:
         ...
+    def __reduce_ex__(self, protocol: typing.Any) -> typing.Any:
+        """
+        Reduction for pickle, as protocol 2's in every protocol (copyreg.__newobj__ and __getstate__).
+        """
     def __repr__(self) -> str:
         ...
     def __setstate__(self, arg0: typing.Any) -> None:
@@ -106,6 +114,10 @@ class Box(ConvexPolyhedron):
         ...
     def __init__(self, half_extents: typing.Any, radius: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> None:
         ...
+    def __reduce_ex__(self, protocol: typing.Any) -> typing.Any:
+        """
+        Reduction for pickle, as protocol 2's in every protocol (copyreg.__newobj__ and __getstate__).
+        """
     def __repr__(self) -> str:
         ...
     def __setstate__(self, arg0: typing.Any) -> None:
@@ -143,6 +155,10 @@ class Capsule(ConvexPolyhedron):
         ...
     def __init__(self, radius: typing.SupportsFloat | typing.SupportsIndex, half_length: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
+    def __reduce_ex__(self, protocol: typing.Any) -> typing.Any:
+        """
+        Reduction for pickle, as protocol 2's in every protocol (copyreg.__newobj__ and __getstate__).
+        """
     def __repr__(self) -> str:
         ...
     def __setstate__(self, arg0: typing.Any) -> None:
@@ -199,6 +215,10 @@ class CompoundBody:
         ...
     def __len__(self) -> int:
         ...
+    def __reduce_ex__(self, protocol: typing.Any) -> typing.Any:
+        """
+        Reduction for pickle, as protocol 2's in every protocol (copyreg.__newobj__ and __getstate__).
+        """
     def __repr__(self) -> str:
         ...
     def __setstate__(self, arg0: typing.Any) -> None:
@@ -266,6 +286,10 @@ class CompoundResult(DistanceResult):
     """
     def __getstate__(self) -> tuple[int, tuple, int, int, CompoundStats]:
         ...
+    def __reduce_ex__(self, protocol: typing.Any) -> typing.Any:
+        """
+        Reduction for pickle, as protocol 2's in every protocol (copyreg.__newobj__ and __getstate__).
+        """
     def __repr__(self) -> str:
         ...
     def __setstate__(self, arg0: typing.Any) -> None:
@@ -305,6 +329,10 @@ class CompoundStats:
     """
     def __getstate__(self) -> tuple:
         ...
+    def __reduce_ex__(self, protocol: typing.Any) -> typing.Any:
+        """
+        Reduction for pickle, as protocol 2's in every protocol (copyreg.__newobj__ and __getstate__).
+        """
     def __repr__(self) -> str:
         ...
     def __setstate__(self, arg0: typing.Any) -> None:
@@ -352,6 +380,10 @@ class Cone(ConvexPolyhedron):
         ...
     def __init__(self, radius: typing.SupportsFloat | typing.SupportsIndex, half_length: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
+    def __reduce_ex__(self, protocol: typing.Any) -> typing.Any:
+        """
+        Reduction for pickle, as protocol 2's in every protocol (copyreg.__newobj__ and __getstate__).
+        """
     def __repr__(self) -> str:
         ...
     def __setstate__(self, arg0: typing.Any) -> None:
@@ -386,6 +418,10 @@ class ContactResult(SceneResult):
     """
     def __getstate__(self) -> tuple:
         ...
+    def __reduce_ex__(self, protocol: typing.Any) -> typing.Any:
+        """
+        Reduction for pickle, as protocol 2's in every protocol (copyreg.__newobj__ and __getstate__).
+        """
     def __repr__(self) -> str:
         ...
     def __setstate__(self, arg0: typing.Any) -> None:
@@ -437,6 +473,10 @@ class ConvexPolyhedron:
         ...
     def __len__(self) -> int:
         ...
+    def __reduce_ex__(self, protocol: typing.Any) -> typing.Any:
+        """
+        Reduction for pickle, as protocol 2's in every protocol (copyreg.__newobj__ and __getstate__).
+        """
     def __repr__(self) -> str:
         ...
     def __setstate__(self, arg0: typing.Any) -> None:
@@ -517,6 +557,10 @@ class Cylinder(ConvexPolyhedron):
         ...
     def __init__(self, radius: typing.SupportsFloat | typing.SupportsIndex, half_length: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
+    def __reduce_ex__(self, protocol: typing.Any) -> typing.Any:
+        """
+        Reduction for pickle, as protocol 2's in every protocol (copyreg.__newobj__ and __getstate__).
+        """
     def __repr__(self) -> str:
         ...
     def __setstate__(self, arg0: typing.Any) -> None:
@@ -544,6 +588,10 @@ class DistanceResult:
     """
     def __getstate__(self) -> tuple:
         ...
+    def __reduce_ex__(self, protocol: typing.Any) -> typing.Any:
+        """
+        Reduction for pickle, as protocol 2's in every protocol (copyreg.__newobj__ and __getstate__).
+        """
     def __repr__(self) -> str:
         ...
     def __setstate__(self, arg0: typing.Any) -> None:
@@ -649,6 +697,10 @@ class Ellipsoid(ConvexPolyhedron):
         ...
     def __init__(self, radii: typing.Any) -> None:
         ...
+    def __reduce_ex__(self, protocol: typing.Any) -> typing.Any:
+        """
+        Reduction for pickle, as protocol 2's in every protocol (copyreg.__newobj__ and __getstate__).
+        """
     def __repr__(self) -> str:
         ...
     def __setstate__(self, arg0: typing.Any) -> None:
@@ -675,6 +727,10 @@ class Hull:
     """
     def __getstate__(self) -> tuple:
         ...
+    def __reduce_ex__(self, protocol: typing.Any) -> typing.Any:
+        """
+        Reduction for pickle, as protocol 2's in every protocol (copyreg.__newobj__ and __getstate__).
+        """
     def __repr__(self) -> str:
         ...
     def __setstate__(self, arg0: typing.Any) -> None:
@@ -717,6 +773,10 @@ class Joint:
         ...
     def __init__(self, name: str, type: str, parent: typing.SupportsInt | typing.SupportsIndex, child: typing.SupportsInt | typing.SupportsIndex, origin: typing.Any = None, axis: typing.Any = ..., lower: typing.SupportsFloat | typing.SupportsIndex = 0.0, upper: typing.SupportsFloat | typing.SupportsIndex = 0.0, reference: typing.SupportsFloat | typing.SupportsIndex = 0.0, mimic: typing.SupportsInt | typing.SupportsIndex = -1, multiplier: typing.SupportsFloat | typing.SupportsIndex = 1.0, offset: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> None:
         ...
+    def __reduce_ex__(self, protocol: typing.Any) -> typing.Any:
+        """
+        Reduction for pickle, as protocol 2's in every protocol (copyreg.__newobj__ and __getstate__).
+        """
     def __setstate__(self, arg0: typing.Any) -> None:
         ...
     @property
@@ -770,6 +830,10 @@ class PartNode:
     """
     def __getstate__(self) -> tuple:
         ...
+    def __reduce_ex__(self, protocol: typing.Any) -> typing.Any:
+        """
+        Reduction for pickle, as protocol 2's in every protocol (copyreg.__newobj__ and __getstate__).
+        """
     def __repr__(self) -> str:
         ...
     def __setstate__(self, arg0: typing.Any) -> None:
@@ -801,6 +865,10 @@ class ParticleCoefficients:
     """
     def __getstate__(self) -> tuple:
         ...
+    def __reduce_ex__(self, protocol: typing.Any) -> typing.Any:
+        """
+        Reduction for pickle, as protocol 2's in every protocol (copyreg.__newobj__ and __getstate__).
+        """
     def __repr__(self) -> str:
         ...
     def __setstate__(self, arg0: typing.Any) -> None:
@@ -827,6 +895,10 @@ class Query:
         ...
     def __init__(self, method: typing.Any = 'dual', tolerance: typing.Any = 1e-09, seed: typing.Any = 0, **kwargs) -> None:
         ...
+    def __reduce_ex__(self, protocol: typing.Any) -> typing.Any:
+        """
+        Reduction for pickle, as protocol 2's in every protocol (copyreg.__newobj__ and __getstate__).
+        """
     def __repr__(self) -> str:
         ...
     def __setstate__(self, arg0: typing.Any) -> None:
@@ -904,6 +976,10 @@ class RobotCheck:
     """
     def __getstate__(self) -> tuple:
         ...
+    def __reduce_ex__(self, protocol: typing.Any) -> typing.Any:
+        """
+        Reduction for pickle, as protocol 2's in every protocol (copyreg.__newobj__ and __getstate__).
+        """
     def __setstate__(self, arg0: typing.Any) -> None:
         ...
     def row(self, i: typing.SupportsInt | typing.SupportsIndex) -> tuple[bool, float, float, bool, int, numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64], typing.Any]:
@@ -979,6 +1055,10 @@ class RobotDistances:
     """
     def __getstate__(self) -> tuple:
         ...
+    def __reduce_ex__(self, protocol: typing.Any) -> typing.Any:
+        """
+        Reduction for pickle, as protocol 2's in every protocol (copyreg.__newobj__ and __getstate__).
+        """
     def __setstate__(self, arg0: typing.Any) -> None:
         ...
     @property
@@ -1018,6 +1098,10 @@ class RobotModel:
         ...
     def __init__(self, links: collections.abc.Sequence[str], joints: collections.abc.Sequence[Joint], geometries: collections.abc.Sequence[tuple]) -> None:
         ...
+    def __reduce_ex__(self, protocol: typing.Any) -> typing.Any:
+        """
+        Reduction for pickle, as protocol 2's in every protocol (copyreg.__newobj__ and __getstate__).
+        """
     def __setstate__(self, arg0: typing.Any) -> None:
         ...
     def adjacent_links(self, a: typing.SupportsInt | typing.SupportsIndex, b: typing.SupportsInt | typing.SupportsIndex) -> bool:
@@ -1073,6 +1157,10 @@ class RobotMotionCheck:
     """
     def __getstate__(self) -> tuple:
         ...
+    def __reduce_ex__(self, protocol: typing.Any) -> typing.Any:
+        """
+        Reduction for pickle, as protocol 2's in every protocol (copyreg.__newobj__ and __getstate__).
+        """
     def __setstate__(self, arg0: typing.Any) -> None:
         ...
     def row(self, i: typing.SupportsInt | typing.SupportsIndex) -> tuple[bool, float, float, numpy.typing.NDArray[numpy.float64], int, float, numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64], bool, int, str]:
@@ -1182,6 +1270,10 @@ class Scene:
         ...
     def __len__(self) -> int:
         ...
+    def __reduce_ex__(self, protocol: typing.Any) -> typing.Any:
+        """
+        Reduction for pickle, as protocol 2's in every protocol (copyreg.__newobj__ and __getstate__).
+        """
     def __repr__(self) -> str:
         ...
     def __setstate__(self, arg0: typing.Any) -> None:
@@ -1348,6 +1440,10 @@ class SceneResult:
         ...
     def __len__(self) -> int:
         ...
+    def __reduce_ex__(self, protocol: typing.Any) -> typing.Any:
+        """
+        Reduction for pickle, as protocol 2's in every protocol (copyreg.__newobj__ and __getstate__).
+        """
     def __repr__(self) -> str:
         ...
     def __setstate__(self, arg0: typing.Any) -> None:
@@ -1405,6 +1501,10 @@ class SceneStats:
     """
     def __getstate__(self) -> tuple:
         ...
+    def __reduce_ex__(self, protocol: typing.Any) -> typing.Any:
+        """
+        Reduction for pickle, as protocol 2's in every protocol (copyreg.__newobj__ and __getstate__).
+        """
     def __repr__(self) -> str:
         ...
     def __setstate__(self, arg0: typing.Any) -> None:
@@ -1465,6 +1565,10 @@ class Sphere(ConvexPolyhedron):
         ...
     def __init__(self, radius: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
+    def __reduce_ex__(self, protocol: typing.Any) -> typing.Any:
+        """
+        Reduction for pickle, as protocol 2's in every protocol (copyreg.__newobj__ and __getstate__).
+        """
     def __repr__(self) -> str:
         ...
     def __setstate__(self, arg0: typing.Any) -> None:
@@ -1498,6 +1602,10 @@ class SweepResult:
         ...
     def __len__(self) -> int:
         ...
+    def __reduce_ex__(self, protocol: typing.Any) -> typing.Any:
+        """
+        Reduction for pickle, as protocol 2's in every protocol (copyreg.__newobj__ and __getstate__).
+        """
     def __repr__(self) -> str:
         ...
     def __setstate__(self, arg0: typing.Any) -> None:
@@ -1547,6 +1655,10 @@ class TimeOfImpactBatch:
         ...
     def __len__(self) -> int:
         ...
+    def __reduce_ex__(self, protocol: typing.Any) -> typing.Any:
+        """
+        Reduction for pickle, as protocol 2's in every protocol (copyreg.__newobj__ and __getstate__).
+        """
     def __repr__(self) -> str:
         ...
     def __setstate__(self, arg0: typing.Any) -> None:
@@ -1596,6 +1708,10 @@ class TimeOfImpactResult:
     """
     def __getstate__(self) -> tuple:
         ...
+    def __reduce_ex__(self, protocol: typing.Any) -> typing.Any:
+        """
+        Reduction for pickle, as protocol 2's in every protocol (copyreg.__newobj__ and __getstate__).
+        """
     def __repr__(self) -> str:
         ...
     def __setstate__(self, arg0: typing.Any) -> None:
