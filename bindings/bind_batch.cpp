@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <deque>
 #include <initializer_list>
+#include <limits>
 #include <optional>
 #include <string>
 #include <utility>
@@ -101,9 +102,11 @@ BatchSettings settings_of(const py::object& threads, const py::object& first_ind
   if (!threads.is_none()) {
     settings.threads = thread_count(threads);
   }
+  // Seeds are 64-bit: past 2**64 - 1 the conversion below failed with pybind11's cast error.
   if (PyBool_Check(first_index.ptr()) || !PyIndex_Check(first_index.ptr()) ||
-      py::int_(first_index) < py::int_(0)) {
-    throw py::value_error("first_index must be a nonnegative integer");
+      py::int_(first_index) < py::int_(0) ||
+      py::int_(first_index) > py::int_(std::numeric_limits<std::uint64_t>::max())) {
+    throw py::value_error("first_index must be a nonnegative integer below 2**64");
   }
   settings.first_index = py::int_(first_index).cast<std::uint64_t>();
   return settings;

@@ -126,6 +126,7 @@ def test_the_lowest_failing_pair_is_reported(pairs):
         ([TETRA], [TETRA], {"threads": 1.5}, TypeError, "threads must be an integer or None"),
         ([TETRA], [TETRA], {"threads": True}, TypeError, "threads must be an integer or None"),
         ([TETRA], [TETRA], {"first_index": -1}, ValueError, "first_index must be a nonnegative"),
+        ([TETRA], [TETRA], {"first_index": 2**64}, ValueError, r"first_index .* below 2\*\*64"),
         ([TETRA], [TETRA], {"method": "libccd"}, ValueError, "distance is not available"),
     ],
 )
