@@ -423,6 +423,15 @@ class CompoundBody(_core.CompoundBody):
         super().__init__(parts, poses=poses)
         self.decomposition = decomposition
 
+    def __setstate__(self, state: Any) -> None:
+        super().__setstate__(state)
+        # The core restores the instance's attributes as they were pickled; a record that is not
+        # one (an edited pickle) is refused here, not by the first repr or save that reads it.
+        record = self.__dict__.setdefault("decomposition", None)
+        if not isinstance(record, (Decomposition, type(None))):
+            raise ValueError("a CompoundBody state's decomposition must be a Decomposition or "
+                             f"None, got {type(record).__name__}: the state is corrupted")
+
     @classmethod
     def from_mesh(
         cls,

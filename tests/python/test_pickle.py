@@ -420,6 +420,7 @@ def test_corrupted_body_states_name_what_is_wrong():
     scaled = poses.copy()
     scaled[1, :3, :3] *= 2
     refuse(sc.CompoundBody, (1, parts, scaled, attributes), "poses")
+    refuse(sc.CompoundBody, (1, parts, poses, {"decomposition": "x"}), "decomposition")
 
 
 def test_corrupted_result_states_name_what_is_wrong():
