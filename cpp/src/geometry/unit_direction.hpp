@@ -1,6 +1,7 @@
 // Unit vectors along directions of any length; private to the library's sources.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -50,6 +51,25 @@ inline Scalar robust_length(const Vector3& v) {
   const Scalar largest = v.cwiseAbs().maxCoeff();
   if (!(largest > 0) || !std::isfinite(largest)) return largest;
   return largest * (v / largest).norm();
+}
+
+/// The largest length over the rows of `points`. The squares are summed directly, which is exact
+/// to a few roundoffs while they stay in the normal range; where the largest square overflows or
+/// falls below 2^-960 (bodies beyond about 1e154 or below 1e-144 in size, where squares lose
+/// digits or vanish), every row's norm is taken scaled.
+inline Scalar largest_row_length(const VertexMatrix& points) {
+  Scalar largest_square = 0;
+  for (Eigen::Index i = 0; i < points.rows(); ++i) {
+    largest_square = std::max(largest_square, points.row(i).squaredNorm());
+  }
+  if (largest_square >= 0x1p-960 && largest_square <= std::numeric_limits<Scalar>::max()) {
+    return std::sqrt(largest_square);
+  }
+  Scalar largest = 0;
+  for (Eigen::Index i = 0; i < points.rows(); ++i) {
+    largest = std::max(largest, points.row(i).stableNorm());
+  }
+  return largest;
 }
 
 }  // namespace swarmcollide::detail

@@ -17,23 +17,6 @@ constexpr Scalar kUnit = 0x1p-53;
 // Regula falsi steps of depth_reaches after its chord.
 constexpr int kDepthRefinements = 1;
 
-// The largest |x| over the rows of `points`. The squares are summed directly, which is exact to a
-// few roundoffs while they stay in the normal range; where the largest square overflows or falls
-// below 2^-960 (bodies beyond about 1e154 or below 1e-144 in size, where squares lose digits or
-// vanish), every row's norm is taken scaled.
-Scalar largest_row_norm(const VertexMatrix& points) {
-  Scalar largest_square = 0;
-  for (int i = 0; i < points.rows(); ++i) {
-    largest_square = std::max(largest_square, points.row(i).squaredNorm());
-  }
-  if (largest_square >= 0x1p-960 && largest_square <= std::numeric_limits<Scalar>::max()) {
-    return std::sqrt(largest_square);
-  }
-  Scalar largest = 0;
-  for (int i = 0; i < points.rows(); ++i) largest = std::max(largest, points.row(i).stableNorm());
-  return largest;
-}
-
 // A polyhedron's points at a time t as lines in the time h from t (MotionBound, second order
 // aside): point i is at most rate_i h - depth_i above the core's support plane along a direction,
 // rate_i its speed along that direction at t and depth_i its depth below that plane at t. Kept
@@ -101,7 +84,7 @@ Scalar motion_reach(const ConvexPolyhedron& body) {
     // centre in its own frame.
     reach = body.bounds().centre.stableNorm() + shape->outer_radius();
   } else {
-    reach = largest_row_norm(body.vertices());
+    reach = largest_row_length(body.vertices());
   }
   return reach * (1 + 8 * kUnit);
 }
@@ -124,7 +107,7 @@ Scalar motion_reach_across(const ConvexPolyhedron& body, const Vector3& axis) {
     for (int i = 0; i < crossed.rows(); ++i) {
       crossed.row(i) = unit.cross(Vector3(body.vertices().row(i))).transpose();
     }
-    across = largest_row_norm(crossed);
+    across = largest_row_length(crossed);
   }
   // |unit x x| is within a few roundoffs of |x| (the unit vector's length included) of the
   // distance from the axis: 16 roundoffs of the reach cover them, as 8 cover the reach's own.

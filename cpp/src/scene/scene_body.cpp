@@ -34,14 +34,9 @@ constexpr Scalar kMarginOfRadius = 0.25;
 Scalar reach_about_centre(const ConvexPolyhedron& body) {
   // A curved shape's points are a few on its surface; its outer radius holds all of it.
   if (body.curved()) return body.curved()->outer_radius();
-  // Lengths without their squares, which vanish for bodies below 1e-162 (whose turns then moved
-  // them nowhere) and overflow above 1e154.
-  const VertexMatrix& points = body.centred_vertices();
-  Scalar reach = 0;
-  for (Eigen::Index i = 0; i < points.rows(); ++i) {
-    reach = std::max(reach, robust_length(points.row(i).transpose()));
-  }
-  return reach;
+  // Not the rows' plain norms: their squares vanish for bodies below 1e-162, whose turns then
+  // moved them nowhere.
+  return largest_row_length(body.centred_vertices());
 }
 
 Scalar displacement(const ConvexPolyhedron& body, Scalar reach, const Pose& from, const Pose& to) {
