@@ -259,6 +259,35 @@ def test_a_single_compound_body_serves_every_row(posed):
                 sc.collide_many([ring] * 60, [b] * 60, poses_b=poses_b))
 
 
+@pytest.mark.parametrize("batch", [sc.distance_many, sc.collide_many, sc.signed_distance_many])
+def test_a_convex_row_answers_alike_beside_a_compound_row(batch, posed):
+    # A compound body in any row wraps every row's bodies; a row of one part each is still the
+    # convex row, bit for bit (it was answered by the compound search, whose start and part-pair
+    # seed differ).
+    a, b, poses_a, poses_b = posed
+    ring = sc.CompoundBody([a, sc.ConvexPolyhedron(a.vertices + [3, 0, 0])])
+    convex = batch([a] * 60, [b] * 60, poses_a=poses_a, poses_b=poses_b, seed=4, threads=2)
+    mixed = batch([a] * 60 + [ring], [b] * 61, poses_a=np.concatenate([poses_a, poses_a[:1]]),
+                  poses_b=np.concatenate([poses_b, poses_b[:1]]), seed=4, threads=2)
+    for field in ("distance", "lower_bound", "point_a", "point_b", "direction", "colliding",
+                  "certified", "iterations", "escalated", "part_a", "part_b"):
+        np.testing.assert_array_equal(getattr(mixed, field)[:60], getattr(convex, field),
+                                      err_msg=field)
+
+
+@pytest.mark.parametrize("query", [sc.distance, sc.collision, sc.signed_distance])
+def test_compound_bodies_of_one_part_answer_as_their_parts(query, posed):
+    a, b, poses_a, poses_b = posed
+    for i in (0, 23, 41):
+        plain = query(a, b, pose_a=poses_a[i], pose_b=poses_b[i], seed=i)
+        wrapped = query(sc.CompoundBody([a]), b, pose_a=poses_a[i], pose_b=poses_b[i], seed=i)
+        assert (wrapped.part_a, wrapped.part_b, wrapped.stats.part_pairs) == (0, 0, 1)
+        for field in ("distance", "lower_bound", "colliding", "certified", "iterations"):
+            assert getattr(wrapped, field) == getattr(plain, field), field
+        for field in ("point_a", "point_b", "direction"):
+            np.testing.assert_array_equal(getattr(wrapped, field), getattr(plain, field))
+
+
 def test_posed_rows_answer_alike_on_any_threads_and_cuts(posed):
     a, b, poses_a, poses_b = posed
     for batch in (sc.distance_many, sc.collide_many, sc.signed_distance_many):

@@ -606,13 +606,23 @@ BatchResult compound_batch(Kind kind, const BatchBodies<CompoundBody>& as,
                            const BatchSettings& settings, const BatchPoses& poses) {
   return run_batch(kind, row_count(as, bs, poses), options, settings, poses,
                    [&](const RowWriter& writer) {
+                     // A row of one part each (a convex body, wrapped) is a convex batch's row:
+                     // its answer does not depend on whether another row holds a compound body.
                      return [writer, goal = asked(kind).goal, escalate = settings.escalate,
+                             convex = ConvexRows(kind, writer, settings.escalate, true,
+                                                 detail::solver_for(options.method)),
                              a = BodyRows<CompoundBody>(as), b = BodyRows<CompoundBody>(bs)](
                                 std::size_t i, const RowOptions& pair_options,
-                                const RowPoses& poses) {
+                                const RowPoses& poses) mutable {
+                       const CompoundBody& body_a = a[i];
+                       const CompoundBody& body_b = b[i];
+                       if (body_a.size() == 1 && body_b.size() == 1) {
+                         return convex.answer(i, pair_options, body_a.parts()[0],
+                                              body_b.parts()[0], poses);
+                       }
                        writer.write(i, detail::answer_compound(pair_options.seeded(), goal,
-                                                               escalate, a[i],
-                                                               poses.a, b[i], poses.b));
+                                                               escalate, body_a, poses.a, body_b,
+                                                               poses.b));
                      };
                    });
 }

@@ -442,6 +442,25 @@ class CompoundSearch {
   long evaluations_ = 0;
 };
 
+// A pair of bodies of one part each, answered as Query answers the convex pair of their parts:
+// a convex body wrapped in a compound one (as a batch wraps every row's once any row holds a
+// compound body) answers alike, bit for bit. The search's own start and part-pair seed made
+// such rows differ from the convex query's within their bounds.
+CompoundResult one_part_each(const QueryOptions& options, Goal goal, bool escalate,
+                             const CompoundBody& a, const Pose& pose_a, const CompoundBody& b,
+                             const Pose& pose_b) {
+  CompoundResult out;
+  static_cast<DistanceResult&>(out) = detail::answer_pair(
+      options, goal, detail::frame_pair(a.parts()[0], pose_a, b.parts()[0], pose_b,
+                                        options.tolerance),
+      escalate);
+  out.part_a = 0;
+  out.part_b = 0;
+  out.stats.part_pairs = 1;
+  out.stats.solved = 1;
+  return out;
+}
+
 }  // namespace
 
 namespace detail {
@@ -451,6 +470,9 @@ CompoundResult answer_compound(const QueryOptions& options, Goal goal, bool esca
                                const Pose& pose_b) {
   // The part pairs are answered by the method's solver itself, past answer_pair's check.
   require_parts(options.method, a, b);
+  if (a.size() == 1 && b.size() == 1) {
+    return one_part_each(options, goal, escalate, a, pose_a, b, pose_b);
+  }
   return CompoundSearch(options, goal, escalate, a, pose_a, b, pose_b).run();
 }
 
