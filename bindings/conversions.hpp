@@ -3,6 +3,7 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
+#include <limits>
 #include <optional>
 #include <string>
 #include <type_traits>
@@ -204,7 +205,7 @@ class PickledState {
       if constexpr (std::is_same_v<T, bool>) {
         return to_bool(item, name);
       } else if constexpr (std::is_integral_v<T>) {
-        return to_integer(item, name).cast<T>();
+        return integer_of<T>(to_integer(item, name), name);
       } else if constexpr (std::is_floating_point_v<T>) {
         return to_real(item, name);
       } else if constexpr (std::is_same_v<T, py::object>) {
@@ -282,6 +283,21 @@ class PickledState {
   static std::string described(const py::handle& item);
 
   static py::int_ to_integer(const py::handle& item, const char* name);
+
+  // `value` as a `T`, a ValueError naming `name` and T's range outside it (pybind11's cast
+  // refused it with a message naming neither).
+  template <typename T>
+  static T integer_of(const py::int_& value, const char* name) {
+    const py::int_ lowest(std::numeric_limits<T>::min());
+    const py::int_ highest(std::numeric_limits<T>::max());
+    if (value < lowest || value > highest) {
+      throw py::value_error(std::string(name) + " must be an integer from " +
+                            std::string(py::str(lowest)) + " to " +
+                            std::string(py::str(highest)) + ", got " +
+                            std::string(py::str(value)));
+    }
+    return value.cast<T>();
+  }
 
   py::tuple items_;
   std::string type_;

@@ -460,6 +460,9 @@ def test_corrupted_scene_states_name_what_is_wrong():
     refuse(sc.Scene, state[:9] + (ids[::-1].copy(),) + state[10:], "was given out already")
     refuse(sc.Scene, state[:14] + ([[0, 99]],) + state[15:], "99")
     refuse(sc.Scene, state[:5] + ("octree",) + state[6:], "broadphase")
+    for next_id in (2**40, -1):
+        refuse(sc.Scene, state[:15] + (next_id,),
+               r"next_id must be an integer from 0 to 4294967295, got " + str(next_id))
 
 
 @pytest.mark.parametrize("protocol", [0, 1])
