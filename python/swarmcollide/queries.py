@@ -491,8 +491,12 @@ def collide_many(
     colliding: distance and ``lower_bound`` 0, a point common to both balls as the witness. Bodies
     of at most 32 points proven apart along the axis through those centres (outward-rounded) are
     settled as apart too: ``lower_bound`` is their separation along it, the witnesses their
-    supporting points. All are valid bounds, looser than a solver's. Takes the keywords of
-    ``distance_many`` and ``escalate``.
+    supporting points. All are valid bounds, looser than a solver's, so a row's bounds depend on
+    the screen that settled it. Bodies given as an ``(m, n, 3)`` stack are built row by row, with
+    no hull for the screens that need one (the inner balls, and the axes normal to a hull's
+    faces): their rows can carry a solver's bounds where a sequence of the same bodies carries a
+    screen's. The verdicts are the same. Takes the keywords of ``distance_many`` and
+    ``escalate``.
 
     Examples
     --------
