@@ -79,7 +79,7 @@ CACHE_ENVIRONMENT = "SWARMCOLLIDE_CACHE_DIR"
 """The environment variable that, when set, names the decomposition cache's directory."""
 
 # Bumped when what a cache file holds, or how it is computed, changes.
-_CACHE_FORMAT = 2
+_CACHE_FORMAT = 3
 # A decomposition shows a progress bar once it has run this long (seconds).
 _PROGRESS_DELAY = 1.0
 # A typical time at least this long (seconds) is announced before the decomposition starts.
@@ -195,11 +195,9 @@ def load_mesh(source: MeshLike):
                 f"{name} cannot be read as a mesh: no triangles could be read from it (is it a "
                 "mesh file? OBJ, STL, PLY, GLB and OFF are read; an empty one holds none)"
             )
-        checked = _checked(loaded, name)
-        # STL and others repeat each triangle's corners: merged, the mesh's edges are shared.
-        checked.merge_vertices()
-        # Checked again: trimesh merges points closer than 1e-8, which can flatten a tiny mesh.
-        return _checked(checked, name)
+        # STL and others repeat each triangle's corners: merged, the mesh's edges are shared. The
+        # merge (within 1e-8 of the largest coordinate) cannot flatten a mesh the check passed.
+        return _merged(_checked(loaded, name))
     raise TypeError(
         "mesh must be a path to a mesh file (OBJ, STL, PLY, GLB, OFF) or a trimesh.Trimesh, "
         f"got {type(source).__name__}"
@@ -234,6 +232,35 @@ def _checked(mesh, name: str):
 # rounding (2**-24 of a coordinate each), since STL and most binary formats store float32, and
 # rounding lifts the corners of a tilted plane off it by about that much.
 _FLAT = 4 * float(np.finfo(np.float32).eps)
+
+
+def _exponent(points: np.ndarray) -> int:
+    """The power of two of the largest coordinate of ``points``: scaled by 2**-exponent (exactly,
+    a power of two), they lie in [-1, 1]. trimesh and the decomposers run there, as in any unit
+    of length their tolerances are absolute (trimesh merges points closer than 1e-8, its
+    proximity queries and CoACD's and V-HACD's cuts have fixed tolerances) and their areas square
+    lengths: a box of 1e-9 merged into one point, one of 1e200 had NaN areas."""
+    largest = float(np.abs(np.asarray(points, dtype=float)).max())
+    return int(np.frexp(largest)[1]) if largest > 0 else 0
+
+
+def _scaled(mesh, exponent: int):
+    """A copy of ``mesh`` with its coordinates times 2**exponent (exact, short of overflow and
+    of subnormal numbers)."""
+    trimesh = _trimesh()
+    return trimesh.Trimesh(np.ldexp(np.asarray(mesh.vertices, dtype=float), exponent),
+                           np.array(mesh.faces), process=False)
+
+
+def _merged(mesh):
+    """A copy of ``mesh`` with its repeated points merged (trimesh's merge, points within about
+    1e-8 of its largest coordinate, whatever their normals or texture coordinates say): the
+    triangles of one piece then share their corners, and ``split`` finds the piece whole where
+    an unmerged mesh fell apart into single triangles."""
+    exponent = _exponent(mesh.vertices)
+    unit = _scaled(mesh, -exponent)
+    unit.merge_vertices(merge_tex=True, merge_norm=True)
+    return _scaled(unit, exponent)
 
 
 def _thickness(points: np.ndarray) -> float:
@@ -457,7 +484,9 @@ class CompoundBody(_core.CompoundBody):
             A mesh file or a mesh (see ``load_mesh``).
         decompose : {"coacd", "vhacd", "hull", None}
             ``"coacd"`` (default): CoACD, collision-aware approximate convex decomposition, the
-            closest fit. ``"vhacd"``: V-HACD, voxel-based, faster and coarser. ``"hull"``: the
+            closest fit. ``"vhacd"``: V-HACD, voxel-based, faster and coarser; its voxels follow
+            the rounding of the points, so the same mesh in another unit (other than by a power
+            of two) can give other parts, each recorded. ``"hull"``: the
             mesh's convex hull, one part. None: parts that are convex already: each ``o``/``g``
             group of an OBJ file (each geometry of a multi-mesh file) is one part, as V-HACD and
             CoACD write them; a single mesh is split into its connected components. ValueError
@@ -520,18 +549,25 @@ class CompoundBody(_core.CompoundBody):
                 if file_key is not None:
                     _write_cache(folder / f"{file_key}.npz", *cached)
                 return cls(*cached)
-        decomposed, simplification_error = loaded, 0.0
+        # Merged (an unmerged mesh's triangles are pieces of their own) and decomposed with its
+        # largest coordinate in [-1, 1] (_exponent): the parts are the same in any unit.
+        exponent = _exponent(loaded.vertices)
+        decomposed = _scaled(_merged(loaded), -exponent)
+        unit_error = 0.0
         if decompose is not None and len(loaded.faces) > max_faces:
-            decomposed = _simplified(loaded, max_faces)
-            simplification_error = _surface_distance(loaded, decomposed, samples, seed)
+            whole, decomposed = decomposed, _simplified(decomposed, max_faces)
+            unit_error = _surface_distance(whole, decomposed, samples, seed)
+        simplification_error = float(np.ldexp(unit_error, exponent))
         start = time.perf_counter()
         if decompose is None:
-            parts = _ready_made_parts(mesh, loaded)
+            unit_parts = _ready_made_parts(mesh, decomposed, exponent)
         else:
-            parts = _decompose(decomposed, decompose, parameters, preset, progress)
+            unit_parts = _decompose(decomposed, decompose, parameters, preset, progress)
         seconds = time.perf_counter() - start
+        parts = [np.ldexp(part, exponent) for part in unit_parts]
         body = cls(parts)
-        deviation = measure_deviation(decomposed, body, samples=samples, seed=seed)
+        deviation = measure_deviation(_scaled(decomposed, exponent), body, samples=samples,
+                                      seed=seed)
         body.decomposition = Decomposition(
             method=decompose or "none",
             parameters=parameters,
@@ -581,6 +617,8 @@ class CompoundBody(_core.CompoundBody):
             )
         if Path(path).is_dir():
             raise ValueError(f"parts file {str(path)!r} is a directory; pass an .npz file")
+        if not Path(path).is_file():
+            raise ValueError(f"cannot read parts file {str(path)!r}: no such file")
         try:
             loaded = _read_parts(Path(path))
         except ValueError as error:  # its decomposition record: name the file and the field
@@ -628,8 +666,13 @@ def measure_deviation(mesh, body: _core.CompoundBody, *, samples: int = DEFAULT_
     trimesh = _trimesh()
     _check_samples(samples)
     parts = body.parts
+    # trimesh samples and measures the mesh and the parts' hulls scaled by 2**-exponent (exact):
+    # its areas square lengths and its proximity queries have absolute tolerances, so that in
+    # small or large units the record drifted, then was 0 or NaN. Lengths are scaled back.
+    exponent = _exponent(np.vstack([mesh.vertices] + [part.vertices for part in parts]))
+    unit_mesh = _scaled(mesh, -exponent)
     # Points on the mesh's surface, and their exact distance to the union of the parts.
-    on_mesh, _ = trimesh.sample.sample_surface(mesh, samples, seed=seed)
+    on_mesh = np.ldexp(trimesh.sample.sample_surface(unit_mesh, samples, seed=seed)[0], exponent)
     to_parts = np.full(len(on_mesh), np.inf)
     exact = _core.Query("exact")
     for part in parts:
@@ -645,23 +688,24 @@ def measure_deviation(mesh, body: _core.CompoundBody, *, samples: int = DEFAULT_
     solids = [p for p in parts if p.hull().dimension == 3]
     if solids:
         hulls = trimesh.util.concatenate(
-            [trimesh.Trimesh(p.vertices, p.hull().faces, process=False) for p in solids])
+            [trimesh.Trimesh(np.ldexp(p.vertices, -exponent), p.hull().faces, process=False)
+             for p in solids])
         on_parts, _ = trimesh.sample.sample_surface(hulls, samples, seed=seed + 1)
-        if mesh.is_watertight:
-            outside = np.maximum(-_in_chunks(trimesh.proximity.signed_distance, mesh, on_parts),
-                                 0.0)
+        if unit_mesh.is_watertight:
+            outside = np.maximum(
+                -_in_chunks(trimesh.proximity.signed_distance, unit_mesh, on_parts), 0.0)
         else:
-            outside = _in_chunks(lambda m, p: trimesh.proximity.closest_point(m, p)[1], mesh,
-                                 on_parts)
-        parts_to_mesh = float(outside.max())
-        area = max(mesh.area, hulls.area)
+            outside = _in_chunks(lambda m, p: trimesh.proximity.closest_point(m, p)[1],
+                                 unit_mesh, on_parts)
+        unit_parts_to_mesh = float(outside.max())
+        area = max(unit_mesh.area, hulls.area)
     else:
-        parts_to_mesh, area = 0.0, mesh.area
+        unit_parts_to_mesh, area = 0.0, unit_mesh.area
     return {
-        "parts_to_mesh": parts_to_mesh,
+        "parts_to_mesh": float(np.ldexp(unit_parts_to_mesh, exponent)),
         "mesh_to_parts": float(to_parts.max()),
         "samples": int(samples),
-        "spacing": float(np.sqrt(area / samples)),
+        "spacing": float(np.ldexp(np.sqrt(area / samples), exponent)),
     }
 
 
@@ -817,14 +861,15 @@ def _decompose(mesh, decompose, parameters, preset, progress) -> List[np.ndarray
 _TYPICAL_SECONDS = {"fast": 8.0, "quality": 185.0}
 
 
-def _ready_made_parts(source, mesh) -> List[np.ndarray]:
+def _ready_made_parts(source, mesh, exponent: int) -> List[np.ndarray]:
     """The parts of a mesh whose pieces are convex already: the file's groups (OBJ ``o``/``g``,
-    the geometries of a scene file) when it has several, else the connected components."""
-    pieces = _file_groups(source) if isinstance(source, (str, os.PathLike)) else None
+    the geometries of a scene file) when it has several, else the connected components. ``mesh``
+    is ``source``'s, merged and scaled by 2**-exponent; so are the parts."""
+    pieces = _file_groups(source, exponent) if isinstance(source, (str, os.PathLike)) else None
     if pieces is None:
         components = mesh.split(only_watertight=False, repair=False)
         pieces = [(f"the connected component {k} of {len(components)} (around "
-                   f"{np.round(c.centroid, 6).tolist()})", c)
+                   f"[{', '.join(f'{x:.6g}' for x in np.ldexp(c.centroid, exponent))}])", c)
                   for k, c in enumerate(components)]
     parts = []
     for name, piece in pieces:
@@ -835,9 +880,9 @@ def _ready_made_parts(source, mesh) -> List[np.ndarray]:
     return parts
 
 
-def _file_groups(path) -> Optional[List[Any]]:
+def _file_groups(path, exponent: int) -> Optional[List[Any]]:
     """``(name, mesh)`` for each geometry of a file (an OBJ's ``o`` objects and ``g`` groups),
-    in the file's frame, or None for a file of one geometry."""
+    in the file's frame scaled by 2**-exponent and merged, or None for a file of one geometry."""
     trimesh = _trimesh()
     options = {}
     if str(path).lower().endswith(".obj"):
@@ -853,8 +898,7 @@ def _file_groups(path) -> Optional[List[Any]]:
         transform, geometry = scene.graph[node]
         piece = scene.geometry[geometry].copy()
         piece.apply_transform(transform)
-        piece.merge_vertices()
-        groups.append((f"the group {node!r}", piece))
+        groups.append((f"the group {node!r}", _scaled(_merged(piece), -exponent)))
     return groups
 
 
@@ -867,6 +911,8 @@ def _convexity_defect(piece) -> Optional[str]:
     no vertex or face centre lies deeper inside than ``_CONVEX_TOLERANCE`` of its size. A flat
     piece is compared with its hull by area.
     """
+    # In [-1, 1] (_exponent): trimesh's test and the normals below square lengths.
+    piece = _scaled(piece, -_exponent(piece.vertices))
     if piece.is_convex:
         return None
     points = np.asarray(piece.vertices, dtype=float)

@@ -138,6 +138,8 @@ def test_parts_files_that_are_not_parts_files_are_refused_naming_the_file(tmp_pa
         sc.CompoundBody.load(nan)
     with pytest.raises(TypeError, match="path must be a path to a parts file"):
         sc.CompoundBody.load(None)
+    with pytest.raises(ValueError, match="cannot read parts file .*missing.npz': no such file"):
+        sc.CompoundBody.load(tmp_path / "missing.npz")
     (tmp_path / "folder.npz").mkdir()
     with pytest.raises(ValueError, match="parts file .*folder.npz' is a directory"):
         sc.CompoundBody.load(tmp_path / "folder.npz")
@@ -189,6 +191,72 @@ def test_already_convex_parts_and_the_hull():
     d = hull.decomposition
     assert 0.5 - 2 * d.spacing < d.parts_to_mesh <= 0.5 + 1e-9
     assert d.mesh_to_parts < 1e-9
+
+
+def scaled_mesh(mesh, scale):
+    return trimesh.Trimesh(mesh.vertices * scale, mesh.faces, process=False)
+
+
+def write_obj(path, mesh):
+    """``mesh`` as an OBJ file at full precision (trimesh's exporter rounds to 8 decimals)."""
+    with open(path, "w") as handle:
+        handle.writelines(f"v {x!r} {y!r} {z!r}\n" for x, y, z in mesh.vertices.tolist())
+        handle.writelines(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in mesh.faces.tolist())
+    return path
+
+
+@pytest.mark.parametrize("scale", [1e-300, 1e-200, 1e-160, 1e-9, 1e-8, 1e20, 1e200, 1e300])
+def test_the_hull_and_ready_made_parts_are_the_same_in_any_unit(scale, tmp_path):
+    # trimesh merged the hull's points within an absolute 1e-8 (one point at 1e-9, a certified
+    # distance of 5 for 4), and its areas and normals squared lengths (NaN at 1e200: a convex
+    # box refused as not convex); a file's points were merged at 1e-8 too.
+    box = trimesh.creation.box((1, 2, 3))
+    spacing = sc.CompoundBody.from_mesh(box, decompose="hull", cache=False,
+                                        samples=200).decomposition.spacing
+    mesh = scaled_mesh(box, scale)
+    for source in (mesh, write_obj(tmp_path / "box.obj", mesh)):
+        for decompose in ("hull", None):
+            body = sc.CompoundBody.from_mesh(source, decompose=decompose, cache=False,
+                                             samples=200)
+            assert len(body) == 1
+            np.testing.assert_allclose(np.sort(body.parts[0].vertices, axis=0) / scale,
+                                       np.sort(box.vertices, axis=0), rtol=1e-15)
+            d = body.decomposition
+            assert d.mesh_to_parts <= 1e-12 * scale and d.parts_to_mesh <= 1e-12 * scale
+            assert d.spacing / scale == pytest.approx(spacing, rel=1e-12)
+            r = sc.distance(body, body, pose_b=(np.eye(3), [min(5 * scale, 1e300), 0, 0]))
+            assert r.certified and r.distance == pytest.approx(min(5 * scale, 1e300) - scale,
+                                                               rel=1e-9)
+
+
+def test_an_unmerged_mesh_is_one_solid_part(tmp_path):
+    # A box of 12 separate triangles (as STL stores them, process=False) fell apart into 12
+    # flat parts: a sphere inside it was certified apart, and the cache, whose key does not
+    # depend on merging, gave the merged box the same parts.
+    box = trimesh.creation.box((2, 2, 2))
+    corners = box.vertices[box.faces].reshape(-1, 3)
+    unmerged = trimesh.Trimesh(corners, np.arange(36).reshape(-1, 3), process=False)
+    inside = sc.Sphere(0.1)
+    for mesh in (unmerged, box):
+        body = sc.CompoundBody.from_mesh(mesh, decompose=None, cache=tmp_path)
+        assert len(body) == 1 and len(body.parts[0].vertices) == 8
+        r = sc.signed_distance(body, inside)
+        assert r.certified and r.colliding and r.distance == pytest.approx(-1.1, abs=1e-9)
+
+
+@pytest.mark.parametrize("exponent", [-700, -30, 30, 600])
+def test_the_recorded_deviation_is_the_same_in_any_unit(decomposed, exponent):
+    # trimesh's samples and proximity queries ran in the mesh's own units: at 1e-6 the record
+    # drifted (parts_to_mesh 0.28 for 0.11), at 1e-10 it was 0, at 1e200 NaN. Scaled by a power
+    # of two, every figure is scaled by it exactly.
+    mesh, body = decomposed["torus"]
+    scale = 2.0**exponent
+    parts = [p.vertices * scale for p in body.parts]
+    one = sc.measure_deviation(mesh, body, samples=300)
+    other = sc.measure_deviation(scaled_mesh(mesh, scale), sc.CompoundBody(parts), samples=300)
+    for key in ("parts_to_mesh", "mesh_to_parts", "spacing"):
+        assert other[key] == one[key] * scale, key
+    assert one["parts_to_mesh"] > 0
 
 
 def test_decomposers_record_their_error_and_settings(decomposed):
