@@ -389,8 +389,10 @@ class Robot:
             An SRDF whose ``disable_collisions`` pairs are not checked.
 
         Boxes, spheres and cylinders are exact (``Box``, ``Sphere``, ``Cylinder`` at their
-        ``<origin>``). Joints are revolute, continuous, prismatic or fixed; the degrees of
-        freedom are the moving joints in the file's order (yourdfpy's ``actuated_joints``).
+        ``<origin>``). A mesh's ``scale`` is URDF's three numbers (x y z), or one for a uniform
+        scale (as yourdfpy and pybullet read it). Joints are revolute, continuous, prismatic or
+        fixed; the degrees of freedom are the moving joints in the file's order (yourdfpy's
+        ``actuated_joints``).
 
         Raises
         ------
@@ -398,7 +400,8 @@ class Robot:
             For a missing file, a file that is not a URDF (its root element is not
             ``<robot>``: an MJCF file is pointed to ``from_mjcf``), an unknown or unsupported
             joint type (naming the joint), a mesh file that is missing or a ``package://`` path
-            that cannot be resolved (naming the link), a mesh whose pieces are not convex under
+            that cannot be resolved, a mesh scale of other than 3 numbers (or 1) or one that is
+            not finite and non-zero (naming the link), a mesh whose pieces are not convex under
             ``collision="mesh"`` (naming the link, the file and the modes that take it), or an
             unknown ``collision`` mode.
         """

@@ -550,6 +550,25 @@ def test_bad_files_name_the_link_or_joint(tmp_path):
             sc.Robot.from_urdf(path)
 
 
+def test_a_mesh_scale_is_three_numbers_or_one_for_a_uniform_scale(tmp_path):
+    # "1 1" used to read as no scale, and "2 3" or "1 1 1 5" failed in NumPy's broadcasting,
+    # naming neither the link nor the scale.
+    trimesh.creation.box((0.1, 0.2, 0.3)).export(tmp_path / "arm.stl")
+    path = tmp_path / "scaled.urdf"
+
+    def extents(scale):
+        path.write_text(f"""<robot name="r"><link name="arm"><collision><geometry>
+  <mesh filename="arm.stl" scale="{scale}"/></geometry></collision></link></robot>""")
+        return np.ptp(sc.Robot.from_urdf(path)._robot_geometries[0][3].vertices, axis=0)
+
+    np.testing.assert_allclose(extents("1 2 3"), [0.1, 0.4, 0.9])
+    np.testing.assert_allclose(extents("2"), [0.2, 0.4, 0.6])  # as yourdfpy and pybullet read it
+    for scale, count in [("1 1", 2), ("2 3", 2), ("1 1 1 5", 4)]:
+        with pytest.raises(ValueError, match=rf"^link 'arm': mesh scale must be 3 numbers "
+                                             rf"\(x y z\), or 1 for a uniform scale, got {count}"):
+            extents(scale)
+
+
 def test_answers_name_the_pairs_checked_after_the_pairs_change(arm):
     # The names an answer reads are made when the pairs change (add_obstacle, disable_pairs).
     q = random_configurations(arm, 1, seed=3)[0]
