@@ -164,16 +164,25 @@ class BatchArrays(Generic[ArrayT]):
         Parameters
         ----------
         targets : mapping from field name to array-like
-            Where each field goes: anything that takes ``target[region] = values``, such as a
-            Zarr array, an ``h5py`` dataset or a NumPy memmap (in this process only: a memmap
-            sent to another process is a copy). Chunks of a Zarr target should be whole chunks
-            of the result, or concurrent writers must share a lock.
+            Where each field goes: an array of the field's shape that takes
+            ``target[region] = values``, such as a Zarr array, an ``h5py`` dataset or a NumPy
+            memmap (in this process only: a memmap sent to another process is a copy). Chunks
+            of a Zarr target should be whole chunks of the result, or concurrent writers must
+            share a lock.
         lock : bool or lock, default True
             As in ``dask.array.store``: held while a chunk is written; True for one suited to
             the scheduler, False for none (targets that take concurrent writes of disjoint
             regions, such as NumPy arrays or Zarr arrays written in whole chunks).
         **kwargs
             Passed to ``dask.compute`` (``scheduler=``, ...).
+
+        Raises
+        ------
+        ValueError
+            Before anything is computed, for a name that is no field or a target whose shape is
+            not its field's (naming ``targets['name']``, its shape and the field's).
+        TypeError
+            For a target without a shape.
 
         Examples
         --------
@@ -192,6 +201,8 @@ class BatchArrays(Generic[ArrayT]):
         unknown = [name for name in targets if name not in names]
         if unknown:
             raise ValueError(f"targets has no field named {unknown[0]!r}; use some of {names}")
+        for name, target in targets.items():
+            _check_target_shape(name, target, getattr(self, name).shape)
         chunks = _chunks_of(self)
         if chunks is None:
             sources = [getattr(self, name) for name in targets]
@@ -214,6 +225,25 @@ class BatchArrays(Generic[ArrayT]):
             f"BatchArrays({len(self)} pairs, {np.count_nonzero(np.asarray(self.colliding))} "
             f"colliding, {np.count_nonzero(np.asarray(self.certified))} certified)"
         )
+
+
+def _check_target_shape(name: str, target: Any, expected: Tuple[float, ...]) -> None:
+    """Raise before anything is computed unless ``target`` has the field's shape ``expected``:
+    a shorter one failed in a chunk's write with NumPy's broadcasting message, which names no
+    target, and a longer one was written in part with its tail left as it was.
+
+    A field whose chunks' sizes dask does not know (NaN in ``expected``) is not checked.
+    """
+    shape = getattr(target, "shape", None)
+    if shape is None:
+        raise TypeError(f"targets[{name!r}] must be an array with a shape, such as a NumPy or "
+                        f"Zarr array or an h5py dataset, got {type(target).__name__}")
+    if any(math.isnan(size) for size in expected):
+        return
+    expected = tuple(int(size) for size in expected)
+    if tuple(shape) != expected:
+        raise ValueError(f"targets[{name!r}] has shape {tuple(shape)}, where the field "
+                         f"{name!r} has shape {expected}: give a target of shape {expected}")
 
 
 @dataclass(frozen=True)

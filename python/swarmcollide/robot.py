@@ -285,7 +285,8 @@ class PairProposal:
     ----------
     always, never : tuple of (str, str)
     samples : int
-        The configurations sampled (uniform within the limits; continuous joints in [-pi, pi]).
+        The configurations sampled (uniform within each joint's limits; a revolute or continuous
+        joint without finite limits over one turn within them).
     """
 
     always: Tuple[Tuple[str, str], ...]
@@ -389,8 +390,10 @@ class Robot:
             An SRDF whose ``disable_collisions`` pairs are not checked.
 
         Boxes, spheres and cylinders are exact (``Box``, ``Sphere``, ``Cylinder`` at their
-        ``<origin>``). Joints are revolute, continuous, prismatic or fixed; the degrees of
-        freedom are the moving joints in the file's order (yourdfpy's ``actuated_joints``).
+        ``<origin>``). A mesh's ``scale`` is URDF's three numbers (x y z), or one for a uniform
+        scale (as yourdfpy and pybullet read it). Joints are revolute, continuous, prismatic or
+        fixed; the degrees of freedom are the moving joints in the file's order (yourdfpy's
+        ``actuated_joints``).
 
         Raises
         ------
@@ -398,7 +401,8 @@ class Robot:
             For a missing file, a file that is not a URDF (its root element is not
             ``<robot>``: an MJCF file is pointed to ``from_mjcf``), an unknown or unsupported
             joint type (naming the joint), a mesh file that is missing or a ``package://`` path
-            that cannot be resolved (naming the link), a mesh whose pieces are not convex under
+            that cannot be resolved, a mesh scale of other than 3 numbers (or 1) or one that is
+            not finite and non-zero (naming the link), a mesh whose pieces are not convex under
             ``collision="mesh"`` (naming the link, the file and the modes that take it), or an
             unknown ``collision`` mode.
         """
@@ -829,7 +833,9 @@ class Robot:
         Parameters
         ----------
         samples : int
-            Configurations, uniform within the joint limits (continuous joints in [-pi, pi]).
+            Configurations, each joint's value uniform within its limits (a revolute or
+            continuous joint without finite limits over one turn within them, [-pi, pi] when
+            they hold it; a prismatic one without finite limits raises ``ValueError``).
         seed : int
             Seeds the sampler (NumPy's default generator).
         threads : int, optional
@@ -852,8 +858,7 @@ class Robot:
             raise TypeError(f"seed must be an integer, got {type(seed).__name__}")
         if seed < 0:
             raise ValueError(f"seed must be a non-negative integer, got {seed}")
-        lower, upper = np.clip(self.limits, -np.pi, np.pi).T
-        q = np.random.default_rng(seed).uniform(lower, upper, size=(samples, self.dof))
+        q = random_configurations(self, samples, seed)
         colliding = self._model.distances(self._pair_table, self._model.admit(q, "raise"),
                                           query(), threads).colliding
         names = self.geometry_names
@@ -872,6 +877,34 @@ class Robot:
         return (f"Robot({len(self._links)} links, dof {self.dof}, "
                 f"{len(self._robot_geometries)} geometries, {len(self._obstacles)} obstacles, "
                 f"{len(self._pair_table)} pairs)")
+
+
+def random_configurations(robot: Robot, samples: int, seed: int) -> np.ndarray:
+    """``(samples, dof)`` configurations of ``robot``, each joint's value uniform within its own
+    limits, from NumPy's default generator seeded by ``seed``: the samples of
+    ``propose_disabled_pairs`` and of the ``robot`` verb.
+
+    A revolute or continuous joint without a finite range (``upper - lower``) is sampled over one
+    turn within its limits, as its poses repeat every 2 pi: [-pi, pi] when they hold it, else
+    the turn from its finite limit. A prismatic joint has no such period: one without a finite
+    range raises ``ValueError`` naming it.
+    """
+    lower, upper = robot.limits.T
+    with np.errstate(over="ignore", invalid="ignore"):  # inf - inf, or 1e308 - -1e308
+        bounded = np.isfinite(upper - lower)
+    joints = robot.model.joints
+    for k, j in enumerate(robot.model.moving_joints):
+        if not bounded[k] and joints[j].type == "prismatic":
+            raise ValueError(
+                f"joint '{joints[j].name}' is prismatic with limits [{lower[k]:g}, "
+                f"{upper[k]:g}]: configurations are sampled within each joint's limits, so a "
+                "sliding joint needs a finite range; give it finite limits in the model (URDF "
+                "<limit lower=... upper=...>, MJCF range=\"...\" limited=\"true\")")
+    # The turn [-pi, pi], moved up to a finite lower limit or down to a finite upper one.
+    turn_start = np.clip(-np.pi, lower, upper - 2 * np.pi)
+    lower = np.where(bounded, lower, turn_start)
+    upper = np.where(bounded, upper, turn_start + 2 * np.pi)
+    return np.random.default_rng(seed).uniform(lower, upper, size=(samples, robot.dof))
 
 
 def read_srdf(path: PathLike) -> List[Tuple[str, str]]:

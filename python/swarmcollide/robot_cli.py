@@ -27,8 +27,9 @@ def add_parser(commands, integer: Callable[..., Callable[[str], int]], seed) -> 
     robot = commands.add_parser(
         "robot", help="check a robot (URDF or MJCF) at random configurations",
         description="Check a robot for self-collision at random configurations within its joint "
-        "limits (continuous joints in [-pi, pi]): the collision rate, the minimum signed "
-        "distances, how many answers are certified and the time per configuration.")
+        "limits (a continuous joint over one turn; a sliding joint needs finite limits): the "
+        "collision rate, the minimum signed distances, how many answers are certified and the "
+        "time per configuration.")
     robot.add_argument("model", help="a URDF file (.urdf) or an MJCF file (.xml, .mjcf)")
     robot.add_argument("--samples", type=integer(1), default=1000,
                        help=f"random configurations to check (default 1000, at most "
@@ -87,12 +88,11 @@ def _progress(total: int, quiet: bool):
 
 
 def report(robot, samples: int, seed: int, threads: Optional[int], quiet: bool = True):
-    """Check ``samples`` random configurations (uniform within the limits, continuous joints in
-    [-pi, pi], seeded by ``seed``); returns the report (a dict) and the check of each one."""
-    from .robot import RobotCheck
+    """Check ``samples`` random configurations (``random_configurations``: uniform within the
+    limits, seeded by ``seed``); returns the report (a dict) and the check of each one."""
+    from .robot import RobotCheck, random_configurations
 
-    lower, upper = np.clip(robot.limits, -np.pi, np.pi).T
-    q = np.random.default_rng(seed).uniform(lower, upper, size=(samples, robot.dof))
+    q = random_configurations(robot, samples, seed)
     bar = _progress(samples, quiet)
     parts = []
     seconds = 0.0

@@ -174,6 +174,12 @@ def _body(geometry, name: str, link: str, urdf_path: Path, dirs, collision: str)
             raise ValueError(f"link '{link}': {error}") from error
         if geometry.mesh.scale is not None:
             scale = np.asarray(geometry.mesh.scale, float)
+            # URDF's scale is "x y z"; one number, which yourdfpy, pybullet and trimesh read
+            # as a uniform scale, is taken as one too. Any other count would be broadcast by
+            # NumPy into a wrong shape, or ignored ("1 1" reads as no scale).
+            if scale.size not in (1, 3):
+                raise ValueError(f"link '{link}': mesh scale must be 3 numbers (x y z), or 1 for "
+                                 f"a uniform scale, got {scale.size}: {scale.tolist()}")
             if not (np.all(np.isfinite(scale)) and np.all(scale != 0)):
                 raise ValueError(f"link '{link}': mesh scale must be finite and non-zero, got "
                                  f"{scale.tolist()}")

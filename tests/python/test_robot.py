@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 import swarmcollide as sc
+import swarmcollide.robot as sc_robot
 
 trimesh = pytest.importorskip("trimesh")
 yourdfpy = pytest.importorskip("yourdfpy")
@@ -550,6 +551,25 @@ def test_bad_files_name_the_link_or_joint(tmp_path):
             sc.Robot.from_urdf(path)
 
 
+def test_a_mesh_scale_is_three_numbers_or_one_for_a_uniform_scale(tmp_path):
+    # "1 1" used to read as no scale, and "2 3" or "1 1 1 5" failed in NumPy's broadcasting,
+    # naming neither the link nor the scale.
+    trimesh.creation.box((0.1, 0.2, 0.3)).export(tmp_path / "arm.stl")
+    path = tmp_path / "scaled.urdf"
+
+    def extents(scale):
+        path.write_text(f"""<robot name="r"><link name="arm"><collision><geometry>
+  <mesh filename="arm.stl" scale="{scale}"/></geometry></collision></link></robot>""")
+        return np.ptp(sc.Robot.from_urdf(path)._robot_geometries[0][3].vertices, axis=0)
+
+    np.testing.assert_allclose(extents("1 2 3"), [0.1, 0.4, 0.9])
+    np.testing.assert_allclose(extents("2"), [0.2, 0.4, 0.6])  # as yourdfpy and pybullet read it
+    for scale, count in [("1 1", 2), ("2 3", 2), ("1 1 1 5", 4)]:
+        with pytest.raises(ValueError, match=rf"^link 'arm': mesh scale must be 3 numbers "
+                                             rf"\(x y z\), or 1 for a uniform scale, got {count}"):
+            extents(scale)
+
+
 def test_answers_name_the_pairs_checked_after_the_pairs_change(arm):
     # The names an answer reads are made when the pairs change (add_obstacle, disable_pairs).
     q = random_configurations(arm, 1, seed=3)[0]
@@ -629,6 +649,62 @@ def test_proposed_pairs_are_those_that_always_or_never_collided(arm):
         arm.propose_disabled_pairs(10, seed=-1)
     with pytest.raises(TypeError, match="seed must be an integer, got str"):
         arm.propose_disabled_pairs(10, seed="1")
+
+
+def slide_robot(tmp_path, lower, upper):
+    """A ball of radius 0.3 on a slide along x with limits [lower, upper], and a wall (a box of
+    half extents 1, 0.5, 0.5 at x = 5) that it meets for slide values in [3.7, 6.3]."""
+    path = tmp_path / f"slide_{lower}_{upper}.urdf"
+    path.write_text(f"""<robot name="r"><link name="base"/>
+  <link name="carriage"><collision><geometry><sphere radius="0.3"/></geometry></collision></link>
+  <joint name="slide" type="prismatic"><parent link="base"/><child link="carriage"/>
+    <axis xyz="1 0 0"/><limit lower="{lower}" upper="{upper}" effort="1" velocity="1"/></joint>
+</robot>""")
+    wall = np.eye(4)
+    wall[0, 3] = 5.0
+    return sc.Robot.from_urdf(path).add_obstacle(sc.Box([1.0, 0.5, 0.5]), wall, name="wall")
+
+
+@pytest.mark.parametrize(("lower", "upper", "always", "never"), [
+    (0, 10, False, False), (5, 10, False, False), (4, 6, True, False), (7, 10, False, True)])
+def test_proposed_pairs_sample_each_joint_within_its_own_limits(tmp_path, lower, upper, always,
+                                                                 never):
+    # The samples were every joint's limits clipped to [-pi, pi]: a slide in [5, 10] was refused
+    # (pi is outside its limits), and one in [0, 10] sampled in [0, pi] only never met the wall,
+    # which it meets over a quarter of its range, so the pair was proposed as never colliding.
+    proposal = slide_robot(tmp_path, lower, upper).propose_disabled_pairs(200, seed=3)
+    pair = ("carriage", "wall")
+    assert (pair in proposal.always, pair in proposal.never) == (always, never)
+
+
+def test_random_configurations_turn_joints_without_finite_limits_once():
+    # A revolute or continuous joint without a finite range takes one turn within its limits;
+    # every other joint is uniform within its own, however far beyond [-pi, pi].
+    limits = [("slide", "prismatic", 5.0, 10.0), ("wide", "revolute", -10.0, 10.0),
+              ("spin", "continuous", 0.0, 0.0), ("up", "revolute", 0.0, np.inf),
+              ("down", "revolute", -np.inf, 1.0), ("huge", "revolute", -1e308, 1e308)]
+    joints = [sc.Joint(name, kind, 0, k + 1, lower=lower, upper=upper)
+              for k, (name, kind, lower, upper) in enumerate(limits)]
+    robot = sc.Robot(["base"] + [f"link{k}" for k in range(len(limits))], joints, [])
+    q = sc_robot.random_configurations(robot, 20_000, seed=0)
+    lower, upper = np.array([[5, 10], [-10, 10], [-np.pi, np.pi], [0, 2 * np.pi],
+                             [1 - 2 * np.pi, 1], [-np.pi, np.pi]]).T
+    assert (q >= lower).all() and (q <= upper).all()
+    np.testing.assert_allclose(q.min(axis=0), lower, atol=0.01 * (upper - lower).max())
+    np.testing.assert_allclose(q.max(axis=0), upper, atol=0.01 * (upper - lower).max())
+    robot.check(q[:10])  # within the limits the model admits
+
+
+def test_a_slide_without_finite_limits_is_refused_for_sampling(tmp_path):
+    # A slide has no period to sample over, as a turn has: [-pi, pi] metres was a guess.
+    path = tmp_path / "rail.xml"
+    path.write_text('<mujoco><worldbody><body name="cart"><joint name="rail" type="slide"/>'
+                    '<geom type="sphere" size="0.1"/></body></worldbody></mujoco>')
+    robot = sc.Robot.from_mjcf(path)
+    assert robot.limits.tolist() == [[-np.inf, np.inf]]
+    with pytest.raises(ValueError, match=r"^joint 'rail' is prismatic with limits \[-inf, inf\]: "
+                                         r".*give it finite limits in the model"):
+        robot.propose_disabled_pairs(10)
 
 
 def test_collision_mesh_makes_compound_bodies_of_the_meshes_convex_pieces(urdf, tmp_path):

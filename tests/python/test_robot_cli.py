@@ -104,6 +104,23 @@ def test_a_missing_model_is_one_line_and_exit_1(tmp_path, capsys):
     assert "joint 'b': type 'floating' is not supported" in capsys.readouterr().err
 
 
+def test_configurations_are_sampled_within_each_joints_own_limits(tmp_path, capsys):
+    # Limits clipped to [-pi, pi] made a slide in [5, 10] fail (pi "is outside its limits"), and
+    # a slide without finite limits was sampled in [-pi, pi] metres, a guess.
+    path = tmp_path / "slide.urdf"
+    path.write_text(URDF.replace('type="continuous"', 'type="prismatic"').replace(
+        '<axis xyz="0 0 1"/>\n  </joint>',
+        '<axis xyz="1 0 0"/><limit lower="5" upper="10" effort="1" velocity="1"/>\n  </joint>'))
+    assert sc.Robot.from_urdf(path).limits.tolist() == [[-3, 3], [5, 10]]
+    assert main(["robot", str(path), "--samples", "50", "--json"]) == 0
+    slide = json.loads(capsys.readouterr().out)["nearest"]["configuration"][1]
+    assert 5 <= slide <= 10
+    rail = tmp_path / "rail.xml"
+    rail.write_text(MJCF.replace('type="hinge" axis="0 1 0" range="-3 3"', 'type="slide"'))
+    assert main(["robot", str(rail)]) == 1
+    assert "joint 'turn' is prismatic with limits [-inf, inf]" in capsys.readouterr().err
+
+
 @pytest.mark.parametrize("arguments,message", [
     (["model.obj"], "must end in .urdf (URDF) or .xml or .mjcf (MJCF)"),
     (["model.urdf", "--samples", "0"], "argument --samples: must be an integer at least 1"),
