@@ -6,6 +6,7 @@ import os
 from pathlib import Path
 from typing import Optional, Sequence, Union
 from xml.etree import ElementTree
+from xml.parsers.expat import errors as expat_errors
 
 import numpy as np
 
@@ -72,7 +73,8 @@ def load_urdf(path: PathLike, package_dirs: Optional[Sequence[PathLike]] = None,
     if not urdf_path.is_file():
         raise ValueError(f"URDF file '{path}' not found")
     collision_bodies(collision)  # the mode is checked before anything is read
-    not_urdf = _not_urdf(urdf_path)
+    root = _xml_root(urdf_path, path)
+    not_urdf = _not_urdf(root)
     if not_urdf:
         raise ValueError(f"'{path}' does not look like a URDF file: {not_urdf}")
     if isinstance(package_dirs, (str, os.PathLike)):
@@ -82,7 +84,7 @@ def load_urdf(path: PathLike, package_dirs: Optional[Sequence[PathLike]] = None,
         model = yourdfpy.URDF.load(str(urdf_path), build_scene_graph=False, load_meshes=False,
                                    load_collision_meshes=False)
     except Exception as error:  # yourdfpy and lxml raise many types for bad files
-        raise ValueError(f"cannot read URDF file '{path}': {_empty_geometry(urdf_path) or error}"
+        raise ValueError(f"cannot read URDF file '{path}': {_empty_geometry(root) or error}"
                          ) from error
     robot = model.robot
     links = [link.name for link in robot.links]
@@ -123,13 +125,36 @@ def load_urdf(path: PathLike, package_dirs: Optional[Sequence[PathLike]] = None,
     return ModelTables(links, joints, geometries)
 
 
-def _not_urdf(urdf_path: Path) -> Optional[str]:
-    """What says a file is no URDF (yourdfpy fails on one with a bare KeyError), or None: its
-    root element, unless it is ``<robot>``. A file that is not XML is left to yourdfpy."""
+def _xml_root(urdf_path: Path, path: PathLike) -> ElementTree.Element:
+    """The root element of a URDF file; ValueError naming the file, and the line and column,
+    for one that is not well-formed XML (yourdfpy's lxml recovers from it by dropping what it
+    cannot read: a file cut short loaded as a smaller robot)."""
     try:
-        root = ElementTree.parse(urdf_path).getroot()
-    except (ElementTree.ParseError, OSError):
-        return None
+        data = urdf_path.read_bytes()
+    except OSError as error:
+        raise ValueError(f"cannot read URDF file '{path}': {error.strerror}") from None
+    if not data.strip():
+        raise ValueError(f"cannot read URDF file '{path}': the file is empty")
+    # Blank lines before the XML declaration (pybullet_data's diff_ring.urdf) are read by ROS's
+    # and yourdfpy's parsers, not by expat: they go after it, which keeps the lines' numbers.
+    text = data.lstrip()
+    end = text.find(b"?>") if text.startswith(b"<?xml") else -1
+    if end >= 0 and len(text) < len(data):
+        data = text[:end + 2] + data[:len(data) - len(text)] + text[end + 2:]
+    try:
+        return ElementTree.fromstring(data)
+    except ElementTree.ParseError as error:
+        short = error.code in (expat_errors.codes[expat_errors.XML_ERROR_NO_ELEMENTS],
+                               expat_errors.codes[expat_errors.XML_ERROR_UNCLOSED_TOKEN])
+        raise ValueError(
+            f"cannot read URDF file '{path}': it is not well-formed XML ({error})"
+            + ("; the file ends before its elements do: it may have been cut short (an "
+               "interrupted download or write)" if short else "")) from None
+
+
+def _not_urdf(root: ElementTree.Element) -> Optional[str]:
+    """What says a file is no URDF (yourdfpy fails on one with a bare KeyError), or None: its
+    root element, unless it is ``<robot>``."""
     tag = root.tag.rpartition("}")[2]  # without a namespace
     if tag == "robot":
         return None
@@ -138,12 +163,8 @@ def _not_urdf(urdf_path: Path) -> Optional[str]:
     return f"its root element is <{tag}>, where a URDF's is <robot>{hint.get(tag, '')}"
 
 
-def _empty_geometry(urdf_path: Path) -> Optional[str]:
+def _empty_geometry(root: ElementTree.Element) -> Optional[str]:
     """What yourdfpy fails on without saying so (an IndexError): a link's empty ``<geometry>``."""
-    try:
-        root = ElementTree.parse(urdf_path).getroot()
-    except (ElementTree.ParseError, OSError):
-        return None
     for link in root.iter("link"):
         for element in list(link.iter("collision")) + list(link.iter("visual")):
             geometry = element.find("geometry")

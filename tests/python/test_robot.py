@@ -628,6 +628,29 @@ def test_files_that_are_not_urdf_say_so(tmp_path):
         sc.Robot.from_urdf(path)
 
 
+def test_a_urdf_that_is_not_well_formed_xml_is_refused_naming_the_line(tmp_path):
+    # yourdfpy's lxml recovered from a file cut short by dropping the rest: the arm, cut inside
+    # a joint's tag, loaded without its last links.
+    path = write_urdf(tmp_path, URDF[:URDF.index('<joint name="slide"') + 9])
+    with pytest.raises(ValueError, match=r"^cannot read URDF file '.*arm.urdf': it is not "
+                       r"well-formed XML \(unclosed token: line 35, column 2\); the file ends "
+                       r"before its elements do: it may have been cut short"):
+        sc.Robot.from_urdf(path)
+    path.write_text(URDF.replace("</link>", "</lnk>", 1))
+    with pytest.raises(ValueError, match=r"well-formed XML \(mismatched tag: line 4, column 4\)$"):
+        sc.Robot.from_urdf(path)
+    path.write_text(" \n")
+    with pytest.raises(ValueError, match=r"^cannot read URDF file '.*arm.urdf': the file is empty"):
+        sc.Robot.from_urdf(path)
+    # Blank lines before the XML declaration (as in some of pybullet_data's files) are read, and
+    # an error after them is named at its own line.
+    path.write_text('\n\n<?xml version="1.0"?>\n' + URDF)
+    assert sc.Robot.from_urdf(path).joint_names == ("shoulder", "elbow", "slide")
+    path.write_text('\n\n<?xml version="1.0"?>\n' + URDF.replace("</link>", "</lnk>", 1))
+    with pytest.raises(ValueError, match=r"\(mismatched tag: line 7, column 4\)$"):
+        sc.Robot.from_urdf(path)
+
+
 def test_proposed_pairs_are_those_that_always_or_never_collided(arm):
     # A stake through the base always meets it; the sampled rows say which pairs never meet.
     arm.add_obstacle(sc.Box([0.05, 0.05, 0.05]), None, name="stake")
