@@ -188,6 +188,9 @@ def _body(geometry, name: str, link: str, urdf_path: Path, dirs, collision: str)
     except ValueError as error:  # the shape's own message: say whose shape it is
         raise ValueError(f"link '{link}': {error}") from error
     if geometry.mesh is not None:
+        if geometry.mesh.filename is None:  # yourdfpy reads it as None
+            raise ValueError(f"link '{link}': a <collision>'s <mesh> has no filename attribute; "
+                             "give its mesh file (<mesh filename=\"...\"/>)")
         mesh_path = resolve_mesh_path(geometry.mesh.filename, urdf_path, dirs, link)
         try:
             mesh = load_mesh(mesh_path)

@@ -537,6 +537,8 @@ def test_bad_files_name_the_link_or_joint(tmp_path):
     for bad, message in [('<sphere radius="-0.1"/>', "link 'arm': radius must be"),
                          ('<box size="0.2 0 0.2"/>', r"link 'arm': half_extents\[1\] must be"),
                          ("", "link 'arm': its <collision> element's <geometry> is empty"),
+                         ("<mesh/>", "link 'arm': a <collision>'s <mesh> has no filename "
+                          "attribute"),
                          ('<mesh filename="arm.stl" scale="nan 1 1"/>',
                           "link 'arm': mesh scale must be finite")]:
         path = other / "bad.urdf"

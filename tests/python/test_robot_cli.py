@@ -102,6 +102,12 @@ def test_a_missing_model_is_one_line_and_exit_1(tmp_path, capsys):
     broken.write_text(URDF.replace('type="continuous"', 'type="floating"'))
     assert main(["robot", str(broken)]) == 1
     assert "joint 'b': type 'floating' is not supported" in capsys.readouterr().err
+    # A mesh without a file escaped as an AttributeError, a traceback.
+    broken.write_text(URDF.replace('<sphere radius="0.15"/>', "<mesh/>"))
+    assert main(["robot", str(broken)]) == 1
+    assert capsys.readouterr().err == ("swarmcollide robot: error: link 'left': a <collision>'s "
+                                       "<mesh> has no filename attribute; give its mesh file "
+                                       "(<mesh filename=\"...\"/>)\n")
 
 
 def test_configurations_are_sampled_within_each_joints_own_limits(tmp_path, capsys):
