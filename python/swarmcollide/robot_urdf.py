@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import os
 from pathlib import Path
-from typing import Optional, Sequence, Union
+from typing import Dict, Iterator, List, Optional, Sequence, Tuple, Union
 from xml.etree import ElementTree
 from xml.parsers.expat import errors as expat_errors
 
@@ -17,6 +17,34 @@ from .robot_tables import ModelTables, collision_bodies, geometry_names
 PathLike = Union[str, "os.PathLike[str]"]
 
 _SUPPORTED = ("revolute", "continuous", "prismatic", "fixed")
+
+_SHAPES = {"box": ("size",), "sphere": ("radius",), "cylinder": ("radius", "length"), "mesh": ()}
+"""URDF's shapes and the attributes yourdfpy requires of each (it failed on a missing one with a
+bare KeyError); a collision mesh's filename is checked where the mesh is read (yourdfpy reads no
+visual's)."""
+
+_NUMBERS: Dict[str, Dict[str, int]] = {
+    "origin": {"xyz": 3, "rpy": 3},
+    "axis": {"xyz": 3},
+    "box": {"size": 3},
+    "sphere": {"radius": 1},
+    "cylinder": {"radius": 1, "length": 1},
+    "mesh": {"scale": 0},
+    "limit": dict.fromkeys(("lower", "upper", "effort", "velocity"), 1),
+    "mimic": dict.fromkeys(("multiplier", "offset"), 1),
+    "calibration": dict.fromkeys(("rising", "falling"), 1),
+    "safety_controller": dict.fromkeys(
+        ("soft_lower_limit", "soft_upper_limit", "k_position", "k_velocity"), 1),
+    "mass": {"value": 1},
+    "inertia": dict.fromkeys(("ixx", "ixy", "ixz", "iyy", "iyz", "izz"), 1),
+    "color": {"rgba": 0},
+}
+"""The attributes yourdfpy reads as numbers, and how many each holds (0: any count; a mesh's
+scale is counted where it is applied): other text failed in float() or in NumPy's broadcasting,
+naming neither the attribute nor its link or joint."""
+
+_COMMAS = {("box", "size"), ("mesh", "scale")}
+"""The attributes yourdfpy also reads with commas between the numbers."""
 
 
 def _yourdfpy():
@@ -77,6 +105,9 @@ def load_urdf(path: PathLike, package_dirs: Optional[Sequence[PathLike]] = None,
     not_urdf = _not_urdf(root)
     if not_urdf:
         raise ValueError(f"'{path}' does not look like a URDF file: {not_urdf}")
+    malformed = next(_malformed(root), None)
+    if malformed:
+        raise ValueError(f"cannot read URDF file '{path}': {malformed}")
     if isinstance(package_dirs, (str, os.PathLike)):
         package_dirs = [package_dirs]
     dirs = list(package_dirs or [])
@@ -84,8 +115,7 @@ def load_urdf(path: PathLike, package_dirs: Optional[Sequence[PathLike]] = None,
         model = yourdfpy.URDF.load(str(urdf_path), build_scene_graph=False, load_meshes=False,
                                    load_collision_meshes=False)
     except Exception as error:  # yourdfpy and lxml raise many types for bad files
-        raise ValueError(f"cannot read URDF file '{path}': {_empty_geometry(root) or error}"
-                         ) from error
+        raise ValueError(f"cannot read URDF file '{path}': {error}") from error
     robot = model.robot
     links = [link.name for link in robot.links]
     index = {name: i for i, name in enumerate(links)}
@@ -163,20 +193,92 @@ def _not_urdf(root: ElementTree.Element) -> Optional[str]:
     return f"its root element is <{tag}>, where a URDF's is <robot>{hint.get(tag, '')}"
 
 
-def _empty_geometry(root: ElementTree.Element) -> Optional[str]:
-    """What yourdfpy fails on without saying so (an IndexError): a link's empty ``<geometry>``."""
-    for link in root.iter("link"):
-        for element in list(link.iter("collision")) + list(link.iter("visual")):
+def _malformed(root: ElementTree.Element) -> Iterator[str]:
+    """What yourdfpy fails on naming neither the attribute nor its link or joint (a bare
+    KeyError, IndexError or AttributeError, float()'s or NumPy's message), or reads as None: a
+    missing name, joint type, parent, child or mimicked joint, a <geometry> without a URDF shape
+    or a shape without its size, and attributes read as numbers that are not (or not as many as
+    they must be). The elements are found as yourdfpy finds them (a link's or joint's first
+    <origin>, a <geometry>'s first element)."""
+    if root.get("name") is None:
+        yield "<robot> has no name attribute (<robot name=\"...\">)"
+    # (owner, the elements above the one read, the element read), checked for numbers at the end
+    parts: List[Tuple[str, str, Optional[ElementTree.Element]]] = [
+        (f"material '{material.get('name')}'", "", material.find("color"))
+        for material in root.findall("material")]
+    for link in root.findall("link"):
+        if link.get("name") is None:
+            yield "a <link> has no name attribute"
+        owner = f"link '{link.get('name')}'"
+        inertial = link.find("inertial")
+        if inertial is not None:
+            parts += [(owner, "<inertial>", inertial.find(tag))
+                      for tag in ("origin", "mass", "inertia")]
+        for element in link.findall("visual") + link.findall("collision"):
+            where = f"<{element.tag}>"
             geometry = element.find("geometry")
-            if geometry is not None and len(geometry) == 0:
-                return (f"link '{link.get('name')}': its <{element.tag}> element's <geometry> is "
-                        "empty (give a box, sphere, cylinder or mesh)")
-    return None
+            if geometry is None:
+                yield f"{owner}: its {where} element has no <geometry>"
+            elif len(geometry) == 0:
+                yield (f"{owner}: its {where} element's <geometry> is empty (give a box, sphere, "
+                       "cylinder or mesh)")
+            elif geometry[0].tag not in _SHAPES:
+                yield (f"{owner}: its {where} element's <geometry> holds <{geometry[0].tag}>, "
+                       "which is not a URDF shape (give a box, sphere, cylinder or mesh)")
+            else:
+                shape = geometry[0]
+                for attribute in _SHAPES[shape.tag]:
+                    if shape.get(attribute) is None:
+                        yield f"{owner}: {where}<{shape.tag}> has no {attribute} attribute"
+                parts.append((owner, where, shape))
+            parts.append((owner, where, element.find("origin")))
+            material = element.find("material")
+            if material is not None:
+                parts.append((owner, where + "<material>", material.find("color")))
+    for joint in root.findall("joint"):
+        if joint.get("name") is None:
+            yield "a <joint> has no name attribute"
+        owner = f"joint '{joint.get('name')}'"
+        if joint.get("type") is None:
+            yield f"{owner} has no type attribute (give one of {', '.join(_SUPPORTED)})"
+        for end in ("parent", "child"):
+            named = joint.find(end)
+            if named is None or named.get("link") is None:
+                yield f"{owner} has no <{end} link=\"...\"/> naming its {end} link"
+        mimic = joint.find("mimic")
+        if mimic is not None and mimic.get("joint") is None:
+            yield f"{owner}: its <mimic> has no joint attribute naming the joint it follows"
+        parts += [(owner, "", joint.find(tag)) for tag in
+                  ("origin", "axis", "limit", "mimic", "calibration", "safety_controller")]
+    for owner, where, read in parts:
+        for problem in _not_numbers(read):
+            yield f"{owner}: {where}{problem}"
+
+
+def _not_numbers(element: Optional[ElementTree.Element]) -> Iterator[str]:
+    """What is wrong with the attributes of ``element`` that yourdfpy reads as numbers."""
+    if element is None:
+        return
+    for attribute, count in _NUMBERS.get(element.tag, {}).items():
+        text = element.get(attribute)
+        if text is None:
+            continue
+        read = f"<{element.tag} {attribute}=\"{text}\">"
+        # One number is read by float() whole, several split at blanks (and commas for some).
+        words = [text] if count == 1 else (
+            text.replace(",", " ") if (element.tag, attribute) in _COMMAS else text).split()
+        for word in words:
+            try:
+                float(word)
+            except ValueError:
+                yield f"{read}: {word!r} is not a number"
+                break
+        else:
+            if count > 1 and len(words) != count:
+                yield f"{read} must be {count} numbers, got {len(words)}"
 
 
 def _body(geometry, name: str, link: str, urdf_path: Path, dirs, collision: str):
-    if geometry is None:
-        raise ValueError(f"link '{link}': a <collision> element has no <geometry>")
     try:
         if geometry.box is not None:
             return _core.Box(np.asarray(geometry.box.size, dtype=float) / 2)

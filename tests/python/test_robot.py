@@ -553,6 +553,72 @@ def test_bad_files_name_the_link_or_joint(tmp_path):
             sc.Robot.from_urdf(path)
 
 
+TWO_LINKS = """<robot name="r">
+  <material name="red"><color rgba="1 0 0 1"/></material>
+  <link name="base">
+    <inertial><origin xyz="0 0 0"/><mass value="1"/><inertia ixx="1" iyy="1" izz="1"/></inertial>
+    <visual><geometry><sphere radius="0.1"/></geometry><material name="red"/></visual>
+    <collision><origin xyz="0 0 0.1" rpy="0 0 0"/><geometry><sphere radius="0.1"/></geometry>
+    </collision>
+  </link>
+  <link name="arm"><collision><geometry><cylinder radius="0.1" length="0.5"/></geometry>
+  </collision></link>
+  <joint name="j" type="revolute"><parent link="base"/><child link="arm"/>
+    <origin xyz="0 0 1" rpy="0 0 0"/><axis xyz="0 1 0"/>
+    <limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+</robot>"""
+
+
+@pytest.mark.parametrize("old, new, message", [
+    ('<sphere radius="0.1"/></geometry>\n', "<sphere/></geometry>\n",
+     "link 'base': <collision><sphere> has no radius attribute"),
+    ('<sphere radius="0.1"/></geometry><material',
+     '<box size="1 1"/></geometry><material',
+     r"link 'base': <visual><box size=\"1 1\"> must be 3 numbers, got 2"),
+    ('length="0.5"', "", "link 'arm': <collision><cylinder> has no length attribute"),
+    ('radius="0.1" length', 'radius="abc" length',
+     r"link 'arm': <collision><cylinder radius=\"abc\">: 'abc' is not a number"),
+    ('<robot name="r">', '<robot name="r">', None),  # the file as it is loads
+    ("<cylinder", "<capsule", "link 'arm': its <collision> element's <geometry> holds <capsule>, "
+     "which is not a URDF shape"),
+    ('<collision><origin xyz="0 0 0.1" rpy="0 0 0"/><geometry><sphere radius="0.1"/></geometry>',
+     '<collision><origin xyz="0 0 0.1" rpy="0 0 0"/>',
+     "link 'base': its <collision> element has no <geometry>"),
+    ('<parent link="base"/>', "", r"joint 'j' has no <parent link=\"...\"/> naming its parent"),
+    ('<child link="arm"/>', '<child/>', r"joint 'j' has no <child link=\"...\"/> naming its "),
+    (' type="revolute"', "", "joint 'j' has no type attribute "
+     r"\(give one of revolute, continuous, prismatic, fixed\)"),
+    ('<origin xyz="0 0 1"', '<origin xyz="0 0"',
+     r"joint 'j': <origin xyz=\"0 0\"> must be 3 numbers, got 2"),
+    ('rpy="0 0 0"/><axis', 'rpy="0 0 0 0"/><axis', r"joint 'j': <origin rpy=\"0 0 0 0\"> must "),
+    ('lower="-1"', 'lower="x"', r"joint 'j': <limit lower=\"x\">: 'x' is not a number"),
+    ('<axis xyz="0 1 0"/>', '<axis xyz="0 1,0"/>', r"joint 'j': <axis xyz=\"0 1,0\">: '1,0' is "),
+    ('velocity="1"/>', 'velocity="1"/><mimic multiplier="2"/>',
+     "joint 'j': its <mimic> has no joint attribute naming the joint it follows"),
+    ('<mass value="1"/>', '<mass value="1 kg"/>',
+     r"link 'base': <inertial><mass value=\"1 kg\">: '1 kg' is not a number"),
+    ('<inertia ixx="1"', '<inertia ixx="one"', r"link 'base': <inertial><inertia ixx=\"one\">"),
+    ('<material name="red"/>', '<material name="red"><color rgba="1 0 red 1"/></material>',
+     r"link 'base': <visual><material><color rgba=\"1 0 red 1\">: 'red' is not a number"),
+    ('rgba="1 0 0 1"', 'rgba="1 0 0 x"', r"material 'red': <color rgba=\"1 0 0 x\">: 'x' is "),
+    ('<link name="arm">', "<link>", "a <link> has no name attribute"),
+    ('<joint name="j"', "<joint", "a <joint> has no name attribute"),
+    ('<robot name="r">', "<robot>", r"<robot> has no name attribute \(<robot name=\"...\">\)"),
+])
+def test_urdf_attributes_yourdfpy_cannot_read_name_the_link_or_joint(tmp_path, old, new,
+                                                                    message):
+    # yourdfpy failed with a bare KeyError ("'radius'"), an AttributeError, float()'s or NumPy's
+    # broadcasting message, or read a missing type or child link as None.
+    path = tmp_path / "bad.urdf"
+    assert old in TWO_LINKS
+    path.write_text(TWO_LINKS.replace(old, new, 1))
+    if message is None:
+        assert sc.Robot.from_urdf(path).joint_names == ("j",)
+        return
+    with pytest.raises(ValueError, match=rf"^cannot read URDF file '.*bad.urdf': {message}"):
+        sc.Robot.from_urdf(path)
+
+
 def test_a_mesh_scale_is_three_numbers_or_one_for_a_uniform_scale(tmp_path):
     # "1 1" used to read as no scale, and "2 3" or "1 1 1 5" failed in NumPy's broadcasting,
     # naming neither the link nor the scale.
