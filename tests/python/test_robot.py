@@ -556,7 +556,8 @@ def test_bad_files_name_the_link_or_joint(tmp_path):
 TWO_LINKS = """<robot name="r">
   <material name="red"><color rgba="1 0 0 1"/></material>
   <link name="base">
-    <inertial><origin xyz="0 0 0"/><mass value="1"/><inertia ixx="1" iyy="1" izz="1"/></inertial>
+    <inertial><origin xyz="0 0 0"/><mass value="1"/>
+      <inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial>
     <visual><geometry><sphere radius="0.1"/></geometry><material name="red"/></visual>
     <collision><origin xyz="0 0 0.1" rpy="0 0 0"/><geometry><sphere radius="0.1"/></geometry>
     </collision>
@@ -694,6 +695,23 @@ def test_files_that_are_not_urdf_say_so(tmp_path):
     path.write_text('<sdf version="1.6"><model name="gripper"><link name="palm"/></model></sdf>')
     with pytest.raises(ValueError, match="root element is <sdf>.*convert it to URDF"):
         sc.Robot.from_urdf(path)
+
+
+def test_files_that_are_not_mjcf_say_so(tmp_path):
+    # MuJoCo compiles a URDF with its own importer, into another robot: a mimic joint became a
+    # degree of freedom of its own, and the links on a fixed joint one link.
+    path = tmp_path / "arm_urdf.xml"
+    path.write_text(TWO_LINKS)
+    with pytest.raises(ValueError, match=r"^'.*arm_urdf.xml' does not look like an MJCF file: its "
+                       r"root element is <robot>, where an MJCF model's is <mujoco>; it is a URDF "
+                       r"model: read it with Robot.from_urdf \(swarmcollide robot reads a file "
+                       r"ending in .urdf as URDF\)$"):
+        sc.Robot.from_mjcf(path)
+    assert sc.Robot.from_urdf(path).dof == 1
+    path.write_text('<sdf version="1.6"><model name="gripper"><link name="palm"/></model></sdf>')
+    with pytest.raises(ValueError, match=r"root element is <sdf>, where an MJCF model's is "
+                                         r"<mujoco>$"):
+        sc.Robot.from_mjcf(path)
 
 
 def test_a_urdf_that_is_not_well_formed_xml_is_refused_naming_the_line(tmp_path):

@@ -93,6 +93,18 @@ def test_mjcf_models_are_read_by_their_suffix(tmp_path, capsys):
     assert report["pairs"] == 0 and report["nearest"] is None and report["min_distance"] is None
 
 
+def test_a_urdf_named_like_mjcf_is_refused(tmp_path, capsys):
+    # Read by suffix, it was compiled by MuJoCo's URDF importer into another robot.
+    path = tmp_path / "pair.xml"
+    path.write_text(URDF)
+    assert main(["robot", str(path)]) == 1
+    assert capsys.readouterr().err == (f"swarmcollide robot: error: '{path}' does not look like "
+                                       "an MJCF file: its root element is <robot>, where an MJCF "
+                                       "model's is <mujoco>; it is a URDF model: read it with "
+                                       "Robot.from_urdf (swarmcollide robot reads a file ending "
+                                       "in .urdf as URDF)\n")
+
+
 def test_a_missing_model_is_one_line_and_exit_1(tmp_path, capsys):
     assert main(["robot", str(tmp_path / "none.urdf")]) == 1
     err = capsys.readouterr().err
