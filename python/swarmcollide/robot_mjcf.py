@@ -138,10 +138,19 @@ def tables_of(model, skip_planes: bool = False) -> ModelTables:
     collision = [g for g in range(model.ngeom)
                  if model.geom_contype[g] != 0 or model.geom_conaffinity[g] != 0 or g in paired]
     geometry_of = {}
+    # An unnamed geom is named after its body (geometry_names), but geom and body names are apart
+    # in MuJoCo: when another geom has that name, it takes the first `body/k` none has.
+    taken = {model.geom(g).name for g in collision}
     for b in range(model.nbody):
         own = [g for g in collision if model.geom_bodyid[g] == b]
         for name, g in zip(geometry_names(links[b], len(own)), own):
-            name = model.geom(g).name or name
+            if model.geom(g).name:
+                name = model.geom(g).name
+            else:
+                k = 0
+                while name in taken:
+                    name, k = f"{links[b]}/{k}", k + 1
+                taken.add(name)
             body = _geom_body(model, g, name, skip_planes)
             if body is not None:
                 geometry_of[g] = name

@@ -449,6 +449,30 @@ def test_mjcf_planes_raise_unless_skipped(tmp_path):
         sc.Robot.from_mjcf(path)
 
 
+def test_unnamed_mjcf_geoms_keep_clear_of_named_ones(tmp_path):
+    # An unnamed geom is named after its body; a geom elsewhere named like that body (geom and
+    # body names are apart in MuJoCo) made two geometries of one name, refused as "pairs[1] pairs
+    # geometry 'b' with itself".
+    path = tmp_path / "names.xml"
+    path.write_text("""<mujoco><worldbody>
+  <body name="a"><geom type="box" size="0.1 0.1 0.1"/>
+    <body name="b" pos="0 0 0.3"><joint name="j1" axis="0 1 0" range="-3 3"/>
+      <geom type="sphere" size="0.1"/>
+      <body name="c" pos="0 0 0.3"><joint name="j2" axis="0 1 0" range="-3 3"/>
+        <geom type="box" size="0.05 0.05 0.2" pos="0 0 0.2"/><geom type="sphere" size="0.1"/>
+      </body></body>
+    <body name="d" pos="5 0 0"><geom name="b" type="sphere" size="0.1"/>
+      <geom name="c/1" type="sphere" size="0.1" pos="0 1 0"/></body>
+  </body></worldbody></mujoco>""")
+    robot = sc.Robot.from_mjcf(path)
+    # The names no other geom has are kept: the body's own for one geom, body/k for several.
+    assert robot.geometry_names == ("a", "b/0", "c/0", "c/2", "b", "c/1")
+    assert [type(g[3]).__name__ for g in robot._robot_geometries] == [
+        "Box", "Sphere", "Box", "Sphere", "Sphere", "Sphere"]
+    assert robot.pairs == (("a", "b/0"), ("a", "c/0"), ("a", "c/2"), ("b/0", "b"), ("b/0", "c/1"),
+                           ("c/0", "b"), ("c/0", "c/1"), ("c/2", "b"), ("c/2", "c/1"))
+
+
 def test_configurations_outside_the_limits_raise_clamp_or_wrap(arm):
     q = np.array([2.5 + 2 * np.pi - 0.5, 7.0, 0.1])
     with pytest.raises(ValueError, match=r"q\[0\], joint 'shoulder'.*limits='clamp'"):
