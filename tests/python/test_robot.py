@@ -922,9 +922,39 @@ def test_model_tables_are_checked_naming_the_joint():
                                    rtol=0, atol=1e-15)
     with pytest.raises(ValueError, match="joint 'j': limits must satisfy lower <= upper"):
         sc.Robot(["a", "b"], [sc.Joint("j", "prismatic", 0, 1, lower=1, upper=0)], [])
-    with pytest.raises(ValueError, match="joint 'm': a mimic joint must move and mimic"):
-        sc.Robot(["a", "b", "c"], [sc.Joint("j", "fixed", 0, 1),
-                                   sc.Joint("m", "revolute", 1, 2, mimic=0)], [])
+
+
+@pytest.mark.parametrize("mimics, message", [
+    ({"m": ("fixed", "j", 1.0, 0.0)}, "joint 'm': a fixed joint cannot mimic another "
+     r"\(a mimic joint moves\): make it revolute, continuous or prismatic, or drop its mimic"),
+    ({"m": ("revolute", 7, 1.0, 0.0)},
+     r"joint 'm': mimic must be a joint index, or -1 for none, got 7 \(the model has 3 joints\)"),
+    ({"m": ("revolute", "m", 1.0, 0.0)},
+     "joint 'm': it mimics itself; a mimic joint follows another, moving joint"),
+    ({"m": ("revolute", "f", 1.0, 0.0)},
+     "joint 'm': it mimics joint 'f', which is fixed; a mimic joint follows a moving joint"),
+    ({"m": ("revolute", "j", 2.0, 0.0), "f": ("prismatic", "m", 1.0, 0.0)},
+     "joint 'f': it mimics joint 'm', which mimics joint 'j'; a mimic joint follows a joint that "
+     r"mimics none \(mimic 'j', with the two multipliers and offsets composed\)"),
+    ({"m": ("revolute", "j", 1.0, 0.0), "j": ("revolute", "m", 1.0, 0.0)},
+     "joint 'j': it mimics joint 'm', which mimics joint 'j'; a mimic joint follows a joint that "
+     "mimics none$"),
+    ({"m": ("revolute", "j", np.nan, 0.0)}, "joint 'm': its mimic multiplier must be finite"),
+    ({"m": ("revolute", "j", 1.0, np.inf)}, "joint 'm': its mimic offset must be finite, got inf"),
+])
+def test_mimic_joints_name_the_rule_they_break(mimics, message):
+    # One message listed every rule ("a mimic joint must move and mimic a moving joint that mimics
+    # none, with a finite multiplier and offset"), saying neither which nor whose.
+    order = ["j", "m", "f"]
+    kinds = {"j": "revolute", "m": "revolute", "f": "fixed"}
+    joints = []
+    for k, name in enumerate(order):
+        kind, follows, multiplier, offset = mimics.get(name, (kinds[name], None, 1.0, 0.0))
+        mimic = -1 if follows is None else order.index(follows) if follows in order else follows
+        joints.append(sc.Joint(name, kind, k, k + 1, mimic=mimic, multiplier=multiplier,
+                               offset=offset))
+    with pytest.raises(ValueError, match=f"^{message}"):
+        sc.Robot(["a", "b", "c", "d"], joints, [])
 
 
 def test_a_raw_model_refuses_a_mimic_below_minus_one_and_pairs_that_are_not_indices():
