@@ -325,6 +325,26 @@ def test_a_checker_refuses_bad_options_and_configurations_by_name(arm):
         arm.check(q, threads=-1)
 
 
+def test_methods_without_signed_distances_are_refused_for_the_nearest_pair_up_front():
+    # ipso answers verdicts only: a batch's check refused it at its first configuration, naming
+    # q[0] as if it were at fault, and a checker was made with it, to fail at its first call.
+    points = np.random.default_rng(0).normal(size=(8, 3)) * 0.1
+    robot = sc.Robot(["a", "b"], [sc.Joint("j", "revolute", 0, 1, axis=[0, 0, 1], lower=-1,
+                                           upper=1)],
+                     [("ga", 0, np.eye(4), points), ("gb", 1, (np.eye(3), [1, 0, 0]), points)])
+    robot.add_obstacle(points, (np.eye(3), [3.0, 0, 0]), name="rock")
+    message = (r"^method 'ipso' answers verdicts, not the signed distances the nearest pair is "
+               r"found by: pass nearest=False for the verdict alone, or a method that answers "
+               r"them \('dual', 'exact', 'fcl', 'libccd'\)$")
+    for call in (lambda: robot.check(np.zeros((3, 1)), method="ipso"),
+                 lambda: robot.check(np.zeros(1), method="ipso"),
+                 lambda: robot.checker(method="ipso")):
+        with pytest.raises(ValueError, match=message):
+            call()
+    assert not robot.check(np.zeros((3, 1)), method="ipso", nearest=False).colliding.any()
+    assert robot.checker(method="ipso", nearest=False).collision_free([0.0])
+
+
 def test_robot_check_answers_the_robot_as_it_is_now(arm):
     # Robot.check keeps a checker from one call to the next; a change of pairs makes a new one.
     q = random_configurations(arm, 1, seed=3)[0]
