@@ -68,6 +68,26 @@ def test_parts_told_their_first_index_answer_as_the_whole(pairs):
         np.testing.assert_array_equal(np.concatenate([head.point_b, tail.point_b]), whole.point_b)
 
 
+def test_rows_past_the_last_global_row_are_refused(pairs):
+    # Row i is the global row first_index + i: rows past 2**64 - 1 wrapped, named and seeded as
+    # the first global rows.
+    As, Bs = pairs
+    last = 2**64 - 1
+    assert len(sc.distance_many(As[:2], Bs[:2], method="ipso", first_index=last - 1)) == 2
+    assert len(sc.distance_many(As[:0], Bs[:0], first_index=last)) == 0
+    message = (r"^first_index \+ the number of rows must be at most 2\*\*64 \(the rows are the "
+               rf"global rows first_index, first_index \+ 1, ...\), got first_index {last - 1} "
+               r"and 3 rows$")
+    poses = np.tile(np.eye(4), (3, 1, 1))
+    compound = sc.CompoundBody([sc.ConvexPolyhedron(TETRA)])
+    for batch in (sc.distance_many, sc.collide_many, sc.signed_distance_many):
+        for a, b, keywords in ((As[:3], Bs[:3], {}), (list(As[:3]), list(Bs[:3]), {}),
+                               (TETRA, TETRA, {"poses_b": poses}),
+                               ([compound] * 3, TETRA, {})):
+            with pytest.raises(ValueError, match=message):
+                batch(a, b, first_index=last - 1, **keywords)
+
+
 def test_sequences_of_bodies_of_different_sizes_and_stacks_agree(pairs):
     As = [TETRA, sc.ConvexPolyhedron(TETRA * 2), [[0, 0, 5]]]
     Bs = [TETRA + [3, 0, 0], TETRA.tolist(), np.array([[0, 0, 0.0]])]
