@@ -357,6 +357,13 @@ ROTATION = np.eye(3)
          ValueError, r"poses_b\[3\] has a NaN or infinite entry"),
         ((np.tile(ROTATION, (4, 1, 1)), np.zeros((3, 3))), ValueError,
          r"poses_b's translations must be"),
+        # The translations' own shape, not the transforms' (a (4, 4, 4) or (4, 3, 4) array).
+        ((np.tile(ROTATION, (4, 1, 1)), np.zeros((1, 3))), ValueError,
+         r"^poses_b's translations must be a \(4, 3\) array, one translation per rotation, got "
+         r"shape \(1, 3\)$"),
+        ((np.tile(ROTATION, (2, 1, 1)), np.zeros((4, 3))), ValueError,
+         r"^poses_b's rotations must be a \(4, 3, 3\) array of rotation matrices \(or a SciPy "
+         r"Rotation of 4\), one per row, got shape \(2, 3, 3\)$"),
         (np.tile(np.eye(4)[:3], (4, 1, 1)) * [1, 1, 1, np.nan], ValueError,
          r"poses_b\[0\] has a NaN"),
     ],
