@@ -466,12 +466,17 @@ std::vector<Pose> to_poses(const py::handle& given, std::size_t count, const cha
     const py::sequence parts = py::reinterpret_borrow<py::sequence>(poses);
     const py::array first = py::module_::import("numpy").attr("asarray")(parts[0]);
     const bool single = count == 1 && first.ndim() == 2;
+    // Each part named with its own shape: the transforms' shapes described neither.
+    const std::string m = std::to_string(count);
     const auto rotations =
         single ? real_array(parts[0], {3, 3}, arg + "'s rotation", "a (3, 3) rotation")
-               : real_array(parts[0], {n, 3, 3}, arg + "'s rotations", shapes);
+               : real_array(parts[0], {n, 3, 3}, arg + "'s rotations",
+                            "a (" + m + ", 3, 3) array of rotation matrices (or a SciPy "
+                            "Rotation of " + m + "), one per row");
     const auto translations =
         single ? real_array(parts[1], {3}, arg + "'s translation", "a (3,) translation")
-               : real_array(parts[1], {n, 3}, arg + "'s translations", shapes);
+               : real_array(parts[1], {n, 3}, arg + "'s translations",
+                            "a (" + m + ", 3) array, one translation per rotation");
     const Scalar epsilon = narrow_float_epsilon(parts[0]);
     for (std::size_t i = 0; i < count; ++i) {
       result[i].rotation = Eigen::Map<const RowMatrix3>(rotations.data() + 9 * i);

@@ -180,15 +180,18 @@ def _distance(arguments: argparse.Namespace) -> int:
     from .mesh import load_mesh
     from .queries import query
 
-    # Both files are checked before either is decomposed, which can take minutes.
+    q = query(arguments.method, tolerance=arguments.tolerance)
+    ask = {"distance": q.distance, "signed": q.signed_distance,
+           "collide": q.collision}[arguments.query]
+    # A query the method cannot answer is refused (in the core's words) before any file is read,
+    # and both files are checked before either is decomposed, which can take minutes.
+    ask([[0.0, 0.0, 0.0]], [[0.0, 0.0, 0.0]])
     for path in (arguments.a, arguments.b):
         if not path.endswith((".npz", ".json")):
             load_mesh(path)
     a = _body(arguments.a, arguments)
     b = _body(arguments.b, arguments)
-    q = query(arguments.method, tolerance=arguments.tolerance)
-    ask = {"distance": q.distance, "signed": q.signed_distance, "collide": q.collision}
-    r = ask[arguments.query](a, b, arguments.pose_a, arguments.pose_b)
+    r = ask(a, b, arguments.pose_a, arguments.pose_b)
     assert isinstance(r, _core.CompoundResult)  # the files' bodies are compound: parts named
     if arguments.plot:
         from .plot import plot_pair
@@ -379,9 +382,11 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     if arguments.command == "distance":
         from .queries import query
 
+        # The options through collision, which every method answers: a query the method cannot
+        # answer is an unusable input (exit 1, said by _distance), not a wrong option.
         point = [[0.0, 0.0, 0.0]]
         _check_core(parser, lambda: query(arguments.method, tolerance=arguments.tolerance)
-                    .distance(point, point, arguments.pose_a, arguments.pose_b))
+                    .collision(point, point, arguments.pose_a, arguments.pose_b))
     if arguments.command == "scene":
         _check_core(parser, lambda: _core.Scene(threads=arguments.threads, seed=arguments.seed))
     if arguments.command == "decompose" and not arguments.output.endswith(".npz"):

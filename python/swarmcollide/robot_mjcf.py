@@ -5,7 +5,8 @@ from __future__ import annotations
 import os
 import warnings
 from pathlib import Path
-from typing import Union
+from typing import Optional, Union
+from xml.etree import ElementTree
 
 import numpy as np
 
@@ -48,6 +49,9 @@ def load_mjcf(path: PathLike, skip_planes: bool = False) -> ModelTables:
         raise ValueError(f"MJCF file '{path}' is a directory; pass the model's .xml file")
     if not Path(path).is_file():
         raise ValueError(f"MJCF file '{path}' not found")
+    not_mjcf = _not_mjcf(Path(path))
+    if not_mjcf:
+        raise ValueError(f"'{path}' does not look like an MJCF file: {not_mjcf}")
     try:
         model = mujoco.MjModel.from_xml_path(str(path))
     except Exception as error:  # MuJoCo's compiler raises ValueError with its own message
@@ -61,6 +65,23 @@ def load_mjcf(path: PathLike, skip_planes: bool = False) -> ModelTables:
                       f"this robot; its geometries are checked only against obstacles "
                       f"(add_obstacle)", UserWarning, stacklevel=3)
     return tables_of(model, skip_planes)
+
+
+def _not_mjcf(path: Path) -> Optional[str]:
+    """What says a file is no MJCF model, or None: its root element, unless it is ``<mujoco>``.
+    MuJoCo compiles a URDF file (root ``<robot>``) with its own importer into another robot
+    (mimic joints free, links on fixed joints fused into their parents). A file that is not
+    XML is left to MuJoCo, whose reader says where."""
+    try:
+        root = ElementTree.parse(path).getroot()
+    except (ElementTree.ParseError, OSError):
+        return None
+    tag = root.tag.rpartition("}")[2]  # without a namespace
+    if tag == "mujoco":
+        return None
+    hint = {"robot": "; it is a URDF model: read it with Robot.from_urdf (swarmcollide robot "
+                     "reads a file ending in .urdf as URDF)"}
+    return f"its root element is <{tag}>, where an MJCF model's is <mujoco>{hint.get(tag, '')}"
 
 
 def body_name(model, body: int) -> str:
@@ -117,10 +138,19 @@ def tables_of(model, skip_planes: bool = False) -> ModelTables:
     collision = [g for g in range(model.ngeom)
                  if model.geom_contype[g] != 0 or model.geom_conaffinity[g] != 0 or g in paired]
     geometry_of = {}
+    # An unnamed geom is named after its body (geometry_names), but geom and body names are apart
+    # in MuJoCo: when another geom has that name, it takes the first `body/k` none has.
+    taken = {model.geom(g).name for g in collision}
     for b in range(model.nbody):
         own = [g for g in collision if model.geom_bodyid[g] == b]
         for name, g in zip(geometry_names(links[b], len(own)), own):
-            name = model.geom(g).name or name
+            if model.geom(g).name:
+                name = model.geom(g).name
+            else:
+                k = 0
+                while name in taken:
+                    name, k = f"{links[b]}/{k}", k + 1
+                taken.add(name)
             body = _geom_body(model, g, name, skip_planes)
             if body is not None:
                 geometry_of[g] = name

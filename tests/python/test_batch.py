@@ -68,6 +68,26 @@ def test_parts_told_their_first_index_answer_as_the_whole(pairs):
         np.testing.assert_array_equal(np.concatenate([head.point_b, tail.point_b]), whole.point_b)
 
 
+def test_rows_past_the_last_global_row_are_refused(pairs):
+    # Row i is the global row first_index + i: rows past 2**64 - 1 wrapped, named and seeded as
+    # the first global rows.
+    As, Bs = pairs
+    last = 2**64 - 1
+    assert len(sc.distance_many(As[:2], Bs[:2], method="ipso", first_index=last - 1)) == 2
+    assert len(sc.distance_many(As[:0], Bs[:0], first_index=last)) == 0
+    message = (r"^first_index \+ the number of rows must be at most 2\*\*64 \(the rows are the "
+               rf"global rows first_index, first_index \+ 1, ...\), got first_index {last - 1} "
+               r"and 3 rows$")
+    poses = np.tile(np.eye(4), (3, 1, 1))
+    compound = sc.CompoundBody([sc.ConvexPolyhedron(TETRA)])
+    for batch in (sc.distance_many, sc.collide_many, sc.signed_distance_many):
+        for a, b, keywords in ((As[:3], Bs[:3], {}), (list(As[:3]), list(Bs[:3]), {}),
+                               (TETRA, TETRA, {"poses_b": poses}),
+                               ([compound] * 3, TETRA, {})):
+            with pytest.raises(ValueError, match=message):
+                batch(a, b, first_index=last - 1, **keywords)
+
+
 def test_sequences_of_bodies_of_different_sizes_and_stacks_agree(pairs):
     As = [TETRA, sc.ConvexPolyhedron(TETRA * 2), [[0, 0, 5]]]
     Bs = [TETRA + [3, 0, 0], TETRA.tolist(), np.array([[0, 0, 0.0]])]
@@ -337,6 +357,13 @@ ROTATION = np.eye(3)
          ValueError, r"poses_b\[3\] has a NaN or infinite entry"),
         ((np.tile(ROTATION, (4, 1, 1)), np.zeros((3, 3))), ValueError,
          r"poses_b's translations must be"),
+        # The translations' own shape, not the transforms' (a (4, 4, 4) or (4, 3, 4) array).
+        ((np.tile(ROTATION, (4, 1, 1)), np.zeros((1, 3))), ValueError,
+         r"^poses_b's translations must be a \(4, 3\) array, one translation per rotation, got "
+         r"shape \(1, 3\)$"),
+        ((np.tile(ROTATION, (2, 1, 1)), np.zeros((4, 3))), ValueError,
+         r"^poses_b's rotations must be a \(4, 3, 3\) array of rotation matrices \(or a SciPy "
+         r"Rotation of 4\), one per row, got shape \(2, 3, 3\)$"),
         (np.tile(np.eye(4)[:3], (4, 1, 1)) * [1, 1, 1, np.nan], ValueError,
          r"poses_b\[0\] has a NaN"),
     ],

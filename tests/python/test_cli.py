@@ -3,8 +3,10 @@
 import subprocess
 import sys
 
+import numpy as np
 import pytest
 
+import swarmcollide as sc
 from swarmcollide import paper
 from swarmcollide.cli import main
 
@@ -123,6 +125,31 @@ def test_mesh_commands_fail_as_a_shell_user_expects(mesh_files, capsys):
     assert main(["distance", box, box, "--decompose", "hull", "--method", "ipso", "--query",
                  "signed"]) == 1
     assert "signed_distance is not available with method 'ipso'" in capsys.readouterr().err
+
+
+def test_each_query_is_asked_of_the_method_that_answers_it(tmp_path, capsys):
+    # libccd answers signed distances and verdicts, not distances: the options' check asked every
+    # method for a distance, which refused --query signed and collide with libccd.
+    import json
+
+    cylinder = tmp_path / "cylinder.json"
+    cylinder.write_text('{"shape": "cylinder", "radius": 0.5, "half_length": 1}')
+    pose = np.eye(4)
+    pose[0, 3] = 0.5
+    for asked, call in (("signed", sc.signed_distance), ("collide", sc.collision)):
+        assert main(["distance", str(cylinder), str(cylinder), "--query", asked, "--method",
+                     "libccd", "--pose-b", "0.5,0,0", "--json"]) == 0
+        answer = json.loads(capsys.readouterr().out)
+        r = call(sc.Cylinder(0.5, 1.0), sc.Cylinder(0.5, 1.0), pose_b=pose, method="libccd")
+        assert (answer["method"], answer["colliding"], answer["distance"]) == (
+            r.method, True, r.distance)
+    # A query the method cannot answer is an unusable input (exit 1), refused before any file
+    # is read.
+    for argv, query in ((["--method", "libccd"], "distance"),
+                        (["--method", "ipso", "--query", "signed"], "signed_distance")):
+        assert main(["distance", str(cylinder), str(tmp_path / "missing.obj")] + argv) == 1
+        assert capsys.readouterr().err.startswith(
+            f"swarmcollide distance: error: {query} is not available with method ")
 
 
 def test_wrong_options_are_usage_errors_before_any_work(mesh_files, capsys):

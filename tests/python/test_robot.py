@@ -325,6 +325,26 @@ def test_a_checker_refuses_bad_options_and_configurations_by_name(arm):
         arm.check(q, threads=-1)
 
 
+def test_methods_without_signed_distances_are_refused_for_the_nearest_pair_up_front():
+    # ipso answers verdicts only: a batch's check refused it at its first configuration, naming
+    # q[0] as if it were at fault, and a checker was made with it, to fail at its first call.
+    points = np.random.default_rng(0).normal(size=(8, 3)) * 0.1
+    robot = sc.Robot(["a", "b"], [sc.Joint("j", "revolute", 0, 1, axis=[0, 0, 1], lower=-1,
+                                           upper=1)],
+                     [("ga", 0, np.eye(4), points), ("gb", 1, (np.eye(3), [1, 0, 0]), points)])
+    robot.add_obstacle(points, (np.eye(3), [3.0, 0, 0]), name="rock")
+    message = (r"^method 'ipso' answers verdicts, not the signed distances the nearest pair is "
+               r"found by: pass nearest=False for the verdict alone, or a method that answers "
+               r"them \('dual', 'exact', 'fcl', 'libccd'\)$")
+    for call in (lambda: robot.check(np.zeros((3, 1)), method="ipso"),
+                 lambda: robot.check(np.zeros(1), method="ipso"),
+                 lambda: robot.checker(method="ipso")):
+        with pytest.raises(ValueError, match=message):
+            call()
+    assert not robot.check(np.zeros((3, 1)), method="ipso", nearest=False).colliding.any()
+    assert robot.checker(method="ipso", nearest=False).collision_free([0.0])
+
+
 def test_robot_check_answers_the_robot_as_it_is_now(arm):
     # Robot.check keeps a checker from one call to the next; a change of pairs makes a new one.
     q = random_configurations(arm, 1, seed=3)[0]
@@ -449,6 +469,30 @@ def test_mjcf_planes_raise_unless_skipped(tmp_path):
         sc.Robot.from_mjcf(path)
 
 
+def test_unnamed_mjcf_geoms_keep_clear_of_named_ones(tmp_path):
+    # An unnamed geom is named after its body; a geom elsewhere named like that body (geom and
+    # body names are apart in MuJoCo) made two geometries of one name, refused as "pairs[1] pairs
+    # geometry 'b' with itself".
+    path = tmp_path / "names.xml"
+    path.write_text("""<mujoco><worldbody>
+  <body name="a"><geom type="box" size="0.1 0.1 0.1"/>
+    <body name="b" pos="0 0 0.3"><joint name="j1" axis="0 1 0" range="-3 3"/>
+      <geom type="sphere" size="0.1"/>
+      <body name="c" pos="0 0 0.3"><joint name="j2" axis="0 1 0" range="-3 3"/>
+        <geom type="box" size="0.05 0.05 0.2" pos="0 0 0.2"/><geom type="sphere" size="0.1"/>
+      </body></body>
+    <body name="d" pos="5 0 0"><geom name="b" type="sphere" size="0.1"/>
+      <geom name="c/1" type="sphere" size="0.1" pos="0 1 0"/></body>
+  </body></worldbody></mujoco>""")
+    robot = sc.Robot.from_mjcf(path)
+    # The names no other geom has are kept: the body's own for one geom, body/k for several.
+    assert robot.geometry_names == ("a", "b/0", "c/0", "c/2", "b", "c/1")
+    assert [type(g[3]).__name__ for g in robot._robot_geometries] == [
+        "Box", "Sphere", "Box", "Sphere", "Sphere", "Sphere"]
+    assert robot.pairs == (("a", "b/0"), ("a", "c/0"), ("a", "c/2"), ("b/0", "b"), ("b/0", "c/1"),
+                           ("c/0", "b"), ("c/0", "c/1"), ("c/2", "b"), ("c/2", "c/1"))
+
+
 def test_configurations_outside_the_limits_raise_clamp_or_wrap(arm):
     q = np.array([2.5 + 2 * np.pi - 0.5, 7.0, 0.1])
     with pytest.raises(ValueError, match=r"q\[0\], joint 'shoulder'.*limits='clamp'"):
@@ -537,6 +581,8 @@ def test_bad_files_name_the_link_or_joint(tmp_path):
     for bad, message in [('<sphere radius="-0.1"/>', "link 'arm': radius must be"),
                          ('<box size="0.2 0 0.2"/>', r"link 'arm': half_extents\[1\] must be"),
                          ("", "link 'arm': its <collision> element's <geometry> is empty"),
+                         ("<mesh/>", "link 'arm': a <collision>'s <mesh> has no filename "
+                          "attribute"),
                          ('<mesh filename="arm.stl" scale="nan 1 1"/>',
                           "link 'arm': mesh scale must be finite")]:
         path = other / "bad.urdf"
@@ -549,6 +595,73 @@ def test_bad_files_name_the_link_or_joint(tmp_path):
 </robot>""")
         with pytest.raises(ValueError, match=message):
             sc.Robot.from_urdf(path)
+
+
+TWO_LINKS = """<robot name="r">
+  <material name="red"><color rgba="1 0 0 1"/></material>
+  <link name="base">
+    <inertial><origin xyz="0 0 0"/><mass value="1"/>
+      <inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial>
+    <visual><geometry><sphere radius="0.1"/></geometry><material name="red"/></visual>
+    <collision><origin xyz="0 0 0.1" rpy="0 0 0"/><geometry><sphere radius="0.1"/></geometry>
+    </collision>
+  </link>
+  <link name="arm"><collision><geometry><cylinder radius="0.1" length="0.5"/></geometry>
+  </collision></link>
+  <joint name="j" type="revolute"><parent link="base"/><child link="arm"/>
+    <origin xyz="0 0 1" rpy="0 0 0"/><axis xyz="0 1 0"/>
+    <limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+</robot>"""
+
+
+@pytest.mark.parametrize("old, new, message", [
+    ('<sphere radius="0.1"/></geometry>\n', "<sphere/></geometry>\n",
+     "link 'base': <collision><sphere> has no radius attribute"),
+    ('<sphere radius="0.1"/></geometry><material',
+     '<box size="1 1"/></geometry><material',
+     r"link 'base': <visual><box size=\"1 1\"> must be 3 numbers, got 2"),
+    ('length="0.5"', "", "link 'arm': <collision><cylinder> has no length attribute"),
+    ('radius="0.1" length', 'radius="abc" length',
+     r"link 'arm': <collision><cylinder radius=\"abc\">: 'abc' is not a number"),
+    ('<robot name="r">', '<robot name="r">', None),  # the file as it is loads
+    ("<cylinder", "<capsule", "link 'arm': its <collision> element's <geometry> holds <capsule>, "
+     "which is not a URDF shape"),
+    ('<collision><origin xyz="0 0 0.1" rpy="0 0 0"/><geometry><sphere radius="0.1"/></geometry>',
+     '<collision><origin xyz="0 0 0.1" rpy="0 0 0"/>',
+     "link 'base': its <collision> element has no <geometry>"),
+    ('<parent link="base"/>', "", r"joint 'j' has no <parent link=\"...\"/> naming its parent"),
+    ('<child link="arm"/>', '<child/>', r"joint 'j' has no <child link=\"...\"/> naming its "),
+    (' type="revolute"', "", "joint 'j' has no type attribute "
+     r"\(give one of revolute, continuous, prismatic, fixed\)"),
+    ('<origin xyz="0 0 1"', '<origin xyz="0 0"',
+     r"joint 'j': <origin xyz=\"0 0\"> must be 3 numbers, got 2"),
+    ('rpy="0 0 0"/><axis', 'rpy="0 0 0 0"/><axis', r"joint 'j': <origin rpy=\"0 0 0 0\"> must "),
+    ('lower="-1"', 'lower="x"', r"joint 'j': <limit lower=\"x\">: 'x' is not a number"),
+    ('<axis xyz="0 1 0"/>', '<axis xyz="0 1,0"/>', r"joint 'j': <axis xyz=\"0 1,0\">: '1,0' is "),
+    ('velocity="1"/>', 'velocity="1"/><mimic multiplier="2"/>',
+     "joint 'j': its <mimic> has no joint attribute naming the joint it follows"),
+    ('<mass value="1"/>', '<mass value="1 kg"/>',
+     r"link 'base': <inertial><mass value=\"1 kg\">: '1 kg' is not a number"),
+    ('<inertia ixx="1"', '<inertia ixx="one"', r"link 'base': <inertial><inertia ixx=\"one\">"),
+    ('<material name="red"/>', '<material name="red"><color rgba="1 0 red 1"/></material>',
+     r"link 'base': <visual><material><color rgba=\"1 0 red 1\">: 'red' is not a number"),
+    ('rgba="1 0 0 1"', 'rgba="1 0 0 x"', r"material 'red': <color rgba=\"1 0 0 x\">: 'x' is "),
+    ('<link name="arm">', "<link>", "a <link> has no name attribute"),
+    ('<joint name="j"', "<joint", "a <joint> has no name attribute"),
+    ('<robot name="r">', "<robot>", r"<robot> has no name attribute \(<robot name=\"...\">\)"),
+])
+def test_urdf_attributes_yourdfpy_cannot_read_name_the_link_or_joint(tmp_path, old, new,
+                                                                    message):
+    # yourdfpy failed with a bare KeyError ("'radius'"), an AttributeError, float()'s or NumPy's
+    # broadcasting message, or read a missing type or child link as None.
+    path = tmp_path / "bad.urdf"
+    assert old in TWO_LINKS
+    path.write_text(TWO_LINKS.replace(old, new, 1))
+    if message is None:
+        assert sc.Robot.from_urdf(path).joint_names == ("j",)
+        return
+    with pytest.raises(ValueError, match=rf"^cannot read URDF file '.*bad.urdf': {message}"):
+        sc.Robot.from_urdf(path)
 
 
 def test_a_mesh_scale_is_three_numbers_or_one_for_a_uniform_scale(tmp_path):
@@ -625,6 +738,46 @@ def test_files_that_are_not_urdf_say_so(tmp_path):
     path = tmp_path / "gripper.sdf"
     path.write_text('<sdf version="1.6"><model name="gripper"><link name="palm"/></model></sdf>')
     with pytest.raises(ValueError, match="root element is <sdf>.*convert it to URDF"):
+        sc.Robot.from_urdf(path)
+
+
+def test_files_that_are_not_mjcf_say_so(tmp_path):
+    # MuJoCo compiles a URDF with its own importer, into another robot: a mimic joint became a
+    # degree of freedom of its own, and the links on a fixed joint one link.
+    path = tmp_path / "arm_urdf.xml"
+    path.write_text(TWO_LINKS)
+    with pytest.raises(ValueError, match=r"^'.*arm_urdf.xml' does not look like an MJCF file: its "
+                       r"root element is <robot>, where an MJCF model's is <mujoco>; it is a URDF "
+                       r"model: read it with Robot.from_urdf \(swarmcollide robot reads a file "
+                       r"ending in .urdf as URDF\)$"):
+        sc.Robot.from_mjcf(path)
+    assert sc.Robot.from_urdf(path).dof == 1
+    path.write_text('<sdf version="1.6"><model name="gripper"><link name="palm"/></model></sdf>')
+    with pytest.raises(ValueError, match=r"root element is <sdf>, where an MJCF model's is "
+                                         r"<mujoco>$"):
+        sc.Robot.from_mjcf(path)
+
+
+def test_a_urdf_that_is_not_well_formed_xml_is_refused_naming_the_line(tmp_path):
+    # yourdfpy's lxml recovered from a file cut short by dropping the rest: the arm, cut inside
+    # a joint's tag, loaded without its last links.
+    path = write_urdf(tmp_path, URDF[:URDF.index('<joint name="slide"') + 9])
+    with pytest.raises(ValueError, match=r"^cannot read URDF file '.*arm.urdf': it is not "
+                       r"well-formed XML \(unclosed token: line 35, column 2\); the file ends "
+                       r"before its elements do: it may have been cut short"):
+        sc.Robot.from_urdf(path)
+    path.write_text(URDF.replace("</link>", "</lnk>", 1))
+    with pytest.raises(ValueError, match=r"well-formed XML \(mismatched tag: line 4, column 4\)$"):
+        sc.Robot.from_urdf(path)
+    path.write_text(" \n")
+    with pytest.raises(ValueError, match=r"^cannot read URDF file '.*arm.urdf': the file is empty"):
+        sc.Robot.from_urdf(path)
+    # Blank lines before the XML declaration (as in some of pybullet_data's files) are read, and
+    # an error after them is named at its own line.
+    path.write_text('\n\n<?xml version="1.0"?>\n' + URDF)
+    assert sc.Robot.from_urdf(path).joint_names == ("shoulder", "elbow", "slide")
+    path.write_text('\n\n<?xml version="1.0"?>\n' + URDF.replace("</link>", "</lnk>", 1))
+    with pytest.raises(ValueError, match=r"\(mismatched tag: line 7, column 4\)$"):
         sc.Robot.from_urdf(path)
 
 
@@ -789,9 +942,39 @@ def test_model_tables_are_checked_naming_the_joint():
                                    rtol=0, atol=1e-15)
     with pytest.raises(ValueError, match="joint 'j': limits must satisfy lower <= upper"):
         sc.Robot(["a", "b"], [sc.Joint("j", "prismatic", 0, 1, lower=1, upper=0)], [])
-    with pytest.raises(ValueError, match="joint 'm': a mimic joint must move and mimic"):
-        sc.Robot(["a", "b", "c"], [sc.Joint("j", "fixed", 0, 1),
-                                   sc.Joint("m", "revolute", 1, 2, mimic=0)], [])
+
+
+@pytest.mark.parametrize("mimics, message", [
+    ({"m": ("fixed", "j", 1.0, 0.0)}, "joint 'm': a fixed joint cannot mimic another "
+     r"\(a mimic joint moves\): make it revolute, continuous or prismatic, or drop its mimic"),
+    ({"m": ("revolute", 7, 1.0, 0.0)},
+     r"joint 'm': mimic must be a joint index, or -1 for none, got 7 \(the model has 3 joints\)"),
+    ({"m": ("revolute", "m", 1.0, 0.0)},
+     "joint 'm': it mimics itself; a mimic joint follows another, moving joint"),
+    ({"m": ("revolute", "f", 1.0, 0.0)},
+     "joint 'm': it mimics joint 'f', which is fixed; a mimic joint follows a moving joint"),
+    ({"m": ("revolute", "j", 2.0, 0.0), "f": ("prismatic", "m", 1.0, 0.0)},
+     "joint 'f': it mimics joint 'm', which mimics joint 'j'; a mimic joint follows a joint that "
+     r"mimics none \(mimic 'j', with the two multipliers and offsets composed\)"),
+    ({"m": ("revolute", "j", 1.0, 0.0), "j": ("revolute", "m", 1.0, 0.0)},
+     "joint 'j': it mimics joint 'm', which mimics joint 'j'; a mimic joint follows a joint that "
+     "mimics none$"),
+    ({"m": ("revolute", "j", np.nan, 0.0)}, "joint 'm': its mimic multiplier must be finite"),
+    ({"m": ("revolute", "j", 1.0, np.inf)}, "joint 'm': its mimic offset must be finite, got inf"),
+])
+def test_mimic_joints_name_the_rule_they_break(mimics, message):
+    # One message listed every rule ("a mimic joint must move and mimic a moving joint that mimics
+    # none, with a finite multiplier and offset"), saying neither which nor whose.
+    order = ["j", "m", "f"]
+    kinds = {"j": "revolute", "m": "revolute", "f": "fixed"}
+    joints = []
+    for k, name in enumerate(order):
+        kind, follows, multiplier, offset = mimics.get(name, (kinds[name], None, 1.0, 0.0))
+        mimic = -1 if follows is None else order.index(follows) if follows in order else follows
+        joints.append(sc.Joint(name, kind, k, k + 1, mimic=mimic, multiplier=multiplier,
+                               offset=offset))
+    with pytest.raises(ValueError, match=f"^{message}"):
+        sc.Robot(["a", "b", "c", "d"], joints, [])
 
 
 def test_a_raw_model_refuses_a_mimic_below_minus_one_and_pairs_that_are_not_indices():

@@ -93,6 +93,18 @@ def test_mjcf_models_are_read_by_their_suffix(tmp_path, capsys):
     assert report["pairs"] == 0 and report["nearest"] is None and report["min_distance"] is None
 
 
+def test_a_urdf_named_like_mjcf_is_refused(tmp_path, capsys):
+    # Read by suffix, it was compiled by MuJoCo's URDF importer into another robot.
+    path = tmp_path / "pair.xml"
+    path.write_text(URDF)
+    assert main(["robot", str(path)]) == 1
+    assert capsys.readouterr().err == (f"swarmcollide robot: error: '{path}' does not look like "
+                                       "an MJCF file: its root element is <robot>, where an MJCF "
+                                       "model's is <mujoco>; it is a URDF model: read it with "
+                                       "Robot.from_urdf (swarmcollide robot reads a file ending "
+                                       "in .urdf as URDF)\n")
+
+
 def test_a_missing_model_is_one_line_and_exit_1(tmp_path, capsys):
     assert main(["robot", str(tmp_path / "none.urdf")]) == 1
     err = capsys.readouterr().err
@@ -102,6 +114,12 @@ def test_a_missing_model_is_one_line_and_exit_1(tmp_path, capsys):
     broken.write_text(URDF.replace('type="continuous"', 'type="floating"'))
     assert main(["robot", str(broken)]) == 1
     assert "joint 'b': type 'floating' is not supported" in capsys.readouterr().err
+    # A mesh without a file escaped as an AttributeError, a traceback.
+    broken.write_text(URDF.replace('<sphere radius="0.15"/>', "<mesh/>"))
+    assert main(["robot", str(broken)]) == 1
+    assert capsys.readouterr().err == ("swarmcollide robot: error: link 'left': a <collision>'s "
+                                       "<mesh> has no filename attribute; give its mesh file "
+                                       "(<mesh filename=\"...\"/>)\n")
 
 
 def test_configurations_are_sampled_within_each_joints_own_limits(tmp_path, capsys):

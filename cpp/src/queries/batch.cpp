@@ -446,6 +446,14 @@ BatchResult run_batch(Kind kind, std::size_t count, const QueryOptions& options,
   const SidePoses poses_b(poses.b, poses.array_b, "poses_b");
   poses_a.check_count(count);
   poses_b.check_count(count);
+  // Row i is the global row first_index + i, seeded and named by it: past 2**64 - 1 a row would
+  // wrap to another row's seed and name.
+  if (count > 0 && count - 1 > std::numeric_limits<std::uint64_t>::max() - settings.first_index) {
+    throw std::invalid_argument(
+        "first_index + the number of rows must be at most 2**64 (the rows are the global rows "
+        "first_index, first_index + 1, ...), got first_index " +
+        std::to_string(settings.first_index) + " and " + std::to_string(count) + " rows");
+  }
   const std::size_t workers = worker_count(settings.threads, count);
   const Query validated(options);
   detail::require(options.method, asked(kind).capability, asked(kind).name);

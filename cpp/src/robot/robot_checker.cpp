@@ -3,12 +3,14 @@
 #include <algorithm>
 #include <limits>
 #include <stdexcept>
+#include <string>
 #include <utility>
 
 #include "../geometry/unit_direction.hpp"
 #include "box_screen.hpp"
 #include "geometry_pairs.hpp"
 #include "swarmcollide/queries/batch.hpp"
+#include "swarmcollide/queries/methods.hpp"
 #include "swarmcollide/queries/query.hpp"
 
 namespace swarmcollide {
@@ -55,6 +57,20 @@ RobotChecker::RobotChecker(const RobotModel& model, std::vector<GeometryPair> pa
   validate_pairs(model_, pairs_);
   options_.validate();  // once, before any configuration
   detail::require_geometry_shapes(model_, pairs_, options_.method);
+  // Here, before any configuration: the first configuration's pair query refused it, and a
+  // batch's message named that configuration as if it were at fault.
+  if (nearest_ && !(method_info(options_.method).capabilities & kSignedDistance)) {
+    std::string able;
+    for (const MethodInfo& info : method_table()) {
+      if (info.capabilities & kSignedDistance) {
+        able += std::string(able.empty() ? "'" : ", '") + info.name + "'";
+      }
+    }
+    throw std::invalid_argument(
+        std::string("method '") + method_name(options_.method) +
+        "' answers verdicts, not the signed distances the nearest pair is found by: pass "
+        "nearest=False for the verdict alone, or a method that answers them (" + able + ")");
+  }
   admitted_.resize(static_cast<std::size_t>(model_.dof()));
   if (gradient_) row_.gradient.setZero(model_.dof());
 }

@@ -85,6 +85,52 @@ int coordinate_axis(const Vector3& axis) {
   return -1;
 }
 
+// Joint j's mimic (j mimics one) against its rules, each named when broken: a mimic joint moves,
+// follows a moving joint that mimics none (its own degree of freedom, `dof_of_joint` >= 0), with
+// a finite multiplier and offset.
+void check_mimic(const std::vector<Joint>& joints, const std::vector<int>& dof_of_joint, int j) {
+  const Joint& joint = joints[static_cast<std::size_t>(j)];
+  const std::string label = joint_label(joint) + ": ";
+  if (joint.type == JointType::fixed) {
+    throw std::invalid_argument(label + "a fixed joint cannot mimic another (a mimic joint "
+                                        "moves): make it revolute, continuous or prismatic, or "
+                                        "drop its mimic");
+  }
+  if (joint.mimic >= static_cast<int>(joints.size())) {
+    throw std::invalid_argument(label + "mimic must be a joint index, or -1 for none, got " +
+                                std::to_string(joint.mimic) + " (the model has " +
+                                std::to_string(joints.size()) + " joints)");
+  }
+  const Joint& followed = joints[static_cast<std::size_t>(joint.mimic)];
+  if (joint.mimic == j) {
+    throw std::invalid_argument(label + "it mimics itself; a mimic joint follows another, "
+                                        "moving joint");
+  }
+  if (followed.type == JointType::fixed) {
+    throw std::invalid_argument(label + "it mimics joint '" + followed.name +
+                                "', which is fixed; a mimic joint follows a moving joint");
+  }
+  if (dof_of_joint[static_cast<std::size_t>(joint.mimic)] < 0) {
+    // `followed` moves, so it mimics a joint itself.
+    const int source = followed.mimic;
+    const std::string& name = joints[static_cast<std::size_t>(source)].name;
+    throw std::invalid_argument(
+        label + "it mimics joint '" + followed.name + "', which mimics joint '" + name +
+        "'; a mimic joint follows a joint that mimics none" +
+        (source != j && dof_of_joint[static_cast<std::size_t>(source)] >= 0
+             ? " (mimic '" + name + "', with the two multipliers and offsets composed)"
+             : std::string()));
+  }
+  if (!std::isfinite(joint.multiplier)) {
+    throw std::invalid_argument(label + "its mimic multiplier must be finite, got " +
+                                std::to_string(joint.multiplier));
+  }
+  if (!std::isfinite(joint.offset)) {
+    throw std::invalid_argument(label + "its mimic offset must be finite, got " +
+                                std::to_string(joint.offset));
+  }
+}
+
 void check_unique(const std::string& name, std::unordered_set<std::string>& seen,
                   const char* kind) {
   if (!seen.insert(name).second) {
@@ -125,14 +171,7 @@ RobotModel::RobotModel(std::vector<Link> links, std::vector<Joint> joints,
   for (std::size_t j = 0; j < joints_.size(); ++j) {
     const Joint& joint = joints_[j];
     if (joint.mimic < 0) continue;
-    if (joint.type == JointType::fixed || joint.mimic >= static_cast<int>(joints_.size()) ||
-        dof_of_joint_[joint.mimic] < 0 || !std::isfinite(joint.multiplier) ||
-        !std::isfinite(joint.offset)) {
-      throw std::invalid_argument(
-          joint_label(joint) +
-          ": a mimic joint must move and mimic a moving joint that mimics none, with a finite "
-          "multiplier and offset");
-    }
+    check_mimic(joints_, dof_of_joint_, static_cast<int>(j));
     driving_dof_[j] = dof_of_joint_[joint.mimic];
   }
   int root = -1;
