@@ -384,11 +384,18 @@ def test_motions_take_every_pose_form():
         (start[:3], end[:3]),
         ((np.eye(3), [-5, 0, 0]), (np.eye(3), [5, 0, 0])),
         ((Rotation.identity(), [-5, 0, 0]), (Rotation.identity(), [5, 0, 0])),
+        # Stacked as NumPy users stack them: the (start, end) pair as one array.
+        np.stack([start, end]),
+        np.stack([start[:3], end[:3]]),
     ]
     for form in forms:
-        r = sc.time_of_impact(cube, cube, pose_a=form)
-        assert (r.touches, r.t_lower, r.t_upper) == (expected.touches, expected.t_lower,
-                                                    expected.t_upper)
+        for a in (cube, sc.CompoundBody([cube, sc.Box([0.1] * 3)])):
+            r = sc.time_of_impact(a, cube, pose_a=form)
+            assert (r.touches, r.t_lower, r.t_upper) == (expected.touches, expected.t_lower,
+                                                        expected.t_upper)
+    r = sc.time_of_impact(cube, cube, pose_b=np.stack([end, start]))
+    listed = sc.time_of_impact(cube, cube, pose_b=[end, start])
+    assert r.touches and (r.t_lower, r.t_upper) == (listed.t_lower, listed.t_upper)
     # A single pose keeps the body there; two Rotations turn it about its origin.
     assert not sc.time_of_impact(cube, cube, pose_a=(np.eye(3), [3, 0, 0])).touches
     half_turn = (Rotation.identity(), Rotation.from_euler("z", 90, degrees=True))
