@@ -64,13 +64,23 @@ bool is_one_pose(const py::sequence& given) {
   }
 }
 
+// True when `given` is an array of two transforms, (2, 4, 4) or (2, 3, 4): a motion's start
+// and end poses stacked (np.stack([start, end])), which no single pose's shape is.
+bool is_stacked_motion(const py::handle& given) {
+  if (!py::isinstance<py::array>(given)) return false;
+  const py::array array = py::reinterpret_borrow<py::array>(given);
+  return array.ndim() == 3 && array.shape(0) == 2 && (array.shape(1) == 4 || array.shape(1) == 3) &&
+         array.shape(2) == 4;
+}
+
 // A motion argument: None (still at the identity), one pose (still there), or a pair
-// (start, end) of poses.
+// (start, end) of poses: a list or tuple of two, or an array of two transforms.
 RigidMotion to_motion(const py::handle& given, const char* name, MotionKind kind) {
   const std::string arg(name);
   if (given.is_none()) return RigidMotion(Pose{}, Pose{}, kind, name);
-  if ((py::isinstance<py::tuple>(given) || py::isinstance<py::list>(given)) &&
-      py::len(given) == 2 && !is_one_pose(py::reinterpret_borrow<py::sequence>(given))) {
+  if (((py::isinstance<py::tuple>(given) || py::isinstance<py::list>(given)) &&
+       py::len(given) == 2 && !is_one_pose(py::reinterpret_borrow<py::sequence>(given))) ||
+      is_stacked_motion(given)) {
     const py::sequence ends = py::reinterpret_borrow<py::sequence>(given);
     return RigidMotion(to_pose(ends[0], (arg + " start").c_str()),
                        to_pose(ends[1], (arg + " end").c_str()), kind, name);

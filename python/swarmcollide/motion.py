@@ -41,7 +41,8 @@ about it) or ``"screw"`` (``G(t) = G0 exp(t log(G0^-1 G1))``)."""
 
 MotionLike = Union[None, Tuple[PoseLike, PoseLike], Any]
 """None (the body stays at the identity), a pair ``(start, end)`` of poses (each anything
-``distance``'s ``pose_a`` takes), or a single pose (the body stays there)."""
+``distance``'s ``pose_a`` takes) or a ``(2, 4, 4)`` or ``(2, 3, 4)`` array of them, or a single
+pose (the body stays there)."""
 
 MotionsLike = Union[None, Tuple[PosesLike, PosesLike]]
 """None (every body stays at the identity), or a pair ``(starts, ends)`` of pose arrays (each
@@ -70,8 +71,9 @@ def time_of_impact(
         method here, ``"fcl"`` as FCL's own primitives).
     pose_a, pose_b : (start, end), a pose, or None
         Each body's motion: its poses at time 0 and time 1 (a ``(4, 4)`` transform, a pair
-        ``(rotation, translation)``, a SciPy ``Rotation``, ...). A single pose, or None for the
-        identity, keeps the body still.
+        ``(rotation, translation)``, a SciPy ``Rotation``, ...), or a ``(2, 4, 4)`` or
+        ``(2, 3, 4)`` array of the two (``np.stack([start, end])``). A single pose, or None for
+        the identity, keeps the body still.
     method : str
         ``"exact"`` (default), ``"dual"`` or ``"fcl"``: the distance queries run at each sampled
         time. Advancement needs proven lower bounds, not values certified far from contact, which

@@ -476,6 +476,54 @@ def test_compound_bodies_with_curved_parts_in_a_scene():
     assert not sc.collide(plus_shape(), small, pose_b=at(0, 0, 1.25))
 
 
+def surface_gap(body, point, pose):
+    """How far ``point`` is from the surface of ``body`` (of its nearest part, for a compound
+    body: a contact point lies on the deepest pair of parts)."""
+    parts = body.parts if isinstance(body, sc.CompoundBody) else [body]
+    return min(abs(sc.signed_distance(part, [point], pose_a=pose, method="exact").distance)
+               for part in parts)
+
+
+@pytest.mark.parametrize("method", SIGNED_METHODS)
+@pytest.mark.parametrize("shape", ["cylinder", "cone", "ellipsoid"])
+def test_contact_points_of_curved_shapes_lie_on_both_surfaces_with_compound_bodies_too(
+        shape, method):
+    """A scene's contact points, moved half the depth along the normal, lie on each body: for a
+    curved shape against a polytope, against a compound body of polytopes, and as a compound
+    body's part. A compound pair's contact points come from its deepest pair of parts framed
+    afresh, whose curved body had only the one support point along the normal numbered: a
+    cylinder's side was one rim point, which met the other feature nowhere, and their midpoint
+    was 0.3 off both surfaces (a cone's and an ellipsoid's 1e-5, where the normal is a little
+    off). The features' points lie within 1e-6 of the pair's size of the supporting planes."""
+    rng = np.random.default_rng(71)
+    make = {"cylinder": lambda: sc.Cylinder(0.3, 0.5), "cone": lambda: sc.Cone(0.3, 0.5),
+            "ellipsoid": lambda: sc.Ellipsoid([0.3, 0.4, 0.2])}[shape]
+    box = sc.Box([0.4, 0.3, 0.2])
+    polytopes = sc.CompoundBody([sc.ConvexPolyhedron(rng.normal(size=(6, 3)) * 0.3 + offset)
+                                 for offset in ([0.3, 0, 0], [-0.3, 0, 0])])
+    pairs = [(make(), box), (make(), sc.CompoundBody([box])), (make(), polytopes),
+             (sc.CompoundBody([make()]), box)]
+    touching = 0
+    for _ in range(16):
+        pose_a, pose_b = np.eye(4), np.eye(4)
+        pose_a[:3, :3], pose_b[:3, :3] = random_rotation(rng), random_rotation(rng)
+        pose_b[:3, 3] = rng.uniform(-0.4, 0.4, 3)
+        for a, b in pairs:
+            scene = sc.Scene(method=method)
+            scene.add([a, b], [pose_a, pose_b])
+            contacts = scene.contacts()
+            if len(contacts) == 0:
+                continue
+            touching += 1
+            assert contacts.certified.all()
+            n, depth = contacts.normal[0], contacts.distance[0]
+            size = 2 * (a.bounding_radius + b.bounding_radius)
+            for point in contacts.points:
+                assert surface_gap(a, point - n * depth / 2, pose_a) <= 2e-6 * size
+                assert surface_gap(b, point + n * depth / 2, pose_b) <= 2e-6 * size
+    assert touching >= 20
+
+
 def test_a_parts_file_refuses_curved_and_rounded_parts(tmp_path):
     with pytest.raises(ValueError, match=r"parts\[0\] is a curved shape.*body_to_json"):
         plus_shape().save(tmp_path / "plus.npz")

@@ -275,6 +275,32 @@ def test_bodies_far_apart_are_proven_free(far):
             sc.time_of_impact(cube, cube, pose_a=beyond)
 
 
+@pytest.mark.parametrize("x", [1e5, 1e6])
+def test_an_overlap_deeper_than_the_poses_rounding_proves_contact(x):
+    """Unit cubes given in world coordinates near (x, 0, 0), A moving 2.5 units to end half into
+    B: the poses' rounding margin (hundreds of roundoffs of the largest size the motion spans)
+    then exceeds the contact threshold, 1e-9 of the size, so a distance of zero proved no contact
+    however deep the overlap, and the motion ended unresolved with the bracket [0.8, 1]. An
+    overlap deeper than the margin proves it (the signed distance), as for unit spheres flying
+    from -x to x past each other, 0.1 deep at mid-motion."""
+    corners = np.array([[i, j, k] for i in (-0.5, 0.5) for j in (-0.5, 0.5) for k in (-0.5, 0.5)])
+    cube = sc.ConvexPolyhedron(corners + [x, 0, 0])
+    start, end = transform(np.eye(3), [-3, 0, 0]), transform(np.eye(3), [-0.5, 0, 0])
+    r = sc.time_of_impact(cube, cube, pose_a=(start, end))
+    assert r.touches and r.certified and r.status == "converged"
+    # First contact at t = 0.8; within the threshold at most its width (over 2.5 a unit of
+    # time) earlier.
+    assert r.t_lower <= 0.8 and r.t_upper >= 0.8 - TOLERANCE * motion_size(cube, cube) / 2.5
+    assert r.t_upper - r.t_lower <= 1e-6
+    ball = sc.Sphere(1.0)
+    flight = transform(np.eye(3), [-x, 0, 0]), transform(np.eye(3), [x, 0, 0])
+    r = sc.time_of_impact(ball, ball, pose_a=flight, pose_b=transform(np.eye(3), [0, 1.9, 0]))
+    meets = 0.5 - np.sqrt(4 - 1.9**2) / (2 * x)
+    assert r.touches and r.certified and r.status == "converged"
+    assert r.t_lower <= meets <= r.t_upper + TOLERANCE * motion_size(ball, ball) / (2 * x)
+    assert r.t_upper - r.t_lower <= 1e-6
+
+
 def test_start_in_contact_and_no_motion():
     cube = sc.Box([0.5] * 3)
     start, end = transform(np.eye(3), [0.9, 0, 0]), transform(np.eye(3), [5, 0, 0])
@@ -358,11 +384,18 @@ def test_motions_take_every_pose_form():
         (start[:3], end[:3]),
         ((np.eye(3), [-5, 0, 0]), (np.eye(3), [5, 0, 0])),
         ((Rotation.identity(), [-5, 0, 0]), (Rotation.identity(), [5, 0, 0])),
+        # Stacked as NumPy users stack them: the (start, end) pair as one array.
+        np.stack([start, end]),
+        np.stack([start[:3], end[:3]]),
     ]
     for form in forms:
-        r = sc.time_of_impact(cube, cube, pose_a=form)
-        assert (r.touches, r.t_lower, r.t_upper) == (expected.touches, expected.t_lower,
-                                                    expected.t_upper)
+        for a in (cube, sc.CompoundBody([cube, sc.Box([0.1] * 3)])):
+            r = sc.time_of_impact(a, cube, pose_a=form)
+            assert (r.touches, r.t_lower, r.t_upper) == (expected.touches, expected.t_lower,
+                                                        expected.t_upper)
+    r = sc.time_of_impact(cube, cube, pose_b=np.stack([end, start]))
+    listed = sc.time_of_impact(cube, cube, pose_b=[end, start])
+    assert r.touches and (r.t_lower, r.t_upper) == (listed.t_lower, listed.t_upper)
     # A single pose keeps the body there; two Rotations turn it about its origin.
     assert not sc.time_of_impact(cube, cube, pose_a=(np.eye(3), [3, 0, 0])).touches
     half_turn = (Rotation.identity(), Rotation.from_euler("z", 90, degrees=True))

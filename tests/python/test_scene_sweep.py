@@ -118,6 +118,20 @@ def test_a_cube_passes_through_a_thin_plate_in_one_sweep():
     np.testing.assert_array_equal(scene.pose(far), transform(np.eye(3), [0, 20, 0]))
 
 
+def test_a_long_sweep_through_a_deep_overlap_is_certified():
+    """A ball of 1e-3 swept 600 units past another, 1e-4 deep at mid-motion: the poses' rounding
+    over the motion exceeds the contact threshold, and only the overlap's depth proves contact
+    (the sweep was left uncertified with the bracket [0.5, 1])."""
+    scene = sc.Scene()
+    a = add_one(scene, sc.Sphere(1e-3), transform(np.eye(3), [-300, 0, 0]))
+    b = add_one(scene, sc.Sphere(1e-3), transform(np.eye(3), [0, 1.9e-3, 0]))
+    swept = scene.sweep(a, transform(np.eye(3), [300, 0, 0]))
+    meets = 0.5 - np.sqrt(4 - 1.9**2) * 1e-3 / 600
+    assert swept.pairs.tolist() == [[a, b]] and swept.certified.tolist() == [True]
+    assert swept.t_lower[0] <= meets <= swept.t_upper[0] + 1e-9 * 4e-3 / 600
+    assert swept.t_upper[0] - swept.t_lower[0] <= 1e-6
+
+
 def test_still_bodies_are_hit_and_stay_where_they_are():
     scene = sc.Scene()
     ball = add_one(scene, sc.Sphere(0.5), transform(np.eye(3), [-5, 0, 0]))

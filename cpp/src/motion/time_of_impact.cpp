@@ -126,7 +126,7 @@ class Advancement {
     // motion that starts in contact answers with that result, without asking it again (two
     // queries, the second's penetration depth aside, were a third of such a motion's cost).
     const Result start = measure(0, Goal::signed_distance);
-    Sample low = sample(0, start);
+    Sample low = sample(0, start, Goal::signed_distance);
     if (low.contact) return contact(0, 0, start);
     // Sampled times after `low`, nearest last: each one still to be reached.
     std::vector<Sample> ahead;
@@ -228,12 +228,22 @@ class Advancement {
     return answer([&](const Query& q) { return q.distance(a_, pose_a, b_, pose_b); });
   }
 
-  Sample sample(Scalar t) { return sample(t, measure(t, Goal::distance)); }
+  Sample sample(Scalar t) { return sample(t, measure(t, Goal::distance), Goal::distance); }
 
-  // What `result`, the query's answer at t, proves.
-  Sample sample(Scalar t, const Result& result) {
+  // What `result`, the query's answer to `goal` at t, proves.
+  Sample sample(Scalar t, const Result& result, Goal goal) {
     Sample s{t, result.distance + margin_ <= contact_threshold_, 0, 0};
     const Scalar apart = result.lower_bound - margin_;
+    if (!s.contact && !(apart > 0) && goal == Goal::distance &&
+        result.distance <= contact_threshold_) {
+      // In contact, but its distance (0 for an overlap) is not proven within the threshold once
+      // the margin is added: the margin grows with the motion's extent, and past some 1e5 times
+      // the bodies' size it exceeds the threshold (unit cubes 1e5 from the origin moving a few
+      // units were never certified in contact, however deep they overlapped). An overlap deeper
+      // than the margin still proves contact: the signed distance measures it, as
+      // Robot.check_motion's samples do.
+      s.contact = measure(t, Goal::signed_distance).distance + margin_ <= contact_threshold_;
+    }
     if (s.contact || !(apart > 0)) return s;
     s.forward = s.backward = detail::reach_over(apart, bound_.full());
     const Scalar length = result.direction.norm();

@@ -236,6 +236,46 @@ void reduce(const Polygon& polygon, int count, Polygon& reduced, std::vector<std
   for (std::size_t i : chosen) reduced.push_back(polygon[i]);
 }
 
+// Appends to `projected` (as coordinates along `u` and `v`, which span the plane normal to the
+// unit `d`) points of a curved body's supporting feature along `d` that its numbered points may
+// lack: these are the support points found so far (FramedBody), which hold the feature only where
+// a solver happened to find its extremes. A pair framed afresh for its contact points (a compound
+// body's deepest part pair) held one point of a cylinder's side, a rim's, which met the other
+// body's feature nowhere: their midpoint was 0.3 off both surfaces. So the support function is
+// asked along `d` tilted towards four directions around it, each by the largest of the angles
+// 1, 2^-5, ..., 2^-20 radians whose point lies within `slack` below `top` (the supporting plane's
+// height along `d`): a disc's rim where a cap or a base faces `d` (and then four more of its
+// points, between those), a side's ends, a smooth surface's points near the support point, which
+// meet the other feature where the normal is a little off. The points are not numbered: added to
+// the body's support points (a hash and a row each), 40 of them made the contacts of 200 curved
+// bodies and boxes (277 pairs) 35% more instructions than before; these make them 7% more
+// (callgrind).
+void add_feature_points(const FramedBody& body, const Vector3& d, Scalar top, Scalar slack,
+                        const Vector3& u, const Vector3& v, Polygon& projected) {
+  const auto kept = [&](const Vector3& towards, Scalar tilt) {
+    const Vector3 tilted = body.local_direction(d + tilt * towards);
+    const Vector3 p = body.placed_point(body.curved_local_support(tilted));
+    if (!(d.dot(p) >= top - slack)) return false;
+    projected.emplace_back(u.dot(p), v.dot(p));
+    return true;
+  };
+  bool disc = false;
+  for (const Vector3& towards : {u, v, Vector3(-u), Vector3(-v)}) {
+    for (Scalar tilt = 1; tilt > 0x1p-21; tilt *= 0x1p-5) {
+      if (kept(towards, tilt)) {
+        disc = disc || tilt == 1;
+        break;
+      }
+    }
+  }
+  if (!disc) return;
+  constexpr Scalar kDiagonal = 0.70710678118654752;
+  for (const Vector3& towards : {Vector3(kDiagonal * (u + v)), Vector3(kDiagonal * (v - u)),
+                                 Vector3(-kDiagonal * (u + v)), Vector3(kDiagonal * (u - v))}) {
+    kept(towards, 1);
+  }
+}
+
 }  // namespace
 
 void contact_points(const FramedPair& pair, const Vector3& n, Scalar slack, int max_points,
@@ -266,6 +306,8 @@ void contact_points(const FramedPair& pair, const Vector3& n, Scalar slack, int 
   }
   const Scalar top_a = n.dot(pair.a.vertex(top_index_a));
   const Scalar bottom_b = n.dot(pair.b.vertex(top_index_b));
+  if (pair.a.curved()) add_feature_points(pair.a, n, top_a, slack, u, v, g.pa);
+  if (pair.b.curved()) add_feature_points(pair.b, -n, -bottom_b, slack, u, v, g.pb);
   // Halfway between the supporting planes of the rounded bodies: the cores' moved out by the radii.
   const Scalar height = (top_a + pair.radius_a) / 2 + (bottom_b - pair.radius_b) / 2;
   convex_hull(g.pa, slack, g.hull_a);

@@ -25,8 +25,11 @@ struct ContactFeatures {
 /// or a vertex) are projected onto the plane perpendicular to `n`, clipped against each other,
 /// and lifted halfway between the two supporting planes. Face on face gives the corners of the
 /// overlap polygon, reduced to the `max_points` that span the largest area; edge on face the
-/// ends of the edge's part over the face; a vertex (or crossing edges) one point.
-/// The features are left in `features` (buffers reused from call to call).
+/// ends of the edge's part over the face; a vertex (or crossing edges) one point. A curved body's
+/// feature is its numbered points within the slack (its support points so far) and the points
+/// its support function gives along directions near the normal within the slack: its extremes
+/// are there whatever points a solver happened to find.
+/// The features' numbered points are left in `features` (buffers reused from call to call).
 void contact_points(const FramedPair& pair, const Vector3& n, Scalar slack, int max_points,
                     std::vector<Vector3>& out, ContactFeatures& features);
 

@@ -58,7 +58,11 @@ enum class MotionStatus {
   /// The iteration cap ran out first (grazing motions at a tolerance too small for them).
   max_iterations,
   /// Two sampled times came closer than double precision can split while neither a contact nor
-  /// a free interval between them was proven (a tolerance below the poses' rounding).
+  /// a free interval between them was proven: the queries left those times unproven, or the
+  /// contact threshold (tolerance x size) is below the rounding of the poses, which grows with
+  /// the motion's extent and its distance from the world's origin (past some 1e5 times the
+  /// bodies' size), and the bodies graze without overlapping deeper than it (a deeper overlap
+  /// proves contact).
   unresolved,
 };
 
