@@ -69,8 +69,8 @@ bool is_one_pose(const py::sequence& given) {
 bool is_stacked_motion(const py::handle& given) {
   if (!py::isinstance<py::array>(given)) return false;
   const py::array array = py::reinterpret_borrow<py::array>(given);
-  return array.ndim() == 3 && array.shape(0) == 2 && (array.shape(1) == 4 || array.shape(1) == 3) &&
-         array.shape(2) == 4;
+  return array.ndim() == 3 && array.shape(0) == 2 &&
+         (array.shape(1) == 4 || array.shape(1) == 3) && array.shape(2) == 4;
 }
 
 // A motion argument: None (still at the identity), one pose (still there), or a pair

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstddef>
+#include <string>
 
 #include "../geometry/framed_body.hpp"
 #include "../solvers/answer.hpp"
@@ -41,6 +42,10 @@ inline const MethodDispatch& method_dispatch(Method method) {
 
 /// The solver of `method`.
 inline Solver solver_for(Method method) { return method_dispatch(method).solve; }
+
+/// The names of the methods with `capability`, quoted and comma-separated ('dual', 'exact', ...),
+/// for the messages that refuse a method without it.
+std::string methods_with(Capability capability);
 
 /// Throws std::invalid_argument naming the methods that can answer `query` (which has
 /// `capability`), which `method` cannot.

@@ -25,14 +25,18 @@ const Pose kIdentity{};
 
 namespace detail {
 
-void refuse_capability(Method method, Capability capability, const char* query) {
+std::string methods_with(Capability capability) {
   std::string able;
   for (const MethodInfo& info : method_table()) {
     if (info.capabilities & capability)
       able += std::string(able.empty() ? "'" : ", '") + info.name + "'";
   }
+  return able;
+}
+
+void refuse_capability(Method method, Capability capability, const char* query) {
   throw std::invalid_argument(std::string(query) + " is not available with method '" +
-                              method_name(method) + "'; use one of " + able);
+                              method_name(method) + "'; use one of " + methods_with(capability));
 }
 
 }  // namespace detail

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "../geometry/unit_direction.hpp"
+#include "../queries/dispatch.hpp"
 #include "box_screen.hpp"
 #include "geometry_pairs.hpp"
 #include "swarmcollide/queries/batch.hpp"
@@ -60,16 +61,11 @@ RobotChecker::RobotChecker(const RobotModel& model, std::vector<GeometryPair> pa
   // Here, before any configuration: the first configuration's pair query refused it, and a
   // batch's message named that configuration as if it were at fault.
   if (nearest_ && !(method_info(options_.method).capabilities & kSignedDistance)) {
-    std::string able;
-    for (const MethodInfo& info : method_table()) {
-      if (info.capabilities & kSignedDistance) {
-        able += std::string(able.empty() ? "'" : ", '") + info.name + "'";
-      }
-    }
     throw std::invalid_argument(
         std::string("method '") + method_name(options_.method) +
         "' answers verdicts, not the signed distances the nearest pair is found by: pass "
-        "nearest=False for the verdict alone, or a method that answers them (" + able + ")");
+        "nearest=False for the verdict alone, or a method that answers them (" +
+        detail::methods_with(kSignedDistance) + ")");
   }
   admitted_.resize(static_cast<std::size_t>(model_.dof()));
   if (gradient_) row_.gradient.setZero(model_.dof());
